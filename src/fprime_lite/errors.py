@@ -1,0 +1,42 @@
+"""Exceptions raised by fprime_lite.
+
+Every error names what is wrong and, where it can, what to do instead. Errors that a user's own
+declaration or wiring causes are raised as early as possible: declaration errors when the component
+class is created, connection errors when ports are connected.
+"""
+
+from __future__ import annotations
+
+
+class FprimeLiteError(Exception):
+    """Base class of every fprime_lite error."""
+
+
+class DeclarationError(FprimeLiteError):
+    """A component, port type or data type declaration is inconsistent.
+
+    Raised when the class is created, with the class and member named in the message.
+    """
+
+
+class SerializationError(FprimeLiteError, ValueError):
+    """A value does not fit its F´ type, or bytes do not deserialize to that type."""
+
+
+class PortConnectionError(FprimeLiteError):
+    """Two ports cannot be connected (type mismatch, index out of range, already connected)."""
+
+
+class UnconnectedPortError(FprimeLiteError):
+    """An output port was called while nothing is connected to it."""
+
+
+class QueueFullError(FprimeLiteError):
+    """An async input port's queue was full and its overflow behaviour is ``assert``."""
+
+
+class FwAssertionError(AssertionError):
+    """A framework invariant was broken (F´'s FW_ASSERT).
+
+    The message names the component and the port or member involved.
+    """

@@ -1,0 +1,44 @@
+"""The framework's own port types: the special ports every component may have, and Sched.
+
+Special ports carry commands, events, telemetry, parameters and time between a component and the
+standard services. Argument payloads travel as F´ serialized bytes, as they do in F´.
+"""
+
+from __future__ import annotations
+
+from .commands import CmdResponse
+from .events import Severity
+from .params import ParamValid
+from .ports import PortType
+from .time import Time
+from .types import U32
+
+__all__ = ["Cmd", "CmdReg", "CmdResponsePort", "Log", "LogText", "Tlm", "PrmGet", "PrmSet",
+           "TimeGet", "Sched", "SPECIAL_PORTS"]
+
+Cmd = PortType("Fw.Cmd", opcode=U32, cmd_seq=U32, args=bytes)
+CmdReg = PortType("Fw.CmdReg", opcode=U32)
+CmdResponsePort = PortType("Fw.CmdResponse", opcode=U32, cmd_seq=U32, response=CmdResponse)
+Log = PortType("Fw.Log", id=U32, time=Time, severity=Severity, args=bytes)
+LogText = PortType("Fw.LogText", id=U32, time=Time, severity=Severity, text=str)
+Tlm = PortType("Fw.Tlm", id=U32, time=Time, value=bytes)
+#: Returns ``(validity, value bytes)``; the bytes are None unless validity is VALID.
+PrmGet = PortType("Fw.PrmGet", returns=tuple, id=U32)
+PrmSet = PortType("Fw.PrmSet", id=U32, value=bytes)
+TimeGet = PortType("Fw.Time", returns=Time)
+Sched = PortType("Svc.Sched", context=U32)
+
+#: Special port kind (FPP spelling) -> (conventional F´ port name, port type, direction).
+SPECIAL_PORTS = {
+    "command recv": ("cmdIn", Cmd, "input"),
+    "command reg": ("cmdRegOut", CmdReg, "output"),
+    "command resp": ("cmdResponseOut", CmdResponsePort, "output"),
+    "event": ("logOut", Log, "output"),
+    "text event": ("logTextOut", LogText, "output"),
+    "telemetry": ("tlmOut", Tlm, "output"),
+    "param get": ("prmGetOut", PrmGet, "output"),
+    "param set": ("prmSetOut", PrmSet, "output"),
+    "time get": ("timeCaller", TimeGet, "output"),
+}
+
+__all__ += ["ParamValid"]
