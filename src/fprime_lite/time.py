@@ -55,6 +55,8 @@ class Time:
     def from_us(cls, microseconds: int, time_base: int = TimeBase.TB_WORKSTATION_TIME,
                 context: int = 0) -> "Time":
         """The time ``microseconds`` after the base's epoch."""
+        if microseconds < 0:
+            raise ValueError(f"time cannot be negative: {microseconds} us")
         t = cls.__new__(cls)
         t.time_base = time_base
         t.context = context
@@ -184,15 +186,23 @@ class TimeInterval:
         return hash(self._us)
 
     def __lt__(self, other):
+        if not isinstance(other, TimeInterval):
+            return NotImplemented
         return self._us < other._us
 
     def __le__(self, other):
+        if not isinstance(other, TimeInterval):
+            return NotImplemented
         return self._us <= other._us
 
     def __gt__(self, other):
+        if not isinstance(other, TimeInterval):
+            return NotImplemented
         return self._us > other._us
 
     def __ge__(self, other):
+        if not isinstance(other, TimeInterval):
+            return NotImplemented
         return self._us >= other._us
 
     def __add__(self, other):

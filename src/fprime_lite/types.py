@@ -33,7 +33,7 @@ import enum
 import math
 import struct
 import sys
-from typing import Any, ClassVar
+from typing import Any, ClassVar, get_origin
 
 from .errors import DeclarationError, SerializationError
 
@@ -157,7 +157,12 @@ class FloatType(FwType):
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise SerializationError(
                 f"{self.name} expects a number, got {type(value).__name__} {value!r}")
-        value = float(value)
+        try:
+            value = float(value)
+        except OverflowError:  # an int beyond any float's range
+            raise SerializationError(
+                f"{self.name} value is out of range: a {value.bit_length()}-bit integer "
+                f"does not fit a float") from None
         if self.bits == 32 and math.isfinite(value) and abs(value) > _F32_MAX:
             # Values that would round to the largest F32 are accepted; anything larger overflows.
             try:
@@ -234,7 +239,10 @@ class StringType(FwType):
     def check(self, value):
         if not isinstance(value, str):
             raise SerializationError(f"string expects str, got {type(value).__name__} {value!r}")
-        n = len(value.encode("utf-8"))
+        try:
+            n = len(value.encode("utf-8"))
+        except UnicodeEncodeError as exc:  # lone surrogates
+            raise SerializationError(f"string {value!r} is not valid UTF-8 text ({exc.reason})") from None
         if n > self.size:
             raise SerializationError(
                 f"string of {n} bytes exceeds its bound of {self.size} bytes; shorten it")
@@ -552,7 +560,8 @@ class Struct:
             raise DeclarationError(f"struct {cls.__name__} declares no members")
         members = []
         for name, annotation in annotations.items():
-            if annotation == "ClassVar" or str(annotation).startswith("ClassVar"):
+            if (annotation == "ClassVar" or str(annotation).startswith("ClassVar")
+                    or annotation is ClassVar or get_origin(annotation) is ClassVar):
                 continue
             t = _resolve_annotation(cls, name, annotation)
             members.append((name, t))

@@ -1,0 +1,7 @@
+"""Testing support: the component port harness and its pytest fixture."""
+
+from .harness import (CommandResponseRecord, ComponentHarness, EventRecord, PortCall,
+                      TelemetryRecord, TextEventRecord)
+
+__all__ = ["ComponentHarness", "PortCall", "CommandResponseRecord", "EventRecord", "TextEventRecord",
+           "TelemetryRecord"]
