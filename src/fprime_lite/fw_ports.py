@@ -14,7 +14,7 @@ from .time import Time
 from .types import U32
 
 __all__ = ["Cmd", "CmdReg", "CmdResponsePort", "Log", "LogText", "Tlm", "PrmGet", "PrmSet",
-           "TimeGet", "Sched", "SPECIAL_PORTS"]
+           "TimeGet", "Sched", "Com", "Cycle", "Ping", "FatalEvent", "CmdSeqIn", "SPECIAL_PORTS"]
 
 Cmd = PortType("Fw.Cmd", opcode=U32, cmd_seq=U32, args=bytes)
 CmdReg = PortType("Fw.CmdReg", opcode=U32)
@@ -27,6 +27,14 @@ PrmGet = PortType("Fw.PrmGet", returns=tuple, id=U32)
 PrmSet = PortType("Fw.PrmSet", id=U32, value=bytes)
 TimeGet = PortType("Fw.Time", returns=Time)
 Sched = PortType("Svc.Sched", context=U32)
+#: A packet of F´ bytes (``U16 descriptor | payload``), as the ground link and services pass them.
+Com = PortType("Fw.Com", data=bytes, context=U32)
+#: One tick of a rate-group driver; ``cycle_start`` is when the cycle began.
+Cycle = PortType("Svc.Cycle", cycle_start=Time)
+Ping = PortType("Svc.Ping", key=U32)
+FatalEvent = PortType("Svc.FatalEvent", id=U32)
+#: Ask a sequencer to run the sequence file ``file_name``.
+CmdSeqIn = PortType("Svc.CmdSeqIn", file_name=str)
 
 #: Special port kind (FPP spelling) -> (conventional F´ port name, port type, direction).
 SPECIAL_PORTS = {
@@ -41,4 +49,3 @@ SPECIAL_PORTS = {
     "time get": ("timeCaller", TimeGet, "output"),
 }
 
-__all__ += ["ParamValid"]
