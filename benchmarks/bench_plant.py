@@ -1,0 +1,72 @@
+"""Plant-only throughput vs the bare-physics floor, measured in the same run.
+
+    python benchmarks/bench_plant.py [--ticks N]
+
+Floor: one RK4 step of the 7-state rigid body with a constant torque (``RigidBody.step``).
+Ticks: ``Plant.step`` of a packaged scenario plus what a driver does each tick (read the
+magnetometer and gyro; for case A also the kopt law and applying its dipole). Reported as ticks per
+second and as a ratio to the floor; timings are never asserted anywhere.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+from detumble.sim.attitude import RigidBody
+from detumble.sim.plant import Plant
+from detumble.sim.runner import make_law
+from detumble.sim.scenario import load_scenario
+
+
+def _best(fn, n: int, repeats: int = 3) -> float:
+    best = float("inf")
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn(n)
+        best = min(best, time.perf_counter() - t0)
+    return n / best
+
+
+def floor(n: int) -> None:
+    body = RigidBody(((1.67e-3, 0, 0), (0, 1.67e-3, 0), (0, 0, 1.67e-3)))
+    s = (1.0, 0.0, 0.0, 0.0, 0.3, -0.2, 0.1)
+    step = body.step
+    tau = (1e-7, -2e-7, 3e-7)
+    for _ in range(n):
+        s = step(s, 0.05, tau)
+
+
+def plant_default(n: int) -> None:
+    p = Plant(load_scenario("default"))
+    step, mag, gyro = p.step, p.magnetometer_reading, p.gyro_reading
+    for _ in range(n):
+        step()
+        mag()
+        gyro()
+
+
+def plant_case_a_with_law(n: int) -> None:
+    p = Plant(load_scenario("case_a"))
+    law = make_law("kopt", p)
+    step, update, apply = p.step, law.update, p.apply_dipole_B
+    for _ in range(n):
+        bx, by, bz, t = p.magnetometer_reading()
+        apply(update((bx * 1e-4, by * 1e-4, bz * 1e-4), t))
+        step()
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--ticks", type=int, default=50_000)
+    n = ap.parse_args().ticks
+    f = _best(floor, n)
+    print(f"bare RK4 step (floor)                       {f:12,.0f} steps/s  ({1e6 / f:5.2f} us)   ratio 1.00")
+    for label, fn in (("plant tick, default (coils, noisy sensors) ", plant_default),
+                      ("plant tick + kopt law, case A (rods, ideal)", plant_case_a_with_law)):
+        r = _best(fn, n)
+        print(f"{label} {r:12,.0f} ticks/s  ({1e6 / r:5.2f} us)   ratio {f / r:.2f}x the floor")
+
+
+if __name__ == "__main__":
+    main()

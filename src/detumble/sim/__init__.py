@@ -1,0 +1,11 @@
+"""Plant physics of the simulated PROVES 1U CubeSat (no F' framework import anywhere here).
+
+Modules: :mod:`.vec` (plain-float vectors/quaternions, the quaternion convention),
+:mod:`.attitude` (rigid body, RK4), :mod:`.orbit`, :mod:`.field`, :mod:`.torques`,
+:mod:`.sensors`, :mod:`.coils`, :mod:`.scenario`, :mod:`.plant`, :mod:`.laws`, :mod:`.runner`.
+"""
+
+from .plant import Plant
+from .scenario import Scenario, ScenarioError, load_scenario, parse_scenario, scenario_from_dict
+
+__all__ = ["Plant", "Scenario", "ScenarioError", "load_scenario", "parse_scenario", "scenario_from_dict"]

@@ -1,0 +1,117 @@
+"""Reference magnetic detumble laws for plant-only runs (plain floats, SI unless stated).
+
+Each law is an object with ``update(b_B, t) -> m_B``: given a field measurement ``b_B`` (tesla,
+body frame) taken at time ``t`` (s), it returns the dipole (A m^2, body frame) to apply until the
+next update. The first update only primes the finite difference and returns zero.
+
+* ``none`` - zero dipole.
+* ``kopt`` - the law of the Basilisk cross-check, case A (Markley & Crassidis eq. 7.55; Avanzini &
+  Giulietti 2012): ``m = -(k/|B|^2) (B_now - B_prev)/dt`` with ``k = 2 n (1 + sin i) J_min``, the
+  whole vector scaled down so that every ``|m_i| <= m_max_i``.
+* ``bdot`` - ``m = -gain * dB/dt`` with the gain in the flight units, A m^2 s / G (dB/dt in
+  gauss/s; the flight DetumbleManager's GAIN default is 3.0), scaled like ``kopt``.
+* ``bangbang`` - ``m_i = -m_max_i sign(dB_i/dt)``: saturated bang-bang B-dot.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .vec import Vec3
+
+_ZERO = (0.0, 0.0, 0.0)
+
+
+def kopt_gain(mean_motion_rad_s: float, inclination_rad: float, j_min_kg_m2: float) -> float:
+    """``k = 2 n (1 + sin i) J_min`` in kg m^2/s (N m s)."""
+    return 2.0 * mean_motion_rad_s * (1.0 + math.sin(inclination_rad)) * j_min_kg_m2
+
+
+def scale_to_limits(m: Vec3, m_max: Vec3) -> Vec3:
+    """Scale the whole vector down (direction kept) so that ``|m_i| <= m_max_i`` on every axis."""
+    s = 1.0
+    for i in range(3):
+        a = abs(m[i])
+        if a > m_max[i]:
+            s = min(s, m_max[i] / a if a > 0.0 else 1.0)
+    if s == 1.0:
+        return m
+    return (m[0] * s, m[1] * s, m[2] * s)
+
+
+class _Differencing:
+    def __init__(self) -> None:
+        self._prev: Vec3 | None = None
+        self._t_prev = 0.0
+
+    def reset(self) -> None:
+        self._prev = None
+
+    def _bdot(self, b: Vec3, t: float) -> Vec3 | None:
+        prev, tp = self._prev, self._t_prev
+        self._prev, self._t_prev = b, t
+        if prev is None or t <= tp:
+            return None
+        inv = 1.0 / (t - tp)
+        return ((b[0] - prev[0]) * inv, (b[1] - prev[1]) * inv, (b[2] - prev[2]) * inv)
+
+
+class NoLaw:
+    name = "none"
+
+    def reset(self) -> None:
+        pass
+
+    def update(self, b_B: Vec3, t: float) -> Vec3:
+        return _ZERO
+
+
+class KoptLaw(_Differencing):
+    """Gain ``k`` in kg m^2/s; ``m_max`` per axis in A m^2."""
+
+    name = "kopt"
+
+    def __init__(self, k: float, m_max: Vec3) -> None:
+        super().__init__()
+        self.k = k
+        self.m_max = m_max
+
+    def update(self, b_B: Vec3, t: float) -> Vec3:
+        bdot = self._bdot(b_B, t)
+        b2 = b_B[0] * b_B[0] + b_B[1] * b_B[1] + b_B[2] * b_B[2]
+        if bdot is None or b2 == 0.0:
+            return _ZERO
+        c = -self.k / b2
+        return scale_to_limits((c * bdot[0], c * bdot[1], c * bdot[2]), self.m_max)
+
+
+class BdotLaw(_Differencing):
+    """Gain in A m^2 s / G (flight units); ``m_max`` per axis in A m^2."""
+
+    name = "bdot"
+
+    def __init__(self, gain_am2_s_per_gauss: float, m_max: Vec3) -> None:
+        super().__init__()
+        self.gain = gain_am2_s_per_gauss
+        self.m_max = m_max
+
+    def update(self, b_B: Vec3, t: float) -> Vec3:
+        bdot = self._bdot(b_B, t)
+        if bdot is None:
+            return _ZERO
+        c = -self.gain * 1e4  # T/s -> G/s
+        return scale_to_limits((c * bdot[0], c * bdot[1], c * bdot[2]), self.m_max)
+
+
+class BangBangLaw(_Differencing):
+    name = "bangbang"
+
+    def __init__(self, m_max: Vec3) -> None:
+        super().__init__()
+        self.m_max = m_max
+
+    def update(self, b_B: Vec3, t: float) -> Vec3:
+        bdot = self._bdot(b_B, t)
+        if bdot is None:
+            return _ZERO
+        return tuple(-math.copysign(self.m_max[i], bdot[i]) if bdot[i] != 0.0 else 0.0 for i in range(3))  # type: ignore[return-value]

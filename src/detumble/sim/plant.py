@@ -1,0 +1,238 @@
+"""The simulated spacecraft ("plant"): state, time, environment, actuators and sensors.
+
+:class:`Plant` owns the rigid-body state (``q_BN`` scalar first, ``omega_BN_B`` rad/s), an
+integer-nanosecond clock starting at 0 at the scenario epoch, the orbit and field models, the
+coils (or ideal rods) and the magnetometer and gyro. The simulated F' drivers call its getters;
+everything they exchange is plain floats and tuples (no numpy on the per-tick path).
+
+Within one :meth:`Plant.step` the coil dipole (its mean over the step if the coils have an L/R
+lag), the inertial field ``b_N`` and the orbit direction are held; the attitude-dependent torques
+are re-evaluated at each RK4 stage. The field and orbit are evaluated once per step, at its end.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .attitude import RigidBody, State
+from .coils import CoilSet, TorqueRods
+from .field import DipoleField, FieldAlongOrbit, WmmField
+from .orbit import CircularOrbit, TleOrbit
+from .scenario import Scenario
+from .sensors import GAUSS_PER_TESLA, Gyro, Magnetometer
+from .vec import Vec3, rotate_n_to_b
+
+_ZERO = (0.0, 0.0, 0.0)
+
+
+def _derive_seed(seed: int, stream: int) -> int:
+    return (int(seed) * 0x9E3779B1 + stream * 0x85EBCA6B) & 0xFFFFFFFFFFFF
+
+
+def build_orbit(sc: Scenario):
+    o = sc.orbit
+    if o.type == "tle":
+        from .epoch import julian_date
+
+        return TleOrbit(o.tle[0], o.tle[1], julian_date(sc.epoch), o.table_step_s, o.mu_m3_s2)
+    return CircularOrbit(
+        o.altitude_km * 1e3, math.radians(o.inclination_deg), math.radians(o.raan_deg),
+        math.radians(o.arg_latitude_deg), o.mu_m3_s2, o.earth_radius_m, o.j2_coefficient if o.j2 else 0.0,
+    )
+
+
+def build_field(sc: Scenario, orbit) -> FieldAlongOrbit | None:
+    f = sc.field
+    if f.model == "none":
+        return None
+    if f.model == "wmm2025":
+        return FieldAlongOrbit(WmmField(sc.epoch, f.earth_rotation_rate_rad_s, sc.earth_angle0_rad), orbit,
+                               f.table_step_s)
+    model = DipoleField(f.g10_nt, f.g11_nt, f.h11_nt, f.reference_radius_m, f.earth_rotation_rate_rad_s,
+                        sc.earth_angle0_rad)
+    return FieldAlongOrbit(model, orbit, None)
+
+
+class Plant:
+    """One simulated spacecraft built from a :class:`~detumble.sim.scenario.Scenario`.
+
+    ``seed`` (default: the scenario's) seeds the sensor noise streams.
+    """
+
+    def __init__(self, scenario: Scenario, seed: int | None = None) -> None:
+        sc = scenario
+        self.scenario = sc
+        self.seed = sc.seed if seed is None else seed
+        self.dynamics_step_s = sc.dynamics_step_s
+        self.body = RigidBody(sc.spacecraft.inertia_kg_m2, sc.spacecraft.wheel_momentum_nms)
+        self.orbit = build_orbit(sc)
+        self.field = build_field(sc, self.orbit)
+        if sc.spacecraft.actuator_type == "rods":
+            self.actuators: CoilSet | TorqueRods = TorqueRods(sc.spacecraft.rods_max_dipole_am2)
+        else:
+            self.actuators = CoilSet(sc.spacecraft.coils)
+        self.residual_dipole_B: Vec3 = sc.spacecraft.residual_dipole_am2
+        self._gravity_gradient = sc.spacecraft.gravity_gradient
+        self.magnetometer = Magnetometer(sc.magnetometer, _derive_seed(self.seed, 1))
+        self.gyro = Gyro(sc.gyro, _derive_seed(self.seed, 2))
+        self._state: State = tuple(sc.q_BN0) + tuple(sc.omega_BN_B0)  # type: ignore[assignment]
+        self._t_ns = 0
+        self._update_environment()
+        # the sensors' first sample is at t = 0
+        if not sc.magnetometer.ideal:
+            self.magnetometer.sample_gauss = self.magnetometer.measure(self.b_B, self.actuators.dipole_B)
+            self.magnetometer.sample_time_ns = 0
+        if not sc.gyro.ideal:
+            self.gyro.sample_rad_s = self.gyro.measure(self.omega_BN_B)
+            self.gyro.sample_time_ns = 0
+
+    # --- time ---------------------------------------------------------------------------------
+
+    @property
+    def t(self) -> float:
+        """Simulated time since the scenario epoch, seconds."""
+        return self._t_ns / 1e9
+
+    @property
+    def t_ns(self) -> int:
+        return self._t_ns
+
+    def _update_environment(self) -> None:
+        t = self._t_ns / 1e9
+        r = self.orbit.position_N(t)
+        self._r_N = r
+        rn = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
+        self._r_hat_N = (r[0] / rn, r[1] / rn, r[2] / rn)
+        self._gg = self.orbit.gravity_gradient_coeff(r) if self._gravity_gradient else 0.0
+        self._b_N = self.field.b_N(t, r) if self.field is not None else _ZERO
+
+    def step(self, dt: float | None = None) -> None:
+        """Advance the plant by ``dt`` seconds (default: the scenario's dynamics step)."""
+        if dt is None:
+            dt = self.dynamics_step_s
+        dt_ns = int(round(dt * 1e9))
+        if dt_ns <= 0:
+            if dt_ns == 0:
+                return
+            raise ValueError(f"cannot step backwards (dt = {dt} s)")
+        dt = dt_ns * 1e-9
+        t0 = self._t_ns
+        t1 = t0 + dt_ns
+        s0 = self._state
+        b0_N = self._b_N
+        m_coils = self.actuators.advance(dt)
+        res = self.residual_dipole_B
+        m_tot = (m_coils[0] + res[0], m_coils[1] + res[1], m_coils[2] + res[2])
+        s1 = self.body.step_env(s0, dt, m_tot, b0_N, self._gg, self._r_hat_N)
+        self._state = s1
+        self._t_ns = t1
+        self._update_environment()
+        mag = self.magnetometer
+        if not mag.spec.ideal and mag.latest_instant(t0, t1) is not None:
+            mag.latch(t0, t1, rotate_n_to_b(s0[:4], b0_N), rotate_n_to_b(s1[:4], self._b_N), m_coils)
+        gyro = self.gyro
+        if not gyro.spec.ideal and gyro.latest_instant(t0, t1) is not None:
+            gyro.latch(t0, t1, s0[4:7], s1[4:7])
+
+    def advance_to(self, t: float) -> None:
+        """Step (in dynamics steps, the last one partial) until the clock reads ``t`` seconds."""
+        target = int(round(t * 1e9))
+        if target < self._t_ns:
+            raise ValueError(f"cannot go back in time: plant is at {self.t:.9f} s, asked for {t:.9f} s")
+        step_ns = int(round(self.dynamics_step_s * 1e9))
+        while self._t_ns < target:
+            self.step(min(step_ns, target - self._t_ns) * 1e-9)
+
+    def _sync(self, t: float | None) -> None:
+        if t is not None and int(round(t * 1e9)) != self._t_ns:
+            self.advance_to(t)
+
+    # --- truth ----------------------------------------------------------------------------------
+
+    @property
+    def state(self) -> State:
+        return self._state
+
+    @property
+    def q_BN(self) -> tuple[float, float, float, float]:
+        return self._state[0:4]  # type: ignore[return-value]
+
+    @property
+    def omega_BN_B(self) -> Vec3:
+        """True body rate relative to inertial, in B, rad/s."""
+        return self._state[4:7]  # type: ignore[return-value]
+
+    @property
+    def rate_deg_s(self) -> float:
+        s = self._state
+        return math.degrees(math.sqrt(s[4] * s[4] + s[5] * s[5] + s[6] * s[6]))
+
+    @property
+    def r_N(self) -> Vec3:
+        return self._r_N
+
+    @property
+    def b_N(self) -> Vec3:
+        """True geomagnetic field in N, tesla."""
+        return self._b_N
+
+    @property
+    def b_B(self) -> Vec3:
+        """True geomagnetic field in B, tesla (without the coils' own field)."""
+        return rotate_n_to_b(self._state[:4], self._b_N)
+
+    def angular_momentum_B(self) -> Vec3:
+        return self.body.angular_momentum_B(self._state)
+
+    # --- sensors -------------------------------------------------------------------------------
+
+    def magnetometer_reading(self, t: float | None = None) -> tuple[float, float, float, float]:
+        """``(bx, by, bz, t_read)``: held magnetometer sample in gauss (body axes), read time in s.
+
+        With ``t`` the plant is first advanced to ``t``.
+        """
+        self._sync(t)
+        if self.magnetometer.spec.ideal:
+            b = self.b_B
+            return (b[0] * GAUSS_PER_TESLA, b[1] * GAUSS_PER_TESLA, b[2] * GAUSS_PER_TESLA, self.t)
+        g = self.magnetometer.sample_gauss
+        return (g[0], g[1], g[2], self.t)
+
+    @property
+    def magnetometer_period_s(self) -> float:
+        return self.magnetometer.period_ns * 1e-9
+
+    def gyro_reading(self, t: float | None = None) -> tuple[float, float, float, float]:
+        """``(wx, wy, wz, t_read)``: held gyro sample in rad/s (body axes), read time in s."""
+        self._sync(t)
+        if self.gyro.spec.ideal:
+            w = self.omega_BN_B
+            return (w[0], w[1], w[2], self.t)
+        w = self.gyro.sample_rad_s
+        return (w[0], w[1], w[2], self.t)
+
+    # --- actuators -----------------------------------------------------------------------------
+
+    def set_coil_level(self, face: int, level: int, t: float | None = None) -> None:
+        """Drive the coil on ``face`` (X+ 0, X- 1, Y+ 2, Y- 3, Z- 5) at ``level`` -127...127."""
+        self._sync(t)
+        if not isinstance(self.actuators, CoilSet):
+            raise TypeError("this spacecraft has ideal torque rods, not face coils; use apply_dipole_B")
+        self.actuators.set_level(face, level)
+
+    def coil_levels(self) -> dict[int, int]:
+        if not isinstance(self.actuators, CoilSet):
+            return {}
+        return self.actuators.levels()
+
+    def apply_dipole_B(self, m_B: Vec3) -> None:
+        """Command a body dipole (A m^2): clamped for rods, split over each axis's coils for coils."""
+        self.actuators.apply_dipole_B(m_B)
+
+    @property
+    def m_coils_B(self) -> Vec3:
+        """Present total actuator dipole in B, A m^2."""
+        return self.actuators.dipole_B
+
+    def max_dipole_per_axis(self) -> Vec3:
+        return self.actuators.max_dipole_per_axis()

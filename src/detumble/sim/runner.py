@@ -1,0 +1,196 @@
+"""Plant-only runs: fly a scenario with a reference law (no F' framework involved).
+
+``python -m detumble.sim SCENARIO --law none|kopt|bdot|bangbang [--gain G] --out DIR
+[--duration S] [--seed N]`` writes ``DIR/summary.json`` and ``DIR/rate.csv``. :func:`main`
+returns an exit code and reports bad input on stderr without a traceback, so a CLI
+(``fprime-lite sim``) can call it directly.
+
+Control timing: the law runs every ``control.period_s``. If ``control.sense_settle_s`` > 0 the
+coils are switched off at the start of each period and the field is read that long afterwards
+(the flight manager's COOLDOWN idea); otherwise it is read at the start of the period, with the
+coils still on - and a magnetometer with coil coupling will then see them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+
+from .laws import BangBangLaw, BdotLaw, KoptLaw, NoLaw, kopt_gain
+from .plant import Plant
+from .scenario import LAWS, Scenario, ScenarioError, load_scenario
+
+DEFAULT_BDOT_GAIN = 3.0  # A m^2 s / G, the flight DetumbleManager default
+
+
+@dataclass
+class RunResult:
+    summary: dict
+    rows: list[tuple[float, float, float, float, float]]  # t s, wx wy wz |w| deg/s
+
+
+def make_law(name: str, plant: Plant, gain: float | None = None):
+    """Instantiate a reference law for ``plant``. ``gain`` overrides the law's default."""
+    m_max = plant.max_dipole_per_axis()
+    if name == "none":
+        return NoLaw()
+    if name == "kopt":
+        if gain is None:
+            import numpy as np  # set-up only
+
+            j_min = float(min(np.linalg.eigvalsh(np.array(plant.body.inertia))))
+            gain = kopt_gain(plant.orbit.mean_motion, plant.orbit.inclination_rad, j_min)
+        return KoptLaw(gain, m_max)
+    if name == "bdot":
+        return BdotLaw(DEFAULT_BDOT_GAIN if gain is None else gain, m_max)
+    if name == "bangbang":
+        return BangBangLaw(m_max)
+    raise ValueError(f"unknown law {name!r}; expected one of: {', '.join(LAWS)}")
+
+
+def run(scenario: Scenario, law: str | None = None, gain: float | None = None, duration_s: float | None = None,
+        seed: int | None = None) -> RunResult:
+    """Fly ``scenario`` with a law (default: the scenario's ``control.law``); return summary + samples."""
+    sc = scenario
+    ctrl = sc.control
+    law_name = law if law is not None else ctrl.law
+    gain = gain if gain is not None else ctrl.gain
+    duration = sc.duration_s if duration_s is None else duration_s
+    plant = Plant(sc, seed)
+    ctl = make_law(law_name, plant, gain)
+    dt = sc.dynamics_step_s
+    n_steps = int(round(duration / dt))
+    period = max(1, int(round(ctrl.period_s / dt)))
+    settle = int(round(ctrl.sense_settle_s / dt))
+    record_every = max(1, int(round(sc.record_interval_s / dt)))
+    active = law_name != "none"
+    threshold2 = math.radians(1.0) ** 2
+    t_below: float | None = None
+    rows: list[tuple[float, float, float, float, float]] = []
+    deg = math.degrees
+    zero = (0.0, 0.0, 0.0)
+
+    def record() -> None:
+        w = plant.omega_BN_B
+        rows.append((plant.t, deg(w[0]), deg(w[1]), deg(w[2]), deg(math.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2))))
+
+    record()
+    wall0 = time.perf_counter()
+    for k in range(n_steps):
+        if active:
+            phase = k % period
+            if settle and phase == 0:
+                plant.apply_dipole_B(zero)
+            if phase == settle:
+                bx, by, bz, t_read = plant.magnetometer_reading()
+                plant.apply_dipole_B(ctl.update((bx * 1e-4, by * 1e-4, bz * 1e-4), t_read))
+        plant.step(dt)
+        if t_below is None:
+            s = plant.state
+            if s[4] * s[4] + s[5] * s[5] + s[6] * s[6] < threshold2:
+                t_below = plant.t
+        if (k + 1) % record_every == 0:
+            record()
+    wall = time.perf_counter() - wall0
+    if rows[-1][0] != plant.t:
+        record()
+    summary = {
+        "scenario": sc.name,
+        "source": sc.source,
+        "law": law_name,
+        "gain": getattr(ctl, "k", getattr(ctl, "gain", None)),
+        "seed": plant.seed,
+        "dynamics_step_s": dt,
+        "control_period_s": ctrl.period_s,
+        "steps": n_steps,
+        "sim_seconds": plant.t,
+        "wall_seconds": wall,
+        "realtime_factor": plant.t / wall if wall > 0 else None,
+        "initial_rate_deg_s": rows[0][4],
+        "final_rate_deg_s": plant.rate_deg_s,
+        "time_below_1_deg_s": t_below,
+        "orbit_period_s": 2.0 * math.pi / plant.orbit.mean_motion,
+    }
+    return RunResult(summary, rows)
+
+
+def write_atomic(path: str, text: str) -> None:
+    """Write ``text`` to ``path`` atomically: temp file in the same folder, fsync, os.replace."""
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".tmp-", dir=folder)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
+            fh.write(text)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def write_outputs(result: RunResult, out_dir: str) -> None:
+    os.makedirs(out_dir, exist_ok=True)
+    write_atomic(os.path.join(out_dir, "summary.json"), json.dumps(result.summary, indent=2) + "\n")
+    lines = ["time_s,omega_x_deg_s,omega_y_deg_s,omega_z_deg_s,rate_deg_s"]
+    lines += [f"{t:.3f},{x:.9g},{y:.9g},{z:.9g},{w:.9g}" for t, x, y, z, w in result.rows]
+    write_atomic(os.path.join(out_dir, "rate.csv"), "\n".join(lines) + "\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="python -m detumble.sim",
+                                description="Plant-only detumble run of a scenario (no flight software).")
+    p.add_argument("scenario", nargs="?", help="packaged scenario name (e.g. case_a, default) or a YAML file")
+    p.add_argument("--scenario", dest="scenario_opt", metavar="NAME|FILE", help="same as the positional argument")
+    p.add_argument("--law", choices=LAWS, default=None, help="control law (default: the scenario's control.law)")
+    p.add_argument("--gain", type=float, default=None,
+                   help="kopt: k in kg m^2/s (default 2n(1+sin i)J_min); bdot: A m^2 s/G (default 3.0)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder for summary.json and rate.csv")
+    p.add_argument("--duration", type=float, default=None, metavar="S", help="simulated seconds (default: scenario)")
+    p.add_argument("--seed", type=int, default=None, help="noise / random-rate seed (default: scenario)")
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point. Returns 0 on success, 2 on bad input (message on stderr)."""
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # argparse has already printed its message
+        return int(exc.code or 0)
+    name = args.scenario_opt or args.scenario
+    if not name:
+        print("error: give a scenario name or file (e.g. case_a)", file=sys.stderr)
+        return 2
+    if args.duration is not None and not (math.isfinite(args.duration) and args.duration > 0):
+        print(f"error: --duration must be a positive number of seconds, got {args.duration}", file=sys.stderr)
+        return 2
+    if args.gain is not None and not (math.isfinite(args.gain) and args.gain > 0):
+        print(f"error: --gain must be positive, got {args.gain}", file=sys.stderr)
+        return 2
+    try:
+        sc = load_scenario(name, seed=args.seed)
+        result = run(sc, law=args.law, gain=args.gain, duration_s=args.duration)
+        write_outputs(result, args.out)
+    except ScenarioError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except (ImportError, OSError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    s = result.summary
+    below = s["time_below_1_deg_s"]
+    print(f"{s['scenario']}: law {s['law']}, {s['sim_seconds']:.0f} s simulated in {s['wall_seconds']:.1f} s "
+          f"({s['realtime_factor']:.0f}x real time); final rate {s['final_rate_deg_s']:.3f} deg/s; "
+          f"|w| < 1 deg/s at {'never' if below is None else f'{below:.1f} s'}; wrote {args.out}")
+    return 0
+
+
+__all__ = ["RunResult", "run", "make_law", "main", "write_atomic", "write_outputs"]

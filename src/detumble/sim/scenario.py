@@ -1,0 +1,523 @@
+"""Scenario files: YAML description of one plant-only or closed-loop simulation run.
+
+``load_scenario(name_or_path)`` resolves a packaged scenario name (``case_a``, ``default``, ...
+in ``detumble/sim/scenarios/``) or a file path, parses it with ``yaml.safe_load`` and validates
+every key. Unknown keys and bad values raise :class:`ScenarioError` whose message reads
+``FILE:LINE: dotted.key: what is wrong - what to do``. The full schema (every key, unit and
+default) is documented in ``docs/scenarios.md``.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+import os
+import random
+from dataclasses import dataclass
+from dataclasses import field as _dc_field
+from importlib import resources
+from typing import Any
+
+import yaml
+
+from .coils import FACE_NAMES, CoilSpec, default_coil_layout
+from .epoch import gmst_rad, julian_date, parse_epoch
+from .field import (EARTH_ROTATION_RATE, IGRF2025_G10_NT, IGRF2025_G11_NT, IGRF2025_H11_NT,
+                    IGRF_REFERENCE_RADIUS_M)
+from .orbit import J2_EARTH, MU_EARTH, R_EARTH_EQ
+from .sensors import GyroSpec, MagnetometerSpec
+from .vec import Mat3, Quat, Vec3, mrp_to_quat, quat_normalize, unit
+
+LAWS = ("none", "kopt", "bdot", "bangbang")
+
+
+class ScenarioError(ValueError):
+    """A scenario file or dictionary is invalid; the message names file, line and key."""
+
+
+@dataclass(frozen=True)
+class OrbitConfig:
+    type: str = "circular"
+    altitude_km: float = 420.0
+    inclination_deg: float = 51.6
+    raan_deg: float = 0.0
+    arg_latitude_deg: float = 0.0
+    j2: bool = False
+    mu_m3_s2: float = MU_EARTH
+    earth_radius_m: float = R_EARTH_EQ
+    j2_coefficient: float = J2_EARTH
+    tle: tuple[str, str] | None = None
+    table_step_s: float = 10.0
+
+
+@dataclass(frozen=True)
+class FieldConfig:
+    model: str = "dipole"
+    g10_nt: float = IGRF2025_G10_NT
+    g11_nt: float = IGRF2025_G11_NT
+    h11_nt: float = IGRF2025_H11_NT
+    reference_radius_m: float = IGRF_REFERENCE_RADIUS_M
+    earth_rotation_rate_rad_s: float = EARTH_ROTATION_RATE
+    earth_rotation_angle_deg: float | None = None
+    table_step_s: float = 1.0
+
+
+@dataclass(frozen=True)
+class SpacecraftConfig:
+    mass_kg: float = 1.3
+    inertia_kg_m2: Mat3 = ((2.2e-3, 0.0, 0.0), (0.0, 2.2e-3, 0.0), (0.0, 0.0, 2.2e-3))
+    residual_dipole_am2: Vec3 = (0.0, 0.0, 0.0)
+    wheel_momentum_nms: Vec3 = (0.0, 0.0, 0.0)
+    gravity_gradient: bool = True
+    actuator_type: str = "coils"
+    coils: dict[int, CoilSpec] = _dc_field(default_factory=default_coil_layout)
+    rods_max_dipole_am2: Vec3 = (0.2, 0.2, 0.2)
+
+
+@dataclass(frozen=True)
+class ControlConfig:
+    law: str = "none"
+    gain: float | None = None
+    period_s: float = 0.05
+    sense_settle_s: float = 0.0
+
+
+@dataclass(frozen=True)
+class Scenario:
+    name: str = "unnamed"
+    description: str = ""
+    source: str = "<dict>"
+    epoch: _dt.datetime = parse_epoch("2025-06-01T00:00:00Z")
+    duration_s: float = 5400.0
+    dynamics_step_s: float = 0.05
+    record_interval_s: float = 1.0
+    seed: int = 0
+    spacecraft: SpacecraftConfig = _dc_field(default_factory=SpacecraftConfig)
+    orbit: OrbitConfig = _dc_field(default_factory=OrbitConfig)
+    field: FieldConfig = _dc_field(default_factory=FieldConfig)
+    magnetometer: MagnetometerSpec = _dc_field(default_factory=MagnetometerSpec)
+    gyro: GyroSpec = _dc_field(default_factory=GyroSpec)
+    q_BN0: Quat = (1.0, 0.0, 0.0, 0.0)
+    omega_BN_B0: Vec3 = (0.0, 0.0, 0.0)
+    control: ControlConfig = _dc_field(default_factory=ControlConfig)
+
+    @property
+    def earth_angle0_rad(self) -> float:
+        """Earth rotation angle at t = 0: the configured one, else GMST of the epoch."""
+        if self.field.earth_rotation_angle_deg is not None:
+            return math.radians(self.field.earth_rotation_angle_deg)
+        return gmst_rad(julian_date(self.epoch))
+
+
+# --- loading -----------------------------------------------------------------------------------
+
+
+def packaged_scenarios() -> list[str]:
+    """Names of the scenarios shipped in ``detumble/sim/scenarios``."""
+    root = resources.files("detumble.sim").joinpath("scenarios")
+    return sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".yaml"))
+
+
+def resolve_scenario(name_or_path: str) -> tuple[str, str]:
+    """Return ``(source_label, text)`` for a packaged name or a file path."""
+    if os.path.exists(name_or_path):
+        with open(name_or_path, encoding="utf-8") as fh:
+            return name_or_path, fh.read()
+    base = name_or_path[:-5] if name_or_path.endswith(".yaml") else name_or_path
+    if os.sep not in base and "/" not in base:
+        res = resources.files("detumble.sim").joinpath("scenarios", base + ".yaml")
+        if res.is_file():
+            return f"{base}.yaml", res.read_text(encoding="utf-8")
+    raise ScenarioError(
+        f"{name_or_path}: no such scenario file, and not a packaged scenario "
+        f"(packaged: {', '.join(packaged_scenarios())})"
+    )
+
+
+def load_scenario(name_or_path: str, seed: int | None = None) -> Scenario:
+    """Load and validate a scenario by packaged name or path. ``seed`` overrides the file's."""
+    source, text = resolve_scenario(name_or_path)
+    return parse_scenario(text, source=source, seed=seed)
+
+
+def parse_scenario(text: str, source: str = "<string>", seed: int | None = None) -> Scenario:
+    """Validate scenario YAML text. ``yaml.safe_load`` only."""
+    try:
+        data = yaml.safe_load(text)
+        lines = _line_map(text)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f"{source}:{mark.line + 1}" if mark is not None else source
+        raise ScenarioError(f"{where}: not valid YAML: {getattr(exc, 'problem', exc)}") from None
+    if data is None:
+        data = {}
+    return scenario_from_dict(data, source=source, lines=lines, seed=seed)
+
+
+def _line_map(text: str) -> dict[tuple, int]:
+    """Map key paths to 1-based line numbers using the YAML node tree (safe loader)."""
+    out: dict[tuple, int] = {}
+    root = yaml.compose(text, Loader=yaml.SafeLoader)
+
+    def walk(node, path):
+        if isinstance(node, yaml.MappingNode):
+            for k, v in node.value:
+                p = path + (str(k.value),)
+                out[p] = k.start_mark.line + 1
+                walk(v, p)
+        elif isinstance(node, yaml.SequenceNode):
+            for i, v in enumerate(node.value):
+                p = path + (i,)
+                out[p] = v.start_mark.line + 1
+                walk(v, p)
+
+    if root is not None:
+        walk(root, ())
+    return out
+
+
+class _Section:
+    """A mapping being validated: typed getters, then :meth:`finish` rejects unknown keys."""
+
+    def __init__(self, data: Any, path: tuple, ctx: "_Ctx") -> None:
+        self.path = path
+        self.ctx = ctx
+        if data is None:
+            data = {}
+        if not isinstance(data, dict):
+            ctx.fail(path, f"expected a mapping of keys, got {type(data).__name__}")
+        self.data = data
+        self.used: set[str] = set()
+        self.declared: set[str] = set()
+
+    def allow(self, *keys: str) -> None:
+        """Declare keys that are valid here even when absent (for the 'allowed here' hint)."""
+        self.declared.update(keys)
+
+    def has(self, key: str) -> bool:
+        return key in self.data
+
+    def raw(self, key: str, default: Any = None) -> Any:
+        self.used.add(key)
+        return self.data.get(key, default)
+
+    def fail(self, key: str, msg: str):
+        self.ctx.fail(self.path + (key,), msg)
+
+    def number(self, key: str, default: float | None, *, positive: bool = False,
+               nonneg: bool = False, allow_none: bool = False) -> float | None:
+        v = self.raw(key, default)
+        if v is None:
+            if allow_none:
+                return None
+            self.fail(key, "a number is required")
+        return self.ctx.number(self.path + (key,), v, positive=positive, nonneg=nonneg)
+
+    def integer(self, key: str, default: int) -> int:
+        v = self.raw(key, default)
+        if isinstance(v, bool) or not isinstance(v, int):
+            self.fail(key, f"expected an integer, got {v!r}")
+        return v
+
+    def boolean(self, key: str, default: bool) -> bool:
+        v = self.raw(key, default)
+        if not isinstance(v, bool):
+            self.fail(key, f"expected true or false, got {v!r}")
+        return v
+
+    def string(self, key: str, default: str | None, choices: tuple[str, ...] | None = None) -> str:
+        v = self.raw(key, default)
+        if not isinstance(v, str):
+            self.fail(key, f"expected a string, got {v!r}")
+        if choices is not None and v not in choices:
+            self.fail(key, f"unknown value {v!r}; expected one of: {', '.join(choices)}")
+        return v
+
+    def vec3(self, key: str, default: Vec3 | None, *, nonneg: bool = False) -> Vec3:
+        v = self.raw(key, default)
+        p = self.path + (key,)
+        if not isinstance(v, (list, tuple)) or len(v) != 3:
+            self.ctx.fail(p, f"expected a list of 3 numbers, got {v!r}")
+        return tuple(self.ctx.number(p + (i,), x, nonneg=nonneg) for i, x in enumerate(v))  # type: ignore[return-value]
+
+    def section(self, key: str) -> "_Section":
+        return _Section(self.raw(key, {}), self.path + (key,), self.ctx)
+
+    def finish(self) -> None:
+        for key in self.data:
+            if key not in self.used:
+                allowed = ", ".join(sorted(self.used | self.declared)) or "(none)"
+                self.ctx.fail(self.path + (str(key),), f"unknown key {key!r}; allowed here: {allowed}")
+
+
+class _Ctx:
+    def __init__(self, source: str, lines: dict[tuple, int]) -> None:
+        self.source = source
+        self.lines = lines
+
+    def fail(self, path: tuple, msg: str):
+        line = None
+        p = path
+        while p and line is None:
+            line = self.lines.get(p)
+            p = p[:-1]
+        dotted = ".".join(f"[{x}]" if isinstance(x, int) else x for x in path).replace(".[", "[")
+        where = f"{self.source}:{line}" if line is not None else self.source
+        raise ScenarioError(f"{where}: {dotted or '(top level)'}: {msg}")
+
+    def number(self, path: tuple, v: Any, *, positive: bool = False, nonneg: bool = False) -> float:
+        if isinstance(v, str):
+            try:
+                float(v)
+            except ValueError:
+                pass
+            else:
+                self.fail(path, f"expected a number, got the string {v!r}; YAML reads exponents only with a "
+                                f"sign and a dot, e.g. 3.986e+14")
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            self.fail(path, f"expected a number, got {v!r}")
+        x = float(v)
+        if not math.isfinite(x):
+            self.fail(path, f"must be a finite number, got {x}")
+        if positive and not x > 0.0:
+            self.fail(path, f"must be positive, got {x}")
+        if nonneg and x < 0.0:
+            self.fail(path, f"must not be negative, got {x}")
+        return x
+
+
+_COIL_KEYS = ("turns", "voltage_v", "resistance_ohm", "shape", "length_m", "width_m", "diameter_m", "inductance_h")
+
+
+def scenario_from_dict(data: Any, source: str = "<dict>", lines: dict[tuple, int] | None = None,
+                       seed: int | None = None) -> Scenario:
+    """Build a validated :class:`Scenario` from plain data (as ``yaml.safe_load`` returns)."""
+    ctx = _Ctx(source, lines or {})
+    top = _Section(data, (), ctx)
+    name = top.string("name", "unnamed")
+    description = top.string("description", "")
+    epoch_raw = top.raw("epoch", "2025-06-01T00:00:00Z")
+    try:
+        epoch = parse_epoch(epoch_raw)
+    except ValueError as exc:
+        top.fail("epoch", str(exc))
+    duration = top.number("duration_s", 5400.0, positive=True)
+    dt = top.number("dynamics_step_s", 0.05, positive=True)
+    if dt > 1.0:
+        top.fail("dynamics_step_s", f"{dt} s is too coarse for RK4 on a tumbling body; use <= 1 s")
+    record = top.number("record_interval_s", 1.0, positive=True)
+    file_seed = top.integer("seed", 0)
+
+    sc = _spacecraft(top.section("spacecraft"))
+    orbit = _orbit(top.section("orbit"))
+    fld = _field(top.section("field"))
+    sens = top.section("sensors")
+    mag = _magnetometer(sens.section("magnetometer"))
+    gyro = _gyro(sens.section("gyro"))
+    sens.finish()
+    use_seed = file_seed if seed is None else seed
+    q0, w0 = _initial(top.section("initial"), use_seed)
+    control = _control(top.section("control"), dt)
+    top.finish()
+    return Scenario(name=name, description=description, source=source, epoch=epoch, duration_s=duration,
+                    dynamics_step_s=dt, record_interval_s=record, seed=use_seed, spacecraft=sc, orbit=orbit,
+                    field=fld, magnetometer=mag, gyro=gyro, q_BN0=q0, omega_BN_B0=w0, control=control)
+
+
+def _inertia(s: _Section) -> Mat3:
+    key = "inertia_kg_m2"
+    v = s.raw(key, [2.2e-3, 2.2e-3, 2.2e-3])
+    p = s.path + (key,)
+    if isinstance(v, (list, tuple)) and len(v) == 3 and all(not isinstance(x, (list, tuple)) for x in v):
+        d = [s.ctx.number(p + (i,), x) for i, x in enumerate(v)]
+        j = ((d[0], 0.0, 0.0), (0.0, d[1], 0.0), (0.0, 0.0, d[2]))
+    elif isinstance(v, (list, tuple)) and len(v) == 3 and all(isinstance(r, (list, tuple)) and len(r) == 3 for r in v):
+        j = tuple(tuple(s.ctx.number(p + (i, k), x) for k, x in enumerate(row)) for i, row in enumerate(v))
+    else:
+        s.ctx.fail(p, "expected 3 principal moments [Jxx, Jyy, Jzz] or a 3x3 matrix, kg m^2")
+    for i in range(3):
+        if not j[i][i] > 0.0:
+            s.ctx.fail(p, f"diagonal element J[{i}][{i}] = {j[i][i]} must be positive")
+        for k in range(3):
+            if abs(j[i][k] - j[k][i]) > 1e-9 * max(abs(j[i][i]), abs(j[k][k])):
+                s.ctx.fail(p, f"must be symmetric: J[{i}][{k}] = {j[i][k]} but J[{k}][{i}] = {j[k][i]}")
+    import numpy as np  # load time only
+
+    eig = sorted(np.linalg.eigvalsh(np.array(j)).tolist())
+    if not eig[0] > 0.0:
+        s.ctx.fail(p, f"must be positive definite; eigenvalues are {', '.join(f'{e:.4g}' for e in eig)} kg m^2")
+    if eig[0] + eig[1] < eig[2] * (1.0 - 1e-9):
+        s.ctx.fail(p, f"principal moments {', '.join(f'{e:.4g}' for e in eig)} violate the triangle "
+                      "inequality (J1 + J2 >= J3): no rigid body has them")
+    return j  # type: ignore[return-value]
+
+
+def _spacecraft(s: _Section) -> SpacecraftConfig:
+    mass = s.number("mass_kg", 1.3, positive=True)
+    inertia = _inertia(s)
+    res = s.vec3("residual_dipole_am2", (0.0, 0.0, 0.0))
+    wheel = s.vec3("wheel_momentum_nms", (0.0, 0.0, 0.0))
+    gg = s.boolean("gravity_gradient", True)
+    act = s.section("actuators")
+    kind = act.string("type", "coils", ("coils", "rods"))
+    coils = default_coil_layout()
+    rods = (0.2, 0.2, 0.2)
+    if kind == "rods":
+        rods = act.vec3("max_dipole_am2", rods, nonneg=True)
+    else:
+        act.allow(*FACE_NAMES.values())
+        for face, fname in FACE_NAMES.items():
+            if not act.has(fname):
+                continue
+            c = act.section(fname)
+            c.allow(*_COIL_KEYS)
+            base = coils[face]
+            kw = {}
+            for key in _COIL_KEYS:
+                if not c.has(key):
+                    continue
+                if key == "shape":
+                    kw[key] = c.string(key, None, ("rectangular", "circular"))
+                else:
+                    kw[key] = c.number(key, None, nonneg=True)
+            c.finish()
+            merged = CoilSpec(**{**base.__dict__, **kw})
+            if merged.shape == "circular" and not merged.diameter_m > 0:
+                c.fail("diameter_m", "a circular coil needs a positive diameter_m")
+            coils[face] = merged
+    act.finish()
+    s.finish()
+    return SpacecraftConfig(mass_kg=mass, inertia_kg_m2=inertia, residual_dipole_am2=res, wheel_momentum_nms=wheel,
+                            gravity_gradient=gg, actuator_type=kind, coils=coils, rods_max_dipole_am2=rods)
+
+
+def _orbit(s: _Section) -> OrbitConfig:
+    kind = s.string("type", "circular", ("circular", "tle"))
+    mu = s.number("mu_m3_s2", MU_EARTH, positive=True)
+    re = s.number("earth_radius_m", R_EARTH_EQ, positive=True)
+    if kind == "tle":
+        tle = s.raw("tle")
+        if not (isinstance(tle, (list, tuple)) and len(tle) == 2 and all(isinstance(x, str) for x in tle)):
+            s.fail("tle", "expected a list of the two TLE lines as strings")
+        step = s.number("table_step_s", 10.0, positive=True)
+        s.finish()
+        return OrbitConfig(type="tle", tle=(tle[0], tle[1]), table_step_s=step, mu_m3_s2=mu, earth_radius_m=re)
+    alt = s.number("altitude_km", 420.0)
+    if not alt > 0.0:
+        s.fail("altitude_km", f"{alt} km is inside the Earth; give the height above the surface in km (e.g. 420)")
+    inc = s.number("inclination_deg", 51.6)
+    if not 0.0 <= inc <= 180.0:
+        s.fail("inclination_deg", f"{inc} deg is outside 0...180")
+    raan = s.number("raan_deg", 0.0)
+    u0 = s.number("arg_latitude_deg", 0.0)
+    j2 = s.boolean("j2", False)
+    j2c = s.number("j2_coefficient", J2_EARTH, nonneg=True)
+    s.finish()
+    return OrbitConfig(type="circular", altitude_km=alt, inclination_deg=inc, raan_deg=raan, arg_latitude_deg=u0,
+                       j2=j2, mu_m3_s2=mu, earth_radius_m=re, j2_coefficient=j2c)
+
+
+def _field(s: _Section) -> FieldConfig:
+    model = s.string("model", "dipole", ("dipole", "wmm2025", "none"))
+    g10 = s.number("g10_nt", IGRF2025_G10_NT)
+    g11 = s.number("g11_nt", IGRF2025_G11_NT)
+    h11 = s.number("h11_nt", IGRF2025_H11_NT)
+    rr = s.number("reference_radius_m", IGRF_REFERENCE_RADIUS_M, positive=True)
+    rate = s.number("earth_rotation_rate_rad_s", EARTH_ROTATION_RATE)
+    angle = s.number("earth_rotation_angle_deg", None, allow_none=True)
+    step = s.number("table_step_s", 1.0, positive=True)
+    if model == "wmm2025" and step > 1.0:
+        s.fail("table_step_s", f"{step} s: evaluate the WMM at <= 1 Hz (table_step_s <= 1)")
+    s.finish()
+    return FieldConfig(model=model, g10_nt=g10, g11_nt=g11, h11_nt=h11, reference_radius_m=rr,
+                       earth_rotation_rate_rad_s=rate, earth_rotation_angle_deg=angle, table_step_s=step)
+
+
+def _magnetometer(s: _Section) -> MagnetometerSpec:
+    d = MagnetometerSpec()
+    spec = MagnetometerSpec(
+        ideal=s.boolean("ideal", d.ideal),
+        odr_hz=s.number("odr_hz", d.odr_hz, positive=True),
+        noise_std_gauss=s.number("noise_std_gauss", d.noise_std_gauss, nonneg=True),
+        bias_gauss=s.vec3("bias_gauss", d.bias_gauss),
+        resolution_gauss=s.number("resolution_gauss", d.resolution_gauss, nonneg=True),
+        full_scale_gauss=s.number("full_scale_gauss", d.full_scale_gauss, positive=True),
+        coupling_t_per_am2=s.vec3("coupling_t_per_am2", d.coupling_t_per_am2),
+    )
+    s.finish()
+    return spec
+
+
+def _gyro(s: _Section) -> GyroSpec:
+    d = GyroSpec()
+    spec = GyroSpec(
+        ideal=s.boolean("ideal", d.ideal),
+        odr_hz=s.number("odr_hz", d.odr_hz, positive=True),
+        noise_density_dps_rthz=s.number("noise_density_dps_rthz", d.noise_density_dps_rthz, nonneg=True),
+        bias_dps=s.vec3("bias_dps", d.bias_dps),
+        full_scale_dps=s.number("full_scale_dps", d.full_scale_dps, positive=True),
+        resolution_dps=s.number("resolution_dps", None, nonneg=True, allow_none=True),
+    )
+    s.finish()
+    return spec
+
+
+def _initial(s: _Section, seed: int) -> tuple[Quat, Vec3]:
+    att = s.section("attitude")
+    if att.has("quaternion") and att.has("mrp"):
+        att.fail("mrp", "give either quaternion or mrp, not both")
+    if att.has("mrp"):
+        sigma = att.vec3("mrp", None)
+        q = mrp_to_quat(sigma)
+    else:
+        v = att.raw("quaternion", [1.0, 0.0, 0.0, 0.0])
+        p = att.path + ("quaternion",)
+        if not isinstance(v, (list, tuple)) or len(v) != 4:
+            s.ctx.fail(p, "expected 4 numbers [q0, q1, q2, q3] (scalar first)")
+        qs = tuple(s.ctx.number(p + (i,), x) for i, x in enumerate(v))
+        n = math.sqrt(sum(x * x for x in qs))
+        if abs(n - 1.0) > 1e-6:
+            s.ctx.fail(p, f"must be a unit quaternion (scalar first); its norm is {n:.9g}")
+        q = quat_normalize(qs)  # type: ignore[arg-type]
+    att.finish()
+
+    rate = s.section("rate")
+    if rate.has("omega_deg_s"):
+        w = rate.vec3("omega_deg_s", None)
+        omega = tuple(math.radians(x) for x in w)
+    else:
+        mag = rate.number("magnitude_deg_s", 0.0, nonneg=True)
+        random_axis = rate.boolean("random_axis", False)
+        if random_axis:
+            if rate.has("axis"):
+                rate.fail("axis", "give either axis or random_axis: true, not both")
+            rseed = rate.integer("seed", seed)
+            rng = random.Random(rseed)
+            while True:
+                a = (rng.gauss(0.0, 1.0), rng.gauss(0.0, 1.0), rng.gauss(0.0, 1.0))
+                if sum(x * x for x in a) > 1e-12:
+                    break
+        else:
+            a = rate.vec3("axis", (1.0, 0.0, 0.0))
+            if a == (0.0, 0.0, 0.0):
+                rate.fail("axis", "the rotation axis must not be the zero vector")
+        e = unit(a)
+        omega = tuple(math.radians(mag) * x for x in e)
+    rate.finish()
+    s.finish()
+    return q, omega  # type: ignore[return-value]
+
+
+def _control(s: _Section, dt: float) -> ControlConfig:
+    law = s.string("law", "none", LAWS)
+    gain = s.number("gain", None, positive=True, allow_none=True)
+    period = s.number("period_s", dt, positive=True)
+    settle = s.number("sense_settle_s", 0.0, nonneg=True)
+    for key, val in (("period_s", period), ("sense_settle_s", settle)):
+        n = val / dt
+        if abs(n - round(n)) > 1e-6:
+            s.fail(key, f"{val} s must be a whole number of dynamics steps ({dt} s)")
+    if settle >= period:
+        s.fail("sense_settle_s", f"{settle} s must be shorter than period_s ({period} s)")
+    s.finish()
+    return ControlConfig(law=law, gain=gain, period_s=period, sense_settle_s=settle)

@@ -1,0 +1,177 @@
+"""Plain-float 3-vector, 3x3 matrix and quaternion helpers.
+
+Everything here works on tuples of Python floats: on 3-vectors, plain floats are 30-40x faster
+than numpy, and these helpers sit on the per-tick path of the plant.
+
+Quaternion convention (used by the whole ``detumble.sim`` package): **scalar first**,
+``q_BN = (q0, q1, q2, q3)`` with ``q0 = cos(phi/2)`` and ``(q1, q2, q3) = e * sin(phi/2)``, the
+Euler parameters of the rotation that takes frame N onto frame B (principal axis ``e``, angle
+``phi``). This is Basilisk's ``beta_BN``. The direction-cosine matrix ``[BN]`` built from it maps
+N components to B components: ``v_B = [BN] v_N``. With the Hamilton product :func:`quat_mul`,
+composition is ``q_CN = q_BN (x) q_CB`` (so ``[CN] = [CB][BN]``) and the kinematics are
+``dq_BN/dt = 1/2 q_BN (x) (0, omega_BN_B)``.
+
+Example: ``q_BN = (cos(t/2), 0, 0, sin(t/2))`` is B turned by +t about N's third axis, so N's first
+axis seen in B is ``(cos t, -sin t, 0)``.
+"""
+
+from __future__ import annotations
+
+import math
+
+Vec3 = tuple[float, float, float]
+Quat = tuple[float, float, float, float]
+Mat3 = tuple[Vec3, Vec3, Vec3]
+
+
+def dot(a: Vec3, b: Vec3) -> float:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def cross(a: Vec3, b: Vec3) -> Vec3:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def norm(a: Vec3) -> float:
+    return math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+
+
+def add(a: Vec3, b: Vec3) -> Vec3:
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def sub(a: Vec3, b: Vec3) -> Vec3:
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def scale(s: float, a: Vec3) -> Vec3:
+    return (s * a[0], s * a[1], s * a[2])
+
+
+def unit(a: Vec3) -> Vec3:
+    """``a / |a|``; raises ``ValueError`` for the zero vector."""
+    n = norm(a)
+    if n == 0.0:
+        raise ValueError("cannot normalise a zero vector")
+    return (a[0] / n, a[1] / n, a[2] / n)
+
+
+def angle_between(a: Vec3, b: Vec3) -> float:
+    """Angle between two non-zero vectors, radians, in [0, pi] (atan2 form: accurate near 0)."""
+    return math.atan2(norm(cross(a, b)), dot(a, b))
+
+
+def mat_vec(m: Mat3, v: Vec3) -> Vec3:
+    return (
+        m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2],
+        m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
+        m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2],
+    )
+
+
+def mat_transpose(m: Mat3) -> Mat3:
+    return ((m[0][0], m[1][0], m[2][0]), (m[0][1], m[1][1], m[2][1]), (m[0][2], m[1][2], m[2][2]))
+
+
+def mat_det(m: Mat3) -> float:
+    return (
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    )
+
+
+def mat_inv(m: Mat3) -> Mat3:
+    """Inverse of a 3x3 matrix by cofactors; raises ``ValueError`` if singular."""
+    det = mat_det(m)
+    if det == 0.0:
+        raise ValueError("singular matrix")
+    a, b, c = m[0]
+    d, e, f = m[1]
+    g, h, i = m[2]
+    s = 1.0 / det
+    return (
+        (s * (e * i - f * h), s * (c * h - b * i), s * (b * f - c * e)),
+        (s * (f * g - d * i), s * (a * i - c * g), s * (c * d - a * f)),
+        (s * (d * h - e * g), s * (b * g - a * h), s * (a * e - b * d)),
+    )
+
+
+def diag(a: float, b: float, c: float) -> Mat3:
+    return ((a, 0.0, 0.0), (0.0, b, 0.0), (0.0, 0.0, c))
+
+
+# --- quaternions (scalar first) -------------------------------------------------------------
+
+
+def quat_mul(p: Quat, q: Quat) -> Quat:
+    """Hamilton product ``p (x) q`` (scalar first)."""
+    p0, p1, p2, p3 = p
+    q0, q1, q2, q3 = q
+    return (
+        p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
+        p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
+        p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
+        p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0,
+    )
+
+
+def quat_conj(q: Quat) -> Quat:
+    return (q[0], -q[1], -q[2], -q[3])
+
+
+def quat_normalize(q: Quat) -> Quat:
+    n = math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
+    if n == 0.0:
+        raise ValueError("cannot normalise a zero quaternion")
+    return (q[0] / n, q[1] / n, q[2] / n, q[3] / n)
+
+
+def quat_from_axis_angle(axis: Vec3, angle_rad: float) -> Quat:
+    """``q_BN`` for B obtained by turning N by ``angle_rad`` about the unit ``axis``."""
+    e = unit(axis)
+    s = math.sin(0.5 * angle_rad)
+    return (math.cos(0.5 * angle_rad), e[0] * s, e[1] * s, e[2] * s)
+
+
+def quat_to_dcm(q: Quat) -> Mat3:
+    """``[BN]`` from ``q_BN`` (maps N components to B components)."""
+    q0, q1, q2, q3 = q
+    return (
+        (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2.0 * (q1 * q2 + q0 * q3), 2.0 * (q1 * q3 - q0 * q2)),
+        (2.0 * (q1 * q2 - q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2.0 * (q2 * q3 + q0 * q1)),
+        (2.0 * (q1 * q3 + q0 * q2), 2.0 * (q2 * q3 - q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3),
+    )
+
+
+def rotate_n_to_b(q: Quat, v_N: Vec3) -> Vec3:
+    """``v_B = [BN(q)] v_N`` (written out: this is on the per-tick path)."""
+    q0, q1, q2, q3 = q
+    x, y, z = v_N
+    q00, q11, q22, q33 = q0 * q0, q1 * q1, q2 * q2, q3 * q3
+    q01, q02, q03, q12, q13, q23 = q0 * q1, q0 * q2, q0 * q3, q1 * q2, q1 * q3, q2 * q3
+    return (
+        (q00 + q11 - q22 - q33) * x + 2.0 * ((q12 + q03) * y + (q13 - q02) * z),
+        (q00 - q11 + q22 - q33) * y + 2.0 * ((q12 - q03) * x + (q23 + q01) * z),
+        (q00 - q11 - q22 + q33) * z + 2.0 * ((q13 + q02) * x + (q23 - q01) * y),
+    )
+
+
+def rotate_b_to_n(q: Quat, v_B: Vec3) -> Vec3:
+    """``v_N = [BN(q)]^T v_B``."""
+    return mat_vec(mat_transpose(quat_to_dcm(q)), v_B)
+
+
+def mrp_to_quat(sigma: Vec3) -> Quat:
+    """Modified Rodrigues parameters ``sigma_BN`` to ``q_BN`` (scalar first, q0 >= 0 when |sigma| <= 1)."""
+    s2 = dot(sigma, sigma)
+    d = 1.0 + s2
+    return ((1.0 - s2) / d, 2.0 * sigma[0] / d, 2.0 * sigma[1] / d, 2.0 * sigma[2] / d)
+
+
+def quat_to_mrp(q: Quat) -> Vec3:
+    """``q_BN`` to the short-rotation MRP set ``sigma_BN`` (|sigma| <= 1)."""
+    if q[0] < 0.0:
+        q = (-q[0], -q[1], -q[2], -q[3])
+    d = 1.0 + q[0]
+    return (q[1] / d, q[2] / d, q[3] / d)

@@ -1,0 +1,56 @@
+"""Plant-only command: outputs, exit codes, error messages without tracebacks."""
+
+import csv
+import json
+import os
+
+from detumble.sim.runner import main, write_atomic
+
+
+def test_main_writes_summary_and_rate_csv(tmp_path, capsys):
+    out = tmp_path / "run"
+    code = main(["case_a", "--law", "kopt", "--out", str(out), "--duration", "60"])
+    assert code == 0
+    summary = json.loads((out / "summary.json").read_text())
+    for key in ("sim_seconds", "wall_seconds", "final_rate_deg_s", "time_below_1_deg_s"):
+        assert key in summary
+    assert summary["sim_seconds"] == 60.0 and summary["time_below_1_deg_s"] is None
+    assert summary["law"] == "kopt" and summary["scenario"] == "case_a"
+    rows = list(csv.reader((out / "rate.csv").open()))
+    assert rows[0] == ["time_s", "omega_x_deg_s", "omega_y_deg_s", "omega_z_deg_s", "rate_deg_s"]
+    assert len(rows) == 62 and float(rows[1][4]) == 30.0 and float(rows[-1][0]) == 60.0
+    assert float(rows[-1][4]) < 30.0
+    assert sorted(os.listdir(out)) == ["rate.csv", "summary.json"]  # no temp files left
+    assert "case_a: law kopt" in capsys.readouterr().out
+
+
+def test_scenario_option_seed_and_bdot_gain(tmp_path):
+    out = tmp_path / "r"
+    assert main(["--scenario", "default", "--law", "bdot", "--gain", "2.0", "--seed", "4",
+                 "--duration", "2", "--out", str(out)]) == 0
+    s = json.loads((out / "summary.json").read_text())
+    assert (s["law"], s["gain"], s["seed"]) == ("bdot", 2.0, 4)
+
+
+def test_missing_file_and_bad_scenario_are_clear_errors(tmp_path, capsys):
+    assert main(["no_such_scenario.yaml", "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: no_such_scenario.yaml: no such scenario file") and "Traceback" not in err
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("orbit:\n  altitude_km: -3\n")
+    assert main([str(bad), "--out", str(tmp_path / "y")]) == 2
+    err = capsys.readouterr().err
+    assert f"error: {bad}:2: orbit.altitude_km: -3.0 km is inside the Earth" in err and "Traceback" not in err
+    assert not (tmp_path / "y").exists()
+    assert main(["case_a", "--out", str(tmp_path / "z"), "--duration", "-1"]) == 2
+    assert "--duration must be a positive number of seconds" in capsys.readouterr().err
+    assert main(["case_a", "--law", "magic", "--out", str(tmp_path / "z")]) == 2
+    assert "invalid choice: 'magic'" in capsys.readouterr().err
+
+
+def test_write_atomic_replaces_whole_file(tmp_path):
+    target = tmp_path / "f.txt"
+    target.write_text("old")
+    write_atomic(str(target), "new content\n")
+    assert target.read_text() == "new content\n"
+    assert os.listdir(tmp_path) == ["f.txt"]

@@ -1,0 +1,122 @@
+"""Sensor models: noise statistics, sample-and-hold, quantisation, saturation, coil coupling."""
+
+import math
+
+import pytest
+
+from detumble.sim.coils import X_MINUS, X_PLUS, Z_MINUS
+from detumble.sim.plant import Plant
+from detumble.sim.scenario import scenario_from_dict
+from detumble.sim.sensors import Gyro, GyroSpec, Magnetometer, MagnetometerSpec
+
+GAUSS = 1e-4  # tesla per gauss
+N_SAMPLES = 20_000
+
+
+def _stats(xs):
+    m = sum(xs) / len(xs)
+    return m, math.sqrt(sum((x - m) ** 2 for x in xs) / (len(xs) - 1))
+
+
+def test_magnetometer_noise_statistics_seeded():
+    """Mean = truth + bias within 4 sigma/sqrt(N); std = sqrt(sigma^2 + LSB^2/12) within 3 %."""
+    spec = MagnetometerSpec(noise_std_gauss=0.003, bias_gauss=(0.012, -0.008, 0.005), resolution_gauss=0.0015)
+    mag = Magnetometer(spec, seed=42)
+    b_true = (0.21 * GAUSS, -0.13 * GAUSS, 0.35 * GAUSS)
+    data = [mag.measure(b_true, (0.0, 0.0, 0.0)) for _ in range(N_SAMPLES)]
+    expect_std = math.sqrt(0.003**2 + 0.0015**2 / 12)  # gauss
+    for i, truth in enumerate((0.21, -0.13, 0.35)):
+        mean, std = _stats([d[i] for d in data])
+        assert abs(mean - (truth + spec.bias_gauss[i])) < 4 * expect_std / math.sqrt(N_SAMPLES)
+        assert abs(std - expect_std) < 0.03 * expect_std
+        # every value on the 1.5 mG grid
+        assert all(abs(d[i] / 0.0015 - round(d[i] / 0.0015)) < 1e-6 for d in data[:100])
+
+
+def test_gyro_noise_statistics_seeded():
+    """Per-sample std = noise density * sqrt(ODR/2) = 0.0038 * sqrt(52) = 0.0274 deg/s, within 3 %."""
+    spec = GyroSpec(noise_density_dps_rthz=0.0038, odr_hz=104.0, bias_dps=(0.3, -0.2, 0.1), resolution_dps=0.0)
+    assert spec.noise_std_dps == pytest.approx(0.0038 * math.sqrt(52.0), rel=1e-12)
+    gyro = Gyro(spec, seed=7)
+    w = (0.1, -0.2, 0.3)  # rad/s
+    data = [gyro.measure(w) for _ in range(N_SAMPLES)]
+    sd = math.radians(spec.noise_std_dps)
+    for i in range(3):
+        mean, std = _stats([d[i] for d in data])
+        assert abs(mean - (w[i] + math.radians(spec.bias_dps[i]))) < 4 * sd / math.sqrt(N_SAMPLES)
+        assert abs(std - sd) < 0.03 * sd
+
+
+def test_gyro_quantisation_and_saturation():
+    spec = GyroSpec(noise_density_dps_rthz=0.0, full_scale_dps=125.0)
+    assert spec.lsb_dps == 0.004375
+    gyro = Gyro(spec, seed=0)
+    out = gyro.measure((math.radians(200.0), math.radians(-500.0), math.radians(10.0001)))
+    assert out[0] == pytest.approx(math.radians(125.0)) and out[1] == pytest.approx(math.radians(-125.0))
+    assert math.degrees(out[2]) == pytest.approx(round(10.0001 / 0.004375) * 0.004375, abs=1e-12)
+
+
+def test_magnetometer_saturates_at_full_scale():
+    mag = Magnetometer(MagnetometerSpec(noise_std_gauss=0.0, full_scale_gauss=50.0), seed=0)
+    assert mag.measure((0.0, 0.0, 0.0), (40.0, -40.0, 0.0)) == (50.0, -50.0, 0.0)
+
+
+def _plant(**mag):
+    spec = {"noise_std_gauss": 0.0, "bias_gauss": [0, 0, 0], **mag}
+    return Plant(scenario_from_dict({
+        "dynamics_step_s": 0.002,
+        "sensors": {"magnetometer": spec, "gyro": {"noise_density_dps_rthz": 0.0, "resolution_dps": 0.0}},
+        "initial": {"rate": {"omega_deg_s": [20.0, -10.0, 5.0]}},
+    }))
+
+
+def test_sample_and_hold_at_odr_and_read_time():
+    """100 Hz magnetometer: reads between ODR instants return the held sample; the read time is reported."""
+    p = _plant()
+    p.advance_to(0.012)
+    a = p.magnetometer_reading()
+    p.advance_to(0.018)
+    b = p.magnetometer_reading()
+    assert a[:3] == b[:3]  # same 10 ms sample (taken at 0.010 s)
+    assert (a[3], b[3]) == (pytest.approx(0.012), pytest.approx(0.018))
+    assert p.magnetometer.sample_time_ns == 10_000_000
+    c = p.magnetometer_reading(t=0.0205)
+    assert c[:3] != b[:3] and p.magnetometer.sample_time_ns == 20_000_000
+    # the held sample is the true field at the ODR instant, to quantisation (0.75 mG) and interpolation
+    p2 = _plant()
+    p2.advance_to(0.020)
+    assert all(abs(x - y / GAUSS) < 0.0008 for x, y in zip(c[:3], p2.b_B))
+    # gyro at 104 Hz: instants every 9.615385 ms
+    g1 = p.gyro_reading()
+    assert p.gyro.sample_time_ns == 2 * 9_615_385
+    assert g1[:3] == pytest.approx(p.omega_BN_B, abs=1e-4)
+
+
+def test_coil_coupling_visible_while_coils_are_on():
+    """With coils on, the next sample shifts by K m_coils (1.6e-3 T per A m^2): a 'violation' is visible."""
+    p = _plant()
+    p.advance_to(0.010)
+    off = p.magnetometer_reading()
+    p.set_coil_level(X_PLUS, 127)
+    p.set_coil_level(X_MINUS, -127)
+    p.set_coil_level(Z_MINUS, 127)
+    m = p.m_coils_B
+    assert m[0] == pytest.approx(2 * 0.0581206, rel=1e-4) and m[2] == pytest.approx(-0.0087151, rel=1e-4)
+    # still the held coils-off sample until the next ODR instant
+    p.advance_to(0.015)
+    assert p.magnetometer_reading()[:3] == off[:3]
+    p.advance_to(0.020)
+    on = p.magnetometer_reading()
+    # reference: the same plant without coils at t = 0.020 (the torque of 10 ms moves the true field < 1 mG)
+    ref = _plant()
+    ref.advance_to(0.020)
+    clean = ref.magnetometer_reading()
+    k_gauss = 1.6e-3 / GAUSS  # gauss per A m^2
+    for i in range(3):
+        assert on[i] - clean[i] == pytest.approx(k_gauss * m[i], abs=2 * 0.0015)  # 2 LSB
+    assert on[0] - clean[0] > 1.8  # 186 uT = 1.86 G: several times the Earth's field
+    # coupling gain configurable (0 turns it off)
+    p0 = _plant(coupling_t_per_am2=[0.0, 0.0, 0.0])
+    p0.set_coil_level(X_PLUS, 127)
+    p0.advance_to(0.020)
+    assert abs(p0.magnetometer_reading()[0] - clean[0]) < 0.01
