@@ -1,0 +1,1 @@
+"""F´ standard services (Svc), one module per component."""

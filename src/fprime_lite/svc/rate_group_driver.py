@@ -1,0 +1,98 @@
+"""RateGroupDriver: divides one base tick into the ticks of several rate groups.
+
+Output ``CycleOut[i]`` fires on base ticks where ``tick % divisor_i == offset_i`` (F´'s
+``Svc.RateGroupDriver``). :class:`RateGroupTimer` drives it from the scheduler and jumps over base
+ticks on which no output fires, so a 1 kHz base tick with 50 Hz and 1 Hz groups costs nothing on the
+other 949 ticks of each second.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..component import PassiveComponent
+from ..fw_ports import Cycle
+from ..ports import OutputPort, sync_input
+from ..time import Time
+
+__all__ = ["Divider", "RateGroupDriver", "RateGroupTimer"]
+
+
+@dataclass(frozen=True)
+class Divider:
+    """Output fires when ``tick % divisor == offset``."""
+
+    divisor: int
+    offset: int = 0
+
+    def __post_init__(self):
+        if not isinstance(self.divisor, int) or self.divisor < 1:
+            raise ValueError(f"divisor must be a positive integer, got {self.divisor!r}")
+        if not isinstance(self.offset, int) or not 0 <= self.offset < self.divisor:
+            raise ValueError(f"offset must be in 0..{self.divisor - 1}, got {self.offset!r}")
+
+
+class RateGroupDriver(PassiveComponent):
+    """Fans one cycle input out to up to ten rate groups by divisor and offset."""
+
+    MAX_OUTPUTS = 10
+    CycleOut = OutputPort(Cycle, size=MAX_OUTPUTS)
+
+    def __init__(self, name: str, *, base_id: int = 0, dividers=()):
+        super().__init__(name, base_id=base_id)
+        dividers = [d if isinstance(d, Divider) else Divider(*d) for d in dividers]
+        if len(dividers) > self.MAX_OUTPUTS:
+            raise ValueError(f"{name}: at most {self.MAX_OUTPUTS} dividers, got {len(dividers)}")
+        self.dividers = dividers
+        self.tick = 0  # index of the next base tick to handle
+
+    @sync_input(Cycle)
+    def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
+        tick = self.tick
+        out = self.CycleOut
+        for i, d in enumerate(self.dividers):
+            if tick % d.divisor == d.offset and out.targets[i] is not None:
+                out[i](cycle_start)
+        self.tick = tick + 1
+
+    def ticks_to_next_output(self) -> int:
+        """How many base ticks from now until one of the outputs fires (0: this very tick)."""
+        best = None
+        for d in self.dividers:
+            wait = (d.offset - self.tick) % d.divisor
+            if best is None or wait < best:
+                best = wait
+        return 0 if best is None else best
+
+    def skip_ticks(self, n: int) -> None:
+        """Account for ``n`` base ticks on which nothing fires."""
+        self.tick += n
+
+
+class RateGroupTimer:
+    """Calls a driver's ``CycleIn`` from a scheduler at a base period, skipping idle ticks."""
+
+    def __init__(self, scheduler, driver: RateGroupDriver, base_period_us: int):
+        if not isinstance(base_period_us, int) or base_period_us <= 0:
+            raise ValueError(f"base period must be a positive number of microseconds, got {base_period_us!r}")
+        self.scheduler = scheduler
+        self.driver = driver
+        self.base_period_us = base_period_us
+        self.cycle_in = driver.input_port("CycleIn").entries[0]
+        self.cycles = 0
+
+    def start(self, start_us: int | None = None) -> None:
+        now = self.scheduler.now_us if start_us is None else start_us
+        self._schedule(now)
+
+    def _schedule(self, base_tick_time_us: int) -> None:
+        wait = self.driver.ticks_to_next_output()
+        self.scheduler.call_at(base_tick_time_us + wait * self.base_period_us,
+                               lambda: self._fire(wait))
+
+    def _fire(self, idle_ticks: int) -> None:
+        self.driver.skip_ticks(idle_ticks)
+        now = self.scheduler.now_us
+        self.cycles += 1
+        self.cycle_in(self.scheduler.clock.now())
+        self._schedule(now + self.base_period_us)

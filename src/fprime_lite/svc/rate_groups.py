@@ -1,0 +1,131 @@
+"""Rate groups: call their members in order, with a context each, once per cycle.
+
+Both kinds keep F´'s ActiveRateGroup telemetry and slip detection: ``RgMaxTime`` (longest cycle,
+µs of wall-clock execution), ``RgCycleSlips`` and the ``RateGroupCycleSlip`` event. A slip is
+counted when a cycle starts before the previous one finished: a cycle still queued when the next
+arrives, or a cycle whose members took, in the deployment's clock, at least the group's period.
+
+A member that raises does not stop the group: the fault becomes a throttled ``RateGroupMemberFault``
+(WARNING_HI) event and the ``RgMemberFaults`` count, and the next member runs (an fprime-lite
+addition: in C++ such a fault would be an assertion).
+"""
+
+from __future__ import annotations
+
+import logging
+import time as _wall
+
+from ..component import ActiveComponent, PassiveComponent
+from ..events import Event, Severity
+from ..fw_ports import Cycle, Sched
+from ..ports import OutputPort, async_input, sync_input
+from ..telemetry import Channel
+from ..time import Time
+from ..types import String, U32
+
+__all__ = ["ActiveRateGroup", "PassiveRateGroup"]
+
+log = logging.getLogger("fprime_lite")
+
+
+class _RateGroup:
+    """The cycle logic shared by both rate-group kinds (mixed into a component class)."""
+
+    MAX_MEMBERS = 10
+    RateGroupMemberOut = OutputPort(Sched, size=MAX_MEMBERS)
+
+    RateGroupStarted = Event(Severity.DIAGNOSTIC, "Rate group started.")
+    RateGroupCycleSlip = Event(Severity.WARNING_HI, "Rate group cycle slipped on cycle {}", cycle=U32,
+                               throttle=5)
+    RateGroupMemberFault = Event(Severity.WARNING_HI, "Rate group member {} raised: {}", member=U32,
+                                 error=String(80), throttle=5)
+
+    RgMaxTime = Channel(U32, format="{} us")
+    RgCycleSlips = Channel(U32)
+    RgMemberFaults = Channel(U32)
+
+    def _setup(self, contexts, period_us: int | None) -> None:
+        contexts = list(contexts)
+        if len(contexts) > self.MAX_MEMBERS:
+            raise ValueError(f"{self.name}: at most {self.MAX_MEMBERS} members, got {len(contexts)}")
+        self.contexts = contexts + [0] * (self.MAX_MEMBERS - len(contexts))
+        self.period_us = period_us
+        self.cycles = 0
+        self.slips = 0
+        self.member_faults = 0
+        self.max_time_us = 0
+        self._started = False
+        self._pending = 0
+
+    def _cycle(self, cycle_start: Time) -> None:
+        if not self._started:
+            self._started = True
+            self.RateGroupStarted()
+        wall0 = _wall.perf_counter()
+        sim0 = self.get_time()
+        out = self.RateGroupMemberOut
+        contexts = self.contexts
+        for i in range(self.MAX_MEMBERS):
+            if out.targets[i] is None:
+                continue
+            try:
+                out[i](contexts[i])
+            except Exception as exc:  # noqa: BLE001 - a member fault must not stop the group
+                self.member_faults += 1
+                log.exception("%s: member %d raised", self.name, i)
+                self.RateGroupMemberFault(i, f"{type(exc).__name__}: {exc}"[:80])
+                self.RgMemberFaults.write(self.member_faults)
+        elapsed_us = int((_wall.perf_counter() - wall0) * 1e6)
+        if elapsed_us > self.max_time_us:
+            self.max_time_us = elapsed_us
+        self.RgMaxTime.write(self.max_time_us)
+        sim1 = self.get_time()
+        overran = (self.period_us is not None and sim0.time_base == sim1.time_base
+                   and sim1.total_us - sim0.total_us >= self.period_us)
+        if overran or self._pending > 0:
+            self._slip()
+        self.cycles += 1
+
+    def _slip(self) -> None:
+        self.slips += 1
+        self.RateGroupCycleSlip(self.cycles)
+        self.RgCycleSlips.write(self.slips)
+
+
+class ActiveRateGroup(_RateGroup, ActiveComponent):
+    """F´'s ActiveRateGroup: ``CycleIn`` is queued; members run when the group is dispatched.
+
+    Args:
+        contexts: the context passed to member ``i`` (up to ten).
+        period_us: the group's period, for slip detection in the deployment's clock.
+    """
+
+    def __init__(self, name: str, *, base_id: int = 0, queue_size: int = 10, contexts=(),
+                 period_us: int | None = None):
+        super().__init__(name, base_id=base_id, queue_size=queue_size)
+        self._setup(contexts, period_us)
+
+    @async_input(Cycle, queue_full="drop")
+    def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
+        self._pending = len(self.queue)
+        self._cycle(cycle_start)
+
+
+class PassiveRateGroup(_RateGroup, PassiveComponent):
+    """F´'s PassiveRateGroup: members run on the caller's thread when ``CycleIn`` is called."""
+
+    def __init__(self, name: str, *, base_id: int = 0, contexts=(), period_us: int | None = None):
+        super().__init__(name, base_id=base_id)
+        self._setup(contexts, period_us)
+        self._running = False
+
+    @sync_input(Cycle)
+    def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
+        if self._running:  # re-entered from inside a member: the previous cycle has not finished
+            self._slip()
+            return
+        self._running = True
+        try:
+            self._cycle(cycle_start)
+        finally:
+            self._running = False
