@@ -127,15 +127,19 @@ def async_input(port_type: PortType, *, size: int = 1, priority: int = 0, queue_
 
 
 class OutputPort:
-    """Declares an output port (or port array of ``size`` indices) of a component."""
+    """Declares an output port (or port array of ``size`` indices) of a component.
 
-    def __init__(self, port_type: PortType, *, size: int = 1):
+    ``required=True`` makes a topology refuse to start while any index is left unconnected.
+    """
+
+    def __init__(self, port_type: PortType, *, size: int = 1, required: bool = False):
         if not isinstance(port_type, PortType):
             raise DeclarationError(f"OutputPort needs a PortType, got {port_type!r}")
         if not isinstance(size, int) or size < 1:
             raise DeclarationError(f"OutputPort size must be a positive integer, got {size!r}")
         self.port_type = port_type
         self.size = size
+        self.required = required
         self.name = ""
 
     def __set_name__(self, owner, name):
@@ -189,6 +193,7 @@ class OutputPortArray(list):
         self.component = component
         self.name = decl.name
         self.port_type = decl.port_type
+        self.required = decl.required
         self.targets: list[tuple[InputPortArray, int] | str | None] = [None] * decl.size
         super().__init__(_Unconnected(self.describe(i)) for i in range(decl.size))
 

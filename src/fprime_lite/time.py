@@ -252,6 +252,14 @@ class TimeType(FwType):
     def json_ref(self):
         return {"name": "Fw.TimeValue", "kind": "qualifiedIdentifier"}
 
+    def json_value(self, value):
+        """A time as the ``Fw.TimeValue`` struct value the dictionary uses for defaults."""
+        value = self.check(value)
+        base = int(value.time_base)
+        base_name = TimeBase(base).name if base in TimeBase._value2member_map_ else str(base)
+        return {"timeBase": f"TimeBase.{base_name}", "timeContext": value.context,
+                "seconds": value.seconds, "useconds": value.useconds}
+
 
 TIME = TimeType()
 Time.__fprime_type__ = TIME

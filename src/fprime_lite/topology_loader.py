@@ -1,0 +1,671 @@
+"""Load a deployment from a topology YAML file (schema: ``docs/topology.md``).
+
+The file is parsed with PyYAML's SafeLoader (node composition plus safe scalars, which is what
+``yaml.safe_load`` does) so that every value keeps its line; nothing in the file is executed except
+importing the component and resource classes it names. Every problem found is reported as
+``file:line: what is wrong — what to do``, all of them at once, in a :class:`TopologyError`.
+"""
+
+from __future__ import annotations
+
+import difflib
+import importlib
+import inspect
+import math
+import pathlib
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+import yaml
+
+from .component import Component
+from .errors import DeclarationError, PortConnectionError
+from .scheduler import Scheduler
+from .svc.rate_group_driver import RateGroupDriver, RateGroupTimer
+from .svc.rate_groups import ActiveRateGroup, PassiveRateGroup
+from .time import SimulatedClock, TimeBase
+from .topology import PATTERN_PORTS, Topology, TopologyError
+
+__all__ = ["load_topology", "LoadedDeployment", "TopologyError"]
+
+US_PER_S = 1_000_000
+
+TOP_KEYS = {"deployment", "resources", "modules", "patterns", "connections", "rate_groups",
+            "parameter_file", "startup", "time"}
+MODULE_KEYS = {"include", "instances"}
+INCLUDE_KEYS = {"instances", "connections"}
+INSTANCE_KEYS = {"type", "base_id", "queue_size", "args"}
+RESOURCE_KEYS = {"type", "args"}
+RATE_GROUP_KEYS = {"driver", "base_rate_hz", "groups"}
+GROUP_KEYS = {"divisor", "offset", "members"}
+MEMBER_KEYS = {"port", "context"}
+STARTUP_KEYS = {"sequencer", "sequence"}
+TIME_KEYS = {"time_base", "epoch_us"}
+
+_ENDPOINT = re.compile(r"^\s*([A-Za-z_]\w*)\.([A-Za-z_]\w*)\.([A-Za-z_]\w*)(?:\[(\d+)\])?\s*$")
+
+
+# --- YAML with lines ----------------------------------------------------------------------------
+
+class YMap(dict):
+    """A mapping that remembers its line and the line of each key."""
+
+    line: int
+    key_lines: dict
+
+
+class YList(list):
+    line: int
+    item_lines: list
+
+
+def _to_python(loader: yaml.SafeLoader, node: yaml.Node):
+    if isinstance(node, yaml.MappingNode):
+        loader.flatten_mapping(node)
+        out = YMap()
+        out.line = node.start_mark.line + 1
+        out.key_lines = {}
+        for key_node, value_node in node.value:
+            key = _to_python(loader, key_node)
+            out.key_lines[key] = key_node.start_mark.line + 1
+            out[key] = _to_python(loader, value_node)
+        return out
+    if isinstance(node, yaml.SequenceNode):
+        out = YList(_to_python(loader, n) for n in node.value)
+        out.line = node.start_mark.line + 1
+        out.item_lines = [n.start_mark.line + 1 for n in node.value]
+        return out
+    return loader.construct_object(node, deep=True)
+
+
+def parse_yaml(path: pathlib.Path):
+    """Parse ``path`` safely into YMap/YList values that carry line numbers."""
+    text = path.read_text(encoding="utf-8")
+    loader = yaml.SafeLoader(text)
+    try:
+        node = loader.get_single_node()
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        line = f"{mark.line + 1}" if mark is not None else "?"
+        problem = getattr(exc, "problem", None) or str(exc)
+        raise TopologyError([f"{path}:{line}: invalid YAML: {problem} — fix the syntax"]) from None
+    finally:
+        loader.dispose()
+    return None if node is None else _to_python(loader, node)
+
+
+# --- the result ---------------------------------------------------------------------------------
+
+@dataclass
+class LoadedDeployment:
+    """A topology built from YAML, with the scheduler and clock that run it."""
+
+    path: pathlib.Path
+    topology: Topology
+    scheduler: Scheduler
+    clock: SimulatedClock
+    resources: dict[str, Any] = field(default_factory=dict)
+    timer: RateGroupTimer | None = None
+    parameter_file: pathlib.Path | None = None
+    startup_sequencer: str | None = None
+    startup_sequence: pathlib.Path | None = None
+
+
+# --- loading ------------------------------------------------------------------------------------
+
+class _Loader:
+    def __init__(self, path: pathlib.Path, overrides: dict | None):
+        self.path = path
+        self.base_dir = path.parent
+        self.problems: list[str] = []
+        self.overrides = overrides or {}
+        self.failed_instances: set[str] = set()
+        self.included_connections: list = []
+
+    def at(self, file: pathlib.Path, line: int | None) -> str:
+        return f"{file}:{line if line is not None else '?'}"
+
+    def problem(self, file: pathlib.Path, line: int | None, message: str) -> None:
+        self.problems.append(f"{self.at(file, line)}: {message}")
+
+    def check_keys(self, file, mapping: YMap, allowed: set, what: str) -> None:
+        for key in mapping:
+            if key not in allowed:
+                guess = difflib.get_close_matches(str(key), sorted(allowed), n=1)
+                hint = f"did you mean '{guess[0]}'?" if guess else f"allowed keys: {', '.join(sorted(allowed))}"
+                self.problem(file, mapping.key_lines.get(key), f"unknown key '{key}' in {what} — {hint}")
+
+    def expect_map(self, file, value, line, what) -> YMap | None:
+        if not isinstance(value, YMap):
+            self.problem(file, getattr(value, "line", line), f"{what} must be a mapping, got {_kind(value)}")
+            return None
+        return value
+
+    def fail_if_problems(self) -> None:
+        if self.problems:
+            raise TopologyError(self.problems)
+
+    # --- top level ---
+
+    def load(self) -> LoadedDeployment:
+        if not self.path.is_file():
+            raise TopologyError([f"{self.path}: no such topology file — give the path of a topology YAML file"])
+        doc = parse_yaml(self.path)
+        doc = self.expect_map(self.path, doc, 1, "the topology file")
+        self.fail_if_problems()
+        self.check_keys(self.path, doc, TOP_KEYS, "the topology file")
+        deployment = doc.get("deployment")
+        if not isinstance(deployment, str) or not deployment.isidentifier():
+            self.problem(self.path, doc.key_lines.get("deployment", doc.line),
+                         "'deployment' must name the deployment (an identifier, e.g. ReferenceDeployment)")
+            deployment = "Deployment"
+        if "modules" not in doc:
+            self.problem(self.path, doc.line, "missing 'modules' — declare at least one module with instances")
+            self.fail_if_problems()
+
+        clock = self.make_clock(doc)
+        scheduler = Scheduler(clock)
+        topology = Topology(deployment)
+        resources = {"clock": clock, "scheduler": scheduler, "topology_dir": self.base_dir}
+        self.build_resources(doc, resources)
+        rate_cfg = self.read_rate_groups(doc)
+        self.build_modules(doc, topology, resources, rate_cfg)
+
+        self.connect_groups(self.path, doc.get("connections"), doc.key_lines.get("connections"), topology)
+        for file, connections, line in self.included_connections:
+            self.connect_groups(file, connections, line, topology)
+        timer = self.wire_rate_groups(doc, topology, scheduler, rate_cfg)
+        self.wire_patterns(doc, topology)
+        if not self.problems:  # collisions and unconnected ports only mean something in a complete build
+            self.problems.extend(topology.problems())
+        deployment_obj = LoadedDeployment(self.path, topology, scheduler, clock, resources, timer)
+        self.read_startup(doc, topology, deployment_obj)
+        self.fail_if_problems()
+        return deployment_obj
+
+    def make_clock(self, doc: YMap) -> SimulatedClock:
+        cfg = doc.get("time")
+        time_base, epoch_us = TimeBase.TB_WORKSTATION_TIME, 0
+        if cfg is not None:
+            cfg = self.expect_map(self.path, cfg, doc.key_lines.get("time"), "'time'")
+            if cfg is not None:
+                self.check_keys(self.path, cfg, TIME_KEYS, "'time'")
+                if "time_base" in cfg:
+                    try:
+                        time_base = TimeBase[cfg["time_base"]] if isinstance(cfg["time_base"], str) \
+                            else TimeBase(cfg["time_base"])
+                    except (KeyError, ValueError):
+                        self.problem(self.path, cfg.key_lines["time_base"],
+                                     f"unknown time base {cfg['time_base']!r} — use one of "
+                                     f"{', '.join(t.name for t in TimeBase)}")
+                if "epoch_us" in cfg:
+                    epoch_us = cfg["epoch_us"]
+                    if not isinstance(epoch_us, int) or isinstance(epoch_us, bool) or epoch_us < 0:
+                        self.problem(self.path, cfg.key_lines["epoch_us"],
+                                     "'epoch_us' must be a non-negative integer (microseconds)")
+                        epoch_us = 0
+        return SimulatedClock(time_base=time_base, epoch_us=epoch_us)
+
+    # --- resources ---
+
+    def build_resources(self, doc: YMap, resources: dict) -> None:
+        section = doc.get("resources")
+        if section is None:
+            return
+        section = self.expect_map(self.path, section, doc.key_lines.get("resources"), "'resources'")
+        if section is None:
+            return
+        for name, spec in section.items():
+            line = section.key_lines.get(name)
+            spec = self.expect_map(self.path, spec, line, f"resource '{name}'")
+            if spec is None:
+                continue
+            self.check_keys(self.path, spec, RESOURCE_KEYS, f"resource '{name}'")
+            factory = self.import_object(self.path, spec.get("type"), spec.key_lines.get("type", line),
+                                         f"resource '{name}'")
+            if factory is None:
+                continue
+            args = self.resolve_args(self.path, spec.get("args"), spec.key_lines.get("args", line), resources,
+                                     f"resource '{name}'")
+            if args is None:
+                continue
+            args.update(self.overrides.get(name, {}))
+            try:
+                resources[name] = factory(**args)
+            except Exception as exc:  # noqa: BLE001 - any construction failure is a user-facing problem
+                self.problem(self.path, line, f"resource '{name}' could not be created: {exc}")
+
+    def import_object(self, file, type_path, line, what):
+        if not isinstance(type_path, str) or not type_path:
+            self.problem(file, line, f"{what} needs 'type': an import path such as package.module.Class")
+            return None
+        module_name, _, attr = type_path.rpartition(".")
+        if not module_name:
+            self.problem(file, line, f"{what}: type '{type_path}' must be a dotted import path (package.module.Class)")
+            return None
+        try:
+            module = importlib.import_module(module_name)
+        except ImportError as exc:
+            self.problem(file, line, f"{what}: cannot import module '{module_name}' ({exc}) — check the type path")
+            return None
+        except DeclarationError as exc:
+            self.problem(file, line, f"{what}: {exc}")
+            return None
+        obj = getattr(module, attr, None)
+        if obj is None:
+            names = [n for n in dir(module) if not n.startswith("_")]
+            guess = difflib.get_close_matches(attr, names, n=1)
+            hint = f" — did you mean '{module_name}.{guess[0]}'?" if guess else ""
+            self.problem(file, line, f"{what}: module '{module_name}' has no '{attr}'{hint}")
+            return None
+        return obj
+
+    def resolve_args(self, file, args, line, resources, what) -> dict | None:
+        if args is None:
+            return {}
+        if not isinstance(args, YMap):
+            self.problem(file, line, f"{what}: 'args' must be a mapping of keyword arguments, got {_kind(args)}")
+            return None
+        out = {}
+        for key, value in args.items():
+            out[key] = self.resolve_value(file, value, args.key_lines.get(key), resources, what)
+        return out
+
+    def resolve_value(self, file, value, line, resources, what):
+        if isinstance(value, str) and value.startswith("$"):
+            name = value[1:]
+            if name not in resources:
+                self.problem(file, line, f"{what}: unknown resource '{value}' — resources: "
+                                         f"{', '.join('$' + r for r in resources)}")
+                return None
+            return resources[name]
+        if isinstance(value, dict):
+            return {k: self.resolve_value(file, v, line, resources, what) for k, v in value.items()}
+        if isinstance(value, list):
+            return [self.resolve_value(file, v, line, resources, what) for v in value]
+        return value
+
+    # --- modules and instances ---
+
+    def build_modules(self, doc, topology: Topology, resources, rate_cfg) -> None:
+        modules = self.expect_map(self.path, doc["modules"], doc.key_lines.get("modules"), "'modules'")
+        if modules is None:
+            return
+        for module_name, module in modules.items():
+            line = modules.key_lines.get(module_name)
+            if not isinstance(module_name, str) or not module_name.isidentifier():
+                self.problem(self.path, line, f"module name {module_name!r} must be an identifier (e.g. CdhCore)")
+                continue
+            module = self.expect_map(self.path, module, line, f"module '{module_name}'")
+            if module is None:
+                continue
+            self.check_keys(self.path, module, MODULE_KEYS, f"module '{module_name}'")
+            declared: dict[str, tuple[pathlib.Path, YMap, YMap]] = {}
+            if "include" in module:
+                self.read_include(module, module_name, declared)
+            instances = module.get("instances")
+            if instances is not None:
+                instances = self.expect_map(self.path, instances, module.key_lines.get("instances"),
+                                            f"instances of module '{module_name}'")
+                for name, spec in (instances or {}).items():
+                    declared[name] = (self.path, instances, spec)
+            for name, (file, container, spec) in declared.items():
+                self.build_instance(file, container, module_name, name, spec, topology, resources, rate_cfg)
+
+    def read_include(self, module: YMap, module_name: str, declared: dict) -> None:
+        line = module.key_lines.get("include")
+        target = module["include"]
+        if not isinstance(target, str):
+            self.problem(self.path, line, f"module '{module_name}': 'include' must be a file path")
+            return
+        path = resolve_path(target, self.base_dir)
+        if not path.is_file():
+            self.problem(self.path, line, f"module '{module_name}': include file '{target}' not found "
+                                          f"(looked for {path}) — give a path relative to the topology file, "
+                                          f"or package:path")
+            return
+        try:
+            doc = parse_yaml(path)
+        except TopologyError as exc:
+            self.problems.extend(exc.problems)
+            return
+        doc = self.expect_map(path, doc, 1, "an included subtopology")
+        if doc is None:
+            return
+        self.check_keys(path, doc, INCLUDE_KEYS, "an included subtopology")
+        instances = doc.get("instances")
+        if instances is not None:
+            instances = self.expect_map(path, instances, doc.key_lines.get("instances"), "'instances'")
+            for name, spec in (instances or {}).items():
+                declared[name] = (path, instances, spec)
+        if "connections" in doc:
+            self.included_connections.append((path, doc["connections"], doc.key_lines.get("connections")))
+
+    def build_instance(self, file, container: YMap, module: str, name, spec, topology: Topology, resources,
+                       rate_cfg) -> None:
+        problems_before = len(self.problems)
+        try:
+            self._build_instance(file, container, module, name, spec, topology, resources, rate_cfg)
+        finally:
+            if len(self.problems) > problems_before:
+                self.failed_instances.add(f"{module}.{name}")
+
+    def _build_instance(self, file, container: YMap, module: str, name, spec, topology: Topology, resources,
+                        rate_cfg) -> None:
+        line = container.key_lines.get(name)
+        what = f"instance {module}.{name}"
+        if not isinstance(name, str) or not name.isidentifier():
+            self.problem(file, line, f"instance name {name!r} must be an identifier (e.g. cmdDisp)")
+            return
+        spec = self.expect_map(file, spec, line, what)
+        if spec is None:
+            return
+        self.check_keys(file, spec, INSTANCE_KEYS, what)
+        cls = self.import_object(file, spec.get("type"), spec.key_lines.get("type", line), what)
+        if cls is None:
+            return
+        if not (inspect.isclass(cls) and issubclass(cls, Component)):
+            self.problem(file, spec.key_lines.get("type", line),
+                         f"{what}: type '{spec['type']}' is not a component class (derive from "
+                         f"PassiveComponent, QueuedComponent or ActiveComponent)")
+            return
+        kwargs = self.resolve_args(file, spec.get("args"), spec.key_lines.get("args", line), resources, what)
+        if kwargs is None:
+            return
+        base_id = spec.get("base_id", 0)
+        if isinstance(base_id, bool) or not isinstance(base_id, int) or not 0 <= base_id <= 0xFFFFFFFF:
+            self.problem(file, spec.key_lines.get("base_id", line),
+                         f"{what}: base_id must be an integer in 0..0xFFFFFFFF, got {base_id!r}")
+            return
+        kwargs["base_id"] = base_id
+        if "queue_size" in spec:
+            q = spec["queue_size"]
+            if isinstance(q, bool) or not isinstance(q, int) or q < 1:
+                self.problem(file, spec.key_lines["queue_size"], f"{what}: queue_size must be a positive integer")
+                return
+            if cls.__fprime_kind__ == "passive":
+                self.problem(file, spec.key_lines["queue_size"],
+                             f"{what}: {cls.__name__} is passive and has no queue — remove queue_size")
+                return
+            kwargs["queue_size"] = q
+        qualified = f"{module}.{name}"
+        kwargs.update(rate_cfg.get("init", {}).get(qualified, {}))
+        try:
+            component = cls(name, **kwargs)
+        except TypeError as exc:
+            self.problem(file, line, f"{what}: cannot create {cls.__name__} with args "
+                                     f"{sorted(k for k in kwargs if k != 'base_id')}: {exc}")
+            return
+        except Exception as exc:  # noqa: BLE001 - reported with its location
+            self.problem(file, line, f"{what}: {cls.__name__} raised while being created: {exc}")
+            return
+        try:
+            topology.add(module, component, where=self.at(file, line))
+        except PortConnectionError as exc:
+            self.problem(file, line, f"{exc} — rename one of them")
+
+    # --- connections ---
+
+    def endpoint(self, file, text, line, topology: Topology, direction: str):
+        """Parse ``Module.instance.port[index]``; return (qualified instance, port, index) or None."""
+        m = _ENDPOINT.match(text) if isinstance(text, str) else None
+        if m is None:
+            self.problem(file, line, f"'{text}' is not a port reference — write Module.instance.port or "
+                                     f"Module.instance.port[index]")
+            return None
+        module, inst, port, index = m.group(1), m.group(2), m.group(3), m.group(4)
+        qualified = f"{module}.{inst}"
+        instance = topology.instances.get(qualified)
+        if instance is None and qualified in self.failed_instances:
+            return None  # already reported where it was declared
+        if instance is None:
+            guess = difflib.get_close_matches(qualified, list(topology.instances), n=1)
+            hint = f"did you mean '{guess[0]}'?" if guess else "declare it under 'modules'"
+            self.problem(file, line, f"unknown instance '{qualified}' — {hint}")
+            return None
+        comp = instance.component
+        ports = comp.spec.outputs if direction == "output" else comp.spec.inputs
+        if port not in ports:
+            guess = difflib.get_close_matches(port, list(ports), n=1)
+            hint = f"did you mean '{guess[0]}'?" if guess else f"its {direction} ports: {', '.join(ports) or 'none'}"
+            self.problem(file, line, f"{type(comp).__name__} {qualified} has no {direction} port '{port}' — {hint}")
+            return None
+        return qualified, port, int(index) if index is not None else 0
+
+    def connect_groups(self, file, groups, line, topology: Topology) -> None:
+        if groups is None:
+            return
+        groups = self.expect_map(file, groups, line, "'connections'")
+        for group, items in (groups or {}).items():
+            gline = groups.key_lines.get(group)
+            if not isinstance(items, YList):
+                self.problem(file, gline, f"connection group '{group}' must be a list of 'a.b.out[i] -> c.d.in[j]'")
+                continue
+            for text, iline in zip(items, items.item_lines):
+                if not isinstance(text, str) or text.count("->") != 1:
+                    self.problem(file, iline, f"connection {text!r} must look like "
+                                              f"'Module.inst.outPort[i] -> Module.inst.inPort[j]'")
+                    continue
+                left, right = text.split("->")
+                src = self.endpoint(file, left, iline, topology, "output")
+                dst = self.endpoint(file, right, iline, topology, "input")
+                if src is None or dst is None:
+                    continue
+                self.connect(file, iline, topology, src, dst, str(group))
+
+    def connect(self, file, line, topology, src, dst, group) -> None:
+        try:
+            topology.connect(src[0], src[1], src[2], dst[0], dst[1], dst[2], group=group)
+        except PortConnectionError as exc:
+            message = str(exc)
+            if "port types differ" in message:
+                message += " — connect ports of the same port type"
+            elif "already connected" in message:
+                message = message.replace("; an output index", " — an output index")
+            elif "does not exist" in message or "has indices" in message:
+                message += " — use an index within the port array"
+            self.problem(file, line, message)
+
+    # --- rate groups ---
+
+    def read_rate_groups(self, doc) -> dict:
+        cfg: dict = {"init": {}, "groups": []}
+        section = doc.get("rate_groups")
+        if section is None:
+            return cfg
+        line = doc.key_lines.get("rate_groups")
+        section = self.expect_map(self.path, section, line, "'rate_groups'")
+        if section is None:
+            return cfg
+        self.check_keys(self.path, section, RATE_GROUP_KEYS, "'rate_groups'")
+        base = section.get("base_rate_hz")
+        if isinstance(base, bool) or not isinstance(base, (int, float)) or not math.isfinite(base) or base <= 0:
+            self.problem(self.path, section.key_lines.get("base_rate_hz", line),
+                         "'rate_groups.base_rate_hz' must be a positive number (Hz), e.g. 1000")
+            return cfg
+        base_period_us = round(US_PER_S / base)
+        if base_period_us * base != US_PER_S:
+            self.problem(self.path, section.key_lines["base_rate_hz"],
+                         f"base rate {base} Hz is not a whole number of microseconds — use a rate that divides "
+                         f"1000000")
+            return cfg
+        driver = section.get("driver")
+        if not isinstance(driver, str):
+            self.problem(self.path, section.key_lines.get("driver", line),
+                         "'rate_groups.driver' must name the RateGroupDriver instance (Module.instance)")
+            return cfg
+        groups = self.expect_map(self.path, section.get("groups"), section.key_lines.get("groups", line),
+                                 "'rate_groups.groups'")
+        if groups is None:
+            return cfg
+        dividers = []
+        for name, group in groups.items():
+            gline = groups.key_lines.get(name)
+            group = self.expect_map(self.path, group, gline, f"rate group '{name}'")
+            if group is None:
+                continue
+            self.check_keys(self.path, group, GROUP_KEYS, f"rate group '{name}'")
+            divisor, offset = group.get("divisor"), group.get("offset", 0)
+            if isinstance(divisor, bool) or not isinstance(divisor, int) or divisor < 1:
+                self.problem(self.path, group.key_lines.get("divisor", gline),
+                             f"rate group '{name}': divisor must be a positive integer (base ticks per cycle)")
+                continue
+            if isinstance(offset, bool) or not isinstance(offset, int) or not 0 <= offset < divisor:
+                self.problem(self.path, group.key_lines.get("offset", gline),
+                             f"rate group '{name}': offset must be an integer in 0..{divisor - 1}")
+                continue
+            members = group.get("members", YList())
+            if not isinstance(members, YList):
+                self.problem(self.path, group.key_lines.get("members", gline),
+                             f"rate group '{name}': members must be a list of Module.instance.port")
+                continue
+            parsed = []
+            for member, mline in zip(members, members.item_lines):
+                context = 0
+                if isinstance(member, YMap):
+                    self.check_keys(self.path, member, MEMBER_KEYS, f"a member of rate group '{name}'")
+                    context = member.get("context", 0)
+                    member = member.get("port")
+                    if isinstance(context, bool) or not isinstance(context, int) or not 0 <= context <= 0xFFFFFFFF:
+                        self.problem(self.path, mline, f"rate group '{name}': member context must be a U32")
+                        continue
+                parsed.append((member, context, mline))
+            period_us = base_period_us * divisor
+            dividers.append((divisor, offset))
+            cfg["groups"].append((name, gline, parsed))
+            cfg["init"][name] = {"contexts": [c for _, c, _ in parsed], "period_us": period_us}
+        cfg["init"][driver] = {"dividers": dividers}
+        cfg["driver"] = (driver, section.key_lines.get("driver", line))
+        cfg["base_period_us"] = base_period_us
+        return cfg
+
+    def wire_rate_groups(self, doc, topology: Topology, scheduler, cfg) -> RateGroupTimer | None:
+        if "driver" not in cfg:
+            return None
+        driver_name, dline = cfg["driver"]
+        driver = topology.instances.get(driver_name)
+        if driver is None and driver_name in self.failed_instances:
+            return None
+        if driver is None or not isinstance(driver.component, RateGroupDriver):
+            self.problem(self.path, dline, f"rate group driver '{driver_name}' must be an instance of "
+                                           f"RateGroupDriver declared under 'modules'")
+            return None
+        for i, (name, gline, members) in enumerate(cfg["groups"]):
+            group = topology.instances.get(name)
+            if group is None and name in self.failed_instances:
+                continue
+            if group is None or not isinstance(group.component, (ActiveRateGroup, PassiveRateGroup)):
+                self.problem(self.path, gline, f"rate group '{name}' must be an ActiveRateGroup or "
+                                               f"PassiveRateGroup instance declared under 'modules'")
+                continue
+            self.connect(self.path, gline, topology, (driver_name, "CycleOut", i), (name, "CycleIn", 0),
+                         "RateGroups")
+            for j, (member, context, mline) in enumerate(members):
+                dst = self.endpoint(self.path, member, mline, topology, "input")
+                if dst is None:
+                    continue
+                self.connect(self.path, mline, topology, (name, "RateGroupMemberOut", j), dst, "RateGroups")
+        return RateGroupTimer(scheduler, driver.component, cfg["base_period_us"])
+
+    # --- patterns ---
+
+    def wire_patterns(self, doc, topology: Topology) -> None:
+        section = doc.get("patterns")
+        if section is None:
+            return
+        line = doc.key_lines.get("patterns")
+        section = self.expect_map(self.path, section, line, "'patterns'")
+        if section is None:
+            return
+        self.check_keys(self.path, section, set(PATTERN_PORTS), "'patterns'")
+        services = {}
+        for kind, name in section.items():
+            if kind not in PATTERN_PORTS:
+                continue
+            kline = section.key_lines.get(kind)
+            instance = topology.instances.get(name) if isinstance(name, str) else None
+            if instance is None and name in self.failed_instances:
+                continue
+            if instance is None:
+                self.problem(self.path, kline, f"pattern '{kind}': unknown instance {name!r} — name a "
+                                               f"Module.instance declared under 'modules'")
+                continue
+            missing = [p for _, p, d in PATTERN_PORTS[kind]
+                       if p not in (instance.component.spec.inputs if d == "to service"
+                                    else instance.component.spec.outputs)]
+            if missing:
+                self.problem(self.path, kline, f"pattern '{kind}': {name} ({type(instance.component).__name__}) "
+                                               f"lacks port(s) {', '.join(missing)} — name the instance that "
+                                               f"serves {kind} connections")
+                continue
+            services[kind] = name
+        try:
+            topology.connect_patterns(**services)
+        except (PortConnectionError, KeyError) as exc:
+            self.problem(self.path, line, str(exc))
+
+    # --- parameters and start-up ---
+
+    def read_startup(self, doc, topology: Topology, deployment: LoadedDeployment) -> None:
+        if "parameter_file" in doc:
+            value = doc["parameter_file"]
+            if not isinstance(value, str):
+                self.problem(self.path, doc.key_lines["parameter_file"], "'parameter_file' must be a file path")
+            else:
+                deployment.parameter_file = resolve_path(value, self.base_dir)
+        startup = doc.get("startup")
+        if startup is None:
+            return
+        line = doc.key_lines.get("startup")
+        startup = self.expect_map(self.path, startup, line, "'startup'")
+        if startup is None:
+            return
+        self.check_keys(self.path, startup, STARTUP_KEYS, "'startup'")
+        sequencer, sequence = startup.get("sequencer"), startup.get("sequence")
+        if sequence is None:
+            return
+        if not isinstance(sequencer, str) or sequencer not in topology.instances:
+            self.problem(self.path, startup.key_lines.get("sequencer", line),
+                         f"'startup.sequencer' must name the sequencer instance, got {sequencer!r}")
+            return
+        path = resolve_path(str(sequence), self.base_dir)
+        if not path.is_file():
+            self.problem(self.path, startup.key_lines["sequence"], f"start-up sequence '{sequence}' not found "
+                                                                   f"(looked for {path})")
+            return
+        deployment.startup_sequencer = sequencer
+        deployment.startup_sequence = path
+
+
+def resolve_path(value: str, base_dir: pathlib.Path) -> pathlib.Path:
+    """A path relative to ``base_dir``, or ``package:relative/path`` inside an installed package."""
+    if ":" in value and not pathlib.Path(value).is_absolute():
+        package, _, rest = value.partition(":")
+        if package.replace(".", "").replace("_", "").isalnum() and len(package) > 1:
+            try:
+                module = importlib.import_module(package)
+            except ImportError:
+                return base_dir / value
+            return pathlib.Path(module.__file__).parent / rest
+    path = pathlib.Path(value)
+    return path if path.is_absolute() else base_dir / path
+
+
+def _kind(value) -> str:
+    if value is None:
+        return "nothing"
+    if isinstance(value, dict):
+        return "a mapping"
+    if isinstance(value, list):
+        return "a list"
+    return f"{type(value).__name__} {value!r}"
+
+
+def load_topology(path, overrides: dict | None = None) -> LoadedDeployment:
+    """Load and validate a topology YAML file; raise :class:`TopologyError` listing every problem.
+
+    ``overrides`` maps a resource name to keyword arguments that replace those in the file
+    (the command line's ``--scenario`` and ``--seed`` use it).
+    """
+    return _Loader(pathlib.Path(path), overrides).load()
