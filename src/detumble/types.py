@@ -35,6 +35,7 @@ from __future__ import annotations
 
 from typing import Any, NamedTuple
 
+from fprime_lite.fw_types import Success, TimeIntervalValue
 from fprime_lite.ports import PortType
 from fprime_lite.time import Time
 from fprime_lite.types import F64, I8, U8, U32, FwEnum, Struct
@@ -51,30 +52,7 @@ __all__ = [
 
 # --- Fw ------------------------------------------------------------------------------------------
 
-class Success(FwEnum, namespace="Fw", rep=U8):
-    """F´ ``Fw.Success``: the outcome of an operation."""
-
-    SUCCESS = 0
-    FAILURE = 1
-
-
-class TimeIntervalValue(Struct, namespace="Fw"):
-    """F´ ``Fw.TimeIntervalValue``: a duration of ``seconds`` s plus ``useconds`` µs."""
-
-    seconds: U32
-    useconds: U32
-
-    @property
-    def total_us(self) -> int:
-        """The duration in microseconds."""
-        return self.seconds * 1_000_000 + self.useconds
-
-    @classmethod
-    def from_us(cls, microseconds: int) -> "TimeIntervalValue":
-        """The interval of ``microseconds`` µs (must be ≥ 0), normalised (``useconds < 1e6``)."""
-        if microseconds < 0:
-            raise ValueError(f"a time interval cannot be negative: {microseconds} us")
-        return cls(seconds=microseconds // 1_000_000, useconds=microseconds % 1_000_000)
+# ``Success`` and ``TimeIntervalValue`` are the framework's own (``Fw``) types, re-exported here.
 
 
 class Result(NamedTuple):

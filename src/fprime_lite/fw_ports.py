@@ -14,7 +14,7 @@ from .time import Time
 from .types import U32
 
 __all__ = ["Cmd", "CmdReg", "CmdResponsePort", "Log", "LogText", "Tlm", "PrmGet", "PrmSet",
-           "TimeGet", "Sched", "Com", "Cycle", "Ping", "FatalEvent", "CmdSeqIn", "SPECIAL_PORTS"]
+           "TimeGet", "Sched", "Com", "Cycle", "Ping", "FatalEvent", "CmdSeqIn", "CmdSeqCancel", "SPECIAL_PORTS"]
 
 Cmd = PortType("Fw.Cmd", opcode=U32, cmd_seq=U32, args=bytes)
 CmdReg = PortType("Fw.CmdReg", opcode=U32)
@@ -35,6 +35,8 @@ Ping = PortType("Svc.Ping", key=U32)
 FatalEvent = PortType("Svc.FatalEvent", id=U32)
 #: Ask a sequencer to run the sequence file ``file_name``.
 CmdSeqIn = PortType("Svc.CmdSeqIn", file_name=str)
+#: Ask a sequencer to cancel the running sequence.
+CmdSeqCancel = PortType("Svc.CmdSeqCancel")
 
 #: Special port kind (FPP spelling) -> (conventional F´ port name, port type, direction).
 SPECIAL_PORTS = {
