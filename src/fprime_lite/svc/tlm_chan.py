@@ -1,0 +1,139 @@
+"""TlmChan: keeps the latest value of every telemetry channel and sends the new ones each tick.
+
+F´'s ``Svc.TlmChan`` (instance ``tlmSend`` in F´'s CdhCore subtopology). Every component's
+``tlmOut`` connects to ``TlmRecv``, which stores the latest value and time tag per channel id. On
+each ``Run`` tick (a rate-group member), every channel written since the previous tick is sent out
+of ``PktSend``, packed into ``FW_PACKET_TELEM`` packets of at most
+:data:`~fprime_lite.packets.TLM_PACKET_MAX` bytes: ``U16 descriptor | {U32 id | Time | value}…``.
+Channels are sent in the order they were first received (deterministic). ``TlmGet`` reads the
+latest stored value of one channel.
+
+Differences from F´: the channel store is a dict and has no fixed hash table to run out of; a
+single record larger than a packet (which F´ cannot hold in a ComBuffer) is sent alone in its own
+packet and counted in :attr:`TlmChan.oversize_records`.
+"""
+
+from __future__ import annotations
+
+import logging
+import struct
+
+from ..component import ActiveComponent
+from ..fw_ports import Com, Ping, Sched, Tlm
+from ..packets import TLM_PACKET_MAX, Apid
+from ..ports import OutputPort, PortType, async_input, guarded_input
+from ..time import TIME
+from ..types import U32, FwEnum
+
+__all__ = ["TlmChan", "TlmGet", "TlmValid"]
+
+log = logging.getLogger("fprime_lite")
+
+_U32 = struct.Struct(">I")
+_HEADER = struct.pack(">H", Apid.FW_PACKET_TELEM)
+
+
+class TlmValid(FwEnum, namespace="Fw"):
+    """Whether a telemetry read found a value (F´ ``Fw.TlmValid``)."""
+
+    VALID = 0
+    INVALID = 1
+
+
+#: Read the latest value of channel ``id``: returns ``(TlmValid, Time | None, bytes | None)``.
+TlmGet = PortType("Fw.TlmGet", returns=tuple, id=U32)
+
+
+class TlmChan(ActiveComponent):
+    """F´'s telemetry channel store (``Svc.TlmChan``).
+
+    Args:
+        name: instance name (``tlmSend`` in F´'s CdhCore).
+        base_id: unused by TlmChan itself (it has no commands, events or channels).
+        queue_size: depth of the message queue (Run ticks and pings).
+        packet_max: largest packet built, descriptor included.
+    """
+
+    PktSend = OutputPort(Com)
+    pingOut = OutputPort(Ping)
+
+    def __init__(self, name: str = "tlmSend", *, base_id: int = 0, queue_size: int = 10,
+                 packet_max: int = TLM_PACKET_MAX):
+        super().__init__(name, base_id=base_id, queue_size=queue_size)
+        if packet_max < len(_HEADER) + 4 + TIME.size:
+            raise ValueError(f"{name}: packet_max {packet_max} cannot hold one telemetry record")
+        self.packet_max = packet_max
+        #: channel id -> (time, value bytes, serialized record) — latest write.
+        self._latest: dict[int, tuple] = {}
+        #: channel ids written since the last Run.
+        self._updated: dict[int, None] = {}
+        self.packets_sent = 0
+        self.records_sent = 0
+        self.oversize_records = 0
+        self.rejected_writes = 0
+
+    @guarded_input(Tlm)
+    def TlmRecv(self, chan_id: int, time, value: bytes) -> None:
+        """Store the latest ``value`` (F´ bytes) and ``time`` of channel ``chan_id`` (never raises)."""
+        try:
+            value = bytes(value)
+            record = _U32.pack(chan_id) + TIME.serialize(time) + value
+        except Exception as exc:  # noqa: BLE001 - a bad write is counted, never raised to the writer
+            self.rejected_writes += 1
+            log.warning("%s: TlmRecv: cannot store channel %r: %s", self.name, chan_id, exc)
+            return
+        self._latest[chan_id] = (time, value, record)
+        self._updated[chan_id] = None
+
+    @guarded_input(TlmGet)
+    def TlmGet(self, chan_id: int) -> tuple:
+        """``(TlmValid.VALID, time, value bytes)`` of channel ``chan_id``, or ``(INVALID, None, None)``."""
+        entry = self._latest.get(chan_id)
+        if entry is None:
+            return TlmValid.INVALID, None, None
+        return TlmValid.VALID, entry[0], entry[1]
+
+    @async_input(Sched)
+    def Run(self, context: int) -> None:
+        """Send every channel updated since the last tick, in packets of at most ``packet_max``."""
+        with self._lock:
+            if not self._updated:
+                return
+            updated = self._updated
+            self._updated = {}
+            records = [entry[2] for i, entry in self._latest.items() if i in updated]
+        for packet in self._pack(records):
+            if self.PktSend.is_connected(0):
+                self.PktSend[0](packet, 0)
+            self.packets_sent += 1
+        self.records_sent += len(records)
+
+    def _pack(self, records: list[bytes]) -> list[bytes]:
+        packets = []
+        parts = [_HEADER]
+        size = len(_HEADER)
+        for record in records:
+            if size + len(record) > self.packet_max and len(parts) > 1:
+                packets.append(b"".join(parts))
+                parts = [_HEADER]
+                size = len(_HEADER)
+            if len(_HEADER) + len(record) > self.packet_max:
+                self.oversize_records += 1
+                log.warning("%s: a record of %d bytes does not fit a %d-byte packet; sending it alone",
+                            self.name, len(record), self.packet_max)
+            parts.append(record)
+            size += len(record)
+        if len(parts) > 1:
+            packets.append(b"".join(parts))
+        return packets
+
+    @async_input(Ping)
+    def pingIn(self, key: int) -> None:
+        """Health ping: answer with the same key."""
+        if self.pingOut.is_connected(0):
+            self.pingOut[0](key)
+
+    @property
+    def channel_ids(self) -> list[int]:
+        """Ids of every channel stored so far, in order of first write."""
+        return list(self._latest)

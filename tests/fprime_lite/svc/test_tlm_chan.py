@@ -1,0 +1,119 @@
+"""TlmChan: latest value per channel, sent on the Run tick in packets of bounded size."""
+
+import struct
+
+import pytest
+
+from fprime_lite import Time, TimeBase
+from fprime_lite.packets import TLM_PACKET_MAX, decode_telemetry
+from fprime_lite.svc.tlm_chan import TlmChan, TlmValid
+
+T1 = Time(TimeBase.TB_WORKSTATION_TIME, 0, 10, 0)
+T2 = Time(TimeBase.TB_WORKSTATION_TIME, 0, 11, 500)
+
+
+@pytest.fixture
+def h(fprime_harness):
+    return fprime_harness(TlmChan("tlmSend"))
+
+
+def records(h, size=4):
+    out = []
+    for call in h.from_port("PktSend"):
+        out.extend(decode_telemetry(call.args[0], lambda i, d, o: o + size))
+    return out
+
+
+def test_ports():
+    t = TlmChan("tlmSend")
+    assert t.input_port("Run").decl.kind == "async"
+    assert t.input_port("TlmRecv").port_type.name == "Fw.Tlm"
+    assert "PktSend" in t.output_ports
+
+
+def test_latest_value_sent_once_per_tick(h):
+    h.invoke("TlmRecv", 0x10, T1, b"\x00\x00\x00\x01")
+    h.invoke("TlmRecv", 0x20, T1, b"\x00\x00\x00\x02")
+    h.invoke("TlmRecv", 0x10, T2, b"\x00\x00\x00\x03")  # overwrites 0x10's value and time
+    assert h.from_port("PktSend") == []                 # nothing before the tick
+    h.invoke("Run", 0)
+    h.dispatch_all()
+    assert len(h.from_port("PktSend")) == 1
+    assert records(h) == [(0x10, T2, b"\x00\x00\x00\x03"), (0x20, T1, b"\x00\x00\x00\x02")]
+    assert h.from_port("PktSend")[0].args[1] == 0
+    # Nothing new: the next tick sends nothing.
+    h.invoke("Run", 0)
+    h.dispatch_all()
+    assert len(h.from_port("PktSend")) == 1
+    # Only what changed is sent, in first-write order.
+    h.invoke("TlmRecv", 0x20, T2, b"\x00\x00\x00\x04")
+    h.invoke("Run", 0)
+    h.dispatch_all()
+    assert records(h)[-1] == (0x20, T2, b"\x00\x00\x00\x04")
+    assert len(h.from_port("PktSend")) == 2
+
+
+def test_packets_are_split_at_the_size_limit(h):
+    record_size = 4 + 11 + 8
+    n = 60
+    for i in range(n):
+        h.invoke("TlmRecv", 0x100 + i, T1, struct.pack(">d", i))
+    h.invoke("Run", 0)
+    h.dispatch_all()
+    packets = [c.args[0] for c in h.from_port("PktSend")]
+    per_packet = (TLM_PACKET_MAX - 2) // record_size
+    assert [len(p) for p in packets[:-1]] == [2 + per_packet * record_size] * (len(packets) - 1)
+    assert all(len(p) <= TLM_PACKET_MAX for p in packets)
+    assert len(packets) == -(-n // per_packet)
+    got = records(h, size=8)
+    assert [r[0] for r in got] == [0x100 + i for i in range(n)]
+    assert [struct.unpack(">d", r[2])[0] for r in got] == list(range(n))
+
+
+def test_oversize_record_sent_alone(h):
+    h.invoke("TlmRecv", 1, T1, b"\x01")
+    h.invoke("TlmRecv", 2, T1, bytes(600))
+    h.invoke("TlmRecv", 3, T1, b"\x03")
+    h.invoke("Run", 0)
+    h.dispatch_all()
+    sizes = [len(c.args[0]) for c in h.from_port("PktSend")]
+    assert sizes == [2 + 16, 2 + 15 + 600, 2 + 16]
+    assert h.component.oversize_records == 1
+
+
+def test_tlm_get(h):
+    assert h.invoke("TlmGet", 0x10) == (TlmValid.INVALID, None, None)
+    h.invoke("TlmRecv", 0x10, T1, b"\x07")
+    assert h.invoke("TlmGet", 0x10) == (TlmValid.VALID, T1, b"\x07")
+
+
+@pytest.mark.parametrize("time, value", [("nope", b"\x00"), (T1, None), (T1, 5.0)])
+def test_bad_writes_are_counted_never_raised(h, time, value):
+    h.invoke("TlmRecv", 0x10, time, value)
+    h.invoke("Run", 0)
+    h.dispatch_all()
+    assert h.from_port("PktSend") == []
+    assert h.component.rejected_writes == 1
+
+
+def test_components_write_through_tlm_out():
+    """A component's tlmOut wired to TlmRecv: its channel writes reach the packet."""
+    from fprime_lite.svc.cmd_dispatcher import CmdDispatcher
+
+    disp = CmdDispatcher("cmdDisp", base_id=0x100)
+    tlm = TlmChan("tlmSend")
+    disp.tlmOut.connect(0, tlm.input_port("TlmRecv"), 0)
+    sent = []
+    tlm.PktSend.connect_callable(0, lambda data, ctx: sent.append(data), "ground")
+    disp.input_port("run").entries[0](0)
+    disp.dispatch_all()
+    tlm.input_port("Run").entries[0](0)
+    tlm.dispatch_all()
+    recs = decode_telemetry(sent[0], lambda i, d, o: o + 4)
+    assert [r[0] for r in recs] == [0x102, 0x101, 0x100]  # CommandsDropped, CommandErrors, CommandsDispatched
+
+
+def test_ping(h):
+    h.invoke("pingIn", 9)
+    h.dispatch_all()
+    assert h.from_port("pingOut")[0].args == (9,)
