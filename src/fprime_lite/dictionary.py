@@ -10,18 +10,16 @@ commands, events, channels and parameters use, plus the framework's aliases and 
 from __future__ import annotations
 
 import json
-import os
-import pathlib
-import tempfile
 
 from . import __version__
+from .atomic import atomic_write_text
 from .commands import CmdResponse
 from .packets import Apid
 from .time import TIME, TimeBase
 from .topology import Topology
 from .types import U8, U16, U32, Alias, FwType, fw_type
 
-__all__ = ["build_dictionary", "write_dictionary", "FRAMEWORK_VERSION", "atomic_write_text"]
+__all__ = ["build_dictionary", "write_dictionary", "FRAMEWORK_VERSION"]
 
 #: The F´ release whose dictionary format and framework types we follow.
 FRAMEWORK_VERSION = "4.0.0"
@@ -141,25 +139,6 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
         "containers": [],
         "telemetryPacketSets": [],
     }
-
-
-def atomic_write_text(path, text: str) -> None:
-    """Write ``text`` to ``path`` so that readers see the old file or the new one, never a part."""
-    path = pathlib.Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
 
 
 def write_dictionary(topology: Topology, path, **kwargs) -> dict:

@@ -166,7 +166,7 @@ class BoundEvent:
             return True
         time = comp.get_time()
         if log_out.targets[0] is not None:
-            log_out[0](self.id, time, self._severity, b"".join(t.serialize(v) for t, v in zip(types, values)))
+            log_out[0](self.id, time, self._severity, b"".join(t.pack(v) for t, v in zip(types, values)))
         if text_out.targets[0] is not None:
             text_out[0](self.id, time, self._severity, f"({comp.name}) {decl.name}: {decl.render(values)}")
         return True

@@ -76,7 +76,7 @@ class BoundChannel:
         self.last = None
         self.written = False
         self._on_change = decl.update == "on change"
-        self._serialize = decl.type.serialize
+        self._serialize = decl.type.pack
         self._check = decl.type.check
 
     def write(self, value, time=None) -> None:

@@ -215,6 +215,7 @@ class TimeInterval:
 
 
 _TIME_STRUCT = struct.Struct(">HBII")
+_PACK_TIME = _TIME_STRUCT.pack
 
 
 class TimeType(FwType):
@@ -233,6 +234,12 @@ class TimeType(FwType):
         return value
 
     def serialize(self, value):
+        if type(value) is Time:
+            us = value._us
+            try:
+                return _PACK_TIME(value.time_base, value.context, us // US_PER_S, us % US_PER_S)
+            except struct.error:
+                pass  # out of range: let check() say which field
         value = self.check(value)
         return _TIME_STRUCT.pack(int(value.time_base), value.context, value.seconds, value.useconds)
 

@@ -116,8 +116,8 @@ class LoadedDeployment:
 
 class _Loader:
     def __init__(self, path: pathlib.Path, overrides: dict | None):
-        self.path = path
-        self.base_dir = path.parent
+        self.path = path.resolve() if path.is_symlink() else path
+        self.base_dir = self.path.parent
         self.problems: list[str] = []
         self.overrides = overrides or {}
         self.failed_instances: set[str] = set()
@@ -240,25 +240,43 @@ class _Loader:
         if not isinstance(type_path, str) or not type_path:
             self.problem(file, line, f"{what} needs 'type': an import path such as package.module.Class")
             return None
-        module_name, _, attr = type_path.rpartition(".")
-        if not module_name:
+        parts = type_path.split(".")
+        if len(parts) < 2:
             self.problem(file, line, f"{what}: type '{type_path}' must be a dotted import path (package.module.Class)")
             return None
-        try:
-            module = importlib.import_module(module_name)
-        except ImportError as exc:
-            self.problem(file, line, f"{what}: cannot import module '{module_name}' ({exc}) — check the type path")
+        module = None
+        for split in range(len(parts) - 1, 0, -1):  # the longest importable module prefix
+            module_name = ".".join(parts[:split])
+            try:
+                module = importlib.import_module(module_name)
+                break
+            except ModuleNotFoundError as exc:
+                if exc.name is None or not module_name.startswith(exc.name):
+                    self.problem(file, line, f"{what}: importing '{module_name}' failed: {exc}")
+                    return None
+                first_error = first_error if split < len(parts) - 1 else exc
+            except DeclarationError as exc:
+                self.problem(file, line, f"{what}: {exc}")
+                return None
+            except Exception as exc:  # noqa: BLE001 - a broken module is reported, not raised
+                self.problem(file, line, f"{what}: importing '{module_name}' failed: {type(exc).__name__}: {exc}")
+                return None
+        if module is None:
+            module_name = ".".join(parts[:-1])
+            self.problem(file, line, f"{what}: cannot import module '{module_name}' ({first_error}) — check the "
+                                     f"type path")
             return None
-        except DeclarationError as exc:
-            self.problem(file, line, f"{what}: {exc}")
-            return None
-        obj = getattr(module, attr, None)
-        if obj is None:
-            names = [n for n in dir(module) if not n.startswith("_")]
-            guess = difflib.get_close_matches(attr, names, n=1)
-            hint = f" — did you mean '{module_name}.{guess[0]}'?" if guess else ""
-            self.problem(file, line, f"{what}: module '{module_name}' has no '{attr}'{hint}")
-            return None
+        obj = module
+        for depth, attr in enumerate(parts[split:]):
+            owner = obj
+            obj = getattr(owner, attr, None)
+            if obj is None:
+                names = [n for n in dir(owner) if not n.startswith("_")]
+                guess = difflib.get_close_matches(attr, names, n=1)
+                prefix = ".".join(parts[:split + depth])
+                hint = f" — did you mean '{prefix}.{guess[0]}'?" if guess else ""
+                self.problem(file, line, f"{what}: module '{prefix}' has no '{attr}'{hint}")
+                return None
         return obj
 
     def resolve_args(self, file, args, line, resources, what) -> dict | None:

@@ -63,6 +63,10 @@ class FwType:
         """Check ``value`` and return its F´ big-endian bytes."""
         raise NotImplementedError
 
+    def pack(self, value: Any) -> bytes:
+        """Serialize a value that :meth:`check` already returned (skips checking it again)."""
+        return self.serialize(value)
+
     def deserialize(self, data: bytes | bytearray | memoryview, offset: int = 0) -> tuple[Any, int]:
         """Read one value at ``offset``; return ``(value, offset after it)``."""
         raise NotImplementedError
@@ -125,6 +129,9 @@ class IntType(FwType):
     def serialize(self, value):
         return self._struct.pack(self.check(value))
 
+    def pack(self, value):
+        return self._struct.pack(value)
+
     def deserialize(self, data, offset=0):
         end = offset + self.size
         if end > len(data):
@@ -174,6 +181,9 @@ class FloatType(FwType):
 
     def serialize(self, value):
         return self._struct.pack(self.check(value))
+
+    def pack(self, value):
+        return self._struct.pack(value)
 
     def deserialize(self, data, offset=0):
         end = offset + self.size
@@ -386,6 +396,9 @@ class EnumType(FwType):
 
     def serialize(self, value):
         return self.rep.serialize(int(self.check(value)))
+
+    def pack(self, value):
+        return self.rep._struct.pack(value)
 
     def deserialize(self, data, offset=0):
         raw, end = self.rep.deserialize(data, offset)

@@ -151,6 +151,8 @@ class CoilSet:
         coil = self.coils.get(face)
         if coil is None:
             raise ValueError(f"no coil on face {face}; this spacecraft has faces {sorted(self.coils)}")
+        if type(level) is int and level == coil.level:
+            return  # drivers re-command the same level every tick; nothing changes
         coil.set_level(level)
         if not self._lagged:
             self.dipole_B = self._sum()

@@ -75,14 +75,16 @@ class TlmChan(ActiveComponent):
     @guarded_input(Tlm)
     def TlmRecv(self, chan_id: int, time, value: bytes) -> None:
         """Store the latest ``value`` (F´ bytes) and ``time`` of channel ``chan_id`` (never raises)."""
-        try:
-            value = bytes(value)
-            record = _U32.pack(chan_id) + TIME.serialize(time) + value
-        except Exception as exc:  # noqa: BLE001 - a bad write is counted, never raised to the writer
-            self.rejected_writes += 1
-            log.warning("%s: TlmRecv: cannot store channel %r: %s", self.name, chan_id, exc)
-            return
-        self._latest[chan_id] = (time, value, record)
+        # Only the latest value of each channel is downlinked, so the record is built at Run time.
+        if not isinstance(value, bytes) or not isinstance(chan_id, int) or not 0 <= chan_id <= 0xFFFFFFFF:
+            try:
+                value = bytes(value)
+                _U32.pack(chan_id)
+            except Exception as exc:  # noqa: BLE001 - a bad write is counted, never raised to the writer
+                self.rejected_writes += 1
+                log.warning("%s: TlmRecv: cannot store channel %r: %s", self.name, chan_id, exc)
+                return
+        self._latest[chan_id] = (time, value)
         self._updated[chan_id] = None
 
     @guarded_input(TlmGet)
@@ -101,7 +103,14 @@ class TlmChan(ActiveComponent):
                 return
             updated = self._updated
             self._updated = {}
-            records = [entry[2] for i, entry in self._latest.items() if i in updated]
+            records = []
+            for chan_id in updated:
+                time, value = self._latest[chan_id]
+                try:
+                    records.append(_U32.pack(chan_id) + TIME.serialize(time) + value)
+                except Exception as exc:  # noqa: BLE001 - a bad time stamp is counted, never raised
+                    self.rejected_writes += 1
+                    log.warning("%s: channel 0x%X has an unusable time stamp: %s", self.name, chan_id, exc)
         for packet in self._pack(records):
             if self.PktSend.is_connected(0):
                 self.PktSend[0](packet, 0)

@@ -1,0 +1,223 @@
+"""The ``fprime-lite`` command line.
+
+    fprime-lite run [TOPOLOGY]          fly a deployment (default ./topology.yaml)
+    fprime-lite sim SCENARIO            plant-only run of a scenario with a reference control law
+    fprime-lite dict [TOPOLOGY] -o F    write the F´ JSON dictionary
+    fprime-lite check [TOPOLOGY]        validate a topology
+    fprime-lite graph [TOPOLOGY]        print the topology as DOT or Mermaid
+    fprime-lite params [TOPOLOGY] -o F  write a parameter file holding every parameter's default
+    fprime-lite bench                   measure speed and memory
+
+User mistakes (a missing file, bad YAML, an unknown scenario) are reported on stderr with a non-zero
+exit status, never with a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import json
+import logging
+import pathlib
+import sys
+import time
+
+from .errors import FprimeLiteError
+
+__all__ = ["main"]
+
+EXIT_USAGE = 2
+EXIT_FAILED = 1
+
+
+class UserError(Exception):
+    """A mistake the user can fix; printed without a traceback."""
+
+
+def _topology_arg(p: argparse.ArgumentParser) -> None:
+    p.add_argument("topology", nargs="?", default="topology.yaml",
+                   help="topology YAML file (default: ./topology.yaml)")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="fprime-lite", description="F´ components in Python: run, check and "
+                                     "inspect deployments; fly the simulated spacecraft.")
+    parser.add_argument("--version", action="version", version=f"fprime-lite {_version()}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+
+    run = sub.add_parser("run", help="run a deployment", description="Run a deployment in simulated time and write "
+                         "summary.json, events.log, channels.csv, truth.csv, dictionary.json and plots.")
+    _topology_arg(run)
+    run.add_argument("--duration", type=float, default=600.0, metavar="SECONDS",
+                     help="simulated seconds to run (default 600)")
+    run.add_argument("--scenario", metavar="NAME|FILE", help="simulation scenario (packaged name or YAML file)")
+    run.add_argument("--seed", type=int, help="seed of the sensor noise (overrides the scenario's)")
+    run.add_argument("--params", metavar="FILE", help="parameter file for PrmDb (overrides the topology's)")
+    run.add_argument("--seq", metavar="FILE", help="start-up sequence (.seq text or binary; overrides the topology's)")
+    run.add_argument("--out", metavar="DIR", help="output folder (default: a new runs/<timestamp>)")
+    run.add_argument("--no-progress", action="store_true", help="no progress bar")
+    run.add_argument("--no-plots", action="store_true", help="do not draw the PNG plots")
+    run.add_argument("--truth-interval", type=float, metavar="SECONDS",
+                     help="sampling interval of the truth log (default: the topology's)")
+    run.add_argument("-v", "--verbose", action="store_true", help="log framework warnings to stderr")
+
+    sim = sub.add_parser("sim", help="plant-only run of a scenario", add_help=False)
+    sim.add_argument("args", nargs=argparse.REMAINDER)
+
+    dic = sub.add_parser("dict", help="write the F´ JSON dictionary")
+    _topology_arg(dic)
+    dic.add_argument("-o", "--output", required=True, metavar="FILE", help="where to write the dictionary")
+
+    check = sub.add_parser("check", help="validate a topology")
+    _topology_arg(check)
+
+    graph = sub.add_parser("graph", help="print the topology as DOT or Mermaid")
+    _topology_arg(graph)
+    graph.add_argument("--format", choices=("dot", "mermaid"), default="dot")
+    graph.add_argument("--patterns", action="store_true", help="include pattern connections (command, event, …)")
+
+    params = sub.add_parser("params", help="write a parameter file with every parameter's default")
+    _topology_arg(params)
+    params.add_argument("-o", "--output", required=True, metavar="FILE")
+
+    bench = sub.add_parser("bench", help="measure speed and memory", add_help=False)
+    bench.add_argument("args", nargs=argparse.REMAINDER)
+    return parser
+
+
+def _version() -> str:
+    from . import __version__
+    return __version__
+
+
+def _load(path: str, overrides: dict | None = None):
+    from .topology_loader import load_topology
+
+    p = pathlib.Path(path)
+    if not p.exists():
+        raise UserError(f"{path}: no such topology file — give the path of a topology YAML file "
+                        f"(the reference deployment is deployments/proves_ref/topology.yaml)")
+    return load_topology(p, overrides)
+
+
+def cmd_check(args) -> int:
+    loaded = _load(args.topology)
+    topo = loaded.topology
+    print(f"{args.topology}: OK — deployment {topo.deployment}: {len(topo.instances)} instances, "
+          f"{len(topo.connections)} connections")
+    return 0
+
+
+def cmd_dict(args) -> int:
+    from .dictionary import write_dictionary
+
+    d = write_dictionary(_load(args.topology).topology, args.output)
+    print(f"wrote {args.output}: {len(d['commands'])} commands, {len(d['events'])} events, "
+          f"{len(d['telemetryChannels'])} channels, {len(d['parameters'])} parameters")
+    return 0
+
+
+def cmd_graph(args) -> int:
+    topo = _load(args.topology).topology
+    sys.stdout.write(topo.to_dot(args.patterns) if args.format == "dot" else topo.to_mermaid(args.patterns))
+    return 0
+
+
+def cmd_params(args) -> int:
+    from .params import ParamValid
+    from .svc.prm_db import encode_param_file
+    from .atomic import atomic_write_bytes
+
+    topo = _load(args.topology).topology
+    records = []
+    for instance in topo.instances.values():
+        comp = instance.component
+        for p in comp.spec.params:
+            if p.has_default:
+                records.append((f"{instance.qualified_name}.{p.name}", comp.base_id + p.local_id,
+                                p.type.serialize(p.default)))
+    records.sort()  # by full name, as fprime-prm-write orders them
+    atomic_write_bytes(args.output, encode_param_file([(pid, value) for _, pid, value in records]))
+    print(f"wrote {args.output}: {len(records)} parameters ({ParamValid.DEFAULT.name} values of the topology)")
+    return 0
+
+
+def cmd_run(args) -> int:
+    from .runner import run_deployment
+
+    overrides = {}
+    if args.scenario is not None or args.seed is not None:
+        spacecraft = {}
+        if args.scenario is not None:
+            spacecraft["scenario"] = _scenario(args.scenario)
+        if args.seed is not None:
+            spacecraft["seed"] = args.seed
+        overrides["spacecraft"] = spacecraft
+    if args.truth_interval is not None:
+        overrides["report"] = {"truth_interval_s": args.truth_interval}
+    if not args.duration > 0:
+        raise UserError(f"--duration must be positive, got {args.duration}")
+    for option, value in (("--params", args.params), ("--seq", args.seq)):
+        if value is not None and not pathlib.Path(value).is_file():
+            raise UserError(f"{option} {value}: no such file")
+    loaded = _load(args.topology, overrides)
+    out = pathlib.Path(args.out) if args.out else pathlib.Path("runs") / _dt.datetime.now().strftime(
+        "%Y%m%d-%H%M%S")
+    if out.exists() and any(out.iterdir()):
+        raise UserError(f"--out {out}: the folder exists and is not empty — choose another or remove it")
+    summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
+                             sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
+                             plots=not args.no_plots)
+    print(f"outputs in {out}/")
+    return 0 if summary.get("ok", True) else EXIT_FAILED
+
+
+def _scenario(value: str):
+    """A packaged scenario name or a file; a clear error for anything else."""
+    from detumble.sim.scenario import load_scenario
+
+    try:
+        return load_scenario(value)
+    except FileNotFoundError as exc:
+        raise UserError(f"--scenario {value}: {exc}") from None
+    except (ValueError, KeyError) as exc:
+        raise UserError(f"--scenario {value}: {exc}") from None
+
+
+def cmd_sim(args) -> int:
+    from detumble.sim.runner import main as sim_main
+
+    return sim_main(args.args)
+
+
+def cmd_bench(args) -> int:
+    from .bench import main as bench_main
+
+    return bench_main(args.args)
+
+
+COMMANDS = {"run": cmd_run, "sim": cmd_sim, "dict": cmd_dict, "check": cmd_check, "graph": cmd_graph,
+            "params": cmd_params, "bench": cmd_bench}
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.INFO if getattr(args, "verbose", False) else logging.ERROR,
+                        format="%(levelname)s %(name)s: %(message)s")
+    try:
+        return COMMANDS[args.command](args)
+    except UserError as exc:
+        print(f"fprime-lite {args.command}: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except FprimeLiteError as exc:
+        print(f"fprime-lite {args.command}: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        print(f"fprime-lite {args.command}: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())
