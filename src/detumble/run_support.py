@@ -79,9 +79,17 @@ class DetumbleRunReport:
         self._file = open(self._path.with_name(".truth.csv.part"), "w", encoding="utf-8", newline="")
         self._writer = csv.writer(self._file)
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
-                               "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm", "state",
-                               "strategy"])
+                               "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
+                               *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy"])
+        self._state_us = {s: 0 for s in DetumbleState}
+        self._state_since = deployment.scheduler.now_us
+        deployment.scheduler.add_time_listener(self._on_time)
         self.spacecraft.set_trace(self._sample, self.truth_interval_us)
+
+    def _on_time(self, time_us: int) -> None:
+        """Credit the time since the last event to the state the manager was in (exact fractions)."""
+        self._state_us[self.manager.state] += time_us - self._state_since
+        self._state_since = time_us
 
     def _sample(self, s: TruthSample) -> None:
         self.last = s
@@ -91,11 +99,13 @@ class DetumbleRunReport:
             self.time_below_1_deg_s = t
         w = s.omega_BN_B
         levels = [s.coil_levels.get(f, 0) for f in _FACES]
-        state = self.manager.state.name if self.manager is not None else ""
         strategy = getattr(self.manager, "strategy", None)
+        total = sum(self._state_us.values())
+        fractions = [self._state_us[st] / total if total else 0.0 for st in DetumbleState]
+        self._state_us = {st: 0 for st in DetumbleState}
         self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
-                               s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *levels, state,
-                               strategy.name if strategy is not None else ""])
+                               s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *levels,
+                               *(f"{f:.4f}" for f in fractions), strategy.name if strategy is not None else ""])
 
     def on_event(self, event) -> None:
         """A downlinked event (``fprime_lite.ground.DecodedEvent``)."""
@@ -154,7 +164,7 @@ def _read_truth(path: pathlib.Path) -> dict[str, list]:
                 for name, value in zip(header, row):
                     columns[name].append(value)
     for name in list(columns):
-        if name not in ("state", "strategy"):
+        if name != "strategy":
             columns[name] = [float(v) for v in columns[name]]
     return columns
 
@@ -216,17 +226,19 @@ def plot_run(truth_csv: pathlib.Path, out_dir: pathlib.Path, manager=None) -> li
     written.append(_save(fig, out_dir / "drive_levels.png"))
     plt.close(fig)
 
-    states = [s.name for s in DetumbleState]
     strategies = [s.name for s in DetumbleStrategy]
-    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(9, 4.5))
+    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(9, 5), gridspec_kw={"height_ratios": [1, 2]})
     ax1.step(tt, [strategies.index(s) if s in strategies else -1 for s in data["strategy"]], where="post",
              color="tab:purple", lw=1.0)
     ax1.set_yticks(range(len(strategies)), strategies)
-    ax1.set_title("Detumble strategy and state (sampled with the truth trace)")
+    ax1.set_title("Detumble strategy, and the share of each interval spent in each state")
     ax1.grid(alpha=0.3)
-    ax2.plot(tt, [states.index(s) if s in states else -1 for s in data["state"]], ".", ms=2, color="tab:blue")
-    ax2.set_yticks(range(len(states)), states)
+    shares = [data[f"frac_{st.name.lower()}"] for st in DetumbleState]
+    ax2.stackplot(tt, *shares, labels=[st.name for st in DetumbleState], step="post", alpha=0.85)
+    ax2.set_ylim(0, 1)
+    ax2.set_ylabel("share of time")
     ax2.set_xlabel(f"time ({unit})")
+    ax2.legend(loc="lower left", fontsize=7, ncol=2)
     ax2.grid(alpha=0.3)
     fig.tight_layout()
     written.append(_save(fig, out_dir / "state.png"))

@@ -201,9 +201,15 @@ COMMANDS = {"run": cmd_run, "sim": cmd_sim, "dict": cmd_dict, "check": cmd_check
             "params": cmd_params, "bench": cmd_bench}
 
 
+PASS_THROUGH = {"sim": "detumble.sim.runner", "bench": "fprime_lite.bench"}
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv and argv[0] in PASS_THROUGH:  # these verbs parse their own options
+        args = argparse.Namespace(command=argv[0], args=argv[1:], verbose=False)
+    else:
+        args = build_parser().parse_args(argv)
     logging.basicConfig(level=logging.INFO if getattr(args, "verbose", False) else logging.ERROR,
                         format="%(levelname)s %(name)s: %(message)s")
     try:

@@ -104,7 +104,9 @@ class GroundDecoder:
             value = ftype.deserialize(raw)[0]
             if template is not None:
                 text = template.format(value)
-            elif isinstance(value, (int, float, str, bool)) and not isinstance(value, enum.Enum):
+            elif isinstance(value, enum.Enum):
+                text = value.name
+            elif isinstance(value, (int, float, str, bool)):
                 text = repr(value) if isinstance(value, float) else str(value)
             else:
                 text = json.dumps(_plain(value))

@@ -1,0 +1,94 @@
+"""The fprime-lite command line: every verb, and clean errors for user mistakes."""
+
+import json
+import pathlib
+
+import pytest
+
+from fprime_lite.cli import main
+
+ROOT = pathlib.Path(__file__).parents[1]
+TOPOLOGY = str(ROOT / "deployments" / "proves_ref" / "topology.yaml")
+
+
+def test_check_reports_ok(capsys):
+    assert main(["check", TOPOLOGY]) == 0
+    assert "OK — deployment ReferenceDeployment: 19 instances" in capsys.readouterr().out
+
+
+def test_dict_writes_a_dictionary_with_flight_names(tmp_path, capsys):
+    out = tmp_path / "dict.json"
+    assert main(["dict", TOPOLOGY, "-o", str(out)]) == 0
+    d = json.loads(out.read_text())
+    commands = {c["name"]: c["opcode"] for c in d["commands"]}
+    assert commands["ReferenceDeployment.detumbleManager.SET_MODE"] == 0x1005A000
+    assert commands["CdhCore.cmdDisp.CMD_NO_OP"] == 0x01000100
+    assert d["metadata"]["deploymentName"] == "ReferenceDeployment"
+
+
+def test_graph_prints_dot_and_mermaid(capsys):
+    assert main(["graph", TOPOLOGY]) == 0
+    dot = capsys.readouterr().out
+    assert dot.startswith('digraph "ReferenceDeployment"')
+    assert '"ReferenceDeployment.detumbleManager" -> "ReferenceDeployment.drv2605Face0Manager"' in dot
+    assert main(["graph", TOPOLOGY, "--format", "mermaid"]) == 0
+    assert capsys.readouterr().out.startswith("flowchart LR")
+
+
+def test_params_writes_the_defaults_that_prmdb_reads(tmp_path):
+    from fprime_lite.svc.prm_db import decode_param_file
+
+    out = tmp_path / "p.dat"
+    assert main(["params", TOPOLOGY, "-o", str(out)]) == 0
+    records = dict(decode_param_file(out.read_bytes()).records)
+    assert records[0x1005A000 + 39] == bytes.fromhex("4008000000000000")  # GAIN = 3.0 (F64)
+    shipped = ROOT / "deployments" / "proves_ref" / "flight_params.dat"
+    assert shipped.read_bytes() == out.read_bytes(), "the shipped flight parameter file is out of date"
+
+
+def test_short_run_writes_every_output(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert main(["run", TOPOLOGY, "--duration", "5", "--out", str(out), "--no-progress", "--seed", "3"]) == 0
+    for name in ("summary.json", "events.log", "channels.csv", "dictionary.json", "truth.csv", "rate.png",
+                 "drive_levels.png", "state.png"):
+        assert (out / name).is_file(), name
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["sim_seconds"] == 5.0 and summary["ticks"] == 5001
+    assert "Run summary" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["check", "nope.yaml"], "nope.yaml: no such topology file"),
+    (["run", "nope.yaml", "--no-progress"], "nope.yaml: no such topology file"),
+    (["run", TOPOLOGY, "--scenario", "no_such_scenario", "--no-progress"], "--scenario no_such_scenario:"),
+    (["run", TOPOLOGY, "--duration", "-1"], "--duration must be positive"),
+    (["run", TOPOLOGY, "--params", "missing.dat"], "--params missing.dat: no such file"),
+])
+def test_user_mistakes_are_one_line_errors_without_traceback(argv, message, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err
+    assert "Traceback" not in err
+
+
+def test_bad_yaml_is_reported_with_its_line(tmp_path, capsys):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("deployment: X\nmodules: [\n")
+    assert main(["check", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "bad.yaml:3: invalid YAML" in err and "Traceback" not in err
+
+
+def test_run_refuses_a_non_empty_output_folder(tmp_path, capsys):
+    (tmp_path / "x").write_text("keep me")
+    assert main(["run", TOPOLOGY, "--out", str(tmp_path), "--no-progress"]) == 2
+    assert "exists and is not empty" in capsys.readouterr().err
+    assert (tmp_path / "x").read_text() == "keep me"
+
+
+def test_help_everywhere(capsys):
+    for verb in ("run", "dict", "check", "graph", "params"):
+        with pytest.raises(SystemExit) as exit_:
+            main([verb, "--help"])
+        assert exit_.value.code == 0
+    assert "--duration" in capsys.readouterr().out

@@ -1,0 +1,101 @@
+"""End to end: the PROVES reference deployment detumbles the simulated 1U from 30 deg/s.
+
+One run of the reference topology with the flight parameter file and start-up sequence, for long
+enough to finish detumbling; every assertion is about what actually happened in that run.
+"""
+
+import csv
+import json
+import pathlib
+
+import pytest
+
+from detumble.types import DetumbleState
+from fprime_lite.runner import run_deployment
+from fprime_lite.topology_loader import load_topology
+
+ROOT = pathlib.Path(__file__).parents[1]
+TOPOLOGY = ROOT / "deployments" / "proves_ref" / "topology.yaml"
+DURATION_S = 3100.0  # a full detumble from 30 deg/s takes ~2990 s of simulated time
+
+
+@pytest.fixture(scope="module")
+def flown(tmp_path_factory):
+    out = tmp_path_factory.mktemp("reference_run")
+    loaded = load_topology(TOPOLOGY)
+    manager = loaded.topology.instance("ReferenceDeployment.detumbleManager").component
+    transitions = []
+
+    def watch(_time_us):
+        if not transitions or transitions[-1] != manager.state:
+            transitions.append(manager.state)
+
+    loaded.scheduler.add_time_listener(watch)
+    summary = run_deployment(loaded, out, duration_s=DURATION_S, plots=True)
+    return out, summary, transitions
+
+
+def test_rate_falls_below_the_deadband_and_detumbling_completes(flown):
+    _, summary, _ = flown
+    assert summary["initial_rate_deg_s"] == pytest.approx(30.0, abs=1e-9)
+    assert summary["final_rate_deg_s"] < 5.0  # DEADBAND_LOWER_THRESHOLD
+    assert summary["detumble_started_s"] < 1.0
+    assert 1000.0 < summary["detumble_complete_s"] < DURATION_S
+
+
+def test_rate_decreases_over_the_run(flown):
+    out, _, _ = flown
+    with open(out / "truth.csv", newline="") as f:
+        rates = [float(row["rate_deg_s"]) for row in csv.DictReader(f)]
+    tenth = len(rates) // 10
+    means = [sum(rates[i * tenth:(i + 1) * tenth]) / tenth for i in range(10)]
+    assert all(b < a for a, b in zip(means, means[1:])), means
+
+
+def test_states_cycle_in_the_specified_order(flown):
+    _, _, transitions = flown
+    allowed = {
+        DetumbleState.COOLDOWN: {DetumbleState.SENSING_ANGULAR_VELOCITY},
+        DetumbleState.SENSING_ANGULAR_VELOCITY: {DetumbleState.SENSING_MAGNETIC_FIELD},
+        DetumbleState.SENSING_MAGNETIC_FIELD: {DetumbleState.ACTUATING_BDOT},
+        DetumbleState.ACTUATING_BDOT: {DetumbleState.COOLDOWN},
+    }
+    assert transitions[0] == DetumbleState.COOLDOWN
+    for a, b in zip(transitions, transitions[1:]):
+        assert b in allowed[a], f"{a.name} -> {b.name}"
+    assert transitions[-1] == DetumbleState.SENSING_ANGULAR_VELOCITY  # detumbled: idle, sensing ω
+    assert DetumbleState.ACTUATING_HYSTERESIS not in transitions  # 30 deg/s is far below BDOT_MAX_THRESHOLD
+    assert transitions.count(DetumbleState.ACTUATING_BDOT) > 5000  # one B-dot cycle per ~0.5 s
+
+
+def test_no_warning_hi_no_slips_no_faults(flown):
+    _, summary, _ = flown
+    assert "WARNING_HI" not in summary["events_by_severity"]
+    assert "FATAL" not in summary["events_by_severity"]
+    assert summary["cycle_slips"] == 0
+    assert summary["member_faults"] == 0 and summary["handler_faults"] == 0
+    assert summary["command_errors"] == 0
+    assert summary["undecodable_packets"] == 0
+
+
+def test_outputs_exist_and_parse(flown):
+    out, summary, _ = flown
+    on_disk = json.loads((out / "summary.json").read_text())
+    for key in ("sim_seconds", "wall_seconds", "real_time_factor", "ticks", "initial_rate_deg_s",
+                "final_rate_deg_s", "detumble_complete_s", "events_by_severity", "command_errors", "cycle_slips"):
+        assert key in on_disk, key
+    assert on_disk["sim_seconds"] == DURATION_S
+    assert on_disk["ticks"] == int(DURATION_S * 1000) + 1  # every 1 kHz base tick was counted
+    events = (out / "events.log").read_text().splitlines()
+    assert any(" ReferenceDeployment.detumbleManager.DetumbleStarted ACTIVITY_LO " in e for e in events)
+    completed = [e for e in events if ".DetumbleCompleted " in e]
+    assert completed and completed[0].startswith("2025-06-01T00:49:")
+    with open(out / "channels.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    states = {r["value"] for r in rows if r["channel"] == "ReferenceDeployment.detumbleManager.State"}
+    assert states <= {s.name for s in DetumbleState} and states
+    dictionary = json.loads((out / "dictionary.json").read_text())
+    names = {c["name"] for c in dictionary["commands"]}
+    assert {"CdhCore.cmdDisp.CMD_NO_OP", "ReferenceDeployment.detumbleManager.SET_MODE"} <= names
+    for png in ("rate.png", "drive_levels.png", "state.png"):
+        assert (out / png).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
