@@ -55,7 +55,7 @@ class BDotDetumble(PassiveComponent):
     @sync_input(DipoleMomentGet)
     def dipoleMomentGet(self):  # noqa: N802 - F´ port name
         """Read the magnetometer and return ``Result(DipoleMoment A·m², Success)``."""
-        if not self.magneticFieldGet.is_connected(0):
+        if not self.is_connected("magneticFieldGet", 0):
             return _zero_failure()
         field, condition = self.magneticFieldGet[0]()
         if condition != Success.SUCCESS or not _finite_field(field):

@@ -379,7 +379,7 @@ class DetumbleManager(PassiveComponent):
         systemModeChanged notification was SAFE_MODE."""
         if self._last_system_mode == SystemMode.SAFE_MODE:
             return True
-        if self.getSystemMode.is_connected(0):
+        if self.is_connected("getSystemMode", 0):
             return self.getSystemMode[0]() == SystemMode.SAFE_MODE
         return False
 
@@ -446,7 +446,7 @@ class DetumbleManager(PassiveComponent):
     def _sense_angular_velocity(self) -> None:
         self.strategy_selector.configure(self.BDOT_MAX_THRESHOLD.value, self.DEADBAND_UPPER_THRESHOLD.value,
                                          self.DEADBAND_LOWER_THRESHOLD.value)
-        ok, w = self._read(self.angularVelocityMagnitudeGet, AngularUnit.DEG_PER_SEC)
+        ok, w = self._read("angularVelocityMagnitudeGet", AngularUnit.DEG_PER_SEC)
         if not ok:
             self.AngularVelocityRetrievalFailed()
             return
@@ -477,7 +477,7 @@ class DetumbleManager(PassiveComponent):
         self.DetumbleCompleted.clear_throttle()
 
     def _sense_magnetic_field(self) -> None:
-        ok, field = self._read(self.magneticFieldGet)
+        ok, field = self._read("magneticFieldGet")
         if not ok or not _finite(field.x, field.y, field.z):
             self.MagneticFieldRetrievalFailed()
             return
@@ -516,7 +516,7 @@ class DetumbleManager(PassiveComponent):
     def _enter_actuating_bdot(self) -> bool:
         """Entry actions of ACTUATING_BDOT; False when the cycle was abandoned (no actuation)."""
         gain = self.GAIN.value
-        ok, period = self._read(self.magneticFieldSamplingPeriodGet)
+        ok, period = self._read("magneticFieldSamplingPeriodGet")
         if not ok:
             self.MagneticFieldSamplingPeriodRetrievalFailed()
             self._abandon_bdot_cycle()  # DEVIATION: the flight code still fires one stale pulse
@@ -524,8 +524,8 @@ class DetumbleManager(PassiveComponent):
         self.MagneticFieldSamplingPeriodRetrievalFailed.clear_throttle()
         self.bdot.configure(gain, period.total_us)
         self._external_dipole = None
-        if self.dipoleMomentGet.is_connected(0):
-            ok, dipole = self._read(self.dipoleMomentGet)
+        if self.is_connected("dipoleMomentGet", 0):
+            ok, dipole = self._read("dipoleMomentGet")
             if not ok or not _finite(dipole.x, dipole.y, dipole.z):
                 self.DipoleMomentRetrievalFailed()
                 self._abandon_bdot_cycle()
@@ -547,26 +547,23 @@ class DetumbleManager(PassiveComponent):
 
     # --- ports out -----------------------------------------------------------------------------
 
-    @staticmethod
-    def _read(port, *args):
+    def _read(self, port: str, *args):
         """Call a ``ref condition`` port; return ``(ok, value)``. Unconnected counts as a failure."""
-        if not port.is_connected(0):
+        if not self.is_connected(port):
             return False, None
-        value, condition = port[0](*args)
+        value, condition = getattr(self, port)[0](*args)
         return condition == Success.SUCCESS, value
 
     def _start_coils(self, levels) -> None:
         """Drive X+, X−, Y+, Y−, Z− at ``levels`` (each −127…127); unconnected coils are skipped."""
         for coil, level in zip(_COILS, levels):
-            port = getattr(self, coil.start_port)
-            if port.is_connected(0):
-                port[0](level)
+            if self.is_connected(coil.start_port):
+                getattr(self, coil.start_port)[0](level)
         self.coils_driven = True
 
     def _stop_coils(self) -> None:
         """Stop all five coils (unconnected coils are skipped)."""
         for coil in _COILS:
-            port = getattr(self, coil.stop_port)
-            if port.is_connected(0):
-                port[0]()
+            if self.is_connected(coil.stop_port):
+                getattr(self, coil.stop_port)[0]()
         self.coils_driven = False

@@ -53,7 +53,7 @@ def measure_port_call(number: int = 2_000_000, repeat: int = 7) -> dict:
         startOut = OutputPort(start_type)
 
     caller, driver = Caller("caller"), Driver("driver")
-    caller.startOut.connect(0, driver.input_port("start"))
+    caller.output_port("startOut").connect(0, driver.input_port("start"))
     env = {"caller": caller, "driver": driver}
     plain = min(timeit.repeat("driver.start(5)", globals=env, number=number, repeat=repeat)) / number
     port = min(timeit.repeat("caller.startOut[0](5)", globals=env, number=number, repeat=repeat)) / number

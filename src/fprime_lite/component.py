@@ -257,8 +257,12 @@ class Component(metaclass=ComponentMeta):
         self.handler_faults = 0
         self._deferred = False
         self._current_command: CommandToken | None = None
+        self._outputs: dict[str, OutputPortArray] = {}
         for decl in spec.outputs.values():
-            setattr(self, decl.name, OutputPortArray(self, decl))
+            port = OutputPortArray(self, decl)
+            self._outputs[decl.name] = port
+            setattr(self, decl.name, port.calls)  # the hot path: an exact list of call slots
+        self._time_port = self._outputs["timeCaller"]
         self._commands = {c.opcode: c for c in spec.commands}
         self._command_handlers = {c.opcode: getattr(self, c.name) for c in spec.commands
                                   if c.kind not in ("set", "save")}
@@ -296,12 +300,16 @@ class Component(metaclass=ComponentMeta):
                            f"{', '.join(self._inputs) or 'none'}") from None
 
     def output_port(self, name: str) -> OutputPortArray:
-        """The output port ``name``."""
-        port = getattr(self, name, None) if name in type(self).__fprime_spec__.outputs else None
-        if not isinstance(port, OutputPortArray):
+        """The output port ``name`` (to connect it, or ask what it is connected to)."""
+        try:
+            return self._outputs[name]
+        except KeyError:
             raise KeyError(f"{type(self).__name__} {self.name!r} has no output port {name!r}; output ports: "
-                           f"{', '.join(type(self).__fprime_spec__.outputs) or 'none'}")
-        return port
+                           f"{', '.join(self._outputs) or 'none'}") from None
+
+    def is_connected(self, port: str, index: int = 0) -> bool:
+        """Whether output ``port[index]`` is connected (F´'s ``isConnected_<port>_OutputPort``)."""
+        return self.output_port(port).targets[index] is not None
 
     @property
     def input_ports(self) -> dict[str, InputPortArray]:
@@ -309,7 +317,7 @@ class Component(metaclass=ComponentMeta):
 
     @property
     def output_ports(self) -> dict[str, OutputPortArray]:
-        return {n: getattr(self, n) for n in type(self).__fprime_spec__.outputs}
+        return dict(self._outputs)
 
     @property
     def spec(self) -> ComponentSpec:
@@ -317,8 +325,7 @@ class Component(metaclass=ComponentMeta):
 
     def get_time(self) -> Time:
         """The current time from the time-get port (a zero TB_NONE time when unconnected)."""
-        tc = self.timeCaller
-        return tc[0]() if tc.targets[0] is not None else _ZERO_TIME
+        return self.timeCaller[0]() if self._time_port.targets[0] is not None else _ZERO_TIME
 
     # --- ids -------------------------------------------------------------------------------------
 
@@ -350,11 +357,11 @@ class Component(metaclass=ComponentMeta):
 
     def register_commands(self) -> None:
         """Send every opcode out of the command-registration port (F´'s ``regCommands``)."""
-        reg = getattr(self, "cmdRegOut", None)
+        reg = self._outputs.get("cmdRegOut")
         if reg is None or not reg.is_connected(0):
             return
         for c in self.spec.commands:
-            reg[0](self.base_id + c.opcode)
+            reg.calls[0](self.base_id + c.opcode)
 
     def _command_in(self, opcode: int, cmd_seq: int, args: bytes) -> None:
         decl = self._commands.get(opcode - self.base_id)
@@ -417,9 +424,9 @@ class Component(metaclass=ComponentMeta):
         self._respond(token.opcode, token.cmd_seq, response)
 
     def _respond(self, opcode: int, cmd_seq: int, response: CmdResponse) -> None:
-        out = self.cmdResponseOut
+        out = self._outputs["cmdResponseOut"]
         if out.targets[0] is not None:
-            out[0](opcode, cmd_seq, response)
+            out.calls[0](opcode, cmd_seq, response)
 
     # --- parameters ------------------------------------------------------------------------------
 
@@ -441,21 +448,21 @@ class Component(metaclass=ComponentMeta):
     def _param_save(self, decl: Param, args: bytes) -> CmdResponse:
         if args:
             return CmdResponse.FORMAT_ERROR
-        out = self.prmSetOut
+        out = self._outputs["prmSetOut"]
         if out.targets[0] is None:
             return CmdResponse.EXECUTION_ERROR
         bound = self._params[decl.name]
         with self._lock:
             data = decl.type.serialize(bound.value)
-        out[0](bound.id, data)
+        out.calls[0](bound.id, data)
         return CmdResponse.OK
 
     def load_parameters(self) -> None:
         """Fetch every parameter through the param-get port, then run :meth:`parameters_loaded`."""
-        get = getattr(self, "prmGetOut", None)
+        get = self._outputs.get("prmGetOut")
         for bound in self._params.values():
             if get is not None and get.targets[0] is not None:
-                validity, data = get[0](bound.id)
+                validity, data = get.calls[0](bound.id)
             else:
                 validity, data = ParamValid.UNINIT, None
             bound.load(validity, data)

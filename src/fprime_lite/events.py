@@ -137,7 +137,7 @@ class Event:
 class BoundEvent:
     """An event of one component instance: call it to emit; keeps the throttle count."""
 
-    __slots__ = ("component", "decl", "id", "count", "_types", "_severity")
+    __slots__ = ("component", "decl", "id", "count", "_types", "_severity", "_log_port", "_text_port")
 
     def __init__(self, component, decl: Event, event_id: int):
         self.component = component
@@ -146,6 +146,8 @@ class BoundEvent:
         self.count = 0
         self._types = decl.arg_types
         self._severity = decl.severity
+        self._log_port = component.output_port("logOut")
+        self._text_port = component.output_port("logTextOut")
 
     def __call__(self, *args) -> bool:
         """Emit the event; return False when the throttle suppressed it."""
@@ -160,15 +162,15 @@ class BoundEvent:
                 return False
             self.count += 1
         comp = self.component
-        log_out = comp.logOut
-        text_out = comp.logTextOut
-        if not (log_out.targets[0] is not None or text_out.targets[0] is not None):
+        log_connected = self._log_port.targets[0] is not None
+        text_connected = self._text_port.targets[0] is not None
+        if not (log_connected or text_connected):
             return True
         time = comp.get_time()
-        if log_out.targets[0] is not None:
-            log_out[0](self.id, time, self._severity, b"".join(t.pack(v) for t, v in zip(types, values)))
-        if text_out.targets[0] is not None:
-            text_out[0](self.id, time, self._severity, f"({comp.name}) {decl.name}: {decl.render(values)}")
+        if log_connected:
+            comp.logOut[0](self.id, time, self._severity, b"".join(t.pack(v) for t, v in zip(types, values)))
+        if text_connected:
+            comp.logTextOut[0](self.id, time, self._severity, f"({comp.name}) {decl.name}: {decl.render(values)}")
         return True
 
     def clear_throttle(self) -> None:

@@ -8,7 +8,9 @@ returns a value)::
 
 A component receives calls through decorated methods (:func:`sync_input`, :func:`guarded_input`,
 :func:`async_input`) and makes calls through :class:`OutputPort` attributes. On an instance, an
-output port is an :class:`OutputPortArray`: index it and call, ``self.xPlusStart[0](level)``.
+output port attribute is the list of its call slots: index it and call, ``self.xPlusStart[0](level)``;
+``self.is_connected("xPlusStart", 0)`` checks first. The port's connection state is the
+:class:`OutputPortArray` that ``component.output_port(name)`` returns.
 
 Binding happens at connect time: the output's slot holds the target's callable itself (for a sync
 input of one port, the bound handler method), so a call through a connected port costs one list
@@ -183,10 +185,12 @@ class InputPortArray:
         return f"<input port {self.component.name}.{self.name} ({self.port_type.name}, {self.decl.kind})>"
 
 
-class OutputPortArray(list):
-    """The output port ``name`` of one component instance; element ``i`` is the call for index ``i``.
+class OutputPortArray:
+    """The output port ``name`` of one component instance: its call slots and what they connect to.
 
-    ``port[i](*args)`` calls whatever index ``i`` is connected to. ``is_connected(i)`` checks first.
+    ``calls`` is a plain ``list`` with one callable per index; the component's attribute of the
+    same name *is* that list, so ``self.xPlusStart[0](level)`` costs one list index more than a
+    method call (a ``list`` subclass would miss CPython's fast path for ``list[int]``).
     """
 
     def __init__(self, component, decl: OutputPort):
@@ -195,7 +199,13 @@ class OutputPortArray(list):
         self.port_type = decl.port_type
         self.required = decl.required
         self.targets: list[tuple[InputPortArray, int] | str | None] = [None] * decl.size
-        super().__init__(_Unconnected(self.describe(i)) for i in range(decl.size))
+        self.calls: list[Callable] = [_Unconnected(self.describe(i)) for i in range(decl.size)]
+
+    def __len__(self) -> int:
+        return len(self.calls)
+
+    def __getitem__(self, index: int) -> Callable:
+        return self.calls[index]
 
     def describe(self, index: int) -> str:
         return f"output port {self.component.name}.{self.name}[{index}]"
@@ -204,9 +214,9 @@ class OutputPortArray(list):
         return self.targets[index] is not None
 
     def _check_index(self, index: int) -> None:
-        if not 0 <= index < len(self):
+        if not 0 <= index < len(self.calls):
             raise PortConnectionError(
-                f"{self.component.name}.{self.name} has indices 0..{len(self) - 1}; "
+                f"{self.component.name}.{self.name} has indices 0..{len(self.calls) - 1}; "
                 f"index {index} does not exist")
 
     def connect(self, index: int, target: InputPortArray, target_index: int = 0) -> None:
@@ -228,18 +238,18 @@ class OutputPortArray(list):
             raise PortConnectionError(
                 f"cannot connect {src} to {dst}: it is already connected to {self.target_name(index)}; "
                 f"an output index connects to one input only (use another index)")
-        self[index] = target.entries[target_index]
+        self.calls[index] = target.entries[target_index]
         self.targets[index] = (target, target_index)
 
     def connect_callable(self, index: int, fn: Callable, label: str) -> None:
         """Bind index ``index`` to a plain callable (test harnesses, simulation adapters)."""
         self._check_index(index)
-        self[index] = fn
+        self.calls[index] = fn
         self.targets[index] = label
 
     def disconnect(self, index: int) -> None:
         self._check_index(index)
-        self[index] = _Unconnected(self.describe(index))
+        self.calls[index] = _Unconnected(self.describe(index))
         self.targets[index] = None
 
     def target_name(self, index: int) -> str | None:
@@ -251,10 +261,6 @@ class OutputPortArray(list):
 
     def __repr__(self):
         return f"<output port {self.component.name}.{self.name} ({self.port_type.name}, size {len(self)})>"
-
-    # list equality would compare callables; ports are identities.
-    __eq__ = object.__eq__
-    __hash__ = object.__hash__
 
 
 def bind_input_entries(component, decl: InputPortDecl) -> list[Callable]:

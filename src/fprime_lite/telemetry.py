@@ -67,7 +67,7 @@ class Channel:
 class BoundChannel:
     """A channel of one component instance."""
 
-    __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check")
+    __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port")
 
     def __init__(self, component, decl: Channel, channel_id: int):
         self.component = component
@@ -78,6 +78,7 @@ class BoundChannel:
         self._on_change = decl.update == "on change"
         self._serialize = decl.type.pack
         self._check = decl.type.check
+        self._port = component.output_port("tlmOut")
 
     def write(self, value, time=None) -> None:
         """Record ``value`` and send it (time-stamped now, unless ``time`` is given)."""
@@ -86,8 +87,7 @@ class BoundChannel:
             return
         self.last = value
         self.written = True
-        comp = self.component
-        tlm_out = comp.tlmOut
-        if tlm_out.targets[0] is None:
+        if self._port.targets[0] is None:
             return
-        tlm_out[0](self.id, time if time is not None else comp.get_time(), self._serialize(value))
+        comp = self.component
+        comp.tlmOut[0](self.id, time if time is not None else comp.get_time(), self._serialize(value))

@@ -183,5 +183,5 @@ def test_non_finite_field_fails_without_raising(h, bad):
 def test_unconnected_magnetometer_fails(fprime_harness):
     """BDot-003 Robustness: without a magnetometer connection the answer is FAILURE."""
     harness = fprime_harness(BDotDetumble("bdotDetumble", base_id=BASE), test_time=T0)
-    harness.component.magneticFieldGet.disconnect(0)
+    harness.component.output_port("magneticFieldGet").disconnect(0)
     assert harness.invoke("dipoleMomentGet").condition == Success.FAILURE

@@ -57,7 +57,7 @@ def make(fprime_harness, *, external=False, params=None, load=True):
     comp = DetumbleManager("detumbleManager", base_id=BASE)
     h = fprime_harness(comp, test_time=START)
     if not external:
-        comp.dipoleMomentGet.disconnect(0)  # the harness connects every output; this one is optional
+        comp.output_port("dipoleMomentGet").disconnect(0)  # the harness connects every output; this one is optional
     for port in STARTS + STOPS:
         h.set_port_return(port, Success.SUCCESS)
     h.set_port_return("getSystemMode", SystemMode.NORMAL)
@@ -220,7 +220,7 @@ def test_auto_refused_in_safe_mode_with_execution_error(h):
 
 def test_safe_mode_notification_refuses_auto_even_without_provider(h):
     """System Safe Mode: after a SAFE_MODE notification AUTO is refused until NORMAL arrives."""
-    h.component.getSystemMode.disconnect(0)
+    h.component.output_port("getSystemMode").disconnect(0)
     h.invoke("systemModeChanged", SystemMode.SAFE_MODE)
     h.send_command("SET_MODE", DetumbleMode.AUTO)
     h.assert_cmd_response(0, "SET_MODE", CmdResponse.EXECUTION_ERROR)
@@ -530,7 +530,7 @@ def test_angular_velocity_failure_event_stays_and_throttles(h):
 
 def test_unconnected_rate_provider_is_a_retrieval_failure(h):
     """Error Reporting: an unconnected angularVelocityMagnitudeGet counts as a failed read."""
-    h.component.angularVelocityMagnitudeGet.disconnect(0)
+    h.component.output_port("angularVelocityMagnitudeGet").disconnect(0)
     enable(h)
     run_until(h, DetumbleState.SENSING_ANGULAR_VELOCITY)
     tick(h)

@@ -73,7 +73,7 @@ def test_prm_save_pushes_serialized_value(h):
 def test_prm_save_without_prmdb_is_execution_error():
     comp = Tunable("alone")
     responses = []
-    comp.cmdResponseOut.connect_callable(0, lambda *a: responses.append(a), "test")
+    comp.output_port("cmdResponseOut").connect_callable(0, lambda *a: responses.append(a), "test")
     comp.input_port("cmdIn").entries[0](comp.opcode("GAIN_PRM_SAVE"), 3, b"")
     assert responses == [(comp.opcode("GAIN_PRM_SAVE"), 3, CmdResponse.EXECUTION_ERROR)]
 
@@ -92,7 +92,7 @@ def test_load_parameters_takes_valid_values_and_falls_back_to_defaults(h):
 
 def test_undeserializable_stored_value_falls_back_to_default():
     comp = Tunable("t")
-    comp.prmGetOut.connect_callable(0, lambda pid: (ParamValid.VALID, b"\x00"), "test")
+    comp.output_port("prmGetOut").connect_callable(0, lambda pid: (ParamValid.VALID, b"\x00"), "test")
     comp.load_parameters()
     assert comp.GAIN.value == 3.0 and comp.GAIN.validity == ParamValid.DEFAULT
 

@@ -162,10 +162,10 @@ def test_good_topology_builds_connects_and_runs(parts):
     # Command pattern: registration and dispatch share one index per client.
     sensor.register_commands()
     disp.register_commands()
-    assert disp.compCmdSend.target_name(disp.table[0x1000 + sensor.spec.command("PING").opcode]) == "sensor.cmdIn[0]"
-    assert disp.compCmdSend.target_name(disp.table[0x100]) == "cmdDisp.cmdIn[0]"
-    assert sensor.timeCaller.target_name(0) == "time.timeGetPort[0]"
-    assert sensor.prmGetOut.target_name(0) == "prm.getPrm[0]"
+    assert disp.output_port("compCmdSend").target_name(disp.table[0x1000 + sensor.spec.command("PING").opcode]) == "sensor.cmdIn[0]"
+    assert disp.output_port("compCmdSend").target_name(disp.table[0x100]) == "cmdDisp.cmdIn[0]"
+    assert sensor.output_port("timeCaller").target_name(0) == "time.timeGetPort[0]"
+    assert sensor.output_port("prmGetOut").target_name(0) == "prm.getPrm[0]"
     # Rate group: 10 Hz from a 1 kHz base, context 3.
     dep.scheduler.drain_after_each_event(topo.instance("Demo.rg10").component)
     dep.timer.start(0)

@@ -119,5 +119,5 @@ class ModeManager(PassiveComponent):
         self.CurrentMode.write(int(self.mode))
         out = self.modeChanged
         for i in range(len(out)):
-            if out.targets[i] is not None:
+            if self.is_connected("modeChanged", i):
                 out[i](self.mode)

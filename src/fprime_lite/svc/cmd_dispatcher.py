@@ -172,7 +172,7 @@ class CmdDispatcher(ActiveComponent):
         else:
             raise FwAssertionError(
                 f"{self.name}.compCmdReg[{port_num}]: opcode 0x{opcode:X} is already registered on "
-                f"compCmdReg[{existing}] ({self.compCmdSend.target_name(existing) or 'unconnected'}); "
+                f"compCmdReg[{existing}] ({self.output_port('compCmdSend').target_name(existing) or 'unconnected'}); "
                 f"two components share an opcode — give them distinct base ids")
 
     @property
@@ -197,14 +197,14 @@ class CmdDispatcher(ActiveComponent):
             self._answer(port_num, opcode, context, CmdResponse.VALIDATION_ERROR)
             return
         entry = self._dispatch_table.get(opcode)
-        if entry is None or not self.compCmdSend.is_connected(entry):
+        if entry is None or not self.is_connected("compCmdSend", entry):
             self.InvalidCommand(opcode)
             self._count_error()
             self._answer(port_num, opcode, context, CmdResponse.INVALID_OPCODE)
             self._next_seq()
             return
         seq = self._seq
-        tracked = self.seqCmdStatus.is_connected(port_num)
+        tracked = self.is_connected("seqCmdStatus", port_num)
         if tracked:
             with self._lock:
                 full = len(self._tracking) >= self.tracking_size
@@ -273,11 +273,11 @@ class CmdDispatcher(ActiveComponent):
     @async_input(Ping)
     def pingIn(self, key: int) -> None:
         """Health ping: answer with the same key."""
-        if self.pingOut.is_connected(0):
+        if self.is_connected("pingOut", 0):
             self.pingOut[0](key)
 
     def _answer(self, port_num: int, opcode: int, context: int, response: CmdResponse) -> None:
-        if self.seqCmdStatus.is_connected(port_num):
+        if self.is_connected("seqCmdStatus", port_num):
             self.seqCmdStatus[port_num](opcode, context, response)
 
     def _count_error(self) -> None:

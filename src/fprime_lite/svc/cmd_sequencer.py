@@ -443,7 +443,7 @@ class CmdSequencer(ActiveComponent):
         self._step()
         if started_event:
             self.CS_CmdStarted(self._log_file_name)
-        if self.seqStartOut.is_connected(0):
+        if self.is_connected("seqStartOut", 0):
             self.seqStartOut[0](self._file_name)
 
     def _step(self) -> None:
@@ -498,7 +498,7 @@ class CmdSequencer(ActiveComponent):
         self._answer_waiters(CmdResponse.EXECUTION_ERROR)
 
     def _seq_done(self, response: CmdResponse) -> None:
-        if self.seqDone.is_connected(0):
+        if self.is_connected("seqDone", 0):
             self.seqDone[0](0, 0, response)
 
     def _answer_waiters(self, response: CmdResponse) -> None:

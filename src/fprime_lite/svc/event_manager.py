@@ -196,10 +196,10 @@ class EventManager(ActiveComponent):
             return
         if len(packet) > EVENT_PACKET_MAX:
             self._drop(event_id, f"its packet of {len(packet)} bytes exceeds {EVENT_PACKET_MAX} bytes")
-        elif self.PktSend.is_connected(0):
+        elif self.is_connected("PktSend", 0):
             self.PktSend[0](packet, 0)
             self.events_sent += 1
-        if severity == Severity.FATAL and self.FatalAnnounce.is_connected(0):
+        if severity == Severity.FATAL and self.is_connected("FatalAnnounce", 0):
             self.FatalAnnounce[0](event_id)
 
     @async_input(Sched, queue_full="drop")
@@ -210,7 +210,7 @@ class EventManager(ActiveComponent):
     @async_input(Ping)
     def pingIn(self, key: int) -> None:
         """Health ping: answer with the same key."""
-        if self.pingOut.is_connected(0):
+        if self.is_connected("pingOut", 0):
             self.pingOut[0](key)
 
     # --- inspection ----------------------------------------------------------------------------

@@ -155,7 +155,7 @@ class Health(QueuedComponent):
                 if tracker.cycle_count == 0:
                     tracker.key = self._key
                     self._key = (self._key + 1) & 0xFFFFFFFF
-                    if self.PingSend.is_connected(index):
+                    if self.is_connected("PingSend", index):
                         self.PingSend[index](tracker.key)
                     tracker.cycle_count = 1
                     continue
@@ -166,7 +166,7 @@ class Health(QueuedComponent):
                 elif tracker.cycle_count == tracker.entry.fatal_cycles:
                     self.HLTH_PING_LATE(tracker.entry.name)
                 tracker.cycle_count += 1
-        if self.WdogStroke.is_connected(0):
+        if self.is_connected("WdogStroke", 0):
             self.WdogStroke[0](self._watchdog_code)
             self._watchdog_code = 1 - self._watchdog_code if self._watchdog_code in (0, 1) else 0
 

@@ -422,7 +422,7 @@ class PrmDb(ActiveComponent):
     @async_input(Ping)
     def pingIn(self, key: int) -> None:
         """Health ping: answer with the same key."""
-        if self.pingOut.is_connected(0):
+        if self.is_connected("pingOut", 0):
             self.pingOut[0](key)
 
     # --- start-up ------------------------------------------------------------------------------

@@ -45,13 +45,15 @@ class RateGroupDriver(PassiveComponent):
             raise ValueError(f"{name}: at most {self.MAX_OUTPUTS} dividers, got {len(dividers)}")
         self.dividers = dividers
         self.tick = 0  # index of the next base tick to handle
+        self._cycle_targets = self.output_port("CycleOut").targets
 
     @sync_input(Cycle)
     def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
         tick = self.tick
         out = self.CycleOut
+        targets = self._cycle_targets
         for i, d in enumerate(self.dividers):
-            if tick % d.divisor == d.offset and out.targets[i] is not None:
+            if tick % d.divisor == d.offset and targets[i] is not None:
                 out[i](cycle_start)
         self.tick = tick + 1
 

@@ -64,9 +64,10 @@ class _RateGroup:
         wall0 = _wall.perf_counter()
         sim0 = self.get_time()
         out = self.RateGroupMemberOut
+        targets = self.output_port("RateGroupMemberOut").targets
         contexts = self.contexts
         for i in range(self.MAX_MEMBERS):
-            if out.targets[i] is None:
+            if targets[i] is None:
                 continue
             try:
                 out[i](contexts[i])

@@ -112,7 +112,7 @@ class TlmChan(ActiveComponent):
                     self.rejected_writes += 1
                     log.warning("%s: channel 0x%X has an unusable time stamp: %s", self.name, chan_id, exc)
         for packet in self._pack(records):
-            if self.PktSend.is_connected(0):
+            if self.is_connected("PktSend", 0):
                 self.PktSend[0](packet, 0)
             self.packets_sent += 1
         self.records_sent += len(records)
@@ -139,7 +139,7 @@ class TlmChan(ActiveComponent):
     @async_input(Ping)
     def pingIn(self, key: int) -> None:
         """Health ping: answer with the same key."""
-        if self.pingOut.is_connected(0):
+        if self.is_connected("pingOut", 0):
             self.pingOut[0](key)
 
     @property

@@ -159,8 +159,8 @@ def test_connects_to_a_manager_using_the_detumble_port_types(make_craft):
     craft = make_craft()
     driver = MagnetorquerDriver("drv2605Face1Manager", craft, 1)
     manager = _Manager("detumbleManager")
-    manager.xMinusStart.connect(0, driver.input_port("start"))
-    manager.xMinusStop.connect(0, driver.input_port("stop"))
+    manager.output_port("xMinusStart").connect(0, driver.input_port("start"))
+    manager.output_port("xMinusStop").connect(0, driver.input_port("stop"))
     assert manager.xMinusStart[0](-127) == Success.SUCCESS
     assert craft.plant.m_coils_B[0] == pytest.approx(XY_MAX)
     assert manager.xMinusStop[0]() == Success.SUCCESS

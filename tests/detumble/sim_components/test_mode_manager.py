@@ -91,7 +91,7 @@ def test_unconnected_and_connected_mode_changed():
     mm = ModeManager("modeManager")
     mm.enter_safe_mode()  # nothing connected: fine
     listener = _Listener("detumbleManager")
-    mm.modeChanged.connect(0, listener.input_port("systemModeChanged"))
+    mm.output_port("modeChanged").connect(0, listener.input_port("systemModeChanged"))
     mm.exit_safe_mode()
     mm.enter_safe_mode()
     assert listener.seen == [SystemMode.NORMAL, SystemMode.SAFE_MODE]

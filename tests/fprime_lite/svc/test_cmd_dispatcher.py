@@ -110,7 +110,7 @@ def test_registered_but_unconnected_port_is_invalid(fprime_harness):
     """F´ dispatches only through a connected compCmdSend index."""
     h = fprime_harness(CmdDispatcher("cmdDisp", base_id=BASE))
     h.invoke("compCmdReg", 0x2000, port_num=9)
-    h.component.compCmdSend.disconnect(9)
+    h.component.output_port("compCmdSend").disconnect(9)
     h.invoke("seqCmdBuff", encode_command(0x2000), 0, port_num=0)
     h.dispatch_all()
     h.assert_event("InvalidCommand", 0, 0x2000)
@@ -159,7 +159,7 @@ def test_too_many_commands(fprime_harness):
 def test_untracked_when_source_has_no_status_port(h):
     """F´ tracks only commands whose source can be answered."""
     h.invoke("compCmdReg", 0x2000, port_num=0)
-    h.component.seqCmdStatus.disconnect(6)
+    h.component.output_port("seqCmdStatus").disconnect(6)
     h.invoke("seqCmdBuff", encode_command(0x2000), 1, port_num=6)
     h.dispatch_all()
     assert len(dispatched(h)) == 1 and h.component.pending == {}
@@ -229,12 +229,12 @@ def test_self_registration_and_self_dispatch_end_to_end():
     cmdResponseOut -> compCmdStat, as F´'s CdhCore wires cmdDisp to itself."""
     disp = CmdDispatcher("cmdDisp", base_id=BASE)
     k = 5
-    disp.cmdRegOut.connect(0, disp.input_port("compCmdReg"), k)
-    disp.compCmdSend.connect(k, disp.input_port("cmdIn"), 0)
-    disp.cmdResponseOut.connect(0, disp.input_port("compCmdStat"), 0)
+    disp.output_port("cmdRegOut").connect(0, disp.input_port("compCmdReg"), k)
+    disp.output_port("compCmdSend").connect(k, disp.input_port("cmdIn"), 0)
+    disp.output_port("cmdResponseOut").connect(0, disp.input_port("compCmdStat"), 0)
     events, answers = [], []
-    disp.logOut.connect_callable(0, lambda i, t, s, a: events.append(i - BASE), "events")
-    disp.seqCmdStatus.connect_callable(0, lambda *a: answers.append(a), "ground")
+    disp.output_port("logOut").connect_callable(0, lambda i, t, s, a: events.append(i - BASE), "events")
+    disp.output_port("seqCmdStatus").connect_callable(0, lambda *a: answers.append(a), "ground")
     disp.register_commands()
     assert disp.dispatch_table == {BASE + op: k for op in range(4)}
     assert events == [0, 0, 0, 0]  # OpCodeRegistered x4
@@ -251,11 +251,11 @@ def test_threaded_dispatch_round_trip():
     import queue as _q
 
     disp = CmdDispatcher("cmdDisp", base_id=BASE)
-    disp.cmdRegOut.connect(0, disp.input_port("compCmdReg"), 0)
-    disp.compCmdSend.connect(0, disp.input_port("cmdIn"), 0)
-    disp.cmdResponseOut.connect(0, disp.input_port("compCmdStat"), 0)
+    disp.output_port("cmdRegOut").connect(0, disp.input_port("compCmdReg"), 0)
+    disp.output_port("compCmdSend").connect(0, disp.input_port("cmdIn"), 0)
+    disp.output_port("cmdResponseOut").connect(0, disp.input_port("compCmdStat"), 0)
     answers = _q.Queue()
-    disp.seqCmdStatus.connect_callable(0, lambda *a: answers.put(a), "ground")
+    disp.output_port("seqCmdStatus").connect_callable(0, lambda *a: answers.put(a), "ground")
     disp.register_commands()
     disp.start()
     try:

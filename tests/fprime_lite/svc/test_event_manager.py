@@ -146,9 +146,9 @@ def test_bad_events_are_dropped_and_counted_never_raised(h, severity, time, args
 def test_own_events_loop_through_log_recv():
     """Wired as in a deployment (logOut -> LogRecv), its own events are filtered and sent too."""
     em = EventManager("events", base_id=0x200)
-    em.logOut.connect(0, em.input_port("LogRecv"), 0)
+    em.output_port("logOut").connect(0, em.input_port("LogRecv"), 0)
     packets = []
-    em.PktSend.connect_callable(0, lambda data, ctx: packets.append(decode_event(data)), "ground")
+    em.output_port("PktSend").connect_callable(0, lambda data, ctx: packets.append(decode_event(data)), "ground")
     em.input_port("cmdIn").entries[0](em.opcode("SET_ID_FILTER"), 0, struct.pack(">IB", 7, 0))
     em.dispatch_all()
     assert [p[0] for p in packets] == [em.event_id("ID_FILTER_ENABLED")]

@@ -56,18 +56,18 @@ class Deployment:
         self.answers: list[tuple] = []
         components = [self.cmd_disp, self.events, self.tlm, self.demo, self.time]
         for k, comp in enumerate(components):
-            comp.timeCaller.connect(0, self.time.input_port("timeGetPort"))
+            comp.output_port("timeCaller").connect(0, self.time.input_port("timeGetPort"))
             if "logOut" in comp.output_ports:
-                comp.logOut.connect(0, self.events.input_port("LogRecv"))
+                comp.output_port("logOut").connect(0, self.events.input_port("LogRecv"))
             if "tlmOut" in comp.output_ports:
-                comp.tlmOut.connect(0, self.tlm.input_port("TlmRecv"))
+                comp.output_port("tlmOut").connect(0, self.tlm.input_port("TlmRecv"))
             if "cmdRegOut" in comp.output_ports:
-                comp.cmdRegOut.connect(0, self.cmd_disp.input_port("compCmdReg"), k)
-                self.cmd_disp.compCmdSend.connect(k, comp.input_port("cmdIn"))
-                comp.cmdResponseOut.connect(0, self.cmd_disp.input_port("compCmdStat"))
-        self.events.PktSend.connect_callable(0, lambda data, ctx: self.downlink.append(data), "downlink")
-        self.tlm.PktSend.connect_callable(0, lambda data, ctx: self.downlink.append(data), "downlink")
-        self.cmd_disp.seqCmdStatus.connect_callable(0, lambda *a: self.answers.append(a), "uplink")
+                comp.output_port("cmdRegOut").connect(0, self.cmd_disp.input_port("compCmdReg"), k)
+                self.cmd_disp.output_port("compCmdSend").connect(k, comp.input_port("cmdIn"))
+                comp.output_port("cmdResponseOut").connect(0, self.cmd_disp.input_port("compCmdStat"))
+        self.events.output_port("PktSend").connect_callable(0, lambda data, ctx: self.downlink.append(data), "downlink")
+        self.tlm.output_port("PktSend").connect_callable(0, lambda data, ctx: self.downlink.append(data), "downlink")
+        self.cmd_disp.output_port("seqCmdStatus").connect_callable(0, lambda *a: self.answers.append(a), "uplink")
         for comp in components:
             comp.register_commands()
         self.queued = [self.cmd_disp, self.events, self.tlm]

@@ -68,10 +68,10 @@ def test_commands(h):
 def test_pings_a_real_component():
     health = Health("health", [("cmdDisp", 1, 2)])
     disp = CmdDispatcher("cmdDisp")
-    health.PingSend.connect(0, disp.input_port("pingIn"))
-    disp.pingOut.connect(0, health.input_port("PingReturn"), 0)
+    health.output_port("PingSend").connect(0, disp.input_port("pingIn"))
+    disp.output_port("pingOut").connect(0, health.input_port("PingReturn"), 0)
     events = []
-    health.logOut.connect_callable(0, lambda *a: events.append(a), "events")
+    health.output_port("logOut").connect_callable(0, lambda *a: events.append(a), "events")
     for _ in range(4):
         health.input_port("Run").entries[0](0)
         disp.dispatch_all()

@@ -383,8 +383,8 @@ def test_components_load_their_parameters_from_prm_db(tmp_path):
     path = tmp_path / "p.dat"
     path.write_bytes(encode_param_file([(0x1001, struct.pack(">d", 9.5))]))
     db = PrmDb("prmDb", path)
-    demo.prmGetOut.connect(0, db.input_port("getPrm"), 0)
-    demo.prmSetOut.connect(0, db.input_port("setPrm"), 0)
+    demo.output_port("prmGetOut").connect(0, db.input_port("getPrm"), 0)
+    demo.output_port("prmSetOut").connect(0, db.input_port("setPrm"), 0)
     assert db.read_param_file()
     demo.load_parameters()
     assert (demo.ALPHA.value, demo.ALPHA.validity) == (9.5, ParamValid.VALID)

@@ -46,10 +46,10 @@ def test_timer_skips_idle_ticks_but_counts_them():
     fast, slow = Member("fast", log, s.clock), Member("slow", log, s.clock)
     rg50 = PassiveRateGroup("rg50", contexts=[7])
     rg1 = PassiveRateGroup("rg1", contexts=[9])
-    driver.CycleOut.connect(0, rg50.input_port("CycleIn"))
-    driver.CycleOut.connect(1, rg1.input_port("CycleIn"))
-    rg50.RateGroupMemberOut.connect(0, fast.input_port("run"))
-    rg1.RateGroupMemberOut.connect(0, slow.input_port("run"))
+    driver.output_port("CycleOut").connect(0, rg50.input_port("CycleIn"))
+    driver.output_port("CycleOut").connect(1, rg1.input_port("CycleIn"))
+    rg50.output_port("RateGroupMemberOut").connect(0, fast.input_port("run"))
+    rg1.output_port("RateGroupMemberOut").connect(0, slow.input_port("run"))
     timer = RateGroupTimer(s, driver, base_period_us=1000)
     timer.start(0)
     s.run(until_us=2_000_000)
@@ -68,8 +68,8 @@ def test_active_rate_group_runs_members_in_order_on_dispatch(fprime_harness):
     h = fprime_harness(ActiveRateGroup("rg", contexts=[1, 2, 3], period_us=20_000))
     for i in range(3):
         m = Member(f"m{i}", log)
-        h.component.RateGroupMemberOut.disconnect(i)
-        h.component.RateGroupMemberOut.connect(i, m.input_port("run"))
+        h.component.output_port("RateGroupMemberOut").disconnect(i)
+        h.component.output_port("RateGroupMemberOut").connect(i, m.input_port("run"))
     h.invoke("CycleIn", Time())
     assert log == []
     h.dispatch_all()
@@ -94,13 +94,13 @@ def test_members_overrunning_the_period_in_simulated_time_slip():
     s = Scheduler()
     log = []
     rg = PassiveRateGroup("rg", contexts=[0, 0], period_us=20_000)
-    rg.timeCaller.connect_callable(0, s.clock.now, "simulated clock")
+    rg.output_port("timeCaller").connect_callable(0, s.clock.now, "simulated clock")
     quick = Member("quick", log, s.clock, consume_us=5_000)
     hog = Member("hog", log, s.clock, consume_us=16_000)
-    rg.RateGroupMemberOut.connect(0, quick.input_port("run"))
+    rg.output_port("RateGroupMemberOut").connect(0, quick.input_port("run"))
     rg.input_port("CycleIn").entries[0](s.clock.now())
     assert rg.slips == 0
-    rg.RateGroupMemberOut.connect(1, hog.input_port("run"))
+    rg.output_port("RateGroupMemberOut").connect(1, hog.input_port("run"))
     rg.input_port("CycleIn").entries[0](s.clock.now())
     assert rg.slips == 1
 
@@ -110,8 +110,8 @@ def test_member_fault_is_an_event_and_the_group_goes_on(fprime_harness):
     h = fprime_harness(PassiveRateGroup("rg", contexts=[0, 0]))
     bad, good = Member("bad", log, fail=True), Member("good", log)
     for i, m in enumerate((bad, good)):
-        h.component.RateGroupMemberOut.disconnect(i)
-        h.component.RateGroupMemberOut.connect(i, m.input_port("run"))
+        h.component.output_port("RateGroupMemberOut").disconnect(i)
+        h.component.output_port("RateGroupMemberOut").connect(i, m.input_port("run"))
     for _ in range(7):
         h.invoke("CycleIn", Time())
     assert [n for n, _, _ in log].count("good") == 7
@@ -130,7 +130,7 @@ def test_passive_rate_group_reentry_is_a_slip(fprime_harness):
             rg.input_port("CycleIn").entries[0](Time())
 
     member = Reenter("re")
-    rg.RateGroupMemberOut.disconnect(0)
-    rg.RateGroupMemberOut.connect(0, member.input_port("run"))
+    rg.output_port("RateGroupMemberOut").disconnect(0)
+    rg.output_port("RateGroupMemberOut").connect(0, member.input_port("run"))
     h.invoke("CycleIn", Time())
     assert rg.slips == 1

@@ -25,9 +25,9 @@ def test_time_source_stamps_events():
     clock = SimulatedClock(start_us=2_500_000)
     time = TimeSource("time", clock)
     talker = Talker("talker", base_id=0x40)
-    talker.timeCaller.connect(0, time.input_port("timeGetPort"))
+    talker.output_port("timeCaller").connect(0, time.input_port("timeGetPort"))
     got = []
-    talker.logOut.connect_callable(0, lambda i, t, s, a: got.append(t), "rec")
+    talker.output_port("logOut").connect_callable(0, lambda i, t, s, a: got.append(t), "rec")
     talker.Said(1)
     assert got == [Time(TimeBase.TB_WORKSTATION_TIME, 0, 2, 500000)]
 
@@ -41,7 +41,7 @@ def test_text_logger_lines_in_f_prime_format():
     out = io.StringIO()
     logger = TextLogger("textLogger", out)
     talker = Talker("talker", base_id=0x40)
-    talker.logTextOut.connect(0, logger.input_port("TextLogger"))
+    talker.output_port("logTextOut").connect(0, logger.input_port("TextLogger"))
     talker.Said(7)
     assert out.getvalue() == "EVENT: (64) (0:0,0) ACTIVITY_HI: (talker) Said: Said 7\n"
     assert logger.lines_written == 1

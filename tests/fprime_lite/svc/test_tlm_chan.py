@@ -102,9 +102,9 @@ def test_components_write_through_tlm_out():
 
     disp = CmdDispatcher("cmdDisp", base_id=0x100)
     tlm = TlmChan("tlmSend")
-    disp.tlmOut.connect(0, tlm.input_port("TlmRecv"), 0)
+    disp.output_port("tlmOut").connect(0, tlm.input_port("TlmRecv"), 0)
     sent = []
-    tlm.PktSend.connect_callable(0, lambda data, ctx: sent.append(data), "ground")
+    tlm.output_port("PktSend").connect_callable(0, lambda data, ctx: sent.append(data), "ground")
     disp.input_port("run").entries[0](0)
     disp.dispatch_all()
     tlm.input_port("Run").entries[0](0)
