@@ -296,6 +296,7 @@ class DetumbleManager(PassiveComponent):
         self.strategy = T.DetumbleStrategy.IDLE
         self.cooldown_start_time: Time | None = None
         self.torque_start_time: Time | None = None
+        self._bdot_levels: tuple[int, ...] | None = None  # drive levels of the current torque period
         self.coils_driven = False
         self._last_system_mode: SystemMode | None = None
         self._external_dipole: tuple[float, float, float] | None = None
@@ -339,6 +340,7 @@ class DetumbleManager(PassiveComponent):
                     getattr(self, coil.turns_channel).write(value)
 
     def _configure_coil(self, coil: _CoilParams) -> None:
+        self._bdot_levels = None  # the drive levels of a torque period depend on the coil settings
         p = self.params
         m = self.magnetorquers[coil.name]
         m.turns = float(p[coil.turns].value)
@@ -428,6 +430,7 @@ class DetumbleManager(PassiveComponent):
         self.cooldown_start_time = None
         self.torque_start_time = None
         self._external_dipole = None
+        self._bdot_levels = None
         self.bdot.empty_sample_set()
 
     @staticmethod
@@ -492,20 +495,27 @@ class DetumbleManager(PassiveComponent):
         now = self.get_time()
         if self.torque_start_time is None and not self._enter_actuating_bdot():
             return
-        if self._external_dipole is not None:
-            mx, my, mz = self._external_dipole
-        else:
-            mx, my, mz = self.bdot.get_magnetic_moment()
-        mt = self.magnetorquers
-        self._start_coils((mt["x_plus"].dipole_moment_to_current(mx),
-                           mt["x_minus"].dipole_moment_to_current(mx),
-                           mt["y_plus"].dipole_moment_to_current(my),
-                           mt["y_minus"].dipole_moment_to_current(my),
-                           mt["z_minus"].dipole_moment_to_current(mz)))
+        levels = self._bdot_levels
+        if levels is None:
+            # The dipole depends only on the sample window, the gain configured at entry and the coil
+            # settings, none of which change during the torque period (a coil parameter set by
+            # command clears this cache), so it is computed once per period.
+            if self._external_dipole is not None:
+                mx, my, mz = self._external_dipole
+            else:
+                mx, my, mz = self.bdot.get_magnetic_moment()
+            mt = self.magnetorquers
+            levels = self._bdot_levels = (mt["x_plus"].dipole_moment_to_current(mx),
+                                          mt["x_minus"].dipole_moment_to_current(mx),
+                                          mt["y_plus"].dipole_moment_to_current(my),
+                                          mt["y_minus"].dipole_moment_to_current(my),
+                                          mt["z_minus"].dipole_moment_to_current(mz))
+        self._start_coils(levels)
         if now.total_us < self.torque_start_time.total_us:
             self.torque_start_time = now  # the clock went backwards: measure from here
         elapsed = self._elapsed_us(self.torque_start_time, now)
         if elapsed >= self.TORQUE_DURATION.value.total_us:
+            self._bdot_levels = None
             self.bdot.empty_sample_set()
             self._stop_coils()
             self.TorqueDuration.write(TimeIntervalValue.from_us(elapsed))
@@ -524,6 +534,7 @@ class DetumbleManager(PassiveComponent):
         self.MagneticFieldSamplingPeriodRetrievalFailed.clear_throttle()
         self.bdot.configure(gain, period.total_us)
         self._external_dipole = None
+        self._bdot_levels = None
         if self.is_connected("dipoleMomentGet", 0):
             ok, dipole = self._read("dipoleMomentGet")
             if not ok or not _finite(dipole.x, dipole.y, dipole.z):

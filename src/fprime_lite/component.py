@@ -537,7 +537,7 @@ class QueuedComponent(Component):
 
     def dispatch_all(self, limit: int | None = None) -> int:
         """Handle queued messages until the queue is empty (or ``limit``); return how many."""
-        if not len(self._queue):  # the common case when drained after every event
+        if not self._queue._heap:  # the common case when drained after every event
             return 0
         n = 0
         while (limit is None or n < limit) and self.dispatch():

@@ -29,9 +29,13 @@ class MessageQueue:
         self.depth = depth
         self._heap: list = []
         self._seq = itertools.count()
-        self._cond = threading.Condition()
+        self._lock = threading.Lock()
+        self._cond = threading.Condition(self._lock)
+        self._waiting = 0  # threads blocked in get() or put(); nobody to notify when zero
         self.high_water = 0
         self.dropped = 0
+        #: Called after each message is queued (the deterministic scheduler marks the queue busy).
+        self.on_put = None
 
     def __len__(self) -> int:
         return len(self._heap)
@@ -40,7 +44,8 @@ class MessageQueue:
             overflow: Callable | None = None, run_inline: Callable[[], bool] | None = None,
             threaded: bool = False) -> bool:
         """Queue a message; return False if it was dropped or handed to the overflow hook."""
-        with self._cond:
+        queued = False
+        with self._lock:
             while len(self._heap) >= self.depth:
                 if queue_full == "drop":
                     self.dropped += 1
@@ -50,7 +55,11 @@ class MessageQueue:
                     break
                 if queue_full == "block":
                     if threaded:
-                        self._cond.wait()
+                        self._waiting += 1
+                        try:
+                            self._cond.wait()
+                        finally:
+                            self._waiting -= 1
                         continue
                     break
                 raise QueueFullError(
@@ -58,9 +67,15 @@ class MessageQueue:
                     f"often, enlarge queue_size, or declare the port with queue_full='drop'|'hook'|'block'")
             else:
                 heapq.heappush(self._heap, (-priority, next(self._seq), call, args))
-                self.high_water = max(self.high_water, len(self._heap))
-                self._cond.notify_all()
-                return True
+                if len(self._heap) > self.high_water:
+                    self.high_water = len(self._heap)
+                if self._waiting:
+                    self._cond.notify_all()
+                queued = True
+        if queued:
+            if self.on_put is not None:
+                self.on_put()
+            return True
         # Full, and the behaviour needs work outside the lock.
         if queue_full == "hook":
             overflow(*args)
@@ -71,12 +86,17 @@ class MessageQueue:
 
     def get(self, block: bool = False, timeout: float | None = None):
         """Pop the next ``(call, args)``; None when empty (or on timeout when blocking)."""
-        with self._cond:
-            if block:
-                if not self._cond.wait_for(lambda: self._heap, timeout):
-                    return None
+        with self._lock:
+            if block and not self._heap:
+                self._waiting += 1
+                try:
+                    if not self._cond.wait_for(lambda: self._heap, timeout):
+                        return None
+                finally:
+                    self._waiting -= 1
             if not self._heap:
                 return None
             _, _, call, args = heapq.heappop(self._heap)
-            self._cond.notify_all()
+            if self._waiting:
+                self._cond.notify_all()
             return call, args

@@ -47,6 +47,7 @@ class Scheduler:
         self._heap: list[tuple[int, int, ScheduledCall]] = []
         self._seq = itertools.count()
         self._drained: list = []
+        self._busy: dict = {}  # components whose queues received messages, in arrival order
         self._listeners: list[Callable[[int], None]] = []
         self._stopped = False
         self.events_run = 0
@@ -79,6 +80,10 @@ class Scheduler:
         """Empty ``component``'s queue after every event (deterministic active components)."""
         if component not in self._drained:
             self._drained.append(component)
+            busy = self._busy
+            component.queue.on_put = lambda: busy.__setitem__(component, None)
+            if len(component.queue):
+                busy[component] = None
 
     def add_time_listener(self, listener: Callable[[int], None]) -> None:
         """``listener(time_us)`` is called whenever time advances, before the events at that time."""
@@ -111,14 +116,16 @@ class Scheduler:
                 listener(t)
 
     def drain(self) -> None:
-        """Dispatch queued messages until every drained component's queue is empty."""
-        components = self._drained
-        busy = True
+        """Dispatch queued messages until every drained component's queue is empty.
+
+        Only components whose queues received a message since they were last emptied are visited;
+        a message queued while draining marks its component again.
+        """
+        busy = self._busy
         while busy:
-            busy = False
-            for component in components:
-                if component.dispatch_all():
-                    busy = True
+            component = next(iter(busy))
+            del busy[component]
+            component.dispatch_all()
 
     def run(self, until_us: int | None = None, max_events: int | None = None) -> int:
         """Run events up to and including time ``until_us``; then set the clock to ``until_us``.

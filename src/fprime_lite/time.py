@@ -298,15 +298,21 @@ class SimulatedClock(Clock):
                  epoch_us: int = 0, start_us: int = 0):
         super().__init__(time_base, context, epoch_us)
         self.current_us = start_us
+        self._now: Time | None = None
 
     def now_us(self) -> int:
         return self.current_us
 
     def now(self) -> Time:
+        us = self.epoch_us + self.current_us
+        t = self._now
+        if t is not None and t._us == us and t.time_base == self.time_base and t.context == self.context:
+            return t  # Time is immutable: every caller at this instant can share it
         t = Time.__new__(Time)
         t.time_base = self.time_base
         t.context = self.context
-        t._us = self.epoch_us + self.current_us
+        t._us = us
+        self._now = t
         return t
 
     def set_us(self, microseconds: int) -> None:

@@ -122,6 +122,7 @@ class MagnetorquerDriver(PassiveComponent):
         self.face = face
         self.face_name = FACE_NAMES[face]
         self.fault = SimDriverFault.NONE
+        self._coil = spacecraft.plant.actuators.coils[face]  # read-only: the level the coil carries
 
     # --- fault injection -----------------------------------------------------------------------
 
@@ -140,6 +141,10 @@ class MagnetorquerDriver(PassiveComponent):
     # --- behaviour -----------------------------------------------------------------------------
 
     def _start(self, val) -> Success:
+        if type(val) is int and val == self._coil.level and self.fault == SimDriverFault.NONE:
+            # The manager re-commands the same level every tick: the coil already carries it.
+            self.DeviceNotReady.clear_throttle()
+            return Success.SUCCESS
         if not _valid_level(val):
             self.InvalidDriveLevel(_as_i32(val))
             if self.fault != SimDriverFault.STUCK:
