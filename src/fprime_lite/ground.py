@@ -155,13 +155,28 @@ class GroundRecorder:
         self.undecodable = 0
 
     def attach(self, topology: Topology, event_manager: str | None, telemetry: str | None) -> None:
-        """Take over ``PktSend`` of the named event manager and telemetry instances."""
-        if event_manager:
-            topology.instance(event_manager).component.output_port("PktSend").connect_callable(
-                0, self.receive, "ground recorder")
-        if telemetry:
-            topology.instance(telemetry).component.output_port("PktSend").connect_callable(
-                0, self.receive, "ground recorder")
+        """Tap ``PktSend`` of the named event manager and telemetry instances.
+
+        An unconnected ``PktSend`` is connected to the recorder; a connected one (to a ground link,
+        say) keeps its connection and the recorder sees each packet first.
+        """
+        for name in (event_manager, telemetry):
+            if not name:
+                continue
+            port = topology.instance(name).component.output_port("PktSend")
+            if not port.is_connected(0):
+                port.connect_callable(0, self.receive, "ground recorder")
+                continue
+            downstream = port.calls[0]
+            label = f"ground recorder, then {port.target_name(0)}"
+            receive = self.receive
+
+            def tap(data, context=0, _downstream=downstream):
+                receive(data, context)
+                return _downstream(data, context)
+
+            port.calls[0] = tap
+            port.targets[0] = label
 
     def receive(self, data: bytes, context: int = 0) -> None:
         """Handle one downlinked packet (a Com buffer)."""
