@@ -77,7 +77,7 @@ class DetumbleRunReport:
         self.start_us = deployment.scheduler.now_us
         self._path = pathlib.Path(out_dir) / "truth.csv"
         self._file = open(self._path.with_name(".truth.csv.part"), "w", encoding="utf-8", newline="")
-        self._writer = csv.writer(self._file)
+        self._writer = csv.writer(self._file, lineterminator="\n")
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
                                "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
                                *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy"])

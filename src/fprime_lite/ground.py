@@ -145,7 +145,7 @@ class GroundRecorder:
         out_dir.mkdir(parents=True, exist_ok=True)
         self._events = _StreamedFile(out_dir / "events.log")
         self._channels = _StreamedFile(out_dir / "channels.csv", newline="")
-        self._csv = csv.writer(self._channels.file)
+        self._csv = csv.writer(self._channels.file, lineterminator="\n")
         self._csv.writerow(["time", "channel", "value"])
         self.on_event = on_event
         self.on_channel = on_channel

@@ -31,7 +31,7 @@ __all__ = ["load_topology", "LoadedDeployment", "TopologyError"]
 
 US_PER_S = 1_000_000
 
-TOP_KEYS = {"deployment", "resources", "modules", "patterns", "connections", "rate_groups",
+TOP_KEYS = {"deployment", "extends", "resources", "modules", "patterns", "connections", "rate_groups",
             "parameter_file", "startup", "time"}
 MODULE_KEYS = {"include", "instances"}
 INCLUDE_KEYS = {"instances", "connections"}
@@ -48,6 +48,17 @@ _ENDPOINT = re.compile(r"^\s*([A-Za-z_]\w*)\.([A-Za-z_]\w*)\.([A-Za-z_]\w*)(?:\[
 
 # --- YAML with lines ----------------------------------------------------------------------------
 
+class Loc(int):
+    """A line number that also knows its file (so merged documents report the right file)."""
+
+    file: pathlib.Path
+
+    def __new__(cls, line: int, file: pathlib.Path):
+        loc = super().__new__(cls, line)
+        loc.file = file
+        return loc
+
+
 class YMap(dict):
     """A mapping that remembers its line and the line of each key."""
 
@@ -60,21 +71,21 @@ class YList(list):
     item_lines: list
 
 
-def _to_python(loader: yaml.SafeLoader, node: yaml.Node):
+def _to_python(loader: yaml.SafeLoader, node: yaml.Node, path: pathlib.Path):
     if isinstance(node, yaml.MappingNode):
         loader.flatten_mapping(node)
         out = YMap()
-        out.line = node.start_mark.line + 1
+        out.line = Loc(node.start_mark.line + 1, path)
         out.key_lines = {}
         for key_node, value_node in node.value:
-            key = _to_python(loader, key_node)
-            out.key_lines[key] = key_node.start_mark.line + 1
-            out[key] = _to_python(loader, value_node)
+            key = _to_python(loader, key_node, path)
+            out.key_lines[key] = Loc(key_node.start_mark.line + 1, path)
+            out[key] = _to_python(loader, value_node, path)
         return out
     if isinstance(node, yaml.SequenceNode):
-        out = YList(_to_python(loader, n) for n in node.value)
-        out.line = node.start_mark.line + 1
-        out.item_lines = [n.start_mark.line + 1 for n in node.value]
+        out = YList(_to_python(loader, n, path) for n in node.value)
+        out.line = Loc(node.start_mark.line + 1, path)
+        out.item_lines = [Loc(n.start_mark.line + 1, path) for n in node.value]
         return out
     return loader.construct_object(node, deep=True)
 
@@ -92,7 +103,7 @@ def parse_yaml(path: pathlib.Path):
         raise TopologyError([f"{path}:{line}: invalid YAML: {problem} — fix the syntax"]) from None
     finally:
         loader.dispose()
-    return None if node is None else _to_python(loader, node)
+    return None if node is None else _to_python(loader, node, path)
 
 
 # --- the result ---------------------------------------------------------------------------------
@@ -121,12 +132,15 @@ class _Loader:
         self.problems: list[str] = []
         self.overrides = overrides or {}
         self.failed_instances: set[str] = set()
+        self.failed_modules: set[str] = set()  # modules whose include could not be read
         self.included_connections: list = []
 
     def at(self, file: pathlib.Path, line: int | None) -> str:
         return f"{file}:{line if line is not None else '?'}"
 
     def problem(self, file: pathlib.Path, line: int | None, message: str) -> None:
+        if isinstance(line, Loc):
+            file = line.file  # the node came from this file (an included or extended one)
         self.problems.append(f"{self.at(file, line)}: {message}")
 
     def check_keys(self, file, mapping: YMap, allowed: set, what: str) -> None:
@@ -151,10 +165,9 @@ class _Loader:
     def load(self) -> LoadedDeployment:
         if not self.path.is_file():
             raise TopologyError([f"{self.path}: no such topology file — give the path of a topology YAML file"])
-        doc = parse_yaml(self.path)
-        doc = self.expect_map(self.path, doc, 1, "the topology file")
-        self.fail_if_problems()
-        self.check_keys(self.path, doc, TOP_KEYS, "the topology file")
+        doc = self.read_document(self.path, ())
+        if doc is None:
+            self.fail_if_problems()
         deployment = doc.get("deployment")
         if not isinstance(deployment, str) or not deployment.isidentifier():
             self.problem(self.path, doc.key_lines.get("deployment", doc.line),
@@ -183,6 +196,38 @@ class _Loader:
         self.read_startup(doc, topology, deployment_obj)
         self.fail_if_problems()
         return deployment_obj
+
+    # --- documents and extends ---
+
+    def read_document(self, path: pathlib.Path, chain: tuple) -> YMap | None:
+        """Parse ``path``; if it ``extends`` a base topology, merge it onto that base."""
+        try:
+            doc = parse_yaml(path)
+        except TopologyError as exc:
+            self.problems.extend(exc.problems)
+            return None
+        doc = self.expect_map(path, doc, 1, "the topology file")
+        if doc is None:
+            return None
+        self.check_keys(path, doc, TOP_KEYS, "the topology file")
+        if chain:  # a base document: its relative paths are relative to its own folder
+            _absolutize_paths(doc, path.parent)
+        if "extends" not in doc:
+            return doc
+        line = doc.key_lines["extends"]
+        target = doc["extends"]
+        if not isinstance(target, str):
+            self.problem(path, line, "'extends' must be the path of a base topology file")
+            return doc
+        base_path = resolve_path(target, path.parent)
+        if base_path.resolve() in chain or base_path.resolve() == path.resolve():
+            self.problem(path, line, f"'extends: {target}' makes a cycle of topology files — remove it")
+            return doc
+        if not base_path.is_file():
+            self.problem(path, line, f"base topology '{target}' not found (looked for {base_path})")
+            return doc
+        base = self.read_document(base_path, chain + (path.resolve(),))
+        return doc if base is None else _merge(base, doc)
 
     def make_clock(self, doc: YMap) -> SimulatedClock:
         cfg = doc.get("time")
@@ -332,6 +377,18 @@ class _Loader:
                 self.build_instance(file, container, module_name, name, spec, topology, resources, rate_cfg)
 
     def read_include(self, module: YMap, module_name: str, declared: dict) -> None:
+        before = len(self.problems)
+        try:
+            self._read_include(module, module_name, declared)
+        finally:
+            if len(self.problems) > before:
+                self.failed_modules.add(module_name)
+
+    def _already_reported(self, qualified: str) -> bool:
+        """The instance failed to build, or its module's include failed: said once already."""
+        return qualified in self.failed_instances or qualified.split(".", 1)[0] in self.failed_modules
+
+    def _read_include(self, module: YMap, module_name: str, declared: dict) -> None:
         line = module.key_lines.get("include")
         target = module["include"]
         if not isinstance(target, str):
@@ -435,7 +492,7 @@ class _Loader:
         module, inst, port, index = m.group(1), m.group(2), m.group(3), m.group(4)
         qualified = f"{module}.{inst}"
         instance = topology.instances.get(qualified)
-        if instance is None and qualified in self.failed_instances:
+        if instance is None and self._already_reported(qualified):
             return None  # already reported where it was declared
         if instance is None:
             guess = difflib.get_close_matches(qualified, list(topology.instances), n=1)
@@ -563,7 +620,7 @@ class _Loader:
             return None
         driver_name, dline = cfg["driver"]
         driver = topology.instances.get(driver_name)
-        if driver is None and driver_name in self.failed_instances:
+        if driver is None and self._already_reported(driver_name):
             return None
         if driver is None or not isinstance(driver.component, RateGroupDriver):
             self.problem(self.path, dline, f"rate group driver '{driver_name}' must be an instance of "
@@ -571,7 +628,7 @@ class _Loader:
             return None
         for i, (name, gline, members) in enumerate(cfg["groups"]):
             group = topology.instances.get(name)
-            if group is None and name in self.failed_instances:
+            if group is None and self._already_reported(name):
                 continue
             if group is None or not isinstance(group.component, (ActiveRateGroup, PassiveRateGroup)):
                 self.problem(self.path, gline, f"rate group '{name}' must be an ActiveRateGroup or "
@@ -603,7 +660,7 @@ class _Loader:
                 continue
             kline = section.key_lines.get(kind)
             instance = topology.instances.get(name) if isinstance(name, str) else None
-            if instance is None and name in self.failed_instances:
+            if instance is None and isinstance(name, str) and self._already_reported(name):
                 continue
             if instance is None:
                 self.problem(self.path, kline, f"pattern '{kind}': unknown instance {name!r} — name a "
@@ -654,6 +711,73 @@ class _Loader:
             return
         deployment.startup_sequencer = sequencer
         deployment.startup_sequence = path
+
+
+def _is_package_path(value: str) -> bool:
+    package, sep, _ = value.partition(":")
+    return bool(sep) and len(package) > 1 and package.replace(".", "").replace("_", "").isalnum()
+
+
+def _absolute(value, folder: pathlib.Path):
+    if not isinstance(value, str) or _is_package_path(value) or pathlib.Path(value).is_absolute():
+        return value
+    return str(folder.resolve() / value)
+
+
+def _absolutize_paths(doc: YMap, folder: pathlib.Path) -> None:
+    """Make the file paths of ``doc`` absolute, so a document merged into another keeps them."""
+    if "parameter_file" in doc:
+        doc["parameter_file"] = _absolute(doc["parameter_file"], folder)
+    startup = doc.get("startup")
+    if isinstance(startup, YMap) and "sequence" in startup:
+        startup["sequence"] = _absolute(startup["sequence"], folder)
+    modules = doc.get("modules")
+    if isinstance(modules, YMap):
+        for module in modules.values():
+            if isinstance(module, YMap) and "include" in module:
+                module["include"] = _absolute(module["include"], folder)
+
+
+def _copy_map(m: YMap) -> YMap:
+    out = YMap(m)
+    out.line = m.line
+    out.key_lines = dict(m.key_lines)
+    return out
+
+
+def _merge_maps(base: YMap, over: YMap, deep=()) -> YMap:
+    """``base`` with ``over``'s entries added or replacing; keys in ``deep`` merge one level down."""
+    out = _copy_map(base)
+    for key, value in over.items():
+        if key in deep and isinstance(out.get(key), YMap) and isinstance(value, YMap):
+            value = _merge_maps(out[key], value)
+        out[key] = value
+        out.key_lines[key] = over.key_lines[key]
+    return out
+
+
+def _merge(base: YMap, over: YMap) -> YMap:
+    """A topology that ``extends`` another: maps merge by name (modules, instances, resources,
+    patterns, connection groups); anything else in the extending file replaces the base's."""
+    out = _copy_map(base)
+    out.pop("extends", None)
+    for key, value in over.items():
+        if key == "extends":
+            continue
+        if key == "modules" and isinstance(out.get(key), YMap) and isinstance(value, YMap):
+            modules = _copy_map(out[key])
+            for name, module in value.items():
+                if isinstance(modules.get(name), YMap) and isinstance(module, YMap):
+                    module = _merge_maps(modules[name], module, deep=("instances",))
+                modules[name] = module
+                modules.key_lines[name] = value.key_lines[name]
+            value = modules
+        elif key in ("resources", "patterns", "connections") and isinstance(out.get(key), YMap) \
+                and isinstance(value, YMap):
+            value = _merge_maps(out[key], value)
+        out[key] = value
+        out.key_lines[key] = over.key_lines[key]
+    return out
 
 
 def resolve_path(value: str, base_dir: pathlib.Path) -> pathlib.Path:
