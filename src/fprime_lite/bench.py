@@ -8,7 +8,8 @@ Measures, in this order and in this one process:
 2. the reference deployment over one orbit of its scenario at 50 Hz: real-time factor, base ticks
    and 50 Hz ticks per wall second;
 3. the same scenario plant-only (dynamics at the same 50 Hz step, the scenario's reference B-dot
-   law), and the ratio of the deployment's per-tick cost to the plant-only per-tick cost;
+   law), flown in pieces interleaved with the deployment's, and the ratio of the deployment's
+   per-tick cost to the plant-only per-tick cost (fastest piece of each);
 4. the peak resident memory of this process;
 5. with ``--memory``: peak memory of separate ``fprime-lite run`` processes of 1 h and 24 h of
    simulated time (streaming outputs must keep memory flat).
@@ -64,8 +65,14 @@ def _peak_rss_mb(who=resource.RUSAGE_SELF) -> float:
     return resource.getrusage(who).ru_maxrss / 1024.0  # Linux reports KiB
 
 
-def measure_deployment(topology=DEFAULT_TOPOLOGY, duration_s: float | None = None) -> dict:
-    """The reference deployment and its plant-only twin over the same simulated time."""
+def measure_deployment(topology=DEFAULT_TOPOLOGY, duration_s: float | None = None, chunks: int = 8) -> dict:
+    """The reference deployment and its plant-only twin, interleaved chunk by chunk.
+
+    The simulated time is flown in ``chunks`` pieces; after each deployment piece the same length
+    of plant-only flight (same scenario, 50 Hz dynamics, the scenario's B-dot law) is timed. The
+    tick-cost ratio compares the fastest piece of each: on a shared machine the fastest piece is the
+    one least disturbed by other work, and interleaving exposes both to the same conditions.
+    """
     from detumble.sim.runner import run as plant_only
 
     from .deployment import Deployment
@@ -78,26 +85,35 @@ def measure_deployment(topology=DEFAULT_TOPOLOGY, duration_s: float | None = Non
     orbit_s = 2.0 * math.pi / spacecraft.plant.orbit.mean_motion
     if duration_s is None:
         duration_s = round(orbit_s)
-    deployment.start()
-    t0 = time.perf_counter()
-    deployment.run_for(duration_s)
-    wall = time.perf_counter() - t0
-    timer = loaded.timer
     rg50 = loaded.topology.instance("ReferenceDeployment.rateGroup50Hz").component
-    plant = plant_only(scenario, law="bdot", duration_s=duration_s).summary
-    ticks50 = rg50.cycles
+    deployment.start()
+    chunk_s = duration_s / chunks
+    deployment_us, plant_us = [], []
+    wall = 0.0
+    for _ in range(chunks):
+        cycles0 = rg50.cycles
+        t0 = time.perf_counter()
+        deployment.run_for(chunk_s)
+        elapsed = time.perf_counter() - t0
+        wall += elapsed
+        deployment_us.append(elapsed / max(1, rg50.cycles - cycles0) * 1e6)
+        plant = plant_only(scenario, law="bdot", duration_s=chunk_s).summary
+        plant_us.append(plant["wall_seconds"] / plant["steps"] * 1e6)
+    timer = loaded.timer
     return {
         "scenario": scenario.name,
         "sim_seconds": duration_s,
         "orbit_period_s": orbit_s,
+        "chunks": chunks,
         "deployment_wall_s": wall,
         "real_time_factor": duration_s / wall,
         "base_ticks_per_s": timer.driver.tick / wall,
-        "ticks_50hz_per_s": ticks50 / wall,
-        "deployment_us_per_tick": wall / ticks50 * 1e6,
-        "plant_only_wall_s": plant["wall_seconds"],
-        "plant_only_us_per_tick": plant["wall_seconds"] / plant["steps"] * 1e6,
-        "tick_cost_ratio": (wall / ticks50) / (plant["wall_seconds"] / plant["steps"]),
+        "ticks_50hz_per_s": rg50.cycles / wall,
+        "deployment_us_per_tick": min(deployment_us),
+        "deployment_us_per_tick_median": sorted(deployment_us)[len(deployment_us) // 2],
+        "plant_only_us_per_tick": min(plant_us),
+        "plant_only_us_per_tick_median": sorted(plant_us)[len(plant_us) // 2],
+        "tick_cost_ratio": min(deployment_us) / min(plant_us),
         "final_rate_deg_s": spacecraft.truth().rate_deg_s,
     }
 
@@ -157,9 +173,11 @@ def _print(r: dict) -> None:
     table.add_row("real-time factor", f"{d['real_time_factor']:,.0f}×", "")
     table.add_row("base ticks (1 kHz) per wall second", f"{d['base_ticks_per_s']:,.0f}", "")
     table.add_row("50 Hz ticks per wall second", f"{d['ticks_50hz_per_s']:,.0f}", "")
-    table.add_row("per 50 Hz tick: deployment / plant-only",
+    table.add_row("per 50 Hz tick: deployment / plant-only (fastest piece)",
                   f"{d['deployment_us_per_tick']:.1f} µs / {d['plant_only_us_per_tick']:.1f} µs = "
                   f"{d['tick_cost_ratio']:.2f}", "≤ 2.5")
+    table.add_row("per 50 Hz tick, medians", f"{d['deployment_us_per_tick_median']:.1f} µs / "
+                  f"{d['plant_only_us_per_tick_median']:.1f} µs", "")
     table.add_row("peak RSS (this process)", f"{r['peak_rss_mb']:.0f} MB", "")
     if "memory" in r:
         m = r["memory"]

@@ -508,9 +508,12 @@ class QueuedComponent(Component):
         if overflow is not None and decl.size > 1:
             overflow = _with_port_num(overflow, index)
 
+        try_push = queue.try_push
+
         def enqueue(*args):
-            queue.put(priority, call, args, queue_full=queue_full, port=label, overflow=overflow,
-                      run_inline=self.dispatch, threaded=self._thread is not None)
+            if not try_push(priority, call, args):
+                queue.put(priority, call, args, queue_full=queue_full, port=label, overflow=overflow,
+                          run_inline=self.dispatch, threaded=self._thread is not None)
 
         return enqueue
 

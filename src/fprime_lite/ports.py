@@ -200,6 +200,7 @@ class OutputPortArray:
         self.required = decl.required
         self.targets: list[tuple[InputPortArray, int] | str | None] = [None] * decl.size
         self.calls: list[Callable] = [_Unconnected(self.describe(i)) for i in range(decl.size)]
+        self.version = 0  # bumped on every (dis)connection, for callers that cache what is connected
 
     def __len__(self) -> int:
         return len(self.calls)
@@ -240,17 +241,20 @@ class OutputPortArray:
                 f"an output index connects to one input only (use another index)")
         self.calls[index] = target.entries[target_index]
         self.targets[index] = (target, target_index)
+        self.version += 1
 
     def connect_callable(self, index: int, fn: Callable, label: str) -> None:
         """Bind index ``index`` to a plain callable (test harnesses, simulation adapters)."""
         self._check_index(index)
         self.calls[index] = fn
         self.targets[index] = label
+        self.version += 1
 
     def disconnect(self, index: int) -> None:
         self._check_index(index)
         self.calls[index] = _Unconnected(self.describe(index))
         self.targets[index] = None
+        self.version += 1
 
     def target_name(self, index: int) -> str | None:
         target = self.targets[index]

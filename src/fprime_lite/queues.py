@@ -84,6 +84,21 @@ class MessageQueue:
         return self.put(priority, call, args, queue_full=queue_full, port=port,
                         overflow=overflow, run_inline=run_inline, threaded=threaded)
 
+    def try_push(self, priority: int, call: Callable, args: tuple) -> bool:
+        """Queue a message if there is room; False (nothing queued) when full. The fast path."""
+        with self._lock:
+            heap = self._heap
+            if len(heap) >= self.depth:
+                return False
+            heapq.heappush(heap, (-priority, next(self._seq), call, args))
+            if len(heap) > self.high_water:
+                self.high_water = len(heap)
+            if self._waiting:
+                self._cond.notify_all()
+        if self.on_put is not None:
+            self.on_put()
+        return True
+
     def get(self, block: bool = False, timeout: float | None = None):
         """Pop the next ``(call, args)``; None when empty (or on timeout when blocking)."""
         with self._lock:

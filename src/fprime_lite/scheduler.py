@@ -64,6 +64,12 @@ class Scheduler:
         heapq.heappush(self._heap, (time_us, next(self._seq), call))
         return call
 
+    def reschedule(self, call: ScheduledCall, time_us: int) -> None:
+        """Put a one-shot ``call`` that has already run back on the heap for ``time_us``."""
+        if time_us < self.clock.current_us:
+            raise ValueError(f"cannot schedule at {time_us} us: it is already {self.clock.current_us} us")
+        heapq.heappush(self._heap, (time_us, next(self._seq), call))
+
     def call_later(self, delay_us: int, fn: Callable[[], None]) -> ScheduledCall:
         return self.call_at(self.clock.current_us + delay_us, fn)
 

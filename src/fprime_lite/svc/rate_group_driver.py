@@ -82,6 +82,8 @@ class RateGroupTimer:
         self.base_period_us = base_period_us
         self.cycle_in = driver.input_port("CycleIn").entries[0]
         self.cycles = 0
+        self._call = None
+        self._idle_ticks = 0
 
     def start(self, start_us: int | None = None) -> None:
         now = self.scheduler.now_us if start_us is None else start_us
@@ -89,11 +91,15 @@ class RateGroupTimer:
 
     def _schedule(self, base_tick_time_us: int) -> None:
         wait = self.driver.ticks_to_next_output()
-        self.scheduler.call_at(base_tick_time_us + wait * self.base_period_us,
-                               lambda: self._fire(wait))
+        self._idle_ticks = wait
+        due = base_tick_time_us + wait * self.base_period_us
+        if self._call is None:
+            self._call = self.scheduler.call_at(due, self._fire)
+        else:
+            self.scheduler.reschedule(self._call, due)
 
-    def _fire(self, idle_ticks: int) -> None:
-        self.driver.skip_ticks(idle_ticks)
+    def _fire(self) -> None:
+        self.driver.skip_ticks(self._idle_ticks)
         now = self.scheduler.now_us
         self.cycles += 1
         self.cycle_in(self.scheduler.clock.now())

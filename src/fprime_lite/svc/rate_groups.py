@@ -54,6 +54,9 @@ class _RateGroup:
         self.slips = 0
         self.member_faults = 0
         self.max_time_us = 0
+        self._member_port = self.output_port("RateGroupMemberOut")
+        self._members: list = []
+        self._members_version = -1
         self._started = False
         self._pending = 0
 
@@ -63,14 +66,14 @@ class _RateGroup:
             self.RateGroupStarted()
         wall0 = _wall.perf_counter()
         sim0 = self.get_time()
-        out = self.RateGroupMemberOut
-        targets = self.output_port("RateGroupMemberOut").targets
-        contexts = self.contexts
-        for i in range(self.MAX_MEMBERS):
-            if targets[i] is None:
-                continue
+        port = self._member_port
+        if port.version != self._members_version:
+            self._members = [(i, port.calls[i], self.contexts[i]) for i in range(self.MAX_MEMBERS)
+                             if port.targets[i] is not None]
+            self._members_version = port.version
+        for i, call, context in self._members:
             try:
-                out[i](contexts[i])
+                call(context)
             except Exception as exc:  # noqa: BLE001 - a member fault must not stop the group
                 self.member_faults += 1
                 log.exception("%s: member %d raised", self.name, i)
