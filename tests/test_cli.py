@@ -92,3 +92,13 @@ def test_help_everywhere(capsys):
             main([verb, "--help"])
         assert exit_.value.code == 0
     assert "--duration" in capsys.readouterr().out
+
+
+def test_sim_verb_flies_a_scenario_plant_only(tmp_path, capsys):
+    out = tmp_path / "sim"
+    assert main(["sim", "case_a", "--law", "kopt", "--duration", "60", "--out", str(out)]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["sim_seconds"] == 60.0 and summary["final_rate_deg_s"] < 30.0
+    assert (out / "rate.csv").read_text().startswith("time_s,omega_x_deg_s,")
+    assert main(["sim", "no_such_scenario", "--out", str(out)]) == 2
+    assert "not a packaged scenario" in capsys.readouterr().err
