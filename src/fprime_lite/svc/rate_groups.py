@@ -65,7 +65,6 @@ class _RateGroup:
             self._started = True
             self.RateGroupStarted()
         wall0 = _wall.perf_counter()
-        sim0 = self.get_time()
         port = self._member_port
         if port.version != self._members_version:
             self._members = [(i, port.calls[i], self.contexts[i]) for i in range(self.MAX_MEMBERS)
@@ -83,9 +82,10 @@ class _RateGroup:
         if elapsed_us > self.max_time_us:
             self.max_time_us = elapsed_us
         self.RgMaxTime.write(self.max_time_us)
-        sim1 = self.get_time()
-        overran = (self.period_us is not None and sim0.time_base == sim1.time_base
-                   and sim1.total_us - sim0.total_us >= self.period_us)
+        # As F´'s ActiveRateGroup: the cycle's time is measured from the driver's cycle start.
+        now = self.get_time()
+        overran = (self.period_us is not None and cycle_start.time_base == now.time_base
+                   and now.total_us - cycle_start.total_us >= self.period_us)
         if overran or self._pending > 0:
             self._slip()
         self.cycles += 1
