@@ -61,6 +61,14 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--truth-interval", type=float, metavar="SECONDS",
                      help="sampling interval of the truth log (default: the topology's)")
     run.add_argument("-v", "--verbose", action="store_true", help="log framework warnings to stderr")
+    run.add_argument("--realtime", action="store_true", help="pace the run to the wall clock (simulated time "
+                     "never runs ahead of it); Ctrl-C stops the run and still writes the outputs")
+    run.add_argument("--gds", nargs="?", const="127.0.0.1:50000", metavar="HOST:PORT",
+                     help="fly the deployment with a ground link to a running fprime-gds (default "
+                     "127.0.0.1:50000); implies --realtime; see docs/ground.md")
+    run.add_argument("--framing", choices=("ccsds", "fprime"), default="ccsds",
+                     help="ground-link framing, as fprime-gds --framing-selection: ccsds = "
+                     "space-packet-space-data-link (the GDS's default), fprime = fprime (default: ccsds)")
 
     sim = sub.add_parser("sim", help="plant-only run of a scenario", add_help=False)
     sim.add_argument("args", nargs=argparse.REMAINDER)
@@ -68,6 +76,8 @@ def build_parser() -> argparse.ArgumentParser:
     dic = sub.add_parser("dict", help="write the F´ JSON dictionary")
     _topology_arg(dic)
     dic.add_argument("-o", "--output", required=True, metavar="FILE", help="where to write the dictionary")
+    dic.add_argument("--gds", action="store_true", help="include the ground link that 'run --gds' adds (the "
+                     "dictionary to start fprime-gds with)")
 
     check = sub.add_parser("check", help="validate a topology")
     _topology_arg(check)
@@ -91,14 +101,14 @@ def _version() -> str:
     return __version__
 
 
-def _load(path: str, overrides: dict | None = None):
+def _load(path: str, overrides: dict | None = None, scheduler_factory=None):
     from .topology_loader import load_topology
 
     p = pathlib.Path(path)
     if not p.exists():
         raise UserError(f"{path}: no such topology file — give the path of a topology YAML file "
                         f"(the reference deployment is deployments/proves_ref/topology.yaml)")
-    return load_topology(p, overrides)
+    return load_topology(p, overrides, scheduler_factory=scheduler_factory)
 
 
 def cmd_check(args) -> int:
@@ -112,7 +122,12 @@ def cmd_check(args) -> int:
 def cmd_dict(args) -> int:
     from .dictionary import write_dictionary
 
-    d = write_dictionary(_load(args.topology).topology, args.output)
+    topology = _load(args.topology).topology
+    if args.gds:
+        from .svc.ground_link import add_ground_link
+
+        add_ground_link(topology)
+    d = write_dictionary(topology, args.output)
     print(f"wrote {args.output}: {len(d['commands'])} commands, {len(d['events'])} events, "
           f"{len(d['telemetryChannels'])} channels, {len(d['parameters'])} parameters")
     return 0
@@ -161,16 +176,73 @@ def cmd_run(args) -> int:
     for option, value in (("--params", args.params), ("--seq", args.seq)):
         if value is not None and not pathlib.Path(value).is_file():
             raise UserError(f"{option} {value}: no such file")
-    loaded = _load(args.topology, overrides)
+    realtime = args.realtime or args.gds is not None
+    address = None
+    if args.gds is not None:
+        from .svc.ground_link import parse_address
+
+        try:
+            address = parse_address(args.gds)
+        except ValueError as exc:
+            raise UserError(f"--gds {exc}") from None
+    elif args.framing != "ccsds":
+        raise UserError("--framing applies to the ground link: add --gds")
+    loaded = _load(args.topology, overrides, _paced if realtime else None)
     out = pathlib.Path(args.out) if args.out else pathlib.Path("runs") / _dt.datetime.now().strftime(
         "%Y%m%d-%H%M%S")
     if out.exists() and any(out.iterdir()):
         raise UserError(f"--out {out}: the folder exists and is not empty — choose another or remove it")
-    summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
-                             sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
-                             plots=not args.no_plots)
+    if not realtime:
+        summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
+                                 sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
+                                 plots=not args.no_plots)
+    else:
+        summary = _run_realtime(loaded, out, args, address)
     print(f"outputs in {out}/")
     return 0 if summary.get("ok", True) else EXIT_FAILED
+
+
+def _paced(clock):
+    from .scheduler import PacedScheduler
+
+    return PacedScheduler(clock)
+
+
+def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
+    """Run paced to the wall clock, with the ground link when ``address`` is given; SIGINT and
+    SIGTERM end the run early and the outputs are still written."""
+    import signal
+    import threading
+
+    from .runner import run_deployment
+
+    link = None
+    if address is not None:
+        from .svc.ground_link import add_ground_link
+
+        link = add_ground_link(loaded.topology, host=address[0], port=address[1], framing=args.framing)
+        print(f"ground link: {args.framing} framing, connecting to {link.host}:{link.port} "
+              f"(instance {loaded.topology.deployment}.{link.name})", flush=True)
+    scheduler = loaded.scheduler
+    previous = {}
+    if threading.current_thread() is threading.main_thread():
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            previous[sig] = signal.signal(sig, lambda *_: scheduler.stop())
+    try:
+        if link is not None:
+            link.start_socket_task()
+        summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
+                                 sequence=args.seq, progress=False, plots=not args.no_plots)
+    finally:
+        if link is not None:
+            link.close()
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+    print(f"realtime: largest lag behind the wall clock {scheduler.max_lag_s * 1e3:.1f} ms")
+    if link is not None:
+        print(f"ground link: {link.connections} connection(s), {link.commands_forwarded} command(s) "
+              f"forwarded, {link.downlink_frames} frame(s) / {link.downlink_bytes} bytes sent")
+    return summary
 
 
 def _scenario(value: str):

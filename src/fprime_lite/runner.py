@@ -70,7 +70,8 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     for r in reports:
         if hasattr(r, "finish"):
             written += r.finish(out, plots=plots) or []
-    summary = _summary(deployment, recorder, reports, (end_us - start_us) / 1e6, wall)
+    sim_s = (deployment.scheduler.now_us - start_us) / 1e6  # less than duration_s when stopped early
+    summary = _summary(deployment, recorder, reports, sim_s, wall)
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2) + "\n")
     _print_summary(summary, console)
     return summary

@@ -126,8 +126,9 @@ class LoadedDeployment:
 # --- loading ------------------------------------------------------------------------------------
 
 class _Loader:
-    def __init__(self, path: pathlib.Path, overrides: dict | None):
+    def __init__(self, path: pathlib.Path, overrides: dict | None, scheduler_factory=None):
         self.path = path.resolve() if path.is_symlink() else path
+        self.scheduler_factory = scheduler_factory or Scheduler
         self.base_dir = self.path.parent
         self.problems: list[str] = []
         self.overrides = overrides or {}
@@ -178,7 +179,7 @@ class _Loader:
             self.fail_if_problems()
 
         clock = self.make_clock(doc)
-        scheduler = Scheduler(clock)
+        scheduler = self.scheduler_factory(clock)
         topology = Topology(deployment)
         resources = {"clock": clock, "scheduler": scheduler, "topology_dir": self.base_dir}
         self.build_resources(doc, resources)
@@ -804,10 +805,12 @@ def _kind(value) -> str:
     return f"{type(value).__name__} {value!r}"
 
 
-def load_topology(path, overrides: dict | None = None) -> LoadedDeployment:
+def load_topology(path, overrides: dict | None = None, *, scheduler_factory=None) -> LoadedDeployment:
     """Load and validate a topology YAML file; raise :class:`TopologyError` listing every problem.
 
     ``overrides`` maps a resource name to keyword arguments that replace those in the file
-    (the command line's ``--scenario`` and ``--seed`` use it).
+    (the command line's ``--scenario`` and ``--seed`` use it). ``scheduler_factory(clock)`` makes
+    the scheduler (default :class:`~fprime_lite.scheduler.Scheduler`; ``run --realtime`` passes a
+    :class:`~fprime_lite.scheduler.PacedScheduler`).
     """
-    return _Loader(pathlib.Path(path), overrides).load()
+    return _Loader(pathlib.Path(path), overrides, scheduler_factory).load()

@@ -1,0 +1,70 @@
+"""Checks run *inside* fprime-gds's pytest plugin (``fprime_test_api``) against a flying deployment.
+
+Not collected by the project's test run (the name does not match ``test_*.py``):
+``tests/integration/test_gds.py`` starts fprime-gds and the deployment, then runs
+``python -m pytest tests/integration/gds_inner/gds_checks.py --dictionary D --zmq-transport IN OUT``.
+Round-trip figures go to the JSON file named by ``FPRIME_LITE_GDS_FIGURES`` when it is set.
+"""
+
+import json
+import math
+import os
+import time
+
+import pytest
+
+DEP = "ReferenceDeployment"
+FIGURES: dict = {}
+
+
+@pytest.fixture(scope="session", autouse=True)
+def deployment_is_flying(fprime_test_api_session):
+    """The deployment's telemetry reaches the GDS (so the link is up both ways) before any check."""
+    api = fprime_test_api_session
+    assert api.await_telemetry(f"{DEP}.detumbleManager.Mode", timeout=30) is not None, \
+        "no telemetry from the deployment within 30 s"
+    yield
+    path = os.environ.get("FPRIME_LITE_GDS_FIGURES")
+    if path:
+        with open(path, "w", encoding="utf-8") as f:
+            json.dump(FIGURES, f)
+
+
+def test_no_op_round_trip(fprime_test_api):
+    latencies = []
+    for _ in range(5):
+        t0 = time.monotonic()
+        fprime_test_api.send_and_assert_command("CdhCore.cmdDisp.CMD_NO_OP", timeout=5)
+        latencies.append(time.monotonic() - t0)
+    fprime_test_api.assert_event("CdhCore.cmdDisp.NoOpReceived", timeout=2)
+    FIGURES["no_op_round_trip_s"] = latencies
+
+
+def test_detumble_starts_when_set_to_auto(fprime_test_api):
+    fprime_test_api.send_and_assert_command(f"{DEP}.detumbleManager.SET_MODE", ["AUTO"], timeout=5)
+    fprime_test_api.assert_event(f"{DEP}.detumbleManager.DetumbleStarted", timeout=5)
+    assert fprime_test_api.await_telemetry(f"{DEP}.detumbleManager.Mode", value="AUTO", timeout=5) is not None
+    state = fprime_test_api.await_telemetry(f"{DEP}.detumbleManager.State", timeout=5)
+    assert state is not None
+    assert str(state.get_val()) in {"COOLDOWN", "SENSING_ANGULAR_VELOCITY", "SENSING_MAGNETIC_FIELD",
+                                    "ACTUATING_BDOT", "ACTUATING_HYSTERESIS"}
+
+
+def test_gain_parameter_set(fprime_test_api):
+    fprime_test_api.send_and_assert_command(f"{DEP}.detumbleManager.GAIN_PRM_SET", ["2.5"], timeout=5)
+    fprime_test_api.assert_event(f"{DEP}.detumbleManager.GainParamSet", args=[2.5], timeout=5)
+    assert fprime_test_api.await_telemetry(f"{DEP}.detumbleManager.GainParam", value=2.5, timeout=5) is not None
+
+
+def test_magnetic_field_reading(fprime_test_api):
+    # The simulated magnetometer also sees the magnetorquers while B-dot drives them: stop them first.
+    fprime_test_api.send_and_assert_command(f"{DEP}.detumbleManager.SET_MODE", ["DISABLED"], timeout=5)
+    assert fprime_test_api.await_telemetry(f"{DEP}.detumbleManager.Mode", value="DISABLED", timeout=5) is not None
+    fprime_test_api.send_and_assert_command(f"{DEP}.imuManager.GET_MAGNETIC_FIELD", timeout=5)
+    event = fprime_test_api.assert_event(f"{DEP}.imuManager.MagneticFieldData", timeout=5)
+    field = [arg.val for arg in event.get_args()]
+    # Non-zero as a vector: one axis may read exactly 0 (the LIS2MDL quantises in 1.5 mG steps).
+    assert len(field) == 3 and all(math.isfinite(v) for v in field) and any(v != 0.0 for v in field)
+    magnitude = math.sqrt(sum(v * v for v in field))
+    assert 0.1 < magnitude < 0.7, f"|B| = {magnitude} G is not the Earth's field in low Earth orbit"
+    FIGURES["magnetic_field_G"] = field
