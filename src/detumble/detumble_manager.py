@@ -297,6 +297,8 @@ class DetumbleManager(PassiveComponent):
         self.cooldown_start_time: Time | None = None
         self.torque_start_time: Time | None = None
         self._bdot_levels: tuple[int, ...] | None = None  # drive levels of the current torque period
+        self._start_ports = [self.output_port(c.start_port) for c in _COILS]  # X+, X−, Y+, Y−, Z−
+        self._stop_ports = [self.output_port(c.stop_port) for c in _COILS]
         self.coils_driven = False
         self._last_system_mode: SystemMode | None = None
         self._external_dipole: tuple[float, float, float] | None = None
@@ -567,14 +569,14 @@ class DetumbleManager(PassiveComponent):
 
     def _start_coils(self, levels) -> None:
         """Drive X+, X−, Y+, Y−, Z− at ``levels`` (each −127…127); unconnected coils are skipped."""
-        for coil, level in zip(_COILS, levels):
-            if self.is_connected(coil.start_port):
-                getattr(self, coil.start_port)[0](level)
+        for port, level in zip(self._start_ports, levels):
+            if port.targets[0] is not None:  # unconnected coils are skipped
+                port.calls[0](level)
         self.coils_driven = True
 
     def _stop_coils(self) -> None:
         """Stop all five coils (unconnected coils are skipped)."""
-        for coil in _COILS:
-            if self.is_connected(coil.stop_port):
-                getattr(self, coil.stop_port)[0]()
+        for port in self._stop_ports:
+            if port.targets[0] is not None:
+                port.calls[0]()
         self.coils_driven = False

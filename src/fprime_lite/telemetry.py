@@ -15,7 +15,10 @@ from typing import Any
 
 from .errors import DeclarationError
 from .events import translate_format
+from .time import Time
 from .types import FwType, fw_type
+
+_ZERO_TIME = Time()
 
 __all__ = ["Channel"]
 
@@ -90,4 +93,6 @@ class BoundChannel:
         if self._port.targets[0] is None:
             return
         comp = self.component
-        comp.tlmOut[0](self.id, time if time is not None else comp.get_time(), self._serialize(value))
+        if time is None:
+            time = comp.timeCaller[0]() if comp._time_port.targets[0] is not None else _ZERO_TIME
+        comp.tlmOut[0](self.id, time, self._serialize(value))

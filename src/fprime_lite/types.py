@@ -118,6 +118,8 @@ class IntType(FwType):
         self._struct = struct.Struct(">" + (code if signed else code.upper()))
 
     def check(self, value):
+        if type(value) is int and self.min <= value <= self.max:
+            return value  # the common case, without the general checks below
         if isinstance(value, bool) or not isinstance(value, int):
             raise SerializationError(
                 f"{self.name} expects an integer, got {type(value).__name__} {value!r}")
@@ -161,6 +163,8 @@ class FloatType(FwType):
         self._struct = struct.Struct(">f" if bits == 32 else ">d")
 
     def check(self, value):
+        if type(value) is float and self.bits == 64:
+            return value  # every float is an F64
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise SerializationError(
                 f"{self.name} expects a number, got {type(value).__name__} {value!r}")
@@ -375,7 +379,7 @@ class EnumType(FwType):
         self._by_value = {int(m): m for m in cls}
 
     def check(self, value):
-        if isinstance(value, self.cls):
+        if type(value) is self.cls or isinstance(value, self.cls):
             return value
         if isinstance(value, enum.Enum) or isinstance(value, bool) or not isinstance(value, (int, str)):
             raise SerializationError(f"{self.name} expects one of {self._names()}, got {value!r}")

@@ -143,7 +143,8 @@ class MagnetorquerDriver(PassiveComponent):
     def _start(self, val) -> Success:
         if type(val) is int and val == self._coil.level and self.fault == SimDriverFault.NONE:
             # The manager re-commands the same level every tick: the coil already carries it.
-            self.DeviceNotReady.clear_throttle()
+            if self.DeviceNotReady.count:
+                self.DeviceNotReady.clear_throttle()
             return Success.SUCCESS
         if not _valid_level(val):
             self.InvalidDriveLevel(_as_i32(val))

@@ -30,6 +30,9 @@ class TimeSource(PassiveComponent):
             raise TypeError(f"{name}: clock must be a fprime_lite.time.Clock, got {clock!r}")
         super().__init__(name, base_id=base_id)
         self.clock = clock
+        # The handler is exactly ``clock.now()``: let connections call the clock directly. Every
+        # event and channel is stamped through this port, several times per rate-group tick.
+        self.input_port("timeGetPort").entries[0] = clock.now
 
     @sync_input(TimeGet)
     def timeGetPort(self) -> Time:

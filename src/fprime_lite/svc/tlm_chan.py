@@ -76,7 +76,7 @@ class TlmChan(ActiveComponent):
     def TlmRecv(self, chan_id: int, time, value: bytes) -> None:
         """Store the latest ``value`` (F´ bytes) and ``time`` of channel ``chan_id`` (never raises)."""
         # Only the latest value of each channel is downlinked, so the record is built at Run time.
-        if not isinstance(value, bytes) or not isinstance(chan_id, int) or not 0 <= chan_id <= 0xFFFFFFFF:
+        if type(value) is not bytes or type(chan_id) is not int or not 0 <= chan_id <= 0xFFFFFFFF:
             try:
                 value = bytes(value)
                 _U32.pack(chan_id)
