@@ -540,10 +540,16 @@ class QueuedComponent(Component):
 
     def dispatch_all(self, limit: int | None = None) -> int:
         """Handle queued messages until the queue is empty (or ``limit``); return how many."""
-        if not self._queue._heap:  # the common case when drained after every event
+        queue = self._queue
+        if not queue._heap:  # the common case when drained after every event
             return 0
         n = 0
-        while (limit is None or n < limit) and self.dispatch():
+        while (limit is None or n < limit) and queue._heap:
+            message = queue.get()
+            if message is None:  # another thread took it
+                break
+            call, args = message
+            call(*args)
             n += 1
         return n
 

@@ -15,6 +15,7 @@ deployment talking to a real ground system. The simulated clock still stamps eve
 
 from __future__ import annotations
 
+import functools
 import heapq
 import itertools
 import time as _wall
@@ -87,7 +88,7 @@ class Scheduler:
         if component not in self._drained:
             self._drained.append(component)
             busy = self._busy
-            component.queue.on_put = lambda: busy.__setitem__(component, None)
+            component.queue.on_put = functools.partial(busy.__setitem__, component, None)
             if len(component.queue):
                 busy[component] = None
 
@@ -106,14 +107,19 @@ class Scheduler:
         t = self.next_time_us()
         if t is None:
             return False
+        self._run_next(t)
+        return True
+
+    def _run_next(self, t: int) -> None:
+        """Run the event at the top of the heap, which is due at ``t`` and not cancelled."""
         _, _, call = heapq.heappop(self._heap)
         self._advance_to(t)
         if call.period_us is not None:
             heapq.heappush(self._heap, (t + call.period_us, next(self._seq), call))
         call.fn()
         self.events_run += 1
-        self.drain()
-        return True
+        if self._busy:
+            self.drain()
 
     def _advance_to(self, t: int) -> None:
         if t != self.clock.current_us:
@@ -145,7 +151,7 @@ class Scheduler:
             if t is None or (until_us is not None and t > until_us):
                 break
             self._before_event(t)
-            self.step()
+            self._run_next(t)
             n += 1
         if until_us is not None and not self._stopped and until_us > self.clock.current_us:
             self._before_event(until_us)

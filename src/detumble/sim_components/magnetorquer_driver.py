@@ -74,6 +74,11 @@ class MagnetorquerDriver(PassiveComponent):
     def start(self, val: int) -> Success:
         """Drive the coil at level ``val`` (−127…127, sign = current direction). Out-of-range or
         non-integer levels are refused (FAILURE, InvalidDriveLevel) and switch the coil off."""
+        if type(val) is int and val == self._coil.level and self.fault == SimDriverFault.NONE:
+            # The manager re-commands the same level every tick: the coil already carries it.
+            if self.DeviceNotReady.count:
+                self.DeviceNotReady.clear_throttle()
+            return Success.SUCCESS
         return self._start(val)
 
     @sync_input(StopMagnetorquer)
@@ -141,11 +146,6 @@ class MagnetorquerDriver(PassiveComponent):
     # --- behaviour -----------------------------------------------------------------------------
 
     def _start(self, val) -> Success:
-        if type(val) is int and val == self._coil.level and self.fault == SimDriverFault.NONE:
-            # The manager re-commands the same level every tick: the coil already carries it.
-            if self.DeviceNotReady.count:
-                self.DeviceNotReady.clear_throttle()
-            return Success.SUCCESS
         if not _valid_level(val):
             self.InvalidDriveLevel(_as_i32(val))
             if self.fault != SimDriverFault.STUCK:

@@ -151,7 +151,7 @@ class SimulatedSpacecraft:
         if scheduler in self._attached:
             return
         self._attached.append(scheduler)
-        scheduler.add_time_listener(self.on_time)
+        scheduler.add_time_listener(self.advance_to_us)  # on_time without the extra call
 
     def on_time(self, time_us: int) -> None:
         """Scheduler time listener: integrate up to clock time ``time_us`` (``clock.current_us``)."""

@@ -99,7 +99,7 @@ class RateGroupTimer:
             self.scheduler.reschedule(self._call, due)
 
     def _fire(self) -> None:
-        self.driver.skip_ticks(self._idle_ticks)
+        self.driver.tick += self._idle_ticks  # the skipped ticks on which nothing fired
         now = self.scheduler.now_us
         self.cycles += 1
         self.cycle_in(self.scheduler.clock.now())

@@ -111,7 +111,7 @@ class ActiveRateGroup(_RateGroup, ActiveComponent):
 
     @async_input(Cycle, queue_full="drop")
     def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
-        self._pending = len(self.queue)
+        self._pending = len(self._queue._heap)  # cycles still waiting behind this one
         self._cycle(cycle_start)
 
 
