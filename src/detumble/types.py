@@ -38,7 +38,7 @@ from typing import Any, NamedTuple
 from fprime_lite.fw_types import Success, TimeIntervalValue
 from fprime_lite.ports import PortType
 from fprime_lite.time import Time
-from fprime_lite.types import F64, I8, U8, U32, FwEnum, Struct
+from fprime_lite.types import F64, I8, FwEnum, Struct
 
 __all__ = [
     "Success", "TimeIntervalValue", "Result",

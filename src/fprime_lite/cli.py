@@ -16,11 +16,9 @@ from __future__ import annotations
 
 import argparse
 import datetime as _dt
-import json
 import logging
 import pathlib
 import sys
-import time
 
 from .errors import FprimeLiteError
 

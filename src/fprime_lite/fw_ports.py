@@ -8,7 +8,6 @@ from __future__ import annotations
 
 from .commands import CmdResponse
 from .events import Severity
-from .params import ParamValid
 from .ports import PortType
 from .time import Time
 from .types import U32

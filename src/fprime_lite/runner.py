@@ -19,7 +19,6 @@ from __future__ import annotations
 import json
 import pathlib
 import time
-import tracemalloc  # noqa: F401 - imported for users profiling runs; not used on the hot path
 
 from .atomic import atomic_write_text
 from .deployment import Deployment

@@ -1,6 +1,5 @@
 """Ground-side decoding and the recorder's tap on the downlink."""
 
-import pytest
 
 from fprime_lite import F64, U32, Channel, Event, FwEnum, PassiveComponent, Severity, Time, TimeBase
 from fprime_lite.fw_ports import Com

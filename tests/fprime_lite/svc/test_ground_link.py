@@ -15,7 +15,6 @@ from hypothesis import strategies as st
 
 from fprime_lite import SimulatedClock
 from fprime_lite.deployment import Deployment
-from fprime_lite.framing import make_framing
 from fprime_lite.ground import GroundDecoder
 from fprime_lite.packets import encode_command
 from fprime_lite.svc.cmd_dispatcher import CmdDispatcher
