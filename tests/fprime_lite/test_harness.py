@@ -115,3 +115,14 @@ def test_harness_works_without_the_fixture():
     h.set_port_handler("startOut", lambda level: level > 0)
     assert h.invoke("run", 1) is False
     assert h.test_time == Time(TimeBase.TB_NONE, 0, 0, 0)
+
+
+def test_optional_outputs_can_be_left_unconnected():
+    h = ComponentHarness(Device("dev3"), unconnected=("noteOut",))
+    h.set_port_return("readOut", 1.0)
+    h.set_port_return("startOut", True)
+    assert not h.component.is_connected("noteOut")
+    with pytest.raises(Exception, match=r"output port dev3\.noteOut\[0\] is not connected"):
+        h.invoke("run", 3)
+    with pytest.raises(KeyError, match="no output port 'nope'"):
+        ComponentHarness(Device("dev4"), unconnected=("nope",))
