@@ -16,7 +16,7 @@ from typing import Any
 from .errors import DeclarationError
 from .events import translate_format
 from .time import Time
-from .types import FwType, fw_type
+from .types import F64, EnumType, FwType, fw_type
 
 _ZERO_TIME = Time()
 
@@ -70,7 +70,8 @@ class Channel:
 class BoundChannel:
     """A channel of one component instance."""
 
-    __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port")
+    __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
+                 "_valid_type")
 
     def __init__(self, component, decl: Channel, channel_id: int):
         self.component = component
@@ -82,10 +83,15 @@ class BoundChannel:
         self._serialize = decl.type.pack
         self._check = decl.type.check
         self._port = component.output_port("tlmOut")
+        # A value of this exact Python type is valid for the channel without checking (enum
+        # members of the channel's enum, and floats for F64).
+        t = decl.type
+        self._valid_type = t.cls if isinstance(t, EnumType) else float if t is F64 else None
 
     def write(self, value, time=None) -> None:
         """Record ``value`` and send it (time-stamped now, unless ``time`` is given)."""
-        value = self._check(value)
+        if type(value) is not self._valid_type:
+            value = self._check(value)
         if self._on_change and self.written and value == self.last:
             return
         self.last = value

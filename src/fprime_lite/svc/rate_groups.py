@@ -88,6 +88,8 @@ class _RateGroup:
                    and now.total_us - cycle_start.total_us >= self.period_us)
         if overran or self._pending > 0:
             self._slip()
+        elif self.RateGroupCycleSlip.count:
+            self.RateGroupCycleSlip.count -= 1  # as F´: each good cycle lets one more slip be reported
         self.cycles += 1
 
     def _slip(self) -> None:

@@ -21,7 +21,7 @@ import struct
 from ..component import ActiveComponent
 from ..fw_ports import Com, Ping, Sched, Tlm
 from ..packets import TLM_PACKET_MAX, Apid
-from ..ports import OutputPort, PortType, async_input, guarded_input
+from ..ports import OutputPort, PortType, async_input, guarded_input, sync_input
 from ..time import TIME
 from ..types import U32, FwEnum
 
@@ -72,9 +72,13 @@ class TlmChan(ActiveComponent):
         self.oversize_records = 0
         self.rejected_writes = 0
 
-    @guarded_input(Tlm)
+    @sync_input(Tlm)
     def TlmRecv(self, chan_id: int, time, value: bytes) -> None:
-        """Store the latest ``value`` (F´ bytes) and ``time`` of channel ``chan_id`` (never raises)."""
+        """Store the latest ``value`` (F´ bytes) and ``time`` of channel ``chan_id`` (never raises).
+
+        Guarded in effect: the store happens under the component lock, taken here rather than by a
+        guarded-port wrapper because every telemetry write of the deployment comes through.
+        """
         # Only the latest value of each channel is downlinked, so the record is built at Run time.
         if type(value) is not bytes or type(chan_id) is not int or not 0 <= chan_id <= 0xFFFFFFFF:
             try:
@@ -84,8 +88,9 @@ class TlmChan(ActiveComponent):
                 self.rejected_writes += 1
                 log.warning("%s: TlmRecv: cannot store channel %r: %s", self.name, chan_id, exc)
                 return
-        self._latest[chan_id] = (time, value)
-        self._updated[chan_id] = None
+        with self._lock:
+            self._latest[chan_id] = (time, value)
+            self._updated[chan_id] = None
 
     @guarded_input(TlmGet)
     def TlmGet(self, chan_id: int) -> tuple:

@@ -134,3 +134,17 @@ def test_passive_rate_group_reentry_is_a_slip(fprime_harness):
     rg.output_port("RateGroupMemberOut").connect(0, member.input_port("run"))
     h.invoke("CycleIn", Time())
     assert rg.slips == 1
+
+
+def test_slip_event_throttle_decays_on_good_cycles_as_in_fprime(fprime_harness):
+    """RG: after the throttle is reached, each good cycle allows one more slip report (F´'s overrun throttle)."""
+    h = fprime_harness(ActiveRateGroup("rg", period_us=20_000, queue_size=10))
+    for _ in range(7):  # cycles 1-6 each find another cycle waiting: six slips in a row; cycle 7 is good
+        h.invoke("CycleIn", Time())
+    h.dispatch_all()
+    assert h.component.slips == 6
+    h.assert_event_count("RateGroupCycleSlip", 5)  # the sixth report was throttled
+    h.invoke("CycleIn", Time())
+    h.invoke("CycleIn", Time())  # one more slip: the good cycle 7 made room for its report
+    h.dispatch_all()
+    h.assert_event_count("RateGroupCycleSlip", 6)
