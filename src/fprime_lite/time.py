@@ -35,13 +35,17 @@ class TimeBase(FwEnum, rep=U16):
 
 
 class Time:
-    """An F´ time stamp. Immutable; ``seconds`` and ``useconds`` are normalised (``useconds < 1e6``).
+    """An F´ time stamp; ``seconds`` and ``useconds`` are normalised (``useconds < 1e6``).
+
+    Treat a Time as immutable: the clock hands the same object to every caller at one instant.
+    ``total_us`` (µs since the base's epoch) is a plain attribute because every event and channel
+    reads it.
 
     Arithmetic: ``Time + TimeInterval -> Time``, ``Time - Time -> TimeInterval`` (the later time must
     be on the left), ``Time - TimeInterval -> Time``.
     """
 
-    __slots__ = ("time_base", "context", "_us")
+    __slots__ = ("time_base", "context", "total_us")  # total_us: µs since the base's epoch
 
     def __init__(self, time_base: int = TimeBase.TB_NONE, context: int = 0,
                  seconds: int = 0, useconds: int = 0):
@@ -49,7 +53,7 @@ class Time:
             raise ValueError(f"time cannot be negative: {seconds} s {useconds} us")
         self.time_base = time_base
         self.context = context
-        self._us = seconds * US_PER_S + useconds
+        self.total_us = seconds * US_PER_S + useconds
 
     @classmethod
     def from_us(cls, microseconds: int, time_base: int = TimeBase.TB_WORKSTATION_TIME,
@@ -60,25 +64,20 @@ class Time:
         t = cls.__new__(cls)
         t.time_base = time_base
         t.context = context
-        t._us = microseconds
+        t.total_us = microseconds
         return t
 
     @property
     def seconds(self) -> int:
-        return self._us // US_PER_S
+        return self.total_us // US_PER_S
 
     @property
     def useconds(self) -> int:
-        return self._us % US_PER_S
-
-    @property
-    def total_us(self) -> int:
-        """Microseconds since the base's epoch."""
-        return self._us
+        return self.total_us % US_PER_S
 
     def to_float(self) -> float:
         """Seconds since the base's epoch, as a float."""
-        return self._us / US_PER_S
+        return self.total_us / US_PER_S
 
     def _comparable(self, other: "Time") -> None:
         a, b = self.time_base, other.time_base
@@ -90,50 +89,50 @@ class Time:
     def __eq__(self, other):
         if not isinstance(other, Time):
             return NotImplemented
-        return (self.time_base, self.context, self._us) == (other.time_base, other.context, other._us)
+        return (self.time_base, self.context, self.total_us) == (other.time_base, other.context, other.total_us)
 
     def __hash__(self):
-        return hash((self.time_base, self.context, self._us))
+        return hash((self.time_base, self.context, self.total_us))
 
     def __lt__(self, other):
         if not isinstance(other, Time):
             return NotImplemented
         self._comparable(other)
-        return self._us < other._us
+        return self.total_us < other.total_us
 
     def __le__(self, other):
         if not isinstance(other, Time):
             return NotImplemented
         self._comparable(other)
-        return self._us <= other._us
+        return self.total_us <= other.total_us
 
     def __gt__(self, other):
         if not isinstance(other, Time):
             return NotImplemented
         self._comparable(other)
-        return self._us > other._us
+        return self.total_us > other.total_us
 
     def __ge__(self, other):
         if not isinstance(other, Time):
             return NotImplemented
         self._comparable(other)
-        return self._us >= other._us
+        return self.total_us >= other.total_us
 
     def __add__(self, other):
         if isinstance(other, TimeInterval):
-            return Time.from_us(self._us + other._us, self.time_base, self.context)
+            return Time.from_us(self.total_us + other._us, self.time_base, self.context)
         return NotImplemented
 
     def __sub__(self, other):
         if isinstance(other, TimeInterval):
-            if other._us > self._us:
+            if other._us > self.total_us:
                 raise ValueError(f"{self} minus {other} would be before the epoch")
-            return Time.from_us(self._us - other._us, self.time_base, self.context)
+            return Time.from_us(self.total_us - other._us, self.time_base, self.context)
         if isinstance(other, Time):
             self._comparable(other)
-            if other._us > self._us:
+            if other.total_us > self.total_us:
                 raise ValueError(f"{other} is later than {self}; subtract the earlier time")
-            return TimeInterval.from_us(self._us - other._us)
+            return TimeInterval.from_us(self.total_us - other.total_us)
         return NotImplemented
 
     def __repr__(self):
@@ -235,7 +234,7 @@ class TimeType(FwType):
 
     def serialize(self, value):
         if type(value) is Time:
-            us = value._us
+            us = value.total_us
             try:
                 return _PACK_TIME(value.time_base, value.context, us // US_PER_S, us % US_PER_S)
             except struct.error:
@@ -306,12 +305,12 @@ class SimulatedClock(Clock):
     def now(self) -> Time:
         us = self.epoch_us + self.current_us
         t = self._now
-        if t is not None and t._us == us and t.time_base == self.time_base and t.context == self.context:
+        if t is not None and t.total_us == us and t.time_base == self.time_base and t.context == self.context:
             return t  # Time is immutable: every caller at this instant can share it
         t = Time.__new__(Time)
         t.time_base = self.time_base
         t.context = self.context
-        t._us = us
+        t.total_us = us
         self._now = t
         return t
 
