@@ -497,6 +497,10 @@ class QueuedComponent(Component):
     def __init__(self, name: str, *, base_id: int = 0, queue_size: int = 10):
         self._queue = MessageQueue(name, queue_size)
         self._thread: threading.Thread | None = None
+        self._handling = False  # a message's handler is running (it may queue more)
+        #: Set by a deterministic scheduler that drains this queue after every event: ports
+        #: declared ``run_when_idle`` may then run at once instead of being queued.
+        self.drained_by_scheduler = False
         super().__init__(name, base_id=base_id)
 
     def _make_enqueuer(self, decl: InputPortDecl, call, index: int):
@@ -515,7 +519,22 @@ class QueuedComponent(Component):
                 queue.put(priority, call, args, queue_full=queue_full, port=label, overflow=overflow,
                           run_inline=self.dispatch, threaded=self._thread is not None)
 
-        return enqueue
+        if not decl.run_when_idle:
+            return enqueue
+
+        heap = queue._heap
+
+        def run_or_enqueue(*args):
+            if self.drained_by_scheduler and not heap and not self._handling and self._thread is None:
+                self._handling = True
+                try:
+                    call(*args)
+                finally:
+                    self._handling = False
+            else:
+                enqueue(*args)
+
+        return run_or_enqueue
 
     def _queue_command(self, decl: CommandDecl, opcode: int, cmd_seq: int, values: list) -> None:
         accepted = self._queue.put(decl.priority, self._run_command, (decl, opcode, cmd_seq, values),
@@ -535,7 +554,11 @@ class QueuedComponent(Component):
         if message is None:
             return False
         call, args = message
-        call(*args)
+        outer, self._handling = self._handling, True  # dispatch may run inside a handler (a full queue)
+        try:
+            call(*args)
+        finally:
+            self._handling = outer
         return True
 
     def dispatch_all(self, limit: int | None = None) -> int:
@@ -544,13 +567,17 @@ class QueuedComponent(Component):
         if not queue._heap:  # the common case when drained after every event
             return 0
         n = 0
-        while (limit is None or n < limit) and queue._heap:
-            message = queue.get()
-            if message is None:  # another thread took it
-                break
-            call, args = message
-            call(*args)
-            n += 1
+        outer, self._handling = self._handling, True
+        try:
+            while (limit is None or n < limit) and queue._heap:
+                message = queue.get()
+                if message is None:  # another thread took it
+                    break
+                call, args = message
+                call(*args)
+                n += 1
+        finally:
+            self._handling = outer
         return n
 
 

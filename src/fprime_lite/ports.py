@@ -71,6 +71,7 @@ class InputPortDecl:
     queue_full: str = "assert"
     name: str = ""
     handler: Callable | None = None
+    run_when_idle: bool = False  # async only: see async_input
 
     def check_handler(self, owner: str, fn: Callable) -> None:
         """Raise DeclarationError unless ``fn``'s signature fits the port type."""
@@ -91,7 +92,7 @@ class InputPortDecl:
 
 
 def _input_decorator(kind: str, port_type: PortType, size: int, priority: int = 0,
-                     queue_full: str = "assert"):
+                     queue_full: str = "assert", run_when_idle: bool = False):
     if not isinstance(port_type, PortType):
         raise DeclarationError(f"{kind}_input needs a PortType, got {port_type!r}")
     if not isinstance(size, int) or size < 1:
@@ -102,7 +103,7 @@ def _input_decorator(kind: str, port_type: PortType, size: int, priority: int = 
 
     def decorate(fn: Callable) -> Callable:
         fn.__fprime_input__ = InputPortDecl(port_type, kind, size, priority, queue_full,
-                                            name=fn.__name__, handler=fn)
+                                            name=fn.__name__, handler=fn, run_when_idle=run_when_idle)
         return fn
 
     return decorate
@@ -118,14 +119,23 @@ def guarded_input(port_type: PortType, *, size: int = 1):
     return _input_decorator("guarded", port_type, size)
 
 
-def async_input(port_type: PortType, *, size: int = 1, priority: int = 0, queue_full: str = "assert"):
+def async_input(port_type: PortType, *, size: int = 1, priority: int = 0, queue_full: str = "assert",
+                run_when_idle: bool = False):
     """Declare an async input port: the call is queued and handled on ``dispatch()``.
 
     ``priority``: larger runs first. ``queue_full``: what a full queue does — ``assert`` raises
     QueueFullError, ``block`` waits (threaded components) or drains (deterministic ones), ``drop``
     discards the message, ``hook`` calls the component's ``<port>_overflow_hook(*args)``.
+
+    ``run_when_idle``: when a deterministic scheduler drains the component (a deployment without
+    threads), a call that finds the queue empty and the component not handling a message runs at
+    once on the caller's thread instead of waiting for the drain — what a top-priority thread
+    blocked on an empty queue does on a flight processor. Otherwise (a harness, a real thread, a
+    busy component) the call is queued as usual. Rate groups' ``CycleIn`` uses it (decision 0004).
     """
-    return _input_decorator("async", port_type, size, priority, queue_full)
+    if not isinstance(run_when_idle, bool):
+        raise DeclarationError(f"async_input run_when_idle must be True or False, got {run_when_idle!r}")
+    return _input_decorator("async", port_type, size, priority, queue_full, run_when_idle)
 
 
 class OutputPort:

@@ -87,6 +87,7 @@ class Scheduler:
         """Empty ``component``'s queue after every event (deterministic active components)."""
         if component not in self._drained:
             self._drained.append(component)
+            component.drained_by_scheduler = True
             busy = self._busy
             component.queue.on_put = functools.partial(busy.__setitem__, component, None)
             if len(component.queue):

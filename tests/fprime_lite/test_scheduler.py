@@ -129,3 +129,111 @@ def test_paced_scheduler_records_lag_when_behind():
     assert s.max_lag_s == pytest.approx(4.0)
     with pytest.raises(ValueError, match="speed must be positive"):
         PacedScheduler(speed=0)
+
+
+class Eager(ActiveComponent):
+    """An active component whose ``item`` port runs at once when it is idle."""
+
+    def __init__(self, name, log, forward=None, fail_on=None):
+        super().__init__(name)
+        self.log = log
+        self.forward = forward
+        self.fail_on = fail_on
+
+    @async_input(Item, run_when_idle=True)
+    def item(self, value):
+        self.log.append((self.name, value))
+        if value == self.fail_on:
+            raise RuntimeError("handler failed")
+        if self.forward is not None and value < 3:
+            self.forward.input_port("item").entries[0](value + 1)
+            self.log.append((self.name, "forwarded", value))
+
+
+def test_run_when_idle_runs_at_once_under_a_scheduler_and_is_queued_otherwise():
+    s = Scheduler()
+    log = []
+    eager = Eager("eager", log)
+    eager.input_port("item").entries[0](1)  # no scheduler drains it yet: queued as any async call
+    assert log == [] and len(eager.queue) == 1
+    eager.dispatch_all()
+    s.drain_after_each_event(eager)
+    eager.input_port("item").entries[0](2)  # idle and drained by the scheduler: runs on the caller
+    assert log == [("eager", 1), ("eager", 2)] and len(eager.queue) == 0
+    assert eager.queue.high_water == 1  # the second call never touched the queue
+
+
+def test_run_when_idle_queues_behind_waiting_messages_and_during_a_handler():
+    s = Scheduler()
+    log = []
+    eager = Eager("eager", log)
+    eager.forward = eager  # a handler calling its own port must not recurse into itself
+    s.drain_after_each_event(eager)
+    s.call_at(10, lambda: eager.input_port("item").entries[0](0))
+    s.run()
+    # Each forwarded call waited for the running handler to finish, as a queue hop does.
+    assert log == [("eager", 0), ("eager", "forwarded", 0), ("eager", 1), ("eager", "forwarded", 1),
+                   ("eager", 2), ("eager", "forwarded", 2), ("eager", 3)]
+    # A waiting message is not overtaken.
+    log.clear()
+    eager.forward = None
+    eager.queue.put(0, eager.item, (7,), queue_full="assert", port="item")
+    eager.input_port("item").entries[0](8)
+    assert log == [] and len(eager.queue) == 2
+    s.drain()
+    assert log == [("eager", 7), ("eager", 8)]
+
+
+def test_run_when_idle_keeps_scheduler_order_across_components():
+    """Inline runs give the order the scheduler's drain gives: first posted, first run."""
+    log = []
+    s = Scheduler()
+    later = Sink("later", log)
+    eager = Eager("eager", log, forward=later)
+    for c in (later, eager):
+        s.drain_after_each_event(c)
+    s.call_at(5, lambda: (eager.input_port("item").entries[0](0), log.append(("caller", "continues"))))
+    s.run()
+    assert log == [("eager", 0), ("eager", "forwarded", 0), ("caller", "continues"), ("later", 1)]
+
+
+def test_run_when_idle_handler_fault_reaches_the_caller_and_leaves_the_component_usable():
+    s = Scheduler()
+    log = []
+    eager = Eager("eager", log, fail_on=1)
+    s.drain_after_each_event(eager)
+    with pytest.raises(RuntimeError, match="handler failed"):
+        eager.input_port("item").entries[0](1)
+    eager.input_port("item").entries[0](2)  # not stuck "busy": still runs at once
+    assert log == [("eager", 1), ("eager", 2)] and len(eager.queue) == 0
+
+
+def test_run_when_idle_is_a_plain_queue_hop_for_a_threaded_component():
+    import threading
+
+    log = []
+    done = threading.Event()
+
+    class Threaded(Eager):
+        @async_input(Item, run_when_idle=True)
+        def item(self, value):
+            log.append((threading.current_thread().name, value))
+            done.set()
+
+    s = Scheduler()
+    comp = Threaded("threaded", log)
+    s.drain_after_each_event(comp)
+    comp.start()
+    try:
+        comp.input_port("item").entries[0](4)
+        assert done.wait(5)
+    finally:
+        comp.exit()
+    assert log == [("threaded", 4)]
+
+
+def test_run_when_idle_must_be_a_bool():
+    from fprime_lite.errors import DeclarationError
+
+    with pytest.raises(DeclarationError, match="run_when_idle must be True or False, got 'yes'"):
+        async_input(Item, run_when_idle="yes")

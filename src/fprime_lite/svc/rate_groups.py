@@ -111,7 +111,9 @@ class ActiveRateGroup(_RateGroup, ActiveComponent):
         super().__init__(name, base_id=base_id, queue_size=queue_size)
         self._setup(contexts, period_us)
 
-    @async_input(Cycle, queue_full="drop")
+    # run_when_idle: in a deterministic deployment an idle group runs its cycle as soon as the
+    # driver posts it, as a top-priority rate-group thread would (decision 0004).
+    @async_input(Cycle, queue_full="drop", run_when_idle=True)
     def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
         self._pending = len(self._queue._heap)  # cycles still waiting behind this one
         self._cycle(cycle_start)

@@ -79,6 +79,26 @@ def test_active_rate_group_runs_members_in_order_on_dispatch(fprime_harness):
     h.assert_no_event("RateGroupCycleSlip")
 
 
+def test_active_rate_groups_under_a_scheduler_run_when_posted_in_driver_order():
+    """In a deterministic deployment an idle group's cycle runs without a queue hop, in the order
+    the driver posts the cycles (the order the scheduler's drain used to give)."""
+    s = Scheduler()
+    driver = RateGroupDriver("rgDriver", dividers=[(1, 0), (2, 0)])
+    log = []
+    groups = [ActiveRateGroup(n, contexts=[0], period_us=1000) for n in ("rgFast", "rgSlow")]
+    for i, rg in enumerate(groups):
+        rg.output_port("timeCaller").connect_callable(0, s.clock.now, "simulated clock")
+        driver.output_port("CycleOut").connect(i, rg.input_port("CycleIn"))
+        rg.output_port("RateGroupMemberOut").connect(0, Member(f"m{i}", log, s.clock).input_port("run"))
+        s.drain_after_each_event(rg)
+    RateGroupTimer(s, driver, base_period_us=1000).start(0)
+    s.run(until_us=3000)
+    assert [(n, t) for n, _, t in log] == [("m0", 0), ("m1", 0), ("m0", 1000), ("m0", 2000), ("m1", 2000),
+                                           ("m0", 3000)]
+    assert [rg.queue.high_water for rg in groups] == [0, 0]  # no cycle went through a queue
+    assert [rg.cycles for rg in groups] == [4, 2] and [rg.slips for rg in groups] == [0, 0]
+
+
 def test_cycle_arriving_while_previous_one_is_queued_is_a_slip(fprime_harness):
     h = fprime_harness(ActiveRateGroup("rg", period_us=20_000))
     h.invoke("CycleIn", Time())
