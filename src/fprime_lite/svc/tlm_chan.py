@@ -63,10 +63,10 @@ class TlmChan(ActiveComponent):
         if packet_max < len(_HEADER) + 4 + TIME.size:
             raise ValueError(f"{name}: packet_max {packet_max} cannot hold one telemetry record")
         self.packet_max = packet_max
-        #: channel id -> (time, value bytes, serialized record) — latest write.
+        #: channel id -> (time, value bytes) of its latest write; a new tuple for every write.
         self._latest: dict[int, tuple] = {}
-        #: channel ids written since the last Run.
-        self._updated: dict[int, None] = {}
+        #: channel id -> the ``_latest`` entry sent last; an entry not identical to it is new.
+        self._sent: dict[int, tuple] = {}
         self.packets_sent = 0
         self.records_sent = 0
         self.oversize_records = 0
@@ -76,8 +76,9 @@ class TlmChan(ActiveComponent):
     def TlmRecv(self, chan_id: int, time, value: bytes) -> None:
         """Store the latest ``value`` (F´ bytes) and ``time`` of channel ``chan_id`` (never raises).
 
-        Guarded in effect: the store happens under the component lock, taken here rather than by a
-        guarded-port wrapper because every telemetry write of the deployment comes through.
+        Safe from any thread without the component lock: the store is one dict assignment, which
+        CPython makes atomic, and ``Run`` works on a copy of the store. Every telemetry write of the
+        deployment comes through here, so it is kept to that one assignment.
         """
         # Only the latest value of each channel is downlinked, so the record is built at Run time.
         if type(value) is not bytes or type(chan_id) is not int or not 0 <= chan_id <= 0xFFFFFFFF:
@@ -88,9 +89,7 @@ class TlmChan(ActiveComponent):
                 self.rejected_writes += 1
                 log.warning("%s: TlmRecv: cannot store channel %r: %s", self.name, chan_id, exc)
                 return
-        with self._lock:
-            self._latest[chan_id] = (time, value)
-            self._updated[chan_id] = None
+        self._latest[chan_id] = (time, value)
 
     @guarded_input(TlmGet)
     def TlmGet(self, chan_id: int) -> tuple:
@@ -102,20 +101,21 @@ class TlmChan(ActiveComponent):
 
     @async_input(Sched)
     def Run(self, context: int) -> None:
-        """Send every channel updated since the last tick, in packets of at most ``packet_max``."""
-        with self._lock:
-            if not self._updated:
-                return
-            updated = self._updated
-            self._updated = {}
-            records = []
-            for chan_id in updated:
-                time, value = self._latest[chan_id]
-                try:
-                    records.append(_U32.pack(chan_id) + TIME.serialize(time) + value)
-                except Exception as exc:  # noqa: BLE001 - a bad time stamp is counted, never raised
-                    self.rejected_writes += 1
-                    log.warning("%s: channel 0x%X has an unusable time stamp: %s", self.name, chan_id, exc)
+        """Send every channel written since the last tick, in packets of at most ``packet_max``."""
+        sent = self._sent
+        records = []
+        for chan_id, entry in self._latest.copy().items():  # a copy: writers may add channels meanwhile
+            if sent.get(chan_id) is entry:
+                continue
+            sent[chan_id] = entry
+            time, value = entry
+            try:
+                records.append(_U32.pack(chan_id) + TIME.serialize(time) + value)
+            except Exception as exc:  # noqa: BLE001 - a bad time stamp is counted, never raised
+                self.rejected_writes += 1
+                log.warning("%s: channel 0x%X has an unusable time stamp: %s", self.name, chan_id, exc)
+        if not records:
+            return
         for packet in self._pack(records):
             if self.is_connected("PktSend", 0):
                 self.PktSend[0](packet, 0)
