@@ -108,6 +108,33 @@ def _assign_ids(owner: str, what: str, items: list, get, put) -> None:
         next_id = local + 1
 
 
+_SHADOWED_KINDS = (OutputPort, Event, Channel, Param)
+
+
+def _members(klass) -> dict[str, Any]:
+    """A class body as written, declarations included (see :func:`_move_out_declarations`)."""
+    return klass.__dict__.get("__fprime_members__", klass.__dict__)
+
+
+def _move_out_declarations(klass) -> None:
+    """Take output-port, event, channel and parameter declarations out of ``klass``'s attributes.
+
+    Each instance sets an attribute of the same name (the call slots, the bound event, …). While
+    the class also has one, CPython 3.11 cannot specialise the instance attribute lookup, and every
+    ``self.xOut[0](…)`` or ``self.Chan.write(…)`` pays ~15 ns more. The class body is kept in
+    ``__fprime_members__`` for building specs; class-level reads still work through
+    :meth:`ComponentMeta.__getattr__`.
+    """
+    body = klass.__dict__
+    declared = [key for key, value in body.items() if isinstance(value, _SHADOWED_KINDS)]
+    if not declared:
+        return
+    if "__fprime_members__" not in body:
+        klass.__fprime_members__ = dict(body)
+    for key in declared:
+        delattr(klass, key)
+
+
 class ComponentMeta(type):
     """Collects and checks a component class's declarations when the class is created."""
 
@@ -117,17 +144,26 @@ class ComponentMeta(type):
 
     def __new__(mcs, name, bases, namespace, **kwargs):
         cls = super().__new__(mcs, name, bases, dict(namespace), **kwargs)
-        if namespace.get("__fprime_abstract__", False):
-            return cls
-        cls.__fprime_spec__ = _build_spec(cls)
+        if not namespace.get("__fprime_abstract__", False):
+            cls.__fprime_spec__ = _build_spec(cls)
+        for klass in cls.__mro__[:-1]:  # this class and plain mixins that declare members
+            _move_out_declarations(klass)
         return cls
+
+    def __getattr__(cls, name):
+        """Class-level reads of a declaration (``MyComponent.xOut``) find it in the class bodies."""
+        for klass in cls.__mro__:
+            members = klass.__dict__.get("__fprime_members__")
+            if members is not None and isinstance(members.get(name), _SHADOWED_KINDS):
+                return members[name]
+        raise AttributeError(f"type object {cls.__name__!r} has no attribute {name!r}")
 
 
 def _build_spec(cls) -> ComponentSpec:
     owner = cls.__name__
     merged: dict[str, Any] = {}
     for klass in reversed(cls.__mro__):
-        for key, value in vars(klass).items():
+        for key, value in _members(klass).items():
             if _is_declaration(value):
                 merged[key] = value
             elif key in merged and callable(value):
@@ -218,7 +254,7 @@ def _build_spec(cls) -> ComponentSpec:
 
 def _declared_input(cls, key):
     for klass in cls.__mro__:
-        value = vars(klass).get(key)
+        value = _members(klass).get(key)
         if value is not None and hasattr(value, "__fprime_input__"):
             return value.__fprime_input__
     return None
@@ -226,7 +262,7 @@ def _declared_input(cls, key):
 
 def _declared_command(cls, key):
     for klass in cls.__mro__:
-        value = vars(klass).get(key)
+        value = _members(klass).get(key)
         if value is not None and hasattr(value, "__fprime_command__"):
             return value.__fprime_command__
     return None

@@ -251,3 +251,38 @@ def test_enum_rep_must_hold_every_value():
     with pytest.raises(DeclarationError, match=r"enum Big\.B = 256 does not fit its representation type U8"):
         class C(PassiveComponent):
             T = Channel(Big)
+
+
+def test_declarations_leave_the_class_attributes_so_instance_lookups_stay_fast():
+    """Instances own ``xOut``, ``Evt``, ``Chan``, ``Prm``; the class keeps them only in its body record
+    (a same-named class attribute would stop CPython from specialising ``self.xOut``)."""
+
+    class Mixin:  # a plain mixin declaring members, as the rate groups' shared logic does
+        Shared = Channel(U32)
+
+    class Base(Mixin, PassiveComponent):
+        xOut = OutputPort(Ping)
+        Evt = Event(Severity.DIAGNOSTIC, "e")
+        Prm = Param(U32, default=3)
+
+    class Derived(Base):
+        Extra = Channel(F64)
+
+    for name in ("xOut", "Evt", "Prm"):
+        assert name not in vars(Base)
+    assert "Shared" not in vars(Mixin) and "Extra" not in vars(Derived)
+    # Class-level reads still give the declarations; the derived spec still has the inherited ones.
+    assert isinstance(Base.xOut, OutputPort) and isinstance(Derived.Evt, Event)
+    assert isinstance(Derived.Shared, Channel) and isinstance(Derived.Extra, Channel)
+    spec = Derived.__fprime_spec__
+    assert [c.name for c in spec.channels] == ["Shared", "Extra"]
+    assert [p.name for p in spec.params] == ["Prm"] and "xOut" in spec.outputs
+    # A second component built on the same mixin after the first one moved its declarations out.
+    class Other(Mixin, PassiveComponent):
+        pass
+
+    assert [c.name for c in Other.__fprime_spec__.channels] == ["Shared"]
+    d = Derived("d")
+    assert type(d.xOut) is list and d.Prm.value == 3 and d.Shared.decl.name == "Shared"
+    with pytest.raises(AttributeError, match="'Derived' has no attribute 'nothing'"):
+        Derived.nothing  # noqa: B018

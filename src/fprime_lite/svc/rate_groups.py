@@ -101,6 +101,9 @@ class _RateGroup:
 class ActiveRateGroup(_RateGroup, ActiveComponent):
     """F´'s ActiveRateGroup: ``CycleIn`` is queued; members run when the group is dispatched.
 
+    In a deterministic deployment a cycle that finds the group idle runs at once, as the
+    top-priority rate-group thread would (``run_when_idle``, decision 0004).
+
     Args:
         contexts: the context passed to member ``i`` (up to ten).
         period_us: the group's period, for slip detection in the deployment's clock.
