@@ -13,7 +13,7 @@ from .time import Time
 from .types import U32
 
 __all__ = ["Cmd", "CmdReg", "CmdResponsePort", "Log", "LogText", "Tlm", "PrmGet", "PrmSet",
-           "TimeGet", "Sched", "Com", "Cycle", "Ping", "FatalEvent", "CmdSeqIn", "CmdSeqCancel", "SPECIAL_PORTS"]
+           "TimeGet", "Sched", "Com", "BufferSend", "Cycle", "Ping", "FatalEvent", "CmdSeqIn", "CmdSeqCancel", "SPECIAL_PORTS"]
 
 Cmd = PortType("Fw.Cmd", opcode=U32, cmd_seq=U32, args=bytes)
 CmdReg = PortType("Fw.CmdReg", opcode=U32)
@@ -28,6 +28,9 @@ TimeGet = PortType("Fw.Time", returns=Time)
 Sched = PortType("Svc.Sched", context=U32)
 #: A packet of F´ bytes (``U16 descriptor | payload``), as the ground link and services pass them.
 Com = PortType("Fw.Com", data=bytes, context=U32)
+#: A buffer of bytes handed on (F´'s ``Fw.BufferSend`` with the ``Fw::Buffer`` as ``bytes``): file
+#: packets between the ground link and the file uplink/downlink components.
+BufferSend = PortType("Fw.BufferSend", fwBuffer=bytes)
 #: One tick of a rate-group driver; ``cycle_start`` is when the cycle began.
 Cycle = PortType("Svc.Cycle", cycle_start=Time)
 Ping = PortType("Svc.Ping", key=U32)
