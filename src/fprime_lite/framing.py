@@ -47,7 +47,7 @@ from .packets import Apid
 
 __all__ = ["FprimeFraming", "CcsdsFraming", "Framing", "UplinkDeframer", "Dropped", "DropReason",
            "make_framing", "FRAMINGS", "crc16_ccitt", "SPACECRAFT_ID", "TM_FRAME_SIZE", "DEFAULT_VCID",
-           "FPRIME_START_WORD", "FPRIME_MAX_PACKET", "IDLE_APID"]
+           "FPRIME_START_WORD", "FPRIME_MAX_PACKET", "IDLE_APID", "UPLINK_DESCRIPTORS"]
 
 _CONSTANTS = {name: value for name, _, value in CONSTANTS}
 #: ``ComCfg.SpacecraftId``: the SCID of every TC and TM frame (0x44, as fprime-gds's fallback).
@@ -110,7 +110,7 @@ Deframed = Union[bytes, Dropped]
 
 
 class UplinkDeframer:
-    """Turns a byte stream from the ground into F´ command packets (base class).
+    """Turns a byte stream from the ground into F´ command and file packets (base class).
 
     ``push(data)`` returns, in stream order, each complete packet (``bytes``, starting with its
     U16 descriptor) and a :class:`Dropped` for each rejected frame.
@@ -192,14 +192,18 @@ class UplinkDeframer:
         raise NotImplementedError
 
 
-def _command_or_drop(packet: bytes, size: int, out: list, deframer: UplinkDeframer, at: int,
-                     span: int) -> None:
-    """Hand on a command packet; anything else the flight side cannot route is dropped."""
+#: Descriptors of the packets a ground system uplinks: commands and file packets.
+UPLINK_DESCRIPTORS = frozenset({Apid.FW_PACKET_COMMAND, Apid.FW_PACKET_FILE})
+
+
+def _uplink_packet_or_drop(packet: bytes, size: int, out: list, deframer: UplinkDeframer, at: int,
+                           span: int) -> None:
+    """Hand on a command or file packet; anything else the flight side cannot route is dropped."""
     if len(packet) < 2:
         deframer._drop(out, DropReason.BAD_LENGTH, size, len(packet), at, span)
         return
     descriptor = _U16.unpack_from(packet)[0]
-    if descriptor != Apid.FW_PACKET_COMMAND:
+    if descriptor not in UPLINK_DESCRIPTORS:
         deframer._drop(out, DropReason.UNKNOWN_DESCRIPTOR, size, descriptor, at, span)
         return
     deframer.frames += 1
@@ -207,7 +211,7 @@ def _command_or_drop(packet: bytes, size: int, out: list, deframer: UplinkDefram
 
 
 class FprimeDeframer(UplinkDeframer):
-    """Streaming deframer of ``fprime`` frames carrying command packets."""
+    """Streaming deframer of ``fprime`` frames carrying command and file packets."""
 
     _SYNC = 4
 
@@ -235,12 +239,12 @@ class FprimeDeframer(UplinkDeframer):
         if zlib.crc32(memoryview(buf)[pos:end]) != received:
             self._drop(out, DropReason.BAD_CRC, total, received, pos, total, suspect=True)
             return 1  # the start word may have been noise: resynchronise byte by byte
-        _command_or_drop(bytes(buf[pos + _FPRIME_HEADER.size:end]), total, out, self, pos, total)
+        _uplink_packet_or_drop(bytes(buf[pos + _FPRIME_HEADER.size:end]), total, out, self, pos, total)
         return total
 
 
 class CcsdsTcDeframer(UplinkDeframer):
-    """Streaming deframer of CCSDS TC transfer frames holding Space Packets with command packets."""
+    """Streaming deframer of CCSDS TC transfer frames holding Space Packets with command or file packets."""
 
     _SYNC = 2
     #: Smallest TC frame: header, a Space Packet with one data byte, CRC.
@@ -308,7 +312,7 @@ class CcsdsTcDeframer(UplinkDeframer):
             if len(packet) >= 2 and _U16.unpack_from(packet)[0] != apid:
                 self._drop(out, DropReason.UNKNOWN_DESCRIPTOR, total, _U16.unpack_from(packet)[0], at, total)
                 continue
-            _command_or_drop(packet, total, out, self, at, total)
+            _uplink_packet_or_drop(packet, total, out, self, at, total)
 
 
 class Framing:

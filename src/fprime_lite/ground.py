@@ -5,7 +5,9 @@ topology's own declarations (what fprime-gds does with the dictionary). :class:`
 listens to the deployment's downlink (EventManager's and TlmChan's ``PktSend``) and writes
 ``events.log`` (one line per event: time, name, severity, text, as the GDS logs them) and
 ``channels.csv`` (time, channel, value) as packets arrive, so memory stays flat however long the run.
-Files are written under a temporary name and renamed into place when the recorder closes.
+Files are written under a temporary name and renamed into place when the recorder closes. Files
+the deployment downlinks (``fileDownlink.SendFile``) are reassembled under ``downlink/`` by a
+:class:`~fprime_lite.ground_files.FileReceiver`, as fprime-gds does in its downlink store.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ from typing import Any, Callable
 
 from .errors import SerializationError
 from .events import Severity, translate_format
+from .ground_files import FileReceiver
 from .packets import Apid, decode_event, decode_telemetry
 from .time import Time, TimeBase
 from .topology import Topology
@@ -153,6 +156,8 @@ class GroundRecorder:
         self.events_by_name: Counter = Counter()
         self.channel_updates = 0
         self.undecodable = 0
+        #: Downlinked files, written under ``downlink/`` (the directory appears with the first file).
+        self.files = FileReceiver(out_dir / "downlink")
 
     def attach(self, topology: Topology, event_manager: str | None, telemetry: str | None) -> None:
         """Tap ``PktSend`` of the named event manager and telemetry instances.
@@ -161,22 +166,32 @@ class GroundRecorder:
         say) keeps its connection and the recorder sees each packet first.
         """
         for name in (event_manager, telemetry):
-            if not name:
-                continue
-            port = topology.instance(name).component.output_port("PktSend")
-            if not port.is_connected(0):
-                port.connect_callable(0, self.receive, "ground recorder")
-                continue
-            downstream = port.calls[0]
-            label = f"ground recorder, then {port.target_name(0)}"
-            receive = self.receive
+            if name:
+                self._tap(topology.instance(name).component.output_port("PktSend"))
 
-            def tap(data, context=0, _downstream=downstream):
-                receive(data, context)
-                return _downstream(data, context)
+    def attach_file_downlink(self, topology: Topology, file_downlink: str | None) -> None:
+        """Receive the file packets of the named FileDownlink's ``bufferSendOut``.
 
-            port.calls[0] = tap
-            port.targets[0] = label
+        As in :meth:`attach`, an existing connection keeps working and the recorder sees each
+        packet first.
+        """
+        if file_downlink:
+            self._tap(topology.instance(file_downlink).component.output_port("bufferSendOut"))
+
+    def _tap(self, port) -> None:
+        """Have :meth:`receive` see every packet of output ``port`` (index 0), before its target."""
+        receive = self.receive
+        if not port.is_connected(0):
+            port.connect_callable(0, receive, "ground recorder")
+            return
+        downstream = port.calls[0]
+
+        def tap(*args):
+            receive(*args)
+            return downstream(*args)
+
+        port.calls[0] = tap
+        port.targets[0] = f"ground recorder, then {port.target_name(0)}"
 
     def receive(self, data: bytes, context: int = 0) -> None:
         """Handle one downlinked packet (a Com buffer)."""
@@ -187,6 +202,8 @@ class GroundRecorder:
             elif descriptor == Apid.FW_PACKET_TELEM:
                 for channel in self.decoder.decode_telemetry(data):
                     self._channel(channel)
+            elif descriptor == Apid.FW_PACKET_FILE:
+                self.files.receive(data)
             else:
                 self.undecodable += 1
         except SerializationError:
@@ -208,3 +225,4 @@ class GroundRecorder:
     def close(self) -> None:
         self._events.close()
         self._channels.close()
+        self.files.close()

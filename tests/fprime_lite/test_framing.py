@@ -189,12 +189,14 @@ def test_ccsds_space_packet_longer_than_its_frame_is_a_bad_length():
 
 
 @pytest.mark.parametrize("name", ["fprime", "ccsds"])
-def test_non_command_descriptor_is_dropped(name):
-    file_packet = b"\x00\x03" + bytes(10)  # FW_PACKET_FILE: not routed by this link
+def test_file_packets_pass_and_other_descriptors_are_dropped(name):
+    file_packet = b"\x00\x03" + bytes(10)  # FW_PACKET_FILE: for the file uplink
+    telemetry = b"\x00\x01" + bytes(10)  # FW_PACKET_TELEM never comes up from the ground
     framing = make_framing(name)
-    out = framing.uplink_deframer().push(framing.frame_uplink(file_packet) + framing.frame_uplink(NO_OP))
-    assert len(out) == 2 and out[1] == NO_OP
-    assert out[0].reason is DropReason.UNKNOWN_DESCRIPTOR and out[0].value == 3
+    out = framing.uplink_deframer().push(framing.frame_uplink(file_packet) + framing.frame_uplink(telemetry)
+                                         + framing.frame_uplink(NO_OP))
+    assert len(out) == 3 and out[0] == file_packet and out[2] == NO_OP
+    assert out[1].reason is DropReason.UNKNOWN_DESCRIPTOR and out[1].value == 1
 
 
 def test_ccsds_other_virtual_channel_and_telemetry_packets_are_dropped():

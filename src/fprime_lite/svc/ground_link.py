@@ -12,8 +12,15 @@ framer/deframer + ``Svc.FprimeRouter``) in a deployment that runs on one thread:
   ``commandOut`` (connected to ``cmdDisp.seqCmdBuff[k]``) on the deployment's own thread. So the
   rate groups never block on the network, the deployment stays single-threaded, and an uplinked
   command waits at most one period of the rate group (20 ms at 50 Hz) before dispatch.
+- **File uplink.** File packets (``FW_PACKET_FILE``) wait in their own queue and ``schedIn``
+  hands at most :attr:`GroundLink.max_file_packets_per_tick` of them, descriptor removed, to
+  ``fileOut`` (connected to ``fileUplink.bufferSendIn``). The GDS sends a file as fast as TCP
+  takes it, so when :attr:`GroundLink.max_file_backlog` packets are waiting the socket task stops
+  reading and lets TCP flow control hold the GDS back: no file packet is ever dropped for lack
+  of room (the backlog can exceed the limit by what one socket read brings, at most 64 KiB). With ``fileOut`` unconnected, file packets are dropped as an unknown descriptor.
 - **Downlink.** ``comIn`` (connected to the ``PktSend`` of the event manager and of the telemetry
-  channelizer) only appends the packet to the downlink queue and wakes the socket task, which
+  channelizer) and ``fileIn`` (from ``fileDownlink.bufferSendOut``, file packets with their
+  descriptor) only append the packet to the downlink queue and wake the socket task, which
   frames everything queued in one batch (CCSDS packs packets into 1024-byte TM frames) and sends
   it. While the link is down, up to :attr:`GroundLink.max_downlink_packets` packets are kept (the
   oldest are dropped beyond that) and sent once the GDS is back.
@@ -41,7 +48,8 @@ import time as _time
 from ..component import PassiveComponent
 from ..events import Event, Severity
 from ..framing import DropReason, Dropped, Framing, make_framing
-from ..fw_ports import CmdResponsePort, Com, Sched
+from ..fw_ports import BufferSend, CmdResponsePort, Com, Sched
+from ..packets import Apid
 from ..ports import OutputPort, sync_input
 from ..telemetry import Channel
 from ..types import U16, U32, U64, FwEnum, String
@@ -111,6 +119,10 @@ class GroundLink(PassiveComponent):
         max_uplink_packets: command packets kept until the deployment takes them.
         max_commands_per_tick: command packets handed to the dispatcher per ``schedIn`` tick
             (the dispatcher's queue holds 10 messages, responses included).
+        max_file_packets_per_tick: file packets handed to ``fileOut`` per ``schedIn`` tick (keep
+            it within the file uplink's queue size).
+        max_file_backlog: file packets waiting for the deployment before the socket task stops
+            reading from the GDS.
         throttle_reset_s: deployment seconds after which throttled events may be emitted again.
     """
 
@@ -118,6 +130,8 @@ class GroundLink(PassiveComponent):
 
     #: Uplinked command packets, to ``cmdDisp.seqCmdBuff[k]``.
     commandOut = OutputPort(Com)
+    #: Uplinked file packets without their descriptor, to ``fileUplink.bufferSendIn``.
+    fileOut = OutputPort(BufferSend)
 
     # --- events --------------------------------------------------------------------------------
 
@@ -145,12 +159,14 @@ class GroundLink(PassiveComponent):
     DownlinkBytes = Channel(U64, update="on change")  # bytes sent
     DownlinkDropped = Channel(U32, update="on change")  # packets dropped (queue full)
     CommandsForwarded = Channel(U32, update="on change")  # packets handed to the dispatcher
+    FilePacketsForwarded = Channel(U32, update="on change")  # packets handed to the file uplink
 
     def __init__(self, name: str = GROUND_LINK_NAME, *, base_id: int = 0, host: str = DEFAULT_HOST,
                  port: int = DEFAULT_PORT, framing: str | Framing = "ccsds", reconnect_min_s: float = 0.1,
                  reconnect_max_s: float = 2.0, connect_timeout_s: float = 2.0,
                  max_downlink_packets: int = 2048, max_uplink_packets: int = 64,
-                 max_commands_per_tick: int = 4, throttle_reset_s: float = 60.0):
+                 max_commands_per_tick: int = 4, max_file_packets_per_tick: int = 16,
+                 max_file_backlog: int = 1024, throttle_reset_s: float = 60.0):
         super().__init__(name, base_id=base_id)
         if not 0 < port < 65536:
             raise ValueError(f"{name}: port {port} is out of range 1..65535")
@@ -158,7 +174,9 @@ class GroundLink(PassiveComponent):
             raise ValueError(f"{name}: need 0 < reconnect_min_s <= reconnect_max_s")
         for label, value in (("max_downlink_packets", max_downlink_packets),
                              ("max_uplink_packets", max_uplink_packets),
-                             ("max_commands_per_tick", max_commands_per_tick)):
+                             ("max_commands_per_tick", max_commands_per_tick),
+                             ("max_file_packets_per_tick", max_file_packets_per_tick),
+                             ("max_file_backlog", max_file_backlog)):
             if not isinstance(value, int) or value < 1:
                 raise ValueError(f"{name}: {label} must be a positive integer, got {value!r}")
         self.host = DEFAULT_HOST if host in ("", "0.0.0.0") else host
@@ -170,12 +188,15 @@ class GroundLink(PassiveComponent):
         self.max_downlink_packets = max_downlink_packets
         self.max_uplink_packets = max_uplink_packets
         self.max_commands_per_tick = max_commands_per_tick
+        self.max_file_packets_per_tick = max_file_packets_per_tick
+        self.max_file_backlog = max_file_backlog
         self.throttle_reset_s = throttle_reset_s
 
         # Shared with the socket task. deque append/popleft are atomic; the counts below are each
         # written by one thread only and read by the other (ints: no torn reads in CPython).
         self._downlink: collections.deque[bytes] = collections.deque()
         self._uplink: collections.deque[bytes] = collections.deque()
+        self._file_uplink: collections.deque[bytes] = collections.deque()
         self._notices: collections.deque[tuple] = collections.deque(maxlen=64)
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
@@ -192,9 +213,11 @@ class GroundLink(PassiveComponent):
         self.downlink_frames = 0
         self.downlink_bytes = 0
         self.uplink_overflow = 0
+        self.uplink_unroutable = 0  # file packets with nowhere to go (fileOut unconnected)
         # written by the deployment's thread
         self.downlink_overflow = 0
         self.commands_forwarded = 0
+        self.file_packets_forwarded = 0
         self.responses: collections.Counter = collections.Counter()
         self._last_reset_us: int | None = None
         self._reported_overflow = 0
@@ -210,6 +233,11 @@ class GroundLink(PassiveComponent):
             self.downlink_overflow += 1
         queue.append(bytes(data))
         self._wake()
+
+    @sync_input(BufferSend)
+    def fileIn(self, fwBuffer: bytes) -> None:  # noqa: N802,N803 - F´ port and argument names
+        """Queue one downlink file packet (``FW_PACKET_FILE`` descriptor first) for the socket task."""
+        self.comIn(fwBuffer, 0)
 
     @sync_input(CmdResponsePort)
     def cmdResponseIn(self, opcode: int, cmd_seq: int, response) -> None:  # noqa: N802 - F´ port name
@@ -229,6 +257,14 @@ class GroundLink(PassiveComponent):
             if self.is_connected("commandOut", 0):
                 self.commandOut[0](packet, self.commands_forwarded & _U32_MAX)
                 self.commands_forwarded += 1
+        files = self._file_uplink
+        if files:
+            backed_up = len(files) >= self.max_file_backlog
+            for _ in range(min(len(files), self.max_file_packets_per_tick)):
+                self.fileOut[0](files.popleft()[2:])
+                self.file_packets_forwarded += 1
+            if backed_up:
+                self._wake()  # the socket task may read again
         if self.downlink_overflow != self._reported_overflow:
             self._reported_overflow = self.downlink_overflow
             self.DownlinkOverflow(self.downlink_overflow & _U32_MAX)
@@ -323,8 +359,10 @@ class GroundLink(PassiveComponent):
                     return None
             if not out and self._downlink:
                 out += self._frame_pending()
+            # With too many file packets waiting, leave the socket unread: TCP holds the GDS back.
+            reading = [sock, self._wake_r] if len(self._file_uplink) < self.max_file_backlog else [self._wake_r]
             try:
-                readable, writable, _ = select.select([sock, self._wake_r], [sock] if out else [], [], 0.5)
+                readable, writable, _ = select.select(reading, [sock] if out else [], [], 0.5)
             except (OSError, ValueError) as exc:
                 return f"select failed: {exc}"
             if self._wake_r in readable:
@@ -377,6 +415,13 @@ class GroundLink(PassiveComponent):
         for item in self._deframer.push(data):
             if isinstance(item, Dropped):
                 self._notices.append(("dropped", item))
+            elif item[1] == Apid.FW_PACKET_FILE and item[0] == 0:
+                if self.is_connected("fileOut", 0):
+                    self._file_uplink.append(item)  # bounded by not reading (see _serve)
+                else:
+                    self.uplink_unroutable += 1
+                    self._notices.append(("dropped", Dropped(DropReason.UNKNOWN_DESCRIPTOR, len(item),
+                                                             Apid.FW_PACKET_FILE)))
             elif len(uplink) >= self.max_uplink_packets:
                 self.uplink_overflow += 1
             else:
@@ -415,12 +460,13 @@ class GroundLink(PassiveComponent):
         self.Connections.write(self.connections & _U32_MAX)
         self.UplinkFrames.write(deframer.frames & _U32_MAX)
         self.UplinkBytes.write(self.uplink_bytes & _U64_MAX)
-        self.UplinkDropped.write(deframer.dropped & _U32_MAX)
+        self.UplinkDropped.write((deframer.dropped + self.uplink_unroutable) & _U32_MAX)
         self.UplinkSkippedBytes.write(deframer.skipped_bytes & _U64_MAX)
         self.DownlinkFrames.write(self.downlink_frames & _U32_MAX)
         self.DownlinkBytes.write(self.downlink_bytes & _U64_MAX)
         self.DownlinkDropped.write(self.downlink_overflow & _U32_MAX)
         self.CommandsForwarded.write(self.commands_forwarded & _U32_MAX)
+        self.FilePacketsForwarded.write(self.file_packets_forwarded & _U32_MAX)
 
 
 def add_ground_link(topology, *, host: str = DEFAULT_HOST, port: int = DEFAULT_PORT,

@@ -237,10 +237,10 @@ def test_unknown_descriptor_and_bad_length_events(fprime_harness, grounds, links
     h = fprime_harness(link)
     link.start_socket_task()
     ground.accept()
-    ground.send(ground.framer.frame(b"\x00\x03" + bytes(8)) + struct.pack(">II", 0xDEADBEEF, 99999))
+    ground.send(ground.framer.frame(b"\x00\x07" + bytes(8)) + struct.pack(">II", 0xDEADBEEF, 99999))
     wait_for(lambda: h.events_named("UnknownDescriptor") and h.events_named("InvalidLength"),
              step=lambda: h.invoke("schedIn", 0))
-    h.assert_event("UnknownDescriptor", 0, 22, 3)
+    h.assert_event("UnknownDescriptor", 0, 22, 7)
     h.assert_event("InvalidLength", 0, 99999)
     assert h.from_port("commandOut") == []
 
@@ -302,6 +302,65 @@ def test_commands_per_tick_are_bounded(fprime_harness, links):
     h.invoke("schedIn", 0)
     h.invoke("schedIn", 0)
     assert len(h.from_port("commandOut")) == 5
+
+
+def _file_packets(link, n):
+    from fprime_lite.file_packet import DataPacket, encode_file_packet
+
+    packets = [encode_file_packet(DataPacket(i, 4 * i, bytes([i]) * 4)) for i in range(n)]
+    return packets, b"".join(link.framing.frame_uplink(p) for p in packets)
+
+
+def test_file_packets_go_to_file_out_without_their_descriptor_bounded_per_tick(fprime_harness, links):
+    link = links("comDriver", base_id=0x1000, max_file_packets_per_tick=3)
+    h = fprime_harness(link)
+    packets, frames = _file_packets(link, 7)
+    link._received(frames + link.framing.frame_uplink(encode_command(NO_OP)))
+    h.invoke("schedIn", 0)
+    assert [c.args[0] for c in h.from_port("fileOut")] == [p[2:] for p in packets[:3]]
+    assert len(h.from_port("commandOut")) == 1  # commands are not held up behind files
+    h.invoke("schedIn", 0)
+    h.invoke("schedIn", 0)
+    assert [c.args[0] for c in h.from_port("fileOut")] == [p[2:] for p in packets]
+    assert h.tlm_values("FilePacketsForwarded")[-1] == 7
+
+
+def test_file_packets_without_a_file_uplink_are_dropped_as_unknown(fprime_harness, links):
+    link = links("comDriver", base_id=0x1000)
+    h = fprime_harness(link, unconnected=("fileOut",))
+    packets, frames = _file_packets(link, 2)
+    link._received(frames)
+    h.invoke("schedIn", 0)
+    h.assert_event_count("UnknownDescriptor", 2)
+    h.assert_event("UnknownDescriptor", 0, len(packets[0]), 3)
+    assert h.tlm_values("UplinkDropped")[-1] == 2
+
+
+def test_a_file_backlog_stops_reading_the_socket_until_the_deployment_catches_up(fprime_harness, grounds, links):
+    """TCP flow control instead of dropping: with the backlog full nothing more is read."""
+    ground = grounds("fprime")
+    link = links("comDriver", base_id=0x1000, port=ground.port, framing="fprime", max_file_backlog=4,
+                 max_file_packets_per_tick=2)
+    h = fprime_harness(link)
+    link.start_socket_task()
+    ground.accept()
+    frames = [ground.framer.frame(p) for p in _file_packets(link, 10)[0]]
+    ground.send(b"".join(frames[:4]))
+    wait_for(lambda: len(link._file_uplink) == 4)
+    ground.send(b"".join(frames[4:]))
+    time.sleep(0.3)  # the rest waits in the socket, unread
+    assert len(link._file_uplink) == 4
+    wait_for(lambda: len(h.from_port("fileOut")) == 10, step=lambda: h.invoke("schedIn", 0))
+    offsets = [struct.unpack_from(">I", c.args[0], 5)[0] for c in h.from_port("fileOut")]
+    assert offsets == [4 * i for i in range(10)]  # all of them, in order
+    assert link.uplink_unroutable == 0 and link.uplink_overflow == 0
+
+
+def test_file_in_queues_downlink_file_packets(fprime_harness, links):
+    link = links("comDriver", base_id=0x1000, port=9)  # never started
+    h = fprime_harness(link)
+    h.invoke("fileIn", b"\x00\x03\x00\x00\x00\x00\x00")
+    assert list(link._downlink) == [b"\x00\x03\x00\x00\x00\x00\x00"]
 
 
 # --- in the reference deployment --------------------------------------------------------------------
