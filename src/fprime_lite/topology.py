@@ -17,6 +17,7 @@ from typing import Iterator, NamedTuple
 
 from .component import Component
 from .errors import FprimeLiteError, PortConnectionError
+from .fw_ports import Ping
 
 __all__ = ["Topology", "Instance", "Connection", "PATTERN_PORTS", "TopologyError"]
 
@@ -41,7 +42,13 @@ PATTERN_PORTS = {
     "telemetry": [("telemetry", "TlmRecv", "to service")],
     "param": [("param get", "getPrm", "to service"), ("param set", "setPrm", "to service")],
     "time": [("time get", "timeGetPort", "to service")],
+    # FPP's health pattern: every other instance with a Svc.Ping input and output is pinged.
+    "health": [("ping", "PingReturn", "to service"), ("ping", "PingSend", "from service")],
 }
+
+#: Thresholds (health Run ticks) of the ping entries the health pattern makes, as F´'s Ref deployment.
+HEALTH_WARN_CYCLES = 3
+HEALTH_FATAL_CYCLES = 5
 
 
 @dataclass
@@ -121,6 +128,9 @@ class Topology:
         for kind, service_name in services.items():
             service = self.instance(service_name).component
             self.patterns[kind] = service_name
+            if kind == "health":
+                self._connect_health(service_name)
+                continue
             next_index: dict[str, int] = {}
             for client in self.instances.values():
                 comp = client.component
@@ -142,6 +152,31 @@ class Topology:
                         index = self._pattern_index(kind, service_port, out, next_index, service_name)
                         self.connect(service_name, service_port, index, client.qualified_name, client_port, 0,
                                      group=f"pattern:{kind}")
+
+    def _connect_health(self, service_name: str) -> None:
+        """Ping every instance that answers pings, one ``PingSend``/``PingReturn`` index each, and
+        give the health component a ping entry per instance, named by its qualified name."""
+        health = self.instance(service_name).component
+        send, answer = health.output_port("PingSend"), health.input_port("PingReturn")
+        entries = [entry.name for entry in health.entries]
+        for client in self.instances.values():
+            comp = client.component
+            if comp is health:
+                continue
+            ping_in = [n for n, port in comp.input_ports.items() if port.port_type is Ping]
+            ping_out = [n for n, port in comp.output_ports.items() if port.port_type is Ping]
+            if len(ping_in) != 1 or len(ping_out) != 1 or comp.output_port(ping_out[0]).is_connected(0):
+                continue
+            index = len(entries)
+            if index >= len(send):
+                raise PortConnectionError(f"{service_name}.PingSend has {len(send)} indices, too few for every "
+                                          f"component that answers pings; leave some out of the health pattern")
+            self.connect(service_name, "PingSend", index, client.qualified_name, ping_in[0], 0, group="pattern:health")
+            self.connect(client.qualified_name, ping_out[0], 0, service_name, "PingReturn", index,
+                         group="pattern:health")
+            entries.append(client.qualified_name)
+        health.set_ping_entries([*health.entries, *((name, HEALTH_WARN_CYCLES, HEALTH_FATAL_CYCLES)
+                                                     for name in entries[len(health.entries):])])
 
     def _pattern_index(self, kind, service_port, port, next_index, service_name) -> int:
         # Command registration and dispatch share one index per client, as FPP allocates them.

@@ -1,10 +1,13 @@
 """Topology YAML: loading, wiring, validation messages with file:line, DOT/Mermaid export."""
 
+import pathlib
 import textwrap
 
 import pytest
 
 from fprime_lite.topology_loader import TopologyError, load_topology
+
+REFERENCE = pathlib.Path(__file__).parents[2] / "deployments" / "proves_ref" / "topology.yaml"
 
 PARTS = '''
 from fprime_lite import (F64, U32, Channel, Event, OutputPort, Param, PassiveComponent, PortType,
@@ -285,3 +288,30 @@ def test_include_a_subtopology_module(parts):
     bad = text.replace("include: core.yaml", "include: missing.yaml")
     with pytest.raises(TopologyError, match=r"topology\.yaml:4: module 'Core': include file 'missing\.yaml' not found"):
         load_topology(write(parts, bad))
+
+
+def test_health_pattern_pings_every_component_that_answers_pings():
+    """FPP's health pattern: one PingSend/PingReturn index and one ping entry per answering instance;
+    a component that stops answering is reported late."""
+    from fprime_lite.deployment import Deployment
+    from fprime_lite.topology import HEALTH_FATAL_CYCLES, HEALTH_WARN_CYCLES
+
+    loaded = load_topology(REFERENCE)
+    topo = loaded.topology
+    health = topo.instance("CdhCore.health").component
+    names = [e.name for e in health.entries]
+    assert {"CdhCore.cmdDisp", "CdhCore.events", "CdhCore.tlmSend", "FileHandling.prmDb",
+            "ReferenceDeployment.rateGroup50Hz", "ReferenceDeployment.cmdSeq"} <= set(names)
+    assert "CdhCore.health" not in names
+    assert all((e.warn_cycles, e.fatal_cycles) == (HEALTH_WARN_CYCLES, HEALTH_FATAL_CYCLES) for e in health.entries)
+    index = names.index("ReferenceDeployment.cmdSeq")
+    assert health.output_port("PingSend").target_name(index) == "cmdSeq.pingIn[0]"
+    deployment = Deployment(loaded)
+    deployment.start()
+    deployment.run_for(10)
+    assert health.warnings == 0
+    seq = topo.instance("ReferenceDeployment.cmdSeq").component
+    seq.output_port("pingOut").calls[0] = lambda key: None  # stops answering
+    deployment.run_for(HEALTH_WARN_CYCLES + 1)
+    assert health.warnings == 1
+    assert [t.entry.name for t in health._trackers if t.cycle_count > 1] == ["ReferenceDeployment.cmdSeq"]

@@ -17,7 +17,7 @@ import time as _wall
 
 from ..component import ActiveComponent, PassiveComponent
 from ..events import Event, Severity
-from ..fw_ports import Cycle, Sched
+from ..fw_ports import Cycle, Ping, Sched
 from ..ports import OutputPort, async_input, sync_input
 from ..telemetry import Channel
 from ..time import Time
@@ -102,12 +102,15 @@ class ActiveRateGroup(_RateGroup, ActiveComponent):
     """F´'s ActiveRateGroup: ``CycleIn`` is queued; members run when the group is dispatched.
 
     In a deterministic deployment a cycle that finds the group idle runs at once, as the
-    top-priority rate-group thread would (``run_when_idle``, decision 0004).
+    top-priority rate-group thread would (``run_when_idle``, decision 0004). ``PingIn`` answers
+    health pings on ``PingOut``, as F´'s does.
 
     Args:
         contexts: the context passed to member ``i`` (up to ten).
         period_us: the group's period, for slip detection in the deployment's clock.
     """
+
+    PingOut = OutputPort(Ping)
 
     def __init__(self, name: str, *, base_id: int = 0, queue_size: int = 10, contexts=(),
                  period_us: int | None = None):
@@ -120,6 +123,12 @@ class ActiveRateGroup(_RateGroup, ActiveComponent):
     def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
         self._pending = len(self._queue._heap)  # cycles still waiting behind this one
         self._cycle(cycle_start)
+
+    @async_input(Ping)
+    def PingIn(self, key: int) -> None:  # noqa: N802 - F´ port name
+        """Health ping: answer with the same key."""
+        if self.is_connected("PingOut", 0):
+            self.PingOut[0](key)
 
 
 class PassiveRateGroup(_RateGroup, PassiveComponent):
