@@ -10,7 +10,7 @@ import os
 import pathlib
 import tempfile
 
-__all__ = ["atomic_write_bytes", "atomic_write_text"]
+__all__ = ["atomic_write_bytes", "atomic_write_text", "file_mode_for", "fsync_directory"]
 
 
 def atomic_write_bytes(path, data: bytes) -> None:
@@ -19,7 +19,7 @@ def atomic_write_bytes(path, data: bytes) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
     try:
-        os.chmod(tmp, _mode_for(path))
+        os.chmod(tmp, file_mode_for(path))
         with os.fdopen(fd, "wb") as f:
             f.write(data)
             f.flush()
@@ -31,7 +31,7 @@ def atomic_write_bytes(path, data: bytes) -> None:
         except FileNotFoundError:
             pass
         raise
-    _fsync_dir(path.parent)
+    fsync_directory(path.parent)
 
 
 def atomic_write_text(path, text: str) -> None:
@@ -39,17 +39,18 @@ def atomic_write_text(path, text: str) -> None:
     atomic_write_bytes(path, text.encode("utf-8"))
 
 
-def _mode_for(path: pathlib.Path) -> int:
+def file_mode_for(path) -> int:
     """Keep an existing file's permissions; a new file gets the usual ``0o666 & ~umask``."""
     try:
-        return path.stat().st_mode & 0o7777
+        return pathlib.Path(path).stat().st_mode & 0o7777
     except FileNotFoundError:
         umask = os.umask(0)
         os.umask(umask)
         return 0o666 & ~umask
 
 
-def _fsync_dir(folder: pathlib.Path) -> None:
+def fsync_directory(folder) -> None:
+    """Make a rename or a new file in ``folder`` durable (best effort: errors are ignored)."""
     try:
         fd = os.open(folder, os.O_RDONLY)
     except OSError:
