@@ -202,23 +202,31 @@ def _build_spec(cls) -> ComponentSpec:
             spec.outputs[key] = decl
         elif isinstance(value, Event):
             decl = copy.copy(value)
-            decl.name = key
+            decl.name = decl.attr = key
             decl.finish(owner)
             spec.events.append(decl)
         elif isinstance(value, Channel):
             decl = copy.copy(value)
-            decl.name = key
+            decl.attr, decl.name = key, value.fprime_name or key
             decl.finish(owner)
             spec.channels.append(decl)
         elif isinstance(value, Param):
             decl = copy.copy(value)
-            decl.name = key
+            decl.attr, decl.name = key, value.fprime_name or key
             decl.finish(owner)
             spec.params.append(decl)
-            ordered_commands.append((CommandDecl(f"{key}_PRM_SET", "set", [("val", decl.type)],
-                                                 opcode=decl.set_opcode, param=decl), f"command {key}_PRM_SET"))
-            ordered_commands.append((CommandDecl(f"{key}_PRM_SAVE", "save", [], opcode=decl.save_opcode,
-                                                 param=decl), f"command {key}_PRM_SAVE"))
+            prm = decl.name
+            ordered_commands.append((CommandDecl(f"{prm}_PRM_SET", "set", [("val", decl.type)],
+                                                 opcode=decl.set_opcode, param=decl), f"command {prm}_PRM_SET"))
+            ordered_commands.append((CommandDecl(f"{prm}_PRM_SAVE", "save", [], opcode=decl.save_opcode,
+                                                 param=decl), f"command {prm}_PRM_SAVE"))
+    for what, items in (("channel", spec.channels), ("parameter", spec.params)):
+        seen_names: dict[str, str] = {}
+        for decl in items:
+            if decl.name in seen_names:
+                raise DeclarationError(f"{owner}: {what}s {seen_names[decl.name]} and {decl.attr} both have the "
+                                       f"F´ name {decl.name!r}; give one of them another name=")
+            seen_names[decl.name] = decl.attr
     names = {}
     for decl, label in ordered_commands:
         if decl.name in names:
@@ -305,17 +313,17 @@ class Component(metaclass=ComponentMeta):
         self._events = {}
         for e in spec.events:
             bound = BoundEvent(self, e, base_id + e.local_id)
-            setattr(self, e.name, bound)
+            setattr(self, e.attr, bound)
             self._events[e.name] = bound
         self._channels = {}
         for c in spec.channels:
             bound = BoundChannel(self, c, base_id + c.local_id)
-            setattr(self, c.name, bound)
+            setattr(self, c.attr, bound)
             self._channels[c.name] = bound
         self._params = {}
         for p in spec.params:
             bound = BoundParam(self, p, base_id + p.local_id)
-            setattr(self, p.name, bound)
+            setattr(self, p.attr, bound)
             self._params[p.name] = bound
         self._inputs: dict[str, InputPortArray] = {}
         for decl in spec.inputs.values():

@@ -19,6 +19,13 @@ class DeclarationError(FprimeLiteError):
     """
 
 
+def check_member_name(name, what: str):
+    """``name`` if it is None or a valid F´ member name (an identifier); else DeclarationError."""
+    if name is not None and not (isinstance(name, str) and name.isidentifier()):
+        raise DeclarationError(f"{what} name must be an identifier, got {name!r}")
+    return name
+
+
 class SerializationError(FprimeLiteError, ValueError):
     """A value does not fit its F´ type, or bytes do not deserialize to that type."""
 

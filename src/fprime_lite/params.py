@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .errors import DeclarationError, SerializationError
+from .errors import DeclarationError, SerializationError, check_member_name
 from .types import FwEnum, FwType, fw_type
 
 __all__ = ["ParamValid", "Param"]
@@ -32,10 +32,13 @@ class ParamValid(FwEnum, namespace="Fw"):
 
 
 class Param:
-    """Declares a parameter of F´ type ``type_`` with an optional ``default``."""
+    """Declares a parameter of F´ type ``type_`` with an optional ``default``.
+
+    ``name`` gives the parameter an F´ name other than its attribute's (see :class:`Channel`).
+    """
 
     def __init__(self, type_: Any, *, default: Any = _NO_DEFAULT, id: int | None = None,  # noqa: A002
-                 set_opcode: int | None = None, save_opcode: int | None = None):
+                 set_opcode: int | None = None, save_opcode: int | None = None, name: str | None = None):
         for label, value in (("id", id), ("set_opcode", set_opcode), ("save_opcode", save_opcode)):
             if value is not None and (not isinstance(value, int) or value < 0):
                 raise DeclarationError(f"param {label} must be a non-negative integer, got {value!r}")
@@ -47,7 +50,9 @@ class Param:
         self.local_id = id
         self.set_opcode = set_opcode
         self.save_opcode = save_opcode
+        self.fprime_name = check_member_name(name, "param")
         self.name = ""
+        self.attr = ""
 
     def __set_name__(self, owner, name):
         self.name = name

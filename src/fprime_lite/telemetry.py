@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .errors import DeclarationError
+from .errors import DeclarationError, check_member_name
 from .events import translate_format
 from .time import Time
 from .types import F64, EnumType, FwType, fw_type
@@ -30,10 +30,13 @@ class Channel:
     """Declares a telemetry channel of F´ type ``type_``.
 
     ``low`` and ``high`` are optional limits, e.g. ``high={"yellow": 10.0, "red": 20.0}``.
+    ``name`` gives the channel an F´ name other than its attribute's (F´ lets a channel share its
+    name with an event or a parameter; Python attributes cannot).
     """
 
     def __init__(self, type_: Any, *, id: int | None = None, update: str = "always",  # noqa: A002
-                 format: str | None = None, low: dict | None = None, high: dict | None = None):
+                 format: str | None = None, low: dict | None = None, high: dict | None = None,
+                 name: str | None = None):
         if update not in _UPDATES:
             raise DeclarationError(f"channel update must be 'always' or 'on change', got {update!r}")
         if id is not None and (not isinstance(id, int) or id < 0):
@@ -49,7 +52,9 @@ class Channel:
         self.format = format
         self.low = dict(low or {})
         self.high = dict(high or {})
+        self.fprime_name = check_member_name(name, "channel")
         self.name = ""
+        self.attr = ""
 
     def __set_name__(self, owner, name):
         self.name = name

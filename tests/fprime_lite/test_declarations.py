@@ -286,3 +286,28 @@ def test_declarations_leave_the_class_attributes_so_instance_lookups_stay_fast()
     assert type(d.xOut) is list and d.Prm.value == 3 and d.Shared.decl.name == "Shared"
     with pytest.raises(AttributeError, match="'Derived' has no attribute 'nothing'"):
         Derived.nothing  # noqa: B018
+
+
+def test_channels_and_params_may_share_an_event_s_fprime_name_through_name():
+    """F´ lets an event, a channel and a parameter share a name; attributes cannot, so ``name=``."""
+
+    class Comp(PassiveComponent):
+        Level = Event(Severity.ACTIVITY_LO, "level {}", value=U32)
+        Level_channel = Channel(U32, name="Level")
+        Level_param = Param(U32, default=1, name="Level")
+
+    spec = Comp.__fprime_spec__
+    assert [c.name for c in spec.channels] == ["Level"] and [p.name for p in spec.params] == ["Level"]
+    assert [c.name for c in spec.commands] == ["Level_PRM_SET", "Level_PRM_SAVE"]
+    comp = Comp("comp")
+    assert comp.channels["Level"] is comp.Level_channel and comp.params["Level"] is comp.Level_param
+    assert comp.events["Level"] is comp.Level
+
+
+def test_two_channels_with_one_fprime_name_are_refused():
+    with pytest.raises(DeclarationError, match="channels A and B both have the F´ name 'A'"):
+        class Comp(PassiveComponent):
+            A = Channel(U32)
+            B = Channel(U32, name="A")
+    with pytest.raises(DeclarationError, match="channel name must be an identifier, got 'a b'"):
+        Channel(U32, name="a b")
