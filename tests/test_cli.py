@@ -13,7 +13,7 @@ TOPOLOGY = str(ROOT / "deployments" / "proves_ref" / "topology.yaml")
 
 def test_check_reports_ok(capsys):
     assert main(["check", TOPOLOGY]) == 0
-    assert "OK — deployment ReferenceDeployment: 20 instances" in capsys.readouterr().out
+    assert "OK — deployment ReferenceDeployment: 24 instances" in capsys.readouterr().out
 
 
 def test_dict_writes_a_dictionary_with_flight_names(tmp_path, capsys):

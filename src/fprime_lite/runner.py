@@ -24,6 +24,7 @@ from .atomic import atomic_write_text
 from .deployment import Deployment
 from .dictionary import write_dictionary
 from .ground import GroundRecorder
+from .svc.file_downlink import FileDownlink
 from .svc.rate_groups import _RateGroup
 from .topology_loader import LoadedDeployment
 
@@ -49,6 +50,9 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     recorder = GroundRecorder(topo, out, on_event=lambda e: [r.on_event(e) for r in reports
                                                              if hasattr(r, "on_event")])
     recorder.attach(topo, topo.patterns.get("event"), topo.patterns.get("telemetry"))
+    for instance in topo.instances.values():
+        if isinstance(instance.component, FileDownlink):
+            recorder.attach_file_downlink(topo, instance.qualified_name)
     write_dictionary(topo, out / "dictionary.json")
     for r in reports:
         if hasattr(r, "begin"):
@@ -93,6 +97,8 @@ def _summary(deployment: Deployment, recorder: GroundRecorder, reports, sim_s: f
         "member_faults": sum(g.member_faults for g in rate_groups),
         "handler_faults": sum(c.handler_faults for c in topo.components()),
         "undecodable_packets": recorder.undecodable,
+        "files_downlinked": [{"destination": f.destination, "path": str(f.path), "bytes": f.received_bytes,
+                              "status": f.status} for f in recorder.files.files],
     }
     for r in reports:
         summary.update(r.summary())
@@ -139,6 +145,8 @@ def _print_summary(summary: dict, console) -> None:
             text = f"{value:,.3f}"
         elif isinstance(value, dict):
             text = ", ".join(f"{k} {v}" for k, v in value.items()) or "none"
+        elif key == "files_downlinked":
+            text = ", ".join(f"{f['destination']} ({f['status']})" for f in value) or "none"
         else:
             text = "—" if value is None else str(value)
         table.add_row(key, text)

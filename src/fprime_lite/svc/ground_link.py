@@ -478,14 +478,18 @@ def add_ground_link(topology, *, host: str = DEFAULT_HOST, port: int = DEFAULT_P
       connect to ``comIn``;
     - commands: ``commandOut`` connects to the first free ``seqCmdBuff[k]`` of the ``command``
       service, whose ``seqCmdStatus[k]`` answers on ``cmdResponseIn``;
+    - files: ``fileOut`` connects to the ``bufferSendIn`` of the topology's FileUplink, and its
+      FileDownlink's ``bufferSendOut`` to ``fileIn`` (when the topology has them);
     - the link's own events, telemetry and time connect to the same services as everyone else's;
     - ``schedIn`` becomes a member of ``rate_group`` (default: the fastest rate group with room).
 
     ``module`` defaults to the module named after the deployment (``ReferenceDeployment``), else
     ``Com``. Raises :class:`~fprime_lite.topology.TopologyError` when the topology cannot take it.
     """
-    from ..svc.rate_groups import _RateGroup
     from ..topology import TopologyError
+    from .file_downlink import FileDownlink
+    from .file_uplink import FileUplink
+    from .rate_groups import _RateGroup
 
     problems = [f"the topology has no '{kind}' pattern; the ground link needs its {kind} service"
                 for kind in ("command", "event", "telemetry") if kind not in topology.patterns]
@@ -525,6 +529,13 @@ def add_ground_link(topology, *, host: str = DEFAULT_HOST, port: int = DEFAULT_P
     k = free[0]
     topology.connect(qualified, "commandOut", 0, dispatcher_name, "seqCmdBuff", k, group="Uplink")
     topology.connect(dispatcher_name, "seqCmdStatus", k, qualified, "cmdResponseIn", 0, group="Uplink")
+
+    for instance in list(topology.instances.values()):
+        comp = instance.component
+        if isinstance(comp, FileUplink) and not link.is_connected("fileOut", 0):
+            topology.connect(qualified, "fileOut", 0, instance.qualified_name, "bufferSendIn", 0, group="Uplink")
+        elif isinstance(comp, FileDownlink) and not comp.is_connected("bufferSendOut", 0):
+            topology.connect(instance.qualified_name, "bufferSendOut", 0, qualified, "fileIn", 0, group="Downlink")
 
     groups = [i for i in topology.instances.values() if isinstance(i.component, _RateGroup)]
     if rate_group is not None:

@@ -1,0 +1,804 @@
+"""Svc.FileManager: ground commands that work on the flight computer's files and directories.
+
+F´'s ``Svc.FileManager`` (instance ``fileManager`` in F´'s FileHandling subtopology), as F´ v4.2
+declares it — the last v4 release with ``ShellCommand`` (F´ removed it after v4.2). Command names,
+opcodes, argument names and string bounds, event names, ids, severities, arguments and formats and
+the two channels are F´'s, so fprime-gds encodes and decodes them from the dictionary unchanged.
+
+Each command logs its ``...Started`` event, performs the operation, then logs ``...Succeeded`` (or
+the command's error event carrying the F´ ``Os`` status number), counts ``CommandsExecuted`` or
+``Errors`` and answers OK or EXECUTION_ERROR — as F´'s ``FileManager.cpp`` does:
+
+- ``CreateDirectory`` (0x00) makes one directory; an existing one is an error (ALREADY_EXISTS).
+- ``MoveFile`` (0x01) renames; across file systems (EXDEV) a regular file is copied next to the
+  destination, fsynced, renamed into place, then the source is removed.
+- ``RemoveDirectory`` (0x02) removes an empty directory.
+- ``RemoveFile`` (0x03) removes a file; with ``ignoreErrors`` a failure still logs
+  ``FileRemoveError`` and counts an error, but answers OK.
+- ``ShellCommand`` (0x04) runs a shell command with its output appended to ``logFileName``; the
+  status reported is the wait status ``system()`` returns in F´ (exit code × 256, or the signal
+  number). **Refused unless the component was built with ``allow_shell=True``.**
+- ``AppendFile`` (0x05) appends ``source`` to ``target`` (created if missing).
+- ``FileSize`` (0x06) reports the size in ``FileSizeSucceeded``.
+- ``ListDirectory`` (0x07) logs one ``DirectoryListing`` / ``DirectoryListingSubdir`` event per
+  entry, ``files_per_tick`` entries per ``schedIn`` tick (connect it to a rate group), then
+  ``ListDirectorySucceeded``; the command is answered when the listing ends. A second
+  ListDirectory during a listing is refused (``ListDirectoryError`` with Directory OTHER_ERROR, 10).
+- ``CalculateCrc`` (0x08) reports the file's CRC-32 as F´'s ``Os::File::calculateCrc`` computes it
+  (``zlib.crc32(data) ^ 0xFFFFFFFF``); like F´, it touches neither channel.
+
+Relative paths are resolved against ``root`` (default: the current directory when the component is
+built); events show the paths as commanded. Status numbers are F´'s enums, given here as
+:class:`FileSystemStatus`, :class:`FileStatus` and :class:`DirectoryStatus`; the Python log line of
+each failure names the status and the OS error.
+
+Differences from F´:
+
+- **ShellCommand is disabled by default.** Unless built with ``allow_shell=True`` it runs nothing:
+  ``ShellCommandFailed`` with status 0xFFFFFFFF (what F´ reports when ``system()`` cannot run a
+  shell) and the command text followed by ``[refused: ShellCommand is disabled in this
+  deployment]``, EXECUTION_ERROR, ``Errors`` + 1. When allowed, the command runs with
+  ``subprocess`` (``/bin/sh``, in ``root``, stdin closed) in its own process group, killed after
+  ``shell_timeout_s`` (default 60 s; reported as killed by SIGKILL, status 9). F´ wraps the text in
+  ``eval '...'`` (a command containing ``'`` breaks there) and has no timeout. A log file that
+  cannot be opened: status 0xFFFFFFFF.
+- **AppendFile is atomic**: the target's content then the source's go to a temporary file in the
+  target's directory, which is fsynced and renamed over the target; the target is either fully
+  appended or unchanged (F´ appends in place; a failure leaves a partial append). A symbolic-link
+  target is resolved first; the new file keeps the target's permissions (hard links to the old
+  file keep the old content).
+- **MoveFile across file systems** copies through a fsynced temporary file (F´: plain copy then
+  remove); a directory cannot be moved across file systems (EXDEV_ERROR).
+- **Status numbers** use the specific F´ status where F´'s POSIX layer falls back to OTHER_ERROR:
+  a non-empty directory is NOT_EMPTY (6), removing a directory with RemoveFile IS_DIR (5), EBUSY
+  BUSY (10), EMFILE/ENFILE FILE_LIMIT (9), EINVAL and a NUL byte in a path INVALID_PATH (7); an
+  empty path is DOESNT_EXIST (8) and never means ``root``. FileSize of a directory is IS_DIR
+  (F´ reports what ``lseek`` says).
+- **ListDirectory** reads the entry names when the command runs and lists them in name order (F´
+  reads them as the listing proceeds, in directory order); entries are stat-ed (symbolic links
+  followed) when they are listed. ``schedIn`` is sync and only queues a tick while a listing is in
+  progress, at most one at a time (F´ v4.2 lists on the rate group's thread; later F´ queues one
+  ``run`` message as here). ``FileNameFormatError`` is logged for an entry whose name is not UTF-8
+  (status OTHER_ERROR); F´ logs it when the full path overflows its string (never here).
+- Strings: event string arguments longer than their bound are cut (on a UTF-8 boundary) instead of
+  being truncated by ``Fw::LogStringArg``; command strings are bounded by their declared size (F´
+  also limits them to ``FW_CMD_STRING_MAX_SIZE``).
+- ``FileSizeSucceeded.size`` and ``DirectoryListing.fileSize`` are ``FwSizeType``, declared here as
+  U64 (same encoding). ``Fw.StringFormatStatus`` is declared in this module.
+"""
+
+from __future__ import annotations
+
+import enum
+import errno as _errno
+import logging
+import os
+import shutil
+import signal
+import stat as _stat
+import subprocess
+import tempfile
+import threading
+import zlib
+from dataclasses import dataclass
+
+from ..atomic import fsync_directory
+from ..commands import CmdResponse, CommandToken, async_command
+from ..component import ActiveComponent
+from ..events import Event, Severity
+from ..fw_ports import Ping, Sched
+from ..ports import OutputPort, async_input, sync_input
+from ..telemetry import Channel
+from ..types import BOOL, U8, U32, U64, FwEnum, String
+
+__all__ = [
+    "FileManager", "FileSystemStatus", "FileStatus", "DirectoryStatus", "StringFormatStatus",
+    "filesystem_status", "file_status", "directory_status", "file_crc", "wait_status",
+    "FILE_NAME_STRING_SIZE", "CMD_STRING_SIZE", "FILES_PER_RATE_TICK", "SHELL_NOT_RUN",
+    "DEFAULT_SHELL_TIMEOUT_S",
+]
+
+log = logging.getLogger("fprime_lite")
+
+#: F´'s ``FileNameStringSize``: ListDirectory / CalculateCrc arguments and their events.
+FILE_NAME_STRING_SIZE = 200
+#: The ``string size 256`` of F´ v4.2's original FileManager commands and events.
+CMD_STRING_SIZE = 256
+#: Directory entries listed per ``schedIn`` tick (F´ ``FileManagerConfig::FILES_PER_RATE_TICK``).
+FILES_PER_RATE_TICK = 1
+#: ShellCommand status when no shell ran (``system()`` returning -1, as a U32).
+SHELL_NOT_RUN = 0xFFFFFFFF
+DEFAULT_SHELL_TIMEOUT_S = 60.0
+_SHELL_REFUSED = " [refused: ShellCommand is disabled in this deployment]"
+
+_PATH = String(CMD_STRING_SIZE)
+_NAME = String(FILE_NAME_STRING_SIZE)
+_CHUNK = 64 * 1024
+_TMP_PREFIX = ".fileManager-"
+
+
+# --- F´'s Os status enums --------------------------------------------------------------------------
+
+class FileSystemStatus(enum.IntEnum):
+    """F´ ``Os::FileSystem::Status`` (``Os.FileSystemStatus``): most commands' error status."""
+
+    OP_OK = 0
+    ALREADY_EXISTS = 1
+    NO_SPACE = 2
+    NO_PERMISSION = 3
+    NOT_DIR = 4
+    IS_DIR = 5
+    NOT_EMPTY = 6
+    INVALID_PATH = 7
+    DOESNT_EXIST = 8
+    FILE_LIMIT = 9
+    BUSY = 10
+    NO_MORE_FILES = 11
+    BUFFER_TOO_SMALL = 12
+    EXDEV_ERROR = 13
+    OVERFLOW_ERROR = 14
+    NOT_SUPPORTED = 15
+    OTHER_ERROR = 16
+
+
+class FileStatus(enum.IntEnum):
+    """F´ ``Os::File::Status``: the status of ``CalculateCrcFailed``."""
+
+    OP_OK = 0
+    DOESNT_EXIST = 1
+    NO_SPACE = 2
+    NO_PERMISSION = 3
+    BAD_SIZE = 4
+    NOT_OPENED = 5
+    FILE_EXISTS = 6
+    NOT_SUPPORTED = 7
+    INVALID_MODE = 8
+    INVALID_ARGUMENT = 9
+    NO_MORE_RESOURCES = 10
+    OTHER_ERROR = 11
+
+
+class DirectoryStatus(enum.IntEnum):
+    """F´ ``Os::Directory::Status``: the status of ``ListDirectoryError``."""
+
+    OP_OK = 0
+    DOESNT_EXIST = 1
+    NO_PERMISSION = 2
+    NOT_OPENED = 3
+    NOT_DIR = 4
+    NO_MORE_FILES = 5
+    FILE_LIMIT = 6
+    BAD_DESCRIPTOR = 7
+    ALREADY_EXISTS = 8
+    NOT_SUPPORTED = 9
+    OTHER_ERROR = 10
+
+
+class StringFormatStatus(FwEnum, namespace="Fw", rep=U8):
+    """F´ ``Fw.StringFormatStatus`` (the status of ``FileNameFormatError``)."""
+
+    SUCCESS = 0
+    OVERFLOWED = 1
+    INVALID_FORMAT_STRING = 2
+    SIZE_OVERFLOW = 3
+    OTHER_ERROR = 4
+
+
+def _errno_of(exc: BaseException) -> int | None:
+    return exc.errno if isinstance(exc, OSError) else None
+
+
+_FS_BY_ERRNO = {
+    _errno.EEXIST: FileSystemStatus.ALREADY_EXISTS,
+    _errno.ENOSPC: FileSystemStatus.NO_SPACE,
+    _errno.EFBIG: FileSystemStatus.NO_SPACE,
+    _errno.EDQUOT: FileSystemStatus.NO_SPACE,
+    _errno.EACCES: FileSystemStatus.NO_PERMISSION,
+    _errno.EPERM: FileSystemStatus.NO_PERMISSION,
+    _errno.EROFS: FileSystemStatus.NO_PERMISSION,
+    _errno.EFAULT: FileSystemStatus.NO_PERMISSION,
+    _errno.ENOTDIR: FileSystemStatus.NOT_DIR,
+    _errno.EISDIR: FileSystemStatus.IS_DIR,
+    _errno.ENOTEMPTY: FileSystemStatus.NOT_EMPTY,
+    _errno.ENAMETOOLONG: FileSystemStatus.INVALID_PATH,
+    _errno.EINVAL: FileSystemStatus.INVALID_PATH,
+    _errno.ENOENT: FileSystemStatus.DOESNT_EXIST,
+    _errno.ELOOP: FileSystemStatus.DOESNT_EXIST,
+    _errno.EMLINK: FileSystemStatus.FILE_LIMIT,
+    _errno.EMFILE: FileSystemStatus.FILE_LIMIT,
+    _errno.ENFILE: FileSystemStatus.FILE_LIMIT,
+    _errno.EBUSY: FileSystemStatus.BUSY,
+    _errno.ETXTBSY: FileSystemStatus.BUSY,
+    _errno.ERANGE: FileSystemStatus.BUFFER_TOO_SMALL,
+    _errno.EXDEV: FileSystemStatus.EXDEV_ERROR,
+    _errno.EOVERFLOW: FileSystemStatus.OVERFLOW_ERROR,
+    _errno.ENOSYS: FileSystemStatus.NOT_SUPPORTED,
+    _errno.EOPNOTSUPP: FileSystemStatus.NOT_SUPPORTED,
+    _errno.ENOTSUP: FileSystemStatus.NOT_SUPPORTED,
+}
+
+_FILE_BY_ERRNO = {
+    _errno.ENOENT: FileStatus.DOESNT_EXIST,
+    _errno.ENOSPC: FileStatus.NO_SPACE,
+    _errno.EFBIG: FileStatus.NO_SPACE,
+    _errno.EACCES: FileStatus.NO_PERMISSION,
+    _errno.EPERM: FileStatus.NO_PERMISSION,
+    _errno.EEXIST: FileStatus.FILE_EXISTS,
+    _errno.EBADF: FileStatus.NOT_OPENED,
+    _errno.ENOSYS: FileStatus.NOT_SUPPORTED,
+    _errno.EOPNOTSUPP: FileStatus.NOT_SUPPORTED,
+    _errno.ENOTSUP: FileStatus.NOT_SUPPORTED,
+    _errno.EINVAL: FileStatus.INVALID_ARGUMENT,
+    _errno.EMFILE: FileStatus.NO_MORE_RESOURCES,
+    _errno.ENFILE: FileStatus.NO_MORE_RESOURCES,
+}
+
+_DIR_BY_ERRNO = {
+    _errno.ENOENT: DirectoryStatus.DOESNT_EXIST,
+    _errno.EACCES: DirectoryStatus.NO_PERMISSION,
+    _errno.EPERM: DirectoryStatus.NO_PERMISSION,
+    _errno.ENOTDIR: DirectoryStatus.NOT_DIR,
+    _errno.EEXIST: DirectoryStatus.ALREADY_EXISTS,
+    _errno.EMFILE: DirectoryStatus.FILE_LIMIT,
+    _errno.ENFILE: DirectoryStatus.FILE_LIMIT,
+    _errno.EBADF: DirectoryStatus.BAD_DESCRIPTOR,
+    _errno.ENOSYS: DirectoryStatus.NOT_SUPPORTED,
+    _errno.EOPNOTSUPP: DirectoryStatus.NOT_SUPPORTED,
+}
+
+
+def filesystem_status(exc: BaseException) -> FileSystemStatus:
+    """The F´ ``Os::FileSystem`` status for an exception of a file-system call."""
+    if isinstance(exc, ValueError):  # a NUL byte in a path
+        return FileSystemStatus.INVALID_PATH
+    return _FS_BY_ERRNO.get(_errno_of(exc), FileSystemStatus.OTHER_ERROR)
+
+
+def file_status(exc: BaseException) -> FileStatus:
+    """The F´ ``Os::File`` status for an exception of opening or reading a file."""
+    if isinstance(exc, ValueError):
+        return FileStatus.INVALID_ARGUMENT
+    return _FILE_BY_ERRNO.get(_errno_of(exc), FileStatus.OTHER_ERROR)
+
+
+def directory_status(exc: BaseException) -> DirectoryStatus:
+    """The F´ ``Os::Directory`` status for an exception of opening or reading a directory."""
+    return _DIR_BY_ERRNO.get(_errno_of(exc), DirectoryStatus.OTHER_ERROR)
+
+
+def file_crc(path) -> int:
+    """The CRC F´'s ``Os::File::calculateCrc`` gives a file: CRC-32 without the final inversion."""
+    crc = 0
+    with _open_regular(path) as f:
+        while chunk := f.read(_CHUNK):
+            crc = zlib.crc32(chunk, crc)
+    return crc ^ 0xFFFFFFFF
+
+
+def wait_status(returncode: int) -> int:
+    """``subprocess`` return code -> what ``system()`` returns (exit code << 8, or the signal)."""
+    if returncode >= 0:
+        return (returncode & 0xFF) << 8
+    return (-returncode) & 0x7F
+
+
+def _cut(text: str, size: int) -> str:
+    """``text`` as event text: at most ``size`` UTF-8 bytes, undecodable characters replaced."""
+    raw = text.encode("utf-8", errors="replace")
+    if len(raw) <= size:
+        return raw.decode("utf-8")
+    return raw[:size].decode("utf-8", errors="ignore")
+
+
+def _describe(status: enum.IntEnum, exc: BaseException | None) -> str:
+    return f"status {int(status)} ({status.name}){f': {exc}' if exc is not None else ''}"
+
+
+@dataclass
+class _Listing:
+    """A ListDirectory in progress."""
+
+    dir_name: str                      # as commanded (events)
+    path: str                          # resolved
+    names: list[str]
+    token: CommandToken
+    index: int = 0
+    entries: int = 0
+
+
+class FileManager(ActiveComponent):
+    """Ground commands on files and directories (F´ ``Svc.FileManager``).
+
+    Args:
+        name: instance name (``fileManager`` in F´'s FileHandling subtopology).
+        root: directory that relative paths are resolved against (default: the current directory
+            when the component is built).
+        base_id: added to the local opcodes (0–8), event ids (0–0x1D) and channel ids (0–1).
+        queue_size: depth of the message queue.
+        allow_shell: run ShellCommand; when False (the default) it is refused.
+        shell_timeout_s: a shell command still running after this many seconds is killed (its
+            whole process group); None waits for ever.
+        files_per_tick: directory entries ListDirectory reports per ``schedIn`` tick.
+    """
+
+    pingOut = OutputPort(Ping)
+
+    # --- channels (F´ ids) ------------------------------------------------------------------------
+    CommandsExecuted = Channel(U32, id=0)
+    Errors = Channel(U32, id=1)
+
+    # --- events (F´ v4.2 ids, severities, arguments and formats) ---------------------------------
+    DirectoryCreateError = Event(Severity.WARNING_HI, "Could not create directory {}, returned status {}",
+                                 id=0x00, dirName=_PATH, status=U32)
+    DirectoryRemoveError = Event(Severity.WARNING_HI, "Could not remove directory {}, returned status {}",
+                                 id=0x01, dirName=_PATH, status=U32)
+    FileMoveError = Event(Severity.WARNING_HI, "Could not move file {} to file {}, returned status {}",
+                          id=0x02, sourceFileName=_PATH, destFileName=_PATH, status=U32)
+    FileRemoveError = Event(Severity.WARNING_HI, "Could not remove file {}, returned status {}",
+                            id=0x03, fileName=_PATH, status=U32)
+    ShellCommandFailed = Event(Severity.WARNING_HI, "Shell command {} failed with status {}", id=0x04,
+                               command=_PATH, status=U32)
+    AppendFileFailed = Event(Severity.WARNING_HI, "Appending {} onto {} failed with status {}", id=0x05,
+                             source=_PATH, target=_PATH, status=U32)
+    AppendFileSucceeded = Event(Severity.ACTIVITY_HI, "Appended {} to the end of {}", id=0x06,
+                                source=_PATH, target=_PATH)
+    ShellCommandSucceeded = Event(Severity.ACTIVITY_HI, "Shell command {} succeeded", id=0x07,
+                                  command=_PATH)
+    CreateDirectorySucceeded = Event(Severity.ACTIVITY_HI, "Created directory {} successfully", id=0x08,
+                                     dirName=_PATH)
+    RemoveDirectorySucceeded = Event(Severity.ACTIVITY_HI, "Removed directory {} successfully", id=0x09,
+                                     dirName=_PATH)
+    MoveFileSucceeded = Event(Severity.ACTIVITY_HI, "Moved file {} to file {} successfully", id=0x0A,
+                              sourceFileName=_PATH, destFileName=_PATH)
+    RemoveFileSucceeded = Event(Severity.ACTIVITY_HI, "Removed file {} successfully", id=0x0B,
+                                fileName=_PATH)
+    AppendFileStarted = Event(Severity.ACTIVITY_HI, "Appending file {} to the end of {}...", id=0x0C,
+                              source=_PATH, target=_PATH)
+    ShellCommandStarted = Event(Severity.ACTIVITY_HI, "Running shell command {}...", id=0x0D,
+                                command=_PATH)
+    CreateDirectoryStarted = Event(Severity.ACTIVITY_HI, "Creating directory {}...", id=0x0E,
+                                   dirName=_PATH)
+    RemoveDirectoryStarted = Event(Severity.ACTIVITY_HI, "Removing directory {}...", id=0x0F,
+                                   dirName=_PATH)
+    MoveFileStarted = Event(Severity.ACTIVITY_HI, "Moving file {} to file {}...", id=0x10,
+                            sourceFileName=_PATH, destFileName=_PATH)
+    RemoveFileStarted = Event(Severity.ACTIVITY_HI, "Removing file {}...", id=0x11, fileName=_PATH)
+    FileSizeSucceeded = Event(Severity.ACTIVITY_HI, "The size of file {} is {} B", id=0x12,
+                              fileName=_PATH, size=U64)
+    FileSizeError = Event(Severity.WARNING_HI, "Failed to get the size of file {}, returned status {}",
+                          id=0x13, fileName=_PATH, status=U32)
+    FileSizeStarted = Event(Severity.ACTIVITY_HI, "Checking size of file {}...", id=0x14, fileName=_PATH)
+    ListDirectoryStarted = Event(Severity.ACTIVITY_HI, "Listing contents of directory {}...", id=0x15,
+                                 dirName=_NAME)
+    ListDirectorySucceeded = Event(Severity.ACTIVITY_HI, "Directory {} contains {} files", id=0x16,
+                                   dirName=_NAME, fileCount=U32)
+    ListDirectoryError = Event(Severity.WARNING_HI, "Failed to list directory {}, returned status {}",
+                               id=0x17, dirName=_NAME, status=U32)
+    DirectoryListing = Event(Severity.ACTIVITY_HI, "Directory {}: {} ({} bytes)", id=0x18,
+                             dirName=_NAME, fileName=_NAME, fileSize=U64)
+    DirectoryListingSubdir = Event(Severity.ACTIVITY_HI, "Directory {}: {}", id=0x19,
+                                   dirName=_NAME, subdirName=_NAME)
+    CalculateCrcStarted = Event(Severity.ACTIVITY_HI, "Started CRC calculation for file {}", id=0x1A,
+                                fileName=_NAME)
+    CalculateCrcFailed = Event(Severity.WARNING_HI, "Failed CRC calculation for file {}, returned status {}",
+                               id=0x1B, fileName=_NAME, status=U32)
+    CalculateCrcSucceeded = Event(Severity.ACTIVITY_HI, "{} has CRC value 0x{x}", id=0x1C,
+                                  fileName=_NAME, crc=U32)
+    FileNameFormatError = Event(Severity.WARNING_HI, "Failed to format full path for file {} with status {}",
+                                id=0x1D, fileName=_NAME, status=StringFormatStatus)
+
+    def __init__(self, name: str = "fileManager", *, root: str | os.PathLike | None = None,
+                 base_id: int = 0, queue_size: int = 10, allow_shell: bool = False,
+                 shell_timeout_s: float | None = DEFAULT_SHELL_TIMEOUT_S,
+                 files_per_tick: int = FILES_PER_RATE_TICK):
+        super().__init__(name, base_id=base_id, queue_size=queue_size)
+        if shell_timeout_s is not None and (isinstance(shell_timeout_s, bool)
+                                            or not isinstance(shell_timeout_s, (int, float))
+                                            or not shell_timeout_s > 0):
+            raise ValueError(f"{name}: shell_timeout_s must be a positive number of seconds or None, "
+                             f"got {shell_timeout_s!r}")
+        if isinstance(files_per_tick, bool) or not isinstance(files_per_tick, int) or files_per_tick < 1:
+            raise ValueError(f"{name}: files_per_tick must be a positive integer, got {files_per_tick!r}")
+        self.root = os.path.abspath(os.fspath(root) if root is not None else os.getcwd())
+        self.allow_shell = bool(allow_shell)
+        self.shell_timeout_s = shell_timeout_s
+        self.files_per_tick = files_per_tick
+        self._commands_executed = 0
+        self._errors = 0
+        self._listing: _Listing | None = None
+        self._tick_lock = threading.Lock()
+        self._tick_queued = False
+
+    # --- inspection -------------------------------------------------------------------------------
+
+    @property
+    def commands_executed(self) -> int:
+        """The CommandsExecuted count."""
+        return self._commands_executed
+
+    @property
+    def errors(self) -> int:
+        """The Errors count."""
+        return self._errors
+
+    @property
+    def listing_in_progress(self) -> bool:
+        return self._listing is not None
+
+    def resolve(self, path: str) -> str:
+        """The path a command argument names: absolute as given, relative under ``root``."""
+        if path == "":
+            raise FileNotFoundError(_errno.ENOENT, "empty path", path)
+        return os.path.join(self.root, path)
+
+    # --- ports ------------------------------------------------------------------------------------
+
+    @async_input(Ping)
+    def pingIn(self, key: int) -> None:  # noqa: N802 - F´ port name
+        """Health ping: answer with the same key."""
+        if self.is_connected("pingOut", 0):
+            self.pingOut[0](key)
+
+    @sync_input(Sched)
+    def schedIn(self, context: int) -> None:  # noqa: N802 - F´ port name
+        """Rate-group tick: while a listing is in progress, queue one listing step (at most one)."""
+        if self._listing is None:
+            return
+        with self._tick_lock:
+            if self._tick_queued:
+                return
+            self._tick_queued = True
+        queued = self.queue.put(0, self._listing_tick, (), queue_full="drop", port=f"{self.name}.schedIn",
+                                threaded=self._thread is not None)
+        if not queued:
+            with self._tick_lock:
+                self._tick_queued = False
+
+    # --- commands ---------------------------------------------------------------------------------
+
+    @async_command(opcode=0x00)
+    def CreateDirectory(self, dirName: _PATH):  # noqa: N802,N803
+        """Create the directory ``dirName`` (its parent must exist; it must not)."""
+        self.CreateDirectoryStarted(_cut(dirName, CMD_STRING_SIZE))
+        status, cause = self._fs(lambda: os.mkdir(self.resolve(dirName)))
+        if status:
+            self._log_failure("CreateDirectory", dirName, status, cause)
+            self.DirectoryCreateError(_cut(dirName, CMD_STRING_SIZE), status)
+        else:
+            self.CreateDirectorySucceeded(_cut(dirName, CMD_STRING_SIZE))
+        return self._finish(status)
+
+    @async_command(opcode=0x01)
+    def MoveFile(self, sourceFileName: _PATH, destFileName: _PATH):  # noqa: N802,N803
+        """Rename ``sourceFileName`` to ``destFileName`` (copy then remove across file systems)."""
+        src, dst = _cut(sourceFileName, CMD_STRING_SIZE), _cut(destFileName, CMD_STRING_SIZE)
+        self.MoveFileStarted(src, dst)
+        status, cause = self._fs(lambda: self._move(self.resolve(sourceFileName),
+                                                    self.resolve(destFileName)))
+        if status:
+            self._log_failure("MoveFile", f"{sourceFileName} -> {destFileName}", status, cause)
+            self.FileMoveError(src, dst, status)
+        else:
+            self.MoveFileSucceeded(src, dst)
+        return self._finish(status)
+
+    @async_command(opcode=0x02)
+    def RemoveDirectory(self, dirName: _PATH):  # noqa: N802,N803
+        """Remove the empty directory ``dirName``."""
+        self.RemoveDirectoryStarted(_cut(dirName, CMD_STRING_SIZE))
+        status, cause = self._fs(lambda: os.rmdir(self.resolve(dirName)))
+        if status:
+            self._log_failure("RemoveDirectory", dirName, status, cause)
+            self.DirectoryRemoveError(_cut(dirName, CMD_STRING_SIZE), status)
+        else:
+            self.RemoveDirectorySucceeded(_cut(dirName, CMD_STRING_SIZE))
+        return self._finish(status)
+
+    @async_command(opcode=0x03)
+    def RemoveFile(self, fileName: _PATH, ignoreErrors: BOOL):  # noqa: N802,N803
+        """Remove the file ``fileName``; with ``ignoreErrors`` a failure still answers OK."""
+        name = _cut(fileName, CMD_STRING_SIZE)
+        self.RemoveFileStarted(name)
+        status, cause = self._fs(lambda: os.remove(self.resolve(fileName)))
+        if status:
+            self._log_failure("RemoveFile", fileName, status, cause)
+            self.FileRemoveError(name, status)
+            if ignoreErrors:
+                # As F´: counted as an error, never as an executed command, and answered OK.
+                self._count_error()
+                return CmdResponse.OK
+        else:
+            self.RemoveFileSucceeded(name)
+        return self._finish(status)
+
+    @async_command(opcode=0x04)
+    def ShellCommand(self, command: _PATH, logFileName: _PATH):  # noqa: N802,N803
+        """Run ``command`` with the shell, appending its output to ``logFileName`` (if allowed)."""
+        if not self.allow_shell:
+            log.warning("%s: ShellCommand refused (the deployment did not allow shell commands; build "
+                        "FileManager with allow_shell=True to run them): %r", self.name, command)
+            self.ShellCommandFailed(_cut(command + _SHELL_REFUSED, CMD_STRING_SIZE), SHELL_NOT_RUN)
+            return self._finish(FileSystemStatus.OTHER_ERROR)
+        text = _cut(command, CMD_STRING_SIZE)
+        self.ShellCommandStarted(text)
+        status = self._system(command, logFileName)
+        if status == 0:
+            self.ShellCommandSucceeded(text)
+            return self._finish(FileSystemStatus.OP_OK)
+        self.ShellCommandFailed(text, status)
+        return self._finish(FileSystemStatus.OTHER_ERROR)
+
+    @async_command(opcode=0x05)
+    def AppendFile(self, source: _PATH, target: _PATH):  # noqa: N802
+        """Append ``source`` to ``target`` atomically (``target`` is created if missing)."""
+        src, dst = _cut(source, CMD_STRING_SIZE), _cut(target, CMD_STRING_SIZE)
+        self.AppendFileStarted(src, dst)
+        status, cause = self._fs(lambda: self._append(self.resolve(source), self.resolve(target)))
+        if status:
+            self._log_failure("AppendFile", f"{source} -> {target}", status, cause)
+            self.AppendFileFailed(src, dst, status)
+        else:
+            self.AppendFileSucceeded(src, dst)
+        return self._finish(status)
+
+    @async_command(opcode=0x06)
+    def FileSize(self, fileName: _PATH):  # noqa: N802,N803
+        """Report the size of ``fileName`` in FileSizeSucceeded."""
+        name = _cut(fileName, CMD_STRING_SIZE)
+        self.FileSizeStarted(name)
+        size = 0
+
+        def measure():
+            nonlocal size
+            with _open_regular(self.resolve(fileName)) as f:  # F´ opens the file to read its size
+                size = os.fstat(f.fileno()).st_size
+
+        status, cause = self._fs(measure)
+        if status:
+            self._log_failure("FileSize", fileName, status, cause)
+            self.FileSizeError(name, status)
+        else:
+            self.FileSizeSucceeded(name, size)
+        return self._finish(status)
+
+    @async_command(opcode=0x07)
+    def ListDirectory(self, dirName: String(FILE_NAME_STRING_SIZE)):  # noqa: N802,N803
+        """List ``dirName``, ``files_per_tick`` entries per ``schedIn`` tick; answered at the end."""
+        name = _cut(dirName, FILE_NAME_STRING_SIZE)
+        if self._listing is not None:
+            log.warning("%s: ListDirectory %s refused: %s is still being listed", self.name, dirName,
+                        self._listing.dir_name)
+            self.ListDirectoryError(name, DirectoryStatus.OTHER_ERROR)
+            return self._finish(FileSystemStatus.OTHER_ERROR)
+        self.ListDirectoryStarted(name)
+        try:
+            path = self.resolve(dirName)
+            names = sorted(os.listdir(path))
+        except Exception as exc:  # noqa: BLE001 - every failure is reported, none escapes
+            status = directory_status(exc)
+            self._log_failure("ListDirectory", dirName, status, exc)
+            self.ListDirectoryError(name, status)
+            return self._finish(FileSystemStatus.OTHER_ERROR)
+        self._listing = _Listing(dirName, path, names, self.defer_command_response())
+        return None
+
+    @async_command(opcode=0x08)
+    def CalculateCrc(self, filename: String(FILE_NAME_STRING_SIZE)):  # noqa: N802
+        """Report the CRC of ``filename`` (F´'s ``Os::File`` CRC); no channel is updated."""
+        name = _cut(filename, FILE_NAME_STRING_SIZE)
+        self.CalculateCrcStarted(name)
+        try:
+            crc = file_crc(self.resolve(filename))
+        except Exception as exc:  # noqa: BLE001
+            status = file_status(exc)
+            if not isinstance(exc, (OSError, ValueError)):
+                log.exception("%s: CalculateCrc %s: unexpected failure", self.name, filename)
+            self._log_failure("CalculateCrc", filename, status, exc)
+            self.CalculateCrcFailed(name, status)
+            return CmdResponse.EXECUTION_ERROR
+        self.CalculateCrcSucceeded(name, crc)
+        return CmdResponse.OK
+
+    # --- directory listing ------------------------------------------------------------------------
+
+    def _listing_tick(self) -> None:
+        with self._tick_lock:
+            self._tick_queued = False
+        listing = self._listing
+        if listing is None:
+            return
+        try:
+            for _ in range(self.files_per_tick):
+                if listing.index >= len(listing.names):
+                    self._listing = None
+                    self.ListDirectorySucceeded(_cut(listing.dir_name, FILE_NAME_STRING_SIZE),
+                                                listing.entries)
+                    self._count(FileSystemStatus.OP_OK)
+                    self.command_response(listing.token, CmdResponse.OK)
+                    return
+                entry = listing.names[listing.index]
+                listing.index += 1
+                listing.entries += 1
+                self._list_entry(listing, entry)
+        except Exception:  # noqa: BLE001 - a tick must never raise into the rate group
+            log.exception("%s: ListDirectory %s failed", self.name, listing.dir_name)
+            self._listing = None
+            self.ListDirectoryError(_cut(listing.dir_name, FILE_NAME_STRING_SIZE),
+                                    DirectoryStatus.OTHER_ERROR)
+            self._count(FileSystemStatus.OTHER_ERROR)
+            self.command_response(listing.token, CmdResponse.EXECUTION_ERROR)
+
+    def _list_entry(self, listing: _Listing, entry: str) -> None:
+        dir_name = _cut(listing.dir_name, FILE_NAME_STRING_SIZE)
+        try:
+            entry.encode("utf-8")
+        except UnicodeEncodeError:  # a name that is not UTF-8 (surrogate-escaped by os.listdir)
+            shown = entry.encode("utf-8", errors="surrogateescape").decode("utf-8", errors="replace")
+            log.warning("%s: ListDirectory %s: entry %r has a name that is not UTF-8", self.name,
+                        listing.dir_name, shown)
+            self.FileNameFormatError(_cut(shown, FILE_NAME_STRING_SIZE), StringFormatStatus.OTHER_ERROR)
+            return
+        shown = _cut(entry, FILE_NAME_STRING_SIZE)
+        try:
+            info = os.stat(os.path.join(listing.path, entry))
+        except OSError:
+            info = None  # vanished or unreadable: listed as a file of size 0, as F´ does
+        if info is not None and _stat.S_ISDIR(info.st_mode):
+            self.DirectoryListingSubdir(dir_name, shown)
+        else:
+            size = info.st_size if info is not None and _stat.S_ISREG(info.st_mode) else 0
+            self.DirectoryListing(dir_name, shown, size)
+
+    # --- file operations --------------------------------------------------------------------------
+
+    def _move(self, src: str, dst: str) -> None:
+        try:
+            os.replace(src, dst)
+            return
+        except OSError as exc:
+            if exc.errno != _errno.EXDEV:
+                raise
+        # Across file systems: copy a regular file next to the destination, then remove the source.
+        info = os.stat(src)
+        if not _stat.S_ISREG(info.st_mode):
+            raise OSError(_errno.EXDEV, "only regular files can be moved across file systems", src)
+        with open(src, "rb") as source:
+            self._write_replacing(dst, [source], _stat.S_IMODE(info.st_mode))
+        os.remove(src)
+
+    def _append(self, src: str, dst: str) -> None:
+        if os.path.islink(dst):
+            dst = os.path.realpath(dst)
+        with _open_regular(src) as source:
+            try:
+                current = _open_regular(dst)
+            except FileNotFoundError:
+                current = None  # created, as F´ does (createMissingDest)
+            try:
+                if current is not None:
+                    mode = _stat.S_IMODE(os.fstat(current.fileno()).st_mode)
+                    parts = [current, source]
+                else:
+                    mode = 0o666 & ~_umask()
+                    parts = [source]
+                self._write_replacing(dst, parts, mode)
+            finally:
+                if current is not None:
+                    current.close()
+
+    def _write_replacing(self, dst: str, sources, mode: int) -> None:
+        """Write the ``sources`` (open binary files) one after the other to a temporary file in
+        ``dst``'s directory, fsync it and rename it over ``dst``; on failure ``dst`` is untouched."""
+        directory = os.path.dirname(dst) or "."
+        fd, tmp = tempfile.mkstemp(prefix=_TMP_PREFIX, suffix=".part", dir=directory)
+        try:
+            with os.fdopen(fd, "wb") as out:
+                for source in sources:
+                    shutil.copyfileobj(source, out, _CHUNK)
+                out.flush()
+                os.fsync(out.fileno())
+            os.chmod(tmp, mode)
+            os.replace(tmp, dst)
+        except BaseException:
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
+            raise
+        fsync_directory(directory)
+
+    def _system(self, command: str, log_file_name: str) -> int:
+        """Run ``command`` as F´'s ``system("eval '...' 1>>log 2>&1")`` would; the wait status."""
+        try:
+            log_path = self.resolve(log_file_name)
+            with open(log_path, "ab") as out:
+                proc = subprocess.Popen(command, shell=True, cwd=self.root, stdin=subprocess.DEVNULL,
+                                        stdout=out, stderr=subprocess.STDOUT, start_new_session=True)
+                try:
+                    returncode = proc.wait(timeout=self.shell_timeout_s)
+                except subprocess.TimeoutExpired:
+                    log.warning("%s: ShellCommand %r still running after %s s: killed", self.name,
+                                command, self.shell_timeout_s)
+                    _kill_group(proc)
+                    returncode = proc.wait()
+        except Exception as exc:  # noqa: BLE001 - cannot open the log file or start the shell
+            log.warning("%s: ShellCommand %r not run: %s", self.name, command, exc)
+            return SHELL_NOT_RUN
+        status = wait_status(returncode)
+        if status:
+            log.info("%s: ShellCommand %r: return code %d (wait status %d)", self.name, command,
+                     returncode, status)
+        return status
+
+    # --- helpers ----------------------------------------------------------------------------------
+
+    def _fs(self, operation) -> tuple[FileSystemStatus, BaseException | None]:
+        """Run ``operation``; ``(OP_OK, None)`` or the F´ status of what it raised."""
+        try:
+            operation()
+        except (OSError, ValueError) as exc:
+            return filesystem_status(exc), exc
+        except Exception as exc:  # noqa: BLE001 - nothing escapes a command
+            log.exception("%s: unexpected failure", self.name)
+            return FileSystemStatus.OTHER_ERROR, exc
+        return FileSystemStatus.OP_OK, None
+
+    def _log_failure(self, command: str, what: str, status: enum.IntEnum, cause) -> None:
+        log.warning("%s: %s %s failed: %s", self.name, command, what, _describe(status, cause))
+
+    def _count(self, status: FileSystemStatus) -> None:
+        """F´'s ``emitTelemetry``: OK counts an executed command, anything else an error."""
+        if status == FileSystemStatus.OP_OK:
+            self._commands_executed = (self._commands_executed + 1) & 0xFFFFFFFF
+            self.CommandsExecuted.write(self._commands_executed)
+        else:
+            self._count_error()
+
+    def _count_error(self) -> None:
+        self._errors = (self._errors + 1) & 0xFFFFFFFF
+        self.Errors.write(self._errors)
+
+    def _finish(self, status: FileSystemStatus) -> CmdResponse:
+        """Count the outcome and give the command response (F´'s ``sendCommandResponse``)."""
+        self._count(status)
+        return CmdResponse.OK if status == FileSystemStatus.OP_OK else CmdResponse.EXECUTION_ERROR
+
+
+def _open_regular(path: str):
+    """Open ``path`` to read, without blocking on a FIFO: a directory raises IsADirectoryError,
+    anything else that is not a regular file EINVAL (F´ would block or read a device for ever)."""
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    try:
+        mode = os.fstat(fd).st_mode
+        if _stat.S_ISDIR(mode):
+            raise IsADirectoryError(_errno.EISDIR, "is a directory", path)
+        if not _stat.S_ISREG(mode):
+            raise OSError(_errno.EINVAL, "not a regular file", path)
+    except BaseException:
+        os.close(fd)
+        raise
+    return os.fdopen(fd, "rb")
+
+
+def _umask() -> int:
+    """The process umask, read without changing it where /proc allows."""
+    try:
+        with open("/proc/self/status", encoding="ascii", errors="replace") as f:
+            for line in f:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    umask = os.umask(0o022)  # elsewhere: read it by setting it (briefly) and restoring it
+    os.umask(umask)
+    return umask
+
+
+def _kill_group(proc: subprocess.Popen) -> None:
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except OSError:
+        try:
+            proc.kill()
+        except OSError:
+            pass
