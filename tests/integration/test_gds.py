@@ -9,7 +9,9 @@ group can be killed) and the deployment in realtime mode connected to it:
 
 Then the GDS's own pytest plugin (``fprime_test_api``) runs ``gds_inner/gds_checks.py`` in a
 pytest subprocess: NO-OP round trip, SET_MODE AUTO → DetumbleStarted and State, GAIN_PRM_SET →
-GainParamSet, GET_MAGNETIC_FIELD → MagneticFieldData. Every process group is killed at the end,
+GainParamSet, GET_MAGNETIC_FIELD → MagneticFieldData, a file uplinked by the GDS landing
+byte-identical, a file downlinked with SendFile reaching the GDS's store, and a text sequence
+compiled and uplinked by the GDS then run with CS_RUN. Every process group is killed at the end,
 pass or fail. Skipped only when fprime-gds is not installed.
 """
 
@@ -156,7 +158,7 @@ def test_the_stock_gds_flies_the_deployment(flying):
     assert inner.returncode == 0, (f"inner GDS test run failed:\n{inner.stdout[-6000:]}\n{inner.stderr[-3000:]}\n"
                                    f"--- gds ---\n{groups.log('gds')}\n--- deployment ---\n"
                                    f"{groups.log('deployment')}")
-    assert "4 passed" in inner.stdout
+    assert "7 passed" in inner.stdout
 
     # End the flight as fprime-gds does (SIGTERM): the run stops cleanly and writes its summary.
     name = "deployment" if flying["framing"] == "fprime" else "gds"

@@ -10,6 +10,7 @@ import json
 import math
 import os
 import time
+from pathlib import Path
 
 import pytest
 
@@ -68,3 +69,41 @@ def test_magnetic_field_reading(fprime_test_api):
     magnitude = math.sqrt(sum(v * v for v in field))
     assert 0.1 < magnitude < 0.7, f"|B| = {magnitude} G is not the Earth's field in low Earth orbit"
     FIGURES["magnetic_field_G"] = field
+
+
+def test_file_uplink_lands_byte_identical(fprime_test_api, tmp_path):
+    """The GDS's file uplinker cuts the file into packets; FileUplink reassembles it on board."""
+    data = os.urandom(900)  # four 256-byte chunks: the GDS paces its uplink at 0.5 s a chunk
+    source, landed = tmp_path / "uplinked.bin", tmp_path / "landed.bin"
+    source.write_bytes(data)
+    assert fprime_test_api.uplink_file_and_await_completion(str(source), destination=str(landed), timeout=20)
+    assert landed.read_bytes() == data
+
+
+def test_file_downlink_reaches_the_ground_store(fprime_test_api, tmp_path):
+    """SendFile on board; the GDS's downlinker writes the file into its store."""
+    data = os.urandom(2000)
+    source = tmp_path / "on_board.bin"
+    source.write_bytes(data)
+    name = f"downlinked_{os.getpid()}.bin"
+    fprime_test_api.send_and_assert_command("FileHandling.fileDownlink.SendFile", [str(source), name], timeout=10)
+    fprime_test_api.assert_event("FileHandling.fileDownlink.FileSent", timeout=5)
+    landed = Path(fprime_test_api.pipeline.down_store) / name
+    deadline = time.monotonic() + 10
+    while time.monotonic() < deadline and not (landed.exists() and landed.read_bytes() == data):
+        time.sleep(0.1)
+    assert landed.read_bytes() == data
+
+
+def test_uplinked_sequence_runs(fprime_test_api, tmp_path):
+    """A text sequence compiled and uplinked by the GDS, then run with CS_RUN."""
+    sequence = tmp_path / "ground.seq"
+    sequence.write_text("; two no-ops from the ground\nR00:00:00 CdhCore.cmdDisp.CMD_NO_OP\n"
+                        "R00:00:01 CdhCore.cmdDisp.CMD_NO_OP\n")
+    on_board = tmp_path / "ground.bin"
+    assert fprime_test_api.uplink_sequence_and_await_completion(str(sequence), destination=str(on_board),
+                                                                timeout=20)
+    start = fprime_test_api.get_event_test_history().size()
+    fprime_test_api.send_and_assert_command(f"{DEP}.cmdSeq.CS_RUN", [str(on_board), "BLOCK"], timeout=10)
+    fprime_test_api.assert_event(f"{DEP}.cmdSeq.CS_SequenceComplete", start=start, timeout=5)
+    fprime_test_api.assert_event_count(2, "CdhCore.cmdDisp.NoOpReceived", start=start, timeout=5)
