@@ -32,7 +32,7 @@ from . import types as T
 from .bdot import BDot
 from .magnetorquer import CoilShape as CoilOutline
 from .magnetorquer import DirectionSign, Magnetorquer
-from .strategy_selector import StrategySelector
+from .strategy_selector import Strategy, StrategySelector
 from .types import (AngularUnit, AngularVelocityMagnitudeGet, CoilShape, DetumbleMode, DetumbleState,
                     DipoleMomentGet, GetSystemMode, HysteresisAxis, MagneticFieldGet, SamplingPeriodGet,
                     SetDetumbleMode, StartMagnetorquer, StopMagnetorquer, Success, SystemMode,
@@ -97,6 +97,10 @@ _COILS = (
 def _camel(param_name: str) -> str:
     """``X_PLUS_VOLTAGE`` → ``XPlusVoltage`` (the F´ channel/event stem of a parameter)."""
     return "".join(part.capitalize() for part in param_name.split("_"))
+
+
+#: The selector's strategy as the ground-visible enum (a dict lookup: enum calls cost ~0.7 µs a tick).
+_DETUMBLE_STRATEGY = {Strategy(v.value): v for v in T.DetumbleStrategy}
 
 
 def _finite(*values: float) -> bool:
@@ -464,7 +468,7 @@ class DetumbleManager(PassiveComponent):
         w = float(w)
         self.AngularVelocityRetrievalFailed.clear_throttle()
         self.AngularVelocityMagnitude.write(w)
-        strategy = T.DetumbleStrategy(int(self.strategy_selector.from_angular_velocity_magnitude(w)))
+        strategy = _DETUMBLE_STRATEGY[self.strategy_selector.from_angular_velocity_magnitude(w)]
         if strategy != T.DetumbleStrategy.HYSTERESIS and self.coils_driven:
             self._stop_coils()  # leaving HYSTERESIS (the only drive that outlives its state)
         self.strategy = strategy

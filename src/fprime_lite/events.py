@@ -156,10 +156,11 @@ class BoundEvent:
         if len(args) != len(types):
             raise TypeError(f"{self.component.name}.{decl.name} takes {len(types)} argument(s) "
                             f"({', '.join(n for n, _ in decl.args)}), got {len(args)}")
+        throttle = decl.throttle
+        if throttle is not None and self.count >= throttle:
+            return False  # as F´: a throttled event does nothing more (its arguments are not looked at)
         values = [t.check(v) for t, v in zip(types, args)]
-        if decl.throttle is not None:
-            if self.count >= decl.throttle:
-                return False
+        if throttle is not None:
             self.count += 1
         comp = self.component
         log_connected = self._log_port.targets[0] is not None

@@ -512,18 +512,27 @@ class StructType(FwType):
             value = self.cls(**value)
         elif not isinstance(value, self.cls):
             raise SerializationError(f"{self.name} expects a {self.cls.__name__}, got {value!r}")
+        converted = None  # members whose checked form differs (an enum given by name, an int for F64)
         for name, t in self.members:
+            member = getattr(value, name)
             try:
-                t.check(getattr(value, name))
+                checked = t.check(member)
             except SerializationError as exc:
                 raise SerializationError(f"{self.name}.{name}: {exc}") from None
+            if checked is not member:
+                converted = converted or {}
+                converted[name] = checked
+        if converted:
+            value = self.cls(**{n: converted.get(n, getattr(value, n)) for n, _ in self.members})
         return value
 
     def serialize(self, value):
-        value = self.check(value)
+        return self.pack(self.check(value))
+
+    def pack(self, value):
         if self._fixed is not None:
             return self._fixed.pack(*[getattr(value, n) for n, _ in self.members])
-        return b"".join(t.serialize(getattr(value, n)) for n, t in self.members)
+        return b"".join(t.pack(getattr(value, n)) for n, t in self.members)
 
     def deserialize(self, data, offset=0):
         if self._fixed is not None:

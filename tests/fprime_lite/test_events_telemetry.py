@@ -4,6 +4,7 @@ import pytest
 
 from fprime_lite import (F64, I32, U32, Channel, Event, FwEnum, PassiveComponent, Severity, String,
                          Time, TimeBase)
+from fprime_lite.errors import SerializationError
 from fprime_lite.events import translate_format
 from fprime_lite.types import U8
 
@@ -58,6 +59,16 @@ def test_event_argument_errors(h):
     with pytest.raises(ValueError, match="string of 21 bytes exceeds its bound of 20"):
         h.component.Mixed(1, 2, Color.RED, "x" * 21)
     h.assert_events_size(0)
+
+
+def test_a_bad_argument_raises_without_using_up_the_throttle_and_a_throttled_call_returns_early(h):
+    with pytest.raises(SerializationError):
+        h.component.Started("fast")
+    assert h.component.Started.count == 0  # the failed call was not counted
+    assert h.component.Started(1.0) and h.component.Started(2.0)
+    # Throttled, as in F´: nothing more is done with the call, arguments included.
+    assert h.component.Started("not even a number") is False
+    h.assert_event_count("Started", 2)
 
 
 def test_unconnected_event_ports_emit_nothing_but_still_throttle():
