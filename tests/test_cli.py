@@ -63,12 +63,26 @@ def test_short_run_writes_every_output(tmp_path, capsys):
     (["run", TOPOLOGY, "--scenario", "no_such_scenario", "--no-progress"], "--scenario no_such_scenario:"),
     (["run", TOPOLOGY, "--duration", "-1"], "--duration must be positive"),
     (["run", TOPOLOGY, "--params", "missing.dat"], "--params missing.dat: no such file"),
+    (["run", TOPOLOGY, "--set", "sensors.gyro"], "--set 'sensors.gyro': expected KEY.PATH=VALUE"),
+    (["run", TOPOLOGY, "--scenario", "case_a", "--set", "orbit.altitud=1"], "case_a.yaml has no key 'altitud'"),
 ])
 def test_user_mistakes_are_one_line_errors_without_traceback(argv, message, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert message in err
     assert "Traceback" not in err
+
+
+def test_set_changes_the_topology_s_scenario_and_a_bad_key_is_one_problem(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert main(["run", TOPOLOGY, "--duration", "1", "--out", str(out), "--no-progress", "--no-plots",
+                 "--set", "initial.rate.magnitude_deg_s=12"]) == 0
+    assert json.loads((out / "summary.json").read_text())["initial_rate_deg_s"] == pytest.approx(12.0)
+    capsys.readouterr()
+    assert main(["run", TOPOLOGY, "--no-progress", "--set", "sensors.magnetometr.noise_std_gauss=0"]) == 2
+    err = capsys.readouterr().err
+    assert "1 problem in the topology" in err  # nothing more about the instances that needed it
+    assert "default.yaml has no key 'magnetometr' at sensors (keys there: magnetometer, gyro)" in err
 
 
 def test_bad_yaml_is_reported_with_its_line(tmp_path, capsys):

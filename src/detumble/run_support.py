@@ -11,6 +11,8 @@ Both are topology *resources* (see ``docs/topology.md``):
 
 from __future__ import annotations
 
+from typing import Sequence
+
 import csv
 import math
 import os
@@ -30,12 +32,18 @@ _MAX_PLOT_POINTS = 4000
 
 
 def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler | None = None, *,
-                    seed: int | None = None) -> SimulatedSpacecraft:
-    """The simulated spacecraft of ``scenario`` stepping on ``scheduler``'s clock from now."""
+                    seed: int | None = None, settings: Sequence[str] = ()) -> SimulatedSpacecraft:
+    """The simulated spacecraft of ``scenario`` stepping on ``scheduler``'s clock from now.
+
+    ``settings`` override single scenario values (``"sensors.magnetometer.noise_std_gauss=0"``)
+    when ``scenario`` is a name or file.
+    """
     if scheduler is None:
         raise ValueError("make_spacecraft needs the deployment's scheduler (args: {scheduler: $scheduler})")
     if isinstance(scenario, str):
-        scenario = load_scenario(scenario)
+        scenario = load_scenario(scenario, settings=settings)
+    elif settings:
+        raise ValueError("settings apply to a scenario given by name or file, not to a loaded Scenario")
     clock = scheduler.clock
     if clock.current_us == 0 and clock.epoch_us == 0:
         clock.epoch_us = scenario_epoch_us(scenario)

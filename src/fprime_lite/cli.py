@@ -51,6 +51,8 @@ def build_parser() -> argparse.ArgumentParser:
                      help="simulated seconds to run (default 600)")
     run.add_argument("--scenario", metavar="NAME|FILE", help="simulation scenario (packaged name or YAML file)")
     run.add_argument("--seed", type=int, help="seed of the sensor noise (overrides the scenario's)")
+    run.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE",
+                     help="override one scenario value, e.g. sensors.magnetometer.noise_std_gauss=0 (repeatable)")
     run.add_argument("--params", metavar="FILE", help="parameter file for PrmDb (overrides the topology's)")
     run.add_argument("--seq", metavar="FILE", help="start-up sequence (.seq text or binary; overrides the topology's)")
     run.add_argument("--out", metavar="DIR", help="output folder (default: a new runs/<timestamp>)")
@@ -160,10 +162,12 @@ def cmd_run(args) -> int:
     from .runner import run_deployment
 
     overrides = {}
-    if args.scenario is not None or args.seed is not None:
+    if args.scenario is not None or args.seed is not None or args.set:
         spacecraft = {}
         if args.scenario is not None:
-            spacecraft["scenario"] = _scenario(args.scenario)
+            spacecraft["scenario"] = _scenario(args.scenario, args.set)
+        elif args.set:
+            spacecraft["settings"] = _checked_settings(args.set)
         if args.seed is not None:
             spacecraft["seed"] = args.seed
         overrides["spacecraft"] = spacecraft
@@ -243,12 +247,21 @@ def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
     return summary
 
 
-def _scenario(value: str):
+def _checked_settings(settings: list[str]) -> list[str]:
+    """``--set`` values, refused early when one is not ``KEY.PATH=VALUE``."""
+    for setting in settings:
+        path, sep, _ = setting.partition("=")
+        if not sep or not path.strip():
+            raise UserError(f"--set {setting!r}: expected KEY.PATH=VALUE, e.g. sensors.magnetometer.noise_std_gauss=0")
+    return settings
+
+
+def _scenario(value: str, settings: list[str] = ()):
     """A packaged scenario name or a file; a clear error for anything else."""
     from detumble.sim.scenario import load_scenario
 
     try:
-        return load_scenario(value)
+        return load_scenario(value, settings=settings)
     except FileNotFoundError as exc:
         raise UserError(f"--scenario {value}: {exc}") from None
     except (ValueError, KeyError) as exc:

@@ -133,6 +133,9 @@ class _Loader:
         self.problems: list[str] = []
         self.overrides = overrides or {}
         self.failed_instances: set[str] = set()
+        #: Resources that could not be built (reported once); whatever uses them is skipped quietly.
+        self.failed_resources: set[str] = set()
+        self.quiet_skips = 0
         self.failed_modules: set[str] = set()  # modules whose include could not be read
         self.included_connections: list = []
 
@@ -263,24 +266,31 @@ class _Loader:
         if section is None:
             return
         for name, spec in section.items():
-            line = section.key_lines.get(name)
-            spec = self.expect_map(self.path, spec, line, f"resource '{name}'")
-            if spec is None:
-                continue
-            self.check_keys(self.path, spec, RESOURCE_KEYS, f"resource '{name}'")
-            factory = self.import_object(self.path, spec.get("type"), spec.key_lines.get("type", line),
-                                         f"resource '{name}'")
-            if factory is None:
-                continue
-            args = self.resolve_args(self.path, spec.get("args"), spec.key_lines.get("args", line), resources,
+            if not self._build_resource(name, spec, section, resources):
+                self.failed_resources.add(name)
+
+    def _build_resource(self, name, spec, section: YMap, resources: dict) -> bool:
+        """Build one resource into ``resources``; False (problem reported) when it cannot be."""
+        line = section.key_lines.get(name)
+        spec = self.expect_map(self.path, spec, line, f"resource '{name}'")
+        if spec is None:
+            return False
+        self.check_keys(self.path, spec, RESOURCE_KEYS, f"resource '{name}'")
+        factory = self.import_object(self.path, spec.get("type"), spec.key_lines.get("type", line),
                                      f"resource '{name}'")
-            if args is None:
-                continue
-            args.update(self.overrides.get(name, {}))
-            try:
-                resources[name] = factory(**args)
-            except Exception as exc:  # noqa: BLE001 - any construction failure is a user-facing problem
-                self.problem(self.path, line, f"resource '{name}' could not be created: {exc}")
+        if factory is None:
+            return False
+        args = self.resolve_args(self.path, spec.get("args"), spec.key_lines.get("args", line), resources,
+                                 f"resource '{name}'")
+        if args is None:
+            return False
+        args.update(self.overrides.get(name, {}))
+        try:
+            resources[name] = factory(**args)
+        except Exception as exc:  # noqa: BLE001 - any construction failure is a user-facing problem
+            self.problem(self.path, line, f"resource '{name}' could not be created: {exc}")
+            return False
+        return True
 
     def import_object(self, file, type_path, line, what):
         if not isinstance(type_path, str) or not type_path:
@@ -331,14 +341,18 @@ class _Loader:
         if not isinstance(args, YMap):
             self.problem(file, line, f"{what}: 'args' must be a mapping of keyword arguments, got {_kind(args)}")
             return None
+        skips = self.quiet_skips
         out = {}
         for key, value in args.items():
             out[key] = self.resolve_value(file, value, args.key_lines.get(key), resources, what)
-        return out
+        return None if self.quiet_skips > skips else out
 
     def resolve_value(self, file, value, line, resources, what):
         if isinstance(value, str) and value.startswith("$"):
             name = value[1:]
+            if name in self.failed_resources:
+                self.quiet_skips += 1  # its own failure has been reported
+                return None
             if name not in resources:
                 self.problem(file, line, f"{what}: unknown resource '{value}' — resources: "
                                          f"{', '.join('$' + r for r in resources)}")
@@ -420,11 +434,11 @@ class _Loader:
 
     def build_instance(self, file, container: YMap, module: str, name, spec, topology: Topology, resources,
                        rate_cfg) -> None:
-        problems_before = len(self.problems)
+        problems_before, skips_before = len(self.problems), self.quiet_skips
         try:
             self._build_instance(file, container, module, name, spec, topology, resources, rate_cfg)
         finally:
-            if len(self.problems) > problems_before:
+            if len(self.problems) > problems_before or self.quiet_skips > skips_before:
                 self.failed_instances.add(f"{module}.{name}")
 
     def _build_instance(self, file, container: YMap, module: str, name, spec, topology: Topology, resources,

@@ -155,6 +155,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", required=True, metavar="DIR", help="output folder for summary.json and rate.csv")
     p.add_argument("--duration", type=float, default=None, metavar="S", help="simulated seconds (default: scenario)")
     p.add_argument("--seed", type=int, default=None, help="noise / random-rate seed (default: scenario)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE",
+                   help="override one scenario value, e.g. sensors.magnetometer.noise_std_gauss=0 (repeatable)")
     return p
 
 
@@ -176,7 +178,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: --gain must be positive, got {args.gain}", file=sys.stderr)
         return 2
     try:
-        sc = load_scenario(name, seed=args.seed)
+        sc = load_scenario(name, seed=args.seed, settings=args.set)
         result = run(sc, law=args.law, gain=args.gain, duration_s=args.duration)
         write_outputs(result, args.out)
     except ScenarioError as exc:

@@ -16,7 +16,7 @@ import random
 from dataclasses import dataclass
 from dataclasses import field as _dc_field
 from importlib import resources
-from typing import Any
+from typing import Any, Sequence
 
 import yaml
 
@@ -134,13 +134,15 @@ def resolve_scenario(name_or_path: str) -> tuple[str, str]:
     )
 
 
-def load_scenario(name_or_path: str, seed: int | None = None) -> Scenario:
-    """Load and validate a scenario by packaged name or path. ``seed`` overrides the file's."""
+def load_scenario(name_or_path: str, seed: int | None = None, settings: Sequence[str] = ()) -> Scenario:
+    """Load and validate a scenario by packaged name or path. ``seed`` overrides the file's;
+    ``settings`` (``"sensors.magnetometer.noise_std_gauss=0"``, …) override single values."""
     source, text = resolve_scenario(name_or_path)
-    return parse_scenario(text, source=source, seed=seed)
+    return parse_scenario(text, source=source, seed=seed, settings=settings)
 
 
-def parse_scenario(text: str, source: str = "<string>", seed: int | None = None) -> Scenario:
+def parse_scenario(text: str, source: str = "<string>", seed: int | None = None,
+                   settings: Sequence[str] = ()) -> Scenario:
     """Validate scenario YAML text. ``yaml.safe_load`` only."""
     try:
         data = yaml.safe_load(text)
@@ -151,7 +153,51 @@ def parse_scenario(text: str, source: str = "<string>", seed: int | None = None)
         raise ScenarioError(f"{where}: not valid YAML: {getattr(exc, 'problem', exc)}") from None
     if data is None:
         data = {}
+    for setting in settings:
+        apply_setting(data, setting, source)
     return scenario_from_dict(data, source=source, lines=lines, seed=seed)
+
+
+def apply_setting(data: dict, setting: str, source: str = "<scenario>") -> None:
+    """Set one value of scenario ``data`` in place from ``"dotted.key.path=YAML value"``.
+
+    Every key of the path must already be in the scenario (a list element is addressed by its
+    index): a misspelt key is an error naming the keys that are there, never a silently added one.
+    The value is read as YAML, so ``0``, ``2.5e-3``, ``[1, 0, 0]`` and ``true`` have their types.
+    """
+    path_text, sep, value_text = setting.partition("=")
+    if not sep or not path_text.strip():
+        raise ScenarioError(f"--set {setting!r}: expected KEY.PATH=VALUE, e.g. "
+                            f"sensors.magnetometer.noise_std_gauss=0")
+    try:
+        value = yaml.safe_load(value_text)
+    except yaml.YAMLError as exc:
+        raise ScenarioError(f"--set {setting!r}: the value is not valid YAML: "
+                            f"{getattr(exc, 'problem', exc)}") from None
+    keys = path_text.strip().split(".")
+    node, walked = data, []
+    for i, key in enumerate(keys):
+        last = i == len(keys) - 1
+        if isinstance(node, dict):
+            if key not in node:
+                where = ".".join(walked) or "the top level"
+                raise ScenarioError(f"--set {setting!r}: {source} has no key {key!r} at {where} "
+                                    f"(keys there: {', '.join(map(str, node)) or 'none'})")
+            if last:
+                node[key] = value
+            else:
+                node = node[key]
+        elif isinstance(node, list):
+            if not (key.isdigit() and int(key) < len(node)):
+                raise ScenarioError(f"--set {setting!r}: {'.'.join(walked)} is a list of {len(node)}; "
+                                    f"address an element by its index 0..{len(node) - 1}")
+            if last:
+                node[int(key)] = value
+            else:
+                node = node[int(key)]
+        else:
+            raise ScenarioError(f"--set {setting!r}: {'.'.join(walked)} is a value, not a section")
+        walked.append(key)
 
 
 def _line_map(text: str) -> dict[tuple, int]:

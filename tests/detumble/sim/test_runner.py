@@ -54,3 +54,11 @@ def test_write_atomic_replaces_whole_file(tmp_path):
     write_atomic(str(target), "new content\n")
     assert target.read_text() == "new content\n"
     assert os.listdir(tmp_path) == ["f.txt"]
+
+
+def test_set_overrides_a_scenario_value_and_names_a_bad_key(tmp_path, capsys):
+    out = tmp_path / "r"
+    assert main(["default", "--set", "initial.rate.magnitude_deg_s=7", "--duration", "1", "--out", str(out)]) == 0
+    assert abs(json.loads((out / "summary.json").read_text())["initial_rate_deg_s"] - 7.0) < 1e-9
+    assert main(["default", "--set", "initial.rat=1", "--out", str(tmp_path / "x")]) == 2
+    assert "has no key 'rat' at initial" in capsys.readouterr().err

@@ -1,6 +1,7 @@
 """Scenario files: packaged scenarios load; every rejected value is named with its message (and line)."""
 
 import math
+import re
 import textwrap
 
 import pytest
@@ -135,3 +136,34 @@ def test_coil_override_merges_with_defaults_and_safe_load_only():
     assert sc.spacecraft.coils[0].turns == 50.0 and sc.spacecraft.coils[0].resistance_ohm == 13.0
     with pytest.raises(ScenarioError, match="not valid YAML"):
         parse_scenario("name: !!python/object/apply:os.system ['true']\n")
+
+
+def test_settings_override_single_values_with_yaml_types():
+    sc = load_scenario("default", settings=["sensors.magnetometer.noise_std_gauss=0",
+                                            "sensors.magnetometer.bias_gauss=[0, 0, 0.001]",
+                                            "initial.rate.magnitude_deg_s=12.5"])
+    default = load_scenario("default")
+    assert sc.magnetometer.noise_std_gauss == 0.0 != default.magnetometer.noise_std_gauss
+    assert tuple(sc.magnetometer.bias_gauss) == (0.0, 0.0, 0.001)
+    assert math.degrees(math.sqrt(sum(w * w for w in sc.omega_BN_B0))) == pytest.approx(12.5)
+    # A list element by index.
+    one = load_scenario("default", settings=["sensors.magnetometer.bias_gauss.1=0.5"])
+    assert one.magnetometer.bias_gauss == (0.012, 0.5, 0.005)
+
+
+@pytest.mark.parametrize("setting, message", [
+    ("sensors.magnetometr.noise_std_gauss=0", "has no key 'magnetometr' at sensors (keys there: magnetometer, gyro)"),
+    ("noise=0", "has no key 'noise' at the top level"),
+    ("sensors.magnetometer.noise_std_gauss", "expected KEY.PATH=VALUE"),
+    ("sensors.magnetometer.bias_gauss.7=0", "is a list of 3; address an element by its index 0..2"),
+    ("sensors.magnetometer.odr_hz.x=1", "sensors.magnetometer.odr_hz is a value, not a section"),
+    ("sensors.magnetometer.odr_hz=[1", "the value is not valid YAML"),
+])
+def test_bad_settings_say_what_is_wrong(setting, message):
+    with pytest.raises(ScenarioError, match=re.escape(message)):
+        load_scenario("default", settings=[setting])
+
+
+def test_a_setting_is_still_validated_like_the_file():
+    with pytest.raises(ScenarioError, match="noise_std_gauss"):
+        load_scenario("default", settings=["sensors.magnetometer.noise_std_gauss=-1"])
