@@ -46,6 +46,27 @@ def test_params_writes_the_defaults_that_prmdb_reads(tmp_path):
     assert shipped.read_bytes() == out.read_bytes(), "the shipped flight parameter file is out of date"
 
 
+def test_params_set_writes_chosen_values_checked_against_their_types(tmp_path, capsys):
+    import struct
+
+    from fprime_lite.svc.prm_db import decode_param_file
+
+    out = tmp_path / "p.dat"
+    assert main(["params", TOPOLOGY, "-o", str(out), "--set", "ReferenceDeployment.detumbleManager.GAIN=2.5",
+                 "--set", "ReferenceDeployment.detumbleManager.COOLDOWN_DURATION={seconds: 1, useconds: 5}"]) == 0
+    records = dict(decode_param_file(out.read_bytes()).records)
+    assert records[0x1005A000 + 39] == struct.pack(">d", 2.5)
+    assert records[0x1005A000 + 3] == struct.pack(">II", 1, 5)
+    assert "1 set" not in capsys.readouterr().out  # two were set
+    for setting, message in (("ReferenceDeployment.detumbleManager.GAINN=1", "did you mean "
+                                                                             "ReferenceDeployment.detumbleManager.GAIN?"),
+                             ("ReferenceDeployment.detumbleManager.GAIN=fast", "not a valid F64"),
+                             ("GAIN", "expected Module.inst.PARAM=VALUE")):
+        assert main(["params", TOPOLOGY, "-o", str(tmp_path / "q.dat"), "--set", setting]) == 2
+        assert message in capsys.readouterr().err
+    assert not (tmp_path / "q.dat").exists()
+
+
 def test_short_run_writes_every_output(tmp_path, capsys):
     out = tmp_path / "run"
     assert main(["run", TOPOLOGY, "--duration", "5", "--out", str(out), "--no-progress", "--seed", "3"]) == 0

@@ -90,6 +90,9 @@ def build_parser() -> argparse.ArgumentParser:
     params = sub.add_parser("params", help="write a parameter file with every parameter's default")
     _topology_arg(params)
     params.add_argument("-o", "--output", required=True, metavar="FILE")
+    params.add_argument("--set", action="append", default=[], metavar="Module.inst.PARAM=VALUE",
+                        help="write VALUE instead of the default, e.g. ReferenceDeployment.detumbleManager.GAIN=2.5 "
+                             "(repeatable; enum values by name)")
 
     bench = sub.add_parser("bench", help="measure speed and memory", add_help=False)
     bench.add_argument("args", nargs=argparse.REMAINDER)
@@ -145,17 +148,49 @@ def cmd_params(args) -> int:
     from .atomic import atomic_write_bytes
 
     topo = _load(args.topology).topology
-    records = []
+    declared = {}
     for instance in topo.instances.values():
         comp = instance.component
         for p in comp.spec.params:
-            if p.has_default:
-                records.append((f"{instance.qualified_name}.{p.name}", comp.base_id + p.local_id,
-                                p.type.serialize(p.default)))
-    records.sort()  # by full name, as fprime-prm-write orders them
-    atomic_write_bytes(args.output, encode_param_file([(pid, value) for _, pid, value in records]))
-    print(f"wrote {args.output}: {len(records)} parameters ({ParamValid.DEFAULT.name} values of the topology)")
+            declared[f"{instance.qualified_name}.{p.name}"] = (comp.base_id + p.local_id, p)
+    values = {name: p.default for name, (_, p) in declared.items() if p.has_default}
+    for setting in args.set:
+        name, value = _param_setting(setting, declared)
+        values[name] = value
+    records = sorted((name, declared[name][0], declared[name][1].type.serialize(value))
+                     for name, value in values.items())  # by full name, as fprime-prm-write orders them
+    atomic_write_bytes(args.output, encode_param_file([(pid, data) for _, pid, data in records]))
+    changed = f"; {len(args.set)} set on the command line" if args.set else ""
+    print(f"wrote {args.output}: {len(records)} parameters ({ParamValid.DEFAULT.name} values of the "
+          f"topology{changed})")
     return 0
+
+
+def _param_setting(setting: str, declared: dict) -> tuple[str, object]:
+    """``Module.inst.PARAM=VALUE`` → (name, value checked against the parameter's F´ type)."""
+    import difflib
+
+    import yaml
+
+    from .errors import SerializationError
+
+    name, sep, text = setting.partition("=")
+    name = name.strip()
+    if not sep or not name:
+        raise UserError(f"--set {setting!r}: expected Module.inst.PARAM=VALUE")
+    if name not in declared:
+        guess = difflib.get_close_matches(name, list(declared), n=1)
+        hint = f" — did you mean {guess[0]}?" if guess else " (fprime-lite dict lists them)"
+        raise UserError(f"--set {setting!r}: the topology has no parameter {name}{hint}")
+    try:
+        value = yaml.safe_load(text)
+    except yaml.YAMLError:
+        value = text
+    ptype = declared[name][1].type
+    try:
+        return name, ptype.check(value)
+    except (SerializationError, ValueError, TypeError) as exc:
+        raise UserError(f"--set {setting!r}: not a valid {ptype.name}: {exc}") from None
 
 
 def cmd_run(args) -> int:
