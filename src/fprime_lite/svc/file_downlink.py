@@ -372,7 +372,7 @@ class FileDownlink(ActiveComponent):
     def Run(self, context):
         """Rate-group tick: send up to ``packets_per_tick`` packets, starting queued files as needed."""
         if not self.is_connected("bufferSendOut", 0):
-            if not self._unconnected_logged:
+            if self._requests and not self._unconnected_logged:  # quiet until there is a file to send
                 self._unconnected_logged = True
                 log.warning("%s: bufferSendOut is not connected; file requests stay queued", self.name)
             return

@@ -7,6 +7,7 @@ Packets are checked three ways: with fprime_lite's own decoder, with fprime-gds 
 
 from __future__ import annotations
 
+import logging
 import os
 import random
 
@@ -524,14 +525,21 @@ def test_constructor_rejects_bad_budgets(tmp_path):
             FileDownlink(root=tmp_path, **kwargs)
 
 
-def test_unconnected_buffer_send_out_keeps_requests_queued(fprime_harness, tmp_path):
+def test_unconnected_buffer_send_out_keeps_requests_queued(fprime_harness, tmp_path, caplog):
     write(tmp_path, "a.bin", 10)
     fd = FileDownlink(root=tmp_path)
     h = fprime_harness(fd, unconnected=("bufferSendOut",))
-    command(h, "SendFile", "a.bin", "a.bin")
-    h.invoke("Run", 0)
-    h.dispatch_all()
+    with caplog.at_level(logging.WARNING, logger="fprime_lite"):
+        h.invoke("Run", 0)
+        h.dispatch_all()
+        assert caplog.records == []  # nothing to send: nothing to warn about
+        command(h, "SendFile", "a.bin", "a.bin")
+        for _ in range(2):
+            h.invoke("Run", 0)
+            h.dispatch_all()
     assert fd.queued == 1 and h.cmd_responses == [] and fd.handler_faults == 0
+    assert [r.getMessage() for r in caplog.records] == [
+        "fileDownlink: bufferSendOut is not connected; file requests stay queued"]  # once
 
 
 def test_ping_is_answered_with_its_key(fprime_harness, tmp_path):
