@@ -573,6 +573,9 @@ class QueuedComponent(Component):
                 self._handling = True
                 try:
                     call(*args)
+                except Exception:  # noqa: BLE001 - as on a component thread: counted, never fatal
+                    self.handler_faults += 1
+                    log.exception("%s handler raised", label)
                 finally:
                     self._handling = False
             else:

@@ -18,12 +18,15 @@ from __future__ import annotations
 import functools
 import heapq
 import itertools
+import logging
 import time as _wall
 from typing import Callable
 
 from .time import SimulatedClock
 
 __all__ = ["Scheduler", "PacedScheduler", "ScheduledCall"]
+
+log = logging.getLogger("fprime_lite")
 
 
 class ScheduledCall:
@@ -132,13 +135,21 @@ class Scheduler:
         """Dispatch queued messages until every drained component's queue is empty.
 
         Only components whose queues received a message since they were last emptied are visited;
-        a message queued while draining marks its component again.
+        a message queued while draining marks its component again. A handler that raises is
+        counted in the component's ``handler_faults`` and logged, as on a component thread; the
+        deployment goes on.
         """
         busy = self._busy
         while busy:
             component = next(iter(busy))
             del busy[component]
-            component.dispatch_all()
+            try:
+                component.dispatch_all()
+            except Exception:  # noqa: BLE001 - as on a component thread: counted and logged, never fatal
+                component.handler_faults += 1
+                log.exception("%s: a queued message's handler raised", component.name)
+                if len(component.queue):
+                    busy[component] = None  # the messages behind it still run in this drain
 
     def run(self, until_us: int | None = None, max_events: int | None = None) -> int:
         """Run events up to and including time ``until_us``; then set the clock to ``until_us``.

@@ -197,15 +197,38 @@ def test_run_when_idle_keeps_scheduler_order_across_components():
     assert log == [("eager", 0), ("eager", "forwarded", 0), ("caller", "continues"), ("later", 1)]
 
 
-def test_run_when_idle_handler_fault_reaches_the_caller_and_leaves_the_component_usable():
+def test_handler_faults_in_a_deployment_are_counted_and_the_run_goes_on(caplog):
+    """As on a component thread: a handler that raises is logged and counted, inline or drained."""
     s = Scheduler()
     log = []
     eager = Eager("eager", log, fail_on=1)
-    s.drain_after_each_event(eager)
-    with pytest.raises(RuntimeError, match="handler failed"):
-        eager.input_port("item").entries[0](1)
+    sink = Sink("sink", log)
+    calls = []
+
+    def flaky(value):
+        calls.append(value)
+        if value == 5:
+            raise RuntimeError("queued handler failed")
+
+    sink_entry = sink._make_enqueuer(sink.input_port("item").decl, flaky, 0)
+    for c in (eager, sink):
+        s.drain_after_each_event(c)
+    eager.input_port("item").entries[0](1)  # inline, raises: counted
     eager.input_port("item").entries[0](2)  # not stuck "busy": still runs at once
-    assert log == [("eager", 1), ("eager", 2)] and len(eager.queue) == 0
+    assert log == [("eager", 1), ("eager", 2)] and len(eager.queue) == 0 and eager.handler_faults == 1
+    s.call_at(10, lambda: [sink_entry(v) for v in (4, 5, 6)])
+    s.call_at(20, lambda: log.append(("later event", s.now_us)))
+    s.run()
+    assert calls == [4, 5, 6] and sink.handler_faults == 1  # the message behind the fault still ran
+    assert log[-1] == ("later event", 20)
+    assert "eager.item[0] handler raised" in caplog.text and "sink: a queued message's handler raised" in caplog.text
+
+
+def test_a_harness_still_sees_handler_faults():
+    eager = Eager("eager", [], fail_on=1)  # not drained by a scheduler: a unit test
+    eager.input_port("item").entries[0](1)
+    with pytest.raises(RuntimeError, match="handler failed"):
+        eager.dispatch_all()
 
 
 def test_run_when_idle_is_a_plain_queue_hop_for_a_threaded_component():
