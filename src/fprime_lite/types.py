@@ -41,7 +41,7 @@ __all__ = [
     "FwType", "IntType", "FloatType", "BoolType", "StringType", "EnumType", "StructType",
     "ArrayType", "AliasType", "FwEnum", "Struct", "Array", "String", "Alias", "fw_type",
     "U8", "U16", "U32", "U64", "I8", "I16", "I32", "I64", "F32", "F64", "BOOL",
-    "serialize_values", "deserialize_values",
+    "serialize_values", "deserialize_values", "fit_utf8",
 ]
 
 
@@ -237,6 +237,12 @@ class BoolType(FwType):
 
 
 _U16 = struct.Struct(">H")
+
+
+def fit_utf8(text: str, size: int) -> str:
+    """``text`` cut to at most ``size`` UTF-8 bytes on a character boundary, for a bounded string
+    such as an event argument; characters UTF-8 cannot encode (lone surrogates) become ``?``."""
+    return text.encode("utf-8", "replace")[:size].decode("utf-8", "ignore")
 
 
 class StringType(FwType):

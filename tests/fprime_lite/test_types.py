@@ -1075,3 +1075,12 @@ def test_prop_every_strict_prefix_is_reported_truncated(pair, data):
     with pytest.raises(SerializationError, match=r"cannot deserialize .*: needs \d+ byte\(s\) at offset "
                                                  r"\d+, only \d+ left"):
         t.deserialize(wire[:cut])
+
+
+def test_fit_utf8_cuts_on_a_character_boundary_and_replaces_lone_surrogates():
+    from fprime_lite.types import fit_utf8
+
+    assert fit_utf8("abc", 10) == "abc"
+    assert fit_utf8("aé", 2) == "a"  # 'é' is two bytes: never half of it
+    assert fit_utf8("éé", 3) == "é"
+    assert fit_utf8("a\udc80b", 10) == "a?b"

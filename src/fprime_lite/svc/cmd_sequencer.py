@@ -40,7 +40,7 @@ from ..seqfile import (Descriptor, FileReadStage, Record, Sequence, SequenceCrcE
                        SequenceTimeBaseMismatch, SequenceTimeContextMismatch, CommandLookup,
                        check_time, read_sequence)
 from ..telemetry import Channel
-from ..types import I32, U8, U16, U32, FwEnum, String
+from ..types import I32, U8, U16, U32, FwEnum, String, fit_utf8
 
 __all__ = ["CmdSequencer", "BlockState", "SeqMode", "FileReadStage", "FILE_NAME_STRING_SIZE",
            "DEFAULT_BUFFER_SIZE"]
@@ -76,14 +76,7 @@ class _RunMode(enum.Enum):
 
 def _log_name(file_name: str) -> str:
     """``file_name`` cut to the 60 bytes an event string holds (on a UTF-8 boundary)."""
-    raw = file_name.encode("utf-8")
-    if len(raw) <= _LOG_NAME_SIZE:
-        return file_name
-    return raw[:_LOG_NAME_SIZE].decode("utf-8", errors="ignore")
-
-
-def _cut(text: str, size: int) -> str:
-    return text.encode("utf-8")[:size].decode("utf-8", errors="ignore")
+    return fit_utf8(file_name, _LOG_NAME_SIZE)
 
 
 class CmdSequencer(ActiveComponent):
@@ -428,7 +421,7 @@ class CmdSequencer(ActiveComponent):
             self.CS_RecordMismatch(name, exc.header_records, exc.extra_bytes)
             return False  # F´ does not count this as an error
         except SequenceTextError as exc:
-            self.CS_TextFileInvalid(name, exc.line, _cut(exc.reason, _TEXT_REASON.size))
+            self.CS_TextFileInvalid(name, exc.line, fit_utf8(exc.reason, _TEXT_REASON.size))
         else:
             self._sequence = sequence
             self.CS_SequenceLoaded(name)

@@ -95,7 +95,7 @@ from ..file_packet import (MAX_PATH_BYTES, CancelPacket, CfdpChecksum, DataPacke
 from ..fw_ports import BufferSend, Ping, Sched
 from ..ports import OutputPort, PortType, async_input, guarded_input
 from ..telemetry import Channel
-from ..types import I32, U32, FwEnum, String, Struct
+from ..types import I32, U32, FwEnum, String, Struct, fit_utf8
 
 __all__ = ["DEFAULT_DATA_SIZE", "DEFAULT_FILE_QUEUE_DEPTH", "DEFAULT_PACKETS_PER_TICK",
            "FILE_DOWN_COMPLETE_PORTS", "FILE_NAME_SIZE", "FileDownlink", "OsFileStatus",
@@ -175,10 +175,7 @@ def _os_status(exc: OSError) -> OsFileStatus:
 
 def _cut(text: str, size: int = FILE_NAME_SIZE) -> str:
     """``text`` cut to ``size`` UTF-8 bytes on a character boundary (event string arguments)."""
-    raw = text.encode("utf-8")
-    if len(raw) <= size:
-        return text
-    return raw[:size].decode("utf-8", errors="ignore")
+    return fit_utf8(text, size)
 
 
 def _name_bytes(name: str) -> int | None:

@@ -89,7 +89,7 @@ from ..events import Event, Severity
 from ..fw_ports import Ping, Sched
 from ..ports import OutputPort, async_input, sync_input
 from ..telemetry import Channel
-from ..types import BOOL, U8, U32, U64, FwEnum, String
+from ..types import BOOL, U8, U32, U64, FwEnum, String, fit_utf8
 
 __all__ = [
     "FileManager", "FileSystemStatus", "FileStatus", "DirectoryStatus", "StringFormatStatus",
@@ -282,14 +282,6 @@ def wait_status(returncode: int) -> int:
     return (-returncode) & 0x7F
 
 
-def _cut(text: str, size: int) -> str:
-    """``text`` as event text: at most ``size`` UTF-8 bytes, undecodable characters replaced."""
-    raw = text.encode("utf-8", errors="replace")
-    if len(raw) <= size:
-        return raw.decode("utf-8")
-    return raw[:size].decode("utf-8", errors="ignore")
-
-
 def _describe(status: enum.IntEnum, exc: BaseException | None) -> str:
     return f"status {int(status)} ({status.name}){f': {exc}' if exc is not None else ''}"
 
@@ -459,19 +451,19 @@ class FileManager(ActiveComponent):
     @async_command(opcode=0x00)
     def CreateDirectory(self, dirName: _PATH):  # noqa: N802,N803
         """Create the directory ``dirName`` (its parent must exist; it must not)."""
-        self.CreateDirectoryStarted(_cut(dirName, CMD_STRING_SIZE))
+        self.CreateDirectoryStarted(fit_utf8(dirName, CMD_STRING_SIZE))
         status, cause = self._fs(lambda: os.mkdir(self.resolve(dirName)))
         if status:
             self._log_failure("CreateDirectory", dirName, status, cause)
-            self.DirectoryCreateError(_cut(dirName, CMD_STRING_SIZE), status)
+            self.DirectoryCreateError(fit_utf8(dirName, CMD_STRING_SIZE), status)
         else:
-            self.CreateDirectorySucceeded(_cut(dirName, CMD_STRING_SIZE))
+            self.CreateDirectorySucceeded(fit_utf8(dirName, CMD_STRING_SIZE))
         return self._finish(status)
 
     @async_command(opcode=0x01)
     def MoveFile(self, sourceFileName: _PATH, destFileName: _PATH):  # noqa: N802,N803
         """Rename ``sourceFileName`` to ``destFileName`` (copy then remove across file systems)."""
-        src, dst = _cut(sourceFileName, CMD_STRING_SIZE), _cut(destFileName, CMD_STRING_SIZE)
+        src, dst = fit_utf8(sourceFileName, CMD_STRING_SIZE), fit_utf8(destFileName, CMD_STRING_SIZE)
         self.MoveFileStarted(src, dst)
         status, cause = self._fs(lambda: self._move(self.resolve(sourceFileName),
                                                     self.resolve(destFileName)))
@@ -485,19 +477,19 @@ class FileManager(ActiveComponent):
     @async_command(opcode=0x02)
     def RemoveDirectory(self, dirName: _PATH):  # noqa: N802,N803
         """Remove the empty directory ``dirName``."""
-        self.RemoveDirectoryStarted(_cut(dirName, CMD_STRING_SIZE))
+        self.RemoveDirectoryStarted(fit_utf8(dirName, CMD_STRING_SIZE))
         status, cause = self._fs(lambda: os.rmdir(self.resolve(dirName)))
         if status:
             self._log_failure("RemoveDirectory", dirName, status, cause)
-            self.DirectoryRemoveError(_cut(dirName, CMD_STRING_SIZE), status)
+            self.DirectoryRemoveError(fit_utf8(dirName, CMD_STRING_SIZE), status)
         else:
-            self.RemoveDirectorySucceeded(_cut(dirName, CMD_STRING_SIZE))
+            self.RemoveDirectorySucceeded(fit_utf8(dirName, CMD_STRING_SIZE))
         return self._finish(status)
 
     @async_command(opcode=0x03)
     def RemoveFile(self, fileName: _PATH, ignoreErrors: BOOL):  # noqa: N802,N803
         """Remove the file ``fileName``; with ``ignoreErrors`` a failure still answers OK."""
-        name = _cut(fileName, CMD_STRING_SIZE)
+        name = fit_utf8(fileName, CMD_STRING_SIZE)
         self.RemoveFileStarted(name)
         status, cause = self._fs(lambda: os.remove(self.resolve(fileName)))
         if status:
@@ -517,9 +509,9 @@ class FileManager(ActiveComponent):
         if not self.allow_shell:
             log.warning("%s: ShellCommand refused (the deployment did not allow shell commands; build "
                         "FileManager with allow_shell=True to run them): %r", self.name, command)
-            self.ShellCommandFailed(_cut(command + _SHELL_REFUSED, CMD_STRING_SIZE), SHELL_NOT_RUN)
+            self.ShellCommandFailed(fit_utf8(command + _SHELL_REFUSED, CMD_STRING_SIZE), SHELL_NOT_RUN)
             return self._finish(FileSystemStatus.OTHER_ERROR)
-        text = _cut(command, CMD_STRING_SIZE)
+        text = fit_utf8(command, CMD_STRING_SIZE)
         self.ShellCommandStarted(text)
         status = self._system(command, logFileName)
         if status == 0:
@@ -531,7 +523,7 @@ class FileManager(ActiveComponent):
     @async_command(opcode=0x05)
     def AppendFile(self, source: _PATH, target: _PATH):  # noqa: N802
         """Append ``source`` to ``target`` atomically (``target`` is created if missing)."""
-        src, dst = _cut(source, CMD_STRING_SIZE), _cut(target, CMD_STRING_SIZE)
+        src, dst = fit_utf8(source, CMD_STRING_SIZE), fit_utf8(target, CMD_STRING_SIZE)
         self.AppendFileStarted(src, dst)
         status, cause = self._fs(lambda: self._append(self.resolve(source), self.resolve(target)))
         if status:
@@ -544,7 +536,7 @@ class FileManager(ActiveComponent):
     @async_command(opcode=0x06)
     def FileSize(self, fileName: _PATH):  # noqa: N802,N803
         """Report the size of ``fileName`` in FileSizeSucceeded."""
-        name = _cut(fileName, CMD_STRING_SIZE)
+        name = fit_utf8(fileName, CMD_STRING_SIZE)
         self.FileSizeStarted(name)
         size = 0
 
@@ -564,7 +556,7 @@ class FileManager(ActiveComponent):
     @async_command(opcode=0x07)
     def ListDirectory(self, dirName: String(FILE_NAME_STRING_SIZE)):  # noqa: N802,N803
         """List ``dirName``, ``files_per_tick`` entries per ``schedIn`` tick; answered at the end."""
-        name = _cut(dirName, FILE_NAME_STRING_SIZE)
+        name = fit_utf8(dirName, FILE_NAME_STRING_SIZE)
         if self._listing is not None:
             log.warning("%s: ListDirectory %s refused: %s is still being listed", self.name, dirName,
                         self._listing.dir_name)
@@ -585,7 +577,7 @@ class FileManager(ActiveComponent):
     @async_command(opcode=0x08)
     def CalculateCrc(self, filename: String(FILE_NAME_STRING_SIZE)):  # noqa: N802
         """Report the CRC of ``filename`` (F´'s ``Os::File`` CRC); no channel is updated."""
-        name = _cut(filename, FILE_NAME_STRING_SIZE)
+        name = fit_utf8(filename, FILE_NAME_STRING_SIZE)
         self.CalculateCrcStarted(name)
         try:
             crc = file_crc(self.resolve(filename))
@@ -611,7 +603,7 @@ class FileManager(ActiveComponent):
             for _ in range(self.files_per_tick):
                 if listing.index >= len(listing.names):
                     self._listing = None
-                    self.ListDirectorySucceeded(_cut(listing.dir_name, FILE_NAME_STRING_SIZE),
+                    self.ListDirectorySucceeded(fit_utf8(listing.dir_name, FILE_NAME_STRING_SIZE),
                                                 listing.entries)
                     self._count(FileSystemStatus.OP_OK)
                     self.command_response(listing.token, CmdResponse.OK)
@@ -623,22 +615,22 @@ class FileManager(ActiveComponent):
         except Exception:  # noqa: BLE001 - a tick must never raise into the rate group
             log.exception("%s: ListDirectory %s failed", self.name, listing.dir_name)
             self._listing = None
-            self.ListDirectoryError(_cut(listing.dir_name, FILE_NAME_STRING_SIZE),
+            self.ListDirectoryError(fit_utf8(listing.dir_name, FILE_NAME_STRING_SIZE),
                                     DirectoryStatus.OTHER_ERROR)
             self._count(FileSystemStatus.OTHER_ERROR)
             self.command_response(listing.token, CmdResponse.EXECUTION_ERROR)
 
     def _list_entry(self, listing: _Listing, entry: str) -> None:
-        dir_name = _cut(listing.dir_name, FILE_NAME_STRING_SIZE)
+        dir_name = fit_utf8(listing.dir_name, FILE_NAME_STRING_SIZE)
         try:
             entry.encode("utf-8")
         except UnicodeEncodeError:  # a name that is not UTF-8 (surrogate-escaped by os.listdir)
             shown = entry.encode("utf-8", errors="surrogateescape").decode("utf-8", errors="replace")
             log.warning("%s: ListDirectory %s: entry %r has a name that is not UTF-8", self.name,
                         listing.dir_name, shown)
-            self.FileNameFormatError(_cut(shown, FILE_NAME_STRING_SIZE), StringFormatStatus.OTHER_ERROR)
+            self.FileNameFormatError(fit_utf8(shown, FILE_NAME_STRING_SIZE), StringFormatStatus.OTHER_ERROR)
             return
-        shown = _cut(entry, FILE_NAME_STRING_SIZE)
+        shown = fit_utf8(entry, FILE_NAME_STRING_SIZE)
         try:
             info = os.stat(os.path.join(listing.path, entry))
         except OSError:

@@ -96,7 +96,7 @@ from ..fw_ports import BufferSend, Ping
 from ..packets import Apid
 from ..ports import OutputPort, PortType, async_input
 from ..telemetry import Channel
-from ..types import I32, U16, U32, Alias, String
+from ..types import I32, U16, U32, Alias, String, fit_utf8
 
 __all__ = ["FileUplink", "FileAnnounce", "ReceiveMode", "SerializeStatus", "FILE_NAME_ARG_SIZE"]
 
@@ -133,10 +133,7 @@ class SerializeStatus(enum.IntEnum):
 
 def _event_name(path: str) -> str:
     """``path`` cut to the events' 40-byte bound, on a character boundary."""
-    raw = path.encode("utf-8", "replace")
-    if len(raw) <= FILE_NAME_ARG_SIZE:
-        return path
-    return raw[:FILE_NAME_ARG_SIZE].decode("utf-8", "ignore")
+    return fit_utf8(path, FILE_NAME_ARG_SIZE)
 
 
 def _decode_status(raw: bytes, error: FilePacketError) -> SerializeStatus:

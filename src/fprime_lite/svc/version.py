@@ -66,7 +66,7 @@ from ..errors import SerializationError
 from ..events import Event, Severity
 from ..ports import PortType, guarded_input
 from ..telemetry import Channel
-from ..types import U32, FwEnum, String, Struct, fw_type
+from ..types import U32, FwEnum, String, Struct, fit_utf8, fw_type
 
 __all__ = [
     "CUSTOM_VERSION_SIZE",
@@ -163,11 +163,6 @@ def installed_framework_version() -> str:
         return "unknown"
 
 
-def _fit(text: str, size: int) -> str:
-    """``text`` cut to at most ``size`` UTF-8 bytes, at a character boundary."""
-    return text.encode("utf-8", "replace")[:size].decode("utf-8", "ignore")
-
-
 class Version(PassiveComponent):
     """F´'s version reporter (``Svc.Version``).
 
@@ -205,7 +200,7 @@ class Version(PassiveComponent):
             status = _VERSION_STATUS.check(status)
         except SerializationError as exc:
             return self._reject("setVersion", str(exc), version_string)
-        self._custom[slot] = CustomVersionDb(VersionEnum(slot), _fit(version_string, CUSTOM_VERSION_SIZE), status)
+        self._custom[slot] = CustomVersionDb(VersionEnum(slot), fit_utf8(version_string, CUSTOM_VERSION_SIZE), status)
         self._custom_set[slot] = True
         self._report_custom(slot)
         return version_string, status
@@ -329,18 +324,18 @@ class Version(PassiveComponent):
     # --- reporting ---------------------------------------------------------------------------------
 
     def _report_framework(self) -> None:
-        text = _fit(self.framework_version, VERSION_STRING_SIZE)
+        text = fit_utf8(self.framework_version, VERSION_STRING_SIZE)
         self.FrameworkVersion(text)
         self._framework_tlm.write(text)
 
     def _report_project(self) -> None:
-        text = _fit(self.project_version, VERSION_STRING_SIZE)
+        text = fit_utf8(self.project_version, VERSION_STRING_SIZE)
         self.ProjectVersion(text)
         self._project_tlm.write(text)
 
     def _report_libraries(self) -> None:
         for index, library in enumerate(self.library_versions):
-            text = _fit(library, VERSION_STRING_SIZE)
+            text = fit_utf8(library, VERSION_STRING_SIZE)
             self.LibraryVersions(text)
             if index < NUM_LIBRARY_CHANNELS:
                 self._library_tlm[index].write(text)
@@ -349,7 +344,7 @@ class Version(PassiveComponent):
         if not self._custom_set[slot]:
             return
         entry = self._custom[slot]
-        self.CustomVersions(entry.version_enum, _fit(entry.version_value, VERSION_STRING_SIZE))
+        self.CustomVersions(entry.version_enum, fit_utf8(entry.version_value, VERSION_STRING_SIZE))
         if self.verbose:
             self._custom_tlm[slot].write(entry)
 
