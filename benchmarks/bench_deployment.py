@@ -5,7 +5,7 @@ Run: ``python benchmarks/bench_deployment.py [--duration S] [--memory] [--json F
 
 import sys
 
-from fprime_lite.bench import main
+from fprime_lite.tools.bench import main
 
 if __name__ == "__main__":
     sys.exit(main())

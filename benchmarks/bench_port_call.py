@@ -4,7 +4,7 @@ Run: ``python benchmarks/bench_port_call.py``. Both are measured in the same run
 ratio (target ≤ 1.5). Timings vary from machine to machine; the ratio is what to compare.
 """
 
-from fprime_lite.bench import measure_port_call
+from fprime_lite.tools.bench import measure_port_call
 
 if __name__ == "__main__":
     r = measure_port_call()

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from fprime_lite import (BOOL, F64, Channel, CmdResponse, Event, FwEnum, OutputPort, Param,
                          PassiveComponent, PortType, Sched, Severity, Struct, sync_command, sync_input)
-from fprime_lite.types import U8
+from fprime_lite.model.types import U8
 
 
 class HeaterState(FwEnum, namespace="Examples", rep=U8):

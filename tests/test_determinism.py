@@ -2,8 +2,8 @@
 
 import pathlib
 
-from fprime_lite.runner import run_deployment
-from fprime_lite.topology_loader import load_topology
+from fprime_lite.tools.runner import run_deployment
+from fprime_lite.deploy.topology_loader import load_topology
 
 TOPOLOGY = pathlib.Path(__file__).parents[1] / "deployments" / "proves_ref" / "topology.yaml"
 

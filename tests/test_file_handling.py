@@ -4,7 +4,7 @@ import json
 import os
 import pathlib
 
-from fprime_lite.cli import main
+from fprime_lite.tools.cli import main
 
 TOPOLOGY = str(pathlib.Path(__file__).parents[1] / "topology.yaml")
 

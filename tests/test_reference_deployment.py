@@ -10,9 +10,9 @@ import pathlib
 
 import pytest
 
-from detumble.types import DetumbleState
-from fprime_lite.runner import run_deployment
-from fprime_lite.topology_loader import load_topology
+from detumble.components.types import DetumbleState
+from fprime_lite.tools.runner import run_deployment
+from fprime_lite.deploy.topology_loader import load_topology
 
 ROOT = pathlib.Path(__file__).parents[1]
 TOPOLOGY = ROOT / "deployments" / "proves_ref" / "topology.yaml"

@@ -5,8 +5,8 @@ import textwrap
 
 import pytest
 
-from fprime_lite.runner import run_deployment
-from fprime_lite.topology_loader import TopologyError, load_topology
+from fprime_lite.tools.runner import run_deployment
+from fprime_lite.deploy.topology_loader import TopologyError, load_topology
 
 DEPLOYMENT = pathlib.Path(__file__).parents[1] / "deployments" / "proves_ref"
 

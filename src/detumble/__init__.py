@@ -2,10 +2,10 @@
 
 Modules (import what you need; this package imports nothing itself):
 
-* :mod:`detumble.types` — F´ enums, structs and port types (Components / Drv / Fw namespaces).
-* :mod:`detumble.bdot`, :mod:`detumble.strategy_selector`, :mod:`detumble.magnetorquer` — the
+* :mod:`detumble.components.types` — F´ enums, structs and port types (Components / Drv / Fw namespaces).
+* :mod:`detumble.control.bdot`, :mod:`detumble.control.strategy_selector`, :mod:`detumble.control.magnetorquer` — the
   control-law helpers, plain Python with no framework import.
-* :mod:`detumble.detumble_manager` — the DetumbleManager component.
-* :mod:`detumble.bdot_detumble` — the BDotDetumble dipole provider component.
+* :mod:`detumble.components.detumble_manager` — the DetumbleManager component.
+* :mod:`detumble.components.bdot_detumble` — the BDotDetumble dipole provider component.
 * :mod:`detumble.sim` — the simulated spacecraft.
 """

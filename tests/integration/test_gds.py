@@ -31,7 +31,7 @@ import time
 
 import pytest
 
-from fprime_lite.cli import main as fprime_lite
+from fprime_lite.tools.cli import main as fprime_lite
 
 ROOT = pathlib.Path(__file__).parents[2]
 TOPOLOGY = ROOT / "deployments" / "proves_ref" / "topology.yaml"
@@ -130,7 +130,7 @@ def flying(request):
     try:
         if framing == "fprime":
             groups.start("gds", gds + ["-n"], cwd=work)  # -n: --no-app
-            groups.start("deployment", [sys.executable, "-m", "fprime_lite.cli", "run", str(TOPOLOGY),
+            groups.start("deployment", [sys.executable, "-m", "fprime_lite.tools.cli", "run", str(TOPOLOGY),
                                         "--gds", f"127.0.0.1:{port}", "--framing", framing, "--duration", "300",
                                         "--out", str(runs / "run"), "--no-plots", "--seq", str(idle)], cwd=work)
         else:

@@ -5,7 +5,7 @@ Modules: :mod:`.vec` (plain-float vectors/quaternions, the quaternion convention
 :mod:`.sensors`, :mod:`.coils`, :mod:`.scenario`, :mod:`.plant`, :mod:`.laws`, :mod:`.runner`.
 """
 
-from .plant import Plant
-from .scenario import Scenario, ScenarioError, load_scenario, parse_scenario, scenario_from_dict
+from detumble.sim.plant import Plant
+from detumble.sim.scenario import Scenario, ScenarioError, load_scenario, parse_scenario, scenario_from_dict
 
 __all__ = ["Plant", "Scenario", "ScenarioError", "load_scenario", "parse_scenario", "scenario_from_dict"]

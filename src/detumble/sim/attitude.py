@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 
-from .vec import Mat3, Vec3, mat_inv
+from detumble.sim.vec import Mat3, Vec3, mat_inv
 
 State = tuple[float, float, float, float, float, float, float]
 

@@ -109,7 +109,7 @@ class WmmField:
                 "field.model 'wmm2025' needs the optional 'pygeomag' package: pip install pygeomag "
                 "(or use field.model 'dipole')"
             ) from exc
-        from .epoch import decimal_year
+        from detumble.sim.epoch import decimal_year
 
         self._geomag = GeoMag(coefficients_file="wmm/WMM_2025.COF")
         self._epoch = epoch

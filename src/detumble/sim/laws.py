@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 
-from .vec import Vec3
+from detumble.sim.vec import Vec3
 
 _ZERO = (0.0, 0.0, 0.0)
 

@@ -14,13 +14,13 @@ from __future__ import annotations
 
 import math
 
-from .attitude import RigidBody, State
-from .coils import CoilSet, TorqueRods
-from .field import DipoleField, FieldAlongOrbit, WmmField
-from .orbit import CircularOrbit, TleOrbit
-from .scenario import Scenario
-from .sensors import GAUSS_PER_TESLA, Gyro, Magnetometer
-from .vec import Vec3, rotate_n_to_b
+from detumble.sim.attitude import RigidBody, State
+from detumble.sim.coils import CoilSet, TorqueRods
+from detumble.sim.field import DipoleField, FieldAlongOrbit, WmmField
+from detumble.sim.orbit import CircularOrbit, TleOrbit
+from detumble.sim.scenario import Scenario
+from detumble.sim.sensors import GAUSS_PER_TESLA, Gyro, Magnetometer
+from detumble.sim.vec import Vec3, rotate_n_to_b
 
 _ZERO = (0.0, 0.0, 0.0)
 
@@ -32,7 +32,7 @@ def _derive_seed(seed: int, stream: int) -> int:
 def build_orbit(sc: Scenario):
     o = sc.orbit
     if o.type == "tle":
-        from .epoch import julian_date
+        from detumble.sim.epoch import julian_date
 
         return TleOrbit(o.tle[0], o.tle[1], julian_date(sc.epoch), o.table_step_s, o.mu_m3_s2)
     return CircularOrbit(

@@ -22,9 +22,9 @@ import tempfile
 import time
 from dataclasses import dataclass
 
-from .laws import BangBangLaw, BdotLaw, KoptLaw, NoLaw, kopt_gain
-from .plant import Plant
-from .scenario import LAWS, Scenario, ScenarioError, load_scenario
+from detumble.sim.laws import BangBangLaw, BdotLaw, KoptLaw, NoLaw, kopt_gain
+from detumble.sim.plant import Plant
+from detumble.sim.scenario import LAWS, Scenario, ScenarioError, load_scenario
 
 DEFAULT_BDOT_GAIN = 3.0  # A m^2 s / G, the flight DetumbleManager default
 

@@ -20,13 +20,13 @@ from typing import Any, Sequence
 
 import yaml
 
-from .coils import FACE_NAMES, CoilSpec, default_coil_layout
-from .epoch import gmst_rad, julian_date, parse_epoch
-from .field import (EARTH_ROTATION_RATE, IGRF2025_G10_NT, IGRF2025_G11_NT, IGRF2025_H11_NT,
+from detumble.sim.coils import FACE_NAMES, CoilSpec, default_coil_layout
+from detumble.sim.epoch import gmst_rad, julian_date, parse_epoch
+from detumble.sim.field import (EARTH_ROTATION_RATE, IGRF2025_G10_NT, IGRF2025_G11_NT, IGRF2025_H11_NT,
                     IGRF_REFERENCE_RADIUS_M)
-from .orbit import J2_EARTH, MU_EARTH, R_EARTH_EQ
-from .sensors import GyroSpec, MagnetometerSpec
-from .vec import Mat3, Quat, Vec3, mrp_to_quat, quat_normalize, unit
+from detumble.sim.orbit import J2_EARTH, MU_EARTH, R_EARTH_EQ
+from detumble.sim.sensors import GyroSpec, MagnetometerSpec
+from detumble.sim.vec import Mat3, Quat, Vec3, mrp_to_quat, quat_normalize, unit
 
 LAWS = ("none", "kopt", "bdot", "bangbang")
 

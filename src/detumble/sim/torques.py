@@ -7,7 +7,7 @@ compare it against.
 
 from __future__ import annotations
 
-from .vec import Mat3, Vec3, add, cross, mat_vec, norm, scale
+from detumble.sim.vec import Mat3, Vec3, add, cross, mat_vec, norm, scale
 
 
 def magnetic_torque(m_B: Vec3, b_B: Vec3) -> Vec3:

@@ -31,15 +31,15 @@ from __future__ import annotations
 import logging
 import struct
 
-from ..commands import CmdResponse, async_command
-from ..component import ActiveComponent
-from ..errors import FwAssertionError
-from ..events import Event, Severity
-from ..fw_ports import Cmd, CmdReg, CmdResponsePort, Com, Ping, Sched
-from ..packets import Apid
-from ..ports import OutputPort, async_input, guarded_input
-from ..telemetry import Channel
-from ..types import F32, I32, U8, U32, FwEnum, String
+from fprime_lite.model.commands import CmdResponse, async_command
+from fprime_lite.model.component import ActiveComponent
+from fprime_lite.model.errors import FwAssertionError
+from fprime_lite.model.events import Event, Severity
+from fprime_lite.model.fw_ports import Cmd, CmdReg, CmdResponsePort, Com, Ping, Sched
+from fprime_lite.wire.packets import Apid
+from fprime_lite.model.ports import OutputPort, async_input, guarded_input
+from fprime_lite.model.telemetry import Channel
+from fprime_lite.model.types import F32, I32, U8, U32, FwEnum, String
 
 __all__ = ["CmdDispatcher", "DeserialStatus", "COMMAND_PORTS", "SEQUENCE_PORTS",
            "SEQUENCER_TABLE_SIZE", "COM_BUFFER_MAX_SIZE"]

@@ -1,7 +1,7 @@
 """Svc.CmdSequencer: runs command sequence files, one command at a time.
 
 The F´ component of the same name, with its ports, commands, events and channels (names, ids,
-arguments, severities). File formats are in :mod:`fprime_lite.seqfile`: binary files exactly as
+arguments, severities). File formats are in :mod:`fprime_lite.wire.seqfile`: binary files exactly as
 ``fprime-seqgen`` writes them, and, when the sequencer is given a ``command_lookup``, the text
 form (``.seq``), compiled when loaded.
 
@@ -29,18 +29,18 @@ from __future__ import annotations
 import enum
 from pathlib import Path
 
-from ..commands import CmdResponse, CommandToken, async_command
-from ..component import ActiveComponent
-from ..events import Event, Severity
-from ..fw_ports import CmdResponsePort, CmdSeqIn, Com, Ping, Sched
-from ..ports import OutputPort, async_input
-from ..seqfile import (Descriptor, FileReadStage, Record, Sequence, SequenceCrcError,
+from fprime_lite.model.commands import CmdResponse, CommandToken, async_command
+from fprime_lite.model.component import ActiveComponent
+from fprime_lite.model.events import Event, Severity
+from fprime_lite.model.fw_ports import CmdResponsePort, CmdSeqIn, Com, Ping, Sched
+from fprime_lite.model.ports import OutputPort, async_input
+from fprime_lite.wire.seqfile import (Descriptor, FileReadStage, Record, Sequence, SequenceCrcError,
                        SequenceEmpty, SequenceFormatError, SequenceRecordError,
                        SequenceRecordMismatch, SequenceSizeError, SequenceTextError,
                        SequenceTimeBaseMismatch, SequenceTimeContextMismatch, CommandLookup,
                        check_time, read_sequence)
-from ..telemetry import Channel
-from ..types import I32, U8, U16, U32, FwEnum, String, fit_utf8
+from fprime_lite.model.telemetry import Channel
+from fprime_lite.model.types import I32, U8, U16, U32, FwEnum, String, fit_utf8
 
 __all__ = ["CmdSequencer", "BlockState", "SeqMode", "FileReadStage", "FILE_NAME_STRING_SIZE",
            "DEFAULT_BUFFER_SIZE"]

@@ -25,15 +25,15 @@ from __future__ import annotations
 
 import logging
 
-from ..commands import CmdResponse, async_command, sync_command
-from ..component import ActiveComponent
-from ..errors import SerializationError
-from ..events import Event, Severity
-from ..fw_ports import Com, FatalEvent, Log, Ping, Sched
-from ..packets import encode_event
-from ..ports import OutputPort, async_input, sync_input
-from ..telemetry import Channel
-from ..types import BOOL, U8, U32, U64, FwEnum
+from fprime_lite.model.commands import CmdResponse, async_command, sync_command
+from fprime_lite.model.component import ActiveComponent
+from fprime_lite.model.errors import SerializationError
+from fprime_lite.model.events import Event, Severity
+from fprime_lite.model.fw_ports import Com, FatalEvent, Log, Ping, Sched
+from fprime_lite.wire.packets import encode_event
+from fprime_lite.model.ports import OutputPort, async_input, sync_input
+from fprime_lite.model.telemetry import Channel
+from fprime_lite.model.types import BOOL, U8, U32, U64, FwEnum
 
 __all__ = ["EventManager", "FilterSeverity", "Enabled", "ID_FILTER_SIZE", "EVENT_PACKET_MAX",
            "DEFAULT_SEVERITY_FILTER"]

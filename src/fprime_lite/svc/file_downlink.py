@@ -87,15 +87,15 @@ import stat as _stat
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..commands import CmdResponse, CommandToken, async_command
-from ..component import ActiveComponent
-from ..events import Event, Severity
-from ..file_packet import (MAX_PATH_BYTES, CancelPacket, CfdpChecksum, DataPacket, EndPacket,
+from fprime_lite.model.commands import CmdResponse, CommandToken, async_command
+from fprime_lite.model.component import ActiveComponent
+from fprime_lite.model.events import Event, Severity
+from fprime_lite.wire.file_packet import (MAX_PATH_BYTES, CancelPacket, CfdpChecksum, DataPacket, EndPacket,
                            StartPacket, encode_file_packet)
-from ..fw_ports import BufferSend, Ping, Sched
-from ..ports import OutputPort, PortType, async_input, guarded_input
-from ..telemetry import Channel
-from ..types import I32, U32, FwEnum, String, Struct, fit_utf8
+from fprime_lite.model.fw_ports import BufferSend, Ping, Sched
+from fprime_lite.model.ports import OutputPort, PortType, async_input, guarded_input
+from fprime_lite.model.telemetry import Channel
+from fprime_lite.model.types import I32, U32, FwEnum, String, Struct, fit_utf8
 
 __all__ = ["DEFAULT_DATA_SIZE", "DEFAULT_FILE_QUEUE_DEPTH", "DEFAULT_PACKETS_PER_TICK",
            "FILE_DOWN_COMPLETE_PORTS", "FILE_NAME_SIZE", "FileDownlink", "OsFileStatus",

@@ -82,14 +82,14 @@ import threading
 import zlib
 from dataclasses import dataclass
 
-from ..atomic import fsync_directory
-from ..commands import CmdResponse, CommandToken, async_command
-from ..component import ActiveComponent
-from ..events import Event, Severity
-from ..fw_ports import Ping, Sched
-from ..ports import OutputPort, async_input, sync_input
-from ..telemetry import Channel
-from ..types import BOOL, U8, U32, U64, FwEnum, String, fit_utf8
+from fprime_lite.osal.atomic import fsync_directory
+from fprime_lite.model.commands import CmdResponse, CommandToken, async_command
+from fprime_lite.model.component import ActiveComponent
+from fprime_lite.model.events import Event, Severity
+from fprime_lite.model.fw_ports import Ping, Sched
+from fprime_lite.model.ports import OutputPort, async_input, sync_input
+from fprime_lite.model.telemetry import Channel
+from fprime_lite.model.types import BOOL, U8, U32, U64, FwEnum, String, fit_utf8
 
 __all__ = [
     "FileManager", "FileSystemStatus", "FileStatus", "DirectoryStatus", "StringFormatStatus",

@@ -1,7 +1,7 @@
 """FileUplink: puts files sent from the ground back together on board.
 
 F´'s ``Svc.FileUplink`` (instance ``fileUplink`` in F´'s FileHandling subtopology). The ground
-system cuts a file into file packets (:mod:`fprime_lite.file_packet`); the ground link removes each
+system cuts a file into file packets (:mod:`fprime_lite.wire.file_packet`); the ground link removes each
 packet's ``FW_PACKET_FILE`` descriptor and hands the rest to ``bufferSendIn``, one packet per call.
 The component has two receive modes, START (the initial one: waiting for a file) and DATA (a file
 is being received):
@@ -87,16 +87,16 @@ import os
 import pathlib
 import tempfile
 
-from ..atomic import file_mode_for, fsync_directory
-from ..component import ActiveComponent
-from ..events import Event, Severity
-from ..file_packet import (CancelPacket, CfdpChecksum, DataPacket, EndPacket, FilePacketError,
+from fprime_lite.osal.atomic import file_mode_for, fsync_directory
+from fprime_lite.model.component import ActiveComponent
+from fprime_lite.model.events import Event, Severity
+from fprime_lite.wire.file_packet import (CancelPacket, CfdpChecksum, DataPacket, EndPacket, FilePacketError,
                            FilePacketType, StartPacket, decode_file_packet)
-from ..fw_ports import BufferSend, Ping
-from ..packets import Apid
-from ..ports import OutputPort, PortType, async_input
-from ..telemetry import Channel
-from ..types import I32, U16, U32, Alias, String, fit_utf8
+from fprime_lite.model.fw_ports import BufferSend, Ping
+from fprime_lite.wire.packets import Apid
+from fprime_lite.model.ports import OutputPort, PortType, async_input
+from fprime_lite.model.telemetry import Channel
+from fprime_lite.model.types import I32, U16, U32, Alias, String, fit_utf8
 
 __all__ = ["FileUplink", "FileAnnounce", "ReceiveMode", "SerializeStatus", "FILE_NAME_ARG_SIZE"]
 

@@ -18,13 +18,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..commands import CmdResponse, async_command
-from ..component import QueuedComponent
-from ..events import Event, Severity
-from ..fw_ports import Ping, Sched
-from ..ports import OutputPort, PortType, async_input, sync_input
-from ..telemetry import Channel
-from ..types import U32, FwEnum, String
+from fprime_lite.model.commands import CmdResponse, async_command
+from fprime_lite.model.component import QueuedComponent
+from fprime_lite.model.events import Event, Severity
+from fprime_lite.model.fw_ports import Ping, Sched
+from fprime_lite.model.ports import OutputPort, PortType, async_input, sync_input
+from fprime_lite.model.telemetry import Channel
+from fprime_lite.model.types import U32, FwEnum, String
 
 __all__ = ["Health", "PingEntry", "FwEnabled", "WatchDog", "HEALTH_PING_PORTS"]
 

@@ -44,14 +44,14 @@ import zlib
 from dataclasses import dataclass
 from typing import Iterable, Mapping
 
-from ..commands import CmdResponse, async_command
-from ..component import ActiveComponent
-from ..errors import FwAssertionError
-from ..events import Event, Severity
-from ..fw_ports import Ping, PrmGet, PrmSet
-from ..params import ParamValid
-from ..ports import OutputPort, async_input, guarded_input
-from ..types import I32, U8, U32, FwEnum, String
+from fprime_lite.model.commands import CmdResponse, async_command
+from fprime_lite.model.component import ActiveComponent
+from fprime_lite.model.errors import FwAssertionError
+from fprime_lite.model.events import Event, Severity
+from fprime_lite.model.fw_ports import Ping, PrmGet, PrmSet
+from fprime_lite.model.params import ParamValid
+from fprime_lite.model.ports import OutputPort, async_input, guarded_input
+from fprime_lite.model.types import I32, U8, U32, FwEnum, String
 
 __all__ = [
     "PrmDb", "PrmReadError", "PrmWriteError", "PrmDbFileLoadState", "PrmLoadAction", "Merge",

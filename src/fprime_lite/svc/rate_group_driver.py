@@ -10,10 +10,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..component import PassiveComponent
-from ..fw_ports import Cycle
-from ..ports import OutputPort, sync_input
-from ..time import Time
+from fprime_lite.model.component import PassiveComponent
+from fprime_lite.model.fw_ports import Cycle
+from fprime_lite.model.ports import OutputPort, sync_input
+from fprime_lite.model.time import Time
 
 __all__ = ["Divider", "RateGroupDriver", "RateGroupTimer"]
 

@@ -15,20 +15,20 @@ from __future__ import annotations
 import logging
 import time as _wall
 
-from ..component import ActiveComponent, PassiveComponent
-from ..events import Event, Severity
-from ..fw_ports import Cycle, Ping, Sched
-from ..ports import OutputPort, async_input, sync_input
-from ..telemetry import Channel
-from ..time import Time
-from ..types import String, U32
+from fprime_lite.model.component import ActiveComponent, PassiveComponent
+from fprime_lite.model.events import Event, Severity
+from fprime_lite.model.fw_ports import Cycle, Ping, Sched
+from fprime_lite.model.ports import OutputPort, async_input, sync_input
+from fprime_lite.model.telemetry import Channel
+from fprime_lite.model.time import Time
+from fprime_lite.model.types import String, U32
 
-__all__ = ["ActiveRateGroup", "PassiveRateGroup"]
+__all__ = ["ActiveRateGroup", "PassiveRateGroup", "RateGroupBase"]
 
 log = logging.getLogger("fprime_lite")
 
 
-class _RateGroup:
+class RateGroupBase:
     """The cycle logic shared by both rate-group kinds (mixed into a component class)."""
 
     MAX_MEMBERS = 10
@@ -98,7 +98,7 @@ class _RateGroup:
         self.RgCycleSlips.write(self.slips)
 
 
-class ActiveRateGroup(_RateGroup, ActiveComponent):
+class ActiveRateGroup(RateGroupBase, ActiveComponent):
     """F´'s ActiveRateGroup: ``CycleIn`` is queued; members run when the group is dispatched.
 
     In a deterministic deployment a cycle that finds the group idle runs at once, as the
@@ -131,7 +131,7 @@ class ActiveRateGroup(_RateGroup, ActiveComponent):
             self.PingOut[0](key)
 
 
-class PassiveRateGroup(_RateGroup, PassiveComponent):
+class PassiveRateGroup(RateGroupBase, PassiveComponent):
     """F´'s PassiveRateGroup: members run on the caller's thread when ``CycleIn`` is called."""
 
     def __init__(self, name: str, *, base_id: int = 0, contexts=(), period_us: int | None = None):

@@ -16,10 +16,10 @@ import sys
 import threading
 from typing import TextIO
 
-from ..component import PassiveComponent
-from ..events import Severity
-from ..fw_ports import LogText
-from ..ports import sync_input
+from fprime_lite.model.component import PassiveComponent
+from fprime_lite.model.events import Severity
+from fprime_lite.model.fw_ports import LogText
+from fprime_lite.model.ports import sync_input
 
 __all__ = ["TextLogger", "format_text_event"]
 

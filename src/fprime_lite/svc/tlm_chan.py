@@ -4,7 +4,7 @@ F´'s ``Svc.TlmChan`` (instance ``tlmSend`` in F´'s CdhCore subtopology). Every
 ``tlmOut`` connects to ``TlmRecv``, which stores the latest value and time tag per channel id. On
 each ``Run`` tick (a rate-group member), every channel written since the previous tick is sent out
 of ``PktSend``, packed into ``FW_PACKET_TELEM`` packets of at most
-:data:`~fprime_lite.packets.TLM_PACKET_MAX` bytes: ``U16 descriptor | {U32 id | Time | value}…``.
+:data:`~fprime_lite.wire.packets.TLM_PACKET_MAX` bytes: ``U16 descriptor | {U32 id | Time | value}…``.
 Channels are sent in the order they were first received (deterministic). ``TlmGet`` reads the
 latest stored value of one channel.
 
@@ -18,12 +18,12 @@ from __future__ import annotations
 import logging
 import struct
 
-from ..component import ActiveComponent
-from ..fw_ports import Com, Ping, Sched, Tlm
-from ..packets import TLM_PACKET_MAX, Apid
-from ..ports import OutputPort, PortType, async_input, guarded_input, sync_input
-from ..time import TIME
-from ..types import U32, FwEnum
+from fprime_lite.model.component import ActiveComponent
+from fprime_lite.model.fw_ports import Com, Ping, Sched, Tlm
+from fprime_lite.wire.packets import TLM_PACKET_MAX, Apid
+from fprime_lite.model.ports import OutputPort, PortType, async_input, guarded_input, sync_input
+from fprime_lite.model.time import TIME
+from fprime_lite.model.types import U32, FwEnum
 
 __all__ = ["TlmChan", "TlmGet", "TlmValid"]
 

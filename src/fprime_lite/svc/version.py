@@ -60,13 +60,13 @@ import importlib.metadata
 import logging
 from collections.abc import Sequence
 
-from ..commands import guarded_command
-from ..component import PassiveComponent
-from ..errors import SerializationError
-from ..events import Event, Severity
-from ..ports import PortType, guarded_input
-from ..telemetry import Channel
-from ..types import U32, FwEnum, String, Struct, fit_utf8, fw_type
+from fprime_lite.model.commands import guarded_command
+from fprime_lite.model.component import PassiveComponent
+from fprime_lite.model.errors import SerializationError
+from fprime_lite.model.events import Event, Severity
+from fprime_lite.model.ports import PortType, guarded_input
+from fprime_lite.model.telemetry import Channel
+from fprime_lite.model.types import U32, FwEnum, String, Struct, fit_utf8, fw_type
 
 __all__ = [
     "CUSTOM_VERSION_SIZE",

@@ -22,13 +22,13 @@ from __future__ import annotations
 
 from typing import Any, Callable, NamedTuple
 
-from ..commands import CmdResponse
-from ..component import Component, QueuedComponent
-from ..errors import FwAssertionError
-from ..events import Severity
-from ..params import ParamValid
-from ..time import Time, TimeBase, TimeInterval
-from ..types import deserialize_values
+from fprime_lite.model.commands import CmdResponse
+from fprime_lite.model.component import Component, QueuedComponent
+from fprime_lite.model.errors import FwAssertionError
+from fprime_lite.model.events import Severity
+from fprime_lite.model.params import ParamValid
+from fprime_lite.model.time import Time, TimeBase, TimeInterval
+from fprime_lite.model.types import deserialize_values
 
 __all__ = ["ComponentHarness", "PortCall", "CommandResponseRecord", "EventRecord", "TextEventRecord",
            "TelemetryRecord"]

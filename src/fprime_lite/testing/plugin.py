@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import pytest
 
-from .harness import ComponentHarness
+from fprime_lite.testing.harness import ComponentHarness
 
 
 @pytest.fixture

@@ -5,8 +5,8 @@ import struct
 import pytest
 
 from fprime_lite import CmdResponse, FwAssertionError, Severity, Time, TimeBase
-from fprime_lite.fw_ports import CmdResponsePort
-from fprime_lite.packets import encode_command
+from fprime_lite.model.fw_ports import CmdResponsePort
+from fprime_lite.wire.packets import encode_command
 from fprime_lite.svc.cmd_dispatcher import (COMMAND_PORTS, SEQUENCE_PORTS, CmdDispatcher,
                                             DeserialStatus)
 

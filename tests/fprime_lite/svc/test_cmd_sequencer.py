@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 from fprime_lite import CmdResponse, Time, TimeBase
-from fprime_lite.seqfile import (CommandDictionary, Descriptor, FileReadStage, Record, Sequence,
+from fprime_lite.wire.seqfile import (CommandDictionary, Descriptor, FileReadStage, Record, Sequence,
                                  encode_binary)
 from fprime_lite.svc.cmd_sequencer import BlockState, CmdSequencer, SeqMode
 

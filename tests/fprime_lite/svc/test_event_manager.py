@@ -5,7 +5,7 @@ import struct
 import pytest
 
 from fprime_lite import CmdResponse, Severity, Time, TimeBase
-from fprime_lite.packets import decode_event
+from fprime_lite.wire.packets import decode_event
 from fprime_lite.svc.event_manager import (DEFAULT_SEVERITY_FILTER, ID_FILTER_SIZE, Enabled,
                                            EventManager, FilterSeverity)
 

@@ -14,7 +14,7 @@ import random
 import pytest
 
 from fprime_lite import CmdResponse, Severity
-from fprime_lite.file_packet import (CancelPacket, CfdpChecksum, DataPacket, EndPacket, StartPacket,
+from fprime_lite.wire.file_packet import (CancelPacket, CfdpChecksum, DataPacket, EndPacket, StartPacket,
                                      cfdp_checksum, decode_file_packet)
 from fprime_lite.svc.file_downlink import (DEFAULT_DATA_SIZE, DEFAULT_PACKETS_PER_TICK, FileDownlink,
                                            OsFileStatus, SendFileResponse, SendFileStatus)
@@ -564,7 +564,7 @@ def test_fprime_gds_encodes_commands_and_decodes_events_and_channels_by_our_decl
     from fprime_gds.common.encoders.cmd_encoder import CmdEncoder
     from fprime_gds.common.models.dictionaries import Dictionaries
 
-    from fprime_lite.packets import decode_command, encode_event, encode_telemetry
+    from fprime_lite.wire.packets import decode_command, encode_event, encode_telemetry
 
     maker = pathlib.Path(__file__).parents[2] / "data" / "svc" / "make_svc_dictionary.py"
     spec = importlib.util.spec_from_file_location("_file_downlink_dictionary", maker)

@@ -17,7 +17,7 @@ import zlib
 import pytest
 
 from fprime_lite import CmdResponse, Severity
-from fprime_lite.packets import encode_event
+from fprime_lite.wire.packets import encode_event
 from fprime_lite.svc import file_manager as fm_module
 from fprime_lite.svc.file_manager import (
     SHELL_NOT_RUN,

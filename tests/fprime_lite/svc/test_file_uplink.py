@@ -16,7 +16,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from fprime_lite import Severity
-from fprime_lite.file_packet import (CancelPacket, DataPacket, EndPacket, StartPacket, cfdp_checksum,
+from fprime_lite.wire.file_packet import (CancelPacket, DataPacket, EndPacket, StartPacket, cfdp_checksum,
                                      decode_file_packet, encode_file_packet)
 from fprime_lite.svc.file_uplink import FileUplink, ReceiveMode
 from fprime_lite.testing import ComponentHarness
@@ -584,7 +584,7 @@ def test_events_and_channels_decode_with_the_gds_dictionary_loaders(tmp_path, mo
     from fprime_gds.common.decoders.event_decoder import EventDecoder
     from fprime_gds.common.models.dictionaries import Dictionaries
 
-    from fprime_lite.time import TIME
+    from fprime_lite.model.time import TIME
 
     maker = pathlib.Path(__file__).parents[2] / "data" / "svc" / "make_svc_dictionary.py"
     spec = importlib.util.spec_from_file_location("_file_uplink_dictionary", maker)

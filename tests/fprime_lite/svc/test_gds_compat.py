@@ -14,7 +14,7 @@ import sys
 import pytest
 
 from fprime_lite import CmdResponse, SimulatedClock, TimeBase
-from fprime_lite.packets import Apid
+from fprime_lite.wire.packets import Apid
 from fprime_lite.svc.cmd_dispatcher import CmdDispatcher
 from fprime_lite.svc.event_manager import EventManager
 from fprime_lite.svc.time_source import TimeSource

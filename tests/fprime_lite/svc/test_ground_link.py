@@ -14,23 +14,23 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from fprime_lite import SimulatedClock
-from fprime_lite.deployment import Deployment
-from fprime_lite.ground import GroundDecoder
-from fprime_lite.packets import encode_command
+from fprime_lite.deploy.deployment import Deployment
+from fprime_lite.ground.downlink import GroundDecoder
+from fprime_lite.wire.packets import encode_command
 from fprime_lite.svc.cmd_dispatcher import CmdDispatcher
 from fprime_lite.svc.event_manager import EventManager
 from fprime_lite.svc.ground_link import (
     GroundLink,
     LinkState,
-    add_ground_link,
     parse_address,
 )
+from fprime_lite.deploy.com_stack import add_ground_link
 from fprime_lite.svc.rate_groups import PassiveRateGroup
 from fprime_lite.svc.time_source import TimeSource
 from fprime_lite.svc.tlm_chan import TlmChan
-from fprime_lite.time import Time
-from fprime_lite.topology import Topology, TopologyError
-from fprime_lite.topology_loader import load_topology
+from fprime_lite.model.time import Time
+from fprime_lite.deploy.topology import Topology, TopologyError
+from fprime_lite.deploy.topology_loader import load_topology
 
 pytest.importorskip("fprime_gds", reason="fprime-gds 4.4.1 is a test dependency: pip install -e .[test]")
 
@@ -305,7 +305,7 @@ def test_commands_per_tick_are_bounded(fprime_harness, links):
 
 
 def _file_packets(link, n):
-    from fprime_lite.file_packet import DataPacket, encode_file_packet
+    from fprime_lite.wire.file_packet import DataPacket, encode_file_packet
 
     packets = [encode_file_packet(DataPacket(i, 4 * i, bytes([i]) * 4)) for i in range(n)]
     return packets, b"".join(link.framing.frame_uplink(p) for p in packets)
@@ -477,7 +477,7 @@ def test_fuzz_deframer_and_command_path_never_fail(framing, picks, mutations, no
 def test_dict_gds_includes_the_link(tmp_path, capsys):
     import json
 
-    from fprime_lite.cli import main
+    from fprime_lite.tools.cli import main
 
     plain, with_link = tmp_path / "plain.json", tmp_path / "gds.json"
     assert main(["dict", str(TOPOLOGY), "-o", str(plain)]) == 0
@@ -492,7 +492,7 @@ def test_dict_gds_includes_the_link(tmp_path, capsys):
     (["--gds", "127.0.0.1:http"], "the port must be a number"),
 ])
 def test_run_rejects_bad_ground_options(tmp_path, capsys, argv, message):
-    from fprime_lite.cli import main
+    from fprime_lite.tools.cli import main
 
     assert main(["run", str(TOPOLOGY), "--out", str(tmp_path / "o"), *argv]) == 2
     assert message in capsys.readouterr().err
@@ -501,7 +501,7 @@ def test_run_rejects_bad_ground_options(tmp_path, capsys, argv, message):
 def test_realtime_run_is_paced_to_the_wall_clock(tmp_path, capsys):
     import json
 
-    from fprime_lite.cli import main
+    from fprime_lite.tools.cli import main
 
     t0 = time.monotonic()
     assert main(["run", str(TOPOLOGY), "--realtime", "--duration", "0.5", "--out", str(tmp_path / "o"),

@@ -3,7 +3,7 @@
 import pytest
 
 from fprime_lite import PassiveComponent, Sched, Severity, Time, TimeBase, sync_input
-from fprime_lite.scheduler import Scheduler
+from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.svc.rate_group_driver import Divider, RateGroupDriver, RateGroupTimer
 from fprime_lite.svc.rate_groups import ActiveRateGroup, PassiveRateGroup
 

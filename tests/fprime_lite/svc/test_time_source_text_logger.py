@@ -33,7 +33,7 @@ def test_time_source_stamps_events():
 
 
 def test_time_source_needs_a_clock():
-    with pytest.raises(TypeError, match="clock must be a fprime_lite.time.Clock"):
+    with pytest.raises(TypeError, match="clock must be a fprime_lite.model.time.Clock"):
         TimeSource("time", object())
 
 

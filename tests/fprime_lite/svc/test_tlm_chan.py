@@ -5,7 +5,7 @@ import struct
 import pytest
 
 from fprime_lite import Time, TimeBase
-from fprime_lite.packets import TLM_PACKET_MAX, decode_telemetry
+from fprime_lite.wire.packets import TLM_PACKET_MAX, decode_telemetry
 from fprime_lite.svc.tlm_chan import TlmChan, TlmValid
 
 T1 = Time(TimeBase.TB_WORKSTATION_TIME, 0, 10, 0)

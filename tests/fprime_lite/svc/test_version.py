@@ -342,10 +342,10 @@ def test_fprime_gds_encodes_the_commands_and_decodes_the_reports(tmp_path):
     from fprime_gds.common.encoders.cmd_encoder import CmdEncoder
     from fprime_gds.common.models.dictionaries import Dictionaries
 
-    from fprime_lite.dictionary import write_dictionary
-    from fprime_lite.packets import decode_command
-    from fprime_lite.time import TIME, Time, TimeBase
-    from fprime_lite.topology import Topology
+    from fprime_lite.deploy.dictionary import write_dictionary
+    from fprime_lite.wire.packets import decode_command
+    from fprime_lite.model.time import TIME, Time, TimeBase
+    from fprime_lite.deploy.topology import Topology
 
     comp = Version("version", "fw-9", "proj-9", ["libA@1"], base_id=0x01000400)
     topology = Topology("VersionTest")

@@ -1,0 +1,1 @@
+"""The PROVES detumble flight components and their F´ types."""

@@ -1,0 +1,586 @@
+"""DetumbleManager: the PROVES detumble controller as a passive fprime_lite component.
+
+Behaviour: ``/work/shared/spec/detumble.md`` §3 (and ``docs/components/detumble_manager.md``).
+The control laws live in framework-free helpers (:mod:`detumble.control.bdot`,
+:mod:`detumble.control.strategy_selector`, :mod:`detumble.control.magnetorquer`); this module adapts them to ports,
+parameters, events and telemetry.
+
+Units: angular rate in deg/s (requested from the provider as ``AngularUnit.DEG_PER_SEC``), magnetic
+field in gauss (body frame), dipole moment in A·m² (body frame), durations as
+``Fw.TimeIntervalValue``, coil drive levels −127…127. The reference deployment runs ``run`` at 50 Hz.
+
+One state's actions run per ``run`` call; a transition takes effect on the next call::
+
+    COOLDOWN ──(≥ COOLDOWN_DURATION)──▶ SENSING_ANGULAR_VELOCITY
+    SENSING_ANGULAR_VELOCITY ──BDOT──▶ SENSING_MAGNETIC_FIELD ──(5 samples)──▶ ACTUATING_BDOT
+    SENSING_ANGULAR_VELOCITY ──HYSTERESIS──▶ ACTUATING_HYSTERESIS ──▶ COOLDOWN
+    ACTUATING_BDOT ──(≥ TORQUE_DURATION, or sampling-period failure)──▶ COOLDOWN
+    any state ──(mode DISABLED)──▶ COOLDOWN, coils stopped, timers and window cleared
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass
+
+from fprime_lite import (F64, Channel, CmdResponse, Event, OutputPort, Param, PassiveComponent,
+                         Sched, Severity, sync_command, sync_input)
+from fprime_lite.model.time import Time
+
+from detumble.components import types as T
+from detumble.control.bdot import BDot
+from detumble.control.magnetorquer import CoilShape as CoilOutline
+from detumble.control.magnetorquer import DirectionSign, Magnetorquer
+from detumble.control.strategy_selector import Strategy, StrategySelector
+from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet, CoilShape, DetumbleMode, DetumbleState,
+                    DipoleMomentGet, GetSystemMode, HysteresisAxis, MagneticFieldGet, SamplingPeriodGet,
+                    SetDetumbleMode, StartMagnetorquer, StopMagnetorquer, Success, SystemMode,
+                    SystemModeChanged, TimeIntervalValue)
+
+__all__ = ["DetumbleManager"]
+
+log = logging.getLogger("detumble.components.detumble_manager")
+
+_FULL_SCALE = 127
+
+#: Hysteresis drive levels (X+, X−, Y+, Y−, Z−) per axis.
+_HYSTERESIS_LEVELS = {
+    HysteresisAxis.X_AXIS: (_FULL_SCALE, -_FULL_SCALE, 0, 0, 0),
+    HysteresisAxis.Y_AXIS: (0, 0, _FULL_SCALE, -_FULL_SCALE, 0),
+    HysteresisAxis.Z_AXIS: (0, 0, 0, 0, -_FULL_SCALE),
+}
+
+
+@dataclass(frozen=True)
+class _CoilParams:
+    """Which parameters configure one coil, and its ports and turns channel."""
+
+    name: str
+    turns: str
+    voltage: str
+    resistance: str
+    shape: str
+    width: str | None
+    length: str | None
+    diameter: str | None
+    sign: DirectionSign
+    turns_channel: str
+    start_port: str
+    stop_port: str
+
+    @property
+    def params(self) -> tuple[str, ...]:
+        return tuple(p for p in (self.turns, self.voltage, self.resistance, self.shape, self.width,
+                                 self.length, self.diameter) if p is not None)
+
+
+def _rect(name: str, prefix: str, axis: str, sign: DirectionSign, port: str) -> _CoilParams:
+    camel = "".join(p.capitalize() for p in prefix.split("_"))
+    return _CoilParams(name, f"{axis}_TURNS", f"{prefix}_VOLTAGE", f"{prefix}_RESISTANCE",
+                       f"{prefix}_SHAPE", f"{prefix}_WIDTH", f"{prefix}_LENGTH", None, sign,
+                       f"{camel}TurnsParam", f"{port}Start", f"{port}Stop")
+
+
+#: The five coils in drive order (X+, X−, Y+, Y−, Z−). There is no Z+ coil.
+_COILS = (
+    _rect("x_plus", "X_PLUS", "X", DirectionSign.POSITIVE, "xPlus"),
+    _rect("x_minus", "X_MINUS", "X", DirectionSign.NEGATIVE, "xMinus"),
+    _rect("y_plus", "Y_PLUS", "Y", DirectionSign.POSITIVE, "yPlus"),
+    _rect("y_minus", "Y_MINUS", "Y", DirectionSign.NEGATIVE, "yMinus"),
+    _CoilParams("z_minus", "Z_TURNS", "Z_MINUS_VOLTAGE", "Z_MINUS_RESISTANCE", "Z_MINUS_SHAPE",
+                None, None, "Z_MINUS_DIAMETER", DirectionSign.NEGATIVE, "ZMinusTurnsParam",
+                "zMinusStart", "zMinusStop"),
+)
+
+
+def _camel(param_name: str) -> str:
+    """``X_PLUS_VOLTAGE`` → ``XPlusVoltage`` (the F´ channel/event stem of a parameter)."""
+    return "".join(part.capitalize() for part in param_name.split("_"))
+
+
+#: The selector's strategy as the ground-visible enum (a dict lookup: enum calls cost ~0.7 µs a tick).
+_DETUMBLE_STRATEGY = {Strategy(v.value): v for v in T.DetumbleStrategy}
+
+
+def _finite(*values: float) -> bool:
+    try:
+        return all(math.isfinite(v) for v in values)
+    except TypeError:
+        return False
+
+
+class DetumbleManager(PassiveComponent):
+    """Chooses and runs a detumble strategy (B-dot or hysteresis) and drives five magnetorquers.
+
+    Start-up: the deployment calls ``load_parameters()``; :meth:`parameters_loaded` then calls
+    :meth:`configure`, which caches the coil settings and publishes every parameter channel.
+    The component starts in mode DISABLED, state COOLDOWN.
+    """
+
+    # --- command (declared first: opcode 0, as in the FPP) -------------------------------------
+
+    @sync_command()
+    def SET_MODE(self, mode: DetumbleMode):  # noqa: N802 - F´ command name
+        """Set the operating mode. AUTO is refused in SAFE_MODE: EnableFailedSafeMode and
+        EXECUTION_ERROR (DEVIATION: the flight code answers OK)."""
+        if self._request_mode(DetumbleMode(mode)):
+            return CmdResponse.OK
+        return CmdResponse.EXECUTION_ERROR
+
+    # --- parameters (FPP order; ids fixed by the flight FPP) -----------------------------------
+
+    BDOT_MAX_THRESHOLD = Param(F64, default=720.0, id=40)  # deg/s
+    DEADBAND_UPPER_THRESHOLD = Param(F64, default=8.0, id=41)  # deg/s
+    DEADBAND_LOWER_THRESHOLD = Param(F64, default=5.0, id=1)  # deg/s
+    COOLDOWN_DURATION = Param(TimeIntervalValue, default=TimeIntervalValue(seconds=0, useconds=20000), id=3)
+    TORQUE_DURATION = Param(TimeIntervalValue, default=TimeIntervalValue(seconds=0, useconds=320000), id=38)
+    GAIN = Param(F64, default=3.0, id=39)  # A·m²·s/G
+    HYSTERESIS_AXIS = Param(HysteresisAxis, default=HysteresisAxis.X_AXIS, id=42)
+    X_TURNS = Param(F64, default=96.0, id=11)  # turns, both X coils
+    Y_TURNS = Param(F64, default=96.0, id=21)  # turns, both Y coils
+    Z_TURNS = Param(F64, default=153.0, id=31)  # turns, Z− coil
+    X_PLUS_VOLTAGE = Param(F64, default=3.3, id=9)  # V
+    X_PLUS_RESISTANCE = Param(F64, default=13.0, id=10)  # ohm
+    X_PLUS_LENGTH = Param(F64, default=0.053, id=12)  # m
+    X_PLUS_WIDTH = Param(F64, default=0.045, id=13)  # m
+    X_PLUS_SHAPE = Param(CoilShape, default=CoilShape.RECTANGULAR, id=33)
+    X_MINUS_VOLTAGE = Param(F64, default=3.3, id=14)  # V
+    X_MINUS_RESISTANCE = Param(F64, default=13.0, id=15)  # ohm
+    X_MINUS_LENGTH = Param(F64, default=0.053, id=17)  # m
+    X_MINUS_WIDTH = Param(F64, default=0.045, id=18)  # m
+    X_MINUS_SHAPE = Param(CoilShape, default=CoilShape.RECTANGULAR, id=34)
+    Y_PLUS_VOLTAGE = Param(F64, default=3.3, id=19)  # V
+    Y_PLUS_RESISTANCE = Param(F64, default=13.0, id=20)  # ohm
+    Y_PLUS_LENGTH = Param(F64, default=0.053, id=22)  # m
+    Y_PLUS_WIDTH = Param(F64, default=0.045, id=23)  # m
+    Y_PLUS_SHAPE = Param(CoilShape, default=CoilShape.RECTANGULAR, id=35)
+    Y_MINUS_VOLTAGE = Param(F64, default=3.3, id=24)  # V
+    Y_MINUS_RESISTANCE = Param(F64, default=13.0, id=25)  # ohm
+    Y_MINUS_LENGTH = Param(F64, default=0.053, id=27)  # m
+    Y_MINUS_WIDTH = Param(F64, default=0.045, id=28)  # m
+    Y_MINUS_SHAPE = Param(CoilShape, default=CoilShape.RECTANGULAR, id=36)
+    Z_MINUS_VOLTAGE = Param(F64, default=3.3, id=29)  # V
+    Z_MINUS_RESISTANCE = Param(F64, default=150.7, id=30)  # ohm
+    Z_MINUS_DIAMETER = Param(F64, default=0.05755, id=32)  # m
+    Z_MINUS_SHAPE = Param(CoilShape, default=CoilShape.CIRCULAR, id=37)
+
+    # --- output ports (FPP order) --------------------------------------------------------------
+
+    angularVelocityMagnitudeGet = OutputPort(AngularVelocityMagnitudeGet)
+    magneticFieldGet = OutputPort(MagneticFieldGet)
+    magneticFieldSamplingPeriodGet = OutputPort(SamplingPeriodGet)
+    getSystemMode = OutputPort(GetSystemMode)
+    xPlusStart = OutputPort(StartMagnetorquer)
+    xPlusStop = OutputPort(StopMagnetorquer)
+    xMinusStart = OutputPort(StartMagnetorquer)
+    xMinusStop = OutputPort(StopMagnetorquer)
+    yPlusStart = OutputPort(StartMagnetorquer)
+    yPlusStop = OutputPort(StopMagnetorquer)
+    yMinusStart = OutputPort(StartMagnetorquer)
+    yMinusStop = OutputPort(StopMagnetorquer)
+    zMinusStart = OutputPort(StartMagnetorquer)
+    zMinusStop = OutputPort(StopMagnetorquer)
+    #: Optional: when connected (to a BDotDetumble), its dipole replaces the internal BDot's.
+    dipoleMomentGet = OutputPort(DipoleMomentGet)
+
+    # --- events (FPP order) --------------------------------------------------------------------
+
+    EnableFailedSafeMode = Event(Severity.WARNING_LO,
+                                 "Failed to enable detumbling because system is in SAFE_MODE.", throttle=5)
+    DetumbleStarted = Event(Severity.ACTIVITY_LO, "Detumble started. Angular velocity magnitude: {.2f} deg/s",
+                            angular_velocity_magnitude_deg_sec=F64, throttle=1)
+    DetumbleCompleted = Event(Severity.ACTIVITY_LO, "Detumble complete. Angular velocity magnitude: {.2f} deg/s",
+                              angular_velocity_magnitude_deg_sec=F64, throttle=1)
+    MagneticFieldRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve magnetic field.", throttle=5)
+    MagneticFieldSamplingPeriodRetrievalFailed = Event(
+        Severity.WARNING_LO, "Failed to retrieve magnetic field sampling frequency.", throttle=5)
+    AngularVelocityRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve angular velocity.",
+                                           throttle=5)
+
+    BdotMaxThresholdParamSet = Event(Severity.ACTIVITY_HI, "BDOT_MAX_THRESHOLD parameter set to {} deg/s.", value=F64)
+    CooldownDurationParamSet = Event(Severity.ACTIVITY_HI, "COOLDOWN_DURATION parameter set to {}.",
+                                     value=TimeIntervalValue)
+    DeadbandUpperThresholdParamSet = Event(Severity.ACTIVITY_HI, "DEADBAND_UPPER_THRESHOLD parameter set to {} deg/s.",
+                                           value=F64)
+    DeadbandLowerThresholdParamSet = Event(Severity.ACTIVITY_HI, "DEADBAND_LOWER_THRESHOLD parameter set to {} deg/s.",
+                                           value=F64)
+    GainParamSet = Event(Severity.ACTIVITY_HI, "GAIN parameter set to {}.", value=F64)
+    HysteresisAxisParamSet = Event(Severity.ACTIVITY_HI, "HYSTERESIS_AXIS parameter set to {}.", value=HysteresisAxis)
+    TorqueDurationParamSet = Event(Severity.ACTIVITY_HI, "TORQUE_DURATION parameter set to {}.", value=TimeIntervalValue)
+    XMinusLengthParamSet = Event(Severity.ACTIVITY_HI, "X_MINUS_LENGTH parameter set to {} m.", value=F64)
+    XMinusResistanceParamSet = Event(Severity.ACTIVITY_HI, "X_MINUS_RESISTANCE parameter set to {} ohm.", value=F64)
+    XMinusShapeParamSet = Event(Severity.ACTIVITY_HI, "X_MINUS_SHAPE parameter set to {}.", value=CoilShape)
+    XMinusVoltageParamSet = Event(Severity.ACTIVITY_HI, "X_MINUS_VOLTAGE parameter set to {} V.", value=F64)
+    XMinusWidthParamSet = Event(Severity.ACTIVITY_HI, "X_MINUS_WIDTH parameter set to {} m.", value=F64)
+    XPlusLengthParamSet = Event(Severity.ACTIVITY_HI, "X_PLUS_LENGTH parameter set to {} m.", value=F64)
+    XPlusResistanceParamSet = Event(Severity.ACTIVITY_HI, "X_PLUS_RESISTANCE parameter set to {} ohm.", value=F64)
+    XPlusShapeParamSet = Event(Severity.ACTIVITY_HI, "X_PLUS_SHAPE parameter set to {}.", value=CoilShape)
+    XPlusVoltageParamSet = Event(Severity.ACTIVITY_HI, "X_PLUS_VOLTAGE parameter set to {} V.", value=F64)
+    XPlusWidthParamSet = Event(Severity.ACTIVITY_HI, "X_PLUS_WIDTH parameter set to {} m.", value=F64)
+    XTurnsParamSet = Event(Severity.ACTIVITY_HI, "X_TURNS parameter set to {}.", value=F64)
+    YMinusLengthParamSet = Event(Severity.ACTIVITY_HI, "Y_MINUS_LENGTH parameter set to {} m.", value=F64)
+    YMinusResistanceParamSet = Event(Severity.ACTIVITY_HI, "Y_MINUS_RESISTANCE parameter set to {} ohm.", value=F64)
+    YMinusShapeParamSet = Event(Severity.ACTIVITY_HI, "Y_MINUS_SHAPE parameter set to {}.", value=CoilShape)
+    YMinusVoltageParamSet = Event(Severity.ACTIVITY_HI, "Y_MINUS_VOLTAGE parameter set to {} V.", value=F64)
+    YMinusWidthParamSet = Event(Severity.ACTIVITY_HI, "Y_MINUS_WIDTH parameter set to {} m.", value=F64)
+    YPlusLengthParamSet = Event(Severity.ACTIVITY_HI, "Y_PLUS_LENGTH parameter set to {} m.", value=F64)
+    YPlusResistanceParamSet = Event(Severity.ACTIVITY_HI, "Y_PLUS_RESISTANCE parameter set to {} ohm.", value=F64)
+    YPlusShapeParamSet = Event(Severity.ACTIVITY_HI, "Y_PLUS_SHAPE parameter set to {}.", value=CoilShape)
+    YPlusVoltageParamSet = Event(Severity.ACTIVITY_HI, "Y_PLUS_VOLTAGE parameter set to {} V.", value=F64)
+    YPlusWidthParamSet = Event(Severity.ACTIVITY_HI, "Y_PLUS_WIDTH parameter set to {} m.", value=F64)
+    YTurnsParamSet = Event(Severity.ACTIVITY_HI, "Y_TURNS parameter set to {}.", value=F64)
+    ZMinusDiameterParamSet = Event(Severity.ACTIVITY_HI, "Z_MINUS_DIAMETER parameter set to {} m.", value=F64)
+    ZMinusResistanceParamSet = Event(Severity.ACTIVITY_HI, "Z_MINUS_RESISTANCE parameter set to {} ohm.", value=F64)
+    ZMinusShapeParamSet = Event(Severity.ACTIVITY_HI, "Z_MINUS_SHAPE parameter set to {}.", value=CoilShape)
+    ZMinusVoltageParamSet = Event(Severity.ACTIVITY_HI, "Z_MINUS_VOLTAGE parameter set to {} V.", value=F64)
+    ZTurnsParamSet = Event(Severity.ACTIVITY_HI, "Z_TURNS parameter set to {}.", value=F64)
+
+    #: Addition (not in the flight FPP; declared last so every flight event keeps its id): the
+    #: connected dipoleMomentGet provider answered FAILURE or a non-finite dipole.
+    DipoleMomentRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve dipole moment.", throttle=5)
+
+    # --- telemetry (FPP order) -----------------------------------------------------------------
+
+    Mode = Channel(DetumbleMode)
+    State = Channel(DetumbleState)
+    DetumbleStrategy = Channel(T.DetumbleStrategy)
+    AngularVelocityMagnitude = Channel(F64, format="{.3f}")  # deg/s
+    BdotMaxThresholdParam = Channel(F64)  # deg/s
+    DeadbandUpperThresholdParam = Channel(F64)  # deg/s
+    DeadbandLowerThresholdParam = Channel(F64)  # deg/s
+    GainParam = Channel(F64)  # A·m²·s/G
+    HysteresisAxisParam = Channel(HysteresisAxis)
+    CooldownDurationParam = Channel(TimeIntervalValue)
+    TorqueDurationParam = Channel(TimeIntervalValue)
+    TorqueDuration = Channel(TimeIntervalValue)  # measured length of the last B-dot actuation
+    TimeBetweenMagneticFieldReadings = Channel(TimeIntervalValue)  # first to last sample of a window
+    XPlusVoltageParam = Channel(F64)  # V
+    XPlusResistanceParam = Channel(F64)  # ohm
+    XPlusTurnsParam = Channel(F64)  # turns
+    XPlusLengthParam = Channel(F64)  # m
+    XPlusWidthParam = Channel(F64)  # m
+    XPlusShapeParam = Channel(CoilShape)
+    XMinusVoltageParam = Channel(F64)  # V
+    XMinusResistanceParam = Channel(F64)  # ohm
+    XMinusTurnsParam = Channel(F64)  # turns
+    XMinusLengthParam = Channel(F64)  # m
+    XMinusWidthParam = Channel(F64)  # m
+    XMinusShapeParam = Channel(CoilShape)
+    XTurnsParam = Channel(F64)  # turns
+    YPlusVoltageParam = Channel(F64)  # V
+    YPlusResistanceParam = Channel(F64)  # ohm
+    YPlusTurnsParam = Channel(F64)  # turns
+    YPlusLengthParam = Channel(F64)  # m
+    YPlusWidthParam = Channel(F64)  # m
+    YPlusShapeParam = Channel(CoilShape)
+    YMinusVoltageParam = Channel(F64)  # V
+    YMinusResistanceParam = Channel(F64)  # ohm
+    YMinusTurnsParam = Channel(F64)  # turns
+    YMinusLengthParam = Channel(F64)  # m
+    YMinusWidthParam = Channel(F64)  # m
+    YMinusShapeParam = Channel(CoilShape)
+    YTurnsParam = Channel(F64)  # turns
+    ZMinusVoltageParam = Channel(F64)  # V
+    ZMinusResistanceParam = Channel(F64)  # ohm
+    ZMinusTurnsParam = Channel(F64)  # turns
+    ZMinusDiameterParam = Channel(F64)  # m
+    ZMinusShapeParam = Channel(CoilShape)
+    ZTurnsParam = Channel(F64)  # turns
+
+    # --- construction --------------------------------------------------------------------------
+
+    def __init__(self, name: str, *, base_id: int = 0):
+        super().__init__(name, base_id=base_id)
+        self.bdot = BDot()
+        self.strategy_selector = StrategySelector()
+        self.magnetorquers: dict[str, Magnetorquer] = {c.name: Magnetorquer() for c in _COILS}
+        self.mode = DetumbleMode.DISABLED
+        self.state = DetumbleState.COOLDOWN
+        self.strategy = T.DetumbleStrategy.IDLE
+        self.cooldown_start_time: Time | None = None
+        self.torque_start_time: Time | None = None
+        self._bdot_levels: tuple[int, ...] | None = None  # drive levels of the current torque period
+        self._start_ports = [self.output_port(c.start_port) for c in _COILS]  # X+, X−, Y+, Y−, Z−
+        self._stop_ports = [self.output_port(c.stop_port) for c in _COILS]
+        self.coils_driven = False
+        self._last_system_mode: SystemMode | None = None
+        self._external_dipole: tuple[float, float, float] | None = None
+        self._param_by_local_id = {p.local_id: name for name, p in self.params.items()}
+        # Cache the default coil settings so a deployment that never loads parameters still has
+        # consistent coils; configure() (after load_parameters) replaces them and publishes them.
+        for coil in _COILS:
+            self._configure_coil(coil)
+
+    # --- start-up and parameters ---------------------------------------------------------------
+
+    def parameters_loaded(self) -> None:
+        """Parameters are loaded: cache coil settings and publish them (DEVIATION: the flight
+        code configured before loading)."""
+        self.configure()
+
+    def configure(self) -> None:
+        """Cache every coil's settings from the parameters and write every parameter channel."""
+        for coil in _COILS:
+            self._configure_coil(coil)
+        for name, bound in self.params.items():
+            getattr(self, f"{_camel(name)}Param").write(bound.value)
+        for coil in _COILS:
+            getattr(self, coil.turns_channel).write(self.params[coil.turns].value)
+
+    def parameter_updated(self, local_id: int) -> None:
+        """A PRM_SET arrived: echo that parameter only (event + channel), and re-configure the
+        coils it belongs to (DEVIATION: the flight code emits neighbours' events too and never
+        re-configures)."""
+        name = self._param_by_local_id.get(local_id)
+        if name is None:
+            return
+        value = self.params[name].value
+        stem = _camel(name)
+        getattr(self, f"{stem}ParamSet")(value)
+        getattr(self, f"{stem}Param").write(value)
+        for coil in _COILS:
+            if name in coil.params:
+                self._configure_coil(coil)
+                if name == coil.turns:
+                    getattr(self, coil.turns_channel).write(value)
+
+    def _configure_coil(self, coil: _CoilParams) -> None:
+        self._bdot_levels = None  # the drive levels of a torque period depend on the coil settings
+        p = self.params
+        m = self.magnetorquers[coil.name]
+        m.turns = float(p[coil.turns].value)
+        m.voltage = float(p[coil.voltage].value)
+        m.resistance = float(p[coil.resistance].value)
+        m.shape = CoilOutline(int(p[coil.shape].value))
+        m.direction_sign = coil.sign
+        m.width = float(p[coil.width].value) if coil.width else 0.0
+        m.length = float(p[coil.length].value) if coil.length else 0.0
+        m.diameter = float(p[coil.diameter].value) if coil.diameter else 0.0
+
+    # --- mode control --------------------------------------------------------------------------
+
+    @sync_input(SetDetumbleMode)
+    def setMode(self, mode):  # noqa: N802 - F´ port name
+        """SET_MODE without a command response."""
+        self._request_mode(DetumbleMode(mode))
+
+    @sync_input(SystemModeChanged)
+    def systemModeChanged(self, mode):  # noqa: N802 - F´ port name
+        """SAFE_MODE forces DISABLED (coils stop on the next run); NORMAL does not re-enable."""
+        self._last_system_mode = SystemMode(mode)
+        if self._last_system_mode == SystemMode.SAFE_MODE:
+            self.mode = DetumbleMode.DISABLED
+
+    def _request_mode(self, mode: DetumbleMode) -> bool:
+        """Apply a mode request; return False when AUTO was refused because of SAFE_MODE."""
+        if mode != DetumbleMode.DISABLED and self._system_in_safe_mode():
+            self.EnableFailedSafeMode()
+            self.mode = DetumbleMode.DISABLED
+            return False
+        self.EnableFailedSafeMode.clear_throttle()
+        self.mode = mode
+        return True
+
+    def _system_in_safe_mode(self) -> bool:
+        """SAFE when the getSystemMode provider (if connected) says so, or when the latest
+        systemModeChanged notification was SAFE_MODE."""
+        if self._last_system_mode == SystemMode.SAFE_MODE:
+            return True
+        if self.is_connected("getSystemMode", 0):
+            return self.getSystemMode[0]() == SystemMode.SAFE_MODE
+        return False
+
+    # --- run -----------------------------------------------------------------------------------
+
+    @sync_input(Sched)
+    def run(self, context):
+        """Rate-group tick: telemeter Mode and State, then one state's actions.
+
+        No exception escapes: a fault (a provider raising, a malformed reply) counts in
+        ``handler_faults``, is logged, stops the coils and restarts the cycle from COOLDOWN.
+        """
+        try:
+            self._run()
+        except Exception:  # noqa: BLE001 - the rate group must keep running; fail safe instead
+            self.handler_faults += 1
+            log.exception("%s: run raised; stopping the coils and restarting from COOLDOWN", self.name)
+            try:
+                self._stop_coils()
+            except Exception:  # noqa: BLE001
+                log.exception("%s: stopping the coils failed too", self.name)
+            self._reset_cycle()
+
+    def _run(self) -> None:
+        self.Mode.write(self.mode)
+        self.State.write(self.state)
+        if self.mode == DetumbleMode.DISABLED:
+            self._stop_coils()
+            self._reset_cycle()
+            return
+        state = self.state
+        if state == DetumbleState.COOLDOWN:
+            self._cooldown()
+        elif state == DetumbleState.SENSING_ANGULAR_VELOCITY:
+            self._sense_angular_velocity()
+        elif state == DetumbleState.SENSING_MAGNETIC_FIELD:
+            self._sense_magnetic_field()
+        elif state == DetumbleState.ACTUATING_BDOT:
+            self._actuate_bdot()
+        elif state == DetumbleState.ACTUATING_HYSTERESIS:
+            self._actuate_hysteresis()
+
+    def _reset_cycle(self) -> None:
+        """Back to COOLDOWN with timers and the B window cleared (Safe Disable)."""
+        self.state = DetumbleState.COOLDOWN
+        self.cooldown_start_time = None
+        self.torque_start_time = None
+        self._external_dipole = None
+        self._bdot_levels = None
+        self.bdot.empty_sample_set()
+
+    @staticmethod
+    def _elapsed_us(start: Time, now: Time) -> int:
+        return now.total_us - start.total_us
+
+    def _cooldown(self) -> None:
+        now = self.get_time()
+        if self.cooldown_start_time is None or now.total_us < self.cooldown_start_time.total_us:
+            self.cooldown_start_time = now  # first call (or the clock went backwards: start again)
+        elapsed = self._elapsed_us(self.cooldown_start_time, now)
+        if elapsed >= self.COOLDOWN_DURATION.value.total_us:  # "at least" (flight: strictly greater)
+            self.cooldown_start_time = None
+            self.state = DetumbleState.SENSING_ANGULAR_VELOCITY
+
+    def _sense_angular_velocity(self) -> None:
+        self.strategy_selector.configure(self.BDOT_MAX_THRESHOLD.value, self.DEADBAND_UPPER_THRESHOLD.value,
+                                         self.DEADBAND_LOWER_THRESHOLD.value)
+        ok, w = self._read("angularVelocityMagnitudeGet", AngularUnit.DEG_PER_SEC)
+        if not ok:
+            self.AngularVelocityRetrievalFailed()
+            return
+        if not _finite(w):
+            # A NaN or infinite rate is a failed read; never act on it, and stop a running drive.
+            self.AngularVelocityRetrievalFailed()
+            if self.coils_driven:
+                self._stop_coils()
+            return
+        w = float(w)
+        self.AngularVelocityRetrievalFailed.clear_throttle()
+        self.AngularVelocityMagnitude.write(w)
+        strategy = _DETUMBLE_STRATEGY[self.strategy_selector.from_angular_velocity_magnitude(w)]
+        if strategy != T.DetumbleStrategy.HYSTERESIS and self.coils_driven:
+            self._stop_coils()  # leaving HYSTERESIS (the only drive that outlives its state)
+        self.strategy = strategy
+        self.DetumbleStrategy.write(strategy)
+        if strategy == T.DetumbleStrategy.IDLE:
+            self.DetumbleCompleted(w)
+            self.DetumbleStarted.clear_throttle()
+            return
+        if strategy == T.DetumbleStrategy.BDOT:
+            self.bdot.empty_sample_set()
+            self.state = DetumbleState.SENSING_MAGNETIC_FIELD
+        else:
+            self.state = DetumbleState.ACTUATING_HYSTERESIS
+        self.DetumbleStarted(w)
+        self.DetumbleCompleted.clear_throttle()
+
+    def _sense_magnetic_field(self) -> None:
+        ok, field = self._read("magneticFieldGet")
+        if not ok or not _finite(field.x, field.y, field.z):
+            self.MagneticFieldRetrievalFailed()
+            return
+        self.MagneticFieldRetrievalFailed.clear_throttle()
+        self.bdot.add_sample((field.x, field.y, field.z), field.timestamp.total_us)
+        if self.bdot.sampling_complete():
+            spread_us = max(0, self.bdot.get_time_between_samples())
+            self.TimeBetweenMagneticFieldReadings.write(TimeIntervalValue.from_us(spread_us))
+            self.state = DetumbleState.ACTUATING_BDOT
+
+    def _actuate_bdot(self) -> None:
+        now = self.get_time()
+        if self.torque_start_time is None and not self._enter_actuating_bdot():
+            return
+        levels = self._bdot_levels
+        if levels is None:
+            # The dipole depends only on the sample window, the gain configured at entry and the coil
+            # settings, none of which change during the torque period (a coil parameter set by
+            # command clears this cache), so it is computed once per period.
+            if self._external_dipole is not None:
+                mx, my, mz = self._external_dipole
+            else:
+                mx, my, mz = self.bdot.get_magnetic_moment()
+            mt = self.magnetorquers
+            levels = self._bdot_levels = (mt["x_plus"].dipole_moment_to_current(mx),
+                                          mt["x_minus"].dipole_moment_to_current(mx),
+                                          mt["y_plus"].dipole_moment_to_current(my),
+                                          mt["y_minus"].dipole_moment_to_current(my),
+                                          mt["z_minus"].dipole_moment_to_current(mz))
+        self._start_coils(levels)
+        if now.total_us < self.torque_start_time.total_us:
+            self.torque_start_time = now  # the clock went backwards: measure from here
+        elapsed = self._elapsed_us(self.torque_start_time, now)
+        if elapsed >= self.TORQUE_DURATION.value.total_us:
+            self._bdot_levels = None
+            self.bdot.empty_sample_set()
+            self._stop_coils()
+            self.TorqueDuration.write(TimeIntervalValue.from_us(elapsed))
+            self.torque_start_time = None
+            self._external_dipole = None
+            self.state = DetumbleState.COOLDOWN
+
+    def _enter_actuating_bdot(self) -> bool:
+        """Entry actions of ACTUATING_BDOT; False when the cycle was abandoned (no actuation)."""
+        gain = self.GAIN.value
+        ok, period = self._read("magneticFieldSamplingPeriodGet")
+        if not ok:
+            self.MagneticFieldSamplingPeriodRetrievalFailed()
+            self._abandon_bdot_cycle()  # DEVIATION: the flight code still fires one stale pulse
+            return False
+        self.MagneticFieldSamplingPeriodRetrievalFailed.clear_throttle()
+        self.bdot.configure(gain, period.total_us)
+        self._external_dipole = None
+        self._bdot_levels = None
+        if self.is_connected("dipoleMomentGet", 0):
+            ok, dipole = self._read("dipoleMomentGet")
+            if not ok or not _finite(dipole.x, dipole.y, dipole.z):
+                self.DipoleMomentRetrievalFailed()
+                self._abandon_bdot_cycle()
+                return False
+            self.DipoleMomentRetrievalFailed.clear_throttle()
+            self._external_dipole = (float(dipole.x), float(dipole.y), float(dipole.z))
+        self.torque_start_time = self.get_time()
+        return True
+
+    def _abandon_bdot_cycle(self) -> None:
+        self._stop_coils()
+        self._reset_cycle()
+
+    def _actuate_hysteresis(self) -> None:
+        axis = HysteresisAxis(self.HYSTERESIS_AXIS.value)
+        self._start_coils(_HYSTERESIS_LEVELS[axis])
+        self.cooldown_start_time = None
+        self.state = DetumbleState.COOLDOWN
+
+    # --- ports out -----------------------------------------------------------------------------
+
+    def _read(self, port: str, *args):
+        """Call a ``ref condition`` port; return ``(ok, value)``. Unconnected counts as a failure."""
+        if not self.is_connected(port):
+            return False, None
+        value, condition = getattr(self, port)[0](*args)
+        return condition == Success.SUCCESS, value
+
+    def _start_coils(self, levels) -> None:
+        """Drive X+, X−, Y+, Y−, Z− at ``levels`` (each −127…127); unconnected coils are skipped."""
+        for port, level in zip(self._start_ports, levels):
+            if port.targets[0] is not None:  # unconnected coils are skipped
+                port.calls[0](level)
+        self.coils_driven = True
+
+    def _stop_coils(self) -> None:
+        """Stop all five coils (unconnected coils are skipped)."""
+        for port in self._stop_ports:
+            if port.targets[0] is not None:
+                port.calls[0]()
+        self.coils_driven = False

@@ -1,0 +1,176 @@
+"""F´ types and port types of the detumble application (detumble.md §1–2).
+
+Namespaces follow the flight FPP and the seed design documents:
+
+* ``Components`` — the DetumbleManager's own types and the ports it declares or uses from other
+  PROVES components: :class:`CoilShape`, :class:`DetumbleMode`, :class:`DetumbleState`,
+  :class:`DetumbleStrategy`, :class:`HysteresisAxis`, :class:`SystemMode`, :class:`AngularUnit`;
+  port types ``SetDetumbleMode``, ``SystemModeChanged``, ``GetSystemMode``,
+  ``AngularVelocityMagnitudeGet``, ``MagneticFieldGet`` (seed 002 names it
+  ``Components.MagneticFieldGet``) and ``SamplingPeriodGet``.
+* ``Drv`` — driver-side types: :class:`MagneticField` (the magnetometer reading, ``Drv::MagneticField``
+  in the flight code), :class:`DipoleMoment` and the ``DipoleMomentGet`` port (seed 002), and the
+  magnetorquer driver ports ``StartMagnetorquer`` / ``StopMagnetorquer`` (flight FPP).
+* ``Fw`` — F´ framework types the framework port does not (yet) provide: :class:`Success` and
+  :class:`TimeIntervalValue`.
+
+``ref condition: Success`` convention
+-------------------------------------
+In C++ these ports return a value *and* set an out-parameter ``Fw::Success& condition``. Python has
+no out-parameters, so every such port here **returns a** :class:`Result` — a two-field named tuple
+``(value, condition)``. ``condition`` is :class:`Success` (``SUCCESS``/``FAILURE``); ``value`` is
+meaningful only when the condition is ``SUCCESS``. A failed read is therefore never confused with a
+zero value. Providers may return ``Result(v, Success.SUCCESS)`` (or ``Result.success(v)`` /
+``Result.failure()``) or any 2-sequence ``(value, condition)``; consumers unpack
+``value, condition = port[0](...)``. The ``condition`` argument is removed from the port's argument
+list (``AngularVelocityMagnitudeGet`` therefore takes only ``unit``).
+
+Units at every port boundary are those of the flight code: magnetic field in **gauss** (sensor
+frame = body frame), angular rate in deg/s or rad/s as requested by :class:`AngularUnit`, dipole
+moment in **A·m²** (body frame), durations as ``TimeIntervalValue`` ``{seconds, useconds}``, coil
+drive levels as signed I8 in −127…127 (full scale = the coil's maximum current).
+"""
+
+from __future__ import annotations
+
+from typing import Any, NamedTuple
+
+from fprime_lite.model.fw_types import Success, TimeIntervalValue
+from fprime_lite.model.ports import PortType
+from fprime_lite.model.time import Time
+from fprime_lite.model.types import F64, I8, FwEnum, Struct
+
+__all__ = [
+    "Success", "TimeIntervalValue", "Result",
+    "CoilShape", "DetumbleMode", "DetumbleState", "DetumbleStrategy", "HysteresisAxis",
+    "SystemMode", "AngularUnit", "MagneticField", "DipoleMoment",
+    "SetDetumbleMode", "SystemModeChanged", "GetSystemMode", "AngularVelocityMagnitudeGet",
+    "MagneticFieldGet", "SamplingPeriodGet", "StartMagnetorquer", "StopMagnetorquer",
+    "DipoleMomentGet",
+]
+
+
+# --- Fw ------------------------------------------------------------------------------------------
+
+# ``Success`` and ``TimeIntervalValue`` are the framework's own (``Fw``) types, re-exported here.
+
+
+class Result(NamedTuple):
+    """What a ``ref condition: Success`` port returns: ``(value, condition)``.
+
+    ``value`` is meaningful only when ``condition`` is :attr:`Success.SUCCESS`.
+    """
+
+    value: Any
+    condition: Success
+
+    @property
+    def ok(self) -> bool:
+        """True when the read succeeded."""
+        return self.condition == Success.SUCCESS
+
+    @classmethod
+    def success(cls, value: Any) -> "Result":
+        return cls(value, Success.SUCCESS)
+
+    @classmethod
+    def failure(cls, value: Any = None) -> "Result":
+        return cls(value, Success.FAILURE)
+
+
+# --- Components enums ----------------------------------------------------------------------------
+
+class CoilShape(FwEnum, namespace="Components"):
+    """Shape of a magnetorquer coil (sets how its area is computed)."""
+
+    RECTANGULAR = 0
+    CIRCULAR = 1
+
+
+class DetumbleMode(FwEnum, namespace="Components"):
+    """Operating mode: DISABLED forces the coils off; AUTO runs the state machine."""
+
+    DISABLED = 0
+    AUTO = 1
+
+
+class DetumbleState(FwEnum, namespace="Components"):
+    """State of the DetumbleManager state machine."""
+
+    COOLDOWN = 0
+    SENSING_ANGULAR_VELOCITY = 1
+    SENSING_MAGNETIC_FIELD = 2
+    ACTUATING_BDOT = 3
+    ACTUATING_HYSTERESIS = 4
+
+
+class DetumbleStrategy(FwEnum, namespace="Components"):
+    """Strategy chosen from the angular-rate magnitude."""
+
+    IDLE = 0
+    BDOT = 1
+    HYSTERESIS = 2
+
+
+class HysteresisAxis(FwEnum, namespace="Components"):
+    """Body axis driven full scale by the hysteresis (bang-bang) strategy."""
+
+    X_AXIS = 0
+    Y_AXIS = 1
+    Z_AXIS = 2
+
+
+class SystemMode(FwEnum, namespace="Components"):
+    """Spacecraft-level mode published by the mode manager."""
+
+    SAFE_MODE = 1
+    NORMAL = 2
+
+
+class AngularUnit(FwEnum, namespace="Components"):
+    """Unit in which an angular-rate provider answers."""
+
+    RAD_PER_SEC = 0
+    DEG_PER_SEC = 1
+
+
+# --- structs -------------------------------------------------------------------------------------
+
+class MagneticField(Struct, namespace="Drv"):
+    """A magnetometer reading: ``x, y, z`` in gauss (body frame), ``timestamp`` when it was taken."""
+
+    x: F64
+    y: F64
+    z: F64
+    timestamp: Time
+
+
+class DipoleMoment(Struct, namespace="Drv"):
+    """A commanded magnetic dipole moment, ``x, y, z`` in A·m² (body frame)."""
+
+    x: F64
+    y: F64
+    z: F64
+
+
+# --- port types ----------------------------------------------------------------------------------
+
+#: Set the detumble mode (the SET_MODE command without a command response).
+SetDetumbleMode = PortType("Components.SetDetumbleMode", mode=DetumbleMode)
+#: Notification that the system mode changed.
+SystemModeChanged = PortType("Components.SystemModeChanged", mode=SystemMode)
+#: Query the current system mode.
+GetSystemMode = PortType("Components.GetSystemMode", returns=SystemMode)
+#: |ω| in the requested unit; returns ``Result(F64, Success)``.
+AngularVelocityMagnitudeGet = PortType("Components.AngularVelocityMagnitudeGet", returns=Result,
+                                       unit=AngularUnit)
+#: Latest magnetometer reading; returns ``Result(MagneticField, Success)``.
+MagneticFieldGet = PortType("Components.MagneticFieldGet", returns=Result)
+#: Magnetometer output period; returns ``Result(TimeIntervalValue, Success)``.
+SamplingPeriodGet = PortType("Components.SamplingPeriodGet", returns=Result)
+#: Drive one coil at ``val`` (−127…127, sign = current direction); returns Success.
+StartMagnetorquer = PortType("Drv.StartMagnetorquer", returns=Success, val=I8)
+#: Switch one coil off; returns Success.
+StopMagnetorquer = PortType("Drv.StopMagnetorquer", returns=Success)
+#: Dipole moment to command; returns ``Result(DipoleMoment, Success)``.
+DipoleMomentGet = PortType("Drv.DipoleMomentGet", returns=Result)

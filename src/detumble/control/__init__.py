@@ -1,0 +1,1 @@
+"""Control laws and flight arithmetic as plain Python: no framework import."""

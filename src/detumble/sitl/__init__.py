@@ -1,0 +1,25 @@
+"""Simulated drivers of the reference deployment, flying the plant of :mod:`detumble.sim`.
+
+* :mod:`.spacecraft` — :class:`SimulatedSpacecraft`: the plant stepped in lock-step with the
+  scheduler clock; truth trace.
+* :mod:`.imu_manager` — :class:`ImuManager`: LIS2MDL magnetometer + LSM6DSO gyro/accelerometer.
+* :mod:`.magnetorquer_driver` — :class:`MagnetorquerDriver`: one DRV2605-driven face coil.
+* :mod:`.mode_manager` — :class:`ModeManager`: NORMAL / SAFE_MODE.
+
+See ``docs/components/simulated_drivers.md``.
+"""
+
+from detumble.sitl.imu_manager import (Acceleration, AccelerationGet, AngularVelocity, AngularVelocityGet, ImuManager,
+                          Lis2mdlSamplingFrequency, Lsm6dsoSamplingFrequency, SimImuSensor, SimReadFault)
+from detumble.sitl.magnetorquer_driver import (DRIVER_FACES, MagnetorquerDriver, SimDriverFault, driver_instance_name,
+                                  make_magnetorquer_drivers)
+from detumble.sitl.mode_manager import MODE_CHANGED_PORTS, ForceSafeMode, ModeManager
+from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthRecorder, TruthSample, scenario_epoch_us
+
+__all__ = [
+    "SimulatedSpacecraft", "TruthRecorder", "TruthSample", "scenario_epoch_us",
+    "ImuManager", "Acceleration", "AngularVelocity", "AccelerationGet", "AngularVelocityGet",
+    "Lis2mdlSamplingFrequency", "Lsm6dsoSamplingFrequency", "SimImuSensor", "SimReadFault",
+    "MagnetorquerDriver", "SimDriverFault", "DRIVER_FACES", "driver_instance_name", "make_magnetorquer_drivers",
+    "ModeManager", "ForceSafeMode", "MODE_CHANGED_PORTS",
+]

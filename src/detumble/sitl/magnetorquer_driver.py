@@ -1,0 +1,198 @@
+"""Simulated magnetorquer driver: one DRV2605-driven face coil of the simulated spacecraft.
+
+The flight ``Drv.Drv2605Manager`` ports and commands on top of the plant's coil model
+(:mod:`detumble.sim.coils`). The reference deployment makes five instances, one per face that
+carries a coil (there is no Z+ coil):
+
+=========================  =====  =========================================
+instance                   face   dipole for a positive level
+=========================  =====  =========================================
+``drv2605Face0Manager``    X+ 0   +X
+``drv2605Face1Manager``    X− 1   −X (mirrored mounting: the coil's normal)
+``drv2605Face2Manager``    Y+ 2   +Y
+``drv2605Face3Manager``    Y− 3   −Y
+``drv2605Face5Manager``    Z− 5   −Z
+=========================  =====  =========================================
+
+The driver only forwards the signed drive level −127…127; the plant turns it into coil voltage
+``level/127 · V``, current ``V/R`` (optionally lagged by L/R) and dipole ``N·I·A`` along the
+face's outward normal — so the mirroring of the minus faces is the plant's, not the driver's. The
+new level acts on the dynamics from the present simulated time on.
+
+Fault injection (simulation only): :meth:`MagnetorquerDriver.set_fault` or ``SIM_SET_FAULT``:
+``NOT_READY`` — the device does not answer: ``start``/``stop`` return FAILURE with the throttled
+``DeviceNotReady`` event and the coil is switched off (the safe state); ``STUCK`` — the coil keeps
+whatever level it had and ``start``/``stop`` return FAILURE (``DeviceNotReady``), the nasty case.
+"""
+
+from __future__ import annotations
+
+import logging
+
+from fprime_lite import (I8, I32, Channel, CmdResponse, Event, FwEnum, PassiveComponent, Severity,
+                         sync_command, sync_input)
+from fprime_lite.model.types import U8
+
+from detumble.sim.coils import FACE_NAMES, MAX_LEVEL
+from detumble.components.types import StartMagnetorquer, StopMagnetorquer, Success
+from detumble.sitl.spacecraft import SimulatedSpacecraft
+
+__all__ = ["MagnetorquerDriver", "SimDriverFault", "DRIVER_FACES", "driver_instance_name",
+           "make_magnetorquer_drivers"]
+
+log = logging.getLogger("detumble.sitl")
+
+#: Faces with a coil in the reference 1U (X+ 0, X− 1, Y+ 2, Y− 3, Z− 5).
+DRIVER_FACES = (0, 1, 2, 3, 5)
+
+
+def driver_instance_name(face: int) -> str:
+    """The reference deployment's instance name of the driver on ``face``: ``drv2605Face<N>Manager``."""
+    return f"drv2605Face{face}Manager"
+
+
+class SimDriverFault(FwEnum, namespace="Sim", rep=U8):
+    """Injected driver fault (see the module docstring)."""
+
+    NONE = 0
+    NOT_READY = 1
+    STUCK = 2
+
+
+class MagnetorquerDriver(PassiveComponent):
+    """Simulated DRV2605 manager for the coil on ``face`` of ``spacecraft``.
+
+    Args:
+        name: instance name (``drv2605Face0Manager`` … ``drv2605Face5Manager``).
+        spacecraft: the simulated spacecraft.
+        face: 0 (X+), 1 (X−), 2 (Y+), 3 (Y−) or 5 (Z−); the spacecraft must have a coil there.
+    """
+
+    # --- ports ---------------------------------------------------------------------------------
+
+    @sync_input(StartMagnetorquer)
+    def start(self, val: int) -> Success:
+        """Drive the coil at level ``val`` (−127…127, sign = current direction). Out-of-range or
+        non-integer levels are refused (FAILURE, InvalidDriveLevel) and switch the coil off."""
+        if type(val) is int and val == self._coil.level and self.fault == SimDriverFault.NONE:
+            # The manager re-commands the same level every tick: the coil already carries it.
+            if self.DeviceNotReady.count:
+                self.DeviceNotReady.clear_throttle()
+            return Success.SUCCESS
+        return self._start(val)
+
+    @sync_input(StopMagnetorquer)
+    def stop(self) -> Success:
+        """Switch the coil off."""
+        return self._apply(0)
+
+    # --- commands ------------------------------------------------------------------------------
+
+    @sync_command()
+    def START(self, val: I8):  # noqa: N802 - F´ spelling
+        """Drive the coil at ``val`` (−127…127)."""
+        if not _valid_level(val):
+            self._start(val)
+            return CmdResponse.VALIDATION_ERROR
+        return CmdResponse.OK if self._start(val) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
+
+    @sync_command()
+    def STOP(self):  # noqa: N802
+        """Switch the coil off."""
+        return CmdResponse.OK if self._apply(0) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
+
+    @sync_command()
+    def SIM_SET_FAULT(self, fault: SimDriverFault):  # noqa: N802
+        """SIMULATION ONLY: inject a driver fault (NONE clears it)."""
+        self.set_fault(fault)
+
+    # --- events and channels -------------------------------------------------------------------
+
+    DeviceNotReady = Event(Severity.WARNING_LO, "Device not ready", throttle=5)
+    InvalidDriveLevel = Event(Severity.WARNING_LO, "Invalid drive level {d}; levels are -127..127", val=I32,
+                              throttle=5)
+    SimFaultSet = Event(Severity.ACTIVITY_HI, "SIM: driver fault set to {}", fault=SimDriverFault)
+
+    #: The level the coil is driven at now (−127…127; 0 = off).
+    DriveLevel = Channel(I8, update="on change")
+
+    def __init__(self, name: str, spacecraft: SimulatedSpacecraft, face: int, *, base_id: int = 0):
+        super().__init__(name, base_id=base_id)
+        if not isinstance(spacecraft, SimulatedSpacecraft):
+            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        if face not in spacecraft.coil_faces:
+            raise ValueError(f"{name}: spacecraft has no coil on face {face!r}; its coil faces are "
+                             f"{list(spacecraft.coil_faces) or 'none (ideal torque rods)'}")
+        self.spacecraft = spacecraft
+        self.face = face
+        self.face_name = FACE_NAMES[face]
+        self.fault = SimDriverFault.NONE
+        self._coil = spacecraft.plant.actuators.coils[face]  # read-only: the level the coil carries
+
+    # --- fault injection -----------------------------------------------------------------------
+
+    def set_fault(self, fault: SimDriverFault) -> None:
+        """Inject ``fault``; NOT_READY switches the coil off at once, STUCK freezes its level."""
+        self.fault = SimDriverFault(fault)
+        if self.fault == SimDriverFault.NOT_READY:
+            self._set_coil(0)
+        self.SimFaultSet(self.fault)
+
+    @property
+    def level(self) -> int:
+        """The level the plant's coil is driven at now."""
+        return self.spacecraft.coil_level(self.face)
+
+    # --- behaviour -----------------------------------------------------------------------------
+
+    def _start(self, val) -> Success:
+        if not _valid_level(val):
+            self.InvalidDriveLevel(_as_i32(val))
+            if self.fault != SimDriverFault.STUCK:
+                self._set_coil(0)
+            return Success.FAILURE
+        return self._apply(val)
+
+    def _apply(self, level: int) -> Success:
+        if self.fault != SimDriverFault.NONE:
+            self.DeviceNotReady()
+            if self.fault == SimDriverFault.NOT_READY:
+                self._set_coil(0)
+            return Success.FAILURE
+        if not self._set_coil(level):
+            self.DeviceNotReady()
+            return Success.FAILURE
+        self.DeviceNotReady.clear_throttle()
+        return Success.SUCCESS
+
+    def _set_coil(self, level: int) -> bool:
+        try:
+            self.spacecraft.set_coil_level(self.face, int(level))
+        except Exception:  # noqa: BLE001 - a plant fault is a failed drive, never an exception
+            self.handler_faults += 1
+            log.exception("%s: setting coil %s to %r raised", self.name, self.face_name, level)
+            return False
+        self.DriveLevel.write(int(level))
+        return True
+
+
+def _valid_level(val) -> bool:
+    return isinstance(val, int) and not isinstance(val, bool) and -MAX_LEVEL <= val <= MAX_LEVEL
+
+
+def _as_i32(val) -> int:
+    if isinstance(val, int) and not isinstance(val, bool) and -2**31 <= val < 2**31:
+        return int(val)
+    return -2**31  # not an integer, or beyond I32: reported as I32 min
+
+
+def make_magnetorquer_drivers(spacecraft: SimulatedSpacecraft, base_ids: dict[int, int] | None = None
+                              ) -> dict[str, MagnetorquerDriver]:
+    """The reference deployment's five drivers, by instance name (``drv2605Face0Manager`` …).
+
+    ``base_ids`` maps face -> base id (default: 0 for all; give distinct ids in a real topology).
+    """
+    base_ids = base_ids or {}
+    return {driver_instance_name(face): MagnetorquerDriver(driver_instance_name(face), spacecraft, face,
+                                                           base_id=base_ids.get(face, 0))
+            for face in DRIVER_FACES}

@@ -1,0 +1,254 @@
+"""What the reference deployment needs around its components: the spacecraft and the run report.
+
+Both are topology *resources* (see ``docs/topology.md``):
+
+- :func:`make_spacecraft` builds the simulated spacecraft on the deployment's scheduler, and sets the
+  clock's epoch to the scenario's UTC epoch so that every event and channel carries real UTC time.
+- :class:`DetumbleRunReport` watches a run: it streams the truth trace to ``truth.csv``, follows the
+  downlinked DetumbleStarted / DetumbleCompleted events, reports progress, adds the detumble figures
+  to ``summary.json`` and draws the plots.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import csv
+import math
+import os
+import pathlib
+
+from fprime_lite.deploy.scheduler import Scheduler
+
+from detumble.sim.scenario import Scenario, load_scenario
+from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthSample, scenario_epoch_us
+from detumble.components.types import DetumbleState, DetumbleStrategy
+
+__all__ = ["make_spacecraft", "DetumbleRunReport"]
+
+US_PER_S = 1_000_000
+_FACES = {0: "X+", 1: "X-", 2: "Y+", 3: "Y-", 5: "Z-"}
+_MAX_PLOT_POINTS = 4000
+
+
+def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler | None = None, *,
+                    seed: int | None = None, settings: Sequence[str] = ()) -> SimulatedSpacecraft:
+    """The simulated spacecraft of ``scenario`` stepping on ``scheduler``'s clock from now.
+
+    ``settings`` override single scenario values (``"sensors.magnetometer.noise_std_gauss=0"``)
+    when ``scenario`` is a name or file.
+    """
+    if scheduler is None:
+        raise ValueError("make_spacecraft needs the deployment's scheduler (args: {scheduler: $scheduler})")
+    if isinstance(scenario, str):
+        scenario = load_scenario(scenario, settings=settings)
+    elif settings:
+        raise ValueError("settings apply to a scenario given by name or file, not to a loaded Scenario")
+    clock = scheduler.clock
+    if clock.current_us == 0 and clock.epoch_us == 0:
+        clock.epoch_us = scenario_epoch_us(scenario)
+    return SimulatedSpacecraft.for_scheduler(scenario, scheduler, seed=seed)
+
+
+class DetumbleRunReport:
+    """Follows one run of a detumble deployment and writes its detumble-specific outputs.
+
+    Args:
+        spacecraft: the simulated spacecraft (``$spacecraft``).
+        manager: the qualified name of the DetumbleManager instance.
+        truth_interval_s: how often the truth trace is sampled (simulated seconds).
+    """
+
+    def __init__(self, spacecraft: SimulatedSpacecraft, *, manager: str = "ReferenceDeployment.detumbleManager",
+                 truth_interval_s: float = 1.0):
+        if not truth_interval_s > 0:
+            raise ValueError(f"truth_interval_s must be positive, got {truth_interval_s}")
+        self.spacecraft = spacecraft
+        self.manager_name = manager
+        self.truth_interval_us = max(1, round(truth_interval_s * US_PER_S))
+        self.manager = None
+        self.start_us = 0
+        self.initial_rate_deg_s = spacecraft.truth().rate_deg_s
+        self.last: TruthSample | None = None
+        self.detumble_started_s: float | None = None
+        self.detumble_complete_s: float | None = None
+        self.time_below_1_deg_s: float | None = None
+        self.samples = 0
+        self._file = None
+        self._writer = None
+        self._path: pathlib.Path | None = None
+
+    # --- run hooks (called by ``fprime-lite run``) ------------------------------------------------
+
+    def begin(self, deployment, out_dir: pathlib.Path) -> None:
+        self.manager = deployment.topology.instance(self.manager_name).component
+        self.start_us = deployment.scheduler.now_us
+        self._path = pathlib.Path(out_dir) / "truth.csv"
+        self._file = open(self._path.with_name(".truth.csv.part"), "w", encoding="utf-8", newline="")
+        self._writer = csv.writer(self._file, lineterminator="\n")
+        self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
+                               "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
+                               *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy"])
+        self._state_us = {s: 0 for s in DetumbleState}
+        self._state_since = deployment.scheduler.now_us
+        deployment.scheduler.add_time_listener(self._on_time)
+        self.spacecraft.set_trace(self._sample, self.truth_interval_us)
+
+    def _on_time(self, time_us: int) -> None:
+        """Credit the time since the last event to the state the manager was in (exact fractions)."""
+        self._state_us[self.manager.state] += time_us - self._state_since
+        self._state_since = time_us
+
+    def _sample(self, s: TruthSample) -> None:
+        self.last = s
+        self.samples += 1
+        t = s.t_s - self.start_us / US_PER_S
+        if self.time_below_1_deg_s is None and s.rate_deg_s < 1.0:
+            self.time_below_1_deg_s = t
+        w = s.omega_BN_B
+        levels = [s.coil_levels.get(f, 0) for f in _FACES]
+        strategy = getattr(self.manager, "strategy", None)
+        total = sum(self._state_us.values())
+        fractions = [self._state_us[st] / total if total else 0.0 for st in DetumbleState]
+        self._state_us = {st: 0 for st in DetumbleState}
+        self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
+                               s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *levels,
+                               *(f"{f:.4f}" for f in fractions), strategy.name if strategy is not None else ""])
+
+    def on_event(self, event) -> None:
+        """A downlinked event (``fprime_lite.ground.downlink.DecodedEvent``)."""
+        t = event.time.total_us / US_PER_S - (self.spacecraft.clock.epoch_us + self.start_us) / US_PER_S
+        if event.name.endswith(".DetumbleStarted") and self.detumble_started_s is None:
+            self.detumble_started_s = t
+        elif event.name.endswith(".DetumbleCompleted") and self.detumble_started_s is not None \
+                and self.detumble_complete_s is None:
+            self.detumble_complete_s = t
+
+    def progress(self) -> dict:
+        truth = self.spacecraft.truth()
+        state = self.manager.state.name if self.manager is not None else "?"
+        return {"rate_deg_s": truth.rate_deg_s, "state": state}
+
+    def summary(self) -> dict:
+        final = self.spacecraft.truth()
+        return {
+            "initial_rate_deg_s": self.initial_rate_deg_s,
+            "final_rate_deg_s": final.rate_deg_s,
+            "detumble_started_s": self.detumble_started_s,
+            "detumble_complete_s": self.detumble_complete_s,
+            "time_below_1_deg_s": self.time_below_1_deg_s,
+            "scenario": self.spacecraft.scenario.name,
+            "physics_steps": self.spacecraft.steps_taken,
+        }
+
+    def finish(self, out_dir: pathlib.Path, *, plots: bool = True) -> list[pathlib.Path]:
+        """Close the truth log; draw the plots; return the files written."""
+        self.spacecraft.set_trace(None)
+        if self._file is not None:
+            self._file.flush()
+            os.fsync(self._file.fileno())
+            self._file.close()
+            os.replace(self._path.with_name(".truth.csv.part"), self._path)
+            self._file = None
+        written = [self._path] if self._path is not None else []
+        if plots and self._path is not None:
+            written += plot_run(self._path, pathlib.Path(out_dir), self.manager)
+        return written
+
+
+def _read_truth(path: pathlib.Path) -> dict[str, list]:
+    """Columns of ``truth.csv``, decimated to at most a few thousand rows (memory stays flat)."""
+    with open(path, encoding="utf-8") as f:
+        rows = sum(1 for _ in f) - 1
+    stride = max(1, math.ceil(rows / _MAX_PLOT_POINTS))
+    columns: dict[str, list] = {}
+    with open(path, encoding="utf-8", newline="") as f:
+        reader = csv.reader(f)
+        header = next(reader)
+        for name in header:
+            columns[name] = []
+        for i, row in enumerate(reader):
+            if i % stride == 0 or i == rows - 1:
+                for name, value in zip(header, row):
+                    columns[name].append(value)
+    for name in list(columns):
+        if name != "strategy":
+            columns[name] = [float(v) for v in columns[name]]
+    return columns
+
+
+def _save(fig, path: pathlib.Path) -> pathlib.Path:
+    tmp = path.with_name(f".{path.stem}.part.png")
+    fig.savefig(tmp, dpi=110)
+    os.replace(tmp, path)
+    return path
+
+
+def plot_run(truth_csv: pathlib.Path, out_dir: pathlib.Path, manager=None) -> list[pathlib.Path]:
+    """Body rate (with the detumble thresholds), drive levels and the state timeline, as PNG."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    data = _read_truth(truth_csv)
+    t = data["t_s"]
+    if not t:
+        return []
+    unit, scale = ("min", 60.0) if t[-1] > 3 * 3600 / 10 else ("s", 1.0)
+    tt = [v / scale for v in t]
+    written = []
+
+    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(9, 6.5))
+    for axis, colour in (("wx_deg_s", "tab:red"), ("wy_deg_s", "tab:green"), ("wz_deg_s", "tab:blue")):
+        ax1.plot(tt, data[axis], lw=0.8, color=colour, label=axis.split("_")[0].replace("w", "ω"))
+    ax1.set_ylabel("body rate (deg/s)")
+    ax1.legend(loc="upper right", ncol=3, fontsize=8)
+    ax1.grid(alpha=0.3)
+    ax2.plot(tt, data["rate_deg_s"], color="black", lw=1.0, label="|ω|")
+    if manager is not None:
+        for name, style in (("DEADBAND_UPPER_THRESHOLD", "--"), ("DEADBAND_LOWER_THRESHOLD", ":")):
+            value = getattr(manager, name).value
+            ax2.axhline(value, color="tab:orange", ls=style, lw=1.0, label=f"{name} {value:g} deg/s")
+    ax2.set_ylabel("|ω| (deg/s)")
+    ax2.set_xlabel(f"time ({unit})")
+    ax2.set_yscale("log")
+    ax2.legend(loc="upper right", fontsize=8)
+    ax2.grid(alpha=0.3, which="both")
+    fig.suptitle("Body rate")
+    fig.tight_layout()
+    written.append(_save(fig, out_dir / "rate.png"))
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(9, 4))
+    for column, label in (("level_xp", "X+"), ("level_xm", "X−"), ("level_yp", "Y+"), ("level_ym", "Y−"),
+                          ("level_zm", "Z−")):
+        ax.step(tt, data[column], where="post", lw=0.8, label=label)
+    ax.set_ylabel("drive level (−127…127)")
+    ax.set_xlabel(f"time ({unit})")
+    ax.set_ylim(-135, 135)
+    ax.legend(loc="upper right", ncol=5, fontsize=8)
+    ax.grid(alpha=0.3)
+    ax.set_title("Commanded magnetorquer drive levels (sampled with the truth trace)")
+    fig.tight_layout()
+    written.append(_save(fig, out_dir / "drive_levels.png"))
+    plt.close(fig)
+
+    strategies = [s.name for s in DetumbleStrategy]
+    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(9, 5), gridspec_kw={"height_ratios": [1, 2]})
+    ax1.step(tt, [strategies.index(s) if s in strategies else -1 for s in data["strategy"]], where="post",
+             color="tab:purple", lw=1.0)
+    ax1.set_yticks(range(len(strategies)), strategies)
+    ax1.set_title("Detumble strategy, and the share of each interval spent in each state")
+    ax1.grid(alpha=0.3)
+    shares = [data[f"frac_{st.name.lower()}"] for st in DetumbleState]
+    ax2.stackplot(tt, *shares, labels=[st.name for st in DetumbleState], step="post", alpha=0.85)
+    ax2.set_ylim(0, 1)
+    ax2.set_ylabel("share of time")
+    ax2.set_xlabel(f"time ({unit})")
+    ax2.legend(loc="lower left", fontsize=7, ncol=2)
+    ax2.grid(alpha=0.3)
+    fig.tight_layout()
+    written.append(_save(fig, out_dir / "state.png"))
+    plt.close(fig)
+    return written

@@ -1,0 +1,320 @@
+"""The simulated spacecraft behind the simulated drivers: a plant stepped in lock-step with the clock.
+
+:class:`SimulatedSpacecraft` owns one :class:`~detumble.sim.plant.Plant` built from a scenario and
+keeps the physics at the deployment's time. There is **one time base**: the deployment's
+:class:`~fprime_lite.model.time.SimulatedClock` (integer microseconds; ``clock.now()`` is
+``epoch_us + current_us`` in ``TB_WORKSTATION_TIME``). The plant's own clock (integer nanoseconds
+from the scenario epoch, t = 0) is tied to it by one offset fixed when the spacecraft is made::
+
+    plant t_ns = (clock.current_us - origin_us) * 1000          origin_us = clock.current_us at creation
+
+so plant t = 0 is the moment the spacecraft was created (normally scheduler time 0). Every time
+stamp the drivers hand out (the magnetometer's sample time) is converted back to an F´
+:class:`~fprime_lite.model.time.Time` in the clock's base and context. Use :func:`scenario_epoch_us` as
+the clock's ``epoch_us`` to make F´ times read as Unix time at the scenario's UTC epoch.
+
+Stepping
+--------
+:meth:`attach` registers :meth:`on_time` as a scheduler time listener: whenever the scheduler
+moves time forward, *before* any event at the new time runs, the plant is integrated up to it in
+fixed dynamics steps on the grid ``k * dynamics_step_s`` from t = 0; when the new time (or a truth
+trace instant) falls between grid points the last step is partial and the next one returns to the
+grid. Consequences, all tested:
+
+* after ``scheduler.run(until_us=T)`` the physics time equals the scheduler time exactly;
+* a handler running at time t sees the plant at t; a coil level set at t is held over the steps
+  *after* t only (it cannot act on the past);
+* physics never integrates backwards (asking for an earlier time raises ``ValueError``).
+
+The drivers also call :meth:`sync` before each access, so a spacecraft whose clock is moved by hand
+(unit tests with the port harness) behaves identically; with the listener attached it is a no-op.
+
+Truth trace
+-----------
+:meth:`set_trace` calls ``callback(TruthSample)`` at every multiple of ``interval_us`` of plant
+time (exact instants: the stepper stops there), for plots and acceptance checks.
+:class:`TruthRecorder` is a ready-made callback that keeps the rows and writes a CSV.
+
+Frames and units: ``omega_BN_B`` rad/s (body rate relative to inertial, in B); ``b_B`` tesla (true
+geomagnetic field in B, *without* the coils' own field); ``m_coils_B`` A·m² (total coil dipole in
+B); quaternion ``q_BN`` scalar first (see ``docs/scenarios.md``). Sensor outputs follow the flight
+code: magnetometer in gauss, gyro in rad/s.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+from typing import Callable, NamedTuple
+
+from fprime_lite.model.time import SimulatedClock, Time
+
+from detumble.sim.coils import CoilSet
+from detumble.sim.plant import Plant
+from detumble.sim.scenario import Scenario, load_scenario
+from detumble.sim.sensors import GAUSS_PER_TESLA
+
+__all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us"]
+
+_UNIX_EPOCH = _dt.datetime(1970, 1, 1, tzinfo=_dt.timezone.utc)
+
+
+def scenario_epoch_us(scenario: Scenario) -> int:
+    """The scenario's UTC epoch as microseconds since 1970-01-01 (a clock ``epoch_us``)."""
+    delta = scenario.epoch - _UNIX_EPOCH
+    return (delta.days * 86400 + delta.seconds) * 1_000_000 + delta.microseconds
+
+
+class TruthSample(NamedTuple):
+    """One row of the truth trace."""
+
+    time_us: int                       #: deployment time, µs since the clock's epoch (``Time.total_us``)
+    t_s: float                         #: plant time since the scenario epoch, s
+    q_BN: tuple                        #: attitude quaternion, scalar first
+    omega_BN_B: tuple                  #: body rate, rad/s, in B
+    rate_deg_s: float                  #: |omega_BN_B|, deg/s
+    b_B: tuple                         #: true geomagnetic field in B, T (no coil field)
+    m_coils_B: tuple                   #: total coil dipole in B, A·m²
+    coil_levels: dict                  #: face -> drive level (-127..127)
+
+    CSV_HEADER = ("time_us", "t_s", "q0", "q1", "q2", "q3", "wx_rad_s", "wy_rad_s", "wz_rad_s",
+                  "rate_deg_s", "bx_T", "by_T", "bz_T", "mx_Am2", "my_Am2", "mz_Am2")
+
+    def csv_row(self) -> tuple:
+        return (self.time_us, self.t_s, *self.q_BN, *self.omega_BN_B, self.rate_deg_s, *self.b_B,
+                *self.m_coils_B)
+
+
+class TruthRecorder:
+    """A truth-trace callback that keeps every :class:`TruthSample` (``rows``) and writes CSV."""
+
+    def __init__(self) -> None:
+        self.rows: list[TruthSample] = []
+
+    def __call__(self, sample: TruthSample) -> None:
+        self.rows.append(sample)
+
+    def write_csv(self, path: str) -> None:
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write(",".join(TruthSample.CSV_HEADER) + "\n")
+            for row in self.rows:
+                fh.write(",".join(repr(v) for v in row.csv_row()) + "\n")
+
+
+class SimulatedSpacecraft:
+    """One simulated spacecraft, stepped on the deployment's clock.
+
+    Args:
+        scenario: a :class:`~detumble.sim.scenario.Scenario`, or a packaged scenario name / file path.
+        clock: the deployment's clock (default: a new :class:`SimulatedClock`). Use
+            ``scheduler.clock`` and then :meth:`attach` the scheduler.
+        seed: overrides the scenario's sensor-noise seed.
+        origin_us: the clock reading (``clock.current_us``) that is plant t = 0; default: now.
+    """
+
+    def __init__(self, scenario: Scenario | str, *, clock: SimulatedClock | None = None,
+                 seed: int | None = None, origin_us: int | None = None) -> None:
+        if isinstance(scenario, str):
+            scenario = load_scenario(scenario)
+        self.scenario = scenario
+        self.plant = Plant(scenario, seed)
+        self.clock = clock if clock is not None else SimulatedClock()
+        self.origin_us = self.clock.current_us if origin_us is None else int(origin_us)
+        if self.origin_us > self.clock.current_us:
+            raise ValueError(f"origin_us {self.origin_us} is after the clock's time "
+                             f"{self.clock.current_us} us; the plant cannot start in the future")
+        step_ns = int(round(scenario.dynamics_step_s * 1e9))
+        if step_ns <= 0:
+            raise ValueError(f"dynamics_step_s must be positive, got {scenario.dynamics_step_s}")
+        self._step_ns = step_ns
+        self._trace: Callable[[TruthSample], None] | None = None
+        self._trace_interval_ns = 0
+        self._trace_next_ns: int | None = None
+        self.steps_taken = 0
+        self._attached = []
+        self.sync()
+
+    @classmethod
+    def for_scheduler(cls, scenario: Scenario | str, scheduler, *, seed: int | None = None) -> "SimulatedSpacecraft":
+        """Make a spacecraft on ``scheduler.clock`` (plant t = 0 at the scheduler's now) and attach it."""
+        craft = cls(scenario, clock=scheduler.clock, seed=seed)
+        craft.attach(scheduler)
+        return craft
+
+    # --- time -----------------------------------------------------------------------------------
+
+    def attach(self, scheduler) -> None:
+        """Step the physics whenever ``scheduler`` advances time (it must run this spacecraft's clock)."""
+        if scheduler.clock is not self.clock:
+            raise ValueError("the scheduler runs another clock than this spacecraft; make the spacecraft "
+                             "with clock=scheduler.clock (or use SimulatedSpacecraft.for_scheduler)")
+        if scheduler in self._attached:
+            return
+        self._attached.append(scheduler)
+        scheduler.add_time_listener(self.advance_to_us)  # on_time without the extra call
+
+    def on_time(self, time_us: int) -> None:
+        """Scheduler time listener: integrate up to clock time ``time_us`` (``clock.current_us``)."""
+        self.advance_to_us(time_us)
+
+    def sync(self) -> None:
+        """Bring the physics to the clock's present time (no-op when already there)."""
+        if (self.clock.current_us - self.origin_us) * 1000 != self.plant.t_ns:
+            self.advance_to_us(self.clock.current_us)
+
+    def advance_to_us(self, time_us: int) -> None:
+        """Integrate to clock time ``time_us`` in fixed dynamics steps (the last one partial).
+
+        Raises ValueError for a time earlier than the plant's: physics never runs backwards.
+        """
+        plant = self.plant
+        target = (int(time_us) - self.origin_us) * 1000
+        now = plant.t_ns
+        if target <= now:
+            if target < now:
+                raise ValueError(f"cannot integrate backwards: the plant is at {self.plant_time_us} us "
+                                 f"of clock time, asked for {time_us} us")
+            return
+        step = self._step_ns
+        trace_next = self._trace_next_ns
+        while now < target:
+            nxt = (now // step + 1) * step
+            if nxt > target:
+                nxt = target
+            if trace_next is not None and trace_next < nxt:
+                nxt = trace_next
+            plant.step((nxt - now) * 1e-9)
+            self.steps_taken += 1
+            now = plant.t_ns
+            if now != nxt:  # pragma: no cover - guards the ns rounding in Plant.step
+                raise AssertionError(f"plant stepped to {now} ns instead of {nxt} ns")
+            if now == trace_next:
+                self._trace(self.truth())
+                trace_next += self._trace_interval_ns
+        self._trace_next_ns = trace_next
+
+    @property
+    def plant_time_us(self) -> int:
+        """The plant's time as a clock reading (``current_us``; truncated to whole µs)."""
+        return self.origin_us + self.plant.t_ns // 1000
+
+    def time_of(self, t_ns: int) -> Time:
+        """The F´ time (clock base and context) of plant time ``t_ns`` (ns since plant t = 0)."""
+        c = self.clock
+        return Time.from_us(c.epoch_us + self.origin_us + t_ns // 1000, c.time_base, c.context)
+
+    def now(self) -> Time:
+        """The clock's present time as an F´ time."""
+        return self.clock.now()
+
+    # --- sensors --------------------------------------------------------------------------------
+
+    def magnetometer_sample(self) -> tuple[float, float, float, Time]:
+        """``(bx, by, bz, t_sample)``: the held LIS2MDL sample in gauss (body axes) and when it was taken.
+
+        Sample-and-hold at the sensor's ODR: ``t_sample`` is the latest ODR instant ≤ now. The
+        sample includes the coils' coupling ``K · m_coils`` when the coils were on at that instant.
+        An ``ideal`` magnetometer returns the true field now, stamped now.
+        """
+        self.sync()
+        plant = self.plant
+        mag = plant.magnetometer
+        if mag.spec.ideal:
+            b = plant.b_B
+            g = GAUSS_PER_TESLA
+            return (b[0] * g, b[1] * g, b[2] * g, self.time_of(plant.t_ns))
+        s = mag.sample_gauss
+        return (s[0], s[1], s[2], self.time_of(mag.sample_time_ns))
+
+    def gyro_sample(self) -> tuple[float, float, float, Time]:
+        """``(wx, wy, wz, t_sample)``: the held LSM6DSO sample in rad/s (body axes) and its time."""
+        self.sync()
+        plant = self.plant
+        gyro = plant.gyro
+        if gyro.spec.ideal:
+            w = plant.omega_BN_B
+            return (w[0], w[1], w[2], self.time_of(plant.t_ns))
+        s = gyro.sample_rad_s
+        return (s[0], s[1], s[2], self.time_of(gyro.sample_time_ns))
+
+    def acceleration(self) -> tuple[float, float, float]:
+        """Specific force at the IMU, m/s², body axes: zero (free fall; the plant models no drag and
+        the IMU is taken at the centre of mass)."""
+        self.sync()
+        return (0.0, 0.0, 0.0)
+
+    @property
+    def magnetometer_period_us(self) -> float:
+        """The magnetometer's output period, µs."""
+        return self.plant.magnetometer.period_ns / 1000.0
+
+    def set_magnetometer_odr_hz(self, odr_hz: float) -> None:
+        """Reconfigure the magnetometer's output data rate (the flight ImuManager's configure()).
+
+        Samples stay on the grid ``k / odr`` from plant t = 0; the held sample is kept until the
+        next instant of the new grid.
+        """
+        if not (isinstance(odr_hz, (int, float)) and math.isfinite(odr_hz) and odr_hz > 0):
+            raise ValueError(f"odr_hz must be a positive number, got {odr_hz!r}")
+        self.plant.magnetometer.period_ns = int(round(1e9 / odr_hz))
+
+    def set_gyro_odr_hz(self, odr_hz: float) -> None:
+        """Reconfigure the gyro's output data rate."""
+        if not (isinstance(odr_hz, (int, float)) and math.isfinite(odr_hz) and odr_hz > 0):
+            raise ValueError(f"odr_hz must be a positive number, got {odr_hz!r}")
+        self.plant.gyro.period_ns = int(round(1e9 / odr_hz))
+
+    # --- actuators ------------------------------------------------------------------------------
+
+    @property
+    def coil_faces(self) -> tuple[int, ...]:
+        """Faces that carry a coil (empty for ideal torque rods)."""
+        act = self.plant.actuators
+        return tuple(sorted(act.coils)) if isinstance(act, CoilSet) else ()
+
+    def set_coil_level(self, face: int, level: int) -> None:
+        """Drive the coil on ``face`` at ``level`` (-127..127) from now on (plant sign conventions:
+        a positive level gives a dipole along the face's outward normal, so X- +level is -X)."""
+        self.sync()
+        self.plant.set_coil_level(face, level)
+
+    def coil_level(self, face: int) -> int:
+        return self.plant.coil_levels().get(face, 0)
+
+    # --- truth ----------------------------------------------------------------------------------
+
+    def truth(self) -> TruthSample:
+        """The present true state (no sync: the state at the plant's own time)."""
+        p = self.plant
+        t_ns = p.t_ns
+        w = p.omega_BN_B
+        return TruthSample(
+            time_us=self.clock.epoch_us + self.origin_us + t_ns // 1000,
+            t_s=t_ns * 1e-9,
+            q_BN=tuple(p.q_BN),
+            omega_BN_B=tuple(w),
+            rate_deg_s=math.degrees(math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])),
+            b_B=tuple(p.b_B),
+            m_coils_B=tuple(p.m_coils_B),
+            coil_levels=p.coil_levels(),
+        )
+
+    def set_trace(self, callback: Callable[[TruthSample], None] | None, interval_us: int = 1_000_000) -> None:
+        """Call ``callback(TruthSample)`` now and then every ``interval_us`` of plant time (on the grid
+        ``k * interval_us`` from plant t = 0). ``None`` stops the trace."""
+        if callback is None:
+            self._trace = None
+            self._trace_next_ns = None
+            return
+        if not isinstance(interval_us, int) or interval_us <= 0:
+            raise ValueError(f"interval_us must be a positive integer, got {interval_us!r}")
+        self.sync()
+        self._trace = callback
+        self._trace_interval_ns = interval_us * 1000
+        now = self.plant.t_ns
+        callback(self.truth())
+        self._trace_next_ns = (now // self._trace_interval_ns + 1) * self._trace_interval_ns
+
+    def __repr__(self) -> str:
+        return (f"<SimulatedSpacecraft {self.scenario.name!r} t={self.plant.t:.6f} s "
+                f"|w|={self.plant.rate_deg_s:.3f} deg/s>")

@@ -1,0 +1,1 @@
+"""Building and running deployments: the scheduler, topologies and their YAML, the dictionary."""

@@ -1,0 +1,146 @@
+"""The F´ JSON dictionary of a topology, in the shape ``fpp-to-dict`` emits and fprime-gds loads.
+
+Every name is the module-qualified instance name plus the member (``CdhCore.cmdDisp.CMD_NO_OP``).
+All ten top-level keys are present even when empty. Type definitions hold every named type the
+commands, events, channels and parameters use, plus the framework's aliases and enums
+(``FwOpcodeType`` …, ``TimeBase``, ``ComCfg.Apid``) and constants (``ComCfg.SpacecraftId``,
+``ComCfg.TmFrameFixedSize``), which fprime-gds reads to configure its codecs.
+"""
+
+from __future__ import annotations
+
+import json
+
+from fprime_lite import __version__
+from fprime_lite.osal.atomic import atomic_write_text
+from fprime_lite.model.commands import CmdResponse
+from fprime_lite.wire.com_cfg import CONSTANTS
+from fprime_lite.wire.packets import Apid
+from fprime_lite.model.time import TIME, TimeBase
+from fprime_lite.deploy.topology import Topology
+from fprime_lite.model.types import U8, U16, U32, Alias, FwType, fw_type
+
+__all__ = ["build_dictionary", "write_dictionary", "FRAMEWORK_VERSION"]
+
+#: The F´ release whose dictionary format and framework types we follow.
+FRAMEWORK_VERSION = "4.0.0"
+DICTIONARY_SPEC_VERSION = "1.0.0"
+
+FwIdType = Alias("FwIdType", U32)
+FRAMEWORK_ALIASES = [
+    FwIdType,
+    Alias("FwOpcodeType", FwIdType),
+    Alias("FwChanIdType", FwIdType),
+    Alias("FwEventIdType", FwIdType),
+    Alias("FwPrmIdType", FwIdType),
+    Alias("FwPacketDescriptorType", U16),
+    Alias("FwSizeStoreType", U16),
+    Alias("FwTimeBaseStoreType", U16),
+    Alias("FwTimeContextStoreType", U8),
+    Alias("FwTlmPacketizeIdType", U16),
+]
+_TIME_CONTEXT = FRAMEWORK_ALIASES[8]
+
+
+
+def _time_value_definition() -> dict:
+    """``Fw.TimeValue``: how a time member of a struct or argument is described."""
+    members = [("timeBase", fw_type(TimeBase)), ("timeContext", _TIME_CONTEXT), ("seconds", U32),
+               ("useconds", U32)]
+    return {
+        "kind": "struct",
+        "qualifiedName": TIME.json_ref()["name"],
+        "members": {n: {"type": t.json_ref(), "index": i} for i, (n, t) in enumerate(members)},
+        "default": {"timeBase": fw_type(TimeBase).json_value(TimeBase.TB_NONE), "timeContext": 0,
+                    "seconds": 0, "useconds": 0},
+    }
+
+
+class _TypeCollector:
+    def __init__(self):
+        self.definitions: dict[str, dict] = {}
+
+    def add(self, t: FwType) -> dict:
+        """Record ``t`` (and what it refers to); return its JSON reference."""
+        if t is TIME:
+            if t.json_ref()["name"] not in self.definitions:
+                self.add(fw_type(TimeBase))
+                self.add(_TIME_CONTEXT)
+                self.definitions[t.json_ref()["name"]] = _time_value_definition()
+            return t.json_ref()
+        definition = t.json_definition()
+        if definition is not None and t.name not in self.definitions:
+            self.definitions[t.name] = definition
+            for dep in t.dependencies():
+                self.add(dep)
+        return t.json_ref()
+
+
+def _params(collector: _TypeCollector, args) -> list[dict]:
+    return [{"name": n, "type": collector.add(t), "ref": False} for n, t in args]
+
+
+def build_dictionary(topology: Topology, *, project_version: str = __version__) -> dict:
+    """The JSON dictionary (as Python data) of every instance in ``topology``."""
+    types = _TypeCollector()
+    for alias in FRAMEWORK_ALIASES:
+        types.add(alias)
+    for framework_enum in (TimeBase, Apid, CmdResponse):
+        types.add(fw_type(framework_enum))
+    commands, events, channels, params = [], [], [], []
+    for instance in topology.instances.values():
+        comp = instance.component
+        prefix = instance.qualified_name
+        for c in comp.spec.commands:
+            entry = {"name": f"{prefix}.{c.name}", "commandKind": c.kind, "opcode": comp.base_id + c.opcode,
+                     "formalParams": _params(types, c.args)}
+            if c.kind == "async":
+                entry["priority"] = c.priority
+                entry["queueFullBehavior"] = c.queue_full
+            commands.append(entry)
+        for e in comp.spec.events:
+            entry = {"name": f"{prefix}.{e.name}", "severity": e.severity.name, "id": comp.base_id + e.local_id,
+                     "formalParams": _params(types, e.args), "format": e.format}
+            if e.throttle is not None:
+                entry["throttle"] = e.throttle
+            events.append(entry)
+        for ch in comp.spec.channels:
+            entry = {"name": f"{prefix}.{ch.name}", "type": types.add(ch.type), "id": comp.base_id + ch.local_id,
+                     "telemetryUpdate": ch.update}
+            if ch.format is not None:
+                entry["format"] = ch.format
+            limits = {side: dict(levels) for side, levels in (("low", ch.low), ("high", ch.high)) if levels}
+            if limits:
+                entry["limits"] = limits
+            channels.append(entry)
+        for p in comp.spec.params:
+            entry = {"name": f"{prefix}.{p.name}", "type": types.add(p.type), "id": comp.base_id + p.local_id}
+            if p.has_default:
+                entry["default"] = p.type.json_value(p.default)
+            params.append(entry)
+    return {
+        "metadata": {
+            "deploymentName": topology.deployment,
+            "frameworkVersion": FRAMEWORK_VERSION,
+            "projectVersion": project_version,
+            "libraryVersions": [],
+            "dictionarySpecVersion": DICTIONARY_SPEC_VERSION,
+        },
+        "typeDefinitions": list(types.definitions.values()),
+        "constants": [{"qualifiedName": n, "type": t.json_ref(), "value": v} for n, t, v in CONSTANTS],
+        "commands": sorted(commands, key=lambda c: c["opcode"]),
+        "parameters": sorted(params, key=lambda p: p["id"]),
+        "events": sorted(events, key=lambda e: e["id"]),
+        "telemetryChannels": sorted(channels, key=lambda c: c["id"]),
+        "records": [],
+        "containers": [],
+        "telemetryPacketSets": [],
+    }
+
+
+def write_dictionary(topology: Topology, path, **kwargs) -> dict:
+    """Build the dictionary and write it to ``path`` atomically; return it."""
+    dictionary = build_dictionary(topology, **kwargs)
+    atomic_write_text(path, json.dumps(dictionary, indent=2) + "\n")
+    return dictionary
+

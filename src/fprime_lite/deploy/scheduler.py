@@ -1,0 +1,205 @@
+"""The deterministic scheduler: one simulated clock, an event heap, queues drained after each event.
+
+Time is an integer number of microseconds. Events at the same time run in the order they were
+scheduled (a sequence number breaks ties), so the same inputs always give the same run. After every
+event the scheduler drains the queues of the queued and active components it was given, until all
+are empty: an async call made while handling an event is handled before time moves on, which is
+what a fast enough processor does.
+
+Listeners registered with :meth:`Scheduler.add_time_listener` are told the new time before any event
+at that time runs (the simulated spacecraft advances its physics there).
+
+:class:`PacedScheduler` runs the same events no faster than the wall clock (times ``speed``), for a
+deployment talking to a real ground system. The simulated clock still stamps everything.
+"""
+
+from __future__ import annotations
+
+import functools
+import heapq
+import itertools
+import logging
+import time as _wall
+from typing import Callable
+
+from fprime_lite.model.time import SimulatedClock
+
+__all__ = ["Scheduler", "PacedScheduler", "ScheduledCall"]
+
+log = logging.getLogger("fprime_lite")
+
+
+class ScheduledCall:
+    """A handle to a scheduled call; :meth:`cancel` stops it (and its repetitions)."""
+
+    __slots__ = ("fn", "period_us", "cancelled")
+
+    def __init__(self, fn: Callable[[], None], period_us: int | None):
+        self.fn = fn
+        self.period_us = period_us
+        self.cancelled = False
+
+    def cancel(self) -> None:
+        self.cancelled = True
+
+
+class Scheduler:
+    """Runs calls in simulated time order on one :class:`~fprime_lite.model.time.SimulatedClock`."""
+
+    def __init__(self, clock: SimulatedClock | None = None):
+        self.clock = clock if clock is not None else SimulatedClock()
+        self._heap: list[tuple[int, int, ScheduledCall]] = []
+        self._seq = itertools.count()
+        self._drained: list = []
+        self._busy: dict = {}  # components whose queues received messages, in arrival order
+        self._listeners: list[Callable[[int], None]] = []
+        self._stopped = False
+        self.events_run = 0
+
+    @property
+    def now_us(self) -> int:
+        return self.clock.current_us
+
+    def call_at(self, time_us: int, fn: Callable[[], None]) -> ScheduledCall:
+        """Run ``fn()`` at simulated time ``time_us`` (not before now)."""
+        if time_us < self.clock.current_us:
+            raise ValueError(f"cannot schedule at {time_us} us: it is already {self.clock.current_us} us")
+        call = ScheduledCall(fn, None)
+        heapq.heappush(self._heap, (time_us, next(self._seq), call))
+        return call
+
+    def reschedule(self, call: ScheduledCall, time_us: int) -> None:
+        """Put a one-shot ``call`` that has already run back on the heap for ``time_us``."""
+        if time_us < self.clock.current_us:
+            raise ValueError(f"cannot schedule at {time_us} us: it is already {self.clock.current_us} us")
+        heapq.heappush(self._heap, (time_us, next(self._seq), call))
+
+    def call_later(self, delay_us: int, fn: Callable[[], None]) -> ScheduledCall:
+        return self.call_at(self.clock.current_us + delay_us, fn)
+
+    def call_every(self, period_us: int, fn: Callable[[], None], start_us: int | None = None) -> ScheduledCall:
+        """Run ``fn()`` every ``period_us`` from ``start_us`` (default: now)."""
+        if not isinstance(period_us, int) or period_us <= 0:
+            raise ValueError(f"period must be a positive number of microseconds, got {period_us!r}")
+        call = ScheduledCall(fn, period_us)
+        first = self.clock.current_us if start_us is None else start_us
+        heapq.heappush(self._heap, (first, next(self._seq), call))
+        return call
+
+    def drain_after_each_event(self, component) -> None:
+        """Empty ``component``'s queue after every event (deterministic active components)."""
+        if component not in self._drained:
+            self._drained.append(component)
+            component.drained_by_scheduler = True
+            busy = self._busy
+            component.queue.on_put = functools.partial(busy.__setitem__, component, None)
+            if len(component.queue):
+                busy[component] = None
+
+    def add_time_listener(self, listener: Callable[[int], None]) -> None:
+        """``listener(time_us)`` is called whenever time advances, before the events at that time."""
+        self._listeners.append(listener)
+
+    def next_time_us(self) -> int | None:
+        """When the next event is due, or None when nothing is scheduled."""
+        while self._heap and self._heap[0][2].cancelled:
+            heapq.heappop(self._heap)
+        return self._heap[0][0] if self._heap else None
+
+    def step(self) -> bool:
+        """Run the next event (and drain queues); False when nothing is scheduled."""
+        t = self.next_time_us()
+        if t is None:
+            return False
+        self._run_next(t)
+        return True
+
+    def _run_next(self, t: int) -> None:
+        """Run the event at the top of the heap, which is due at ``t`` and not cancelled."""
+        _, _, call = heapq.heappop(self._heap)
+        self._advance_to(t)
+        if call.period_us is not None:
+            heapq.heappush(self._heap, (t + call.period_us, next(self._seq), call))
+        call.fn()
+        self.events_run += 1
+        if self._busy:
+            self.drain()
+
+    def _advance_to(self, t: int) -> None:
+        if t != self.clock.current_us:
+            self.clock.set_us(t)
+            for listener in self._listeners:
+                listener(t)
+
+    def drain(self) -> None:
+        """Dispatch queued messages until every drained component's queue is empty.
+
+        Only components whose queues received a message since they were last emptied are visited;
+        a message queued while draining marks its component again. A handler that raises is
+        counted in the component's ``handler_faults`` and logged, as on a component thread; the
+        deployment goes on.
+        """
+        busy = self._busy
+        while busy:
+            component = next(iter(busy))
+            del busy[component]
+            try:
+                component.dispatch_all()
+            except Exception:  # noqa: BLE001 - as on a component thread: counted and logged, never fatal
+                component.handler_faults += 1
+                log.exception("%s: a queued message's handler raised", component.name)
+                if len(component.queue):
+                    busy[component] = None  # the messages behind it still run in this drain
+
+    def run(self, until_us: int | None = None, max_events: int | None = None) -> int:
+        """Run events up to and including time ``until_us``; then set the clock to ``until_us``.
+
+        Returns the number of events run. :meth:`stop` ends the run early.
+        """
+        self._stopped = False
+        n = 0
+        while not self._stopped and (max_events is None or n < max_events):
+            t = self.next_time_us()
+            if t is None or (until_us is not None and t > until_us):
+                break
+            self._before_event(t)
+            self._run_next(t)
+            n += 1
+        if until_us is not None and not self._stopped and until_us > self.clock.current_us:
+            self._before_event(until_us)
+            self._advance_to(until_us)
+        return n
+
+    def _before_event(self, t: int) -> None:
+        """Hook for pacing; the simulated scheduler never waits."""
+
+    def stop(self) -> None:
+        """End :meth:`run` after the current event."""
+        self._stopped = True
+
+
+class PacedScheduler(Scheduler):
+    """A scheduler that keeps simulated time from running ahead of the wall clock × ``speed``."""
+
+    def __init__(self, clock: SimulatedClock | None = None, speed: float = 1.0,
+                 sleep: Callable[[float], None] = _wall.sleep,
+                 monotonic: Callable[[], float] = _wall.monotonic):
+        super().__init__(clock)
+        if speed <= 0:
+            raise ValueError(f"speed must be positive, got {speed}")
+        self.speed = speed
+        self._sleep = sleep
+        self._monotonic = monotonic
+        self._origin: tuple[float, int] | None = None
+        self.max_lag_s = 0.0
+
+    def _before_event(self, t: int) -> None:
+        if self._origin is None:
+            self._origin = (self._monotonic(), self.clock.current_us)
+        wall0, sim0 = self._origin
+        due = wall0 + (t - sim0) / 1e6 / self.speed
+        delay = due - self._monotonic()
+        if delay > 0:
+            self._sleep(delay)
+        else:
+            self.max_lag_s = max(self.max_lag_s, -delay)

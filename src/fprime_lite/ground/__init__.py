@@ -1,0 +1,1 @@
+"""The ground's side of the downlink: decoding packets, the run's logs and downlinked files."""

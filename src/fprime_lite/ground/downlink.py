@@ -1,0 +1,228 @@
+"""Ground-side decoding of downlinked packets, and recorders that stream them to log files.
+
+:class:`GroundDecoder` turns event and telemetry packets back into named, typed values using the
+topology's own declarations (what fprime-gds does with the dictionary). :class:`GroundRecorder`
+listens to the deployment's downlink (EventManager's and TlmChan's ``PktSend``) and writes
+``events.log`` (one line per event: time, name, severity, text, as the GDS logs them) and
+``channels.csv`` (time, channel, value) as packets arrive, so memory stays flat however long the run.
+Files are written under a temporary name and renamed into place when the recorder closes. Files
+the deployment downlinks (``fileDownlink.SendFile``) are reassembled under ``downlink/`` by a
+:class:`~fprime_lite.ground.files.FileReceiver`, as fprime-gds does in its downlink store.
+"""
+
+from __future__ import annotations
+
+import csv
+import datetime as _dt
+import enum
+import json
+import os
+import pathlib
+from collections import Counter
+from dataclasses import dataclass
+from typing import Any, Callable
+
+from fprime_lite.model.errors import SerializationError
+from fprime_lite.model.events import Severity, translate_format
+from fprime_lite.ground.files import FileReceiver
+from fprime_lite.wire.packets import Apid, decode_event, decode_telemetry
+from fprime_lite.model.time import Time, TimeBase
+from fprime_lite.deploy.topology import Topology
+from fprime_lite.model.types import deserialize_values
+
+__all__ = ["GroundDecoder", "GroundRecorder", "DecodedEvent", "DecodedChannel", "format_time"]
+
+
+@dataclass(frozen=True)
+class DecodedEvent:
+    time: Time
+    name: str
+    severity: Severity
+    args: tuple
+    text: str
+
+
+@dataclass(frozen=True)
+class DecodedChannel:
+    time: Time
+    name: str
+    value: Any
+    text: str
+
+
+def format_time(t: Time) -> str:
+    """UTC ISO 8601 for workstation (Unix) time; ``seconds.useconds`` for any other base."""
+    if t.time_base == TimeBase.TB_WORKSTATION_TIME:
+        stamp = _dt.datetime.fromtimestamp(t.seconds, _dt.timezone.utc).replace(microsecond=t.useconds)
+        return stamp.strftime("%Y-%m-%dT%H:%M:%S.%fZ")
+    return f"{t.seconds}.{t.useconds:06d}"
+
+
+def _plain(value):
+    """A JSON-able form of a decoded value (enums by name, structs as dicts)."""
+    if isinstance(value, enum.Enum):
+        return value.name
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if hasattr(value, "__dataclass_fields__"):
+        return {k: _plain(getattr(value, k)) for k in value.__dataclass_fields__}
+    if isinstance(value, Time):
+        return format_time(value)
+    return value
+
+
+class GroundDecoder:
+    """Decodes packets with the declarations of every instance in a topology."""
+
+    def __init__(self, topology: Topology):
+        self.events: dict[int, tuple[str, Any]] = {}
+        self.channels: dict[int, tuple[str, Any, str | None]] = {}
+        for instance in topology.instances.values():
+            comp = instance.component
+            for e in comp.spec.events:
+                self.events[comp.base_id + e.local_id] = (f"{instance.qualified_name}.{e.name}", e)
+            for c in comp.spec.channels:
+                template = translate_format(c.format, [c.type], c.name) if c.format else None
+                self.channels[comp.base_id + c.local_id] = (f"{instance.qualified_name}.{c.name}", c.type, template)
+
+    def decode_event(self, packet: bytes) -> DecodedEvent:
+        event_id, time, args = decode_event(packet)
+        known = self.events.get(event_id)
+        if known is None:
+            raise SerializationError(f"event id 0x{event_id:X} is not in the dictionary")
+        name, decl = known
+        values = tuple(deserialize_values(decl.arg_types, args))
+        return DecodedEvent(time, name, decl.severity, values, decl.render(values))
+
+    def decode_telemetry(self, packet: bytes) -> list[DecodedChannel]:
+        def value_end(channel_id, data, offset):
+            known = self.channels.get(channel_id)
+            if known is None:
+                raise SerializationError(f"channel id 0x{channel_id:X} is not in the dictionary")
+            return known[1].deserialize(data, offset)[1]
+
+        out = []
+        for channel_id, time, raw in decode_telemetry(packet, value_end):
+            name, ftype, template = self.channels[channel_id]
+            value = ftype.deserialize(raw)[0]
+            if template is not None:
+                text = template.format(value)
+            elif isinstance(value, enum.Enum):
+                text = value.name
+            elif isinstance(value, (int, float, str, bool)):
+                text = repr(value) if isinstance(value, float) else str(value)
+            else:
+                text = json.dumps(_plain(value))
+            out.append(DecodedChannel(time, name, value, text))
+        return out
+
+
+class _StreamedFile:
+    """A text file written under a temporary name and renamed into place on close."""
+
+    def __init__(self, path: pathlib.Path, newline: str | None = None):
+        self.path = path
+        self.tmp = path.with_name(f".{path.name}.part")
+        self.file = open(self.tmp, "w", encoding="utf-8", newline=newline)
+
+    def close(self) -> None:
+        if self.file.closed:
+            return
+        self.file.flush()
+        os.fsync(self.file.fileno())
+        self.file.close()
+        os.replace(self.tmp, self.path)
+
+
+class GroundRecorder:
+    """Receives the downlink of a deployment and streams it to ``events.log`` and ``channels.csv``.
+
+    Attach it to the ``PktSend`` ports of the event manager and the telemetry channelizer with
+    :meth:`attach`. ``on_event`` and ``on_channel`` callbacks see every decoded item.
+    """
+
+    def __init__(self, topology: Topology, out_dir, *, on_event: Callable[[DecodedEvent], None] | None = None,
+                 on_channel: Callable[[DecodedChannel], None] | None = None):
+        self.decoder = GroundDecoder(topology)
+        out_dir = pathlib.Path(out_dir)
+        out_dir.mkdir(parents=True, exist_ok=True)
+        self._events = _StreamedFile(out_dir / "events.log")
+        self._channels = _StreamedFile(out_dir / "channels.csv", newline="")
+        self._csv = csv.writer(self._channels.file, lineterminator="\n")
+        self._csv.writerow(["time", "channel", "value"])
+        self.on_event = on_event
+        self.on_channel = on_channel
+        self.events_by_severity: Counter = Counter()
+        self.events_by_name: Counter = Counter()
+        self.channel_updates = 0
+        self.undecodable = 0
+        #: Downlinked files, written under ``downlink/`` (the directory appears with the first file).
+        self.files = FileReceiver(out_dir / "downlink")
+
+    def attach(self, topology: Topology, event_manager: str | None, telemetry: str | None) -> None:
+        """Tap ``PktSend`` of the named event manager and telemetry instances.
+
+        An unconnected ``PktSend`` is connected to the recorder; a connected one (to a ground link,
+        say) keeps its connection and the recorder sees each packet first.
+        """
+        for name in (event_manager, telemetry):
+            if name:
+                self._tap(topology.instance(name).component.output_port("PktSend"))
+
+    def attach_file_downlink(self, topology: Topology, file_downlink: str | None) -> None:
+        """Receive the file packets of the named FileDownlink's ``bufferSendOut``.
+
+        As in :meth:`attach`, an existing connection keeps working and the recorder sees each
+        packet first.
+        """
+        if file_downlink:
+            self._tap(topology.instance(file_downlink).component.output_port("bufferSendOut"))
+
+    def _tap(self, port) -> None:
+        """Have :meth:`receive` see every packet of output ``port`` (index 0), before its target."""
+        receive = self.receive
+        if not port.is_connected(0):
+            port.connect_callable(0, receive, "ground recorder")
+            return
+        downstream = port.calls[0]
+
+        def tap(*args):
+            receive(*args)
+            return downstream(*args)
+
+        port.calls[0] = tap
+        port.targets[0] = f"ground recorder, then {port.target_name(0)}"
+
+    def receive(self, data: bytes, context: int = 0) -> None:
+        """Handle one downlinked packet (a Com buffer)."""
+        try:
+            descriptor = int.from_bytes(data[:2], "big")
+            if descriptor == Apid.FW_PACKET_LOG:
+                self._event(self.decoder.decode_event(data))
+            elif descriptor == Apid.FW_PACKET_TELEM:
+                for channel in self.decoder.decode_telemetry(data):
+                    self._channel(channel)
+            elif descriptor == Apid.FW_PACKET_FILE:
+                self.files.receive(data)
+            else:
+                self.undecodable += 1
+        except SerializationError:
+            self.undecodable += 1
+
+    def _event(self, e: DecodedEvent) -> None:
+        self.events_by_severity[e.severity.name] += 1
+        self.events_by_name[e.name] += 1
+        self._events.file.write(f"{format_time(e.time)} {e.name} {e.severity.name} {e.text}\n")
+        if self.on_event is not None:
+            self.on_event(e)
+
+    def _channel(self, c: DecodedChannel) -> None:
+        self.channel_updates += 1
+        self._csv.writerow([f"{c.time.seconds}.{c.time.useconds:06d}", c.name, c.text])
+        if self.on_channel is not None:
+            self.on_channel(c)
+
+    def close(self) -> None:
+        self._events.close()
+        self._channels.close()
+        self.files.close()

@@ -1,0 +1,1 @@
+"""The F´ component model: types, time, ports, components, commands, events, telemetry, parameters."""

@@ -1,0 +1,109 @@
+"""Telemetry channels: declarations, update policy, time-stamped writes through the tlm port.
+
+Declared as attributes of a component class::
+
+    AngularVelocityMagnitude = Channel(F64, format="{.3f}")
+    State = Channel(DetumbleState, update="on change")
+
+and written on an instance as ``self.State.write(value)``. An ``on change`` channel sends its first
+write and then only values that differ from the last one written.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from fprime_lite.model.errors import DeclarationError, check_member_name
+from fprime_lite.model.events import translate_format
+from fprime_lite.model.time import Time
+from fprime_lite.model.types import F64, EnumType, FwType, fw_type
+
+_ZERO_TIME = Time()
+
+__all__ = ["Channel"]
+
+_UPDATES = ("always", "on change")
+_LIMIT_LEVELS = ("yellow", "orange", "red")
+
+
+class Channel:
+    """Declares a telemetry channel of F´ type ``type_``.
+
+    ``low`` and ``high`` are optional limits, e.g. ``high={"yellow": 10.0, "red": 20.0}``.
+    ``name`` gives the channel an F´ name other than its attribute's (F´ lets a channel share its
+    name with an event or a parameter; Python attributes cannot).
+    """
+
+    def __init__(self, type_: Any, *, id: int | None = None, update: str = "always",  # noqa: A002
+                 format: str | None = None, low: dict | None = None, high: dict | None = None,
+                 name: str | None = None):
+        if update not in _UPDATES:
+            raise DeclarationError(f"channel update must be 'always' or 'on change', got {update!r}")
+        if id is not None and (not isinstance(id, int) or id < 0):
+            raise DeclarationError(f"channel id must be a non-negative integer, got {id!r}")
+        for side in (low, high):
+            for level in side or {}:
+                if level not in _LIMIT_LEVELS:
+                    raise DeclarationError(f"channel limit level must be one of {_LIMIT_LEVELS}, got {level!r}")
+        self._raw_type = type_
+        self.type: FwType | None = None
+        self.local_id = id
+        self.update = update
+        self.format = format
+        self.low = dict(low or {})
+        self.high = dict(high or {})
+        self.fprime_name = check_member_name(name, "channel")
+        self.name = ""
+        self.attr = ""
+
+    def __set_name__(self, owner, name):
+        self.name = name
+
+    def finish(self, owner: str) -> None:
+        where = f"{owner}.{self.name}"
+        try:
+            self.type = fw_type(self._raw_type)
+        except DeclarationError as exc:
+            raise DeclarationError(f"{where}: {exc}") from None
+        if self.format is not None:
+            translate_format(self.format, [self.type], where)
+
+    def __repr__(self):
+        return f"Channel {self.name} ({self.type.name if self.type else self._raw_type})"
+
+
+class BoundChannel:
+    """A channel of one component instance."""
+
+    __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
+                 "_valid_type")
+
+    def __init__(self, component, decl: Channel, channel_id: int):
+        self.component = component
+        self.decl = decl
+        self.id = channel_id
+        self.last = None
+        self.written = False
+        self._on_change = decl.update == "on change"
+        self._serialize = decl.type.pack
+        self._check = decl.type.check
+        self._port = component.output_port("tlmOut")
+        # A value of this exact Python type is valid for the channel without checking (enum
+        # members of the channel's enum, and floats for F64).
+        t = decl.type
+        self._valid_type = t.cls if isinstance(t, EnumType) else float if t is F64 else None
+
+    def write(self, value, time=None) -> None:
+        """Record ``value`` and send it (time-stamped now, unless ``time`` is given)."""
+        if type(value) is not self._valid_type:
+            value = self._check(value)
+        if self._on_change and self.written and value == self.last:
+            return
+        self.last = value
+        self.written = True
+        if self._port.targets[0] is None:
+            return
+        comp = self.component
+        if time is None:
+            time = comp.timeCaller[0]() if comp._time_port.targets[0] is not None else _ZERO_TIME
+        comp.tlmOut[0](self.id, time, self._serialize(value))

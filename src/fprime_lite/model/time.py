@@ -1,0 +1,337 @@
+"""F´ time values, time intervals and the clocks that produce them.
+
+A :class:`Time` is F´'s ``Fw::Time``: ``{time_base U16, context U8, seconds U32, useconds U32}``,
+serialized in that order (11 bytes). Times of the same base compare and subtract; times of
+different bases are incomparable (F´'s ``INCOMPARABLE``), which here raises ``ValueError`` unless one
+side is ``TB_DONT_CARE``.
+
+A :class:`TimeInterval` is a non-negative duration ``{seconds, useconds}``.
+
+Clocks hold the one simulated time of a deployment as an integer number of **microseconds**; the
+scheduler advances it and every event and channel is stamped from it.
+"""
+
+from __future__ import annotations
+
+import struct
+import time as _wall
+
+from fprime_lite.model.errors import SerializationError
+from fprime_lite.model.types import FwEnum, FwType, U16, U32, U8, _short
+
+__all__ = ["TimeBase", "Time", "TimeInterval", "TIME", "Clock", "SimulatedClock", "WallClock",
+           "US_PER_S"]
+
+US_PER_S = 1_000_000
+
+
+class TimeBase(FwEnum, rep=U16):
+    """F´ time bases (``TimeBase`` enum of the framework)."""
+
+    TB_NONE = 0
+    TB_PROC_TIME = 1
+    TB_WORKSTATION_TIME = 2
+    TB_DONT_CARE = 0xFFFF
+
+
+class Time:
+    """An F´ time stamp; ``seconds`` and ``useconds`` are normalised (``useconds < 1e6``).
+
+    Treat a Time as immutable: the clock hands the same object to every caller at one instant.
+    ``total_us`` (µs since the base's epoch) is a plain attribute because every event and channel
+    reads it.
+
+    Arithmetic: ``Time + TimeInterval -> Time``, ``Time - Time -> TimeInterval`` (the later time must
+    be on the left), ``Time - TimeInterval -> Time``.
+    """
+
+    __slots__ = ("time_base", "context", "total_us")  # total_us: µs since the base's epoch
+
+    def __init__(self, time_base: int = TimeBase.TB_NONE, context: int = 0,
+                 seconds: int = 0, useconds: int = 0):
+        if seconds < 0 or useconds < 0:
+            raise ValueError(f"time cannot be negative: {seconds} s {useconds} us")
+        self.time_base = time_base
+        self.context = context
+        self.total_us = seconds * US_PER_S + useconds
+
+    @classmethod
+    def from_us(cls, microseconds: int, time_base: int = TimeBase.TB_WORKSTATION_TIME,
+                context: int = 0) -> "Time":
+        """The time ``microseconds`` after the base's epoch."""
+        if microseconds < 0:
+            raise ValueError(f"time cannot be negative: {microseconds} us")
+        t = cls.__new__(cls)
+        t.time_base = time_base
+        t.context = context
+        t.total_us = microseconds
+        return t
+
+    @property
+    def seconds(self) -> int:
+        return self.total_us // US_PER_S
+
+    @property
+    def useconds(self) -> int:
+        return self.total_us % US_PER_S
+
+    def to_float(self) -> float:
+        """Seconds since the base's epoch, as a float."""
+        return self.total_us / US_PER_S
+
+    def _comparable(self, other: "Time") -> None:
+        a, b = self.time_base, other.time_base
+        if a != b and TimeBase.TB_DONT_CARE not in (a, b):
+            raise ValueError(
+                f"cannot compare times of different bases ({TimeBase(a).name if a in TimeBase._value2member_map_ else a}"
+                f" and {TimeBase(b).name if b in TimeBase._value2member_map_ else b})")
+
+    def __eq__(self, other):
+        if not isinstance(other, Time):
+            return NotImplemented
+        return (self.time_base, self.context, self.total_us) == (other.time_base, other.context, other.total_us)
+
+    def __hash__(self):
+        return hash((self.time_base, self.context, self.total_us))
+
+    def __lt__(self, other):
+        if not isinstance(other, Time):
+            return NotImplemented
+        self._comparable(other)
+        return self.total_us < other.total_us
+
+    def __le__(self, other):
+        if not isinstance(other, Time):
+            return NotImplemented
+        self._comparable(other)
+        return self.total_us <= other.total_us
+
+    def __gt__(self, other):
+        if not isinstance(other, Time):
+            return NotImplemented
+        self._comparable(other)
+        return self.total_us > other.total_us
+
+    def __ge__(self, other):
+        if not isinstance(other, Time):
+            return NotImplemented
+        self._comparable(other)
+        return self.total_us >= other.total_us
+
+    def __add__(self, other):
+        if isinstance(other, TimeInterval):
+            return Time.from_us(self.total_us + other._us, self.time_base, self.context)
+        return NotImplemented
+
+    def __sub__(self, other):
+        if isinstance(other, TimeInterval):
+            if other._us > self.total_us:
+                raise ValueError(f"{self} minus {other} would be before the epoch")
+            return Time.from_us(self.total_us - other._us, self.time_base, self.context)
+        if isinstance(other, Time):
+            self._comparable(other)
+            if other.total_us > self.total_us:
+                raise ValueError(f"{other} is later than {self}; subtract the earlier time")
+            return TimeInterval.from_us(self.total_us - other.total_us)
+        return NotImplemented
+
+    def __repr__(self):
+        base = self.time_base
+        base_name = TimeBase(base).name if base in TimeBase._value2member_map_ else str(base)
+        return f"Time({base_name}, {self.context}, {self.seconds}, {self.useconds})"
+
+    def __str__(self):
+        return f"{self.seconds}.{self.useconds:06d}"
+
+
+class TimeInterval:
+    """A non-negative duration: ``{seconds U32, useconds U32}``, normalised."""
+
+    __slots__ = ("_us",)
+
+    def __init__(self, seconds: int = 0, useconds: int = 0):
+        us = seconds * US_PER_S + useconds
+        if us < 0:
+            raise ValueError(f"a time interval cannot be negative: {seconds} s {useconds} us")
+        self._us = us
+
+    @classmethod
+    def from_us(cls, microseconds: int) -> "TimeInterval":
+        if microseconds < 0:
+            raise ValueError(f"a time interval cannot be negative: {microseconds} us")
+        t = cls.__new__(cls)
+        t._us = microseconds
+        return t
+
+    @property
+    def seconds(self) -> int:
+        return self._us // US_PER_S
+
+    @property
+    def useconds(self) -> int:
+        return self._us % US_PER_S
+
+    @property
+    def total_us(self) -> int:
+        return self._us
+
+    def to_float(self) -> float:
+        return self._us / US_PER_S
+
+    def __eq__(self, other):
+        return isinstance(other, TimeInterval) and self._us == other._us
+
+    def __hash__(self):
+        return hash(self._us)
+
+    def __lt__(self, other):
+        if not isinstance(other, TimeInterval):
+            return NotImplemented
+        return self._us < other._us
+
+    def __le__(self, other):
+        if not isinstance(other, TimeInterval):
+            return NotImplemented
+        return self._us <= other._us
+
+    def __gt__(self, other):
+        if not isinstance(other, TimeInterval):
+            return NotImplemented
+        return self._us > other._us
+
+    def __ge__(self, other):
+        if not isinstance(other, TimeInterval):
+            return NotImplemented
+        return self._us >= other._us
+
+    def __add__(self, other):
+        if isinstance(other, TimeInterval):
+            return TimeInterval.from_us(self._us + other._us)
+        return NotImplemented
+
+    def __repr__(self):
+        return f"TimeInterval({self.seconds}, {self.useconds})"
+
+
+_TIME_STRUCT = struct.Struct(">HBII")
+_PACK_TIME = _TIME_STRUCT.pack
+
+
+class TimeType(FwType):
+    """The F´ serialization of :class:`Time`: U16 base, U8 context, U32 seconds, U32 useconds."""
+
+    kind = "time"
+    name = "Fw.Time"
+    size = _TIME_STRUCT.size
+
+    def check(self, value):
+        if not isinstance(value, Time):
+            raise SerializationError(f"Fw.Time expects a Time, got {value!r}")
+        U16.check(int(value.time_base))
+        U8.check(value.context)
+        U32.check(value.seconds)
+        return value
+
+    def serialize(self, value):
+        if type(value) is Time:
+            us = value.total_us
+            try:
+                return _PACK_TIME(value.time_base, value.context, us // US_PER_S, us % US_PER_S)
+            except struct.error:
+                pass  # out of range: let check() say which field
+        value = self.check(value)
+        return _TIME_STRUCT.pack(int(value.time_base), value.context, value.seconds, value.useconds)
+
+    def deserialize(self, data, offset=0):
+        end = offset + self.size
+        if end > len(data):
+            raise _short(data, offset, self.size, "Fw.Time")
+        base, context, seconds, useconds = _TIME_STRUCT.unpack_from(data, offset)
+        if useconds >= US_PER_S:
+            raise SerializationError(f"cannot deserialize Fw.Time: useconds {useconds} ≥ 1000000")
+        return Time(base, context, seconds, useconds), end
+
+    @property
+    def default(self):
+        return Time()
+
+    def json_ref(self):
+        return {"name": "Fw.TimeValue", "kind": "qualifiedIdentifier"}
+
+    def json_value(self, value):
+        """A time as the ``Fw.TimeValue`` struct value the dictionary uses for defaults."""
+        value = self.check(value)
+        base = int(value.time_base)
+        base_name = TimeBase(base).name if base in TimeBase._value2member_map_ else str(base)
+        return {"timeBase": f"TimeBase.{base_name}", "timeContext": value.context,
+                "seconds": value.seconds, "useconds": value.useconds}
+
+
+TIME = TimeType()
+Time.__fprime_type__ = TIME
+
+
+class Clock:
+    """The one time source of a deployment: integer microseconds since its epoch.
+
+    ``now()`` gives the current :class:`Time` in the clock's base and context.
+    """
+
+    def __init__(self, time_base: int = TimeBase.TB_WORKSTATION_TIME, context: int = 0,
+                 epoch_us: int = 0):
+        self.time_base = time_base
+        self.context = context
+        self.epoch_us = epoch_us
+
+    def now_us(self) -> int:
+        raise NotImplementedError
+
+    def now(self) -> Time:
+        return Time.from_us(self.epoch_us + self.now_us(), self.time_base, self.context)
+
+
+class SimulatedClock(Clock):
+    """A clock that only moves when told to (the scheduler's, and the test harness's)."""
+
+    def __init__(self, time_base: int = TimeBase.TB_WORKSTATION_TIME, context: int = 0,
+                 epoch_us: int = 0, start_us: int = 0):
+        super().__init__(time_base, context, epoch_us)
+        self.current_us = start_us
+        self._now: Time | None = None
+
+    def now_us(self) -> int:
+        return self.current_us
+
+    def now(self) -> Time:
+        us = self.epoch_us + self.current_us
+        t = self._now
+        if t is not None and t.total_us == us and t.time_base == self.time_base and t.context == self.context:
+            return t  # Time is immutable: every caller at this instant can share it
+        t = Time.__new__(Time)
+        t.time_base = self.time_base
+        t.context = self.context
+        t.total_us = us
+        self._now = t
+        return t
+
+    def set_us(self, microseconds: int) -> None:
+        if microseconds < self.current_us:
+            raise ValueError(f"simulated time cannot go backwards ({microseconds} < {self.current_us} us)")
+        self.current_us = microseconds
+
+    def advance_us(self, microseconds: int) -> None:
+        if microseconds < 0:
+            raise ValueError(f"cannot advance time by a negative amount ({microseconds} us)")
+        self.current_us += microseconds
+
+
+class WallClock(Clock):
+    """Microseconds of the host's monotonic clock since the clock was made."""
+
+    def __init__(self, time_base: int = TimeBase.TB_WORKSTATION_TIME, context: int = 0,
+                 epoch_us: int = 0):
+        super().__init__(time_base, context, epoch_us)
+        self._start_ns = _wall.monotonic_ns()
+
+    def now_us(self) -> int:
+        return (_wall.monotonic_ns() - self._start_ns) // 1000

@@ -1,0 +1,1 @@
+"""The tools around a deployment: the runner, the command line, the benchmark, the GDS app."""

@@ -1,0 +1,347 @@
+"""The ``fprime-lite`` command line.
+
+    fprime-lite run [TOPOLOGY]          fly a deployment (default ./topology.yaml)
+    fprime-lite sim SCENARIO            plant-only run of a scenario with a reference control law
+    fprime-lite dict [TOPOLOGY] -o F    write the F´ JSON dictionary
+    fprime-lite check [TOPOLOGY]        validate a topology
+    fprime-lite graph [TOPOLOGY]        print the topology as DOT or Mermaid
+    fprime-lite params [TOPOLOGY] -o F  write a parameter file holding every parameter's default
+    fprime-lite bench                   measure speed and memory
+
+User mistakes (a missing file, bad YAML, an unknown scenario) are reported on stderr with a non-zero
+exit status, never with a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import logging
+import pathlib
+import sys
+
+from fprime_lite.model.errors import FprimeLiteError
+
+__all__ = ["main"]
+
+EXIT_USAGE = 2
+EXIT_FAILED = 1
+
+
+class UserError(Exception):
+    """A mistake the user can fix; printed without a traceback."""
+
+
+def _topology_arg(p: argparse.ArgumentParser) -> None:
+    p.add_argument("topology", nargs="?", default="topology.yaml",
+                   help="topology YAML file (default: ./topology.yaml)")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="fprime-lite", description="F´ components in Python: run, check and "
+                                     "inspect deployments; fly the simulated spacecraft.")
+    parser.add_argument("--version", action="version", version=f"fprime-lite {_version()}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+
+    run = sub.add_parser("run", help="run a deployment", description="Run a deployment in simulated time and write "
+                         "summary.json, events.log, channels.csv, truth.csv, dictionary.json and plots.")
+    _topology_arg(run)
+    run.add_argument("--duration", type=float, default=600.0, metavar="SECONDS",
+                     help="simulated seconds to run (default 600)")
+    run.add_argument("--scenario", metavar="NAME|FILE", help="simulation scenario (packaged name or YAML file)")
+    run.add_argument("--seed", type=int, help="seed of the sensor noise (overrides the scenario's)")
+    run.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE",
+                     help="override one scenario value, e.g. sensors.magnetometer.noise_std_gauss=0 (repeatable)")
+    run.add_argument("--params", metavar="FILE", help="parameter file for PrmDb (overrides the topology's)")
+    run.add_argument("--seq", metavar="FILE", help="start-up sequence (.seq text or binary; overrides the topology's)")
+    run.add_argument("--out", metavar="DIR", help="output folder (default: a new runs/<timestamp>)")
+    run.add_argument("--no-progress", action="store_true", help="no progress bar")
+    run.add_argument("--no-plots", action="store_true", help="do not draw the PNG plots")
+    run.add_argument("--truth-interval", type=float, metavar="SECONDS",
+                     help="sampling interval of the truth log (default: the topology's)")
+    run.add_argument("-v", "--verbose", action="store_true", help="log framework warnings to stderr")
+    run.add_argument("--realtime", action="store_true", help="pace the run to the wall clock (simulated time "
+                     "never runs ahead of it); Ctrl-C stops the run and still writes the outputs")
+    run.add_argument("--gds", nargs="?", const="127.0.0.1:50000", metavar="HOST:PORT",
+                     help="fly the deployment with a ground link to a running fprime-gds (default "
+                     "127.0.0.1:50000); implies --realtime; see docs/ground.md")
+    run.add_argument("--framing", choices=("ccsds", "fprime"), default="ccsds",
+                     help="ground-link framing, as fprime-gds --framing-selection: ccsds = "
+                     "space-packet-space-data-link (the GDS's default), fprime = fprime (default: ccsds)")
+
+    sim = sub.add_parser("sim", help="plant-only run of a scenario", add_help=False)
+    sim.add_argument("args", nargs=argparse.REMAINDER)
+
+    dic = sub.add_parser("dict", help="write the F´ JSON dictionary")
+    _topology_arg(dic)
+    dic.add_argument("-o", "--output", required=True, metavar="FILE", help="where to write the dictionary")
+    dic.add_argument("--gds", action="store_true", help="include the ground link that 'run --gds' adds (the "
+                     "dictionary to start fprime-gds with)")
+
+    check = sub.add_parser("check", help="validate a topology")
+    _topology_arg(check)
+
+    graph = sub.add_parser("graph", help="print the topology as DOT or Mermaid")
+    _topology_arg(graph)
+    graph.add_argument("--format", choices=("dot", "mermaid"), default="dot")
+    graph.add_argument("--patterns", action="store_true", help="include pattern connections (command, event, …)")
+
+    params = sub.add_parser("params", help="write a parameter file with every parameter's default")
+    _topology_arg(params)
+    params.add_argument("-o", "--output", required=True, metavar="FILE")
+    params.add_argument("--set", action="append", default=[], metavar="Module.inst.PARAM=VALUE",
+                        help="write VALUE instead of the default, e.g. ReferenceDeployment.detumbleManager.GAIN=2.5 "
+                             "(repeatable; enum values by name)")
+
+    bench = sub.add_parser("bench", help="measure speed and memory", add_help=False)
+    bench.add_argument("args", nargs=argparse.REMAINDER)
+    return parser
+
+
+def _version() -> str:
+    from fprime_lite import __version__
+    return __version__
+
+
+def _load(path: str, overrides: dict | None = None, scheduler_factory=None):
+    from fprime_lite.deploy.topology_loader import load_topology
+
+    p = pathlib.Path(path)
+    if not p.exists():
+        raise UserError(f"{path}: no such topology file — give the path of a topology YAML file "
+                        f"(the reference deployment is deployments/proves_ref/topology.yaml)")
+    return load_topology(p, overrides, scheduler_factory=scheduler_factory)
+
+
+def cmd_check(args) -> int:
+    loaded = _load(args.topology)
+    topo = loaded.topology
+    print(f"{args.topology}: OK — deployment {topo.deployment}: {len(topo.instances)} instances, "
+          f"{len(topo.connections)} connections")
+    return 0
+
+
+def cmd_dict(args) -> int:
+    from fprime_lite.deploy.dictionary import write_dictionary
+
+    topology = _load(args.topology).topology
+    if args.gds:
+        from fprime_lite.deploy.com_stack import add_ground_link
+
+        add_ground_link(topology)
+    d = write_dictionary(topology, args.output)
+    print(f"wrote {args.output}: {len(d['commands'])} commands, {len(d['events'])} events, "
+          f"{len(d['telemetryChannels'])} channels, {len(d['parameters'])} parameters")
+    return 0
+
+
+def cmd_graph(args) -> int:
+    topo = _load(args.topology).topology
+    sys.stdout.write(topo.to_dot(args.patterns) if args.format == "dot" else topo.to_mermaid(args.patterns))
+    return 0
+
+
+def cmd_params(args) -> int:
+    from fprime_lite.model.params import ParamValid
+    from fprime_lite.svc.prm_db import encode_param_file
+    from fprime_lite.osal.atomic import atomic_write_bytes
+
+    topo = _load(args.topology).topology
+    declared = {}
+    for instance in topo.instances.values():
+        comp = instance.component
+        for p in comp.spec.params:
+            declared[f"{instance.qualified_name}.{p.name}"] = (comp.base_id + p.local_id, p)
+    values = {name: p.default for name, (_, p) in declared.items() if p.has_default}
+    for setting in args.set:
+        name, value = _param_setting(setting, declared)
+        values[name] = value
+    records = sorted((name, declared[name][0], declared[name][1].type.serialize(value))
+                     for name, value in values.items())  # by full name, as fprime-prm-write orders them
+    atomic_write_bytes(args.output, encode_param_file([(pid, data) for _, pid, data in records]))
+    changed = f"; {len(args.set)} set on the command line" if args.set else ""
+    print(f"wrote {args.output}: {len(records)} parameters ({ParamValid.DEFAULT.name} values of the "
+          f"topology{changed})")
+    return 0
+
+
+def _param_setting(setting: str, declared: dict) -> tuple[str, object]:
+    """``Module.inst.PARAM=VALUE`` → (name, value checked against the parameter's F´ type)."""
+    import difflib
+
+    import yaml
+
+    from fprime_lite.model.errors import SerializationError
+
+    name, sep, text = setting.partition("=")
+    name = name.strip()
+    if not sep or not name:
+        raise UserError(f"--set {setting!r}: expected Module.inst.PARAM=VALUE")
+    if name not in declared:
+        guess = difflib.get_close_matches(name, list(declared), n=1)
+        hint = f" — did you mean {guess[0]}?" if guess else " (fprime-lite dict lists them)"
+        raise UserError(f"--set {setting!r}: the topology has no parameter {name}{hint}")
+    try:
+        value = yaml.safe_load(text)
+    except yaml.YAMLError:
+        value = text
+    ptype = declared[name][1].type
+    try:
+        return name, ptype.check(value)
+    except (SerializationError, ValueError, TypeError) as exc:
+        raise UserError(f"--set {setting!r}: not a valid {ptype.name}: {exc}") from None
+
+
+def cmd_run(args) -> int:
+    from fprime_lite.tools.runner import run_deployment
+
+    overrides = {}
+    if args.scenario is not None or args.seed is not None or args.set:
+        spacecraft = {}
+        if args.scenario is not None:
+            spacecraft["scenario"] = _scenario(args.scenario, args.set)
+        elif args.set:
+            spacecraft["settings"] = _checked_settings(args.set)
+        if args.seed is not None:
+            spacecraft["seed"] = args.seed
+        overrides["spacecraft"] = spacecraft
+    if args.truth_interval is not None:
+        overrides["report"] = {"truth_interval_s": args.truth_interval}
+    if not args.duration > 0:
+        raise UserError(f"--duration must be positive, got {args.duration}")
+    for option, value in (("--params", args.params), ("--seq", args.seq)):
+        if value is not None and not pathlib.Path(value).is_file():
+            raise UserError(f"{option} {value}: no such file")
+    realtime = args.realtime or args.gds is not None
+    address = None
+    if args.gds is not None:
+        from fprime_lite.svc.ground_link import parse_address
+
+        try:
+            address = parse_address(args.gds)
+        except ValueError as exc:
+            raise UserError(f"--gds {exc}") from None
+    elif args.framing != "ccsds":
+        raise UserError("--framing applies to the ground link: add --gds")
+    loaded = _load(args.topology, overrides, _paced if realtime else None)
+    out = pathlib.Path(args.out) if args.out else pathlib.Path("runs") / _dt.datetime.now().strftime(
+        "%Y%m%d-%H%M%S")
+    if out.exists() and any(out.iterdir()):
+        raise UserError(f"--out {out}: the folder exists and is not empty — choose another or remove it")
+    if not realtime:
+        summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
+                                 sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
+                                 plots=not args.no_plots)
+    else:
+        summary = _run_realtime(loaded, out, args, address)
+    print(f"outputs in {out}/")
+    return 0 if summary.get("ok", True) else EXIT_FAILED
+
+
+def _paced(clock):
+    from fprime_lite.deploy.scheduler import PacedScheduler
+
+    return PacedScheduler(clock)
+
+
+def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
+    """Run paced to the wall clock, with the ground link when ``address`` is given; SIGINT and
+    SIGTERM end the run early and the outputs are still written."""
+    import signal
+    import threading
+
+    from fprime_lite.tools.runner import run_deployment
+
+    link = None
+    if address is not None:
+        from fprime_lite.deploy.com_stack import add_ground_link
+
+        link = add_ground_link(loaded.topology, host=address[0], port=address[1], framing=args.framing)
+        print(f"ground link: {args.framing} framing, connecting to {link.host}:{link.port} "
+              f"(instance {loaded.topology.deployment}.{link.name})", flush=True)
+    scheduler = loaded.scheduler
+    previous = {}
+    if threading.current_thread() is threading.main_thread():
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            previous[sig] = signal.signal(sig, lambda *_: scheduler.stop())
+    try:
+        if link is not None:
+            link.start_socket_task()
+        summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
+                                 sequence=args.seq, progress=False, plots=not args.no_plots)
+    finally:
+        if link is not None:
+            link.close()
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+    print(f"realtime: largest lag behind the wall clock {scheduler.max_lag_s * 1e3:.1f} ms")
+    if link is not None:
+        print(f"ground link: {link.connections} connection(s), {link.commands_forwarded} command(s) "
+              f"forwarded, {link.downlink_frames} frame(s) / {link.downlink_bytes} bytes sent")
+    return summary
+
+
+def _checked_settings(settings: list[str]) -> list[str]:
+    """``--set`` values, refused early when one is not ``KEY.PATH=VALUE``."""
+    for setting in settings:
+        path, sep, _ = setting.partition("=")
+        if not sep or not path.strip():
+            raise UserError(f"--set {setting!r}: expected KEY.PATH=VALUE, e.g. sensors.magnetometer.noise_std_gauss=0")
+    return settings
+
+
+def _scenario(value: str, settings: list[str] = ()):
+    """A packaged scenario name or a file; a clear error for anything else."""
+    from detumble.sim.scenario import load_scenario
+
+    try:
+        return load_scenario(value, settings=settings)
+    except FileNotFoundError as exc:
+        raise UserError(f"--scenario {value}: {exc}") from None
+    except (ValueError, KeyError) as exc:
+        raise UserError(f"--scenario {value}: {exc}") from None
+
+
+def cmd_sim(args) -> int:
+    from detumble.sim.runner import main as sim_main
+
+    return sim_main(args.args)
+
+
+def cmd_bench(args) -> int:
+    from fprime_lite.tools.bench import main as bench_main
+
+    return bench_main(args.args)
+
+
+COMMANDS = {"run": cmd_run, "sim": cmd_sim, "dict": cmd_dict, "check": cmd_check, "graph": cmd_graph,
+            "params": cmd_params, "bench": cmd_bench}
+
+
+PASS_THROUGH = {"sim": "detumble.sim.runner", "bench": "fprime_lite.tools.bench"}
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv and argv[0] in PASS_THROUGH:  # these verbs parse their own options
+        args = argparse.Namespace(command=argv[0], args=argv[1:], verbose=False)
+    else:
+        args = build_parser().parse_args(argv)
+    logging.basicConfig(level=logging.INFO if getattr(args, "verbose", False) else logging.ERROR,
+                        format="%(levelname)s %(name)s: %(message)s")
+    try:
+        return COMMANDS[args.command](args)
+    except UserError as exc:
+        print(f"fprime-lite {args.command}: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except FprimeLiteError as exc:
+        print(f"fprime-lite {args.command}: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        print(f"fprime-lite {args.command}: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

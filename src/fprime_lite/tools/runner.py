@@ -1,0 +1,153 @@
+"""``fprime-lite run``: fly a loaded deployment for a while and write what it produced.
+
+Outputs in the run folder, each streamed or written atomically:
+
+- ``events.log`` and ``channels.csv`` — the downlink as the ground receives it (decoded packets of
+  the event manager and the telemetry channelizer, at the telemetry rate group's tick);
+- ``dictionary.json`` — the F´ JSON dictionary of the deployment;
+- ``summary.json`` — the run's figures (below);
+- whatever the topology's *report* resources add (the detumble report writes ``truth.csv`` and PNG
+  plots).
+
+A report resource is any resource with some of these methods: ``begin(deployment, out_dir)``,
+``on_event(decoded_event)``, ``progress() -> dict``, ``summary() -> dict``,
+``finish(out_dir, plots=bool) -> [paths]``.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+import time
+
+from fprime_lite.osal.atomic import atomic_write_text
+from fprime_lite.deploy.deployment import Deployment
+from fprime_lite.deploy.dictionary import write_dictionary
+from fprime_lite.ground.downlink import GroundRecorder
+from fprime_lite.svc.file_downlink import FileDownlink
+from fprime_lite.svc.rate_groups import RateGroupBase
+from fprime_lite.deploy.topology_loader import LoadedDeployment
+
+__all__ = ["run_deployment", "PROGRESS_STEP_S"]
+
+#: Simulated seconds between progress updates (and between chunks of the run).
+PROGRESS_STEP_S = 10.0
+
+
+def _reports(loaded: LoadedDeployment) -> list:
+    return [r for name, r in loaded.resources.items()
+            if name not in ("clock", "scheduler", "topology_dir") and hasattr(r, "summary")]
+
+
+def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
+                   progress: bool = False, plots: bool = True, console=None) -> dict:
+    """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary."""
+    out = pathlib.Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    deployment = Deployment(loaded)
+    topo = deployment.topology
+    reports = _reports(loaded)
+    recorder = GroundRecorder(topo, out, on_event=lambda e: [r.on_event(e) for r in reports
+                                                             if hasattr(r, "on_event")])
+    recorder.attach(topo, topo.patterns.get("event"), topo.patterns.get("telemetry"))
+    for instance in topo.instances.values():
+        if isinstance(instance.component, FileDownlink):
+            recorder.attach_file_downlink(topo, instance.qualified_name)
+    write_dictionary(topo, out / "dictionary.json")
+    for r in reports:
+        if hasattr(r, "begin"):
+            r.begin(deployment, out)
+
+    wall0 = time.perf_counter()
+    deployment.start(parameter_file=parameter_file, sequence=sequence)
+    start_us = deployment.scheduler.now_us
+    end_us = start_us + round(duration_s * 1_000_000)
+    if progress:
+        _run_with_progress(deployment, end_us, reports, console)
+    else:
+        deployment.scheduler.run(until_us=end_us)
+    wall = time.perf_counter() - wall0
+
+    recorder.close()
+    written = []
+    for r in reports:
+        if hasattr(r, "finish"):
+            written += r.finish(out, plots=plots) or []
+    sim_s = (deployment.scheduler.now_us - start_us) / 1e6  # less than duration_s when stopped early
+    summary = _summary(deployment, recorder, reports, sim_s, wall)
+    atomic_write_text(out / "summary.json", json.dumps(summary, indent=2) + "\n")
+    _print_summary(summary, console)
+    return summary
+
+
+def _summary(deployment: Deployment, recorder: GroundRecorder, reports, sim_s: float, wall_s: float) -> dict:
+    topo = deployment.topology
+    timer = deployment.loaded.timer
+    rate_groups = [c for c in topo.components() if isinstance(c, RateGroupBase)]
+    summary = {
+        "deployment": topo.deployment,
+        "sim_seconds": sim_s,
+        "wall_seconds": wall_s,
+        "real_time_factor": sim_s / wall_s if wall_s > 0 else None,
+        "ticks": timer.driver.tick if timer is not None else deployment.scheduler.events_run,
+        "rate_group_cycles": {g.name: g.cycles for g in rate_groups},
+        "events_by_severity": dict(sorted(recorder.events_by_severity.items())),
+        "command_errors": recorder.events_by_name.get(f"{topo.patterns.get('command')}.OpCodeError", 0),
+        "cycle_slips": sum(g.slips for g in rate_groups),
+        "member_faults": sum(g.member_faults for g in rate_groups),
+        "handler_faults": sum(c.handler_faults for c in topo.components()),
+        "undecodable_packets": recorder.undecodable,
+        "files_downlinked": [{"destination": f.destination, "path": str(f.path), "bytes": f.received_bytes,
+                              "status": f.status} for f in recorder.files.files],
+    }
+    for r in reports:
+        summary.update(r.summary())
+    return summary
+
+
+def _run_with_progress(deployment: Deployment, end_us: int, reports, console) -> None:
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    scheduler = deployment.scheduler
+    start_us = scheduler.now_us
+    step_us = round(PROGRESS_STEP_S * 1_000_000)
+    with Progress(TextColumn("[bold]{task.description}"), BarColumn(),
+                  TextColumn("{task.fields[sim]}"), TextColumn("{task.fields[extra]}"),
+                  TimeElapsedColumn(), console=console, transient=False) as bar:
+        task = bar.add_task("running", total=end_us - start_us, sim="", extra="")
+        wall0 = time.perf_counter()
+        while scheduler.now_us < end_us:
+            scheduler.run(until_us=min(end_us, scheduler.now_us + step_us))
+            sim_s = (scheduler.now_us - start_us) / 1e6
+            wall = time.perf_counter() - wall0
+            extra = []
+            for r in reports:
+                if hasattr(r, "progress"):
+                    for key, value in r.progress().items():
+                        extra.append(f"{key} {value:.2f}" if isinstance(value, float) else f"{key} {value}")
+            bar.update(task, completed=scheduler.now_us - start_us,
+                       sim=f"t={sim_s:,.0f} s ({sim_s / wall if wall > 0 else 0:,.0f}× real time)",
+                       extra="  ".join(extra))
+
+
+def _print_summary(summary: dict, console) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    console = console or Console(stderr=False)
+    table = Table(title=f"Run summary — {summary['deployment']}", show_header=False)
+    table.add_column("figure")
+    table.add_column("value", justify="right")
+    for key, value in summary.items():
+        if key in ("deployment", "rate_group_cycles"):
+            continue
+        if isinstance(value, float):
+            text = f"{value:,.3f}"
+        elif isinstance(value, dict):
+            text = ", ".join(f"{k} {v}" for k, v in value.items()) or "none"
+        elif key == "files_downlinked":
+            text = ", ".join(f"{f['destination']} ({f['status']})" for f in value) or "none"
+        else:
+            text = "—" if value is None else str(value)
+        table.add_row(key, text)
+    console.print(table)

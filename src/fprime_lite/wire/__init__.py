@@ -1,0 +1,1 @@
+"""F´ wire and file formats: packets, file packets, framings, sequence files."""

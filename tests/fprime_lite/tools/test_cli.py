@@ -1,0 +1,139 @@
+"""The fprime-lite command line: every verb, and clean errors for user mistakes."""
+
+import json
+import pathlib
+
+import pytest
+
+from fprime_lite.tools.cli import main
+
+ROOT = pathlib.Path(__file__).parents[3]
+TOPOLOGY = str(ROOT / "deployments" / "proves_ref" / "topology.yaml")
+
+
+def test_check_reports_ok(capsys):
+    assert main(["check", TOPOLOGY]) == 0
+    assert "OK — deployment ReferenceDeployment: 24 instances" in capsys.readouterr().out
+
+
+def test_dict_writes_a_dictionary_with_flight_names(tmp_path, capsys):
+    out = tmp_path / "dict.json"
+    assert main(["dict", TOPOLOGY, "-o", str(out)]) == 0
+    d = json.loads(out.read_text())
+    commands = {c["name"]: c["opcode"] for c in d["commands"]}
+    assert commands["ReferenceDeployment.detumbleManager.SET_MODE"] == 0x1005A000
+    assert commands["CdhCore.cmdDisp.CMD_NO_OP"] == 0x01000100
+    assert d["metadata"]["deploymentName"] == "ReferenceDeployment"
+
+
+def test_graph_prints_dot_and_mermaid(capsys):
+    assert main(["graph", TOPOLOGY]) == 0
+    dot = capsys.readouterr().out
+    assert dot.startswith('digraph "ReferenceDeployment"')
+    assert '"ReferenceDeployment.detumbleManager" -> "ReferenceDeployment.drv2605Face0Manager"' in dot
+    assert main(["graph", TOPOLOGY, "--format", "mermaid"]) == 0
+    assert capsys.readouterr().out.startswith("flowchart LR")
+
+
+def test_params_writes_the_defaults_that_prmdb_reads(tmp_path):
+    from fprime_lite.svc.prm_db import decode_param_file
+
+    out = tmp_path / "p.dat"
+    assert main(["params", TOPOLOGY, "-o", str(out)]) == 0
+    records = dict(decode_param_file(out.read_bytes()).records)
+    assert records[0x1005A000 + 39] == bytes.fromhex("4008000000000000")  # GAIN = 3.0 (F64)
+    shipped = ROOT / "deployments" / "proves_ref" / "flight_params.dat"
+    assert shipped.read_bytes() == out.read_bytes(), "the shipped flight parameter file is out of date"
+
+
+def test_params_set_writes_chosen_values_checked_against_their_types(tmp_path, capsys):
+    import struct
+
+    from fprime_lite.svc.prm_db import decode_param_file
+
+    out = tmp_path / "p.dat"
+    assert main(["params", TOPOLOGY, "-o", str(out), "--set", "ReferenceDeployment.detumbleManager.GAIN=2.5",
+                 "--set", "ReferenceDeployment.detumbleManager.COOLDOWN_DURATION={seconds: 1, useconds: 5}"]) == 0
+    records = dict(decode_param_file(out.read_bytes()).records)
+    assert records[0x1005A000 + 39] == struct.pack(">d", 2.5)
+    assert records[0x1005A000 + 3] == struct.pack(">II", 1, 5)
+    assert "1 set" not in capsys.readouterr().out  # two were set
+    for setting, message in (("ReferenceDeployment.detumbleManager.GAINN=1", "did you mean "
+                                                                             "ReferenceDeployment.detumbleManager.GAIN?"),
+                             ("ReferenceDeployment.detumbleManager.GAIN=fast", "not a valid F64"),
+                             ("GAIN", "expected Module.inst.PARAM=VALUE")):
+        assert main(["params", TOPOLOGY, "-o", str(tmp_path / "q.dat"), "--set", setting]) == 2
+        assert message in capsys.readouterr().err
+    assert not (tmp_path / "q.dat").exists()
+
+
+def test_short_run_writes_every_output(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert main(["run", TOPOLOGY, "--duration", "5", "--out", str(out), "--no-progress", "--seed", "3"]) == 0
+    for name in ("summary.json", "events.log", "channels.csv", "dictionary.json", "truth.csv", "rate.png",
+                 "drive_levels.png", "state.png"):
+        assert (out / name).is_file(), name
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["sim_seconds"] == 5.0 and summary["ticks"] == 5001
+    assert "Run summary" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["check", "nope.yaml"], "nope.yaml: no such topology file"),
+    (["run", "nope.yaml", "--no-progress"], "nope.yaml: no such topology file"),
+    (["run", TOPOLOGY, "--scenario", "no_such_scenario", "--no-progress"], "--scenario no_such_scenario:"),
+    (["run", TOPOLOGY, "--duration", "-1"], "--duration must be positive"),
+    (["run", TOPOLOGY, "--params", "missing.dat"], "--params missing.dat: no such file"),
+    (["run", TOPOLOGY, "--set", "sensors.gyro"], "--set 'sensors.gyro': expected KEY.PATH=VALUE"),
+    (["run", TOPOLOGY, "--scenario", "case_a", "--set", "orbit.altitud=1"], "case_a.yaml has no key 'altitud'"),
+])
+def test_user_mistakes_are_one_line_errors_without_traceback(argv, message, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err
+    assert "Traceback" not in err
+
+
+def test_set_changes_the_topology_s_scenario_and_a_bad_key_is_one_problem(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert main(["run", TOPOLOGY, "--duration", "1", "--out", str(out), "--no-progress", "--no-plots",
+                 "--set", "initial.rate.magnitude_deg_s=12"]) == 0
+    assert json.loads((out / "summary.json").read_text())["initial_rate_deg_s"] == pytest.approx(12.0)
+    capsys.readouterr()
+    assert main(["run", TOPOLOGY, "--no-progress", "--set", "sensors.magnetometr.noise_std_gauss=0"]) == 2
+    err = capsys.readouterr().err
+    assert "1 problem in the topology" in err  # nothing more about the instances that needed it
+    assert "default.yaml has no key 'magnetometr' at sensors (keys there: magnetometer, gyro)" in err
+
+
+def test_bad_yaml_is_reported_with_its_line(tmp_path, capsys):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("deployment: X\nmodules: [\n")
+    assert main(["check", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "bad.yaml:3: invalid YAML" in err and "Traceback" not in err
+
+
+def test_run_refuses_a_non_empty_output_folder(tmp_path, capsys):
+    (tmp_path / "x").write_text("keep me")
+    assert main(["run", TOPOLOGY, "--out", str(tmp_path), "--no-progress"]) == 2
+    assert "exists and is not empty" in capsys.readouterr().err
+    assert (tmp_path / "x").read_text() == "keep me"
+
+
+def test_help_everywhere(capsys):
+    for verb in ("run", "dict", "check", "graph", "params"):
+        with pytest.raises(SystemExit) as exit_:
+            main([verb, "--help"])
+        assert exit_.value.code == 0
+    assert "--duration" in capsys.readouterr().out
+
+
+def test_sim_verb_flies_a_scenario_plant_only(tmp_path, capsys):
+    out = tmp_path / "sim"
+    assert main(["sim", "case_a", "--law", "kopt", "--duration", "60", "--out", str(out)]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["sim_seconds"] == 60.0 and summary["final_rate_deg_s"] < 30.0
+    assert (out / "rate.csv").read_text().startswith("time_s,omega_x_deg_s,")
+    assert main(["sim", "no_such_scenario", "--out", str(out)]) == 2
+    assert "not a packaged scenario" in capsys.readouterr().err
