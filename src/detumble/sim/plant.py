@@ -23,7 +23,7 @@ from detumble.sim.orbit import CircularOrbit, TleOrbit
 from detumble.sim.scenario import Scenario
 from detumble.sim.sensors import GAUSS_PER_TESLA, Gyro, Magnetometer
 from detumble.sim.star_tracker import StarTracker
-from detumble.sim.vec import Quat, Vec3, quat_normalize, rotate_b_to_n, rotate_n_to_b
+from detumble.sim.vec import Quat, Vec3, cross, mat_vec, quat_normalize, rotate_b_to_n, rotate_n_to_b, scale
 from detumble.sim.wheels import WheelAssembly, equations_inertia, step_with_wheels
 
 _ZERO = (0.0, 0.0, 0.0)
@@ -223,6 +223,25 @@ class Plant:
 
     def angular_momentum_B(self) -> Vec3:
         return self.body.angular_momentum_B(self._state)
+
+    def gravity_gradient_torque_B(self) -> Vec3:
+        """Gravity-gradient torque now, N m in B (zero when the scenario turns it off)."""
+        if not self._gg:
+            return _ZERO
+        r = rotate_n_to_b(self.q_BN, self._r_hat_N)
+        return scale(self._gg, cross(r, mat_vec(self.body.inertia, r)))
+
+    def wheel_torque_on_body_B(self) -> Vec3:
+        """The wheel motors' torque on the body over the last step, ``-sum u_i g_i`` (N m, B)."""
+        w = self.wheels
+        if w is None:
+            return _ZERO
+        x = y = z = 0.0
+        for u, g in zip(w.torque_applied, w.axes):
+            x -= u * g[0]
+            y -= u * g[1]
+            z -= u * g[2]
+        return (x, y, z)
 
     # --- sensors -------------------------------------------------------------------------------
 
