@@ -34,7 +34,7 @@ import math
 import random
 from dataclasses import dataclass
 
-from detumble.sim.vec import Vec3
+from detumble.sim.vec import Vec3, rotate_n_to_b
 
 TORQUE, SPEED = "torque", "speed"
 
@@ -219,22 +219,13 @@ def step_with_wheels(body, state, h, u, wheels: WheelAssembly, dt: float, m_B: V
     specs = wheels.specs
     js = wheels.js
     rng_n = range(n)
-    q0, q1, q2, q3, w1, w2, w3 = state
-    c11 = q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3
-    c12 = 2.0 * (q1 * q2 + q0 * q3)
-    c13 = 2.0 * (q1 * q3 - q0 * q2)
-    c21 = 2.0 * (q1 * q2 - q0 * q3)
-    c22 = q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3
-    c23 = 2.0 * (q2 * q3 + q0 * q1)
-    c31 = 2.0 * (q1 * q3 + q0 * q2)
-    c32 = 2.0 * (q2 * q3 - q0 * q1)
-    c33 = q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3
-    bx, by, bz = b_N
-    rx, ry, rz = r_hat_N
-    x0 = (q0, q1, q2, q3, w1, w2, w3,
-          c11 * bx + c12 * by + c13 * bz, c21 * bx + c22 * by + c23 * bz, c31 * bx + c32 * by + c33 * bz,
-          c11 * rx + c12 * ry + c13 * rz, c21 * rx + c22 * ry + c23 * rz, c31 * rx + c32 * ry + c33 * rz)
+    q = state[:4]
+    b1, b2, b3 = rotate_n_to_b(q, b_N)
+    r1, r2, r3 = rotate_n_to_b(q, r_hat_N)
+    x0 = (*state, b1, b2, b3, r1, r2, r3)
 
+    # The stage derivative repeats RigidBody.step_env's with the wheel terms added: a separate
+    # function, so that the wheel-free path pays nothing for wheels (spec: per-tick budget).
     def f(x, hs):
         q0, q1, q2, q3, w1, w2, w3, b1, b2, b3, r1, r2, r3 = x
         hwx = hcx

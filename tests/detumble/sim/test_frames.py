@@ -5,6 +5,7 @@ import random
 
 import pytest
 
+from detumble.control.coursework import dcm_ob, from_plant_quaternion, to_plant_quaternion
 from detumble.sim import frames
 from detumble.sim.orbit import CircularOrbit
 from detumble.sim.vec import dot, norm, quat_normalize, quat_to_dcm, rotate_n_to_b
@@ -28,23 +29,24 @@ def seed_eq6(w, q):
 
 
 def test_scalar_last_conversion_reproduces_eq11_and_eq6():
-    """FR-001: for random quaternions, seed 004's eq. 11 on (q1..q4) equals our [BN] of the
-    scalar-first (q4, q1, q2, q3) to 1e-15, and its kinematics eq. 6 equal ours
-    (1/2 q (x) (0, w)) after the same conversion."""
+    """FR-001: for random quaternions, seed 004's eq. 11 on (q1..q4) (written out here, and the
+    control module's dcm_ob) equals our [BN] of the scalar-first (q4, q1, q2, q3) to 1e-15, and its
+    kinematics eq. 6 equal ours (1/2 q (x) (0, w)) after the same conversion."""
     rng = random.Random(5)
     for _ in range(50):
         q_sl = quat_normalize(tuple(rng.gauss(0, 1) for _ in range(4)))
         a = seed_eq11(q_sl)
-        b = quat_to_dcm(frames.from_scalar_last(q_sl))
+        b = quat_to_dcm(to_plant_quaternion(q_sl))
         assert max(abs(a[i][j] - b[i][j]) for i in range(3) for j in range(3)) < 1e-15
-        assert frames.to_scalar_last(frames.from_scalar_last(q_sl)) == q_sl
+        assert dcm_ob(q_sl) == a
+        assert from_plant_quaternion(to_plant_quaternion(q_sl)) == q_sl
         w = tuple(rng.gauss(0, 1) for _ in range(3))
-        q = frames.from_scalar_last(q_sl)
+        q = to_plant_quaternion(q_sl)
         ours = (0.5 * (-q[1] * w[0] - q[2] * w[1] - q[3] * w[2]),
                 0.5 * (q[0] * w[0] + q[2] * w[2] - q[3] * w[1]),
                 0.5 * (q[0] * w[1] - q[1] * w[2] + q[3] * w[0]),
                 0.5 * (q[0] * w[2] + q[1] * w[1] - q[2] * w[0]))
-        assert frames.from_scalar_last(seed_eq6(w, q_sl)) == pytest.approx(ours, abs=1e-15)
+        assert to_plant_quaternion(seed_eq6(w, q_sl)) == pytest.approx(ours, abs=1e-15)
 
 
 def test_orbit_frame_axes_and_rate():

@@ -6,22 +6,13 @@ import math
 
 import pytest
 
+from detumble.control.coursework import dcm_ob
 from detumble.sim.plant import Plant
 from detumble.sim.runner import main
 from detumble.sim.scenario import load_scenario
 
 B_O = (3e-5, 3e-5, 3e-5)  # T, seed 004 eq. 8
 N_SEED = math.sqrt(3.98e5 / 7000.0 ** 3)  # rad/s, the coursework's constant
-
-
-def eq11(q):
-    """Seed 004 eq. 11 (scalar last), A_O->B."""
-    q1, q2, q3, q4 = q
-    return (
-        (q1 * q1 - q2 * q2 - q3 * q3 + q4 * q4, 2 * (q1 * q2 + q3 * q4), 2 * (q1 * q3 - q2 * q4)),
-        (2 * (q1 * q2 - q3 * q4), -q1 * q1 + q2 * q2 - q3 * q3 + q4 * q4, 2 * (q2 * q3 + q1 * q4)),
-        (2 * (q1 * q3 + q2 * q4), 2 * (q2 * q3 - q1 * q4), -q1 * q1 - q2 * q2 + q3 * q3 + q4 * q4),
-    )
 
 
 def matvec(a, v):
@@ -37,14 +28,14 @@ def closed_form_b_B(t):
 
     omega = (1, 2, 3) rad/s stays constant (isotropic, no torque), so B(t) is B(0) turned by |w| t
     about w; O(t) is O(0) turned by n t about the orbit normal -y_O; B(0) = O(0). In scalar-last
-    quaternions of 'frame turned by angle about axis': b_B = A(q_B(t)B0) A(q_O(t)O0)^T B_O."""
+    quaternions of 'frame turned by angle about axis' (eq. 11 is dcm_ob): b_B = A(q_B(t)B0) A(q_O(t)O0)^T B_O."""
     w = (1.0, 2.0, 3.0)
     wn = math.sqrt(14.0)
     s, c = math.sin(wn * t / 2), math.cos(wn * t / 2)
     q_b = (w[0] / wn * s, w[1] / wn * s, w[2] / wn * s, c)
     so, co = math.sin(N_SEED * t / 2), math.cos(N_SEED * t / 2)
     q_o = (0.0, -so, 0.0, co)
-    return matvec(eq11(q_b), matTvec(eq11(q_o), B_O))
+    return matvec(dcm_ob(q_b), matTvec(dcm_ob(q_o), B_O))
 
 
 def test_surrey_is_the_coursework_environment():
@@ -85,7 +76,7 @@ def test_sim_surrey_truth_shows_the_orbit_field_turning_with_the_attitude(tmp_pa
         t = float(row["time_s"])
         b = tuple(float(row[f"b_{a}_uT"]) for a in "xyz")
         qo = tuple(float(row[k]) for k in ("qo0", "qo1", "qo2", "qo3"))
-        from_q = matvec(eq11((qo[1], qo[2], qo[3], qo[0])), B_O)
+        from_q = matvec(dcm_ob((qo[1], qo[2], qo[3], qo[0])), B_O)
         worst_logged = max(worst_logged, max(abs(b[i] - 1e6 * from_q[i]) for i in range(3)))
         expect = closed_form_b_B(t)
         worst_closed = max(worst_closed, max(abs(b[i] - 1e6 * expect[i]) for i in range(3)))
