@@ -1,7 +1,8 @@
 """Plant-only runs: fly a scenario with a reference law (no F' framework involved).
 
 ``python -m detumble.sim SCENARIO --law none|kopt|bdot|bangbang [--gain G] --out DIR
-[--duration S] [--seed N]`` writes ``DIR/summary.json`` and ``DIR/rate.csv``. :func:`main`
+[--duration S] [--seed N]`` writes ``DIR/summary.json`` and ``DIR/rate.csv`` (the body rate, then
+the ADCS truth columns of :mod:`detumble.sim.truth`). :func:`main`
 returns an exit code and reports bad input on stderr without a traceback, so a CLI
 (``fprime-lite sim``) can call it directly.
 
