@@ -358,14 +358,14 @@ class DetumbleManager(PassiveComponent):
     def run(self, context):
         """Rate-group tick: telemeter Mode and State, then one state's actions.
 
-        No exception escapes: a fault (a provider raising, a malformed reply) counts in
-        ``handler_faults``, is logged, stops the coils and restarts the cycle from COOLDOWN.
+        No exception escapes: a fault (a provider raising, a malformed reply) stops the coils, is
+        reported (``report_fault``: the HandlerFault event, the HandlerFaults channel, the log)
+        and restarts the cycle from COOLDOWN, so the next call tries again.
         """
         try:
             self._run()
-        except Exception:  # noqa: BLE001 - the rate group must keep running; fail safe instead
-            self.handler_faults += 1
-            log.exception("%s: run raised; stopping the coils and restarting from COOLDOWN", self.name)
+        except Exception as exc:  # noqa: BLE001 - the rate group must keep running; fail safe instead
+            self.report_fault("run", exc)
             try:
                 self._stop_coils()
             except Exception:  # noqa: BLE001
