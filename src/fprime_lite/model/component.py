@@ -794,7 +794,7 @@ def _with_port_num(fn: Callable[..., Any], index: int) -> Callable[..., Any]:
     return hook
 
 
-_EXIT = object()
+_EXIT: Any = object()
 
 
 class ActiveComponent(QueuedComponent):

@@ -23,6 +23,8 @@ Echo (optional, the PROVES pattern): ``echo=ParamEcho(...)`` makes the framework
 
 from __future__ import annotations
 
+import builtins
+
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Generic, TypeVar, overload
@@ -98,7 +100,7 @@ class Param(Generic[V]):
                  validate: Callable[[V], str | None] | None = ..., echo: ParamEcho | None = ...) -> None: ...
 
     @overload
-    def __init__(self, type_: type[V], *, default: Any = ..., id: int | None = ...,  # noqa: A002
+    def __init__(self, type_: builtins.type[V], *, default: Any = ..., id: int | None = ...,  # noqa: A002
                  set_opcode: int | None = ..., save_opcode: int | None = ..., name: str | None = ...,
                  low: Any = ..., high: Any = ..., finite: bool = ...,
                  validate: Callable[[V], str | None] | None = ..., echo: ParamEcho | None = ...) -> None: ...
@@ -137,7 +139,7 @@ class Param(Generic[V]):
         def __get__(self, instance: object, owner: Any) -> BoundParam[V]: ...
         def __get__(self, instance: object, owner: Any) -> Param[V] | BoundParam[V]: ...
 
-    def __set_name__(self, owner: type, name: str) -> None:
+    def __set_name__(self, owner: builtins.type, name: str) -> None:
         self.name = name
 
     def finish(self, owner: str) -> None:

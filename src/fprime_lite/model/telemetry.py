@@ -11,6 +11,8 @@ write and then only values that differ from the last one written.
 
 from __future__ import annotations
 
+import builtins
+
 from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from fprime_lite.model.errors import DeclarationError, check_member_name
@@ -44,7 +46,7 @@ class Channel(Generic[V]):
                  name: str | None = ...) -> None: ...
 
     @overload
-    def __init__(self, type_: type[V], *, id: int | None = ..., update: str = ...,  # noqa: A002
+    def __init__(self, type_: builtins.type[V], *, id: int | None = ..., update: str = ...,  # noqa: A002
                  format: str | None = ..., low: dict[str, Any] | None = ..., high: dict[str, Any] | None = ...,
                  name: str | None = ...) -> None: ...
 
@@ -78,7 +80,7 @@ class Channel(Generic[V]):
         def __get__(self, instance: object, owner: Any) -> BoundChannel[V]: ...
         def __get__(self, instance: object, owner: Any) -> Channel[V] | BoundChannel[V]: ...
 
-    def __set_name__(self, owner: type, name: str) -> None:
+    def __set_name__(self, owner: builtins.type, name: str) -> None:
         self.name = name
 
     def finish(self, owner: str) -> None:

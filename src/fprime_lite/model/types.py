@@ -39,7 +39,7 @@ import enum
 import math
 import struct
 import sys
-from typing import TYPE_CHECKING, Any, Callable, ClassVar, Generic, TypeVar, Union, cast, get_origin, overload
+from typing import TYPE_CHECKING, Annotated, Any, Callable, ClassVar, Generic, TypeVar, Union, cast, get_origin, overload
 
 from fprime_lite.model.errors import DeclarationError, SerializationError
 
@@ -47,7 +47,7 @@ __all__ = [
     "FwType", "IntType", "FloatType", "BoolType", "StringType", "EnumType", "StructType",
     "ArrayType", "AliasType", "FwEnum", "Struct", "Array", "String", "Alias", "fw_type",
     "U8", "U16", "U32", "U64", "I8", "I16", "I32", "I64", "F32", "F64", "BOOL",
-    "serialize_values", "deserialize_values", "fit_utf8",
+    "serialize_values", "deserialize_values", "fit_utf8", "PRIMITIVE_TYPES", "FwTypeLike",
 ]
 
 
@@ -349,6 +349,10 @@ else:
     U8, U16, U32, U64 = _U8, _U16, _U32, _U64
     I8, I16, I32, I64 = _I8, _I16, _I32, _I64
     F32, F64, BOOL = _F32, _F64, _BOOL
+
+#: The primitive types by F´ name, typed as FwType objects (for code that handles them as values).
+PRIMITIVE_TYPES: dict[str, FwType[Any]] = {t.name: t for t in (_U8, _U16, _U32, _U64, _I8, _I16, _I32, _I64,
+                                                                 _F32, _F64, _BOOL)}
 
 #: What a declaration accepts as a type: an FwType object, or a class standing for one (an FwEnum,
 #: Struct or Array subclass, Time, ``bool``, ``float``; for a checker also ``U32``… as above).
@@ -749,10 +753,17 @@ def fw_type(obj: Any) -> FwType[Any]:
     """The :class:`FwType` that ``obj`` stands for in a declaration.
 
     Accepts FwType objects, FwEnum/Struct/Array subclasses, :class:`~fprime_lite.model.time.Time`,
-    and the Python shorthands ``bool`` (F´ bool) and ``float`` (F64).
+    the Python shorthands ``bool`` (F´ bool) and ``float`` (F64), and ``Annotated[T, fw]`` (the
+    FwType ``fw``): ``name: Annotated[str, String(40)]`` is a bounded string a type checker reads
+    as ``str`` (a call such as ``String(40)`` cannot be an annotation for a checker).
     """
     if isinstance(obj, FwType):
         return obj
+    if get_origin(obj) is Annotated:  # Annotated[str, String(40)]: the F´ type is the metadata
+        for meta in obj.__metadata__:
+            if isinstance(meta, FwType):
+                return meta
+        return fw_type(obj.__origin__)
     if isinstance(obj, type):
         if issubclass(obj, FwEnum):
             t = obj.__dict__.get("__fprime_type__")
