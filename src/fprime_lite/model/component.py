@@ -137,14 +137,22 @@ def _assign_ids(owner: str, what: str, items: list[tuple[Any, str]], get: Callab
     """Give each item its explicit id or the previous id + 1; reject duplicates.
 
     ``after`` holds groups of framework-generated items; each group is numbered from one past the
-    largest id used before it, so nothing the class declares moves.
+    largest id used before it, so nothing the class declares moves. The explicit ids of generated
+    items are held back while the declared ones are numbered: an automatic id steps over them, as
+    it would over those members listed in their places (a channel declared after the last one still
+    takes the id after the generated ones that follow it).
     """
+    later = [list(group) for group in after]
+    reserved = {get(item) for group in later for item, _ in group} - {None}
     used: dict[int, str] = {}
-    for group_number, group in enumerate([items, *after]):
+    for group_number, group in enumerate([items, *later]):
         next_id = 0 if group_number == 0 else max(used, default=-1) + 1
         for item, label in group:
             explicit = get(item)
             local = next_id if explicit is None else explicit
+            if explicit is None and group_number == 0:
+                while local in reserved:
+                    local += 1
             if local in used:
                 raise DeclarationError(f"{owner}: {what} {local} (0x{local:X}) of {label} is already used by "
                                        f"{used[local]}; give one of them another {what}")

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from fprime_lite import (F64, U32, CmdResponse, DeclarationError, Event, ParamValid, PassiveComponent, QueuedComponent,
+from fprime_lite import (F64, U32, Channel, CmdResponse, DeclarationError, Event, ParamValid, PassiveComponent, QueuedComponent,
                          Sched, Severity, Param, async_input, sync_command, sync_input)
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.model.params import ParamEcho
@@ -195,3 +195,22 @@ def test_sync_input_decorator_keeps_the_function():
     def run(self, context):
         return context
     assert sync_input(Sched)(run) is run
+
+
+def test_an_automatic_id_steps_over_explicit_echo_ids():
+    """PRM-011-4: a member declared after the last one takes the id after the echoes that the
+    flight listing puts there (explicit echo ids 2 and 3 after declared 1: the next is 4)."""
+    class Listing(PassiveComponent):
+        P = Param(F64, default=0.0, echo=ParamEcho(event_id=0, channel_id=2))
+        Q = Param(F64, default=0.0, echo=ParamEcho(event_id=1, channel_id=3))
+        A = Channel(F64)
+        B = Channel(F64, id=1)
+        C = Channel(F64)
+
+    spec = Listing.__fprime_spec__
+    assert [(c.name, c.local_id) for c in spec.own_channels] == [("A", 0), ("B", 1), ("C", 4), ("PParam", 2),
+                                                                 ("QParam", 3)]
+    with pytest.raises(DeclarationError, match="channel id 2"):
+        class Clash(PassiveComponent):
+            P = Param(F64, default=0.0, echo=ParamEcho(channel_id=2))
+            A = Channel(F64, id=2)
