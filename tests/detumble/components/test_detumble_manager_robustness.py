@@ -204,3 +204,15 @@ def test_repeated_faults_are_throttled_but_always_counted(h):
     assert faults == 25
     h.assert_event_count("HandlerFault", 10)
     assert h.tlm_values("HandlerFaults")[-1] == 25
+
+
+@pytest.mark.parametrize("bad", [-1.0, math.nan, math.inf, 1e308])
+def test_bdot_detumble_gain_is_bounded(fprime_harness, bad):
+    """PRM-016-14: BDotDetumble's Gain refuses a negative (anti-damping), non-finite or huge value."""
+    from detumble.components.bdot_detumble import BDotDetumble
+
+    h = fprime_harness(BDotDetumble("bdotDetumble"))
+    h.load_parameters()
+    h.send_raw_command(h.component.opcode("Gain_PRM_SET"), h.component.spec.param("Gain").type.serialize(bad))
+    h.assert_cmd_response(0, "Gain_PRM_SET", CmdResponse.VALIDATION_ERROR)
+    assert h.component.Gain.value == 1.0 and h.events_named("ParamSetRefused")[0][0] == "Gain"
