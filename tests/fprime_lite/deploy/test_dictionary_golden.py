@@ -6,13 +6,9 @@ a flight name, id or format string without this test saying which. The only entr
 files lack are the framework's own fault and parameter members that every component has since
 (decision 0005); they are taken out before comparing, and checked separately.
 
-A change that *adds* members on purpose regenerates the golden files after checking that the diff
-only adds (no name, id, format or type of an existing entry changes), e.g.::
-
-    fprime-lite dict deployments/proves_ref/topology.yaml -o tests/data/dictionary/reference_deployment.json
-    (and --gds -o …/reference_deployment_gds.json; topology_bdot_detumble.yaml -o …/reference_bdot_detumble.json)
-
-then removes the framework's members from them (this test's ``FRAMEWORK`` names).
+A change that *adds* members on purpose regenerates the golden files, after checking that the
+diff only adds (no name, id, format or type of an existing entry changes), with
+``python tests/data/dictionary/regenerate.py``.
 """
 
 from __future__ import annotations
