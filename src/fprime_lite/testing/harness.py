@@ -26,7 +26,7 @@ from fprime_lite.model.commands import CmdResponse
 from fprime_lite.model.component import Component, QueuedComponent
 from fprime_lite.model.errors import FwAssertionError
 from fprime_lite.model.events import Severity
-from fprime_lite.model.params import ParamValid
+from fprime_lite.model.params import BoundParam, ParamValid
 from fprime_lite.model.time import Time, TimeBase, TimeInterval
 from fprime_lite.model.types import deserialize_values
 
@@ -38,8 +38,8 @@ class PortCall(NamedTuple):
     """One call out of a plain output port."""
 
     port: str
-    index: int
-    args: tuple
+    index: int  # type: ignore[assignment]  # F´'s from-port history has a port index; shadows tuple.index
+    args: tuple[Any, ...]
 
 
 class CommandResponseRecord(NamedTuple):
@@ -107,7 +107,7 @@ class ComponentHarness:
     def _connect(self) -> None:
         comp = self.component
         special = {name: kind for kind, name in comp.spec.special.items()}
-        recorders = {
+        recorders: dict[str, Callable[..., Any]] = {
             "command reg": self._on_cmd_reg,
             "command resp": self._on_cmd_response,
             "event": self._on_event,
@@ -222,11 +222,15 @@ class ComponentHarness:
 
     def param_set(self, name: str, value: Any, validity: ParamValid = ParamValid.VALID) -> None:
         """Put ``value`` in the harness's parameter store (what the component loads from PrmDb)."""
-        bound = self.component.params[name] if name in self.component.params else None
-        if bound is None:
-            self.component.spec.param(name)  # raises with the list of parameters
+        bound = self._param(name)
         data = bound.decl.type.serialize(value) if validity == ParamValid.VALID else None
         self._param_store[bound.id] = (ParamValid(validity), data)
+
+    def _param(self, name: str) -> BoundParam[Any]:
+        params = self.component.params
+        if name not in params:
+            self.component.spec.param(name)  # raises with the list of parameters
+        return params[name]
 
     def load_parameters(self) -> None:
         """Have the component load every parameter from the harness's store."""
@@ -234,9 +238,7 @@ class ComponentHarness:
 
     def param_send(self, name: str, *, cmd_seq: int = 0) -> None:
         """Send the stored value of ``name`` to the component with its PRM_SET command."""
-        bound = self.component.params[name] if name in self.component.params else None
-        if bound is None:
-            self.component.spec.param(name)
+        bound = self._param(name)
         validity, data = self._param_store.get(bound.id, (ParamValid.UNINIT, None))
         if data is None:
             raise FwAssertionError(f"harness: no value stored for {name}; call param_set({name!r}, value) first")

@@ -198,11 +198,16 @@ def _param_setting(setting: str, declared: dict) -> tuple[str, object]:
         value = yaml.safe_load(text)
     except yaml.YAMLError:
         value = text
-    ptype = declared[name][1].type
+    param = declared[name][1]
+    ptype = param.type
     try:
-        return name, ptype.check(value)
+        value = ptype.check(value)
     except (SerializationError, ValueError, TypeError) as exc:
         raise UserError(f"--set {setting!r}: not a valid {ptype.name}: {exc}") from None
+    problem = param.invalid_reason(value)
+    if problem is not None:  # the component would refuse it at load and use its default
+        raise UserError(f"--set {setting!r}: {problem}; {name} would load its default instead")
+    return name, value
 
 
 def cmd_run(args) -> int:

@@ -25,7 +25,7 @@ def test_f_prime_declarations():
     em = EventManager("events")
     assert [(c.name, c.opcode, c.kind) for c in em.spec.commands] == [
         ("SET_EVENT_FILTER", 0, "sync"), ("SET_ID_FILTER", 2, "async"), ("DUMP_FILTER_STATE", 3, "async")]
-    assert {e.name: (e.local_id, e.severity) for e in em.spec.events} == {
+    assert {e.name: (e.local_id, e.severity) for e in em.spec.own_events} == {
         "SEVERITY_FILTER_STATE": (0, Severity.ACTIVITY_LO), "ID_FILTER_ENABLED": (1, Severity.ACTIVITY_HI),
         "ID_FILTER_LIST_FULL": (2, Severity.WARNING_LO), "ID_FILTER_REMOVED": (3, Severity.ACTIVITY_HI),
         "ID_FILTER_NOT_FOUND": (4, Severity.WARNING_LO)}
