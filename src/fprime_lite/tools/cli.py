@@ -19,6 +19,7 @@ from __future__ import annotations
 import argparse
 import datetime as _dt
 import logging
+import os
 import pathlib
 import sys
 
@@ -62,6 +63,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--no-plots", action="store_true", help="do not draw the PNG plots")
     run.add_argument("--truth-interval", type=float, metavar="SECONDS",
                      help="sampling interval of the truth log (default: the topology's)")
+    run.add_argument("--allow-warnings", action="store_true", help="exit 0 even when the flight had handler "
+                     "faults, cycle slips or WARNING_HI/FATAL events (the summary still lists them)")
     run.add_argument("-v", "--verbose", action="store_true", help="log framework warnings to stderr")
     run.add_argument("--realtime", action="store_true", help="pace the run to the wall clock (simulated time "
                      "never runs ahead of it); Ctrl-C stops the run and still writes the outputs")
@@ -142,6 +145,7 @@ def cmd_dict(args) -> int:
         from fprime_lite.deploy.com_stack import add_ground_link
 
         add_ground_link(topology)
+    _output_file(args.output, "-o")
     d = write_dictionary(topology, args.output)
     print(f"wrote {args.output}: {len(d['commands'])} commands, {len(d['events'])} events, "
           f"{len(d['telemetryChannels'])} channels, {len(d['parameters'])} parameters")
@@ -159,6 +163,7 @@ def cmd_params(args) -> int:
     from fprime_lite.svc.prm_db import encode_param_file
     from fprime_lite.osal.atomic import atomic_write_bytes
 
+    _output_file(args.output, "-o")
     topo = _load(args.topology).topology
     declared = {}
     for instance in topo.instances.values():
@@ -199,10 +204,28 @@ def _param_setting(setting: str, declared: dict) -> tuple[str, object]:
     except yaml.YAMLError:
         value = text
     ptype = declared[name][1].type
+    if getattr(ptype, "kind", None) == "float" and isinstance(value, str):
+        value = _float_text(setting, text.strip(), ptype.name)
     try:
         return name, ptype.check(value)
     except (SerializationError, ValueError, TypeError) as exc:
         raise UserError(f"--set {setting!r}: not a valid {ptype.name}: {exc}") from None
+
+
+def _float_text(setting: str, text: str, type_name: str):
+    """A float written as text YAML does not read as a number (``1e400``, ``1e5``): its value, or
+    an out-of-range error when it overflows."""
+    import math
+    import sys as _sys
+
+    try:
+        value = float(text)
+    except ValueError:
+        return text  # not a number: the type's own check says so
+    if math.isinf(value) and "inf" not in text.lower():
+        raise UserError(f"--set {setting!r}: {text} is out of range for {type_name} "
+                        f"(|x| ≤ {_sys.float_info.max:.6g})")
+    return value
 
 
 def cmd_run(args) -> int:
@@ -222,8 +245,10 @@ def cmd_run(args) -> int:
         overrides["report"] = {"truth_interval_s": args.truth_interval}
     if not args.duration > 0:
         raise UserError(f"--duration must be positive, got {args.duration}")
-    for option, value in (("--params", args.params), ("--seq", args.seq)):
-        if value is not None and not pathlib.Path(value).is_file():
+    for option, value in (("--params", args.params), ("--seq", args.seq), ("--scenario", args.scenario)):
+        if value is not None and pathlib.Path(value).is_dir():
+            raise UserError(f"{option} {value}: is a folder — give a file")
+        if option != "--scenario" and value is not None and not pathlib.Path(value).is_file():
             raise UserError(f"{option} {value}: no such file")
     realtime = args.realtime or args.gds is not None
     address = None
@@ -237,18 +262,78 @@ def cmd_run(args) -> int:
     elif args.framing != "ccsds":
         raise UserError("--framing applies to the ground link: add --gds")
     loaded = _load(args.topology, overrides, _paced if realtime else None)
-    out = pathlib.Path(args.out) if args.out else pathlib.Path("runs") / _dt.datetime.now().strftime(
-        "%Y%m%d-%H%M%S")
-    if out.exists() and any(out.iterdir()):
-        raise UserError(f"--out {out}: the folder exists and is not empty — choose another or remove it")
+    preflight(loaded, parameter_file=args.params, sequence=args.seq)
+    out = _claim_run_folder(args.out)
     if not realtime:
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
-                                 plots=not args.no_plots)
+                                 plots=not args.no_plots, allow_warnings=args.allow_warnings)
     else:
         summary = _run_realtime(loaded, out, args, address)
     print(f"outputs in {out}/")
-    return 0 if summary.get("ok", True) else EXIT_FAILED
+    if not summary["ok"]:
+        print(f"fprime-lite run: the flight reported problems: {'; '.join(summary['problems'])} "
+              f"(--allow-warnings accepts them)", file=sys.stderr)
+        return EXIT_FAILED
+    return 0
+
+
+def _claim_run_folder(option: str | None) -> pathlib.Path:
+    """The run's output folder, created now: ``--out`` (absent or empty), or a new
+    ``runs/<date>-<time>.<ms>`` with ``-2``, ``-3`` … appended when that name is taken."""
+    if option is not None:
+        out = pathlib.Path(option)
+        if out.exists() and not out.is_dir():
+            raise UserError(f"--out {out}: is a file, not a folder — give a new or empty folder")
+        if out.is_dir() and any(out.iterdir()):
+            raise UserError(f"--out {out}: the folder exists and is not empty — choose another or remove it")
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise UserError(f"--out {out}: cannot create the folder ({exc.strerror}) — choose a folder you "
+                            f"can write") from None
+        return out
+    stamp = _dt.datetime.now().strftime("%Y%m%d-%H%M%S.%f")[:-3]
+    runs = pathlib.Path("runs")
+    try:
+        runs.mkdir(exist_ok=True)
+    except OSError as exc:
+        raise UserError(f"cannot create {runs.resolve()} ({exc.strerror}) — run from a folder you can write "
+                        f"or give --out DIR") from None
+    for n in range(1, 1000):
+        out = runs / (stamp if n == 1 else f"{stamp}-{n}")
+        try:
+            out.mkdir()
+            return out
+        except FileExistsError:
+            continue
+        except OSError as exc:
+            raise UserError(f"cannot create {out} ({exc.strerror}) — give --out DIR") from None
+    raise UserError(f"{runs}: 999 run folders named {stamp}* already exist — give --out DIR")
+
+
+def _output_file(path: str, option: str) -> pathlib.Path:
+    """An output file the user named: refused when it is a folder or its folder does not exist
+    (nothing is created that the user did not ask for)."""
+    p = pathlib.Path(path)
+    if p.is_dir():
+        raise UserError(f"{option} {path}: is a folder — give a file name")
+    parent = p.parent
+    if not parent.is_dir():
+        raise UserError(f"{option} {path}: folder {parent} does not exist — create it first or choose another")
+    if not os.access(parent, os.W_OK):
+        raise UserError(f"{option} {path}: cannot write in {parent} (permission denied)")
+    return p
+
+
+def preflight(loaded, *, parameter_file=None, sequence=None) -> None:
+    """Refuse a run whose parameter file or sequence would not load (see deploy/preflight.py)."""
+    from fprime_lite.deploy.preflight import PreflightError, check_run_files
+
+    try:
+        check_run_files(loaded, parameter_file=parameter_file, sequence=sequence)
+    except PreflightError as exc:
+        raise UserError(str(exc)) from None
 
 
 def _paced(clock):
@@ -281,7 +366,8 @@ def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
         if link is not None:
             link.start_socket_task()
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
-                                 sequence=args.seq, progress=False, plots=not args.no_plots)
+                                 sequence=args.seq, progress=False, plots=not args.no_plots,
+                                 allow_warnings=args.allow_warnings)
     finally:
         if link is not None:
             link.close()
@@ -338,6 +424,10 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"fprime-lite {args.command}: interrupted", file=sys.stderr)
         return 130
+    except OSError as exc:  # an output the system refuses (disk full, permissions …)
+        where = f" {exc.filename}" if exc.filename else ""
+        print(f"fprime-lite {args.command}: cannot write or read{where}: {exc.strerror or exc}", file=sys.stderr)
+        return EXIT_FAILED
 
 
 if __name__ == "__main__":
