@@ -245,48 +245,48 @@ class DetumbleManager(PassiveComponent):
     Mode = Channel(DetumbleMode)
     State = Channel(DetumbleState)
     DetumbleStrategy = Channel(T.DetumbleStrategy)
-    AngularVelocityMagnitude = Channel(F64, format="{.3f}")  # deg/s
-    BdotMaxThresholdParam = Channel(F64)  # deg/s
-    DeadbandUpperThresholdParam = Channel(F64)  # deg/s
-    DeadbandLowerThresholdParam = Channel(F64)  # deg/s
-    GainParam = Channel(F64)  # A·m²·s/G
+    AngularVelocityMagnitude = Channel(F64, format="{.3f}", units="deg/s")
+    BdotMaxThresholdParam = Channel(F64, units="deg/s")
+    DeadbandUpperThresholdParam = Channel(F64, units="deg/s")
+    DeadbandLowerThresholdParam = Channel(F64, units="deg/s")
+    GainParam = Channel(F64, units="A m^2 s/G")
     HysteresisAxisParam = Channel(HysteresisAxis)
     CooldownDurationParam = Channel(TimeIntervalValue)
     TorqueDurationParam = Channel(TimeIntervalValue)
     TorqueDuration = Channel(TimeIntervalValue)  # measured length of the last B-dot actuation
     TimeBetweenMagneticFieldReadings = Channel(TimeIntervalValue)  # first to last sample of a window
-    XPlusVoltageParam = Channel(F64)  # V
-    XPlusResistanceParam = Channel(F64)  # ohm
-    XPlusTurnsParam = Channel(F64)  # turns
-    XPlusLengthParam = Channel(F64)  # m
-    XPlusWidthParam = Channel(F64)  # m
+    XPlusVoltageParam = Channel(F64, units="V")
+    XPlusResistanceParam = Channel(F64, units="ohm")
+    XPlusTurnsParam = Channel(F64, units="turns")
+    XPlusLengthParam = Channel(F64, units="m")
+    XPlusWidthParam = Channel(F64, units="m")
     XPlusShapeParam = Channel(CoilShape)
-    XMinusVoltageParam = Channel(F64)  # V
-    XMinusResistanceParam = Channel(F64)  # ohm
-    XMinusTurnsParam = Channel(F64)  # turns
-    XMinusLengthParam = Channel(F64)  # m
-    XMinusWidthParam = Channel(F64)  # m
+    XMinusVoltageParam = Channel(F64, units="V")
+    XMinusResistanceParam = Channel(F64, units="ohm")
+    XMinusTurnsParam = Channel(F64, units="turns")
+    XMinusLengthParam = Channel(F64, units="m")
+    XMinusWidthParam = Channel(F64, units="m")
     XMinusShapeParam = Channel(CoilShape)
-    XTurnsParam = Channel(F64)  # turns
-    YPlusVoltageParam = Channel(F64)  # V
-    YPlusResistanceParam = Channel(F64)  # ohm
-    YPlusTurnsParam = Channel(F64)  # turns
-    YPlusLengthParam = Channel(F64)  # m
-    YPlusWidthParam = Channel(F64)  # m
+    XTurnsParam = Channel(F64, units="turns")
+    YPlusVoltageParam = Channel(F64, units="V")
+    YPlusResistanceParam = Channel(F64, units="ohm")
+    YPlusTurnsParam = Channel(F64, units="turns")
+    YPlusLengthParam = Channel(F64, units="m")
+    YPlusWidthParam = Channel(F64, units="m")
     YPlusShapeParam = Channel(CoilShape)
-    YMinusVoltageParam = Channel(F64)  # V
-    YMinusResistanceParam = Channel(F64)  # ohm
-    YMinusTurnsParam = Channel(F64)  # turns
-    YMinusLengthParam = Channel(F64)  # m
-    YMinusWidthParam = Channel(F64)  # m
+    YMinusVoltageParam = Channel(F64, units="V")
+    YMinusResistanceParam = Channel(F64, units="ohm")
+    YMinusTurnsParam = Channel(F64, units="turns")
+    YMinusLengthParam = Channel(F64, units="m")
+    YMinusWidthParam = Channel(F64, units="m")
     YMinusShapeParam = Channel(CoilShape)
-    YTurnsParam = Channel(F64)  # turns
-    ZMinusVoltageParam = Channel(F64)  # V
-    ZMinusResistanceParam = Channel(F64)  # ohm
-    ZMinusTurnsParam = Channel(F64)  # turns
-    ZMinusDiameterParam = Channel(F64)  # m
+    YTurnsParam = Channel(F64, units="turns")
+    ZMinusVoltageParam = Channel(F64, units="V")
+    ZMinusResistanceParam = Channel(F64, units="ohm")
+    ZMinusTurnsParam = Channel(F64, units="turns")
+    ZMinusDiameterParam = Channel(F64, units="m")
     ZMinusShapeParam = Channel(CoilShape)
-    ZTurnsParam = Channel(F64)  # turns
+    ZTurnsParam = Channel(F64, units="turns")
 
     # --- construction --------------------------------------------------------------------------
 

@@ -54,7 +54,7 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     topo = deployment.topology
     reports = _reports(loaded)
     recorder = GroundRecorder(topo, out, on_event=lambda e: [r.on_event(e) for r in reports
-                                                             if hasattr(r, "on_event")])
+                                                             if hasattr(r, "on_event")], clock=loaded.clock)
     recorder.attach(topo, topo.patterns.get("event"), topo.patterns.get("telemetry"))
     for instance in topo.instances.values():
         if isinstance(instance.component, FileDownlink):
