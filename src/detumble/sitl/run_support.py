@@ -93,13 +93,16 @@ class DetumbleRunReport:
                                "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
                                *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy"])
         self._state_us = {s: 0 for s in DetumbleState}
+        self._progress_us = {s: 0 for s in DetumbleState}
         self._state_since = deployment.scheduler.now_us
         deployment.scheduler.add_time_listener(self._on_time)
         self.spacecraft.set_trace(self._sample, self.truth_interval_us)
 
     def _on_time(self, time_us: int) -> None:
         """Credit the time since the last event to the state the manager was in (exact fractions)."""
-        self._state_us[self.manager.state] += time_us - self._state_since
+        state = self.manager.state
+        self._state_us[state] += time_us - self._state_since
+        self._progress_us[state] += time_us - self._state_since
         self._state_since = time_us
 
     def _sample(self, s: TruthSample) -> None:
@@ -128,9 +131,28 @@ class DetumbleRunReport:
             self.detumble_complete_s = t
 
     def progress(self) -> dict:
+        """The body rate now, and how the time since the previous call was shared among the
+        manager's states (the states taking 5 % or more, largest first: ``ACTUATING_BDOT 68%``)."""
         truth = self.spacecraft.truth()
-        state = self.manager.state.name if self.manager is not None else "?"
-        return {"rate_deg_s": truth.rate_deg_s, "state": state}
+        return {"rate_deg_s": truth.rate_deg_s, "state": self._state_shares()}
+
+    def state_shares(self) -> dict[str, float]:
+        """Share of the simulated time since the previous call spent in each state (sums to 1);
+        resets the count."""
+        shares = getattr(self, "_progress_us", None)
+        if not shares:
+            return {}
+        total = sum(shares.values())
+        out = {st.name: us / total for st, us in shares.items()} if total else {}
+        self._progress_us = {st: 0 for st in DetumbleState}
+        return out
+
+    def _state_shares(self) -> str:
+        shares = self.state_shares()
+        if not shares:
+            return self.manager.state.name if self.manager is not None else "?"
+        ranked = sorted(((v, k) for k, v in shares.items() if v >= 0.05), reverse=True)
+        return " ".join(f"{name} {share:.0%}" for share, name in ranked)
 
     def summary(self) -> dict:
         final = self.spacecraft.truth()
