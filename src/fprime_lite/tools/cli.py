@@ -5,6 +5,8 @@
     fprime-lite check [TOPOLOGY]        validate a topology
     fprime-lite graph [TOPOLOGY]        print the topology as DOT or Mermaid
     fprime-lite params [TOPOLOGY] -o F  write a parameter file holding every parameter's default
+    fprime-lite plot RUN_DIR            draw the plots of a finished run again
+    fprime-lite new component|deployment NAME   write a skeleton that passes its own test
     fprime-lite bench                   measure speed and memory
 
 Applications add verbs of their own through the ``fprime_lite.verbs`` entry points
@@ -96,6 +98,23 @@ def build_parser() -> argparse.ArgumentParser:
                         help="write VALUE instead of the default, e.g. ReferenceDeployment.detumbleManager.GAIN=2.5 "
                              "(repeatable; enum values by name)")
 
+    plot = sub.add_parser("plot", help="draw the plots of a finished run again", description="Draw the PNG "
+                          "plots of a finished run from the files in its folder, with the plotters the "
+                          "installed applications provide (entry points fprime_lite.plots).")
+    plot.add_argument("run_dir", metavar="RUN_DIR", help="a folder 'fprime-lite run' wrote")
+    plot.add_argument("-o", "--output", metavar="DIR", help="where to write the PNGs (default: RUN_DIR)")
+
+    new = sub.add_parser("new", help="write a component or deployment skeleton that passes its own test",
+                         description="Write a skeleton: 'new component NAME' writes NAME's module, its "
+                         "harness test and a docs stub into --dir; 'new deployment NAME' creates the folder "
+                         "NAME with a component, topology.yaml, tests and a README. Run python -m pytest "
+                         "there.")
+    new.add_argument("kind", choices=("component", "deployment"))
+    new.add_argument("name", metavar="NAME", help="a class-style name, e.g. MyHeater")
+    new.add_argument("--dir", default=".", metavar="DIR", help="the folder to write into (default: .)")
+    new.add_argument("--component", default="Counter", metavar="NAME",
+                     help="deployment only: the name of its component (default: Counter)")
+
     bench = sub.add_parser("bench", help="measure speed and memory", add_help=False)
     bench.add_argument("args", nargs=argparse.REMAINDER)
     for verb in _application_verbs().values():
@@ -119,14 +138,10 @@ def _version() -> str:
     return __version__
 
 
-def _load(path: str, role_overrides: dict | None = None, scheduler_factory=None):
-    from fprime_lite.deploy.topology_loader import load_topology
+def _load(path: str):
+    from fprime_lite.tools.api import load
 
-    p = pathlib.Path(path)
-    if not p.exists():
-        raise UserError(f"{path}: no such topology file — give the path of a topology YAML file "
-                        f"(the reference deployment is deployments/proves_ref/topology.yaml)")
-    return load_topology(p, scheduler_factory=scheduler_factory, role_overrides=role_overrides)
+    return load(path)
 
 
 def cmd_check(args) -> int:
@@ -229,20 +244,11 @@ def _float_text(setting: str, text: str, type_name: str):
 
 
 def cmd_run(args) -> int:
+    from fprime_lite.deploy.preflight import check_run_files
+    from fprime_lite.tools.api import claim_run_folder, load
     from fprime_lite.tools.runner import run_deployment
 
-    overrides: dict[str, dict] = {}
-    if args.scenario is not None or args.seed is not None or args.set:
-        simulation: dict = {}
-        if args.scenario is not None:
-            simulation["scenario"] = args.scenario
-        if args.set:
-            simulation["settings"] = _checked_settings(args.set)
-        if args.seed is not None:
-            simulation["seed"] = args.seed
-        overrides["simulation"] = simulation
-    if args.truth_interval is not None:
-        overrides["report"] = {"truth_interval_s": args.truth_interval}
+    _checked_settings(args.set)
     if not args.duration > 0:
         raise UserError(f"--duration must be positive, got {args.duration}")
     for option, value in (("--params", args.params), ("--seq", args.seq), ("--scenario", args.scenario)):
@@ -261,9 +267,10 @@ def cmd_run(args) -> int:
             raise UserError(f"--gds {exc}") from None
     elif args.framing != "ccsds":
         raise UserError("--framing applies to the ground link: add --gds")
-    loaded = _load(args.topology, overrides, _paced if realtime else None)
-    preflight(loaded, parameter_file=args.params, sequence=args.seq)
-    out = _claim_run_folder(args.out)
+    loaded = load(args.topology, scenario=args.scenario, seed=args.seed, settings=args.set,
+                  truth_interval_s=args.truth_interval, scheduler_factory=_paced if realtime else None)
+    check_run_files(loaded, parameter_file=args.params, sequence=args.seq)
+    out = claim_run_folder(args.out)
     if not realtime:
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
@@ -278,40 +285,6 @@ def cmd_run(args) -> int:
     return 0
 
 
-def _claim_run_folder(option: str | None) -> pathlib.Path:
-    """The run's output folder, created now: ``--out`` (absent or empty), or a new
-    ``runs/<date>-<time>.<ms>`` with ``-2``, ``-3`` … appended when that name is taken."""
-    if option is not None:
-        out = pathlib.Path(option)
-        if out.exists() and not out.is_dir():
-            raise UserError(f"--out {out}: is a file, not a folder — give a new or empty folder")
-        if out.is_dir() and any(out.iterdir()):
-            raise UserError(f"--out {out}: the folder exists and is not empty — choose another or remove it")
-        try:
-            out.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise UserError(f"--out {out}: cannot create the folder ({exc.strerror}) — choose a folder you "
-                            f"can write") from None
-        return out
-    stamp = _dt.datetime.now().strftime("%Y%m%d-%H%M%S.%f")[:-3]
-    runs = pathlib.Path("runs")
-    try:
-        runs.mkdir(exist_ok=True)
-    except OSError as exc:
-        raise UserError(f"cannot create {runs.resolve()} ({exc.strerror}) — run from a folder you can write "
-                        f"or give --out DIR") from None
-    for n in range(1, 1000):
-        out = runs / (stamp if n == 1 else f"{stamp}-{n}")
-        try:
-            out.mkdir()
-            return out
-        except FileExistsError:
-            continue
-        except OSError as exc:
-            raise UserError(f"cannot create {out} ({exc.strerror}) — give --out DIR") from None
-    raise UserError(f"{runs}: 999 run folders named {stamp}* already exist — give --out DIR")
-
-
 def _output_file(path: str, option: str) -> pathlib.Path:
     """An output file the user named: refused when it is a folder or its folder does not exist
     (nothing is created that the user did not ask for)."""
@@ -324,16 +297,6 @@ def _output_file(path: str, option: str) -> pathlib.Path:
     if not os.access(parent, os.W_OK):
         raise UserError(f"{option} {path}: cannot write in {parent} (permission denied)")
     return p
-
-
-def preflight(loaded, *, parameter_file=None, sequence=None) -> None:
-    """Refuse a run whose parameter file or sequence would not load (see deploy/preflight.py)."""
-    from fprime_lite.deploy.preflight import PreflightError, check_run_files
-
-    try:
-        check_run_files(loaded, parameter_file=parameter_file, sequence=sequence)
-    except PreflightError as exc:
-        raise UserError(str(exc)) from None
 
 
 def _paced(clock):
@@ -389,6 +352,29 @@ def _checked_settings(settings: list[str]) -> list[str]:
     return settings
 
 
+def cmd_plot(args) -> int:
+    from fprime_lite.tools.api import plot_run_dir
+
+    written = plot_run_dir(args.run_dir, args.output)
+    print(f"wrote {len(written)} plot(s): " + ", ".join(str(p) for p in written))
+    return 0
+
+
+def cmd_new(args) -> int:
+    from fprime_lite.tools.skeleton import SkeletonError, new_component, new_deployment
+
+    try:
+        if args.kind == "component":
+            written = new_component(args.name, args.dir)
+        else:
+            written = new_deployment(args.name, args.dir, component=args.component)
+    except SkeletonError as exc:
+        raise UserError(str(exc)) from None
+    folder = written[0].parent
+    print(f"wrote {', '.join(str(p) for p in written)}\nnext: cd {folder} && python -m pytest")
+    return 0
+
+
 def cmd_bench(args) -> int:
     from fprime_lite.tools.bench import main as bench_main
 
@@ -396,7 +382,7 @@ def cmd_bench(args) -> int:
 
 
 COMMANDS = {"run": cmd_run, "dict": cmd_dict, "check": cmd_check, "graph": cmd_graph,
-            "params": cmd_params, "bench": cmd_bench}
+            "params": cmd_params, "bench": cmd_bench, "plot": cmd_plot, "new": cmd_new}
 BUILT_IN = set(COMMANDS)
 
 #: Verbs that parse their own options (application verbs do too).
