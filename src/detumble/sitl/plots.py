@@ -183,8 +183,9 @@ def plot_truth(truth_csv: pathlib.Path, out_dir: pathlib.Path, *, thresholds: di
     ax1.step(tt, [strategies.index(s) if s in strategies else -1 for s in data.get("strategy", [])],
              where="post", color="tab:purple", lw=1.0, label="strategy")
     ax1.set_yticks(range(len(strategies)), strategies)
-    shares = [data[f"frac_{st.name.lower()}"] for st in DetumbleState if f"frac_{st.name.lower()}" in data]
-    ax2.stackplot(tt, *shares, labels=[st.name for st in DetumbleState][:len(shares)], step="post", alpha=0.85)
+    states = [st.name for st in DetumbleState if f"frac_{st.name.lower()}" in data]
+    if states:
+        ax2.stackplot(tt, *(data[f"frac_{name.lower()}"] for name in states), labels=states, step="post", alpha=0.85)
     ax2.set_ylim(0, 1)
     ax2.set_ylabel("share of time")
     finish(fig, [ax1, ax2], "state.png", "Detumble strategy, and the share of each interval in each state")

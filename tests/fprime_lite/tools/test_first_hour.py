@@ -297,3 +297,36 @@ def test_small_ones(tmp_path, capsys):
     assert "1e400 is out of range for F64" in one_line_error(capsys)
     assert main(["params", TOPOLOGY, "-o", str(tmp_path / "p.dat"), "--set",
                  "ReferenceDeployment.detumbleManager.GAIN=1e2"]) == 0
+
+
+def test_attitude_dipole_and_wheel_plots_appear_with_their_truth_columns(tmp_path):
+    """FH-007: the attitude, dipole and wheel plots are drawn when truth.csv has their columns
+    (q0…q3 and pointing_error_deg, m_/mcmd_*_Am2, h<i>_Nms) and only then."""
+    import csv
+    import math
+
+    from detumble.sitl.plots import plot_truth
+
+    base = ["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT", "bz_uT",
+            "level_xp", "level_xm", "level_yp", "level_ym", "level_zm", "strategy"]
+    extra = ["q0", "q1", "q2", "q3", "pointing_error_deg", "m_x_Am2", "m_y_Am2", "m_z_Am2",
+             "mcmd_x_Am2", "mcmd_y_Am2", "mcmd_z_Am2", "h0_Nms"]
+
+    def write(path, columns):
+        with open(path, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(columns)
+            for i in range(50):
+                a = i / 50 * math.pi
+                row = {"t_s": i, "strategy": "BDOT", "q0": math.cos(a / 2), "q1": math.sin(a / 2),
+                       "pointing_error_deg": "" if i < 5 else 90 - i, "level_xp": 127 if i % 2 else -127}
+                w.writerow([row.get(c, 0.1) for c in columns])
+
+    write(tmp_path / "plain.csv", base)
+    (tmp_path / "a").mkdir()
+    names = {p.name for p in plot_truth(tmp_path / "plain.csv", tmp_path / "a")}
+    assert names == {"rate.png", "drive_levels.png", "state.png", "field.png"}
+    write(tmp_path / "adcs.csv", base + extra)
+    (tmp_path / "b").mkdir()
+    names = {p.name for p in plot_truth(tmp_path / "adcs.csv", tmp_path / "b")}
+    assert names >= {"attitude.png", "dipole.png", "wheels.png"}
