@@ -233,7 +233,6 @@ def _float_text(setting: str, text: str, type_name: str):
     """A float written as text YAML does not read as a number (``1e400``, ``1e5``): its value, or
     an out-of-range error when it overflows."""
     import math
-    import sys as _sys
 
     try:
         value = float(text)
@@ -241,7 +240,7 @@ def _float_text(setting: str, text: str, type_name: str):
         return text  # not a number: the type's own check says so
     if math.isinf(value) and "inf" not in text.lower():
         raise UserError(f"--set {setting!r}: {text} is out of range for {type_name} "
-                        f"(|x| ≤ {_sys.float_info.max:.6g})")
+                        f"(|x| ≤ {sys.float_info.max:.6g})")
     return value
 
 
