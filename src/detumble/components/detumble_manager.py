@@ -244,14 +244,14 @@ class DetumbleManager(PassiveComponent):
     Mode = Channel(DetumbleMode)
     State = Channel(DetumbleState)
     DetumbleStrategy = Channel(T.DetumbleStrategy)
-    AngularVelocityMagnitude = Channel(F64, format="{.3f}")  # deg/s
+    AngularVelocityMagnitude = Channel(F64, format="{.3f}", units="deg/s")
     TorqueDuration = Channel(TimeIntervalValue, id=11)  # measured length of the last B-dot actuation
     TimeBetweenMagneticFieldReadings = Channel(TimeIntervalValue)  # first to last sample of a window
-    XPlusTurnsParam = Channel(F64, id=15)  # turns
-    XMinusTurnsParam = Channel(F64, id=21)  # turns
-    YPlusTurnsParam = Channel(F64, id=28)  # turns
-    YMinusTurnsParam = Channel(F64, id=34)  # turns
-    ZMinusTurnsParam = Channel(F64, id=41)  # turns
+    XPlusTurnsParam = Channel(F64, id=15, units="turns")
+    XMinusTurnsParam = Channel(F64, id=21, units="turns")
+    YPlusTurnsParam = Channel(F64, id=28, units="turns")
+    YMinusTurnsParam = Channel(F64, id=34, units="turns")
+    ZMinusTurnsParam = Channel(F64, id=41, units="turns")
 
     # --- construction --------------------------------------------------------------------------
 

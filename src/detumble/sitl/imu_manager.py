@@ -199,9 +199,9 @@ class ImuManager(PassiveComponent):
 
     # --- channels ------------------------------------------------------------------------------
 
-    Acceleration = Channel(Acceleration)
-    AngularVelocity = Channel(AngularVelocity)
-    MagneticField = Channel(MagneticField)
+    Acceleration = Channel(Acceleration, units="m/s^2")
+    AngularVelocity = Channel(AngularVelocity, units="rad/s")
+    MagneticField = Channel(MagneticField, units="G")
     GyroscopeSamplingFrequency = Channel(Lsm6dsoSamplingFrequency, update="on change")
     MagnetometerSamplingFrequency = Channel(Lis2mdlSamplingFrequency, update="on change")
 

@@ -35,7 +35,9 @@ class Channel(Generic[V]):
 
     ``low`` and ``high`` are optional limits, e.g. ``high={"yellow": 10.0, "red": 20.0}``.
     ``name`` gives the channel an F´ name other than its attribute's (F´ lets a channel share its
-    name with an event or a parameter; Python attributes cannot). ``wall_clock=True`` marks a
+    name with an event or a parameter; Python attributes cannot). ``units`` (e.g. ``"deg/s"``) is
+    documentation for the ground: it heads the channel's column in a run's ``channels_wide.csv``
+    (F´'s dictionary has no units field, so it is not in the dictionary). ``wall_clock=True`` marks a
     channel whose value is measured on the wall clock (F´'s ``RgMaxTime``): the one kind of value
     that differs between two runs of the same deployment, scenario and seed.
     """
@@ -54,7 +56,7 @@ class Channel(Generic[V]):
 
     def __init__(self, type_: Any, *, id: int | None = None, update: str = "always",  # noqa: A002
                  format: str | None = None, low: dict[str, Any] | None = None, high: dict[str, Any] | None = None,
-                 name: str | None = None, wall_clock: bool = False) -> None:
+                 name: str | None = None, wall_clock: bool = False, units: str | None = None) -> None:
         if update not in _UPDATES:
             raise DeclarationError(f"channel update must be 'always' or 'on change', got {update!r}")
         if id is not None and (not isinstance(id, int) or id < 0):
@@ -72,6 +74,9 @@ class Channel(Generic[V]):
         self.high = dict(high or {})
         self.wall_clock = bool(wall_clock)
         self.fprime_name = check_member_name(name, "channel")
+        if units is not None and (not isinstance(units, str) or not units.strip() or "]" in units):
+            raise DeclarationError(f"channel units must be a non-empty text without ']', got {units!r}")
+        self.units = units
         self.name = ""
         self.attr = ""
         self.framework = False  # True for the members the framework gives every component
