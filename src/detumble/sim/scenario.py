@@ -26,6 +26,9 @@ from detumble.sim.field import (EARTH_ROTATION_RATE, IGRF2025_G10_NT, IGRF2025_G
                     IGRF_REFERENCE_RADIUS_M)
 from detumble.sim.orbit import J2_EARTH, MU_EARTH, R_EARTH_EQ
 from detumble.sim.sensors import GyroSpec, MagnetometerSpec
+from detumble.sim.accelerometer import AccelerometerSpec
+from detumble.sim.power import PowerConfig
+from detumble.sim.scenario_power import parse_accelerometer, parse_power
 from detumble.sim.vec import Mat3, Quat, Vec3, mrp_to_quat, quat_normalize, unit
 
 LAWS = ("none", "kopt", "bdot", "bangbang")
@@ -100,6 +103,8 @@ class Scenario:
     q_BN0: Quat = (1.0, 0.0, 0.0, 0.0)
     omega_BN_B0: Vec3 = (0.0, 0.0, 0.0)
     control: ControlConfig = _dc_field(default_factory=ControlConfig)
+    accelerometer: AccelerometerSpec = _dc_field(default_factory=AccelerometerSpec)
+    power: PowerConfig = _dc_field(default_factory=PowerConfig)
 
     @property
     def earth_angle0_rad(self) -> float:
@@ -360,14 +365,17 @@ def scenario_from_dict(data: Any, source: str = "<dict>", lines: dict[tuple, int
     sens = top.section("sensors")
     mag = _magnetometer(sens.section("magnetometer"))
     gyro = _gyro(sens.section("gyro"))
+    accelerometer = parse_accelerometer(sens.section("accelerometer"))
     sens.finish()
     use_seed = file_seed if seed is None else seed
     q0, w0 = _initial(top.section("initial"), use_seed)
     control = _control(top.section("control"), dt)
+    power = parse_power(top.section("power"))
     top.finish()
     return Scenario(name=name, description=description, source=source, epoch=epoch, duration_s=duration,
                     dynamics_step_s=dt, record_interval_s=record, seed=use_seed, spacecraft=sc, orbit=orbit,
-                    field=fld, magnetometer=mag, gyro=gyro, q_BN0=q0, omega_BN_B0=w0, control=control)
+                    field=fld, magnetometer=mag, gyro=gyro, q_BN0=q0, omega_BN_B0=w0, control=control,
+                    accelerometer=accelerometer, power=power)
 
 
 def _inertia(s: _Section) -> Mat3:

@@ -13,7 +13,7 @@ from detumble.sitl.imu_manager import (Acceleration, AccelerationGet, AngularVel
                           Lis2mdlSamplingFrequency, Lsm6dsoSamplingFrequency, SimImuSensor, SimReadFault)
 from detumble.sitl.magnetorquer_driver import (DRIVER_FACES, MagnetorquerDriver, SimDriverFault, driver_instance_name,
                                   make_magnetorquer_drivers)
-from detumble.sitl.mode_manager import MODE_CHANGED_PORTS, ForceSafeMode, ModeManager
+from detumble.sitl.mode_manager import MODE_CHANGED_PORTS, ForceSafeModeWithReason, ModeManager, SafeModeReason
 from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthRecorder, TruthSample, scenario_epoch_us
 
 __all__ = [
@@ -21,5 +21,5 @@ __all__ = [
     "ImuManager", "Acceleration", "AngularVelocity", "AccelerationGet", "AngularVelocityGet",
     "Lis2mdlSamplingFrequency", "Lsm6dsoSamplingFrequency", "SimImuSensor", "SimReadFault",
     "MagnetorquerDriver", "SimDriverFault", "DRIVER_FACES", "driver_instance_name", "make_magnetorquer_drivers",
-    "ModeManager", "ForceSafeMode", "MODE_CHANGED_PORTS",
+    "ModeManager", "ForceSafeModeWithReason", "SafeModeReason", "MODE_CHANGED_PORTS",
 ]

@@ -49,7 +49,11 @@ from typing import Callable, NamedTuple
 
 from fprime_lite.model.time import SimulatedClock, Time
 
-from detumble.sim.coils import CoilSet
+from detumble.sim.accelerometer import Accelerometer
+from detumble.sim.coils import CoilSet, MAX_LEVEL
+from detumble.sim.epoch import julian_date
+from detumble.sim.orbit import R_EARTH_EQ
+from detumble.sim.power import FACE_SWITCHES, ElectricalSystem, coil_supply_power_w
 from detumble.sim.plant import Plant
 from detumble.sim.scenario import Scenario, load_scenario
 from detumble.sim.sensors import GAUSS_PER_TESLA
@@ -132,6 +136,7 @@ class SimulatedSpacecraft:
         self._trace_next_ns: int | None = None
         self.steps_taken = 0
         self._attached = []
+        self._init_avionics(seed)
         self.sync()
 
     @classmethod
@@ -183,6 +188,8 @@ class SimulatedSpacecraft:
                 nxt = target
             if trace_next is not None and trace_next < nxt:
                 nxt = trace_next
+            if self.power is not None:
+                self._step_power(now, nxt)
             plant.step((nxt - now) * 1e-9)
             self.steps_taken += 1
             now = plant.t_ns
@@ -238,10 +245,16 @@ class SimulatedSpacecraft:
         return (s[0], s[1], s[2], self.time_of(gyro.sample_time_ns))
 
     def acceleration(self) -> tuple[float, float, float]:
-        """Specific force at the IMU, m/s², body axes: zero (free fall; the plant models no drag and
-        the IMU is taken at the centre of mass)."""
+        """The LSM6DSO reading, m/s², body axes: free fall plus the centripetal term at the IMU's lever
+        arm, with the sensor's bias, noise and quantisation (:mod:`detumble.sim.accelerometer`).
+        The output register is refreshed at the LSM6DSO's ODR (the gyro's): reads within one output
+        period return the same sample."""
         self.sync()
-        return (0.0, 0.0, 0.0)
+        slot = self.plant.t_ns // max(1, self.plant.gyro.period_ns)
+        if slot != self._accel_slot:
+            self._accel_slot = slot
+            self._accel_sample = self.accelerometer.measure(self.plant.omega_BN_B)
+        return self._accel_sample
 
     @property
     def magnetometer_period_us(self) -> float:
@@ -276,6 +289,8 @@ class SimulatedSpacecraft:
         """Drive the coil on ``face`` at ``level`` (-127..127) from now on (plant sign conventions:
         a positive level gives a dipole along the face's outward normal, so X- +level is -X)."""
         self.sync()
+        if level and not self.face_powered(face):
+            raise RuntimeError(f"face {face} is unpowered (its load switch is off); its coil cannot be driven")
         self.plant.set_coil_level(face, level)
 
     def coil_level(self, face: int) -> int:
@@ -314,6 +329,79 @@ class SimulatedSpacecraft:
         now = self.plant.t_ns
         callback(self.truth())
         self._trace_next_ns = (now // self._trace_interval_ns + 1) * self._trace_interval_ns
+
+    # --- avionics: electrical power, load switches, flash, reset line ---------------------------------
+
+    def _init_avionics(self, seed: int | None) -> None:
+        sc = self.scenario
+        self.power = (ElectricalSystem(sc.power, julian_date(sc.epoch), R_EARTH_EQ)
+                      if sc.power.enabled else None)
+        self.accelerometer = Accelerometer(sc.accelerometer, (sc.seed if seed is None else seed) * 7919 + 3)
+        self._accel_slot = None
+        self._accel_sample = (0.0, 0.0, 0.0)
+        self._flash_dir = None
+        self.reset_handler: Callable[[str], None] | None = None
+
+    def _step_power(self, t0_ns: int, t1_ns: int) -> None:
+        plant = self.plant
+        coil_w = 0.0
+        act = plant.actuators
+        if isinstance(act, CoilSet):
+            for coil in act.coils.values():
+                if coil.level:
+                    coil_w += coil_supply_power_w(coil.level, MAX_LEVEL, coil.spec.voltage_v, coil.current_a)
+        self.power.step((t1_ns - t0_ns) * 1e-9, t0_ns * 1e-9, plant.q_BN, plant.r_N, coil_w)
+
+    def face_powered(self, face: int) -> bool:
+        """True when the face's load switch is closed (always True without a power model)."""
+        return self.power is None or self.power.face_powered(face)
+
+    def load_switch(self, name: str) -> bool:
+        """The state of load switch ``name`` (``face0`` … ``face5``, ``payloadPower``, ``payloadBattery``)."""
+        return True if self.power is None else self.power.switches[name]
+
+    def set_load_switch(self, name: str, on: bool) -> None:
+        """Open or close a load switch from now on; opening a face's switch de-energises its coil."""
+        self.sync()
+        if self.power is None:
+            return
+        self.power.set_switch(name, on)
+        if not on and name in FACE_SWITCHES:
+            face = FACE_SWITCHES.index(name)
+            if face in self.coil_faces:
+                self.plant.set_coil_level(face, 0)
+
+    @property
+    def flash_dir(self) -> str:
+        """The simulated flight computer's non-volatile storage (a directory kept for this spacecraft's
+        life: files written there survive a flight-software reset)."""
+        if self._flash_dir is None:
+            import tempfile
+            self._flash = tempfile.TemporaryDirectory(prefix="sitl-flash-")
+            self._flash_dir = self._flash.name
+        return self._flash_dir
+
+    def use_flash_dir(self, path: str) -> None:
+        """Keep the simulated flash in ``path`` (created if needed) instead of a temporary directory."""
+        import os
+        os.makedirs(path, exist_ok=True)
+        self._flash_dir = os.fspath(path)
+
+    def request_reset(self, kind: str = "cold") -> None:
+        """Pull the flight computer's reset line (``kind`` "cold" or "warm"); the deployment that
+        attached itself through :attr:`reset_handler` restarts its software. The plant keeps flying."""
+        if self.reset_handler is None:
+            raise RuntimeError("no flight software is attached to this spacecraft's reset line")
+        self.reset_handler(kind)
+
+    def hardware_reset(self) -> None:
+        """What a reset of the flight computer does to the hardware: the load-switch GPIOs return to
+        their power-on state (open) and every coil driver stops."""
+        if self.power is not None:
+            for name in self.power.switches:
+                self.set_load_switch(name, False)
+        for face in self.coil_faces:
+            self.plant.set_coil_level(face, 0)
 
     def __repr__(self) -> str:
         return (f"<SimulatedSpacecraft {self.scenario.name!r} t={self.plant.t:.6f} s "
