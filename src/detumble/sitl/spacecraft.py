@@ -340,6 +340,7 @@ class SimulatedSpacecraft:
         self._accel_slot = None
         self._accel_sample = (0.0, 0.0, 0.0)
         self._flash_dir = None
+        self.resets = 0                                      #: flight-software resets so far
         self.reset_handler: Callable[[str], None] | None = None
 
     def _step_power(self, t0_ns: int, t1_ns: int) -> None:
@@ -393,6 +394,19 @@ class SimulatedSpacecraft:
         if self.reset_handler is None:
             raise RuntimeError("no flight software is attached to this spacecraft's reset line")
         self.reset_handler(kind)
+
+    def attach_flight_software(self, deployment) -> None:
+        """Wire the reset line to ``deployment`` (called by the deployment at start-up)."""
+        self.reset_handler = deployment.request_reset
+
+    def flight_software_reset(self) -> None:
+        """The deployment restarts its software: reset what the flight computer's reset resets."""
+        self.hardware_reset()
+        self.resets += 1
+
+    def scheduler(self):
+        """The scheduler this spacecraft is attached to (None when stepped by hand)."""
+        return self._attached[0] if self._attached else None
 
     def hardware_reset(self) -> None:
         """What a reset of the flight computer does to the hardware: the load-switch GPIOs return to
