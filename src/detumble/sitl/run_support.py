@@ -21,6 +21,7 @@ import pathlib
 from fprime_lite.deploy.scheduler import Scheduler
 
 from detumble.sim.scenario import Scenario, load_scenario
+from detumble.sitl.power_budget import POWER_COLUMNS as _POWER_COLUMNS, PowerBudget, plot_power
 from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthSample, scenario_epoch_us
 from detumble.components.types import DetumbleState, DetumbleStrategy
 
@@ -77,6 +78,7 @@ class DetumbleRunReport:
         self._file = None
         self._writer = None
         self._path: pathlib.Path | None = None
+        self.power = PowerBudget(spacecraft)
 
     # --- run hooks (called by ``fprime-lite run``) ------------------------------------------------
 
@@ -88,7 +90,8 @@ class DetumbleRunReport:
         self._writer = csv.writer(self._file, lineterminator="\n")
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
                                "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
-                               *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy"])
+                               *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy",
+                               *_POWER_COLUMNS])
         self._state_us = {s: 0 for s in DetumbleState}
         self._state_since = deployment.scheduler.now_us
         deployment.scheduler.add_time_listener(self._on_time)
@@ -113,7 +116,8 @@ class DetumbleRunReport:
         self._state_us = {st: 0 for st in DetumbleState}
         self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
                                s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *levels,
-                               *(f"{f:.4f}" for f in fractions), strategy.name if strategy is not None else ""])
+                               *(f"{f:.4f}" for f in fractions), strategy.name if strategy is not None else "",
+                               *self.power.sample(t)])
 
     def on_event(self, event) -> None:
         """A downlinked event (``fprime_lite.ground.downlink.DecodedEvent``)."""
@@ -131,6 +135,7 @@ class DetumbleRunReport:
 
     def summary(self) -> dict:
         final = self.spacecraft.truth()
+        power = self.power.summary(self.detumble_started_s, self.detumble_complete_s)
         return {
             "initial_rate_deg_s": self.initial_rate_deg_s,
             "final_rate_deg_s": final.rate_deg_s,
@@ -139,6 +144,8 @@ class DetumbleRunReport:
             "time_below_1_deg_s": self.time_below_1_deg_s,
             "scenario": self.spacecraft.scenario.name,
             "physics_steps": self.spacecraft.steps_taken,
+            **({"power": power} if power else {}),
+            "flight_software_resets": self.spacecraft.resets,
         }
 
     def finish(self, out_dir: pathlib.Path, *, plots: bool = True) -> list[pathlib.Path]:
@@ -153,6 +160,9 @@ class DetumbleRunReport:
         written = [self._path] if self._path is not None else []
         if plots and self._path is not None:
             written += plot_run(self._path, pathlib.Path(out_dir), self.manager)
+            if self.spacecraft.power is not None:
+                written += plot_power(self._path, pathlib.Path(out_dir), self.detumble_started_s,
+                                      self.detumble_complete_s)
         return written
 
 
