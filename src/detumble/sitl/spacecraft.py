@@ -247,10 +247,10 @@ class SimulatedSpacecraft:
     def acceleration(self) -> tuple[float, float, float]:
         """The LSM6DSO reading, m/s², body axes: free fall plus the centripetal term at the IMU's lever
         arm, with the sensor's bias, noise and quantisation (:mod:`detumble.sim.accelerometer`).
-        The output register is refreshed at the LSM6DSO's ODR (the gyro's): reads within one output
-        period return the same sample."""
+        The output register is refreshed at the accelerometer's ODR (:meth:`set_accelerometer_odr_hz`,
+        initially the gyro's): reads within one output period return the same sample."""
         self.sync()
-        slot = self.plant.t_ns // max(1, self.plant.gyro.period_ns)
+        slot = self.plant.t_ns // self._accel_period_ns
         if slot != self._accel_slot:
             self._accel_slot = slot
             self._accel_sample = self.accelerometer.measure(self.plant.omega_BN_B)
@@ -338,6 +338,7 @@ class SimulatedSpacecraft:
                       if sc.power.enabled else None)
         self.accelerometer = Accelerometer(sc.accelerometer, (sc.seed if seed is None else seed) * 7919 + 3)
         self._accel_slot = None
+        self._accel_period_ns = max(1, self.plant.gyro.period_ns)
         self._accel_sample = (0.0, 0.0, 0.0)
         self._flash_dir = None
         self.resets = 0                                      #: flight-software resets so far
@@ -352,6 +353,12 @@ class SimulatedSpacecraft:
                 if coil.level:
                     coil_w += coil_supply_power_w(coil.level, MAX_LEVEL, coil.spec.voltage_v, coil.current_a)
         self.power.step((t1_ns - t0_ns) * 1e-9, t0_ns * 1e-9, plant.q_BN, plant.r_N, coil_w)
+
+    def set_accelerometer_odr_hz(self, odr_hz: float) -> None:
+        """Reconfigure the accelerometer's output data rate."""
+        if not (isinstance(odr_hz, (int, float)) and math.isfinite(odr_hz) and odr_hz > 0):
+            raise ValueError(f"odr_hz must be a positive number, got {odr_hz!r}")
+        self._accel_period_ns = max(1, int(round(1e9 / odr_hz)))
 
     def face_powered(self, face: int) -> bool:
         """True when the face's load switch is closed (always True without a power model)."""
