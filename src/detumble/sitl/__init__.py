@@ -4,9 +4,13 @@
   scheduler clock; truth trace.
 * :mod:`.imu_manager` — :class:`ImuManager`: LIS2MDL magnetometer + LSM6DSO gyro/accelerometer.
 * :mod:`.magnetorquer_driver` — :class:`MagnetorquerDriver`: one DRV2605-driven face coil.
-* :mod:`.mode_manager` — :class:`ModeManager`: NORMAL / SAFE_MODE.
+* :mod:`.mode_manager` — :class:`ModeManager`: the flight mode manager (safe-mode reasons, low
+  battery, command loss, persistence).
+* power: :mod:`.load_switch`, :mod:`.ina219_manager`, :mod:`.power_monitor` on the simulated
+  electrical system (:mod:`detumble.sim.power`).
+* housekeeping: :mod:`.rtc_manager`, :mod:`.startup_manager`, :mod:`.watchdog`, :mod:`.reset_manager`.
 
-See ``docs/components/simulated_drivers.md``.
+See ``docs/components/simulated_drivers.md`` and a page per flight component beside it.
 """
 
 from detumble.sitl.imu_manager import (Acceleration, AccelerationGet, AngularVelocity, AngularVelocityGet, ImuManager,

@@ -34,7 +34,7 @@ from fprime_lite.model.types import U8
 
 from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet, MagneticField, MagneticFieldGet, Result,
                      SamplingPeriodGet, Success, TimeIntervalValue)
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["ImuManager", "AxisOrientation", "Acceleration", "AngularVelocity", "AccelerationGet", "AngularVelocityGet",
            "Lis2mdlSamplingFrequency", "Lsm6dsoSamplingFrequency", "SimImuSensor", "SimReadFault",
@@ -248,8 +248,7 @@ class ImuManager(PassiveComponent):
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, *, base_id: int = 0,
                  stamp_with_read_time: bool = False):
         super().__init__(name, base_id=base_id)
-        if not isinstance(spacecraft, SimulatedSpacecraft):
-            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        require_spacecraft(name, spacecraft)
         self.spacecraft = spacecraft
         self.stamp_with_read_time = bool(stamp_with_read_time)
         self._faults = {s: SimReadFault.NONE for s in _SENSORS}

@@ -17,7 +17,7 @@ from __future__ import annotations
 from fprime_lite import BOOL, F64, Channel, Event, PassiveComponent, Severity, sync_command, sync_input
 
 from detumble.sitl.ports import CurrentGet, PowerGet, VoltageGet
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["Ina219Manager", "VOLTAGE_LSB_V", "CURRENT_LSB_A"]
 
@@ -72,8 +72,7 @@ class Ina219Manager(PassiveComponent):
 
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, rail: str, *, base_id: int = 0):
         super().__init__(name, base_id=base_id)
-        if not isinstance(spacecraft, SimulatedSpacecraft):
-            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        require_spacecraft(name, spacecraft)
         if rail not in RAILS:
             raise ValueError(f"{name}: rail must be one of {RAILS}, got {rail!r}")
         if spacecraft.power is None:

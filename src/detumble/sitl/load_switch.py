@@ -24,7 +24,7 @@ from fprime_lite.model.fw_types import On
 
 from detumble.sim.power import SWITCH_NAMES
 from detumble.sitl.ports import LoadSwitchStateChanged, Signal
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["LoadSwitch", "STATE_CHANGED_PORTS"]
 
@@ -68,8 +68,7 @@ class LoadSwitch(PassiveComponent):
 
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, switch: str, *, base_id: int = 0):
         super().__init__(name, base_id=base_id)
-        if not isinstance(spacecraft, SimulatedSpacecraft):
-            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        require_spacecraft(name, spacecraft)
         if switch not in SWITCH_NAMES:
             raise ValueError(f"{name}: unknown switch {switch!r}; switches are {list(SWITCH_NAMES)}")
         self.spacecraft = spacecraft

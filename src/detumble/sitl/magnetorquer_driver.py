@@ -47,7 +47,7 @@ from detumble.control.coil_layout import COIL_FACES
 from detumble.sim.coils import FACE_NAMES, MAX_LEVEL
 from detumble.components.types import StartMagnetorquer, StopMagnetorquer, Success
 from detumble.sitl.ports import LoadSwitchStateChanged
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 #: Time after a face's switch closes before its DRV2605 can be initialised (flight: 1 s).
 LOAD_SWITCH_SETTLE_US = 1_000_000
@@ -145,8 +145,7 @@ class MagnetorquerDriver(PassiveComponent):
 
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, face: int, *, base_id: int = 0):
         super().__init__(name, base_id=base_id)
-        if not isinstance(spacecraft, SimulatedSpacecraft):
-            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        require_spacecraft(name, spacecraft)
         if face not in spacecraft.coil_faces:
             raise ValueError(f"{name}: spacecraft has no coil on face {face!r}; its coil faces are "
                              f"{list(spacecraft.coil_faces) or 'none (ideal torque rods)'}")

@@ -15,7 +15,7 @@ from __future__ import annotations
 from fprime_lite import Event, OutputPort, PassiveComponent, Severity, sync_command, sync_input
 
 from detumble.sitl.ports import Signal
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["ResetManager"]
 
@@ -48,8 +48,7 @@ class ResetManager(PassiveComponent):
 
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, *, base_id: int = 0):
         super().__init__(name, base_id=base_id)
-        if not isinstance(spacecraft, SimulatedSpacecraft):
-            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        require_spacecraft(name, spacecraft)
         self.spacecraft = spacecraft
 
     def _reset(self, kind: str) -> None:

@@ -27,7 +27,7 @@ from fprime_lite.model.commands import CmdResponse
 from fprime_lite.model.fw_ports import CmdSeqCancel, TimeGet
 from fprime_lite.model.time import Time
 
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["RtcManager", "TimeData", "AlarmTriggeredPort"]
 
@@ -146,8 +146,7 @@ class RtcManager(PassiveComponent):
 
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, *, base_id: int = 0):
         super().__init__(name, base_id=base_id)
-        if not isinstance(spacecraft, SimulatedSpacecraft):
-            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        require_spacecraft(name, spacecraft)
         self.spacecraft = spacecraft
         self._alarm = None
 

@@ -58,7 +58,7 @@ from detumble.sim.plant import Plant
 from detumble.sim.scenario import Scenario, load_scenario
 from detumble.sim.sensors import GAUSS_PER_TESLA
 
-__all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us"]
+__all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us", "require_spacecraft"]
 
 _UNIX_EPOCH = _dt.datetime(1970, 1, 1, tzinfo=_dt.timezone.utc)
 
@@ -67,6 +67,13 @@ def scenario_epoch_us(scenario: Scenario) -> int:
     """The scenario's UTC epoch as microseconds since 1970-01-01 (a clock ``epoch_us``)."""
     delta = scenario.epoch - _UNIX_EPOCH
     return (delta.days * 86400 + delta.seconds) * 1_000_000 + delta.microseconds
+
+
+def require_spacecraft(owner: str, spacecraft) -> "SimulatedSpacecraft":
+    """``spacecraft`` if it is a :class:`SimulatedSpacecraft`, else a TypeError naming ``owner``."""
+    if not isinstance(spacecraft, SimulatedSpacecraft):
+        raise TypeError(f"{owner}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+    return spacecraft
 
 
 class TruthSample(NamedTuple):

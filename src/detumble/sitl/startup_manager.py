@@ -27,7 +27,7 @@ from fprime_lite.model.fw_types import TimeIntervalValue
 from fprime_lite.model.time import Time
 from fprime_lite.osal.atomic import atomic_write_bytes
 
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["StartupManager"]
 
@@ -93,8 +93,7 @@ class StartupManager(PassiveComponent):
 
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, *, base_id: int = 0):
         super().__init__(name, base_id=base_id)
-        if not isinstance(spacecraft, SimulatedSpacecraft):
-            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        require_spacecraft(name, spacecraft)
         self.spacecraft = spacecraft
         self.boot_count = 0
         self.quiescence_start: Time | None = None

@@ -18,7 +18,7 @@ from fprime_lite import U32, Channel, Event, OutputPort, PassiveComponent, Sched
 from fprime_lite.model.fw_types import On
 
 from detumble.sitl.ports import Signal
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["Watchdog"]
 
@@ -64,8 +64,7 @@ class Watchdog(PassiveComponent):
 
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, *, base_id: int = 0, timeout_s: float = 5.0):
         super().__init__(name, base_id=base_id)
-        if not isinstance(spacecraft, SimulatedSpacecraft):
-            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        require_spacecraft(name, spacecraft)
         if not timeout_s > 0:
             raise ValueError(f"{name}: timeout_s must be positive, got {timeout_s!r}")
         self.spacecraft = spacecraft
