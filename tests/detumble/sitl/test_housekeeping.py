@@ -212,3 +212,27 @@ def test_alarm(fprime_harness, default_scenario):
     h.assert_event("AlarmCanceled", 0, 0)
     h.send_command("ALARM_LIST")
     h.assert_event("AlarmNotSet", 2, TimeData(0, 0, 0, 0, 0, 0), 0)
+
+
+def test_startup_manager_flash_failures_and_sequence(fprime_harness, craft, tmp_path):
+    """SUM-004: an unwritable boot-count or quiescence file logs BootCountUpdateFailure /
+    QuiescenceFileInitFailure (the count is still at least 1); the first run asks runSequence for
+    STARTUP_SEQUENCE_FILE."""
+    import os
+    os.makedirs(os.path.join(craft.flash_dir, "boot_count.bin"))        # a directory: cannot be written
+    os.makedirs(os.path.join(craft.flash_dir, "quiescence_start.bin"))
+    h = fprime_harness(StartupManager("startupManager", craft))
+    h.invoke("run", 0)
+    h.assert_event_count("BootCountUpdateFailure", 1)
+    h.assert_event_count("QuiescenceFileInitFailure", 1)
+    assert h.component.boot_count == 1
+    assert [c.args for c in h.from_port("runSequence")] == [("/seq/startup.bin",)]
+
+
+def test_rtc_alarm_without_a_scheduler_is_a_hardware_error(fprime_harness, craft):
+    """RTC-004: with no scheduler to ring it the alarm cannot be armed: AlarmHardwareError(0, -ENODEV)."""
+    import errno
+    h = fprime_harness(RtcManager("rtcManager", craft))
+    h.send_command("ALARM_SET", TimeData(2100, 1, 1, 0, 0, 0))
+    h.assert_cmd_response(0, "ALARM_SET", CmdResponse.EXECUTION_ERROR)
+    h.assert_event("AlarmHardwareError", 0, 0, -errno.ENODEV)
