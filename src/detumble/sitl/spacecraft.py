@@ -62,6 +62,10 @@ __all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoc
 
 _UNIX_EPOCH = _dt.datetime(1970, 1, 1, tzinfo=_dt.timezone.utc)
 
+#: The electrical system is integrated over this much plant time at once (100 ms, five 50 Hz
+#: dynamics steps); the coils' energy in between is summed exactly, step by step.
+POWER_STEP_NS = 100_000_000
+
 
 def scenario_epoch_us(scenario: Scenario) -> int:
     """The scenario's UTC epoch as microseconds since 1970-01-01 (a clock ``epoch_us``)."""
@@ -299,6 +303,7 @@ class SimulatedSpacecraft:
         if level and not self.face_powered(face):
             raise RuntimeError(f"face {face} is unpowered (its load switch is off); its coil cannot be driven")
         self.plant.set_coil_level(face, level)
+        self._coil_w = None
 
     def coil_level(self, face: int) -> int:
         return self.plant.coil_levels().get(face, 0)
@@ -344,6 +349,12 @@ class SimulatedSpacecraft:
         self.power = (ElectricalSystem(sc.power, julian_date(sc.epoch), R_EARTH_EQ)
                       if sc.power.enabled else None)
         self.accelerometer = Accelerometer(sc.accelerometer, (sc.seed if seed is None else seed) * 7919 + 3)
+        act = self.plant.actuators
+        self._coils_lagged = isinstance(act, CoilSet) and act._lagged  # currents change between commands
+        self._coil_w = None
+        self._power_pending_ns = 0
+        self._power_t0_ns = 0
+        self._power_coil_j = 0.0
         self._accel_slot = None
         self._accel_period_ns = max(1, self.plant.gyro.period_ns)
         self._accel_sample = (0.0, 0.0, 0.0)
@@ -352,14 +363,26 @@ class SimulatedSpacecraft:
         self.reset_handler: Callable[[str], None] | None = None
 
     def _step_power(self, t0_ns: int, t1_ns: int) -> None:
-        plant = self.plant
-        coil_w = 0.0
-        act = plant.actuators
-        if isinstance(act, CoilSet):
-            for coil in act.coils.values():
-                if coil.level:
-                    coil_w += coil_supply_power_w(coil.level, MAX_LEVEL, coil.spec.voltage_v, coil.current_a)
-        self.power.step((t1_ns - t0_ns) * 1e-9, t0_ns * 1e-9, plant.q_BN, plant.r_N, coil_w)
+        """Sum the coils' energy over this dynamics step; integrate the electrical system once
+        :data:`POWER_STEP_NS` of plant time has gathered (solar input and battery held over it)."""
+        if self._coil_w is None or self._coils_lagged:
+            coil_w = 0.0
+            act = self.plant.actuators
+            if isinstance(act, CoilSet):
+                for coil in act.coils.values():
+                    if coil.level:
+                        coil_w += coil_supply_power_w(coil.level, MAX_LEVEL, coil.spec.voltage_v, coil.current_a)
+            self._coil_w = coil_w
+        if self._power_pending_ns == 0:
+            self._power_t0_ns = t0_ns
+        self._power_pending_ns += t1_ns - t0_ns
+        self._power_coil_j += self._coil_w * (t1_ns - t0_ns) * 1e-9
+        if self._power_pending_ns >= POWER_STEP_NS:
+            dt = self._power_pending_ns * 1e-9
+            plant = self.plant
+            self.power.step(dt, self._power_t0_ns * 1e-9, plant.q_BN, plant.r_N, self._power_coil_j / dt)
+            self._power_pending_ns = 0
+            self._power_coil_j = 0.0
 
     def set_accelerometer_odr_hz(self, odr_hz: float) -> None:
         """Reconfigure the accelerometer's output data rate."""
@@ -385,6 +408,7 @@ class SimulatedSpacecraft:
             face = FACE_SWITCHES.index(name)
             if face in self.coil_faces:
                 self.plant.set_coil_level(face, 0)
+                self._coil_w = None
 
     @property
     def flash_dir(self) -> str:
@@ -430,6 +454,7 @@ class SimulatedSpacecraft:
                 self.set_load_switch(name, False)
         for face in self.coil_faces:
             self.plant.set_coil_level(face, 0)
+        self._coil_w = None
 
     def __repr__(self) -> str:
         return (f"<SimulatedSpacecraft {self.scenario.name!r} t={self.plant.t:.6f} s "
