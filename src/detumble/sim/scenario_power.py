@@ -7,7 +7,17 @@ from __future__ import annotations
 from detumble.sim.accelerometer import AccelerometerSpec
 from detumble.sim.power import (SWITCH_NAMES, BatteryConfig, LoadConfig, PowerConfig, SolarConfig)
 
-__all__ = ["parse_power", "parse_accelerometer"]
+__all__ = ["parse_power", "parse_accelerometer", "POWER_SCHEMA", "ACCELEROMETER_SCHEMA"]
+
+#: The keys of ``power:`` and ``sensors.accelerometer:`` for ``--set`` (sections dicts, leaves None).
+POWER_SCHEMA = {
+    "enabled": None, "switches_on": None,
+    "battery": dict.fromkeys(("capacity_wh", "initial_soc", "internal_resistance_ohm", "cells_in_series")),
+    "solar": dict.fromkeys(("panel_area_m2", "efficiency")),
+    "loads": dict.fromkeys(("avionics_w", "face_board_w", "payload_power_w", "payload_battery_w")),
+}
+ACCELEROMETER_SCHEMA = dict.fromkeys(("ideal", "bias_mps2", "noise_std_mps2", "lsb_mps2", "full_scale_mps2",
+                                      "lever_arm_m"))
 
 
 def parse_accelerometer(s) -> AccelerometerSpec:

@@ -9,6 +9,8 @@
 * power: :mod:`.load_switch`, :mod:`.ina219_manager`, :mod:`.power_monitor` on the simulated
   electrical system (:mod:`detumble.sim.power`).
 * housekeeping: :mod:`.rtc_manager`, :mod:`.startup_manager`, :mod:`.watchdog`, :mod:`.reset_manager`.
+* :mod:`.reaction_wheel_driver` — :class:`ReactionWheelDriver`: one reaction wheel.
+* :mod:`.star_tracker` — :class:`StarTracker`: the attitude q_BN.
 
 See ``docs/components/simulated_drivers.md`` and a page per flight component beside it.
 """
@@ -18,7 +20,10 @@ from detumble.sitl.imu_manager import (Acceleration, AccelerationGet, AngularVel
 from detumble.sitl.magnetorquer_driver import (DRIVER_FACES, MagnetorquerDriver, SimDriverFault, driver_instance_name,
                                   make_magnetorquer_drivers)
 from detumble.sitl.mode_manager import MODE_CHANGED_PORTS, ForceSafeModeWithReason, ModeManager, SafeModeReason
+from detumble.sitl.reaction_wheel_driver import (ReactionWheelDriver, SimWheelFault, make_reaction_wheel_drivers,
+                                                 wheel_instance_name)
 from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthRecorder, TruthSample, scenario_epoch_us
+from detumble.sitl.star_tracker import SimStarTrackerFault, StarTracker
 
 __all__ = [
     "SimulatedSpacecraft", "TruthRecorder", "TruthSample", "scenario_epoch_us",
@@ -26,4 +31,6 @@ __all__ = [
     "Lis2mdlSamplingFrequency", "Lsm6dsoSamplingFrequency", "SimImuSensor", "SimReadFault",
     "MagnetorquerDriver", "SimDriverFault", "DRIVER_FACES", "driver_instance_name", "make_magnetorquer_drivers",
     "ModeManager", "ForceSafeModeWithReason", "SafeModeReason", "MODE_CHANGED_PORTS",
+    "ReactionWheelDriver", "SimWheelFault", "make_reaction_wheel_drivers", "wheel_instance_name",
+    "StarTracker", "SimStarTrackerFault",
 ]

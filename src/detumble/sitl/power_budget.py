@@ -84,9 +84,9 @@ def plot_power(truth_csv: pathlib.Path, out_dir: pathlib.Path, started_s=None, c
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from detumble.sitl.run_support import _read_truth, _save
+    from detumble.sitl.plots import _save, read_truth
 
-    data = _read_truth(truth_csv)
+    data = read_truth(truth_csv)
     t = data["t_s"]
     if not t or all(math.isnan(v) for v in data["soc"]):
         return []

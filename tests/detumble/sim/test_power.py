@@ -154,3 +154,13 @@ def test_coil_supply_power_is_v_squared_over_r_at_steady_state():
     for level in (127, -64, 10):
         i = level / 127 * v / r
         assert coil_supply_power_w(level, 127, v, i) == pytest.approx((level / 127 * v) ** 2 / r)
+
+
+def test_power_keys_can_be_set_on_a_scenario_without_them():
+    """EPS-KEY-001: --set adds power and accelerometer keys to a scenario that has none (case_a), and
+    a misspelt power key is an error naming the keys there."""
+    from detumble.sim.scenario import ScenarioError
+    sc = load_scenario("case_a", settings=["power.battery.initial_soc=0.05", "sensors.accelerometer.ideal=true"])
+    assert sc.power.battery.initial_soc == 0.05 and sc.accelerometer.ideal is True
+    with pytest.raises(ScenarioError, match="capacity_wh"):
+        load_scenario("default", settings=["power.battery.capacity_w=3"])
