@@ -88,7 +88,7 @@ def plot_power(truth_csv: pathlib.Path, out_dir: pathlib.Path, started_s=None, c
 
     data = read_truth(truth_csv)
     t = data["t_s"]
-    if not t or all(math.isnan(v) for v in data["soc"]):
+    if not t or "soc" not in data or all(math.isnan(v) for v in data["soc"]):
         return []
     unit, scale = ("min", 60.0) if t[-1] > 3 * 3600 / 10 else ("s", 1.0)
     tt = [v / scale for v in t]
