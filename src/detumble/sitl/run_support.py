@@ -18,6 +18,7 @@ import math
 import os
 import pathlib
 
+from fprime_lite.deploy.resources import topology_resource
 from fprime_lite.deploy.scheduler import Scheduler
 
 from detumble.sim.scenario import Scenario, load_scenario
@@ -31,6 +32,7 @@ _FACES = {0: "X+", 1: "X-", 2: "Y+", 3: "Y-", 5: "Z-"}
 _MAX_PLOT_POINTS = 4000
 
 
+@topology_resource(role="simulation")
 def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler | None = None, *,
                     seed: int | None = None, settings: Sequence[str] = ()) -> SimulatedSpacecraft:
     """The simulated spacecraft of ``scenario`` stepping on ``scheduler``'s clock from now.
@@ -50,6 +52,7 @@ def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler |
     return SimulatedSpacecraft.for_scheduler(scenario, scheduler, seed=seed)
 
 
+@topology_resource(role="report")
 class DetumbleRunReport:
     """Follows one run of a detumble deployment and writes its detumble-specific outputs.
 
