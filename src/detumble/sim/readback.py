@@ -42,6 +42,12 @@ def _initial(plant: Plant, parts: list[str], key: str):
         return _index([math.degrees(w) for w in plant.omega_BN_B], parts[2:], key)
     if parts[:2] == ["rate", "magnitude_deg_s"]:
         return plant.rate_deg_s
+    if parts[:2] == ["rate", "axis"]:  # the unit axis the scenario made of it
+        w = plant.omega_BN_B
+        n = math.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)
+        if n == 0.0:
+            raise KeyError(f"{key}: the initial rate is zero, so it has no axis")
+        return _index([x / n for x in w], parts[2:], key)
     if parts[:2] == ["attitude", "quaternion"]:
         return _index(list(plant.q_BN), parts[2:], key)
     if parts[:2] == ["attitude", "mrp"]:
@@ -50,7 +56,7 @@ def _initial(plant: Plant, parts: list[str], key: str):
             q0, q1, q2, q3 = -q0, -q1, -q2, -q3
         return _index([q1 / (1 + q0), q2 / (1 + q0), q3 / (1 + q0)], parts[2:], key)
     raise KeyError(f"{key}: the initial state is read back as initial.rate.omega_deg_s, "
-                   f"initial.rate.magnitude_deg_s, initial.attitude.quaternion or initial.attitude.mrp")
+                   f"initial.rate.magnitude_deg_s, initial.rate.axis (unit), initial.attitude.quaternion or initial.attitude.mrp")
 
 
 def _spacecraft(plant: Plant, parts: list[str], key: str):

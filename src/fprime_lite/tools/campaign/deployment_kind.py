@@ -8,7 +8,6 @@ Run section::
       duration_s: 5580
       parameter_file: flight.dat      # optional: base parameter file (default: the topology's)
       sequence: startup.seq           # optional: start-up sequence (default: the topology's)
-      settings_resource: spacecraft   # the resource that takes scenario settings (default)
       stop_on_events: [ReferenceDeployment.detumbleManager.DetumbleCompleted]   # optional
 
 Varied keys: ``topology``, ``duration_s``, ``params.Module.inst.PARAM`` (a struct member as
@@ -17,9 +16,10 @@ Varied keys: ``topology``, ``duration_s``, ``params.Module.inst.PARAM`` (a struc
 - Parameters are written into a parameter file (the base file's records, these replaced) that
   PrmDb loads at start-up, as an uplinked file would be; they are read back from the component
   after the run (``paramGet``'s value).
-- Scenario values go to the settings resource as ``settings: ["KEY.PATH=VALUE", ...]`` with the run's
-  ``seed``, and are read back from the built resource before the run flies through its
-  ``read_setting(key_path)`` method.
+- Scenario values go to the resource holding the ``simulation`` role
+  (:mod:`fprime_lite.deploy.resources`) as ``settings: ["KEY.PATH=VALUE", ...]`` with the run's
+  ``seed``, and are read back before the run flies from the built resource that offers
+  ``read_setting(key_path)``.
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ from fprime_lite.tools.campaign.values import plain, yaml_text
 
 __all__ = ["DEPLOYMENT_RUN"]
 
-FIELDS = frozenset({"topology", "duration_s", "parameter_file", "sequence", "settings_resource", "stop_on_events"})
+FIELDS = frozenset({"topology", "duration_s", "parameter_file", "sequence", "stop_on_events"})
 REQUIRED = frozenset({"topology", "duration_s"})
 
 
@@ -131,23 +131,25 @@ def prepare(req: RunRequest) -> Prepared:
     topology_path = _resolve(req.base_dir, cfg["topology"])
     if not topology_path.is_file():
         raise RunSetupError(f"topology {cfg['topology']} not found (looked for {topology_path})", "topology")
-    resource = cfg.get("settings_resource", "spacecraft")
     scenario_keys = [k for k in values if k.startswith("scenario.")]
     settings = [f"{k[len('scenario.'):]}={yaml_text(values[k])}" for k in scenario_keys]
-    overrides = {resource: {"settings": settings, "seed": req.seed}}
+    simulation = {"simulation": {"settings": settings, "seed": req.seed}}
     try:
-        loaded = load_topology(topology_path, overrides)
+        try:
+            loaded = load_topology(topology_path, role_overrides=simulation)
+        except TopologyError as exc:
+            if scenario_keys or not any("role 'simulation'" in p for p in exc.problems):
+                raise
+            loaded = load_topology(topology_path)  # nothing simulated to seed: a framework-only topology
     except TopologyError as exc:
         culprit = next((k for k in scenario_keys if f"'{k[len('scenario.'):]}=" in str(exc)), None)
         raise RunSetupError(" / ".join(exc.problems), culprit) from None
-    if resource not in loaded.resources:
-        raise RunSetupError(f"the topology has no resource {resource!r} to take scenario settings "
-                            f"(settings_resource)", None)
-    sim = loaded.resources[resource]
+    readers = [r for r in loaded.resources.values() if hasattr(r, "read_setting")]
     scenario_back = {}
     for key in scenario_keys:
-        if not hasattr(sim, "read_setting"):
-            raise RunSetupError(f"resource {resource!r} cannot report scenario values back (no read_setting)", key)
+        if not readers:
+            raise RunSetupError("no resource of the topology can report scenario values back (read_setting)", key)
+        sim = readers[0]
         try:
             scenario_back[key] = plain(sim.read_setting(key[len("scenario."):]))
         except (KeyError, ValueError) as exc:
