@@ -196,7 +196,7 @@ def prepare(req: RunRequest) -> Prepared:
         if key in param_keys:
             name, members = param_keys[key]
             qualified, _, p = declared[name]
-            bound = loaded.topology.instance(qualified).component.params()[p.name]
+            bound = loaded.topology.instance(qualified).component.params[p.name]
             return plain(_member(bound.get(), members))
         if key == "topology":
             return str(cfg["topology"])

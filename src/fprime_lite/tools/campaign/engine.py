@@ -114,7 +114,8 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
     planned = {t["run_id"] for t in tasks}
     store.rows = [r for r in store.rows if r["run_id"] in planned]  # rows of an edited campaign's old runs drop out
     done = store.done_ids
-    todo = [t for t in tasks if t["run_id"] not in done]
+    # seed-major order: a campaign stopped early has the same draws done for every grid point
+    todo = sorted((t for t in tasks if t["run_id"] not in done), key=lambda t: (t["seed_index"], t["point"]))
     started = now_utc()
     counts = {}
     info = None

@@ -12,15 +12,20 @@ __all__ = ["plan_runs"]
 
 
 def plan_runs(campaign, artifacts_dir: pathlib.Path) -> list[dict]:
-    """The task of every run of ``campaign`` (plain data: it travels to the workers)."""
+    """The task of every run of ``campaign`` (plain data: it travels to the workers).
+
+    With ``common_random_numbers`` the seed sequence is keyed by the seed index alone, so every grid
+    point meets the same dispersed draws and noise seeds (paired comparisons between points).
+    """
     from fprime_lite.tools.campaign.kinds import run_kinds
 
     fields = run_kinds()[campaign.kind].fields
-    identity = {"run": campaign.run, "dispersions": campaign.dispersion_specs, "metrics": campaign.metrics}
+    identity = {"run": campaign.run, "dispersions": campaign.dispersion_specs, "metrics": campaign.metrics,
+                "crn": campaign.common_random_numbers}
     tasks = []
     for index, point in enumerate(grid_points(campaign.grids)):
         for s in range(campaign.seeds):
-            seq = run_seed_sequence(campaign.master_seed, point, s)
+            seq = run_seed_sequence(campaign.master_seed, {} if campaign.common_random_numbers else point, s)
             seed = simulator_seed(seq)
             values = dict(point)
             for key, dispersion in campaign.dispersions.items():

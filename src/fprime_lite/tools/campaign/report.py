@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import contextlib
+import math
 import time
 
 import numpy as np
 
-__all__ = ["progress_bar", "print_summary", "point_table"]
+__all__ = ["progress_bar", "print_summary", "point_table", "percentile"]
 
 
 @contextlib.contextmanager
@@ -49,16 +50,25 @@ def point_table(df, campaign, metric: str):
     """
     import pandas as pd
 
-    keys = [k for k in campaign.grid_keys if k in df.columns]
+    import json
+
+    keys = campaign.grid_keys
     rows = []
     for point, g in df.groupby("point", sort=True):
         x = g[metric].to_numpy(dtype=float)
         filled = np.where(np.isnan(x), np.inf, x)
-        requested = {k: g.iloc[0][k] for k in keys}
-        rows.append({"point": point, **requested, "runs": len(g), "null": int(np.isnan(x).sum()),
-                     "median": float(np.median(filled)), "p95": float(np.percentile(filled, 95)),
-                     "max": float(filled.max())})
+        asked = json.loads(g.iloc[0]["requested"])
+        rows.append({"point": point, **{k: asked.get(k) for k in keys}, "runs": len(g),
+                     "null": int(np.isnan(x).sum()), "median": percentile(filled, 50),
+                     "p95": percentile(filled, 95), "max": float(filled.max())})
     return pd.DataFrame(rows)
+
+
+def percentile(x: np.ndarray, q: float) -> float:
+    """numpy's (linear) percentile, where +inf stands for "never": inf when it reaches one."""
+    with np.errstate(invalid="ignore"):
+        v = float(np.percentile(x, q))
+    return math.inf if math.isnan(v) else v
 
 
 def print_summary(df, campaign, console=None, wall_s: float | None = None) -> None:

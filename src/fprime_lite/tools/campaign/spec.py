@@ -18,7 +18,7 @@ from fprime_lite.tools.campaign.grid import axis_values
 __all__ = ["Campaign", "load_campaign", "TOP_KEYS", "PLOT_TYPES"]
 
 TOP_KEYS = {"campaign", "description", "run", "grid", "dispersions", "seeds", "master_seed", "metrics",
-            "timeout_s", "keep", "plots"}
+            "timeout_s", "keep", "plots", "common_random_numbers"}
 KEEP = ("none", "failed", "all")
 PLOT_TYPES = {"line": {"x", "metric"}, "heatmap": {"x", "y", "metric"}, "histogram": {"metric"},
               "cdf": {"metric"}}
@@ -44,6 +44,7 @@ class Campaign:
     timeout_s: float | None
     keep: str
     plots: list[dict]
+    common_random_numbers: bool = False
     where: dict[str, str] = field(default_factory=dict)  # campaign key → "file:line"
 
     @property
@@ -212,6 +213,10 @@ def load_campaign(path) -> Campaign:
                                     and math.isfinite(timeout) and timeout > 0):
         c.problem(line("timeout_s"), f"'timeout_s' must be a positive number of wall-clock seconds, got {timeout!r}")
         timeout = None
+    crn = doc.get("common_random_numbers", False)
+    if not isinstance(crn, bool):
+        c.problem(line("common_random_numbers"), f"'common_random_numbers' is true or false, got {crn!r}")
+        crn = False
     keep = doc.get("keep", "none")
     if keep not in KEEP:
         c.problem(line("keep"), f"'keep' (per-run files kept) is one of {', '.join(KEEP)}, got {keep!r}")
@@ -247,4 +252,4 @@ def load_campaign(path) -> Campaign:
                     description=str(description or ""), kind=kind_name, run=_plain(run), grids=grids or [{}],
                     dispersions=dispersions, dispersion_specs=dispersion_specs, seeds=seeds,
                     master_seed=master_seed, metrics=list(metric_names), timeout_s=timeout, keep=keep,
-                    plots=plots, where=where)
+                    plots=plots, common_random_numbers=crn, where=where)
