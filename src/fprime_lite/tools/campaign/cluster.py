@@ -4,7 +4,8 @@ The same engine code serves both; only the :class:`distributed.Client` differs.
 
 - Embedded (default): ``LocalCluster`` on 127.0.0.1, ``workers`` worker *processes* (default: one
   per core), each with one thread — the simulator is pure Python, so threads would only share the GIL.
-  No dashboard is started.
+  The scheduler's HTTP endpoint (health, metrics; the dashboard only if bokeh is installed)
+  listens on a free port of 127.0.0.1 too.
 - External: ``Client("tcp://HOST:PORT")`` to a scheduler started with ``dask scheduler`` (workers
   joined with ``dask worker tcp://HOST:PORT --nthreads 1``) or by dask-jobqueue on SLURM/PBS.
 """
@@ -41,7 +42,7 @@ def dask_client(workers: int | None = None, scheduler: str | None = None, connec
         return
     n = workers or os.cpu_count() or 1
     cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
-                           dashboard_address=None, silence_logs=logging.ERROR)
+                           dashboard_address="127.0.0.1:0", silence_logs=logging.ERROR)
     client = Client(cluster)
     try:
         yield client, {"type": "local", "scheduler": cluster.scheduler_address, "workers": n,

@@ -150,6 +150,9 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
                        runs=len(tasks), counts={str(k): int(v) for k, v in counts.items()},
                        resumed_from=len(done))
     wall = time.perf_counter() - t0
+    from fprime_lite.tools.campaign.results import read_results
+
+    df = read_results(out)  # the table as written: the Python API and results.parquet agree exactly
     if plots and len(df):
         from fprime_lite.tools.campaign.plots import draw_plots
 

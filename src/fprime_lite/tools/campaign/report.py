@@ -12,8 +12,11 @@ __all__ = ["progress_bar", "print_summary", "point_table", "percentile"]
 
 
 @contextlib.contextmanager
-def progress_bar(total: int, already: int, enabled: bool, console=None):
-    """A rich progress bar: done/total, failed, runs per hour and ETA. Yields ``update(row)``."""
+def progress_bar(total: int, already: int, enabled: bool, console=None, log_every_s: float = 60.0):
+    """A rich progress bar: done/total, failed, runs per hour and ETA. Yields ``update(row)``.
+
+    Disabled (no terminal), it prints a plain line to stderr at most every ``log_every_s`` instead.
+    """
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, \
         TimeRemainingColumn
 
@@ -26,12 +29,22 @@ def progress_bar(total: int, already: int, enabled: bool, console=None):
         task = bar.add_task("runs", total=total, completed=already, failed=0, rate="")
         done = [0]
 
+        last_log = [t0]
+
         def update(row: dict) -> None:
             done[0] += 1
             if row["status"] != "ok":
                 failed[0] += 1
-            wall = time.perf_counter() - t0
+            now = time.perf_counter()
+            wall = now - t0
             bar.update(task, advance=1, failed=failed[0], rate=f"{done[0] / wall * 3600:,.0f} runs/h")
+            if not enabled and now - last_log[0] >= log_every_s:
+                import sys
+
+                last_log[0] = now
+                left = (total - already - done[0]) * wall / done[0]
+                print(f"campaign: {already + done[0]}/{total} done, {failed[0]} failed, "
+                      f"{done[0] / wall * 3600:,.0f} runs/h, ETA {left / 60:.1f} min", file=sys.stderr, flush=True)
         yield update
 
 
