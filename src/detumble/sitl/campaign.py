@@ -130,17 +130,13 @@ def _detumble_time(output: RunOutput, _probe) -> float:
 
 
 def _settling_time(output: RunOutput, _probe) -> float:
-    import numpy as np
+    from detumble.analysis.settling import settling_time
 
     t, r = _trace(output)
     if len(t) < 3:
         raise MetricUnavailable("the trace has fewer than 3 samples")
-    band = SETTLING_BAND * abs(r[0] - r[-1])
-    outside = np.nonzero(np.abs(r - r[-1]) > band)[0]
-    if not len(outside):
-        return float(t[0])
-    settled = t[min(outside[-1] + 1, len(t) - 1)]
-    if settled > t[0] + 0.95 * (t[-1] - t[0]):
+    settled = settling_time(t, r, y_final=None, y_init=float(r[0]), band=SETTLING_BAND)
+    if settled is None or settled > t[0] + 0.95 * (t[-1] - t[0]):
         raise MetricUnavailable("still moving in the last 5 % of the run: not settled within 2 % of its "
                                 "final rate before the run ended (run longer)")
     return float(settled)
