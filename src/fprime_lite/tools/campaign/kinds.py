@@ -16,6 +16,7 @@ flown. The engine reads the varied values back from it (``readback``), lets metr
 
 from __future__ import annotations
 
+import functools
 import pathlib
 from dataclasses import dataclass, field
 from typing import Any, Callable
@@ -94,7 +95,9 @@ class Metric:
     instrument: Callable[[Any], Any] | None = field(default=None)
 
 
-def _entry_point_objects(group: str) -> list:
+@functools.lru_cache(maxsize=None)
+def _entry_point_objects(group: str) -> tuple:
+    """The objects of ``group``'s entry points, loaded once per process (each worker's first run)."""
     from importlib.metadata import entry_points
 
     from fprime_lite.tools.campaign.errors import CampaignError
@@ -107,7 +110,7 @@ def _entry_point_objects(group: str) -> list:
             raise CampaignError([f"plug-in {ep.name!r} ({ep.value}) of {group} cannot be loaded: {exc} "
                                  f"— reinstall the package that provides it"]) from None
         found += list(obj) if isinstance(obj, (tuple, list)) else [obj]
-    return found
+    return tuple(found)
 
 
 def run_kinds() -> dict[str, RunKind]:
