@@ -40,15 +40,7 @@ seeds: N
 metrics: [final_rate_deg_s, coil_energy_j]
 """
 
-TINY = """\
-campaign: bench_tiny
-master_seed: 1
-run: {kind: plant, scenario: default, law: bdot, duration_s: 1}
-dispersions:
-  scenario.initial.rate.magnitude_deg_s: {dist: uniform, low: 10, high: 60}
-seeds: N
-metrics: [final_rate_deg_s]
-"""
+TINY = PLANT.replace("bench_plant", "bench_tiny").replace("duration_s: 5580", "duration_s: 1")
 
 DEPLOYMENT = f"""\
 campaign: bench_deployment
