@@ -30,10 +30,11 @@ import math
 from fprime_lite import (F64, U32, Channel, CmdResponse, Event, OutputPort, Param, PassiveComponent, Sched,
                          Severity, sync_command, sync_input)
 
-from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, AttitudeGet, ControlAutonomy,
-                                                ControlMode, ModeChangeReason, PointingActuator, Quaternion,
-                                                SpinLaw, Vector3, WheelMomentumGet, WheelTorqueSet, WheelValues)
-from detumble.components.types import DipoleMomentGet, MagneticFieldGet, StartMagnetorquer, StopMagnetorquer, Success
+from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, ControlAutonomy, ControlMode,
+                                                ModeChangeReason, PointingActuator, Quaternion, SpinLaw, Vector3,
+                                                WheelValues)
+from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFieldGet, StartMagnetorquer,
+                                       StopMagnetorquer, Success, WheelEnableSet, WheelStateGet, WheelTorqueSet)
 from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.magnetic import bdot_dipole, dump_torque, project_dipole, scale_to_limits
 from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
@@ -175,7 +176,8 @@ class AttitudeController(PassiveComponent):
     zMinusStart = OutputPort(StartMagnetorquer)
     zMinusStop = OutputPort(StopMagnetorquer)
     wheelTorqueSet = OutputPort(WheelTorqueSet, size=MAX_WHEELS)
-    wheelMomentumGet = OutputPort(WheelMomentumGet, size=MAX_WHEELS)
+    wheelStateGet = OutputPort(WheelStateGet, size=MAX_WHEELS)
+    wheelEnableSet = OutputPort(WheelEnableSet, size=MAX_WHEELS)
 
     # --- events --------------------------------------------------------------------------------
 
@@ -250,6 +252,8 @@ class AttitudeController(PassiveComponent):
         self._b_prev: tuple | None = None  # (b gauss, t µs) for the internal B-dot
         self._bdot_primed = False  # the dipoleMomentGet provider has been called in this DETUMBLE
         self._b_gauss: tuple = _ZERO
+        self._last_fix_us: int | None = None  # time stamp of the last star-tracker solution used
+        self._wheels_enabled = False
         self._b_stamp_us = 0
         self._start_ports = [self.output_port(n) for n in
                              ("xPlusStart", "xMinusStart", "yPlusStart", "yMinusStart", "zMinusStart")]
@@ -267,7 +271,7 @@ class AttitudeController(PassiveComponent):
         """Wheels connected (torque and momentum ports both), in index order."""
         n = 0
         for i in range(len(self.wheel_axes)):
-            if self.is_connected("wheelTorqueSet", i) and self.is_connected("wheelMomentumGet", i):
+            if self.is_connected("wheelTorqueSet", i) and self.is_connected("wheelStateGet", i):
                 n += 1
         return n
 
@@ -379,8 +383,11 @@ class AttitudeController(PassiveComponent):
             self.GyroRetrievalFailed()
         q_meas = None
         ok, q = self._read("attitudeGet")
-        if ok and q is not None and is_unit_quaternion((q.q0, q.q1, q.q2, q.q3), tol=1e-2):
-            q_meas = quat_normalize((q.q0, q.q1, q.q2, q.q3))
+        if ok and q is not None and q.valid and is_unit_quaternion((q.q0, q.q1, q.q2, q.q3), tol=1e-2):
+            stamp_us = q.timestamp.total_us
+            if stamp_us != self._last_fix_us:  # a new solution (the tracker holds its last one)
+                self._last_fix_us = stamp_us
+                q_meas = quat_normalize((q.q0, q.q1, q.q2, q.q3))
         if gyro is not None:
             self.filter.update(gyro, dt, q_meas)
             self.omega = self.filter.omega
@@ -469,7 +476,7 @@ class AttitudeController(PassiveComponent):
                     h_b = WheelAllocator(self.wheel_axes, 1.0, 1.0).body_momentum(self.wheel_momenta)
                     dipole, _ = project_dipole(dump_torque(h_b, self.K_DUMP.value), self.b_tesla)
                     dipole = self._limit_dipole(dipole)
-                    mb = _cross(dipole, self.b_tesla)
+                    mb = _cross(self._coil_levels(dipole)[1], self.b_tesla)
                     d = self._duty()
                     tau_mag = (mb[0] * d, mb[1] * d, mb[2] * d)
                 # the wheels supply what the dump torque does not (it would otherwise disturb the pointing)
@@ -580,42 +587,52 @@ class AttitudeController(PassiveComponent):
         return condition == Success.SUCCESS, value
 
     def _read_wheel_momenta(self):
+        """Each wheel's axial momentum (N·m·s) from its driver, or None when one does not answer."""
         momenta = []
         for i in range(len(self.wheel_axes)):
-            ok, h = self._read("wheelMomentumGet", i)
-            if not ok or not _finite(h):
+            ok, state = self._read("wheelStateGet", i)
+            if not ok or state is None or not _finite(state.momentum):
                 return None
-            momenta.append(float(h))
+            momenta.append(float(state.momentum))
         return tuple(momenta)
 
     def _command_wheels(self, u) -> None:
+        """Send one motor torque (N·m) per wheel; a non-zero command enables the wheels first."""
         sent = []
+        wanted = any(t != 0.0 for t in u)
+        if wanted and not self._wheels_enabled:
+            for i in range(len(u)):
+                if self.is_connected("wheelEnableSet", i) and self.wheelEnableSet[i](True) != Success.SUCCESS:
+                    self.WheelCommandFailed(i)
+            self._wheels_enabled = True
         for i, torque in enumerate(u):
             if not self.is_connected("wheelTorqueSet", i):
                 sent.append(0.0)
                 continue
-            reply = self.wheelTorqueSet[i](float(torque))
-            condition = reply[1] if isinstance(reply, tuple) else reply
-            if condition != Success.SUCCESS:
+            if self.wheelTorqueSet[i](float(torque)) != Success.SUCCESS:
                 self.WheelCommandFailed(i)
+            else:
+                self.WheelCommandFailed.clear_throttle()
             sent.append(float(torque))
         self.wheel_torques = tuple(sent)
 
-    def _drive_coils(self, m) -> None:
-        """Drive the five coils for the dipole ``m`` (A·m², B): half of m_x on each X coil, half of
-        m_y on each Y coil, m_z on Z−. ``self.dipole`` becomes what the rounded levels give."""
+    def _coil_levels(self, m):
+        """``(levels X+, X−, Y+, Y−, Z−, achieved dipole A·m²)`` for the dipole ``m`` (A·m², B): half of
+        m_x on each X coil, half of m_y on each Y coil, m_z on Z−; X−, Y− and Z− face the other way."""
         cx, cy, cz = self.X_COIL_MAX_DIPOLE.value, self.Y_COIL_MAX_DIPOLE.value, self.Z_COIL_MAX_DIPOLE.value
         lx = _level(0.5 * m[0], cx)
         ly = _level(0.5 * m[1], cy)
         lz = _level(m[2], cz)
-        # X−, Y− and Z− face the other way: a positive level gives a dipole along −axis
-        levels = (lx, -lx, ly, -ly, -lz)
+        f = 1.0 / MAX_DRIVE_LEVEL
+        return (lx, -lx, ly, -ly, -lz), (2.0 * lx * f * cx, 2.0 * ly * f * cy, lz * f * cz)
+
+    def _drive_coils(self, m) -> None:
+        """Drive the five coils for the dipole ``m``; ``self.dipole`` becomes what the rounded levels give."""
+        levels, self.dipole = self._coil_levels(m)
         for port, level in zip(self._start_ports, levels):
             if port.targets[0] is not None:
                 port.calls[0](level)
         self.coils_driven = True
-        f = 1.0 / MAX_DRIVE_LEVEL
-        self.dipole = (2.0 * lx * f * cx, 2.0 * ly * f * cy, lz * f * cz)
 
     def _stop_coils(self) -> None:
         for port in self._stop_ports:

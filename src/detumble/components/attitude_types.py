@@ -91,12 +91,3 @@ class AngularVelocity(Struct, namespace="Drv"):
 #: Angular velocity in rad/s; returns ``Result(AngularVelocity, Success)`` (the IMU manager's port).
 AngularVelocityGet = PortType("Components.AngularVelocityGet", returns=Result)
 
-
-# --- provisional actuator/sensor ports (replaced by plant2's when it lands) ------------------------
-
-#: Star-tracker attitude ``q_BN``; returns ``Result(Quaternion, Success)``.
-AttitudeGet = PortType("Components.AttitudeGet", returns=Result)
-#: Command one wheel's motor torque, N·m; returns Success.
-WheelTorqueSet = PortType("Components.WheelTorqueSet", returns=Result, torque=F64)
-#: One wheel's momentum along its axis, N·m·s; returns ``Result(F64, Success)``.
-WheelMomentumGet = PortType("Components.WheelMomentumGet", returns=Result)
