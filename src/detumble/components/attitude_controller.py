@@ -135,7 +135,7 @@ class AttitudeController(PassiveComponent):
     I_D = Param(F64, default=2.0e-4)  # kg·m²: damper virtual inertia (seed I_d)
     K_BDOT = Param(F64, default=3.0)  # A·m²·s/G: M = −k Ḃ when no dipoleMomentGet provider is connected
     SPIN_LAW = Param(SpinLaw, default=SpinLaw.RATE_REGULATOR)
-    SPIN_RATE_TARGET = Param(F64, default=5.0)  # deg/s about body +Z
+    SPIN_RATE_TARGET = Param(F64, default=1.5)  # deg/s about body +Z (below the star tracker's 2 deg/s limit)
     SPIN_K_TRANSVERSE = Param(F64, default=2.0e-4)  # N·m·s
     SPIN_K_RATE = Param(F64, default=2.0e-4)  # N·m·s
     DETUMBLE_ENTER_RATE = Param(F64, default=20.0)  # deg/s: |ω| above this → DETUMBLE
@@ -360,7 +360,7 @@ class AttitudeController(PassiveComponent):
             dt = (now_us - self._last_cycle_us) / 1e6
         self._last_cycle_us = now_us
         self.cycles += 1
-        self._sense(dt)
+        self._sense(dt, now_us)
         if self.autonomy == ControlAutonomy.AUTO:
             self._auto_mode(dt)
         elif self.mode == ControlMode.POINTING and not self.attitude_valid:
@@ -371,7 +371,7 @@ class AttitudeController(PassiveComponent):
 
     # --- sensing -------------------------------------------------------------------------------
 
-    def _sense(self, dt: float) -> None:
+    def _sense(self, dt: float, now_us: int) -> None:
         self.filter.k_p = self.FILTER_KP.value
         self.filter.k_i = self.FILTER_KI.value
         ok, w = self._read("angularVelocityGet")
@@ -382,14 +382,16 @@ class AttitudeController(PassiveComponent):
         else:
             self.GyroRetrievalFailed()
         q_meas = None
+        age_s = 0.0
         ok, q = self._read("attitudeGet")
         if ok and q is not None and q.valid and is_unit_quaternion((q.q0, q.q1, q.q2, q.q3), tol=1e-2):
             stamp_us = q.timestamp.total_us
-            if stamp_us != self._last_fix_us:  # a new solution (the tracker holds its last one)
+            if stamp_us != self._last_fix_us and stamp_us <= now_us:  # a new solution (the tracker holds its last)
                 self._last_fix_us = stamp_us
                 q_meas = quat_normalize((q.q0, q.q1, q.q2, q.q3))
+                age_s = (now_us - stamp_us) / 1e6
         if gyro is not None:
-            self.filter.update(gyro, dt, q_meas)
+            self.filter.update(gyro, dt, q_meas, age_s)
             self.omega = self.filter.omega
         else:
             self.omega = None
@@ -462,6 +464,9 @@ class AttitudeController(PassiveComponent):
         self.pointing_error_deg = float("nan")
         if mode == ControlMode.DETUMBLE:
             dipole = self._detumble_dipole()
+            if dipole is not None:  # B-dot: each axis saturates on its own, as the flight coils do
+                lim = self._coil_limits()
+                dipole = tuple(max(-lim[k], min(lim[k], dipole[k])) for k in range(3))
         elif mode == ControlMode.SPIN_STABLE and self.omega is not None:
             tau = self._spin_torque(dt)
             if self.b_tesla is not None:

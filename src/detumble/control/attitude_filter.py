@@ -37,10 +37,14 @@ class AttitudeFilter:
         self.bias = (0.0, 0.0, 0.0)
         self.since_measurement_s = math.inf
 
-    def update(self, omega_gyro_B: Vec3, dt: float, q_measured: Quat | None = None) -> None:
+    def update(self, omega_gyro_B: Vec3, dt: float, q_measured: Quat | None = None, age_s: float = 0.0) -> None:
         """Advance by ``dt`` s with the gyro rate (rad/s, B) held over the interval that ends now, then
-        correct with ``q_measured`` (``q_BN`` taken now), when given."""
+        correct with ``q_measured`` (``q_BN`` taken ``age_s`` s ago: a held star-tracker solution is
+        carried to now on the bias-corrected gyro before it is compared), when given."""
         b = self.bias
+        if q_measured is not None and age_s > 0.0:
+            q_measured = _propagate(q_measured, (omega_gyro_B[0] - b[0], omega_gyro_B[1] - b[1],
+                                                 omega_gyro_B[2] - b[2]), age_s)
         self.since_measurement_s += dt
         if self.q is None:
             if q_measured is not None:
