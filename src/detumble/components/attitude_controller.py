@@ -36,7 +36,7 @@ from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, 
 from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFieldGet, StartMagnetorquer,
                                        StopMagnetorquer, Success, WheelEnableSet, WheelStateGet, WheelTorqueSet)
 from detumble.control.attitude_filter import AttitudeFilter
-from detumble.control.magnetic import bdot_dipole, dump_torque, project_dipole, scale_to_limits
+from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
 from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
 from detumble.control.pointing import pd_torque
 from detumble.control.quaternion import (is_unit_quaternion, quat_angle, quat_normalize, quat_shortest,
@@ -139,7 +139,7 @@ class AttitudeController(PassiveComponent):
     SPIN_K_TRANSVERSE = Param(F64, default=2.0e-4)  # N·m·s
     SPIN_K_RATE = Param(F64, default=2.0e-4)  # N·m·s
     DETUMBLE_ENTER_RATE = Param(F64, default=20.0)  # deg/s: |ω| above this → DETUMBLE
-    DETUMBLE_EXIT_RATE = Param(F64, default=10.0)  # deg/s: |ω| below this for MODE_DWELL → SPIN_STABLE
+    DETUMBLE_EXIT_RATE = Param(F64, default=1.0)  # deg/s: |ω| below this for MODE_DWELL → SPIN_STABLE (then spin *up*)
     MODE_DWELL = Param(F64, default=5.0)  # s
     SPIN_AXIS_ENTER = Param(F64, default=5.0)  # deg: rate within this of +Z counts as stable
     SPIN_AXIS_RESET = Param(F64, default=8.0)  # deg: beyond this the stability timer restarts
@@ -465,12 +465,11 @@ class AttitudeController(PassiveComponent):
         if mode == ControlMode.DETUMBLE:
             dipole = self._detumble_dipole()
             if dipole is not None:  # B-dot: each axis saturates on its own, as the flight coils do
-                lim = self._coil_limits()
-                dipole = tuple(max(-lim[k], min(lim[k], dipole[k])) for k in range(3))
+                dipole = clip_to_limits(dipole, self._coil_limits())
         elif mode == ControlMode.SPIN_STABLE and self.omega is not None:
             tau = self._spin_torque(dt)
             if self.b_tesla is not None:
-                dipole, _ = project_dipole(tau, self.b_tesla)
+                dipole, _ = project_dipole_weighted(tau, self.b_tesla, self._coil_limits())
         elif mode == ControlMode.POINTING and self.omega is not None and self.attitude_valid:
             if self.target is None:
                 self._set_target(self.filter.q)
@@ -479,7 +478,8 @@ class AttitudeController(PassiveComponent):
                 tau_mag = _ZERO
                 if self.b_tesla is not None and self.wheel_momenta is not None:
                     h_b = WheelAllocator(self.wheel_axes, 1.0, 1.0).body_momentum(self.wheel_momenta)
-                    dipole, _ = project_dipole(dump_torque(h_b, self.K_DUMP.value), self.b_tesla)
+                    dipole, _ = project_dipole_weighted(dump_torque(h_b, self.K_DUMP.value), self.b_tesla,
+                                                        self._coil_limits())
                     dipole = self._limit_dipole(dipole)
                     mb = _cross(self._coil_levels(dipole)[1], self.b_tesla)
                     d = self._duty()
@@ -489,7 +489,7 @@ class AttitudeController(PassiveComponent):
             else:
                 tau, qe = pd_torque(self.target, self.filter.q, self.omega, self.K_P_MAG.value, self.K_D_MAG.value)
                 if self.b_tesla is not None:
-                    dipole, _ = project_dipole(tau, self.b_tesla)
+                    dipole, _ = project_dipole_weighted(tau, self.b_tesla, self._coil_limits())
             self.pointing_error_deg = math.degrees(quat_angle(qe))
         self.torque_request = tau
         if dipole is None:

@@ -12,7 +12,7 @@ import math
 
 Vec3 = tuple[float, float, float]
 
-__all__ = ["project_dipole", "seed_project_dipole", "bdot_dipole", "dump_torque", "scale_to_limits"]
+__all__ = ["project_dipole", "project_dipole_weighted", "seed_project_dipole", "bdot_dipole", "dump_torque", "scale_to_limits", "clip_to_limits"]
 
 _ZERO = (0.0, 0.0, 0.0)
 
@@ -37,6 +37,28 @@ def project_dipole(tau_req: Vec3, b: Vec3) -> tuple[Vec3, Vec3]:
     m = (c[0] / b2, c[1] / b2, c[2] / b2)
     along = (tau_req[0] * b[0] + tau_req[1] * b[1] + tau_req[2] * b[2]) / b2
     return m, (along * b[0], along * b[1], along * b[2])
+
+
+def project_dipole_weighted(tau_req: Vec3, b: Vec3, m_max: Vec3) -> tuple[Vec3, Vec3]:
+    """Like :func:`project_dipole`, but the free component along B is used to spare the weak coils.
+
+    Every ``m0 + λ B`` gives the same torque as ``m0 = (B × τ)/|B|²``; this returns the one that
+    minimises ``Σ (m_i / m_max_i)²``: ``λ = −Σ(m0_i B_i / w_i²) / Σ(B_i² / w_i²)`` with ``w = m_max``.
+    With the default coils (Z− has 1/13 of the X and Y capacity) a request that needs m_z is then met
+    with more m_x, m_y instead of being scaled down to fit Z. Returns ``(m, τ_lost)``.
+    """
+    m0, lost = project_dipole(tau_req, b)
+    num = den = 0.0
+    for k in range(3):
+        w2 = m_max[k] * m_max[k]
+        if not w2 > 0.0:
+            return m0, lost
+        num += m0[k] * b[k] / w2
+        den += b[k] * b[k] / w2
+    if not den > 0.0:
+        return m0, lost
+    lam = -num / den
+    return (m0[0] + lam * b[0], m0[1] + lam * b[1], m0[2] + lam * b[2]), lost
 
 
 def seed_project_dipole(tau_req: Vec3, b: Vec3) -> Vec3:
@@ -81,3 +103,9 @@ def scale_to_limits(m: Vec3, m_max: Vec3) -> Vec3:
     if s == 1.0:
         return m
     return (m[0] * s, m[1] * s, m[2] * s)
+
+
+def clip_to_limits(m: Vec3, m_max: Vec3) -> Vec3:
+    """Clip each axis to ``±m_max_i`` independently (the direction may change; seed 004's way and the
+    flight coils' own saturation)."""
+    return tuple(max(-m_max[i], min(m_max[i], m[i])) for i in range(3))  # type: ignore[return-value]

@@ -6,7 +6,8 @@ Field in tesla, torque N·m, dipole A·m², time s.
 import math
 import random
 
-from detumble.control.magnetic import bdot_dipole, dump_torque, project_dipole, scale_to_limits, seed_project_dipole
+from detumble.control.magnetic import (bdot_dipole, dump_torque, project_dipole, project_dipole_weighted, scale_to_limits,
+                                       seed_project_dipole)
 from detumble.sim.vec import cross, dot, norm, sub
 
 
@@ -82,3 +83,22 @@ def test_scale_to_limits_keeps_direction():
     m = scale_to_limits((0.2, 0.05, 0.01), (0.1, 0.1, 0.1))
     assert abs(m[0] - 0.1) < 1e-15 and abs(m[1] / m[0] - 0.25) < 1e-12
     assert scale_to_limits((0.01, 0.0, 0.0), (0.1, 0.1, 0.1)) == (0.01, 0.0, 0.0)
+
+
+def test_weighted_projection_gives_the_same_torque_with_less_of_the_weak_coil():
+    """ADCS-003: m_w = m0 + λB gives the same torque as m0 (1e-18 N·m) and minimises Σ(m_i/m_max_i)²: never
+    more than m0's, and with Z− at 1/13 of X and Y, a field mostly along z gets ≤ m0's |m_z|."""
+    rng = random.Random(6)
+    m_max = (0.116, 0.116, 0.0087)
+    for _ in range(100):
+        b = tuple(rng.gauss(0, 3e-5) for _ in range(3))
+        tau = tuple(rng.gauss(0, 1e-6) for _ in range(3))
+        m0, lost0 = project_dipole(tau, b)
+        mw, lost = project_dipole_weighted(tau, b, m_max)
+        assert norm(sub(cross(mw, b), cross(m0, b))) < 1e-18 and lost == lost0
+        cost = lambda m: sum((m[k] / m_max[k]) ** 2 for k in range(3))  # noqa: E731
+        assert cost(mw) <= cost(m0) * (1 + 1e-12)
+    b = (2e-6, -1e-6, 3e-5)
+    m0, _ = project_dipole((1e-6, 0.5e-6, 0.0), b)
+    mw, _ = project_dipole_weighted((1e-6, 0.5e-6, 0.0), b, m_max)
+    assert abs(mw[2]) < abs(m0[2])
