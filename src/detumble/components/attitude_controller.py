@@ -146,7 +146,8 @@ class AttitudeController(PassiveComponent):
     SPIN_RATE_ENTER = Param(F64, default=0.05)  # fraction of SPIN_RATE_TARGET
     SPIN_RATE_RESET = Param(F64, default=0.08)  # fraction
     SPIN_STABLE_DWELL = Param(F64, default=60.0)  # s of stable spin before POINTING
-    ATTITUDE_TIMEOUT = Param(F64, default=2.0)  # s without a star-tracker fix → no attitude knowledge
+    ATTITUDE_TIMEOUT = Param(F64, default=30.0)  # s on the gyro alone (no star-tracker fix) → no attitude knowledge
+    SLEW_RATE_LIMIT = Param(F64, default=6.0)  # deg/s: largest rate a slew commands (wheels)
     POINTING_ACTUATOR = Param(PointingActuator, default=PointingActuator.ANY)
     K_DUMP = Param(F64, default=2.0e-3)  # 1/s: magnetic momentum dumping while pointing on wheels
     WHEEL_MAX_TORQUE = Param(F64, default=2.0e-3)  # N·m per wheel
@@ -474,7 +475,8 @@ class AttitudeController(PassiveComponent):
             if self.target is None:
                 self._set_target(self.filter.q)
             if self._pointing_uses_wheels():
-                tau, qe = pd_torque(self.target, self.filter.q, self.omega, self.K_P.value, self.K_D.value)
+                tau, qe = pd_torque(self.target, self.filter.q, self.omega, self.K_P.value, self.K_D.value,
+                                    self.SLEW_RATE_LIMIT.value * _DEG)
                 tau_mag = _ZERO
                 if self.b_tesla is not None and self.wheel_momenta is not None:
                     h_b = WheelAllocator(self.wheel_axes, 1.0, 1.0).body_momentum(self.wheel_momenta)

@@ -8,18 +8,30 @@ of inertia I the loop has ``ω_n = sqrt(K_p / (2 I))`` and ``ζ = K_d / (2 I ω_
 
 from __future__ import annotations
 
+import math
+
 from detumble.control.quaternion import Quat, Vec3, quat_error
 
 __all__ = ["pd_torque", "pd_gains"]
 
 
 def pd_torque(q_target: Quat, q_BN: Quat, omega_B: Vec3, kp: float, kd: float,
-              omega_ref_B: Vec3 = (0.0, 0.0, 0.0)) -> tuple[Vec3, Quat]:
-    """``(τ_req, q_err)`` for the target ``q_target`` (= q_TN) and the attitude ``q_BN``."""
+              rate_limit: float = math.inf) -> tuple[Vec3, Quat]:
+    """``(τ_req, q_err)`` for the target ``q_target`` (= q_TN) and the attitude ``q_BN``.
+
+    Written as ``τ = −K_d (ω − ω_c)`` with the commanded rate ``ω_c = −(K_p/K_d) q_err.v``, which is
+    the seed's law exactly; when ``|ω_c|`` would exceed ``rate_limit`` (rad/s) it is scaled down to it,
+    so a large slew turns at no more than ``rate_limit`` (the seed's law is unchanged below it).
+    """
     qe = quat_error(q_target, q_BN)
-    return ((-kp * qe[1] - kd * (omega_B[0] - omega_ref_B[0]),
-             -kp * qe[2] - kd * (omega_B[1] - omega_ref_B[1]),
-             -kp * qe[3] - kd * (omega_B[2] - omega_ref_B[2])), qe)
+    if kd > 0.0:
+        g = -kp / kd
+        wc = (g * qe[1], g * qe[2], g * qe[3])
+        n = math.sqrt(wc[0] * wc[0] + wc[1] * wc[1] + wc[2] * wc[2])
+        if n > rate_limit:
+            wc = (wc[0] * rate_limit / n, wc[1] * rate_limit / n, wc[2] * rate_limit / n)
+        return ((-kd * (omega_B[0] - wc[0]), -kd * (omega_B[1] - wc[1]), -kd * (omega_B[2] - wc[2])), qe)
+    return ((-kp * qe[1], -kp * qe[2], -kp * qe[3]), qe)
 
 
 def pd_gains(inertia: float, natural_frequency_rad_s: float, damping_ratio: float) -> tuple[float, float]:

@@ -56,3 +56,25 @@ def test_closed_loop_slew_matches_the_second_order_design():
 def test_gains_formula():
     """ADCS-008: K_p = 2 I ω_n², K_d = 2 ζ I ω_n (the spring of −K_p q_err.v is K_p/2 per radian)."""
     assert pd_gains(2.0, 0.5, 0.7) == (2 * 2.0 * 0.25, 2 * 0.7 * 2.0 * 0.5)
+
+
+def test_rate_limit_caps_the_slew_rate_and_leaves_the_seed_law_below_it():
+    """ADCS-008: with rate_limit the commanded rate of a 120° slew is capped: the closed-loop rate never exceeds
+    the limit by more than 5 %; for a 2° error (below the cap) the torque equals the seed's law to 1e-18 N·m."""
+    i = 2.2e-3
+    kp, kd = pd_gains(i, 0.35, 0.9)
+    body = RigidBody(((i, 0, 0), (0, i, 0), (0, 0, i)))
+    q_t = quat_from_axis_angle((0.0, 0.0, 1.0), math.radians(120))
+    state = (1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    limit = math.radians(3.0)
+    peak = 0.0
+    for _ in range(1200):
+        tau, _ = pd_torque(q_t, state[:4], state[4:], kp, kd, rate_limit=limit)
+        state = body.step(state, 0.1, tau)
+        peak = max(peak, math.sqrt(sum(w * w for w in state[4:])))
+    assert peak <= 1.05 * limit
+    assert math.degrees(quat_angle(quat_error(q_t, state[:4]))) < 0.1
+    q = quat_from_axis_angle((0.0, 1.0, 0.0), math.radians(2))
+    w = (0.001, -0.002, 0.0005)
+    tau, qe = pd_torque((1.0, 0.0, 0.0, 0.0), q, w, kp, kd, rate_limit=limit)
+    assert all(abs(tau[k] - (-kp * qe[k + 1] - kd * w[k])) < 1e-18 for k in range(3))
