@@ -38,7 +38,7 @@ from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFie
 from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
 from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
-from detumble.control.pointing import pd_torque
+from detumble.control.pointing import ErrorIntegrator, pd_torque
 from detumble.control.quaternion import (is_unit_quaternion, quat_angle, quat_normalize, quat_shortest,
                                          target_pointing_axis)
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper
@@ -129,6 +129,8 @@ class AttitudeController(PassiveComponent):
 
     K_P = Param(F64, default=5.4e-4)  # N·m: PD spring on q_err.v, wheels (ω_n 0.35 rad/s for 2.2e-3 kg·m²)
     K_D = Param(F64, default=1.4e-3)  # N·m·s: PD damping, wheels (ζ ≈ 0.9)
+    K_I = Param(F64, default=2.7e-5)  # N·m/s: integral on q_err.v, wheels (an addition to the seed; 0 turns it off)
+    INTEGRAL_WINDOW = Param(F64, default=1.0)  # deg: the integral runs only below this error
     K_P_MAG = Param(F64, default=2.0e-6)  # N·m: PD spring, magnetorquer-only pointing
     K_D_MAG = Param(F64, default=4.0e-4)  # N·m·s: PD damping, magnetorquer-only pointing
     C_DAMP = Param(F64, default=1.0e-4)  # N·m·s: damper coefficient (seed c_damp)
@@ -234,6 +236,7 @@ class AttitudeController(PassiveComponent):
         self.mode = ControlMode.IDLE
         self.autonomy = ControlAutonomy.MANUAL
         self.filter = AttitudeFilter()
+        self.integrator = ErrorIntegrator(math.radians(1.0), 1.0e-5)
         self.target: tuple | None = None
         self.seed_damper = SeedKaneDamper(1.0e-4, 2.0e-4)
         self.virtual_damper = VirtualDamper(1.0e-4, 2.0e-4)
@@ -302,6 +305,7 @@ class AttitudeController(PassiveComponent):
             self.AutonomyChanged(autonomy)
 
     def _set_target(self, q) -> None:
+        self.integrator.reset()
         self.target = tuple(q)
         self.TargetSet(*self.target)
         self.TargetQuaternion.write(Quaternion(*self.target))
@@ -317,6 +321,7 @@ class AttitudeController(PassiveComponent):
         self._bdot_primed = False
         self.seed_damper.reset()
         self.virtual_damper.reset()
+        self.integrator.reset()
         if mode == ControlMode.POINTING and self.target is None and self.filter.q is not None:
             self._set_target(self.filter.q)  # nothing commanded yet: hold the present attitude
         if mode in (ControlMode.IDLE, ControlMode.DETUMBLE, ControlMode.SPIN_STABLE):
@@ -477,6 +482,9 @@ class AttitudeController(PassiveComponent):
             if self._pointing_uses_wheels():
                 tau, qe = pd_torque(self.target, self.filter.q, self.omega, self.K_P.value, self.K_D.value,
                                     self.SLEW_RATE_LIMIT.value * _DEG)
+                self.integrator.window_rad = self.INTEGRAL_WINDOW.value * _DEG
+                ti = self.integrator.update(qe, dt, self.K_I.value)
+                tau = (tau[0] + ti[0], tau[1] + ti[1], tau[2] + ti[2])
                 tau_mag = _ZERO
                 if self.b_tesla is not None and self.wheel_momenta is not None:
                     h_b = WheelAllocator(self.wheel_axes, 1.0, 1.0).body_momentum(self.wheel_momenta)

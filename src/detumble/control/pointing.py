@@ -12,7 +12,7 @@ import math
 
 from detumble.control.quaternion import Quat, Vec3, quat_error
 
-__all__ = ["pd_torque", "pd_gains"]
+__all__ = ["pd_torque", "pd_gains", "ErrorIntegrator"]
 
 
 def pd_torque(q_target: Quat, q_BN: Quat, omega_B: Vec3, kp: float, kd: float,
@@ -38,3 +38,34 @@ def pd_gains(inertia: float, natural_frequency_rad_s: float, damping_ratio: floa
     """``(K_p, K_d)`` giving ``ω_n`` and ``ζ`` about an axis of inertia ``inertia`` (kg·m²)."""
     wn = natural_frequency_rad_s
     return 2.0 * inertia * wn * wn, 2.0 * damping_ratio * inertia * wn
+
+
+class ErrorIntegrator:
+    """The integral term added to the seed's PD: ``τ_i = −K_i ∫ q_err.v dt`` (N·m; K_i in N·m/s).
+
+    A PD law holds a constant torque error ``d`` (an unmodelled disturbance, a residual gyro bias in its
+    ``K_d ω`` term) as an attitude offset of ``d / (K_p/2)`` rad; the integral removes it. Anti-windup:
+    it integrates only while the error angle is below ``window_rad`` and its torque is clipped to
+    ``max_torque`` per axis; :meth:`reset` on every new target.
+    """
+
+    def __init__(self, window_rad: float, max_torque: float) -> None:
+        self.window_rad = float(window_rad)
+        self.max_torque = float(max_torque)
+        self.state: Vec3 = (0.0, 0.0, 0.0)  # ∫ q_err.v dt, s
+
+    def reset(self) -> None:
+        self.state = (0.0, 0.0, 0.0)
+
+    def update(self, q_err: Quat, dt: float, k_i: float) -> Vec3:
+        """Integrate ``q_err.v`` over ``dt`` s (inside the window) and return ``τ_i``."""
+        v = math.sqrt(q_err[1] ** 2 + q_err[2] ** 2 + q_err[3] ** 2)
+        angle = 2.0 * math.atan2(v, abs(q_err[0]))
+        st = self.state
+        if angle < self.window_rad:
+            st = (st[0] + q_err[1] * dt, st[1] + q_err[2] * dt, st[2] + q_err[3] * dt)
+            if k_i > 0.0:
+                cap = self.max_torque / k_i
+                st = tuple(max(-cap, min(cap, x)) for x in st)  # type: ignore[assignment]
+            self.state = st
+        return (-k_i * st[0], -k_i * st[1], -k_i * st[2])
