@@ -256,6 +256,8 @@ class AttitudeController(PassiveComponent):
         self._b_prev: tuple | None = None  # (b gauss, t µs) for the internal B-dot
         self._bdot_primed = False  # the dipoleMomentGet provider has been called in this DETUMBLE
         self._b_gauss: tuple = _ZERO
+        self._gyro_sum: tuple = _ZERO  # rad/s, summed over the ticks since the last cycle
+        self._gyro_count = 0
         self._last_fix_us: int | None = None  # time stamp of the last star-tracker solution used
         self._wheels_enabled = False
         self._b_stamp_us = 0
@@ -346,6 +348,8 @@ class AttitudeController(PassiveComponent):
             self.ticks += 1
             if phase == 0:
                 self._cycle()
+            else:
+                self._accumulate_gyro()
             if phase == cycle - 1 and self.coils_driven and cycle > 1:
                 self._stop_coils()
         except Exception:  # noqa: BLE001 - the rate group must keep running
@@ -380,13 +384,15 @@ class AttitudeController(PassiveComponent):
     def _sense(self, dt: float, now_us: int) -> None:
         self.filter.k_p = self.FILTER_KP.value
         self.filter.k_i = self.FILTER_KI.value
-        ok, w = self._read("angularVelocityGet")
-        gyro = None
-        if ok and w is not None and _finite(w.x, w.y, w.z):
-            gyro = (float(w.x), float(w.y), float(w.z))
+        gyro = self._read_gyro()
+        if gyro is not None:
             self.GyroRetrievalFailed.clear_throttle()
+            n = self._gyro_count + 1  # the mean over the cycle's ticks: the noise the D term sees drops by √n
+            acc = self._gyro_sum
+            gyro = ((acc[0] + gyro[0]) / n, (acc[1] + gyro[1]) / n, (acc[2] + gyro[2]) / n)
         else:
             self.GyroRetrievalFailed()
+        self._gyro_sum, self._gyro_count = _ZERO, 0
         q_meas = None
         age_s = 0.0
         ok, q = self._read("attitudeGet")
@@ -412,6 +418,20 @@ class AttitudeController(PassiveComponent):
             self.MagneticFieldRetrievalFailed()
             self.b_tesla = None
         self.wheel_momenta = self._read_wheel_momenta() if self.wheel_count() else None
+
+    def _read_gyro(self):
+        ok, w = self._read("angularVelocityGet")
+        if ok and w is not None and _finite(w.x, w.y, w.z):
+            return (float(w.x), float(w.y), float(w.z))
+        return None
+
+    def _accumulate_gyro(self) -> None:
+        """Between cycles: add this tick's gyro reading to the cycle's mean (failed reads are skipped)."""
+        g = self._read_gyro()
+        if g is not None:
+            acc = self._gyro_sum
+            self._gyro_sum = (acc[0] + g[0], acc[1] + g[1], acc[2] + g[2])
+            self._gyro_count += 1
 
     # --- AUTO ----------------------------------------------------------------------------------
 
