@@ -148,7 +148,7 @@ class AttitudeController(PassiveComponent):
     SPIN_RATE_ENTER = Param(F64, default=0.05)  # fraction of SPIN_RATE_TARGET
     SPIN_RATE_RESET = Param(F64, default=0.08)  # fraction
     SPIN_STABLE_DWELL = Param(F64, default=60.0)  # s of stable spin before POINTING
-    ATTITUDE_TIMEOUT = Param(F64, default=30.0)  # s on the gyro alone (no star-tracker fix) → no attitude knowledge
+    ATTITUDE_TIMEOUT = Param(F64, default=90.0)  # s on the gyro alone (no star-tracker fix) → no attitude knowledge
     SLEW_RATE_LIMIT = Param(F64, default=6.0)  # deg/s: largest rate a slew commands (wheels)
     POINTING_ACTUATOR = Param(PointingActuator, default=PointingActuator.ANY)
     K_DUMP = Param(F64, default=2.0e-3)  # 1/s: magnetic momentum dumping while pointing on wheels
