@@ -127,9 +127,9 @@ class AttitudeController(PassiveComponent):
 
     # --- parameters (defaults and their derivation: docs/components/attitude_controller.md) ----
 
-    K_P = Param(F64, default=5.4e-4)  # N·m: PD spring on q_err.v, wheels (ω_n 0.35 rad/s for 2.2e-3 kg·m²)
-    K_D = Param(F64, default=1.4e-3)  # N·m·s: PD damping, wheels (ζ ≈ 0.9)
-    K_I = Param(F64, default=2.7e-5)  # N·m/s: integral on q_err.v, wheels (an addition to the seed; 0 turns it off)
+    K_P = Param(F64, default=1.1e-3)  # N·m: PD spring on q_err.v, wheels (ω_n 0.5 rad/s for 2.2e-3 kg·m²)
+    K_D = Param(F64, default=2.0e-3)  # N·m·s: PD damping, wheels (ζ ≈ 0.9)
+    K_I = Param(F64, default=5.5e-5)  # N·m/s: integral on q_err.v, wheels (an addition to the seed; 0 turns it off)
     INTEGRAL_WINDOW = Param(F64, default=1.0)  # deg: the integral runs only below this error
     K_P_MAG = Param(F64, default=2.0e-6)  # N·m: PD spring, magnetorquer-only pointing
     K_D_MAG = Param(F64, default=4.0e-4)  # N·m·s: PD damping, magnetorquer-only pointing
@@ -149,7 +149,7 @@ class AttitudeController(PassiveComponent):
     SPIN_RATE_RESET = Param(F64, default=0.08)  # fraction
     SPIN_STABLE_DWELL = Param(F64, default=60.0)  # s of stable spin before POINTING
     ATTITUDE_TIMEOUT = Param(F64, default=90.0)  # s on the gyro alone (no star-tracker fix) → no attitude knowledge
-    SLEW_RATE_LIMIT = Param(F64, default=6.0)  # deg/s: largest rate a slew commands (wheels)
+    SLEW_RATE_LIMIT = Param(F64, default=8.0)  # deg/s: largest rate a slew commands (wheels)
     POINTING_ACTUATOR = Param(PointingActuator, default=PointingActuator.ANY)
     K_DUMP = Param(F64, default=2.0e-3)  # 1/s: magnetic momentum dumping while pointing on wheels
     WHEEL_MAX_TORQUE = Param(F64, default=2.0e-3)  # N·m per wheel
