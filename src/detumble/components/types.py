@@ -15,8 +15,8 @@ Namespaces follow the flight FPP and the seed design documents:
   ``docs/components/star_tracker.md``): :class:`WheelMode`, :class:`WheelState`,
   :class:`AttitudeQuaternion`; ports ``WheelTorqueSet``, ``WheelSpeedSet``, ``WheelEnableSet``,
   ``WheelStateGet`` (one driver instance per wheel) and ``AttitudeGet``.
-* ``Fw`` — F´ framework types the framework port does not (yet) provide: :class:`Success` and
-  :class:`TimeIntervalValue`.
+* ``Fw`` — :class:`Success` and :class:`TimeIntervalValue` are re-exported from the framework
+  (:mod:`fprime_lite.model.fw_types`).
 
 ``ref condition: Success`` convention
 -------------------------------------

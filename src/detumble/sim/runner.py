@@ -1,7 +1,8 @@
 """Plant-only runs: fly a scenario with a reference law (no F' framework involved).
 
 ``python -m detumble.sim SCENARIO --law none|kopt|bdot|bangbang [--gain G] --out DIR
-[--duration S] [--seed N]`` writes ``DIR/summary.json`` and ``DIR/rate.csv``. :func:`main`
+[--duration S] [--seed N]`` writes ``DIR/summary.json`` and ``DIR/rate.csv`` (the body rate, then
+the ADCS truth columns of :mod:`detumble.sim.truth`). :func:`main`
 returns an exit code and reports bad input on stderr without a traceback, so a CLI
 (``fprime-lite sim``) can call it directly.
 
@@ -165,8 +166,8 @@ def _cell(v) -> str:
     return v if isinstance(v, str) else f"{v:.12g}"
 
 
-def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="python -m detumble.sim",
+def build_parser(prog: str = "python -m detumble.sim") -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog=prog,
                                 description="Plant-only detumble run of a scenario (no flight software).")
     p.add_argument("scenario", nargs="?", help="packaged scenario name (e.g. case_a, default) or a YAML file")
     p.add_argument("--scenario", dest="scenario_opt", metavar="NAME|FILE", help="same as the positional argument")
@@ -181,9 +182,9 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim") -> int:
     """Entry point. Returns 0 on success, 2 on bad input (message on stderr)."""
-    parser = build_parser()
+    parser = build_parser(prog)
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse has already printed its message
