@@ -97,7 +97,7 @@ class AttitudeRunReport:
     def begin(self, deployment, out_dir: pathlib.Path) -> None:
         self.controller = deployment.topology.instance(self.controller_name).component
         self.start_us = deployment.scheduler.now_us
-        self._next_us = self.start_us
+        self._next_us = self.start_us + self.interval_us
         deployment.scheduler.add_time_listener(self._on_time)
         self._sample(self.start_us)
 
@@ -156,15 +156,13 @@ class AttitudeRunReport:
     def spin_settled_s(self) -> float | None:
         """Seconds from the first entry into SPIN_STABLE until momentum within 5° of +Z and the rate within
         5 % of SPIN_RATE_TARGET hold for the rest of that SPIN_STABLE interval."""
-        spin = [r for r in self.rows if r[1] == ControlMode.SPIN_STABLE]
-        if not spin:
+        first = next((i for i, r in enumerate(self.rows) if r[1] == ControlMode.SPIN_STABLE), None)
+        if first is None:
             return None
-        start = spin[0][0]
+        start = self.rows[first][0]
         target = self.controller.SPIN_RATE_TARGET.value
         interval = []
-        for r in self.rows:
-            if r[0] < start:
-                continue
+        for r in self.rows[first:]:
             if r[1] != ControlMode.SPIN_STABLE:
                 break
             interval.append(r)
