@@ -10,6 +10,7 @@ import os
 import time
 
 import pytest
+from fprime_gds.common.testing_fw import predicates
 
 CTRL = "ReferenceDeployment.attitudeController"
 FIGURES: dict = {}
@@ -36,9 +37,9 @@ def test_a_new_target_is_flown_to(fprime_test_api):
                                                                   "0"], timeout=5)
     api.assert_event(f"{CTRL}.TargetSet", timeout=5)
     t0 = time.monotonic()
-    big = api.await_telemetry(f"{CTRL}.PointingError", value=lambda v: v > 45.0, timeout=10)
+    big = api.await_telemetry(f"{CTRL}.PointingError", value=predicates.greater_than(45.0), timeout=10)
     assert big is not None, "the pointing error never showed the new 90° target"
-    small = api.await_telemetry(f"{CTRL}.PointingError", value=lambda v: v < 0.1, timeout=60)
+    small = api.await_telemetry(f"{CTRL}.PointingError", value=predicates.less_than(0.1), timeout=60)
     assert small is not None, "the controller did not settle within 0.1° of the new target in 60 s"
     FIGURES["slew_90_deg_settle_s"] = time.monotonic() - t0
 
