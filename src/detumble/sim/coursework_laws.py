@@ -1,0 +1,110 @@
+"""Seed 004's controllers flown plant-only (``fprime-lite sim --law cross_product|beta_pd|wheels_pd``).
+
+Adapters between the plant's readings and :mod:`detumble.control.coursework`, which holds the laws
+in the report's convention. A *full-state* law gets, once per control period, the field (T, B),
+the gyro rate (rad/s, B), the attitude relative to the orbit frame (``q_BO``, scalar first; from the
+star tracker when the scenario has one, else the truth) and the wheel momenta (N m s), and returns
+a dipole (A m², B) and, for the wheel law, one motor torque per wheel (N m).
+"""
+from __future__ import annotations
+
+from detumble.control import coursework as cw
+from detumble.sim.vec import Vec3
+
+__all__ = ["CrossProductLaw", "BetaPdLaw", "WheelsPdLaw", "REPORT_CROSS_PRODUCT_GAIN"]
+
+#: The report's best ``magnetorquer1`` gain (its Figure 1).
+REPORT_CROSS_PRODUCT_GAIN = 146.0
+
+
+class _FullState:
+    full_state = True
+    wheel_law = False
+
+    def __init__(self, m_max: Vec3):
+        self.m_max = m_max
+
+    def reset(self) -> None:
+        pass
+
+    def _clip(self, m) -> Vec3:
+        lx, ly, lz = self.m_max
+        return (max(-lx, min(lx, m[0])), max(-ly, min(ly, m[1])), max(-lz, min(lz, m[2])))
+
+
+class CrossProductLaw(_FullState):
+    """``magnetorquer1``: ``M = k (ω × B)``, each axis clipped (eq. 19). ``k`` in A m² /(rad/s · T)."""
+
+    name = "cross_product"
+
+    def __init__(self, k: float, m_max: Vec3):
+        super().__init__(m_max)
+        self.k = float(k)
+
+    def command(self, t, b_B, w_B, q_BO, h):
+        return self._clip(cw.cross_product_dipole(self.k, w_B, b_B)), None
+
+
+class BetaPdLaw(_FullState):
+    """``magnetorquer2``: eqs. 20–24 with β̇ between successive control periods."""
+
+    name = "beta_pd"
+
+    def __init__(self, k_s: float, k_d: float, n: float, m_max: Vec3, switched: bool = False):
+        super().__init__(m_max)
+        self.law = cw.BetaPd(k_s, k_d, n=n, switched=switched)
+        self.gain = (k_s, k_d)
+
+    def reset(self) -> None:
+        self.law.previous = None
+
+    def command(self, t, b_B, w_B, q_BO, h):
+        return self._clip(self.law.dipole(t, w_B, b_B)), None
+
+
+class WheelsPdLaw(_FullState):
+    """``wheels``: eqs. 25–26, the torques limited as the report does (``limits="report"``) or only
+    by the wheels themselves (``limits="wheel"``, the plant's exact saturation).
+
+    The report integrates its quaternion continuously, and with its signs eq. 26's stable
+    equilibrium is ``q4 = −1`` — the target attitude in its other representation, reached the long
+    way round (up to a full turn). A sensor reports one representation (the star tracker and the
+    plant give ``q0 ≥ 0``); this law keeps the quaternion it feeds eq. 25 continuous by flipping a
+    reading whose dot product with the previous one is negative, which is what the report's
+    integration amounts to. ``error="shortest_path"`` is the corrected law: the proportional term
+    takes the sign of the error's real part, so both representations are stable and the body turns
+    the short way.
+    """
+
+    name = "wheels_pd"
+    wheel_law = True
+
+    def __init__(self, k_p: float, k_d: float, inertia, n: float, target_q_BO, m_max: Vec3,
+                 limits: str = "report", error: str = "report"):
+        super().__init__(m_max)
+        self.k_p, self.k_d = float(k_p), float(k_d)
+        self.gain = (self.k_p, self.k_d)
+        self.inertia = inertia
+        self.n = n
+        self.target = cw.from_plant_quaternion(target_q_BO)
+        self.limits = limits
+        self.shortest_path = error == "shortest_path"
+        self._previous: tuple[float, float, float, float] | None = None
+
+    def reset(self) -> None:
+        self._previous = None
+
+    def command(self, t, b_B, w_B, q_BO, h):
+        q = cw.from_plant_quaternion(q_BO)
+        p = self._previous
+        if p is not None and q[0] * p[0] + q[1] * p[1] + q[2] * p[2] + q[3] * p[3] < 0.0:
+            q = (-q[0], -q[1], -q[2], -q[3])
+        self._previous = q
+        q_e = cw.error_quaternion(self.target, q)
+        if self.shortest_path and q_e[3] >= 0.0:
+            q_e = (-q_e[0], -q_e[1], -q_e[2], q_e[3])
+        w_o = cw.rate_relative_to_orbit(q, w_B, self.n)
+        torque = cw.wheel_torque(self.k_p, self.k_d, self.inertia, q_e, w_o, w_B, h)
+        if self.limits == "report":
+            torque = cw.limit_wheel_torque(torque, h)
+        return (0.0, 0.0, 0.0), torque
