@@ -63,18 +63,9 @@ class BetaPdLaw(_FullState):
 
 
 class WheelsPdLaw(_FullState):
-    """``wheels``: eqs. 25–26, the torques limited as the report does (``limits="report"``) or only
-    by the wheels themselves (``limits="wheel"``, the plant's exact saturation).
-
-    The report integrates its quaternion continuously, and with its signs eq. 26's stable
-    equilibrium is ``q4 = −1`` — the target attitude in its other representation, reached the long
-    way round (up to a full turn). A sensor reports one representation (the star tracker and the
-    plant give ``q0 ≥ 0``); this law keeps the quaternion it feeds eq. 25 continuous by flipping a
-    reading whose dot product with the previous one is negative, which is what the report's
-    integration amounts to. ``error="shortest_path"`` is the corrected law: the proportional term
-    takes the sign of the error's real part, so both representations are stable and the body turns
-    the short way.
-    """
+    """``wheels``: eqs. 25–26 (:class:`detumble.control.coursework.WheelsPd`), the torques limited
+    as the report does (``limits="report"``) or only by the wheels themselves (``limits="wheel"``,
+    the plant's exact saturation); ``error="shortest_path"`` for the corrected law."""
 
     name = "wheels_pd"
     wheel_law = True
@@ -82,29 +73,16 @@ class WheelsPdLaw(_FullState):
     def __init__(self, k_p: float, k_d: float, inertia, n: float, target_q_BO, m_max: Vec3,
                  limits: str = "report", error: str = "report"):
         super().__init__(m_max)
-        self.k_p, self.k_d = float(k_p), float(k_d)
-        self.gain = (self.k_p, self.k_d)
-        self.inertia = inertia
-        self.n = n
-        self.target = cw.from_plant_quaternion(target_q_BO)
+        self.law = cw.WheelsPd(k_p, k_d, inertia, cw.from_plant_quaternion(target_q_BO), n,
+                               shortest_path=error == "shortest_path")
+        self.gain = (self.law.k_p, self.law.k_d)
         self.limits = limits
-        self.shortest_path = error == "shortest_path"
-        self._previous: tuple[float, float, float, float] | None = None
 
     def reset(self) -> None:
-        self._previous = None
+        self.law.previous = None
 
     def command(self, t, b_B, w_B, q_BO, h):
-        q = cw.from_plant_quaternion(q_BO)
-        p = self._previous
-        if p is not None and q[0] * p[0] + q[1] * p[1] + q[2] * p[2] + q[3] * p[3] < 0.0:
-            q = (-q[0], -q[1], -q[2], -q[3])
-        self._previous = q
-        q_e = cw.error_quaternion(self.target, q)
-        if self.shortest_path and q_e[3] >= 0.0:
-            q_e = (-q_e[0], -q_e[1], -q_e[2], q_e[3])
-        w_o = cw.rate_relative_to_orbit(q, w_B, self.n)
-        torque = cw.wheel_torque(self.k_p, self.k_d, self.inertia, q_e, w_o, w_B, h)
+        torque = self.law.torque(cw.from_plant_quaternion(q_BO), w_B, h)
         if self.limits == "report":
             torque = cw.limit_wheel_torque(torque, h)
         return (0.0, 0.0, 0.0), torque

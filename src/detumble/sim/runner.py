@@ -33,6 +33,10 @@ from detumble.sim.truth import adcs_header, adcs_row
 DEFAULT_BDOT_GAIN = 3.0  # A m^2 s / G, the flight DetumbleManager default
 
 
+class LawError(ValueError):
+    """A law that cannot be made for this scenario (what is wrong and what to do instead)."""
+
+
 @dataclass
 class RunResult:
     summary: dict
@@ -67,7 +71,7 @@ def _make_law(name: str, plant: Plant, gain: float | None):
         return BangBangLaw(m_max)
     if name in ("cross_product", "beta_pd", "wheels_pd"):
         return _make_coursework_law(name, plant, gain, m_max)
-    raise ValueError(f"unknown law {name!r}; expected one of: {', '.join(LAWS)}")
+    raise LawError(f"unknown law {name!r}; expected one of: {', '.join(LAWS)}")
 
 
 def _make_coursework_law(name: str, plant: Plant, gain: float | None, m_max):
@@ -76,7 +80,7 @@ def _make_coursework_law(name: str, plant: Plant, gain: float | None, m_max):
     if name == "cross_product":
         return CrossProductLaw(REPORT_CROSS_PRODUCT_GAIN if gain is None else gain, m_max)
     if gain is not None:
-        raise ValueError(f"--gain sets the single gain of cross_product, kopt or bdot; set {name}'s gains with "
+        raise LawError(f"--gain sets the single gain of cross_product, kopt or bdot; set {name}'s gains with "
                          f"--set control.{name}.<gain>=VALUE")
     if name == "beta_pd":
         b = cfg.beta_pd
@@ -84,7 +88,7 @@ def _make_coursework_law(name: str, plant: Plant, gain: float | None, m_max):
     w = cfg.wheels_pd
     if plant.wheel_count != 3 or any(abs(a[i] - (1.0 if i == k else 0.0)) > 1e-12
                                      for k, a in enumerate(plant.wheel_axes_B) for i in range(3)):
-        raise ValueError("wheels_pd needs three reaction wheels along body x, y and z "
+        raise LawError("wheels_pd needs three reaction wheels along body x, y and z "
                          "(spacecraft.reaction_wheels.axes: [[1, 0, 0], [0, 1, 0], [0, 0, 1]])")
     return WheelsPdLaw(w.k_p, w.k_d, plant.body.inertia, n, w.target_q_bo, m_max, limits=w.limits, error=w.error)
 
@@ -250,7 +254,7 @@ def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim") ->
         sc = load_scenario(name, seed=args.seed, settings=args.set)
         result = run(sc, law=args.law, gain=args.gain, duration_s=args.duration)
         write_outputs(result, args.out)
-    except ScenarioError as exc:
+    except (ScenarioError, LawError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except (ImportError, OSError) as exc:
@@ -264,4 +268,4 @@ def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim") ->
     return 0
 
 
-__all__ = ["RunResult", "run", "make_law", "main", "write_atomic", "write_outputs"]
+__all__ = ["RunResult", "LawError", "run", "make_law", "main", "write_atomic", "write_outputs"]
