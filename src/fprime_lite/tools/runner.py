@@ -40,15 +40,28 @@ def _reports(loaded: LoadedDeployment) -> list:
 
 
 def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
-                   progress: bool = False, plots: bool = True, console=None) -> dict:
-    """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary."""
+                   progress: bool = False, plots: bool = True, console=None, stop_on_events=(),
+                   quiet: bool = False) -> dict:
+    """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary.
+
+    ``stop_on_events``: full event names (``Module.inst.Event``) whose downlink ends the run early
+    (a campaign stops at DetumbleCompleted). ``quiet``: no summary table on the terminal.
+    """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     deployment = Deployment(loaded)
     topo = deployment.topology
     reports = _reports(loaded)
-    recorder = GroundRecorder(topo, out, on_event=lambda e: [r.on_event(e) for r in reports
-                                                             if hasattr(r, "on_event")])
+    stop_names = frozenset(stop_on_events)
+
+    def on_event(event) -> None:
+        for r in reports:
+            if hasattr(r, "on_event"):
+                r.on_event(event)
+        if event.name in stop_names:
+            deployment.scheduler.stop()
+
+    recorder = GroundRecorder(topo, out, on_event=on_event)
     recorder.attach(topo, topo.patterns.get("event"), topo.patterns.get("telemetry"))
     for instance in topo.instances.values():
         if isinstance(instance.component, FileDownlink):
@@ -65,7 +78,7 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     if progress:
         _run_with_progress(deployment, end_us, reports, console)
     else:
-        deployment.scheduler.run(until_us=end_us)
+        deployment.scheduler.run(until_us=end_us)  # stop() (an early-stop event) ends it sooner
     wall = time.perf_counter() - wall0
 
     recorder.close()
@@ -76,7 +89,8 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     sim_s = (deployment.scheduler.now_us - start_us) / 1e6  # less than duration_s when stopped early
     summary = _summary(deployment, recorder, reports, sim_s, wall)
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2) + "\n")
-    _print_summary(summary, console)
+    if not quiet:
+        _print_summary(summary, console)
     return summary
 
 
