@@ -12,10 +12,12 @@ import math
 
 from detumble.sim.attitude import RigidBody
 from detumble.sim.frames import attitude_error_rad
-from detumble.sim.vec import quat_from_axis_angle, quat_mul
+from detumble.sim.vec import quat_from_axis_angle
 
 DEFAULT_J = ((2.20e-3, 2.0e-5, -1.5e-5), (2.0e-5, 2.15e-3, 1.0e-5), (-1.5e-5, 1.0e-5, 2.05e-3))
 ISO_J = ((1.67e-3, 0, 0), (0, 1.67e-3, 0), (0, 0, 1.67e-3))
+#: the strongly asymmetric body of tests/detumble/sim/test_attitude.py (principal moments 2-4e-3)
+ASYM_J = ((2.0e-3, 1.0e-4, -5.0e-5), (1.0e-4, 3.0e-3, 8.0e-5), (-5.0e-5, 8.0e-5, 4.0e-3))
 
 
 def run(inertia, w0, dt, duration, substeps=1):
@@ -43,6 +45,16 @@ def main() -> None:
     for dt in (0.05, 0.02, 0.01, 0.005):
         _, de, dh = run(DEFAULT_J, w0, dt, a.orbit_s)
         print(f"default J, {dt}, 214, {de:.3e}, {dh:.3e}, -")
+    for dt in (0.01,):
+        _, de, dh = run(ASYM_J, w20, dt, a.orbit_s)
+        print(f"asymmetric J, {dt}, 20, {de:.3e}, {dh:.3e}, -")
+    for dt in (0.05, 0.02, 0.01, 0.005):
+        _, de, dh = run(ASYM_J, w0, dt, a.orbit_s)
+        print(f"asymmetric J, {dt}, 214, {de:.3e}, {dh:.3e}, -")
+    w30 = tuple(x * math.radians(30.0) / wn for x in w0)
+    s, de, dh = run(ISO_J, w30, 0.05, a.orbit_s)
+    exact = quat_from_axis_angle(w0, math.radians(30.0) * a.orbit_s)
+    print(f"isotropic (case A rate), 0.05, 30, {de:.3e}, {dh:.3e}, {attitude_error_rad(s[:4], exact):.3e}")
     for dt in (0.05, 0.02, 0.01, 0.005):
         s, de, dh = run(ISO_J, w0, dt, a.orbit_s)
         exact = quat_from_axis_angle(w0, wn * a.orbit_s)

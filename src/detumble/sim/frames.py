@@ -14,7 +14,8 @@ left out of ``omega_ON`` (it is < 1e-6 rad/s).
 
 Seed 004 writes quaternions **scalar last** ``(q1, q2, q3, q4)``, ``q4`` the real part; its DCM
 (eq. 11) is then exactly :func:`detumble.sim.vec.quat_to_dcm` of the scalar-first quaternion
-``(q4, q1, q2, q3)``. Convert once, here: :func:`from_scalar_last`, :func:`to_scalar_last`.
+``(q4, q1, q2, q3)``. The conversion at the edge is
+:func:`detumble.control.coursework.to_plant_quaternion` / ``from_plant_quaternion``.
 """
 
 from __future__ import annotations
@@ -22,16 +23,6 @@ from __future__ import annotations
 import math
 
 from detumble.sim.vec import Mat3, Quat, Vec3, quat_conj, quat_mul
-
-
-def from_scalar_last(q: tuple[float, float, float, float]) -> Quat:
-    """Seed 004's ``(q1, q2, q3, q4)`` (q4 real) -> scalar first ``(q0, q1, q2, q3)``."""
-    return (q[3], q[0], q[1], q[2])
-
-
-def to_scalar_last(q: Quat) -> tuple[float, float, float, float]:
-    """Scalar first -> seed 004's scalar last."""
-    return (q[1], q[2], q[3], q[0])
 
 
 def dcm_to_quat(m: Mat3) -> Quat:

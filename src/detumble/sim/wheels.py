@@ -34,7 +34,7 @@ import math
 import random
 from dataclasses import dataclass
 
-from detumble.sim.vec import Vec3
+from detumble.sim.vec import Vec3, rotate_n_to_b
 
 TORQUE, SPEED = "torque", "speed"
 
@@ -219,42 +219,16 @@ def step_with_wheels(body, state, h, u, wheels: WheelAssembly, dt: float, m_B: V
     specs = wheels.specs
     js = wheels.js
     rng_n = range(n)
-    q0, q1, q2, q3, w1, w2, w3 = state
-    c11 = q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3
-    c12 = 2.0 * (q1 * q2 + q0 * q3)
-    c13 = 2.0 * (q1 * q3 - q0 * q2)
-    c21 = 2.0 * (q1 * q2 - q0 * q3)
-    c22 = q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3
-    c23 = 2.0 * (q2 * q3 + q0 * q1)
-    c31 = 2.0 * (q1 * q3 + q0 * q2)
-    c32 = 2.0 * (q2 * q3 - q0 * q1)
-    c33 = q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3
-    bx, by, bz = b_N
-    rx, ry, rz = r_hat_N
-    x0 = (q0, q1, q2, q3, w1, w2, w3,
-          c11 * bx + c12 * by + c13 * bz, c21 * bx + c22 * by + c23 * bz, c31 * bx + c32 * by + c33 * bz,
-          c11 * rx + c12 * ry + c13 * rz, c21 * rx + c22 * ry + c23 * rz, c31 * rx + c32 * ry + c33 * rz)
+    q = state[:4]
+    b1, b2, b3 = rotate_n_to_b(q, b_N)
+    r1, r2, r3 = rotate_n_to_b(q, r_hat_N)
+    x0 = (*state, b1, b2, b3, r1, r2, r3)
 
-    def f(x, hs):
+    # The stage derivative repeats RigidBody.step_env's with the wheel terms added: a separate
+    # function, so that the wheel-free path pays nothing for wheels (spec: per-tick budget).
+    # (hwx, hwy, hwz): total wheel momentum in B; (tx, ty, tz): the wheels' torque on the body.
+    def f(x, hwx, hwy, hwz, tx, ty, tz):
         q0, q1, q2, q3, w1, w2, w3, b1, b2, b3, r1, r2, r3 = x
-        hwx = hcx
-        hwy = hcy
-        hwz = hcz
-        tx = ty = tz = 0.0
-        hdot = []
-        for i in rng_n:
-            gx, gy, gz = ga[3 * i], ga[3 * i + 1], ga[3 * i + 2]
-            hi = hs[i]
-            hwx += hi * gx
-            hwy += hi * gy
-            hwz += hi * gz
-            d = u[i]
-            if friction:
-                d += _friction(specs[i], hi / js[i] - (gx * w1 + gy * w2 + gz * w3))
-            hdot.append(d)
-            tx -= d * gx
-            ty -= d * gy
-            tz -= d * gz
         s1 = j11 * r1 + j12 * r2 + j13 * r3
         s2 = j21 * r1 + j22 * r2 + j23 * r3
         s3 = j31 * r1 + j32 * r2 + j33 * r3
@@ -274,19 +248,65 @@ def step_with_wheels(body, state, h, u, wheels: WheelAssembly, dt: float, m_B: V
             i31 * g1 + i32 * g2 + i33 * g3,
             b2 * w3 - b3 * w2, b3 * w1 - b1 * w3, b1 * w2 - b2 * w1,
             r2 * w3 - r3 * w2, r3 * w1 - r1 * w3, r1 * w2 - r2 * w1,
-        ), hdot
+        )
 
     a = 0.5 * dt
-    k1, l1 = f(x0, h)
-    k2, l2 = f(tuple(x0[j] + a * k1[j] for j in range(13)), [h[i] + a * l1[i] for i in rng_n])
-    k3, l3 = f(tuple(x0[j] + a * k2[j] for j in range(13)), [h[i] + a * l2[i] for i in rng_n])
-    k4, l4 = f(tuple(x0[j] + dt * k3[j] for j in range(13)), [h[i] + dt * l3[i] for i in rng_n])
     c = dt / 6.0
+    if not friction:
+        # h_i_dot = u_i is constant over the step: the wheel momentum is linear in time, so its
+        # stage values are exact and need no per-wheel work inside the stages.
+        hx, hy, hz = hcx, hcy, hcz
+        ux = uy = uz = 0.0
+        for i in rng_n:
+            gx, gy, gz = ga[3 * i], ga[3 * i + 1], ga[3 * i + 2]
+            hx += h[i] * gx
+            hy += h[i] * gy
+            hz += h[i] * gz
+            ux += u[i] * gx
+            uy += u[i] * gy
+            uz += u[i] * gz
+        k1 = f(x0, hx, hy, hz, -ux, -uy, -uz)
+        xa = [x + a * k for x, k in zip(x0, k1)]
+        k2 = f(xa, hx + a * ux, hy + a * uy, hz + a * uz, -ux, -uy, -uz)
+        xa = [x + a * k for x, k in zip(x0, k2)]
+        k3 = f(xa, hx + a * ux, hy + a * uy, hz + a * uz, -ux, -uy, -uz)
+        xa = [x + dt * k for x, k in zip(x0, k3)]
+        k4 = f(xa, hx + dt * ux, hy + dt * uy, hz + dt * uz, -ux, -uy, -uz)
+        new_h = tuple(h[i] + u[i] * dt for i in rng_n)
+    else:
+        def wheel_terms(x, hs):
+            w1, w2, w3 = x[4], x[5], x[6]
+            hx, hy, hz = hcx, hcy, hcz
+            tx = ty = tz = 0.0
+            hdot = []
+            for i in rng_n:
+                gx, gy, gz = ga[3 * i], ga[3 * i + 1], ga[3 * i + 2]
+                hi = hs[i]
+                hx += hi * gx
+                hy += hi * gy
+                hz += hi * gz
+                d = u[i] + _friction(specs[i], hi / js[i] - (gx * w1 + gy * w2 + gz * w3))
+                hdot.append(d)
+                tx -= d * gx
+                ty -= d * gy
+                tz -= d * gz
+            return (hx, hy, hz, tx, ty, tz), hdot
+
+        e, l1 = wheel_terms(x0, h)
+        k1 = f(x0, *e)
+        xa = [x + a * k for x, k in zip(x0, k1)]
+        e, l2 = wheel_terms(xa, [hi + a * d for hi, d in zip(h, l1)])
+        k2 = f(xa, *e)
+        xa = [x + a * k for x, k in zip(x0, k2)]
+        e, l3 = wheel_terms(xa, [hi + a * d for hi, d in zip(h, l2)])
+        k3 = f(xa, *e)
+        xa = [x + dt * k for x, k in zip(x0, k3)]
+        e, l4 = wheel_terms(xa, [hi + dt * d for hi, d in zip(h, l3)])
+        k4 = f(xa, *e)
+        new_h = tuple(h[i] + c * (l1[i] + 2.0 * (l2[i] + l3[i]) + l4[i]) for i in rng_n)
     q = [x0[j] + c * (k1[j] + 2.0 * (k2[j] + k3[j]) + k4[j]) for j in range(7)]
     nq = 1.0 / math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
-    new_state = (q[0] * nq, q[1] * nq, q[2] * nq, q[3] * nq, q[4], q[5], q[6])
-    new_h = tuple(h[i] + c * (l1[i] + 2.0 * (l2[i] + l3[i]) + l4[i]) for i in rng_n)
-    return new_state, new_h
+    return (q[0] * nq, q[1] * nq, q[2] * nq, q[3] * nq, q[4], q[5], q[6]), new_h
 
 
 def equations_inertia(total_inertia, specs: tuple[WheelSpec, ...]):

@@ -23,7 +23,7 @@ and sets the motor torque to 0, the safe state.
 
 Fault injection (simulation only): :meth:`ReactionWheelDriver.set_fault` or ``SIM_SET_FAULT``:
 ``NOT_READY`` — the wheel does not answer: commands fail (DeviceNotReady, throttled), reads fail,
-and the motor is switched off at once (it coasts); ``STUCK`` — the wheel keeps the torque or speed
+and the motor is switched off at once (it coasts; once the fault is cleared it needs ENABLE); ``STUCK`` — the wheel keeps the torque or speed
 it was last given and every command fails (DeviceNotReady); ``READ_FAIL`` — reads fail
 (WheelReadFailed, throttled), commands still work; ``READ_NAN`` — reads succeed with NaN values.
 """
@@ -186,8 +186,9 @@ class ReactionWheelDriver(PassiveComponent):
     def set_fault(self, fault: SimWheelFault) -> None:
         """Inject ``fault``; NOT_READY switches the motor off at once."""
         self.fault = SimWheelFault(fault)
-        if self.fault == SimWheelFault.NOT_READY:
-            self._plant_call(self.spacecraft.set_wheel_enabled, False)
+        if self.fault == SimWheelFault.NOT_READY:  # the wheel lost power: it needs ENABLE again
+            self._plant_call(self.spacecraft.set_wheel_enabled, self.wheel, False)
+            self._set_mode(WheelMode.DISABLED)
         self.SimFaultSet(self.fault)
 
     # --- behaviour -----------------------------------------------------------------------------
