@@ -33,7 +33,8 @@ I = ((1.67e-3, 0.0, 0.0), (0.0, 1.67e-3, 0.0), (0.0, 0.0, 1.67e-3))
 B_O = (3e-5, 3e-5, 3e-5)
 
 
-def make_rhs(law: str, gain: float, ks: float, kd: float, kp_w: float, kd_w: float, switched: bool):
+def make_rhs(law: str, gain: float, ks: float, kd: float, kp_w: float, kd_w: float, switched: bool,
+             normalize: bool = True):
     beta = cw.BetaPd(ks, kd, switched=switched)
     calls = {"n": 0}
 
@@ -49,7 +50,7 @@ def make_rhs(law: str, gain: float, ks: float, kd: float, kp_w: float, kd_w: flo
     def rhs(t, x):
         calls["n"] += 1
         q = x[0:4]
-        s = math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2)
+        s = math.sqrt(q[0] ** 2 + q[1] ** 2 + q[2] ** 2 + q[3] ** 2) if normalize else 1.0
         a = cw.dcm_ob(q / s)
         b = tuple(sum(a[i][j] * B_O[j] for j in range(3)) for i in range(3))
         w, h = tuple(x[4:7]), tuple(x[7:10])
@@ -83,8 +84,11 @@ def main() -> None:
     p.add_argument("--t-max", type=float, default=5833.0)
     p.add_argument("--rtol", type=float, default=1e-3, help="MATLAB ode45 default 1e-3")
     p.add_argument("--atol", type=float, default=1e-6, help="MATLAB ode45 default 1e-6")
+    p.add_argument("--no-normalize", action="store_true",
+                   help="form eq. 11's DCM from the integrated quaternion as it is (its norm drifts under ode45)")
     args = p.parse_args()
-    rhs, calls = make_rhs(args.law, args.gain, args.ks, args.kd, args.kp_wheels, args.kd_wheels, args.switched)
+    rhs, calls = make_rhs(args.law, args.gain, args.ks, args.kd, args.kp_wheels, args.kd_wheels, args.switched,
+                          normalize=not args.no_normalize)
     t0 = time.perf_counter()
     sol = solve_ivp(rhs, (0.0, args.t_max), [0, 0, 0, 1, 1, 2, 3, 0, 0, 0], method="RK45", rtol=args.rtol,
                     atol=args.atol)
@@ -93,7 +97,7 @@ def main() -> None:
     finals, inits = (0.0, -N, 0.0), (1.0, 2.0, 3.0)
     axes = [settling_time(t, y[4 + i], finals[i], inits[i]) for i in range(3)]
     q4 = settling_time(t, y[3], -1.0, 1.0)
-    out = {"law": args.law, "rtol": args.rtol, "atol": args.atol, "t_max_s": args.t_max, "steps": int(len(sol.t) - 1),
+    out = {"law": args.law, "normalized": not args.no_normalize, "rtol": args.rtol, "atol": args.atol, "t_max_s": args.t_max, "steps": int(len(sol.t) - 1),
            "rhs_calls": calls["n"], "wall_s": wall, "settling_axes_s": axes,
            "settling_overall_s": None if None in axes else max(axes), "settling_q4_to_minus1_s": q4,
            "final_omega_rad_s": [float(v) for v in y[4:7, -1]], "final_q": [float(v) for v in y[0:4, -1]],
