@@ -83,6 +83,7 @@ class CourseworkController(PassiveComponent):
     DIPOLE_LIMIT = Param(F64, default=1.0)           # A·m² per axis
     WHEEL_TORQUE_LIMIT = Param(F64, default=1e-3)    # N·m per wheel
     WHEEL_MOMENTUM_LIMIT = Param(F64, default=0.1)   # N·m·s per wheel
+    DUMP_GAIN = Param(F64, default=0.0)              # 1/s: magnetic momentum dumping with WHEELS_PD (0: none)
 
     @sync_input(Sched)
     def run(self, context: int) -> None:
@@ -206,6 +207,11 @@ class CourseworkController(PassiveComponent):
         for i in range(3):
             self.wheelTorqueSet[i](torque[i])
         self.WheelTorqueCommand.write(Vector3(list(torque)))
+        if self.DUMP_GAIN.value > 0.0:
+            field = self._read(self.magneticFieldGet, "magnetometer")
+            if field is not None:
+                b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
+                self._command_dipole(cw.dumping_dipole(self.DUMP_GAIN.value, h, b_B))
 
     def _command_dipole(self, m) -> None:
         m = cw.clip_dipole(m, self.DIPOLE_LIMIT.value)

@@ -32,6 +32,7 @@ from typing import Sequence
 
 __all__ = ["REPORT_MEAN_MOTION", "Vec3", "Quat", "from_plant_quaternion", "to_plant_quaternion", "dcm_ob",
            "rate_relative_to_orbit", "cross_product_dipole", "BetaPd", "WheelsPd", "error_quaternion", "wheel_torque",
+           "dumping_dipole",
            "clip_dipole", "limit_wheel_torque", "REPORT_DIPOLE_LIMIT", "REPORT_WHEEL_TORQUE_LIMIT",
            "REPORT_WHEEL_MOMENTUM_LIMIT"]
 
@@ -193,6 +194,17 @@ class WheelsPd:
             q_e = (-q_e[0], -q_e[1], -q_e[2], q_e[3])
         w_o = rate_relative_to_orbit(qq, w_B, self.n)
         return wheel_torque(self.k_p, self.k_d, self.inertia, q_e, w_o, w_B, h_B)
+
+
+def dumping_dipole(k: float, h_B: Sequence[float], b_B: Sequence[float]) -> Vec3:
+    """Magnetic momentum dumping (not in the report): ``M = k (h × B)/|B|²`` (A·m²), whose torque
+    ``M × B = −k h⊥`` removes the wheels' momentum across the field at the rate ``k`` (1/s); the
+    wheel law then holds the body while the wheels unload. Zero in a zero field."""
+    b2 = b_B[0] * b_B[0] + b_B[1] * b_B[1] + b_B[2] * b_B[2]
+    if not b2 > 0.0:
+        return (0.0, 0.0, 0.0)
+    c = _cross(h_B, b_B)
+    return (k * c[0] / b2, k * c[1] / b2, k * c[2] / b2)
 
 
 def clip_dipole(m: Sequence[float], limit: float = REPORT_DIPOLE_LIMIT) -> Vec3:

@@ -65,14 +65,16 @@ class BetaPdLaw(_FullState):
 class WheelsPdLaw(_FullState):
     """``wheels``: eqs. 25–26 (:class:`detumble.control.coursework.WheelsPd`), the torques limited
     as the report does (``limits="report"``) or only by the wheels themselves (``limits="wheel"``,
-    the plant's exact saturation); ``error="shortest_path"`` for the corrected law."""
+    the plant's exact saturation); ``error="shortest_path"`` for the corrected law; ``dump_gain``
+    > 0 adds magnetic momentum dumping with the rods (not in the report)."""
 
     name = "wheels_pd"
     wheel_law = True
 
     def __init__(self, k_p: float, k_d: float, inertia, n: float, target_q_BO, m_max: Vec3,
-                 limits: str = "report", error: str = "report"):
+                 limits: str = "report", error: str = "report", dump_gain: float = 0.0):
         super().__init__(m_max)
+        self.dump_gain = float(dump_gain)
         self.law = cw.WheelsPd(k_p, k_d, inertia, cw.from_plant_quaternion(target_q_BO), n,
                                shortest_path=error == "shortest_path")
         self.gain = (self.law.k_p, self.law.k_d)
@@ -85,4 +87,5 @@ class WheelsPdLaw(_FullState):
         torque = self.law.torque(cw.from_plant_quaternion(q_BO), w_B, h)
         if self.limits == "report":
             torque = cw.limit_wheel_torque(torque, h)
-        return (0.0, 0.0, 0.0), torque
+        dipole = self._clip(cw.dumping_dipole(self.dump_gain, h, b_B)) if self.dump_gain > 0.0 else (0.0, 0.0, 0.0)
+        return dipole, torque

@@ -91,7 +91,8 @@ def _make_coursework_law(name: str, plant: Plant, gain: float | None, m_max):
                                      for k, a in enumerate(plant.wheel_axes_B) for i in range(3)):
         raise LawError("wheels_pd needs three reaction wheels along body x, y and z "
                          "(spacecraft.reaction_wheels.axes: [[1, 0, 0], [0, 1, 0], [0, 0, 1]])")
-    return WheelsPdLaw(w.k_p, w.k_d, plant.body.inertia, n, w.target_q_bo, m_max, limits=w.limits, error=w.error)
+    return WheelsPdLaw(w.k_p, w.k_d, plant.body.inertia, n, w.target_q_bo, m_max, limits=w.limits, error=w.error,
+                       dump_gain=w.dump_gain)
 
 
 def _full_state_command(ctl, plant: Plant, b_B, t_read: float) -> None:

@@ -102,6 +102,7 @@ class WheelsPdConfig:
     target_q_bo: tuple[float, float, float, float] = (1.0, 0.0, 0.0, 0.0)
     limits: str = "report"      # report: its ±1 mN m / ±0.1 N m s checks; wheel: the wheels' own limits only
     error: str = "report"       # report: eq. 25 as written (settles at q4 = -1); shortest_path: corrected
+    dump_gain: float = 0.0      # 1/s: magnetic momentum dumping M = k (h x B)/|B|^2 (0: none, as the report)
 
 
 @dataclass(frozen=True)
@@ -293,7 +294,7 @@ SCHEMA: dict = {
     "control": {
         **{k: _LEAF for k in ("law", "gain", "period_s", "sense_settle_s", "saturation")},
         "beta_pd": {k: _LEAF for k in ("k_s", "k_d", "switched")},
-        "wheels_pd": {k: _LEAF for k in ("k_p", "k_d", "target_q_bo", "limits", "error")},
+        "wheels_pd": {k: _LEAF for k in ("k_p", "k_d", "target_q_bo", "limits", "error", "dump_gain")},
     },
 }
 
@@ -811,7 +812,8 @@ def _control(s: _Section, dt: float) -> ControlConfig:
     wheels_pd = WheelsPdConfig(k_p=wheels.number("k_p", WheelsPdConfig.k_p), k_d=wheels.number("k_d", WheelsPdConfig.k_d),
                                target_q_bo=q,  # type: ignore[arg-type]
                                limits=wheels.string("limits", WheelsPdConfig.limits, ("report", "wheel")),
-                               error=wheels.string("error", WheelsPdConfig.error, ("report", "shortest_path")))
+                               error=wheels.string("error", WheelsPdConfig.error, ("report", "shortest_path")),
+                               dump_gain=wheels.number("dump_gain", WheelsPdConfig.dump_gain, nonneg=True))
     wheels.finish()
     s.finish()
     return ControlConfig(law=law, gain=gain, period_s=period, sense_settle_s=settle, saturation=saturation,

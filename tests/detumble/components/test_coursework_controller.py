@@ -139,3 +139,18 @@ def test_wheel_error_parameter_selects_the_shortest_path_law(h):
     h.invoke("run", 0)
     shortest = [c.args[0] for c in h.from_port("wheelTorqueSet")]
     assert report[0] == pytest.approx(-shortest[0]) and report[0] != 0.0
+
+
+def test_momentum_dumping_commands_the_rods_across_the_field(h):
+    """CWC-009: with DUMP_GAIN > 0 the wheel law also commands M = k (h × B)/|B|² (clipped), whose
+    torque M × B opposes the wheels' momentum across the field; DUMP_GAIN = 0 commands no dipole."""
+    h.set_port_return("wheelStateGet", Result(WheelState(0.0, 2e-3, 0.0, WheelMode.TORQUE, Time()), Success.SUCCESS))
+    h.send_command("SET_LAW", CourseworkLaw.WHEELS_PD)
+    h.send_command("DUMP_GAIN_PRM_SET", 0.01)
+    h.clear_history()
+    h.invoke("run", 0)
+    b = tuple(c * 1e-4 for c in B_GAUSS)
+    m = _dipoles(h)[-1]
+    assert m == pytest.approx(cw.dumping_dipole(0.01, (2e-3, 2e-3, 2e-3), b), rel=1e-12)
+    tau = (m[1] * b[2] - m[2] * b[1], m[2] * b[0] - m[0] * b[2], m[0] * b[1] - m[1] * b[0])
+    assert sum(t * 2e-3 for t in tau) < 0.0
