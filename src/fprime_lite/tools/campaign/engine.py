@@ -78,7 +78,8 @@ def _lost_row(task: dict, exc: BaseException) -> dict:
             "seed": task["seed"], "status": "failed", "error": f"{type(exc).__name__}: {exc}",
             "values": {k: None for k in task["values"]}, "metrics": {m: None for m in task["metrics"]},
             "notes": json.dumps({"*": "the worker did not return the run"}),
-            "requested": json.dumps(task["values"], sort_keys=True, default=str), "wall_s": None, "worker": None}
+            "requested": json.dumps(task["values"], sort_keys=True, default=str), "wall_s": None, "cpu_s": None,
+            "worker": None}
 
 
 def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None = None, out=None,

@@ -78,10 +78,17 @@ def point_table(df, campaign, metric: str):
 
 
 def percentile(x: np.ndarray, q: float) -> float:
-    """numpy's (linear) percentile, where +inf stands for "never": inf when it reaches one."""
-    with np.errstate(invalid="ignore"):
-        v = float(np.percentile(x, q))
-    return math.inf if math.isnan(v) else v
+    """numpy's default (linear) percentile, where +inf stands for "never": inf only when the
+    interpolation actually reaches an inf sample (numpy would give nan for inf·0)."""
+    s = np.sort(np.asarray(x, dtype=float))
+    if not len(s):
+        return math.nan
+    h = (len(s) - 1) * q / 100.0
+    lo, hi = int(math.floor(h)), int(math.ceil(h))
+    frac = h - lo
+    if frac == 0.0 or s[lo] == s[hi]:
+        return float(s[lo])
+    return float(s[lo] + (s[hi] - s[lo]) * frac)
 
 
 def print_summary(df, campaign, console=None, wall_s: float | None = None) -> None:

@@ -22,12 +22,13 @@ import time
 __all__ = ["ResultStore", "rows_to_frame", "read_results", "FIXED_COLUMNS"]
 
 FIXED_COLUMNS = ["run_id", "point", "seed_index", "seed", "status"]
-TAIL_COLUMNS = ["error", "notes", "requested", "wall_s", "worker"]
+TAIL_COLUMNS = ["error", "notes", "requested", "wall_s", "cpu_s", "worker"]
 
 
 def rows_to_frame(rows: list[dict], varied: list[str], metric_names: list[str]):
     """One row per run, ordered by grid point then seed index: the fixed columns, every varied key
-    (as read back), every metric, then error, notes (why a value is null), requested, wall_s, worker."""
+    (as read back), every metric, then error, notes (why a value is null), requested, wall_s,
+    cpu_s (the run's own CPU seconds), worker."""
     import pandas as pd
 
     records = []

@@ -66,6 +66,7 @@ def _metric(name: str, named: dict, output, probes: dict):
 def execute_run(task: dict) -> dict:
     """Run ``task`` (made by the engine) and return its results row."""
     t0 = time.perf_counter()
+    cpu0 = time.process_time()
     row = {"run_id": task["run_id"], "point": task["point"], "seed_index": task["seed_index"],
            "seed": task["seed"], "status": "ok", "error": None}
     values = task["values"]
@@ -122,5 +123,6 @@ def execute_run(task: dict) -> dict:
     row["notes"] = json.dumps(notes, sort_keys=True)
     row["requested"] = json.dumps(plain(values), sort_keys=True)
     row["wall_s"] = time.perf_counter() - t0
+    row["cpu_s"] = time.process_time() - cpu0
     row["worker"] = worker_name()
     return row

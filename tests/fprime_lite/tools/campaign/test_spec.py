@@ -93,3 +93,17 @@ def test_grid_is_a_union_of_products():
     """CAMP-006: a list of grids is the union of their products in file order, last key fastest."""
     pts = grid_points([{"a": [1, 2], "b": ["x", "y"]}, {"c": [0]}])
     assert pts == [{"a": 1, "b": "x"}, {"a": 1, "b": "y"}, {"a": 2, "b": "x"}, {"a": 2, "b": "y"}, {"c": 0}]
+
+
+def test_percentile_with_never():
+    """CAMP-007: percentiles where inf means "never": numpy's linear rule, inf only when reached."""
+    import math
+
+    import numpy as np
+
+    from fprime_lite.tools.campaign.report import percentile
+
+    assert percentile(np.array([3923.0, 2989.0, math.inf]), 50) == 3923.0  # numpy: nan (inf·0)
+    assert percentile(np.array([3923.0, 2989.0, math.inf]), 95) == math.inf
+    assert percentile(np.arange(11.0), 95) == np.percentile(np.arange(11.0), 95)
+    assert percentile(np.array([1.0, 2.0, 4.0, 8.0]), 40) == pytest.approx(np.percentile([1.0, 2.0, 4.0, 8.0], 40), rel=1e-15)
