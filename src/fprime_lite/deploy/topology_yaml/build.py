@@ -61,14 +61,15 @@ def import_type(file: pathlib.Path, type_path: str, line: int | None, what: str,
             break
         except ModuleNotFoundError as exc:
             if exc.name is None or not module_name.startswith(exc.name):
-                problems.add(file, line, f"{what}: importing '{module_name}' failed: {exc}")
+                problems.add(file, line, f"{what}: importing '{module_name}' failed: {exc} — install what it needs")
                 return None
             first_error = first_error or exc
         except DeclarationError as exc:
-            problems.add(file, line, f"{what}: {exc}")
+            problems.add(file, line, f"{what}: {exc} — fix the declaration")
             return None
         except (Exception, SystemExit) as exc:  # noqa: BLE001 - a broken module is reported, not raised
-            problems.add(file, line, f"{what}: importing '{module_name}' failed: {type(exc).__name__}: {exc}")
+            problems.add(file, line, f"{what}: importing '{module_name}' failed: {type(exc).__name__}: {exc} — fix "
+                                     f"that module")
             return None
     if module is None:
         problems.add(file, line, f"{what}: cannot import module '{'.'.join(parts[:-1])}' ({first_error}) — check "
@@ -85,7 +86,7 @@ def import_type(file: pathlib.Path, type_path: str, line: int | None, what: str,
             names = [n for n in dir(owner) if not n.startswith("_")]
             guess = difflib.get_close_matches(attr, names, n=1)
             prefix = ".".join(parts[:split + depth])
-            hint = f" — did you mean '{prefix}.{guess[0]}'?" if guess else ""
+            hint = f" — did you mean '{prefix}.{guess[0]}'?" if guess else " — check the type path"
             problems.add(file, line, f"{what}: module '{prefix}' has no '{attr}'{hint}")
             return None
     return obj
@@ -164,7 +165,7 @@ def _build_resource(spec: ResourceConfig, file: pathlib.Path, resources: dict[st
     except Exception as exc:  # noqa: BLE001 - any construction failure is a user-facing problem
         given = role_overrides.get(role, {}) if role else {}
         options = f" with the {role} options {given}" if given else ""
-        problems.add(file, spec.line, f"{what} could not be created{options}: {exc}")
+        problems.add(file, spec.line, f"{what} could not be created{options}: {exc} — check its args")
         return False
     return True
 
@@ -185,8 +186,8 @@ def _build_instance(spec: InstanceConfig, config: TopologyConfig, topology: Topo
     if cls is None:
         return False
     if not (inspect.isclass(cls) and issubclass(cls, Component)):
-        problems.add(spec.file, spec.type_line, f"{what}: type '{spec.type_path}' is not a component class (derive "
-                                                f"from PassiveComponent, QueuedComponent or ActiveComponent)")
+        problems.add(spec.file, spec.type_line, f"{what}: type '{spec.type_path}' is not a component class — derive "
+                                                f"it from PassiveComponent, QueuedComponent or ActiveComponent")
         return False
     kwargs = args.resolve(spec.file, spec.args, lambda key: spec.arg_lines.get(key, spec.args_line), what)
     if kwargs is None:
@@ -204,10 +205,11 @@ def _build_instance(spec: InstanceConfig, config: TopologyConfig, topology: Topo
         component = cls(spec.name, **kwargs)
     except TypeError as exc:
         problems.add(spec.file, spec.line, f"{what}: cannot create {cls.__name__} with args "
-                                           f"{sorted(k for k in kwargs if k != 'base_id')}: {exc}")
+                                           f"{sorted(k for k in kwargs if k != 'base_id')}: {exc} — give the arguments its "
+                                           f"constructor takes")
         return False
     except Exception as exc:  # noqa: BLE001 - reported with its location
-        problems.add(spec.file, spec.line, f"{what}: {cls.__name__} raised while being created: {exc}")
+        problems.add(spec.file, spec.line, f"{what}: {cls.__name__} raised while being created: {exc} — check its args")
         return False
     try:
         topology.add(spec.module, component, where=spec.where)

@@ -32,7 +32,7 @@ _PACKAGE = re.compile(r"^[A-Za-z_]\w*(\.[A-Za-z_]\w*)*$")
 def path_problem(value: object) -> str | None:
     """Why ``value`` cannot be a file path (with what to do), or None if it can."""
     if not isinstance(value, str) or not value.strip():
-        return "must be a file path (text)"
+        return "must be a file path — give the path as text"
     if "\0" in value:
         return "contains a NUL character — remove it"
     if len(value) > MAX_PATH:
@@ -179,8 +179,7 @@ def read_document(path: pathlib.Path, problems: Problems, chain: tuple = ()) -> 
     target = doc["extends"]
     why = path_problem(target)
     if why is not None:
-        problems.add(path, line, f"'extends' {why}" if isinstance(target, str)
-                     else "'extends' must be the path of a base topology file")
+        problems.add(path, line, f"'extends' {why}")
         return doc
     base_path = resolve_path(target, path.parent)
     here = _real(path)

@@ -32,11 +32,18 @@ MAX_FILE_BYTES = 1 << 20
 #: Deepest nesting of mappings and lists; a topology needs 6.
 MAX_DEPTH = 64
 #: Most values (mappings, lists, scalars) a document may expand to once aliases are followed.
-MAX_VALUES = 100_000
+MAX_VALUES = 50_000
 
 _MAP_TAG = "tag:yaml.org,2002:map"
 _SEQ_TAG = "tag:yaml.org,2002:seq"
 _MERGE_TAG = "tag:yaml.org,2002:merge"
+_CORE = "tag:yaml.org,2002:"
+#: Scalar tags the loader constructs (what SafeLoader resolves plain scalars to).
+_SCALAR_TAGS = {_CORE + t for t in ("str", "int", "float", "bool", "null", "timestamp", "binary")}
+
+
+def _short_tag(tag: str) -> str:
+    return "!!" + tag[len(_CORE):] if tag.startswith(_CORE) else tag
 
 
 class Loc(int):
@@ -139,14 +146,14 @@ class _Converter:
         raise _Refused(node.start_mark.line + 1, f"unexpected YAML node {type(node).__name__} — fix the syntax")
 
     def scalar(self, node: yaml.ScalarNode) -> Any:
+        if node.tag not in _SCALAR_TAGS:
+            self.refuse(node, f"tag '{_short_tag(node.tag)}' is not allowed — a topology holds plain values only "
+                              f"(text, numbers, booleans, null); remove the tag")
+            return None
         try:
             return self.loader.construct_object(node, deep=True)
         except yaml.constructor.ConstructorError as exc:
-            problem = exc.problem or str(exc)
-            if node.tag and not node.tag.startswith("tag:yaml.org,2002:"):
-                problem = f"tag '{node.tag}' is not allowed"
-            self.refuse(node, f"{problem} — a topology holds plain values only (strings, numbers, "
-                              f"booleans, null); remove the tag")
+            self.refuse(node, f"{exc.problem or exc} — write a plain value")
         except (ValueError, OverflowError, TypeError) as exc:
             self.refuse(node, f"value {_short(node.value)!r} cannot be read ({exc}) — write a plain "
                               f"number or quote it")
@@ -157,7 +164,7 @@ class _Converter:
 
     def check_tag(self, node: yaml.Node, expected: str, what: str) -> None:
         if node.tag != expected:
-            self.refuse(node, f"tag '{node.tag}' is not allowed on a {what} — a topology uses plain "
+            self.refuse(node, f"tag '{_short_tag(node.tag)}' is not allowed on a {what} — a topology uses plain "
                               f"mappings and lists; remove the tag")
 
     def mapping(self, node: yaml.MappingNode, depth: int) -> YMap:
@@ -253,8 +260,8 @@ def parse_yaml(path: pathlib.Path) -> Any:
         raise TopologyError([f"{path}:{exc.line}: {exc.message}"]) from None
     except yaml.reader.ReaderError as exc:
         line = _line_of(text, exc.position)
-        raise TopologyError([f"{path}:{line}: character {exc.character!r} is not allowed in YAML — remove it"]) \
-            from None
+        char = chr(exc.character) if isinstance(exc.character, int) else exc.character
+        raise TopologyError([f"{path}:{line}: character {char!r} is not allowed in YAML — remove it"]) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         line = f"{mark.line + 1}" if mark is not None else "?"

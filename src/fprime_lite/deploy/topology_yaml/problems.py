@@ -50,7 +50,8 @@ class Problems:
 
     def expect_map(self, file: pathlib.Path, value: Any, line: int | None, what: str) -> YMap | None:
         if not isinstance(value, YMap):
-            self.add(file, getattr(value, "line", line), f"{what} must be a mapping, got {kind(value)}")
+            self.add(file, getattr(value, "line", line), f"{what} must be a mapping, got {kind(value)} — write it as indented "
+                                                                f"'key: value' lines")
             return None
         return value
 

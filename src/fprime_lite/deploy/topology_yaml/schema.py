@@ -239,10 +239,10 @@ class _Reader:
 
     def type_path(self, file: pathlib.Path, value: Any, line: int | None, what: str) -> str | None:
         if not isinstance(value, str) or not value:
-            self.add(line, f"{what} needs 'type': an import path such as package.module.Class", file)
+            self.add(line, f"{what} needs 'type' — give an import path such as package.module.Class", file)
             return None
         if not TYPE_PATH.match(value) or any(p.startswith("__") for p in value.split(".")):
-            self.add(line, f"{what}: type '{value[:80]}' must be a dotted import path (package.module.Class)", file)
+            self.add(line, f"{what}: type '{value[:80]}' must be a dotted import path — write package.module.Class", file)
             return None
         return value
 
@@ -250,13 +250,14 @@ class _Reader:
         if value is None:
             return {}
         if not isinstance(value, YMap):
-            self.add(line, f"{what}: 'args' must be a mapping of keyword arguments, got {kind(value)}", file)
+            self.add(line, f"{what}: 'args' must be a mapping of keyword arguments, got {kind(value)} — write "
+                           f"args: {{name: value, ...}}", file)
             return None
         ok = True
         for key in value:
             if not isinstance(key, str) or not key.isidentifier():
                 self.add(value.key_lines.get(key, line), f"{what}: argument name {key!r} must be an identifier "
-                                                         f"(a keyword argument of the constructor)", file)
+                                                         f"— use the constructor's keyword argument names", file)
                 ok = False
         return dict(value) if ok else None
 
@@ -266,7 +267,7 @@ class _Reader:
         deployment = doc.get("deployment")
         if not isinstance(deployment, str) or not deployment.isidentifier():
             self.add(doc.key_lines.get("deployment", doc.line),
-                     "'deployment' must name the deployment (an identifier, e.g. ReferenceDeployment)")
+                     "'deployment' must name the deployment — give an identifier, e.g. ReferenceDeployment")
             deployment = "Deployment"
         config = TopologyConfig(self.path, deployment)
         config.time = self.time(doc)
@@ -303,7 +304,7 @@ class _Reader:
         if "epoch_us" in cfg:
             value = cfg["epoch_us"]
             if not _is_int(value) or not 0 <= value < 2 ** 63:
-                self.add(cfg.key_lines["epoch_us"], "'epoch_us' must be a non-negative integer (microseconds)")
+                self.add(cfg.key_lines["epoch_us"], "'epoch_us' must be a non-negative integer (microseconds) — e.g. 0")
             else:
                 epoch_us = value
         return TimeConfig(time_base, epoch_us)
@@ -317,7 +318,7 @@ class _Reader:
         for name, spec in (section or {}).items():
             line = section.key_lines.get(name)
             if not isinstance(name, str) or not name.isidentifier():
-                self.add(line, f"resource name {name!r} must be an identifier (instances refer to it as $name)")
+                self.add(line, f"resource name {name!r} must be an identifier — rename it (instances refer to it as $name)")
                 continue
             what = f"resource '{name}'"
             spec = self.problems.expect_map(self.path, spec, line, what)
@@ -341,7 +342,7 @@ class _Reader:
         for module_name, module in (section or {}).items():
             mline = section.key_lines.get(module_name)
             if not isinstance(module_name, str) or not module_name.isidentifier():
-                self.add(mline, f"module name {module_name!r} must be an identifier (e.g. CdhCore)")
+                self.add(mline, f"module name {module_name!r} must be an identifier — rename it (e.g. CdhCore)")
                 continue
             module = self.problems.expect_map(self.path, module, mline, f"module '{module_name}'")
             if module is None:
@@ -402,7 +403,7 @@ class _Reader:
                  spec: Any) -> InstanceConfig | None:
         line = container.key_lines.get(name)
         if not isinstance(name, str) or not name.isidentifier():
-            self.add(line, f"instance name {name!r} must be an identifier (e.g. cmdDisp)", file)
+            self.add(line, f"instance name {name!r} must be an identifier — rename it (e.g. cmdDisp)", file)
             return None
         what = f"instance {module}.{name}"
         spec = self.problems.expect_map(file, spec, line, what)
@@ -416,12 +417,12 @@ class _Reader:
         ok = type_path is not None and args is not None
         if not _is_int(base_id) or not 0 <= base_id <= U32_MAX:
             self.add(spec.key_lines.get("base_id", line),
-                     f"{what}: base_id must be an integer in 0..0xFFFFFFFF, got {base_id!r}", file)
+                     f"{what}: base_id must be an integer in 0..0xFFFFFFFF, got {base_id!r} — give a 32-bit base id", file)
             ok = False
         queue_size = spec.get("queue_size")
         queue_line = spec.key_lines.get("queue_size")
         if "queue_size" in spec and (not _is_int(queue_size) or not 1 <= queue_size <= 1_000_000):
-            self.add(queue_line, f"{what}: queue_size must be a positive integer (at most 1000000)", file)
+            self.add(queue_line, f"{what}: queue_size must be a positive integer (at most 1000000) — e.g. 10", file)
             ok = False
         if not ok:
             return None
@@ -434,12 +435,14 @@ class _Reader:
         for group, items in (groups or {}).items():
             gline = groups.key_lines.get(group)
             if not isinstance(items, YList):
-                self.add(gline, f"connection group '{group}' must be a list of 'a.b.out[i] -> c.d.in[j]'", file)
+                self.add(gline, f"connection group '{group}' must be a list — write one "
+                               f"'- Module.inst.outPort[i] -> Module.inst.inPort[j]' per line", file)
                 continue
             for text, iline in zip(items, items.item_lines):
                 if not isinstance(text, str) or text.count("->") != 1:
                     self.add(iline, f"connection {text!r} must look like "
-                                    f"'Module.inst.outPort[i] -> Module.inst.inPort[j]'", file)
+                                    f"'Module.inst.outPort[i] -> Module.inst.inPort[j]' — write one '->' between two "
+                                    f"port references", file)
                     continue
                 left, right = text.split("->")
                 src = self.endpoint(file, left, iline)
@@ -461,7 +464,7 @@ class _Reader:
         if isinstance(base, bool) or not isinstance(base, (int, float)) or not math.isfinite(base) \
                 or not 0 < base <= US_PER_S:
             self.add(section.key_lines.get("base_rate_hz", line),
-                     "'rate_groups.base_rate_hz' must be a positive number (Hz) of at most 1000000, e.g. 1000")
+                     "'rate_groups.base_rate_hz' must be a positive number (Hz) of at most 1000000 — e.g. 1000")
             return None
         base_period_us = round(US_PER_S / base)
         if base_period_us * base != US_PER_S:
@@ -471,7 +474,7 @@ class _Reader:
         driver = section.get("driver")
         if not isinstance(driver, str):
             self.add(section.key_lines.get("driver", line),
-                     "'rate_groups.driver' must name the RateGroupDriver instance (Module.instance)")
+                     "'rate_groups.driver' must name the RateGroupDriver instance — write Module.instance")
             return None
         groups = self.problems.expect_map(self.path, section.get("groups"), section.key_lines.get("groups", line),
                                           "'rate_groups.groups'")
@@ -489,22 +492,23 @@ class _Reader:
         if group is None:
             return None
         if not isinstance(name, str):
-            self.add(gline, f"rate group {name!r} must be named by its instance (Module.instance)")
+            self.add(gline, f"rate group {name!r} must be named by its instance — write Module.instance")
             return None
         self.problems.check_keys(self.path, group, GROUP_KEYS, f"rate group '{name}'")
         divisor, offset = group.get("divisor"), group.get("offset", 0)
         if not _is_int(divisor) or not 1 <= divisor <= U32_MAX:
             self.add(group.key_lines.get("divisor", gline),
-                     f"rate group '{name}': divisor must be a positive integer (base ticks per cycle)")
+                     f"rate group '{name}': divisor must be a positive integer (base ticks per cycle) — e.g. 20")
             return None
         if not _is_int(offset) or not 0 <= offset < divisor:
             self.add(group.key_lines.get("offset", gline),
-                     f"rate group '{name}': offset must be an integer in 0..{divisor - 1}")
+                     f"rate group '{name}': offset must be an integer in 0..{divisor - 1} — give the base tick of "
+                          f"the cycle on which it fires")
             return None
         members = group.get("members", YList())
         if not isinstance(members, YList):
             self.add(group.key_lines.get("members", gline),
-                     f"rate group '{name}': members must be a list of Module.instance.port")
+                     f"rate group '{name}': members must be a list — write one Module.instance.port per line")
             return None
         parsed = RateGroupConfig(name, gline, divisor, offset, base_period_us * divisor)
         for member, mline in zip(members, members.item_lines):
@@ -514,7 +518,7 @@ class _Reader:
                 context = member.get("context", 0)
                 member = member.get("port")
                 if not _is_int(context) or not 0 <= context <= U32_MAX:
-                    self.add(mline, f"rate group '{name}': member context must be a U32")
+                    self.add(mline, f"rate group '{name}': member context must be a U32 — give an integer in 0..4294967295")
                     continue
             parsed.members.append(MemberConfig(self.endpoint(self.path, member, mline), context, mline))
         return parsed
@@ -563,7 +567,8 @@ class _Reader:
         sline = startup.key_lines["sequence"]
         if not isinstance(sequencer, str):
             self.add(startup.key_lines.get("sequencer", line),
-                     f"'startup.sequencer' must name the sequencer instance, got {sequencer!r}")
+                     f"'startup.sequencer' must name the sequencer instance, got {sequencer!r} — write "
+                     f"Module.instance")
             return
         why = path_problem(sequence)
         if why is not None:

@@ -80,8 +80,8 @@ def wire_rate_groups(config: TopologyConfig, topology: Topology, scheduler: Sche
     if driver is None and problems.already_reported(cfg.driver):
         return None
     if driver is None or not isinstance(driver.component, RateGroupDriver):
-        problems.add(file, cfg.driver_line, f"rate group driver '{cfg.driver}' must be an instance of "
-                                            f"RateGroupDriver declared under 'modules'")
+        problems.add(file, cfg.driver_line, f"rate group driver '{cfg.driver}' must be a RateGroupDriver "
+                                            f"instance — declare one under 'modules' and name it here")
         return None
     wirer = _Wirer(topology, problems)
     for i, group in enumerate(cfg.groups):
@@ -90,7 +90,7 @@ def wire_rate_groups(config: TopologyConfig, topology: Topology, scheduler: Sche
             continue
         if instance is None or not isinstance(instance.component, (ActiveRateGroup, PassiveRateGroup)):
             problems.add(file, group.line, f"rate group '{group.name}' must be an ActiveRateGroup or "
-                                           f"PassiveRateGroup instance declared under 'modules'")
+                                           f"PassiveRateGroup instance — declare one under 'modules'")
             continue
         wirer.connect(file, group.line, (cfg.driver, "CycleOut", i), (group.name, "CycleIn", 0), "RateGroups")
         for j, member in enumerate(group.members):
