@@ -127,7 +127,13 @@ def _load(path: str, role_overrides: dict | None = None, scheduler_factory=None)
 
 
 def cmd_check(args) -> int:
+    from fprime_lite.deploy.flight_files import deployment_file_problems
+    from fprime_lite.deploy.topology import TopologyError
+
     loaded = _load(args.topology)
+    problems = deployment_file_problems(loaded)
+    if problems:
+        raise TopologyError(problems)
     topo = loaded.topology
     print(f"{args.topology}: OK — deployment {topo.deployment}: {len(topo.instances)} instances, "
           f"{len(topo.connections)} connections")

@@ -136,4 +136,5 @@ def check_startup(config: TopologyConfig, topology: Topology, problems: Problems
     if startup is not None and startup.sequencer not in topology.instances \
             and not problems.already_reported(startup.sequencer):
         problems.add(config.path, startup.sequencer_line,
-                     f"'startup.sequencer' must name the sequencer instance, got {startup.sequencer!r}")
+                     f"'startup.sequencer' must name the sequencer instance, got {startup.sequencer!r} — "
+                     f"name a CmdSequencer declared under 'modules'")
