@@ -21,14 +21,15 @@ import pathlib
 from fprime_lite.deploy.resources import topology_resource
 from fprime_lite.deploy.scheduler import Scheduler
 
+from detumble.control.coil_layout import COIL_FACES, FACE_LABELS
 from detumble.sim.scenario import Scenario, load_scenario
+from detumble.sim.truth import adcs_header, adcs_row
 from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthSample, scenario_epoch_us
 from detumble.components.types import DetumbleState, DetumbleStrategy
 
 __all__ = ["make_spacecraft", "DetumbleRunReport"]
 
 US_PER_S = 1_000_000
-_FACES = {0: "X+", 1: "X-", 2: "Y+", 3: "Y-", 5: "Z-"}
 _MAX_PLOT_POINTS = 4000
 
 
@@ -91,7 +92,8 @@ class DetumbleRunReport:
         self._writer = csv.writer(self._file, lineterminator="\n")
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
                                "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
-                               *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy"])
+                               *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy",
+                               *adcs_header(self.spacecraft.plant, with_field=False)])
         self._state_us = {s: 0 for s in DetumbleState}
         self._state_since = deployment.scheduler.now_us
         deployment.scheduler.add_time_listener(self._on_time)
@@ -109,14 +111,15 @@ class DetumbleRunReport:
         if self.time_below_1_deg_s is None and s.rate_deg_s < 1.0:
             self.time_below_1_deg_s = t
         w = s.omega_BN_B
-        levels = [s.coil_levels.get(f, 0) for f in _FACES]
+        levels = [s.coil_levels.get(f, 0) for f in COIL_FACES]
         strategy = getattr(self.manager, "strategy", None)
         total = sum(self._state_us.values())
         fractions = [self._state_us[st] / total if total else 0.0 for st in DetumbleState]
         self._state_us = {st: 0 for st in DetumbleState}
         self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
                                s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *levels,
-                               *(f"{f:.4f}" for f in fractions), strategy.name if strategy is not None else ""])
+                               *(f"{f:.4f}" for f in fractions), strategy.name if strategy is not None else "",
+                               *adcs_row(self.spacecraft.plant, with_field=False)])
 
     def on_event(self, event) -> None:
         """A downlinked event (``fprime_lite.ground.downlink.DecodedEvent``)."""
@@ -176,7 +179,7 @@ def _read_truth(path: pathlib.Path) -> dict[str, list]:
                     columns[name].append(value)
     for name in list(columns):
         if name != "strategy":
-            columns[name] = [float(v) for v in columns[name]]
+            columns[name] = [float(v) if v != "" else math.nan for v in columns[name]]
     return columns
 
 
@@ -224,8 +227,8 @@ def plot_run(truth_csv: pathlib.Path, out_dir: pathlib.Path, manager=None) -> li
     plt.close(fig)
 
     fig, ax = plt.subplots(figsize=(9, 4))
-    for column, label in (("level_xp", "X+"), ("level_xm", "X−"), ("level_yp", "Y+"), ("level_ym", "Y−"),
-                          ("level_zm", "Z−")):
+    for column, face in zip(("level_xp", "level_xm", "level_yp", "level_ym", "level_zm"), COIL_FACES):
+        label = FACE_LABELS[face]
         ax.step(tt, data[column], where="post", lw=0.8, label=label)
     ax.set_ylabel("drive level (−127…127)")
     ax.set_xlabel(f"time ({unit})")
