@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import os
 import pathlib
+from typing import Any, Callable, Iterable
 
 from fprime_lite.deploy.deployment import command_lookup
 from fprime_lite.deploy.topology import Topology
@@ -50,6 +51,16 @@ def _unreadable(path: pathlib.Path, what: str) -> str | None:
     return None
 
 
+def _by_id(topology: Topology, members: Callable[[Any], Iterable[tuple[int, str, Any]]]) -> dict[int, tuple]:
+    """Global id → (qualified member name, type) for ``members(spec)`` = (local id, name, type)."""
+    table = {}
+    for instance in topology.instances.values():
+        comp = instance.component
+        for local_id, name, what in members(comp.spec):
+            table[comp.base_id + local_id] = (f"{instance.qualified_name}.{name}", what)
+    return table
+
+
 def parameter_file_problems(path: str | os.PathLike, topology: Topology) -> list[str]:
     """Problems of the PrmDb file at ``path`` for ``topology`` (empty: it loads as written)."""
     path = pathlib.Path(path)
@@ -60,11 +71,7 @@ def parameter_file_problems(path: str | os.PathLike, topology: Topology) -> list
         records = decode_param_file(path.read_bytes()).records
     except (ParamFileError, OSError) as exc:
         return [f"{path}: not a valid parameter file: {exc} — write it with 'fprime-lite params' or PRM_SAVE_FILE"]
-    params = {}
-    for instance in topology.instances.values():
-        comp = instance.component
-        for decl in comp.spec.params:
-            params[comp.base_id + decl.local_id] = (f"{instance.qualified_name}.{decl.name}", decl.type)
+    params = _by_id(topology, lambda spec: ((p.local_id, p.name, p.type) for p in spec.params))
     problems = []
     for index, (prm_id, value) in enumerate(records):
         if prm_id not in params:
@@ -95,11 +102,7 @@ def sequence_file_problems(path: str | os.PathLike, topology: Topology) -> list[
         return [text if " — " in text else f"{text} — fix that line of the sequence"]
     except (SequenceFileError, OSError) as exc:
         return [f"{path}: not a valid sequence: {exc} — fix the file (text .seq, or binary from fprime-seqgen)"]
-    commands = {}
-    for instance in topology.instances.values():
-        comp = instance.component
-        for c in comp.spec.commands:
-            commands[comp.base_id + c.opcode] = (f"{instance.qualified_name}.{c.name}", c.arg_types)
+    commands = _by_id(topology, lambda spec: ((c.opcode, c.name, c.arg_types) for c in spec.commands))
     problems = []
     for index, record in enumerate(sequence.records):
         if record.descriptor == Descriptor.END_OF_SEQUENCE:

@@ -164,6 +164,13 @@ def test_unreadable_files(tmp_path):
         load_topology(big)
 
 
+@pytest.mark.skipif(not pathlib.Path("/proc/self/mem").exists(), reason="needs Linux /proc")
+def test_include_that_cannot_be_read(tmp_path):
+    """TOPO-ROB-021: an include that exists but cannot be read is reported at the line naming it."""
+    text = MINIMAL.replace("  Demo:\n", "  Other:\n    include: /proc/self/mem\n  Demo:\n")
+    refused(write(tmp_path, text), r"topology\.yaml:4: '/proc/self/mem': cannot read the file \(.*\) — ")
+
+
 def test_unusable_topology_path():
     """TOPO-ROB-015: the topology path itself may be over-long or contain NUL."""
     with pytest.raises(TopologyError, match="the topology path has a name of 300 characters"):

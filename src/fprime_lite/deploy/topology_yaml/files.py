@@ -14,7 +14,7 @@ import re
 import sys
 
 from fprime_lite.deploy.topology import TopologyError
-from fprime_lite.deploy.topology_yaml.parse import YMap, parse_yaml
+from fprime_lite.deploy.topology_yaml.parse import UnreadableFile, YMap, parse_yaml
 from fprime_lite.deploy.topology_yaml.problems import Problems
 
 __all__ = ["path_problem", "resolve_path", "is_file", "read_document", "TOP_KEYS"]
@@ -153,18 +153,28 @@ def _merge(base: YMap, over: YMap) -> YMap:
     return out
 
 
-def parse_into(path: pathlib.Path, problems: Problems) -> object:
-    """Parse ``path``; its problems go to ``problems`` (and None is returned)."""
+def parse_into(path: pathlib.Path, problems: Problems, named_at: tuple[pathlib.Path, int | None] | None = None,
+               ) -> object:
+    """Parse ``path``; its problems go to ``problems`` (and None is returned). A file that cannot
+    be read at all is reported at ``named_at`` (file, line), the key that names it, if given."""
     try:
         return parse_yaml(path)
+    except UnreadableFile as exc:
+        if named_at is None:
+            problems.extend(exc.problems)
+        else:
+            problems.add(named_at[0], named_at[1], f"'{path}': {exc.problem}")
+        return None
     except TopologyError as exc:
         problems.extend(exc.problems)
         return None
 
 
-def read_document(path: pathlib.Path, problems: Problems, chain: tuple = ()) -> YMap | None:
-    """Parse ``path``; if it ``extends`` a base topology, merge it onto that base."""
-    parsed = parse_into(path, problems)
+def read_document(path: pathlib.Path, problems: Problems, chain: tuple = (),
+                  named_at: tuple[pathlib.Path, int | None] | None = None) -> YMap | None:
+    """Parse ``path``; if it ``extends`` a base topology, merge it onto that base. ``named_at``:
+    the 'extends' key that names ``path``, if any."""
+    parsed = parse_into(path, problems, named_at)
     if parsed is None and len(problems):
         return None
     doc = problems.expect_map(path, parsed, 1, "the topology file")
@@ -190,6 +200,6 @@ def read_document(path: pathlib.Path, problems: Problems, chain: tuple = ()) -> 
         problems.add(path, line, f"base topology '{target}' not found (looked for {base_path}) — give a path "
                                  f"relative to this file, or package:path")
         return doc
-    base = read_document(base_path, problems, chain + (here,))
+    base = read_document(base_path, problems, chain + (here,), (path, line))
     return doc if base is None else _merge(base, doc)
 

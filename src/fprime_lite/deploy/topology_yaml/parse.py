@@ -25,7 +25,7 @@ import yaml
 
 from fprime_lite.deploy.topology import TopologyError
 
-__all__ = ["Loc", "YMap", "YList", "parse_yaml", "kind", "MAX_FILE_BYTES", "MAX_DEPTH", "MAX_VALUES"]
+__all__ = ["Loc", "YMap", "YList", "parse_yaml", "UnreadableFile", "kind", "MAX_FILE_BYTES", "MAX_DEPTH", "MAX_VALUES"]
 
 #: Largest topology (or included) file read, in bytes; the reference deployment is ~6 kB.
 MAX_FILE_BYTES = 1 << 20
@@ -218,6 +218,16 @@ def _line_of(text: str, index: int) -> int:
     return text.count("\n", 0, max(0, index)) + 1
 
 
+class UnreadableFile(TopologyError):
+    """A file that cannot be read at all (``problem`` has no line: the caller may place it at the
+    line that names the file)."""
+
+    def __init__(self, path: pathlib.Path, problem: str):
+        self.path = path
+        self.problem = problem
+        super().__init__([f"{path}: {problem}"])
+
+
 def read_text(path: pathlib.Path) -> str:
     """The text of a topology file; TopologyError if it cannot be read or is not UTF-8 text."""
     try:
@@ -225,10 +235,10 @@ def read_text(path: pathlib.Path) -> str:
             data = f.read(MAX_FILE_BYTES + 1)
     except (OSError, ValueError) as exc:
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        raise TopologyError([f"{path}: cannot read the file ({reason}) — give a readable topology file"]) from None
+        raise UnreadableFile(path, f"cannot read the file ({reason}) — give a readable topology file") from None
     if len(data) > MAX_FILE_BYTES:
-        raise TopologyError([f"{path}: the file is larger than {MAX_FILE_BYTES} bytes — a topology is a few "
-                             f"kilobytes; is this the right file?"])
+        raise UnreadableFile(path, f"the file is larger than {MAX_FILE_BYTES} bytes — a topology is a few "
+                                   f"kilobytes; is this the right file?")
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:

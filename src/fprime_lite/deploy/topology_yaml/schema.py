@@ -261,6 +261,18 @@ class _Reader:
                 ok = False
         return dict(value) if ok else None
 
+    def existing_file(self, value: Any, line: int | None, key: str, what: str, fix: str) -> pathlib.Path | None:
+        """The file ``value`` names (relative to the topology, or package:path), or None (reported)."""
+        why = path_problem(value)
+        if why is not None:
+            self.add(line, f"{key} {why}")
+            return None
+        path = resolve_path(value, self.base_dir)
+        if not is_file(path):
+            self.add(line, f"{what} '{value}' not found (looked for {path}) — {fix}")
+            return None
+        return path
+
     # --- sections ---
 
     def read(self, doc: YMap) -> TopologyConfig:
@@ -373,18 +385,12 @@ class _Reader:
         return out
 
     def include(self, module: YMap, module_name: str, declared: dict, config: TopologyConfig) -> None:
-        line = module.key_lines.get("include")
-        target = module["include"]
-        why = path_problem(target)
-        if why is not None:
-            self.add(line, f"module '{module_name}': 'include' {why}")
+        path = self.existing_file(module["include"], module.key_lines.get("include"),
+                                  f"module '{module_name}': 'include'", f"module '{module_name}': include file",
+                                  "give a path relative to the topology file, or package:path")
+        if path is None:
             return
-        path = resolve_path(target, self.base_dir)
-        if not is_file(path):
-            self.add(line, f"module '{module_name}': include file '{target}' not found (looked for {path}) — give a "
-                           f"path relative to the topology file, or package:path")
-            return
-        doc = parse_into(path, self.problems)
+        doc = parse_into(path, self.problems, (self.path, module.key_lines.get("include")))
         if doc is None and len(self.problems):
             return
         doc = self.problems.expect_map(path, doc, 1, "an included subtopology")
@@ -570,14 +576,9 @@ class _Reader:
                      f"'startup.sequencer' must name the sequencer instance, got {sequencer!r} — write "
                      f"Module.instance")
             return
-        why = path_problem(sequence)
-        if why is not None:
-            self.add(sline, f"'startup.sequence' {why}")
-            return
-        path = resolve_path(sequence, self.base_dir)
-        if not is_file(path):
-            self.add(sline, f"start-up sequence '{sequence}' not found (looked for {path}) — give a path relative to "
-                            f"the topology file")
+        path = self.existing_file(sequence, sline, "'startup.sequence'", "start-up sequence",
+                                  "give a path relative to the topology file")
+        if path is None:
             return
         config.startup = StartupConfig(sequencer, startup.key_lines.get("sequencer", line), path, sequence, sline)
 
