@@ -119,8 +119,10 @@ def _version() -> str:
 def _load(path: str, role_overrides: dict | None = None, scheduler_factory=None):
     from fprime_lite.deploy.topology_loader import load_topology
 
+    from fprime_lite.deploy.topology_yaml.files import is_file, path_problem
+
     p = pathlib.Path(path)
-    if not p.exists():
+    if path_problem(path) is None and not is_file(p):
         raise UserError(f"{path}: no such topology file — give the path of a topology YAML file "
                         f"(the reference deployment is deployments/proves_ref/topology.yaml)")
     return load_topology(p, scheduler_factory=scheduler_factory, role_overrides=role_overrides)

@@ -9,7 +9,7 @@ import shutil
 import pytest
 
 from fprime_lite.deploy.topology_loader import TopologyError, load_topology
-from fprime_lite.deploy.topology_yaml.parse import MAX_DEPTH, MAX_VALUES
+from fprime_lite.deploy.topology_yaml.parse import MAX_DEPTH, MAX_FILE_BYTES, MAX_VALUES
 
 REF_DIR = pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref"
 
@@ -26,6 +26,18 @@ rate_groups:
   groups:
     Demo.rg: {divisor: 1}
 """
+
+
+@pytest.fixture(autouse=True, params=["libyaml", "python"])
+def yaml_engine(request, monkeypatch):
+    """Every case runs with libyaml (when PyYAML has it) and with PyYAML's pure-Python parser."""
+    from fprime_lite.deploy.topology_yaml import parse
+
+    if request.param == "python":
+        monkeypatch.setattr(parse, "_FAST_LOADER", None)
+    elif parse._FAST_LOADER is None:
+        pytest.skip("PyYAML without libyaml")
+    return request.param
 
 
 def write(folder: pathlib.Path, data, name="topology.yaml") -> pathlib.Path:
@@ -142,6 +154,12 @@ def test_alias_bomb(tmp_path):
     refused(write(tmp_path, text), rf"topology\.yaml:\d+: the document expands to more than {MAX_VALUES} values")
 
 
+def test_too_many_values_without_aliases(tmp_path):
+    """TOPO-ROB-023: a large flat document is refused while it is composed, not after."""
+    text = MINIMAL + "time: [" + ",".join(["0"] * (MAX_VALUES + 10)) + "]\n"
+    refused(write(tmp_path, text), rf"topology\.yaml:12: the document expands to more than {MAX_VALUES} values")
+
+
 def test_duplicate_key(tmp_path):
     """TOPO-ROB-012: a key given twice is named, with the first line, instead of silently dropped."""
     text = MINIMAL.replace("deployment: Demo\n", "deployment: Demo\ndeployment: Other\n")
@@ -159,8 +177,8 @@ def test_unreadable_files(tmp_path):
     (tmp_path / "dir.yaml").mkdir()
     text = MINIMAL.replace("  Demo:\n", "  Other:\n    include: dir.yaml\n  Demo:\n")
     refused(write(tmp_path, text), r"include file 'dir\.yaml' not found")
-    big = write(tmp_path, MINIMAL + "#" * (1 << 20), name="big.yaml")
-    with pytest.raises(TopologyError, match=r"big\.yaml: the file is larger than 1048576 bytes — "):
+    big = write(tmp_path, MINIMAL + "#" * MAX_FILE_BYTES, name="big.yaml")
+    with pytest.raises(TopologyError, match=rf"big\.yaml: the file is larger than {MAX_FILE_BYTES} bytes — "):
         load_topology(big)
 
 
@@ -231,3 +249,29 @@ def test_loading_writes_nothing(tmp_path, monkeypatch):
     load_topology(tmp_path / "dep" / "topology.yaml")
     assert sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*")) == before
     assert os.listdir(tmp_path) == ["dep"]
+
+
+def test_check_runs_nothing_and_says_why(tmp_path, monkeypatch, capsys):
+    """TOPO-ROB-022: 'fprime-lite check' on the os.system topology of issue #16 exits non-zero with
+    the located reason, and the command never runs; an over-long topology path is a message too."""
+    from fprime_lite.tools.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    path = write(tmp_path, MINIMAL + 'resources:\n  x: {type: os.system, args: {command: "id > ran.txt"}}\n')
+    assert main(["check", str(path)]) != 0
+    assert f"{path}:13: resource 'x': type 'os.system' is in the Python standard library" in capsys.readouterr().err
+    assert not (tmp_path / "ran.txt").exists()
+    assert main(["check", "x" * 300]) != 0
+    assert "the topology path has a name of 300 characters" in capsys.readouterr().err
+
+
+def test_thousands_of_mistakes_are_summarised(tmp_path):
+    """TOPO-ROB-024: 20 000 unknown keys give the first problems and one summary line, not 20 000
+    messages (each with a spelling suggestion to compute)."""
+    from fprime_lite.deploy.topology_yaml.parse import MAX_PROBLEMS
+
+    text = MINIMAL + "".join(f"k{i}: {i}\n" for i in range(20000))
+    problems = refused(write(tmp_path, text), r"topology\.yaml:12: unknown key 'k0' in the topology file")
+    assert len(problems) == MAX_PROBLEMS + 1
+    assert re.search(rf"topology\.yaml:{12 + MAX_PROBLEMS}: {20000 - MAX_PROBLEMS} more problem\(s\) not shown — ",
+                     problems[-1])

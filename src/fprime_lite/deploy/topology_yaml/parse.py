@@ -28,11 +28,13 @@ from fprime_lite.deploy.topology import TopologyError
 __all__ = ["Loc", "YMap", "YList", "parse_yaml", "UnreadableFile", "kind", "MAX_FILE_BYTES", "MAX_DEPTH", "MAX_VALUES"]
 
 #: Largest topology (or included) file read, in bytes; the reference deployment is ~6 kB.
-MAX_FILE_BYTES = 1 << 20
+MAX_FILE_BYTES = 256 << 10
 #: Deepest nesting of mappings and lists; a topology needs 6.
 MAX_DEPTH = 64
 #: Most values (mappings, lists, scalars) a document may expand to once aliases are followed.
 MAX_VALUES = 50_000
+#: Problems of one file listed in full (the others are summarised in one line).
+MAX_PROBLEMS = 50
 
 _MAP_TAG = "tag:yaml.org,2002:map"
 _SEQ_TAG = "tag:yaml.org,2002:seq"
@@ -75,6 +77,10 @@ class YList(list):
         self.item_lines: list = list(item_lines or [])
 
 
+_TOO_MANY = (f"the document expands to more than {MAX_VALUES} values (each alias counted as a copy) — a "
+             f"topology needs a few hundred; remove repeated aliases or split the file")
+
+
 class _Refused(Exception):
     """A document refused while converting; ``line`` is 1-based."""
 
@@ -85,7 +91,8 @@ class _Refused(Exception):
 
 
 class _BoundedLoader(yaml.SafeLoader):
-    """SafeLoader whose composer refuses nesting deeper than :data:`MAX_DEPTH`.
+    """SafeLoader whose composer refuses nesting deeper than :data:`MAX_DEPTH` and documents of
+    more than :data:`MAX_VALUES` nodes (used when PyYAML has no libyaml).
 
     PyYAML composes recursively, so a 500-deep document would otherwise end in RecursionError.
     """
@@ -93,14 +100,19 @@ class _BoundedLoader(yaml.SafeLoader):
     def __init__(self, stream: str):
         super().__init__(stream)
         self._depth = 0
+        self._nodes = 0
 
     def compose_node(self, parent, index):  # noqa: ANN001 - PyYAML's signature
         self._depth += 1
+        self._nodes += 1
         try:
             if self._depth > MAX_DEPTH:
                 mark = self.peek_event().start_mark
                 raise _Refused(mark.line + 1, f"nesting deeper than {MAX_DEPTH} levels — a topology needs a "
                                               f"handful; flatten the document")
+            if self._nodes > MAX_VALUES:
+                mark = self.peek_event().start_mark
+                raise _Refused(mark.line + 1, _TOO_MANY)
             return super().compose_node(parent, index)
         finally:
             self._depth -= 1
@@ -122,9 +134,7 @@ class _Converter:
     def convert(self, node: yaml.Node, depth: int = 1) -> Any:
         self.budget -= 1
         if self.budget < 0:
-            raise _Refused(node.start_mark.line + 1,
-                           f"the document expands to more than {MAX_VALUES} values (aliases repeating "
-                           f"aliases?) — write the topology without nested aliases")
+            raise _Refused(node.start_mark.line + 1, _TOO_MANY)
         if depth > MAX_DEPTH:
             raise _Refused(node.start_mark.line + 1,
                            f"nesting deeper than {MAX_DEPTH} levels once aliases are followed — flatten the "
@@ -160,7 +170,11 @@ class _Converter:
         return None
 
     def refuse(self, node: yaml.Node, message: str) -> None:
-        self.problems.append(f"{self.path}:{node.start_mark.line + 1}: {message}")
+        if len(self.problems) < MAX_PROBLEMS:
+            self.problems.append(f"{self.path}:{node.start_mark.line + 1}: {message}")
+        elif len(self.problems) == MAX_PROBLEMS:
+            self.problems.append(f"{self.path}:{node.start_mark.line + 1}: more problems of this kind not shown — fix "
+                                 f"the ones above first")
 
     def check_tag(self, node: yaml.Node, expected: str, what: str) -> None:
         if node.tag != expected:
@@ -252,12 +266,45 @@ def read_text(path: pathlib.Path) -> str:
     return text
 
 
+#: libyaml's SafeLoader when PyYAML was built with it (ten times faster), else None.
+_FAST_LOADER = getattr(yaml, "CSafeLoader", None)
+
+
+def _check_shape(text: str) -> None:
+    """Refuse excessive nesting or size from libyaml's event stream (a loop, no recursion), so
+    that composing afterwards, which recurses, stays shallow and short."""
+    depth = nodes = 0
+    for event in yaml.parse(text, Loader=_FAST_LOADER):
+        if isinstance(event, yaml.CollectionStartEvent):
+            depth += 1
+            nodes += 1
+            if depth > MAX_DEPTH:
+                raise _Refused(event.start_mark.line + 1, f"nesting deeper than {MAX_DEPTH} levels — a topology "
+                                                          f"needs a handful; flatten the document")
+        elif isinstance(event, yaml.CollectionEndEvent):
+            depth -= 1
+        elif isinstance(event, (yaml.ScalarEvent, yaml.AliasEvent)):
+            nodes += 1
+        if nodes > MAX_VALUES:
+            raise _Refused(event.start_mark.line + 1, _TOO_MANY)
+
+
+def _reader_error_line(text: str, exc: yaml.reader.ReaderError) -> int:
+    if _FAST_LOADER is not None:  # libyaml counts bytes of the UTF-8 text
+        return text.encode("utf-8", "surrogatepass").count(b"\n", 0, max(0, exc.position)) + 1
+    return _line_of(text, exc.position)
+
+
 def parse_yaml(path: pathlib.Path) -> Any:
     """Parse ``path`` safely into YMap/YList values that carry line numbers (None if empty)."""
     text = read_text(path)
     loader = None
     try:
-        loader = _BoundedLoader(text)
+        if _FAST_LOADER is not None:
+            _check_shape(text)
+            loader = _FAST_LOADER(text)
+        else:
+            loader = _BoundedLoader(text)
         node = loader.get_single_node()
         if node is None:
             return None
@@ -269,7 +316,7 @@ def parse_yaml(path: pathlib.Path) -> Any:
     except _Refused as exc:
         raise TopologyError([f"{path}:{exc.line}: {exc.message}"]) from None
     except yaml.reader.ReaderError as exc:
-        line = _line_of(text, exc.position)
+        line = _reader_error_line(text, exc)
         char = chr(exc.character) if isinstance(exc.character, int) else exc.character
         raise TopologyError([f"{path}:{line}: character {char!r} is not allowed in YAML — remove it"]) from None
     except yaml.YAMLError as exc:

@@ -12,9 +12,10 @@ import pathlib
 from typing import Any, Iterable
 
 from fprime_lite.deploy.topology import TopologyError
-from fprime_lite.deploy.topology_yaml.parse import Loc, YMap, kind
+from fprime_lite.deploy.topology_yaml.parse import MAX_PROBLEMS, Loc, YMap, kind
 
-__all__ = ["Problems"]
+__all__ = ["Problems", "MAX_PROBLEMS"]
+
 
 
 class Problems:
@@ -28,17 +29,32 @@ class Problems:
         self.failed_instances: set[str] = set()
         #: Modules whose include could not be read.
         self.failed_modules: set[str] = set()
+        #: Problems past MAX_PROBLEMS, counted only.
+        self.not_shown = 0
+        self._first_not_shown = ""
 
     def __len__(self) -> int:
-        return len(self.items)
+        return len(self.items) + self.not_shown
 
     def add(self, file: pathlib.Path, line: int | None, message: str) -> None:
         if isinstance(line, Loc):
             file = line.file  # the value came from this file (an included or extended one)
+        if len(self.items) >= MAX_PROBLEMS:
+            self.not_shown += 1
+            if self.not_shown == 1:
+                self._first_not_shown = f"{file}:{line if line is not None else '?'}"
+            return
         self.items.append(f"{file}:{line if line is not None else '?'}: {message}")
 
     def extend(self, problems: Iterable[str]) -> None:
-        self.items.extend(problems)
+        """Add problems already located (``file:line: …``), e.g. those of a parsed file."""
+        for problem in problems:
+            if len(self.items) < MAX_PROBLEMS:
+                self.items.append(problem)
+            else:
+                self.not_shown += 1
+                if self.not_shown == 1:
+                    self._first_not_shown = problem.split(": ", 1)[0]
 
     def check_keys(self, file: pathlib.Path, mapping: YMap, allowed: Iterable[str], what: str) -> None:
         allowed = sorted(allowed)
@@ -60,6 +76,9 @@ class Problems:
         return qualified in self.failed_instances or qualified.split(".", 1)[0] in self.failed_modules
 
     def raise_if_any(self) -> None:
+        if self.not_shown:
+            raise TopologyError(self.items + [f"{self._first_not_shown}: {self.not_shown} more problem(s) not shown "
+                                              f"— fix the ones above first"])
         if self.items:
             raise TopologyError(self.items)
 
