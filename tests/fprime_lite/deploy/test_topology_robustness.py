@@ -172,6 +172,13 @@ def test_number_too_long_to_read(tmp_path):
     refused(write(tmp_path, text), r"topology\.yaml:6: value '9{40}…' cannot be read")
 
 
+def test_hex_integer_too_wide_to_print(tmp_path):
+    """TOPO-ROB-025: a 5000-digit hex integer converts, but its decimal form raised ValueError in the
+    messages that show it (found by the long fuzz campaign); it is refused where it is written."""
+    text = MINIMAL.replace("base_id: 0x200", "base_id: 0x" + "f" * 5000)
+    refused(write(tmp_path, text), r"topology\.yaml:6: integer '0xf{38}…' has more than 128 bits — ")
+
+
 def test_unreadable_files(tmp_path):
     """TOPO-ROB-014: a folder given as include, and an oversize file, are messages."""
     (tmp_path / "dir.yaml").mkdir()

@@ -33,6 +33,8 @@ MAX_FILE_BYTES = 256 << 10
 MAX_DEPTH = 64
 #: Most values (mappings, lists, scalars) a document may expand to once aliases are followed.
 MAX_VALUES = 50_000
+#: Widest integer accepted (a topology's ids, sizes and times fit 64 bits).
+MAX_INT_BITS = 128
 #: Problems of one file listed in full (the others are summarised in one line).
 MAX_PROBLEMS = 50
 
@@ -161,13 +163,20 @@ class _Converter:
                               f"(text, numbers, booleans, null); remove the tag")
             return None
         try:
-            return self.loader.construct_object(node, deep=True)
+            value = self.loader.construct_object(node, deep=True)
         except yaml.constructor.ConstructorError as exc:
             self.refuse(node, f"{exc.problem or exc} — write a plain value")
+            return None
         except (ValueError, OverflowError, TypeError) as exc:
             self.refuse(node, f"value {_short(node.value)!r} cannot be read ({exc}) — write a plain "
                               f"number or quote it")
-        return None
+            return None
+        if isinstance(value, int) and value.bit_length() > MAX_INT_BITS:
+            # (a hex literal of any length converts; its decimal form would not even print)
+            self.refuse(node, f"integer {_short(node.value)!r} has more than {MAX_INT_BITS} bits — a topology's "
+                              f"numbers (ids, sizes, times) fit in 64 bits")
+            return None
+        return value
 
     def refuse(self, node: yaml.Node, message: str) -> None:
         if len(self.problems) < MAX_PROBLEMS:

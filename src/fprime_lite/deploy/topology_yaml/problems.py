@@ -60,6 +60,9 @@ class Problems:
         allowed = sorted(allowed)
         for key in mapping:
             if key not in allowed:
+                if len(self.items) >= MAX_PROBLEMS:  # counted only: spare the suggestion
+                    self.add(file, mapping.key_lines.get(key), "")
+                    continue
                 guess = difflib.get_close_matches(str(key), allowed, n=1)
                 hint = f"did you mean '{guess[0]}'?" if guess else f"allowed keys: {', '.join(allowed)}"
                 self.add(file, mapping.key_lines.get(key), f"unknown key {_key(key)} in {what} — {hint}")
