@@ -126,7 +126,7 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
         "steps": n_steps,
         "sim_seconds": plant.t,
         "wall_seconds": wall,
-        "realtime_factor": plant.t / wall if wall > 0 else None,
+        "real_time_factor": plant.t / wall if wall > 0 else None,  # the key fprime-lite run writes
         "initial_rate_deg_s": rows[0][4],
         "final_rate_deg_s": plant.rate_deg_s,
         "time_below_1_deg_s": t_below,
@@ -140,6 +140,7 @@ def write_atomic(path: str, text: str) -> None:
     folder = os.path.dirname(os.path.abspath(path))
     fd, tmp = tempfile.mkstemp(prefix=".tmp-", dir=folder)
     try:
+        os.chmod(tmp, _new_file_mode(path))  # mkstemp makes 0600; a result file gets the usual mode
         with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
             fh.write(text)
             fh.flush()
@@ -149,6 +150,16 @@ def write_atomic(path: str, text: str) -> None:
         if os.path.exists(tmp):
             os.unlink(tmp)
         raise
+
+
+def _new_file_mode(path: str) -> int:
+    """An existing file's permissions, else ``0o666 & ~umask`` (what ``open()`` would give)."""
+    try:
+        return os.stat(path).st_mode & 0o7777
+    except FileNotFoundError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask
 
 
 def write_outputs(result: RunResult, out_dir: str) -> None:
@@ -212,7 +223,7 @@ def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim") ->
     s = result.summary
     below = s["time_below_1_deg_s"]
     print(f"{s['scenario']}: law {s['law']}, {s['sim_seconds']:.0f} s simulated in {s['wall_seconds']:.1f} s "
-          f"({s['realtime_factor']:.0f}x real time); final rate {s['final_rate_deg_s']:.3f} deg/s; "
+          f"({s['real_time_factor']:.0f}x real time); final rate {s['final_rate_deg_s']:.3f} deg/s; "
           f"|w| < 1 deg/s at {'never' if below is None else f'{below:.1f} s'}; wrote {args.out}")
     return 0
 

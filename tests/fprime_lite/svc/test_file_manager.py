@@ -79,7 +79,7 @@ def test_commands_events_and_channels_have_fprime_ids(fprime_harness, tmp_path):
     assert args["ShellCommand"] == [("command", "string", 256), ("logFileName", "string", 256)]
     assert args["ListDirectory"] == [("dirName", "string", 200)]
     assert args["CalculateCrc"] == [("filename", "string", 200)]
-    events = {e.name: (e.local_id, e.severity) for e in comp.spec.events}
+    events = {e.name: (e.local_id, e.severity) for e in comp.spec.own_events}
     assert len(events) == 30
     assert events["DirectoryCreateError"] == (0x00, Severity.WARNING_HI)
     assert events["ShellCommandFailed"] == (0x04, Severity.WARNING_HI)
@@ -90,7 +90,7 @@ def test_commands_events_and_channels_have_fprime_ids(fprime_harness, tmp_path):
     assert events["CalculateCrcSucceeded"] == (0x1C, Severity.ACTIVITY_HI)
     assert events["FileNameFormatError"] == (0x1D, Severity.WARNING_HI)
     assert sorted(local_id for local_id, _ in events.values()) == list(range(0x1E))
-    assert {c.name: c.local_id for c in comp.spec.channels} == {"CommandsExecuted": 0, "Errors": 1}
+    assert {c.name: c.local_id for c in comp.spec.own_channels} == {"CommandsExecuted": 0, "Errors": 1}
     assert comp.name == "fileManager"
 
 
