@@ -37,7 +37,7 @@ TARGETS = [("topology.yaml", "topology.yaml"),
 HOSTILE = [
     "", "~", "null", "[]", "{}", "[1, 2]", "{a: 1}", "0", "-1", "1e400", ".nan", "-.inf", "0x100000000", "true",
     "9" * 5000, "0x" + "f" * 5000, "x" * 300, '"a\\0b"', '"\\x07"', "'$nope'", "$clock", "$spacecraft", "$topology_dir",
-    "os.system", "subprocess.run", "antigravity.x", "detumble.sitl.run_support.plot_run",
+    "os.system", "subprocess.run", "antigravity.x", "detumble.sim.scenario.load_scenario",
     "fprime_lite.svc.health.Health", "fprime_lite.deploy.resources.topology_resource",
     "fprime_lite.svc.rate_groups.__class__", "!!python/name:os.system", "!!python/object/apply:os.system [id]",
     "!!binary aGVsbG8=", "!!set {a: null}", "!!omap [a: 1]", "&a [*a]", "*undefined", "&x {<<: *x}",
