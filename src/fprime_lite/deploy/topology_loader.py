@@ -71,8 +71,8 @@ def load_topology(path, overrides: dict | None = None, *, scheduler_factory: Cal
         path = path.resolve()
     problems = Problems()
     doc = read_document(path, problems)
-    if doc is None:
-        problems.raise_if_any()
+    if doc is None:  # the reason is among the problems
+        raise problems.error()
     config = read_config(doc, path, problems)
     if "modules" not in doc:
         problems.raise_if_any()

@@ -98,6 +98,7 @@ class _Args:
     def __init__(self, resources: dict[str, Any], problems: Problems):
         self.resources = resources
         self.problems = problems
+        self.ok = True  # the last resolve() found every reference
 
     def resolve(self, file: pathlib.Path, args: dict[str, Any], line_of: Callable[[str], int | None],
                 what: str) -> dict[str, Any] | None:

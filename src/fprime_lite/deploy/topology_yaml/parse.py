@@ -330,9 +330,9 @@ def parse_yaml(path: pathlib.Path) -> Any:
         raise TopologyError([f"{path}:{line}: character {char!r} is not allowed in YAML — remove it"]) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
-        line = f"{mark.line + 1}" if mark is not None else "?"
+        where = f"{mark.line + 1}" if mark is not None else "?"
         problem = getattr(exc, "problem", None) or str(exc)
-        raise TopologyError([f"{path}:{line}: invalid YAML: {problem} — fix the syntax"]) from None
+        raise TopologyError([f"{path}:{where}: invalid YAML: {problem} — fix the syntax"]) from None
     finally:
         if loader is not None:
             loader.dispose()

@@ -78,12 +78,16 @@ class Problems:
         """The instance failed to build, or its module's include failed: said once already."""
         return qualified in self.failed_instances or qualified.split(".", 1)[0] in self.failed_modules
 
-    def raise_if_any(self) -> None:
+    def error(self) -> TopologyError:
+        """The problems so far as one error (the ones past MAX_PROBLEMS summarised)."""
         if self.not_shown:
-            raise TopologyError(self.items + [f"{self._first_not_shown}: {self.not_shown} more problem(s) not shown "
-                                              f"— fix the ones above first"])
-        if self.items:
-            raise TopologyError(self.items)
+            return TopologyError(self.items + [f"{self._first_not_shown}: {self.not_shown} more problem(s) not "
+                                               f"shown — fix the ones above first"])
+        return TopologyError(self.items)
+
+    def raise_if_any(self) -> None:
+        if len(self):
+            raise self.error()
 
 
 def _key(key: Any) -> str:

@@ -326,8 +326,10 @@ class _Reader:
         if section is None:
             return []
         section = self.problems.expect_map(self.path, section, doc.key_lines.get("resources"), "'resources'")
-        out = []
-        for name, spec in (section or {}).items():
+        out: list[ResourceConfig] = []
+        if section is None:
+            return out
+        for name, spec in section.items():
             line = section.key_lines.get(name)
             if not isinstance(name, str) or not name.isidentifier():
                 self.add(line, f"resource name {name!r} must be an identifier — rename it (instances refer to it as $name)")
@@ -369,10 +371,11 @@ class _Reader:
                     self.problems.failed_modules.add(module_name)
             instances = module.get("instances")
             if instances is not None:
-                instances = self.problems.expect_map(self.path, instances, module.key_lines.get("instances"),
-                                                     f"instances of module '{module_name}'")
-                for name, spec in (instances or {}).items():
-                    declared[name] = (self.path, instances, spec)
+                checked = self.problems.expect_map(self.path, instances, module.key_lines.get("instances"),
+                                                   f"instances of module '{module_name}'")
+                if checked is not None:
+                    for name, spec in checked.items():
+                        declared[name] = (self.path, checked, spec)
             parsed = ModuleConfig(module_name, mline)
             for name, (file, container, spec) in declared.items():
                 before = len(self.problems)
@@ -430,7 +433,7 @@ class _Reader:
         if "queue_size" in spec and (not _is_int(queue_size) or not 1 <= queue_size <= 1_000_000):
             self.add(queue_line, f"{what}: queue_size must be a positive integer (at most 1000000) — e.g. 10", file)
             ok = False
-        if not ok:
+        if not ok or type_path is None or args is None:
             return None
         return InstanceConfig(module, name, file, line, type_path, spec.key_lines.get("type", line), base_id,
                               args, args_line, _key_lines(spec.get("args")), queue_size, queue_line)
