@@ -213,10 +213,11 @@ def _build_instance(spec: InstanceConfig, config: TopologyConfig, topology: Topo
         problems.add(spec.file, spec.line, f"{what}: {cls.__name__} raised while being created: {exc} — check its args")
         return False
     try:
-        topology.add(spec.module, component, where=spec.where)
+        instance = topology.add(spec.module, component, where=spec.where)
     except PortConnectionError as exc:
         problems.add(spec.file, spec.line, str(exc))
         return False
+    instance.init_kwargs = dict(kwargs)  # for Deployment.restart_software
     return True
 
 
