@@ -91,6 +91,8 @@ class Plant:
         self._gravity_gradient = sc.spacecraft.gravity_gradient
         self.magnetometer = Magnetometer(sc.magnetometer, _derive_seed(self.seed, 1))
         self.gyro = Gyro(sc.gyro, _derive_seed(self.seed, 2))
+        self._mag_samples = not self.magnetometer.spec.ideal  # an ideal sensor never latches
+        self._gyro_samples = not self.gyro.spec.ideal
         q0 = tuple(sc.q_BN0)
         if sc.attitude_frame == "orbit":
             q0 = quat_normalize(frames.q_BN_from_orbit(q0, frames.q_ON(self.orbit, 0.0)))  # type: ignore[arg-type]
@@ -164,12 +166,19 @@ class Plant:
         self._state = s1
         self._t_ns = t1
         self._update_environment()
-        mag = self.magnetometer
-        if not mag.spec.ideal and mag.latest_instant(t0, t1) is not None:
-            mag.latch(t0, t1, rotate_n_to_b(s0[:4], b0_N), rotate_n_to_b(s1[:4], self._b_N), m_coils)
-        gyro = self.gyro
-        if not gyro.spec.ideal and gyro.latest_instant(t0, t1) is not None:
-            gyro.latch(t0, t1, s0[4:7], s1[4:7])
+        # The sensors' samples due in (t0, t1] are only recorded here; each is computed when read.
+        if self._mag_samples:
+            mag = self.magnetometer
+            period = mag.period_ns
+            tk = t1 // period * period
+            if tk > t0:
+                mag.defer(t0, t1, tk, s0, s1, b0_N, self._b_N, m_coils)
+        if self._gyro_samples:
+            gyro = self.gyro
+            period = gyro.period_ns
+            tk = t1 // period * period
+            if tk > t0:
+                gyro.defer(t0, t1, tk, s0, s1)
         st = self.star_tracker
         if st is not None and not st.spec.ideal and st.latest_instant(t0, t1) is not None:
             st.latch(t0, t1, s0, s1)
