@@ -140,6 +140,10 @@ class Plant:
             if dt_ns == 0:
                 return
             raise ValueError(f"cannot step backwards (dt = {dt} s)")
+        self.step_ns(dt_ns)
+
+    def step_ns(self, dt_ns: int) -> None:
+        """Advance the plant by ``dt_ns`` > 0 nanoseconds (what :meth:`step` does after rounding)."""
         dt = dt_ns * 1e-9
         t0 = self._t_ns
         t1 = t0 + dt_ns

@@ -192,7 +192,7 @@ class SimulatedSpacecraft:
                 nxt = target
             if trace_next is not None and trace_next < nxt:
                 nxt = trace_next
-            plant.step((nxt - now) * 1e-9)
+            plant.step_ns(nxt - now)  # nxt > now: the plant's own ns step, no float round trip
             self.steps_taken += 1
             now = plant.t_ns
             if now != nxt:  # pragma: no cover - guards the ns rounding in Plant.step
