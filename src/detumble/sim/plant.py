@@ -84,6 +84,7 @@ class Plant:
             self.actuators = CoilSet(sc.spacecraft.coils)
         self._scale_dipole = sc.spacecraft.actuator_saturation == "scale"
         self.m_commanded_B: Vec3 = _ZERO
+        self._commanded_from_levels: Vec3 | None = None  # m_commanded_B as set_coil_level last computed it
         st = sc.star_tracker
         self.star_tracker: StarTracker | None = StarTracker(st, _derive_seed(self.seed, 4)) if st is not None else None
         self._target: tuple[Quat, str] | None = None
@@ -288,10 +289,15 @@ class Plant:
     def set_coil_level(self, face: int, level: int, t: float | None = None) -> None:
         """Drive the coil on ``face`` (X+ 0, X- 1, Y+ 2, Y- 3, Z- 5) at ``level`` -127...127."""
         self._sync(t)
-        if not isinstance(self.actuators, CoilSet):
+        act = self.actuators
+        if not isinstance(act, CoilSet):
             raise TypeError("this spacecraft has ideal torque rods, not face coils; use apply_dipole_B")
-        self.actuators.set_level(face, level)
-        self.m_commanded_B = self.actuators.commanded_dipole_B()
+        coil = act.coils.get(face)
+        if (coil is not None and type(level) is int and level == coil.level
+                and self.m_commanded_B is self._commanded_from_levels):
+            return  # drivers re-command unchanged levels: the commanded dipole is the one computed last
+        act.set_level(face, level)
+        self.m_commanded_B = self._commanded_from_levels = act.commanded_dipole_B()
 
     def coil_levels(self) -> dict[int, int]:
         if not isinstance(self.actuators, CoilSet):
