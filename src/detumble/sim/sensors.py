@@ -112,6 +112,21 @@ class _SampleHold:
         #: the inputs of the latest sample, not computed yet (see the subclasses' ``defer``)
         self._pending: tuple | None = None
         self._skipped = 0  # samples superseded unread since the last one computed
+        self._sample: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def _held(self) -> tuple[float, float, float]:
+        """The held sample, computed now if it was deferred."""
+        if self._pending is not None:
+            self._resolve()
+        return self._sample
+
+    def _hold(self, value: tuple[float, float, float]) -> None:
+        """Replace the held sample (the deferred one's noise draws are consumed first)."""
+        self._discard_unread()
+        self._sample = value
+
+    def _resolve(self) -> None:
+        raise NotImplementedError
 
     def _discard_unread(self) -> None:
         """Drop the deferred sample, consuming the noise draws of every sample not computed."""
@@ -145,22 +160,12 @@ class Magnetometer(_SampleHold):
         super().__init__(spec.odr_hz)
         self.spec = spec
         self.rng = random.Random(seed)
-        self._sample: tuple[float, float, float] = (0.0, 0.0, 0.0)
         self._draws = 3 if spec.noise_std_gauss > 0.0 else 0  # noise draws per sample
         g = GAUSS_PER_TESLA
         self._k = tuple(g * k for k in spec.coupling_t_per_am2)  # gauss per A m^2
 
-    @property
-    def sample_gauss(self) -> tuple[float, float, float]:
-        """The held sample, gauss (body axes); computed now if it was deferred."""
-        if self._pending is not None:
-            self._resolve()
-        return self._sample
-
-    @sample_gauss.setter
-    def sample_gauss(self, value: tuple[float, float, float]) -> None:
-        self._discard_unread()
-        self._sample = value
+    #: The held sample, gauss (body axes); computed when first read after a deferral.
+    sample_gauss = property(lambda self: self._held(), lambda self, value: self._hold(value))
 
     def measure(self, b_B: tuple[float, float, float], m_coils_B: tuple[float, float, float]) -> tuple[float, float, float]:
         """One noisy, quantised measurement (gauss) of true field ``b_B`` (T) with coils at ``m_coils_B``."""
@@ -222,7 +227,6 @@ class Gyro(_SampleHold):
         super().__init__(spec.odr_hz)
         self.spec = spec
         self.rng = random.Random(seed)
-        self._sample: tuple[float, float, float] = (0.0, 0.0, 0.0)
         self._sd = math.radians(spec.noise_std_dps)
         self._draws = 3 if self._sd > 0.0 else 0
         self._lsb = math.radians(spec.lsb_dps)
@@ -243,17 +247,8 @@ class Gyro(_SampleHold):
         lsb, fs = self._lsb, self._fs
         return (_quantise(x, lsb, fs), _quantise(y, lsb, fs), _quantise(z, lsb, fs))
 
-    @property
-    def sample_rad_s(self) -> tuple[float, float, float]:
-        """The held sample, rad/s (body axes); computed now if it was deferred."""
-        if self._pending is not None:
-            self._resolve()
-        return self._sample
-
-    @sample_rad_s.setter
-    def sample_rad_s(self, value: tuple[float, float, float]) -> None:
-        self._discard_unread()
-        self._sample = value
+    #: The held sample, rad/s (body axes); computed when first read after a deferral.
+    sample_rad_s = property(lambda self: self._held(), lambda self, value: self._hold(value))
 
     def latch(self, t0_ns: int, t1_ns: int, w0_B, w1_B) -> None:
         tk = self.latest_instant(t0_ns, t1_ns)
