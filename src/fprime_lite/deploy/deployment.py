@@ -69,6 +69,10 @@ class Deployment:
             raise RuntimeError("the deployment is already started")
         self.started = True
         topo, scheduler = self.topology, self.scheduler
+        for comp in topo.components():  # what a killed earlier run left half-written
+            clean = getattr(comp, "clean_temporary_files", None)
+            if callable(clean):
+                clean()
         lookup = command_lookup(topo)
         for comp in topo.components():
             if isinstance(comp, QueuedComponent):
