@@ -346,3 +346,32 @@ def test_a_partial_frame_cut_by_a_disconnect_is_reported(name):
     assert deframer.push(frame[:10]) == []
     out = deframer.reset()
     assert out == [Dropped(DropReason.INCOMPLETE, 10, 10)]
+
+
+@pytest.mark.parametrize("name", ["fprime", "ccsds"])
+def test_campaign_of_bogus_headers_and_disconnects_loses_no_valid_command(name):
+    """GL-RESYNC-7 (the finding's campaign): 50 connection cycles, each with 1–3 plausible bogus
+    headers (claiming up to the largest frame) mixed among 3–6 valid commands and keep-alives, pushed
+    in random pieces, then a disconnect: every valid command is delivered, in order."""
+    import random
+
+    rng = random.Random(50)
+    framing = make_framing(name)
+    deframer = framing.uplink_deframer()
+    sent, delivered = [], []
+    for cycle in range(50):
+        parts = []
+        for i in range(rng.randint(3, 6)):
+            command = encode_command(0x1000 + cycle, bytes([i]) * rng.randint(0, 40))
+            sent.append(command)
+            parts.append(framing.frame_uplink(command))
+        for _ in range(rng.randint(1, 3)):
+            claimed = rng.randint(60, 1024) if name == "ccsds" else rng.randint(60, 4095)
+            parts.insert(rng.randrange(len(parts) + 1), _plausible_bad_header(name, claimed))
+        parts.insert(rng.randrange(len(parts) + 1), KEEPALIVE)
+        stream = b"".join(parts)
+        cuts = sorted(rng.sample(range(len(stream)), 3))
+        for a, b in zip([0] + cuts, cuts + [len(stream)]):
+            delivered += [o for o in deframer.push(stream[a:b]) if isinstance(o, bytes)]
+        delivered += [o for o in deframer.reset() if isinstance(o, bytes)]
+    assert delivered == sent
