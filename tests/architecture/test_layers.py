@@ -20,9 +20,10 @@ FRAMEWORK_SIDE = {"testing": "model"}
 #: What each application layer may import: application layers, and the highest framework layer.
 APPLICATION = {
     "control": ({"control"}, None),
-    "sim": ({"sim", "control"}, None),
+    "analysis": ({"analysis"}, None),
+    "sim": ({"sim", "control", "analysis"}, None),
     "components": ({"components", "control"}, "ground"),
-    "sitl": ({"sitl", "components", "control", "sim"}, "tools"),
+    "sitl": ({"sitl", "components", "control", "sim", "analysis"}, "tools"),
 }
 
 

@@ -1,6 +1,6 @@
 """BDotDetumble: a dipole-moment provider from two consecutive magnetometer readings (seed 002).
 
-Behaviour: ``/work/shared/spec/detumble.md`` §6 (and ``docs/components/bdot_detumble.md``).
+Behaviour, requirements and deviations: ``docs/components/bdot_detumble.md``.
 Each ``dipoleMomentGet`` call reads the magnetometer once and returns::
 
     m = −Gain · Ḃ / |B|        Ḃ = (B_now − B_prev) / Δt

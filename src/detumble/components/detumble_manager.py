@@ -1,6 +1,6 @@
 """DetumbleManager: the PROVES detumble controller as a passive fprime_lite component.
 
-Behaviour: ``/work/shared/spec/detumble.md`` §3 (and ``docs/components/detumble_manager.md``).
+Behaviour, requirements and deviations: ``docs/components/detumble_manager.md``.
 The control laws live in framework-free helpers (:mod:`detumble.control.bdot`,
 :mod:`detumble.control.strategy_selector`, :mod:`detumble.control.magnetorquer`); this module adapts them to ports,
 parameters, events and telemetry.

@@ -11,8 +11,8 @@ Namespaces follow the flight FPP and the seed design documents:
 * ``Drv`` — driver-side types: :class:`MagneticField` (the magnetometer reading, ``Drv::MagneticField``
   in the flight code), :class:`DipoleMoment` and the ``DipoleMomentGet`` port (seed 002), and the
   magnetorquer driver ports ``StartMagnetorquer`` / ``StopMagnetorquer`` (flight FPP).
-* ``Fw`` — F´ framework types the framework port does not (yet) provide: :class:`Success` and
-  :class:`TimeIntervalValue`.
+* ``Fw`` — :class:`Success` and :class:`TimeIntervalValue` are re-exported from the framework
+  (:mod:`fprime_lite.model.fw_types`).
 
 ``ref condition: Success`` convention
 -------------------------------------

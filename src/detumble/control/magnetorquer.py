@@ -13,28 +13,15 @@ which rounds half to even).
 
 from __future__ import annotations
 
-import enum
 import math
+
+from detumble.control.coil_layout import CoilShape, DirectionSign
 
 __all__ = ["CoilShape", "DirectionSign", "Magnetorquer", "round_half_away_from_zero", "MAX_DRIVE_LEVEL"]
 
 #: Full-scale drive level (the I8 range used by the coil drivers is −127…127).
 MAX_DRIVE_LEVEL = 127
 
-
-class CoilShape(enum.IntEnum):
-    """Coil outline; numeric values match ``Components.CoilShape``."""
-
-    RECTANGULAR = 0
-    CIRCULAR = 1
-
-
-class DirectionSign(enum.IntEnum):
-    """+1 when a positive drive level produces a dipole along the coil's axis, −1 when it opposes it
-    (the X−, Y− and Z− coils face the other way)."""
-
-    POSITIVE = 1
-    NEGATIVE = -1
 
 
 def round_half_away_from_zero(x: float) -> int:

@@ -17,76 +17,83 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
-X_PLUS, X_MINUS, Y_PLUS, Y_MINUS, Z_MINUS = 0, 1, 2, 3, 5
-FACE_NAMES = {X_PLUS: "x_plus", X_MINUS: "x_minus", Y_PLUS: "y_plus", Y_MINUS: "y_minus", Z_MINUS: "z_minus"}
-FACE_NORMALS_B = {
-    X_PLUS: (1.0, 0.0, 0.0),
-    X_MINUS: (-1.0, 0.0, 0.0),
-    Y_PLUS: (0.0, 1.0, 0.0),
-    Y_MINUS: (0.0, -1.0, 0.0),
-    Z_MINUS: (0.0, 0.0, -1.0),
-}
-MAX_LEVEL = 127
+from detumble.control.coil_layout import (FACE_AXIS, FACE_KEYS, FACE_NORMALS_B, FLIGHT_XY_COIL, FLIGHT_Z_COIL,
+                                          CoilGeometry, CoilShape, DirectionSign, Face, flight_coil_layout)
+from detumble.control.magnetorquer import MAX_DRIVE_LEVEL
+from detumble.control.magnetorquer import Magnetorquer as FlightCoilMath
+
+X_PLUS, X_MINUS, Y_PLUS, Y_MINUS, Z_MINUS = (Face.X_PLUS, Face.X_MINUS, Face.Y_PLUS, Face.Y_MINUS, Face.Z_MINUS)
+#: Scenario keys by face (``x_plus`` …).
+FACE_NAMES = FACE_KEYS
+MAX_LEVEL = MAX_DRIVE_LEVEL
 
 
 @dataclass(frozen=True)
 class CoilSpec:
-    """One coil: turns, supply volts, ohms, shape ('rectangular' or 'circular'), metres, henries."""
+    """One coil: turns, supply volts, ohms, shape ('rectangular' or 'circular'), metres, henries.
 
-    turns: float = 96.0
-    voltage_v: float = 3.3
-    resistance_ohm: float = 13.0
-    shape: str = "rectangular"
-    length_m: float = 0.053
-    width_m: float = 0.045
-    diameter_m: float = 0.0
+    The defaults are the flight X/Y coil (:data:`~detumble.control.coil_layout.FLIGHT_XY_COIL`);
+    area, full-scale current and drive levels come from the flight coil arithmetic
+    (:class:`detumble.control.magnetorquer.Magnetorquer`), so plant and flight agree to the bit.
+    """
+
+    turns: float = FLIGHT_XY_COIL.turns
+    voltage_v: float = FLIGHT_XY_COIL.voltage_v
+    resistance_ohm: float = FLIGHT_XY_COIL.resistance_ohm
+    shape: str = FLIGHT_XY_COIL.shape.name.lower()
+    length_m: float = FLIGHT_XY_COIL.length_m
+    width_m: float = FLIGHT_XY_COIL.width_m
+    diameter_m: float = FLIGHT_XY_COIL.diameter_m
     inductance_h: float = 0.0
+
+    @classmethod
+    def from_geometry(cls, geometry: CoilGeometry, inductance_h: float = 0.0) -> "CoilSpec":
+        return cls(turns=geometry.turns, voltage_v=geometry.voltage_v, resistance_ohm=geometry.resistance_ohm,
+                   shape=geometry.shape.name.lower(), length_m=geometry.length_m, width_m=geometry.width_m,
+                   diameter_m=geometry.diameter_m, inductance_h=inductance_h)
+
+    @cached_property
+    def flight_math(self) -> FlightCoilMath:
+        """The flight coil arithmetic for this coil, direction sign +1 (the face applies its own)."""
+        return FlightCoilMath(turns=self.turns, voltage=self.voltage_v, resistance=self.resistance_ohm,
+                              direction_sign=DirectionSign.POSITIVE, shape=CoilShape[self.shape.upper()],
+                              width=self.width_m, length=self.length_m, diameter=self.diameter_m)
 
     @property
     def area_m2(self) -> float:
-        if self.shape == "circular":
-            return math.pi * (self.diameter_m / 2.0) ** 2
-        return self.width_m * self.length_m
+        return self.flight_math.coil_area()
 
     @property
     def max_current_a(self) -> float:
-        return 0.0 if self.resistance_ohm == 0.0 else self.voltage_v / self.resistance_ohm
+        return self.flight_math.max_coil_current()
 
     @property
     def max_dipole_am2(self) -> float:
         """Dipole magnitude at full drive (|level| = 127), A m^2."""
-        return self.turns * self.area_m2 * self.max_current_a
+        return self.flight_math.max_dipole_moment()
 
     @property
     def time_constant_s(self) -> float:
         return 0.0 if self.resistance_ohm == 0.0 else self.inductance_h / self.resistance_ohm
 
 
-XY_COIL_DEFAULT = CoilSpec()
-Z_COIL_DEFAULT = CoilSpec(turns=153.0, resistance_ohm=150.7, shape="circular", length_m=0.0, width_m=0.0, diameter_m=0.05755)
+XY_COIL_DEFAULT = CoilSpec.from_geometry(FLIGHT_XY_COIL)
+Z_COIL_DEFAULT = CoilSpec.from_geometry(FLIGHT_Z_COIL)
 
 
 def default_coil_layout() -> dict[int, CoilSpec]:
-    return {X_PLUS: XY_COIL_DEFAULT, X_MINUS: XY_COIL_DEFAULT, Y_PLUS: XY_COIL_DEFAULT,
-            Y_MINUS: XY_COIL_DEFAULT, Z_MINUS: Z_COIL_DEFAULT}
-
-
-def round_half_away_from_zero(x: float) -> int:
-    return int(math.floor(abs(x) + 0.5)) * (1 if x >= 0 else -1)
+    return {int(face): CoilSpec.from_geometry(geometry) for face, geometry in flight_coil_layout().items()}
 
 
 def level_for_coil_dipole(spec: CoilSpec, m: float) -> int:
     """Unsigned-direction drive level giving dipole ``m`` (A m^2) along the coil's own axis.
 
-    Same operation order as the flight Magnetorquer (detumble.md section 5) so results match it;
-    saturates at +-127. The caller applies the face's mounting sign.
+    The flight Magnetorquer's arithmetic (detumble.md section 5), so results match it; saturates
+    at +-127. The caller applies the face's mounting sign.
     """
-    area = spec.area_m2
-    target = 0.0 if spec.turns == 0 or area == 0 else m / (spec.turns * area)
-    imax = 0.0 if spec.resistance_ohm == 0 else spec.voltage_v / spec.resistance_ohm
-    clamped = math.copysign(imax, target) if abs(target) > imax else target
-    return 0 if imax == 0 else round_half_away_from_zero(clamped / imax * 127)
+    return spec.flight_math.dipole_moment_to_current(m)
 
 
 class Magnetorquer:
@@ -181,7 +188,7 @@ class CoilSet:
         """Largest |m| achievable on each body axis with every coil on that axis at full drive."""
         out = [0.0, 0.0, 0.0]
         for face, c in self.coils.items():
-            axis = [i for i in range(3) if FACE_NORMALS_B[face][i] != 0.0][0]
+            axis = FACE_AXIS[face]
             out[axis] += c.spec.max_dipole_am2
         return (out[0], out[1], out[2])
 
@@ -193,7 +200,7 @@ class CoilSet:
         """
         by_axis: dict[int, list[int]] = {0: [], 1: [], 2: []}
         for face in self.coils:
-            axis = [i for i in range(3) if FACE_NORMALS_B[face][i] != 0.0][0]
+            axis = FACE_AXIS[face]
             by_axis[axis].append(face)
         out = {}
         for axis, faces in by_axis.items():

@@ -144,8 +144,8 @@ def write_outputs(result: RunResult, out_dir: str) -> None:
     write_atomic(os.path.join(out_dir, "rate.csv"), "\n".join(lines) + "\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="python -m detumble.sim",
+def build_parser(prog: str = "python -m detumble.sim") -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog=prog,
                                 description="Plant-only detumble run of a scenario (no flight software).")
     p.add_argument("scenario", nargs="?", help="packaged scenario name (e.g. case_a, default) or a YAML file")
     p.add_argument("--scenario", dest="scenario_opt", metavar="NAME|FILE", help="same as the positional argument")
@@ -160,9 +160,9 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim") -> int:
     """Entry point. Returns 0 on success, 2 on bad input (message on stderr)."""
-    parser = build_parser()
+    parser = build_parser(prog)
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse has already printed its message

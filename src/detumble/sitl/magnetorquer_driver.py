@@ -40,6 +40,7 @@ from fprime_lite import (I8, I32, Channel, CmdResponse, Event, FwEnum, PassiveCo
                          sync_command, sync_input)
 from fprime_lite.model.types import U8
 
+from detumble.control.coil_layout import COIL_FACES
 from detumble.sim.coils import FACE_NAMES, MAX_LEVEL
 from detumble.components.types import StartMagnetorquer, StopMagnetorquer, Success
 from detumble.sitl.spacecraft import SimulatedSpacecraft
@@ -49,8 +50,8 @@ __all__ = ["MagnetorquerDriver", "SimDriverFault", "DRIVER_FACES", "driver_insta
 
 log = logging.getLogger("detumble.sitl")
 
-#: Faces with a coil in the reference 1U (X+ 0, X− 1, Y+ 2, Y− 3, Z− 5).
-DRIVER_FACES = (0, 1, 2, 3, 5)
+#: Faces with a coil in the reference 1U (X+ 0, X− 1, Y+ 2, Y− 3, Z− 5), as plain ints.
+DRIVER_FACES = tuple(int(face) for face in COIL_FACES)
 
 
 def driver_instance_name(face: int) -> str:

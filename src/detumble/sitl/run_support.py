@@ -18,8 +18,10 @@ import math
 import os
 import pathlib
 
+from fprime_lite.deploy.resources import topology_resource
 from fprime_lite.deploy.scheduler import Scheduler
 
+from detumble.control.coil_layout import COIL_FACES, FACE_LABELS
 from detumble.sim.scenario import Scenario, load_scenario
 from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthSample, scenario_epoch_us
 from detumble.components.types import DetumbleState, DetumbleStrategy
@@ -27,10 +29,10 @@ from detumble.components.types import DetumbleState, DetumbleStrategy
 __all__ = ["make_spacecraft", "DetumbleRunReport"]
 
 US_PER_S = 1_000_000
-_FACES = {0: "X+", 1: "X-", 2: "Y+", 3: "Y-", 5: "Z-"}
 _MAX_PLOT_POINTS = 4000
 
 
+@topology_resource(role="simulation")
 def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler | None = None, *,
                     seed: int | None = None, settings: Sequence[str] = ()) -> SimulatedSpacecraft:
     """The simulated spacecraft of ``scenario`` stepping on ``scheduler``'s clock from now.
@@ -50,6 +52,7 @@ def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler |
     return SimulatedSpacecraft.for_scheduler(scenario, scheduler, seed=seed)
 
 
+@topology_resource(role="report")
 class DetumbleRunReport:
     """Follows one run of a detumble deployment and writes its detumble-specific outputs.
 
@@ -106,7 +109,7 @@ class DetumbleRunReport:
         if self.time_below_1_deg_s is None and s.rate_deg_s < 1.0:
             self.time_below_1_deg_s = t
         w = s.omega_BN_B
-        levels = [s.coil_levels.get(f, 0) for f in _FACES]
+        levels = [s.coil_levels.get(f, 0) for f in COIL_FACES]
         strategy = getattr(self.manager, "strategy", None)
         total = sum(self._state_us.values())
         fractions = [self._state_us[st] / total if total else 0.0 for st in DetumbleState]
@@ -221,8 +224,8 @@ def plot_run(truth_csv: pathlib.Path, out_dir: pathlib.Path, manager=None) -> li
     plt.close(fig)
 
     fig, ax = plt.subplots(figsize=(9, 4))
-    for column, label in (("level_xp", "X+"), ("level_xm", "X−"), ("level_yp", "Y+"), ("level_ym", "Y−"),
-                          ("level_zm", "Z−")):
+    for column, face in zip(("level_xp", "level_xm", "level_yp", "level_ym", "level_zm"), COIL_FACES):
+        label = FACE_LABELS[face]
         ax.step(tt, data[column], where="post", lw=0.8, label=label)
     ax.set_ylabel("drive level (−127…127)")
     ax.set_xlabel(f"time ({unit})")

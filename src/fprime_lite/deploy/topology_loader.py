@@ -25,6 +25,7 @@ from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.svc.rate_group_driver import RateGroupDriver, RateGroupTimer
 from fprime_lite.svc.rate_groups import ActiveRateGroup, PassiveRateGroup
 from fprime_lite.model.time import SimulatedClock, TimeBase
+from fprime_lite.deploy.resources import ROLES, resource_role
 from fprime_lite.deploy.topology import PATTERN_PORTS, Topology, TopologyError
 
 __all__ = ["load_topology", "LoadedDeployment", "TopologyError"]
@@ -126,12 +127,15 @@ class LoadedDeployment:
 # --- loading ------------------------------------------------------------------------------------
 
 class _Loader:
-    def __init__(self, path: pathlib.Path, overrides: dict | None, scheduler_factory=None):
+    def __init__(self, path: pathlib.Path, overrides: dict | None, scheduler_factory=None,
+                 role_overrides: dict | None = None):
         self.path = path.resolve() if path.is_symlink() else path
         self.scheduler_factory = scheduler_factory or Scheduler
         self.base_dir = self.path.parent
         self.problems: list[str] = []
         self.overrides = overrides or {}
+        self.role_overrides = role_overrides or {}
+        self.roles_built: set[str] = set()
         self.failed_instances: set[str] = set()
         #: Resources that could not be built (reported once); whatever uses them is skipped quietly.
         self.failed_resources: set[str] = set()
@@ -260,14 +264,21 @@ class _Loader:
 
     def build_resources(self, doc: YMap, resources: dict) -> None:
         section = doc.get("resources")
-        if section is None:
-            return
-        section = self.expect_map(self.path, section, doc.key_lines.get("resources"), "'resources'")
-        if section is None:
-            return
-        for name, spec in section.items():
-            if not self._build_resource(name, spec, section, resources):
-                self.failed_resources.add(name)
+        if section is not None:
+            section = self.expect_map(self.path, section, doc.key_lines.get("resources"), "'resources'")
+        if section is not None:
+            for name, spec in section.items():
+                if not self._build_resource(name, spec, section, resources):
+                    self.failed_resources.add(name)
+        self.check_roles_taken(doc)
+
+    def check_roles_taken(self, doc: YMap) -> None:
+        """Options meant for a resource role that no resource of the topology holds."""
+        for role in self.role_overrides:
+            if role not in self.roles_built and not self.failed_resources:
+                self.problem(self.path, doc.key_lines.get("resources"),
+                             f"no resource holds the role '{role}', so {ROLES.get(role, role)} cannot apply "
+                             f"— leave those options out for this topology")
 
     def _build_resource(self, name, spec, section: YMap, resources: dict) -> bool:
         """Build one resource into ``resources``; False (problem reported) when it cannot be."""
@@ -285,10 +296,16 @@ class _Loader:
         if args is None:
             return False
         args.update(self.overrides.get(name, {}))
+        role = resource_role(factory)
+        if role:
+            self.roles_built.add(role)
+            args.update(self.role_overrides.get(role, {}))
         try:
             resources[name] = factory(**args)
         except Exception as exc:  # noqa: BLE001 - any construction failure is a user-facing problem
-            self.problem(self.path, line, f"resource '{name}' could not be created: {exc}")
+            given = self.role_overrides.get(role, {}) if role else {}
+            options = f" with the {role} options {given}" if given else ""
+            self.problem(self.path, line, f"resource '{name}' could not be created{options}: {exc}")
             return False
         return True
 
@@ -819,12 +836,15 @@ def _kind(value) -> str:
     return f"{type(value).__name__} {value!r}"
 
 
-def load_topology(path, overrides: dict | None = None, *, scheduler_factory=None) -> LoadedDeployment:
+def load_topology(path, overrides: dict | None = None, *, scheduler_factory=None,
+                  role_overrides: dict | None = None) -> LoadedDeployment:
     """Load and validate a topology YAML file; raise :class:`TopologyError` listing every problem.
 
-    ``overrides`` maps a resource name to keyword arguments that replace those in the file
-    (the command line's ``--scenario`` and ``--seed`` use it). ``scheduler_factory(clock)`` makes
+    ``overrides`` maps a resource name to keyword arguments that replace those in the file;
+    ``role_overrides`` maps a resource role (:mod:`fprime_lite.deploy.resources`) to keyword
+    arguments for the resource holding it (the command line's ``--scenario``, ``--seed``, ``--set``
+    and ``--truth-interval`` use it). ``scheduler_factory(clock)`` makes
     the scheduler (default :class:`~fprime_lite.deploy.scheduler.Scheduler`; ``run --realtime`` passes a
     :class:`~fprime_lite.deploy.scheduler.PacedScheduler`).
     """
-    return _Loader(pathlib.Path(path), overrides, scheduler_factory).load()
+    return _Loader(pathlib.Path(path), overrides, scheduler_factory, role_overrides).load()

@@ -31,12 +31,14 @@ class Channel:
 
     ``low`` and ``high`` are optional limits, e.g. ``high={"yellow": 10.0, "red": 20.0}``.
     ``name`` gives the channel an F´ name other than its attribute's (F´ lets a channel share its
-    name with an event or a parameter; Python attributes cannot).
+    name with an event or a parameter; Python attributes cannot). ``wall_clock=True`` marks a
+    channel whose value is measured on the wall clock (F´'s ``RgMaxTime``): the one kind of value
+    that differs between two runs of the same deployment, scenario and seed.
     """
 
     def __init__(self, type_: Any, *, id: int | None = None, update: str = "always",  # noqa: A002
                  format: str | None = None, low: dict | None = None, high: dict | None = None,
-                 name: str | None = None):
+                 name: str | None = None, wall_clock: bool = False):
         if update not in _UPDATES:
             raise DeclarationError(f"channel update must be 'always' or 'on change', got {update!r}")
         if id is not None and (not isinstance(id, int) or id < 0):
@@ -52,6 +54,7 @@ class Channel:
         self.format = format
         self.low = dict(low or {})
         self.high = dict(high or {})
+        self.wall_clock = bool(wall_clock)
         self.fprime_name = check_member_name(name, "channel")
         self.name = ""
         self.attr = ""

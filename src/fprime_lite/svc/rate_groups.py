@@ -40,7 +40,7 @@ class RateGroupBase:
     RateGroupMemberFault = Event(Severity.WARNING_HI, "Rate group member {} raised: {}", member=U32,
                                  error=String(80), throttle=5)
 
-    RgMaxTime = Channel(U32, format="{} us")
+    RgMaxTime = Channel(U32, format="{} us", wall_clock=True)
     RgCycleSlips = Channel(U32)
     RgMemberFaults = Channel(U32)
 

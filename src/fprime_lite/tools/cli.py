@@ -1,12 +1,14 @@
 """The ``fprime-lite`` command line.
 
     fprime-lite run [TOPOLOGY]          fly a deployment (default ./topology.yaml)
-    fprime-lite sim SCENARIO            plant-only run of a scenario with a reference control law
     fprime-lite dict [TOPOLOGY] -o F    write the F´ JSON dictionary
     fprime-lite check [TOPOLOGY]        validate a topology
     fprime-lite graph [TOPOLOGY]        print the topology as DOT or Mermaid
     fprime-lite params [TOPOLOGY] -o F  write a parameter file holding every parameter's default
     fprime-lite bench                   measure speed and memory
+
+Applications add verbs of their own through the ``fprime_lite.verbs`` entry points
+(:mod:`fprime_lite.tools.plugins`); the detumble application adds ``sim``.
 
 User mistakes (a missing file, bad YAML, an unknown scenario) are reported on stderr with a non-zero
 exit status, never with a traceback.
@@ -70,9 +72,6 @@ def build_parser() -> argparse.ArgumentParser:
                      help="ground-link framing, as fprime-gds --framing-selection: ccsds = "
                      "space-packet-space-data-link (the GDS's default), fprime = fprime (default: ccsds)")
 
-    sim = sub.add_parser("sim", help="plant-only run of a scenario", add_help=False)
-    sim.add_argument("args", nargs=argparse.REMAINDER)
-
     dic = sub.add_parser("dict", help="write the F´ JSON dictionary")
     _topology_arg(dic)
     dic.add_argument("-o", "--output", required=True, metavar="FILE", help="where to write the dictionary")
@@ -96,7 +95,20 @@ def build_parser() -> argparse.ArgumentParser:
 
     bench = sub.add_parser("bench", help="measure speed and memory", add_help=False)
     bench.add_argument("args", nargs=argparse.REMAINDER)
+    for verb in _application_verbs().values():
+        plug = sub.add_parser(verb.name, help=verb.help, add_help=False)
+        plug.add_argument("args", nargs=argparse.REMAINDER)
     return parser
+
+
+def _application_verbs() -> dict:
+    from fprime_lite.tools.plugins import PluginError, verbs
+
+    try:
+        return {name: verb for name, verb in verbs().items() if name not in BUILT_IN}
+    except PluginError as exc:
+        print(f"fprime-lite: {exc}", file=sys.stderr)
+        return {}
 
 
 def _version() -> str:
@@ -104,14 +116,14 @@ def _version() -> str:
     return __version__
 
 
-def _load(path: str, overrides: dict | None = None, scheduler_factory=None):
+def _load(path: str, role_overrides: dict | None = None, scheduler_factory=None):
     from fprime_lite.deploy.topology_loader import load_topology
 
     p = pathlib.Path(path)
     if not p.exists():
         raise UserError(f"{path}: no such topology file — give the path of a topology YAML file "
                         f"(the reference deployment is deployments/proves_ref/topology.yaml)")
-    return load_topology(p, overrides, scheduler_factory=scheduler_factory)
+    return load_topology(p, scheduler_factory=scheduler_factory, role_overrides=role_overrides)
 
 
 def cmd_check(args) -> int:
@@ -196,16 +208,16 @@ def _param_setting(setting: str, declared: dict) -> tuple[str, object]:
 def cmd_run(args) -> int:
     from fprime_lite.tools.runner import run_deployment
 
-    overrides = {}
+    overrides: dict[str, dict] = {}
     if args.scenario is not None or args.seed is not None or args.set:
-        spacecraft = {}
+        simulation: dict = {}
         if args.scenario is not None:
-            spacecraft["scenario"] = _scenario(args.scenario, args.set)
-        elif args.set:
-            spacecraft["settings"] = _checked_settings(args.set)
+            simulation["scenario"] = args.scenario
+        if args.set:
+            simulation["settings"] = _checked_settings(args.set)
         if args.seed is not None:
-            spacecraft["seed"] = args.seed
-        overrides["spacecraft"] = spacecraft
+            simulation["seed"] = args.seed
+        overrides["simulation"] = simulation
     if args.truth_interval is not None:
         overrides["report"] = {"truth_interval_s": args.truth_interval}
     if not args.duration > 0:
@@ -291,41 +303,26 @@ def _checked_settings(settings: list[str]) -> list[str]:
     return settings
 
 
-def _scenario(value: str, settings: list[str] = ()):
-    """A packaged scenario name or a file; a clear error for anything else."""
-    from detumble.sim.scenario import load_scenario
-
-    try:
-        return load_scenario(value, settings=settings)
-    except FileNotFoundError as exc:
-        raise UserError(f"--scenario {value}: {exc}") from None
-    except (ValueError, KeyError) as exc:
-        raise UserError(f"--scenario {value}: {exc}") from None
-
-
-def cmd_sim(args) -> int:
-    from detumble.sim.runner import main as sim_main
-
-    return sim_main(args.args)
-
-
 def cmd_bench(args) -> int:
     from fprime_lite.tools.bench import main as bench_main
 
     return bench_main(args.args)
 
 
-COMMANDS = {"run": cmd_run, "sim": cmd_sim, "dict": cmd_dict, "check": cmd_check, "graph": cmd_graph,
+COMMANDS = {"run": cmd_run, "dict": cmd_dict, "check": cmd_check, "graph": cmd_graph,
             "params": cmd_params, "bench": cmd_bench}
+BUILT_IN = set(COMMANDS)
 
-
-PASS_THROUGH = {"sim": "detumble.sim.runner", "bench": "fprime_lite.tools.bench"}
+#: Verbs that parse their own options (application verbs do too).
+PASS_THROUGH = {"bench"}
 
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
-    if argv and argv[0] in PASS_THROUGH:  # these verbs parse their own options
+    if argv and argv[0] in PASS_THROUGH:
         args = argparse.Namespace(command=argv[0], args=argv[1:], verbose=False)
+    elif argv and argv[0] not in BUILT_IN and not argv[0].startswith("-") and argv[0] in _application_verbs():
+        return _application_verbs()[argv[0]].main(argv[1:])
     else:
         args = build_parser().parse_args(argv)
     logging.basicConfig(level=logging.INFO if getattr(args, "verbose", False) else logging.ERROR,

@@ -32,7 +32,7 @@ from fprime_lite.svc.file_downlink import FileDownlink
 from fprime_lite.svc.rate_groups import RateGroupBase
 from fprime_lite.deploy.topology_loader import LoadedDeployment
 
-__all__ = ["run_deployment", "PROGRESS_STEP_S"]
+__all__ = ["run_deployment", "PROGRESS_STEP_S", "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
 
 #: Simulated seconds between progress updates (and between chunks of the run).
 PROGRESS_STEP_S = 10.0
@@ -85,6 +85,16 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2) + "\n")
     _print_summary(summary, console)
     return summary
+
+
+#: Summary keys measured on the wall clock; every other key is a function of the inputs.
+WALL_CLOCK_SUMMARY_KEYS = frozenset({"wall_seconds", "real_time_factor"})
+
+
+def wall_clock_channels(topology) -> set[str]:
+    """Qualified names of the channels declared ``wall_clock=True`` (their values are measured)."""
+    return {f"{i.qualified_name}.{c.name}" for i in topology.instances.values()
+            for c in i.component.spec.channels if c.wall_clock}
 
 
 def _summary(deployment: Deployment, recorder: GroundRecorder, reports, sim_s: float, wall_s: float) -> dict:

@@ -5,7 +5,7 @@ import math
 import pytest
 
 from detumble.sim.coils import (X_MINUS, X_PLUS, Y_MINUS, Y_PLUS, Z_MINUS, CoilSet, CoilSpec, Magnetorquer,
-                                TorqueRods, default_coil_layout, level_for_coil_dipole, round_half_away_from_zero)
+                                TorqueRods, default_coil_layout, level_for_coil_dipole)
 
 AM2 = 1.0  # A m^2
 
@@ -81,8 +81,28 @@ def test_level_for_dipole_keeps_flight_operation_order():
     assert level_for_coil_dipole(spec, -0.5 * 0.02) == -63
     assert level_for_coil_dipole(spec, 10.0) == 127  # saturates
     assert level_for_coil_dipole(spec, -10.0) == -127
-    assert round_half_away_from_zero(2.5) == 3 and round_half_away_from_zero(-2.5) == -3
-    assert round_half_away_from_zero(0.49999) == 0
+
+
+def test_plant_and_flight_coil_arithmetic_are_one_function():
+    """COIL-ONE-001: the plant's drive level is the flight Magnetorquer's for every request,
+    including 0.49999999999999994 of a level, where the plant's old floor(|x| + 0.5) said 1."""
+    import random
+
+    from detumble.control.coil_layout import DirectionSign, FLIGHT_XY_COIL, FLIGHT_Z_COIL
+    from detumble.control.magnetorquer import Magnetorquer
+
+    for geometry in (FLIGHT_XY_COIL, FLIGHT_Z_COIL):
+        spec = CoilSpec.from_geometry(geometry)
+        flight = Magnetorquer(turns=geometry.turns, voltage=geometry.voltage_v, resistance=geometry.resistance_ohm,
+                              direction_sign=DirectionSign.POSITIVE, shape=geometry.shape, width=geometry.width_m,
+                              length=geometry.length_m, diameter=geometry.diameter_m)
+        rng = random.Random(4)
+        for _ in range(2000):
+            m = rng.uniform(-1.5, 1.5) * flight.max_dipole_moment()
+            assert level_for_coil_dipole(spec, m) == flight.dipole_moment_to_current(m)
+        per_level = flight.max_dipole_moment() / 127
+        edge = 0.49999999999999994 * per_level
+        assert level_for_coil_dipole(spec, edge) == flight.dipole_moment_to_current(edge)
 
 
 def test_apply_dipole_splits_over_pairs_and_rods_clamp():

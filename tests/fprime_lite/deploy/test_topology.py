@@ -315,3 +315,24 @@ def test_health_pattern_pings_every_component_that_answers_pings():
     deployment.run_for(HEALTH_WARN_CYCLES + 1)
     assert health.warnings == 1
     assert [t.entry.name for t in health._trackers if t.cycle_count > 1] == ["ReferenceDeployment.cmdSeq"]
+
+
+def test_options_for_a_role_no_resource_holds_are_refused(tmp_path):
+    """TOPO-ROLE-001: role options (run --scenario …) on a topology without a resource of that role
+    are an error naming the role, not silently ignored."""
+    from fprime_lite.deploy.topology import TopologyError
+    from fprime_lite.deploy.topology_loader import load_topology
+
+    path = tmp_path / "t.yaml"
+    path.write_text("deployment: Plain\nmodules:\n  Plain:\n    instances: {}\n")
+    with pytest.raises(TopologyError, match="no resource holds the role 'simulation'"):
+        load_topology(path, role_overrides={"simulation": {"scenario": "case_a"}})
+
+
+def test_role_options_reach_the_resource_holding_the_role(tmp_path):
+    """TOPO-ROLE-002: the simulation role's options reach the reference deployment's spacecraft,
+    whatever the resource is called."""
+    from fprime_lite.deploy.topology_loader import load_topology
+
+    loaded = load_topology(REFERENCE, role_overrides={"simulation": {"settings": ["orbit.altitude_km=500"]}})
+    assert loaded.resources["spacecraft"].scenario.orbit.altitude_km == 500

@@ -81,7 +81,8 @@ def test_short_run_writes_every_output(tmp_path, capsys):
 @pytest.mark.parametrize("argv, message", [
     (["check", "nope.yaml"], "nope.yaml: no such topology file"),
     (["run", "nope.yaml", "--no-progress"], "nope.yaml: no such topology file"),
-    (["run", TOPOLOGY, "--scenario", "no_such_scenario", "--no-progress"], "--scenario no_such_scenario:"),
+    (["run", TOPOLOGY, "--scenario", "no_such_scenario", "--no-progress"],
+     "with the simulation options {'scenario': 'no_such_scenario'}: no_such_scenario: no such scenario file"),
     (["run", TOPOLOGY, "--duration", "-1"], "--duration must be positive"),
     (["run", TOPOLOGY, "--params", "missing.dat"], "--params missing.dat: no such file"),
     (["run", TOPOLOGY, "--set", "sensors.gyro"], "--set 'sensors.gyro': expected KEY.PATH=VALUE"),

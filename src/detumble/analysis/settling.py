@@ -1,0 +1,77 @@
+"""Settling-time and detumble-time metrics: the one module every summary, campaign and test uses.
+
+Three definitions, because they answer different questions:
+
+* :func:`settling_time` — seed 004's definition, MATLAB ``lsiminfo(y, t, yfinal, yinit)``: the
+  first sample time T after which ``|y(t) − y_final| ≤ threshold · |y_final − y_init|`` holds for
+  every later sample (default threshold 2 %). With ``y_final`` given explicitly (the report gives
+  ``[0, −n, 0]`` for ω and ``±1`` for the quaternion's real part) it does not depend on the horizon;
+  with ``y_final=None`` the last sample is used, as ``lsiminfo`` does by default — and then the
+  figure moves with the length of the run (:func:`settling_time` documents both).
+* :func:`transient_time` — ``lsiminfo``'s TransientTime: the band is 2 % of the peak error.
+* :func:`time_below` — the horizon-free detumble metric the rest of the project uses: the first
+  time after which a magnitude (|ω|, in the caller's unit) stays below a threshold.
+
+A series that never settles gives ``None``. Times in seconds, values in the caller's units.
+"""
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+
+__all__ = ["settling_time", "transient_time", "time_below", "settling_times_per_axis", "DEFAULT_BAND"]
+
+#: The report's band: 2 % (MATLAB's default SettlingTimeThreshold).
+DEFAULT_BAND = 0.02
+
+
+def _first_time_after_last(t: np.ndarray, violating: np.ndarray) -> float | None:
+    """The first sample time after the last violating sample (t[0] if none violates)."""
+    if not violating.any():
+        return float(t[0])
+    last = int(np.flatnonzero(violating)[-1])
+    return None if last + 1 >= len(t) else float(t[last + 1])
+
+
+def settling_time(t: Sequence[float], y: Sequence[float], y_final: float | None = None,
+                  y_init: float | None = None, band: float = DEFAULT_BAND) -> float | None:
+    """``lsiminfo``'s SettlingTime of one channel.
+
+    ``y_final`` defaults to the last sample, ``y_init`` to 0 (``lsiminfo``'s defaults); the band
+    is ``band · |y_final − y_init|``. None when the last sample is outside the band.
+    """
+    tt = np.asarray(t, dtype=float)
+    yy = np.asarray(y, dtype=float)
+    if tt.shape != yy.shape or tt.ndim != 1 or len(tt) == 0:
+        raise ValueError("t and y must be 1-D sequences of the same, non-zero length")
+    final = float(yy[-1]) if y_final is None else float(y_final)
+    initial = 0.0 if y_init is None else float(y_init)
+    width = band * abs(final - initial)
+    return _first_time_after_last(tt, np.abs(yy - final) > width)
+
+
+def transient_time(t: Sequence[float], y: Sequence[float], y_final: float | None = None,
+                   band: float = DEFAULT_BAND) -> float | None:
+    """``lsiminfo``'s TransientTime: the band is ``band`` times the peak error ``max |y − y_final|``."""
+    tt = np.asarray(t, dtype=float)
+    yy = np.asarray(y, dtype=float)
+    final = float(yy[-1]) if y_final is None else float(y_final)
+    error = np.abs(yy - final)
+    return _first_time_after_last(tt, error > band * float(error.max()))
+
+
+def settling_times_per_axis(t: Sequence[float], ys: Sequence[Sequence[float]],
+                            y_finals: Sequence[float | None], y_inits: Sequence[float | None],
+                            band: float = DEFAULT_BAND) -> tuple[list[float | None], float | None]:
+    """Settling time of each channel and the overall figure (the largest; None if any never settles)."""
+    each = [settling_time(t, y, f, i, band) for y, f, i in zip(ys, y_finals, y_inits)]
+    overall = None if any(x is None for x in each) else max(each)  # type: ignore[type-var]
+    return each, overall
+
+
+def time_below(t: Sequence[float], magnitude: Sequence[float], threshold: float) -> float | None:
+    """First time after which ``magnitude`` stays strictly below ``threshold`` (None if it never does)."""
+    tt = np.asarray(t, dtype=float)
+    mm = np.asarray(magnitude, dtype=float)
+    return _first_time_after_last(tt, ~(mm < threshold))

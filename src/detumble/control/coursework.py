@@ -1,0 +1,178 @@
+"""Seed 004's three detumbling controllers (a University of Surrey coursework report), as plain laws.
+
+Written in the report's own convention, converted at the edge by :func:`from_plant_quaternion`:
+
+* quaternions are scalar **last**, ``q = [q1, q2, q3, q4]`` with ``q4`` the real part, and give the
+  attitude of the body B relative to the **orbit frame** O (z to nadir, y along the negative orbit
+  normal, x completing the triad);
+* ``A_OB`` (:func:`dcm_ob`) is its eq. 11, the DCM that takes orbit-frame components to body-frame
+  components (``B_B = A_OB B_O``, eq. 12);
+* ``ω`` is the body rate relative to inertial space, in B (rad/s); the rate relative to O is
+  eq. 14, ``ω_O = ω − A_OB [0, −n, 0]ᵀ`` (:func:`rate_relative_to_orbit`);
+* fields in tesla, dipoles in A·m², torques in N·m, wheel momenta in N·m·s.
+
+The laws (eqs. 19–26) and the report's actuator limits:
+
+* :func:`cross_product_dipole` — ``magnetorquer1``: ``M = k (ω × B_B)`` (eq. 19);
+* :class:`BetaPd` — ``magnetorquer2``: the angle β between body y and B (eq. 20), its rate by a
+  backward difference between successive calls (eq. 21; the first call has no previous β and
+  commands nothing, as the MATLAB's empty globals do), ``M_y = K_d β̇`` (eq. 22) and the spin
+  regulation of ω_y toward ``ω_ref = −n`` on x or z (eqs. 23–24);
+* :func:`wheel_torque` — ``wheels``: the error quaternion of eq. 25 and the PD torque of eq. 26;
+* :func:`clip_dipole`, :func:`limit_wheel_torque` — each dipole axis to ±1 A·m², each wheel torque
+  to ±1 mN·m and cut to zero when its momentum is past ±0.1 N·m·s and the torque would push it
+  further, exactly as the report's ``attitude_model`` does.
+
+No framework import: the plant-only runner and the flight components both call these.
+"""
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+__all__ = ["REPORT_MEAN_MOTION", "Vec3", "Quat", "from_plant_quaternion", "to_plant_quaternion", "dcm_ob",
+           "rate_relative_to_orbit", "cross_product_dipole", "BetaPd", "error_quaternion", "wheel_torque",
+           "clip_dipole", "limit_wheel_torque", "REPORT_DIPOLE_LIMIT", "REPORT_WHEEL_TORQUE_LIMIT",
+           "REPORT_WHEEL_MOMENTUM_LIMIT"]
+
+Vec3 = tuple[float, float, float]
+Quat = tuple[float, float, float, float]
+
+#: The report's orbit rate, rad/s: ``sqrt(3.98e5 / 7000³)`` (its own μ in km³/s² and a 7000 km radius).
+REPORT_MEAN_MOTION = math.sqrt(3.98e5 / 7000.0 ** 3)
+#: Each magnetorquer axis, A·m².
+REPORT_DIPOLE_LIMIT = 1.0
+#: Each wheel's torque, N·m.
+REPORT_WHEEL_TORQUE_LIMIT = 1e-3
+#: Each wheel's momentum, N·m·s.
+REPORT_WHEEL_MOMENTUM_LIMIT = 0.1
+
+
+def from_plant_quaternion(q_scalar_first: Sequence[float]) -> Quat:
+    """``[q0, q1, q2, q3]`` (the plant's scalar-first order) → the report's ``[q1, q2, q3, q4]``."""
+    return (float(q_scalar_first[1]), float(q_scalar_first[2]), float(q_scalar_first[3]), float(q_scalar_first[0]))
+
+
+def to_plant_quaternion(q: Sequence[float]) -> tuple[float, float, float, float]:
+    """The report's ``[q1, q2, q3, q4]`` → the plant's scalar-first ``[q4, q1, q2, q3]``."""
+    return (float(q[3]), float(q[0]), float(q[1]), float(q[2]))
+
+
+def dcm_ob(q: Sequence[float]) -> tuple[Vec3, Vec3, Vec3]:
+    """Eq. 11: ``A_OB`` of the scalar-last quaternion ``q`` (rows; orbit-frame → body-frame)."""
+    q1, q2, q3, q4 = q
+    return (
+        (q1 * q1 - q2 * q2 - q3 * q3 + q4 * q4, 2.0 * (q1 * q2 + q3 * q4), 2.0 * (q1 * q3 - q2 * q4)),
+        (2.0 * (q1 * q2 - q3 * q4), -q1 * q1 + q2 * q2 - q3 * q3 + q4 * q4, 2.0 * (q2 * q3 + q1 * q4)),
+        (2.0 * (q1 * q3 + q2 * q4), 2.0 * (q2 * q3 - q1 * q4), -q1 * q1 - q2 * q2 + q3 * q3 + q4 * q4),
+    )
+
+
+def _mat_vec(a, v) -> Vec3:
+    return (a[0][0] * v[0] + a[0][1] * v[1] + a[0][2] * v[2],
+            a[1][0] * v[0] + a[1][1] * v[1] + a[1][2] * v[2],
+            a[2][0] * v[0] + a[2][1] * v[1] + a[2][2] * v[2])
+
+
+def _cross(a, b) -> Vec3:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def rate_relative_to_orbit(q: Sequence[float], w_B: Sequence[float], n: float = REPORT_MEAN_MOTION) -> Vec3:
+    """Eq. 14: ``ω_O = ω − A_OB [0, −n, 0]ᵀ`` (rad/s, body frame)."""
+    a = dcm_ob(q)
+    return (w_B[0] + a[0][1] * n, w_B[1] + a[1][1] * n, w_B[2] + a[2][1] * n)
+
+
+def cross_product_dipole(k: float, w_B: Sequence[float], b_B: Sequence[float]) -> Vec3:
+    """Eq. 19 (``magnetorquer1``): ``M = k (ω × B_B)``; ``k`` in A·m² per (rad/s · T), unclipped."""
+    c = _cross(w_B, b_B)
+    return (k * c[0], k * c[1], k * c[2])
+
+
+class BetaPd:
+    """Eqs. 20–24 (``magnetorquer2``): PD on the angle between body y and the field.
+
+    Args:
+        k_s: spin gain K_s, A·m² per rad/s.
+        k_d: derivative gain K_d, A·m² per rad/s of β̇.
+        n: orbit rate, rad/s (``ω_ref = −n``).
+        switched: ``True`` applies eq. 23 *or* eq. 24 by the larger of |B_z| and |B_x|, as the
+            report's equations say; ``False`` applies both at once, as its MATLAB listing does (the
+            two ``if`` lines are commented out there, and its figures come from that code).
+    """
+
+    def __init__(self, k_s: float, k_d: float, n: float = REPORT_MEAN_MOTION, switched: bool = False):
+        self.k_s = float(k_s)
+        self.k_d = float(k_d)
+        self.n = float(n)
+        self.switched = switched
+        self.previous: tuple[float, float] | None = None  # (t s, β rad) of the last call
+
+    def dipole(self, t: float, w_B: Sequence[float], b_B: Sequence[float]) -> Vec3:
+        """Dipole (A·m², unclipped) at time ``t`` s from ω (rad/s, B) and the field (T, B)."""
+        bx, by, bz = b_B
+        b = math.sqrt(bx * bx + by * by + bz * bz)
+        beta = math.acos(max(-1.0, min(1.0, by / b))) if b > 0.0 else 0.0
+        previous, self.previous = self.previous, (float(t), beta)
+        if previous is None or not t > previous[0]:
+            return (0.0, 0.0, 0.0)  # no earlier call (or no time between): the MATLAB's dT > 0 fails
+        beta_rate = (beta - previous[1]) / (t - previous[0])
+        spin_error = w_B[1] - (-self.n)
+        m_y = self.k_d * beta_rate
+        m_x = self.k_s * spin_error * _sign(bz)
+        m_z = -self.k_s * spin_error * _sign(bx)
+        if self.switched:
+            if abs(bz) > abs(bx):
+                m_z = 0.0
+            else:
+                m_x = 0.0
+        return (m_x, m_y, m_z)
+
+
+def _sign(x: float) -> float:
+    return 1.0 if x > 0 else (-1.0 if x < 0 else 0.0)
+
+
+def error_quaternion(q_target: Sequence[float], q: Sequence[float]) -> Quat:
+    """Eq. 25: ``q_e = A(q_t) q⁻¹`` in the report's scalar-last convention (q_t normalised first)."""
+    s = math.sqrt(sum(c * c for c in q_target))
+    t1, t2, t3, t4 = (c / s for c in q_target)
+    i1, i2, i3, i4 = -q[0], -q[1], -q[2], q[3]
+    return (t4 * i1 + t3 * i2 - t2 * i3 + t1 * i4,
+            -t3 * i1 + t4 * i2 + t1 * i3 + t2 * i4,
+            t2 * i1 - t1 * i2 + t4 * i3 + t3 * i4,
+            -t1 * i1 - t2 * i2 - t3 * i3 + t4 * i4)
+
+
+def wheel_torque(k_p: float, k_d: float, inertia: Sequence[Sequence[float]], q_e: Sequence[float],
+                 w_O: Sequence[float], w_B: Sequence[float], h_B: Sequence[float]) -> Vec3:
+    """Eq. 26: ``T = K_p I q_e,v + K_d I ω_O − ω × (I ω + h)`` (N·m, unlimited).
+
+    ``T`` is the torque the wheels take from the body: the report's dynamics are
+    ``I ω̇ = M × B − T − ω × (I ω + h)`` and ``ḣ = T``.
+    """
+    pd = tuple(k_p * q_e[i] for i in range(3))
+    ipd = _mat_vec(inertia, pd)
+    iwo = _mat_vec(inertia, w_O)
+    iw = _mat_vec(inertia, w_B)
+    gyro = _cross(w_B, (iw[0] + h_B[0], iw[1] + h_B[1], iw[2] + h_B[2]))
+    return (ipd[0] + k_d * iwo[0] - gyro[0], ipd[1] + k_d * iwo[1] - gyro[1], ipd[2] + k_d * iwo[2] - gyro[2])
+
+
+def clip_dipole(m: Sequence[float], limit: float = REPORT_DIPOLE_LIMIT) -> Vec3:
+    """Each axis clipped to ±``limit`` A·m² (the report's first loop)."""
+    return tuple(limit if c > limit else (-limit if c < -limit else float(c)) for c in m)  # type: ignore[return-value]
+
+
+def limit_wheel_torque(torque: Sequence[float], h: Sequence[float], torque_limit: float = REPORT_WHEEL_TORQUE_LIMIT,
+                       momentum_limit: float = REPORT_WHEEL_MOMENTUM_LIMIT) -> Vec3:
+    """The report's second loop: each torque to ±``torque_limit``; zero when the wheel's momentum is
+    beyond ±``momentum_limit`` and the torque would push it further out."""
+    out = []
+    for u, hi in zip(torque, h):
+        u = torque_limit if u > torque_limit else (-torque_limit if u < -torque_limit else float(u))
+        if (hi > momentum_limit and u > 0) or (hi < -momentum_limit and u < 0):
+            u = 0.0
+        out.append(u)
+    return (out[0], out[1], out[2])

@@ -1,0 +1,50 @@
+"""Topology resources: objects a topology builds beside its components (a simulated spacecraft,
+a run report) and the roles through which the command line reaches them.
+
+A topology's ``resources:`` entry names a factory by import path. The factory declares itself
+with :func:`topology_resource`, optionally taking a *role*: the command line then passes its
+options to whichever resource holds that role, without knowing the resource's name or its
+application. Roles the tools use:
+
+``simulation``
+    takes ``scenario`` (a packaged name or a file), ``settings`` (``KEY.PATH=VALUE`` overrides)
+    and ``seed`` — ``fprime-lite run --scenario/--set/--seed``.
+``report``
+    takes ``truth_interval_s`` — ``fprime-lite run --truth-interval``.
+"""
+from __future__ import annotations
+
+from typing import Callable, TypeVar
+
+__all__ = ["topology_resource", "resource_role", "ROLES"]
+
+#: Roles a resource may hold, and what the tools pass to it.
+ROLES = {
+    "simulation": "run --scenario NAME|FILE, --set KEY.PATH=VALUE, --seed N",
+    "report": "run --truth-interval SECONDS",
+}
+
+F = TypeVar("F", bound=Callable)
+
+_ROLE_ATTRIBUTE = "__fprime_lite_resource_role__"
+
+
+def topology_resource(factory: F | None = None, *, role: str | None = None):
+    """Mark ``factory`` (a class or a function) as a topology resource holding ``role``.
+
+    Usable bare (``@topology_resource``) or with a role (``@topology_resource(role="simulation")``).
+    """
+    if role is not None and role not in ROLES:
+        raise ValueError(f"unknown resource role {role!r}; roles: {', '.join(ROLES)}")
+
+    def mark(f: F) -> F:
+        setattr(f, _ROLE_ATTRIBUTE, role or "")
+        return f
+
+    return mark(factory) if factory is not None else mark
+
+
+def resource_role(factory: object) -> str | None:
+    """The role ``factory`` declared with :func:`topology_resource` ('' for none); None if it never
+    declared itself a resource."""
+    return getattr(factory, _ROLE_ATTRIBUTE, None)
