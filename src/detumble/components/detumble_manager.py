@@ -31,6 +31,7 @@ from fprime_lite.model.types import U8
 
 from detumble.components import types as T
 from detumble.control.bdot import BDot
+from detumble.control.coil_layout import COIL_FACES
 from detumble.control.magnetorquer import CoilShape as CoilOutline
 from detumble.control.magnetorquer import DirectionSign, Magnetorquer
 from detumble.control.strategy_selector import Strategy, StrategySelector
@@ -97,8 +98,7 @@ _COILS = (
 
 
 #: The face of each coil of _COILS, and back.
-_COIL_FACES = (MagnetorquerFace.X_PLUS, MagnetorquerFace.X_MINUS, MagnetorquerFace.Y_PLUS,
-               MagnetorquerFace.Y_MINUS, MagnetorquerFace.Z_MINUS)
+_COIL_FACES = tuple(MagnetorquerFace(int(face)) for face in COIL_FACES)
 _FACE_INDEX = {face: index for index, face in enumerate(_COIL_FACES)}
 
 

@@ -128,7 +128,8 @@ class SystemMode(FwEnum, namespace="Components"):
 
 
 class MagnetorquerFace(FwEnum, namespace="Components"):
-    """A face that carries a magnetorquer coil (the face numbers of the drivers; there is no Z+ coil)."""
+    """A face that carries a magnetorquer coil: the ground-visible form of
+    :data:`detumble.control.coil_layout.COIL_FACES` (same names and numbers; there is no Z+ coil)."""
 
     X_PLUS = 0
     X_MINUS = 1

@@ -831,3 +831,10 @@ def test_successful_stops_never_isolate(h):
     for _ in range(10):
         one_cycle(h)
     assert h.component.isolated_faces == () and not [e for e in h.events if e.name == "CoilStopFailed"]
+
+
+def test_magnetorquer_face_is_the_coil_layout():
+    """Actuator Health: the command/event enum has exactly coil_layout's coil faces, names and numbers."""
+    from detumble.control.coil_layout import COIL_FACES
+    assert [(f.name, int(f)) for f in MagnetorquerFace] == [(f.name, int(f)) for f in COIL_FACES]
+
