@@ -90,11 +90,12 @@ import stat as _stat
 from dataclasses import dataclass
 from pathlib import Path
 
-from fprime_lite.osal.confine import Confinement, PathRefused
+from fprime_lite.osal.confine import PathRefused
 from fprime_lite.osal.os_status import FileStatus, file_status
 from fprime_lite.model.commands import CmdResponse, CommandToken, async_command
 from fprime_lite.model.component import ActiveComponent
 from fprime_lite.model.events import Event, Severity
+from fprime_lite.svc.file_root import FileRoot
 from fprime_lite.wire.file_packet import (MAX_PATH_BYTES, CancelPacket, CfdpChecksum, DataPacket, EndPacket,
                            StartPacket, encode_file_packet)
 from fprime_lite.model.fw_ports import BufferSend, Ping, Sched
@@ -200,7 +201,7 @@ class _Transfer:
         self.log_dest = _cut(request.dest)
 
 
-class FileDownlink(ActiveComponent):
+class FileDownlink(FileRoot, ActiveComponent):
     """Sends files to the ground as F´ file packets (F´ ``Svc.FileDownlink``).
 
     Args:
@@ -277,8 +278,7 @@ class FileDownlink(ActiveComponent):
                     or (high is not None and value > high):
                 bound = f" and at most {high}" if high is not None else ""
                 raise ValueError(f"{name}: {label} must be an integer of at least 1{bound}, got {value!r}")
-        self._root_given = root is not None
-        self._confinement = Confinement(root if root is not None else Path.cwd())
+        self._init_root(root)
         self.packets_per_tick = packets_per_tick
         self.data_size = data_size
         self.file_queue_depth = file_queue_depth
@@ -296,12 +296,8 @@ class FileDownlink(ActiveComponent):
     @property
     def root(self) -> Path:
         """The directory every source lies in (symbolic links resolved)."""
-        return Path(self._confinement.root)
+        return Path(self.root_path)
 
-    def set_default_root(self, folder) -> None:
-        """Use ``folder`` as the root unless one was given at construction (the run's folder)."""
-        if not self._root_given:
-            self._confinement = Confinement(folder)
 
     # --- state, for tests and summaries ----------------------------------------------------------
 

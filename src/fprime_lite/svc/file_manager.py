@@ -90,13 +90,14 @@ import threading
 import zlib
 from dataclasses import dataclass
 
-from fprime_lite.osal.confine import Confinement, PathRefused
+from fprime_lite.osal.confine import PathRefused
 from fprime_lite.osal.os_status import (DirectoryStatus, FileStatus, FileSystemStatus, directory_status,
                                         file_status, filesystem_status)
-from fprime_lite.osal.atomic import clean_temporary_files, fsync_directory, temporary_file
+from fprime_lite.osal.atomic import fsync_directory, temporary_file
 from fprime_lite.model.commands import CmdResponse, CommandToken, async_command
 from fprime_lite.model.component import ActiveComponent
 from fprime_lite.model.events import Event, Severity
+from fprime_lite.svc.file_root import FileRoot
 from fprime_lite.model.fw_ports import Ping, Sched
 from fprime_lite.model.ports import OutputPort, async_input, sync_input
 from fprime_lite.model.telemetry import Channel
@@ -169,7 +170,7 @@ class _Listing:
     entries: int = 0
 
 
-class FileManager(ActiveComponent):
+class FileManager(FileRoot, ActiveComponent):
     """Ground commands on files and directories (F´ ``Svc.FileManager``).
 
     Args:
@@ -264,8 +265,7 @@ class FileManager(ActiveComponent):
                              f"got {shell_timeout_s!r}")
         if isinstance(files_per_tick, bool) or not isinstance(files_per_tick, int) or files_per_tick < 1:
             raise ValueError(f"{name}: files_per_tick must be a positive integer, got {files_per_tick!r}")
-        self._root_given = root is not None
-        self._confinement = Confinement(root if root is not None else os.getcwd())
+        self._init_root(root)
         self.overwrite = bool(overwrite)
         self.allow_shell = bool(allow_shell)
         self.shell_timeout_s = shell_timeout_s
@@ -295,19 +295,9 @@ class FileManager(ActiveComponent):
     @property
     def root(self) -> str:
         """The directory every path lies in (symbolic links resolved)."""
-        return self._confinement.root
+        return self.root_path
 
-    def set_default_root(self, folder) -> None:
-        """Use ``folder`` as the root unless one was given at construction (the run's folder)."""
-        if not self._root_given:
-            self._confinement = Confinement(folder)
 
-    def clean_temporary_files(self) -> list[str]:
-        """Start-up: remove the temporary files that a killed process left under ``root``."""
-        removed = clean_temporary_files(self.root, recursive=True)
-        if removed:
-            log.info("%s: removed %d temporary file(s) left under %s", self.name, len(removed), self.root)
-        return removed
 
     def resolve(self, path: str, *, entry: bool = False) -> str:
         """The confined real path a command argument names (relative under ``root``; absolute must be

@@ -94,11 +94,12 @@ import logging
 import os
 import pathlib
 
-from fprime_lite.osal.atomic import clean_temporary_files, file_mode_for, fsync_directory, temporary_file
-from fprime_lite.osal.confine import Confinement, PathRefused
+from fprime_lite.osal.atomic import file_mode_for, fsync_directory, temporary_file
+from fprime_lite.osal.confine import PathRefused
 from fprime_lite.osal.os_status import FileStatus
 from fprime_lite.model.component import ActiveComponent
 from fprime_lite.model.events import Event, Severity
+from fprime_lite.svc.file_root import FileRoot
 from fprime_lite.wire.file_packet import (CancelPacket, CfdpChecksum, DataPacket, EndPacket, FilePacketError,
                            FilePacketType, StartPacket, decode_file_packet)
 from fprime_lite.model.fw_ports import BufferSend, Ping
@@ -171,7 +172,7 @@ class _Transfer:
         self.failed = False
 
 
-class FileUplink(ActiveComponent):
+class FileUplink(FileRoot, ActiveComponent):
     """F´'s file uplink (``Svc.FileUplink``).
 
     Args:
@@ -228,8 +229,7 @@ class FileUplink(ActiveComponent):
     def __init__(self, name: str = "fileUplink", *, base_id: int = 0, queue_size: int = 10,
                  root: str | os.PathLike | None = None, overwrite: bool = False):
         super().__init__(name, base_id=base_id, queue_size=queue_size)
-        self._root_given = root is not None
-        self._confinement = Confinement(root if root is not None else os.getcwd())
+        self._init_root(root)
         self.overwrite = bool(overwrite)
         self._mode = ReceiveMode.START
         self._last_sequence = 0
@@ -269,21 +269,10 @@ class FileUplink(ActiveComponent):
 
     @property
     def root(self) -> str:
-        """The directory every destination lies in (symbolic links resolved)."""
-        return self._confinement.root
+        """The directory every path lies in (symbolic links resolved)."""
+        return self.root_path
 
-    def set_default_root(self, folder) -> None:
-        """Use ``folder`` as the root unless one was given at construction (the runner passes the
-        run's folder)."""
-        if not self._root_given:
-            self._confinement = Confinement(folder)
 
-    def clean_temporary_files(self) -> list[str]:
-        """Start-up: remove the temporary files that a killed process left under ``root``."""
-        removed = clean_temporary_files(self.root, recursive=True)
-        if removed:
-            log.info("%s: removed %d temporary file(s) left under %s", self.name, len(removed), self.root)
-        return removed
 
     # --- inspection ----------------------------------------------------------------------------
 
