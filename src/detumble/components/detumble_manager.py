@@ -16,6 +16,10 @@ One state's actions run per ``run`` call; a transition takes effect on the next 
     SENSING_ANGULAR_VELOCITY ──HYSTERESIS──▶ ACTUATING_HYSTERESIS ──▶ COOLDOWN
     ACTUATING_BDOT ──(≥ TORQUE_DURATION, or sampling-period failure)──▶ COOLDOWN
     any state ──(mode DISABLED)──▶ COOLDOWN, coils stopped, timers and window cleared
+
+Actuator health (an addition to the PROVES design): a coil whose stop answers FAILURE may still be
+on; it is reported (CoilStopFailed, WARNING_HI) and isolated — no start or stop reaches it — until
+the ground sends ENABLE_COIL. Every torque period ends with a stop, so this takes at most one period.
 """
 
 from __future__ import annotations
