@@ -4,7 +4,8 @@
 
 Floor: one RK4 step of the 7-state rigid body with a constant torque (``RigidBody.step``).
 Ticks: ``Plant.step`` of a packaged scenario plus what a driver does each tick (read the
-magnetometer and gyro; for case A also the kopt law and applying its dipole). Reported as ticks per
+magnetometer and gyro; for case A also the kopt law and applying its dipole; for surrey command
+the three wheels and read the star tracker). Reported as ticks per
 second and as a ratio to the floor; timings are never asserted anywhere.
 """
 
@@ -56,6 +57,17 @@ def plant_case_a_with_law(n: int) -> None:
         step()
 
 
+def plant_surrey_wheels(n: int) -> None:
+    """The coursework spacecraft: three wheels commanded every tick, star tracker and gyro read."""
+    p = Plant(load_scenario("surrey"))
+    step, torques, star = p.step, p.set_wheel_torques, p.star_tracker_reading
+    u = (1e-4, -2e-4, 5e-5)
+    for _ in range(n):
+        torques(u)
+        star()
+        step()
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ticks", type=int, default=50_000)
@@ -63,7 +75,8 @@ def main() -> None:
     f = _best(floor, n)
     print(f"bare RK4 step (floor)                       {f:12,.0f} steps/s  ({1e6 / f:5.2f} us)   ratio 1.00")
     for label, fn in (("plant tick, default (coils, noisy sensors) ", plant_default),
-                      ("plant tick + kopt law, case A (rods, ideal)", plant_case_a_with_law)):
+                      ("plant tick + kopt law, case A (rods, ideal)", plant_case_a_with_law),
+                      ("plant tick, surrey (3 wheels commanded)   ", plant_surrey_wheels)):
         r = _best(fn, n)
         print(f"{label} {r:12,.0f} ticks/s  ({1e6 / r:5.2f} us)   ratio {f / r:.2f}x the floor")
 

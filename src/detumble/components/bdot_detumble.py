@@ -39,8 +39,9 @@ def _zero_failure() -> Result:
 class BDotDetumble(PassiveComponent):
     """Computes a damping dipole moment on request (F´ namespace ``Drv``)."""
 
-    #: B-dot gain, A·m²·s (m = −Gain·Ḃ/|B|).
-    Gain = Param(F64, default=1.0)
+    #: B-dot gain, A·m²·s (m = −Gain·Ḃ/|B|); a negative gain would spin the spacecraft up, NaN or
+    #: inf would make every dipole non-finite.
+    Gain = Param(F64, default=1.0, low=0.0, high=1000.0)
 
     magneticFieldGet = OutputPort(MagneticFieldGet)
 

@@ -11,6 +11,10 @@ Namespaces follow the flight FPP and the seed design documents:
 * ``Drv`` — driver-side types: :class:`MagneticField` (the magnetometer reading, ``Drv::MagneticField``
   in the flight code), :class:`DipoleMoment` and the ``DipoleMomentGet`` port (seed 002), and the
   magnetorquer driver ports ``StartMagnetorquer`` / ``StopMagnetorquer`` (flight FPP).
+* ``Drv`` (reaction wheels, star tracker; see ``docs/components/reaction_wheel_driver.md`` and
+  ``docs/components/star_tracker.md``): :class:`WheelMode`, :class:`WheelState`,
+  :class:`AttitudeQuaternion`; ports ``WheelTorqueSet``, ``WheelSpeedSet``, ``WheelEnableSet``,
+  ``WheelStateGet`` (one driver instance per wheel) and ``AttitudeGet``.
 * ``Fw`` — :class:`Success` and :class:`TimeIntervalValue` are re-exported from the framework
   (:mod:`fprime_lite.model.fw_types`).
 
@@ -38,7 +42,7 @@ from typing import Any, NamedTuple
 from fprime_lite.model.fw_types import Success, TimeIntervalValue
 from fprime_lite.model.ports import PortType
 from fprime_lite.model.time import Time
-from fprime_lite.model.types import F64, I8, FwEnum, Struct
+from fprime_lite.model.types import BOOL, F64, I8, FwEnum, Struct
 
 __all__ = [
     "Success", "TimeIntervalValue", "Result",
@@ -47,6 +51,8 @@ __all__ = [
     "SetDetumbleMode", "SystemModeChanged", "GetSystemMode", "AngularVelocityMagnitudeGet",
     "MagneticFieldGet", "SamplingPeriodGet", "StartMagnetorquer", "StopMagnetorquer",
     "DipoleMomentGet",
+    "WheelMode", "WheelState", "WheelTorqueSet", "WheelSpeedSet", "WheelEnableSet", "WheelStateGet",
+    "AttitudeQuaternion", "AttitudeGet",
 ]
 
 
@@ -185,3 +191,51 @@ StartMagnetorquer = PortType("Drv.StartMagnetorquer", returns=Success, val=I8)
 StopMagnetorquer = PortType("Drv.StopMagnetorquer", returns=Success)
 #: Dipole moment to command; returns ``Result(DipoleMoment, Success)``.
 DipoleMomentGet = PortType("Drv.DipoleMomentGet", returns=Result)
+
+
+# --- reaction wheels and attitude knowledge (issue 12) --------------------------------------------
+
+class WheelMode(FwEnum, namespace="Drv"):
+    """What a reaction-wheel driver is doing: motor off, following a torque or a speed command."""
+
+    DISABLED = 0
+    TORQUE = 1
+    SPEED = 2
+
+
+class WheelState(Struct, namespace="Drv"):
+    """One wheel's reported state. ``speed`` rad/s relative to the body; ``momentum`` N·m·s, the
+    absolute axial momentum ``J_s (Ω + gᵀω)`` along the wheel's spin axis; ``torque`` N·m, the motor
+    torque applied now (after the limits; the body feels −torque along the axis); ``mode``; and
+    ``timestamp``, when the reading was taken."""
+
+    speed: F64
+    momentum: F64
+    torque: F64
+    mode: WheelMode
+    timestamp: Time
+
+
+class AttitudeQuaternion(Struct, namespace="Drv"):
+    """An attitude solution ``q_BN`` (scalar first: ``q0`` real part; rotates N onto B) with
+    ``valid`` (false: no solution, the quaternion is the last valid one) and ``timestamp`` (when the
+    tracker took the image)."""
+
+    q0: F64
+    q1: F64
+    q2: F64
+    q3: F64
+    valid: BOOL
+    timestamp: Time
+
+
+#: Command motor torque ``torque`` (N·m, along the wheel's spin axis); returns Success.
+WheelTorqueSet = PortType("Drv.WheelTorqueSet", returns=Success, torque=F64)
+#: Command wheel speed ``speed`` (rad/s relative to the body; the wheel's own loop); returns Success.
+WheelSpeedSet = PortType("Drv.WheelSpeedSet", returns=Success, speed=F64)
+#: Enable (true) or disable (false) the wheel's motor; returns Success.
+WheelEnableSet = PortType("Drv.WheelEnableSet", returns=Success, enable=BOOL)
+#: The wheel's state; returns ``Result(WheelState, Success)``.
+WheelStateGet = PortType("Drv.WheelStateGet", returns=Result)
+#: Latest attitude solution; returns ``Result(AttitudeQuaternion, Success)``.
+AttitudeGet = PortType("Drv.AttitudeGet", returns=Result)

@@ -2,7 +2,9 @@
 
 Modules: :mod:`.vec` (plain-float vectors/quaternions, the quaternion convention),
 :mod:`.attitude` (rigid body, RK4), :mod:`.orbit`, :mod:`.field`, :mod:`.torques`,
-:mod:`.sensors`, :mod:`.coils`, :mod:`.scenario`, :mod:`.plant`, :mod:`.laws`, :mod:`.runner`.
+:mod:`.sensors`, :mod:`.coils`, :mod:`.scenario`, :mod:`.plant`, :mod:`.laws`, :mod:`.runner`,
+:mod:`.wheels` (reaction wheels and their coupled RK4 step), :mod:`.star_tracker`,
+:mod:`.frames` (the orbit frame, q_BO), :mod:`.truth` (the ADCS truth columns).
 """
 
 from detumble.sim.plant import Plant

@@ -184,6 +184,10 @@ class CoilSet:
         self.dipole_B = self._sum()
         return self._sum(mean)
 
+    def commanded_dipole_B(self) -> tuple[float, float, float]:
+        """The dipole the present levels give once the currents have settled (A m^2, B)."""
+        return self._sum({face: c.target_current_a() for face, c in self.coils.items()})
+
     def max_dipole_per_axis(self) -> tuple[float, float, float]:
         """Largest |m| achievable on each body axis with every coil on that axis at full drive."""
         out = [0.0, 0.0, 0.0]
@@ -237,4 +241,7 @@ class TorqueRods:
         )
 
     def advance(self, dt: float) -> tuple[float, float, float]:
+        return self.dipole_B
+
+    def commanded_dipole_B(self) -> tuple[float, float, float]:
         return self.dipole_B

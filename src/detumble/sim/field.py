@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import math
 
+from detumble.sim.frames import orbit_axes_N
+
 EARTH_ROTATION_RATE = 7.2921159e-5  #: rad/s
 IGRF_REFERENCE_RADIUS_M = 6371200.0
 IGRF2025_G10_NT = -29350.0
@@ -167,3 +169,23 @@ class FieldAlongOrbit:
         s = t / h - k
         a, b = self._node(k), self._node(k + 1)
         return (a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2]))
+
+
+class OrbitConstantField:
+    """A field constant in the orbit frame O (seed 004's environment): ``b_N = [ON]^T b_O``.
+
+    ``b_O`` in tesla, O as defined in :mod:`detumble.sim.frames` (z nadir, y negative orbit
+    normal). Not a geomagnetic model: it reproduces the coursework's simplification, in which the
+    field seen by a body at rest in O never changes. ``orbit`` must give ``position_N`` and
+    ``velocity_N``.
+    """
+
+    def __init__(self, b_O: tuple[float, float, float], orbit) -> None:
+        self.b_O = tuple(float(x) for x in b_O)
+        self.orbit = orbit
+
+    def b_N(self, t: float, r_N: tuple[float, float, float] | None = None) -> tuple[float, float, float]:
+        r = r_N if r_N is not None else self.orbit.position_N(t)
+        x, y, z = orbit_axes_N(r, self.orbit.velocity_N(t))
+        a, b, c = self.b_O
+        return (a * x[0] + b * y[0] + c * z[0], a * x[1] + b * y[1] + c * z[1], a * x[2] + b * y[2] + c * z[2])

@@ -7,7 +7,8 @@ next update. The first update only primes the finite difference and returns zero
 * ``none`` - zero dipole.
 * ``kopt`` - the law of the Basilisk cross-check, case A (Markley & Crassidis eq. 7.55; Avanzini &
   Giulietti 2012): ``m = -(k/|B|^2) (B_now - B_prev)/dt`` with ``k = 2 n (1 + sin i) J_min``, the
-  whole vector scaled down so that every ``|m_i| <= m_max_i``.
+  whole vector scaled down so that every ``|m_i| <= m_max_i`` (or, with ``control.saturation:
+  clip``, each axis clipped on its own; set by :func:`detumble.sim.runner.make_law`).
 * ``bdot`` - ``m = -gain * dB/dt`` with the gain in the flight units, A m^2 s / G (dB/dt in
   gauss/s; the flight DetumbleManager's GAIN default is 3.0), scaled like ``kopt``.
 * ``bangbang`` - ``m_i = -m_max_i sign(dB_i/dt)``: saturated bang-bang B-dot.
@@ -39,7 +40,15 @@ def scale_to_limits(m: Vec3, m_max: Vec3) -> Vec3:
     return (m[0] * s, m[1] * s, m[2] * s)
 
 
+def clip_to_limits(m: Vec3, m_max: Vec3) -> Vec3:
+    """Clip each axis to ``+-m_max_i`` independently (the direction may change; seed 004's way)."""
+    return tuple(max(-m_max[i], min(m_max[i], m[i])) for i in range(3))  # type: ignore[return-value]
+
+
 class _Differencing:
+    #: how a law meets its per-axis limits: ``scale_to_limits`` (default) or ``clip_to_limits``
+    limit = staticmethod(scale_to_limits)
+
     def __init__(self) -> None:
         self._prev: Vec3 | None = None
         self._t_prev = 0.0
@@ -82,7 +91,7 @@ class KoptLaw(_Differencing):
         if bdot is None or b2 == 0.0:
             return _ZERO
         c = -self.k / b2
-        return scale_to_limits((c * bdot[0], c * bdot[1], c * bdot[2]), self.m_max)
+        return self.limit((c * bdot[0], c * bdot[1], c * bdot[2]), self.m_max)
 
 
 class BdotLaw(_Differencing):
@@ -100,7 +109,7 @@ class BdotLaw(_Differencing):
         if bdot is None:
             return _ZERO
         c = -self.gain * 1e4  # T/s -> G/s
-        return scale_to_limits((c * bdot[0], c * bdot[1], c * bdot[2]), self.m_max)
+        return self.limit((c * bdot[0], c * bdot[1], c * bdot[2]), self.m_max)
 
 
 class BangBangLaw(_Differencing):

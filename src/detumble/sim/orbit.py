@@ -67,6 +67,19 @@ class CircularOrbit:
             a * (su * self._si),
         )
 
+    def velocity_N(self, t: float) -> tuple[float, float, float]:
+        """Inertial velocity at ``t`` s after epoch, m/s (the derivative of :meth:`position_N`)."""
+        u = self.arg_latitude0_rad + self.arg_latitude_rate * t
+        raan = self.raan0_rad + self.raan_rate * t
+        cu, su = math.cos(u), math.sin(u)
+        co, so = math.cos(raan), math.sin(raan)
+        a, du, dr, ci = self.radius_m, self.arg_latitude_rate, self.raan_rate, self._ci
+        return (
+            a * (du * (-co * su - so * cu * ci) + dr * (-so * cu - co * su * ci)),
+            a * (du * (-so * su + co * cu * ci) + dr * (co * cu - so * su * ci)),
+            a * du * cu * self._si,
+        )
+
     def gravity_gradient_coeff(self, r_N: tuple[float, float, float]) -> float:
         return self.gg_coeff
 
@@ -121,6 +134,18 @@ class TleOrbit:
         h01 = s * s * (3.0 - 2.0 * s)
         h11 = s * s * (s - 1.0) * h
         return tuple(h00 * r0[i] + h10 * v0[i] + h01 * r1[i] + h11 * v1[i] for i in range(3))  # type: ignore[return-value]
+
+    def velocity_N(self, t: float) -> tuple[float, float, float]:
+        """Inertial velocity, m/s: the derivative of the Hermite interpolant of :meth:`position_N`."""
+        h = self.step_s
+        k = math.floor(t / h)
+        s = t / h - k
+        (r0, v0), (r1, v1) = self._node(k), self._node(k + 1)
+        d00 = 6.0 * s * s - 6.0 * s
+        d10 = (3.0 * s * s - 4.0 * s + 1.0) * h
+        d01 = -d00
+        d11 = (3.0 * s * s - 2.0 * s) * h
+        return tuple((d00 * r0[i] + d10 * v0[i] + d01 * r1[i] + d11 * v1[i]) / h for i in range(3))  # type: ignore[return-value]
 
     def gravity_gradient_coeff(self, r_N: tuple[float, float, float]) -> float:
         r2 = r_N[0] ** 2 + r_N[1] ** 2 + r_N[2] ** 2

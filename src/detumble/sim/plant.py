@@ -14,13 +14,17 @@ from __future__ import annotations
 
 import math
 
+from detumble.sim import frames
 from detumble.sim.attitude import RigidBody, State
 from detumble.sim.coils import CoilSet, TorqueRods
-from detumble.sim.field import DipoleField, FieldAlongOrbit, WmmField
+from detumble.sim.field import DipoleField, FieldAlongOrbit, OrbitConstantField, WmmField
+from detumble.sim.laws import scale_to_limits
 from detumble.sim.orbit import CircularOrbit, TleOrbit
 from detumble.sim.scenario import Scenario
 from detumble.sim.sensors import GAUSS_PER_TESLA, Gyro, Magnetometer
-from detumble.sim.vec import Vec3, rotate_n_to_b
+from detumble.sim.star_tracker import StarTracker
+from detumble.sim.vec import Quat, Vec3, cross, mat_vec, quat_normalize, rotate_b_to_n, rotate_n_to_b, scale
+from detumble.sim.wheels import WheelAssembly, equations_inertia, step_with_wheels
 
 _ZERO = (0.0, 0.0, 0.0)
 
@@ -45,6 +49,8 @@ def build_field(sc: Scenario, orbit) -> FieldAlongOrbit | None:
     f = sc.field
     if f.model == "none":
         return None
+    if f.model == "orbit_constant":
+        return FieldAlongOrbit(OrbitConstantField(f.b_orbit_t, orbit), orbit, None)
     if f.model == "wmm2025":
         return FieldAlongOrbit(WmmField(sc.epoch, f.earth_rotation_rate_rad_s, sc.earth_angle0_rad), orbit,
                                f.table_step_s)
@@ -64,18 +70,31 @@ class Plant:
         self.scenario = sc
         self.seed = sc.seed if seed is None else seed
         self.dynamics_step_s = sc.dynamics_step_s
-        self.body = RigidBody(sc.spacecraft.inertia_kg_m2, sc.spacecraft.wheel_momentum_nms)
+        self.substeps = sc.integrator_substeps
+        rw = sc.spacecraft.reaction_wheels
+        #: the wheels (None without: the plant then never touches the wheel code)
+        self.wheels: WheelAssembly | None = WheelAssembly(rw, _derive_seed(self.seed, 3)) if rw else None
+        inertia = equations_inertia(sc.spacecraft.inertia_kg_m2, rw) if rw else sc.spacecraft.inertia_kg_m2
+        self.body = RigidBody(inertia, sc.spacecraft.wheel_momentum_nms)
         self.orbit = build_orbit(sc)
         self.field = build_field(sc, self.orbit)
         if sc.spacecraft.actuator_type == "rods":
             self.actuators: CoilSet | TorqueRods = TorqueRods(sc.spacecraft.rods_max_dipole_am2)
         else:
             self.actuators = CoilSet(sc.spacecraft.coils)
+        self._scale_dipole = sc.spacecraft.actuator_saturation == "scale"
+        self.m_commanded_B: Vec3 = _ZERO
+        st = sc.star_tracker
+        self.star_tracker: StarTracker | None = StarTracker(st, _derive_seed(self.seed, 4)) if st is not None else None
+        self._target: tuple[Quat, str] | None = None
         self.residual_dipole_B: Vec3 = sc.spacecraft.residual_dipole_am2
         self._gravity_gradient = sc.spacecraft.gravity_gradient
         self.magnetometer = Magnetometer(sc.magnetometer, _derive_seed(self.seed, 1))
         self.gyro = Gyro(sc.gyro, _derive_seed(self.seed, 2))
-        self._state: State = tuple(sc.q_BN0) + tuple(sc.omega_BN_B0)  # type: ignore[assignment]
+        q0 = tuple(sc.q_BN0)
+        if sc.attitude_frame == "orbit":
+            q0 = quat_normalize(frames.q_BN_from_orbit(q0, frames.q_ON(self.orbit, 0.0)))  # type: ignore[arg-type]
+        self._state: State = q0 + tuple(sc.omega_BN_B0)  # type: ignore[assignment]
         self._t_ns = 0
         self._update_environment()
         # the sensors' first sample is at t = 0
@@ -85,6 +104,10 @@ class Plant:
         if not sc.gyro.ideal:
             self.gyro.sample_rad_s = self.gyro.measure(self.omega_BN_B)
             self.gyro.sample_time_ns = 0
+        if self.star_tracker is not None and not st.ideal:
+            q, valid = self.star_tracker.measure(self.q_BN, self.omega_BN_B)
+            self.star_tracker.sample_q, self.star_tracker.sample_valid = q, valid
+            self.star_tracker.sample_time_ns = 0
 
     # --- time ---------------------------------------------------------------------------------
 
@@ -123,7 +146,21 @@ class Plant:
         m_coils = self.actuators.advance(dt)
         res = self.residual_dipole_B
         m_tot = (m_coils[0] + res[0], m_coils[1] + res[1], m_coils[2] + res[2])
-        s1 = self.body.step_env(s0, dt, m_tot, b0_N, self._gg, self._r_hat_N)
+        n_sub = self.substeps
+        wheels = self.wheels
+        if wheels is None:
+            if n_sub == 1:
+                s1 = self.body.step_env(s0, dt, m_tot, b0_N, self._gg, self._r_hat_N)
+            else:
+                s1, h = s0, dt / n_sub
+                for _ in range(n_sub):
+                    s1 = self.body.step_env(s1, h, m_tot, b0_N, self._gg, self._r_hat_N)
+        else:
+            u = wheels.motor_torques(dt, s0[4:7])
+            s1, hw, h = s0, wheels.h, dt / n_sub
+            for _ in range(n_sub):
+                s1, hw = step_with_wheels(self.body, s1, hw, u, wheels, h, m_tot, b0_N, self._gg, self._r_hat_N)
+            wheels.h = hw
         self._state = s1
         self._t_ns = t1
         self._update_environment()
@@ -133,6 +170,9 @@ class Plant:
         gyro = self.gyro
         if not gyro.spec.ideal and gyro.latest_instant(t0, t1) is not None:
             gyro.latch(t0, t1, s0[4:7], s1[4:7])
+        st = self.star_tracker
+        if st is not None and not st.spec.ideal and st.latest_instant(t0, t1) is not None:
+            st.latch(t0, t1, s0, s1)
 
     def advance_to(self, t: float) -> None:
         """Step (in dynamics steps, the last one partial) until the clock reads ``t`` seconds."""
@@ -184,6 +224,25 @@ class Plant:
     def angular_momentum_B(self) -> Vec3:
         return self.body.angular_momentum_B(self._state)
 
+    def gravity_gradient_torque_B(self) -> Vec3:
+        """Gravity-gradient torque now, N m in B (zero when the scenario turns it off)."""
+        if not self._gg:
+            return _ZERO
+        r = rotate_n_to_b(self.q_BN, self._r_hat_N)
+        return scale(self._gg, cross(r, mat_vec(self.body.inertia, r)))
+
+    def wheel_torque_on_body_B(self) -> Vec3:
+        """The wheel motors' torque on the body over the last step, ``-sum u_i g_i`` (N m, B)."""
+        w = self.wheels
+        if w is None:
+            return _ZERO
+        x = y = z = 0.0
+        for u, g in zip(w.torque_applied, w.axes):
+            x -= u * g[0]
+            y -= u * g[1]
+            z -= u * g[2]
+        return (x, y, z)
+
     # --- sensors -------------------------------------------------------------------------------
 
     def magnetometer_reading(self, t: float | None = None) -> tuple[float, float, float, float]:
@@ -219,6 +278,7 @@ class Plant:
         if not isinstance(self.actuators, CoilSet):
             raise TypeError("this spacecraft has ideal torque rods, not face coils; use apply_dipole_B")
         self.actuators.set_level(face, level)
+        self.m_commanded_B = self.actuators.commanded_dipole_B()
 
     def coil_levels(self) -> dict[int, int]:
         if not isinstance(self.actuators, CoilSet):
@@ -226,7 +286,11 @@ class Plant:
         return self.actuators.levels()
 
     def apply_dipole_B(self, m_B: Vec3) -> None:
-        """Command a body dipole (A m^2): clamped for rods, split over each axis's coils for coils."""
+        """Command a body dipole (A m^2): limited per axis (``actuators.saturation``: each axis
+        clipped, or the whole vector scaled), split over each axis's coils for coils."""
+        self.m_commanded_B = (float(m_B[0]), float(m_B[1]), float(m_B[2]))
+        if self._scale_dipole:
+            m_B = scale_to_limits(m_B, self.actuators.max_dipole_per_axis())
         self.actuators.apply_dipole_B(m_B)
 
     @property
@@ -236,3 +300,147 @@ class Plant:
 
     def max_dipole_per_axis(self) -> Vec3:
         return self.actuators.max_dipole_per_axis()
+
+    # --- reaction wheels -------------------------------------------------------------------------
+    # Wheel ``i`` spins about ``wheel_axes_B[i]``. Motor torque ``u`` (N m) acts on the wheel along
+    # its axis, the body feels ``-u``. Commands are held until changed and act from the present
+    # plant time on; the limits are applied at every step (see detumble.sim.wheels).
+
+    @property
+    def wheel_count(self) -> int:
+        return 0 if self.wheels is None else self.wheels.n
+
+    @property
+    def wheel_axes_B(self) -> tuple[Vec3, ...]:
+        return () if self.wheels is None else self.wheels.axes
+
+    def _wheels(self) -> WheelAssembly:
+        if self.wheels is None:
+            raise ValueError("this spacecraft has no reaction wheels (scenario spacecraft.reaction_wheels)")
+        return self.wheels
+
+    def set_wheel_torque(self, i: int, torque_nm: float, t: float | None = None) -> None:
+        """Command motor torque ``torque_nm`` (N m) on wheel ``i`` (torque mode)."""
+        self._sync(t)
+        self._wheels().set_torque(i, torque_nm)
+
+    def set_wheel_torques(self, torques_nm, t: float | None = None) -> None:
+        """Command every wheel's motor torque at once (a sequence of N values, N m)."""
+        self._sync(t)
+        w = self._wheels()
+        if len(torques_nm) != w.n:
+            raise ValueError(f"expected {w.n} wheel torques, got {len(torques_nm)}")
+        for i, u in enumerate(torques_nm):
+            w.set_torque(i, u)
+
+    def set_wheel_speed(self, i: int, speed_rad_s: float, t: float | None = None) -> None:
+        """Command wheel ``i``'s speed relative to the body (rad/s; the wheel's own speed loop)."""
+        self._sync(t)
+        self._wheels().set_speed(i, speed_rad_s)
+
+    def set_wheel_enabled(self, i: int, enabled: bool, t: float | None = None) -> None:
+        """Enable or disable wheel ``i``'s motor (disabled: no motor torque, the wheel coasts)."""
+        self._sync(t)
+        self._wheels().set_enabled(i, enabled)
+
+    @property
+    def wheel_momenta(self) -> tuple[float, ...]:
+        """True absolute axial momenta ``h_i = J_s (Omega_i + g_i . omega)``, N m s."""
+        return () if self.wheels is None else self.wheels.h
+
+    @property
+    def wheel_speeds_rad_s(self) -> tuple[float, ...]:
+        """True wheel speeds relative to the body, rad/s."""
+        if self.wheels is None:
+            return ()
+        w = self.omega_BN_B
+        return tuple(self.wheels.speed_rad_s(i, w) for i in range(self.wheels.n))
+
+    @property
+    def wheel_torques_nm(self) -> tuple[float, ...]:
+        """Motor torques applied over the last step (after the limits), N m."""
+        return () if self.wheels is None else tuple(self.wheels.torque_applied)
+
+    @property
+    def wheel_momentum_B(self) -> Vec3:
+        """``sum h_i g_i`` (N m s, in B; the constant ``wheel_momentum_nms`` not included)."""
+        return _ZERO if self.wheels is None else self.wheels.momentum_B()
+
+    def wheel_reading(self, i: int, t: float | None = None) -> tuple[float, float, float, float]:
+        """``(speed_rad_s, momentum_nms, torque_nm, t_read)`` as the wheel reports them: momentum
+        with the configured noise, speed consistent with it, the motor torque of the last step."""
+        self._sync(t)
+        w = self._wheels()
+        w._index(i)
+        h = w.measured_momentum(i)
+        om = self.omega_BN_B
+        g = w.axes[i]
+        speed = h / w.js[i] - (g[0] * om[0] + g[1] * om[1] + g[2] * om[2])
+        return (speed, h, w.torque_applied[i], self.t)
+
+    def total_angular_momentum_N(self) -> Vec3:
+        """Body + wheels angular momentum in N, N m s (constant without external torque)."""
+        hb = self.body.angular_momentum_B(self._state)
+        hw = self.wheel_momentum_B
+        return rotate_b_to_n(self.q_BN, (hb[0] + hw[0], hb[1] + hw[1], hb[2] + hw[2]))
+
+    # --- attitude knowledge ------------------------------------------------------------------------
+
+    def star_tracker_reading(self, t: float | None = None) -> tuple[float, float, float, float, bool, float]:
+        """``(q0, q1, q2, q3, valid, t_sample)``: the held star-tracker attitude q_BN (scalar first),
+        whether it is a valid solution, and when it was taken (s). Ideal: the truth, now."""
+        self._sync(t)
+        st = self.star_tracker
+        if st is None:
+            raise ValueError("this spacecraft has no star tracker (scenario sensors.star_tracker)")
+        if st.spec.ideal:
+            q = self.q_BN
+            return (q[0], q[1], q[2], q[3], True, self.t)
+        q = st.sample_q
+        return (q[0], q[1], q[2], q[3], st.sample_valid, st.sample_time_ns * 1e-9)
+
+    # --- orbit frame and pointing (truth) ----------------------------------------------------------
+
+    @property
+    def q_ON(self) -> Quat:
+        """The orbit frame O relative to N now (detumble.sim.frames)."""
+        return frames.q_ON(self.orbit, self.t)
+
+    @property
+    def q_BO(self) -> Quat:
+        """True attitude relative to the orbit frame O (scalar first, q0 >= 0)."""
+        return frames.q_BO(self.q_BN, self.q_ON)
+
+    @property
+    def omega_BO_B(self) -> Vec3:
+        """True body rate relative to O, in B, rad/s (seed 004 eq. 14)."""
+        t = self.t
+        r, v = self.orbit.position_N(t), self.orbit.velocity_N(t)
+        n = frames.orbit_rate(r, v)
+        y_N = frames.orbit_axes_N(r, v)[1]
+        wo = rotate_n_to_b(self.q_BN, (-n * y_N[0], -n * y_N[1], -n * y_N[2]))
+        w = self.omega_BN_B
+        return (w[0] - wo[0], w[1] - wo[1], w[2] - wo[2])
+
+    def set_pointing_target(self, q_target: Quat | None, frame: str = "inertial") -> None:
+        """Hook for a controller: the attitude it is steering to (``q_TN``, or ``q_TO`` with
+        ``frame="orbit"``), logged as the pointing error. ``None`` clears it. Truth only."""
+        if q_target is None:
+            self._target = None
+            return
+        if frame not in ("inertial", "orbit"):
+            raise ValueError(f"target frame must be 'inertial' or 'orbit', got {frame!r}")
+        self._target = (quat_normalize(tuple(float(x) for x in q_target)), frame)  # type: ignore[arg-type]
+
+    @property
+    def pointing_target(self) -> tuple[Quat, str] | None:
+        return self._target
+
+    def pointing_error_rad(self) -> float | None:
+        """Angle between the attitude and the current target (rad), or None without a target."""
+        if self._target is None:
+            return None
+        q_t, frame = self._target
+        if frame == "orbit":
+            q_t = frames.q_BN_from_orbit(q_t, self.q_ON)
+        return frames.attitude_error_rad(self.q_BN, q_t)

@@ -1,7 +1,8 @@
 """Plant-only runs: fly a scenario with a reference law (no F' framework involved).
 
 ``python -m detumble.sim SCENARIO --law none|kopt|bdot|bangbang [--gain G] --out DIR
-[--duration S] [--seed N]`` writes ``DIR/summary.json`` and ``DIR/rate.csv``. :func:`main`
+[--duration S] [--seed N]`` writes ``DIR/summary.json`` and ``DIR/rate.csv`` (the body rate, then
+the ADCS truth columns of :mod:`detumble.sim.truth`). :func:`main`
 returns an exit code and reports bad input on stderr without a traceback, so a CLI
 (``fprime-lite sim``) can call it directly.
 
@@ -22,9 +23,10 @@ import tempfile
 import time
 from dataclasses import dataclass
 
-from detumble.sim.laws import BangBangLaw, BdotLaw, KoptLaw, NoLaw, kopt_gain
+from detumble.sim.laws import BangBangLaw, BdotLaw, KoptLaw, NoLaw, clip_to_limits, kopt_gain
 from detumble.sim.plant import Plant
 from detumble.sim.scenario import LAWS, Scenario, ScenarioError, load_scenario
+from detumble.sim.truth import adcs_header, adcs_row
 
 DEFAULT_BDOT_GAIN = 3.0  # A m^2 s / G, the flight DetumbleManager default
 
@@ -33,10 +35,20 @@ DEFAULT_BDOT_GAIN = 3.0  # A m^2 s / G, the flight DetumbleManager default
 class RunResult:
     summary: dict
     rows: list[tuple[float, float, float, float, float]]  # t s, wx wy wz |w| deg/s
+    adcs_header: list[str] | None = None  # the ADCS truth columns (detumble.sim.truth) after those five
+    adcs_rows: list[list] | None = None
 
 
-def make_law(name: str, plant: Plant, gain: float | None = None):
-    """Instantiate a reference law for ``plant``. ``gain`` overrides the law's default."""
+def make_law(name: str, plant: Plant, gain: float | None = None, saturation: str | None = None):
+    """Instantiate a reference law for ``plant``. ``gain`` overrides the law's default;
+    ``saturation`` (default: the scenario's ``control.saturation``) is ``scale`` or ``clip``."""
+    law = _make_law(name, plant, gain)
+    if (saturation or plant.scenario.control.saturation) == "clip":
+        law.limit = clip_to_limits
+    return law
+
+
+def _make_law(name: str, plant: Plant, gain: float | None):
     m_max = plant.max_dipole_per_axis()
     if name == "none":
         return NoLaw()
@@ -76,9 +88,12 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
     deg = math.degrees
     zero = (0.0, 0.0, 0.0)
 
+    adcs: list[list] = []
+
     def record() -> None:
         w = plant.omega_BN_B
         rows.append((plant.t, deg(w[0]), deg(w[1]), deg(w[2]), deg(math.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2))))
+        adcs.append(adcs_row(plant))
 
     record()
     wall0 = time.perf_counter()
@@ -111,13 +126,13 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
         "steps": n_steps,
         "sim_seconds": plant.t,
         "wall_seconds": wall,
-        "realtime_factor": plant.t / wall if wall > 0 else None,
+        "real_time_factor": plant.t / wall if wall > 0 else None,  # the key fprime-lite run writes
         "initial_rate_deg_s": rows[0][4],
         "final_rate_deg_s": plant.rate_deg_s,
         "time_below_1_deg_s": t_below,
         "orbit_period_s": 2.0 * math.pi / plant.orbit.mean_motion,
     }
-    return RunResult(summary, rows)
+    return RunResult(summary, rows, adcs_header(plant), adcs)
 
 
 def write_atomic(path: str, text: str) -> None:
@@ -125,6 +140,7 @@ def write_atomic(path: str, text: str) -> None:
     folder = os.path.dirname(os.path.abspath(path))
     fd, tmp = tempfile.mkstemp(prefix=".tmp-", dir=folder)
     try:
+        os.chmod(tmp, _new_file_mode(path))  # mkstemp makes 0600; a result file gets the usual mode
         with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
             fh.write(text)
             fh.flush()
@@ -136,12 +152,29 @@ def write_atomic(path: str, text: str) -> None:
         raise
 
 
+def _new_file_mode(path: str) -> int:
+    """An existing file's permissions, else ``0o666 & ~umask`` (what ``open()`` would give)."""
+    try:
+        return os.stat(path).st_mode & 0o7777
+    except FileNotFoundError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask
+
+
 def write_outputs(result: RunResult, out_dir: str) -> None:
     os.makedirs(out_dir, exist_ok=True)
     write_atomic(os.path.join(out_dir, "summary.json"), json.dumps(result.summary, indent=2) + "\n")
-    lines = ["time_s,omega_x_deg_s,omega_y_deg_s,omega_z_deg_s,rate_deg_s"]
-    lines += [f"{t:.3f},{x:.9g},{y:.9g},{z:.9g},{w:.9g}" for t, x, y, z, w in result.rows]
+    extra = result.adcs_header or []
+    lines = [",".join(["time_s", "omega_x_deg_s", "omega_y_deg_s", "omega_z_deg_s", "rate_deg_s", *extra])]
+    adcs = result.adcs_rows or [[] for _ in result.rows]
+    lines += [",".join([f"{t:.3f}", f"{x:.9g}", f"{y:.9g}", f"{z:.9g}", f"{w:.9g}", *map(_cell, more)])
+              for (t, x, y, z, w), more in zip(result.rows, adcs)]
     write_atomic(os.path.join(out_dir, "rate.csv"), "\n".join(lines) + "\n")
+
+
+def _cell(v) -> str:
+    return v if isinstance(v, str) else f"{v:.12g}"
 
 
 def build_parser(prog: str = "python -m detumble.sim") -> argparse.ArgumentParser:
@@ -190,7 +223,7 @@ def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim") ->
     s = result.summary
     below = s["time_below_1_deg_s"]
     print(f"{s['scenario']}: law {s['law']}, {s['sim_seconds']:.0f} s simulated in {s['wall_seconds']:.1f} s "
-          f"({s['realtime_factor']:.0f}x real time); final rate {s['final_rate_deg_s']:.3f} deg/s; "
+          f"({s['real_time_factor']:.0f}x real time); final rate {s['final_rate_deg_s']:.3f} deg/s; "
           f"|w| < 1 deg/s at {'never' if below is None else f'{below:.1f} s'}; wrote {args.out}")
     return 0
 

@@ -26,9 +26,14 @@ from detumble.sim.field import (EARTH_ROTATION_RATE, IGRF2025_G10_NT, IGRF2025_G
                     IGRF_REFERENCE_RADIUS_M)
 from detumble.sim.orbit import J2_EARTH, MU_EARTH, R_EARTH_EQ
 from detumble.sim.sensors import GyroSpec, MagnetometerSpec
+from detumble.sim.star_tracker import StarTrackerSpec
+from detumble.sim.wheels import CATALOGUE as WHEEL_CATALOGUE
+from detumble.sim.wheels import WheelSpec, equations_inertia
 from detumble.sim.vec import Mat3, Quat, Vec3, mrp_to_quat, quat_normalize, unit
 
 LAWS = ("none", "kopt", "bdot", "bangbang")
+SATURATION = ("clip", "scale")
+FIELD_MODELS = ("dipole", "wmm2025", "none", "orbit_constant")
 
 
 class ScenarioError(ValueError):
@@ -60,6 +65,7 @@ class FieldConfig:
     earth_rotation_rate_rad_s: float = EARTH_ROTATION_RATE
     earth_rotation_angle_deg: float | None = None
     table_step_s: float = 1.0
+    b_orbit_t: Vec3 = (0.0, 0.0, 0.0)
 
 
 @dataclass(frozen=True)
@@ -72,6 +78,10 @@ class SpacecraftConfig:
     actuator_type: str = "coils"
     coils: dict[int, CoilSpec] = _dc_field(default_factory=default_coil_layout)
     rods_max_dipole_am2: Vec3 = (0.2, 0.2, 0.2)
+    #: how the actuators meet a requested body dipole beyond their per-axis limits
+    actuator_saturation: str = "clip"
+    #: reaction wheels (empty: none; the plant then runs the wheel-free integrator)
+    reaction_wheels: tuple[WheelSpec, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -80,6 +90,7 @@ class ControlConfig:
     gain: float | None = None
     period_s: float = 0.05
     sense_settle_s: float = 0.0
+    saturation: str = "scale"
 
 
 @dataclass(frozen=True)
@@ -97,6 +108,11 @@ class Scenario:
     field: FieldConfig = _dc_field(default_factory=FieldConfig)
     magnetometer: MagnetometerSpec = _dc_field(default_factory=MagnetometerSpec)
     gyro: GyroSpec = _dc_field(default_factory=GyroSpec)
+    star_tracker: StarTrackerSpec | None = None
+    #: RK4 sub-steps per dynamics step (environment held over the whole step)
+    integrator_substeps: int = 1
+    #: the frame ``q_BN0`` is given relative to: "inertial" (it is q_BN) or "orbit" (it is q_BO)
+    attitude_frame: str = "inertial"
     q_BN0: Quat = (1.0, 0.0, 0.0, 0.0)
     omega_BN_B0: Vec3 = (0.0, 0.0, 0.0)
     control: ControlConfig = _dc_field(default_factory=ControlConfig)
@@ -161,8 +177,11 @@ def parse_scenario(text: str, source: str = "<string>", seed: int | None = None,
 def apply_setting(data: dict, setting: str, source: str = "<scenario>") -> None:
     """Set one value of scenario ``data`` in place from ``"dotted.key.path=YAML value"``.
 
-    Every key of the path must already be in the scenario (a list element is addressed by its
-    index): a misspelt key is an error naming the keys that are there, never a silently added one.
+    A key missing from the scenario is added when the schema knows it (:data:`SCHEMA`; sections on
+    the way are created), so ``initial.rate.omega_deg_s=[1, 2, 3]`` works on a file that gives a
+    magnitude and an axis - the alternative keys it replaces are removed (``_EXCLUSIVE``). A key the
+    schema does not know is an error naming the keys that are there, never a silently added one.
+    A list element is addressed by its index.
     The value is read as YAML, so ``0``, ``2.5e-3``, ``[1, 0, 0]`` and ``true`` have their types.
     """
     path_text, sep, value_text = setting.partition("=")
@@ -176,17 +195,29 @@ def apply_setting(data: dict, setting: str, source: str = "<scenario>") -> None:
                             f"{getattr(exc, 'problem', exc)}") from None
     keys = path_text.strip().split(".")
     node, walked = data, []
+    schema: dict | None = SCHEMA
     for i, key in enumerate(keys):
         last = i == len(keys) - 1
+        known = schema if isinstance(schema, dict) else {}
         if isinstance(node, dict):
             if key not in node:
-                where = ".".join(walked) or "the top level"
-                raise ScenarioError(f"--set {setting!r}: {source} has no key {key!r} at {where} "
-                                    f"(keys there: {', '.join(map(str, node)) or 'none'})")
+                if key not in known:
+                    where = ".".join(walked) or "the top level"
+                    addable = sorted(k for k in known if k not in node)
+                    raise ScenarioError(f"--set {setting!r}: {source} has no key {key!r} at {where} "
+                                        f"(keys there: {', '.join(map(str, node)) or 'none'})"
+                                        + (f"; keys that can be added there: {', '.join(addable)}" if addable else ""))
+                if not last:
+                    node[key] = {}
             if last:
+                for other in _EXCLUSIVE.get((tuple(walked), key), ()):
+                    node.pop(other, None)
                 node[key] = value
             else:
+                if node[key] is None and isinstance(known.get(key), dict):
+                    node[key] = {}
                 node = node[key]
+            schema = known.get(key)
         elif isinstance(node, list):
             if not (key.isdigit() and int(key) < len(node)):
                 raise ScenarioError(f"--set {setting!r}: {'.'.join(walked)} is a list of {len(node)}; "
@@ -198,6 +229,61 @@ def apply_setting(data: dict, setting: str, source: str = "<scenario>") -> None:
         else:
             raise ScenarioError(f"--set {setting!r}: {'.'.join(walked)} is a value, not a section")
         walked.append(key)
+
+
+_LEAF = None
+_VEC = None
+_COIL = {k: _LEAF for k in ("turns", "voltage_v", "resistance_ohm", "shape", "length_m", "width_m", "diameter_m",
+                            "inductance_h")}
+#: Every key a scenario may have (sections are dicts, leaves None): ``--set`` may add any of them.
+SCHEMA: dict = {
+    "name": _LEAF, "description": _LEAF, "epoch": _LEAF, "duration_s": _LEAF, "dynamics_step_s": _LEAF,
+    "integrator_substeps": _LEAF, "record_interval_s": _LEAF, "seed": _LEAF,
+    "spacecraft": {
+        "mass_kg": _LEAF, "inertia_kg_m2": _LEAF, "residual_dipole_am2": _VEC, "wheel_momentum_nms": _VEC,
+        "gravity_gradient": _LEAF,
+        "actuators": {"type": _LEAF, "max_dipole_am2": _VEC, "saturation": _LEAF,
+                      "x_plus": _COIL, "x_minus": _COIL, "y_plus": _COIL, "y_minus": _COIL, "z_minus": _COIL},
+        "reaction_wheels": {"model": _LEAF, "axes": _LEAF, "inertia_kg_m2": _LEAF, "max_torque_nm": _LEAF,
+                            "max_momentum_nms": _LEAF, "viscous_friction_nms": _LEAF, "coulomb_friction_nm": _LEAF,
+                            "coulomb_smoothing_rad_s": _LEAF, "momentum_noise_std_nms": _LEAF,
+                            "initial_momentum_nms": _LEAF, "speed_loop_time_constant_s": _LEAF},
+    },
+    "orbit": {k: _LEAF for k in ("type", "altitude_km", "radius_km", "inclination_deg", "raan_deg",
+                                 "arg_latitude_deg", "j2", "j2_coefficient", "mu_m3_s2", "earth_radius_m", "tle",
+                                 "table_step_s")},
+    "field": {k: _LEAF for k in ("model", "g10_nt", "g11_nt", "h11_nt", "reference_radius_m",
+                                 "earth_rotation_rate_rad_s", "earth_rotation_angle_deg", "table_step_s",
+                                 "b_orbit_t")},
+    "sensors": {
+        "magnetometer": {k: _LEAF for k in ("ideal", "odr_hz", "noise_std_gauss", "bias_gauss", "resolution_gauss",
+                                            "full_scale_gauss", "coupling_t_per_am2")},
+        "gyro": {k: _LEAF for k in ("ideal", "odr_hz", "noise_density_dps_rthz", "bias_dps", "full_scale_dps",
+                                    "resolution_dps")},
+        "star_tracker": {k: _LEAF for k in ("ideal", "rate_hz", "noise_cross_boresight_arcsec",
+                                            "noise_about_boresight_arcsec", "boresight_B", "bias_arcsec",
+                                            "dropout_probability", "max_rate_deg_s")},
+    },
+    "initial": {
+        "attitude": {"quaternion": _LEAF, "mrp": _LEAF, "frame": _LEAF},
+        "rate": {k: _LEAF for k in ("omega_deg_s", "omega_rad_s", "magnitude_deg_s", "axis", "random_axis", "seed")},
+    },
+    "control": {k: _LEAF for k in ("law", "gain", "period_s", "sense_settle_s", "saturation")},
+}
+
+_RATE_FORMS = ("omega_deg_s", "omega_rad_s", "magnitude_deg_s", "axis", "random_axis", "seed")
+#: Setting one of a set of alternative keys with ``--set`` removes the others of its section.
+_EXCLUSIVE: dict[tuple, tuple[str, ...]] = {
+    (("initial", "rate"), "omega_deg_s"): tuple(k for k in _RATE_FORMS if k != "omega_deg_s"),
+    (("initial", "rate"), "omega_rad_s"): tuple(k for k in _RATE_FORMS if k != "omega_rad_s"),
+    (("initial", "rate"), "magnitude_deg_s"): ("omega_deg_s", "omega_rad_s"),
+    (("initial", "rate"), "axis"): ("omega_deg_s", "omega_rad_s", "random_axis"),
+    (("initial", "rate"), "random_axis"): ("omega_deg_s", "omega_rad_s", "axis"),
+    (("initial", "attitude"), "quaternion"): ("mrp",),
+    (("initial", "attitude"), "mrp"): ("quaternion",),
+    (("orbit",), "altitude_km"): ("radius_km",),
+    (("orbit",), "radius_km"): ("altitude_km",),
+}
 
 
 def _line_map(text: str) -> dict[tuple, int]:
@@ -353,6 +439,9 @@ def scenario_from_dict(data: Any, source: str = "<dict>", lines: dict[tuple, int
         top.fail("dynamics_step_s", f"{dt} s is too coarse for RK4 on a tumbling body; use <= 1 s")
     record = top.number("record_interval_s", 1.0, positive=True)
     file_seed = top.integer("seed", 0)
+    substeps = top.integer("integrator_substeps", 1)
+    if not 1 <= substeps <= 1000:
+        top.fail("integrator_substeps", f"{substeps}: give a whole number of RK4 sub-steps per dynamics step, 1...1000")
 
     sc = _spacecraft(top.section("spacecraft"))
     orbit = _orbit(top.section("orbit"))
@@ -360,14 +449,18 @@ def scenario_from_dict(data: Any, source: str = "<dict>", lines: dict[tuple, int
     sens = top.section("sensors")
     mag = _magnetometer(sens.section("magnetometer"))
     gyro = _gyro(sens.section("gyro"))
+    star = _star_tracker(sens.section("star_tracker")) if sens.has("star_tracker") else None
+    sens.allow("star_tracker")
     sens.finish()
     use_seed = file_seed if seed is None else seed
-    q0, w0 = _initial(top.section("initial"), use_seed)
+    q0, frame, w0 = _initial(top.section("initial"), use_seed)
     control = _control(top.section("control"), dt)
+    top.allow("integrator_substeps")
     top.finish()
     return Scenario(name=name, description=description, source=source, epoch=epoch, duration_s=duration,
                     dynamics_step_s=dt, record_interval_s=record, seed=use_seed, spacecraft=sc, orbit=orbit,
-                    field=fld, magnetometer=mag, gyro=gyro, q_BN0=q0, omega_BN_B0=w0, control=control)
+                    field=fld, magnetometer=mag, gyro=gyro, star_tracker=star, integrator_substeps=substeps,
+                    attitude_frame=frame, q_BN0=q0, omega_BN_B0=w0, control=control)
 
 
 def _inertia(s: _Section) -> Mat3:
@@ -406,6 +499,7 @@ def _spacecraft(s: _Section) -> SpacecraftConfig:
     gg = s.boolean("gravity_gradient", True)
     act = s.section("actuators")
     kind = act.string("type", "coils", ("coils", "rods"))
+    saturation = act.string("saturation", "clip", SATURATION)
     coils = default_coil_layout()
     rods = (0.2, 0.2, 0.2)
     if kind == "rods":
@@ -432,9 +526,75 @@ def _spacecraft(s: _Section) -> SpacecraftConfig:
                 c.fail("diameter_m", "a circular coil needs a positive diameter_m")
             coils[face] = merged
     act.finish()
+    wheels: tuple[WheelSpec, ...] = ()
+    if s.raw("reaction_wheels") is not None:
+        wheels = _reaction_wheels(s.section("reaction_wheels"), inertia)
+    s.allow("reaction_wheels")
     s.finish()
     return SpacecraftConfig(mass_kg=mass, inertia_kg_m2=inertia, residual_dipole_am2=res, wheel_momentum_nms=wheel,
-                            gravity_gradient=gg, actuator_type=kind, coils=coils, rods_max_dipole_am2=rods)
+                            gravity_gradient=gg, actuator_type=kind, coils=coils, rods_max_dipole_am2=rods,
+                            actuator_saturation=saturation, reaction_wheels=wheels)
+
+
+_WHEEL_NUMBERS = (  # key, default, check
+    ("inertia_kg_m2", None, "positive"), ("max_torque_nm", None, "positive"), ("max_momentum_nms", None, "positive"),
+    ("viscous_friction_nms", 0.0, "nonneg"), ("coulomb_friction_nm", 0.0, "nonneg"),
+    ("coulomb_smoothing_rad_s", 0.1, "positive"), ("momentum_noise_std_nms", 0.0, "nonneg"),
+    ("initial_momentum_nms", 0.0, "any"), ("speed_loop_time_constant_s", 0.1, "positive"),
+)
+
+
+def _reaction_wheels(s: _Section, inertia: Mat3) -> tuple[WheelSpec, ...]:
+    """``spacecraft.reaction_wheels``: a catalogue ``model`` and/or explicit values; every number
+    is one value for all wheels or a list with one per wheel."""
+    if not s.data:
+        s.finish()
+        return ()
+    model = s.string("model", "custom", ("custom", *WHEEL_CATALOGUE))
+    entry = WHEEL_CATALOGUE.get(model)
+    axes_raw = s.raw("axes", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    p = s.path + ("axes",)
+    if not isinstance(axes_raw, (list, tuple)) or not axes_raw or \
+            not all(isinstance(a, (list, tuple)) and len(a) == 3 for a in axes_raw):
+        s.ctx.fail(p, "expected a list of spin axes, each 3 numbers in the body frame, e.g. [[1, 0, 0], [0, 1, 0]]")
+    axes = []
+    for i, a in enumerate(axes_raw):
+        v = tuple(s.ctx.number(p + (i, k), x) for k, x in enumerate(a))
+        n = math.sqrt(sum(x * x for x in v))
+        if n == 0.0:
+            s.ctx.fail(p + (i,), "a spin axis must not be the zero vector")
+        axes.append(tuple(x / n for x in v))
+    count = len(axes)
+    values: dict[str, list[float]] = {}
+    for key, default, check in _WHEEL_NUMBERS:
+        if entry is not None and default is None:
+            default = getattr(entry, key)
+        v = s.raw(key, default)
+        kp = s.path + (key,)
+        if v is None:
+            s.ctx.fail(kp, f"required without a catalogue model; give it, or model: one of "
+                           f"{', '.join(WHEEL_CATALOGUE)}")
+        if isinstance(v, (list, tuple)):
+            if len(v) != count:
+                s.ctx.fail(kp, f"a list needs one value per wheel ({count} wheels), got {len(v)}")
+            xs = [s.ctx.number(kp + (i,), x, positive=check == "positive", nonneg=check == "nonneg")
+                  for i, x in enumerate(v)]
+        else:
+            xs = [s.ctx.number(kp, v, positive=check == "positive", nonneg=check == "nonneg")] * count
+        values[key] = xs
+    s.finish()
+    specs = tuple(WheelSpec(axis_B=axes[i], **{k: values[k][i] for k in values}) for i in range(count))
+    for i, w in enumerate(specs):
+        if abs(w.initial_momentum_nms) > w.max_momentum_nms:
+            s.fail("initial_momentum_nms", f"wheel {i}: {w.initial_momentum_nms} N m s is beyond its "
+                                           f"max_momentum_nms {w.max_momentum_nms}")
+    import numpy as np  # load time only
+
+    eig = np.linalg.eigvalsh(np.array(equations_inertia(inertia, specs))).tolist()
+    if not min(eig) > 0.0:
+        s.fail("inertia_kg_m2", "the wheels' axial inertia exceeds the spacecraft's; spacecraft.inertia_kg_m2 "
+                                "is the whole spacecraft including its wheels")
+    return specs
 
 
 def _orbit(s: _Section) -> OrbitConfig:
@@ -448,7 +608,17 @@ def _orbit(s: _Section) -> OrbitConfig:
         step = s.number("table_step_s", 10.0, positive=True)
         s.finish()
         return OrbitConfig(type="tle", tle=(tle[0], tle[1]), table_step_s=step, mu_m3_s2=mu, earth_radius_m=re)
-    alt = s.number("altitude_km", 420.0)
+    if s.has("radius_km"):
+        if s.has("altitude_km"):
+            s.fail("radius_km", "give either altitude_km or radius_km, not both")
+        radius = s.number("radius_km", None, positive=True)
+        alt = radius - re / 1e3
+        if not alt > 0.0:
+            s.fail("radius_km", f"{radius} km is inside the Earth (earth_radius_m {re:.0f} m); give the distance "
+                                f"from the Earth's centre in km (e.g. 7000)")
+    else:
+        alt = s.number("altitude_km", 420.0)
+    s.allow("altitude_km", "radius_km")
     if not alt > 0.0:
         s.fail("altitude_km", f"{alt} km is inside the Earth; give the height above the surface in km (e.g. 420)")
     inc = s.number("inclination_deg", 51.6)
@@ -464,7 +634,10 @@ def _orbit(s: _Section) -> OrbitConfig:
 
 
 def _field(s: _Section) -> FieldConfig:
-    model = s.string("model", "dipole", ("dipole", "wmm2025", "none"))
+    model = s.string("model", "dipole", FIELD_MODELS)
+    b_orbit = s.vec3("b_orbit_t", (0.0, 0.0, 0.0))
+    if model == "orbit_constant" and b_orbit == (0.0, 0.0, 0.0) and not s.has("b_orbit_t"):
+        s.fail("b_orbit_t", "model orbit_constant needs the field in the orbit frame, tesla (e.g. [3.0e-5, 3.0e-5, 3.0e-5])")
     g10 = s.number("g10_nt", IGRF2025_G10_NT)
     g11 = s.number("g11_nt", IGRF2025_G11_NT)
     h11 = s.number("h11_nt", IGRF2025_H11_NT)
@@ -476,7 +649,8 @@ def _field(s: _Section) -> FieldConfig:
         s.fail("table_step_s", f"{step} s: evaluate the WMM at <= 1 Hz (table_step_s <= 1)")
     s.finish()
     return FieldConfig(model=model, g10_nt=g10, g11_nt=g11, h11_nt=h11, reference_radius_m=rr,
-                       earth_rotation_rate_rad_s=rate, earth_rotation_angle_deg=angle, table_step_s=step)
+                       earth_rotation_rate_rad_s=rate, earth_rotation_angle_deg=angle, table_step_s=step,
+                       b_orbit_t=b_orbit)
 
 
 def _magnetometer(s: _Section) -> MagnetometerSpec:
@@ -508,8 +682,32 @@ def _gyro(s: _Section) -> GyroSpec:
     return spec
 
 
-def _initial(s: _Section, seed: int) -> tuple[Quat, Vec3]:
+def _star_tracker(s: _Section) -> StarTrackerSpec:
+    d = StarTrackerSpec()
+    bore = s.vec3("boresight_B", d.boresight_B)
+    if bore == (0.0, 0.0, 0.0):
+        s.fail("boresight_B", "the boresight must not be the zero vector")
+    spec = StarTrackerSpec(
+        ideal=s.boolean("ideal", d.ideal),
+        rate_hz=s.number("rate_hz", d.rate_hz, positive=True),
+        noise_cross_boresight_arcsec=s.number("noise_cross_boresight_arcsec", d.noise_cross_boresight_arcsec,
+                                              nonneg=True),
+        noise_about_boresight_arcsec=s.number("noise_about_boresight_arcsec", d.noise_about_boresight_arcsec,
+                                              nonneg=True),
+        boresight_B=unit(bore),
+        bias_arcsec=s.vec3("bias_arcsec", d.bias_arcsec),
+        dropout_probability=s.number("dropout_probability", d.dropout_probability, nonneg=True),
+        max_rate_deg_s=s.number("max_rate_deg_s", d.max_rate_deg_s, nonneg=True),
+    )
+    if spec.dropout_probability > 1.0:
+        s.fail("dropout_probability", f"{spec.dropout_probability} is a probability: give 0...1")
+    s.finish()
+    return spec
+
+
+def _initial(s: _Section, seed: int) -> tuple[Quat, str, Vec3]:
     att = s.section("attitude")
+    frame = att.string("frame", "inertial", ("inertial", "orbit"))
     if att.has("quaternion") and att.has("mrp"):
         att.fail("mrp", "give either quaternion or mrp, not both")
     if att.has("mrp"):
@@ -528,9 +726,16 @@ def _initial(s: _Section, seed: int) -> tuple[Quat, Vec3]:
     att.finish()
 
     rate = s.section("rate")
-    if rate.has("omega_deg_s"):
-        w = rate.vec3("omega_deg_s", None)
-        omega = tuple(math.radians(x) for x in w)
+    given = [k for k in ("omega_deg_s", "omega_rad_s", "magnitude_deg_s") if rate.has(k)]
+    if len(given) > 1:
+        rate.fail(given[1], f"give one of omega_deg_s, omega_rad_s or magnitude_deg_s (+ axis), not "
+                            f"{' and '.join(given)}")
+    rate.allow("omega_deg_s", "omega_rad_s", "magnitude_deg_s", "axis", "random_axis", "seed")
+    if rate.has("omega_deg_s") or rate.has("omega_rad_s"):
+        if rate.has("omega_rad_s"):
+            omega = rate.vec3("omega_rad_s", None)
+        else:
+            omega = tuple(math.radians(x) for x in rate.vec3("omega_deg_s", None))
     else:
         mag = rate.number("magnitude_deg_s", 0.0, nonneg=True)
         random_axis = rate.boolean("random_axis", False)
@@ -551,7 +756,7 @@ def _initial(s: _Section, seed: int) -> tuple[Quat, Vec3]:
         omega = tuple(math.radians(mag) * x for x in e)
     rate.finish()
     s.finish()
-    return q, omega  # type: ignore[return-value]
+    return q, frame, omega  # type: ignore[return-value]
 
 
 def _control(s: _Section, dt: float) -> ControlConfig:
@@ -565,5 +770,6 @@ def _control(s: _Section, dt: float) -> ControlConfig:
             s.fail(key, f"{val} s must be a whole number of dynamics steps ({dt} s)")
     if settle >= period:
         s.fail("sense_settle_s", f"{settle} s must be shorter than period_s ({period} s)")
+    saturation = s.string("saturation", "scale", SATURATION)
     s.finish()
-    return ControlConfig(law=law, gain=gain, period_s=period, sense_settle_s=settle)
+    return ControlConfig(law=law, gain=gain, period_s=period, sense_settle_s=settle, saturation=saturation)

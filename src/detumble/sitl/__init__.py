@@ -5,6 +5,8 @@
 * :mod:`.imu_manager` — :class:`ImuManager`: LIS2MDL magnetometer + LSM6DSO gyro/accelerometer.
 * :mod:`.magnetorquer_driver` — :class:`MagnetorquerDriver`: one DRV2605-driven face coil.
 * :mod:`.mode_manager` — :class:`ModeManager`: NORMAL / SAFE_MODE.
+* :mod:`.reaction_wheel_driver` — :class:`ReactionWheelDriver`: one reaction wheel.
+* :mod:`.star_tracker` — :class:`StarTracker`: the attitude q_BN.
 
 See ``docs/components/simulated_drivers.md``.
 """
@@ -14,7 +16,10 @@ from detumble.sitl.imu_manager import (Acceleration, AccelerationGet, AngularVel
 from detumble.sitl.magnetorquer_driver import (DRIVER_FACES, MagnetorquerDriver, SimDriverFault, driver_instance_name,
                                   make_magnetorquer_drivers)
 from detumble.sitl.mode_manager import MODE_CHANGED_PORTS, ForceSafeMode, ModeManager
+from detumble.sitl.reaction_wheel_driver import (ReactionWheelDriver, SimWheelFault, make_reaction_wheel_drivers,
+                                                 wheel_instance_name)
 from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthRecorder, TruthSample, scenario_epoch_us
+from detumble.sitl.star_tracker import SimStarTrackerFault, StarTracker
 
 __all__ = [
     "SimulatedSpacecraft", "TruthRecorder", "TruthSample", "scenario_epoch_us",
@@ -22,4 +27,6 @@ __all__ = [
     "Lis2mdlSamplingFrequency", "Lsm6dsoSamplingFrequency", "SimImuSensor", "SimReadFault",
     "MagnetorquerDriver", "SimDriverFault", "DRIVER_FACES", "driver_instance_name", "make_magnetorquer_drivers",
     "ModeManager", "ForceSafeMode", "MODE_CHANGED_PORTS",
+    "ReactionWheelDriver", "SimWheelFault", "make_reaction_wheel_drivers", "wheel_instance_name",
+    "StarTracker", "SimStarTrackerFault",
 ]

@@ -199,9 +199,9 @@ class ImuManager(PassiveComponent):
 
     # --- channels ------------------------------------------------------------------------------
 
-    Acceleration = Channel(Acceleration)
-    AngularVelocity = Channel(AngularVelocity)
-    MagneticField = Channel(MagneticField)
+    Acceleration = Channel(Acceleration, units="m/s^2")
+    AngularVelocity = Channel(AngularVelocity, units="rad/s")
+    MagneticField = Channel(MagneticField, units="G")
     GyroscopeSamplingFrequency = Channel(Lsm6dsoSamplingFrequency, update="on change")
     MagnetometerSamplingFrequency = Channel(Lis2mdlSamplingFrequency, update="on change")
 
@@ -316,9 +316,8 @@ class ImuManager(PassiveComponent):
             return None, None, False
         try:
             values = read()
-        except Exception:  # noqa: BLE001 - a simulation fault is a failed read, never an exception
-            self.handler_faults += 1
-            log.exception("%s: simulated %s read raised", self.name, sensor.name)
+        except Exception as exc:  # noqa: BLE001 - a simulation fault is a failed read, never an exception
+            self.report_fault(f"{sensor.name} read", exc)
             failed_event()
             return None, None, False
         failed_event.clear_throttle()

@@ -188,9 +188,8 @@ class MagnetorquerDriver(PassiveComponent):
     def _set_coil(self, level: int) -> bool:
         try:
             self.spacecraft.set_coil_level(self.face, int(level))
-        except Exception:  # noqa: BLE001 - a plant fault is a failed drive, never an exception
-            self.handler_faults += 1
-            log.exception("%s: setting coil %s to %r raised", self.name, self.face_name, level)
+        except Exception as exc:  # noqa: BLE001 - a plant fault is a failed drive, never an exception
+            self.report_fault(f"coil {self.face_name} drive", exc)
             return False
         self.DriveLevel.write(int(level))
         return True

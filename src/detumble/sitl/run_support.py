@@ -21,15 +21,15 @@ import pathlib
 from fprime_lite.deploy.resources import topology_resource
 from fprime_lite.deploy.scheduler import Scheduler
 
-from detumble.control.coil_layout import COIL_FACES, FACE_LABELS
+from detumble.control.coil_layout import COIL_FACES
 from detumble.sim.scenario import Scenario, load_scenario
+from detumble.sim.truth import adcs_header, adcs_row
 from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthSample, scenario_epoch_us
-from detumble.components.types import DetumbleState, DetumbleStrategy
+from detumble.components.types import DetumbleState
 
 __all__ = ["make_spacecraft", "DetumbleRunReport"]
 
 US_PER_S = 1_000_000
-_MAX_PLOT_POINTS = 4000
 
 
 @topology_resource(role="simulation")
@@ -91,15 +91,19 @@ class DetumbleRunReport:
         self._writer = csv.writer(self._file, lineterminator="\n")
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
                                "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
-                               *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy"])
+                               *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy",
+                               *adcs_header(self.spacecraft.plant, with_field=False)])
         self._state_us = {s: 0 for s in DetumbleState}
+        self._progress_us = {s: 0 for s in DetumbleState}
         self._state_since = deployment.scheduler.now_us
         deployment.scheduler.add_time_listener(self._on_time)
         self.spacecraft.set_trace(self._sample, self.truth_interval_us)
 
     def _on_time(self, time_us: int) -> None:
         """Credit the time since the last event to the state the manager was in (exact fractions)."""
-        self._state_us[self.manager.state] += time_us - self._state_since
+        state = self.manager.state
+        self._state_us[state] += time_us - self._state_since
+        self._progress_us[state] += time_us - self._state_since
         self._state_since = time_us
 
     def _sample(self, s: TruthSample) -> None:
@@ -116,7 +120,8 @@ class DetumbleRunReport:
         self._state_us = {st: 0 for st in DetumbleState}
         self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
                                s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *levels,
-                               *(f"{f:.4f}" for f in fractions), strategy.name if strategy is not None else ""])
+                               *(f"{f:.4f}" for f in fractions), strategy.name if strategy is not None else "",
+                               *adcs_row(self.spacecraft.plant, with_field=False)])
 
     def on_event(self, event) -> None:
         """A downlinked event (``fprime_lite.ground.downlink.DecodedEvent``)."""
@@ -128,9 +133,28 @@ class DetumbleRunReport:
             self.detumble_complete_s = t
 
     def progress(self) -> dict:
+        """The body rate now, and how the time since the previous call was shared among the
+        manager's states (the states taking 5 % or more, largest first: ``ACTUATING_BDOT 68%``)."""
         truth = self.spacecraft.truth()
-        state = self.manager.state.name if self.manager is not None else "?"
-        return {"rate_deg_s": truth.rate_deg_s, "state": state}
+        return {"rate_deg_s": truth.rate_deg_s, "state": self._state_shares()}
+
+    def state_shares(self) -> dict[str, float]:
+        """Share of the simulated time since the previous call spent in each state (sums to 1);
+        resets the count."""
+        shares = getattr(self, "_progress_us", None)
+        if not shares:
+            return {}
+        total = sum(shares.values())
+        out = {st.name: us / total for st, us in shares.items()} if total else {}
+        self._progress_us = {st: 0 for st in DetumbleState}
+        return out
+
+    def _state_shares(self) -> str:
+        shares = self.state_shares()
+        if not shares:
+            return self.manager.state.name if self.manager is not None else "?"
+        ranked = sorted(((v, k) for k, v in shares.items() if v >= 0.05), reverse=True)
+        return " ".join(f"{name} {share:.0%}" for share, name in ranked)
 
     def summary(self) -> dict:
         final = self.spacecraft.truth()
@@ -155,103 +179,11 @@ class DetumbleRunReport:
             self._file = None
         written = [self._path] if self._path is not None else []
         if plots and self._path is not None:
-            written += plot_run(self._path, pathlib.Path(out_dir), self.manager)
+            from detumble.sitl.plots import plot_truth
+
+            thresholds = {name: getattr(self.manager, name).value for name in
+                          ("DEADBAND_UPPER_THRESHOLD", "DEADBAND_LOWER_THRESHOLD")} if self.manager else {}
+            written += plot_truth(self._path, pathlib.Path(out_dir), thresholds=thresholds,
+                                  marks={"detumble started": self.detumble_started_s,
+                                         "detumble completed": self.detumble_complete_s})
         return written
-
-
-def _read_truth(path: pathlib.Path) -> dict[str, list]:
-    """Columns of ``truth.csv``, decimated to at most a few thousand rows (memory stays flat)."""
-    with open(path, encoding="utf-8") as f:
-        rows = sum(1 for _ in f) - 1
-    stride = max(1, math.ceil(rows / _MAX_PLOT_POINTS))
-    columns: dict[str, list] = {}
-    with open(path, encoding="utf-8", newline="") as f:
-        reader = csv.reader(f)
-        header = next(reader)
-        for name in header:
-            columns[name] = []
-        for i, row in enumerate(reader):
-            if i % stride == 0 or i == rows - 1:
-                for name, value in zip(header, row):
-                    columns[name].append(value)
-    for name in list(columns):
-        if name != "strategy":
-            columns[name] = [float(v) for v in columns[name]]
-    return columns
-
-
-def _save(fig, path: pathlib.Path) -> pathlib.Path:
-    tmp = path.with_name(f".{path.stem}.part.png")
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, path)
-    return path
-
-
-def plot_run(truth_csv: pathlib.Path, out_dir: pathlib.Path, manager=None) -> list[pathlib.Path]:
-    """Body rate (with the detumble thresholds), drive levels and the state timeline, as PNG."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    data = _read_truth(truth_csv)
-    t = data["t_s"]
-    if not t:
-        return []
-    unit, scale = ("min", 60.0) if t[-1] > 3 * 3600 / 10 else ("s", 1.0)
-    tt = [v / scale for v in t]
-    written = []
-
-    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(9, 6.5))
-    for axis, colour in (("wx_deg_s", "tab:red"), ("wy_deg_s", "tab:green"), ("wz_deg_s", "tab:blue")):
-        ax1.plot(tt, data[axis], lw=0.8, color=colour, label=axis.split("_")[0].replace("w", "ω"))
-    ax1.set_ylabel("body rate (deg/s)")
-    ax1.legend(loc="upper right", ncol=3, fontsize=8)
-    ax1.grid(alpha=0.3)
-    ax2.plot(tt, data["rate_deg_s"], color="black", lw=1.0, label="|ω|")
-    if manager is not None:
-        for name, style in (("DEADBAND_UPPER_THRESHOLD", "--"), ("DEADBAND_LOWER_THRESHOLD", ":")):
-            value = getattr(manager, name).value
-            ax2.axhline(value, color="tab:orange", ls=style, lw=1.0, label=f"{name} {value:g} deg/s")
-    ax2.set_ylabel("|ω| (deg/s)")
-    ax2.set_xlabel(f"time ({unit})")
-    ax2.set_yscale("log")
-    ax2.legend(loc="upper right", fontsize=8)
-    ax2.grid(alpha=0.3, which="both")
-    fig.suptitle("Body rate")
-    fig.tight_layout()
-    written.append(_save(fig, out_dir / "rate.png"))
-    plt.close(fig)
-
-    fig, ax = plt.subplots(figsize=(9, 4))
-    for column, face in zip(("level_xp", "level_xm", "level_yp", "level_ym", "level_zm"), COIL_FACES):
-        label = FACE_LABELS[face]
-        ax.step(tt, data[column], where="post", lw=0.8, label=label)
-    ax.set_ylabel("drive level (−127…127)")
-    ax.set_xlabel(f"time ({unit})")
-    ax.set_ylim(-135, 135)
-    ax.legend(loc="upper right", ncol=5, fontsize=8)
-    ax.grid(alpha=0.3)
-    ax.set_title("Commanded magnetorquer drive levels (sampled with the truth trace)")
-    fig.tight_layout()
-    written.append(_save(fig, out_dir / "drive_levels.png"))
-    plt.close(fig)
-
-    strategies = [s.name for s in DetumbleStrategy]
-    fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(9, 5), gridspec_kw={"height_ratios": [1, 2]})
-    ax1.step(tt, [strategies.index(s) if s in strategies else -1 for s in data["strategy"]], where="post",
-             color="tab:purple", lw=1.0)
-    ax1.set_yticks(range(len(strategies)), strategies)
-    ax1.set_title("Detumble strategy, and the share of each interval spent in each state")
-    ax1.grid(alpha=0.3)
-    shares = [data[f"frac_{st.name.lower()}"] for st in DetumbleState]
-    ax2.stackplot(tt, *shares, labels=[st.name for st in DetumbleState], step="post", alpha=0.85)
-    ax2.set_ylim(0, 1)
-    ax2.set_ylabel("share of time")
-    ax2.set_xlabel(f"time ({unit})")
-    ax2.legend(loc="lower left", fontsize=7, ncol=2)
-    ax2.grid(alpha=0.3)
-    fig.tight_layout()
-    written.append(_save(fig, out_dir / "state.png"))
-    plt.close(fig)
-    return written

@@ -74,15 +74,24 @@ class TruthSample(NamedTuple):
     omega_BN_B: tuple                  #: body rate, rad/s, in B
     rate_deg_s: float                  #: |omega_BN_B|, deg/s
     b_B: tuple                         #: true geomagnetic field in B, T (no coil field)
-    m_coils_B: tuple                   #: total coil dipole in B, A·m²
+    m_coils_B: tuple                   #: total coil dipole in B, A·m² (achieved)
     coil_levels: dict                  #: face -> drive level (-127..127)
+    q_BO: tuple = (1.0, 0.0, 0.0, 0.0)  #: attitude relative to the orbit frame, scalar first
+    omega_BO_B: tuple = (0.0, 0.0, 0.0)  #: body rate relative to the orbit frame, rad/s, in B
+    m_commanded_B: tuple = (0.0, 0.0, 0.0)  #: commanded dipole, A·m²
+    pointing_error_rad: float | None = None  #: angle to the controller's target, if one is set
+    wheel_momenta: tuple = ()          #: per wheel, N·m·s
+    wheel_speeds_rad_s: tuple = ()     #: per wheel, relative to the body, rad/s
+    wheel_torques_nm: tuple = ()       #: per wheel, motor torque over the last step, N·m
 
     CSV_HEADER = ("time_us", "t_s", "q0", "q1", "q2", "q3", "wx_rad_s", "wy_rad_s", "wz_rad_s",
-                  "rate_deg_s", "bx_T", "by_T", "bz_T", "mx_Am2", "my_Am2", "mz_Am2")
+                  "rate_deg_s", "bx_T", "by_T", "bz_T", "mx_Am2", "my_Am2", "mz_Am2",
+                  "qo0", "qo1", "qo2", "qo3", "wox_rad_s", "woy_rad_s", "woz_rad_s",
+                  "mcmd_x_Am2", "mcmd_y_Am2", "mcmd_z_Am2")
 
     def csv_row(self) -> tuple:
         return (self.time_us, self.t_s, *self.q_BN, *self.omega_BN_B, self.rate_deg_s, *self.b_B,
-                *self.m_coils_B)
+                *self.m_coils_B, *self.q_BO, *self.omega_BO_B, *self.m_commanded_B)
 
 
 class TruthRecorder:
@@ -281,6 +290,64 @@ class SimulatedSpacecraft:
     def coil_level(self, face: int) -> int:
         return self.plant.coil_levels().get(face, 0)
 
+    # --- reaction wheels ----------------------------------------------------------------------
+    # Wheel i of the plant (scenario spacecraft.reaction_wheels); commands act from now on.
+
+    @property
+    def wheel_count(self) -> int:
+        return self.plant.wheel_count
+
+    def wheel_limits(self, i: int) -> tuple[float, float]:
+        """``(max_torque_nm, max_momentum_nms)`` of wheel ``i``."""
+        w = self.plant._wheels()
+        w._index(i)
+        return (w.u_max[i], w.h_max[i])
+
+    def set_wheel_torque(self, i: int, torque_nm: float) -> None:
+        """Motor torque on wheel ``i`` (N·m along its axis) from now on (clipped by the plant)."""
+        self.sync()
+        self.plant.set_wheel_torque(i, torque_nm)
+
+    def set_wheel_speed(self, i: int, speed_rad_s: float) -> None:
+        """Speed set-point of wheel ``i`` relative to the body, rad/s, from now on."""
+        self.sync()
+        self.plant.set_wheel_speed(i, speed_rad_s)
+
+    def set_wheel_enabled(self, i: int, enabled: bool) -> None:
+        self.sync()
+        self.plant.set_wheel_enabled(i, enabled)
+
+    def wheel_sample(self, i: int) -> tuple[float, float, float, Time]:
+        """``(speed_rad_s, momentum_nms, torque_nm, t)`` as wheel ``i`` reports them now (the
+        momentum with the configured reading noise)."""
+        self.sync()
+        speed, h, u, _ = self.plant.wheel_reading(i)
+        return (speed, h, u, self.time_of(self.plant.t_ns))
+
+    def wheel_limit_flags(self, i: int) -> tuple[bool, bool]:
+        """``(torque_clipped, momentum_limited)`` of wheel ``i`` over the last step."""
+        self.sync()
+        w = self.plant._wheels()
+        w._index(i)
+        return (w.torque_clipped[i], w.momentum_limited[i])
+
+    # --- star tracker ---------------------------------------------------------------------------
+
+    @property
+    def has_star_tracker(self) -> bool:
+        return self.plant.star_tracker is not None
+
+    def star_tracker_sample(self) -> tuple[tuple[float, float, float, float], bool, Time]:
+        """``(q_BN, valid, t_sample)``: the held star-tracker solution (scalar first), whether it is
+        valid and when it was taken."""
+        self.sync()
+        q0, q1, q2, q3, valid, t = self.plant.star_tracker_reading()
+        return ((q0, q1, q2, q3), valid, self.time_of(int(round(t * 1e9))))
+
+    def set_pointing_target(self, q_target, frame: str = "inertial") -> None:
+        """Tell the truth log what the controller is pointing at (``Plant.set_pointing_target``)."""
+        self.plant.set_pointing_target(q_target, frame)
+
     # --- truth ----------------------------------------------------------------------------------
 
     def truth(self) -> TruthSample:
@@ -297,6 +364,13 @@ class SimulatedSpacecraft:
             b_B=tuple(p.b_B),
             m_coils_B=tuple(p.m_coils_B),
             coil_levels=p.coil_levels(),
+            q_BO=tuple(p.q_BO),
+            omega_BO_B=tuple(p.omega_BO_B),
+            m_commanded_B=tuple(p.m_commanded_B),
+            pointing_error_rad=p.pointing_error_rad(),
+            wheel_momenta=tuple(p.wheel_momenta),
+            wheel_speeds_rad_s=tuple(p.wheel_speeds_rad_s),
+            wheel_torques_nm=tuple(p.wheel_torques_nm),
         )
 
     def set_trace(self, callback: Callable[[TruthSample], None] | None, interval_us: int = 1_000_000) -> None:

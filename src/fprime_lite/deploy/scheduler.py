@@ -136,20 +136,15 @@ class Scheduler:
 
         Only components whose queues received a message since they were last emptied are visited;
         a message queued while draining marks its component again. A handler that raises is
-        counted in the component's ``handler_faults`` and logged, as on a component thread; the
-        deployment goes on.
+        reported by the component (``report_fault``: counted in ``handler_faults``, logged, a
+        ``HandlerFault`` event and the ``HandlerFaults`` channel), as on a component thread; the
+        messages behind it still run and the deployment goes on.
         """
         busy = self._busy
         while busy:
             component = next(iter(busy))
             del busy[component]
-            try:
-                component.dispatch_all()
-            except Exception:  # noqa: BLE001 - as on a component thread: counted and logged, never fatal
-                component.handler_faults += 1
-                log.exception("%s: a queued message's handler raised", component.name)
-                if len(component.queue):
-                    busy[component] = None  # the messages behind it still run in this drain
+            component.dispatch_all(contain_faults=True)
 
     def run(self, until_us: int | None = None, max_events: int | None = None) -> int:
         """Run events up to and including time ``until_us``; then set the clock to ``until_us``.

@@ -4,7 +4,8 @@
 topology's own declarations (what fprime-gds does with the dictionary). :class:`GroundRecorder`
 listens to the deployment's downlink (EventManager's and TlmChan's ``PktSend``) and writes
 ``events.log`` (one line per event: time, name, severity, text, as the GDS logs them) and
-``channels.csv`` (time, channel, value) as packets arrive, so memory stays flat however long the run.
+``channels.csv`` (time, channel, value) as packets arrive, and ``channels_wide.csv`` (one column per
+channel, see :mod:`fprime_lite.ground.wide_table`), so memory stays flat however long the run.
 Files are written under a temporary name and renamed into place when the recorder closes. Files
 the deployment downlinks (``fileDownlink.SendFile``) are reassembled under ``downlink/`` by a
 :class:`~fprime_lite.ground.files.FileReceiver`, as fprime-gds does in its downlink store.
@@ -25,6 +26,7 @@ from typing import Any, Callable
 from fprime_lite.model.errors import SerializationError
 from fprime_lite.model.events import Severity, translate_format
 from fprime_lite.ground.files import FileReceiver
+from fprime_lite.ground.wide_table import WideTelemetryTable
 from fprime_lite.wire.packets import Apid, decode_event, decode_telemetry
 from fprime_lite.model.time import Time, TimeBase
 from fprime_lite.deploy.topology import Topology
@@ -77,6 +79,8 @@ class GroundDecoder:
     def __init__(self, topology: Topology):
         self.events: dict[int, tuple[str, Any]] = {}
         self.channels: dict[int, tuple[str, Any, str | None]] = {}
+        #: channel name → (F´ type, units or None), in declaration order
+        self.channel_types: dict[str, tuple[Any, str | None]] = {}
         for instance in topology.instances.values():
             comp = instance.component
             for e in comp.spec.events:
@@ -84,6 +88,7 @@ class GroundDecoder:
             for c in comp.spec.channels:
                 template = translate_format(c.format, [c.type], c.name) if c.format else None
                 self.channels[comp.base_id + c.local_id] = (f"{instance.qualified_name}.{c.name}", c.type, template)
+                self.channel_types[f"{instance.qualified_name}.{c.name}"] = (c.type, getattr(c, "units", None))
 
     def decode_event(self, packet: bytes) -> DecodedEvent:
         event_id, time, args = decode_event(packet)
@@ -142,7 +147,10 @@ class GroundRecorder:
     """
 
     def __init__(self, topology: Topology, out_dir, *, on_event: Callable[[DecodedEvent], None] | None = None,
-                 on_channel: Callable[[DecodedChannel], None] | None = None):
+                 on_channel: Callable[[DecodedChannel], None] | None = None, clock=None):
+        """``clock`` (the deployment's, a :class:`~fprime_lite.model.time.Clock`) times the rows of
+        ``channels_wide.csv`` by reception; without one a row is started whenever a channel's own
+        time stamp changes."""
         self.decoder = GroundDecoder(topology)
         out_dir = pathlib.Path(out_dir)
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -150,6 +158,10 @@ class GroundRecorder:
         self._channels = _StreamedFile(out_dir / "channels.csv", newline="")
         self._csv = csv.writer(self._channels.file, lineterminator="\n")
         self._csv.writerow(["time", "channel", "value"])
+        self._wide_file = _StreamedFile(out_dir / "channels_wide.csv", newline="")
+        self._clock = clock
+        self._wide = WideTelemetryTable(self._wide_file.file, self.decoder.channel_types,
+                                        start=clock.now() if clock is not None else None)
         self.on_event = on_event
         self.on_channel = on_channel
         self.events_by_severity: Counter = Counter()
@@ -219,10 +231,13 @@ class GroundRecorder:
     def _channel(self, c: DecodedChannel) -> None:
         self.channel_updates += 1
         self._csv.writerow([f"{c.time.seconds}.{c.time.useconds:06d}", c.name, c.text])
+        self._wide.add(self._clock.now() if self._clock is not None else c.time, c.name, c.value)
         if self.on_channel is not None:
             self.on_channel(c)
 
     def close(self) -> None:
         self._events.close()
         self._channels.close()
+        self._wide.close()
+        self._wide_file.close()
         self.files.close()

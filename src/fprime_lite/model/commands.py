@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import inspect
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Any, Callable, TypeVar
 
 from fprime_lite.model.errors import DeclarationError
 from fprime_lite.model.ports import QUEUE_FULL_BEHAVIOURS
@@ -55,28 +55,33 @@ class CommandDecl:
 
     name: str
     kind: str  # "sync" | "guarded" | "async" | "set" | "save"
-    args: list[tuple[str, FwType]] = field(default_factory=list)
-    opcode: int | None = None  # local opcode; assigned when the component class is built
+    args: list[tuple[str, FwType[Any]]] = field(default_factory=list)
+    requested_opcode: int | None = None  # the local opcode the declaration gives, if any
+    opcode: int = -1  # the local opcode, assigned when the component class is built
     priority: int = 0
     queue_full: str = "assert"
-    handler: Callable | None = None
-    param: object = None  # the Param a set/save command belongs to
+    handler: Callable[..., Any] | None = None
+    param: Any = None  # the Param a set/save command belongs to
 
     @property
-    def arg_types(self) -> list[FwType]:
+    def arg_types(self) -> list[FwType[Any]]:
         return [t for _, t in self.args]
 
 
-def _command_decorator(kind: str, opcode: int | None, priority: int = 0, queue_full: str = "assert"):
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def _command_decorator(kind: str, opcode: int | None, priority: int = 0,
+                       queue_full: str = "assert") -> Callable[[F], F]:
     if opcode is not None and (not isinstance(opcode, int) or opcode < 0):
         raise DeclarationError(f"command opcode must be a non-negative integer, got {opcode!r}")
     if queue_full not in QUEUE_FULL_BEHAVIOURS:
         raise DeclarationError(
             f"queue_full must be one of {', '.join(QUEUE_FULL_BEHAVIOURS)}, got {queue_full!r}")
 
-    def decorate(fn: Callable) -> Callable:
-        fn.__fprime_command__ = CommandDecl(fn.__name__, kind, opcode=opcode, priority=priority,
-                                            queue_full=queue_full, handler=fn)
+    def decorate(fn: F) -> F:
+        setattr(fn, "__fprime_command__", CommandDecl(fn.__name__, kind, requested_opcode=opcode, priority=priority,
+                                                      queue_full=queue_full, handler=fn))
         return fn
 
     return decorate
@@ -84,6 +89,8 @@ def _command_decorator(kind: str, opcode: int | None, priority: int = 0, queue_f
 
 def resolve_command_args(owner: str, decl: CommandDecl) -> None:
     """Read the argument types from the handler's annotations (called when the class is built)."""
+    if decl.handler is None:
+        raise DeclarationError(f"{owner}.{decl.name}: a declared command needs its handler method")
     try:
         sig = inspect.signature(decl.handler, eval_str=True)
     except Exception as exc:  # noqa: BLE001 - unresolvable annotation, reported as a declaration error
@@ -103,16 +110,17 @@ def resolve_command_args(owner: str, decl: CommandDecl) -> None:
     decl.args = args
 
 
-def sync_command(*, opcode: int | None = None):
+def sync_command(*, opcode: int | None = None) -> Callable[[F], F]:
     """Declare a sync command: it runs on the dispatcher's thread."""
     return _command_decorator("sync", opcode)
 
 
-def guarded_command(*, opcode: int | None = None):
+def guarded_command(*, opcode: int | None = None) -> Callable[[F], F]:
     """Declare a guarded command: it runs on the dispatcher's thread under the component lock."""
     return _command_decorator("guarded", opcode)
 
 
-def async_command(*, opcode: int | None = None, priority: int = 0, queue_full: str = "assert"):
+def async_command(*, opcode: int | None = None, priority: int = 0,
+                  queue_full: str = "assert") -> Callable[[F], F]:
     """Declare an async command: queued, run by ``dispatch()`` (queued and active components)."""
     return _command_decorator("async", opcode, priority, queue_full)

@@ -8,33 +8,60 @@ parameter, time), the ``P_PRM_SET``/``P_PRM_SAVE`` commands and the command disp
 
 Ids: every opcode, event id, channel id and parameter id is the instance's ``base_id`` plus a local
 id. Local ids are given explicitly or assigned in declaration order (one more than the previous).
+Members the framework generates come after those the class declares: parameter echoes
+(:class:`~fprime_lite.model.params.ParamEcho`) without explicit ids, then the framework's own fault
+and parameter events and the ``HandlerFaults`` channel (see :data:`FRAMEWORK_EVENTS`), numbered
+from one past the largest local id of their kind so that no declared id moves (decision 0005).
 """
 
 from __future__ import annotations
 
 import copy
+import functools
 import logging
 import threading
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable, Iterable
 
 from fprime_lite.model.commands import CmdResponse, CommandDecl, CommandToken, resolve_command_args
 from fprime_lite.model.errors import DeclarationError, FwAssertionError, SerializationError
-from fprime_lite.model.events import BoundEvent, Event
+from fprime_lite.model.events import BoundEvent, Event, Severity
 from fprime_lite.model.fw_ports import SPECIAL_PORTS
 from fprime_lite.model.params import BoundParam, Param, ParamValid
 from fprime_lite.model.ports import InputPortArray, InputPortDecl, OutputPort, OutputPortArray, bind_input_entries
 from fprime_lite.model.queues import MessageQueue
 from fprime_lite.model.telemetry import BoundChannel, Channel
 from fprime_lite.model.time import Time
-from fprime_lite.model.types import deserialize_values
+from fprime_lite.model.types import _U32, String, deserialize_values, fit_utf8
 
-__all__ = ["Component", "PassiveComponent", "QueuedComponent", "ActiveComponent", "ComponentSpec"]
+__all__ = ["Component", "PassiveComponent", "QueuedComponent", "ActiveComponent", "ComponentSpec",
+           "FRAMEWORK_EVENTS", "FRAMEWORK_CHANNELS"]
 
 log = logging.getLogger("fprime_lite")
 
 _ZERO_TIME = Time()
-_RESERVED = {name for name, _, _ in SPECIAL_PORTS.values()} | {"name", "base_id"}
+
+#: Events the framework gives every component (the parameter ones only to components with parameters).
+#: ``HandlerFault``: a handler raised in a deployment (a command, a queued message, a cycle run at
+#: once, or a fault the component reports itself with :meth:`Component.report_fault`).
+#: ``ParamSetRefused``: a PRM_SET value failed the parameter's validation (VALIDATION_ERROR).
+#: ``ParamDefaulted``: the parameter file's value was refused; the default is in use.
+_FAULT_THROTTLE = 10
+FRAMEWORK_EVENTS: dict[str, Callable[[], Event]] = {
+    "HandlerFault": lambda: Event(Severity.WARNING_HI, "Handler {} raised {}", port=String(40),
+                                  exception=String(120), throttle=_FAULT_THROTTLE),
+    "ParamSetRefused": lambda: Event(Severity.WARNING_LO, "{} PRM_SET refused: {}", param=String(40),
+                                     reason=String(120)),
+    "ParamDefaulted": lambda: Event(Severity.WARNING_HI, "{} parameter file value refused ({}); default loaded",
+                                    param=String(40), reason=String(120)),
+}
+_PARAM_EVENTS = ("ParamSetRefused", "ParamDefaulted")
+#: Channels the framework gives every component: ``HandlerFaults`` counts handler faults (U32).
+FRAMEWORK_CHANNELS: dict[str, Callable[[], Channel[Any]]] = {
+    "HandlerFaults": lambda: Channel(_U32, update="on change"),
+}
+_RESERVED = ({name for name, _, _ in SPECIAL_PORTS.values()} | {"name", "base_id"} | set(FRAMEWORK_EVENTS)
+             | set(FRAMEWORK_CHANNELS))
 
 
 @dataclass
@@ -48,8 +75,10 @@ class ComponentSpec:
     special: dict[str, str] = field(default_factory=dict)  # special kind -> port name
     commands: list[CommandDecl] = field(default_factory=list)
     events: list[Event] = field(default_factory=list)
-    channels: list[Channel] = field(default_factory=list)
-    params: list[Param] = field(default_factory=list)
+    channels: list[Channel[Any]] = field(default_factory=list)
+    params: list[Param[Any]] = field(default_factory=list)
+    #: Parameter name -> (its echo event, its echo channel), for parameters declared with ``echo=``.
+    echoes: dict[str, tuple[Event, Channel[Any]]] = field(default_factory=dict)
 
     def command(self, name: str) -> CommandDecl:
         for c in self.commands:
@@ -61,14 +90,24 @@ class ComponentSpec:
     def event(self, name: str) -> Event:
         return _find(self.events, name, self.class_name, "event")
 
-    def channel(self, name: str) -> Channel:
+    def channel(self, name: str) -> Channel[Any]:
         return _find(self.channels, name, self.class_name, "channel")
 
-    def param(self, name: str) -> Param:
+    def param(self, name: str) -> Param[Any]:
         return _find(self.params, name, self.class_name, "parameter")
 
+    @property
+    def own_events(self) -> list[Event]:
+        """The events the class declares and its parameter echoes (not the framework's own)."""
+        return [e for e in self.events if not e.framework]
 
-def _find(items, name, owner, what):
+    @property
+    def own_channels(self) -> list[Channel[Any]]:
+        """The channels the class declares and its parameter echoes (not the framework's own)."""
+        return [c for c in self.channels if not c.framework]
+
+
+def _find(items: Iterable[Any], name: str, owner: str, what: str) -> Any:
     for item in items:
         if item.name == name:
             return item
@@ -80,43 +119,57 @@ def _is_declaration(value: Any) -> bool:
             or hasattr(value, "__fprime_input__") or hasattr(value, "__fprime_command__"))
 
 
-class _ClassBody(dict):
+class _ClassBody(dict[str, Any]):
     """Class namespace that refuses to declare the same member twice."""
 
     def __init__(self, class_name: str):
         super().__init__()
         self.class_name = class_name
 
-    def __setitem__(self, key, value):
+    def __setitem__(self, key: str, value: Any) -> None:
         if key in self and (_is_declaration(self[key]) or _is_declaration(value)):
             raise DeclarationError(f"{self.class_name}.{key} is declared twice; give each member its own name")
         super().__setitem__(key, value)
 
 
-def _assign_ids(owner: str, what: str, items: list, get, put) -> None:
-    """Give each item its explicit id or the previous id + 1; reject duplicates."""
+def _assign_ids(owner: str, what: str, items: list[tuple[Any, str]], get: Callable[[Any], int | None],
+                put: Callable[[Any, int], None], after: Iterable[list[tuple[Any, str]]] = ()) -> None:
+    """Give each item its explicit id or the previous id + 1; reject duplicates.
+
+    ``after`` holds groups of framework-generated items; each group is numbered from one past the
+    largest id used before it, so nothing the class declares moves. The explicit ids of generated
+    items are held back while the declared ones are numbered: an automatic id steps over them, as
+    it would over those members listed in their places (a channel declared after the last one still
+    takes the id after the generated ones that follow it).
+    """
+    later = [list(group) for group in after]
+    reserved = {get(item) for group in later for item, _ in group} - {None}
     used: dict[int, str] = {}
-    next_id = 0
-    for item, label in items:
-        explicit = get(item)
-        local = next_id if explicit is None else explicit
-        if local in used:
-            raise DeclarationError(f"{owner}: {what} {local} (0x{local:X}) of {label} is already used by "
-                                   f"{used[local]}; give one of them another {what}")
-        used[local] = label
-        put(item, local)
-        next_id = local + 1
+    for group_number, group in enumerate([items, *later]):
+        next_id = 0 if group_number == 0 else max(used, default=-1) + 1
+        for item, label in group:
+            explicit = get(item)
+            local = next_id if explicit is None else explicit
+            if explicit is None and group_number == 0:
+                while local in reserved:
+                    local += 1
+            if local in used:
+                raise DeclarationError(f"{owner}: {what} {local} (0x{local:X}) of {label} is already used by "
+                                       f"{used[local]}; give one of them another {what}")
+            used[local] = label
+            put(item, local)
+            next_id = local + 1
 
 
 _SHADOWED_KINDS = (OutputPort, Event, Channel, Param)
 
 
-def _members(klass) -> dict[str, Any]:
+def _members(klass: type) -> dict[str, Any]:
     """A class body as written, declarations included (see :func:`_move_out_declarations`)."""
     return klass.__dict__.get("__fprime_members__", klass.__dict__)
 
 
-def _move_out_declarations(klass) -> None:
+def _move_out_declarations(klass: type) -> None:
     """Take output-port, event, channel and parameter declarations out of ``klass``'s attributes.
 
     Each instance sets an attribute of the same name (the call slots, the bound event, …). While
@@ -130,7 +183,7 @@ def _move_out_declarations(klass) -> None:
     if not declared:
         return
     if "__fprime_members__" not in body:
-        klass.__fprime_members__ = dict(body)
+        setattr(klass, "__fprime_members__", dict(body))
     for key in declared:
         delattr(klass, key)
 
@@ -139,18 +192,18 @@ class ComponentMeta(type):
     """Collects and checks a component class's declarations when the class is created."""
 
     @classmethod
-    def __prepare__(mcs, name, bases, **kwargs):
+    def __prepare__(mcs, name: str, bases: tuple[type, ...], /, **kwargs: Any) -> dict[str, object]:
         return _ClassBody(name)
 
-    def __new__(mcs, name, bases, namespace, **kwargs):
+    def __new__(mcs, name: str, bases: tuple[type, ...], namespace: dict[str, Any], **kwargs: Any) -> ComponentMeta:
         cls = super().__new__(mcs, name, bases, dict(namespace), **kwargs)
         if not namespace.get("__fprime_abstract__", False):
-            cls.__fprime_spec__ = _build_spec(cls)
+            setattr(cls, "__fprime_spec__", _build_spec(cls))
         for klass in cls.__mro__[:-1]:  # this class and plain mixins that declare members
             _move_out_declarations(klass)
         return cls
 
-    def __getattr__(cls, name):
+    def __getattr__(cls, name: str) -> Any:
         """Class-level reads of a declaration (``MyComponent.xOut``) find it in the class bodies."""
         for klass in cls.__mro__:
             members = klass.__dict__.get("__fprime_members__")
@@ -159,7 +212,7 @@ class ComponentMeta(type):
         raise AttributeError(f"type object {cls.__name__!r} has no attribute {name!r}")
 
 
-def _build_spec(cls) -> ComponentSpec:
+def _build_spec(cls: Any) -> ComponentSpec:
     owner = cls.__name__
     merged: dict[str, Any] = {}
     for klass in reversed(cls.__mro__):
@@ -176,68 +229,93 @@ def _build_spec(cls) -> ComponentSpec:
         base_input = _declared_input(cls, key)
         base_command = _declared_command(cls, key)
         if base_input is not None:
-            decl = copy.copy(base_input)
-            decl.name = key
-            decl.check_handler(owner, getattr(cls, key))
-            if decl.kind == "async":
+            idecl = copy.copy(base_input)
+            idecl.name = key
+            idecl.check_handler(owner, getattr(cls, key))
+            if idecl.kind == "async":
                 if spec.kind == "passive":
                     raise DeclarationError(
                         f"{owner}.{key}: a passive component cannot have async input ports; derive "
                         f"from QueuedComponent or ActiveComponent, or make the port sync")
-                if decl.queue_full == "hook" and not callable(getattr(cls, f"{key}_overflow_hook", None)):
+                if idecl.queue_full == "hook" and not callable(getattr(cls, f"{key}_overflow_hook", None)):
                     raise DeclarationError(f"{owner}.{key}: queue_full='hook' needs a method "
                                            f"{key}_overflow_hook(self, ...) taking the port's arguments")
-            spec.inputs[key] = decl
+            spec.inputs[key] = idecl
         elif base_command is not None:
-            decl = copy.copy(base_command)
-            decl.name = key
-            resolve_command_args(owner, decl)
-            if decl.kind == "async" and spec.kind == "passive":
+            kdecl = copy.copy(base_command)
+            kdecl.name = key
+            resolve_command_args(owner, kdecl)
+            if kdecl.kind == "async" and spec.kind == "passive":
                 raise DeclarationError(f"{owner}.{key}: a passive component cannot have async commands; "
                                        f"derive from QueuedComponent or ActiveComponent, or use sync_command")
-            ordered_commands.append((decl, f"command {key}"))
+            ordered_commands.append((kdecl, f"command {key}"))
         elif isinstance(value, OutputPort):
-            decl = copy.copy(value)
-            decl.name = key
-            spec.outputs[key] = decl
+            odecl = copy.copy(value)
+            odecl.name = key
+            spec.outputs[key] = odecl
         elif isinstance(value, Event):
-            decl = copy.copy(value)
-            decl.name = decl.attr = key
-            decl.finish(owner)
-            spec.events.append(decl)
+            edecl = copy.copy(value)
+            edecl.name = edecl.attr = key
+            edecl.finish(owner)
+            spec.events.append(edecl)
         elif isinstance(value, Channel):
-            decl = copy.copy(value)
-            decl.attr, decl.name = key, value.fprime_name or key
-            decl.finish(owner)
-            spec.channels.append(decl)
+            cdecl = copy.copy(value)
+            cdecl.attr, cdecl.name = key, value.fprime_name or key
+            cdecl.finish(owner)
+            spec.channels.append(cdecl)
         elif isinstance(value, Param):
-            decl = copy.copy(value)
-            decl.attr, decl.name = key, value.fprime_name or key
-            decl.finish(owner)
-            spec.params.append(decl)
-            prm = decl.name
-            ordered_commands.append((CommandDecl(f"{prm}_PRM_SET", "set", [("val", decl.type)],
-                                                 opcode=decl.set_opcode, param=decl), f"command {prm}_PRM_SET"))
-            ordered_commands.append((CommandDecl(f"{prm}_PRM_SAVE", "save", [], opcode=decl.save_opcode,
-                                                 param=decl), f"command {prm}_PRM_SAVE"))
-    for what, items in (("channel", spec.channels), ("parameter", spec.params)):
+            pdecl = copy.copy(value)
+            pdecl.attr, pdecl.name = key, value.fprime_name or key
+            pdecl.finish(owner)
+            spec.params.append(pdecl)
+            prm = pdecl.name
+            ordered_commands.append((CommandDecl(f"{prm}_PRM_SET", "set", [("val", pdecl.type)],
+                                                 requested_opcode=pdecl.set_opcode, param=pdecl),
+                                     f"command {prm}_PRM_SET"))
+            ordered_commands.append((CommandDecl(f"{prm}_PRM_SAVE", "save", [], requested_opcode=pdecl.save_opcode,
+                                                 param=pdecl), f"command {prm}_PRM_SAVE"))
+            if pdecl.echo is not None:
+                spec.echoes[prm] = _echo_members(owner, pdecl)
+    generated_events = [event for event, _ in spec.echoes.values()]
+    generated_channels = [channel for _, channel in spec.echoes.values()]
+    framework_events = [_framework_member(name, FRAMEWORK_EVENTS[name], owner) for name in FRAMEWORK_EVENTS
+                        if spec.params or name not in _PARAM_EVENTS]
+    framework_channels = [_framework_member(name, make, owner) for name, make in FRAMEWORK_CHANNELS.items()]
+    for what, members in (("event", spec.events + generated_events + framework_events),
+                          ("channel", spec.channels + generated_channels + framework_channels),
+                          ("parameter", spec.params)):
         seen_names: dict[str, str] = {}
-        for decl in items:
-            if decl.name in seen_names:
-                raise DeclarationError(f"{owner}: {what}s {seen_names[decl.name]} and {decl.attr} both have the "
-                                       f"F´ name {decl.name!r}; give one of them another name=")
-            seen_names[decl.name] = decl.attr
-    names = {}
-    for decl, label in ordered_commands:
-        if decl.name in names:
+        for member in members:
+            if member.name in seen_names:
+                raise DeclarationError(f"{owner}: {what}s {seen_names[member.name]} and {member.attr or member.name} "
+                                       f"both have the F´ name {member.name!r}; give one of them another name")
+            seen_names[member.name] = member.attr or member.name
+    names: dict[str, CommandDecl] = {}
+    for cmd, label in ordered_commands:
+        if cmd.name in names:
             raise DeclarationError(f"{owner}: {label} clashes with the command generated for "
-                                   f"parameter {decl.name.rsplit('_PRM_', 1)[0]}; rename it")
-        names[decl.name] = decl
-    _assign_ids(owner, "opcode", ordered_commands, lambda d: d.opcode, lambda d, v: setattr(d, "opcode", v))
+                                   f"parameter {cmd.name.rsplit('_PRM_', 1)[0]}; rename it")
+        names[cmd.name] = cmd
+    _assign_ids(owner, "opcode", ordered_commands, lambda d: d.requested_opcode,
+                lambda d, v: setattr(d, "opcode", v))
     spec.commands = [d for d, _ in ordered_commands]
-    for what, items in (("event id", spec.events), ("channel id", spec.channels), ("parameter id", spec.params)):
-        _assign_ids(owner, what, [(i, f"{i.name}") for i in items],
-                    lambda d: d.local_id, lambda d, v: setattr(d, "local_id", v))
+
+    def labelled(items: list[Any]) -> list[tuple[Any, str]]:
+        return [(i, i.name) for i in items]
+
+    def requested(d: Any) -> int | None:
+        return d.requested_id
+
+    def put(d: Any, v: int) -> None:
+        d.local_id = v
+
+    _assign_ids(owner, "event id", labelled(spec.events), requested, put,
+                after=[labelled(generated_events), labelled(framework_events)])
+    _assign_ids(owner, "channel id", labelled(spec.channels), requested, put,
+                after=[labelled(generated_channels), labelled(framework_channels)])
+    _assign_ids(owner, "parameter id", labelled(spec.params), requested, put)
+    spec.events += generated_events + framework_events
+    spec.channels += generated_channels + framework_channels
 
     special_kinds = ["time get"]
     if spec.commands:
@@ -260,7 +338,28 @@ def _build_spec(cls) -> ComponentSpec:
     return spec
 
 
-def _declared_input(cls, key):
+def _echo_members(owner: str, param: Param[Any]) -> tuple[Event, Channel[Any]]:
+    """The ``…ParamSet`` event and ``…Param`` channel the framework declares for ``param``."""
+    echo = param.echo
+    assert echo is not None
+    event = Event(Severity.ACTIVITY_HI, echo.event_format(param.name), id=echo.event_id, value=param.type)
+    event.name = event.attr = echo.event_name(param.name)
+    event.finish(owner)
+    channel: Channel[Any] = Channel(param.type, id=echo.channel_id)
+    channel.name = channel.attr = echo.channel_name(param.name)
+    channel.finish(owner)
+    return event, channel
+
+
+def _framework_member(name: str, make: Callable[[], Any], owner: str) -> Any:
+    member = make()
+    member.name = member.attr = name
+    member.framework = True
+    member.finish(owner)
+    return member
+
+
+def _declared_input(cls: Any, key: str) -> Any:
     for klass in cls.__mro__:
         value = _members(klass).get(key)
         if value is not None and hasattr(value, "__fprime_input__"):
@@ -268,7 +367,7 @@ def _declared_input(cls, key):
     return None
 
 
-def _declared_command(cls, key):
+def _declared_command(cls: Any, key: str) -> Any:
     for klass in cls.__mro__:
         value = _members(klass).get(key)
         if value is not None and hasattr(value, "__fprime_command__"):
@@ -289,7 +388,18 @@ class Component(metaclass=ComponentMeta):
     __fprime_kind__ = "passive"
     __fprime_spec__: ComponentSpec
 
-    def __init__(self, name: str, *, base_id: int = 0):
+    # The framework's ports, set on each instance (annotations only: a class attribute of the same
+    # name would stop CPython specialising the instance attribute lookup; see decision 0001).
+    timeCaller: list[Callable[[], Time]]
+    logOut: list[Callable[..., Any]]
+    logTextOut: list[Callable[..., Any]]
+    tlmOut: list[Callable[..., Any]]
+    cmdRegOut: list[Callable[..., Any]]
+    cmdResponseOut: list[Callable[..., Any]]
+    prmGetOut: list[Callable[..., Any]]
+    prmSetOut: list[Callable[..., Any]]
+
+    def __init__(self, name: str, *, base_id: int = 0) -> None:
         if not isinstance(name, str) or not name.isidentifier():
             raise ValueError(f"component name must be an identifier, got {name!r}")
         if not isinstance(base_id, int) or not 0 <= base_id <= 0xFFFFFFFF:
@@ -310,28 +420,30 @@ class Component(metaclass=ComponentMeta):
         self._commands = {c.opcode: c for c in spec.commands}
         self._command_handlers = {c.opcode: getattr(self, c.name) for c in spec.commands
                                   if c.kind not in ("set", "save")}
-        self._events = {}
+        self._events: dict[str, BoundEvent] = {}
         for e in spec.events:
-            bound = BoundEvent(self, e, base_id + e.local_id)
-            setattr(self, e.attr, bound)
-            self._events[e.name] = bound
-        self._channels = {}
+            event = BoundEvent(self, e, base_id + e.local_id)
+            setattr(self, e.attr, event)
+            self._events[e.name] = event
+        self._channels: dict[str, BoundChannel[Any]] = {}
         for c in spec.channels:
-            bound = BoundChannel(self, c, base_id + c.local_id)
-            setattr(self, c.attr, bound)
-            self._channels[c.name] = bound
-        self._params = {}
+            channel = BoundChannel(self, c, base_id + c.local_id)
+            setattr(self, c.attr, channel)
+            self._channels[c.name] = channel
+        self._params: dict[str, BoundParam[Any]] = {}
         for p in spec.params:
-            bound = BoundParam(self, p, base_id + p.local_id)
-            setattr(self, p.attr, bound)
-            self._params[p.name] = bound
+            param = BoundParam(self, p, base_id + p.local_id)
+            setattr(self, p.attr, param)
+            self._params[p.name] = param
+        #: Parameter name -> its bound echo (event, channel).
+        self._echoes = {prm: (self._events[e.name], self._channels[c.name]) for prm, (e, c) in spec.echoes.items()}
         self._inputs: dict[str, InputPortArray] = {}
-        for decl in spec.inputs.values():
-            if decl.name == spec.special.get("command recv"):
-                entries = [self._command_in]
+        for idecl in spec.inputs.values():
+            if idecl.name == spec.special.get("command recv"):
+                entries: list[Callable[..., Any]] = [self._command_in]
             else:
-                entries = bind_input_entries(self, decl)
-            self._inputs[decl.name] = InputPortArray(self, decl, entries)
+                entries = bind_input_entries(self, idecl)
+            self._inputs[idecl.name] = InputPortArray(self, idecl, entries)
 
     # --- ports ------------------------------------------------------------------------------------
 
@@ -390,12 +502,30 @@ class Component(metaclass=ComponentMeta):
         return dict(self._events)
 
     @property
-    def channels(self) -> dict[str, BoundChannel]:
+    def channels(self) -> dict[str, BoundChannel[Any]]:
         return dict(self._channels)
 
     @property
-    def params(self) -> dict[str, BoundParam]:
+    def params(self) -> dict[str, BoundParam[Any]]:
         return dict(self._params)
+
+    # --- faults ----------------------------------------------------------------------------------
+
+    def report_fault(self, where: str, exc: BaseException) -> None:
+        """Count a handler fault and make it visible: the log (with its traceback), the throttled
+        WARNING_HI event ``HandlerFault(where, exception)`` and the ``HandlerFaults`` channel.
+
+        The framework calls it for every fault it contains in a deployment; a component that
+        contains a fault of its own (a cycle that must go on) calls it too. It never raises.
+        """
+        self.handler_faults += 1
+        log.error("%s: %s raised", self.name, where, exc_info=(type(exc), exc, exc.__traceback__))
+        try:
+            text = f"{type(exc).__name__}: {exc}"
+            self._events["HandlerFault"](fit_utf8(where, 40), fit_utf8(text, 120))
+            self._channels["HandlerFaults"].write(self.handler_faults & 0xFFFFFFFF)
+        except Exception:  # noqa: BLE001 - reporting a fault must not raise another
+            log.exception("%s: reporting a fault failed", self.name)
 
     # --- commands --------------------------------------------------------------------------------
 
@@ -432,17 +562,16 @@ class Component(metaclass=ComponentMeta):
         else:
             self._queue_command(decl, opcode, cmd_seq, values)
 
-    def _queue_command(self, decl: CommandDecl, opcode: int, cmd_seq: int, values: list) -> None:
+    def _queue_command(self, decl: CommandDecl, opcode: int, cmd_seq: int, values: list[Any]) -> None:
         raise FwAssertionError(f"{self.name}: async command {decl.name} on a component without a queue")
 
-    def _run_command(self, decl: CommandDecl, opcode: int, cmd_seq: int, values) -> None:
+    def _run_command(self, decl: CommandDecl, opcode: int, cmd_seq: int, values: list[Any]) -> None:
         self._deferred = False
         self._current_command = CommandToken(opcode, cmd_seq)
         try:
             result = self._command_handlers[decl.opcode](*values)
-        except Exception:  # noqa: BLE001 - a handler fault answers EXECUTION_ERROR, it never escapes
-            self.handler_faults += 1
-            log.exception("%s: command %s raised; answering EXECUTION_ERROR", self.name, decl.name)
+        except Exception as exc:  # noqa: BLE001 - a handler fault answers EXECUTION_ERROR, it never escapes
+            self.report_fault(decl.name, exc)
             result = CmdResponse.EXECUTION_ERROR
         finally:
             self._current_command = None
@@ -474,7 +603,7 @@ class Component(metaclass=ComponentMeta):
 
     # --- parameters ------------------------------------------------------------------------------
 
-    def _param_set(self, decl: Param, args: bytes) -> CmdResponse:
+    def _param_set(self, decl: Param[Any], args: bytes) -> CmdResponse:
         bound = self._params[decl.name]
         try:
             value, end = decl.type.deserialize(args)
@@ -483,13 +612,22 @@ class Component(metaclass=ComponentMeta):
         except SerializationError as exc:
             log.info("%s: %s_PRM_SET: bad value: %s", self.name, decl.name, exc)
             return CmdResponse.VALIDATION_ERROR
+        problem = decl.invalid_reason(value)
+        if problem is not None:
+            log.warning("%s: %s_PRM_SET refused: %s", self.name, decl.name, problem)
+            self._events["ParamSetRefused"](fit_utf8(decl.name, 40), fit_utf8(problem, 120))
+            return CmdResponse.VALIDATION_ERROR
         with self._lock:
             bound.value = value
             bound.validity = ParamValid.VALID
+        echo = self._echoes.get(decl.name)
+        if echo is not None:
+            echo[0](value)
+            echo[1].write(value)
         self.parameter_updated(decl.local_id)
         return CmdResponse.OK
 
-    def _param_save(self, decl: Param, args: bytes) -> CmdResponse:
+    def _param_save(self, decl: Param[Any], args: bytes) -> CmdResponse:
         if args:
             return CmdResponse.FORMAT_ERROR
         out = self._outputs["prmSetOut"]
@@ -502,14 +640,25 @@ class Component(metaclass=ComponentMeta):
         return CmdResponse.OK
 
     def load_parameters(self) -> None:
-        """Fetch every parameter through the param-get port, then run :meth:`parameters_loaded`."""
+        """Fetch every parameter through the param-get port, then run :meth:`parameters_loaded`.
+
+        A value PrmDb has that does not deserialize or fails the parameter's validation is
+        replaced by the default and reported (``ParamDefaulted``). Echo channels are written with
+        the loaded values before the hook runs.
+        """
         get = self._outputs.get("prmGetOut")
         for bound in self._params.values():
             if get is not None and get.targets[0] is not None:
                 validity, data = get.calls[0](bound.id)
             else:
                 validity, data = ParamValid.UNINIT, None
-            bound.load(validity, data)
+            problem = bound.load(validity, data)
+            if problem is not None:
+                log.warning("%s: parameter %s: the stored value is refused (%s); using the default %r",
+                            self.name, bound.decl.name, problem, bound.value)
+                self._events["ParamDefaulted"](fit_utf8(bound.decl.name, 40), fit_utf8(problem, 120))
+        for name, (_, channel) in self._echoes.items():
+            channel.write(self._params[name].value)
         self.parameters_loaded()
 
     def parameter_updated(self, local_id: int) -> None:
@@ -518,7 +667,7 @@ class Component(metaclass=ComponentMeta):
     def parameters_loaded(self) -> None:
         """Hook: every parameter has been loaded at start-up."""
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"<{type(self).__name__} {self.name!r} base 0x{self.base_id:X}>"
 
 
@@ -528,7 +677,7 @@ class PassiveComponent(Component):
     __fprime_abstract__ = True
     __fprime_kind__ = "passive"
 
-    def _make_enqueuer(self, decl, call, index):
+    def _make_enqueuer(self, decl: InputPortDecl, call: Callable[..., Any], index: int) -> Callable[..., Any]:
         raise FwAssertionError(f"{self.name}: passive components have no queue")
 
 
@@ -547,7 +696,7 @@ class QueuedComponent(Component):
         self.drained_by_scheduler = False
         super().__init__(name, base_id=base_id)
 
-    def _make_enqueuer(self, decl: InputPortDecl, call, index: int):
+    def _make_enqueuer(self, decl: InputPortDecl, call: Callable[..., Any], index: int) -> Callable[..., Any]:
         queue = self._queue
         priority = decl.priority
         queue_full = decl.queue_full
@@ -558,7 +707,7 @@ class QueuedComponent(Component):
 
         try_push = queue.try_push
 
-        def enqueue(*args):
+        def enqueue(*args: Any) -> None:
             if not try_push(priority, call, args):
                 queue.put(priority, call, args, queue_full=queue_full, port=label, overflow=overflow,
                           run_inline=self.dispatch, threaded=self._thread is not None)
@@ -568,14 +717,15 @@ class QueuedComponent(Component):
 
         heap = queue._heap
 
-        def run_or_enqueue(*args):
+        port_name = decl.name
+
+        def run_or_enqueue(*args: Any) -> None:
             if self.drained_by_scheduler and not heap and not self._handling and self._thread is None:
                 self._handling = True
                 try:
                     call(*args)
-                except Exception:  # noqa: BLE001 - as on a component thread: counted, never fatal
-                    self.handler_faults += 1
-                    log.exception("%s handler raised", label)
+                except Exception as exc:  # noqa: BLE001 - as on a component thread: reported, never fatal
+                    self.report_fault(port_name, exc)
                 finally:
                     self._handling = False
             else:
@@ -583,7 +733,7 @@ class QueuedComponent(Component):
 
         return run_or_enqueue
 
-    def _queue_command(self, decl: CommandDecl, opcode: int, cmd_seq: int, values: list) -> None:
+    def _queue_command(self, decl: CommandDecl, opcode: int, cmd_seq: int, values: list[Any]) -> None:
         accepted = self._queue.put(decl.priority, self._run_command, (decl, opcode, cmd_seq, values),
                                    queue_full=decl.queue_full, port=f"{self.name}.{decl.name}",
                                    overflow=lambda *a: None, run_inline=self.dispatch,
@@ -608,8 +758,13 @@ class QueuedComponent(Component):
             self._handling = outer
         return True
 
-    def dispatch_all(self, limit: int | None = None) -> int:
-        """Handle queued messages until the queue is empty (or ``limit``); return how many."""
+    def dispatch_all(self, limit: int | None = None, *, contain_faults: bool = False) -> int:
+        """Handle queued messages until the queue is empty (or ``limit``); return how many.
+
+        With ``contain_faults`` (what a deployment's scheduler asks), a handler that raises is
+        reported (:meth:`report_fault`) and the messages behind it still run; otherwise (a harness)
+        the exception propagates.
+        """
         queue = self._queue
         if not queue._heap:  # the common case when drained after every event
             return 0
@@ -621,20 +776,33 @@ class QueuedComponent(Component):
                 if message is None:  # another thread took it
                     break
                 call, args = message
-                call(*args)
                 n += 1
+                if contain_faults:
+                    try:
+                        call(*args)
+                    except Exception as exc:  # noqa: BLE001 - as on a component thread: reported, never fatal
+                        self.report_fault(_port_of(call), exc)
+                else:
+                    call(*args)
         finally:
             self._handling = outer
         return n
 
 
-def _with_port_num(fn, index):
-    def hook(*args):
+def _port_of(call: Any) -> str:
+    """The port (handler) name of a queued call, for a fault report."""
+    while isinstance(call, functools.partial):
+        call = call.func
+    return str(getattr(call, "__fprime_port__", None) or getattr(call, "__name__", None) or repr(call))
+
+
+def _with_port_num(fn: Callable[..., Any], index: int) -> Callable[..., Any]:
+    def hook(*args: Any) -> Any:
         return fn(index, *args)
     return hook
 
 
-_EXIT = object()
+_EXIT: Any = object()
 
 
 class ActiveComponent(QueuedComponent):
@@ -664,9 +832,8 @@ class ActiveComponent(QueuedComponent):
                 return
             try:
                 call(*args)
-            except Exception:  # noqa: BLE001 - a thread must not die on a handler fault
-                self.handler_faults += 1
-                log.exception("%s: handler raised on the component thread", self.name)
+            except Exception as exc:  # noqa: BLE001 - a thread must not die on a handler fault
+                self.report_fault(_port_of(call), exc)
 
     def exit(self, timeout: float | None = 5.0) -> None:
         """Stop the thread after the messages already queued (no-op when not started)."""

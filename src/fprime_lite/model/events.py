@@ -17,15 +17,15 @@ argument's type; both are checked when the class is created.
 from __future__ import annotations
 
 import re
-from typing import Any
+from typing import TYPE_CHECKING, Any, overload
 
 from fprime_lite.model.errors import DeclarationError
-from fprime_lite.model.types import FwEnum, FwType, U32, fw_type
+from fprime_lite.model.types import FwEnum, FwType, _U32, fw_type
 
-__all__ = ["Severity", "Event", "translate_format"]
+__all__ = ["Severity", "Event", "BoundEvent", "translate_format"]
 
 
-class Severity(FwEnum, namespace="Fw", rep=U32):
+class Severity(FwEnum, namespace="Fw", rep=_U32):
     """F´ event severities (``Fw.LogSeverity``)."""
 
     FATAL = 1
@@ -43,7 +43,7 @@ _FLOAT_SPECS = {"e", "f", "g"}
 _PRECISION = re.compile(r"^\.(\d+)([efg])$")
 
 
-def translate_format(fmt: str, arg_types: list[FwType], where: str) -> str:
+def translate_format(fmt: str, arg_types: list[FwType[Any]], where: str) -> str:
     """Turn an FPP format string into a ``str.format`` template, checking it against the arguments."""
     out = []
     pos = 0
@@ -103,14 +103,24 @@ class Event:
             raise DeclarationError(f"event id must be a non-negative integer, got {id!r}")
         self.severity = severity
         self.format = format
-        self.local_id = id
+        self.requested_id = id
+        self.local_id = -1  # assigned when the component class is built
         self.throttle = throttle
         self._raw_args = list(args or []) + list(kwargs.items())
-        self.args: list[tuple[str, FwType]] = []
+        self.args: list[tuple[str, FwType[Any]]] = []
         self.template = ""
         self.name = ""
+        self.attr = ""
+        self.framework = False  # True for the members the framework gives every component
 
-    def __set_name__(self, owner, name):
+    if TYPE_CHECKING:  # what a checker sees: on an instance the attribute is the BoundEvent
+        @overload
+        def __get__(self, instance: None, owner: Any) -> Event: ...
+        @overload
+        def __get__(self, instance: object, owner: Any) -> BoundEvent: ...
+        def __get__(self, instance: object, owner: Any) -> Event | BoundEvent: ...
+
+    def __set_name__(self, owner: type, name: str) -> None:
         self.name = name
 
     def finish(self, owner: str) -> None:
@@ -123,14 +133,14 @@ class Event:
         self.template = translate_format(self.format, [t for _, t in self.args], where)
 
     @property
-    def arg_types(self) -> list[FwType]:
+    def arg_types(self) -> list[FwType[Any]]:
         return [t for _, t in self.args]
 
-    def render(self, values) -> str:
+    def render(self, values: Any) -> str:
         """The event's text with ``values`` substituted (enum constants by name)."""
         return self.template.format(*values)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"Event {self.name} ({self.severity.name})"
 
 
@@ -139,7 +149,7 @@ class BoundEvent:
 
     __slots__ = ("component", "decl", "id", "count", "_types", "_severity", "_log_port", "_text_port")
 
-    def __init__(self, component, decl: Event, event_id: int):
+    def __init__(self, component: Any, decl: Event, event_id: int) -> None:
         self.component = component
         self.decl = decl
         self.id = event_id
@@ -149,7 +159,7 @@ class BoundEvent:
         self._log_port = component.output_port("logOut")
         self._text_port = component.output_port("logTextOut")
 
-    def __call__(self, *args) -> bool:
+    def __call__(self, *args: Any) -> bool:
         """Emit the event; return False when the throttle suppressed it."""
         decl = self.decl
         types = self._types

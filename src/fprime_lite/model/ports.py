@@ -23,7 +23,7 @@ from __future__ import annotations
 import functools
 import inspect
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, TypeVar, overload
 
 from fprime_lite.model.errors import DeclarationError, PortConnectionError, UnconnectedPortError
 
@@ -91,8 +91,11 @@ class InputPortDecl:
                 f"({self.port_type.name} returns {self.port_type.returns!r}); make it sync or guarded")
 
 
+F = TypeVar("F", bound=Callable[..., Any])
+
+
 def _input_decorator(kind: str, port_type: PortType, size: int, priority: int = 0,
-                     queue_full: str = "assert", run_when_idle: bool = False):
+                     queue_full: str = "assert", run_when_idle: bool = False) -> Callable[[F], F]:
     if not isinstance(port_type, PortType):
         raise DeclarationError(f"{kind}_input needs a PortType, got {port_type!r}")
     if not isinstance(size, int) or size < 1:
@@ -101,26 +104,26 @@ def _input_decorator(kind: str, port_type: PortType, size: int, priority: int = 
         raise DeclarationError(
             f"queue_full must be one of {', '.join(QUEUE_FULL_BEHAVIOURS)}, got {queue_full!r}")
 
-    def decorate(fn: Callable) -> Callable:
-        fn.__fprime_input__ = InputPortDecl(port_type, kind, size, priority, queue_full,
-                                            name=fn.__name__, handler=fn, run_when_idle=run_when_idle)
+    def decorate(fn: F) -> F:
+        setattr(fn, "__fprime_input__", InputPortDecl(port_type, kind, size, priority, queue_full,
+                                                      name=fn.__name__, handler=fn, run_when_idle=run_when_idle))
         return fn
 
     return decorate
 
 
-def sync_input(port_type: PortType, *, size: int = 1):
+def sync_input(port_type: PortType, *, size: int = 1) -> Callable[[F], F]:
     """Declare a sync input port: the handler runs on the caller's thread."""
     return _input_decorator("sync", port_type, size)
 
 
-def guarded_input(port_type: PortType, *, size: int = 1):
+def guarded_input(port_type: PortType, *, size: int = 1) -> Callable[[F], F]:
     """Declare a guarded input port: the handler runs on the caller's thread under the component lock."""
     return _input_decorator("guarded", port_type, size)
 
 
 def async_input(port_type: PortType, *, size: int = 1, priority: int = 0, queue_full: str = "assert",
-                run_when_idle: bool = False):
+                run_when_idle: bool = False) -> Callable[[F], F]:
     """Declare an async input port: the call is queued and handled on ``dispatch()``.
 
     ``priority``: larger runs first. ``queue_full``: what a full queue does — ``assert`` raises
@@ -154,10 +157,17 @@ class OutputPort:
         self.required = required
         self.name = ""
 
-    def __set_name__(self, owner, name):
+    if TYPE_CHECKING:  # what a checker sees: on an instance the attribute is the list of call slots
+        @overload
+        def __get__(self, instance: None, owner: Any) -> OutputPort: ...
+        @overload
+        def __get__(self, instance: object, owner: Any) -> list[Callable[..., Any]]: ...
+        def __get__(self, instance: object, owner: Any) -> OutputPort | list[Callable[..., Any]]: ...
+
+    def __set_name__(self, owner: type, name: str) -> None:
         self.name = name
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"OutputPort({self.port_type.name}, size={self.size})"
 
 

@@ -14,7 +14,7 @@ import itertools
 import threading
 from typing import Callable
 
-from fprime_lite.model.errors import QueueFullError
+from fprime_lite.model.errors import FwAssertionError, QueueFullError
 
 __all__ = ["MessageQueue"]
 
@@ -78,8 +78,12 @@ class MessageQueue:
             return True
         # Full, and the behaviour needs work outside the lock.
         if queue_full == "hook":
+            if overflow is None:
+                raise FwAssertionError(f"{port}: queue_full='hook' without an overflow hook")
             overflow(*args)
             return False
+        if run_inline is None:
+            raise FwAssertionError(f"{port}: a full deterministic queue needs run_inline to make room")
         run_inline()  # block, deterministic: make room by running the oldest message now
         return self.put(priority, call, args, queue_full=queue_full, port=port,
                         overflow=overflow, run_inline=run_inline, threaded=threaded)

@@ -11,34 +11,52 @@ write and then only values that differ from the last one written.
 
 from __future__ import annotations
 
-from typing import Any
+import builtins
+
+from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from fprime_lite.model.errors import DeclarationError, check_member_name
 from fprime_lite.model.events import translate_format
 from fprime_lite.model.time import Time
-from fprime_lite.model.types import F64, EnumType, FwType, fw_type
+from fprime_lite.model.types import _F64, EnumType, FwType, fw_type
 
 _ZERO_TIME = Time()
 
-__all__ = ["Channel"]
+__all__ = ["Channel", "BoundChannel"]
+
+V = TypeVar("V")
 
 _UPDATES = ("always", "on change")
 _LIMIT_LEVELS = ("yellow", "orange", "red")
 
 
-class Channel:
+class Channel(Generic[V]):
     """Declares a telemetry channel of F´ type ``type_``.
 
     ``low`` and ``high`` are optional limits, e.g. ``high={"yellow": 10.0, "red": 20.0}``.
     ``name`` gives the channel an F´ name other than its attribute's (F´ lets a channel share its
-    name with an event or a parameter; Python attributes cannot). ``wall_clock=True`` marks a
+    name with an event or a parameter; Python attributes cannot). ``units`` (e.g. ``"deg/s"``) is
+    documentation for the ground: it heads the channel's column in a run's ``channels_wide.csv``
+    (F´'s dictionary has no units field, so it is not in the dictionary). ``wall_clock=True`` marks a
     channel whose value is measured on the wall clock (F´'s ``RgMaxTime``): the one kind of value
     that differs between two runs of the same deployment, scenario and seed.
     """
 
+    type: FwType[V]
+
+    @overload
+    def __init__(self, type_: FwType[V], *, id: int | None = ..., update: str = ...,  # noqa: A002
+                 format: str | None = ..., low: dict[str, Any] | None = ..., high: dict[str, Any] | None = ...,
+                 name: str | None = ..., wall_clock: bool = ...) -> None: ...
+
+    @overload
+    def __init__(self, type_: builtins.type[V], *, id: int | None = ..., update: str = ...,  # noqa: A002
+                 format: str | None = ..., low: dict[str, Any] | None = ..., high: dict[str, Any] | None = ...,
+                 name: str | None = ..., wall_clock: bool = ...) -> None: ...
+
     def __init__(self, type_: Any, *, id: int | None = None, update: str = "always",  # noqa: A002
-                 format: str | None = None, low: dict | None = None, high: dict | None = None,
-                 name: str | None = None, wall_clock: bool = False):
+                 format: str | None = None, low: dict[str, Any] | None = None, high: dict[str, Any] | None = None,
+                 name: str | None = None, wall_clock: bool = False, units: str | None = None) -> None:
         if update not in _UPDATES:
             raise DeclarationError(f"channel update must be 'always' or 'on change', got {update!r}")
         if id is not None and (not isinstance(id, int) or id < 0):
@@ -48,18 +66,29 @@ class Channel:
                 if level not in _LIMIT_LEVELS:
                     raise DeclarationError(f"channel limit level must be one of {_LIMIT_LEVELS}, got {level!r}")
         self._raw_type = type_
-        self.type: FwType | None = None
-        self.local_id = id
+        self.requested_id = id
+        self.local_id = -1  # assigned when the component class is built
         self.update = update
         self.format = format
         self.low = dict(low or {})
         self.high = dict(high or {})
         self.wall_clock = bool(wall_clock)
         self.fprime_name = check_member_name(name, "channel")
+        if units is not None and (not isinstance(units, str) or not units.strip() or "]" in units):
+            raise DeclarationError(f"channel units must be a non-empty text without ']', got {units!r}")
+        self.units = units
         self.name = ""
         self.attr = ""
+        self.framework = False  # True for the members the framework gives every component
 
-    def __set_name__(self, owner, name):
+    if TYPE_CHECKING:  # what a checker sees: on an instance the attribute is the BoundChannel
+        @overload
+        def __get__(self, instance: None, owner: Any) -> Channel[V]: ...
+        @overload
+        def __get__(self, instance: object, owner: Any) -> BoundChannel[V]: ...
+        def __get__(self, instance: object, owner: Any) -> Channel[V] | BoundChannel[V]: ...
+
+    def __set_name__(self, owner: builtins.type, name: str) -> None:
         self.name = name
 
     def finish(self, owner: str) -> None:
@@ -71,21 +100,22 @@ class Channel:
         if self.format is not None:
             translate_format(self.format, [self.type], where)
 
-    def __repr__(self):
-        return f"Channel {self.name} ({self.type.name if self.type else self._raw_type})"
+    def __repr__(self) -> str:
+        t = getattr(self, "type", None)
+        return f"Channel {self.name} ({t.name if t is not None else self._raw_type})"
 
 
-class BoundChannel:
+class BoundChannel(Generic[V]):
     """A channel of one component instance."""
 
     __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
                  "_valid_type")
 
-    def __init__(self, component, decl: Channel, channel_id: int):
+    def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         self.component = component
         self.decl = decl
         self.id = channel_id
-        self.last = None
+        self.last: V | None = None
         self.written = False
         self._on_change = decl.update == "on change"
         self._serialize = decl.type.pack
@@ -94,9 +124,9 @@ class BoundChannel:
         # A value of this exact Python type is valid for the channel without checking (enum
         # members of the channel's enum, and floats for F64).
         t = decl.type
-        self._valid_type = t.cls if isinstance(t, EnumType) else float if t is F64 else None
+        self._valid_type = t.cls if isinstance(t, EnumType) else float if t is _F64 else None
 
-    def write(self, value, time=None) -> None:
+    def write(self, value: V, time: Time | None = None) -> None:
         """Record ``value`` and send it (time-stamped now, unless ``time`` is given)."""
         if type(value) is not self._valid_type:
             value = self._check(value)

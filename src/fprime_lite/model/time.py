@@ -17,7 +17,7 @@ import struct
 import time as _wall
 
 from fprime_lite.model.errors import SerializationError
-from fprime_lite.model.types import FwEnum, FwType, U16, U32, U8, _short
+from fprime_lite.model.types import _U8, _U16, _U32, FwEnum, FwType, _short
 
 __all__ = ["TimeBase", "Time", "TimeInterval", "TIME", "Clock", "SimulatedClock", "WallClock",
            "US_PER_S"]
@@ -25,7 +25,7 @@ __all__ = ["TimeBase", "Time", "TimeInterval", "TIME", "Clock", "SimulatedClock"
 US_PER_S = 1_000_000
 
 
-class TimeBase(FwEnum, rep=U16):
+class TimeBase(FwEnum, rep=_U16):
     """F´ time bases (``TimeBase`` enum of the framework)."""
 
     TB_NONE = 0
@@ -227,9 +227,9 @@ class TimeType(FwType):
     def check(self, value):
         if not isinstance(value, Time):
             raise SerializationError(f"Fw.Time expects a Time, got {value!r}")
-        U16.check(int(value.time_base))
-        U8.check(value.context)
-        U32.check(value.seconds)
+        _U16.check(int(value.time_base))
+        _U8.check(value.context)
+        _U32.check(value.seconds)
         return value
 
     def serialize(self, value):
@@ -268,7 +268,7 @@ class TimeType(FwType):
 
 
 TIME = TimeType()
-Time.__fprime_type__ = TIME
+setattr(Time, "__fprime_type__", TIME)
 
 
 class Clock:

@@ -24,6 +24,12 @@ structs and arrays their members in declaration order with no padding or count.
 
 Values that do not fit are rejected with :class:`~fprime_lite.model.errors.SerializationError`, never
 wrapped or truncated.
+
+For a static type checker the primitive constants are the Python types their values take
+(``U32`` reads as ``int``, ``F64`` as ``float``, ``BOOL`` as ``bool``), so ``x: F64`` in a struct
+or a command handler checks as a float; at run time they are the :class:`FwType` objects above.
+:class:`FwType` is generic in that value type (``FwType[int]``), which is how ``Param(F64)`` and
+``Channel(String(40))`` know the type of ``.value`` and ``.write()``.
 """
 
 from __future__ import annotations
@@ -33,7 +39,7 @@ import enum
 import math
 import struct
 import sys
-from typing import Any, ClassVar, get_origin
+from typing import TYPE_CHECKING, Annotated, Any, Callable, ClassVar, Generic, TypeVar, Union, cast, get_origin, overload
 
 from fprime_lite.model.errors import DeclarationError, SerializationError
 
@@ -41,11 +47,14 @@ __all__ = [
     "FwType", "IntType", "FloatType", "BoolType", "StringType", "EnumType", "StructType",
     "ArrayType", "AliasType", "FwEnum", "Struct", "Array", "String", "Alias", "fw_type",
     "U8", "U16", "U32", "U64", "I8", "I16", "I32", "I64", "F32", "F64", "BOOL",
-    "serialize_values", "deserialize_values", "fit_utf8",
+    "serialize_values", "deserialize_values", "fit_utf8", "PRIMITIVE_TYPES", "FwTypeLike",
 ]
 
 
-class FwType:
+V = TypeVar("V")
+
+
+class FwType(Generic[V]):
     """An F´ type: checks, serializes and describes values of one kind.
 
     Subclasses set :attr:`name` (the F´ spelling, e.g. ``U32`` or ``Components.DetumbleMode``) and
@@ -55,7 +64,7 @@ class FwType:
     name: str
     kind: str  # "integer" | "float" | "bool" | "string" | "enum" | "struct" | "array" | "time"
 
-    def check(self, value: Any) -> Any:
+    def check(self, value: Any) -> V:
         """Return ``value`` normalised to this type, or raise SerializationError."""
         raise NotImplementedError
 
@@ -67,12 +76,12 @@ class FwType:
         """Serialize a value that :meth:`check` already returned (skips checking it again)."""
         return self.serialize(value)
 
-    def deserialize(self, data: bytes | bytearray | memoryview, offset: int = 0) -> tuple[Any, int]:
+    def deserialize(self, data: bytes | bytearray | memoryview, offset: int = 0) -> tuple[V, int]:
         """Read one value at ``offset``; return ``(value, offset after it)``."""
         raise NotImplementedError
 
     @property
-    def default(self) -> Any:
+    def default(self) -> V:
         """The value a member of this type takes when none is given."""
         raise NotImplementedError
 
@@ -102,7 +111,7 @@ def _short(data, offset: int, needed: int, what: str) -> SerializationError:
         f"cannot deserialize {what}: needs {needed} byte(s) at offset {offset}, only {left} left")
 
 
-class IntType(FwType):
+class IntType(FwType[int]):
     """A fixed-width integer: rejects values outside ``[min, max]`` instead of wrapping."""
 
     kind = "integer"
@@ -151,7 +160,7 @@ class IntType(FwType):
 _F32_MAX = struct.unpack(">f", b"\x7f\x7f\xff\xff")[0]
 
 
-class FloatType(FwType):
+class FloatType(FwType[float]):
     """IEEE-754 single (F32) or double (F64). NaN and infinities are representable."""
 
     kind = "float"
@@ -203,7 +212,7 @@ class FloatType(FwType):
         return {"name": self.name, "kind": "float", "size": self.bits}
 
 
-class BoolType(FwType):
+class BoolType(FwType[bool]):
     """F´ bool: one byte, 0xFF for true and 0x00 for false. Any other byte is rejected."""
 
     kind = "bool"
@@ -236,7 +245,7 @@ class BoolType(FwType):
         return {"name": "bool", "kind": "bool", "size": 8}
 
 
-_U16 = struct.Struct(">H")
+_LENGTH16 = struct.Struct(">H")
 
 
 def fit_utf8(text: str, size: int) -> str:
@@ -245,7 +254,7 @@ def fit_utf8(text: str, size: int) -> str:
     return text.encode("utf-8", "replace")[:size].decode("utf-8", "ignore")
 
 
-class StringType(FwType):
+class StringType(FwType[str]):
     """A bounded string: U16 byte length then UTF-8 bytes; at most ``size`` bytes."""
 
     kind = "string"
@@ -270,12 +279,12 @@ class StringType(FwType):
 
     def serialize(self, value):
         raw = self.check(value).encode("utf-8")
-        return _U16.pack(len(raw)) + raw
+        return _LENGTH16.pack(len(raw)) + raw
 
     def deserialize(self, data, offset=0):
         if offset + 2 > len(data):
             raise _short(data, offset, 2, "string length")
-        (n,) = _U16.unpack_from(data, offset)
+        (n,) = _LENGTH16.unpack_from(data, offset)
         if n > self.size:
             raise SerializationError(
                 f"cannot deserialize string: length {n} exceeds its bound of {self.size} bytes")
@@ -312,24 +321,49 @@ def String(size: int) -> StringType:  # noqa: N802 - reads like a type in declar
     return _STRING_TYPES[size]
 
 
-U8 = IntType("U8", 8, False)
-U16 = IntType("U16", 16, False)
-U32 = IntType("U32", 32, False)
-U64 = IntType("U64", 64, False)
-I8 = IntType("I8", 8, True)
-I16 = IntType("I16", 16, True)
-I32 = IntType("I32", 32, True)
-I64 = IntType("I64", 64, True)
-F32 = FloatType("F32", 32)
-F64 = FloatType("F64", 64)
-BOOL = BoolType()
+_U8 = IntType("U8", 8, False)
+_U16 = IntType("U16", 16, False)
+_U32 = IntType("U32", 32, False)
+_U64 = IntType("U64", 64, False)
+_I8 = IntType("I8", 8, True)
+_I16 = IntType("I16", 16, True)
+_I32 = IntType("I32", 32, True)
+_I64 = IntType("I64", 64, True)
+_F32 = FloatType("F32", 32)
+_F64 = FloatType("F64", 64)
+_BOOL = BoolType()
+
+if TYPE_CHECKING:  # a checker sees the Python type of the values (see the module docstring)
+    U8 = int
+    U16 = int
+    U32 = int
+    U64 = int
+    I8 = int
+    I16 = int
+    I32 = int
+    I64 = int
+    F32 = float
+    F64 = float
+    BOOL = bool
+else:
+    U8, U16, U32, U64 = _U8, _U16, _U32, _U64
+    I8, I16, I32, I64 = _I8, _I16, _I32, _I64
+    F32, F64, BOOL = _F32, _F64, _BOOL
+
+#: The primitive types by F´ name, typed as FwType objects (for code that handles them as values).
+PRIMITIVE_TYPES: dict[str, FwType[Any]] = {t.name: t for t in (_U8, _U16, _U32, _U64, _I8, _I16, _I32, _I64,
+                                                                 _F32, _F64, _BOOL)}
+
+#: What a declaration accepts as a type: an FwType object, or a class standing for one (an FwEnum,
+#: Struct or Array subclass, Time, ``bool``, ``float``; for a checker also ``U32``… as above).
+FwTypeLike = Union[FwType[Any], type]
 
 
 def _qualified(namespace: str | None, name: str) -> str:
     return f"{namespace}.{name}" if namespace else name
 
 
-class AliasType(FwType):
+class AliasType(FwType[Any]):
     """A named alias of another type (FPP ``type FwOpcodeType = U32``); serializes as its target."""
 
     def __init__(self, qualified_name: str, target: Any):
@@ -372,7 +406,7 @@ def Alias(qualified_name: str, target: Any) -> AliasType:  # noqa: N802
     return AliasType(qualified_name, target)
 
 
-class EnumType(FwType):
+class EnumType(FwType[Any]):
     """The F´ type of an :class:`FwEnum` class: serialized as its representation type."""
 
     kind = "enum"
@@ -380,7 +414,7 @@ class EnumType(FwType):
     def __init__(self, cls: type["FwEnum"], rep: IntType, default: "FwEnum"):
         self.cls = cls
         self.rep = rep
-        self.name = _qualified(cls.__fprime_namespace__, cls.__name__)
+        self.name = _qualified(getattr(cls, "__fprime_namespace__", None), cls.__name__)
         self._default = default
         self._by_value = {int(m): m for m in cls}
 
@@ -448,11 +482,16 @@ class FwEnum(enum.IntEnum):
     Members are plain ``IntEnum`` members; their numeric values are what goes on the wire.
     """
 
-    def __init_subclass__(cls, namespace: str | None = None, rep: IntType | None = None,
-                          default: str | None = None, **kwargs):
+    __fprime_namespace__: ClassVar[str | None]
+    __fprime_rep__: ClassVar[IntType]
+    __fprime_default_name__: ClassVar[str | None]
+    __fprime_type__: ClassVar[EnumType]
+
+    def __init_subclass__(cls, namespace: str | None = None, rep: Any = None,
+                          default: str | None = None, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         cls.__fprime_namespace__ = namespace
-        cls.__fprime_rep__ = rep or I32
+        cls.__fprime_rep__ = rep or _I32
         cls.__fprime_default_name__ = default
 
     def __str__(self) -> str:
@@ -497,7 +536,7 @@ def _resolve_annotation(owner: type, name: str, annotation: Any) -> "FwType":
         raise DeclarationError(f"{owner.__name__}.{name}: {exc}") from None
 
 
-class StructType(FwType):
+class StructType(FwType[Any]):
     """The F´ type of a :class:`Struct` class: members serialized in declaration order."""
 
     kind = "struct"
@@ -505,10 +544,11 @@ class StructType(FwType):
     def __init__(self, cls: type, members: list[tuple[str, FwType]]):
         self.cls = cls
         self.members = members
-        self.name = _qualified(cls.__fprime_namespace__, cls.__name__)
+        self.name = _qualified(getattr(cls, "__fprime_namespace__", None), cls.__name__)
         self._fixed = None
         if all(isinstance(t, (IntType, FloatType)) for _, t in members):
-            self._fixed = struct.Struct(">" + "".join(t._struct.format[1:] for _, t in members))
+            self._fixed = struct.Struct(">" + "".join(cast(Union[IntType, FloatType], t)._struct.format[1:]
+                                                      for _, t in members))
 
     def check(self, value):
         if isinstance(value, dict):
@@ -574,6 +614,12 @@ class StructType(FwType):
         }
 
 
+def _default_of(t: FwType[Any]) -> Callable[[], Any]:
+    def make() -> Any:
+        return t.default
+    return make
+
+
 class Struct:
     """Base class of F´ structs. Members are annotated with F´ types; class keyword ``namespace``.
 
@@ -584,7 +630,10 @@ class Struct:
     __fprime_type__: ClassVar[StructType]
     __fprime_namespace__: ClassVar[str | None]
 
-    def __init_subclass__(cls, namespace: str | None = None, **kwargs):
+    if TYPE_CHECKING:  # the members (and so the constructor) are made when the subclass is created
+        def __init__(self, *args: Any, **kwargs: Any) -> None: ...
+
+    def __init_subclass__(cls, namespace: str | None = None, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         cls.__fprime_namespace__ = namespace
         annotations = cls.__dict__.get("__annotations__", {})
@@ -600,14 +649,14 @@ class Struct:
             if name not in cls.__dict__:
                 default = t.default
                 if isinstance(t, (StructType, ArrayType)):
-                    setattr(cls, name, dataclasses.field(default_factory=lambda t=t: t.default))
+                    setattr(cls, name, dataclasses.field(default_factory=_default_of(t)))
                 else:
                     setattr(cls, name, default)
         dataclasses.dataclass(cls)
         cls.__fprime_type__ = StructType(cls, members)
 
 
-class ArrayType(FwType):
+class ArrayType(FwType[Any]):
     """The F´ type of an :class:`Array` class: ``size`` elements, no length prefix."""
 
     kind = "array"
@@ -616,7 +665,7 @@ class ArrayType(FwType):
         self.cls = cls
         self.elem = elem
         self.size = size
-        self.name = _qualified(cls.__fprime_namespace__, cls.__name__)
+        self.name = _qualified(getattr(cls, "__fprime_namespace__", None), cls.__name__)
 
     def check(self, value):
         if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
@@ -692,14 +741,29 @@ class Array(list):
         super().__init__(t.elem.check(v) for v in items)
 
 
-def fw_type(obj: Any) -> FwType:
+@overload
+def fw_type(obj: FwType[V]) -> FwType[V]: ...
+@overload
+def fw_type(obj: type[V]) -> FwType[V]: ...
+@overload
+def fw_type(obj: Any) -> FwType[Any]: ...
+
+
+def fw_type(obj: Any) -> FwType[Any]:
     """The :class:`FwType` that ``obj`` stands for in a declaration.
 
     Accepts FwType objects, FwEnum/Struct/Array subclasses, :class:`~fprime_lite.model.time.Time`,
-    and the Python shorthands ``bool`` (F´ bool) and ``float`` (F64).
+    the Python shorthands ``bool`` (F´ bool) and ``float`` (F64), and ``Annotated[T, fw]`` (the
+    FwType ``fw``): ``name: Annotated[str, String(40)]`` is a bounded string a type checker reads
+    as ``str`` (a call such as ``String(40)`` cannot be an annotation for a checker).
     """
     if isinstance(obj, FwType):
         return obj
+    if get_origin(obj) is Annotated:  # Annotated[str, String(40)]: the F´ type is the metadata
+        for meta in obj.__metadata__:
+            if isinstance(meta, FwType):
+                return meta
+        return fw_type(obj.__origin__)
     if isinstance(obj, type):
         if issubclass(obj, FwEnum):
             t = obj.__dict__.get("__fprime_type__")
@@ -711,9 +775,9 @@ def fw_type(obj: Any) -> FwType:
         if isinstance(t, FwType):
             return t
         if obj is bool:
-            return BOOL
+            return _BOOL
         if obj is float:
-            return F64
+            return _F64
     raise DeclarationError(
         f"{obj!r} is not an F´ type; use U8…U64, I8…I64, F32, F64, bool, String(n), "
         f"or an FwEnum, Struct or Array subclass")

@@ -19,6 +19,14 @@ reordered or dropped for lack of queue room. ``EventsDropped`` therefore counts 
 could not be sent at all (invalid severity, a packet larger than :data:`EVENT_PACKET_MAX`, an
 unserializable time tag). Events stopped by the filters are counted separately, in
 :attr:`EventManager.filtered_by_severity` and :attr:`EventManager.filtered_by_id`.
+
+Event times in simulated time: F´ stamps each event when it is emitted, and on hardware time passes
+between two emissions. Under a simulated clock every handler runs in zero time, so the events of
+one command (dispatched, the component's own, completed) would share one stamp and a ground
+system that orders or deduplicates by time shows them out of order or as one. ``LogRecv`` (called
+synchronously at emission) therefore sends an event emitted at the same instant as the previous
+one 1 µs after it: stamps are strictly increasing in emission order and never more than the
+number of events of that instant in µs late (``distinct_times=False`` keeps the raw stamps).
 """
 
 from __future__ import annotations
@@ -33,6 +41,7 @@ from fprime_lite.model.fw_ports import Com, FatalEvent, Log, Ping, Sched
 from fprime_lite.wire.packets import encode_event
 from fprime_lite.model.ports import OutputPort, async_input, sync_input
 from fprime_lite.model.telemetry import Channel
+from fprime_lite.model.time import Time
 from fprime_lite.model.types import BOOL, U8, U32, U64, FwEnum
 
 __all__ = ["EventManager", "FilterSeverity", "Enabled", "ID_FILTER_SIZE", "EVENT_PACKET_MAX",
@@ -151,8 +160,12 @@ class EventManager(ActiveComponent):
     EventsDropped = Channel(U64, id=0, update="on change")
 
     def __init__(self, name: str = "events", *, base_id: int = 0, queue_size: int = 10,
-                 severity_filter: dict | None = None, id_filter_size: int = ID_FILTER_SIZE):
+                 severity_filter: dict | None = None, id_filter_size: int = ID_FILTER_SIZE,
+                 distinct_times: bool = True):
         super().__init__(name, base_id=base_id, queue_size=queue_size)
+        self.distinct_times = distinct_times
+        self._last_raw: Time | None = None  # the stamp the last event was emitted with
+        self._last_sent: Time | None = None  # the stamp it was sent with
         state = dict(DEFAULT_SEVERITY_FILTER)
         for severity, enabled in (severity_filter or {}).items():
             severity = Severity(severity)
@@ -189,6 +202,8 @@ class EventManager(ActiveComponent):
             if event_id in self._filtered_ids:
                 self.filtered_by_id += 1
                 return
+        if self.distinct_times and isinstance(time, Time):
+            time = self._distinct(time)
         try:
             packet = encode_event(event_id, time, bytes(args))
         except (SerializationError, TypeError, ValueError, AttributeError, OverflowError) as exc:
@@ -201,6 +216,17 @@ class EventManager(ActiveComponent):
             self.events_sent += 1
         if severity == Severity.FATAL and self.is_connected("FatalAnnounce", 0):
             self.FatalAnnounce[0](event_id)
+
+    def _distinct(self, time: Time) -> Time:
+        """``time``, or 1 µs after the last event's stamp when emitted at the same instant (or within
+        the µs the previous instant's events already took)."""
+        last_raw, last_sent = self._last_raw, self._last_sent
+        sent = time
+        if last_sent is not None and time.time_base == last_sent.time_base and time.context == last_sent.context \
+                and last_raw.total_us <= time.total_us <= last_sent.total_us:
+            sent = Time.from_us(last_sent.total_us + 1, time.time_base, time.context)
+        self._last_raw, self._last_sent = time, sent
+        return sent
 
     @async_input(Sched, queue_full="drop")
     def run(self, context: int) -> None:

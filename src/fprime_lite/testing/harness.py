@@ -13,9 +13,14 @@ time is whatever the test sets.
     h.invoke("run", 0)
     h.assert_tlm("State", 0, DetumbleState.COOLDOWN)
 
-F´ spellings work too: ``invoke_to_run(0)``, ``sendCmd_SET_MODE(mode)``, ``paramSet_GAIN(4.0,
-ParamValid.VALID)``, ``paramSend_GAIN()``, ``paramSave_GAIN()``, ``setTestTime(t)``,
-``clearHistory()``.
+F´ spellings work too, with F´'s arguments: ``invoke_to_run(portNum, context)``,
+``sendCmd_SET_MODE(instance, cmdSeq, mode)``, ``paramSet_GAIN(4.0, ParamValid.VALID)``,
+``paramSend_GAIN(instance, cmdSeq)``, ``paramSave_GAIN(instance, cmdSeq)``, ``setTestTime(t)``,
+``clearHistory()``, and GTestBase's assertions ``assertCmdResponse_size(n)``,
+``assertCmdResponse(index, opCode, cmdSeq, response)``, ``assertEvents_size(n)``,
+``assertEvents_<E>_size(n)``, ``assertEvents_<E>(index, args…)``, ``assertTlm_size(n)``,
+``assertTlm_<C>_size(n)``, ``assertTlm_<C>(index, value)``, ``assertFromPortHistory_size(n)``,
+``assert_from_<port>_size(n)``.
 """
 
 from __future__ import annotations
@@ -26,7 +31,7 @@ from fprime_lite.model.commands import CmdResponse
 from fprime_lite.model.component import Component, QueuedComponent
 from fprime_lite.model.errors import FwAssertionError
 from fprime_lite.model.events import Severity
-from fprime_lite.model.params import ParamValid
+from fprime_lite.model.params import BoundParam, ParamValid
 from fprime_lite.model.time import Time, TimeBase, TimeInterval
 from fprime_lite.model.types import deserialize_values
 
@@ -38,8 +43,8 @@ class PortCall(NamedTuple):
     """One call out of a plain output port."""
 
     port: str
-    index: int
-    args: tuple
+    index: int  # type: ignore[assignment]  # F´'s from-port history has a port index; shadows tuple.index
+    args: tuple[Any, ...]
 
 
 class CommandResponseRecord(NamedTuple):
@@ -107,7 +112,7 @@ class ComponentHarness:
     def _connect(self) -> None:
         comp = self.component
         special = {name: kind for kind, name in comp.spec.special.items()}
-        recorders = {
+        recorders: dict[str, Callable[..., Any]] = {
             "command reg": self._on_cmd_reg,
             "command resp": self._on_cmd_response,
             "event": self._on_event,
@@ -194,7 +199,11 @@ class ComponentHarness:
 
     def invoke(self, port: str, *args, port_num: int = 0):
         """Call input port ``port`` (index ``port_num``) as a connected component would."""
-        return self.component.input_port(port).entries[port_num](*args)
+        entries = self.component.input_port(port).entries
+        if not 0 <= port_num < len(entries):
+            raise FwAssertionError(f"harness: input port {port} has {len(entries)} index(es); "
+                                   f"port_num {port_num} is out of range")
+        return entries[port_num](*args)
 
     def send_command(self, name: str, *args, cmd_seq: int = 0) -> None:
         """Serialize ``args`` for command ``name`` and send it to the component's command port."""
@@ -222,11 +231,15 @@ class ComponentHarness:
 
     def param_set(self, name: str, value: Any, validity: ParamValid = ParamValid.VALID) -> None:
         """Put ``value`` in the harness's parameter store (what the component loads from PrmDb)."""
-        bound = self.component.params[name] if name in self.component.params else None
-        if bound is None:
-            self.component.spec.param(name)  # raises with the list of parameters
+        bound = self._param(name)
         data = bound.decl.type.serialize(value) if validity == ParamValid.VALID else None
         self._param_store[bound.id] = (ParamValid(validity), data)
+
+    def _param(self, name: str) -> BoundParam[Any]:
+        params = self.component.params
+        if name not in params:
+            self.component.spec.param(name)  # raises with the list of parameters
+        return params[name]
 
     def load_parameters(self) -> None:
         """Have the component load every parameter from the harness's store."""
@@ -234,9 +247,7 @@ class ComponentHarness:
 
     def param_send(self, name: str, *, cmd_seq: int = 0) -> None:
         """Send the stored value of ``name`` to the component with its PRM_SET command."""
-        bound = self.component.params[name] if name in self.component.params else None
-        if bound is None:
-            self.component.spec.param(name)
+        bound = self._param(name)
         validity, data = self._param_store.get(bound.id, (ParamValid.UNINIT, None))
         if data is None:
             raise FwAssertionError(f"harness: no value stored for {name}; call param_set({name!r}, value) first")
@@ -365,7 +376,7 @@ class ComponentHarness:
     def _tlm_listing(self) -> str:
         return _listing(f"{t.time} {t.name} = {t.value!r}" for t in self.telemetry)
 
-    # --- F´ spellings ----------------------------------------------------------------------------
+    # --- F´ spellings, with F´'s arguments (TesterBase / GTestBase) -----------------------------
 
     def setTestTime(self, time: Time) -> None:  # noqa: N802 - F´ spelling
         self.set_test_time(time)
@@ -373,14 +384,58 @@ class ComponentHarness:
     def clearHistory(self) -> None:  # noqa: N802 - F´ spelling
         self.clear_history()
 
+    def assertCmdResponse_size(self, size: int) -> None:  # noqa: N802 - F´ spelling
+        self.assert_cmd_response_size(size)
+
+    def assertCmdResponse(self, index: int, opCode: int, cmdSeq: int,  # noqa: N802,N803 - F´ spelling
+                          response: CmdResponse) -> None:
+        """F´'s ``ASSERT_CMD_RESPONSE(index, opCode, cmdSeq, response)``: ``opCode`` is the global
+        opcode (``component.opcode("CMD")``; a command name works too)."""
+        self.assert_cmd_response(index, opCode, response, cmd_seq=cmdSeq)
+
+    def assertEvents_size(self, size: int) -> None:  # noqa: N802 - F´ spelling
+        self.assert_events_size(size)
+
+    def assertTlm_size(self, size: int) -> None:  # noqa: N802 - F´ spelling
+        self.assert_tlm_size(size)
+
+    def assertFromPortHistory_size(self, size: int) -> None:  # noqa: N802 - F´ spelling
+        self.assert_from_port_history_size(size)
+
     def __getattr__(self, attr: str):
-        for prefix, method in (("invoke_to_", self.invoke), ("sendCmd_", self.send_command),
-                               ("paramSet_", self.param_set), ("paramSend_", self.param_send),
-                               ("paramSave_", self.param_save)):
+        """The per-member F´ names: ``invoke_to_<port>(portNum, args…)``, ``sendCmd_<CMD>(instance,
+        cmdSeq, args…)``, ``paramSet_<P>(value, valid)``, ``paramSend_<P>(instance, cmdSeq)``,
+        ``paramSave_<P>(instance, cmdSeq)``, ``assertEvents_<E>_size(size)``, ``assertEvents_<E>(index,
+        args…)``, ``assertTlm_<C>_size(size)``, ``assertTlm_<C>(index, value)``,
+        ``assert_from_<port>_size(size)``. ``instance`` is accepted and ignored, as in F´'s tester."""
+        if attr.startswith("__"):
+            raise AttributeError(attr)
+        for prefix, make in self._FPRIME_PREFIXES:
             if attr.startswith(prefix):
                 member = attr[len(prefix):]
-                return lambda *args, **kwargs: method(member, *args, **kwargs)
+                return make(self, member)
         raise AttributeError(f"{type(self).__name__} has no attribute {attr!r}")
+
+    def _sized(self, member: str, names: set, count: Callable, record: Callable | None, kind: str):
+        if member in names and record is not None:
+            return lambda index, *args: record(member, index, *args)
+        if member.endswith("_size") and member[:-5] in names:
+            return lambda size: count(member[:-5], size)
+        raise AttributeError(f"{self.component.name} has no {kind} {member!r} (known: {', '.join(sorted(names))})")
+
+    _FPRIME_PREFIXES = (
+        ("invoke_to_", lambda h, port: lambda portNum, *args: h.invoke(port, *args, port_num=portNum)),
+        ("sendCmd_", lambda h, cmd: lambda instance, cmdSeq, *args: h.send_command(cmd, *args, cmd_seq=cmdSeq)),
+        ("paramSet_", lambda h, p: lambda value, valid=ParamValid.VALID: h.param_set(p, value, valid)),
+        ("paramSend_", lambda h, p: lambda instance=0, cmdSeq=0: h.param_send(p, cmd_seq=cmdSeq)),
+        ("paramSave_", lambda h, p: lambda instance=0, cmdSeq=0: h.param_save(p, cmd_seq=cmdSeq)),
+        ("assertEvents_", lambda h, e: h._sized(e, {d.name for d in h.component.spec.events}, h.assert_event_count,
+                                                h.assert_event, "event")),
+        ("assertTlm_", lambda h, c: h._sized(c, {d.name for d in h.component.spec.channels}, h.assert_tlm_count,
+                                             h.assert_tlm, "channel")),
+        ("assert_from_", lambda h, p: h._sized(p, set(h.component.output_ports), h.assert_from_port_size, None,
+                                               "output port")),
+    )
 
     def close(self) -> None:
         """Stop an active component's thread if the test started one."""

@@ -5,6 +5,8 @@
     fprime-lite check [TOPOLOGY]        validate a topology
     fprime-lite graph [TOPOLOGY]        print the topology as DOT or Mermaid
     fprime-lite params [TOPOLOGY] -o F  write a parameter file holding every parameter's default
+    fprime-lite plot RUN_DIR            draw the plots of a finished run again
+    fprime-lite new component|deployment NAME   write a skeleton that passes its own test
     fprime-lite bench                   measure speed and memory
 
 Applications add verbs of their own through the ``fprime_lite.verbs`` entry points
@@ -19,6 +21,7 @@ from __future__ import annotations
 import argparse
 import datetime as _dt
 import logging
+import os
 import pathlib
 import sys
 
@@ -47,7 +50,9 @@ def build_parser() -> argparse.ArgumentParser:
     sub.required = True
 
     run = sub.add_parser("run", help="run a deployment", description="Run a deployment in simulated time and write "
-                         "summary.json, events.log, channels.csv, truth.csv, dictionary.json and plots.")
+                         "summary.json, events.log, channels.csv, channels_wide.csv, truth.csv, dictionary.json and plots "
+                         "(docs/outputs.md). Exits 1 when the flight had faults, cycle slips or WARNING_HI/FATAL "
+                         "events (--allow-warnings accepts them), 2 for a mistake in the inputs.")
     _topology_arg(run)
     run.add_argument("--duration", type=float, default=600.0, metavar="SECONDS",
                      help="simulated seconds to run (default 600)")
@@ -62,6 +67,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--no-plots", action="store_true", help="do not draw the PNG plots")
     run.add_argument("--truth-interval", type=float, metavar="SECONDS",
                      help="sampling interval of the truth log (default: the topology's)")
+    run.add_argument("--allow-warnings", action="store_true", help="exit 0 even when the flight had handler "
+                     "faults, cycle slips or WARNING_HI/FATAL events (the summary still lists them)")
     run.add_argument("-v", "--verbose", action="store_true", help="log framework warnings to stderr")
     run.add_argument("--realtime", action="store_true", help="pace the run to the wall clock (simulated time "
                      "never runs ahead of it); Ctrl-C stops the run and still writes the outputs")
@@ -93,6 +100,23 @@ def build_parser() -> argparse.ArgumentParser:
                         help="write VALUE instead of the default, e.g. ReferenceDeployment.detumbleManager.GAIN=2.5 "
                              "(repeatable; enum values by name)")
 
+    plot = sub.add_parser("plot", help="draw the plots of a finished run again", description="Draw the PNG "
+                          "plots of a finished run from the files in its folder, with the plotters the "
+                          "installed applications provide (entry points fprime_lite.plots).")
+    plot.add_argument("run_dir", metavar="RUN_DIR", help="a folder 'fprime-lite run' wrote")
+    plot.add_argument("-o", "--output", metavar="DIR", help="where to write the PNGs (default: RUN_DIR)")
+
+    new = sub.add_parser("new", help="write a component or deployment skeleton that passes its own test",
+                         description="Write a skeleton: 'new component NAME' writes NAME's module, its "
+                         "harness test and a docs stub into --dir; 'new deployment NAME' creates the folder "
+                         "NAME with a component, topology.yaml, tests and a README. Run python -m pytest "
+                         "there.")
+    new.add_argument("kind", choices=("component", "deployment"))
+    new.add_argument("name", metavar="NAME", help="a class-style name, e.g. MyHeater")
+    new.add_argument("--dir", default=".", metavar="DIR", help="the folder to write into (default: .)")
+    new.add_argument("--component", default="Counter", metavar="NAME",
+                     help="deployment only: the name of its component (default: Counter)")
+
     bench = sub.add_parser("bench", help="measure speed and memory", add_help=False)
     bench.add_argument("args", nargs=argparse.REMAINDER)
     for verb in _application_verbs().values():
@@ -116,14 +140,10 @@ def _version() -> str:
     return __version__
 
 
-def _load(path: str, role_overrides: dict | None = None, scheduler_factory=None):
-    from fprime_lite.deploy.topology_loader import load_topology
+def _load(path: str):
+    from fprime_lite.tools.api import load
 
-    p = pathlib.Path(path)
-    if not p.exists():
-        raise UserError(f"{path}: no such topology file — give the path of a topology YAML file "
-                        f"(the reference deployment is deployments/proves_ref/topology.yaml)")
-    return load_topology(p, scheduler_factory=scheduler_factory, role_overrides=role_overrides)
+    return load(path)
 
 
 def cmd_check(args) -> int:
@@ -142,6 +162,7 @@ def cmd_dict(args) -> int:
         from fprime_lite.deploy.com_stack import add_ground_link
 
         add_ground_link(topology)
+    _output_file(args.output, "-o")
     d = write_dictionary(topology, args.output)
     print(f"wrote {args.output}: {len(d['commands'])} commands, {len(d['events'])} events, "
           f"{len(d['telemetryChannels'])} channels, {len(d['parameters'])} parameters")
@@ -159,6 +180,7 @@ def cmd_params(args) -> int:
     from fprime_lite.svc.prm_db import encode_param_file
     from fprime_lite.osal.atomic import atomic_write_bytes
 
+    _output_file(args.output, "-o")
     topo = _load(args.topology).topology
     declared = {}
     for instance in topo.instances.values():
@@ -198,32 +220,47 @@ def _param_setting(setting: str, declared: dict) -> tuple[str, object]:
         value = yaml.safe_load(text)
     except yaml.YAMLError:
         value = text
-    ptype = declared[name][1].type
+    param = declared[name][1]
+    ptype = param.type
+    if getattr(ptype, "kind", None) == "float" and isinstance(value, str):
+        value = _float_text(setting, text.strip(), ptype.name)
     try:
-        return name, ptype.check(value)
+        value = ptype.check(value)
     except (SerializationError, ValueError, TypeError) as exc:
         raise UserError(f"--set {setting!r}: not a valid {ptype.name}: {exc}") from None
+    problem = param.invalid_reason(value)
+    if problem is not None:  # the component would refuse it at load and use its default
+        raise UserError(f"--set {setting!r}: {problem}; {name} would load its default instead")
+    return name, value
+
+
+def _float_text(setting: str, text: str, type_name: str):
+    """A float written as text YAML does not read as a number (``1e400``, ``1e5``): its value, or
+    an out-of-range error when it overflows."""
+    import math
+
+    try:
+        value = float(text)
+    except ValueError:
+        return text  # not a number: the type's own check says so
+    if math.isinf(value) and "inf" not in text.lower():
+        raise UserError(f"--set {setting!r}: {text} is out of range for {type_name} "
+                        f"(|x| ≤ {sys.float_info.max:.6g})")
+    return value
 
 
 def cmd_run(args) -> int:
+    from fprime_lite.deploy.preflight import check_run_files
+    from fprime_lite.tools.api import claim_run_folder, load
     from fprime_lite.tools.runner import run_deployment
 
-    overrides: dict[str, dict] = {}
-    if args.scenario is not None or args.seed is not None or args.set:
-        simulation: dict = {}
-        if args.scenario is not None:
-            simulation["scenario"] = args.scenario
-        if args.set:
-            simulation["settings"] = _checked_settings(args.set)
-        if args.seed is not None:
-            simulation["seed"] = args.seed
-        overrides["simulation"] = simulation
-    if args.truth_interval is not None:
-        overrides["report"] = {"truth_interval_s": args.truth_interval}
+    _checked_settings(args.set)
     if not args.duration > 0:
         raise UserError(f"--duration must be positive, got {args.duration}")
-    for option, value in (("--params", args.params), ("--seq", args.seq)):
-        if value is not None and not pathlib.Path(value).is_file():
+    for option, value in (("--params", args.params), ("--seq", args.seq), ("--scenario", args.scenario)):
+        if value is not None and pathlib.Path(value).is_dir():
+            raise UserError(f"{option} {value}: is a folder — give a file")
+        if option != "--scenario" and value is not None and not pathlib.Path(value).is_file():
             raise UserError(f"{option} {value}: no such file")
     realtime = args.realtime or args.gds is not None
     address = None
@@ -236,19 +273,36 @@ def cmd_run(args) -> int:
             raise UserError(f"--gds {exc}") from None
     elif args.framing != "ccsds":
         raise UserError("--framing applies to the ground link: add --gds")
-    loaded = _load(args.topology, overrides, _paced if realtime else None)
-    out = pathlib.Path(args.out) if args.out else pathlib.Path("runs") / _dt.datetime.now().strftime(
-        "%Y%m%d-%H%M%S")
-    if out.exists() and any(out.iterdir()):
-        raise UserError(f"--out {out}: the folder exists and is not empty — choose another or remove it")
+    loaded = load(args.topology, scenario=args.scenario, seed=args.seed, settings=args.set,
+                  truth_interval_s=args.truth_interval, scheduler_factory=_paced if realtime else None)
+    check_run_files(loaded, parameter_file=args.params, sequence=args.seq)
+    out = claim_run_folder(args.out)
     if not realtime:
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
-                                 plots=not args.no_plots)
+                                 plots=not args.no_plots, allow_warnings=args.allow_warnings)
     else:
         summary = _run_realtime(loaded, out, args, address)
     print(f"outputs in {out}/")
-    return 0 if summary.get("ok", True) else EXIT_FAILED
+    if not summary["ok"]:
+        print(f"fprime-lite run: the flight reported problems: {'; '.join(summary['problems'])} "
+              f"(--allow-warnings accepts them)", file=sys.stderr)
+        return EXIT_FAILED
+    return 0
+
+
+def _output_file(path: str, option: str) -> pathlib.Path:
+    """An output file the user named: refused when it is a folder or its folder does not exist
+    (nothing is created that the user did not ask for)."""
+    p = pathlib.Path(path)
+    if p.is_dir():
+        raise UserError(f"{option} {path}: is a folder — give a file name")
+    parent = p.parent
+    if not parent.is_dir():
+        raise UserError(f"{option} {path}: folder {parent} does not exist — create it first or choose another")
+    if not os.access(parent, os.W_OK):
+        raise UserError(f"{option} {path}: cannot write in {parent} (permission denied)")
+    return p
 
 
 def _paced(clock):
@@ -281,7 +335,8 @@ def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
         if link is not None:
             link.start_socket_task()
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
-                                 sequence=args.seq, progress=False, plots=not args.no_plots)
+                                 sequence=args.seq, progress=False, plots=not args.no_plots,
+                                 allow_warnings=args.allow_warnings)
     finally:
         if link is not None:
             link.close()
@@ -303,6 +358,29 @@ def _checked_settings(settings: list[str]) -> list[str]:
     return settings
 
 
+def cmd_plot(args) -> int:
+    from fprime_lite.tools.api import plot_run_dir
+
+    written = plot_run_dir(args.run_dir, args.output)
+    print(f"wrote {len(written)} plot(s): " + ", ".join(str(p) for p in written))
+    return 0
+
+
+def cmd_new(args) -> int:
+    from fprime_lite.tools.skeleton import SkeletonError, new_component, new_deployment
+
+    try:
+        if args.kind == "component":
+            written = new_component(args.name, args.dir)
+        else:
+            written = new_deployment(args.name, args.dir, component=args.component)
+    except SkeletonError as exc:
+        raise UserError(str(exc)) from None
+    folder = written[0].parent
+    print(f"wrote {', '.join(str(p) for p in written)}\nnext: cd {folder} && python -m pytest")
+    return 0
+
+
 def cmd_bench(args) -> int:
     from fprime_lite.tools.bench import main as bench_main
 
@@ -310,7 +388,7 @@ def cmd_bench(args) -> int:
 
 
 COMMANDS = {"run": cmd_run, "dict": cmd_dict, "check": cmd_check, "graph": cmd_graph,
-            "params": cmd_params, "bench": cmd_bench}
+            "params": cmd_params, "bench": cmd_bench, "plot": cmd_plot, "new": cmd_new}
 BUILT_IN = set(COMMANDS)
 
 #: Verbs that parse their own options (application verbs do too).
@@ -338,6 +416,10 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"fprime-lite {args.command}: interrupted", file=sys.stderr)
         return 130
+    except OSError as exc:  # an output the system refuses (disk full, permissions …)
+        where = f" {exc.filename}" if exc.filename else ""
+        print(f"fprime-lite {args.command}: cannot write or read{where}: {exc.strerror or exc}", file=sys.stderr)
+        return EXIT_FAILED
 
 
 if __name__ == "__main__":

@@ -9,20 +9,28 @@ An application declares, in its ``pyproject.toml``::
     [project.entry-points."fprime_lite.bench"]
     detumble = "detumble.sitl.bench:DEPLOYMENT_PIECE"   # a BenchPiece
 
+    [project.entry-points."fprime_lite.plots"]
+    detumble = "detumble.sitl.plots:RUN_PLOTTER"        # a RunPlotter
+
 A verb parses its own arguments (``main(argv) -> exit status``); a bench piece measures with the
-options of ``fprime-lite bench`` and returns its figures and the rows of the summary table.
+options of ``fprime-lite bench`` and returns its figures and the rows of the summary table; a run
+plotter draws the plots of a finished run from its folder (``fprime-lite plot RUN_DIR``,
+``RunResult.plot()``) — the same plots the application's report resource draws when a run ends.
 """
 from __future__ import annotations
 
 import argparse
+import pathlib
 from dataclasses import dataclass
 from importlib.metadata import entry_points
 from typing import Callable
 
-__all__ = ["Verb", "BenchPiece", "PluginError", "verbs", "bench_pieces", "VERBS_GROUP", "BENCH_GROUP"]
+__all__ = ["Verb", "BenchPiece", "RunPlotter", "PluginError", "verbs", "bench_pieces", "run_plotters",
+           "VERBS_GROUP", "BENCH_GROUP", "PLOTS_GROUP"]
 
 VERBS_GROUP = "fprime_lite.verbs"
 BENCH_GROUP = "fprime_lite.bench"
+PLOTS_GROUP = "fprime_lite.plots"
 
 
 class PluginError(Exception):
@@ -51,6 +59,19 @@ class BenchPiece:
     rows: Callable[[dict], list[tuple[str, str, str]]]
 
 
+@dataclass(frozen=True)
+class RunPlotter:
+    """Draws the plots of a finished run from the files in its folder.
+
+    ``applies(run_dir) -> bool`` says whether the run has what it plots; ``plot(run_dir, out_dir)``
+    draws into ``out_dir`` and returns the files written.
+    """
+
+    name: str
+    applies: Callable[[pathlib.Path], bool]
+    plot: Callable[[pathlib.Path, pathlib.Path], list[pathlib.Path]]
+
+
 def _load(group: str, kind: type) -> dict:
     found = {}
     for ep in sorted(entry_points(group=group), key=lambda e: e.name):
@@ -74,3 +95,8 @@ def verbs() -> dict[str, Verb]:
 def bench_pieces() -> dict[str, BenchPiece]:
     """The installed benchmark pieces by name."""
     return _load(BENCH_GROUP, BenchPiece)
+
+
+def run_plotters() -> dict[str, RunPlotter]:
+    """The installed run plotters by name."""
+    return _load(PLOTS_GROUP, RunPlotter)

@@ -32,7 +32,7 @@ from fprime_lite.svc.file_downlink import FileDownlink
 from fprime_lite.svc.rate_groups import RateGroupBase
 from fprime_lite.deploy.topology_loader import LoadedDeployment
 
-__all__ = ["run_deployment", "PROGRESS_STEP_S", "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
+__all__ = ["run_deployment", "flight_problems", "PROGRESS_STEP_S", "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
 
 #: Simulated seconds between progress updates (and between chunks of the run).
 PROGRESS_STEP_S = 10.0
@@ -44,8 +44,14 @@ def _reports(loaded: LoadedDeployment) -> list:
 
 
 def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
-                   progress: bool = False, plots: bool = True, console=None) -> dict:
-    """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary."""
+                   progress: bool = False, plots: bool = True, console=None, allow_warnings: bool = False,
+                   quiet: bool = False) -> dict:
+    """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary.
+
+    The summary's ``ok`` is False when the flight had handler faults, rate-group member faults,
+    cycle slips or WARNING_HI/FATAL events, unless ``allow_warnings``; ``problems`` says which.
+    ``quiet`` prints nothing (no summary table).
+    """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     deployment = Deployment(loaded)
@@ -55,7 +61,7 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
             component.set_default_root(out)
     reports = _reports(loaded)
     recorder = GroundRecorder(topo, out, on_event=lambda e: [r.on_event(e) for r in reports
-                                                             if hasattr(r, "on_event")])
+                                                             if hasattr(r, "on_event")], clock=loaded.clock)
     recorder.attach(topo, topo.patterns.get("event"), topo.patterns.get("telemetry"))
     for instance in topo.instances.values():
         if isinstance(instance.component, FileDownlink):
@@ -82,9 +88,30 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
             written += r.finish(out, plots=plots) or []
     sim_s = (deployment.scheduler.now_us - start_us) / 1e6  # less than duration_s when stopped early
     summary = _summary(deployment, recorder, reports, sim_s, wall)
+    summary["problems"] = flight_problems(summary)
+    summary["ok"] = allow_warnings or not summary["problems"]
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2) + "\n")
-    _print_summary(summary, console)
+    if not quiet:
+        _print_summary(summary, console)
     return summary
+
+
+#: Event severities that make a run fail (``fprime-lite run`` exits 1 unless --allow-warnings).
+FAILING_SEVERITIES = ("WARNING_HI", "FATAL")
+
+
+def flight_problems(summary: dict) -> list[str]:
+    """What went wrong in a flight, one short phrase each (empty when nothing did)."""
+    problems = []
+    for key, what in (("handler_faults", "handler fault(s)"), ("member_faults", "rate-group member fault(s)"),
+                      ("cycle_slips", "cycle slip(s)")):
+        if summary.get(key):
+            problems.append(f"{summary[key]} {what}")
+    for severity in FAILING_SEVERITIES:
+        n = summary.get("events_by_severity", {}).get(severity, 0)
+        if n:
+            problems.append(f"{n} {severity} event(s) (see events.log)")
+    return problems
 
 
 #: Summary keys measured on the wall clock; every other key is a function of the inputs.
@@ -162,6 +189,8 @@ def _print_summary(summary: dict, console) -> None:
             text = f"{value:,.3f}"
         elif isinstance(value, dict):
             text = ", ".join(f"{k} {v}" for k, v in value.items()) or "none"
+        elif key == "problems":
+            text = "; ".join(value) or "none"
         elif key == "files_downlinked":
             text = ", ".join(f"{f['destination']} ({f['status']})" for f in value) or "none"
         else:

@@ -235,4 +235,4 @@ def test_a_plant_exception_is_a_failed_read(rig, monkeypatch):
     monkeypatch.setattr(craft, "magnetometer_sample", broken)
     assert h.invoke("magneticFieldGet").condition == Success.FAILURE
     h.assert_event_count("MagnetometerReadFailed", 1)
-    assert h.component.handler_faults == 1
+    assert h.component.handler_faults == 1 and h.events_named("HandlerFault")[0][1] == "RuntimeError: boom"

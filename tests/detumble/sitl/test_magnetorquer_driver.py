@@ -153,7 +153,7 @@ def test_a_plant_exception_is_a_failed_drive(rig, monkeypatch):
     monkeypatch.setattr(craft, "set_coil_level", broken)
     assert h.invoke("start", 3) == Success.FAILURE
     h.assert_event_count("DeviceNotReady", 1)
-    assert h.component.handler_faults == 1
+    assert h.component.handler_faults == 1 and h.events_named("HandlerFault")[0][1] == "RuntimeError: boom"
 
 
 def test_construction_checks_the_face(make_craft, default_scenario):

@@ -66,7 +66,7 @@ def test_send_command_by_name_with_typed_args(h):
 
 
 def test_handler_returning_none_answers_ok(h):
-    h.sendCmd_NO_ARGS()
+    h.sendCmd_NO_ARGS(0, 0)
     h.assert_cmd_response(0, "NO_ARGS", CmdResponse.OK)
 
 

@@ -28,8 +28,8 @@ def test_auto_ids_follow_declaration_order_and_continue_after_explicit_ones():
             pass
 
     spec = Comp.__fprime_spec__
-    assert [(e.name, e.local_id) for e in spec.events] == [("A", 0), ("B", 10), ("C", 11)]
-    assert [(c.name, c.local_id) for c in spec.channels] == [("X", 0), ("Y", 5)]
+    assert [(e.name, e.local_id) for e in spec.own_events] == [("A", 0), ("B", 10), ("C", 11)]
+    assert [(c.name, c.local_id) for c in spec.own_channels] == [("X", 0), ("Y", 5)]
     assert [(p.name, p.local_id) for p in spec.params] == [("P", 0), ("Q", 7)]
     assert [(c.name, c.opcode) for c in spec.commands] == [
         ("P_PRM_SET", 0), ("P_PRM_SAVE", 1), ("Q_PRM_SET", 2), ("Q_PRM_SAVE", 3),
@@ -218,7 +218,9 @@ def test_special_ports_follow_members():
         T = Channel(U32)
         P = Param(String(10), default="abc")
 
-    assert set(Bare.__fprime_spec__.special) == {"time get"}
+    # Every component has the framework's HandlerFault event and HandlerFaults channel (decision
+    # 0005), so even a bare one has event and telemetry ports.
+    assert set(Bare.__fprime_spec__.special) == {"time get", "event", "text event", "telemetry"}
     assert set(Full.__fprime_spec__.special) == {
         "time get", "command recv", "command reg", "command resp", "event", "text event", "telemetry",
         "param get", "param set"}
@@ -275,13 +277,13 @@ def test_declarations_leave_the_class_attributes_so_instance_lookups_stay_fast()
     assert isinstance(Base.xOut, OutputPort) and isinstance(Derived.Evt, Event)
     assert isinstance(Derived.Shared, Channel) and isinstance(Derived.Extra, Channel)
     spec = Derived.__fprime_spec__
-    assert [c.name for c in spec.channels] == ["Shared", "Extra"]
+    assert [c.name for c in spec.own_channels] == ["Shared", "Extra"]
     assert [p.name for p in spec.params] == ["Prm"] and "xOut" in spec.outputs
     # A second component built on the same mixin after the first one moved its declarations out.
     class Other(Mixin, PassiveComponent):
         pass
 
-    assert [c.name for c in Other.__fprime_spec__.channels] == ["Shared"]
+    assert [c.name for c in Other.__fprime_spec__.own_channels] == ["Shared"]
     d = Derived("d")
     assert type(d.xOut) is list and d.Prm.value == 3 and d.Shared.decl.name == "Shared"
     with pytest.raises(AttributeError, match="'Derived' has no attribute 'nothing'"):
@@ -297,7 +299,7 @@ def test_channels_and_params_may_share_an_event_s_fprime_name_through_name():
         Level_param = Param(U32, default=1, name="Level")
 
     spec = Comp.__fprime_spec__
-    assert [c.name for c in spec.channels] == ["Level"] and [p.name for p in spec.params] == ["Level"]
+    assert [c.name for c in spec.own_channels] == ["Level"] and [p.name for p in spec.params] == ["Level"]
     assert [c.name for c in spec.commands] == ["Level_PRM_SET", "Level_PRM_SAVE"]
     comp = Comp("comp")
     assert comp.channels["Level"] is comp.Level_channel and comp.params["Level"] is comp.Level_param

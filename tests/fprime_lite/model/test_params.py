@@ -65,7 +65,7 @@ def test_prm_set_with_bad_bytes_is_validation_error_and_changes_nothing(h):
 
 def test_prm_save_pushes_serialized_value(h):
     h.send_raw_command(h.component.opcode("WINDOW_PRM_SET"), bytes([1, 2]))
-    h.paramSave_WINDOW(cmd_seq=5)
+    h.paramSave_WINDOW(0, 5)
     h.assert_cmd_response(1, "WINDOW_PRM_SAVE", CmdResponse.OK, cmd_seq=5)
     assert h.saved_params == [("WINDOW", h.component.param_id("WINDOW"), Interval(1, 2))]
 
@@ -99,7 +99,7 @@ def test_undeserializable_stored_value_falls_back_to_default():
 
 def test_param_send_uses_prm_set(h):
     h.param_set("GAIN", 9.0)
-    h.paramSend_GAIN(cmd_seq=8)
+    h.paramSend_GAIN(0, 8)
     assert h.component.GAIN.value == 9.0
     h.assert_cmd_response(0, "GAIN_PRM_SET", CmdResponse.OK, cmd_seq=8)
 

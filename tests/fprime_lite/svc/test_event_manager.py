@@ -4,7 +4,7 @@ import struct
 
 import pytest
 
-from fprime_lite import CmdResponse, Severity, Time, TimeBase
+from fprime_lite import CmdResponse, Severity, Time, TimeBase, TimeInterval
 from fprime_lite.wire.packets import decode_event
 from fprime_lite.svc.event_manager import (DEFAULT_SEVERITY_FILTER, ID_FILTER_SIZE, Enabled,
                                            EventManager, FilterSeverity)
@@ -25,7 +25,7 @@ def test_f_prime_declarations():
     em = EventManager("events")
     assert [(c.name, c.opcode, c.kind) for c in em.spec.commands] == [
         ("SET_EVENT_FILTER", 0, "sync"), ("SET_ID_FILTER", 2, "async"), ("DUMP_FILTER_STATE", 3, "async")]
-    assert {e.name: (e.local_id, e.severity) for e in em.spec.events} == {
+    assert {e.name: (e.local_id, e.severity) for e in em.spec.own_events} == {
         "SEVERITY_FILTER_STATE": (0, Severity.ACTIVITY_LO), "ID_FILTER_ENABLED": (1, Severity.ACTIVITY_HI),
         "ID_FILTER_LIST_FULL": (2, Severity.WARNING_LO), "ID_FILTER_REMOVED": (3, Severity.ACTIVITY_HI),
         "ID_FILTER_NOT_FOUND": (4, Severity.WARNING_LO)}
@@ -40,8 +40,25 @@ def test_each_event_is_its_own_packet(h):
     packets = [c.args for c in h.from_port("PktSend")]
     assert packets[0] == (struct.pack(">HI", 2, 0x1000) + struct.pack(">HBII", 2, 0, 100, 250000)
                           + b"\x01\x02", 0)
-    assert sent(h) == [(0x1000, T, b"\x01\x02"), (0x1001, T, b"")]
+    assert sent(h) == [(0x1000, T, b"\x01\x02"), (0x1001, T + TimeInterval(0, 1), b"")]  # emitted after it
     assert h.component.events_sent == 2
+
+
+def test_events_of_one_instant_are_stamped_in_emission_order():
+    """FH-006: events emitted at one simulated instant reach the ground with strictly increasing
+    stamps in emission order (1 µs apart), as on hardware where time passes between emissions;
+    the next instant's events keep their own time; distinct_times=False keeps the raw stamps."""
+    from fprime_lite.testing import ComponentHarness
+
+    h = ComponentHarness(EventManager("events", base_id=0x200))
+    later = T + TimeInterval(0, 1000)
+    for t in (T, T, T, later, later):
+        h.invoke("LogRecv", 0x1000, t, Severity.ACTIVITY_HI, b"")
+    assert [e[1].total_us - T.total_us for e in sent(h)] == [0, 1, 2, 1000, 1001]
+    raw = ComponentHarness(EventManager("events", base_id=0x200, distinct_times=False))
+    for t in (T, T):
+        raw.invoke("LogRecv", 0x1000, t, Severity.ACTIVITY_HI, b"")
+    assert [e[1] for e in sent(raw)] == [T, T]
 
 
 def test_default_filters_stop_diagnostic_only(h):

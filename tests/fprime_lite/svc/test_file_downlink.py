@@ -502,7 +502,7 @@ def test_declarations_match_f_prime_v4(fprime_harness, tmp_path):
         ("SendPartial", 2, "async", ["sourceFileName", "destFileName", "startOffset", "length"]),
     ]
     assert all(t.size == 100 for c in spec.commands for _, t in c.args if t.kind == "string")
-    events = {e.name: (e.local_id, e.severity, [n for n, _ in e.args]) for e in spec.events}
+    events = {e.name: (e.local_id, e.severity, [n for n, _ in e.args]) for e in spec.own_events}
     assert events == {
         "FileOpenError": (0, Severity.WARNING_HI, ["fileName"]),
         "FileReadError": (1, Severity.WARNING_HI, ["fileName", "status"]),
@@ -518,7 +518,7 @@ def test_declarations_match_f_prime_v4(fprime_harness, tmp_path):
         "FileNameTooLong": (0x40, Severity.WARNING_HI, ["fileName", "size", "limit"]),
         "PathRefused": (0x41, Severity.WARNING_HI, ["fileName", "status", "reason"]),
     }
-    assert [(c.name, c.local_id, c.type.name) for c in spec.channels] == [
+    assert [(c.name, c.local_id, c.type.name) for c in spec.own_channels] == [
         ("FilesSent", 0, "U32"), ("PacketsSent", 1, "U32"), ("Warnings", 2, "U32")]
     assert set(spec.inputs) >= {"Run", "sendFile", "pingIn"}
     assert set(spec.outputs) >= {"bufferSendOut", "FileComplete", "pingOut"}

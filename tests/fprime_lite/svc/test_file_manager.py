@@ -80,7 +80,7 @@ def test_commands_events_and_channels_have_fprime_ids(fprime_harness, tmp_path):
     assert args["ShellCommand"] == [("command", "string", 256), ("logFileName", "string", 256)]
     assert args["ListDirectory"] == [("dirName", "string", 200)]
     assert args["CalculateCrc"] == [("filename", "string", 200)]
-    events = {e.name: (e.local_id, e.severity) for e in comp.spec.events}
+    events = {e.name: (e.local_id, e.severity) for e in comp.spec.own_events}
     assert len(events) == 31  # F´'s 30 and PathRefused (0x40, not in F´)
     assert events["PathRefused"] == (0x40, Severity.WARNING_HI)
     assert events["DirectoryCreateError"] == (0x00, Severity.WARNING_HI)
@@ -92,7 +92,7 @@ def test_commands_events_and_channels_have_fprime_ids(fprime_harness, tmp_path):
     assert events["CalculateCrcSucceeded"] == (0x1C, Severity.ACTIVITY_HI)
     assert events["FileNameFormatError"] == (0x1D, Severity.WARNING_HI)
     assert sorted(local_id for local_id, _ in events.values()) == list(range(0x1E)) + [0x40]
-    assert {c.name: c.local_id for c in comp.spec.channels} == {"CommandsExecuted": 0, "Errors": 1}
+    assert {c.name: c.local_id for c in comp.spec.own_channels} == {"CommandsExecuted": 0, "Errors": 1}
     assert comp.name == "fileManager"
 
 

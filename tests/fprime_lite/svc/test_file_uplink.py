@@ -598,8 +598,8 @@ def test_declarations_match_fprime():
         assert [(n, t.name, t.size if t.kind == "string" else None) for n, t in decl.args] == args, name
     packet_type = comp.spec.event("InvalidReceiveMode").args[0][1]
     assert packet_type.target.name == "U16"  # FwPacketDescriptorType
-    assert sorted(comp.events) == sorted(expected_events)
-    assert {n: (c.decl.local_id, c.decl.type.name, c.decl.update) for n, c in comp.channels.items()} == {
+    assert sorted(e.name for e in comp.spec.own_events) == sorted(expected_events)
+    assert {c.name: (c.local_id, c.type.name, c.update) for c in comp.spec.own_channels} == {
         "FilesReceived": (0, "U32", "always"), "PacketsReceived": (1, "U32", "always"),
         "Warnings": (2, "U32", "always"), "FilesReceivedFailed": (3, "U32", "always")}
     assert comp.spec.event("BadChecksum").format == ("Bad checksum value during receipt of file {}: computed 0x{x}, "

@@ -299,18 +299,18 @@ def test_declarations_match_fprime_v4():
         ("ENABLE", 0, "guarded", [("enable", "Svc.VersionEnabled")]),
         ("VERSION", 1, "guarded", [("version_type", "Svc.VersionType")])]
     assert [(e.name, e.local_id, e.severity, e.format, [(n, t.name if t.kind != "string" else t.size)
-                                                        for n, t in e.args]) for e in spec.events] == [
+                                                        for n, t in e.args]) for e in spec.own_events] == [
         ("FrameworkVersion", 0, Severity.ACTIVITY_LO, "Framework Version: [{}]", [("version", 40)]),
         ("ProjectVersion", 1, Severity.ACTIVITY_LO, "Project Version: [{}]", [("version", 40)]),
         ("LibraryVersions", 2, Severity.ACTIVITY_LO, "Libary Versions: [{}]", [("version", 40)]),
         ("CustomVersions", 3, Severity.ACTIVITY_LO, "Custom Versions: [{}] [{}]",
          [("version_enum", "Svc.VersionCfg.VersionEnum"), ("version_value", 40)])]
-    channels = [(c.name, c.local_id, c.type) for c in spec.channels]
+    channels = [(c.name, c.local_id, c.type) for c in spec.own_channels]
     assert channels[:2] == [("FrameworkVersion", 0, String(40)), ("ProjectVersion", 1, String(40))]
     assert channels[2:12] == [(f"CustomVersion{i:02d}", i + 1, CustomVersionDb.__fprime_type__)
                               for i in range(1, 11)]
     assert channels[12:] == [(f"LibraryVersion{i:02d}", i + 11, String(40)) for i in range(1, 11)]
-    assert all(c.update == "always" for c in spec.channels)
+    assert all(c.update == "always" for c in spec.own_channels)
     assert comp.opcode("VERSION") == 0x1001 and comp.channel_id("LibraryVersion10") == 0x1015
     assert comp.event_id("CustomVersions") == 0x1003 and comp.channel_id("ProjectVersion") == 0x1001
     db = CustomVersionDb.__fprime_type__

@@ -2,8 +2,9 @@
 
 import pytest
 
-from fprime_lite import (F64, I8, U32, Channel, Event, FwAssertionError, OutputPort, PassiveComponent,
-                         PortType, Sched, Severity, Time, TimeBase, sync_input)
+from fprime_lite import (F64, I8, U32, Channel, CmdResponse, Event, FwAssertionError, OutputPort, Param,
+                         ParamValid, PassiveComponent, PortType, Sched, Severity, Time, TimeBase, sync_command,
+                         sync_input)
 from fprime_lite.testing import ComponentHarness, PortCall
 
 Start = PortType("Test.Start", returns=bool, level=I8)
@@ -36,7 +37,7 @@ def h(fprime_harness):
 def test_every_output_call_is_recorded_in_order(h):
     h.set_port_return("readOut", 2.5)
     h.set_port_return("startOut", True)
-    assert h.invoke_to_run(7) is True
+    assert h.invoke_to_run(0, 7) is True
     assert h.port_calls == [PortCall("readOut", 0, ()), PortCall("startOut", 0, (1,)),
                             PortCall("startOut", 1, (-1,)), PortCall("noteOut", 0, (7,))]
     h.assert_from_port_size("startOut", 2)
@@ -126,3 +127,59 @@ def test_optional_outputs_can_be_left_unconnected():
         h.invoke("run", 3)
     with pytest.raises(KeyError, match="no output port 'nope'"):
         ComponentHarness(Device("dev4"), unconnected=("nope",))
+
+
+class Counter(PassiveComponent):
+    """A component with one of each member, to drive through F´'s tester names."""
+
+    LIMIT = Param(U32, default=3)
+    Counted = Event(Severity.ACTIVITY_LO, "count {} of {}", n=U32, limit=U32)
+    Count = Channel(U32)
+
+    def __init__(self, name, **kw):
+        super().__init__(name, **kw)
+        self.n = 0
+
+    @sync_input(Sched)
+    def run(self, context):
+        self.n += context
+        self.Count.write(self.n)
+        self.Counted(self.n, self.LIMIT.value)
+
+    @sync_command()
+    def RESET(self, start: U32):
+        self.n = start
+
+
+def test_fprime_tester_names_take_fprime_arguments(fprime_harness):
+    """FH-004: TesterBase/GTestBase spellings take F´'s arguments: invoke_to_<port>(portNum, args),
+    sendCmd_<CMD>(instance, cmdSeq, args), paramSend_/paramSave_(instance, cmdSeq),
+    assertEvents_<E>_size(size), assertEvents_<E>(index, args), assertTlm_<C>_size(size),
+    assertTlm_<C>(index, value), assertCmdResponse(index, opCode, cmdSeq, response)."""
+    h = fprime_harness(Counter("counter", base_id=0x100))
+    h.load_parameters()
+    h.invoke_to_run(0, 2)
+    h.invoke_to_run(0, 3)
+    h.assertEvents_size(2)
+    h.assertEvents_Counted_size(2)
+    h.assertEvents_Counted(1, 5, 3)
+    h.assertTlm_size(2)
+    h.assertTlm_Count_size(2)
+    h.assertTlm_Count(0, 2)
+    h.assertFromPortHistory_size(0)
+    h.sendCmd_RESET(0, 7, 10)
+    h.assertCmdResponse_size(1)
+    h.assertCmdResponse(0, h.component.opcode("RESET"), 7, CmdResponse.OK)
+    assert h.component.n == 10
+    h.paramSet_LIMIT(9, ParamValid.VALID)
+    h.paramSend_LIMIT(0, 8)
+    h.assertCmdResponse(1, h.component.opcode("LIMIT_PRM_SET"), 8, CmdResponse.OK)
+    assert h.component.LIMIT.value == 9
+    with pytest.raises(AssertionError):
+        h.assertCmdResponse(0, h.component.opcode("RESET"), 6, CmdResponse.OK)  # wrong cmdSeq
+    with pytest.raises(AssertionError):
+        h.assertEvents_Counted(0, 5, 3)
+    with pytest.raises(AttributeError, match="no event 'Nope"):
+        h.assertEvents_Nope_size(1)
+    with pytest.raises(FwAssertionError, match="port_num 1 is out of range"):
+        h.invoke_to_run(1, 2)

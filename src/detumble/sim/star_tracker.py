@@ -1,0 +1,119 @@
+"""Star tracker: the attitude ``q_BN`` with a boresight-shaped error, sample-and-hold at its rate.
+
+A star tracker measures the directions of stars in its field of view; the attitude about its
+boresight is worse determined than across it (the stars' angular spread is small compared with
+their distance from the boresight axis), typically by a factor 5-10. The model draws, per
+sample, a small rotation error in the body frame::
+
+    delta_theta_B = s_c n1 e1 + s_c n2 e2 + s_b n3 e_bore        (n_k ~ N(0, 1))
+
+with ``e_bore`` the boresight (unit vector in B), ``e1, e2`` two unit vectors across it,
+``s_c`` and ``s_b`` the 1-sigma cross-boresight and about-boresight errors (arcsec in the
+scenario), and reports ``q_meas = q_BN (x) (1, delta_theta_B / 2)`` normalised, i.e. the
+measured body frame B' is B turned by ``delta_theta_B``. An optional constant misalignment
+``bias_arcsec`` (a rotation vector in B) is added to every sample.
+
+Samples are taken at ``k / rate_hz`` on the plant's integer-nanosecond grid and held. A sample
+is *invalid* (no solution: the held attitude is kept, ``valid`` false) with probability
+``dropout_probability``, and always when the body rate exceeds ``max_rate_deg_s`` (star smear;
+0 disables that limit). ``ideal: true`` returns the true attitude at the read time, always valid.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from dataclasses import dataclass
+
+from detumble.sim.vec import Quat, Vec3, cross, unit
+
+ARCSEC = math.pi / (180.0 * 3600.0)  #: radians per arcsecond
+
+
+@dataclass(frozen=True)
+class StarTrackerSpec:
+    ideal: bool = False
+    rate_hz: float = 5.0
+    noise_cross_boresight_arcsec: float = 10.0
+    noise_about_boresight_arcsec: float = 70.0
+    boresight_B: Vec3 = (0.0, 0.0, 1.0)
+    bias_arcsec: Vec3 = (0.0, 0.0, 0.0)
+    dropout_probability: float = 0.0
+    max_rate_deg_s: float = 2.0
+
+
+def cross_axes(boresight: Vec3) -> tuple[Vec3, Vec3]:
+    """Two unit vectors completing a right-handed triad ``(e1, e2, boresight)``."""
+    b = unit(boresight)
+    helper = (1.0, 0.0, 0.0) if abs(b[0]) < 0.9 else (0.0, 1.0, 0.0)
+    e1 = unit(cross(helper, b))
+    e2 = cross(b, e1)
+    return e1, e2
+
+
+class StarTracker:
+    """Sample-and-hold star tracker model. ``sample_q`` / ``sample_valid`` / ``sample_time_ns``."""
+
+    def __init__(self, spec: StarTrackerSpec, seed: int | None = None) -> None:
+        if not spec.rate_hz > 0:
+            raise ValueError(f"star tracker rate_hz must be positive, got {spec.rate_hz}")
+        self.spec = spec
+        self.period_ns = int(round(1e9 / spec.rate_hz))
+        self.rng = random.Random(seed)
+        self.bore = unit(spec.boresight_B)
+        self.e1, self.e2 = cross_axes(self.bore)
+        self._sc = spec.noise_cross_boresight_arcsec * ARCSEC
+        self._sb = spec.noise_about_boresight_arcsec * ARCSEC
+        self._bias = tuple(b * ARCSEC for b in spec.bias_arcsec)
+        self._max_rate2 = math.radians(spec.max_rate_deg_s) ** 2 if spec.max_rate_deg_s > 0 else math.inf
+        self.sample_q: Quat = (1.0, 0.0, 0.0, 0.0)
+        self.sample_valid = False
+        self.sample_time_ns = -1
+        self.samples = 0
+        self.dropouts = 0
+
+    def latest_instant(self, t0_ns: int, t1_ns: int) -> int | None:
+        k = t1_ns // self.period_ns
+        tk = k * self.period_ns
+        return tk if tk > t0_ns else None
+
+    def error_vector(self) -> Vec3:
+        """One draw of the error rotation vector in B, rad (bias included)."""
+        g = self.rng.gauss
+        n1, n2, n3 = g(0.0, 1.0), g(0.0, 1.0), g(0.0, 1.0)
+        sc, sb = self._sc, self._sb
+        e1, e2, eb, bias = self.e1, self.e2, self.bore, self._bias
+        return tuple(sc * n1 * e1[i] + sc * n2 * e2[i] + sb * n3 * eb[i] + bias[i] for i in range(3))  # type: ignore[return-value]
+
+    def measure(self, q_BN: Quat, omega_B: Vec3) -> tuple[Quat, bool]:
+        """One sample: ``(q_meas, valid)``; an invalid sample keeps the held attitude."""
+        self.samples += 1
+        s = self.spec
+        w2 = omega_B[0] ** 2 + omega_B[1] ** 2 + omega_B[2] ** 2
+        if w2 > self._max_rate2 or (s.dropout_probability > 0.0 and self.rng.random() < s.dropout_probability):
+            self.dropouts += 1
+            return self.sample_q, False
+        d = self.error_vector()
+        p0, p1, p2, p3 = q_BN
+        e1, e2, e3 = 0.5 * d[0], 0.5 * d[1], 0.5 * d[2]
+        # q_BN (x) (1, e)
+        q = (p0 - p1 * e1 - p2 * e2 - p3 * e3,
+             p1 + p0 * e1 + p2 * e3 - p3 * e2,
+             p2 + p0 * e2 - p1 * e3 + p3 * e1,
+             p3 + p0 * e3 + p1 * e2 - p2 * e1)
+        n = 1.0 / math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
+        return (q[0] * n, q[1] * n, q[2] * n, q[3] * n), True
+
+    def latch(self, t0_ns: int, t1_ns: int, s0, s1) -> None:
+        """Take the sample due in (t0, t1] from the plant states at the step's ends."""
+        tk = self.latest_instant(t0_ns, t1_ns)
+        if tk is None:
+            return
+        f = (tk - t0_ns) / (t1_ns - t0_ns) if t1_ns > t0_ns else 1.0
+        if s0[0] * s1[0] + s0[1] * s1[1] + s0[2] * s1[2] + s0[3] * s1[3] < 0.0:
+            s1 = (-s1[0], -s1[1], -s1[2], -s1[3]) + tuple(s1[4:7])
+        q = tuple(s0[i] + f * (s1[i] - s0[i]) for i in range(4))
+        n = 1.0 / math.sqrt(sum(x * x for x in q))
+        w = tuple(s0[4 + i] + f * (s1[4 + i] - s0[4 + i]) for i in range(3))
+        q_meas, valid = self.measure((q[0] * n, q[1] * n, q[2] * n, q[3] * n), w)  # type: ignore[arg-type]
+        self.sample_q, self.sample_valid, self.sample_time_ns = q_meas, valid, tk

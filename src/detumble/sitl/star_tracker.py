@@ -1,0 +1,133 @@
+"""Simulated star tracker: the attitude ``q_BN`` of the simulated spacecraft, as an F´ component.
+
+Backed by :mod:`detumble.sim.star_tracker` (noise 1σ across and about the boresight, update
+rate, dropouts, a rate limit above which no solution is found, an ``ideal`` option).
+
+Ports (sync):
+
+======================  =========================================================================
+``attitudeGet()``       Drv.AttitudeGet: ``Result(AttitudeQuaternion, Success)``; ``q_BN`` scalar
+                        first, ``timestamp`` = when the image was taken. No valid solution (a
+                        dropout, or the body turning faster than ``max_rate_deg_s``): FAILURE, the
+                        value carries the last valid attitude with ``valid`` false (NoSolution)
+``run(context)``        Svc.Sched: read and write the ``Attitude`` channel
+======================  =========================================================================
+
+Fault injection (simulation only): :meth:`StarTracker.set_fault` or ``SIM_SET_FAULT``:
+``FAIL`` — reads fail (AttitudeReadFailed, throttled); ``NAN`` — reads *succeed* with NaN
+components (a corrupted solution the consumer must catch); ``FROZEN`` — the tracker keeps
+returning the solution it had when the fault was set, with its old time stamp, as valid (a hung
+tracker: only the time stamp tells).
+"""
+
+from __future__ import annotations
+
+import logging
+
+from fprime_lite import (F64, U32, U8, Channel, CmdResponse, Event, FwEnum, PassiveComponent, Sched, Severity,
+                         sync_command, sync_input)
+
+from detumble.components.types import AttitudeGet, AttitudeQuaternion, Result, Success
+from detumble.sitl.spacecraft import SimulatedSpacecraft
+
+__all__ = ["StarTracker", "SimStarTrackerFault"]
+
+log = logging.getLogger("detumble.sitl")
+_NAN = float("nan")
+
+
+class SimStarTrackerFault(FwEnum, namespace="Sim", rep=U8):
+    """Injected star-tracker fault (see the module docstring)."""
+
+    NONE = 0
+    FAIL = 1
+    NAN = 2
+    FROZEN = 3
+
+
+class StarTracker(PassiveComponent):
+    """Simulated star tracker on ``spacecraft`` (its scenario must have ``sensors.star_tracker``)."""
+
+    @sync_input(AttitudeGet)
+    def attitudeGet(self) -> Result:  # noqa: N802 - F´ spelling
+        """The latest attitude solution (see the module docstring)."""
+        return self._read()
+
+    @sync_input(Sched)
+    def run(self, context: int) -> None:
+        """Read the tracker and write the Attitude channel (also when the solution is invalid)."""
+        value, condition = self._read()
+        if value is not None:
+            self.Attitude.write(value)
+        self.Solutions.write(self._solutions)
+
+    @sync_command()
+    def GET_ATTITUDE(self):  # noqa: N802
+        """Read the tracker and log AttitudeData (EXECUTION_ERROR without a valid solution)."""
+        value, condition = self._read()
+        if condition != Success.SUCCESS:
+            return CmdResponse.EXECUTION_ERROR
+        self.AttitudeData(value.q0, value.q1, value.q2, value.q3)
+        return CmdResponse.OK
+
+    @sync_command()
+    def SIM_SET_FAULT(self, fault: SimStarTrackerFault):  # noqa: N802
+        """SIMULATION ONLY: inject a star-tracker fault (NONE clears it)."""
+        self.set_fault(fault)
+
+    AttitudeData = Event(Severity.ACTIVITY_LO, "Attitude q_BN: {.9f}, {.9f}, {.9f}, {.9f}",
+                         q0=F64, q1=F64, q2=F64, q3=F64)
+    AttitudeReadFailed = Event(Severity.WARNING_LO, "Star tracker read failed", throttle=5)
+    NoSolution = Event(Severity.WARNING_LO, "Star tracker has no attitude solution", throttle=5)
+    SimFaultSet = Event(Severity.ACTIVITY_HI, "SIM: star tracker fault set to {}", fault=SimStarTrackerFault)
+
+    #: The latest solution (q_BN scalar first, valid flag, image time).
+    Attitude = Channel(AttitudeQuaternion)
+    #: Valid solutions handed out since start.
+    Solutions = Channel(U32, update="on change")
+
+    def __init__(self, name: str, spacecraft: SimulatedSpacecraft, *, base_id: int = 0):
+        super().__init__(name, base_id=base_id)
+        if not isinstance(spacecraft, SimulatedSpacecraft):
+            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        if not spacecraft.has_star_tracker:
+            raise ValueError(f"{name}: the spacecraft's scenario has no star tracker; add sensors.star_tracker "
+                             f"(e.g. --set sensors.star_tracker.ideal=true)")
+        self.spacecraft = spacecraft
+        self.fault = SimStarTrackerFault.NONE
+        self._frozen: AttitudeQuaternion | None = None
+        self._solutions = 0
+
+    def set_fault(self, fault: SimStarTrackerFault) -> None:
+        """Inject ``fault``; FROZEN keeps the solution held now."""
+        self.fault = SimStarTrackerFault(fault)
+        self._frozen = None
+        if self.fault == SimStarTrackerFault.FROZEN:
+            q, valid, stamp = self.spacecraft.star_tracker_sample()
+            self._frozen = AttitudeQuaternion(*q, True, stamp)
+        self.SimFaultSet(self.fault)
+
+    def _read(self) -> Result:
+        fault = self.fault
+        if fault == SimStarTrackerFault.FAIL:
+            self.AttitudeReadFailed()
+            return Result(None, Success.FAILURE)
+        if fault == SimStarTrackerFault.FROZEN and self._frozen is not None:
+            return Result(self._frozen, Success.SUCCESS)
+        try:
+            q, valid, stamp = self.spacecraft.star_tracker_sample()
+        except Exception:  # noqa: BLE001 - a plant fault is a failed read, never an exception
+            self.handler_faults += 1
+            log.exception("%s: reading the star tracker raised", self.name)
+            self.AttitudeReadFailed()
+            return Result(None, Success.FAILURE)
+        self.AttitudeReadFailed.clear_throttle()
+        if fault == SimStarTrackerFault.NAN:
+            return Result(AttitudeQuaternion(_NAN, _NAN, _NAN, _NAN, True, stamp), Success.SUCCESS)
+        value = AttitudeQuaternion(*q, valid, stamp)
+        if not valid:
+            self.NoSolution()
+            return Result(value, Success.FAILURE)
+        self.NoSolution.clear_throttle()
+        self._solutions += 1
+        return Result(value, Success.SUCCESS)

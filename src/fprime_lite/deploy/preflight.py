@@ -1,0 +1,126 @@
+"""Checks made before a deployment flies: the parameter file and the start-up sequence it will load.
+
+PrmDb and CmdSequencer report a bad file with a WARNING_HI event once the deployment runs; a run
+that was meant to use the file then flies without it. ``fprime-lite run`` calls these first so the
+user hears about the mistake in one line, before anything flies.
+
+- :func:`check_parameter_file`: the file decodes as F´'s PrmDb format (CRC included) and every
+  record's id is a parameter of the topology whose value deserializes as that parameter's type.
+- :func:`check_sequence`: the file decodes (text ``.seq`` compiled against the topology's commands,
+  or binary as ``fprime-seqgen`` writes it), every record's opcode is a command of the topology and
+  its arguments deserialize; the topology has the sequencer to run it.
+
+Each raises :class:`PreflightError` (a one-line message naming the file and what to do).
+"""
+from __future__ import annotations
+
+import os
+import pathlib
+
+from fprime_lite.model.errors import FprimeLiteError, SerializationError
+from fprime_lite.model.types import deserialize_values
+from fprime_lite.deploy.deployment import command_lookup
+from fprime_lite.deploy.topology import Topology
+from fprime_lite.svc.prm_db import ParamFileError, decode_param_file
+from fprime_lite.wire.seqfile import Descriptor, SequenceFileError, SequenceTextError, read_sequence
+
+__all__ = ["PreflightError", "check_parameter_file", "check_sequence", "check_run_files"]
+
+
+class PreflightError(FprimeLiteError):
+    """A file the deployment would load is not usable."""
+
+
+def _read(path, what: str) -> bytes:
+    p = pathlib.Path(path)
+    if p.is_dir():
+        raise PreflightError(f"{what} {path}: is a folder — give the path of a file")
+    try:
+        return p.read_bytes()
+    except FileNotFoundError:
+        raise PreflightError(f"{what} {path}: no such file") from None
+    except OSError as exc:
+        raise PreflightError(f"{what} {path}: cannot read it ({exc.strerror})") from None
+
+
+def check_parameter_file(topology: Topology, path) -> int:
+    """Validate parameter file ``path`` against ``topology``; return the number of records."""
+    data = _read(path, "parameter file")
+    try:
+        records = decode_param_file(data).records
+    except ParamFileError as exc:
+        raise PreflightError(f"parameter file {path}: not a valid PrmDb file: {exc} — write one with "
+                             f"'fprime-lite params -o FILE' or fprime-prm-write") from None
+    params = {}
+    for instance in topology.instances.values():
+        comp = instance.component
+        for p in comp.spec.params:
+            params[comp.base_id + p.local_id] = (f"{instance.qualified_name}.{p.name}", p)
+    for index, (prm_id, value) in enumerate(records):
+        known = params.get(prm_id)
+        if known is None:
+            raise PreflightError(f"parameter file {path}: record {index} has id 0x{prm_id:X}, which is no "
+                                 f"parameter of deployment {topology.deployment} (fprime-lite dict lists them)")
+        name, decl = known
+        try:
+            deserialize_values([decl.type], value)
+        except (SerializationError, ValueError) as exc:
+            raise PreflightError(f"parameter file {path}: record {index} ({name}): the value does not "
+                                 f"deserialize as {decl.type.name}: {exc}") from None
+    return len(records)
+
+
+def check_sequence(topology: Topology, path, sequencer: str | None) -> int:
+    """Validate sequence file ``path`` for ``topology`` run by instance ``sequencer``; return the
+    number of commands."""
+    if sequencer is None:
+        raise PreflightError(f"sequence {path}: deployment {topology.deployment} has no start-up sequencer "
+                             f"— add 'startup: {{sequencer: Module.cmdSeq}}' to the topology (docs/topology.md)")
+    _read(path, "sequence")
+    lookup = command_lookup(topology)
+    try:
+        sequence = read_sequence(os.fspath(path), lookup=lookup)
+    except SequenceTextError as exc:  # already names path:line
+        raise PreflightError(f"sequence {exc}") from None
+    except SequenceFileError as exc:
+        raise PreflightError(f"sequence {path}: {exc}") from None
+    except OSError as exc:
+        raise PreflightError(f"sequence {path}: cannot read it ({exc.strerror})") from None
+    commands = {}
+    for instance in topology.instances.values():
+        comp = instance.component
+        for c in comp.spec.commands:
+            commands[comp.base_id + c.opcode] = (f"{instance.qualified_name}.{c.name}", c.arg_types)
+    count = 0
+    for number, record in enumerate(sequence.records):
+        if record.descriptor == Descriptor.END_OF_SEQUENCE:
+            continue
+        opcode = record.opcode
+        known = commands.get(opcode) if opcode is not None else None
+        if known is None:
+            what = "no opcode" if opcode is None else f"opcode 0x{opcode:X}"
+            raise PreflightError(f"sequence {path}: record {number} has {what}, which is no command of "
+                                 f"deployment {topology.deployment} (fprime-lite dict lists them)")
+        name, types = known
+        try:
+            deserialize_values(types, record.args)
+        except (SerializationError, ValueError) as exc:
+            raise PreflightError(f"sequence {path}: record {number} ({name}): its arguments do not "
+                                 f"deserialize: {exc}") from None
+        count += 1
+    return count
+
+
+def check_run_files(loaded, *, parameter_file=None, sequence=None) -> None:
+    """Check the files a run of ``loaded`` (a LoadedDeployment) would load: ``parameter_file`` and
+    ``sequence`` when given, else the topology's own.
+
+    A topology's own parameter file may not exist yet (PrmDb then starts from the defaults, as F´
+    does on a first boot); one given explicitly must.
+    """
+    params = parameter_file or loaded.parameter_file
+    if params is not None and (parameter_file is not None or pathlib.Path(params).exists()):
+        check_parameter_file(loaded.topology, params)
+    seq = sequence or loaded.startup_sequence
+    if seq is not None:
+        check_sequence(loaded.topology, seq, loaded.startup_sequencer)

@@ -1,0 +1,242 @@
+"""The Python entry point: fly a deployment from a script or a notebook, and load a finished run.
+
+    from fprime_lite.tools import run, open_run
+
+    result = run("topology.yaml", duration_s=600)          # quiet: prints nothing
+    result.ok, result.problems                              # did the flight go well, and if not why
+    result.summary["final_rate_deg_s"]                      # everything summary.json holds
+    result.telemetry["ReferenceDeployment.detumbleManager.AngularVelocityMagnitude [deg/s]"].plot()
+    result.events[result.events.severity == "WARNING_HI"]
+    result.plot()                                           # the application's PNG plots
+
+    again = open_run("runs/20260101-120000.000")            # the same object for a finished run
+
+:func:`run` takes the options of ``fprime-lite run`` as keyword arguments, checks the parameter
+file and the sequence before anything flies and raises :class:`RunSetupError` (one line naming the
+mistake) for a mistake in the inputs. A flight that goes badly does not raise: ``ok`` is False and
+``problems`` says why (handler faults, cycle slips, WARNING_HI/FATAL events).
+"""
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import pathlib
+import sys
+from typing import Sequence
+
+from fprime_lite.model.errors import FprimeLiteError
+
+__all__ = ["run", "open_run", "load", "RunResult", "RunSetupError", "claim_run_folder", "plot_run_dir"]
+
+
+class RunSetupError(FprimeLiteError):
+    """A mistake in what a run was asked to do (a path, an option); the message says what to change."""
+
+
+def load(topology="topology.yaml", *, scenario: str | None = None, seed: int | None = None,
+         settings: Sequence[str] = (), truth_interval_s: float | None = None, scheduler_factory=None):
+    """Load ``topology`` (a path) with the simulation and report options passed to the resources
+    holding those roles; return the :class:`~fprime_lite.deploy.topology_loader.LoadedDeployment`.
+
+    The topology file's folder is importable while it loads, so a component module beside the
+    topology (``type: thermostat.Thermostat`` for ``thermostat.py``) is found without setting
+    ``PYTHONPATH``.
+    """
+    from fprime_lite.deploy.topology_loader import load_topology
+
+    path = pathlib.Path(topology)
+    if path.is_dir():
+        raise RunSetupError(f"{topology}: is a folder — give the path of a topology YAML file")
+    if not path.exists():
+        raise RunSetupError(f"{topology}: no such topology file — give the path of a topology YAML file "
+                            f"(the reference deployment is deployments/proves_ref/topology.yaml)")
+    overrides: dict[str, dict] = {}
+    simulation: dict = {}
+    if scenario is not None:
+        if pathlib.Path(scenario).is_dir():
+            raise RunSetupError(f"scenario {scenario}: is a folder — give a packaged scenario name or a YAML file")
+        simulation["scenario"] = scenario
+    if settings:
+        simulation["settings"] = list(settings)
+    if seed is not None:
+        simulation["seed"] = seed
+    if simulation:
+        overrides["simulation"] = simulation
+    if truth_interval_s is not None:
+        overrides["report"] = {"truth_interval_s": truth_interval_s}
+    folder = str(path.resolve().parent)
+    added = folder not in sys.path
+    if added:
+        sys.path.insert(0, folder)
+    try:
+        return load_topology(path, scheduler_factory=scheduler_factory, role_overrides=overrides)
+    finally:
+        if added and folder in sys.path:
+            sys.path.remove(folder)
+
+
+def claim_run_folder(out=None, runs_dir="runs") -> pathlib.Path:
+    """Create and return the output folder of a run: ``out`` (absent or empty), or a new
+    ``runs/<date>-<time>.<ms>`` with ``-2``, ``-3`` … appended when that name is taken."""
+    if out is not None:
+        out = pathlib.Path(out)
+        if out.exists() and not out.is_dir():
+            raise RunSetupError(f"--out {out}: is a file, not a folder — give a new or empty folder")
+        if out.is_dir() and any(out.iterdir()):
+            raise RunSetupError(f"--out {out}: the folder exists and is not empty — choose another or remove it")
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise RunSetupError(f"--out {out}: cannot create the folder ({exc.strerror}) — choose a folder "
+                                f"you can write") from None
+        return out
+    stamp = _dt.datetime.now().strftime("%Y%m%d-%H%M%S.%f")[:-3]
+    runs = pathlib.Path(runs_dir)
+    try:
+        runs.mkdir(exist_ok=True)
+    except OSError as exc:
+        raise RunSetupError(f"cannot create {runs.resolve()} ({exc.strerror}) — run from a folder you can "
+                            f"write or give --out DIR") from None
+    for n in range(1, 1000):
+        folder = runs / (stamp if n == 1 else f"{stamp}-{n}")
+        try:
+            folder.mkdir()
+            return folder
+        except FileExistsError:
+            continue
+        except OSError as exc:
+            raise RunSetupError(f"cannot create {folder} ({exc.strerror}) — give --out DIR") from None
+    raise RunSetupError(f"{runs}: 999 run folders named {stamp}* already exist — give --out DIR")
+
+
+def run(topology="topology.yaml", *, duration_s: float = 600.0, out=None, scenario: str | None = None,
+        seed: int | None = None, settings: Sequence[str] = (), params=None, seq=None,
+        truth_interval_s: float | None = None, plots: bool = False, progress: bool = False,
+        quiet: bool = True) -> "RunResult":
+    """Fly ``topology`` for ``duration_s`` simulated seconds; return its :class:`RunResult`.
+
+    Outputs go to ``out`` (absent or empty) or a new ``runs/<timestamp>``. ``plots`` draws the PNGs
+    as the run ends (``result.plot()`` does it later); ``progress`` shows the progress bar;
+    ``quiet=False`` prints the summary table.
+    """
+    from fprime_lite.deploy.preflight import check_run_files
+    from fprime_lite.tools.runner import run_deployment
+
+    if not (isinstance(duration_s, (int, float)) and duration_s > 0):
+        raise RunSetupError(f"duration must be a positive number of seconds, got {duration_s!r}")
+    for what, value in (("parameter file", params), ("sequence", seq)):
+        if value is not None and not pathlib.Path(value).is_file():
+            kind = "is a folder" if pathlib.Path(value).is_dir() else "no such file"
+            raise RunSetupError(f"{what} {value}: {kind}")
+    loaded = load(topology, scenario=scenario, seed=seed, settings=settings, truth_interval_s=truth_interval_s)
+    check_run_files(loaded, parameter_file=params, sequence=seq)
+    folder = claim_run_folder(out)
+    run_deployment(loaded, folder, duration_s=duration_s, parameter_file=params, sequence=seq,
+                   progress=progress, plots=plots, quiet=quiet)
+    return RunResult(folder)
+
+
+def open_run(run_dir) -> "RunResult":
+    """The :class:`RunResult` of a finished run folder."""
+    folder = pathlib.Path(run_dir)
+    if not (folder / "summary.json").is_file():
+        raise RunSetupError(f"{run_dir}: not a run folder (no summary.json) — give a folder "
+                            f"'fprime-lite run' wrote")
+    return RunResult(folder)
+
+
+def plot_run_dir(run_dir, out_dir=None) -> list[pathlib.Path]:
+    """Draw the plots of a finished run with every installed run plotter that applies to it."""
+    from fprime_lite.tools.plugins import run_plotters
+
+    folder = pathlib.Path(run_dir)
+    if not folder.is_dir():
+        raise RunSetupError(f"{run_dir}: no such run folder")
+    target = pathlib.Path(out_dir) if out_dir is not None else folder
+    if not target.is_dir():
+        raise RunSetupError(f"{target}: no such folder — create it first")
+    plotters = run_plotters()
+    chosen = [p for p in plotters.values() if p.applies(folder)]
+    if not chosen:
+        installed = ", ".join(plotters) or "none installed"
+        raise RunSetupError(f"{run_dir}: no run plotter recognises this run (plotters: {installed}); "
+                            f"an application adds one through the fprime_lite.plots entry points")
+    written: list[pathlib.Path] = []
+    for plotter in chosen:
+        written += plotter.plot(folder, target)
+    return written
+
+
+class RunResult:
+    """A finished run: its folder, summary and outputs as pandas DataFrames (read when first used).
+
+    ``events`` — events.log: ``time`` (UTC, or seconds for other time bases), ``name``,
+    ``severity``, ``text``; ``channels`` — channels.csv as received (``time`` s, ``channel``,
+    ``value`` text); ``telemetry`` — channels_wide.csv, one column per channel scalar (units in the
+    heading), indexed by ``t_s``; ``truth`` — the application's truth.csv if the run wrote one
+    (indexed by ``t_s``), else None.
+    """
+
+    def __init__(self, out_dir):
+        self.out_dir = pathlib.Path(out_dir)
+        self.summary: dict = json.loads((self.out_dir / "summary.json").read_text(encoding="utf-8"))
+        self._frames: dict = {}
+
+    @property
+    def ok(self) -> bool:
+        return bool(self.summary.get("ok", not self.problems))
+
+    @property
+    def problems(self) -> list[str]:
+        return list(self.summary.get("problems", []))
+
+    def _frame(self, key, make):
+        if key not in self._frames:
+            self._frames[key] = make()
+        return self._frames[key]
+
+    @property
+    def events(self):
+        import pandas as pd
+
+        def make():
+            rows = []
+            with open(self.out_dir / "events.log", encoding="utf-8") as f:
+                for line in f:
+                    time, name, severity, text = (line.rstrip("\n").split(" ", 3) + ["", "", ""])[:4]
+                    rows.append((time, name, severity, text))
+            frame = pd.DataFrame(rows, columns=["time", "name", "severity", "text"])
+            if len(frame) and frame["time"].str.endswith("Z").all():
+                frame["time"] = pd.to_datetime(frame["time"], utc=True)
+            return frame
+
+        return self._frame("events", make)
+
+    @property
+    def channels(self):
+        import pandas as pd
+
+        return self._frame("channels", lambda: pd.read_csv(self.out_dir / "channels.csv", dtype={"value": str}))
+
+    @property
+    def telemetry(self):
+        import pandas as pd
+
+        return self._frame("telemetry", lambda: pd.read_csv(self.out_dir / "channels_wide.csv", index_col="t_s"))
+
+    @property
+    def truth(self):
+        import pandas as pd
+
+        path = self.out_dir / "truth.csv"
+        return self._frame("truth", lambda: pd.read_csv(path, index_col="t_s") if path.exists() else None)
+
+    def plot(self, out_dir=None) -> list[pathlib.Path]:
+        """Draw the run's plots (the installed run plotters); return the PNG files written."""
+        return plot_run_dir(self.out_dir, out_dir)
+
+    def __repr__(self) -> str:
+        verdict = "ok" if self.ok else "problems: " + "; ".join(self.problems)
+        sim = self.summary.get("sim_seconds")
+        sim_text = f", {sim:,.0f} s simulated" if isinstance(sim, (int, float)) else ""
+        return f"RunResult({str(self.out_dir)!r}{sim_text}, {verdict})"
