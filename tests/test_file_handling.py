@@ -21,7 +21,7 @@ def test_a_sequence_downlinks_a_file_into_the_run_outputs(tmp_path, capsys):
                    f'R00:00:01 FileHandling.fileDownlink.SendFile "{outside}" "stolen.bin"\n')
     out = tmp_path / "run"
     assert main(["run", TOPOLOGY, "--duration", "60", "--seq", str(seq), "--out", str(out),
-                 "--no-progress", "--no-plots"]) == 0
+                 "--no-progress", "--no-plots", "--allow-warnings"]) == 0  # the refused SendFile warns
     data = (out / "dictionary.json").read_bytes()
     assert len(data) > 12_345  # many 1 Hz ticks of the downlink budget
     summary = json.loads((out / "summary.json").read_text())
