@@ -17,9 +17,12 @@ DIAMETER = "ReferenceDeployment.detumbleManager.Z_MINUS_DIAMETER"
 
 def _run(tmp_path, *extra):
     out = tmp_path / "run"
+    # the refusals are WARNING events, which fail a run unless --allow-warnings; the summary lists them
     assert main(["run", TOPOLOGY, "--duration", "30", "--out", str(out), "--no-progress", "--no-plots",
-                 *extra]) == 0
-    return json.loads((out / "summary.json").read_text()), (out / "events.log").read_text()
+                 "--allow-warnings", *extra]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["problems"], "the run's warnings are listed in the summary"
+    return summary, (out / "events.log").read_text()
 
 
 def test_prm_set_of_a_huge_diameter_is_refused_and_detumbling_goes_on(tmp_path, capsys):
