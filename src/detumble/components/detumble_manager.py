@@ -17,9 +17,9 @@ One state's actions run per ``run`` call; a transition takes effect on the next 
     ACTUATING_BDOT ──(≥ TORQUE_DURATION, or sampling-period failure)──▶ COOLDOWN
     any state ──(mode DISABLED)──▶ COOLDOWN, coils stopped, timers and window cleared
 
-Actuator health (an addition to the PROVES design): a coil whose stop answers FAILURE may still be
-on; it is reported (CoilStopFailed, WARNING_HI) and isolated — no start or stop reaches it — until
-the ground sends ENABLE_COIL. Every torque period ends with a stop, so this takes at most one period.
+Actuator health (an addition to the PROVES design): a coil that was switched on and whose stop
+answers FAILURE may still be on; it is reported (CoilStopFailed, WARNING_HI) and isolated — no start
+or stop reaches it — until the ground sends ENABLE_COIL. Every torque period ends with a stop, so this takes at most one period.
 """
 
 from __future__ import annotations
@@ -326,6 +326,7 @@ class DetumbleManager(PassiveComponent):
         self.coils_driven = False
         self._isolated = [False] * len(_COILS)  # per coil (X+, X−, Y+, Y−, Z−): never driven while True
         self._stop_failures = [0] * len(_COILS)
+        self._may_be_on = [False] * len(_COILS)  # a start switched it on; no good stop since
         self._last_system_mode: SystemMode | None = None
         self._external_dipole: tuple[float, float, float] | None = None
         self._param_by_local_id = {p.local_id: name for name, p in self.params.items()}
@@ -593,24 +594,30 @@ class DetumbleManager(PassiveComponent):
 
     def _start_coils(self, levels) -> None:
         """Drive X+, X−, Y+, Y−, Z− at ``levels`` (each −127…127); unconnected coils are skipped."""
-        isolated = self._isolated
+        isolated, may_be_on = self._isolated, self._may_be_on
         for index, (port, level) in enumerate(zip(self._start_ports, levels)):
             if port.targets[0] is not None and not isolated[index]:  # unconnected coils are skipped
-                port.calls[0](level)
+                if port.calls[0](level) == Success.SUCCESS:
+                    may_be_on[index] = level != 0
         self.coils_driven = True
 
     def _stop_coils(self) -> None:
         """Stop the five coils (unconnected and isolated coils are skipped).
 
-        A stop that answers FAILURE means the coil may still be on: that coil is isolated at once
-        (CoilStopFailed, WARNING_HI) and not driven again until ENABLE_COIL. Every torque period ends
-        with a stop, so a coil that stays on past its commanded duration is caught within one period.
+        A coil that a start switched on (SUCCESS, non-zero level) and whose stop then answers FAILURE
+        may still be on: it is isolated at once (CoilStopFailed, WARNING_HI) and not driven again
+        until ENABLE_COIL. Every torque period ends with a stop, so a coil that stays on past its
+        commanded duration is caught within one period. A failing stop of a coil that was not on
+        since its last good stop (an unpowered or not yet initialised device) isolates nothing.
         """
-        isolated = self._isolated
+        isolated, may_be_on = self._isolated, self._may_be_on
         for index, port in enumerate(self._stop_ports):
             if port.targets[0] is not None and not isolated[index]:
                 if port.calls[0]() == Success.FAILURE:
-                    self._isolate_failed_coil(index)
+                    if may_be_on[index]:
+                        self._isolate_failed_coil(index)
+                else:
+                    may_be_on[index] = False
         self.coils_driven = False
 
     def _isolate_failed_coil(self, index: int) -> None:

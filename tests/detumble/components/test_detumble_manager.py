@@ -812,16 +812,32 @@ def test_isolate_coil_command_stops_once_then_leaves_it_alone(h):
     assert h.tlm_values("IsolatedCoils")[-1] == 1 << 5
 
 
-def test_stop_failure_while_disabled_isolates_too(h):
-    """Actuator Health: in mode DISABLED every run stops the coils; a Y− stop answering FAILURE
-    isolates Y− at the first run, and later runs send it nothing."""
+def test_stop_failure_when_disabled_mid_actuation_isolates_too(h):
+    """Actuator Health: coils on in ACTUATING_BDOT, then SET_MODE DISABLED with the Y− stop answering
+    FAILURE: Y− is isolated at that run, and later DISABLED runs send it nothing."""
+    enable(h)
+    run_until(h, DetumbleState.ACTUATING_BDOT)
+    tick(h, 3)  # coils on
     h.set_port_return("yMinusStop", Success.FAILURE)
-    assert h.component.mode == DetumbleMode.DISABLED
+    h.send_command("SET_MODE", DetumbleMode.DISABLED)
     tick(h)
     h.assert_event("CoilStopFailed", 0, MagnetorquerFace.Y_MINUS)
     since = len(h.port_calls)
     tick(h, 5)
     assert calls_to(h, "yMinusStop", since) == [] and len(calls_to(h, "yPlusStop", since)) == 5
+
+
+def test_a_failing_stop_of_a_coil_that_was_never_on_isolates_nothing(h):
+    """Actuator Health: an unpowered or uninitialised driver answers FAILURE to everything; in mode
+    DISABLED (no start sent) and through B-dot cycles whose starts fail, its failing stops isolate
+    nothing — the coil was never switched on."""
+    h.set_port_return("zMinusStop", Success.FAILURE)
+    h.set_port_return("zMinusStart", Success.FAILURE)
+    tick(h, 5)
+    enable(h)
+    for _ in range(3):
+        one_cycle(h)
+    assert h.component.isolated_faces == () and not h.events_named("CoilStopFailed")
 
 
 def test_successful_stops_never_isolate(h):
