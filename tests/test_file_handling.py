@@ -20,10 +20,10 @@ def test_a_sequence_downlinks_a_file_into_the_run_outputs(tmp_path, capsys):
                    'R00:00:01 FileHandling.fileDownlink.SendFile "dictionary.json" "dump.bin"\n'
                    f'R00:00:01 FileHandling.fileDownlink.SendFile "{outside}" "stolen.bin"\n')
     out = tmp_path / "run"
-    assert main(["run", TOPOLOGY, "--duration", "60", "--seq", str(seq), "--out", str(out),
+    # ~300 KB at 10 packets of 499 bytes a second: about 60 s of flight; 120 s leaves room to grow
+    assert main(["run", TOPOLOGY, "--duration", "120", "--seq", str(seq), "--out", str(out),
                  "--no-progress", "--no-plots", "--allow-warnings"]) == 0  # the refused SendFile warns
     data = (out / "dictionary.json").read_bytes()
-    assert len(data) > 12_345  # many 1 Hz ticks of the downlink budget
     summary = json.loads((out / "summary.json").read_text())
     assert summary["files_downlinked"] == [{"destination": "dump.bin", "path": str(out / "downlink" / "dump.bin"),
                                             "bytes": len(data), "status": "complete"}]
