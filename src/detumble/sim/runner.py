@@ -67,14 +67,18 @@ def _make_law(name: str, plant: Plant, gain: float | None):
 
 
 def run(scenario: Scenario, law: str | None = None, gain: float | None = None, duration_s: float | None = None,
-        seed: int | None = None) -> RunResult:
-    """Fly ``scenario`` with a law (default: the scenario's ``control.law``); return summary + samples."""
+        seed: int | None = None, *, plant: Plant | None = None, should_stop=None) -> RunResult:
+    """Fly ``scenario`` with a law (default: the scenario's ``control.law``); return summary + samples.
+
+    ``plant``: one already built from ``scenario`` (a campaign reads it back first);
+    ``should_stop()``: polled once per recorded sample, ends the run early when true.
+    """
     sc = scenario
     ctrl = sc.control
     law_name = law if law is not None else ctrl.law
     gain = gain if gain is not None else ctrl.gain
     duration = sc.duration_s if duration_s is None else duration_s
-    plant = Plant(sc, seed)
+    plant = Plant(sc, seed) if plant is None else plant
     ctl = make_law(law_name, plant, gain)
     dt = sc.dynamics_step_s
     n_steps = int(round(duration / dt))
@@ -112,6 +116,8 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
                 t_below = plant.t
         if (k + 1) % record_every == 0:
             record()
+            if should_stop is not None and should_stop():
+                break
     wall = time.perf_counter() - wall0
     if rows[-1][0] != plant.t:
         record()
@@ -123,7 +129,7 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
         "seed": plant.seed,
         "dynamics_step_s": dt,
         "control_period_s": ctrl.period_s,
-        "steps": n_steps,
+        "steps": k + 1 if n_steps else 0,
         "sim_seconds": plant.t,
         "wall_seconds": wall,
         "real_time_factor": plant.t / wall if wall > 0 else None,  # the key fprime-lite run writes

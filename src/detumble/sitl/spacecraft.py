@@ -416,6 +416,13 @@ class SimulatedSpacecraft:
         callback(self.truth())
         self._trace_next_ns = (now // self._trace_interval_ns + 1) * self._trace_interval_ns
 
+    def read_setting(self, key: str):
+        """Scenario value ``key`` as this spacecraft's plant holds it (campaign read-back; call it
+        before the run: initial-state keys read the present state)."""
+        from detumble.sim.readback import read_setting
+
+        return read_setting(self.plant, key)
+
     # --- avionics: electrical power, load switches, flash, reset line ---------------------------------
 
     def _init_avionics(self, seed: int | None) -> None:
