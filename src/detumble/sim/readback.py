@@ -31,6 +31,9 @@ def _attr(obj, name: str, key: str):
 
 def _index(value, rest: list[str], key: str):
     for part in rest:
+        if dataclasses.is_dataclass(value) and not isinstance(value, type):
+            value = _attr(value, part, key)  # a nested section (control.beta_pd.k_s)
+            continue
         if not (part.isdigit() and isinstance(value, (list, tuple)) and int(part) < len(value)):
             raise KeyError(f"{key}: {part!r} is not an element index of {value!r}")
         value = value[int(part)]

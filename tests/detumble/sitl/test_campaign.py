@@ -90,3 +90,15 @@ def test_plant_run_reads_its_values_back_from_the_plant(tmp_path):
     with pytest.raises(KeyError, match="initial state is read back as"):
         read_setting(prepared.simulation, "initial.rate.spin")
     json.dumps(out.summary)  # the summary is plain data
+
+
+def test_wheel_and_settling_metrics_come_from_the_run(tmp_path):
+    """CAMP-065: on `surrey` with the wheel law, wheel_momentum_peak_nms is the largest |h| of the
+    run's truth (within the wheels' 0.1 N·m·s), and settling_time_2pct_s is the run summary's own
+    (seed 004's per-axis bands), not a figure recomputed from |ω|."""
+    req = RunRequest(config={"scenario": "surrey", "law": "wheels_pd", "duration_s": 30.0}, values={}, seed=1,
+                     out_dir=tmp_path, base_dir=pathlib.Path("."))
+    out = PLANT_RUN.prepare(req).execute()
+    peak = BY_NAME["wheel_momentum_peak_nms"].compute(out, None)
+    assert 1e-3 < peak <= 0.1 + 1e-12
+    assert BY_NAME["settling_time_2pct_s"].compute(out, None) == out.summary["settling_time_2pct_s"]
