@@ -200,15 +200,26 @@ def plot_truth(truth_csv: pathlib.Path, out_dir: pathlib.Path, *, thresholds: di
         ax.set_ylabel("geomagnetic field (µT)")
         finish(fig, [ax], "field.png", "Geomagnetic field in the body frame (truth)")
 
-    # dipole.png
+    # dipole.png: per axis, the binned mean and RMS (a bang-bang dipole sampled once a second is
+    # otherwise a solid block of colour)
     if "m_x_Am2" in data:
-        fig, ax = plt.subplots(figsize=(10, 4))
-        for a, colour in (("x", "tab:red"), ("y", "tab:green"), ("z", "tab:blue")):
-            ax.plot(tt, data[f"m_{a}_Am2"], lw=0.8, color=colour, label=f"m{a}")
-            if f"mcmd_{a}_Am2" in data:
-                ax.plot(tt, data[f"mcmd_{a}_Am2"], lw=0.8, color=colour, ls="--", alpha=0.6, label=f"m{a} commanded")
-        ax.set_ylabel("coil dipole (A·m²)")
-        finish(fig, [ax], "dipole.png", "Magnetorquer dipole in the body frame (truth)")
+        import numpy as np
+
+        bins = max(1, min(300, len(tt) // 4))
+        edges = np.linspace(0, len(tt), bins + 1).astype(int)
+        centres = [tt[(a + b - 1) // 2] for a, b in zip(edges[:-1], edges[1:], strict=True) if b > a]
+        fig, axes = plt.subplots(3, 1, sharex=True, figsize=(10, 6.5))
+        for ax, a, colour in zip(axes, ("x", "y", "z"), ("tab:red", "tab:green", "tab:blue"), strict=True):
+            m = np.asarray(data[f"m_{a}_Am2"], dtype=float)
+            chunks = [m[i:j] for i, j in zip(edges[:-1], edges[1:], strict=True) if j > i]
+            mean = np.array([c.mean() for c in chunks])
+            rms = np.array([math.sqrt(float((c * c).mean())) for c in chunks])
+            ax.fill_between(centres, -rms, rms, color=colour, alpha=0.25, lw=0, label=f"±RMS m{a}")
+            ax.plot(centres, mean, color=colour, lw=1.0, label=f"mean m{a}")
+            ax.set_ylabel(f"m{a} (A·m²)")
+        n = len(tt) / bins
+        finish(fig, list(axes), "dipole.png",
+               f"Magnetorquer dipole in the body frame (truth; mean and RMS of {n:.0f} sample(s) per bin)")
 
     # attitude.png
     if "q0" in data:
