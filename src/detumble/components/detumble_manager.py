@@ -126,7 +126,7 @@ class DetumbleManager(PassiveComponent):
     # --- command (declared first: opcode 0, as in the FPP) -------------------------------------
 
     @sync_command()
-    def SET_MODE(self, mode: DetumbleMode):  # noqa: N802 - F´ command name
+    def SET_MODE(self, mode: DetumbleMode):
         """Set the operating mode. AUTO is refused in SAFE_MODE: EnableFailedSafeMode and
         EXECUTION_ERROR (DEVIATION: the flight code answers OK)."""
         if self._request_mode(DetumbleMode(mode)):
@@ -322,12 +322,12 @@ class DetumbleManager(PassiveComponent):
     # --- mode control --------------------------------------------------------------------------
 
     @sync_input(SetDetumbleMode)
-    def setMode(self, mode):  # noqa: N802 - F´ port name
+    def setMode(self, mode):
         """SET_MODE without a command response."""
         self._request_mode(DetumbleMode(mode))
 
     @sync_input(SystemModeChanged)
-    def systemModeChanged(self, mode):  # noqa: N802 - F´ port name
+    def systemModeChanged(self, mode):
         """SAFE_MODE forces DISABLED (coils stop on the next run); NORMAL does not re-enable."""
         self._last_system_mode = SystemMode(mode)
         if self._last_system_mode == SystemMode.SAFE_MODE:
@@ -368,7 +368,7 @@ class DetumbleManager(PassiveComponent):
             self.report_fault("run", exc)
             try:
                 self._stop_coils()
-            except Exception:  # noqa: BLE001
+            except Exception:
                 log.exception("%s: stopping the coils failed too", self.name)
             self._reset_cycle()
 
@@ -534,7 +534,7 @@ class DetumbleManager(PassiveComponent):
 
     def _start_coils(self, levels) -> None:
         """Drive X+, X−, Y+, Y−, Z− at ``levels`` (each −127…127); unconnected coils are skipped."""
-        for port, level in zip(self._start_ports, levels):
+        for port, level in zip(self._start_ports, levels, strict=True):
             if port.targets[0] is not None:  # unconnected coils are skipped
                 port.calls[0](level)
         self.coils_driven = True

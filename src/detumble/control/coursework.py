@@ -170,7 +170,7 @@ def limit_wheel_torque(torque: Sequence[float], h: Sequence[float], torque_limit
     """The report's second loop: each torque to ±``torque_limit``; zero when the wheel's momentum is
     beyond ±``momentum_limit`` and the torque would push it further out."""
     out = []
-    for u, hi in zip(torque, h):
+    for u, hi in zip(torque, h, strict=True):
         u = torque_limit if u > torque_limit else (-torque_limit if u < -torque_limit else float(u))
         if (hi > momentum_limit and u > 0) or (hi < -momentum_limit and u < 0):
             u = 0.0

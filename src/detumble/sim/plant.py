@@ -237,7 +237,7 @@ class Plant:
         if w is None:
             return _ZERO
         x = y = z = 0.0
-        for u, g in zip(w.torque_applied, w.axes):
+        for u, g in zip(w.torque_applied, w.axes, strict=True):
             x -= u * g[0]
             y -= u * g[1]
             z -= u * g[2]

@@ -637,7 +637,8 @@ def _field(s: _Section) -> FieldConfig:
     model = s.string("model", "dipole", FIELD_MODELS)
     b_orbit = s.vec3("b_orbit_t", (0.0, 0.0, 0.0))
     if model == "orbit_constant" and b_orbit == (0.0, 0.0, 0.0) and not s.has("b_orbit_t"):
-        s.fail("b_orbit_t", "model orbit_constant needs the field in the orbit frame, tesla (e.g. [3.0e-5, 3.0e-5, 3.0e-5])")
+        s.fail("b_orbit_t", "model orbit_constant needs the field in the orbit frame, tesla "
+                            "(e.g. [3.0e-5, 3.0e-5, 3.0e-5])")
     g10 = s.number("g10_nt", IGRF2025_G10_NT)
     g11 = s.number("g11_nt", IGRF2025_G11_NT)
     h11 = s.number("h11_nt", IGRF2025_H11_NT)

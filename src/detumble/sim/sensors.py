@@ -97,7 +97,8 @@ class Magnetometer(_SampleHold):
         g = GAUSS_PER_TESLA
         self._k = tuple(g * k for k in spec.coupling_t_per_am2)  # gauss per A m^2
 
-    def measure(self, b_B: tuple[float, float, float], m_coils_B: tuple[float, float, float]) -> tuple[float, float, float]:
+    def measure(self, b_B: tuple[float, float, float],
+                m_coils_B: tuple[float, float, float]) -> tuple[float, float, float]:
         """One noisy, quantised measurement (gauss) of true field ``b_B`` (T) with coils at ``m_coils_B``."""
         s = self.spec
         g = GAUSS_PER_TESLA

@@ -68,7 +68,8 @@ def measure_deployment(topology, duration_s: float | None = None, chunks: int | 
         "plant_only_us_per_tick": min(plant_us),
         "plant_only_us_per_tick_median": sorted(plant_us)[len(plant_us) // 2],
         "tick_cost_ratio": min(deployment_us) / min(plant_us),
-        "tick_cost_ratio_median_of_pieces": statistics.median(d / p for d, p in zip(deployment_us, plant_us)),
+        "tick_cost_ratio_median_of_pieces": statistics.median(
+            d / p for d, p in zip(deployment_us, plant_us, strict=True)),
         "pieces_us_per_tick": {"deployment": deployment_us, "plant_only": plant_us},
         "final_rate_deg_s": spacecraft.truth().rate_deg_s,
     }

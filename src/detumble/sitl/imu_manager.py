@@ -31,8 +31,8 @@ from fprime_lite import (F64, I32, Channel, CmdResponse, Event, FwEnum, Param, P
                          PortType, Sched, Severity, Struct, sync_command, sync_input)
 from fprime_lite.model.types import U8
 
-from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet, MagneticField, MagneticFieldGet, Result,
-                     SamplingPeriodGet, Success, TimeIntervalValue)
+from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet, MagneticField, MagneticFieldGet,
+                                       Result, SamplingPeriodGet, Success, TimeIntervalValue)
 from detumble.sitl.spacecraft import SimulatedSpacecraft
 
 __all__ = ["ImuManager", "Acceleration", "AngularVelocity", "AccelerationGet", "AngularVelocityGet",
@@ -252,14 +252,14 @@ class ImuManager(PassiveComponent):
         return self._faults[SimImuSensor(sensor)]
 
     @sync_command()
-    def SIM_SET_READ_FAULT(self, sensor: SimImuSensor, fault: SimReadFault):  # noqa: N802 - F´ spelling
+    def SIM_SET_READ_FAULT(self, sensor: SimImuSensor, fault: SimReadFault):
         """SIMULATION ONLY: inject (or clear with NONE) a read fault on ``sensor``."""
         self.set_read_fault(sensor, fault)
 
     # --- commands (flight) ---------------------------------------------------------------------
 
     @sync_command()
-    def GET_ACCELERATION(self):  # noqa: N802
+    def GET_ACCELERATION(self):
         """Read the accelerometer and log AccelerationData (EXECUTION_ERROR if the read fails)."""
         value, condition = self.accelerationGet_handler()
         if condition != Success.SUCCESS:
@@ -268,7 +268,7 @@ class ImuManager(PassiveComponent):
         return CmdResponse.OK
 
     @sync_command()
-    def GET_ANGULAR_VELOCITY(self):  # noqa: N802
+    def GET_ANGULAR_VELOCITY(self):
         """Read the gyro and log AngularVelocityData (rad/s)."""
         value, condition = self.angularVelocityGet_handler()
         if condition != Success.SUCCESS:
@@ -277,7 +277,7 @@ class ImuManager(PassiveComponent):
         return CmdResponse.OK
 
     @sync_command()
-    def GET_MAGNETIC_FIELD(self):  # noqa: N802
+    def GET_MAGNETIC_FIELD(self):
         """Read the magnetometer and log MagneticFieldData (gauss)."""
         value, condition = self.magneticFieldGet_handler()
         if condition != Success.SUCCESS:
@@ -327,7 +327,7 @@ class ImuManager(PassiveComponent):
             values = (_INF, _INF, _INF) + tuple(values[3:])
         return values, (values[3] if len(values) > 3 else None), True
 
-    def accelerationGet_handler(self) -> Result:  # noqa: N802 - mirrors the flight handler name
+    def accelerationGet_handler(self) -> Result:
         v, _, ok = self._read(SimImuSensor.ACCELEROMETER, self.spacecraft.acceleration,
                               self.AccelerometerReadFailed)
         if not ok:
@@ -336,7 +336,7 @@ class ImuManager(PassiveComponent):
         self.Acceleration.write(value)
         return Result(value, Success.SUCCESS)
 
-    def angularVelocityGet_handler(self) -> Result:  # noqa: N802
+    def angularVelocityGet_handler(self) -> Result:
         v, _, ok = self._read(SimImuSensor.GYROSCOPE, self.spacecraft.gyro_sample, self.GyroscopeReadFailed)
         if not ok:
             return Result(AngularVelocity(0.0, 0.0, 0.0), Success.FAILURE)
@@ -344,7 +344,7 @@ class ImuManager(PassiveComponent):
         self.AngularVelocity.write(value)
         return Result(value, Success.SUCCESS)
 
-    def magneticFieldGet_handler(self) -> Result:  # noqa: N802
+    def magneticFieldGet_handler(self) -> Result:
         v, stamp, ok = self._read(SimImuSensor.MAGNETOMETER, self.spacecraft.magnetometer_sample,
                                   self.MagnetometerReadFailed)
         if not ok:

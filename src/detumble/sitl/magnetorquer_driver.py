@@ -90,7 +90,7 @@ class MagnetorquerDriver(PassiveComponent):
     # --- commands ------------------------------------------------------------------------------
 
     @sync_command()
-    def START(self, val: I8):  # noqa: N802 - F´ spelling
+    def START(self, val: I8):
         """Drive the coil at ``val`` (−127…127)."""
         if not _valid_level(val):
             self._start(val)
@@ -98,12 +98,12 @@ class MagnetorquerDriver(PassiveComponent):
         return CmdResponse.OK if self._start(val) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
 
     @sync_command()
-    def STOP(self):  # noqa: N802
+    def STOP(self):
         """Switch the coil off."""
         return CmdResponse.OK if self._apply(0) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
 
     @sync_command()
-    def SIM_SET_FAULT(self, fault: SimDriverFault):  # noqa: N802
+    def SIM_SET_FAULT(self, fault: SimDriverFault):
         """SIMULATION ONLY: inject a driver fault (NONE clears it)."""
         self.set_fault(fault)
 

@@ -39,12 +39,12 @@ class ModeManager(PassiveComponent):
     modeChanged = OutputPort(SystemModeChanged, size=MODE_CHANGED_PORTS)
 
     @sync_input(GetSystemMode)
-    def getMode(self) -> SystemMode:  # noqa: N802 - F´ spelling
+    def getMode(self) -> SystemMode:
         """The current system mode."""
         return self.mode
 
     @sync_input(ForceSafeMode)
-    def forceSafeMode(self) -> None:  # noqa: N802
+    def forceSafeMode(self) -> None:
         """Another component forces safe mode (ExternalFaultDetected)."""
         if self.mode != SystemMode.SAFE_MODE:
             self.ExternalFaultDetected()
@@ -58,14 +58,14 @@ class ModeManager(PassiveComponent):
     # --- commands ------------------------------------------------------------------------------
 
     @sync_command()
-    def FORCE_SAFE_MODE(self):  # noqa: N802
+    def FORCE_SAFE_MODE(self):
         """Enter safe mode (OK also when already in safe mode: nothing changes then)."""
         if self.mode != SystemMode.SAFE_MODE:
             self.ManualSafeModeEntry()
         self.enter_safe_mode("Ground command")
 
     @sync_command()
-    def EXIT_SAFE_MODE(self):  # noqa: N802
+    def EXIT_SAFE_MODE(self):
         """Return to NORMAL; refused (VALIDATION_ERROR, CommandValidationFailed) when not in safe mode."""
         if self.mode != SystemMode.SAFE_MODE:
             self.CommandValidationFailed("EXIT_SAFE_MODE", "Not currently in safe mode")

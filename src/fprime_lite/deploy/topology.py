@@ -157,7 +157,7 @@ class Topology:
         """Ping every instance that answers pings, one ``PingSend``/``PingReturn`` index each, and
         give the health component a ping entry per instance, named by its qualified name."""
         health = self.instance(service_name).component
-        send, answer = health.output_port("PingSend"), health.input_port("PingReturn")
+        send = health.output_port("PingSend")
         entries = [entry.name for entry in health.entries]
         for client in self.instances.values():
             comp = client.component
@@ -239,7 +239,7 @@ class Topology:
         modules: dict[str, list[Instance]] = {}
         for inst in self.instances.values():
             modules.setdefault(inst.module, []).append(inst)
-        for i, (module, members) in enumerate(modules.items()):
+        for module, members in modules.items():
             lines.append(f'  subgraph "cluster_{module}" {{')
             lines.append(f'    label="{module}";')
             for inst in members:

@@ -318,6 +318,7 @@ class _Loader:
             self.problem(file, line, f"{what}: type '{type_path}' must be a dotted import path (package.module.Class)")
             return None
         module = None
+        first_error: ModuleNotFoundError | None = None
         for split in range(len(parts) - 1, 0, -1):  # the longest importable module prefix
             module_name = ".".join(parts[:split])
             try:
@@ -549,7 +550,7 @@ class _Loader:
             if not isinstance(items, YList):
                 self.problem(file, gline, f"connection group '{group}' must be a list of 'a.b.out[i] -> c.d.in[j]'")
                 continue
-            for text, iline in zip(items, items.item_lines):
+            for text, iline in zip(items, items.item_lines, strict=True):
                 if not isinstance(text, str) or text.count("->") != 1:
                     self.problem(file, iline, f"connection {text!r} must look like "
                                               f"'Module.inst.outPort[i] -> Module.inst.inPort[j]'")
@@ -628,7 +629,7 @@ class _Loader:
                              f"rate group '{name}': members must be a list of Module.instance.port")
                 continue
             parsed = []
-            for member, mline in zip(members, members.item_lines):
+            for member, mline in zip(members, members.item_lines, strict=True):
                 context = 0
                 if isinstance(member, YMap):
                     self.check_keys(self.path, member, MEMBER_KEYS, f"a member of rate group '{name}'")
@@ -668,7 +669,7 @@ class _Loader:
                 continue
             self.connect(self.path, gline, topology, (driver_name, "CycleOut", i), (name, "CycleIn", 0),
                          "RateGroups")
-            for j, (member, context, mline) in enumerate(members):
+            for j, (member, _context, mline) in enumerate(members):
                 dst = self.endpoint(self.path, member, mline, topology, "input")
                 if dst is None:
                     continue

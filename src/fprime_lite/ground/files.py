@@ -14,8 +14,8 @@ import os
 import pathlib
 from dataclasses import dataclass
 
-from fprime_lite.wire.file_packet import (CancelPacket, CfdpChecksum, DataPacket, EndPacket, FilePacketError, StartPacket,
-                          decode_file_packet)
+from fprime_lite.wire.file_packet import (CancelPacket, CfdpChecksum, DataPacket, EndPacket, FilePacketError,
+                                          StartPacket, decode_file_packet)
 
 __all__ = ["FileReceiver", "ReceivedFile"]
 

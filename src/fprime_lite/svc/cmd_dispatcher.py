@@ -216,7 +216,7 @@ class CmdDispatcher(ActiveComponent):
                 return
         try:
             self.compCmdSend[entry](opcode, seq, args)
-        except Exception:  # noqa: BLE001 - a faulty target must not take the dispatcher down
+        except Exception:  # a faulty target must not take the dispatcher down
             log.exception("%s: compCmdSend[%d] raised dispatching opcode 0x%X", self.name, entry, opcode)
             with self._lock:
                 self._tracking.pop(seq, None)

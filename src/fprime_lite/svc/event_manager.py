@@ -103,7 +103,7 @@ class EventManager(ActiveComponent):
     # --- commands ------------------------------------------------------------------------------
 
     @sync_command(opcode=0)
-    def SET_EVENT_FILTER(self, filterLevel: FilterSeverity, filterEnabled: Enabled):  # noqa: N803
+    def SET_EVENT_FILTER(self, filterLevel: FilterSeverity, filterEnabled: Enabled):
         """Send (ENABLED) or stop (DISABLED) the events of one severity."""
         with self._lock:
             state = dict(self._severity_enabled)
@@ -112,7 +112,7 @@ class EventManager(ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=2)
-    def SET_ID_FILTER(self, ID: U32, idFilterEnabled: Enabled):  # noqa: N803
+    def SET_ID_FILTER(self, ID: U32, idFilterEnabled: Enabled):
         """Stop (ENABLED) or resume (DISABLED) sending the event with id ``ID``."""
         if idFilterEnabled == Enabled.ENABLED:
             with self._lock:

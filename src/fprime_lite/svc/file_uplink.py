@@ -229,21 +229,21 @@ class FileUplink(ActiveComponent):
     # --- ports ---------------------------------------------------------------------------------
 
     @async_input(BufferSend, queue_full="block")
-    def bufferSendIn(self, fwBuffer: bytes) -> None:  # noqa: N802,N803 - F´ port and argument names
+    def bufferSendIn(self, fwBuffer: bytes) -> None:
         """Handle one file packet (without its ``FW_PACKET_FILE`` descriptor); never raises."""
         try:
             self._receive(fwBuffer)
-        except Exception:  # noqa: BLE001 - the safety net: a port never raises
+        except Exception:  # the safety net: a port never raises
             self.internal_errors += 1
             log.exception("%s: unexpected error handling a file packet; abandoning the file in progress",
                           self.name)
             try:
                 self._go_to_start_mode()
-            except Exception:  # noqa: BLE001
+            except Exception:
                 log.exception("%s: could not reset the receive state", self.name)
 
     @async_input(Ping)
-    def pingIn(self, key: int) -> None:  # noqa: N802 - F´ port name
+    def pingIn(self, key: int) -> None:
         """Health ping: answer with the same key."""
         if self.is_connected("pingOut", 0):
             self.pingOut[0](key)

@@ -89,7 +89,7 @@ class Health(QueuedComponent):
         self.HLTH_CHECK_PING(enable, entry)
 
     @async_command(opcode=2)
-    def HLTH_CHNG_PING(self, entry: String(40), warningValue: U32, fatalValue: U32):  # noqa: N803
+    def HLTH_CHNG_PING(self, entry: String(40), warningValue: U32, fatalValue: U32):
         """Change one entry's warning and FATAL thresholds (ticks)."""
         tracker = self._find(entry)
         if tracker is None:

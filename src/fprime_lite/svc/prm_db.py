@@ -295,7 +295,7 @@ class PrmDb(ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=1)
-    def PRM_LOAD_FILE(self, fileName: String(FILE_NAME_STRING_SIZE), merge: Merge):  # noqa: N803
+    def PRM_LOAD_FILE(self, fileName: String(FILE_NAME_STRING_SIZE), merge: Merge):
         """Load ``fileName`` into the staging database; PRM_COMMIT_STAGED makes it active."""
         if self._state != PrmDbFileLoadState.IDLE:
             self.PrmDbFileLoadInvalidAction(self._state, PrmLoadAction.LOAD_FILE_COMMAND)

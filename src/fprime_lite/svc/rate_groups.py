@@ -73,7 +73,7 @@ class RateGroupBase:
         for i, call, context in self._members:
             try:
                 call(context)
-            except Exception as exc:  # noqa: BLE001 - a member fault must not stop the group
+            except Exception as exc:  # a member fault must not stop the group
                 self.member_faults += 1
                 log.exception("%s: member %d raised", self.name, i)
                 self.RateGroupMemberFault(i, f"{type(exc).__name__}: {exc}"[:80])
@@ -120,12 +120,12 @@ class ActiveRateGroup(RateGroupBase, ActiveComponent):
     # run_when_idle: in a deterministic deployment an idle group runs its cycle as soon as the
     # driver posts it, as a top-priority rate-group thread would (decision 0004).
     @async_input(Cycle, queue_full="drop", run_when_idle=True)
-    def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
+    def CycleIn(self, cycle_start: Time) -> None:
         self._pending = len(self._queue._heap)  # cycles still waiting behind this one
         self._cycle(cycle_start)
 
     @async_input(Ping)
-    def PingIn(self, key: int) -> None:  # noqa: N802 - F´ port name
+    def PingIn(self, key: int) -> None:
         """Health ping: answer with the same key."""
         if self.is_connected("PingOut", 0):
             self.PingOut[0](key)
@@ -140,7 +140,7 @@ class PassiveRateGroup(RateGroupBase, PassiveComponent):
         self._running = False
 
     @sync_input(Cycle)
-    def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
+    def CycleIn(self, cycle_start: Time) -> None:
         if self._running:  # re-entered from inside a member: the previous cycle has not finished
             self._slip()
             return

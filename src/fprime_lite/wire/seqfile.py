@@ -681,7 +681,7 @@ def compile_text(text: str, lookup: CommandLookup, path: str = "<text>") -> Sequ
             raise SequenceTextError(path, cmd.line, f"{cmd.mnemonic} takes {len(arg_types)} "
                                     f"argument(s), got {len(cmd.args)}")
         parts = []
-        for i, (value, t) in enumerate(zip(cmd.args, arg_types)):
+        for i, (value, t) in enumerate(zip(cmd.args, arg_types, strict=True)):
             try:
                 parts.append(t.serialize(_convert(value, t, f"argument {i + 1}")))
             except SerializationError as exc:

@@ -342,7 +342,7 @@ def test_full_bdot_cycle_call_by_call(h):
     assert h.tlm_values("TimeBetweenMagneticFieldReadings") == [TimeIntervalValue(seconds=0, useconds=80_000)]
     # Entry: the sampling period, then the five starts.
     assert per_tick[8][0] == ("magneticFieldSamplingPeriodGet", ())
-    expected_starts = [(port, (level,)) for port, level in zip(STARTS, HAND_LEVELS)]
+    expected_starts = [(port, (level,)) for port, level in zip(STARTS, HAND_LEVELS, strict=True)]
     assert per_tick[8][1:] == expected_starts
     for n in range(9, 24):
         assert per_tick[n] == expected_starts, n
@@ -425,7 +425,7 @@ def test_hysteresis_drive_pattern_per_axis(fprime_harness, axis, levels):
     run_until(h, DetumbleState.ACTUATING_HYSTERESIS)
     assert h.tlm_values("DetumbleStrategy") == [DetumbleStrategy.HYSTERESIS]
     calls = calls_of_one_tick(h)
-    assert calls == [(port, (level,)) for port, level in zip(STARTS, levels)]
+    assert calls == [(port, (level,)) for port, level in zip(STARTS, levels, strict=True)]
     assert h.component.state == DetumbleState.COOLDOWN
     h.assert_event("DetumbleStarted", 0, 720.0)
 

@@ -19,7 +19,7 @@ def matvec(a, v):
     return tuple(sum(a[i][k] * v[k] for k in range(3)) for i in range(3))
 
 
-def matTvec(a, v):  # noqa: N802
+def matTvec(a, v):
     return tuple(sum(a[k][i] * v[k] for k in range(3)) for i in range(3))
 
 
@@ -82,7 +82,8 @@ def test_sim_surrey_truth_shows_the_orbit_field_turning_with_the_attitude(tmp_pa
         worst_closed = max(worst_closed, max(abs(b[i] - 1e6 * expect[i]) for i in range(3)))
         assert math.sqrt(sum(x * x for x in b)) == pytest.approx(30 * math.sqrt(3), rel=1e-9)
         min_cos = min(min_cos, sum(b[i] * B_O[i] for i in range(3)) / (30 * math.sqrt(3) * 3e-5 * math.sqrt(3)))
-        assert float(row["rate_deg_s"]) == pytest.approx(math.degrees(math.sqrt(14.0)), rel=1e-8)  # 9 digits in the file
+        # 9 digits in the file
+        assert float(row["rate_deg_s"]) == pytest.approx(math.degrees(math.sqrt(14.0)), rel=1e-8)
     assert worst_logged < 1e-6
     assert worst_closed < 2e-3
     assert math.degrees(math.acos(min_cos)) > 40.0

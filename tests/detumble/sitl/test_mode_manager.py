@@ -79,7 +79,7 @@ def test_python_api_and_long_reasons(h):
 
 class _Listener(PassiveComponent):
     @sync_input(SystemModeChanged)
-    def systemModeChanged(self, mode):  # noqa: N802
+    def systemModeChanged(self, mode):
         self.seen.append(mode)
 
     def __init__(self, name):
