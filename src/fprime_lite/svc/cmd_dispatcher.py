@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import logging
 import struct
+from typing import Annotated
 
 from fprime_lite.model.commands import CmdResponse, async_command
 from fprime_lite.model.component import ActiveComponent
@@ -95,7 +96,7 @@ class CmdDispatcher(ActiveComponent):
         self.NoOpReceived()
 
     @async_command(opcode=1)
-    def CMD_NO_OP_STRING(self, arg1: String(40)):
+    def CMD_NO_OP_STRING(self, arg1: Annotated[str, String(40)]):
         """No-op command with a string, echoed by NoOpStringReceived."""
         self.NoOpStringReceived(arg1)
 

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import enum
 from pathlib import Path
+from typing import Annotated
 
 from fprime_lite.model.commands import CmdResponse, CommandToken, async_command
 from fprime_lite.model.component import ActiveComponent
@@ -214,7 +215,7 @@ class CmdSequencer(ActiveComponent):
     # --- commands ---------------------------------------------------------------------------------
 
     @async_command(opcode=0)
-    def CS_RUN(self, fileName: String(FILE_NAME_STRING_SIZE), block: BlockState):
+    def CS_RUN(self, fileName: Annotated[str, String(FILE_NAME_STRING_SIZE)], block: BlockState):
         """Load ``fileName`` and, in AUTO mode, run it; BLOCK answers when the sequence ends."""
         if not self._require_run_mode(_RunMode.STOPPED):
             if self._join_waiting:
@@ -230,7 +231,7 @@ class CmdSequencer(ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=1)
-    def CS_VALIDATE(self, fileName: String(FILE_NAME_STRING_SIZE)):
+    def CS_VALIDATE(self, fileName: Annotated[str, String(FILE_NAME_STRING_SIZE)]):
         """Load ``fileName`` to check it, then unload it."""
         if not self._require_run_mode(_RunMode.STOPPED):
             return CmdResponse.EXECUTION_ERROR

@@ -81,6 +81,7 @@ import tempfile
 import threading
 import zlib
 from dataclasses import dataclass
+from typing import Annotated
 
 from fprime_lite.osal.atomic import fsync_directory
 from fprime_lite.model.commands import CmdResponse, CommandToken, async_command
@@ -112,6 +113,7 @@ DEFAULT_SHELL_TIMEOUT_S = 60.0
 _SHELL_REFUSED = " [refused: ShellCommand is disabled in this deployment]"
 
 _PATH = String(CMD_STRING_SIZE)
+_PathArg = Annotated[str, _PATH]  # a command argument of type _PATH
 _NAME = String(FILE_NAME_STRING_SIZE)
 _CHUNK = 64 * 1024
 _TMP_PREFIX = ".fileManager-"
@@ -449,7 +451,7 @@ class FileManager(ActiveComponent):
     # --- commands ---------------------------------------------------------------------------------
 
     @async_command(opcode=0x00)
-    def CreateDirectory(self, dirName: _PATH):
+    def CreateDirectory(self, dirName: _PathArg):
         """Create the directory ``dirName`` (its parent must exist; it must not)."""
         self.CreateDirectoryStarted(fit_utf8(dirName, CMD_STRING_SIZE))
         status, cause = self._fs(lambda: os.mkdir(self.resolve(dirName)))
@@ -461,7 +463,7 @@ class FileManager(ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x01)
-    def MoveFile(self, sourceFileName: _PATH, destFileName: _PATH):
+    def MoveFile(self, sourceFileName: _PathArg, destFileName: _PathArg):
         """Rename ``sourceFileName`` to ``destFileName`` (copy then remove across file systems)."""
         src, dst = fit_utf8(sourceFileName, CMD_STRING_SIZE), fit_utf8(destFileName, CMD_STRING_SIZE)
         self.MoveFileStarted(src, dst)
@@ -475,7 +477,7 @@ class FileManager(ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x02)
-    def RemoveDirectory(self, dirName: _PATH):
+    def RemoveDirectory(self, dirName: _PathArg):
         """Remove the empty directory ``dirName``."""
         self.RemoveDirectoryStarted(fit_utf8(dirName, CMD_STRING_SIZE))
         status, cause = self._fs(lambda: os.rmdir(self.resolve(dirName)))
@@ -487,7 +489,7 @@ class FileManager(ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x03)
-    def RemoveFile(self, fileName: _PATH, ignoreErrors: BOOL):
+    def RemoveFile(self, fileName: _PathArg, ignoreErrors: BOOL):
         """Remove the file ``fileName``; with ``ignoreErrors`` a failure still answers OK."""
         name = fit_utf8(fileName, CMD_STRING_SIZE)
         self.RemoveFileStarted(name)
@@ -504,7 +506,7 @@ class FileManager(ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x04)
-    def ShellCommand(self, command: _PATH, logFileName: _PATH):
+    def ShellCommand(self, command: _PathArg, logFileName: _PathArg):
         """Run ``command`` with the shell, appending its output to ``logFileName`` (if allowed)."""
         if not self.allow_shell:
             log.warning("%s: ShellCommand refused (the deployment did not allow shell commands; build "
@@ -521,7 +523,7 @@ class FileManager(ActiveComponent):
         return self._finish(FileSystemStatus.OTHER_ERROR)
 
     @async_command(opcode=0x05)
-    def AppendFile(self, source: _PATH, target: _PATH):
+    def AppendFile(self, source: _PathArg, target: _PathArg):
         """Append ``source`` to ``target`` atomically (``target`` is created if missing)."""
         src, dst = fit_utf8(source, CMD_STRING_SIZE), fit_utf8(target, CMD_STRING_SIZE)
         self.AppendFileStarted(src, dst)
@@ -534,7 +536,7 @@ class FileManager(ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x06)
-    def FileSize(self, fileName: _PATH):
+    def FileSize(self, fileName: _PathArg):
         """Report the size of ``fileName`` in FileSizeSucceeded."""
         name = fit_utf8(fileName, CMD_STRING_SIZE)
         self.FileSizeStarted(name)
@@ -554,7 +556,7 @@ class FileManager(ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x07)
-    def ListDirectory(self, dirName: String(FILE_NAME_STRING_SIZE)):
+    def ListDirectory(self, dirName: Annotated[str, String(FILE_NAME_STRING_SIZE)]):
         """List ``dirName``, ``files_per_tick`` entries per ``schedIn`` tick; answered at the end."""
         name = fit_utf8(dirName, FILE_NAME_STRING_SIZE)
         if self._listing is not None:
@@ -575,7 +577,7 @@ class FileManager(ActiveComponent):
         return None
 
     @async_command(opcode=0x08)
-    def CalculateCrc(self, filename: String(FILE_NAME_STRING_SIZE)):
+    def CalculateCrc(self, filename: Annotated[str, String(FILE_NAME_STRING_SIZE)]):
         """Report the CRC of ``filename`` (F´'s ``Os::File`` CRC); no channel is updated."""
         name = fit_utf8(filename, FILE_NAME_STRING_SIZE)
         self.CalculateCrcStarted(name)

@@ -17,6 +17,7 @@ the tick the count *equals* ``warn_cycles``, FATAL when it equals ``fatal_cycles
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Annotated
 
 from fprime_lite.model.commands import CmdResponse, async_command
 from fprime_lite.model.component import QueuedComponent
@@ -80,7 +81,7 @@ class Health(QueuedComponent):
         self.HLTH_CHECK_ENABLE(enable)
 
     @async_command(opcode=1)
-    def HLTH_PING_ENABLE(self, entry: String(40), enable: FwEnabled):
+    def HLTH_PING_ENABLE(self, entry: Annotated[str, String(40)], enable: FwEnabled):
         """Ping (ENABLED) or ignore (DISABLED) one entry."""
         tracker = self._find(entry)
         if tracker is None:
@@ -89,7 +90,7 @@ class Health(QueuedComponent):
         self.HLTH_CHECK_PING(enable, entry)
 
     @async_command(opcode=2)
-    def HLTH_CHNG_PING(self, entry: String(40), warningValue: U32, fatalValue: U32):
+    def HLTH_CHNG_PING(self, entry: Annotated[str, String(40)], warningValue: U32, fatalValue: U32):
         """Change one entry's warning and FATAL thresholds (ticks)."""
         tracker = self._find(entry)
         if tracker is None:

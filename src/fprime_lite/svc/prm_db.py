@@ -42,7 +42,7 @@ import struct
 import tempfile
 import zlib
 from dataclasses import dataclass
-from typing import Iterable, Mapping
+from typing import Annotated, Iterable, Mapping
 
 from fprime_lite.model.commands import CmdResponse, async_command
 from fprime_lite.model.component import ActiveComponent
@@ -295,7 +295,7 @@ class PrmDb(ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=1)
-    def PRM_LOAD_FILE(self, fileName: String(FILE_NAME_STRING_SIZE), merge: Merge):
+    def PRM_LOAD_FILE(self, fileName: Annotated[str, String(FILE_NAME_STRING_SIZE)], merge: Merge):
         """Load ``fileName`` into the staging database; PRM_COMMIT_STAGED makes it active."""
         if self._state != PrmDbFileLoadState.IDLE:
             self.PrmDbFileLoadInvalidAction(self._state, PrmLoadAction.LOAD_FILE_COMMAND)
