@@ -443,6 +443,7 @@ class CmdSequencer(ActiveComponent):
 
     def _step(self) -> None:
         """Take the next record: end, send now, or set the timer for it."""
+        assert self._sequence is not None  # only a loaded sequence runs
         record = self._sequence.records[self._next]
         self._next += 1
         self._record = record
@@ -461,6 +462,7 @@ class CmdSequencer(ActiveComponent):
         self._awaiting = True
         if self.timeout_s > 0 and self._step_mode == SeqMode.AUTO:
             self._timeout_us = now_us + self.timeout_s * 1_000_000
+        assert self._record is not None  # _step set the record being sent
         self.comCmdOut[0](self._record.command, 0)
 
     def _command_complete(self, opcode: int) -> None:

@@ -160,7 +160,7 @@ class OsFileStatus(FwEnum, namespace="Os.File", rep=I32):
     OTHER_ERROR = 10
 
 
-_ERRNO_STATUS = {
+_ERRNO_STATUS: dict[int | None, OsFileStatus] = {
     _errno.ENOENT: OsFileStatus.DOESNT_EXIST,
     _errno.ENOSPC: OsFileStatus.NO_SPACE,
     _errno.EACCES: OsFileStatus.NO_PERMISSION,

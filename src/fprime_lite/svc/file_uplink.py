@@ -320,6 +320,7 @@ class FileUplink(ActiveComponent):
             self._warn_receive_mode(FilePacketType.DATA)
             return
         transfer = self._file
+        assert transfer is not None  # DATA mode always has a transfer
         sequence = packet.sequence
         if self._last_write_ok and sequence == self._last_sequence:
             self._warn(self.PacketDuplicate, sequence)
@@ -347,6 +348,7 @@ class FileUplink(ActiveComponent):
         self._count_packet()
         if self._mode == ReceiveMode.DATA:
             transfer = self._file
+            assert transfer is not None  # DATA mode always has a transfer
             self._check_sequence(packet.sequence)
             computed = transfer.checksum.value
             if computed != packet.checksum:
@@ -443,6 +445,7 @@ class FileUplink(ActiveComponent):
     @staticmethod
     def _write(transfer: _Transfer, offset: int, data: bytes) -> str | None:
         """Write ``data`` at ``offset`` of the temporary file; None, or what went wrong."""
+        assert transfer.fd is not None  # open until committed or failed; failed transfers are not written
         view = memoryview(data)
         try:
             while view:
@@ -459,6 +462,7 @@ class FileUplink(ActiveComponent):
     def _commit(transfer: _Transfer) -> str | None:
         """Make the temporary file durable and rename it over the destination; None, or the problem."""
         fd, transfer.fd = transfer.fd, None
+        assert fd is not None and transfer.temp is not None  # a transfer that did not fail is open
         try:
             try:
                 os.fchmod(fd, file_mode_for(pathlib.Path(transfer.path)))

@@ -395,7 +395,7 @@ class GroundLink(PassiveComponent):
                 self.downlink_bytes += sent
 
     def _frame_pending(self) -> bytes:
-        packets = []
+        packets: list[bytes] = []
         queue = self._downlink
         while queue and len(packets) < 256:
             packets.append(queue.popleft())

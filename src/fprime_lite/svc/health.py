@@ -17,6 +17,7 @@ the tick the count *equals* ``warn_cycles``, FATAL when it equals ``fatal_cycles
 from __future__ import annotations
 
 from dataclasses import dataclass
+from collections.abc import Sequence
 from typing import Annotated
 
 from fprime_lite.model.commands import CmdResponse, async_command
@@ -122,7 +123,7 @@ class Health(QueuedComponent):
 
     PingLateWarnings = Channel(U32, id=0)
 
-    def __init__(self, name: str = "health", entries: list[PingEntry | tuple] = (), *, base_id: int = 0,
+    def __init__(self, name: str = "health", entries: Sequence[PingEntry | tuple] = (), *, base_id: int = 0,
                  queue_size: int = HEALTH_PING_PORTS, watchdog_code: int = 0):
         super().__init__(name, base_id=base_id, queue_size=queue_size)
         self.enabled = True

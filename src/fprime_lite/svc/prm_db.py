@@ -188,7 +188,7 @@ def encode_param_file(records: Iterable[tuple[int, bytes]], *, with_crc: bool = 
 
 
 def _parse_records(data: bytes, start: int) -> list[tuple[int, bytes]]:
-    records = []
+    records: list[tuple[int, bytes]] = []
     offset = start
     n = len(data)
     while offset < n:
@@ -272,6 +272,11 @@ class PrmDb(ActiveComponent):
     """
 
     pingOut = OutputPort(Ping)
+
+    # Instance state, declared here so the command handlers above __init__ see the types.
+    _active: dict[int, bytes]
+    _staging: dict[int, bytes]
+    _state: PrmDbFileLoadState
 
     # --- commands ------------------------------------------------------------------------------
 
@@ -378,8 +383,8 @@ class PrmDb(ActiveComponent):
             raise ValueError(f"{name}: capacity must be a positive integer, got {capacity!r}")
         self.file_path = os.fspath(file_path)
         self.capacity = capacity
-        self._active: dict[int, bytes] = {}
-        self._staging: dict[int, bytes] = {}
+        self._active = {}
+        self._staging = {}
         self._state = PrmDbFileLoadState.IDLE
         self._dirty = False
         self._names: dict[int, str] = dict(param_names or {})

@@ -14,11 +14,12 @@ from __future__ import annotations
 
 import logging
 import time as _wall
+from typing import TYPE_CHECKING
 
 from fprime_lite.model.component import ActiveComponent, PassiveComponent
 from fprime_lite.model.events import Event, Severity
 from fprime_lite.model.fw_ports import Cycle, Ping, Sched
-from fprime_lite.model.ports import OutputPort, async_input, sync_input
+from fprime_lite.model.ports import OutputPort, OutputPortArray, async_input, sync_input
 from fprime_lite.model.telemetry import Channel
 from fprime_lite.model.time import Time
 from fprime_lite.model.types import String, U32
@@ -43,6 +44,13 @@ class RateGroupBase:
     RgMaxTime = Channel(U32, format="{} us", wall_clock=True)
     RgCycleSlips = Channel(U32)
     RgMemberFaults = Channel(U32)
+
+    if TYPE_CHECKING:  # provided by the component class the mixin is combined with
+        name: str
+
+        def output_port(self, name: str) -> OutputPortArray: ...
+
+        def get_time(self) -> Time: ...
 
     def _setup(self, contexts, period_us: int | None) -> None:
         contexts = list(contexts)
