@@ -23,7 +23,7 @@ import time
 from fprime_lite.osal.atomic import atomic_write_text
 from fprime_lite.deploy.deployment import Deployment
 from fprime_lite.deploy.dictionary import write_dictionary
-from fprime_lite.ground.downlink import GroundRecorder
+from fprime_lite.ground.downlink import DecodedEvent, GroundRecorder
 from fprime_lite.svc.file_downlink import FileDownlink
 from fprime_lite.svc.rate_groups import RateGroupBase
 from fprime_lite.deploy.topology_loader import LoadedDeployment
@@ -53,8 +53,12 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     deployment = Deployment(loaded)
     topo = deployment.topology
     reports = _reports(loaded)
-    recorder = GroundRecorder(topo, out, on_event=lambda e: [r.on_event(e) for r in reports
-                                                             if hasattr(r, "on_event")], clock=loaded.clock)
+    def on_event(event: DecodedEvent) -> None:
+        for r in reports:
+            if hasattr(r, "on_event"):
+                r.on_event(event)
+
+    recorder = GroundRecorder(topo, out, on_event=on_event, clock=loaded.clock)
     recorder.attach(topo, topo.patterns.get("event"), topo.patterns.get("telemetry"))
     for instance in topo.instances.values():
         if isinstance(instance.component, FileDownlink):
@@ -75,7 +79,7 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     wall = time.perf_counter() - wall0
 
     recorder.close()
-    written = []
+    written: list[pathlib.Path] = []
     for r in reports:
         if hasattr(r, "finish"):
             written += r.finish(out, plots=plots) or []
