@@ -74,7 +74,7 @@ class Deployment:
             if isinstance(comp, QueuedComponent):
                 scheduler.drain_after_each_event(comp)
             if getattr(comp, "command_lookup", False) is None:
-                comp.command_lookup = lookup
+                setattr(comp, "command_lookup", lookup)  # the components that declare the attribute
         for comp in topo.components():
             comp.register_commands()
         scheduler.drain()
