@@ -84,10 +84,10 @@ def _to_python(loader: yaml.SafeLoader, node: yaml.Node, path: pathlib.Path):
             out[key] = _to_python(loader, value_node, path)
         return out
     if isinstance(node, yaml.SequenceNode):
-        out = YList(_to_python(loader, n, path) for n in node.value)
-        out.line = Loc(node.start_mark.line + 1, path)
-        out.item_lines = [Loc(n.start_mark.line + 1, path) for n in node.value]
-        return out
+        items = YList(_to_python(loader, n, path) for n in node.value)
+        items.line = Loc(node.start_mark.line + 1, path)
+        items.item_lines = [Loc(n.start_mark.line + 1, path) for n in node.value]
+        return items
     return loader.construct_object(node, deep=True)
 
 
@@ -176,6 +176,7 @@ class _Loader:
         doc = self.read_document(self.path, ())
         if doc is None:
             self.fail_if_problems()
+        assert doc is not None  # read_document records a problem whenever it gives no document
         deployment = doc.get("deployment")
         if not isinstance(deployment, str) or not deployment.isidentifier():
             self.problem(self.path, doc.key_lines.get("deployment", doc.line),
@@ -340,7 +341,7 @@ class _Loader:
             self.problem(file, line, f"{what}: cannot import module '{module_name}' ({first_error}) — check the "
                                      f"type path")
             return None
-        obj = module
+        obj: Any = module
         for depth, attr in enumerate(parts[split:]):
             owner = obj
             obj = getattr(owner, attr, None)
@@ -405,6 +406,7 @@ class _Loader:
                 instances = self.expect_map(self.path, instances, module.key_lines.get("instances"),
                                             f"instances of module '{module_name}'")
                 for name, spec in (instances or {}).items():
+                    assert instances is not None  # the loop is over its items
                     declared[name] = (self.path, instances, spec)
             for name, (file, container, spec) in declared.items():
                 self.build_instance(file, container, module_name, name, spec, topology, resources, rate_cfg)
@@ -821,6 +823,8 @@ def resolve_path(value: str, base_dir: pathlib.Path) -> pathlib.Path:
             try:
                 module = importlib.import_module(package)
             except ImportError:
+                return base_dir / value
+            if module.__file__ is None:  # a namespace package has no __init__ to locate it by
                 return base_dir / value
             return pathlib.Path(module.__file__).parent / rest
     path = pathlib.Path(value)
