@@ -108,7 +108,7 @@ class Magnetorquer:
         self.spec = spec
         self.level = 0
         self.current_a = 0.0
-        self._normal = FACE_NORMALS_B[face]
+        self._normal = FACE_NORMALS_B[Face(face)]
         self._gain = spec.turns * spec.area_m2  # A m^2 per amp
         self._tau = spec.time_constant_s
 
@@ -192,7 +192,7 @@ class CoilSet:
         """Largest |m| achievable on each body axis with every coil on that axis at full drive."""
         out = [0.0, 0.0, 0.0]
         for face, c in self.coils.items():
-            axis = FACE_AXIS[face]
+            axis = FACE_AXIS[Face(face)]
             out[axis] += c.spec.max_dipole_am2
         return (out[0], out[1], out[2])
 
@@ -204,13 +204,13 @@ class CoilSet:
         """
         by_axis: dict[int, list[int]] = {0: [], 1: [], 2: []}
         for face in self.coils:
-            axis = FACE_AXIS[face]
+            axis = FACE_AXIS[Face(face)]
             by_axis[axis].append(face)
         out = {}
         for axis, faces in by_axis.items():
             for face in faces:
                 share = m_B[axis] / len(faces)
-                sign = FACE_NORMALS_B[face][axis]
+                sign = FACE_NORMALS_B[Face(face)][axis]
                 out[face] = int(sign) * level_for_coil_dipole(self.coils[face].spec, share)
         return out
 

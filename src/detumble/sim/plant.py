@@ -38,6 +38,7 @@ def build_orbit(sc: Scenario):
     if o.type == "tle":
         from detumble.sim.epoch import julian_date
 
+        assert o.tle is not None  # the scenario loader requires the TLE lines for type tle
         return TleOrbit(o.tle[0], o.tle[1], julian_date(sc.epoch), o.table_step_s, o.mu_m3_s2)
     return CircularOrbit(
         o.altitude_km * 1e3, math.radians(o.inclination_deg), math.radians(o.raan_deg),
@@ -104,7 +105,7 @@ class Plant:
         if not sc.gyro.ideal:
             self.gyro.sample_rad_s = self.gyro.measure(self.omega_BN_B)
             self.gyro.sample_time_ns = 0
-        if self.star_tracker is not None and not st.ideal:
+        if self.star_tracker is not None and st is not None and not st.ideal:
             q, valid = self.star_tracker.measure(self.q_BN, self.omega_BN_B)
             self.star_tracker.sample_q, self.star_tracker.sample_valid = q, valid
             self.star_tracker.sample_time_ns = 0
@@ -195,12 +196,12 @@ class Plant:
 
     @property
     def q_BN(self) -> tuple[float, float, float, float]:
-        return self._state[0:4]  # type: ignore[return-value]
+        return self._state[0:4]
 
     @property
     def omega_BN_B(self) -> Vec3:
         """True body rate relative to inertial, in B, rad/s."""
-        return self._state[4:7]  # type: ignore[return-value]
+        return self._state[4:7]
 
     @property
     def rate_deg_s(self) -> float:

@@ -115,5 +115,5 @@ class StarTracker:
         q = tuple(s0[i] + f * (s1[i] - s0[i]) for i in range(4))
         n = 1.0 / math.sqrt(sum(x * x for x in q))
         w = tuple(s0[4 + i] + f * (s1[4 + i] - s0[4 + i]) for i in range(3))
-        q_meas, valid = self.measure((q[0] * n, q[1] * n, q[2] * n, q[3] * n), w)  # type: ignore[arg-type]
+        q_meas, valid = self.measure((q[0] * n, q[1] * n, q[2] * n, q[3] * n), w)
         self.sample_q, self.sample_valid, self.sample_time_ns = q_meas, valid, tk
