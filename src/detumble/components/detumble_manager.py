@@ -478,9 +478,11 @@ class DetumbleManager(PassiveComponent):
                                           mt["y_minus"].dipole_moment_to_current(my),
                                           mt["z_minus"].dipole_moment_to_current(mz))
         self._start_coils(levels)
-        if now.total_us < self.torque_start_time.total_us:
-            self.torque_start_time = now  # the clock went backwards: measure from here
-        elapsed = self._elapsed_us(self.torque_start_time, now)
+        start = self.torque_start_time
+        assert start is not None  # set by _enter_actuating_bdot above
+        if now.total_us < start.total_us:
+            self.torque_start_time = start = now  # the clock went backwards: measure from here
+        elapsed = self._elapsed_us(start, now)
         if elapsed >= self.TORQUE_DURATION.value.total_us:
             self._bdot_levels = None
             self.bdot.empty_sample_set()

@@ -65,9 +65,7 @@ def scenario_epoch_us(scenario: Scenario) -> int:
     return (delta.days * 86400 + delta.seconds) * 1_000_000 + delta.microseconds
 
 
-class TruthSample(NamedTuple):
-    """One row of the truth trace."""
-
+class _TruthFields(NamedTuple):
     time_us: int                       #: deployment time, µs since the clock's epoch (``Time.total_us``)
     t_s: float                         #: plant time since the scenario epoch, s
     q_BN: tuple                        #: attitude quaternion, scalar first
@@ -83,6 +81,13 @@ class TruthSample(NamedTuple):
     wheel_momenta: tuple = ()          #: per wheel, N·m·s
     wheel_speeds_rad_s: tuple = ()     #: per wheel, relative to the body, rad/s
     wheel_torques_nm: tuple = ()       #: per wheel, motor torque over the last step, N·m
+
+
+class TruthSample(_TruthFields):
+    """One row of the truth trace (the fields are :class:`_TruthFields`'; a NamedTuple body holds
+    fields only, so the CSV header and row live on this subclass)."""
+
+    __slots__ = ()
 
     CSV_HEADER = ("time_us", "t_s", "q0", "q1", "q2", "q3", "wx_rad_s", "wy_rad_s", "wz_rad_s",
                   "rate_deg_s", "bx_T", "by_T", "bz_T", "mx_Am2", "my_Am2", "mz_Am2",
@@ -140,7 +145,7 @@ class SimulatedSpacecraft:
         self._trace_interval_ns = 0
         self._trace_next_ns: int | None = None
         self.steps_taken = 0
-        self._attached = []
+        self._attached: list[object] = []  # the schedulers this spacecraft is attached to
         self.sync()
 
     @classmethod
@@ -197,7 +202,7 @@ class SimulatedSpacecraft:
             now = plant.t_ns
             if now != nxt:  # pragma: no cover - guards the ns rounding in Plant.step
                 raise AssertionError(f"plant stepped to {now} ns instead of {nxt} ns")
-            if now == trace_next:
+            if now == trace_next and self._trace is not None:
                 self._trace(self.truth())
                 trace_next += self._trace_interval_ns
         self._trace_next_ns = trace_next
