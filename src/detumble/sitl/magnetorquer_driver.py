@@ -33,8 +33,8 @@ from fprime_lite import (I8, I32, Channel, CmdResponse, Event, FwEnum, PassiveCo
                          sync_command, sync_input)
 from fprime_lite.model.types import U8
 
-from detumble.control.coil_layout import COIL_FACES
-from detumble.sim.coils import FACE_NAMES, MAX_LEVEL
+from detumble.control.coil_layout import COIL_FACES, Face
+from detumble.sim.coils import FACE_NAMES, MAX_LEVEL, CoilSet
 from detumble.components.types import StartMagnetorquer, StopMagnetorquer, Success
 from detumble.sitl.spacecraft import SimulatedSpacecraft
 
@@ -126,9 +126,11 @@ class MagnetorquerDriver(PassiveComponent):
                              f"{list(spacecraft.coil_faces) or 'none (ideal torque rods)'}")
         self.spacecraft = spacecraft
         self.face = face
-        self.face_name = FACE_NAMES[face]
+        self.face_name = FACE_NAMES[Face(face)]
         self.fault = SimDriverFault.NONE
-        self._coil = spacecraft.plant.actuators.coils[face]  # read-only: the level the coil carries
+        actuators = spacecraft.plant.actuators
+        assert isinstance(actuators, CoilSet)  # the spacecraft has a coil on this face
+        self._coil = actuators.coils[face]  # read-only: the level the coil carries
 
     # --- fault injection -----------------------------------------------------------------------
 

@@ -216,9 +216,9 @@ def plot_truth(truth_csv: pathlib.Path, out_dir: pathlib.Path, *, thresholds: di
     if "q0" in data:
         error = data.get("pointing_error_deg")
         has_error = error is not None and any(not math.isnan(v) for v in error)
-        fig, axes = plt.subplots(2 if has_error else 1, 1, sharex=True, figsize=(10, 6 if has_error else 4),
+        fig, rows = plt.subplots(2 if has_error else 1, 1, sharex=True, figsize=(10, 6 if has_error else 4),
                                  squeeze=False)
-        axes = [a[0] for a in axes]
+        axes = [a[0] for a in rows]
         for q, colour in (("q0", "black"), ("q1", "tab:red"), ("q2", "tab:green"), ("q3", "tab:blue")):
             axes[0].plot(tt, data[q], lw=0.8, color=colour, label=q)
         axes[0].set_ylabel("q_BN (scalar first)")
