@@ -99,3 +99,23 @@ def test_outputs_exist_and_parse(flown):
     assert {"CdhCore.cmdDisp.CMD_NO_OP", "ReferenceDeployment.detumbleManager.SET_MODE"} <= names
     for png in ("rate.png", "drive_levels.png", "state.png"):
         assert (out / png).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_power_budget_is_in_the_summary_and_plotted(flown):
+    """SITL-PWR-002: the summary carries the coil energy of the detumble (from DetumbleStarted to
+    DetumbleCompleted), bounded by the whole run's coil energy and by every coil at full drive for
+    the whole detumble; the battery stays above the safe-mode threshold; power.png is drawn."""
+    out, summary, _ = flown
+    power = json.loads((out / "summary.json").read_text())["power"]
+    duration = summary["detumble_complete_s"] - summary["detumble_started_s"]
+    full_drive_w = 4 * 3.3 ** 2 / 13.0 + 3.3 ** 2 / 150.7
+    assert power["detumble_complete"] is True
+    assert 0.0 < power["coil_energy_detumble_j"] <= power["coil_energy_j"]
+    assert power["coil_energy_detumble_j"] < full_drive_w * duration
+    assert power["mean_coil_power_detumble_w"] == pytest.approx(power["coil_energy_detumble_j"] / duration)
+    assert power["min_bus_voltage_v"] > 6.7
+    assert 0.0 < power["eclipse_fraction"] < 1.0
+    assert (out / "power.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with open(out / "truth.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert float(rows[-1]["coil_j"]) == pytest.approx(power["coil_energy_j"], rel=0.01)

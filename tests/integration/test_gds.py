@@ -10,8 +10,11 @@ group can be killed) and the deployment in realtime mode connected to it:
 Then the GDS's own pytest plugin (``fprime_test_api``) runs ``gds_inner/gds_checks.py`` in a
 pytest subprocess: NO-OP round trip, SET_MODE AUTO → DetumbleStarted and State, GAIN_PRM_SET →
 GainParamSet, GET_MAGNETIC_FIELD → MagneticFieldData, a file uplinked by the GDS landing
-byte-identical, a file downlinked with SendFile reaching the GDS's store, and a text sequence
-compiled and uplinked by the GDS then run with CS_RUN. Every process group is killed at the end,
+byte-identical, a file downlinked with SendFile reaching the GDS's store, a text sequence
+compiled and uplinked by the GDS then run with CS_RUN, and the PROVES flight components as an
+operator drives them: FORCE_SAFE_MODE / GET_SAFE_MODE_REASON / EXIT_SAFE_MODE with the face
+switches following, a load switch cycled, INA219 and power-monitor readings, and a COLD_RESET after
+which the boot count is 2 and the link is still up. Every process group is killed at the end,
 pass or fail. Skipped only when fprime-gds is not installed.
 """
 
@@ -158,7 +161,7 @@ def test_the_stock_gds_flies_the_deployment(flying):
     assert inner.returncode == 0, (f"inner GDS test run failed:\n{inner.stdout[-6000:]}\n{inner.stderr[-3000:]}\n"
                                    f"--- gds ---\n{groups.log('gds')}\n--- deployment ---\n"
                                    f"{groups.log('deployment')}")
-    assert "7 passed" in inner.stdout
+    assert "10 passed" in inner.stdout
 
     # End the flight as fprime-gds does (SIGTERM): the run stops cleanly and writes its summary.
     name = "deployment" if flying["framing"] == "fprime" else "gds"

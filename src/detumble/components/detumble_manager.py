@@ -31,6 +31,8 @@ from fprime_lite.model.time import Time
 
 from detumble.components import types as T
 from detumble.control.bdot import BDot
+from detumble.control.coil_layout import FLIGHT_XY_COIL as _XY
+from detumble.control.coil_layout import FLIGHT_Z_COIL as _Z
 from detumble.control.magnetorquer import CoilShape as CoilOutline
 from detumble.control.magnetorquer import DirectionSign, Magnetorquer
 from detumble.control.strategy_selector import Strategy, StrategySelector
@@ -150,55 +152,55 @@ class DetumbleManager(PassiveComponent):
     GAIN = Param(F64, default=3.0, id=39, low=0.0, high=1000.0, echo=ParamEcho(event_id=10, channel_id=7))  # A·m²·s/G
     HYSTERESIS_AXIS = Param(HysteresisAxis, default=HysteresisAxis.X_AXIS, id=42,
                             echo=ParamEcho(event_id=11, channel_id=8))
-    X_TURNS = Param(F64, default=96.0, id=11, low=1.0, high=10000.0,
+    X_TURNS = Param(F64, default=_XY.turns, id=11, low=1.0, high=10000.0,
                     echo=ParamEcho(event_id=23, channel_id=25))  # turns, both X coils
-    Y_TURNS = Param(F64, default=96.0, id=21, low=1.0, high=10000.0,
+    Y_TURNS = Param(F64, default=_XY.turns, id=21, low=1.0, high=10000.0,
                     echo=ParamEcho(event_id=34, channel_id=38))  # turns, both Y coils
-    Z_TURNS = Param(F64, default=153.0, id=31, low=1.0, high=10000.0,
+    Z_TURNS = Param(F64, default=_Z.turns, id=31, low=1.0, high=10000.0,
                     echo=ParamEcho(event_id=39, channel_id=44))  # turns, Z− coil
-    X_PLUS_VOLTAGE = Param(F64, default=3.3, id=9, low=0.1, high=50.0,
+    X_PLUS_VOLTAGE = Param(F64, default=_XY.voltage_v, id=9, low=0.1, high=50.0,
                            echo=ParamEcho(event_id=21, channel_id=13, unit="V"))  # V
-    X_PLUS_RESISTANCE = Param(F64, default=13.0, id=10, low=0.1, high=10000.0,
+    X_PLUS_RESISTANCE = Param(F64, default=_XY.resistance_ohm, id=10, low=0.1, high=10000.0,
                               echo=ParamEcho(event_id=19, channel_id=14, unit="ohm"))  # ohm
-    X_PLUS_LENGTH = Param(F64, default=0.053, id=12, low=0.001, high=1.0,
+    X_PLUS_LENGTH = Param(F64, default=_XY.length_m, id=12, low=0.001, high=1.0,
                           echo=ParamEcho(event_id=18, channel_id=16, unit="m"))  # m
-    X_PLUS_WIDTH = Param(F64, default=0.045, id=13, low=0.001, high=1.0,
+    X_PLUS_WIDTH = Param(F64, default=_XY.width_m, id=13, low=0.001, high=1.0,
                          echo=ParamEcho(event_id=22, channel_id=17, unit="m"))  # m
-    X_PLUS_SHAPE = Param(CoilShape, default=CoilShape.RECTANGULAR, id=33, echo=ParamEcho(event_id=20, channel_id=18))
-    X_MINUS_VOLTAGE = Param(F64, default=3.3, id=14, low=0.1, high=50.0,
+    X_PLUS_SHAPE = Param(CoilShape, default=CoilShape(_XY.shape), id=33, echo=ParamEcho(event_id=20, channel_id=18))
+    X_MINUS_VOLTAGE = Param(F64, default=_XY.voltage_v, id=14, low=0.1, high=50.0,
                             echo=ParamEcho(event_id=16, channel_id=19, unit="V"))  # V
-    X_MINUS_RESISTANCE = Param(F64, default=13.0, id=15, low=0.1, high=10000.0,
+    X_MINUS_RESISTANCE = Param(F64, default=_XY.resistance_ohm, id=15, low=0.1, high=10000.0,
                                echo=ParamEcho(event_id=14, channel_id=20, unit="ohm"))  # ohm
-    X_MINUS_LENGTH = Param(F64, default=0.053, id=17, low=0.001, high=1.0,
+    X_MINUS_LENGTH = Param(F64, default=_XY.length_m, id=17, low=0.001, high=1.0,
                            echo=ParamEcho(event_id=13, channel_id=22, unit="m"))  # m
-    X_MINUS_WIDTH = Param(F64, default=0.045, id=18, low=0.001, high=1.0,
+    X_MINUS_WIDTH = Param(F64, default=_XY.width_m, id=18, low=0.001, high=1.0,
                           echo=ParamEcho(event_id=17, channel_id=23, unit="m"))  # m
-    X_MINUS_SHAPE = Param(CoilShape, default=CoilShape.RECTANGULAR, id=34, echo=ParamEcho(event_id=15, channel_id=24))
-    Y_PLUS_VOLTAGE = Param(F64, default=3.3, id=19, low=0.1, high=50.0,
+    X_MINUS_SHAPE = Param(CoilShape, default=CoilShape(_XY.shape), id=34, echo=ParamEcho(event_id=15, channel_id=24))
+    Y_PLUS_VOLTAGE = Param(F64, default=_XY.voltage_v, id=19, low=0.1, high=50.0,
                            echo=ParamEcho(event_id=32, channel_id=26, unit="V"))  # V
-    Y_PLUS_RESISTANCE = Param(F64, default=13.0, id=20, low=0.1, high=10000.0,
+    Y_PLUS_RESISTANCE = Param(F64, default=_XY.resistance_ohm, id=20, low=0.1, high=10000.0,
                               echo=ParamEcho(event_id=30, channel_id=27, unit="ohm"))  # ohm
-    Y_PLUS_LENGTH = Param(F64, default=0.053, id=22, low=0.001, high=1.0,
+    Y_PLUS_LENGTH = Param(F64, default=_XY.length_m, id=22, low=0.001, high=1.0,
                           echo=ParamEcho(event_id=29, channel_id=29, unit="m"))  # m
-    Y_PLUS_WIDTH = Param(F64, default=0.045, id=23, low=0.001, high=1.0,
+    Y_PLUS_WIDTH = Param(F64, default=_XY.width_m, id=23, low=0.001, high=1.0,
                          echo=ParamEcho(event_id=33, channel_id=30, unit="m"))  # m
-    Y_PLUS_SHAPE = Param(CoilShape, default=CoilShape.RECTANGULAR, id=35, echo=ParamEcho(event_id=31, channel_id=31))
-    Y_MINUS_VOLTAGE = Param(F64, default=3.3, id=24, low=0.1, high=50.0,
+    Y_PLUS_SHAPE = Param(CoilShape, default=CoilShape(_XY.shape), id=35, echo=ParamEcho(event_id=31, channel_id=31))
+    Y_MINUS_VOLTAGE = Param(F64, default=_XY.voltage_v, id=24, low=0.1, high=50.0,
                             echo=ParamEcho(event_id=27, channel_id=32, unit="V"))  # V
-    Y_MINUS_RESISTANCE = Param(F64, default=13.0, id=25, low=0.1, high=10000.0,
+    Y_MINUS_RESISTANCE = Param(F64, default=_XY.resistance_ohm, id=25, low=0.1, high=10000.0,
                                echo=ParamEcho(event_id=25, channel_id=33, unit="ohm"))  # ohm
-    Y_MINUS_LENGTH = Param(F64, default=0.053, id=27, low=0.001, high=1.0,
+    Y_MINUS_LENGTH = Param(F64, default=_XY.length_m, id=27, low=0.001, high=1.0,
                            echo=ParamEcho(event_id=24, channel_id=35, unit="m"))  # m
-    Y_MINUS_WIDTH = Param(F64, default=0.045, id=28, low=0.001, high=1.0,
+    Y_MINUS_WIDTH = Param(F64, default=_XY.width_m, id=28, low=0.001, high=1.0,
                           echo=ParamEcho(event_id=28, channel_id=36, unit="m"))  # m
-    Y_MINUS_SHAPE = Param(CoilShape, default=CoilShape.RECTANGULAR, id=36, echo=ParamEcho(event_id=26, channel_id=37))
-    Z_MINUS_VOLTAGE = Param(F64, default=3.3, id=29, low=0.1, high=50.0,
+    Y_MINUS_SHAPE = Param(CoilShape, default=CoilShape(_XY.shape), id=36, echo=ParamEcho(event_id=26, channel_id=37))
+    Z_MINUS_VOLTAGE = Param(F64, default=_Z.voltage_v, id=29, low=0.1, high=50.0,
                             echo=ParamEcho(event_id=38, channel_id=39, unit="V"))  # V
-    Z_MINUS_RESISTANCE = Param(F64, default=150.7, id=30, low=0.1, high=10000.0,
+    Z_MINUS_RESISTANCE = Param(F64, default=_Z.resistance_ohm, id=30, low=0.1, high=10000.0,
                                echo=ParamEcho(event_id=36, channel_id=40, unit="ohm"))  # ohm
-    Z_MINUS_DIAMETER = Param(F64, default=0.05755, id=32, low=0.001, high=1.0,
+    Z_MINUS_DIAMETER = Param(F64, default=_Z.diameter_m, id=32, low=0.001, high=1.0,
                              echo=ParamEcho(event_id=35, channel_id=42, unit="m"))  # m
-    Z_MINUS_SHAPE = Param(CoilShape, default=CoilShape.CIRCULAR, id=37, echo=ParamEcho(event_id=37, channel_id=43))
+    Z_MINUS_SHAPE = Param(CoilShape, default=CoilShape(_Z.shape), id=37, echo=ParamEcho(event_id=37, channel_id=43))
 
 
     # --- output ports (FPP order) --------------------------------------------------------------

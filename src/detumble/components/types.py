@@ -40,6 +40,8 @@ from __future__ import annotations
 from typing import Any, NamedTuple
 
 from fprime_lite.model.fw_types import Success, TimeIntervalValue
+
+from detumble.control.coil_layout import CoilShape as _CoilOutline
 from fprime_lite.model.ports import PortType
 from fprime_lite.model.time import Time
 from fprime_lite.model.types import BOOL, F64, I8, FwEnum, Struct
@@ -87,10 +89,11 @@ class Result(NamedTuple):
 # --- Components enums ----------------------------------------------------------------------------
 
 class CoilShape(FwEnum, namespace="Components"):
-    """Shape of a magnetorquer coil (sets how its area is computed)."""
+    """Shape of a magnetorquer coil (sets how its area is computed); the values are the coil
+    arithmetic's (:class:`detumble.control.coil_layout.CoilShape`)."""
 
-    RECTANGULAR = 0
-    CIRCULAR = 1
+    RECTANGULAR = _CoilOutline.RECTANGULAR.value
+    CIRCULAR = _CoilOutline.CIRCULAR.value
 
 
 class DetumbleMode(FwEnum, namespace="Components"):

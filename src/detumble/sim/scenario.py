@@ -26,6 +26,9 @@ from detumble.sim.field import (EARTH_ROTATION_RATE, IGRF2025_G10_NT, IGRF2025_G
                     IGRF_REFERENCE_RADIUS_M)
 from detumble.sim.orbit import J2_EARTH, MU_EARTH, R_EARTH_EQ
 from detumble.sim.sensors import GyroSpec, MagnetometerSpec
+from detumble.sim.accelerometer import AccelerometerSpec
+from detumble.sim.power import PowerConfig
+from detumble.sim.scenario_power import ACCELEROMETER_SCHEMA, POWER_SCHEMA, parse_accelerometer, parse_power
 from detumble.sim.star_tracker import StarTrackerSpec
 from detumble.sim.wheels import CATALOGUE as WHEEL_CATALOGUE
 from detumble.sim.wheels import WheelSpec, equations_inertia
@@ -116,6 +119,8 @@ class Scenario:
     q_BN0: Quat = (1.0, 0.0, 0.0, 0.0)
     omega_BN_B0: Vec3 = (0.0, 0.0, 0.0)
     control: ControlConfig = _dc_field(default_factory=ControlConfig)
+    accelerometer: AccelerometerSpec = _dc_field(default_factory=AccelerometerSpec)
+    power: PowerConfig = _dc_field(default_factory=PowerConfig)
 
     @property
     def earth_angle0_rad(self) -> float:
@@ -264,12 +269,14 @@ SCHEMA: dict = {
         "star_tracker": {k: _LEAF for k in ("ideal", "rate_hz", "noise_cross_boresight_arcsec",
                                             "noise_about_boresight_arcsec", "boresight_B", "bias_arcsec",
                                             "dropout_probability", "max_rate_deg_s")},
+        "accelerometer": ACCELEROMETER_SCHEMA,
     },
     "initial": {
         "attitude": {"quaternion": _LEAF, "mrp": _LEAF, "frame": _LEAF},
         "rate": {k: _LEAF for k in ("omega_deg_s", "omega_rad_s", "magnitude_deg_s", "axis", "random_axis", "seed")},
     },
     "control": {k: _LEAF for k in ("law", "gain", "period_s", "sense_settle_s", "saturation")},
+    "power": POWER_SCHEMA,
 }
 
 _RATE_FORMS = ("omega_deg_s", "omega_rad_s", "magnitude_deg_s", "axis", "random_axis", "seed")
@@ -460,18 +467,21 @@ def scenario_from_dict(data: Any, source: str = "<dict>", lines: dict[tuple, int
     sens = top.section("sensors")
     mag = _magnetometer(sens.section("magnetometer"))
     gyro = _gyro(sens.section("gyro"))
+    accelerometer = parse_accelerometer(sens.section("accelerometer"))
     star = _star_tracker(sens.section("star_tracker")) if sens.has("star_tracker") else None
     sens.allow("star_tracker")
     sens.finish()
     use_seed = file_seed if seed is None else seed
     q0, frame, w0 = _initial(top.section("initial"), use_seed)
     control = _control(top.section("control"), dt)
+    power = parse_power(top.section("power"))
     top.allow("integrator_substeps")
     top.finish()
     return Scenario(name=name, description=description, source=source, epoch=epoch, duration_s=duration,
                     dynamics_step_s=dt, record_interval_s=record, seed=use_seed, spacecraft=sc, orbit=orbit,
                     field=fld, magnetometer=mag, gyro=gyro, star_tracker=star, integrator_substeps=substeps,
-                    attitude_frame=frame, q_BN0=q0, omega_BN_B0=w0, control=control)
+                    attitude_frame=frame, q_BN0=q0, omega_BN_B0=w0, control=control,
+                    accelerometer=accelerometer, power=power)
 
 
 def _inertia(s: _Section) -> Mat3:

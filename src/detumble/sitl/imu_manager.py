@@ -2,13 +2,14 @@
 
 Same ports, parameters, commands, channels and unit conventions as the flight
 ``Components.ImuManager`` (PROVES reference), so the DetumbleManager cannot tell it from the real
-one. Sensor frame = body frame B (the flight ``AXIS_ORIENTATION`` parameter is not modelled).
+one. Sensor frame = body frame B under AXIS_ORIENTATION = STANDARD; the other orientations rotate
+every reading about z as the flight code does. Deviations: ``docs/components/simulated_drivers.md``.
 
 Ports (all sync; every ``ref condition`` port returns a :class:`~detumble.components.types.Result`):
 
 ===============================  ==================================================================
 ``run(context)``                 Svc.Sched: read all three sensors and write their channels
-``accelerationGet()``            ``Result(Acceleration, Success)``, m/s² (zero: free fall)
+``accelerationGet()``            ``Result(Acceleration, Success)``, m/s² (bias + noise + centripetal)
 ``angularVelocityGet()``         ``Result(AngularVelocity, Success)``, rad/s, ω_BN in B (held gyro sample)
 ``angularVelocityMagnitudeGet``  ``(unit) -> Result(F64, Success)``, |ω| in deg/s or rad/s
 ``magneticFieldGet()``           ``Result(MagneticField, Success)``, gauss in B, ``timestamp`` = the time
@@ -27,15 +28,15 @@ from __future__ import annotations
 import logging
 import math
 
-from fprime_lite import (F64, I32, Channel, CmdResponse, Event, FwEnum, Param, PassiveComponent,
+from fprime_lite import (F64, I32, Channel, Event, FwEnum, Param, PassiveComponent,
                          PortType, Sched, Severity, Struct, sync_command, sync_input)
 from fprime_lite.model.types import U8
 
 from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet, MagneticField, MagneticFieldGet,
                                        Result, SamplingPeriodGet, Success, TimeIntervalValue)
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
-__all__ = ["ImuManager", "Acceleration", "AngularVelocity", "AccelerationGet", "AngularVelocityGet",
+__all__ = ["ImuManager", "AxisOrientation", "Acceleration", "AngularVelocity", "AccelerationGet", "AngularVelocityGet",
            "Lis2mdlSamplingFrequency", "Lsm6dsoSamplingFrequency", "SimImuSensor", "SimReadFault",
            "LIS2MDL_HZ", "LSM6DSO_HZ"]
 
@@ -100,6 +101,15 @@ LSM6DSO_HZ = {Lsm6dsoSamplingFrequency.SF_12_5Hz: 12.5, Lsm6dsoSamplingFrequency
               Lsm6dsoSamplingFrequency.SF_208Hz: 208.0, Lsm6dsoSamplingFrequency.SF_416Hz: 416.0,
               Lsm6dsoSamplingFrequency.SF_833Hz: 833.0, Lsm6dsoSamplingFrequency.SF_1_66kHz: 1666.0,
               Lsm6dsoSamplingFrequency.SF_3_33kHz: 3333.0, Lsm6dsoSamplingFrequency.SF_6_66kHz: 6666.0}
+
+
+class AxisOrientation(FwEnum, namespace="Components"):
+    """How the IMU board is mounted (flight ImuManager.fpp): readings are rotated about z."""
+
+    STANDARD = 0
+    ROTATED_90_DEG_CW = 1
+    ROTATED_90_DEG_CCW = 2
+    ROTATED_180_DEG = 3
 
 
 class SimImuSensor(FwEnum, namespace="Sim", rep=U8):
@@ -186,50 +196,59 @@ class ImuManager(PassiveComponent):
             return Result(TimeIntervalValue(0, 0), Success.FAILURE)
         hz = LIS2MDL_HZ.get(self.MAGNETOMETER_SAMPLING_FREQUENCY.value, 0.0)
         if hz <= 0.0:  # pragma: no cover - the enum has no 0 Hz value
-            self.MagnetometerSamplingFrequencyGetFailed()
+            self.MagnetometerSamplingFrequencyZeroHz()
             return Result(TimeIntervalValue(0, 0), Success.FAILURE)
         self.MagnetometerSamplingFrequencyGetFailed.clear_throttle()
         return Result(TimeIntervalValue(0, int(1.0 / hz * 1e6)), Success.SUCCESS)
 
     # --- parameters (flight ids) ---------------------------------------------------------------
 
+    ACCELEROMETER_SAMPLING_FREQUENCY = Param(Lsm6dsoSamplingFrequency, default=Lsm6dsoSamplingFrequency.SF_12_5Hz,
+                                             id=0)
     GYROSCOPE_SAMPLING_FREQUENCY = Param(Lsm6dsoSamplingFrequency, default=Lsm6dsoSamplingFrequency.SF_104Hz, id=1)
     MAGNETOMETER_SAMPLING_FREQUENCY = Param(Lis2mdlSamplingFrequency, default=Lis2mdlSamplingFrequency.SF_100Hz,
                                             id=2)
+    AXIS_ORIENTATION = Param(AxisOrientation, default=AxisOrientation.STANDARD, id=3)
 
-    # --- channels ------------------------------------------------------------------------------
+    # --- channels (flight order) ---------------------------------------------------------------
 
+    AxisOrientation = Channel(AxisOrientation)
     Acceleration = Channel(Acceleration, units="m/s^2")
     AngularVelocity = Channel(AngularVelocity, units="rad/s")
     MagneticField = Channel(MagneticField, units="G")
+    AccelerometerSamplingFrequency = Channel(Lsm6dsoSamplingFrequency, update="on change")
     GyroscopeSamplingFrequency = Channel(Lsm6dsoSamplingFrequency, update="on change")
     MagnetometerSamplingFrequency = Channel(Lis2mdlSamplingFrequency, update="on change")
 
-    # --- events --------------------------------------------------------------------------------
+    # --- events (flight order, severities and formats; then the simulation's own) --------------
 
-    AccelerationData = Event(Severity.ACTIVITY_LO, "Acceleration: {.6f}, {.6f}, {.6f} m/s^2", x=F64, y=F64, z=F64)
-    AngularVelocityData = Event(Severity.ACTIVITY_LO, "Angular velocity: {.6f}, {.6f}, {.6f} rad/s",
-                                x=F64, y=F64, z=F64)
-    MagneticFieldData = Event(Severity.ACTIVITY_LO, "Magnetic field: {.6f}, {.6f}, {.6f} G", x=F64, y=F64, z=F64)
-    MagnetometerReadFailed = Event(Severity.WARNING_LO, "LIS2MDL magnetometer read failed", throttle=5)
-    GyroscopeReadFailed = Event(Severity.WARNING_LO, "LSM6DSO gyroscope read failed", throttle=5)
-    AccelerometerReadFailed = Event(Severity.WARNING_LO, "LSM6DSO accelerometer read failed", throttle=5)
+    Lis2mdlDeviceNotReady = Event(Severity.WARNING_HI, "LIS2MDL device not ready", throttle=5)
+    Lsm6dsoDeviceNotReady = Event(Severity.WARNING_HI, "LSM6DSO device not ready", throttle=5)
+    AccelerometerSamplingFrequencyNotConfigured = Event(
+        Severity.WARNING_HI, "LSM6DSO accelerometer sampling frequency not configured", throttle=5)
+    GyroscopeSamplingFrequencyNotConfigured = Event(
+        Severity.WARNING_HI, "LSM6DSO gyroscope sampling frequency not configured", throttle=5)
+    MagnetometerSamplingFrequencyNotConfigured = Event(
+        Severity.WARNING_HI, "LIS2MDL magnetomiter sampling frequency not configured", throttle=5)
     MagnetometerSamplingFrequencyGetFailed = Event(
         Severity.WARNING_LO, "Failed to retrieve LIS2MDL magnetometer sampling frequency", throttle=5)
+    MagnetometerSamplingFrequencyZeroHz = Event(
+        Severity.WARNING_LO, "LIS2MDL magnetometer sampling frequency is set to 0 Hz", throttle=5)
+    AccelerationData = Event(Severity.ACTIVITY_LO, "Acceleration: x={} m/s^2, y={} m/s^2, z={} m/s^2",
+                             x=F64, y=F64, z=F64)
+    AngularVelocityData = Event(Severity.ACTIVITY_LO, "Angular Velocity: x={} rad/s, y={} rad/s, z={} rad/s",
+                                x=F64, y=F64, z=F64)
+    MagneticFieldData = Event(Severity.ACTIVITY_LO, "Magnetic Field: x={} gauss, y={} gauss, z={} gauss",
+                              x=F64, y=F64, z=F64)
     InvalidAngularUnit = Event(Severity.WARNING_LO, "Invalid angular unit {d}; use RAD_PER_SEC or DEG_PER_SEC",
-                               unit=I32, throttle=5)
-    GyroscopeSamplingFrequencyParamSet = Event(
-        Severity.ACTIVITY_HI, "GYROSCOPE_SAMPLING_FREQUENCY parameter set to {}.", value=Lsm6dsoSamplingFrequency)
-    MagnetometerSamplingFrequencyParamSet = Event(
-        Severity.ACTIVITY_HI, "MAGNETOMETER_SAMPLING_FREQUENCY parameter set to {}.", value=Lis2mdlSamplingFrequency)
+                               unit=I32, throttle=5, id=0x80)
     SimReadFaultSet = Event(Severity.ACTIVITY_HI, "SIM: {} read fault set to {}", sensor=SimImuSensor,
                             fault=SimReadFault)
 
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, *, base_id: int = 0,
                  stamp_with_read_time: bool = False):
         super().__init__(name, base_id=base_id)
-        if not isinstance(spacecraft, SimulatedSpacecraft):
-            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        require_spacecraft(name, spacecraft)
         self.spacecraft = spacecraft
         self.stamp_with_read_time = bool(stamp_with_read_time)
         self._faults = {s: SimReadFault.NONE for s in _SENSORS}
@@ -251,39 +270,30 @@ class ImuManager(PassiveComponent):
     def read_fault(self, sensor: SimImuSensor) -> SimReadFault:
         return self._faults[SimImuSensor(sensor)]
 
-    @sync_command()
-    def SIM_SET_READ_FAULT(self, sensor: SimImuSensor, fault: SimReadFault):
-        """SIMULATION ONLY: inject (or clear with NONE) a read fault on ``sensor``."""
-        self.set_read_fault(sensor, fault)
-
     # --- commands (flight) ---------------------------------------------------------------------
 
     @sync_command()
     def GET_ACCELERATION(self):
-        """Read the accelerometer and log AccelerationData (EXECUTION_ERROR if the read fails)."""
-        value, condition = self.accelerationGet_handler()
-        if condition != Success.SUCCESS:
-            return CmdResponse.EXECUTION_ERROR
+        """Read the accelerometer and log AccelerationData (as flown: OK, zeros after a failed read)."""
+        value, _ = self.accelerationGet_handler()
         self.AccelerationData(value.x, value.y, value.z)
-        return CmdResponse.OK
 
     @sync_command()
     def GET_ANGULAR_VELOCITY(self):
         """Read the gyro and log AngularVelocityData (rad/s)."""
-        value, condition = self.angularVelocityGet_handler()
-        if condition != Success.SUCCESS:
-            return CmdResponse.EXECUTION_ERROR
+        value, _ = self.angularVelocityGet_handler()
         self.AngularVelocityData(value.x, value.y, value.z)
-        return CmdResponse.OK
 
     @sync_command()
     def GET_MAGNETIC_FIELD(self):
         """Read the magnetometer and log MagneticFieldData (gauss)."""
-        value, condition = self.magneticFieldGet_handler()
-        if condition != Success.SUCCESS:
-            return CmdResponse.EXECUTION_ERROR
+        value, _ = self.magneticFieldGet_handler()
         self.MagneticFieldData(value.x, value.y, value.z)
-        return CmdResponse.OK
+
+    @sync_command()
+    def SIM_SET_READ_FAULT(self, sensor: SimImuSensor, fault: SimReadFault):
+        """SIMULATION ONLY: inject (or clear with NONE) a read fault on ``sensor``."""
+        self.set_read_fault(sensor, fault)
 
     # --- parameter hooks -----------------------------------------------------------------------
 
@@ -292,19 +302,32 @@ class ImuManager(PassiveComponent):
         self._configure_sensors()
 
     def parameter_updated(self, local_id: int) -> None:
-        if local_id == self.spec.param("MAGNETOMETER_SAMPLING_FREQUENCY").local_id:
-            self.MagnetometerSamplingFrequencyParamSet(self.MAGNETOMETER_SAMPLING_FREQUENCY.value)
-        elif local_id == self.spec.param("GYROSCOPE_SAMPLING_FREQUENCY").local_id:
-            self.GyroscopeSamplingFrequencyParamSet(self.GYROSCOPE_SAMPLING_FREQUENCY.value)
+        """A sampling-frequency change reconfigures the sensors (the flight run() does it on its
+        next call; here it is at once). AXIS_ORIENTATION applies from the next read."""
         self._configure_sensors()
 
     def _configure_sensors(self) -> None:
         mag = self.MAGNETOMETER_SAMPLING_FREQUENCY.value
         gyro = self.GYROSCOPE_SAMPLING_FREQUENCY.value
+        accel = self.ACCELEROMETER_SAMPLING_FREQUENCY.value
         self.spacecraft.set_magnetometer_odr_hz(LIS2MDL_HZ[mag])
         self.spacecraft.set_gyro_odr_hz(LSM6DSO_HZ[gyro])
+        self.spacecraft.set_accelerometer_odr_hz(LSM6DSO_HZ[accel])
         self.MagnetometerSamplingFrequency.write(mag)
+        self.AccelerometerSamplingFrequency.write(accel)
         self.GyroscopeSamplingFrequency.write(gyro)
+
+    def _orient(self, x: float, y: float, z: float) -> tuple[float, float, float]:
+        """Apply AXIS_ORIENTATION (a rotation about the board's z axis) and write its channel."""
+        o = self.AXIS_ORIENTATION.value
+        self.AxisOrientation.write(o)
+        if o == AxisOrientation.ROTATED_90_DEG_CW:
+            return y, -x, z
+        if o == AxisOrientation.ROTATED_90_DEG_CCW:
+            return -y, x, z
+        if o == AxisOrientation.ROTATED_180_DEG:
+            return -x, -y, z
+        return x, y, z
 
     # --- reads ---------------------------------------------------------------------------------
 
@@ -329,28 +352,28 @@ class ImuManager(PassiveComponent):
 
     def accelerationGet_handler(self) -> Result:
         v, _, ok = self._read(SimImuSensor.ACCELEROMETER, self.spacecraft.acceleration,
-                              self.AccelerometerReadFailed)
+                              self.Lsm6dsoDeviceNotReady)
         if not ok:
             return Result(Acceleration(0.0, 0.0, 0.0), Success.FAILURE)
-        value = Acceleration(v[0], v[1], v[2])
+        value = Acceleration(*self._orient(v[0], v[1], v[2]))
         self.Acceleration.write(value)
         return Result(value, Success.SUCCESS)
 
     def angularVelocityGet_handler(self) -> Result:
-        v, _, ok = self._read(SimImuSensor.GYROSCOPE, self.spacecraft.gyro_sample, self.GyroscopeReadFailed)
+        v, _, ok = self._read(SimImuSensor.GYROSCOPE, self.spacecraft.gyro_sample, self.Lsm6dsoDeviceNotReady)
         if not ok:
             return Result(AngularVelocity(0.0, 0.0, 0.0), Success.FAILURE)
-        value = AngularVelocity(v[0], v[1], v[2])
+        value = AngularVelocity(*self._orient(v[0], v[1], v[2]))
         self.AngularVelocity.write(value)
         return Result(value, Success.SUCCESS)
 
     def magneticFieldGet_handler(self) -> Result:
         v, stamp, ok = self._read(SimImuSensor.MAGNETOMETER, self.spacecraft.magnetometer_sample,
-                                  self.MagnetometerReadFailed)
+                                  self.Lis2mdlDeviceNotReady)
         if not ok:
             return Result(MagneticField(0.0, 0.0, 0.0, self.spacecraft.now()), Success.FAILURE)
         if self.stamp_with_read_time:
             stamp = self.spacecraft.now()
-        value = MagneticField(v[0], v[1], v[2], stamp)
+        value = MagneticField(*self._orient(v[0], v[1], v[2]), stamp)
         self.MagneticField.write(value)
         return Result(value, Success.SUCCESS)

@@ -19,6 +19,15 @@ The driver only forwards the signed drive level −127…127; the plant turns it
 face's outward normal — so the mirroring of the minus faces is the plant's, not the driver's. The
 new level acts on the dynamics from the present simulated time on.
 
+Face power: the coil driver sits on the face board behind the face's load switch
+(``face<N>LoadSwitch``). The switch tells the driver through ``loadSwitchStateChanged``: OFF
+de-initialises the device (and the opened switch has already de-energised the coil); ON starts a
+1 s settling time, after which the next ``start``/``stop`` initialises the device
+(DeviceInitialized, flight id 8). While unpowered or settling, ``start``/``stop`` return FAILURE
+and log the throttled DeviceNotReady (the flight code fails silently there; the simulation says
+why, so an operator sees a coil that cannot act). At construction the driver takes the switch's
+present state as settled (the spacecraft was already flying).
+
 Fault injection (simulation only): :meth:`MagnetorquerDriver.set_fault` or ``SIM_SET_FAULT``:
 ``NOT_READY`` — the device does not answer: ``start``/``stop`` return FAILURE with the throttled
 ``DeviceNotReady`` event and the coil is switched off (the safe state); ``STUCK`` — the coil keeps
@@ -31,12 +40,17 @@ import logging
 
 from fprime_lite import (I8, I32, Channel, CmdResponse, Event, FwEnum, PassiveComponent, Severity,
                          sync_command, sync_input)
+from fprime_lite.model.fw_types import On
 from fprime_lite.model.types import U8
 
 from detumble.control.coil_layout import COIL_FACES, Face
 from detumble.sim.coils import FACE_NAMES, MAX_LEVEL, CoilSet
 from detumble.components.types import StartMagnetorquer, StopMagnetorquer, Success
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.sitl.ports import LoadSwitchStateChanged
+from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
+
+#: Time after a face's switch closes before its DRV2605 can be initialised (flight: 1 s).
+LOAD_SWITCH_SETTLE_US = 1_000_000
 
 __all__ = ["MagnetorquerDriver", "SimDriverFault", "DRIVER_FACES", "driver_instance_name",
            "make_magnetorquer_drivers"]
@@ -75,7 +89,8 @@ class MagnetorquerDriver(PassiveComponent):
     def start(self, val: int) -> Success:
         """Drive the coil at level ``val`` (−127…127, sign = current direction). Out-of-range or
         non-integer levels are refused (FAILURE, InvalidDriveLevel) and switch the coil off."""
-        if type(val) is int and val == self._coil.level and self.fault == SimDriverFault.NONE:
+        if type(val) is int and val == self._coil.level and self.fault == SimDriverFault.NONE \
+                and self._initialized:
             # The manager re-commands the same level every tick: the coil already carries it.
             if self.DeviceNotReady.count:
                 self.DeviceNotReady.clear_throttle()
@@ -86,6 +101,16 @@ class MagnetorquerDriver(PassiveComponent):
     def stop(self) -> Success:
         """Switch the coil off."""
         return self._apply(0)
+
+    @sync_input(LoadSwitchStateChanged)
+    def loadSwitchStateChanged(self, state: On) -> Success:
+        """The face's power changed: OFF de-initialises the device, ON starts the settling time."""
+        self._switch_on = state == On.ON
+        if not self._switch_on:
+            self._initialized = False
+        else:
+            self._ready_at_us = self.spacecraft.clock.current_us + LOAD_SWITCH_SETTLE_US
+        return Success.SUCCESS
 
     # --- commands ------------------------------------------------------------------------------
 
@@ -110,8 +135,9 @@ class MagnetorquerDriver(PassiveComponent):
     # --- events and channels -------------------------------------------------------------------
 
     DeviceNotReady = Event(Severity.WARNING_LO, "Device not ready", throttle=5)
+    DeviceInitialized = Event(Severity.ACTIVITY_LO, "DRV2605 device initialized.", id=8)
     InvalidDriveLevel = Event(Severity.WARNING_LO, "Invalid drive level {d}; levels are -127..127", val=I32,
-                              throttle=5)
+                              throttle=5, id=0x80)
     SimFaultSet = Event(Severity.ACTIVITY_HI, "SIM: driver fault set to {}", fault=SimDriverFault)
 
     #: The level the coil is driven at now (−127…127; 0 = off).
@@ -119,8 +145,7 @@ class MagnetorquerDriver(PassiveComponent):
 
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, face: int, *, base_id: int = 0):
         super().__init__(name, base_id=base_id)
-        if not isinstance(spacecraft, SimulatedSpacecraft):
-            raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+        require_spacecraft(name, spacecraft)
         if face not in spacecraft.coil_faces:
             raise ValueError(f"{name}: spacecraft has no coil on face {face!r}; its coil faces are "
                              f"{list(spacecraft.coil_faces) or 'none (ideal torque rods)'}")
@@ -131,6 +156,9 @@ class MagnetorquerDriver(PassiveComponent):
         actuators = spacecraft.plant.actuators
         assert isinstance(actuators, CoilSet)  # the spacecraft has a coil on this face
         self._coil = actuators.coils[face]  # read-only: the level the coil carries
+        self._switch_on = spacecraft.face_powered(face)
+        self._initialized = self._switch_on
+        self._ready_at_us = spacecraft.clock.current_us
 
     # --- fault injection -----------------------------------------------------------------------
 
@@ -156,7 +184,21 @@ class MagnetorquerDriver(PassiveComponent):
             return Success.FAILURE
         return self._apply(val)
 
+    def _powered(self) -> bool:
+        """Initialise the device when its face is powered and settled (the flight initializeDevice)."""
+        if self._initialized:
+            return True
+        if not self._switch_on or self.spacecraft.clock.current_us < self._ready_at_us \
+                or not self.spacecraft.face_powered(self.face):
+            return False
+        self._initialized = True
+        self.DeviceInitialized()
+        return True
+
     def _apply(self, level: int) -> Success:
+        if not self._powered():
+            self.DeviceNotReady()
+            return Success.FAILURE
         if self.fault != SimDriverFault.NONE:
             self.DeviceNotReady()
             if self.fault == SimDriverFault.NOT_READY:

@@ -269,8 +269,12 @@ def plot_run_dir(run_dir: pathlib.Path, out_dir: pathlib.Path | None = None) -> 
         summary = json.loads(summary_path.read_text(encoding="utf-8"))
         marks = {"detumble started": summary.get("detumble_started_s"),
                  "detumble completed": summary.get("detumble_complete_s")}
-    return plot_truth(run_dir / "truth.csv", out_dir or run_dir, thresholds=_thresholds_from_channels(run_dir),
-                      marks=marks)
+    out = pathlib.Path(out_dir or run_dir)
+    written = plot_truth(run_dir / "truth.csv", out, thresholds=_thresholds_from_channels(run_dir), marks=marks)
+    from detumble.sitl.power_budget import plot_power  # a run with an electrical system: its power.png
+
+    return written + plot_power(run_dir / "truth.csv", out, marks.get("detumble started"),
+                                marks.get("detumble completed"))
 
 
 #: ``fprime-lite plot RUN_DIR`` for runs with a detumble truth log.

@@ -24,6 +24,7 @@ from fprime_lite.deploy.scheduler import Scheduler
 from detumble.control.coil_layout import COIL_FACES
 from detumble.sim.scenario import Scenario, load_scenario
 from detumble.sim.truth import adcs_header, adcs_row
+from detumble.sitl.power_budget import POWER_COLUMNS as _POWER_COLUMNS, PowerBudget, plot_power
 from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthSample, scenario_epoch_us
 from detumble.components.types import DetumbleState
 
@@ -80,6 +81,7 @@ class DetumbleRunReport:
         self._file: TextIO | None = None
         self._writer: Any = None  # a csv writer (its class is private to _csv)
         self._path: pathlib.Path | None = None
+        self.power = PowerBudget(spacecraft)
 
     # --- run hooks (called by ``fprime-lite run``) ------------------------------------------------
 
@@ -92,7 +94,7 @@ class DetumbleRunReport:
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
                                "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
                                *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy",
-                               *adcs_header(self.spacecraft.plant, with_field=False)])
+                               *adcs_header(self.spacecraft.plant, with_field=False), *_POWER_COLUMNS])
         self._state_us = {s: 0 for s in DetumbleState}
         self._progress_us = {s: 0 for s in DetumbleState}
         self._state_since = deployment.scheduler.now_us
@@ -121,7 +123,7 @@ class DetumbleRunReport:
         self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
                                s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *levels,
                                *(f"{f:.4f}" for f in fractions), strategy.name if strategy is not None else "",
-                               *adcs_row(self.spacecraft.plant, with_field=False)])
+                               *adcs_row(self.spacecraft.plant, with_field=False), *self.power.sample(t)])
 
     def on_event(self, event) -> None:
         """A downlinked event (``fprime_lite.ground.downlink.DecodedEvent``)."""
@@ -158,6 +160,7 @@ class DetumbleRunReport:
 
     def summary(self) -> dict:
         final = self.spacecraft.truth()
+        power = self.power.summary(self.detumble_started_s, self.detumble_complete_s)
         return {
             "initial_rate_deg_s": self.initial_rate_deg_s,
             "final_rate_deg_s": final.rate_deg_s,
@@ -166,6 +169,8 @@ class DetumbleRunReport:
             "time_below_1_deg_s": self.time_below_1_deg_s,
             "scenario": self.spacecraft.scenario.name,
             "physics_steps": self.spacecraft.steps_taken,
+            **({"power": power} if power else {}),
+            "flight_software_resets": self.spacecraft.resets,
         }
 
     def finish(self, out_dir: pathlib.Path, *, plots: bool = True) -> list[pathlib.Path]:
@@ -186,4 +191,7 @@ class DetumbleRunReport:
             written += plot_truth(self._path, pathlib.Path(out_dir), thresholds=thresholds,
                                   marks={"detumble started": self.detumble_started_s,
                                          "detumble completed": self.detumble_complete_s})
+            if self.spacecraft.power is not None:
+                written += plot_power(self._path, pathlib.Path(out_dir), self.detumble_started_s,
+                                      self.detumble_complete_s)
         return written

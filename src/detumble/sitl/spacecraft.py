@@ -49,20 +49,35 @@ from typing import Callable, NamedTuple
 
 from fprime_lite.model.time import SimulatedClock, Time
 
-from detumble.sim.coils import CoilSet
+from detumble.sim.accelerometer import Accelerometer
+from detumble.sim.coils import CoilSet, MAX_LEVEL
+from detumble.sim.epoch import julian_date
+from detumble.sim.orbit import R_EARTH_EQ
+from detumble.sim.power import FACE_SWITCHES, ElectricalSystem, coil_supply_power_w
 from detumble.sim.plant import Plant
 from detumble.sim.scenario import Scenario, load_scenario
 from detumble.sim.sensors import GAUSS_PER_TESLA
 
-__all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us"]
+__all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us", "require_spacecraft"]
 
 _UNIX_EPOCH = _dt.datetime(1970, 1, 1, tzinfo=_dt.timezone.utc)
+
+#: The electrical system is integrated over this much plant time at once (100 ms, five 50 Hz
+#: dynamics steps); the coils' energy in between is summed exactly, step by step.
+POWER_STEP_NS = 100_000_000
 
 
 def scenario_epoch_us(scenario: Scenario) -> int:
     """The scenario's UTC epoch as microseconds since 1970-01-01 (a clock ``epoch_us``)."""
     delta = scenario.epoch - _UNIX_EPOCH
     return (delta.days * 86400 + delta.seconds) * 1_000_000 + delta.microseconds
+
+
+def require_spacecraft(owner: str, spacecraft) -> "SimulatedSpacecraft":
+    """``spacecraft`` if it is a :class:`SimulatedSpacecraft`, else a TypeError naming ``owner``."""
+    if not isinstance(spacecraft, SimulatedSpacecraft):
+        raise TypeError(f"{owner}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
+    return spacecraft
 
 
 class _TruthFields(NamedTuple):
@@ -126,6 +141,12 @@ class SimulatedSpacecraft:
         origin_us: the clock reading (``clock.current_us``) that is plant t = 0; default: now.
     """
 
+    # Avionics state, set in _init_avionics (declared here: methods above it assign it too).
+    _coil_w: float | None  # the coils' supply power, W; None: recompute
+    _accel_slot: int | None
+    _accel_period_ns: int
+    _flash_dir: str | None
+
     def __init__(self, scenario: Scenario | str, *, clock: SimulatedClock | None = None,
                  seed: int | None = None, origin_us: int | None = None) -> None:
         if isinstance(scenario, str):
@@ -146,6 +167,7 @@ class SimulatedSpacecraft:
         self._trace_next_ns: int | None = None
         self.steps_taken = 0
         self._attached: list[object] = []  # the schedulers this spacecraft is attached to
+        self._init_avionics(seed)
         self.sync()
 
     @classmethod
@@ -197,6 +219,8 @@ class SimulatedSpacecraft:
                 nxt = target
             if trace_next is not None and trace_next < nxt:
                 nxt = trace_next
+            if self.power is not None:
+                self._step_power(now, nxt)
             plant.step((nxt - now) * 1e-9)
             self.steps_taken += 1
             now = plant.t_ns
@@ -252,10 +276,16 @@ class SimulatedSpacecraft:
         return (s[0], s[1], s[2], self.time_of(gyro.sample_time_ns))
 
     def acceleration(self) -> tuple[float, float, float]:
-        """Specific force at the IMU, m/s², body axes: zero (free fall; the plant models no drag and
-        the IMU is taken at the centre of mass)."""
+        """The LSM6DSO reading, m/s², body axes: free fall plus the centripetal term at the IMU's lever
+        arm, with the sensor's bias, noise and quantisation (:mod:`detumble.sim.accelerometer`).
+        The output register is refreshed at the accelerometer's ODR (:meth:`set_accelerometer_odr_hz`,
+        initially the gyro's): reads within one output period return the same sample."""
         self.sync()
-        return (0.0, 0.0, 0.0)
+        slot = self.plant.t_ns // self._accel_period_ns
+        if slot != self._accel_slot:
+            self._accel_slot = slot
+            self._accel_sample = self.accelerometer.measure(self.plant.omega_BN_B)
+        return self._accel_sample
 
     @property
     def magnetometer_period_us(self) -> float:
@@ -290,7 +320,10 @@ class SimulatedSpacecraft:
         """Drive the coil on ``face`` at ``level`` (-127..127) from now on (plant sign conventions:
         a positive level gives a dipole along the face's outward normal, so X- +level is -X)."""
         self.sync()
+        if level and not self.face_powered(face):
+            raise RuntimeError(f"face {face} is unpowered (its load switch is off); its coil cannot be driven")
         self.plant.set_coil_level(face, level)
+        self._coil_w = None
 
     def coil_level(self, face: int) -> int:
         return self.plant.coil_levels().get(face, 0)
@@ -393,6 +426,123 @@ class SimulatedSpacecraft:
         now = self.plant.t_ns
         callback(self.truth())
         self._trace_next_ns = (now // self._trace_interval_ns + 1) * self._trace_interval_ns
+
+    # --- avionics: electrical power, load switches, flash, reset line ---------------------------------
+
+    def _init_avionics(self, seed: int | None) -> None:
+        sc = self.scenario
+        self.power = (ElectricalSystem(sc.power, julian_date(sc.epoch), R_EARTH_EQ)
+                      if sc.power.enabled else None)
+        self.accelerometer = Accelerometer(sc.accelerometer, (sc.seed if seed is None else seed) * 7919 + 3)
+        act = self.plant.actuators
+        self._coils_lagged = isinstance(act, CoilSet) and act._lagged  # currents change between commands
+        self._coil_w = None
+        self._power_pending_ns = 0
+        self._power_t0_ns = 0
+        self._power_coil_j = 0.0
+        self._accel_slot = None
+        self._accel_period_ns = max(1, self.plant.gyro.period_ns)
+        self._accel_sample = (0.0, 0.0, 0.0)
+        self._flash_dir = None
+        self.resets = 0                                      #: flight-software resets so far
+        self.reset_handler: Callable[[str], None] | None = None
+
+    def _step_power(self, t0_ns: int, t1_ns: int) -> None:
+        """Sum the coils' energy over this dynamics step; integrate the electrical system once
+        :data:`POWER_STEP_NS` of plant time has gathered (solar input and battery held over it)."""
+        coil_w = self._coil_w
+        if coil_w is None or self._coils_lagged:
+            coil_w = 0.0
+            act = self.plant.actuators
+            if isinstance(act, CoilSet):
+                for coil in act.coils.values():
+                    if coil.level:
+                        coil_w += coil_supply_power_w(coil.level, MAX_LEVEL, coil.spec.voltage_v, coil.current_a)
+            self._coil_w = coil_w
+        if self._power_pending_ns == 0:
+            self._power_t0_ns = t0_ns
+        self._power_pending_ns += t1_ns - t0_ns
+        self._power_coil_j += coil_w * (t1_ns - t0_ns) * 1e-9
+        if self._power_pending_ns >= POWER_STEP_NS:
+            dt = self._power_pending_ns * 1e-9
+            plant = self.plant
+            assert self.power is not None  # only called with a power model
+            self.power.step(dt, self._power_t0_ns * 1e-9, plant.q_BN, plant.r_N, self._power_coil_j / dt)
+            self._power_pending_ns = 0
+            self._power_coil_j = 0.0
+
+    def set_accelerometer_odr_hz(self, odr_hz: float) -> None:
+        """Reconfigure the accelerometer's output data rate."""
+        if not (isinstance(odr_hz, (int, float)) and math.isfinite(odr_hz) and odr_hz > 0):
+            raise ValueError(f"odr_hz must be a positive number, got {odr_hz!r}")
+        self._accel_period_ns = max(1, int(round(1e9 / odr_hz)))
+
+    def face_powered(self, face: int) -> bool:
+        """True when the face's load switch is closed (always True without a power model)."""
+        return self.power is None or self.power.face_powered(face)
+
+    def load_switch(self, name: str) -> bool:
+        """The state of load switch ``name`` (``face0`` … ``face5``, ``payloadPower``, ``payloadBattery``)."""
+        return True if self.power is None else self.power.switches[name]
+
+    def set_load_switch(self, name: str, on: bool) -> None:
+        """Open or close a load switch from now on; opening a face's switch de-energises its coil."""
+        self.sync()
+        if self.power is None:
+            return
+        self.power.set_switch(name, on)
+        if not on and name in FACE_SWITCHES:
+            face = FACE_SWITCHES.index(name)
+            if face in self.coil_faces:
+                self.plant.set_coil_level(face, 0)
+                self._coil_w = None
+
+    @property
+    def flash_dir(self) -> str:
+        """The simulated flight computer's non-volatile storage (a directory kept for this spacecraft's
+        life: files written there survive a flight-software reset)."""
+        if self._flash_dir is None:
+            import tempfile
+            self._flash = tempfile.TemporaryDirectory(prefix="sitl-flash-")
+            self._flash_dir = flash_dir = self._flash.name
+            return flash_dir
+        return self._flash_dir
+
+    def use_flash_dir(self, path: str) -> None:
+        """Keep the simulated flash in ``path`` (created if needed) instead of a temporary directory."""
+        import os
+        os.makedirs(path, exist_ok=True)
+        self._flash_dir = os.fspath(path)
+
+    def request_reset(self, kind: str = "cold") -> None:
+        """Pull the flight computer's reset line (``kind`` "cold" or "warm"); the deployment that
+        attached itself through :attr:`reset_handler` restarts its software. The plant keeps flying."""
+        if self.reset_handler is None:
+            raise RuntimeError("no flight software is attached to this spacecraft's reset line")
+        self.reset_handler(kind)
+
+    def attach_flight_software(self, deployment) -> None:
+        """Wire the reset line to ``deployment`` (called by the deployment at start-up)."""
+        self.reset_handler = deployment.request_reset
+
+    def flight_software_reset(self) -> None:
+        """The deployment restarts its software: reset what the flight computer's reset resets."""
+        self.hardware_reset()
+        self.resets += 1
+
+    def scheduler(self):
+        """The scheduler this spacecraft is attached to (None when stepped by hand)."""
+        return self._attached[0] if self._attached else None
+
+    def hardware_reset(self) -> None:
+        """What a reset of the flight computer does to the hardware: the load-switch GPIOs return to
+        their power-on state (open) and every coil driver stops."""
+        if self.power is not None:
+            for name in self.power.switches:
+                self.set_load_switch(name, False)
+        for face in self.coil_faces:
+            self.plant.set_coil_level(face, 0)
+        self._coil_w = None
 
     def __repr__(self) -> str:
         return (f"<SimulatedSpacecraft {self.scenario.name!r} t={self.plant.t:.6f} s "

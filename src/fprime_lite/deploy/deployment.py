@@ -8,6 +8,16 @@ Start-up, as an F´ deployment's ``setupTopology`` does it:
 4. every component loads its parameters (and runs its ``parameters_loaded`` hook);
 5. the rate-group timer starts;
 6. the start-up sequence, if any, is handed to the sequencer.
+
+Software restart (a cold reset of the flight computer): :meth:`Deployment.restart_software`
+re-initialises every component the topology file declared — each is constructed afresh in place
+(same object, same arguments: state, queues, throttles and parameters back to their initial values)
+and keeps its wiring — then runs the start-up above again: commands are registered, the parameter
+file is read again and the parameters are reloaded, the rate groups restart, the start-up sequence
+runs. Resources (the simulated hardware) keep running; a resource with ``flight_software_reset()``
+is told first (what a reset does to its hardware), and one with ``attach_flight_software(deployment)``
+gets the deployment at start so that its reset line can call :meth:`request_reset`. Components added
+outside the file (the ground link) are not re-initialised: the ground's connection survives.
 """
 
 from __future__ import annotations
@@ -16,6 +26,7 @@ import os
 from typing import Callable
 
 from fprime_lite.model.component import QueuedComponent
+from fprime_lite.deploy.scheduler import ScheduledCall
 from fprime_lite.deploy.topology_loader import LoadedDeployment
 from fprime_lite.model.types import FwType
 
@@ -56,6 +67,10 @@ class Deployment:
         self.clock = loaded.clock
         self.resources = loaded.resources
         self.started = False
+        #: completed software restarts
+        self.restarts = 0
+        self._start_args: dict = {}
+        self._startup_call: ScheduledCall | None = None
 
     def service(self, pattern: str):
         """The component serving a pattern (``command``, ``param``, …), or None."""
@@ -68,6 +83,7 @@ class Deployment:
         if self.started:
             raise RuntimeError("the deployment is already started")
         self.started = True
+        self._start_args = {"parameter_file": parameter_file, "sequence": sequence}
         topo, scheduler = self.topology, self.scheduler
         lookup = command_lookup(topo)
         for comp in topo.components():
@@ -96,7 +112,58 @@ class Deployment:
             if sequencer is None:
                 raise RuntimeError("a start-up sequence needs 'startup.sequencer' in the topology")
             run = topo.instance(sequencer).component.input_port("seqRunIn").entries[0]
-            scheduler.call_at(scheduler.now_us, lambda: run(os.fspath(sequence)))
+            self._startup_call = scheduler.call_at(scheduler.now_us, lambda: run(os.fspath(sequence)))
+        if self.restarts == 0:
+            for resource in list(self.resources.values()):
+                attach = getattr(resource, "attach_flight_software", None)
+                if callable(attach):
+                    attach(self)
+
+    def request_reset(self, kind: str = "cold") -> None:
+        """Restart the software once the present event has finished (a reset line was pulled)."""
+        self.scheduler.call_at(self.scheduler.now_us, self.restart_software)
+
+    def restart_software(self) -> None:
+        """Re-initialise the declared components in place and start up again (see the module doc)."""
+        if not self.started:
+            raise RuntimeError("the deployment has not started; there is nothing to restart")
+        topo, scheduler = self.topology, self.scheduler
+        for resource in list(self.resources.values()):
+            reset = getattr(resource, "flight_software_reset", None)
+            if callable(reset):
+                reset()
+        if self.loaded.timer is not None:
+            self.loaded.timer.stop()
+        if self._startup_call is not None:
+            self._startup_call.cancel()
+            self._startup_call = None
+        renewed = set()
+        for instance in topo.instances.values():
+            if instance.init_kwargs is None:
+                continue
+            comp = instance.component
+            wiring = {name: (list(port.targets), list(port.calls)) for name, port in comp._outputs.items()}
+            scheduler.stop_draining(comp)
+            type(comp).__init__(comp, comp.name, **instance.init_kwargs)
+            for name, (targets, calls) in wiring.items():
+                port = comp._outputs[name]
+                port.targets[:] = targets
+                port.calls[:] = calls
+                port.version += 1
+            renewed.add(instance.qualified_name)
+        for c in topo.connections:  # calls into a renewed component go to its new input entries
+            if c.target not in renewed:
+                continue
+            src = topo.instance(c.source).component.output_port(c.source_port)
+            if isinstance(src.targets[c.source_index], str):
+                continue  # a tap (ground recorder) holds the call; entries of passive ports stay valid
+            dst = topo.instance(c.target).component.input_port(c.target_port)
+            src.calls[c.source_index] = dst.entries[c.target_index]
+            src.targets[c.source_index] = (dst, c.target_index)
+            src.version += 1
+        self.restarts += 1
+        self.started = False
+        self.start(**self._start_args)
 
     def run_for(self, seconds: float) -> int:
         """Run ``seconds`` of simulated time; return the number of scheduler events."""

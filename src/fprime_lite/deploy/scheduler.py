@@ -96,6 +96,12 @@ class Scheduler:
             if len(component.queue):
                 busy[component] = None
 
+    def stop_draining(self, component) -> None:
+        """Undo :meth:`drain_after_each_event` (a component about to be re-initialised)."""
+        if component in self._drained:
+            self._drained.remove(component)
+            self._busy.pop(component, None)
+
     def add_time_listener(self, listener: Callable[[int], None]) -> None:
         """``listener(time_us)`` is called whenever time advances, before the events at that time."""
         self._listeners.append(listener)

@@ -59,6 +59,9 @@ class Instance:
     module: str
     component: Component
     where: str = ""
+    #: the keyword arguments the component was made with (set by the YAML loader); a software
+    #: restart re-initialises the component with them
+    init_kwargs: dict | None = None
 
     @property
     def name(self) -> str:

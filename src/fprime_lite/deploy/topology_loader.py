@@ -511,7 +511,8 @@ class _Loader:
             self.problem(file, line, f"{what}: {cls.__name__} raised while being created: {exc}")
             return
         try:
-            topology.add(module, component, where=self.at(file, line))
+            instance = topology.add(module, component, where=self.at(file, line))
+            instance.init_kwargs = dict(kwargs)  # for Deployment.restart_software
         except PortConnectionError as exc:
             self.problem(file, line, f"{exc} — rename one of them")
 

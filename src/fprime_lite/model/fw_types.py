@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from fprime_lite.model.types import U8, U32, FwEnum, Struct
 
-__all__ = ["Success", "TimeIntervalValue"]
+__all__ = ["Success", "TimeIntervalValue", "On"]
 
 
 class Success(FwEnum, namespace="Fw", rep=U8):
@@ -35,3 +35,10 @@ class TimeIntervalValue(Struct, namespace="Fw"):
         if microseconds < 0:
             raise ValueError(f"a time interval cannot be negative: {microseconds} us")
         return cls(seconds=microseconds // 1_000_000, useconds=microseconds % 1_000_000)
+
+
+class On(FwEnum, namespace="Fw"):
+    """F´ ``Fw.On``: a switch state."""
+
+    OFF = 0
+    ON = 1

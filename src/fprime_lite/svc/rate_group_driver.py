@@ -89,6 +89,12 @@ class RateGroupTimer:
         now = self.scheduler.now_us if start_us is None else start_us
         self._schedule(now)
 
+    def stop(self) -> None:
+        """Stop ticking (a flight-software restart starts the timer again)."""
+        if self._call is not None:
+            self._call.cancel()
+            self._call = None
+
     def _schedule(self, base_tick_time_us: int) -> None:
         wait = self.driver.ticks_to_next_output()
         self._idle_ticks = wait

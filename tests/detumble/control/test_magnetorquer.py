@@ -116,3 +116,17 @@ def test_circular_shape_ignores_rectangle_dimensions():
     coil = Magnetorquer(turns=1.0, voltage=1.0, resistance=1.0, shape=CoilShape.CIRCULAR,
                         diameter=2.0, width=5.0, length=5.0)
     assert coil.coil_area() == math.pi
+
+
+def test_the_ground_enum_and_the_coil_arithmetic_share_one_coil_shape():
+    """COIL-ONE-002: Components.CoilShape (the ground's) has exactly the coil arithmetic's names and
+    values, and the manager's coil defaults are the flight coil layout's."""
+    from detumble.components.detumble_manager import DetumbleManager
+    from detumble.components.types import CoilShape as GroundShape
+    from detumble.control.coil_layout import FLIGHT_XY_COIL, FLIGHT_Z_COIL, CoilShape
+
+    assert {m.name: m.value for m in GroundShape} == {m.name: m.value for m in CoilShape}
+    params = {p.name: p.default for p in DetumbleManager("m", base_id=0x1000).spec.params}
+    assert params["X_TURNS"] == FLIGHT_XY_COIL.turns and params["Z_TURNS"] == FLIGHT_Z_COIL.turns
+    assert params["Y_MINUS_WIDTH"] == FLIGHT_XY_COIL.width_m and params["Z_MINUS_DIAMETER"] == FLIGHT_Z_COIL.diameter_m
+    assert params["Z_MINUS_SHAPE"] == GroundShape.CIRCULAR and params["X_PLUS_SHAPE"] == GroundShape.RECTANGULAR

@@ -155,7 +155,8 @@ def test_settings_override_single_values_with_yaml_types():
 
 
 @pytest.mark.parametrize("setting, message", [
-    ("sensors.magnetometr.noise_std_gauss=0", "has no key 'magnetometr' at sensors (keys there: magnetometer, gyro)"),
+    ("sensors.magnetometr.noise_std_gauss=0",
+     "has no key 'magnetometr' at sensors (keys there: magnetometer, gyro, accelerometer)"),
     ("noise=0", "has no key 'noise' at the top level"),
     ("sensors.magnetometer.noise_std_gauss", "expected KEY.PATH=VALUE"),
     ("sensors.magnetometer.bias_gauss.7=0", "is a list of 3; address an element by its index 0..2"),

@@ -165,3 +165,29 @@ def test_connects_to_a_manager_using_the_detumble_port_types(make_craft):
     assert craft.plant.m_coils_B[0] == pytest.approx(XY_MAX)
     assert manager.xMinusStop[0]() == Success.SUCCESS
     assert craft.plant.m_coils_B[0] == 0.0
+
+
+def test_face_power_off_stops_the_coil_and_the_driver_reports_it(rig):
+    """DRV-PWR-001: with its face switch open the coil carries no current and start/stop fail with
+    DeviceNotReady; after the switch closes the driver waits the 1 s settling time, then initialises
+    the device (DeviceInitialized, flight id 8) and drives the coil again."""
+    from fprime_lite.model.fw_types import On
+    h, craft = rig
+    assert h.component.event_id("DeviceInitialized") == 0x3000 + 8
+    assert h.invoke("start", 100) == Success.SUCCESS
+    craft.set_load_switch("face0", False)             # the switch's GPIO opens the face's rail…
+    assert h.invoke("loadSwitchStateChanged", On.OFF) == Success.SUCCESS   # …and tells the driver
+    assert craft.coil_level(0) == 0 and craft.plant.m_coils_B == (0.0, 0.0, 0.0)
+    assert h.invoke("start", 100) == Success.FAILURE
+    h.send_command("START", 100)
+    h.assert_cmd_response(0, "START", CmdResponse.EXECUTION_ERROR)
+    assert craft.coil_level(0) == 0
+    h.assert_event_count("DeviceNotReady", 2)
+    craft.set_load_switch("face0", True)
+    h.invoke("loadSwitchStateChanged", On.ON)
+    craft.clock.advance_us(999_000)
+    assert h.invoke("start", 100) == Success.FAILURE   # still settling
+    craft.clock.advance_us(1_000)
+    assert h.invoke("start", 100) == Success.SUCCESS
+    h.assert_event_count("DeviceInitialized", 1)
+    assert craft.coil_level(0) == 100

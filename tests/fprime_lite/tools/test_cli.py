@@ -13,7 +13,7 @@ TOPOLOGY = str(ROOT / "deployments" / "proves_ref" / "topology.yaml")
 
 def test_check_reports_ok(capsys):
     assert main(["check", TOPOLOGY]) == 0
-    assert "OK — deployment ReferenceDeployment: 24 instances" in capsys.readouterr().out
+    assert "OK — deployment ReferenceDeployment: 39 instances" in capsys.readouterr().out
 
 
 def test_dict_writes_a_dictionary_with_flight_names(tmp_path, capsys):
@@ -104,7 +104,7 @@ def test_set_changes_the_topology_s_scenario_and_a_bad_key_is_one_problem(tmp_pa
     assert main(["run", TOPOLOGY, "--no-progress", "--set", "sensors.magnetometr.noise_std_gauss=0"]) == 2
     err = capsys.readouterr().err
     assert "1 problem in the topology" in err  # nothing more about the instances that needed it
-    assert "default.yaml has no key 'magnetometr' at sensors (keys there: magnetometer, gyro)" in err
+    assert "default.yaml has no key 'magnetometr' at sensors (keys there: magnetometer, gyro, accelerometer)" in err
 
 
 def test_bad_yaml_is_reported_with_its_line(tmp_path, capsys):

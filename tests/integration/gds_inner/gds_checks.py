@@ -107,3 +107,62 @@ def test_uplinked_sequence_runs(fprime_test_api, tmp_path):
     fprime_test_api.send_and_assert_command(f"{DEP}.cmdSeq.CS_RUN", [str(on_board), "BLOCK"], timeout=10)
     fprime_test_api.assert_event(f"{DEP}.cmdSeq.CS_SequenceComplete", start=start, timeout=5)
     fprime_test_api.assert_event_count(2, "CdhCore.cmdDisp.NoOpReceived", start=start, timeout=5)
+
+
+# --- the PROVES flight components, driven as a flight operator drives them ----------------------
+
+def test_operator_safe_mode_round_trip(fprime_test_api):
+    """FORCE_SAFE_MODE with its reason, the faces switched off, EXIT_SAFE_MODE switching them back."""
+    api = fprime_test_api
+    start = api.get_event_test_history().size()
+    api.send_and_assert_command(f"{DEP}.modeManager.FORCE_SAFE_MODE", timeout=5)
+    api.assert_event(f"{DEP}.modeManager.ManualSafeModeEntry", start=start, timeout=5)
+    api.assert_event(f"{DEP}.modeManager.EnteringSafeMode", args=["Ground command"], start=start, timeout=5)
+    api.send_and_assert_command(f"{DEP}.modeManager.GET_SAFE_MODE_REASON", timeout=5)
+    api.assert_event(f"{DEP}.modeManager.CurrentSafeModeReasonReading", args=["GROUND_COMMAND"], start=start,
+                     timeout=5)
+    api.send_and_assert_command(f"{DEP}.face0LoadSwitch.GET_IS_ON", timeout=5)
+    api.assert_event(f"{DEP}.face0LoadSwitch.IsOn", args=["OFF"], start=start, timeout=5)
+    start = api.get_event_test_history().size()
+    api.send_and_assert_command(f"{DEP}.modeManager.EXIT_SAFE_MODE", timeout=5)
+    api.assert_event(f"{DEP}.modeManager.ExitingSafeMode", start=start, timeout=5)
+    api.assert_event(f"{DEP}.face0LoadSwitch.StatusChanged", args=["ON"], start=start, timeout=5)
+    api.send_and_assert_command(f"{DEP}.modeManager.GET_CURRENT_MODE", timeout=5)
+    api.assert_event(f"{DEP}.modeManager.CurrentModeReading", args=["NORMAL"], start=start, timeout=5)
+
+
+def test_operator_power_readings(fprime_test_api):
+    """A face switch cycled by command; the INA219 and the power monitor read the simulated EPS."""
+    api = fprime_test_api
+    start = api.get_event_test_history().size()
+    api.send_and_assert_command(f"{DEP}.face2LoadSwitch.TURN_OFF", timeout=5)
+    api.assert_event(f"{DEP}.face2LoadSwitch.StatusChanged", args=["OFF"], start=start, timeout=5)
+    api.send_and_assert_command(f"{DEP}.face2LoadSwitch.TURN_ON", timeout=5)
+    api.assert_event(f"{DEP}.face2LoadSwitch.StatusChanged", args=["ON"], start=start, timeout=5)
+    api.send_and_assert_command(f"{DEP}.ina219SysManager.GetVoltage", timeout=5)
+    volts = api.assert_event(f"{DEP}.ina219SysManager.VoltageReading", start=start, timeout=5).get_args()[0].val
+    assert 6.7 < volts < 8.4, f"bus voltage {volts} V is not a healthy 2S Li-ion battery"
+    api.send_and_assert_command(f"{DEP}.powerMonitor.GET_TOTAL_POWER", timeout=5)
+    energy = api.assert_event(f"{DEP}.powerMonitor.TotalPowerConsumptionReading", start=start,
+                              timeout=5).get_args()[0].val
+    assert energy > 0.0
+    assert api.await_telemetry(f"{DEP}.ina219SolManager.Power", timeout=5) is not None
+    FIGURES["bus_voltage_V"] = volts
+
+
+def test_operator_cold_reset(fprime_test_api):
+    """COLD_RESET: the software restarts (boot count 2) without an unintended-reboot safe mode, and
+    the ground link stays up: commands work again at once. Runs last (it resets every component)."""
+    api = fprime_test_api
+    start = api.get_event_test_history().size()
+    api.send_and_assert_command(f"{DEP}.startupManager.GET_BOOT_COUNT", timeout=5)
+    api.assert_event(f"{DEP}.startupManager.CurrentBootCount", args=[1], start=start, timeout=5)
+    api.send_command(f"{DEP}.resetManager.COLD_RESET")   # never answered: the processor resets
+    api.assert_event(f"{DEP}.resetManager.INITIATE_COLD_RESET", start=start, timeout=5)
+    api.assert_event(f"{DEP}.modeManager.PreparingForReboot", start=start, timeout=5)
+    assert api.await_telemetry(f"{DEP}.startupManager.BootCount", value=2, timeout=10) is not None
+    api.send_and_assert_command(f"{DEP}.startupManager.GET_BOOT_COUNT", timeout=5)
+    api.assert_event(f"{DEP}.startupManager.CurrentBootCount", args=[2], start=start, timeout=5)
+    api.send_and_assert_command(f"{DEP}.modeManager.GET_CURRENT_MODE", timeout=5)
+    api.assert_event(f"{DEP}.modeManager.CurrentModeReading", args=["NORMAL"], start=start, timeout=5)
+    api.assert_event_count(0, f"{DEP}.modeManager.UnintendedRebootDetected", start=start, timeout=1)
