@@ -162,7 +162,8 @@ def wheel_torque(k_p: float, k_d: float, inertia: Sequence[Sequence[float]], q_e
 
 def clip_dipole(m: Sequence[float], limit: float = REPORT_DIPOLE_LIMIT) -> Vec3:
     """Each axis clipped to ±``limit`` A·m² (the report's first loop)."""
-    return tuple(limit if c > limit else (-limit if c < -limit else float(c)) for c in m)  # type: ignore[return-value]
+    x, y, z = (limit if c > limit else (-limit if c < -limit else float(c)) for c in m)
+    return (x, y, z)
 
 
 def limit_wheel_torque(torque: Sequence[float], h: Sequence[float], torque_limit: float = REPORT_WHEEL_TORQUE_LIMIT,

@@ -225,11 +225,12 @@ class TorqueRods:
     kind = "rods"
 
     def __init__(self, max_dipole_am2: tuple[float, float, float]) -> None:
-        self.max_dipole = tuple(float(x) for x in max_dipole_am2)
+        m = [float(x) for x in max_dipole_am2]
+        self.max_dipole = (m[0], m[1], m[2])
         self.dipole_B = (0.0, 0.0, 0.0)
 
     def max_dipole_per_axis(self) -> tuple[float, float, float]:
-        return self.max_dipole  # type: ignore[return-value]
+        return self.max_dipole
 
     def apply_dipole_B(self, m_B: tuple[float, float, float]) -> None:
         lx, ly, lz = self.max_dipole

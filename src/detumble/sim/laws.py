@@ -42,7 +42,8 @@ def scale_to_limits(m: Vec3, m_max: Vec3) -> Vec3:
 
 def clip_to_limits(m: Vec3, m_max: Vec3) -> Vec3:
     """Clip each axis to ``+-m_max_i`` independently (the direction may change; seed 004's way)."""
-    return tuple(max(-m_max[i], min(m_max[i], m[i])) for i in range(3))  # type: ignore[return-value]
+    return (max(-m_max[0], min(m_max[0], m[0])), max(-m_max[1], min(m_max[1], m[1])),
+            max(-m_max[2], min(m_max[2], m[2])))
 
 
 class _Differencing:
@@ -123,4 +124,7 @@ class BangBangLaw(_Differencing):
         bdot = self._bdot(b_B, t)
         if bdot is None:
             return _ZERO
-        return tuple(-math.copysign(self.m_max[i], bdot[i]) if bdot[i] != 0.0 else 0.0 for i in range(3))  # type: ignore[return-value]
+        m = self.m_max
+        return (-math.copysign(m[0], bdot[0]) if bdot[0] != 0.0 else 0.0,
+                -math.copysign(m[1], bdot[1]) if bdot[1] != 0.0 else 0.0,
+                -math.copysign(m[2], bdot[2]) if bdot[2] != 0.0 else 0.0)

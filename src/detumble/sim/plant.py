@@ -92,10 +92,11 @@ class Plant:
         self._gravity_gradient = sc.spacecraft.gravity_gradient
         self.magnetometer = Magnetometer(sc.magnetometer, _derive_seed(self.seed, 1))
         self.gyro = Gyro(sc.gyro, _derive_seed(self.seed, 2))
-        q0 = tuple(sc.q_BN0)
+        q0 = sc.q_BN0
         if sc.attitude_frame == "orbit":
-            q0 = quat_normalize(frames.q_BN_from_orbit(q0, frames.q_ON(self.orbit, 0.0)))  # type: ignore[arg-type]
-        self._state: State = q0 + tuple(sc.omega_BN_B0)  # type: ignore[assignment]
+            q0 = quat_normalize(frames.q_BN_from_orbit(q0, frames.q_ON(self.orbit, 0.0)))
+        w0 = sc.omega_BN_B0
+        self._state: State = (q0[0], q0[1], q0[2], q0[3], w0[0], w0[1], w0[2])
         self._t_ns = 0
         self._update_environment()
         # the sensors' first sample is at t = 0
@@ -431,7 +432,10 @@ class Plant:
             return
         if frame not in ("inertial", "orbit"):
             raise ValueError(f"target frame must be 'inertial' or 'orbit', got {frame!r}")
-        self._target = (quat_normalize(tuple(float(x) for x in q_target)), frame)  # type: ignore[arg-type]
+        q = [float(x) for x in q_target]
+        if len(q) != 4:
+            raise ValueError(f"target quaternion must have 4 components (scalar first), got {len(q)}")
+        self._target = (quat_normalize((q[0], q[1], q[2], q[3])), frame)
 
     @property
     def pointing_target(self) -> tuple[Quat, str] | None:

@@ -83,7 +83,9 @@ class StarTracker:
         n1, n2, n3 = g(0.0, 1.0), g(0.0, 1.0), g(0.0, 1.0)
         sc, sb = self._sc, self._sb
         e1, e2, eb, bias = self.e1, self.e2, self.bore, self._bias
-        return tuple(sc * n1 * e1[i] + sc * n2 * e2[i] + sb * n3 * eb[i] + bias[i] for i in range(3))  # type: ignore[return-value]
+        return (sc * n1 * e1[0] + sc * n2 * e2[0] + sb * n3 * eb[0] + bias[0],
+                sc * n1 * e1[1] + sc * n2 * e2[1] + sb * n3 * eb[1] + bias[1],
+                sc * n1 * e1[2] + sc * n2 * e2[2] + sb * n3 * eb[2] + bias[2])
 
     def measure(self, q_BN: Quat, omega_B: Vec3) -> tuple[Quat, bool]:
         """One sample: ``(q_meas, valid)``; an invalid sample keeps the held attitude."""
