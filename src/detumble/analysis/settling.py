@@ -20,7 +20,8 @@ from typing import Sequence
 
 import numpy as np
 
-__all__ = ["settling_time", "transient_time", "time_below", "settling_times_per_axis", "DEFAULT_BAND"]
+__all__ = ["settling_time", "transient_time", "time_below", "settling_times_per_axis", "SettlingTracker",
+           "BelowTracker", "DEFAULT_BAND"]
 
 #: The report's band: 2 % (MATLAB's default SettlingTimeThreshold).
 DEFAULT_BAND = 0.02
@@ -76,3 +77,44 @@ def time_below(t: Sequence[float], magnitude: Sequence[float], threshold: float)
     tt = np.asarray(t, dtype=float)
     mm = np.asarray(magnitude, dtype=float)
     return _first_time_after_last(tt, ~(mm < threshold))
+
+
+class SettlingTracker:
+    """:func:`settling_time` computed on line, sample by sample, for a known ``y_final``: O(1)
+    memory, so a plant-only run can measure it at every control period of a long run.
+
+    ``time`` is the settling time of the samples seen so far (None while the latest sample is
+    outside the band) — the same figure :func:`settling_time` gives for the whole series.
+    """
+
+    __slots__ = ("y_final", "width", "_next_is_candidate", "time")
+
+    def __init__(self, y_final: float, y_init: float, band: float = DEFAULT_BAND):
+        self.y_final = float(y_final)
+        self.width = band * abs(self.y_final - float(y_init))
+        self._next_is_candidate = True
+        self.time: float | None = None
+
+    def update(self, t: float, y: float) -> None:
+        if abs(y - self.y_final) > self.width:
+            self._next_is_candidate = True
+            self.time = None
+        elif self._next_is_candidate:
+            self._next_is_candidate = False
+            self.time = t
+
+
+class BelowTracker:
+    """:func:`time_below` on line: the first time after which a magnitude stays below ``threshold``."""
+
+    __slots__ = ("threshold", "time")
+
+    def __init__(self, threshold: float):
+        self.threshold = threshold
+        self.time: float | None = None
+
+    def update(self, t: float, magnitude: float) -> None:
+        if not magnitude < self.threshold:
+            self.time = None
+        elif self.time is None:
+            self.time = t

@@ -54,7 +54,7 @@ __all__ = [
     "MagneticFieldGet", "SamplingPeriodGet", "StartMagnetorquer", "StopMagnetorquer",
     "DipoleMomentGet",
     "WheelMode", "WheelState", "WheelTorqueSet", "WheelSpeedSet", "WheelEnableSet", "WheelStateGet",
-    "AttitudeQuaternion", "AttitudeGet",
+    "AttitudeQuaternion", "AttitudeGet", "OrbitFrame", "DipoleMomentSet", "OrbitFrameGet",
 ]
 
 
@@ -231,3 +231,23 @@ WheelEnableSet = PortType("Drv.WheelEnableSet", returns=Success, enable=BOOL)
 WheelStateGet = PortType("Drv.WheelStateGet", returns=Result)
 #: Latest attitude solution; returns ``Result(AttitudeQuaternion, Success)``.
 AttitudeGet = PortType("Drv.AttitudeGet", returns=Result)
+
+
+# --- ideal torque rods and the orbit frame (seed 004's coursework) ----------------------------------
+
+class OrbitFrame(Struct, namespace="Drv"):
+    """The orbit frame O relative to N (``q0`` real part; scalar first), the orbit rate ``n`` rad/s
+    and when it was computed."""
+
+    q0: F64
+    q1: F64
+    q2: F64
+    q3: F64
+    n: F64
+    timestamp: Time
+
+
+#: Command the ideal torque rods to ``dipole`` (A·m², body frame); returns Success.
+DipoleMomentSet = PortType("Drv.DipoleMomentSet", returns=Success, dipole=DipoleMoment)
+#: The orbit frame now; returns ``Result(OrbitFrame, Success)``.
+OrbitFrameGet = PortType("Drv.OrbitFrameGet", returns=Result)

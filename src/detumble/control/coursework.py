@@ -31,7 +31,8 @@ import math
 from typing import Sequence
 
 __all__ = ["REPORT_MEAN_MOTION", "Vec3", "Quat", "from_plant_quaternion", "to_plant_quaternion", "dcm_ob",
-           "rate_relative_to_orbit", "cross_product_dipole", "BetaPd", "error_quaternion", "wheel_torque",
+           "rate_relative_to_orbit", "cross_product_dipole", "BetaPd", "WheelsPd", "error_quaternion", "wheel_torque",
+           "dumping_dipole",
            "clip_dipole", "limit_wheel_torque", "REPORT_DIPOLE_LIMIT", "REPORT_WHEEL_TORQUE_LIMIT",
            "REPORT_WHEEL_MOMENTUM_LIMIT"]
 
@@ -158,6 +159,52 @@ def wheel_torque(k_p: float, k_d: float, inertia: Sequence[Sequence[float]], q_e
     iw = _mat_vec(inertia, w_B)
     gyro = _cross(w_B, (iw[0] + h_B[0], iw[1] + h_B[1], iw[2] + h_B[2]))
     return (ipd[0] + k_d * iwo[0] - gyro[0], ipd[1] + k_d * iwo[1] - gyro[1], ipd[2] + k_d * iwo[2] - gyro[2])
+
+
+class WheelsPd:
+    """Eqs. 25–26 as a law with memory: the report integrates its quaternion continuously, and with
+    its signs eq. 26's stable equilibrium is ``q_e4 = −1`` — the target in its other representation,
+    reached the long way round (up to a full turn). A sensor reports one representation (``q0 ≥ 0``),
+    so this law keeps the quaternion it feeds eq. 25 continuous, flipping a reading whose dot product
+    with the previous one is negative: what the report's integration amounts to.
+
+    ``shortest_path=True`` is the corrected law: the proportional term takes the sign of the
+    error's real part, so both representations are stable and the body turns the short way.
+    ``torque(q, ω, h)`` takes the report's scalar-last ``q`` (B relative to O), ω in B (rad/s) and
+    the wheel momenta along x, y, z (N·m·s) and returns eq. 26's unlimited torque (N·m).
+    """
+
+    def __init__(self, k_p: float, k_d: float, inertia: Sequence[Sequence[float]], target: Sequence[float],
+                 n: float = REPORT_MEAN_MOTION, shortest_path: bool = False):
+        self.k_p, self.k_d = float(k_p), float(k_d)
+        self.inertia = inertia
+        self.target = tuple(float(c) for c in target)
+        self.n = float(n)
+        self.shortest_path = shortest_path
+        self.previous: Quat | None = None
+
+    def torque(self, q: Sequence[float], w_B: Sequence[float], h_B: Sequence[float]) -> Vec3:
+        p = self.previous
+        qq: Quat = (float(q[0]), float(q[1]), float(q[2]), float(q[3]))
+        if p is not None and qq[0] * p[0] + qq[1] * p[1] + qq[2] * p[2] + qq[3] * p[3] < 0.0:
+            qq = (-qq[0], -qq[1], -qq[2], -qq[3])
+        self.previous = qq
+        q_e = error_quaternion(self.target, qq)
+        if self.shortest_path and q_e[3] >= 0.0:
+            q_e = (-q_e[0], -q_e[1], -q_e[2], q_e[3])
+        w_o = rate_relative_to_orbit(qq, w_B, self.n)
+        return wheel_torque(self.k_p, self.k_d, self.inertia, q_e, w_o, w_B, h_B)
+
+
+def dumping_dipole(k: float, h_B: Sequence[float], b_B: Sequence[float]) -> Vec3:
+    """Magnetic momentum dumping (not in the report): ``M = k (h × B)/|B|²`` (A·m²), whose torque
+    ``M × B = −k h⊥`` removes the wheels' momentum across the field at the rate ``k`` (1/s); the
+    wheel law then holds the body while the wheels unload. Zero in a zero field."""
+    b2 = b_B[0] * b_B[0] + b_B[1] * b_B[1] + b_B[2] * b_B[2]
+    if not b2 > 0.0:
+        return (0.0, 0.0, 0.0)
+    c = _cross(h_B, b_B)
+    return (k * c[0] / b2, k * c[1] / b2, k * c[2] / b2)
 
 
 def clip_dipole(m: Sequence[float], limit: float = REPORT_DIPOLE_LIMIT) -> Vec3:

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 
+from detumble.control.magnetic import clip_to_limits, scale_to_limits  # noqa: F401 - re-exported
 from detumble.sim.vec import Vec3
 
 _ZERO = (0.0, 0.0, 0.0)
@@ -26,24 +27,6 @@ _ZERO = (0.0, 0.0, 0.0)
 def kopt_gain(mean_motion_rad_s: float, inclination_rad: float, j_min_kg_m2: float) -> float:
     """``k = 2 n (1 + sin i) J_min`` in kg m^2/s (N m s)."""
     return 2.0 * mean_motion_rad_s * (1.0 + math.sin(inclination_rad)) * j_min_kg_m2
-
-
-def scale_to_limits(m: Vec3, m_max: Vec3) -> Vec3:
-    """Scale the whole vector down (direction kept) so that ``|m_i| <= m_max_i`` on every axis."""
-    s = 1.0
-    for i in range(3):
-        a = abs(m[i])
-        if a > m_max[i]:
-            s = min(s, m_max[i] / a if a > 0.0 else 1.0)
-    if s == 1.0:
-        return m
-    return (m[0] * s, m[1] * s, m[2] * s)
-
-
-def clip_to_limits(m: Vec3, m_max: Vec3) -> Vec3:
-    """Clip each axis to ``+-m_max_i`` independently (the direction may change; seed 004's way)."""
-    return (max(-m_max[0], min(m_max[0], m[0])), max(-m_max[1], min(m_max[1], m[1])),
-            max(-m_max[2], min(m_max[2], m[2])))
 
 
 class _Differencing:

@@ -34,7 +34,7 @@ from detumble.sim.wheels import CATALOGUE as WHEEL_CATALOGUE
 from detumble.sim.wheels import WheelSpec, equations_inertia
 from detumble.sim.vec import Mat3, Quat, Vec3, mrp_to_quat, quat_normalize, unit
 
-LAWS = ("none", "kopt", "bdot", "bangbang")
+LAWS = ("none", "kopt", "bdot", "bangbang", "cross_product", "beta_pd", "wheels_pd")
 SATURATION = ("clip", "scale")
 FIELD_MODELS = ("dipole", "wmm2025", "none", "orbit_constant")
 
@@ -88,12 +88,35 @@ class SpacecraftConfig:
 
 
 @dataclass(frozen=True)
+class BetaPdConfig:
+    """Seed 004's ``magnetorquer2`` gains (its best pair: K_s = 990, K_d = 0.06)."""
+
+    k_s: float = 990.0
+    k_d: float = 0.06
+    switched: bool = False      # True: eq. 23 or 24 by |B_z| vs |B_x|; False: both, as its listing
+
+
+@dataclass(frozen=True)
+class WheelsPdConfig:
+    """Seed 004's ``wheels`` gains (K_p = wp = 5, K_d = wd = 9) and target (q_BO, scalar first)."""
+
+    k_p: float = 5.0
+    k_d: float = 9.0
+    target_q_bo: tuple[float, float, float, float] = (1.0, 0.0, 0.0, 0.0)
+    limits: str = "report"      # report: its ±1 mN m / ±0.1 N m s checks; wheel: the wheels' own limits only
+    error: str = "report"       # report: eq. 25 as written (settles at q4 = -1); shortest_path: corrected
+    dump_gain: float = 0.0      # 1/s: magnetic momentum dumping M = k (h x B)/|B|^2 (0: none, as the report)
+
+
+@dataclass(frozen=True)
 class ControlConfig:
     law: str = "none"
     gain: float | None = None
     period_s: float = 0.05
     sense_settle_s: float = 0.0
     saturation: str = "scale"
+    beta_pd: BetaPdConfig = BetaPdConfig()
+    wheels_pd: WheelsPdConfig = WheelsPdConfig()
 
 
 @dataclass(frozen=True)
@@ -275,7 +298,11 @@ SCHEMA: dict = {
         "attitude": {"quaternion": _LEAF, "mrp": _LEAF, "frame": _LEAF},
         "rate": {k: _LEAF for k in ("omega_deg_s", "omega_rad_s", "magnitude_deg_s", "axis", "random_axis", "seed")},
     },
-    "control": {k: _LEAF for k in ("law", "gain", "period_s", "sense_settle_s", "saturation")},
+    "control": {
+        **{k: _LEAF for k in ("law", "gain", "period_s", "sense_settle_s", "saturation")},
+        "beta_pd": {k: _LEAF for k in ("k_s", "k_d", "switched")},
+        "wheels_pd": {k: _LEAF for k in ("k_p", "k_d", "target_q_bo", "limits", "error", "dump_gain")},
+    },
     "power": POWER_SCHEMA,
 }
 
@@ -796,5 +823,24 @@ def _control(s: _Section, dt: float) -> ControlConfig:
     if settle >= period:
         s.fail("sense_settle_s", f"{settle} s must be shorter than period_s ({period} s)")
     saturation = s.string("saturation", "scale", SATURATION)
+    beta = s.section("beta_pd")
+    beta_pd = BetaPdConfig(k_s=beta.number("k_s", BetaPdConfig.k_s), k_d=beta.number("k_d", BetaPdConfig.k_d),
+                           switched=beta.boolean("switched", BetaPdConfig.switched))
+    beta.finish()
+    wheels = s.section("wheels_pd")
+    target = wheels.raw("target_q_bo", list(WheelsPdConfig.target_q_bo))
+    if not isinstance(target, (list, tuple)) or len(target) != 4:
+        wheels.fail("target_q_bo", f"expected 4 numbers (scalar first), got {target!r}")
+    q = tuple(s.ctx.number(wheels.path + ("target_q_bo", i), x) for i, x in enumerate(target))
+    if not math.sqrt(sum(c * c for c in q)) > 0.0:
+        wheels.fail("target_q_bo", "the target quaternion must not be zero")
+    wheels_pd = WheelsPdConfig(k_p=wheels.number("k_p", WheelsPdConfig.k_p),
+                               k_d=wheels.number("k_d", WheelsPdConfig.k_d),
+                               target_q_bo=q,  # type: ignore[arg-type]
+                               limits=wheels.string("limits", WheelsPdConfig.limits, ("report", "wheel")),
+                               error=wheels.string("error", WheelsPdConfig.error, ("report", "shortest_path")),
+                               dump_gain=wheels.number("dump_gain", WheelsPdConfig.dump_gain, nonneg=True))
+    wheels.finish()
     s.finish()
-    return ControlConfig(law=law, gain=gain, period_s=period, sense_settle_s=settle, saturation=saturation)
+    return ControlConfig(law=law, gain=gain, period_s=period, sense_settle_s=settle, saturation=saturation,
+                         beta_pd=beta_pd, wheels_pd=wheels_pd)

@@ -104,62 +104,9 @@ def diag(a: float, b: float, c: float) -> Mat3:
 # --- quaternions (scalar first) -------------------------------------------------------------
 
 
-def quat_mul(p: Quat, q: Quat) -> Quat:
-    """Hamilton product ``p (x) q`` (scalar first)."""
-    p0, p1, p2, p3 = p
-    q0, q1, q2, q3 = q
-    return (
-        p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
-        p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
-        p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
-        p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0,
-    )
-
-
-def quat_conj(q: Quat) -> Quat:
-    return (q[0], -q[1], -q[2], -q[3])
-
-
-def quat_normalize(q: Quat) -> Quat:
-    n = math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
-    if n == 0.0:
-        raise ValueError("cannot normalise a zero quaternion")
-    return (q[0] / n, q[1] / n, q[2] / n, q[3] / n)
-
-
-def quat_from_axis_angle(axis: Vec3, angle_rad: float) -> Quat:
-    """``q_BN`` for B obtained by turning N by ``angle_rad`` about the unit ``axis``."""
-    e = unit(axis)
-    s = math.sin(0.5 * angle_rad)
-    return (math.cos(0.5 * angle_rad), e[0] * s, e[1] * s, e[2] * s)
-
-
-def quat_to_dcm(q: Quat) -> Mat3:
-    """``[BN]`` from ``q_BN`` (maps N components to B components)."""
-    q0, q1, q2, q3 = q
-    return (
-        (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2.0 * (q1 * q2 + q0 * q3), 2.0 * (q1 * q3 - q0 * q2)),
-        (2.0 * (q1 * q2 - q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2.0 * (q2 * q3 + q0 * q1)),
-        (2.0 * (q1 * q3 + q0 * q2), 2.0 * (q2 * q3 - q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3),
-    )
-
-
-def rotate_n_to_b(q: Quat, v_N: Vec3) -> Vec3:
-    """``v_B = [BN(q)] v_N`` (written out: this is on the per-tick path)."""
-    q0, q1, q2, q3 = q
-    x, y, z = v_N
-    q00, q11, q22, q33 = q0 * q0, q1 * q1, q2 * q2, q3 * q3
-    q01, q02, q03, q12, q13, q23 = q0 * q1, q0 * q2, q0 * q3, q1 * q2, q1 * q3, q2 * q3
-    return (
-        (q00 + q11 - q22 - q33) * x + 2.0 * ((q12 + q03) * y + (q13 - q02) * z),
-        (q00 - q11 + q22 - q33) * y + 2.0 * ((q12 - q03) * x + (q23 + q01) * z),
-        (q00 - q11 - q22 + q33) * z + 2.0 * ((q13 + q02) * x + (q23 - q01) * y),
-    )
-
-
-def rotate_b_to_n(q: Quat, v_B: Vec3) -> Vec3:
-    """``v_N = [BN(q)]^T v_B``."""
-    return mat_vec(mat_transpose(quat_to_dcm(q)), v_B)
+# The quaternion helpers are the control layer's (one implementation for plant and flight code).
+from detumble.control.quaternion import (quat_conj, quat_from_axis_angle, quat_mul, quat_normalize,  # noqa: E402,F401
+                                         quat_to_dcm, rotate_b_to_n, rotate_n_to_b)
 
 
 def mrp_to_quat(sigma: Vec3) -> Quat:

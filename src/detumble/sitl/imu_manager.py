@@ -36,6 +36,9 @@ from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet,
                                        Result, SamplingPeriodGet, Success, TimeIntervalValue)
 from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
+# the gyro types are shared with the attitude controller, which may not import sitl
+from detumble.components.attitude_types import AngularVelocity, AngularVelocityGet
+
 __all__ = ["ImuManager", "AxisOrientation", "Acceleration", "AngularVelocity", "AccelerationGet", "AngularVelocityGet",
            "Lis2mdlSamplingFrequency", "Lsm6dsoSamplingFrequency", "SimImuSensor", "SimReadFault",
            "LIS2MDL_HZ", "LSM6DSO_HZ"]
@@ -56,18 +59,8 @@ class Acceleration(Struct, namespace="Drv"):
     z: F64
 
 
-class AngularVelocity(Struct, namespace="Drv"):
-    """A gyro reading ``x, y, z`` in rad/s (ω_BN expressed in the body frame)."""
-
-    x: F64
-    y: F64
-    z: F64
-
-
 #: Acceleration in m/s²; returns ``Result(Acceleration, Success)``.
 AccelerationGet = PortType("Components.AccelerationGet", returns=Result)
-#: Angular velocity in rad/s; returns ``Result(AngularVelocity, Success)``.
-AngularVelocityGet = PortType("Components.AngularVelocityGet", returns=Result)
 
 
 class Lis2mdlSamplingFrequency(FwEnum, namespace="Components"):

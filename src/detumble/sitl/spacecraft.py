@@ -386,6 +386,28 @@ class SimulatedSpacecraft:
         """Tell the truth log what the controller is pointing at (``Plant.set_pointing_target``)."""
         self.plant.set_pointing_target(q_target, frame)
 
+    # --- ideal torque rods and the orbit frame --------------------------------------------------
+
+    @property
+    def has_torque_rods(self) -> bool:
+        """True when the actuators are ideal rods commanded by dipole (scenario actuators: rods)."""
+        return not isinstance(self.plant.actuators, CoilSet)
+
+    def apply_dipole(self, m_B) -> tuple[float, float, float]:
+        """Command the ideal rods to ``m_B`` (A·m², B) from now on; returns the dipole they give
+        (each axis limited to the rods' maximum)."""
+        if not self.has_torque_rods:
+            raise ValueError("this spacecraft has coils, not ideal torque rods; drive its coils by level")
+        self.sync()
+        self.plant.apply_dipole_B((float(m_B[0]), float(m_B[1]), float(m_B[2])))
+        return self.plant.m_coils_B
+
+    def orbit_frame_sample(self) -> tuple[tuple[float, float, float, float], float, Time]:
+        """``(q_ON, n, t)``: the orbit frame O relative to N (scalar first), the orbit rate (rad/s)
+        and the time — what an on-board orbit propagator knows."""
+        self.sync()
+        return self.plant.q_ON, self.plant.orbit.mean_motion, self.now()
+
     # --- truth ----------------------------------------------------------------------------------
 
     def truth(self) -> TruthSample:
@@ -426,6 +448,13 @@ class SimulatedSpacecraft:
         now = self.plant.t_ns
         callback(self.truth())
         self._trace_next_ns = (now // self._trace_interval_ns + 1) * self._trace_interval_ns
+
+    def read_setting(self, key: str):
+        """Scenario value ``key`` as this spacecraft's plant holds it (campaign read-back; call it
+        before the run: initial-state keys read the present state)."""
+        from detumble.sim.readback import read_setting
+
+        return read_setting(self.plant, key)
 
     # --- avionics: electrical power, load switches, flash, reset line ---------------------------------
 

@@ -8,6 +8,7 @@
     fprime-lite plot RUN_DIR            draw the plots of a finished run again
     fprime-lite new component|deployment NAME   write a skeleton that passes its own test
     fprime-lite bench                   measure speed and memory
+    fprime-lite campaign FILE           run a gain sweep / Monte Carlo on Dask (docs/campaigns.md)
 
 Applications add verbs of their own through the ``fprime_lite.verbs`` entry points
 (:mod:`fprime_lite.tools.plugins`); the detumble application adds ``sim``.
@@ -119,6 +120,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     bench = sub.add_parser("bench", help="measure speed and memory", add_help=False)
     bench.add_argument("args", nargs=argparse.REMAINDER)
+    campaign = sub.add_parser("campaign", help="run a gain sweep or Monte Carlo campaign on Dask", add_help=False)
+    campaign.add_argument("args", nargs=argparse.REMAINDER)
     for verb in _application_verbs().values():
         plug = sub.add_parser(verb.name, help=verb.help, add_help=False)
         plug.add_argument("args", nargs=argparse.REMAINDER)
@@ -387,12 +390,18 @@ def cmd_bench(args) -> int:
     return bench_main(args.args)
 
 
+def cmd_campaign(args) -> int:
+    from fprime_lite.tools.campaign.cli import main as campaign_main
+
+    return campaign_main(args.args)
+
+
 COMMANDS = {"run": cmd_run, "dict": cmd_dict, "check": cmd_check, "graph": cmd_graph,
-            "params": cmd_params, "bench": cmd_bench, "plot": cmd_plot, "new": cmd_new}
+            "params": cmd_params, "bench": cmd_bench, "campaign": cmd_campaign, "plot": cmd_plot, "new": cmd_new}
 BUILT_IN = set(COMMANDS)
 
 #: Verbs that parse their own options (application verbs do too).
-PASS_THROUGH = {"bench"}
+PASS_THROUGH = {"bench", "campaign"}
 
 
 def main(argv: list[str] | None = None) -> int:

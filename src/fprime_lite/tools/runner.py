@@ -41,22 +41,27 @@ def _reports(loaded: LoadedDeployment) -> list:
 
 def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
                    progress: bool = False, plots: bool = True, console=None, allow_warnings: bool = False,
-                   quiet: bool = False) -> dict:
+                   stop_on_events=(), quiet: bool = False) -> dict:
     """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary.
 
     The summary's ``ok`` is False when the flight had handler faults, rate-group member faults,
     cycle slips or WARNING_HI/FATAL events, unless ``allow_warnings``; ``problems`` says which.
-    ``quiet`` prints nothing (no summary table).
+    ``stop_on_events``: full event names (``Module.inst.Event``) whose downlink ends the run early
+    (a campaign stops at DetumbleCompleted). ``quiet`` prints nothing (no summary table).
     """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     deployment = Deployment(loaded)
     topo = deployment.topology
     reports = _reports(loaded)
+    stop_names = frozenset(stop_on_events)
+
     def on_event(event: DecodedEvent) -> None:
         for r in reports:
             if hasattr(r, "on_event"):
                 r.on_event(event)
+        if event.name in stop_names:
+            deployment.scheduler.stop()
 
     recorder = GroundRecorder(topo, out, on_event=on_event, clock=loaded.clock)
     recorder.attach(topo, topo.patterns.get("event"), topo.patterns.get("telemetry"))
@@ -75,7 +80,7 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     if progress:
         _run_with_progress(deployment, end_us, reports, console)
     else:
-        deployment.scheduler.run(until_us=end_us)
+        deployment.scheduler.run(until_us=end_us)  # stop() (an early-stop event) ends it sooner
     wall = time.perf_counter() - wall0
 
     recorder.close()

@@ -64,3 +64,19 @@ def test_overall_is_the_largest_axis_and_time_below_is_horizon_free():
     mag[5000] = 1.5
     assert time_below(t, mag, 1.0) == pytest.approx(t[5001])
     assert time_below(t, np.full_like(t, 2.0), 1.0) is None
+
+
+def test_on_line_trackers_agree_with_the_batch_functions_sample_for_sample():
+    """SET-007: SettlingTracker and BelowTracker give, after every sample, exactly what the batch
+    functions give for the series so far (random walks in and out of the band)."""
+    from detumble.analysis.settling import BelowTracker, SettlingTracker
+
+    rng = np.random.default_rng(7)
+    t = np.arange(0.0, 300.0, 1.0)
+    y = np.cumsum(rng.normal(0.0, 0.01, t.size)) + 0.05
+    tracker, below = SettlingTracker(0.0, 1.0), BelowTracker(0.03)
+    for k in range(t.size):
+        tracker.update(t[k], y[k])
+        below.update(t[k], abs(y[k]))
+        assert tracker.time == settling_time(t[: k + 1], y[: k + 1], y_final=0.0, y_init=1.0)
+        assert below.time == time_below(t[: k + 1], np.abs(y[: k + 1]), 0.03)

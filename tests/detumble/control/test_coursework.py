@@ -135,3 +135,18 @@ def test_the_reports_limits_are_applied_as_its_loops_do():
     assert cw.limit_wheel_torque((5e-3, -5e-3, 2e-4), (0.0, 0.0, 0.0)) == (1e-3, -1e-3, 2e-4)
     assert cw.limit_wheel_torque((5e-4, -5e-4, 5e-4), (0.11, 0.11, -0.11)) == (0.0, -5e-4, 5e-4)
     assert cw.limit_wheel_torque((-5e-4, 5e-4, 0.0), (-0.11, -0.11, 0.1)) == (0.0, 5e-4, 0.0)
+
+
+def test_dumping_dipole_removes_momentum_across_the_field_only():
+    """CW-010: M = k (h × B)/|B|² gives M × B = −k h⊥ exactly (the part of h along B untouched)."""
+    rng = random.Random(9)
+    for _ in range(50):
+        h = tuple(rng.gauss(0, 1e-3) for _ in range(3))
+        b = tuple(rng.gauss(0, 3e-5) for _ in range(3))
+        m = cw.dumping_dipole(0.01, h, b)
+        tau = (m[1] * b[2] - m[2] * b[1], m[2] * b[0] - m[0] * b[2], m[0] * b[1] - m[1] * b[0])
+        b2 = sum(c * c for c in b)
+        along = sum(hi * bi for hi, bi in zip(h, b, strict=True)) / b2
+        h_perp = tuple(h[i] - along * b[i] for i in range(3))
+        assert tau == pytest.approx(tuple(-0.01 * c for c in h_perp), rel=1e-9, abs=1e-18)
+    assert cw.dumping_dipole(0.01, (1e-3, 0, 0), (0.0, 0.0, 0.0)) == (0.0, 0.0, 0.0)

@@ -49,6 +49,9 @@ def test_surrey_is_the_coursework_environment():
     assert plant.q_BO == pytest.approx((1.0, 0.0, 0.0, 0.0), abs=1e-15)
     assert plant.b_B == pytest.approx(B_O, abs=1e-18)
     assert [plant.wheels.u_max, plant.wheels.h_max] == [(1e-3,) * 3, (0.1,) * 3]
+    # the body without its wheel rotors is the report's isotropic I = 1.67e-3 kg m^2
+    assert [c for row in plant.body.inertia for c in row] == pytest.approx(
+        [1.67e-3, 0, 0, 0, 1.67e-3, 0, 0, 0, 1.67e-3], abs=1e-18)
     assert plant.max_dipole_per_axis() == (1.0, 1.0, 1.0)
     assert sc.spacecraft.actuator_saturation == "clip" and sc.control.saturation == "clip"
     assert plant.omega_BO_B == pytest.approx((1.0, 2.0 + N_SEED, 3.0), abs=1e-15)

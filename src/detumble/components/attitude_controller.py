@@ -1,0 +1,700 @@
+"""AttitudeController: seed 003's three-mode ADCS "brain" as a passive fprime_lite component.
+
+Behaviour and requirements: ``docs/components/attitude_controller.md``. The laws are plain
+functions in :mod:`detumble.control` (quaternion math, B-dot, dampers, PD pointing, dipole
+projection, wheel allocation, momentum dumping, the attitude filter); this module adapts them to
+ports, parameters, commands, events and telemetry.
+
+Timing: ``run`` is scheduled on the 50 Hz rate group. Every ``CYCLE_TICKS`` ticks (default 5, so
+10 Hz) one control cycle runs on tick 0: read the gyro, the star tracker and the magnetometer,
+update the attitude filter, choose the mode, compute and actuate. The coils are switched off on the
+last tick of each cycle, so the magnetometer reading of the next cycle (one tick = 20 ms later; the
+LIS2MDL samples at 100 Hz) is free of the coils' own field (their coupling into the magnetometer
+is 30 times the Earth's field at full drive). Coils therefore drive 80 % of the time
+(``(CYCLE_TICKS − 1)/CYCLE_TICKS``); wheels are commanded once per cycle and hold their torque.
+
+Modes (``ControlMode``): IDLE (coils off, wheels at zero torque), DETUMBLE (B-dot),
+SPIN_STABLE (``SPIN_LAW``), POINTING (quaternion PD on the wheels, or on the magnetorquers).
+In AUTO the seed's triggers choose the mode; in MANUAL it stays where FORCE_MODE put it.
+
+Frames and units: body frame B, inertial frame N; rates rad/s inside (deg/s in parameters and
+telemetry, as the ground reads them); field tesla inside (gauss at the port); torque N·m; momentum
+N·m·s; dipole A·m²; quaternions ``q_BN`` scalar first.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+
+from fprime_lite import (F64, U32, Channel, CmdResponse, Event, OutputPort, Param, PassiveComponent, Sched,
+                         Severity, sync_command, sync_input)
+
+from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, ControlAutonomy, ControlMode,
+                                                ModeChangeReason, PointingActuator, Quaternion, SpinLaw, Vector3,
+                                                WheelValues)
+from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFieldGet, StartMagnetorquer,
+                                       StopMagnetorquer, Success, WheelEnableSet, WheelStateGet, WheelTorqueSet)
+from detumble.control.attitude_filter import AttitudeFilter
+from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
+from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
+from detumble.control.pointing import ErrorIntegrator, pd_torque
+from detumble.control.quaternion import (is_unit_quaternion, quat_angle, quat_normalize, quat_shortest,
+                                         target_pointing_axis)
+from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper
+from detumble.control.wheel_allocation import WheelAllocator
+
+__all__ = ["AttitudeController", "BORESIGHT_B"]
+
+log = logging.getLogger("detumble.components.attitude_controller")
+
+#: The body axis SET_TARGET_DIRECTION points (the seed's "point Z-axis at Sun/Ground").
+BORESIGHT_B = (0.0, 0.0, 1.0)
+_TESLA_PER_GAUSS = 1e-4
+_DEG = math.pi / 180.0
+_ZERO = (0.0, 0.0, 0.0)
+
+
+def _finite(*values) -> bool:
+    try:
+        return all(math.isfinite(v) for v in values)
+    except TypeError:
+        return False
+
+
+def _norm(v) -> float:
+    return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+
+
+class AttitudeController(PassiveComponent):
+    """DETUMBLE → SPIN_STABLE → POINTING, with every trigger a parameter (F´ namespace ``Components``).
+
+    Args:
+        name: instance name.
+        base_id: F´ base id.
+        wheel_axes: unit spin axes of the wheels in B, one per connected wheel port index
+            (default: three orthogonal wheels on x, y, z).
+    """
+
+    # --- commands ------------------------------------------------------------------------------
+
+    @sync_command()
+    def FORCE_MODE(self, mode: ControlMode):
+        """Switch to ``mode`` and stay there (autonomy MANUAL). POINTING is refused without attitude
+        knowledge (NoAttitudeKnowledge) or, with POINTING_ACTUATOR = WHEELS, without wheels
+        (ModeUnavailableNoWheels): EXECUTION_ERROR, mode unchanged."""
+        mode = ControlMode(mode)
+        if mode == ControlMode.POINTING and not self._pointing_available(report=True):
+            return CmdResponse.EXECUTION_ERROR
+        self._set_autonomy(ControlAutonomy.MANUAL)
+        self._change_mode(mode, ModeChangeReason.COMMAND)
+        return CmdResponse.OK
+
+    @sync_command()
+    def SET_AUTO(self):
+        """Hand the mode to the seed's triggers (AUTO). From IDLE the next cycle starts in DETUMBLE
+        (the seed's "mission start")."""
+        self._set_autonomy(ControlAutonomy.AUTO)
+        return CmdResponse.OK
+
+    @sync_command()
+    def SET_TARGET_QUATERNION(self, q0: F64, q1: F64, q2: F64, q3: F64):
+        """Set the POINTING target ``q_TN`` (scalar first). Refused unless | |q| − 1 | ≤ 1e-3
+        (TargetNotUnitQuaternion, VALIDATION_ERROR); accepted targets are re-normalised."""
+        q = (q0, q1, q2, q3)
+        if not is_unit_quaternion(q):
+            norm = math.sqrt(sum(c * c for c in q)) if _finite(*q) else float("nan")
+            self.TargetNotUnitQuaternion(q0, q1, q2, q3, norm)
+            return CmdResponse.VALIDATION_ERROR
+        self.TargetNotUnitQuaternion.clear_throttle()
+        self._set_target(quat_shortest(quat_normalize(q)))
+        return CmdResponse.OK
+
+    @sync_command()
+    def SET_TARGET_DIRECTION(self, x: F64, y: F64, z: F64):
+        """Point the body +Z axis along the inertial direction ``(x, y, z)`` (any length), by the
+        smallest rotation from the present attitude. Refused for a zero or non-finite vector
+        (TargetDirectionInvalid, VALIDATION_ERROR) and without attitude knowledge
+        (NoAttitudeKnowledge, EXECUTION_ERROR)."""
+        if not _finite(x, y, z) or _norm((x, y, z)) == 0.0:
+            self.TargetDirectionInvalid(x, y, z)
+            return CmdResponse.VALIDATION_ERROR
+        q = self.filter.q
+        if not self.attitude_valid or q is None:
+            self.NoAttitudeKnowledge()
+            return CmdResponse.EXECUTION_ERROR
+        self._set_target(target_pointing_axis(q, BORESIGHT_B, (x, y, z)))
+        return CmdResponse.OK
+
+    # --- parameters (defaults and their derivation: docs/components/attitude_controller.md) ----
+
+    K_P = Param(F64, default=1.1e-3)  # N·m: PD spring on q_err.v, wheels (ω_n 0.5 rad/s for 2.2e-3 kg·m²)
+    K_D = Param(F64, default=2.0e-3)  # N·m·s: PD damping, wheels (ζ ≈ 0.9)
+    K_I = Param(F64, default=5.5e-5)  # N·m/s: integral on q_err.v, wheels (an addition to the seed; 0 turns it off)
+    INTEGRAL_WINDOW = Param(F64, default=1.0)  # deg: the integral runs only below this error
+    K_P_MAG = Param(F64, default=2.0e-6)  # N·m: PD spring, magnetorquer-only pointing
+    K_D_MAG = Param(F64, default=4.0e-4)  # N·m·s: PD damping, magnetorquer-only pointing
+    C_DAMP = Param(F64, default=1.0e-4)  # N·m·s: damper coefficient (seed c_damp)
+    I_D = Param(F64, default=2.0e-4)  # kg·m²: damper virtual inertia (seed I_d)
+    K_BDOT = Param(F64, default=3.0)  # A·m²·s/G: M = −k Ḃ when no dipoleMomentGet provider is connected
+    SPIN_LAW = Param(SpinLaw, default=SpinLaw.RATE_REGULATOR)
+    SPIN_RATE_TARGET = Param(F64, default=1.5)  # deg/s about body +Z (below the star tracker's 2 deg/s limit)
+    SPIN_K_TRANSVERSE = Param(F64, default=2.0e-4)  # N·m·s
+    SPIN_K_RATE = Param(F64, default=2.0e-4)  # N·m·s
+    DETUMBLE_ENTER_RATE = Param(F64, default=20.0)  # deg/s: |ω| above this → DETUMBLE
+    DETUMBLE_EXIT_RATE = Param(F64, default=1.0)  # deg/s: |ω| below this for MODE_DWELL → SPIN_STABLE (then spin *up*)
+    MODE_DWELL = Param(F64, default=5.0)  # s
+    SPIN_AXIS_ENTER = Param(F64, default=5.0)  # deg: rate within this of +Z counts as stable
+    SPIN_AXIS_RESET = Param(F64, default=8.0)  # deg: beyond this the stability timer restarts
+    SPIN_RATE_ENTER = Param(F64, default=0.05)  # fraction of SPIN_RATE_TARGET
+    SPIN_RATE_RESET = Param(F64, default=0.08)  # fraction
+    SPIN_STABLE_DWELL = Param(F64, default=60.0)  # s of stable spin before POINTING
+    ATTITUDE_TIMEOUT = Param(F64, default=90.0)  # s on the gyro alone (no star-tracker fix) → no attitude knowledge
+    SLEW_RATE_LIMIT = Param(F64, default=8.0)  # deg/s: largest rate a slew commands (wheels)
+    POINTING_ACTUATOR = Param(PointingActuator, default=PointingActuator.ANY)
+    K_DUMP = Param(F64, default=2.0e-3)  # 1/s: magnetic momentum dumping while pointing on wheels
+    WHEEL_MAX_TORQUE = Param(F64, default=2.0e-3)  # N·m per wheel
+    WHEEL_MAX_MOMENTUM = Param(F64, default=4.0e-3)  # N·m·s per wheel
+    FILTER_KP = Param(F64, default=0.5)  # 1/s
+    FILTER_KI = Param(F64, default=0.02)  # 1/s²
+    X_COIL_MAX_DIPOLE = Param(F64, default=96 * 0.053 * 0.045 * 3.3 / 13.0)  # A·m² per X coil at full drive
+    Y_COIL_MAX_DIPOLE = Param(F64, default=96 * 0.053 * 0.045 * 3.3 / 13.0)  # A·m² per Y coil
+    Z_COIL_MAX_DIPOLE = Param(F64, default=153 * math.pi * (0.05755 / 2) ** 2 * 3.3 / 150.7)  # A·m², Z−
+    CYCLE_TICKS = Param(U32, default=5)  # run ticks per control cycle (coils off on the last)
+
+    # --- ports ---------------------------------------------------------------------------------
+
+    angularVelocityGet = OutputPort(AngularVelocityGet)
+    magneticFieldGet = OutputPort(MagneticFieldGet)
+    attitudeGet = OutputPort(AttitudeGet)
+    #: Optional: when connected (to a BDotDetumble), DETUMBLE takes its dipole instead of K_BDOT's.
+    dipoleMomentGet = OutputPort(DipoleMomentGet)
+    xPlusStart = OutputPort(StartMagnetorquer)
+    xPlusStop = OutputPort(StopMagnetorquer)
+    xMinusStart = OutputPort(StartMagnetorquer)
+    xMinusStop = OutputPort(StopMagnetorquer)
+    yPlusStart = OutputPort(StartMagnetorquer)
+    yPlusStop = OutputPort(StopMagnetorquer)
+    yMinusStart = OutputPort(StartMagnetorquer)
+    yMinusStop = OutputPort(StopMagnetorquer)
+    zMinusStart = OutputPort(StartMagnetorquer)
+    zMinusStop = OutputPort(StopMagnetorquer)
+    wheelTorqueSet = OutputPort(WheelTorqueSet, size=MAX_WHEELS)
+    wheelStateGet = OutputPort(WheelStateGet, size=MAX_WHEELS)
+    wheelEnableSet = OutputPort(WheelEnableSet, size=MAX_WHEELS)
+
+    # --- events --------------------------------------------------------------------------------
+
+    ControlModeChanged = Event(Severity.ACTIVITY_HI, "Attitude mode {} -> {} ({})",
+                               from_mode=ControlMode, to_mode=ControlMode, reason=ModeChangeReason)
+    AutonomyChanged = Event(Severity.ACTIVITY_HI, "Attitude autonomy set to {}", autonomy=ControlAutonomy)
+    TargetSet = Event(Severity.ACTIVITY_HI, "Pointing target q_TN = ({.6f}, {.6f}, {.6f}, {.6f})",
+                      q0=F64, q1=F64, q2=F64, q3=F64)
+    TargetNotUnitQuaternion = Event(Severity.WARNING_LO,
+                                    "Target ({}, {}, {}, {}) refused: norm {} is not 1 (within 1e-3)",
+                                    q0=F64, q1=F64, q2=F64, q3=F64, norm=F64, throttle=5)
+    TargetDirectionInvalid = Event(Severity.WARNING_LO, "Target direction ({}, {}, {}) refused: not a non-zero "
+                                   "finite vector", x=F64, y=F64, z=F64, throttle=5)
+    NoAttitudeKnowledge = Event(Severity.WARNING_LO, "No attitude knowledge (star tracker): pointing not available",
+                                throttle=5)
+    ModeUnavailableNoWheels = Event(Severity.WARNING_LO, "Mode {} needs reaction wheels and none answer",
+                                    mode=ControlMode, throttle=5)
+    AttitudeKnowledgeLost = Event(Severity.WARNING_HI, "Attitude knowledge lost while pointing: back to SPIN_STABLE",
+                                  throttle=5)
+    GyroRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve angular velocity.", throttle=5)
+    MagneticFieldRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve magnetic field.", throttle=5)
+    DipoleMomentRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve the B-dot dipole moment.",
+                                        throttle=5)
+    WheelCommandFailed = Event(Severity.WARNING_LO, "Wheel {} did not accept its command", wheel=U32, throttle=5)
+    WheelLimitReached = Event(Severity.WARNING_LO, "A wheel torque or momentum limit cut the requested torque",
+                              throttle=5)
+
+    # --- telemetry -----------------------------------------------------------------------------
+
+    Mode = Channel(ControlMode)
+    Autonomy = Channel(ControlAutonomy)
+    AngularRate = Channel(F64, format="{.3f}")  # deg/s, |ω̂|
+    PointingError = Channel(F64, format="{.4f}")  # deg, estimated, in POINTING
+    SpinAxisError = Channel(F64, format="{.3f}")  # deg between ω̂ and +Z
+    SpinRate = Channel(F64, format="{.3f}")  # deg/s, ω̂·ẑ
+    DamperState = Channel(F64)  # seed w_d (rad/s), |ω_d| of the 3-axis damper, or the spin-rate error (rad/s)
+    RequestedTorque = Channel(Vector3)  # N·m, B
+    CommandedDipole = Channel(Vector3)  # A·m², B, after limits and drive-level rounding
+    WheelTorqueCommand = Channel(WheelValues)  # N·m per wheel
+    WheelMomentum = Channel(WheelValues)  # N·m·s per wheel
+    TargetQuaternion = Channel(Quaternion)
+    GyroBiasEstimate = Channel(Vector3)  # deg/s, B
+    AttitudeValid = Channel(U32)  # 1 while the star tracker's attitude is recent
+
+    # --- construction --------------------------------------------------------------------------
+
+    def __init__(self, name: str, *, base_id: int = 0,
+                 wheel_axes=((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))):
+        super().__init__(name, base_id=base_id)
+        if not 3 <= len(wheel_axes) <= MAX_WHEELS:
+            raise ValueError(f"wheel_axes: give 3 to {MAX_WHEELS} unit axes, got {len(wheel_axes)}")
+        self.wheel_axes = tuple((float(a[0]), float(a[1]), float(a[2])) for a in wheel_axes)
+        self.mode = ControlMode.IDLE
+        self.autonomy = ControlAutonomy.MANUAL
+        self.filter = AttitudeFilter()
+        self.integrator = ErrorIntegrator(math.radians(1.0), 1.0e-5)
+        self.target: tuple[float, float, float, float] | None = None
+        self.seed_damper = SeedKaneDamper(1.0e-4, 2.0e-4)
+        self.virtual_damper = VirtualDamper(1.0e-4, 2.0e-4)
+        self.ticks = 0
+        self.cycles = 0
+        self.coils_driven = False
+        self.omega: tuple[float, float, float] | None = None  # ω̂ rad/s, B
+        self.b_tesla: tuple | None = None
+        self.dipole: tuple = _ZERO  # A·m² achieved by the levels of the present cycle
+        self.torque_request: tuple = _ZERO
+        self.wheel_torques: tuple = ()
+        self.wheel_momenta: tuple | None = None
+        self.pointing_error_deg = float("nan")
+        self._last_cycle_us: int | None = None
+        self._dwell_s = 0.0  # DETUMBLE-exit qualification timer
+        self._stable_s = 0.0  # SPIN_STABLE qualification timer
+        self._b_prev: tuple | None = None  # (b gauss, t µs) for the internal B-dot
+        self._bdot_primed = False  # the dipoleMomentGet provider has been called in this DETUMBLE
+        self._b_gauss: tuple = _ZERO
+        self._gyro_sum: tuple = _ZERO  # rad/s, summed over the ticks since the last cycle
+        self._gyro_count = 0
+        self._last_fix_us: int | None = None  # time stamp of the last star-tracker solution used
+        self._wheels_enabled = False
+        self._b_stamp_us = 0
+        self._start_ports = [self.output_port(n) for n in
+                             ("xPlusStart", "xMinusStart", "yPlusStart", "yMinusStart", "zMinusStart")]
+        self._stop_ports = [self.output_port(n) for n in
+                            ("xPlusStop", "xMinusStop", "yPlusStop", "yMinusStop", "zMinusStop")]
+
+    # --- state helpers -------------------------------------------------------------------------
+
+    @property
+    def attitude_valid(self) -> bool:
+        """True while the filter holds an attitude and its last star-tracker fix is recent."""
+        return self.filter.q is not None and self.filter.since_measurement_s <= self.ATTITUDE_TIMEOUT.value
+
+    def wheel_count(self) -> int:
+        """Wheels connected (torque and momentum ports both), in index order."""
+        n = 0
+        for i in range(len(self.wheel_axes)):
+            if self.is_connected("wheelTorqueSet", i) and self.is_connected("wheelStateGet", i):
+                n += 1
+        return n
+
+    def _wheels_available(self) -> bool:
+        return self.wheel_count() == len(self.wheel_axes) and self._read_wheel_momenta() is not None
+
+    def _pointing_uses_wheels(self) -> bool:
+        choice = self.POINTING_ACTUATOR.value
+        if choice == PointingActuator.MAGNETORQUERS:
+            return False
+        return self._wheels_available()
+
+    def _pointing_available(self, *, report: bool) -> bool:
+        if self.POINTING_ACTUATOR.value == PointingActuator.WHEELS and not self._wheels_available():
+            if report:
+                self.ModeUnavailableNoWheels(ControlMode.POINTING)
+            return False
+        if not self.attitude_valid:
+            if report:
+                self.NoAttitudeKnowledge()
+            return False
+        return True
+
+    def _set_autonomy(self, autonomy: ControlAutonomy) -> None:
+        if autonomy != self.autonomy:
+            self.autonomy = autonomy
+            self.AutonomyChanged(autonomy)
+
+    def _set_target(self, q) -> None:
+        self.integrator.reset()
+        self.target = (float(q[0]), float(q[1]), float(q[2]), float(q[3]))
+        self.TargetSet(*self.target)
+        self.TargetQuaternion.write(Quaternion(*self.target))
+
+    def _change_mode(self, mode: ControlMode, reason: ModeChangeReason) -> None:
+        if mode == self.mode:
+            return
+        old = self.mode
+        self.mode = mode
+        self._dwell_s = 0.0
+        self._stable_s = 0.0
+        self._b_prev = None
+        self._bdot_primed = False
+        self.seed_damper.reset()
+        self.virtual_damper.reset()
+        self.integrator.reset()
+        if mode == ControlMode.POINTING and self.target is None and self.filter.q is not None:
+            self._set_target(self.filter.q)  # nothing commanded yet: hold the present attitude
+        if mode in (ControlMode.IDLE, ControlMode.DETUMBLE, ControlMode.SPIN_STABLE):
+            self._command_wheels((0.0,) * len(self.wheel_axes))
+        if mode == ControlMode.IDLE:
+            self._stop_coils()
+        self.ControlModeChanged(old, mode, reason)
+        self.Mode.write(mode)
+
+    # --- run -----------------------------------------------------------------------------------
+
+    @sync_input(Sched)
+    def run(self, context):
+        """50 Hz tick: a control cycle on tick 0 of every CYCLE_TICKS, coils off on the last tick.
+
+        No exception escapes: a fault is counted in ``handler_faults``, logged, and the actuators
+        are made safe (coils off, wheels at zero torque).
+        """
+        try:
+            cycle = max(1, int(self.CYCLE_TICKS.value))
+            phase = self.ticks % cycle
+            self.ticks += 1
+            if phase == 0:
+                self._cycle()
+            else:
+                self._accumulate_gyro()
+            if phase == cycle - 1 and self.coils_driven and cycle > 1:
+                self._stop_coils()
+        except Exception:  # the rate group must keep running
+            self.handler_faults += 1
+            log.exception("%s: run raised; stopping coils and wheels", self.name)
+            try:
+                self._stop_coils()
+                self._command_wheels((0.0,) * len(self.wheel_axes))
+            except Exception:
+                log.exception("%s: making the actuators safe failed too", self.name)
+
+    def _cycle(self) -> None:
+        now_us = self.get_time().total_us
+        nominal = max(1, int(self.CYCLE_TICKS.value)) * 0.02
+        if self._last_cycle_us is None or now_us <= self._last_cycle_us:
+            dt = nominal
+        else:
+            dt = (now_us - self._last_cycle_us) / 1e6
+        self._last_cycle_us = now_us
+        self.cycles += 1
+        self._sense(dt, now_us)
+        if self.autonomy == ControlAutonomy.AUTO:
+            self._auto_mode(dt)
+        elif self.mode == ControlMode.POINTING and not self.attitude_valid:
+            self.AttitudeKnowledgeLost()
+            self._change_mode(ControlMode.SPIN_STABLE, ModeChangeReason.ATTITUDE_LOST)
+        self._actuate(dt)
+        self._telemeter()
+
+    # --- sensing -------------------------------------------------------------------------------
+
+    def _sense(self, dt: float, now_us: int) -> None:
+        self.filter.k_p = self.FILTER_KP.value
+        self.filter.k_i = self.FILTER_KI.value
+        gyro = self._read_gyro()
+        if gyro is not None:
+            self.GyroRetrievalFailed.clear_throttle()
+            n = self._gyro_count + 1  # the mean over the cycle's ticks: the noise the D term sees drops by √n
+            acc = self._gyro_sum
+            gyro = ((acc[0] + gyro[0]) / n, (acc[1] + gyro[1]) / n, (acc[2] + gyro[2]) / n)
+        else:
+            self.GyroRetrievalFailed()
+        self._gyro_sum, self._gyro_count = _ZERO, 0
+        q_meas = None
+        age_s = 0.0
+        ok, q = self._read("attitudeGet")
+        if ok and q is not None and q.valid and is_unit_quaternion((q.q0, q.q1, q.q2, q.q3), tol=1e-2):
+            stamp_us = q.timestamp.total_us
+            if stamp_us != self._last_fix_us and stamp_us <= now_us:  # a new solution (the tracker holds its last)
+                self._last_fix_us = stamp_us
+                q_meas = quat_normalize((q.q0, q.q1, q.q2, q.q3))
+                age_s = (now_us - stamp_us) / 1e6
+        if gyro is not None:
+            self.filter.update(gyro, dt, q_meas, age_s)
+            self.omega = self.filter.omega
+        else:
+            self.omega = None
+        ok, field = self._read("magneticFieldGet")
+        if ok and field is not None and _finite(field.x, field.y, field.z):
+            self.MagneticFieldRetrievalFailed.clear_throttle()
+            self._b_gauss = (float(field.x), float(field.y), float(field.z))
+            self._b_stamp_us = field.timestamp.total_us
+            self.b_tesla = (self._b_gauss[0] * _TESLA_PER_GAUSS, self._b_gauss[1] * _TESLA_PER_GAUSS,
+                            self._b_gauss[2] * _TESLA_PER_GAUSS)
+        else:
+            self.MagneticFieldRetrievalFailed()
+            self.b_tesla = None
+        self.wheel_momenta = self._read_wheel_momenta() if self.wheel_count() else None
+
+    def _read_gyro(self):
+        ok, w = self._read("angularVelocityGet")
+        if ok and w is not None and _finite(w.x, w.y, w.z):
+            return (float(w.x), float(w.y), float(w.z))
+        return None
+
+    def _accumulate_gyro(self) -> None:
+        """Between cycles: add this tick's gyro reading to the cycle's mean (failed reads are skipped)."""
+        g = self._read_gyro()
+        if g is not None:
+            acc = self._gyro_sum
+            self._gyro_sum = (acc[0] + g[0], acc[1] + g[1], acc[2] + g[2])
+            self._gyro_count += 1
+
+    # --- AUTO ----------------------------------------------------------------------------------
+
+    def _spin_errors(self) -> tuple[float, float]:
+        """``(axis error deg, rate error fraction)`` of ω̂ against ``SPIN_RATE_TARGET`` about +Z."""
+        w = self.omega
+        assert w is not None  # AUTO looks at the spin only with a rate estimate
+        target = self.SPIN_RATE_TARGET.value * _DEG
+        n = _norm(w)
+        axis_deg = math.degrees(math.atan2(math.hypot(w[0], w[1]), w[2])) if n > 0.0 else 180.0
+        frac = abs(w[2] - target) / abs(target) if target != 0.0 else abs(w[2])
+        return axis_deg, frac
+
+    def _auto_mode(self, dt: float) -> None:
+        if self.mode == ControlMode.IDLE:
+            self._change_mode(ControlMode.DETUMBLE, ModeChangeReason.AUTO_START)
+            return
+        if self.omega is None:
+            return  # no rate: keep the mode (B-dot needs no gyro)
+        rate_deg = math.degrees(_norm(self.omega))
+        if self.mode != ControlMode.DETUMBLE and rate_deg > self.DETUMBLE_ENTER_RATE.value:
+            self._change_mode(ControlMode.DETUMBLE, ModeChangeReason.RATE_HIGH)
+            return
+        if self.mode == ControlMode.DETUMBLE:
+            self._dwell_s = self._dwell_s + dt if rate_deg < self.DETUMBLE_EXIT_RATE.value else 0.0
+            if self._dwell_s >= self.MODE_DWELL.value:
+                self._change_mode(ControlMode.SPIN_STABLE, ModeChangeReason.RATE_LOW)
+        elif self.mode == ControlMode.SPIN_STABLE:
+            axis_deg, frac = self._spin_errors()
+            if axis_deg <= self.SPIN_AXIS_ENTER.value and frac <= self.SPIN_RATE_ENTER.value:
+                self._stable_s += dt
+            elif axis_deg > self.SPIN_AXIS_RESET.value or frac > self.SPIN_RATE_RESET.value:
+                self._stable_s = 0.0
+            if self._stable_s >= self.SPIN_STABLE_DWELL.value:
+                if self._pointing_available(report=True):
+                    self._change_mode(ControlMode.POINTING, ModeChangeReason.SPIN_STABLE_REACHED)
+        elif self.mode == ControlMode.POINTING and not self.attitude_valid:
+            self.AttitudeKnowledgeLost()
+            self._change_mode(ControlMode.SPIN_STABLE, ModeChangeReason.ATTITUDE_LOST)
+
+    # --- actuation -----------------------------------------------------------------------------
+
+    def _coil_limits(self) -> tuple[float, float, float]:
+        """Largest dipole per axis, A·m²: two coils on X and Y, the single Z− coil on Z."""
+        return (2.0 * self.X_COIL_MAX_DIPOLE.value, 2.0 * self.Y_COIL_MAX_DIPOLE.value,
+                self.Z_COIL_MAX_DIPOLE.value)
+
+    def _duty(self) -> float:
+        cycle = max(1, int(self.CYCLE_TICKS.value))
+        return (cycle - 1) / cycle if cycle > 1 else 1.0
+
+    def _actuate(self, dt: float) -> None:
+        mode = self.mode
+        tau = _ZERO
+        dipole = None  # None: coils off this cycle
+        wheel_u = None  # None: wheels at zero torque
+        self.pointing_error_deg = float("nan")
+        if mode == ControlMode.DETUMBLE:
+            dipole = self._detumble_dipole()
+            if dipole is not None:  # B-dot: each axis saturates on its own, as the flight coils do
+                dipole = clip_to_limits(dipole, self._coil_limits())
+        elif mode == ControlMode.SPIN_STABLE and self.omega is not None:
+            tau = self._spin_torque(dt)
+            if self.b_tesla is not None:
+                dipole, _ = project_dipole_weighted(tau, self.b_tesla, self._coil_limits())
+        elif mode == ControlMode.POINTING and self.omega is not None and self.attitude_valid:
+            q = self.filter.q
+            assert q is not None  # attitude_valid
+            if self.target is None:
+                self._set_target(q)
+            target = self.target
+            assert target is not None  # _set_target set it
+            if self._pointing_uses_wheels():
+                tau, qe = pd_torque(target, q, self.omega, self.K_P.value, self.K_D.value,
+                                    self.SLEW_RATE_LIMIT.value * _DEG)
+                self.integrator.window_rad = self.INTEGRAL_WINDOW.value * _DEG
+                ti = self.integrator.update(qe, dt, self.K_I.value)
+                tau = (tau[0] + ti[0], tau[1] + ti[1], tau[2] + ti[2])
+                tau_mag = _ZERO
+                if self.b_tesla is not None and self.wheel_momenta is not None:
+                    h_b = WheelAllocator(self.wheel_axes, 1.0, 1.0).body_momentum(self.wheel_momenta)
+                    dipole, _ = project_dipole_weighted(dump_torque(h_b, self.K_DUMP.value), self.b_tesla,
+                                                        self._coil_limits())
+                    dipole = self._limit_dipole(dipole)
+                    mb = _cross(self._coil_levels(dipole)[1], self.b_tesla)
+                    d = self._duty()
+                    tau_mag = (mb[0] * d, mb[1] * d, mb[2] * d)
+                # the wheels supply what the dump torque does not (it would otherwise disturb the pointing)
+                wheel_u = self._allocate((tau[0] - tau_mag[0], tau[1] - tau_mag[1], tau[2] - tau_mag[2]))
+            else:
+                tau, qe = pd_torque(target, q, self.omega, self.K_P_MAG.value, self.K_D_MAG.value)
+                if self.b_tesla is not None:
+                    dipole, _ = project_dipole_weighted(tau, self.b_tesla, self._coil_limits())
+            self.pointing_error_deg = math.degrees(quat_angle(qe))
+        self.torque_request = tau
+        if dipole is None:
+            if self.coils_driven:
+                self._stop_coils()
+            self.dipole = _ZERO
+        else:
+            self._drive_coils(self._limit_dipole(dipole))
+        if wheel_u is None:
+            wheel_u = (0.0,) * len(self.wheel_axes)
+        self._command_wheels(wheel_u)
+
+    def _limit_dipole(self, m):
+        return scale_to_limits(m, self._coil_limits())
+
+    def _allocate(self, tau):
+        alloc = WheelAllocator(self.wheel_axes, self.WHEEL_MAX_TORQUE.value, self.WHEEL_MAX_MOMENTUM.value)
+        u, limited = alloc.allocate(tau, self.wheel_momenta)
+        if limited:
+            self.WheelLimitReached()
+        else:
+            self.WheelLimitReached.clear_throttle()
+        return u
+
+    def _detumble_dipole(self):
+        if self.is_connected("dipoleMomentGet", 0):
+            ok, m = self._read("dipoleMomentGet")
+            primed, self._bdot_primed = self._bdot_primed, True
+            if not ok or m is None or not _finite(m.x, m.y, m.z):
+                if primed:  # the provider's first call after entering DETUMBLE only primes it
+                    self.DipoleMomentRetrievalFailed()
+                return None
+            self.DipoleMomentRetrievalFailed.clear_throttle()
+            return (float(m.x), float(m.y), float(m.z))
+        if self.b_tesla is None:
+            return None
+        now = (self._b_gauss, self._b_stamp_us)
+        prev, self._b_prev = self._b_prev, now
+        if prev is None:
+            return None
+        return bdot_dipole(prev[0], now[0], (now[1] - prev[1]) / 1e6, self.K_BDOT.value)
+
+    def _spin_torque(self, dt: float):
+        law = self.SPIN_LAW.value
+        w = self.omega
+        assert w is not None  # spin control runs only with a rate estimate
+        c, i_d = self.C_DAMP.value, self.I_D.value
+        if law == SpinLaw.SEED_KANE_DAMPER:
+            sd = self.seed_damper
+            sd.c_damp, sd.i_d = c, i_d
+            b = self.b_tesla
+            # τ_mag: the magnetic torque the previous cycle's dipole produced (its on-time share)
+            tau_mag = _cross(self.dipole, b) if b is not None else _ZERO
+            d = self._duty()
+            sd.update((tau_mag[0] * d, tau_mag[1] * d, tau_mag[2] * d), dt)
+            self.damper_state = sd.w_d
+            return sd.torque_request()
+        if law == SpinLaw.VIRTUAL_DAMPER:
+            vd = self.virtual_damper
+            vd.c_damp, vd.i_d = c, i_d
+            vd.update(w, dt)
+            self.damper_state = _norm(vd.omega_d) if vd.omega_d is not None else 0.0
+            return vd.torque_request(w)
+        reg = SpinRateRegulator(self.SPIN_K_TRANSVERSE.value, self.SPIN_K_RATE.value,
+                                self.SPIN_RATE_TARGET.value * _DEG)
+        self.damper_state = w[2] - reg.rate
+        return reg.torque_request(w)
+
+    # --- telemetry -----------------------------------------------------------------------------
+
+    damper_state = 0.0
+
+    def _telemeter(self) -> None:
+        self.Mode.write(self.mode)
+        self.Autonomy.write(self.autonomy)
+        w = self.omega
+        if w is not None:
+            self.AngularRate.write(math.degrees(_norm(w)))
+            axis_deg, _ = self._spin_errors()
+            self.SpinAxisError.write(axis_deg)
+            self.SpinRate.write(math.degrees(w[2]))
+        if self.mode == ControlMode.POINTING and math.isfinite(self.pointing_error_deg):
+            self.PointingError.write(self.pointing_error_deg)
+        self.DamperState.write(float(self.damper_state))
+        self.RequestedTorque.write(Vector3(list(self.torque_request)))
+        self.CommandedDipole.write(Vector3(list(self.dipole)))
+        self.WheelTorqueCommand.write(WheelValues(_pad(self.wheel_torques)))
+        if self.wheel_momenta is not None:
+            self.WheelMomentum.write(WheelValues(_pad(self.wheel_momenta)))
+        b = self.filter.bias
+        self.GyroBiasEstimate.write(Vector3([math.degrees(b[0]), math.degrees(b[1]), math.degrees(b[2])]))
+        self.AttitudeValid.write(1 if self.attitude_valid else 0)
+
+    # --- ports out -----------------------------------------------------------------------------
+
+    def _read(self, port: str, index: int = 0):
+        """Call a ``ref condition`` port; ``(ok, value)``. Unconnected counts as a failure."""
+        if not self.is_connected(port, index):
+            return False, None
+        value, condition = getattr(self, port)[index]()
+        return condition == Success.SUCCESS, value
+
+    def _read_wheel_momenta(self):
+        """Each wheel's axial momentum (N·m·s) from its driver, or None when one does not answer."""
+        momenta = []
+        for i in range(len(self.wheel_axes)):
+            ok, state = self._read("wheelStateGet", i)
+            if not ok or state is None or not _finite(state.momentum):
+                return None
+            momenta.append(float(state.momentum))
+        return tuple(momenta)
+
+    def _command_wheels(self, u) -> None:
+        """Send one motor torque (N·m) per wheel; a non-zero command enables the wheels first."""
+        sent = []
+        wanted = any(t != 0.0 for t in u)
+        if wanted and not self._wheels_enabled:
+            for i in range(len(u)):
+                if self.is_connected("wheelEnableSet", i) and self.wheelEnableSet[i](True) != Success.SUCCESS:
+                    self.WheelCommandFailed(i)
+            self._wheels_enabled = True
+        for i, torque in enumerate(u):
+            if not self.is_connected("wheelTorqueSet", i):
+                sent.append(0.0)
+                continue
+            if self.wheelTorqueSet[i](float(torque)) != Success.SUCCESS:
+                self.WheelCommandFailed(i)
+            else:
+                self.WheelCommandFailed.clear_throttle()
+            sent.append(float(torque))
+        self.wheel_torques = tuple(sent)
+
+    def _coil_levels(self, m):
+        """``(levels X+, X−, Y+, Y−, Z−, achieved dipole A·m²)`` for the dipole ``m`` (A·m², B): half of
+        m_x on each X coil, half of m_y on each Y coil, m_z on Z−; X−, Y− and Z− face the other way."""
+        cx, cy, cz = self.X_COIL_MAX_DIPOLE.value, self.Y_COIL_MAX_DIPOLE.value, self.Z_COIL_MAX_DIPOLE.value
+        lx = _level(0.5 * m[0], cx)
+        ly = _level(0.5 * m[1], cy)
+        lz = _level(m[2], cz)
+        f = 1.0 / MAX_DRIVE_LEVEL
+        return (lx, -lx, ly, -ly, -lz), (2.0 * lx * f * cx, 2.0 * ly * f * cy, lz * f * cz)
+
+    def _drive_coils(self, m) -> None:
+        """Drive the five coils for the dipole ``m``; ``self.dipole`` becomes what the rounded levels give."""
+        levels, self.dipole = self._coil_levels(m)
+        for port, level in zip(self._start_ports, levels, strict=True):
+            if port.targets[0] is not None:
+                port.calls[0](level)
+        self.coils_driven = True
+
+    def _stop_coils(self) -> None:
+        for port in self._stop_ports:
+            if port.targets[0] is not None:
+                port.calls[0]()
+        self.coils_driven = False
+
+
+def _level(m: float, m_max: float) -> int:
+    """Drive level −127…127 for dipole ``m`` on a coil whose full drive gives ``m_max`` A·m²."""
+    if not m_max > 0.0 or not math.isfinite(m):
+        return 0
+    level = round_half_away_from_zero(m / m_max * MAX_DRIVE_LEVEL)
+    return max(-MAX_DRIVE_LEVEL, min(MAX_DRIVE_LEVEL, level))
+
+
+def _cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _pad(values) -> list:
+    out = [float(v) for v in values][:MAX_WHEELS]
+    return out + [0.0] * (MAX_WHEELS - len(out))

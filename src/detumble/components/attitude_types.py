@@ -1,0 +1,93 @@
+"""F´ types and port types of the attitude controller (seed 003) and the attitude sensors it reads.
+
+Frames and units at every port: body frame B, inertial frame N; angular rate rad/s; quaternions
+``q_BN`` scalar first (``detumble.control.quaternion``); torque N·m; angular momentum N·m·s;
+dipole A·m². ``ref condition`` ports return a :class:`~detumble.components.types.Result`.
+"""
+
+from __future__ import annotations
+
+from fprime_lite import F64, Array, FwEnum, PortType, Struct
+
+from detumble.components.types import Result
+
+__all__ = ["ControlMode", "ControlAutonomy", "SpinLaw", "PointingActuator", "ModeChangeReason",
+           "Vector3", "Quaternion", "WheelValues", "AngularVelocity", "AngularVelocityGet", "MAX_WHEELS"]
+
+#: Wheel channels carry this many values (unused wheels read 0).
+MAX_WHEELS = 4
+
+
+class ControlMode(FwEnum, namespace="Components"):
+    """What the attitude controller does: IDLE (actuators off) or one of seed 003's three modes."""
+
+    IDLE = 0
+    DETUMBLE = 1
+    SPIN_STABLE = 2
+    POINTING = 3
+
+
+class ControlAutonomy(FwEnum, namespace="Components"):
+    """MANUAL: the mode stays where it was commanded; AUTO: the seed's triggers choose it."""
+
+    MANUAL = 0
+    AUTO = 1
+
+
+class SpinLaw(FwEnum, namespace="Components"):
+    """The SPIN_STABLE law: seed 003's damper as written, the classical 3-axis damper, or the rate
+    regulator that holds a spin about any axis (the default)."""
+
+    SEED_KANE_DAMPER = 0
+    VIRTUAL_DAMPER = 1
+    RATE_REGULATOR = 2
+
+
+class PointingActuator(FwEnum, namespace="Components"):
+    """POINTING actuator: ANY (wheels when present, else magnetorquers), WHEELS only, or
+    MAGNETORQUERS only."""
+
+    ANY = 0
+    WHEELS = 1
+    MAGNETORQUERS = 2
+
+
+class ModeChangeReason(FwEnum, namespace="Components"):
+    """Why the mode changed (argument of ControlModeChanged)."""
+
+    COMMAND = 0
+    AUTO_START = 1
+    RATE_HIGH = 2
+    RATE_LOW = 3
+    SPIN_STABLE_REACHED = 4
+    ATTITUDE_LOST = 5
+
+
+class Vector3(Array, namespace="Components", elem=F64, size=3):
+    """Three F64 components in the body frame (unit given by the channel)."""
+
+
+class WheelValues(Array, namespace="Components", elem=F64, size=MAX_WHEELS):
+    """One F64 per wheel (unit given by the channel); unused wheels read 0."""
+
+
+class Quaternion(Struct, namespace="Components"):
+    """An attitude quaternion ``q_BN``, scalar first."""
+
+    q0: F64
+    q1: F64
+    q2: F64
+    q3: F64
+
+
+class AngularVelocity(Struct, namespace="Drv"):
+    """A gyro reading ``x, y, z`` in rad/s (ω_BN expressed in the body frame)."""
+
+    x: F64
+    y: F64
+    z: F64
+
+
+#: Angular velocity in rad/s; returns ``Result(AngularVelocity, Success)`` (the IMU manager's port).
+AngularVelocityGet = PortType("Components.AngularVelocityGet", returns=Result)
+

@@ -1,0 +1,238 @@
+"""CourseworkController: seed 004's three detumbling controllers as one passive F´ component.
+
+Behaviour and requirements: ``docs/components/coursework_controller.md``. The laws are
+:mod:`detumble.control.coursework` (in the report's own convention); this module adapts them to
+ports, parameters, commands, events and telemetry, so that the flight software flies exactly what
+``fprime-lite sim --law cross_product|beta_pd|wheels_pd`` flies plant-only.
+
+Each ``run`` (the deployment schedules it at the coursework's 100 Hz control rate) is one control
+cycle: read the magnetometer (gauss → T), the gyro (rad/s), and for the wheel law the star tracker
+(q_BN), the orbit frame (q_ON) and the three wheels' momenta; compute; command the torque rods
+(A·m², each axis clipped to ``DIPOLE_LIMIT``) and the wheels (N·m, limited as the report does).
+A failed read, a non-finite result or an exception inside the cycle puts the actuators safe (rods
+0, wheel torques 0), raises a throttled WARNING_HI and the next cycle tries again.
+"""
+from __future__ import annotations
+
+import math
+
+from fprime_lite import (BOOL, F64, Channel, CmdResponse, Event, FwEnum, OutputPort, Param, PassiveComponent, Sched,
+                         Severity, String, sync_command, sync_input)
+
+from detumble.components.attitude_types import AngularVelocityGet, Vector3
+from detumble.components.types import (AttitudeGet, DipoleMoment, DipoleMomentSet, MagneticFieldGet, OrbitFrameGet,
+                                       Success, WheelStateGet, WheelTorqueSet)
+from detumble.control import coursework as cw
+
+__all__ = ["CourseworkController", "CourseworkLaw", "WheelError"]
+
+_TESLA_PER_GAUSS = 1e-4
+_ZERO = (0.0, 0.0, 0.0)
+
+
+class CourseworkLaw(FwEnum, namespace="Components"):
+    """Which of seed 004's controllers flies (OFF: actuators at zero)."""
+
+    OFF = 0
+    CROSS_PRODUCT = 1
+    BETA_PD = 2
+    WHEELS_PD = 3
+
+
+class WheelError(FwEnum, namespace="Components"):
+    """The wheel law's quaternion error: the report's eq. 25 as written, or the shortest path."""
+
+    REPORT = 0
+    SHORTEST_PATH = 1
+
+
+def _quat_conj(q):
+    return (q[0], -q[1], -q[2], -q[3])
+
+
+def _quat_mul(p, q):
+    """Hamilton product, scalar first (the plant's convention)."""
+    return (p[0] * q[0] - p[1] * q[1] - p[2] * q[2] - p[3] * q[3],
+            p[0] * q[1] + p[1] * q[0] + p[2] * q[3] - p[3] * q[2],
+            p[0] * q[2] - p[1] * q[3] + p[2] * q[0] + p[3] * q[1],
+            p[0] * q[3] + p[1] * q[2] - p[2] * q[1] + p[3] * q[0])
+
+
+class CourseworkController(PassiveComponent):
+    """Seed 004's controllers: ``LAW`` chooses, the parameters are the report's gains."""
+
+    magneticFieldGet = OutputPort(MagneticFieldGet)
+    angularVelocityGet = OutputPort(AngularVelocityGet)
+    attitudeGet = OutputPort(AttitudeGet)
+    orbitFrameGet = OutputPort(OrbitFrameGet)
+    wheelStateGet = OutputPort(WheelStateGet, size=3)
+    wheelTorqueSet = OutputPort(WheelTorqueSet, size=3)
+    dipoleSet = OutputPort(DipoleMomentSet)
+
+    LAW = Param(CourseworkLaw, default=CourseworkLaw.OFF)
+    CROSS_PRODUCT_GAIN = Param(F64, default=146.0)   # k of M = k (ω × B), A·m² per (rad/s · T)
+    BETA_KS = Param(F64, default=990.0)              # K_s, A·m² per rad/s
+    BETA_KD = Param(F64, default=0.06)               # K_d, A·m² per rad/s of β̇
+    BETA_SWITCHED = Param(BOOL, default=False)       # eq. 23 or 24 (True) or both, as the listing (False)
+    WHEEL_KP = Param(F64, default=5.0)               # K_p, 1/s² (times I)
+    WHEEL_KD = Param(F64, default=9.0)               # K_d, 1/s (times I)
+    WHEEL_ERROR = Param(WheelError, default=WheelError.REPORT)
+    INERTIA_XX = Param(F64, default=1.67e-3)         # kg·m², principal (products taken as zero)
+    INERTIA_YY = Param(F64, default=1.67e-3)
+    INERTIA_ZZ = Param(F64, default=1.67e-3)
+    DIPOLE_LIMIT = Param(F64, default=1.0)           # A·m² per axis
+    WHEEL_TORQUE_LIMIT = Param(F64, default=1e-3)    # N·m per wheel
+    WHEEL_MOMENTUM_LIMIT = Param(F64, default=0.1)   # N·m·s per wheel
+    DUMP_GAIN = Param(F64, default=0.0)              # 1/s: magnetic momentum dumping with WHEELS_PD (0: none)
+
+    @sync_input(Sched)
+    def run(self, context: int) -> None:
+        """One control cycle (see the module docstring)."""
+        law = self._law
+        if law == CourseworkLaw.OFF:
+            return
+        try:
+            self._cycle(law)
+        except Exception as exc:  # noqa: BLE001 - a fault in the cycle must leave the actuators safe
+            self._safe()
+            self.ControlFault(type(exc).__name__, str(exc)[:80])
+
+    @sync_command()
+    def SET_LAW(self, law: CourseworkLaw):
+        """Fly ``law`` from the next cycle (OFF: actuators at zero). Same as LAW_PRM_SET, plus an event."""
+        self.LAW.set(law)
+        self._select(CourseworkLaw(law))
+        return CmdResponse.OK
+
+    @sync_command()
+    def SET_TARGET(self, q0: F64, q1: F64, q2: F64, q3: F64):
+        """The wheel law's target attitude relative to the orbit frame, ``q_BO`` scalar first;
+        refused (VALIDATION_ERROR) unless it is a unit quaternion within 1e-6."""
+        q = (q0, q1, q2, q3)
+        norm = math.sqrt(sum(c * c for c in q)) if all(math.isfinite(c) for c in q) else math.nan
+        if not abs(norm - 1.0) <= 1e-6:
+            self.TargetRejected(q0, q1, q2, q3)
+            return CmdResponse.VALIDATION_ERROR
+        self._target = q
+        self._rebuild()
+        self.TargetSet(q0, q1, q2, q3)
+        return CmdResponse.OK
+
+    LawChanged = Event(Severity.ACTIVITY_HI, "Coursework law now {}", law=CourseworkLaw)
+    TargetSet = Event(Severity.ACTIVITY_HI, "Wheel target q_BO set to ({.6f}, {.6f}, {.6f}, {.6f})",
+                      q0=F64, q1=F64, q2=F64, q3=F64)
+    TargetRejected = Event(Severity.WARNING_LO, "Target ({}, {}, {}, {}) is not a unit quaternion; kept the old one",
+                           q0=F64, q1=F64, q2=F64, q3=F64)
+    SensorReadFailed = Event(Severity.WARNING_HI, "{} read failed; actuators safe", sensor=String(40), throttle=10)
+    ControlFault = Event(Severity.WARNING_HI, "Control cycle raised {}: {}; actuators safe", kind=String(40),
+                         text=String(80), throttle=10)
+
+    Law = Channel(CourseworkLaw, update="on change")
+    DipoleCommand = Channel(Vector3)        # A·m², body frame, after the limits
+    WheelTorqueCommand = Channel(Vector3)   # N·m per wheel (x, y, z), after the limits
+    Beta = Channel(F64)                     # rad: angle between body y and the field (BETA_PD)
+
+    def __init__(self, name: str, *, base_id: int = 0):
+        super().__init__(name, base_id=base_id)
+        self._law = CourseworkLaw.OFF
+        self._target = (1.0, 0.0, 0.0, 0.0)
+        self._beta: cw.BetaPd | None = None
+        self._wheels: cw.WheelsPd | None = None
+
+    # --- parameters ----------------------------------------------------------------------------
+
+    def parameters_loaded(self) -> None:
+        self._select(CourseworkLaw(self.LAW.value))
+
+    def parameter_updated(self, param_id: int) -> None:
+        self._select(CourseworkLaw(self.LAW.value))
+
+    def _select(self, law: CourseworkLaw) -> None:
+        changed = law != self._law
+        self._law = law
+        self._rebuild()
+        if changed:
+            self._safe()
+            self.LawChanged(law)
+        self.Law.write(law)
+
+    def _rebuild(self) -> None:
+        """New law objects from the parameters (their memory starts again)."""
+        self._beta = cw.BetaPd(self.BETA_KS.value, self.BETA_KD.value, switched=bool(self.BETA_SWITCHED.value))
+        inertia = ((self.INERTIA_XX.value, 0.0, 0.0), (0.0, self.INERTIA_YY.value, 0.0),
+                   (0.0, 0.0, self.INERTIA_ZZ.value))
+        self._wheels = cw.WheelsPd(self.WHEEL_KP.value, self.WHEEL_KD.value, inertia,
+                                   cw.from_plant_quaternion(self._target),
+                                   shortest_path=self.WHEEL_ERROR.value == WheelError.SHORTEST_PATH)
+
+    # --- the cycle -----------------------------------------------------------------------------
+
+    def _cycle(self, law: CourseworkLaw) -> None:
+        field = self._read(self.magneticFieldGet, "magnetometer")
+        rate = self._read(self.angularVelocityGet, "gyro")
+        if field is None or rate is None:
+            return
+        b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
+        w_B = (rate.x, rate.y, rate.z)
+        t = field.timestamp.total_us * 1e-6
+        if law == CourseworkLaw.CROSS_PRODUCT:
+            self._command_dipole(cw.cross_product_dipole(self.CROSS_PRODUCT_GAIN.value, w_B, b_B))
+        elif law == CourseworkLaw.BETA_PD:
+            assert self._beta is not None
+            m = self._beta.dipole(t, w_B, b_B)
+            if self._beta.previous is not None:
+                self.Beta.write(self._beta.previous[1])
+            self._command_dipole(m)
+        else:
+            self._wheel_cycle(w_B)
+
+    def _wheel_cycle(self, w_B) -> None:
+        attitude = self._read(self.attitudeGet, "star tracker")
+        frame = self._read(self.orbitFrameGet, "orbit frame")
+        states = [self._read(self.wheelStateGet, f"wheel {i}", i) for i in range(3)]
+        if attitude is None or frame is None or any(s is None for s in states) or not attitude.valid:
+            if attitude is not None and not attitude.valid:
+                self._safe()
+                self.SensorReadFailed("star tracker (no valid solution)")
+            return
+        q_BN = (attitude.q0, attitude.q1, attitude.q2, attitude.q3)
+        q_ON = (frame.q0, frame.q1, frame.q2, frame.q3)
+        q_BO = _quat_mul(_quat_conj(q_ON), q_BN)
+        h = (states[0].momentum, states[1].momentum, states[2].momentum)
+        assert self._wheels is not None
+        self._wheels.n = frame.n
+        torque = self._wheels.torque(cw.from_plant_quaternion(q_BO), w_B, h)
+        torque = cw.limit_wheel_torque(torque, h, self.WHEEL_TORQUE_LIMIT.value, self.WHEEL_MOMENTUM_LIMIT.value)
+        if not all(math.isfinite(u) for u in torque):
+            raise ArithmeticError(f"non-finite wheel torque {torque}")
+        for i in range(3):
+            self.wheelTorqueSet[i](torque[i])
+        self.WheelTorqueCommand.write(Vector3(list(torque)))
+        if self.DUMP_GAIN.value > 0.0:
+            field = self._read(self.magneticFieldGet, "magnetometer")
+            if field is not None:
+                b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
+                self._command_dipole(cw.dumping_dipole(self.DUMP_GAIN.value, h, b_B))
+
+    def _command_dipole(self, m) -> None:
+        m = cw.clip_dipole(m, self.DIPOLE_LIMIT.value)
+        if not all(math.isfinite(c) for c in m):
+            raise ArithmeticError(f"non-finite dipole {m}")
+        self.dipoleSet[0](DipoleMoment(*m))
+        self.DipoleCommand.write(Vector3(list(m)))
+
+    def _read(self, port, what: str, index: int = 0):
+        value, condition = port[index]()
+        if condition != Success.SUCCESS:
+            self._safe()
+            self.SensorReadFailed(what)
+            return None
+        return value
+
+    def _safe(self) -> None:
+        """Rods and wheels to zero (what is connected)."""
+        if self.is_connected("dipoleSet", 0):
+            self.dipoleSet[0](DipoleMoment(*_ZERO))
+        for i in range(3):
+            if self.is_connected("wheelTorqueSet", i):
+                self.wheelTorqueSet[i](0.0)

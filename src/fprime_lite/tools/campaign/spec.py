@@ -1,0 +1,255 @@
+"""The campaign file: parsing and validation (``docs/campaigns.md`` gives the format).
+
+Parsed with the topology loader's line-keeping SafeLoader; every problem is reported at once as
+``file:line: what is wrong — what to do``, and unknown keys are refused (with a did-you-mean).
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import pathlib
+from dataclasses import dataclass, field
+
+from fprime_lite.tools.campaign.dispersions import Dispersion, parse_dispersion
+from fprime_lite.tools.campaign.errors import CampaignError
+from fprime_lite.tools.campaign.grid import axis_values
+
+__all__ = ["Campaign", "load_campaign", "TOP_KEYS", "PLOT_TYPES"]
+
+TOP_KEYS = {"campaign", "description", "run", "grid", "dispersions", "seeds", "master_seed", "metrics",
+            "timeout_s", "keep", "plots", "common_random_numbers"}
+KEEP = ("none", "failed", "all")
+PLOT_TYPES = {"line": {"x", "metric"}, "heatmap": {"x", "y", "metric"}, "histogram": {"metric"},
+              "cdf": {"metric"}}
+PLOT_KEYS = {"type", "x", "y", "metric", "agg"}
+
+
+@dataclass
+class Campaign:
+    """A validated campaign file."""
+
+    path: pathlib.Path
+    text: str
+    name: str
+    description: str
+    kind: str
+    run: dict
+    grids: list[dict[str, list]]
+    dispersions: dict[str, Dispersion]
+    dispersion_specs: dict
+    seeds: int
+    master_seed: int
+    metrics: list[str]
+    timeout_s: float | None
+    keep: str
+    plots: list[dict]
+    common_random_numbers: bool = False
+    where: dict[str, str] = field(default_factory=dict)  # campaign key → "file:line"
+
+    @property
+    def base_dir(self) -> pathlib.Path:
+        return self.path.parent.resolve()
+
+    @property
+    def grid_keys(self) -> list[str]:
+        keys: list[str] = []
+        for g in self.grids:
+            keys += [k for k in g if k not in keys]
+        return keys
+
+    @property
+    def varied_keys(self) -> list[str]:
+        return self.grid_keys + [k for k in self.dispersions if k not in self.grid_keys]
+
+
+def _plain(value):
+    """YAML nodes with line numbers → plain dicts, lists and scalars (picklable for workers)."""
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_plain(v) for v in value]
+    return value
+
+
+class _Checker:
+    def __init__(self, path: pathlib.Path):
+        self.path = path
+        self.problems: list[str] = []
+
+    def at(self, line) -> str:
+        return f"{self.path}:{line if line is not None else '?'}"
+
+    def problem(self, line, message: str) -> None:
+        self.problems.append(f"{self.at(line)}: {message}")
+
+    def keys(self, mapping, allowed, what: str) -> None:
+        for key in mapping:
+            if key not in allowed:
+                guess = difflib.get_close_matches(str(key), sorted(allowed), n=1)
+                hint = f"did you mean '{guess[0]}'?" if guess else f"allowed keys: {', '.join(sorted(allowed))}"
+                self.problem(mapping.key_lines.get(key), f"unknown key '{key}' in {what} — {hint}")
+
+
+def load_campaign(path) -> Campaign:
+    """Read and validate a campaign file; raise :class:`CampaignError` listing every problem."""
+    from fprime_lite.deploy.topology import TopologyError
+    from fprime_lite.deploy.topology_loader import YMap, parse_yaml
+    from fprime_lite.tools.campaign.kinds import metrics as named_metrics
+    from fprime_lite.tools.campaign.kinds import run_kinds
+
+    path = pathlib.Path(path)
+    if not path.is_file():
+        raise CampaignError([f"{path}: no such campaign file — give the path of a campaign YAML file "
+                             f"(examples in campaigns/)"])
+    try:
+        doc = parse_yaml(path)
+    except TopologyError as exc:
+        raise CampaignError(exc.problems) from None
+    c = _Checker(path)
+    if not isinstance(doc, YMap):
+        raise CampaignError([f"{path}:1: a campaign file is a mapping (campaign:, run:, grid:, ...)"])
+    c.keys(doc, TOP_KEYS, "the campaign file")
+    line = doc.key_lines.get
+
+    name = doc.get("campaign")
+    if not isinstance(name, str) or not name.strip():
+        c.problem(line("campaign", doc.line), "'campaign' must name the campaign (a short string)")
+        name = "campaign"
+    description = doc.get("description", "")
+
+    kinds = run_kinds()
+    run = doc.get("run")
+    kind_name, kind = None, None
+    if not isinstance(run, YMap):
+        c.problem(line("run", doc.line), "'run' must be a mapping with 'kind' (one of "
+                                         f"{', '.join(sorted(kinds))}) and the kind's fields")
+        run = YMap()
+        run.key_lines = {}
+    else:
+        kind_name = run.get("kind")
+        kind = kinds.get(kind_name) if isinstance(kind_name, str) else None
+        if kind is None:
+            guess = difflib.get_close_matches(str(kind_name), sorted(kinds), n=1)
+            hint = f"did you mean '{guess[0]}'?" if guess else f"installed kinds: {', '.join(sorted(kinds))}"
+            c.problem(run.key_lines.get("kind", run.line), f"unknown run kind {kind_name!r} — {hint}")
+        else:
+            c.keys(run, kind.fields | {"kind"}, f"the '{kind_name}' run section")
+            for req in sorted(kind.required - set(run)):
+                c.problem(run.line, f"the '{kind_name}' run section needs '{req}'")
+
+    where: dict[str, str] = {}
+
+    def check_varied(key, key_line) -> bool:
+        where[str(key)] = c.at(key_line)
+        if kind is None:
+            return True
+        problem = kind.check_key(str(key))
+        if problem:
+            c.problem(key_line, f"'{key}' cannot be varied: {problem}")
+            return False
+        return True
+
+    grids: list[dict[str, list]] = []
+    raw_grid = doc.get("grid")
+    if raw_grid is not None:
+        parts = raw_grid if isinstance(raw_grid, list) else [raw_grid]
+        for part in parts:
+            if not isinstance(part, YMap):
+                c.problem(getattr(part, "line", line("grid")), "'grid' is a mapping of key: axis, or a list of them")
+                continue
+            grid = {}
+            for key, axis in part.items():
+                kl = part.key_lines.get(key)
+                if not check_varied(key, kl):
+                    continue
+                try:
+                    grid[str(key)] = _plain(axis_values(_plain(axis)))
+                except ValueError as exc:
+                    c.problem(kl, f"grid axis '{key}': {exc}")
+            grids.append(grid)
+
+    dispersions: dict[str, Dispersion] = {}
+    dispersion_specs = {}
+    raw_disp = doc.get("dispersions")
+    if raw_disp is not None:
+        if not isinstance(raw_disp, YMap):
+            c.problem(line("dispersions"), "'dispersions' is a mapping of key: {dist: ..., ...}")
+        else:
+            grid_keys = {k for g in grids for k in g}
+            for key, spec in raw_disp.items():
+                kl = raw_disp.key_lines.get(key)
+                if not check_varied(key, kl):
+                    continue
+                if key in grid_keys:
+                    c.problem(kl, f"'{key}' is both on the grid and dispersed — choose one")
+                    continue
+                try:
+                    dispersions[str(key)] = parse_dispersion(_plain(spec), str(key))
+                    dispersion_specs[str(key)] = _plain(spec)
+                except ValueError as exc:
+                    c.problem(kl, f"dispersion '{key}': {exc}")
+
+    def integer(key, default, minimum):
+        value = doc.get(key, default)
+        if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+            c.problem(line(key), f"'{key}' must be a whole number >= {minimum}, got {value!r}")
+            return default
+        return value
+
+    seeds = integer("seeds", 1, 1)
+    master_seed = integer("master_seed", 0, 0)
+
+    metric_names = doc.get("metrics", [])
+    if not (isinstance(metric_names, list) and all(isinstance(m, str) for m in metric_names)):
+        c.problem(line("metrics"), "'metrics' is a list of names: run-summary keys or named metrics "
+                                   f"({', '.join(sorted(named_metrics())) or 'none installed'})")
+        metric_names = []
+    if len(set(metric_names)) != len(metric_names):
+        c.problem(line("metrics"), "'metrics' names a metric twice")
+
+    timeout = doc.get("timeout_s")
+    if timeout is not None and not (isinstance(timeout, (int, float)) and not isinstance(timeout, bool)
+                                    and math.isfinite(timeout) and timeout > 0):
+        c.problem(line("timeout_s"), f"'timeout_s' must be a positive number of wall-clock seconds, got {timeout!r}")
+        timeout = None
+    crn = doc.get("common_random_numbers", False)
+    if not isinstance(crn, bool):
+        c.problem(line("common_random_numbers"), f"'common_random_numbers' is true or false, got {crn!r}")
+        crn = False
+    keep = doc.get("keep", "none")
+    if keep not in KEEP:
+        c.problem(line("keep"), f"'keep' (per-run files kept) is one of {', '.join(KEEP)}, got {keep!r}")
+        keep = "none"
+
+    plots = []
+    raw_plots = doc.get("plots", [])
+    if not isinstance(raw_plots, list):
+        c.problem(line("plots"), "'plots' is a list of {type: line|heatmap|histogram|cdf, x:, y:, metric:}")
+        raw_plots = []
+    varied = {k for g in grids for k in g} | set(dispersions)
+    for p in raw_plots:
+        if not isinstance(p, YMap):
+            c.problem(getattr(p, "line", line("plots")), "a plot is a mapping {type: ..., metric: ...}")
+            continue
+        c.keys(p, PLOT_KEYS, "a plot")
+        ptype = p.get("type")
+        if ptype not in PLOT_TYPES:
+            c.problem(p.key_lines.get("type", p.line), f"plot type {ptype!r}: use one of {', '.join(PLOT_TYPES)}")
+            continue
+        for k in sorted(PLOT_TYPES[ptype] - set(p)):
+            c.problem(p.line, f"a {ptype} plot needs '{k}'")
+        for k in ("x", "y"):
+            if k in p and p[k] not in varied:
+                c.problem(p.key_lines.get(k), f"plot {k} '{p[k]}' is not a varied key of this campaign")
+        if "metric" in p and p["metric"] not in metric_names:
+            c.problem(p.key_lines.get("metric"), f"plot metric '{p['metric']}' is not in 'metrics'")
+        plots.append(_plain(p))
+
+    if c.problems:
+        raise CampaignError(c.problems)
+    return Campaign(path=path, text=path.read_text(encoding="utf-8"), name=name.strip(),
+                    description=str(description or ""), kind=str(kind_name), run=_plain(run), grids=grids or [{}],
+                    dispersions=dispersions, dispersion_specs=dispersion_specs, seeds=seeds,
+                    master_seed=master_seed, metrics=list(metric_names), timeout_s=timeout, keep=keep,
+                    plots=plots, common_random_numbers=crn, where=where)

@@ -1,0 +1,550 @@
+"""AttitudeController through its ports: commands, events, mode transitions, actuation
+(docs/components/attitude_controller.md, requirements ADCS-020…ADCS-040).
+
+Time is the harness's test time; ``tick`` runs the component once and advances 20 ms (the 50 Hz rate
+group), so one control cycle is 5 ticks (100 ms). Rates rad/s in the stubs (deg/s in parameters),
+field gauss, dipole A·m², torque N·m, momentum N·m·s.
+"""
+
+import math
+
+import pytest
+
+from detumble.components.attitude_controller import AttitudeController
+from detumble.components.attitude_types import ControlAutonomy, ControlMode, ModeChangeReason, PointingActuator, SpinLaw
+from detumble.components.types import (AttitudeQuaternion, DipoleMoment, MagneticField, Result, Success, WheelMode,
+                                       WheelState)
+from detumble.control.magnetic import project_dipole_weighted
+from detumble.control.quaternion import quat_from_axis_angle, quat_mul, rotate_b_to_n
+from fprime_lite import CmdResponse, Time, TimeBase
+
+BASE = 0x10070000
+TICK_US = 20_000
+START = Time(TimeBase.TB_WORKSTATION_TIME, 0, 1000, 0)
+STARTS = [f"{c}Start" for c in ("xPlus", "xMinus", "yPlus", "yMinus", "zMinus")]
+STOPS = [f"{c}Stop" for c in ("xPlus", "xMinus", "yPlus", "yMinus", "zMinus")]
+DEG = math.pi / 180
+
+
+class World:
+    """Stub sensors and wheels: what the controller reads is whatever the test puts here."""
+
+    def __init__(self, h):
+        self.h = h
+        self.omega = (0.0, 0.0, 0.0)  # rad/s
+        self.gyro_ok = True
+        self.q = (1.0, 0.0, 0.0, 0.0)
+        self.tracker_valid = True
+        self.tracker_ok = True
+        self.b = (0.2, -0.1, 0.35)  # gauss
+        self.mag_ok = True
+        self.momenta = [0.0, 0.0, 0.0]
+        self.torques = [[], [], []]
+        self.enabled = [[], [], []]
+        self.dipole = None  # Result of dipoleMomentGet
+        self._t_us = None
+
+    def gyro(self):
+        from detumble.components.attitude_types import AngularVelocity
+        x, y, z = self.omega
+        return Result(AngularVelocity(x=x, y=y, z=z), Success.SUCCESS if self.gyro_ok else Success.FAILURE)
+
+    def tracker(self):
+        """The attitude, kept consistent with the gyro: ``q`` is turned by ω over the time since the last read."""
+        t = self.h.test_time.total_us
+        if self._t_us is not None and t > self._t_us:
+            w = self.omega
+            n = math.sqrt(sum(c * c for c in w))
+            if n > 0.0:
+                self.q = quat_mul(self.q, quat_from_axis_angle(w, n * (t - self._t_us) / 1e6))
+        self._t_us = t
+        q = self.q
+        return Result(AttitudeQuaternion(q0=q[0], q1=q[1], q2=q[2], q3=q[3], valid=self.tracker_valid,
+                                         timestamp=self.h.test_time),
+                      Success.SUCCESS if self.tracker_ok else Success.FAILURE)
+
+    def field(self):
+        x, y, z = self.b
+        return Result(MagneticField(x=x, y=y, z=z, timestamp=self.h.test_time),
+                      Success.SUCCESS if self.mag_ok else Success.FAILURE)
+
+    def wheel_state(self, i):
+        return lambda: Result(WheelState(speed=0.0, momentum=self.momenta[i], torque=0.0, mode=WheelMode.TORQUE,
+                                         timestamp=self.h.test_time), Success.SUCCESS)
+
+    def wheel_torque(self, i):
+        def set_torque(torque):
+            self.torques[i].append(torque)
+            return Success.SUCCESS
+        return set_torque
+
+    def wheel_enable(self, i):
+        def enable(on):
+            self.enabled[i].append(on)
+            return Success.SUCCESS
+        return enable
+
+
+def make(fprime_harness, *, wheels=True, bdot_provider=False, params=None):
+    comp = AttitudeController("attitudeController", base_id=BASE)
+    h = fprime_harness(comp, test_time=START)
+    world = World(h)
+    for port in STARTS + STOPS:
+        h.set_port_return(port, Success.SUCCESS)
+    h.set_port_handler("angularVelocityGet", world.gyro)
+    h.set_port_handler("attitudeGet", world.tracker)
+    h.set_port_handler("magneticFieldGet", world.field)
+    if bdot_provider:
+        h.set_port_handler("dipoleMomentGet", lambda: world.dipole)
+    else:
+        comp.output_port("dipoleMomentGet").disconnect(0)
+    for i in range(4):
+        if wheels and i < 3:
+            h.set_port_handler("wheelStateGet", world.wheel_state(i), index=i)
+            h.set_port_handler("wheelTorqueSet", world.wheel_torque(i), index=i)
+            h.set_port_handler("wheelEnableSet", world.wheel_enable(i), index=i)
+        else:
+            for port in ("wheelStateGet", "wheelTorqueSet", "wheelEnableSet"):
+                comp.output_port(port).disconnect(i)
+    for name, value in (params or {}).items():
+        h.param_set(name, value)
+    h.load_parameters()
+    h.world = world
+    h.comp = comp
+    return h
+
+
+def tick(h, n=1):
+    for _ in range(n):
+        h.invoke("run", 0)
+        h.advance_time(useconds=TICK_US)
+
+
+def seconds(h, s):
+    tick(h, int(round(s / 0.02)))
+
+
+def levels(h):
+    """The latest drive level sent to each of X+, X−, Y+, Y−, Z−."""
+    return tuple(h.from_port(p)[-1].args[0] for p in STARTS)
+
+
+def modes(h):
+    return [(e.args[0], e.args[1], e.args[2]) for e in h.events if e.name == "ControlModeChanged"]
+
+
+def auto(h):
+    h.send_command("SET_AUTO")
+    h.assert_cmd_response(0, "SET_AUTO", CmdResponse.OK)
+
+
+# --- start-up and the cycle ---------------------------------------------------------------------------
+
+def test_starts_idle_and_manual_and_drives_nothing(fprime_harness):
+    """ADCS-020: until commanded the controller is IDLE/MANUAL: no coil is driven, the wheels get zero torque,
+    and Mode/Autonomy are telemetered every cycle."""
+    h = make(fprime_harness)
+    h.world.omega = (0.5, 0.0, 0.0)
+    seconds(h, 1.0)
+    assert h.from_port(STARTS[0]) == []
+    assert all(t == 0.0 for wheel in h.world.torques for t in wheel)
+    assert h.tlm_values("Mode")[-1] == ControlMode.IDLE
+    assert h.tlm_values("Autonomy")[-1] == ControlAutonomy.MANUAL
+    assert len(h.tlm_values("Mode")) == 10  # 10 Hz
+
+
+def test_auto_starts_in_detumble_and_coils_are_off_on_the_last_tick_of_each_cycle(fprime_harness):
+    """ADCS-021: SET_AUTO logs AutonomyChanged; the next cycle enters DETUMBLE (AUTO_START, the seed's
+    "mission start"); coils are driven on tick 0 of each 5-tick cycle and stopped on tick 4, so the next
+    magnetometer read is taken with the coils off."""
+    h = make(fprime_harness)
+    h.world.omega = (0.6, 0.0, 0.0)  # 34 deg/s
+    auto(h)
+    h.assert_event("AutonomyChanged", 0, ControlAutonomy.AUTO)
+    tick(h)
+    assert modes(h) == [(ControlMode.IDLE, ControlMode.DETUMBLE, ModeChangeReason.AUTO_START)]
+    h.clear_history()
+    h.world.b = (0.25, -0.1, 0.35)  # changes between cycles: B-dot has a derivative
+    tick(h, 4)  # ticks 1-4 of the priming cycle: nothing driven, nothing to stop
+    assert h.from_port("xPlusStart") == [] and h.from_port("xPlusStop") == []
+    tick(h, 4)  # tick 0 of the next cycle drives, ticks 1-3 hold
+    assert len(h.from_port("xPlusStart")) == 1 and h.from_port("xPlusStop") == []
+    tick(h)  # tick 4: coils off
+    assert len(h.from_port("xPlusStop")) == 1
+
+
+def test_detumble_internal_bdot_uses_the_measured_spacing_and_drives_the_coils(fprime_harness):
+    """ADCS-022: without a dipoleMomentGet provider, M = −K_BDOT (B_n − B_{n−1})/Δt with Δt the readings'
+    own time stamps (0.1 s here); X and Y split the dipole over their two coils, X−/Y−/Z− drive negated."""
+    h = make(fprime_harness)
+    h.world.omega = (0.6, 0.0, 0.0)
+    auto(h)
+    tick(h, 5)  # first DETUMBLE cycle primes B
+    h.world.b = (0.2 + 0.001, -0.1 - 0.002, 0.35 + 0.0001)  # ΔB over 0.1 s
+    tick(h)
+    m = tuple(-3.0 * d / 0.1 for d in (0.001, -0.002, 0.0001))
+    cx = h.comp.X_COIL_MAX_DIPOLE.value
+    cz = h.comp.Z_COIL_MAX_DIPOLE.value
+    lx = round(0.5 * m[0] / cx * 127)
+    ly = round(0.5 * m[1] / cx * 127)
+    lz = round(m[2] / cz * 127)
+    assert levels(h) == (lx, -lx, ly, -ly, -lz)
+    assert h.tlm_values("CommandedDipole")[-1][0] == pytest.approx(2 * lx / 127 * cx)
+
+
+def test_detumble_takes_the_bdot_provider_dipole_when_connected(fprime_harness):
+    """ADCS-022: with BDotDetumble's dipoleMomentGet connected its dipole is flown (limits applied); its
+    first (priming) failure is silent, a later failure logs DipoleMomentRetrievalFailed and stops the coils."""
+    h = make(fprime_harness, bdot_provider=True)
+    h.world.omega = (0.6, 0.0, 0.0)
+    h.world.dipole = Result(DipoleMoment(x=0.0, y=0.0, z=0.0), Success.FAILURE)
+    auto(h)
+    tick(h, 5)
+    h.assert_no_event("DipoleMomentRetrievalFailed")
+    h.world.dipole = Result(DipoleMoment(x=0.05, y=-0.02, z=0.004), Success.SUCCESS)
+    tick(h)
+    cx, cz = h.comp.X_COIL_MAX_DIPOLE.value, h.comp.Z_COIL_MAX_DIPOLE.value
+    assert levels(h) == (round(0.025 / cx * 127), -round(0.025 / cx * 127), round(-0.01 / cx * 127),
+                         -round(-0.01 / cx * 127), -round(0.004 / cz * 127))
+    tick(h, 4)
+    h.world.dipole = Result(DipoleMoment(x=0.0, y=0.0, z=0.0), Success.FAILURE)
+    tick(h)
+    h.assert_event_count("DipoleMomentRetrievalFailed", 1)
+    assert not h.comp.coils_driven
+
+
+# --- AUTO transitions ---------------------------------------------------------------------------------
+
+def test_detumble_exits_only_below_the_exit_rate_for_the_dwell(fprime_harness):
+    """ADCS-023: DETUMBLE is left for SPIN_STABLE (RATE_LOW) only after |ω| < DETUMBLE_EXIT_RATE (1 °/s) for
+    MODE_DWELL (5 s); 15 °/s (inside the 1…20 hysteresis band) keeps DETUMBLE, and a rate back above the exit
+    threshold restarts the dwell."""
+    h = make(fprime_harness)
+    h.world.tracker_valid = False  # rates only; the filter then passes the gyro through
+    h.world.omega = (15 * DEG, 0.0, 0.0)
+    auto(h)
+    seconds(h, 20)
+    assert h.comp.mode == ControlMode.DETUMBLE
+    h.world.omega = (0.8 * DEG, 0.0, 0.0)
+    seconds(h, 4)
+    h.world.omega = (1.1 * DEG, 0.0, 0.0)
+    seconds(h, 0.2)
+    h.world.omega = (0.8 * DEG, 0.0, 0.0)
+    seconds(h, 4.8)
+    assert h.comp.mode == ControlMode.DETUMBLE  # the dwell restarted
+    seconds(h, 0.4)
+    assert h.comp.mode == ControlMode.SPIN_STABLE
+    assert modes(h)[-1] == (ControlMode.DETUMBLE, ControlMode.SPIN_STABLE, ModeChangeReason.RATE_LOW)
+
+
+def test_high_rate_returns_to_detumble(fprime_harness):
+    """ADCS-024: from SPIN_STABLE (and from POINTING) |ω| > DETUMBLE_ENTER_RATE (20 °/s) goes to DETUMBLE
+    (RATE_HIGH); 19 °/s does not."""
+    h = make(fprime_harness)
+    h.send_command("FORCE_MODE", ControlMode.SPIN_STABLE)
+    h.send_command("SET_AUTO")
+    h.world.omega = (0.0, 19 * DEG, 0.0)
+    seconds(h, 2)
+    assert h.comp.mode == ControlMode.SPIN_STABLE
+    h.world.omega = (0.0, 21 * DEG, 0.0)
+    tick(h, 10)  # the cycle's rate is the mean of its five ticks
+    assert modes(h)[-1] == (ControlMode.SPIN_STABLE, ControlMode.DETUMBLE, ModeChangeReason.RATE_HIGH)
+    h.world.omega = (0.0, 0.0, 0.0)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    h.send_command("SET_AUTO")
+    h.world.omega = (0.0, 21 * DEG, 0.0)
+    tick(h, 10)
+    assert modes(h)[-1] == (ControlMode.POINTING, ControlMode.DETUMBLE, ModeChangeReason.RATE_HIGH)
+
+
+def spinning_auto(fprime_harness, **kw):
+    h = make(fprime_harness, **kw)
+    h.send_command("FORCE_MODE", ControlMode.SPIN_STABLE)
+    h.send_command("SET_AUTO")
+    return h
+
+
+def test_stable_spin_leads_to_pointing_with_hysteresis(fprime_harness):
+    """ADCS-025: SPIN_STABLE → POINTING (SPIN_STABLE_REACHED) after SPIN_STABLE_DWELL (60 s) with the rate
+    within 5° of +Z and within 5 % of SPIN_RATE_TARGET; an excursion between the enter and reset thresholds
+    (6°) pauses the timer, one beyond the reset threshold (9°) restarts it."""
+    h = spinning_auto(fprime_harness)
+    w = h.comp.SPIN_RATE_TARGET.value * DEG
+
+    def tilt(deg):
+        h.world.omega = (w * math.sin(deg * DEG), 0.0, w * math.cos(deg * DEG))
+
+    tilt(2.0)
+    seconds(h, 40)
+    tilt(6.0)  # inside the hysteresis band: timer holds
+    seconds(h, 10)
+    tilt(2.0)
+    seconds(h, 19)
+    assert h.comp.mode == ControlMode.SPIN_STABLE
+    seconds(h, 1.2)
+    assert h.comp.mode == ControlMode.POINTING
+    assert modes(h)[-1] == (ControlMode.SPIN_STABLE, ControlMode.POINTING, ModeChangeReason.SPIN_STABLE_REACHED)
+    # with no target commanded, POINTING holds the attitude it had on entry
+    h.assert_event_count("TargetSet", 1)
+
+    h2 = spinning_auto(fprime_harness)
+    h = h2
+    tilt(2.0)
+    seconds(h, 40)
+    tilt(9.0)  # beyond the reset threshold: timer restarts
+    seconds(h, 0.2)
+    tilt(2.0)
+    seconds(h, 59)
+    assert h.comp.mode == ControlMode.SPIN_STABLE
+    seconds(h, 1.2)
+    assert h.comp.mode == ControlMode.POINTING
+
+
+def test_rate_error_also_qualifies_the_spin(fprime_harness):
+    """ADCS-025: a spin on +Z 10 % off SPIN_RATE_TARGET never qualifies for POINTING."""
+    h = spinning_auto(fprime_harness)
+    h.world.omega = (0.0, 0.0, 1.10 * h.comp.SPIN_RATE_TARGET.value * DEG)
+    seconds(h, 120)
+    assert h.comp.mode == ControlMode.SPIN_STABLE
+
+
+def test_no_attitude_knowledge_keeps_spin_stable_with_a_throttled_event(fprime_harness):
+    """ADCS-026: a stable spin without star-tracker solutions stays in SPIN_STABLE; NoAttitudeKnowledge is
+    logged at most 5 times (throttled)."""
+    h = spinning_auto(fprime_harness)
+    h.world.tracker_valid = False
+    h.world.omega = (0.0, 0.0, h.comp.SPIN_RATE_TARGET.value * DEG)
+    seconds(h, 100)
+    assert h.comp.mode == ControlMode.SPIN_STABLE
+    h.assert_event_count("NoAttitudeKnowledge", 5)
+    assert h.tlm_values("AttitudeValid")[-1] == 0
+
+
+def test_attitude_loss_while_pointing_falls_back_to_spin_stable(fprime_harness):
+    """ADCS-027: in POINTING, no new star-tracker solution for ATTITUDE_TIMEOUT (90 s on the gyro alone) logs
+    AttitudeKnowledgeLost (WARNING_HI) and returns to SPIN_STABLE (ATTITUDE_LOST), in AUTO and in MANUAL."""
+    for autonomy in ("SET_AUTO", None):
+        h = make(fprime_harness)
+        tick(h)
+        h.send_command("FORCE_MODE", ControlMode.POINTING)
+        if autonomy:
+            h.send_command(autonomy)
+        seconds(h, 1)
+        h.world.tracker_valid = False
+        seconds(h, 89.9)
+        assert h.comp.mode == ControlMode.POINTING
+        seconds(h, 0.3)
+        assert h.comp.mode == ControlMode.SPIN_STABLE
+        h.assert_event_count("AttitudeKnowledgeLost", 1)
+        assert modes(h)[-1][2] == ModeChangeReason.ATTITUDE_LOST
+
+
+# --- commands -----------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("mode", list(ControlMode))
+def test_force_mode_sets_manual_and_holds(fprime_harness, mode):
+    """ADCS-028: FORCE_MODE puts any mode (POINTING when attitude is known) and MANUAL autonomy, answers OK,
+    logs ControlModeChanged(COMMAND) when the mode changes, and the triggers no longer act (35 °/s stays)."""
+    h = make(fprime_harness)
+    tick(h)
+    h.send_command("SET_AUTO")
+    h.send_command("FORCE_MODE", mode)
+    h.assert_cmd_response(1, "FORCE_MODE", CmdResponse.OK)
+    assert h.comp.autonomy == ControlAutonomy.MANUAL and h.comp.mode == mode
+    if mode != ControlMode.IDLE:
+        assert modes(h)[-1] == (ControlMode.IDLE, mode, ModeChangeReason.COMMAND)
+    h.world.omega = (35 * DEG, 0.0, 0.0)
+    seconds(h, 1)
+    assert h.comp.mode == mode or (mode == ControlMode.POINTING and h.comp.mode == ControlMode.SPIN_STABLE)
+
+
+def test_force_pointing_is_refused_without_attitude_or_wheels(fprime_harness):
+    """ADCS-028: FORCE_MODE POINTING answers EXECUTION_ERROR with NoAttitudeKnowledge before any star-tracker
+    solution; with POINTING_ACTUATOR = WHEELS and no wheel it answers EXECUTION_ERROR with
+    ModeUnavailableNoWheels(POINTING); the mode is unchanged both times."""
+    h = make(fprime_harness)
+    h.world.tracker_valid = False
+    tick(h)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    h.assert_cmd_response(0, "FORCE_MODE", CmdResponse.EXECUTION_ERROR)
+    h.assert_event_count("NoAttitudeKnowledge", 1)
+    assert h.comp.mode == ControlMode.IDLE
+    h = make(fprime_harness, wheels=False, params={"POINTING_ACTUATOR": PointingActuator.WHEELS})
+    tick(h)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    h.assert_cmd_response(0, "FORCE_MODE", CmdResponse.EXECUTION_ERROR)
+    h.assert_event("ModeUnavailableNoWheels", 0, ControlMode.POINTING)
+    assert h.comp.mode == ControlMode.IDLE
+
+
+def test_set_target_quaternion(fprime_harness):
+    """ADCS-029: a unit target is accepted (OK, TargetSet, TargetQuaternion channel, stored with q0 ≥ 0); a
+    non-unit one is refused with VALIDATION_ERROR and TargetNotUnitQuaternion(q, norm), at most 5 events,
+    and the stored target does not change."""
+    h = make(fprime_harness)
+    h.send_command("SET_TARGET_QUATERNION", -0.7071068, 0.0, -0.7071068, 0.0)
+    h.assert_cmd_response(0, "SET_TARGET_QUATERNION", CmdResponse.OK)
+    assert h.comp.target == pytest.approx((0.70710678, 0.0, 0.70710678, 0.0))
+    h.assert_event_count("TargetSet", 1)
+    assert h.tlm_values("TargetQuaternion")[-1].q0 == pytest.approx(0.70710678)
+    for k in range(7):
+        h.send_command("SET_TARGET_QUATERNION", 0.5, 0.0, 0.0, 0.0)
+        h.assert_cmd_response(1 + k, "SET_TARGET_QUATERNION", CmdResponse.VALIDATION_ERROR)
+    h.assert_event_count("TargetNotUnitQuaternion", 5)
+    assert h.events_named("TargetNotUnitQuaternion")[0][-1] == pytest.approx(0.5)
+    h.send_command("SET_TARGET_QUATERNION", float("nan"), 0.0, 0.0, 1.0)
+    h.assert_cmd_response(8, "SET_TARGET_QUATERNION", CmdResponse.VALIDATION_ERROR)
+    assert h.comp.target == pytest.approx((0.70710678, 0.0, 0.70710678, 0.0))
+
+
+def test_set_target_direction(fprime_harness):
+    """ADCS-030: SET_TARGET_DIRECTION points body +Z along the inertial direction (1e-9 rad); a zero vector is
+    refused (VALIDATION_ERROR, TargetDirectionInvalid) and so is a direction before attitude is known
+    (EXECUTION_ERROR, NoAttitudeKnowledge)."""
+    h = make(fprime_harness)
+    h.world.tracker_valid = False
+    tick(h)
+    h.send_command("SET_TARGET_DIRECTION", 1.0, 0.0, 0.0)
+    h.assert_cmd_response(0, "SET_TARGET_DIRECTION", CmdResponse.EXECUTION_ERROR)
+    h.assert_event_count("NoAttitudeKnowledge", 1)
+    h.world.tracker_valid = True
+    h.world.q = quat_from_axis_angle((0.3, 0.2, 1.0), 0.8)
+    tick(h, 5)
+    h.send_command("SET_TARGET_DIRECTION", 0.0, 0.0, 0.0)
+    h.assert_cmd_response(1, "SET_TARGET_DIRECTION", CmdResponse.VALIDATION_ERROR)
+    h.assert_event("TargetDirectionInvalid", 0, 0.0, 0.0, 0.0)
+    h.send_command("SET_TARGET_DIRECTION", 2.0, -1.0, 0.5)
+    h.assert_cmd_response(2, "SET_TARGET_DIRECTION", CmdResponse.OK)
+    z_n = rotate_b_to_n(h.comp.target, (0.0, 0.0, 1.0))
+    d = (2.0, -1.0, 0.5)
+    n = math.sqrt(sum(c * c for c in d))
+    assert math.acos(min(1.0, sum(a * b / n for a, b in zip(z_n, d, strict=True)))) < 1e-6
+
+
+# --- actuation ----------------------------------------------------------------------------------------
+
+def pointing(fprime_harness, q=(1.0, 0.0, 0.0, 0.0), **kw):
+    h = make(fprime_harness, **kw)
+    h.world.q = q  # the filter starts on this fix
+    tick(h, 5)
+    h.send_command("SET_TARGET_QUATERNION", 1.0, 0.0, 0.0, 0.0)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    h.clear_history()
+    return h
+
+
+def test_pointing_on_wheels_applies_the_pd_torque_and_dumps_momentum(fprime_harness):
+    """ADCS-031: in POINTING with wheels, an attitude +0.1 rad about x from the target and no rate requests
+    τ = −K_p q_err.v (RequestedTorque); the wheels get u = −(τ − τ_mag) (body receives −u); with wheel momentum
+    h the dipole's torque opposes h (magnetic dumping, K_DUMP); PointingError ≈ 5.73°."""
+    h = pointing(fprime_harness, q=quat_from_axis_angle((1.0, 0.0, 0.0), 0.1))
+    h.world.momenta = [1e-3, 0.0, 0.0]
+    tick(h, 5)
+    kp = h.comp.K_P.value
+    tau = h.tlm_values("RequestedTorque")[-1]
+    assert tau[0] == pytest.approx(-kp * math.sin(0.05), rel=1e-6)
+    m = h.comp.dipole
+    b = tuple(c * 1e-4 for c in h.world.b)
+    tau_mag = (m[1] * b[2] - m[2] * b[1], m[2] * b[0] - m[0] * b[2], m[0] * b[1] - m[1] * b[0])
+    assert tau_mag[0] < 0.0  # opposes h_x > 0
+    u = h.world.torques[0][-1]
+    assert u == pytest.approx(-(tau[0] - 0.8 * tau_mag[0]), rel=1e-6)
+    assert h.tlm_values("PointingError")[-1] == pytest.approx(math.degrees(0.1), rel=1e-2)
+    assert all(h.world.enabled[i] == [True] for i in range(3))  # enabled once, before the first torque
+
+
+def test_pointing_on_magnetorquers_projects_the_pd_torque(fprime_harness):
+    """ADCS-032: with POINTING_ACTUATOR = MAGNETORQUERS the wheels stay at zero and the dipole is the
+    coil-weighted projection of τ = −K_P_MAG q_err.v − K_D_MAG ω (before rounding to drive levels: within one
+    level), so m × B is τ's part ⟂ B."""
+    h = pointing(fprime_harness, q=quat_from_axis_angle((0.0, 1.0, 0.0), 0.2),
+                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS})
+    tick(h, 5)
+    assert all(t == 0.0 for t in h.world.torques[1])
+    tau = tuple(h.tlm_values("RequestedTorque")[-1])
+    m, _ = project_dipole_weighted(tau, tuple(c * 1e-4 for c in h.world.b), h.comp._coil_limits())
+    cx = h.comp.X_COIL_MAX_DIPOLE.value
+    assert all(abs(a - e) <= 2 * cx / 127 for a, e in zip(h.comp.dipole, m, strict=True))
+
+
+def test_spin_stable_seed_damper_requests_nothing_from_rest(fprime_harness):
+    """ADCS-033: SPIN_LAW = SEED_KANE_DAMPER flies the seed's equations as written: from rest its state is only
+    driven by the torque it produced itself, so the requested torque stays zero and no coil is driven (the
+    body keeps tumbling at 8 °/s); DamperState reads 0."""
+    h = make(fprime_harness, params={"SPIN_LAW": SpinLaw.SEED_KANE_DAMPER})
+    h.world.omega = (8 * DEG, 2 * DEG, 1 * DEG)
+    h.send_command("FORCE_MODE", ControlMode.SPIN_STABLE)
+    seconds(h, 10)
+    assert all(v == 0.0 for v in h.tlm_values("DamperState"))
+    assert all(list(t) == [0.0, 0.0, 0.0] for t in h.tlm_values("RequestedTorque"))
+    assert all(lv == 0 for call in h.from_port("xPlusStart") for lv in call.args)
+
+
+def test_spin_stable_rate_regulator_drives_toward_the_target_spin(fprime_harness):
+    """ADCS-033: the default SPIN_LAW (RATE_REGULATOR) requests τ = −k_t ω_⊥ − k_s (ω_z − ω_s) ẑ; its achievable
+    part (⟂ B) does negative work on the rate error."""
+    h = make(fprime_harness)
+    h.world.omega = (3 * DEG, 0.0, 0.5 * DEG)
+    h.send_command("FORCE_MODE", ControlMode.SPIN_STABLE)
+    tick(h, 5)
+    tau = h.tlm_values("RequestedTorque")[-1]
+    ws = h.comp.SPIN_RATE_TARGET.value * DEG
+    kt, ks = h.comp.SPIN_K_TRANSVERSE.value, h.comp.SPIN_K_RATE.value
+    assert tau[0] == pytest.approx(-kt * 3 * DEG, rel=1e-3)  # the filter's bias estimate is still ~0
+    assert tau[2] == pytest.approx(-ks * (0.5 * DEG - ws), rel=1e-3)
+    m = h.comp.dipole
+    b = tuple(c * 1e-4 for c in h.world.b)
+    t_mag = (m[1] * b[2] - m[2] * b[1], m[2] * b[0] - m[0] * b[2], m[0] * b[1] - m[1] * b[0])
+    err = (3 * DEG, 0.0, 0.5 * DEG - ws)
+    assert sum(a * e for a, e in zip(t_mag, err, strict=True)) < 0.0
+
+
+def test_the_cycle_rate_is_the_mean_of_its_ticks(fprime_harness):
+    """ADCS-034: the rate a cycle uses is the mean of the gyro readings of the ticks since the last cycle and
+    its own (five at 50 Hz): readings 1, 2, 3, 4 and then 5 °/s on x give 3 °/s (AngularRate)."""
+    h = make(fprime_harness)
+    h.world.tracker_valid = False
+    tick(h, 1)
+    for k in range(1, 6):
+        h.world.omega = (k * DEG, 0.0, 0.0)
+        tick(h)
+    assert h.tlm_values("AngularRate")[-1] == pytest.approx(3.0, rel=1e-9)
+
+
+def test_sensor_failures_are_reported_and_throttled(fprime_harness):
+    """ADCS-034: gyro and magnetometer read failures log GyroRetrievalFailed / MagneticFieldRetrievalFailed,
+    5 times at most; with no field the coils stay off; a good read clears the throttle."""
+    h = make(fprime_harness)
+    h.world.gyro_ok = False
+    h.world.mag_ok = False
+    h.send_command("FORCE_MODE", ControlMode.SPIN_STABLE)
+    seconds(h, 2)
+    h.assert_event_count("GyroRetrievalFailed", 5)
+    h.assert_event_count("MagneticFieldRetrievalFailed", 5)
+    assert not h.comp.coils_driven
+    h.world.gyro_ok = True
+    tick(h, 5)
+    h.world.gyro_ok = False
+    tick(h, 5)
+    h.assert_event_count("GyroRetrievalFailed", 6)
+
+
+def test_wheel_limit_event(fprime_harness):
+    """ADCS-035: a wheel near its momentum limit pushed further gets zero torque and WheelLimitReached is
+    logged (throttled to 5)."""
+    h = pointing(fprime_harness, q=quat_from_axis_angle((1.0, 0.0, 0.0), -0.5))  # τ_x > 0 → u_x < 0
+    h.world.momenta = [-0.99 * h.comp.WHEEL_MAX_MOMENTUM.value, 0.0, 0.0]
+    seconds(h, 2)
+    assert h.world.torques[0][-1] == 0.0
+    h.assert_event_count("WheelLimitReached", 5)
+
+
+def test_idle_stops_everything(fprime_harness):
+    """ADCS-036: FORCE_MODE IDLE from POINTING stops the coils at once and sets every wheel torque to zero."""
+    h = pointing(fprime_harness, q=quat_from_axis_angle((1.0, 0.0, 0.0), 0.3))
+    h.world.momenta = [1e-3, 0.0, 0.0]
+    tick(h, 6)  # tick 0 of the second cycle: coils on
+    assert h.comp.coils_driven
+    h.send_command("FORCE_MODE", ControlMode.IDLE)
+    assert not h.comp.coils_driven
+    assert all(w[-1] == 0.0 for w in h.world.torques)

@@ -1,0 +1,104 @@
+"""The detumble campaign plug-ins: the plant run kind and the named metrics, checked against closed
+forms."""
+
+from __future__ import annotations
+
+import json
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+from detumble.sim.plant import Plant
+from detumble.sim.readback import read_setting
+from detumble.sim.scenario import load_scenario
+from detumble.sitl.campaign import METRICS, PLANT_RUN, CoilEnergyMeter
+from fprime_lite.tools.campaign import MetricUnavailable, RunOutput, RunRequest
+from fprime_lite.tools.campaign.kinds import metrics, run_kinds
+
+BY_NAME = {m.name: m for m in METRICS}
+
+
+def test_plug_ins_are_installed_through_entry_points():
+    """CAMP-060: the engine finds the plant kind and the detumble metrics through their entry points."""
+    assert run_kinds()["plant"] is PLANT_RUN
+    assert set(BY_NAME) <= set(metrics())
+
+
+def test_settling_time_of_an_exponential_decay():
+    """CAMP-061: for |w| = w0·exp(-t/τ) (final ≈ 0) the 2 % settling time is τ·ln(50) within one
+    sample (closed form)."""
+    tau, dt = 100.0, 0.5
+    t = np.arange(0, 2000 + dt, dt)
+    r = 30.0 * np.exp(-t / tau)
+    got = BY_NAME["settling_time_2pct_s"].compute(RunOutput({}, {"t_s": t, "rate_deg_s": r}), None)
+    band = 0.02 * (r[0] - r[-1])  # the band is 2 % of the change actually made
+    expected = -tau * math.log((band) / 30.0 + r[-1] / 30.0)
+    assert abs(got - expected) <= dt
+    assert abs(got - tau * math.log(50)) < 1.0
+    with pytest.raises(MetricUnavailable, match="not settled"):
+        BY_NAME["settling_time_2pct_s"].compute(RunOutput({}, {"t_s": t[:100], "rate_deg_s": 30 - t[:100]}), None)
+
+
+def test_coil_energy_is_power_times_time():
+    """CAMP-062: X+ held at level 127 for 10 s and Y− at −64 for 4 s spend (V²/R)·10 + ((64/127)V)²/R·4 J."""
+    sc = load_scenario("default")
+    plant = Plant(sc)
+    meter = CoilEnergyMeter(plant)
+    spec = plant.actuators.coils[0].spec
+    plant.set_coil_level(0, 127)
+    plant.set_coil_level(3, -64)
+    for _ in range(200):  # 4 s at 0.02 s
+        plant.step()
+    plant.set_coil_level(3, 0)
+    for _ in range(300):  # 6 s more
+        plant.step()
+    y = plant.actuators.coils[3].spec
+    expected = spec.voltage_v ** 2 / spec.resistance_ohm * 10.0 + (64 / 127 * y.voltage_v) ** 2 / y.resistance_ohm * 4.0
+    assert meter.total_j() == pytest.approx(expected, rel=1e-12)
+
+
+def test_metrics_the_plant_cannot_give_are_null_with_a_reason():
+    """CAMP-063: pointing error and wheel momentum are unavailable with a reason; so is coil energy
+    for ideal rods; detumble time says the rate never fell below 1 deg/s."""
+    out = RunOutput({"time_below_1_deg_s": None, "final_rate_deg_s": 4.5})
+    for name, words in (("pointing_error_mean_deg", "no pointing target"), ("wheel_momentum_peak_nms", "wheel"),
+                        ("detumble_time_s", "stayed above 1 deg/s")):
+        with pytest.raises(MetricUnavailable, match=words):
+            BY_NAME[name].compute(out, None)
+    rods = CoilEnergyMeter(Plant(load_scenario("case_a")))
+    with pytest.raises(MetricUnavailable, match="torque rods"):
+        rods.total_j()
+
+
+def test_plant_run_reads_its_values_back_from_the_plant(tmp_path):
+    """CAMP-064: scenario values are read from the built plant (not echoed): a rate magnitude and
+    axis come back as |w(0)| and w(0)/|w(0)|, the run honours its duration and seed."""
+    axis = [1.0, 2.0, 2.0]
+    req = RunRequest(config={"scenario": "default", "law": "bdot", "duration_s": 5.0},
+                     values={"scenario.initial.rate.magnitude_deg_s": 12.5, "scenario.initial.rate.axis": axis,
+                             "scenario.sensors.magnetometer.noise_std_gauss": 0.001},
+                     seed=99, out_dir=tmp_path, base_dir=pathlib.Path("."))
+    prepared = PLANT_RUN.prepare(req)
+    out = prepared.execute()
+    assert prepared.readback("scenario.initial.rate.magnitude_deg_s") == pytest.approx(12.5, rel=1e-12)
+    assert prepared.readback("scenario.initial.rate.axis") == pytest.approx([1 / 3, 2 / 3, 2 / 3], rel=1e-12)
+    assert prepared.readback("scenario.sensors.magnetometer.noise_std_gauss") == 0.001
+    assert out.summary["sim_seconds"] == pytest.approx(5.0) and out.summary["seed"] == 99
+    assert read_setting(prepared.simulation, "seed") == 99
+    with pytest.raises(KeyError, match="initial state is read back as"):
+        read_setting(prepared.simulation, "initial.rate.spin")
+    json.dumps(out.summary)  # the summary is plain data
+
+
+def test_wheel_and_settling_metrics_come_from_the_run(tmp_path):
+    """CAMP-065: on `surrey` with the wheel law, wheel_momentum_peak_nms is the largest |h| of the
+    run's truth (within the wheels' 0.1 N·m·s), and settling_time_2pct_s is the run summary's own
+    (seed 004's per-axis bands), not a figure recomputed from |ω|."""
+    req = RunRequest(config={"scenario": "surrey", "law": "wheels_pd", "duration_s": 30.0}, values={}, seed=1,
+                     out_dir=tmp_path, base_dir=pathlib.Path("."))
+    out = PLANT_RUN.prepare(req).execute()
+    peak = BY_NAME["wheel_momentum_peak_nms"].compute(out, None)
+    assert 1e-3 < peak <= 0.1 + 1e-12
+    assert BY_NAME["settling_time_2pct_s"].compute(out, None) == out.summary["settling_time_2pct_s"]

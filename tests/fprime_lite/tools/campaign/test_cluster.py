@@ -1,0 +1,129 @@
+"""An external Dask cluster (a real ``dask scheduler`` and two ``dask worker`` processes on
+127.0.0.1), and a campaign killed mid-way then resumed."""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import pathlib
+import signal
+import socket
+import subprocess
+import sys
+import time
+
+import pandas as pd
+import pytest
+
+from fprime_lite.tools.campaign import read_results, run_campaign
+from tests.fprime_lite.tools.campaign.conftest import TINY_PLANT, comparable
+
+BIN = pathlib.Path(sys.executable).parent
+START_TIMEOUT_S = 90
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _stop(procs) -> None:
+    for p in procs:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(p.pid, signal.SIGTERM)
+    for p in procs:
+        try:
+            p.wait(timeout=15)
+        except subprocess.TimeoutExpired:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(p.pid, signal.SIGKILL)
+            p.wait(timeout=5)
+
+
+@pytest.fixture
+def external_cluster(tmp_path):
+    """A scheduler and two single-threaded workers on free loopback ports; always torn down."""
+    from distributed import Client
+
+    port = _free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    log = open(tmp_path / "dask.log", "w")
+    common = dict(stdout=log, stderr=subprocess.STDOUT, start_new_session=True, cwd=tmp_path)
+    procs = [subprocess.Popen([str(BIN / "dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port),
+                               "--dashboard-address", "127.0.0.1:0"], **common)]
+    try:
+        for i in range(2):
+            procs.append(subprocess.Popen([str(BIN / "dask"), "worker", address, "--nthreads", "1", "--nworkers", "1",
+                                           "--host", "127.0.0.1", "--name", f"ext-{i}", "--no-dashboard"], **common))
+        deadline = time.monotonic() + START_TIMEOUT_S
+        client = None
+        while time.monotonic() < deadline:
+            try:
+                client = client or Client(address, timeout=5)
+                if len(client.scheduler_info()["workers"]) == 2:
+                    break
+            except OSError:
+                pass
+            time.sleep(0.5)
+        else:
+            pytest.fail(f"the external Dask cluster did not come up in {START_TIMEOUT_S} s: "
+                        f"{(tmp_path / 'dask.log').read_text()[-2000:]}")
+        client.close()
+        yield address
+    finally:
+        _stop(procs)
+        log.close()
+
+
+def test_a_campaign_runs_on_an_external_scheduler(external_cluster, write_campaign, tmp_path):
+    """CAMP-050: `fprime-lite campaign --scheduler tcp://127.0.0.1:PORT` runs every run on the two
+    external workers, with a table bit-identical to an embedded LocalCluster's."""
+    from fprime_lite.tools.cli import main
+
+    path = write_campaign(TINY_PLANT)
+    assert main(["campaign", str(path), "--scheduler", external_cluster, "--out", str(tmp_path / "ext"),
+                 "--no-plots"]) == 0
+    ext = read_results(tmp_path / "ext")
+    assert set(ext["worker"]) <= {"ext-0", "ext-1"} and set(ext["status"]) == {"ok"} and len(ext) == 4
+    manifest = json.loads((tmp_path / "ext" / "manifest.json").read_text())
+    assert manifest["cluster"] == {"type": "external", "scheduler": external_cluster, "workers": 2}
+    local = run_campaign(path, workers=2, out=tmp_path / "local", plots=False, summary=False)
+    pd.testing.assert_frame_equal(comparable(ext), comparable(local), check_exact=True)
+
+
+RESUMABLE = TINY_PLANT.replace("duration_s: 20", "duration_s: 150").replace("seeds: 2", "seeds: 4")
+
+
+def test_a_killed_campaign_resumes_to_the_same_table(write_campaign, tmp_path):
+    """CAMP-051: SIGKILL of `fprime-lite campaign` mid-way leaves a readable results file with the
+    runs finished so far; `--resume` runs only the others and the final table equals an
+    uninterrupted campaign's."""
+    path = write_campaign(RESUMABLE)
+    out = tmp_path / "killed"
+    cmd = [sys.executable, "-m", "fprime_lite.tools.cli", "campaign", str(path), "--workers", "1",
+           "--out", str(out), "--no-plots"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        deadline = time.monotonic() + 120
+        journal = out / "rows.jsonl"
+        while time.monotonic() < deadline and proc.poll() is None:
+            if journal.exists() and journal.read_bytes().count(b"\n") >= 2 and (out / "results.parquet").exists():
+                break
+            time.sleep(0.05)
+        assert proc.poll() is None, "the campaign ended before it could be killed"
+        proc.send_signal(signal.SIGKILL)
+        proc.wait(timeout=10)
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(proc.pid, signal.SIGKILL)  # its LocalCluster worker processes too
+    partial = read_results(out)
+    finished = journal.read_bytes().count(b"\n")
+    assert 1 <= len(partial) <= finished < 8
+    df = run_campaign(path, workers=2, out=out, resume=True, plots=False, summary=False)
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert manifest["resumed_with"] == finished and manifest["status"] == "complete"
+    whole = run_campaign(path, workers=2, out=tmp_path / "whole", plots=False, summary=False)
+    assert len(df) == 8
+    pd.testing.assert_frame_equal(comparable(df), comparable(whole), check_exact=True)

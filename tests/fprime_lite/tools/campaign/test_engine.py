@@ -1,0 +1,103 @@
+"""Running campaigns on a LocalCluster: rows, read-back, failures and timeouts, determinism."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from fprime_lite.tools.campaign import CampaignError, read_results, run_campaign
+from tests.fprime_lite.tools.campaign.conftest import TINY_PLANT, comparable
+
+
+@pytest.fixture(scope="module")
+def two_worker_result(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("camp")
+    path = folder / "c.yaml"
+    path.write_text(TINY_PLANT, encoding="utf-8")
+    df = run_campaign(path, workers=2, out=folder / "out2", plots=True, summary=False)
+    return path, folder, df
+
+
+def test_local_cluster_of_two_runs_every_run(two_worker_result):
+    """CAMP-030: a LocalCluster of 2 runs all 4 runs; one row each, status ok, both workers used,
+    the parquet file equals the returned table, and manifest.json records the cluster."""
+    path, folder, df = two_worker_result
+    assert len(df) == 4 and set(df["status"]) == {"ok"}
+    assert list(df[["point", "seed_index"]].itertuples(index=False, name=None)) == [(0, 0), (0, 1), (1, 0), (1, 1)]
+    assert df["run_id"].is_unique
+    pd.testing.assert_frame_equal(read_results(folder / "out2"), df)
+    manifest = json.loads((folder / "out2" / "manifest.json").read_text())
+    assert manifest["status"] == "complete" and manifest["cluster"]["type"] == "local"
+    assert manifest["cluster"]["workers"] == 2 and manifest["counts"] == {"ok": 4}
+    assert manifest["campaign_text"] == path.read_text() and manifest["versions"]["dask"]
+    assert (folder / "out2" / "plots").is_dir() and list((folder / "out2" / "plots").glob("*.png"))
+
+
+def test_dispersions_are_read_back_from_the_built_simulation(two_worker_result):
+    """CAMP-031: the recorded initial rate is the plant's own |w(0)| and equals the summary's
+    initial_rate_deg_s; the bias read from the plant's magnetometer equals the one requested."""
+    _, _, df = two_worker_result
+    for _, r in df.iterrows():
+        asked = json.loads(r["requested"])
+        key = "scenario.initial.rate.magnitude_deg_s"
+        assert r[key] == pytest.approx(asked[key], rel=1e-12)
+        assert r["scenario.initial.rate.magnitude_deg_s"] == pytest.approx(r["initial_rate_deg_s"], rel=1e-12)
+        assert list(r["scenario.sensors.magnetometer.bias_gauss"]) == asked["scenario.sensors.magnetometer.bias_gauss"]
+        assert r["gain"] == asked["gain"]
+        assert r["coil_energy_j"] > 0 and np.isfinite(r["final_rate_deg_s"])
+
+
+def test_one_worker_gives_the_same_table(two_worker_result):
+    """CAMP-032: --workers 1 and --workers 2 give bit-identical tables (but for wall time and worker)."""
+    path, folder, df2 = two_worker_result
+    df1 = run_campaign(path, workers=1, out=folder / "out1", plots=False, summary=False)
+    pd.testing.assert_frame_equal(comparable(df1), comparable(df2), check_exact=True)
+
+
+def test_a_failing_and_a_timed_out_run_are_recorded_and_the_campaign_goes_on(write_campaign, tmp_path):
+    """CAMP-033: a run whose scenario is invalid (a 2 s step, past the first, checked, point) fails with
+    its error; a run past timeout_s is 'timeout' with null metrics and the reason; the others are ok."""
+    path = write_campaign("""\
+        campaign: mixed
+        run: {kind: plant, scenario: default, law: bdot, duration_s: 20}
+        grid:
+          scenario.dynamics_step_s: [0.01, 2.0]
+        metrics: [final_rate_deg_s]
+        """)
+    df = run_campaign(path, workers=2, out=tmp_path / "o", plots=False, summary=False)
+    assert list(df["status"]) == ["ok", "failed"]
+    assert "too coarse" in df.loc[1, "error"] and np.isnan(df.loc[1, "final_rate_deg_s"])
+    slow = write_campaign("""\
+        campaign: slow
+        run: {kind: plant, scenario: default, law: bdot, duration_s: 100000}
+        metrics: [final_rate_deg_s]
+        timeout_s: 0.5
+        """, "slow.yaml")
+    df = run_campaign(slow, workers=1, out=tmp_path / "s", plots=False, summary=False)
+    (row,) = df.to_dict("records")
+    assert row["status"] == "timeout" and "timed out after 0.5 s" in row["error"]
+    assert np.isnan(row["final_rate_deg_s"])
+    assert "timed out" in json.loads(row["notes"])["final_rate_deg_s"]
+
+
+def test_a_misspelt_dispersion_key_fails_before_the_campaign_starts(write_campaign, tmp_path):
+    """CAMP-034: a dispersed scenario key that does not exist stops the campaign at its file:line
+    before any run is submitted: no results are written."""
+    path = write_campaign(TINY_PLANT.replace("magnetometer.bias_gauss", "magnetometer.bias_gaus"))
+    with pytest.raises(CampaignError) as info:
+        run_campaign(path, workers=1, out=tmp_path / "o", plots=False, summary=False)
+    (problem,) = info.value.problems
+    assert problem.startswith(f"{path}:8: ") and "has no key 'bias_gaus'" in problem
+    assert not (tmp_path / "o").exists()
+
+
+def test_existing_results_need_resume(two_worker_result):
+    """CAMP-035: a folder with results is not overwritten: the error says to add --resume."""
+    path, folder, _ = two_worker_result
+    with pytest.raises(CampaignError, match="add --resume"):
+        run_campaign(path, workers=1, out=folder / "out2", plots=False, summary=False)
+    df = run_campaign(path, workers=1, out=folder / "out2", resume=True, plots=False, summary=False)
+    assert len(df) == 4  # nothing left to run: the same rows

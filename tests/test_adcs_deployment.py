@@ -1,0 +1,92 @@
+"""End to end: deployments/adcs_ref flies its three modes on the simulated 1U (wheels + star tracker).
+
+Each test is one run of the topology with its start-up sequence (or a variant of it), and asserts what
+happened: the modes the ground saw, in order, and the true pointing error from the truth samples.
+"""
+
+import csv
+import json
+import pathlib
+
+import pytest
+
+from fprime_lite.deploy.topology_loader import load_topology
+from fprime_lite.tools.runner import run_deployment
+
+ROOT = pathlib.Path(__file__).parents[1]
+TOPOLOGY = ROOT / "deployments" / "adcs_ref" / "topology.yaml"
+CTRL = "ReferenceDeployment.attitudeController"
+
+
+def fly(out, duration_s, *, settings=(), sequence=None):
+    overrides = {"spacecraft": {"settings": list(settings)}} if settings else None
+    loaded = load_topology(TOPOLOGY, overrides)
+    summary = run_deployment(loaded, out, duration_s=duration_s, sequence=sequence, plots=False)
+    with open(out / "attitude.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    return summary, rows
+
+
+@pytest.fixture(scope="module")
+def short_flight(tmp_path_factory):
+    """A 1.5 °/s spin about +Z with DETUMBLE_EXIT_RATE raised to 2 °/s: DETUMBLE → SPIN_STABLE in 5 s,
+    POINTING after the 60 s stable-spin dwell, a 90° target change at 200 s, 400 s in all."""
+    out = tmp_path_factory.mktemp("adcs_short")
+    seq = out / "short.seq"
+    seq.write_text(f"R00:00:00 {CTRL}.DETUMBLE_EXIT_RATE_PRM_SET 2.0\n"
+                   f"R00:00:00 {CTRL}.SET_TARGET_QUATERNION 0.9238795325112867 0 0.3826834323650898 0\n"
+                   f"R00:00:00 {CTRL}.SET_AUTO\n"
+                   f"R00:03:20 {CTRL}.SET_TARGET_QUATERNION 0.6532814824381883 0.6532814824381882 "
+                   f"0.2705980500730985 -0.2705980500730985\n")
+    summary, rows = fly(out, 400.0, settings=("initial.rate.magnitude_deg_s=1.5", "initial.rate.axis=[0,0,1]"),
+                        sequence=seq)
+    return summary, rows
+
+
+def test_short_flight_modes_in_order_and_target_held(short_flight):
+    """ADCS-040: the ground sees DETUMBLE, SPIN_STABLE, POINTING in that order and nothing else; the 90° target
+    change settles below 0.1° within 30 s; over the last 100 s the true error stays below 0.05°; no wheel
+    exceeds half its momentum capacity."""
+    summary, rows = short_flight
+    assert [t["mode"] for t in summary["control_mode_transitions"]] == ["DETUMBLE", "SPIN_STABLE", "POINTING"]
+    assert summary["handler_faults"] == 0 and summary["command_errors"] == 0
+    (slew,) = summary["slews"]
+    assert slew["angle_deg"] == pytest.approx(90.0, abs=0.5)
+    assert slew["settle_below_0p1_deg_s"] is not None and slew["settle_below_0p1_deg_s"] <= 30.0
+    tail = [float(r["pointing_error_deg"]) for r in rows if float(r["t_s"]) >= 300.0]
+    assert tail and max(tail) < 0.05
+    assert summary["wheel_momentum_max_fraction"] < 0.5
+
+
+@pytest.fixture(scope="module")
+def full_flight(tmp_path_factory):
+    """The deployment as shipped (30 °/s tumble; start-up sequence: target, then SET_AUTO), 6000 s."""
+    return fly(tmp_path_factory.mktemp("adcs_full"), 6000.0)
+
+
+@pytest.mark.slow
+def test_full_flight_from_a_30_deg_s_tumble(full_flight):
+    """ADCS-041: DETUMBLE → SPIN_STABLE → POINTING with no other transition; the spin settles (5°, 5 %) within
+    one orbit of entering SPIN_STABLE; over POINTING after its first 10 % the true error's p95 is ≤ 0.05° (the
+    issue's target), and so is the final error (the median of the last minute); no wheel passes half its
+    capacity."""
+    summary, rows = full_flight
+    assert [t["mode"] for t in summary["control_mode_transitions"]] == ["DETUMBLE", "SPIN_STABLE", "POINTING"]
+    assert summary["spin_settled_s"] is not None and summary["spin_settled_s"] <= 5578.0
+    stats = summary["pointing_error_deg"]
+    assert stats["p95"] <= 0.05, stats
+    last = sorted(float(r["pointing_error_deg"]) for r in rows if float(r["t_s"]) >= 5940.0)
+    assert last and last[len(last) // 2] <= 0.05
+    assert summary["wheel_momentum_max_fraction"] < 0.5
+    print(json.dumps({k: summary[k] for k in ("control_mode_transitions", "pointing_error_deg",
+                                              "spin_axis_error_deg", "spin_settled_s")}))
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="issue 13's steady-state median target (0.01°) is not met: 0.017° measured, "
+                                       "limited by gyro noise through the D term (docs/studies/attitude_modes.md)")
+def test_full_flight_pointing_median_target(full_flight):
+    """ADCS-041: the issue's median target, median true pointing error ≤ 0.01° over POINTING after its first
+    10 %. Known not met (strict xfail: this turns into a failure the day it passes, so the gap is re-measured)."""
+    summary, _ = full_flight
+    assert summary["pointing_error_deg"]["median"] <= 0.01
