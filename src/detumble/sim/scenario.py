@@ -831,12 +831,13 @@ def _control(s: _Section, dt: float) -> ControlConfig:
     target = wheels.raw("target_q_bo", list(WheelsPdConfig.target_q_bo))
     if not isinstance(target, (list, tuple)) or len(target) != 4:
         wheels.fail("target_q_bo", f"expected 4 numbers (scalar first), got {target!r}")
-    q = tuple(s.ctx.number(wheels.path + ("target_q_bo", i), x) for i, x in enumerate(target))
+    tq = [s.ctx.number(wheels.path + ("target_q_bo", i), x) for i, x in enumerate(target)]
+    q = (tq[0], tq[1], tq[2], tq[3])
     if not math.sqrt(sum(c * c for c in q)) > 0.0:
         wheels.fail("target_q_bo", "the target quaternion must not be zero")
     wheels_pd = WheelsPdConfig(k_p=wheels.number("k_p", WheelsPdConfig.k_p),
                                k_d=wheels.number("k_d", WheelsPdConfig.k_d),
-                               target_q_bo=q,  # type: ignore[arg-type]
+                               target_q_bo=q,
                                limits=wheels.string("limits", WheelsPdConfig.limits, ("report", "wheel")),
                                error=wheels.string("error", WheelsPdConfig.error, ("report", "shortest_path")),
                                dump_gain=wheels.number("dump_gain", WheelsPdConfig.dump_gain, nonneg=True))
