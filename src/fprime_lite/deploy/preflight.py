@@ -11,6 +11,8 @@ user hears about the mistake in one line, before anything flies.
   its arguments deserialize; the topology has the sequencer to run it.
 
 Each raises :class:`PreflightError` (a one-line message naming the file and what to do).
+:func:`topology_file_problems` (``fprime-lite check``) lists the problems of the files a topology
+names, each placed at the topology line that names the file.
 """
 from __future__ import annotations
 
@@ -24,7 +26,7 @@ from fprime_lite.deploy.topology import Topology
 from fprime_lite.svc.prm_db import ParamFileError, decode_param_file
 from fprime_lite.wire.seqfile import Descriptor, SequenceFileError, SequenceTextError, read_sequence
 
-__all__ = ["PreflightError", "check_parameter_file", "check_sequence", "check_run_files"]
+__all__ = ["PreflightError", "check_parameter_file", "check_sequence", "check_run_files", "topology_file_problems"]
 
 
 class PreflightError(FprimeLiteError):
@@ -124,3 +126,28 @@ def check_run_files(loaded, *, parameter_file=None, sequence=None) -> None:
     seq = sequence or loaded.startup_sequence
     if seq is not None:
         check_sequence(loaded.topology, seq, loaded.startup_sequencer)
+
+
+def topology_file_problems(loaded) -> list[str]:
+    """Problems of the parameter file and start-up sequence a loaded topology names (empty: both
+    good), each ``topology.yaml:LINE: 'key': what — what to do``. Unlike a run, which starts from
+    the defaults when the topology's parameter file does not exist yet, this reports it missing:
+    ``check`` validates the files a topology names."""
+    config = loaded.config
+    checks = []
+    if loaded.parameter_file is not None:
+        checks.append(("parameter_file", config.parameter_file_line if config else None,
+                       lambda: check_parameter_file(loaded.topology, loaded.parameter_file)))
+    if loaded.startup_sequence is not None:
+        checks.append(("startup.sequence", config.startup.sequence_line if config and config.startup else None,
+                       lambda: check_sequence(loaded.topology, loaded.startup_sequence, loaded.startup_sequencer)))
+    problems = []
+    for key, line, check in checks:
+        try:
+            check()
+        except PreflightError as exc:
+            message = str(exc)
+            fix = "" if " — " in message else " — fix the file or the path"
+            problems.append(f"{getattr(line, 'file', loaded.path)}:{line if line is not None else '?'}: '{key}': "
+                            f"{message}{fix}")
+    return problems

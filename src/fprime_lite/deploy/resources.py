@@ -11,6 +11,12 @@ application. Roles the tools use:
     and ``seed`` — ``fprime-lite run --scenario/--set/--seed``.
 ``report``
     takes ``truth_interval_s`` — ``fprime-lite run --truth-interval``.
+
+The loader builds only factories marked this way (any other callable named as a resource's
+``type`` is refused), and it builds them whenever it loads a topology, ``fprime-lite check``
+included. Marking a factory therefore promises that **calling it has no effect outside the
+process**: no file written, no process started, no socket opened — those belong in the run hooks
+(``begin``, ``finish``) that only ``fprime-lite run`` calls.
 """
 from __future__ import annotations
 

@@ -100,7 +100,7 @@ class Topology:
         instance = Instance(module, component, where)
         name = instance.qualified_name
         if name in self.instances:
-            raise PortConnectionError(f"instance {name} is declared twice")
+            raise PortConnectionError(f"instance {name} is declared twice", "rename one of them")
         self.instances[name] = instance
         return instance
 
@@ -177,7 +177,7 @@ class Topology:
             index = len(entries)
             if index >= len(send):
                 raise PortConnectionError(f"{service_name}.PingSend has {len(send)} indices, too few for every "
-                                          f"component that answers pings; leave some out of the health pattern")
+                                          f"component that answers pings", "leave some out of the health pattern")
             self.connect(service_name, "PingSend", index, client.qualified_name, ping_in[0], 0, group="pattern:health")
             self.connect(client.qualified_name, ping_out[0], 0, service_name, "PingReturn", index,
                          group="pattern:health")
@@ -193,8 +193,8 @@ class Topology:
         index = next_index.get(key, 0)
         if index >= len(port):
             raise PortConnectionError(
-                f"{service_name}.{service_port} has {len(port)} indices, too few for every {kind} client; "
-                f"use a service with a larger port array or fewer instances")
+                f"{service_name}.{service_port} has {len(port)} indices, too few for every {kind} client",
+                "use a service with a larger port array or fewer instances")
         if key == "command":
             if service_port == "compCmdSend":
                 next_index[key] = index + 1

@@ -31,7 +31,16 @@ class SerializationError(FprimeLiteError, ValueError):
 
 
 class PortConnectionError(FprimeLiteError):
-    """Two ports cannot be connected (type mismatch, index out of range, already connected)."""
+    """Two ports cannot be connected (type mismatch, index out of range, already connected).
+
+    ``what`` says what is wrong and ``fix`` what to do (may be empty); the message is
+    ``what — fix``, so callers that add a location need not take the text apart.
+    """
+
+    def __init__(self, what: str, fix: str = ""):
+        self.what = what
+        self.fix = fix
+        super().__init__(f"{what} — {fix}" if fix else what)
 
 
 class UnconnectedPortError(FprimeLiteError):

@@ -238,7 +238,7 @@ class OutputPortArray:
         if not 0 <= index < len(self.calls):
             raise PortConnectionError(
                 f"{self.component.name}.{self.name} has indices 0..{len(self.calls) - 1}; "
-                f"index {index} does not exist")
+                f"index {index} does not exist", "use an index within the port array")
 
     def connect(self, index: int, target: InputPortArray, target_index: int = 0) -> None:
         """Connect output index ``index`` to ``target[target_index]``; types must match."""
@@ -249,16 +249,16 @@ class OutputPortArray:
         if not 0 <= target_index < len(target):
             raise PortConnectionError(
                 f"cannot connect {src} to {target.component.name}.{target.name}[{target_index}]: "
-                f"{target.name} has indices 0..{len(target) - 1}")
+                f"{target.name} has indices 0..{len(target) - 1}", "use an index within the port array")
         dst = target.describe(target_index)
         if target.port_type is not self.port_type:
             raise PortConnectionError(
                 f"cannot connect {src} ({self.port_type.name}) to {dst} ({target.port_type.name}): "
-                f"port types differ")
+                f"port types differ", "connect ports of the same port type")
         if self.targets[index] is not None:
             raise PortConnectionError(
-                f"cannot connect {src} to {dst}: it is already connected to {self.target_name(index)}; "
-                f"an output index connects to one input only (use another index)")
+                f"cannot connect {src} to {dst}: it is already connected to {self.target_name(index)}",
+                "an output index connects to one input only (use another index)")
         self.calls[index] = target.entries[target_index]
         self.targets[index] = (target, target_index)
         self.version += 1

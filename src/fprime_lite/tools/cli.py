@@ -150,7 +150,13 @@ def _load(path: str):
 
 
 def cmd_check(args) -> int:
+    from fprime_lite.deploy.preflight import topology_file_problems
+    from fprime_lite.deploy.topology import TopologyError
+
     loaded = _load(args.topology)
+    problems = topology_file_problems(loaded)
+    if problems:
+        raise TopologyError(problems)
     topo = loaded.topology
     print(f"{args.topology}: OK — deployment {topo.deployment}: {len(topo.instances)} instances, "
           f"{len(topo.connections)} connections")

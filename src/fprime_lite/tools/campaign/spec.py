@@ -94,7 +94,7 @@ class _Checker:
 def load_campaign(path) -> Campaign:
     """Read and validate a campaign file; raise :class:`CampaignError` listing every problem."""
     from fprime_lite.deploy.topology import TopologyError
-    from fprime_lite.deploy.topology_loader import YMap, parse_yaml
+    from fprime_lite.deploy.topology_yaml.parse import YMap, parse_yaml
     from fprime_lite.tools.campaign.kinds import metrics as named_metrics
     from fprime_lite.tools.campaign.kinds import run_kinds
 
