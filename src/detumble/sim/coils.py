@@ -153,6 +153,8 @@ class CoilSet:
         self.coils = {face: Magnetorquer(face, spec) for face, spec in sorted(layout.items())}
         self._lagged = any(c._tau > 0.0 for c in self.coils.values())
         self.dipole_B = (0.0, 0.0, 0.0)
+        #: every coil's current is at its target and no level changed since: advance() has nothing to do
+        self._settled = True
 
     def set_level(self, face: int, level: int) -> None:
         coil = self.coils.get(face)
@@ -161,6 +163,7 @@ class CoilSet:
         if type(level) is int and level == coil.level:
             return  # drivers re-command the same level every tick; nothing changes
         coil.set_level(level)
+        self._settled = False
         if not self._lagged:
             self.dipole_B = self._sum()
 
@@ -178,10 +181,13 @@ class CoilSet:
 
     def advance(self, dt: float) -> tuple[float, float, float]:
         """Advance coil currents by ``dt``; return the mean total dipole over the interval."""
-        if not self._lagged:
+        if not self._lagged or self._settled:
+            # Settled: each coil's mean current is its (unchanged) current, so the mean dipole is
+            # the dipole_B the last advance computed from those very currents - the same floats.
             return self.dipole_B
         mean = {face: c.advance(dt) for face, c in self.coils.items()}
         self.dipole_B = self._sum()
+        self._settled = all(c.current_a == c.target_current_a() for c in self.coils.values())
         return self._sum(mean)
 
     def commanded_dipole_B(self) -> tuple[float, float, float]:

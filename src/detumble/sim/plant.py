@@ -85,6 +85,7 @@ class Plant:
             self.actuators = CoilSet(sc.spacecraft.coils)
         self._scale_dipole = sc.spacecraft.actuator_saturation == "scale"
         self.m_commanded_B: Vec3 = _ZERO
+        self._commanded_from_levels: Vec3 | None = None  # m_commanded_B as set_coil_level last computed it
         st = sc.star_tracker
         self.star_tracker: StarTracker | None = StarTracker(st, _derive_seed(self.seed, 4)) if st is not None else None
         self._target: tuple[Quat, str] | None = None
@@ -92,6 +93,8 @@ class Plant:
         self._gravity_gradient = sc.spacecraft.gravity_gradient
         self.magnetometer = Magnetometer(sc.magnetometer, _derive_seed(self.seed, 1))
         self.gyro = Gyro(sc.gyro, _derive_seed(self.seed, 2))
+        self._mag_samples = not self.magnetometer.spec.ideal  # an ideal sensor never latches
+        self._gyro_samples = not self.gyro.spec.ideal
         q0 = sc.q_BN0
         if sc.attitude_frame == "orbit":
             q0 = quat_normalize(frames.q_BN_from_orbit(q0, frames.q_ON(self.orbit, 0.0)))
@@ -140,6 +143,10 @@ class Plant:
             if dt_ns == 0:
                 return
             raise ValueError(f"cannot step backwards (dt = {dt} s)")
+        self.step_ns(dt_ns)
+
+    def step_ns(self, dt_ns: int) -> None:
+        """Advance the plant by ``dt_ns`` > 0 nanoseconds (what :meth:`step` does after rounding)."""
         dt = dt_ns * 1e-9
         t0 = self._t_ns
         t1 = t0 + dt_ns
@@ -166,12 +173,19 @@ class Plant:
         self._state = s1
         self._t_ns = t1
         self._update_environment()
-        mag = self.magnetometer
-        if not mag.spec.ideal and mag.latest_instant(t0, t1) is not None:
-            mag.latch(t0, t1, rotate_n_to_b(s0[:4], b0_N), rotate_n_to_b(s1[:4], self._b_N), m_coils)
-        gyro = self.gyro
-        if not gyro.spec.ideal and gyro.latest_instant(t0, t1) is not None:
-            gyro.latch(t0, t1, s0[4:7], s1[4:7])
+        # The sensors' samples due in (t0, t1] are only recorded here; each is computed when read.
+        if self._mag_samples:
+            mag = self.magnetometer
+            period = mag.period_ns
+            tk = t1 // period * period
+            if tk > t0:
+                mag.defer(t0, t1, tk, s0, s1, b0_N, self._b_N, m_coils)
+        if self._gyro_samples:
+            gyro = self.gyro
+            period = gyro.period_ns
+            tk = t1 // period * period
+            if tk > t0:
+                gyro.defer(t0, t1, tk, s0, s1)
         st = self.star_tracker
         if st is not None and not st.spec.ideal and st.latest_instant(t0, t1) is not None:
             st.latch(t0, t1, s0, s1)
@@ -277,10 +291,15 @@ class Plant:
     def set_coil_level(self, face: int, level: int, t: float | None = None) -> None:
         """Drive the coil on ``face`` (X+ 0, X- 1, Y+ 2, Y- 3, Z- 5) at ``level`` -127...127."""
         self._sync(t)
-        if not isinstance(self.actuators, CoilSet):
+        act = self.actuators
+        if not isinstance(act, CoilSet):
             raise TypeError("this spacecraft has ideal torque rods, not face coils; use apply_dipole_B")
-        self.actuators.set_level(face, level)
-        self.m_commanded_B = self.actuators.commanded_dipole_B()
+        coil = act.coils.get(face)
+        if (coil is not None and type(level) is int and level == coil.level
+                and self.m_commanded_B is self._commanded_from_levels):
+            return  # drivers re-command unchanged levels: the commanded dipole is the one computed last
+        act.set_level(face, level)
+        self.m_commanded_B = self._commanded_from_levels = act.commanded_dipole_B()
 
     def coil_levels(self) -> dict[int, int]:
         if not isinstance(self.actuators, CoilSet):

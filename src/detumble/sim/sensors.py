@@ -17,13 +17,22 @@ Gyro (LSM6DSO): reports **rad/s** ``omega_BN_B``. Per-sample noise std = noise d
 sqrt(odr / 2) (the density over the output bandwidth), constant bias, quantisation at the
 full-scale's sensitivity (4.375 mdps/LSB at 125 dps ... 70 mdps/LSB at 2000 dps) and saturation
 at +-full scale.
+
+Sampling is lazy: at each ODR instant the plant only records what the sample will be computed
+from (:meth:`Magnetometer.defer`, :meth:`Gyro.defer`); the value is worked out when
+``sample_gauss`` / ``sample_rad_s`` is read. A sample superseded before anyone read it still
+consumes its three noise draws (:func:`skip_gauss`), so every sample that is read is bit for bit
+the one eager sampling gives.
 """
 
 from __future__ import annotations
 
 import math
 import random
+from typing import Any
 from dataclasses import dataclass
+
+from detumble.sim.vec import rotate_n_to_b
 
 GAUSS_PER_TESLA = 1e4
 LSM6DSO_SENSITIVITY_MDPS = {125.0: 4.375, 250.0: 8.75, 500.0: 17.5, 1000.0: 35.0, 2000.0: 70.0}
@@ -70,6 +79,28 @@ def _quantise(x: float, lsb: float, limit: float) -> float:
     return x
 
 
+def skip_gauss(rng: random.Random, n: int) -> None:
+    """Advance ``rng`` exactly as ``n`` calls of ``rng.gauss`` would, without computing them.
+
+    ``random.Random.gauss`` makes its draws in pairs from two ``random()`` values, keeping the
+    second of a pair in ``gauss_next``: a whole pair is two ``random()`` calls; an odd draw left
+    over is a real ``gauss`` call so that the cached half of its pair is the true one.
+    """
+    if n <= 0:
+        return
+    held: Any = rng  # CPython's Random keeps gauss's cached half in gauss_next, which typeshed omits
+    if held.gauss_next is not None:  # the pending second half of a pair is the next draw
+        held.gauss_next = None
+        n -= 1
+    r = rng.random
+    while n >= 2:
+        r()
+        r()
+        n -= 2
+    if n:
+        rng.gauss()
+
+
 class _SampleHold:
     """Shared ODR bookkeeping on the integer-nanosecond grid."""
 
@@ -78,6 +109,44 @@ class _SampleHold:
             raise ValueError(f"odr_hz must be positive, got {odr_hz}")
         self.period_ns = int(round(1e9 / odr_hz))
         self.sample_time_ns = -1
+        self.rng = random.Random()
+        self._draws = 0  # noise draws per sample
+        #: the inputs of the latest sample, not computed yet (see the subclasses' ``defer``)
+        self._pending: tuple | None = None
+        self._skipped = 0  # samples superseded unread since the last one computed
+        self._sample: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def _held(self) -> tuple[float, float, float]:
+        """The held sample, computed now if it was deferred."""
+        if self._pending is not None:
+            self._resolve()
+        return self._sample
+
+    def _hold(self, value: tuple[float, float, float]) -> None:
+        """Replace the held sample (the deferred one's noise draws are consumed first)."""
+        self._discard_unread()
+        self._sample = value
+
+    def _resolve(self) -> None:
+        raise NotImplementedError
+
+    def _discard_unread(self) -> None:
+        """Drop the deferred sample, consuming the noise draws of every sample not computed."""
+        if self._pending is not None:
+            self._pending = None
+            self._skipped += 1
+        if self._skipped:
+            skip_gauss(self.rng, self._draws * self._skipped)
+            self._skipped = 0
+
+    def _take_pending(self) -> tuple:
+        """The deferred sample's inputs, the draws of the unread samples before it consumed."""
+        pending = self._pending
+        self._pending = None
+        if self._skipped:
+            skip_gauss(self.rng, self._draws * self._skipped)
+            self._skipped = 0
+        return pending  # type: ignore[return-value]
 
     def latest_instant(self, t0_ns: int, t1_ns: int) -> int | None:
         """Latest ODR instant in (t0, t1], or None."""
@@ -93,13 +162,18 @@ class Magnetometer(_SampleHold):
         super().__init__(spec.odr_hz)
         self.spec = spec
         self.rng = random.Random(seed)
-        self.sample_gauss = (0.0, 0.0, 0.0)
+        self._draws = 3 if spec.noise_std_gauss > 0.0 else 0  # noise draws per sample
         g = GAUSS_PER_TESLA
         self._k = tuple(g * k for k in spec.coupling_t_per_am2)  # gauss per A m^2
+
+    #: The held sample, gauss (body axes); computed when first read after a deferral.
+    sample_gauss = property(lambda self: self._held(), lambda self, value: self._hold(value))
 
     def measure(self, b_B: tuple[float, float, float],
                 m_coils_B: tuple[float, float, float]) -> tuple[float, float, float]:
         """One noisy, quantised measurement (gauss) of true field ``b_B`` (T) with coils at ``m_coils_B``."""
+        if self._pending is not None:  # the deferred sample draws its noise first, as eagerly
+            self._resolve()
         s = self.spec
         g = GAUSS_PER_TESLA
         k = self._k
@@ -121,10 +195,32 @@ class Magnetometer(_SampleHold):
         tk = self.latest_instant(t0_ns, t1_ns)
         if tk is None:
             return
+        self._discard_unread()
+        self._sample = self._interpolated(t0_ns, t1_ns, tk, b0_B, b1_B, m_coils_B)
+        self.sample_time_ns = tk
+
+    def defer(self, t0_ns: int, t1_ns: int, tk_ns: int, q0_BN, q1_BN, b0_N, b1_N, m_coils_B) -> None:
+        """Record the sample at ODR instant ``tk_ns`` in (t0, t1] without computing it.
+
+        ``q0_BN``/``q1_BN`` are the attitudes (scalar first; longer state tuples are fine) and
+        ``b0_N``/``b1_N`` the inertial field (T) at the step's ends; ``m_coils_B`` the coils'
+        dipole over the step (A m^2). The sample is computed when it is first read.
+        """
+        if self._pending is not None:
+            self._skipped += 1
+        self._pending = (t0_ns, t1_ns, q0_BN, q1_BN, b0_N, b1_N, m_coils_B)
+        self.sample_time_ns = tk_ns
+
+    def _resolve(self) -> None:
+        t0, t1, q0, q1, b0_N, b1_N, m = self._take_pending()
+        b0 = rotate_n_to_b((q0[0], q0[1], q0[2], q0[3]), b0_N)
+        b1 = rotate_n_to_b((q1[0], q1[1], q1[2], q1[3]), b1_N)
+        self._sample = self._interpolated(t0, t1, self.sample_time_ns, b0, b1, m)
+
+    def _interpolated(self, t0_ns: int, t1_ns: int, tk: int, b0_B, b1_B, m_coils_B) -> tuple[float, float, float]:
         s = (tk - t0_ns) / (t1_ns - t0_ns) if t1_ns > t0_ns else 1.0
         b = (b0_B[0] + s * (b1_B[0] - b0_B[0]), b0_B[1] + s * (b1_B[1] - b0_B[1]), b0_B[2] + s * (b1_B[2] - b0_B[2]))
-        self.sample_gauss = self.measure(b, m_coils_B)
-        self.sample_time_ns = tk
+        return self.measure(b, m_coils_B)
 
 
 class Gyro(_SampleHold):
@@ -134,13 +230,15 @@ class Gyro(_SampleHold):
         super().__init__(spec.odr_hz)
         self.spec = spec
         self.rng = random.Random(seed)
-        self.sample_rad_s = (0.0, 0.0, 0.0)
         self._sd = math.radians(spec.noise_std_dps)
+        self._draws = 3 if self._sd > 0.0 else 0
         self._lsb = math.radians(spec.lsb_dps)
         self._fs = math.radians(spec.full_scale_dps)
         self._bias = tuple(math.radians(b) for b in spec.bias_dps)
 
     def measure(self, omega_B: tuple[float, float, float]) -> tuple[float, float, float]:
+        if self._pending is not None:  # the deferred sample draws its noise first, as eagerly
+            self._resolve()
         bias = self._bias
         x, y, z = omega_B[0] + bias[0], omega_B[1] + bias[1], omega_B[2] + bias[2]
         sd = self._sd
@@ -152,11 +250,30 @@ class Gyro(_SampleHold):
         lsb, fs = self._lsb, self._fs
         return (_quantise(x, lsb, fs), _quantise(y, lsb, fs), _quantise(z, lsb, fs))
 
+    #: The held sample, rad/s (body axes); computed when first read after a deferral.
+    sample_rad_s = property(lambda self: self._held(), lambda self, value: self._hold(value))
+
     def latch(self, t0_ns: int, t1_ns: int, w0_B, w1_B) -> None:
         tk = self.latest_instant(t0_ns, t1_ns)
         if tk is None:
             return
+        self._discard_unread()
+        self._sample = self._interpolated(t0_ns, t1_ns, tk, w0_B, w1_B)
+        self.sample_time_ns = tk
+
+    def defer(self, t0_ns: int, t1_ns: int, tk_ns: int, s0, s1) -> None:
+        """Record the sample at ODR instant ``tk_ns`` in (t0, t1] without computing it; ``s0``/``s1``
+        are the plant states (``omega_BN_B`` at indices 4..6) at the step's ends."""
+        if self._pending is not None:
+            self._skipped += 1
+        self._pending = (t0_ns, t1_ns, s0, s1)
+        self.sample_time_ns = tk_ns
+
+    def _resolve(self) -> None:
+        t0, t1, s0, s1 = self._take_pending()
+        self._sample = self._interpolated(t0, t1, self.sample_time_ns, s0[4:7], s1[4:7])
+
+    def _interpolated(self, t0_ns: int, t1_ns: int, tk: int, w0_B, w1_B) -> tuple[float, float, float]:
         s = (tk - t0_ns) / (t1_ns - t0_ns) if t1_ns > t0_ns else 1.0
         w = (w0_B[0] + s * (w1_B[0] - w0_B[0]), w0_B[1] + s * (w1_B[1] - w0_B[1]), w0_B[2] + s * (w1_B[2] - w0_B[2]))
-        self.sample_rad_s = self.measure(w)
-        self.sample_time_ns = tk
+        return self.measure(w)

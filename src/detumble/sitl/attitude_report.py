@@ -28,6 +28,8 @@ import math
 import os
 import pathlib
 
+from fprime_lite.deploy.resources import topology_resource
+
 from detumble.components.attitude_types import ControlMode
 from detumble.control.quaternion import quat_angle, quat_error
 from detumble.sitl.spacecraft import SimulatedSpacecraft
@@ -69,6 +71,7 @@ def settle_time(times: list[float], ok: list[bool], start: float) -> float | Non
     return after[0] - start
 
 
+@topology_resource
 class AttitudeRunReport:
     """Follows one run of an attitude-control deployment.
 

@@ -221,7 +221,7 @@ class SimulatedSpacecraft:
                 nxt = trace_next
             if self.power is not None:
                 self._step_power(now, nxt)
-            plant.step((nxt - now) * 1e-9)
+            plant.step_ns(nxt - now)  # nxt > now: the plant's own ns step, no float round trip
             self.steps_taken += 1
             now = plant.t_ns
             if now != nxt:  # pragma: no cover - guards the ns rounding in Plant.step

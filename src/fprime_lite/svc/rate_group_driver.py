@@ -43,8 +43,10 @@ class RateGroupDriver(PassiveComponent):
         dividers = [d if isinstance(d, Divider) else Divider(*d) for d in dividers]
         if len(dividers) > self.MAX_OUTPUTS:
             raise ValueError(f"{name}: at most {self.MAX_OUTPUTS} dividers, got {len(dividers)}")
-        self.dividers = dividers
+        self.dividers = tuple(dividers)
         self.tick = 0  # index of the next base tick to handle
+        self._table_of: object = None
+        self._table_cache: tuple[tuple[int, int, int], ...] = ()
         self._cycle_targets = self.output_port("CycleOut").targets
 
     @sync_input(Cycle)
@@ -52,16 +54,25 @@ class RateGroupDriver(PassiveComponent):
         tick = self.tick
         out = self.CycleOut
         targets = self._cycle_targets
-        for i, d in enumerate(self.dividers):
-            if tick % d.divisor == d.offset and targets[i] is not None:
+        for i, divisor, offset in self._table():
+            if tick % divisor == offset and targets[i] is not None:
                 out[i](cycle_start)
         self.tick = tick + 1
+
+    def _table(self) -> tuple[tuple[int, int, int], ...]:
+        """``(output, divisor, offset)`` of every divider, rebuilt when ``dividers`` is replaced."""
+        dividers = self.dividers
+        if self._table_of is not dividers:
+            self._table_cache = tuple((i, d.divisor, d.offset) for i, d in enumerate(dividers))
+            self._table_of = dividers
+        return self._table_cache
 
     def ticks_to_next_output(self) -> int:
         """How many base ticks from now until one of the outputs fires (0: this very tick)."""
         best = None
-        for d in self.dividers:
-            wait = (d.offset - self.tick) % d.divisor
+        tick = self.tick
+        for _, divisor, offset in self._table():
+            wait = (offset - tick) % divisor
             if best is None or wait < best:
                 best = wait
         return 0 if best is None else best

@@ -114,3 +114,24 @@ def test_apply_dipole_splits_over_pairs_and_rods_clamp():
     rods = TorqueRods((0.2, 0.2, 0.2))
     rods.apply_dipole_B((0.5, -0.1, -0.3))
     assert rods.dipole_B == (0.2, -0.1, -0.2)
+
+
+def test_settled_lagged_coils_skip_the_lag_update_with_the_same_dipoles():
+    """SIM-COIL-010: with an L/R lag, advance() skips the update once every current sits at its
+    target - and returns exactly (==) the mean and present dipoles of the full update, step for
+    step, through level changes that unsettle it again."""
+    import dataclasses
+
+    layout = {face: dataclasses.replace(spec, inductance_h=0.02) for face, spec in default_coil_layout().items()}
+    fast, full = CoilSet(layout), CoilSet(layout)
+    skipped = 0
+    for k in range(400):
+        if k in (0, 150, 151, 300):
+            for coils in (fast, full):
+                coils.set_level(X_PLUS, 40 + k % 7)
+                coils.set_level(Z_MINUS, -90 if k < 300 else 0)
+        skipped += fast._settled
+        full._settled = False  # always the full lag update
+        assert fast.advance(0.02) == full.advance(0.02), k
+        assert fast.dipole_B == full.dipole_B, k
+    assert skipped > 300  # the fast path was taken (the currents settle within a few steps)

@@ -113,3 +113,21 @@ def test_optional_wmm_and_tle_scenarios_fly():
     b = math.sqrt(sum(x * x for x in p.b_B))
     assert 15e-6 < b < 60e-6  # T
     assert 6.65e6 < math.sqrt(sum(x * x for x in p.r_N)) < 6.85e6  # m
+
+
+def test_recommanding_an_unchanged_coil_level_keeps_the_commanded_dipole_exactly():
+    """SIM-PLANT-020: set_coil_level with an unchanged level skips the recomputation, yet
+    m_commanded_B always equals (==) the dipole the levels command - also after apply_dipole_B
+    replaced it with a requested dipole."""
+    from detumble.sim.plant import Plant
+    from detumble.sim.scenario import load_scenario
+
+    p = Plant(load_scenario("default"))
+    p.set_coil_level(0, 60)
+    p.set_coil_level(5, -30)
+    expected = p.actuators.commanded_dipole_B()
+    p.set_coil_level(0, 60)
+    assert p.m_commanded_B == expected
+    p.apply_dipole_B((0.01, 0.0, 0.0))  # a requested dipole, not the levels' own
+    p.set_coil_level(5, p.coil_levels()[5])  # unchanged level: m_commanded_B must follow the levels again
+    assert p.m_commanded_B == p.actuators.commanded_dipole_B()

@@ -120,3 +120,50 @@ def test_coil_coupling_visible_while_coils_are_on():
     p0.set_coil_level(X_PLUS, 127)
     p0.advance_to(0.020)
     assert abs(p0.magnetometer_reading()[0] - clean[0]) < 0.01
+
+
+def test_skip_gauss_leaves_the_stream_where_n_gauss_draws_would():
+    """SIM-SENS-LAZY-001: after skip_gauss(n) the next draws equal those after n real gauss() calls,
+    for every n and either half of a pair pending (bit-identical floats)."""
+    import random
+
+    from detumble.sim.sensors import skip_gauss
+
+    for before in range(3):
+        for n in range(9):
+            real, skipped = random.Random(11), random.Random(11)
+            for rng in (real, skipped):
+                for _ in range(before):
+                    rng.gauss()
+            for _ in range(n):
+                real.gauss()
+            skip_gauss(skipped, n)
+            assert [real.gauss() for _ in range(5)] == [skipped.gauss() for _ in range(5)], (before, n)
+
+
+def _noisy_plant():
+    return Plant(scenario_from_dict({
+        "dynamics_step_s": 0.02,
+        "sensors": {"magnetometer": {"noise_std_gauss": 0.003}, "gyro": {"noise_density_dps_rthz": 0.0038}},
+        "initial": {"rate": {"omega_deg_s": [20.0, -10.0, 5.0]}},
+    }))
+
+
+def test_lazy_samples_equal_eager_ones_whatever_is_read_when():
+    """SIM-SENS-LAZY-002: samples are computed only when read, yet every sample read is bit for bit
+    the one a plant reading both sensors after every step gets (unread samples still consume their
+    noise draws), including after a direct measure() call in between."""
+    eager, lazy = _noisy_plant(), _noisy_plant()
+    for k in range(1, 400):
+        eager.step()
+        lazy.step()
+        e_mag, e_gyro = eager.magnetometer.sample_gauss, eager.gyro.sample_rad_s
+        if k % 7 == 0:
+            assert lazy.magnetometer.sample_gauss == e_mag, k
+        if k % 11 == 0:
+            assert lazy.gyro.sample_rad_s == e_gyro, k
+        if k == 200:  # an extra measurement draws after the deferred sample, as it would eagerly
+            assert lazy.magnetometer.measure((1e-5, 0.0, 0.0), (0.0, 0.0, 0.0)) == \
+                eager.magnetometer.measure((1e-5, 0.0, 0.0), (0.0, 0.0, 0.0))
+    assert lazy.magnetometer.sample_time_ns == eager.magnetometer.sample_time_ns
+    assert lazy.state == eager.state

@@ -19,15 +19,16 @@ def _scheduled(scenario, **kwargs):
 
 
 def _record_steps(craft):
-    """Wrap the plant's step to record the plant time (ns) after every step."""
+    """Wrap the plant's step (``step_ns``, what the spacecraft calls) to record the plant time (ns)
+    after every step."""
     ends = []
-    step = craft.plant.step
+    step = craft.plant.step_ns
 
-    def recording(dt=None):
-        step(dt)
+    def recording(dt_ns):
+        step(dt_ns)
         ends.append(craft.plant.t_ns)
 
-    craft.plant.step = recording
+    craft.plant.step_ns = recording
     return ends
 
 
