@@ -159,7 +159,7 @@ def test_the_stock_gds_flies_the_deployment(flying):
         # a guard against a hang, not a timing check: the ten operator checks take ~30 s on a quiet
         # machine and several minutes when eight processes share its two cores
         cwd=ROOT, capture_output=True, text=True, timeout=600,
-        env={**os.environ, "FPRIME_LITE_GDS_FIGURES": str(figures)})
+        env={**os.environ, "FPRIME_LITE_GDS_FIGURES": str(figures), "FPRIME_LITE_GDS_RUNS": str(flying["runs"])})
     assert inner.returncode == 0, (f"inner GDS test run failed:\n{inner.stdout[-6000:]}\n{inner.stderr[-3000:]}\n"
                                    f"--- gds ---\n{groups.log('gds')}\n--- deployment ---\n"
                                    f"{groups.log('deployment')}")

@@ -16,6 +16,11 @@ One state's actions run per ``run`` call; a transition takes effect on the next 
     SENSING_ANGULAR_VELOCITY ──HYSTERESIS──▶ ACTUATING_HYSTERESIS ──▶ COOLDOWN
     ACTUATING_BDOT ──(≥ TORQUE_DURATION, or sampling-period failure)──▶ COOLDOWN
     any state ──(mode DISABLED)──▶ COOLDOWN, coils stopped, timers and window cleared
+
+Actuator health (an addition to the PROVES design): a coil that was switched on and whose stop
+answers FAILURE may still be on; it is reported (CoilStopFailed, WARNING_HI) and isolated — no start
+or stop reaches it — until the ground sends ENABLE_COIL. Every torque period ends with a stop, so this
+takes at most one period.
 """
 
 from __future__ import annotations
@@ -24,20 +29,23 @@ import logging
 import math
 from dataclasses import dataclass
 
-from fprime_lite import (F64, Channel, CmdResponse, Event, OutputPort, Param, PassiveComponent,
+from fprime_lite import (F64, U32, Channel, CmdResponse, Event, OutputPort, Param, PassiveComponent,
                          Sched, Severity, sync_command, sync_input)
 from fprime_lite.model.params import ParamEcho
 from fprime_lite.model.time import Time
+from fprime_lite.model.types import U8
 
 from detumble.components import types as T
 from detumble.control.bdot import BDot
+from detumble.control.coil_layout import COIL_FACES
 from detumble.control.coil_layout import FLIGHT_XY_COIL as _XY
 from detumble.control.coil_layout import FLIGHT_Z_COIL as _Z
 from detumble.control.magnetorquer import CoilShape as CoilOutline
 from detumble.control.magnetorquer import DirectionSign, Magnetorquer
 from detumble.control.strategy_selector import Strategy, StrategySelector
 from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet, CoilShape, DetumbleMode, DetumbleState,
-                    DipoleMomentGet, GetSystemMode, HysteresisAxis, MagneticFieldGet, SamplingPeriodGet,
+                    DipoleMomentGet, GetSystemMode, HysteresisAxis, MagneticFieldGet, MagnetorquerFace,
+                    SamplingPeriodGet,
                     SetDetumbleMode, StartMagnetorquer, StopMagnetorquer, Success, SystemMode,
                     SystemModeChanged, TimeIntervalValue)
 
@@ -95,6 +103,11 @@ _COILS = (
                 None, None, "Z_MINUS_DIAMETER", DirectionSign.NEGATIVE, "ZMinusTurnsParam",
                 "zMinusStart", "zMinusStop"),
 )
+
+
+#: The face of each coil of _COILS, and back.
+_COIL_FACES = tuple(MagnetorquerFace(int(face)) for face in COIL_FACES)
+_FACE_INDEX = {face: index for index, face in enumerate(_COIL_FACES)}
 
 
 def _duration(min_us: int, max_us: int):
@@ -255,6 +268,47 @@ class DetumbleManager(PassiveComponent):
     YMinusTurnsParam = Channel(F64, id=34, units="turns")
     ZMinusTurnsParam = Channel(F64, id=41, units="turns")
 
+    # --- actuator health (addition; declared last so every flight id stays as it is) -----------
+
+    @sync_command()
+    def ENABLE_COIL(self, face: MagnetorquerFace):
+        """Return an isolated coil to service: it is driven again from the next cycle (a coil that
+        still does not stop is isolated again at its next stop)."""
+        index = _FACE_INDEX[MagnetorquerFace(face)]
+        was_isolated = self._isolated[index]
+        self._isolated[index] = False
+        self._stop_failures[index] = 0
+        self.CoilEnabled(face)
+        if was_isolated:
+            self.CoilStopFailed.clear_throttle()
+        self._write_isolated()
+        return CmdResponse.OK
+
+    @sync_command()
+    def ISOLATE_COIL(self, face: MagnetorquerFace):
+        """Take a coil out of service: it is stopped once more, then never driven until ENABLE_COIL."""
+        index = _FACE_INDEX[MagnetorquerFace(face)]
+        port = self._stop_ports[index]
+        if port.targets[0] is not None:
+            port.calls[0]()
+        self._isolated[index] = True
+        self.CoilIsolatedByCommand(face)
+        self._write_isolated()
+        return CmdResponse.OK
+
+    #: A coil's stop answered FAILURE: it may still carry current. The coil is isolated (no start
+    #: and no stop is sent to it) until ENABLE_COIL.
+    CoilStopFailed = Event(Severity.WARNING_HI,
+                           "Magnetorquer {} did not stop (stop answered FAILURE): coil isolated until ENABLE_COIL",
+                           face=MagnetorquerFace, throttle=10)
+    CoilEnabled = Event(Severity.ACTIVITY_HI, "Magnetorquer {} enabled by command", face=MagnetorquerFace)
+    CoilIsolatedByCommand = Event(Severity.ACTIVITY_HI, "Magnetorquer {} isolated by command",
+                                  face=MagnetorquerFace)
+    #: Isolated coils as a bit mask: bit = face number (X+ 0, X− 1, Y+ 2, Y− 3, Z− 5); 0 = all in service.
+    IsolatedCoils = Channel(U8, update="on change")
+    #: Stops that answered FAILURE, since start (all coils).
+    CoilStopFailures = Channel(U32, update="on change")
+
     # --- construction --------------------------------------------------------------------------
 
     def __init__(self, name: str, *, base_id: int = 0):
@@ -271,6 +325,9 @@ class DetumbleManager(PassiveComponent):
         self._start_ports = [self.output_port(c.start_port) for c in _COILS]  # X+, X−, Y+, Y−, Z−
         self._stop_ports = [self.output_port(c.stop_port) for c in _COILS]
         self.coils_driven = False
+        self._isolated = [False] * len(_COILS)  # per coil (X+, X−, Y+, Y−, Z−): never driven while True
+        self._stop_failures = [0] * len(_COILS)
+        self._may_be_on = [False] * len(_COILS)  # a start switched it on; no good stop since
         self._last_system_mode: SystemMode | None = None
         self._external_dipole: tuple[float, float, float] | None = None
         self._param_by_local_id = {p.local_id: name for name, p in self.params.items()}
@@ -293,6 +350,8 @@ class DetumbleManager(PassiveComponent):
             self._configure_coil(coil)
         for coil in _COILS:
             getattr(self, coil.turns_channel).write(self.params[coil.turns].value)
+        self._write_isolated()
+        self.CoilStopFailures.write(sum(self._stop_failures) & 0xFFFFFFFF)
 
     def parameter_updated(self, local_id: int) -> None:
         """A PRM_SET was accepted (the framework has echoed it: event + channel): re-configure the
@@ -538,14 +597,44 @@ class DetumbleManager(PassiveComponent):
 
     def _start_coils(self, levels) -> None:
         """Drive X+, X−, Y+, Y−, Z− at ``levels`` (each −127…127); unconnected coils are skipped."""
-        for port, level in zip(self._start_ports, levels, strict=True):
-            if port.targets[0] is not None:  # unconnected coils are skipped
-                port.calls[0](level)
+        isolated, may_be_on = self._isolated, self._may_be_on
+        for index, (port, level) in enumerate(zip(self._start_ports, levels, strict=True)):
+            if port.targets[0] is not None and not isolated[index]:  # unconnected coils are skipped
+                if port.calls[0](level) == Success.SUCCESS:
+                    may_be_on[index] = level != 0
         self.coils_driven = True
 
     def _stop_coils(self) -> None:
-        """Stop all five coils (unconnected coils are skipped)."""
-        for port in self._stop_ports:
-            if port.targets[0] is not None:
-                port.calls[0]()
+        """Stop the five coils (unconnected and isolated coils are skipped).
+
+        A coil that a start switched on (SUCCESS, non-zero level) and whose stop then answers FAILURE
+        may still be on: it is isolated at once (CoilStopFailed, WARNING_HI) and not driven again
+        until ENABLE_COIL. Every torque period ends with a stop, so a coil that stays on past its
+        commanded duration is caught within one period. A failing stop of a coil that was not on
+        since its last good stop (an unpowered or not yet initialised device) isolates nothing.
+        """
+        isolated, may_be_on = self._isolated, self._may_be_on
+        for index, port in enumerate(self._stop_ports):
+            if port.targets[0] is not None and not isolated[index]:
+                if port.calls[0]() == Success.FAILURE:
+                    if may_be_on[index]:
+                        self._isolate_failed_coil(index)
+                else:
+                    may_be_on[index] = False
         self.coils_driven = False
+
+    def _isolate_failed_coil(self, index: int) -> None:
+        self._isolated[index] = True
+        self._stop_failures[index] += 1
+        self.CoilStopFailed(_COIL_FACES[index])
+        self.CoilStopFailures.write(sum(self._stop_failures) & 0xFFFFFFFF)
+        self._write_isolated()
+
+    def _write_isolated(self) -> None:
+        self.IsolatedCoils.write(sum(1 << int(face)
+                                     for face, off in zip(_COIL_FACES, self._isolated, strict=True) if off))
+
+    @property
+    def isolated_faces(self) -> tuple[MagnetorquerFace, ...]:
+        """The coils out of service now."""
+        return tuple(face for face, off in zip(_COIL_FACES, self._isolated, strict=True) if off)

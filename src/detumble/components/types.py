@@ -49,7 +49,7 @@ from fprime_lite.model.types import BOOL, F64, I8, FwEnum, Struct
 __all__ = [
     "Success", "TimeIntervalValue", "Result",
     "CoilShape", "DetumbleMode", "DetumbleState", "DetumbleStrategy", "HysteresisAxis",
-    "SystemMode", "AngularUnit", "MagneticField", "DipoleMoment",
+    "SystemMode", "AngularUnit", "MagnetorquerFace", "MagneticField", "DipoleMoment",
     "SetDetumbleMode", "SystemModeChanged", "GetSystemMode", "AngularVelocityMagnitudeGet",
     "MagneticFieldGet", "SamplingPeriodGet", "StartMagnetorquer", "StopMagnetorquer",
     "DipoleMomentGet",
@@ -134,6 +134,17 @@ class SystemMode(FwEnum, namespace="Components"):
 
     SAFE_MODE = 1
     NORMAL = 2
+
+
+class MagnetorquerFace(FwEnum, namespace="Components"):
+    """A face that carries a magnetorquer coil: the ground-visible form of
+    :data:`detumble.control.coil_layout.COIL_FACES` (same names and numbers; there is no Z+ coil)."""
+
+    X_PLUS = 0
+    X_MINUS = 1
+    Y_PLUS = 2
+    Y_MINUS = 3
+    Z_MINUS = 5
 
 
 class AngularUnit(FwEnum, namespace="Components"):

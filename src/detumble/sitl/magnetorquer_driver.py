@@ -31,7 +31,14 @@ present state as settled (the spacecraft was already flying).
 Fault injection (simulation only): :meth:`MagnetorquerDriver.set_fault` or ``SIM_SET_FAULT``:
 ``NOT_READY`` — the device does not answer: ``start``/``stop`` return FAILURE with the throttled
 ``DeviceNotReady`` event and the coil is switched off (the safe state); ``STUCK`` — the coil keeps
-whatever level it had and ``start``/``stop`` return FAILURE (``DeviceNotReady``), the nasty case.
+whatever level it had and ``start``/``stop`` return FAILURE (``DeviceNotReady``), the nasty case;
+``STOP_FAILS`` — starts work, but a stop leaves the coil at its level and returns FAILURE
+(``DeviceNotReady``); ``LATCHED`` — the device acknowledges every write but its output stays at the
+level it had: the driver reads the coil level back after each write, so it answers FAILURE with the
+WARNING_HI ``DriveReadbackMismatch`` event instead of a false SUCCESS.
+
+The manager (:class:`~detumble.components.detumble_manager.DetumbleManager`) isolates a coil whose
+stop answers FAILURE, so each of these faults is caught at the end of the torque period it occurs in.
 """
 
 from __future__ import annotations
@@ -72,6 +79,8 @@ class SimDriverFault(FwEnum, namespace="Sim", rep=U8):
     NONE = 0
     NOT_READY = 1
     STUCK = 2
+    STOP_FAILS = 3
+    LATCHED = 4
 
 
 class MagnetorquerDriver(PassiveComponent):
@@ -139,6 +148,9 @@ class MagnetorquerDriver(PassiveComponent):
     InvalidDriveLevel = Event(Severity.WARNING_LO, "Invalid drive level {d}; levels are -127..127", val=I32,
                               throttle=5, id=0x80)
     SimFaultSet = Event(Severity.ACTIVITY_HI, "SIM: driver fault set to {}", fault=SimDriverFault)
+    #: Declared last so the ids above stay. The coil read back another level than the one written.
+    DriveReadbackMismatch = Event(Severity.WARNING_HI, "Coil drive read back {} after writing {}",
+                                  actual=I32, commanded=I32, throttle=5)
 
     #: The level the coil is driven at now (−127…127; 0 = off).
     DriveLevel = Channel(I8, update="on change")
@@ -179,8 +191,8 @@ class MagnetorquerDriver(PassiveComponent):
     def _start(self, val) -> Success:
         if not _valid_level(val):
             self.InvalidDriveLevel(_as_i32(val))
-            if self.fault != SimDriverFault.STUCK:
-                self._set_coil(0)
+            if self.fault in (SimDriverFault.NONE, SimDriverFault.NOT_READY):
+                self._set_coil(0)  # a faulty output stays where it is
             return Success.FAILURE
         return self._apply(val)
 
@@ -199,15 +211,22 @@ class MagnetorquerDriver(PassiveComponent):
         if not self._powered():
             self.DeviceNotReady()
             return Success.FAILURE
-        if self.fault != SimDriverFault.NONE:
+        fault = self.fault
+        if fault in (SimDriverFault.NOT_READY, SimDriverFault.STUCK) or (
+                fault == SimDriverFault.STOP_FAILS and level == 0):
             self.DeviceNotReady()
-            if self.fault == SimDriverFault.NOT_READY:
+            if fault == SimDriverFault.NOT_READY:
                 self._set_coil(0)
             return Success.FAILURE
-        if not self._set_coil(level):
+        if fault != SimDriverFault.LATCHED and not self._set_coil(level):
             self.DeviceNotReady()
             return Success.FAILURE
+        actual = self._coil.level  # read back what the coil carries now
+        if actual != level:
+            self.DriveReadbackMismatch(int(actual), int(level))
+            return Success.FAILURE
         self.DeviceNotReady.clear_throttle()
+        self.DriveReadbackMismatch.clear_throttle()
         return Success.SUCCESS
 
     def _set_coil(self, level: int) -> bool:

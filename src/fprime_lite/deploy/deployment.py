@@ -85,6 +85,14 @@ class Deployment:
         self.started = True
         self._start_args = {"parameter_file": parameter_file, "sequence": sequence}
         topo, scheduler = self.topology, self.scheduler
+        prm_db = self.service("param")
+        param_path = parameter_file or self.loaded.parameter_file
+        if prm_db is not None and hasattr(prm_db, "read_param_file") and param_path is not None:
+            prm_db.file_path = os.fspath(param_path)
+        for comp in topo.components():  # what a killed earlier run left half-written
+            clean = getattr(comp, "clean_temporary_files", None)
+            if callable(clean):
+                clean()
         lookup = command_lookup(topo)
         for comp in topo.components():
             if isinstance(comp, QueuedComponent):
@@ -94,11 +102,7 @@ class Deployment:
         for comp in topo.components():
             comp.register_commands()
         scheduler.drain()
-        prm_db = self.service("param")
-        param_path = parameter_file or self.loaded.parameter_file
         if prm_db is not None and hasattr(prm_db, "read_param_file"):
-            if param_path is not None:
-                prm_db.file_path = os.fspath(param_path)
             prm_db.read_param_file()  # a missing or bad file is reported by PrmDb's own event
             scheduler.drain()
         for comp in topo.components():

@@ -2,22 +2,97 @@
 
 The data goes to a temporary file in the destination's folder, is flushed and fsynced, then
 renamed over the destination; the folder is fsynced so the rename survives a crash.
+
+Temporary files are named ``.fprime-lite-tmp.<pid>.<name>.<random>.part`` (:func:`temporary_file`),
+so that what a killed process left behind can be recognised and removed at the next start-up
+(:func:`clean_temporary_files`): a temporary file whose process is gone (or has our own pid, i.e.
+an earlier process that had it) is removed; one of a live process is left alone.
 """
 
 from __future__ import annotations
 
 import os
 import pathlib
+import re
 import tempfile
 
-__all__ = ["atomic_write_bytes", "atomic_write_text", "file_mode_for", "fsync_directory"]
+__all__ = ["atomic_write_bytes", "atomic_write_text", "file_mode_for", "fsync_directory", "temporary_file",
+           "is_temporary_name", "clean_temporary_files", "TEMP_PREFIX", "TEMP_SUFFIX"]
+
+#: How every temporary file of an atomic write starts and ends.
+TEMP_PREFIX = ".fprime-lite-tmp."
+TEMP_SUFFIX = ".part"
+_TEMP_NAME = re.compile(r"\.fprime-lite-tmp\.(\d+)\..*\.part\Z", re.DOTALL)
+_NAME_CHARS = 64  # of the destination's name kept in the temporary name (well inside NAME_MAX)
+
+
+def temporary_file(directory, name: str) -> tuple[int, str]:
+    """Create a recognisable temporary file in ``directory`` for the destination called ``name``:
+    ``(fd, path)``, opened for writing, mode 0600 until the caller sets the final mode."""
+    return tempfile.mkstemp(prefix=f"{TEMP_PREFIX}{os.getpid()}.{name[:_NAME_CHARS]}.", suffix=TEMP_SUFFIX,
+                            dir=directory)
+
+
+def is_temporary_name(name: str) -> bool:
+    """Whether ``name`` (a file name, not a path) is one :func:`temporary_file` makes."""
+    return _TEMP_NAME.match(name) is not None
+
+
+def _owner_gone(pid: int) -> bool:
+    """Whether the process that made a temporary file is gone (call at start-up only: a file with
+    our own pid is then an earlier process's)."""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return True
+    except PermissionError:
+        return False  # alive, another user's
+    except (OverflowError, ValueError):
+        return True  # not a possible pid
+    return False
+
+
+def clean_temporary_files(folder, *, recursive: bool = False, limit: int = 100_000) -> list[str]:
+    """Remove the temporary files that dead processes left in ``folder`` (and its sub-folders when
+    ``recursive``, without following links; at most ``limit`` entries are examined). Returns the
+    paths removed; a folder that does not exist or cannot be read is skipped."""
+    removed: list[str] = []
+    seen = 0
+    pending = [os.fspath(folder)]
+    while pending and seen < limit:
+        current = pending.pop()
+        try:
+            entries = list(os.scandir(current))
+        except OSError:
+            continue
+        for entry in entries:
+            seen += 1
+            if seen > limit:
+                break
+            try:
+                if entry.is_dir(follow_symlinks=False):
+                    if recursive:
+                        pending.append(entry.path)
+                    continue
+            except OSError:
+                continue
+            match = _TEMP_NAME.match(entry.name)
+            if match and _owner_gone(int(match.group(1))):
+                try:
+                    os.unlink(entry.path)
+                    removed.append(entry.path)
+                except OSError:
+                    pass
+    return removed
 
 
 def atomic_write_bytes(path, data: bytes) -> None:
     """Replace ``path`` with ``data`` atomically (creating parent folders)."""
     path = pathlib.Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+    fd, tmp = temporary_file(path.parent, path.name)
     try:
         os.chmod(tmp, file_mode_for(path))
         with os.fdopen(fd, "wb") as f:

@@ -26,7 +26,11 @@ of ``bufferSendOut``, each a ``Fw.BufferSend`` of ``U16 FW_PACKET_FILE | file pa
    FilesSent, FileSent and the OK response.
 
 The next queued file starts in the same tick if packets remain in the budget. A relative source
-name is opened under ``root``; the packets and events carry it as the operator wrote it.
+name is opened under ``root``; the packets and events carry it as the operator wrote it. Sources
+are confined to ``root`` (topology arg; in a run started by ``fprime-lite run`` the run's folder
+unless the topology names one): a name that leaves it — ``..``, an absolute path elsewhere, a
+symbolic link pointing outside — is refused with ``PathRefused`` (Os::File NO_PERMISSION, 3) and
+FileOpenError, and its request ends with EXECUTION_ERROR (``STATUS_ERROR``).
 
 SendPartial, as F´: ``length`` 0 means to the end of the file; ``startOffset`` at or past the end
 → DownlinkPartialFail and VALIDATION_ERROR (an empty file is such a case, also for SendFile, as in
@@ -80,7 +84,6 @@ Differences from F´
 from __future__ import annotations
 
 import collections
-import errno as _errno
 import logging
 import os
 import stat as _stat
@@ -88,9 +91,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated
 
+from fprime_lite.osal.confine import PathRefused
+from fprime_lite.osal.os_status import FileStatus, file_status
 from fprime_lite.model.commands import CmdResponse, CommandToken, async_command
 from fprime_lite.model.component import ActiveComponent
 from fprime_lite.model.events import Event, Severity
+from fprime_lite.svc.file_root import FileRoot
 from fprime_lite.wire.file_packet import (MAX_PATH_BYTES, CancelPacket, CfdpChecksum, DataPacket, EndPacket,
                            StartPacket, encode_file_packet)
 from fprime_lite.model.fw_ports import BufferSend, Ping, Sched
@@ -144,34 +150,12 @@ SendFileRequest = PortType("Svc.SendFileRequest", returns=SendFileResponse, sour
 SendFileComplete = PortType("Svc.SendFileComplete", resp=SendFileResponse)
 
 
-class OsFileStatus(FwEnum, namespace="Os.File", rep=I32):
-    """F´'s ``Os::File::Status`` codes, carried by FileReadError's ``status``."""
-
-    OP_OK = 0
-    DOESNT_EXIST = 1
-    NO_SPACE = 2
-    NO_PERMISSION = 3
-    BAD_SIZE = 4
-    NOT_OPENED = 5
-    FILE_EXISTS = 6
-    NOT_SUPPORTED = 7
-    INVALID_MODE = 8
-    INVALID_ARGUMENT = 9
-    OTHER_ERROR = 10
+#: F´'s ``Os::File::Status`` (v4.2 numbering, declared once in :mod:`fprime_lite.osal.os_status`).
+OsFileStatus = FileStatus
 
 
-_ERRNO_STATUS: dict[int | None, OsFileStatus] = {
-    _errno.ENOENT: OsFileStatus.DOESNT_EXIST,
-    _errno.ENOSPC: OsFileStatus.NO_SPACE,
-    _errno.EACCES: OsFileStatus.NO_PERMISSION,
-    _errno.EPERM: OsFileStatus.NO_PERMISSION,
-    _errno.EBADF: OsFileStatus.NOT_OPENED,
-    _errno.EINVAL: OsFileStatus.INVALID_ARGUMENT,
-}
-
-
-def _os_status(exc: OSError) -> OsFileStatus:
-    return _ERRNO_STATUS.get(exc.errno, OsFileStatus.OTHER_ERROR)
+def _os_status(exc: OSError) -> FileStatus:
+    return file_status(exc)
 
 
 def _cut(text: str, size: int = FILE_NAME_SIZE) -> str:
@@ -218,7 +202,7 @@ class _Transfer:
         self.log_dest = _cut(request.dest)
 
 
-class FileDownlink(ActiveComponent):
+class FileDownlink(FileRoot, ActiveComponent):
     """Sends files to the ground as F´ file packets (F´ ``Svc.FileDownlink``).
 
     Args:
@@ -277,6 +261,9 @@ class FileDownlink(ActiveComponent):
     FileNameTooLong = Event(Severity.WARNING_HI,
                             "File name {} is {} bytes; a file packet carries at most {} bytes", id=0x40,
                             fileName=_NAME, size=U32, limit=U32)
+    #: Not in F´: a source outside ``root``; the request is refused.
+    PathRefused = Event(Severity.WARNING_HI, "File {} refused (Os::File status {}): {}", id=0x41,
+                        fileName=_NAME, status=I32, reason=String(40))
 
     def __init__(self, name: str = "fileDownlink", *, base_id: int = 0, queue_size: int = 10,
                  root: str | os.PathLike | None = None,
@@ -292,7 +279,7 @@ class FileDownlink(ActiveComponent):
                     or (high is not None and value > high):
                 bound = f" and at most {high}" if high is not None else ""
                 raise ValueError(f"{name}: {label} must be an integer of at least 1{bound}, got {value!r}")
-        self.root = Path(root) if root is not None else Path.cwd()
+        self._init_root(root)
         self.packets_per_tick = packets_per_tick
         self.data_size = data_size
         self.file_queue_depth = file_queue_depth
@@ -304,6 +291,14 @@ class FileDownlink(ActiveComponent):
         self._packets_sent = 0
         self._warnings = 0
         self._unconnected_logged = False
+
+    # --- root ------------------------------------------------------------------------------------
+
+    @property
+    def root(self) -> Path:
+        """The directory every source lies in (symbolic links resolved)."""
+        return Path(self.root_path)
+
 
     # --- state, for tests and summaries ----------------------------------------------------------
 
@@ -421,15 +416,24 @@ class FileDownlink(ActiveComponent):
         return True
 
     def _resolve(self, source: str) -> Path:
-        path = Path(source)
-        return path if path.is_absolute() else self.root / path
+        """The confined real path of ``source`` (raises PathRefused)."""
+        return Path(self._confinement.contents(source))
 
     # --- the transfer -----------------------------------------------------------------------------
 
     def _begin(self, request: _Request) -> bool:
         """Open the file, check the range, send START. True when START went out."""
         log_source = _cut(request.source)
-        file = self._open(request.source)
+        try:
+            self._resolve(request.source)
+        except PathRefused as refused:
+            log.warning("%s: %s refused (root %s)", self.name, refused, self.root)
+            self.PathRefused(log_source, int(FileStatus.NO_PERMISSION), fit_utf8(refused.reason, 40))
+            file = None
+        except ValueError:
+            file = None  # a NUL byte: cannot be opened
+        else:
+            file = self._open(request.source)
         if file is None:
             self.FileOpenError(log_source)
             self._warning()

@@ -27,8 +27,17 @@ the command's error event carrying the F´ ``Os`` status number), counts ``Comma
 - ``CalculateCrc`` (0x08) reports the file's CRC-32 as F´'s ``Os::File::calculateCrc`` computes it
   (``zlib.crc32(data) ^ 0xFFFFFFFF``); like F´, it touches neither channel.
 
-Relative paths are resolved against ``root`` (default: the current directory when the component is
-built); events show the paths as commanded. Status numbers are F´'s enums, given here as
+Every path is confined to ``root`` (topology arg; in a run started by ``fprime-lite run`` the run's
+folder unless the topology names one; otherwise the current directory when the component is
+built): relative paths are resolved under it, absolute ones must lie inside it, and a path that
+leaves it — ``..``, an absolute path elsewhere, a symbolic link pointing outside — is refused with
+``PathRefused`` (id 0x40, not in F´) and the command's own error event with status NO_PERMISSION
+(3), EXECUTION_ERROR. Operations on a directory entry (CreateDirectory, MoveFile, RemoveDirectory,
+RemoveFile) act on a link itself; the others (AppendFile, FileSize, ListDirectory, CalculateCrc,
+ShellCommand's log file) follow links, which must stay inside ``root``. MoveFile onto an existing
+file is refused (ALREADY_EXISTS, 1) unless the component was built with ``overwrite=True`` (F´
+replaces it). ShellCommand, when allowed, runs in ``root`` but what the command itself does is not
+confined. Events show the paths as commanded. Status numbers are F´'s enums, given here as
 :class:`FileSystemStatus`, :class:`FileStatus` and :class:`DirectoryStatus`; the Python log line of
 each failure names the status and the OS error.
 
@@ -77,16 +86,19 @@ import shutil
 import signal
 import stat as _stat
 import subprocess
-import tempfile
 import threading
 import zlib
 from dataclasses import dataclass
 from typing import Annotated
 
-from fprime_lite.osal.atomic import fsync_directory
+from fprime_lite.osal.confine import PathRefused
+from fprime_lite.osal.os_status import (DirectoryStatus, FileStatus, FileSystemStatus, directory_status,
+                                        file_status, filesystem_status)
+from fprime_lite.osal.atomic import fsync_directory, temporary_file
 from fprime_lite.model.commands import CmdResponse, CommandToken, async_command
 from fprime_lite.model.component import ActiveComponent
 from fprime_lite.model.events import Event, Severity
+from fprime_lite.svc.file_root import FileRoot
 from fprime_lite.model.fw_ports import Ping, Sched
 from fprime_lite.model.ports import OutputPort, async_input, sync_input
 from fprime_lite.model.telemetry import Channel
@@ -116,64 +128,6 @@ _PATH = String(CMD_STRING_SIZE)
 _PathArg = Annotated[str, _PATH]  # a command argument of type _PATH
 _NAME = String(FILE_NAME_STRING_SIZE)
 _CHUNK = 64 * 1024
-_TMP_PREFIX = ".fileManager-"
-
-
-# --- F´'s Os status enums --------------------------------------------------------------------------
-
-class FileSystemStatus(enum.IntEnum):
-    """F´ ``Os::FileSystem::Status`` (``Os.FileSystemStatus``): most commands' error status."""
-
-    OP_OK = 0
-    ALREADY_EXISTS = 1
-    NO_SPACE = 2
-    NO_PERMISSION = 3
-    NOT_DIR = 4
-    IS_DIR = 5
-    NOT_EMPTY = 6
-    INVALID_PATH = 7
-    DOESNT_EXIST = 8
-    FILE_LIMIT = 9
-    BUSY = 10
-    NO_MORE_FILES = 11
-    BUFFER_TOO_SMALL = 12
-    EXDEV_ERROR = 13
-    OVERFLOW_ERROR = 14
-    NOT_SUPPORTED = 15
-    OTHER_ERROR = 16
-
-
-class FileStatus(enum.IntEnum):
-    """F´ ``Os::File::Status``: the status of ``CalculateCrcFailed``."""
-
-    OP_OK = 0
-    DOESNT_EXIST = 1
-    NO_SPACE = 2
-    NO_PERMISSION = 3
-    BAD_SIZE = 4
-    NOT_OPENED = 5
-    FILE_EXISTS = 6
-    NOT_SUPPORTED = 7
-    INVALID_MODE = 8
-    INVALID_ARGUMENT = 9
-    NO_MORE_RESOURCES = 10
-    OTHER_ERROR = 11
-
-
-class DirectoryStatus(enum.IntEnum):
-    """F´ ``Os::Directory::Status``: the status of ``ListDirectoryError``."""
-
-    OP_OK = 0
-    DOESNT_EXIST = 1
-    NO_PERMISSION = 2
-    NOT_OPENED = 3
-    NOT_DIR = 4
-    NO_MORE_FILES = 5
-    FILE_LIMIT = 6
-    BAD_DESCRIPTOR = 7
-    ALREADY_EXISTS = 8
-    NOT_SUPPORTED = 9
-    OTHER_ERROR = 10
 
 
 class StringFormatStatus(FwEnum, namespace="Fw", rep=U8):
@@ -184,88 +138,6 @@ class StringFormatStatus(FwEnum, namespace="Fw", rep=U8):
     INVALID_FORMAT_STRING = 2
     SIZE_OVERFLOW = 3
     OTHER_ERROR = 4
-
-
-def _errno_of(exc: BaseException) -> int | None:
-    return exc.errno if isinstance(exc, OSError) else None
-
-
-_FS_BY_ERRNO: dict[int | None, FileSystemStatus] = {
-    _errno.EEXIST: FileSystemStatus.ALREADY_EXISTS,
-    _errno.ENOSPC: FileSystemStatus.NO_SPACE,
-    _errno.EFBIG: FileSystemStatus.NO_SPACE,
-    _errno.EDQUOT: FileSystemStatus.NO_SPACE,
-    _errno.EACCES: FileSystemStatus.NO_PERMISSION,
-    _errno.EPERM: FileSystemStatus.NO_PERMISSION,
-    _errno.EROFS: FileSystemStatus.NO_PERMISSION,
-    _errno.EFAULT: FileSystemStatus.NO_PERMISSION,
-    _errno.ENOTDIR: FileSystemStatus.NOT_DIR,
-    _errno.EISDIR: FileSystemStatus.IS_DIR,
-    _errno.ENOTEMPTY: FileSystemStatus.NOT_EMPTY,
-    _errno.ENAMETOOLONG: FileSystemStatus.INVALID_PATH,
-    _errno.EINVAL: FileSystemStatus.INVALID_PATH,
-    _errno.ENOENT: FileSystemStatus.DOESNT_EXIST,
-    _errno.ELOOP: FileSystemStatus.DOESNT_EXIST,
-    _errno.EMLINK: FileSystemStatus.FILE_LIMIT,
-    _errno.EMFILE: FileSystemStatus.FILE_LIMIT,
-    _errno.ENFILE: FileSystemStatus.FILE_LIMIT,
-    _errno.EBUSY: FileSystemStatus.BUSY,
-    _errno.ETXTBSY: FileSystemStatus.BUSY,
-    _errno.ERANGE: FileSystemStatus.BUFFER_TOO_SMALL,
-    _errno.EXDEV: FileSystemStatus.EXDEV_ERROR,
-    _errno.EOVERFLOW: FileSystemStatus.OVERFLOW_ERROR,
-    _errno.ENOSYS: FileSystemStatus.NOT_SUPPORTED,
-    _errno.EOPNOTSUPP: FileSystemStatus.NOT_SUPPORTED,
-    _errno.ENOTSUP: FileSystemStatus.NOT_SUPPORTED,
-}
-
-_FILE_BY_ERRNO: dict[int | None, FileStatus] = {
-    _errno.ENOENT: FileStatus.DOESNT_EXIST,
-    _errno.ENOSPC: FileStatus.NO_SPACE,
-    _errno.EFBIG: FileStatus.NO_SPACE,
-    _errno.EACCES: FileStatus.NO_PERMISSION,
-    _errno.EPERM: FileStatus.NO_PERMISSION,
-    _errno.EEXIST: FileStatus.FILE_EXISTS,
-    _errno.EBADF: FileStatus.NOT_OPENED,
-    _errno.ENOSYS: FileStatus.NOT_SUPPORTED,
-    _errno.EOPNOTSUPP: FileStatus.NOT_SUPPORTED,
-    _errno.ENOTSUP: FileStatus.NOT_SUPPORTED,
-    _errno.EINVAL: FileStatus.INVALID_ARGUMENT,
-    _errno.EMFILE: FileStatus.NO_MORE_RESOURCES,
-    _errno.ENFILE: FileStatus.NO_MORE_RESOURCES,
-}
-
-_DIR_BY_ERRNO: dict[int | None, DirectoryStatus] = {
-    _errno.ENOENT: DirectoryStatus.DOESNT_EXIST,
-    _errno.EACCES: DirectoryStatus.NO_PERMISSION,
-    _errno.EPERM: DirectoryStatus.NO_PERMISSION,
-    _errno.ENOTDIR: DirectoryStatus.NOT_DIR,
-    _errno.EEXIST: DirectoryStatus.ALREADY_EXISTS,
-    _errno.EMFILE: DirectoryStatus.FILE_LIMIT,
-    _errno.ENFILE: DirectoryStatus.FILE_LIMIT,
-    _errno.EBADF: DirectoryStatus.BAD_DESCRIPTOR,
-    _errno.ENOSYS: DirectoryStatus.NOT_SUPPORTED,
-    _errno.EOPNOTSUPP: DirectoryStatus.NOT_SUPPORTED,
-}
-
-
-def filesystem_status(exc: BaseException) -> FileSystemStatus:
-    """The F´ ``Os::FileSystem`` status for an exception of a file-system call."""
-    if isinstance(exc, ValueError):  # a NUL byte in a path
-        return FileSystemStatus.INVALID_PATH
-    return _FS_BY_ERRNO.get(_errno_of(exc), FileSystemStatus.OTHER_ERROR)
-
-
-def file_status(exc: BaseException) -> FileStatus:
-    """The F´ ``Os::File`` status for an exception of opening or reading a file."""
-    if isinstance(exc, ValueError):
-        return FileStatus.INVALID_ARGUMENT
-    return _FILE_BY_ERRNO.get(_errno_of(exc), FileStatus.OTHER_ERROR)
-
-
-def directory_status(exc: BaseException) -> DirectoryStatus:
-    """The F´ ``Os::Directory`` status for an exception of opening or reading a directory."""
-    return _DIR_BY_ERRNO.get(_errno_of(exc), DirectoryStatus.OTHER_ERROR)
 
 
 def file_crc(path) -> int:
@@ -300,7 +172,7 @@ class _Listing:
     entries: int = 0
 
 
-class FileManager(ActiveComponent):
+class FileManager(FileRoot, ActiveComponent):
     """Ground commands on files and directories (F´ ``Svc.FileManager``).
 
     Args:
@@ -380,11 +252,13 @@ class FileManager(ActiveComponent):
                                   fileName=_NAME, crc=U32)
     FileNameFormatError = Event(Severity.WARNING_HI, "Failed to format full path for file {} with status {}",
                                 id=0x1D, fileName=_NAME, status=StringFormatStatus)
+    #: Not in F´: a path outside ``root`` (the command's error event follows with NO_PERMISSION).
+    PathRefused = Event(Severity.WARNING_HI, "Path {} refused: {}", id=0x40, path=_PATH, reason=String(40))
 
     def __init__(self, name: str = "fileManager", *, root: str | os.PathLike | None = None,
                  base_id: int = 0, queue_size: int = 10, allow_shell: bool = False,
                  shell_timeout_s: float | None = DEFAULT_SHELL_TIMEOUT_S,
-                 files_per_tick: int = FILES_PER_RATE_TICK):
+                 files_per_tick: int = FILES_PER_RATE_TICK, overwrite: bool = False):
         super().__init__(name, base_id=base_id, queue_size=queue_size)
         if shell_timeout_s is not None and (isinstance(shell_timeout_s, bool)
                                             or not isinstance(shell_timeout_s, (int, float))
@@ -393,7 +267,8 @@ class FileManager(ActiveComponent):
                              f"got {shell_timeout_s!r}")
         if isinstance(files_per_tick, bool) or not isinstance(files_per_tick, int) or files_per_tick < 1:
             raise ValueError(f"{name}: files_per_tick must be a positive integer, got {files_per_tick!r}")
-        self.root = os.path.abspath(os.fspath(root) if root is not None else os.getcwd())
+        self._init_root(root)
+        self.overwrite = bool(overwrite)
         self.allow_shell = bool(allow_shell)
         self.shell_timeout_s = shell_timeout_s
         self.files_per_tick = files_per_tick
@@ -419,11 +294,25 @@ class FileManager(ActiveComponent):
     def listing_in_progress(self) -> bool:
         return self._listing is not None
 
-    def resolve(self, path: str) -> str:
-        """The path a command argument names: absolute as given, relative under ``root``."""
+    @property
+    def root(self) -> str:
+        """The directory every path lies in (symbolic links resolved)."""
+        return self.root_path
+
+
+
+    def resolve(self, path: str, *, entry: bool = False) -> str:
+        """The confined real path a command argument names (relative under ``root``; absolute must be
+        inside it). ``entry``: the directory entry itself (a final link is not followed). Raises
+        PathRefused (a PermissionError) with the PathRefused event for a path outside ``root``."""
         if path == "":
             raise FileNotFoundError(_errno.ENOENT, "empty path", path)
-        return os.path.join(self.root, path)
+        try:
+            return self._confinement.entry(path) if entry else self._confinement.contents(path)
+        except PathRefused as refused:
+            log.warning("%s: %s refused (root %s)", self.name, refused, self.root)
+            self.PathRefused(fit_utf8(path, CMD_STRING_SIZE), fit_utf8(refused.reason, 40))
+            raise
 
     # --- ports ------------------------------------------------------------------------------------
 
@@ -454,7 +343,7 @@ class FileManager(ActiveComponent):
     def CreateDirectory(self, dirName: _PathArg):
         """Create the directory ``dirName`` (its parent must exist; it must not)."""
         self.CreateDirectoryStarted(fit_utf8(dirName, CMD_STRING_SIZE))
-        status, cause = self._fs(lambda: os.mkdir(self.resolve(dirName)))
+        status, cause = self._fs(lambda: os.mkdir(self.resolve(dirName, entry=True)))
         if status:
             self._log_failure("CreateDirectory", dirName, status, cause)
             self.DirectoryCreateError(fit_utf8(dirName, CMD_STRING_SIZE), status)
@@ -467,8 +356,8 @@ class FileManager(ActiveComponent):
         """Rename ``sourceFileName`` to ``destFileName`` (copy then remove across file systems)."""
         src, dst = fit_utf8(sourceFileName, CMD_STRING_SIZE), fit_utf8(destFileName, CMD_STRING_SIZE)
         self.MoveFileStarted(src, dst)
-        status, cause = self._fs(lambda: self._move(self.resolve(sourceFileName),
-                                                    self.resolve(destFileName)))
+        status, cause = self._fs(lambda: self._move(self.resolve(sourceFileName, entry=True),
+                                                    self.resolve(destFileName, entry=True)))
         if status:
             self._log_failure("MoveFile", f"{sourceFileName} -> {destFileName}", status, cause)
             self.FileMoveError(src, dst, status)
@@ -480,7 +369,7 @@ class FileManager(ActiveComponent):
     def RemoveDirectory(self, dirName: _PathArg):
         """Remove the empty directory ``dirName``."""
         self.RemoveDirectoryStarted(fit_utf8(dirName, CMD_STRING_SIZE))
-        status, cause = self._fs(lambda: os.rmdir(self.resolve(dirName)))
+        status, cause = self._fs(lambda: os.rmdir(self.resolve(dirName, entry=True)))
         if status:
             self._log_failure("RemoveDirectory", dirName, status, cause)
             self.DirectoryRemoveError(fit_utf8(dirName, CMD_STRING_SIZE), status)
@@ -493,7 +382,7 @@ class FileManager(ActiveComponent):
         """Remove the file ``fileName``; with ``ignoreErrors`` a failure still answers OK."""
         name = fit_utf8(fileName, CMD_STRING_SIZE)
         self.RemoveFileStarted(name)
-        status, cause = self._fs(lambda: os.remove(self.resolve(fileName)))
+        status, cause = self._fs(lambda: os.remove(self.resolve(fileName, entry=True)))
         if status:
             self._log_failure("RemoveFile", fileName, status, cause)
             self.FileRemoveError(name, status)
@@ -646,6 +535,8 @@ class FileManager(ActiveComponent):
     # --- file operations --------------------------------------------------------------------------
 
     def _move(self, src: str, dst: str) -> None:
+        if not self.overwrite and os.path.lexists(dst) and not _same_entry(src, dst):
+            raise FileExistsError(_errno.EEXIST, "the destination exists and overwrite is off", dst)
         try:
             os.replace(src, dst)
             return
@@ -684,7 +575,7 @@ class FileManager(ActiveComponent):
         """Write the ``sources`` (open binary files) one after the other to a temporary file in
         ``dst``'s directory, fsync it and rename it over ``dst``; on failure ``dst`` is untouched."""
         directory = os.path.dirname(dst) or "."
-        fd, tmp = tempfile.mkstemp(prefix=_TMP_PREFIX, suffix=".part", dir=directory)
+        fd, tmp = temporary_file(directory, os.path.basename(dst))
         try:
             with os.fdopen(fd, "wb") as out:
                 for source in sources:
@@ -756,6 +647,14 @@ class FileManager(ActiveComponent):
         """Count the outcome and give the command response (F´'s ``sendCommandResponse``)."""
         self._count(status)
         return CmdResponse.OK if status == FileSystemStatus.OP_OK else CmdResponse.EXECUTION_ERROR
+
+
+def _same_entry(a: str, b: str) -> bool:
+    """Whether two paths name the same directory entry (a rename onto itself changes nothing)."""
+    try:
+        return os.path.samestat(os.lstat(a), os.lstat(b))
+    except OSError:
+        return False
 
 
 def _open_regular(path: str):

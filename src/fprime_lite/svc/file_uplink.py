@@ -33,10 +33,17 @@ PacketOutOfOrder, PacketDuplicate, FileWriteError, BadChecksum) counts in ``Warn
 not its event was throttled. The four channels are written on every change of their count. Nothing
 raises out of a port.
 
-Destination paths: an absolute path is used as given; a relative one is taken relative to ``root``
-(the constructor argument, by default the current directory when the component was built). A
-destination whose directory does not exist, that is a directory, or whose directory cannot be
-written is a ``FileOpenError``; directories are never created.
+Destination paths are confined to ``root`` (the constructor argument or topology arg; in a run
+started by ``fprime-lite run`` the run's folder unless the topology names one; otherwise the current
+directory when the component was built): a relative path is taken under ``root``, an absolute one
+must lie inside it, and a path that leaves it — through ``..``, as an absolute path elsewhere, or
+through a symbolic link pointing outside — is refused with ``PathRefused`` (Os::File status
+NO_PERMISSION, 3) and ``FileOpenError``; the component stays in START mode. An existing file is
+replaced only when the component was built with ``overwrite=True``; otherwise the START is refused
+with ``PathRefused`` (FILE_EXISTS, 6) and ``FileOpenError``. A destination whose directory does not
+exist, that is a directory, or whose directory cannot be written is a ``FileOpenError``;
+directories are never created. At start-up (:meth:`clean_temporary_files`, called by the
+deployment) temporary files that a killed process left under ``root`` are removed.
 
 Which F´: the declarations and behaviour are those of F´ v4's current ``Svc/FileUplink`` (nasa/fprime
 ``devel``), which has the ``FilesReceivedFailed`` channel and the ``fileAnnounce`` port and does not
@@ -47,7 +54,7 @@ Differences from F´:
 
 - **Files are replaced atomically.** F´ opens the destination itself (truncating it) and writes
   into it, so a failed or abandoned transfer leaves a partial or corrupt file where the old one
-  was. Here the bytes go to a temporary file ``.<name>.<random>.part`` in the destination's
+  was. Here the bytes go to a temporary file ``.fprime-lite-tmp.<pid>.<name>.<random>.part`` in the destination's
   directory; only an END whose checksum matches flushes and fsyncs it, gives it the old file's
   permissions (a new file gets ``0o666 & ~umask``) and ``os.replace``-s it over the destination,
   then fsyncs the directory. A bad checksum, a CANCEL, a new START in DATA mode or a write error
@@ -69,9 +76,10 @@ Differences from F´:
   END and CANCEL packets with trailing bytes are accepted (F´ ignores them too). Paths that are not
   UTF-8 are a ``DecodeError`` (4) (F´ takes any bytes); every unknown packet type (4–255) is a
   ``DecodeError`` (6) (F´'s ``FilePacket`` reports 255, ``T_NONE``, that way and asserts on 4–254).
-- Relative destinations resolve against ``root``, not the process's working directory. There is
-  no sandbox (F´'s ``configure(directory)`` with ``Os::SandboxedFile``, which refuses paths outside
-  one directory): absolute paths and ``..`` are allowed.
+- Relative destinations resolve against ``root``, not the process's working directory, and every
+  destination must stay inside ``root`` (F´ v4.2 has no such confinement: it opens what it is
+  given). ``PathRefused`` (id 0x40) is not in F´. Overwriting needs ``overwrite=True`` (F´ always
+  overwrites).
 - File names in events are cut to their 40-byte bound on a UTF-8 character boundary (F´ cuts
   bytes). ``fileAnnounce`` carries the resolved (absolute) path rather than the path as uplinked.
 - ``bufferSendIn`` blocks when the queue is full (a deterministic deployment handles the oldest
@@ -85,11 +93,13 @@ import enum
 import logging
 import os
 import pathlib
-import tempfile
 
-from fprime_lite.osal.atomic import file_mode_for, fsync_directory
+from fprime_lite.osal.atomic import file_mode_for, fsync_directory, temporary_file
+from fprime_lite.osal.confine import PathRefused
+from fprime_lite.osal.os_status import FileStatus
 from fprime_lite.model.component import ActiveComponent
 from fprime_lite.model.events import Event, Severity
+from fprime_lite.svc.file_root import FileRoot
 from fprime_lite.wire.file_packet import (CancelPacket, CfdpChecksum, DataPacket, EndPacket, FilePacketError,
                            FilePacketType, StartPacket, decode_file_packet)
 from fprime_lite.model.fw_ports import BufferSend, Ping
@@ -112,7 +122,6 @@ FileAnnounce = PortType("Svc.FileAnnounce", file_name=str)
 
 _U32_MAX = 0xFFFFFFFF
 _DATA_FIXED = 11  # U8 type | U32 sequence | U32 offset | U16 size
-_TEMP_PREFIX_CHARS = 64  # keeps temporary names well inside NAME_MAX
 
 
 class ReceiveMode(enum.IntEnum):
@@ -163,15 +172,17 @@ class _Transfer:
         self.failed = False
 
 
-class FileUplink(ActiveComponent):
+class FileUplink(FileRoot, ActiveComponent):
     """F´'s file uplink (``Svc.FileUplink``).
 
     Args:
         name: instance name (``fileUplink`` in F´'s FileHandling).
         base_id: added to the local event ids (0–10) and channel ids (0–3).
         queue_size: depth of the message queue (F´'s FileHandling uses 10).
-        root: directory that relative destination paths are taken from (default: the current
-            directory at construction).
+        root: the directory every destination must lie in; relative destinations are taken from
+            it (default: the current directory at construction, or the run's folder — see
+            :meth:`set_default_root`).
+        overwrite: whether a file may replace an existing one (default: refused).
     """
 
     pingOut = OutputPort(Ping)
@@ -209,11 +220,17 @@ class FileUplink(ActiveComponent):
                         args=[("status", I32)])
     InvalidPacketReceived = Event(Severity.WARNING_HI, "Invalid packet received. Wrong packet type: {}",
                                   id=10, args=[("packetType", FwPacketDescriptorType)])
+    #: Not in F´: a destination outside ``root`` (status NO_PERMISSION) or an existing file without
+    #: ``overwrite`` (FILE_EXISTS).
+    PathRefused = Event(Severity.WARNING_HI, "File {} refused (Os::File status {}): {}", id=0x40,
+                        args=[("fileName", String(FILE_NAME_ARG_SIZE)), ("status", I32),
+                              ("reason", String(FILE_NAME_ARG_SIZE))])
 
     def __init__(self, name: str = "fileUplink", *, base_id: int = 0, queue_size: int = 10,
-                 root: str | os.PathLike | None = None):
+                 root: str | os.PathLike | None = None, overwrite: bool = False):
         super().__init__(name, base_id=base_id, queue_size=queue_size)
-        self.root = os.path.abspath(os.fspath(root)) if root is not None else os.getcwd()
+        self._init_root(root)
+        self.overwrite = bool(overwrite)
         self._mode = ReceiveMode.START
         self._last_sequence = 0
         #: None before the first DATA packet of a file (F´ MAX_STATUS), else whether it was written.
@@ -247,6 +264,15 @@ class FileUplink(ActiveComponent):
         """Health ping: answer with the same key."""
         if self.is_connected("pingOut", 0):
             self.pingOut[0](key)
+
+    # --- root ----------------------------------------------------------------------------------
+
+    @property
+    def root(self) -> str:
+        """The directory every path lies in (symbolic links resolved)."""
+        return self.root_path
+
+
 
     # --- inspection ----------------------------------------------------------------------------
 
@@ -303,7 +329,19 @@ class FileUplink(ActiveComponent):
         if self._mode != ReceiveMode.START:
             self._abandon()
             self._warn_receive_mode(FilePacketType.START)
-        transfer = _Transfer(packet.destination, packet.file_size, self._resolve(packet.destination))
+        try:
+            path = self._resolve(packet.destination)
+        except PathRefused as refused:
+            log.warning("%s: START refused: %s (root %s)", self.name, refused, self.root)
+            self._refuse(packet.destination, FileStatus.NO_PERMISSION, refused.reason)
+            return
+        except ValueError:  # a NUL byte: the open below reports it
+            path = os.path.join(self.root, packet.destination)
+        if not self.overwrite and os.path.lexists(path):
+            log.warning("%s: START refused: %s exists and overwrite is off", self.name, path)
+            self._refuse(packet.destination, FileStatus.FILE_EXISTS, "exists; overwrite is off")
+            return
+        transfer = _Transfer(packet.destination, packet.file_size, path)
         self._file = transfer
         problem = self._open(transfer)
         if problem is None:
@@ -313,6 +351,12 @@ class FileUplink(ActiveComponent):
                         problem)
             self._warn(self.FileOpenError, transfer.event_name)
             self._go_to_start_mode()
+
+    def _refuse(self, destination: str, status: FileStatus, reason: str) -> None:
+        name = _event_name(destination)
+        self.PathRefused(name, int(status), fit_utf8(reason, FILE_NAME_ARG_SIZE))
+        self._warn(self.FileOpenError, name)
+        self._go_to_start_mode()
 
     def _handle_data(self, packet: DataPacket) -> None:
         self._count_packet()
@@ -423,7 +467,10 @@ class FileUplink(ActiveComponent):
     # --- the file system -----------------------------------------------------------------------
 
     def _resolve(self, destination: str) -> str:
-        return os.path.join(self.root, destination)  # an absolute destination replaces the root
+        """The confined path of the destination's directory entry (raises PathRefused)."""
+        if not destination:
+            return self.root  # reported as an empty destination by _open
+        return self._confinement.entry(destination)
 
     def _open(self, transfer: _Transfer) -> str | None:
         """Create the transfer's temporary file; None, or what went wrong."""
@@ -434,8 +481,7 @@ class FileUplink(ActiveComponent):
             if os.path.isdir(path):
                 return "the destination is a directory"
             directory, base = os.path.split(path)
-            fd, temp = tempfile.mkstemp(prefix=f".{base[:_TEMP_PREFIX_CHARS]}.", suffix=".part",
-                                        dir=directory)
+            fd, temp = temporary_file(directory, base)
         except (OSError, ValueError) as exc:  # ValueError: a NUL byte in the path
             return str(exc)
         transfer.fd = fd
@@ -458,11 +504,13 @@ class FileUplink(ActiveComponent):
             return str(exc)
         return None
 
-    @staticmethod
-    def _commit(transfer: _Transfer) -> str | None:
+    def _commit(self, transfer: _Transfer) -> str | None:
         """Make the temporary file durable and rename it over the destination; None, or the problem."""
         fd, transfer.fd = transfer.fd, None
         assert fd is not None and transfer.temp is not None  # a transfer that did not fail is open
+        if not self.overwrite and os.path.lexists(transfer.path):
+            os.close(fd)
+            return "the destination appeared during the transfer and overwrite is off"
         try:
             try:
                 os.fchmod(fd, file_mode_for(pathlib.Path(transfer.path)))

@@ -26,7 +26,13 @@ framer/deframer + ``Svc.FprimeRouter``) in a deployment that runs on one thread:
   it. While the link is down, up to :attr:`GroundLink.max_downlink_packets` packets are kept (the
   oldest are dropped beyond that) and sent once the GDS is back.
 - **Robustness.** Keep-alives and noise between frames are skipped; a frame with a bad CRC, a bad
-  length or an unknown descriptor is dropped with a throttled WARNING_LO event; the link going
+  length or an unknown descriptor is dropped with a throttled WARNING_LO event and the deframer
+  resynchronises one byte after its start, so valid frames inside the bytes it claimed still get
+  through. A frame that has started but not completed after :attr:`GroundLink.partial_frame_timeout_s`
+  (a header claiming more bytes than will ever come) is abandoned (``IncompleteFrame``) and the
+  frames behind it are delivered; when the connection drops, the frames already received behind a
+  partial one are delivered before it is forgotten. Bytes of rejected frames are counted
+  (``UplinkDroppedBytes``) and reported (``UplinkBytesDropped``, throttled). The link going
   away is a throttled WARNING_HI event, never a stop. No uplinked byte can raise into the
   deployment: the deframers never raise, and the command dispatcher answers malformed packets.
 
@@ -125,6 +131,9 @@ class GroundLink(PassiveComponent):
         max_file_backlog: file packets waiting for the deployment before the socket task stops
             reading from the GDS.
         throttle_reset_s: deployment seconds after which throttled events may be emitted again.
+        partial_frame_timeout_s: wall-clock seconds a started frame may wait for its remaining bytes
+            before it is abandoned and the deframer resynchronises (the GDS sends a frame in one
+            write; raise it for slow links).
     """
 
     # --- ports ---------------------------------------------------------------------------------
@@ -147,6 +156,12 @@ class GroundLink(PassiveComponent):
                               size=U32, descriptor=U32, throttle=5)
     DownlinkOverflow = Event(Severity.WARNING_LO, "Downlink queue full: {} packet(s) dropped so far",
                              dropped=U32, throttle=5)
+    IncompleteFrame = Event(Severity.WARNING_LO,
+                            "Abandoned an uplink frame after {} bytes: it never completed; resynchronised",
+                            received=U32, throttle=5)
+    UplinkBytesDropped = Event(Severity.WARNING_LO,
+                               "Uplink resynchronised: {} byte(s) of rejected frames dropped ({} so far)",
+                               dropped=U32, total=U64, throttle=5)
 
     # --- telemetry (all U32/U64 counts since start) --------------------------------------------
 
@@ -161,13 +176,15 @@ class GroundLink(PassiveComponent):
     DownlinkDropped = Channel(U32, update="on change")  # packets dropped (queue full)
     CommandsForwarded = Channel(U32, update="on change")  # packets handed to the dispatcher
     FilePacketsForwarded = Channel(U32, update="on change")  # packets handed to the file uplink
+    UplinkDroppedBytes = Channel(U64, update="on change")  # bytes of rejected frames not delivered
 
     def __init__(self, name: str = GROUND_LINK_NAME, *, base_id: int = 0, host: str = DEFAULT_HOST,
                  port: int = DEFAULT_PORT, framing: str | Framing = "ccsds", reconnect_min_s: float = 0.1,
                  reconnect_max_s: float = 2.0, connect_timeout_s: float = 2.0,
                  max_downlink_packets: int = 2048, max_uplink_packets: int = 64,
                  max_commands_per_tick: int = 4, max_file_packets_per_tick: int = 16,
-                 max_file_backlog: int = 1024, throttle_reset_s: float = 60.0):
+                 max_file_backlog: int = 1024, throttle_reset_s: float = 60.0,
+                 partial_frame_timeout_s: float = 1.0):
         super().__init__(name, base_id=base_id)
         if not 0 < port < 65536:
             raise ValueError(f"{name}: port {port} is out of range 1..65535")
@@ -192,6 +209,11 @@ class GroundLink(PassiveComponent):
         self.max_file_packets_per_tick = max_file_packets_per_tick
         self.max_file_backlog = max_file_backlog
         self.throttle_reset_s = throttle_reset_s
+        if not partial_frame_timeout_s > 0:
+            raise ValueError(f"{name}: partial_frame_timeout_s must be positive, got {partial_frame_timeout_s!r}")
+        self.partial_frame_timeout_s = partial_frame_timeout_s
+        self._partial: tuple[int, float] | None = None  # (stream offset, monotonic s first seen)
+        self._reported_dropped_bytes = 0
 
         # Shared with the socket task. deque append/popleft are atomic; the counts below are each
         # written by one thread only and read by the other (ints: no torn reads in CPython).
@@ -266,6 +288,11 @@ class GroundLink(PassiveComponent):
                 self.file_packets_forwarded += 1
             if backed_up:
                 self._wake()  # the socket task may read again
+        dropped_bytes = self._deframer.dropped_bytes
+        if dropped_bytes != self._reported_dropped_bytes:
+            self.UplinkBytesDropped((dropped_bytes - self._reported_dropped_bytes) & _U32_MAX,
+                                    dropped_bytes & _U64_MAX)
+            self._reported_dropped_bytes = dropped_bytes
         if self.downlink_overflow != self._reported_overflow:
             self._reported_overflow = self.downlink_overflow
             self.DownlinkOverflow(self.downlink_overflow & _U32_MAX)
@@ -338,7 +365,8 @@ class GroundLink(PassiveComponent):
                     sock.close()
                 except OSError:
                     pass
-                self._deframer.reset()
+                self._deliver(self._deframer.reset())  # frames received behind a partial one
+                self._partial = None
             if reason is not None:
                 self._notices.append(("disconnected", reason))
                 self._stop.wait(self.reconnect_min_s)
@@ -384,6 +412,7 @@ class GroundLink(PassiveComponent):
                 if data:
                     self.uplink_bytes += len(data)
                     self._received(data)
+            self._expire_partial_frame()
             if out and sock in writable:
                 try:
                     sent = sock.send(out)
@@ -411,9 +440,25 @@ class GroundLink(PassiveComponent):
         self.downlink_frames += len(frames)
         return b"".join(frames)
 
+    def _expire_partial_frame(self) -> None:
+        """Abandon a started frame that has waited longer than partial_frame_timeout_s."""
+        pending = self._deframer.pending_offset
+        if pending is None:
+            self._partial = None
+            return
+        now = _time.monotonic()
+        if self._partial is None or self._partial[0] != pending:
+            self._partial = (pending, now)
+        elif now - self._partial[1] >= self.partial_frame_timeout_s:
+            self._partial = None
+            self._deliver(self._deframer.expire())
+
     def _received(self, data: bytes) -> None:
+        self._deliver(self._deframer.push(data))
+
+    def _deliver(self, items) -> None:
         uplink = self._uplink
-        for item in self._deframer.push(data):
+        for item in items:
             if isinstance(item, Dropped):
                 self._notices.append(("dropped", item))
             elif item[1] == Apid.FW_PACKET_FILE and item[0] == 0:
@@ -440,6 +485,8 @@ class GroundLink(PassiveComponent):
             drop: Dropped = notice[1]
             if drop.reason is DropReason.BAD_CRC:
                 self.InvalidChecksum(drop.size & _U32_MAX, drop.value & _U32_MAX)
+            elif drop.reason is DropReason.INCOMPLETE:
+                self.IncompleteFrame(drop.value & _U32_MAX)
             elif drop.reason is DropReason.BAD_LENGTH:
                 self.InvalidLength(drop.value & _U32_MAX)
             else:
@@ -452,7 +499,8 @@ class GroundLink(PassiveComponent):
         elif now - self._last_reset_us >= self.throttle_reset_s * 1e6:
             self._last_reset_us = now
             for event in (self.LinkDisconnected, self.InvalidChecksum, self.InvalidLength,
-                          self.UnknownDescriptor, self.DownlinkOverflow):
+                          self.UnknownDescriptor, self.DownlinkOverflow, self.IncompleteFrame,
+                          self.UplinkBytesDropped):
                 event.clear_throttle()
 
     def _write_telemetry(self) -> None:
@@ -468,3 +516,4 @@ class GroundLink(PassiveComponent):
         self.DownlinkDropped.write(self.downlink_overflow & _U32_MAX)
         self.CommandsForwarded.write(self.commands_forwarded & _U32_MAX)
         self.FilePacketsForwarded.write(self.file_packets_forwarded & _U32_MAX)
+        self.UplinkDroppedBytes.write(deframer.dropped_bytes & _U64_MAX)

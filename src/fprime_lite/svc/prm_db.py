@@ -24,7 +24,8 @@ Robustness, beyond F´:
 - ``PRM_SAVE_FILE`` writes a temporary file in the same directory, flushes and fsyncs it, then
   ``os.replace``-s it over the old file and fsyncs the directory: a failed save (unwritable
   directory, full disk, …) answers EXECUTION_ERROR with ``PrmFileWriteError`` and leaves the old
-  file exactly as it was.
+  file exactly as it was; the temporary file (``.fprime-lite-tmp.<pid>.<name>.….part``) of a save
+  interrupted by a kill is removed at the next start-up (:meth:`PrmDb.clean_temporary_files`).
 
 F´ v4's staged loading is kept: ``PRM_LOAD_FILE(fileName, merge)`` loads a file into the *staging*
 database (``MERGE``: on top of a copy of the active one, ``RESET``: alone) and
@@ -39,11 +40,11 @@ import logging
 import os
 import stat as _stat
 import struct
-import tempfile
 import zlib
 from dataclasses import dataclass
 from typing import Annotated, Iterable, Mapping
 
+from fprime_lite.osal.atomic import clean_temporary_files, temporary_file
 from fprime_lite.model.commands import CmdResponse, async_command
 from fprime_lite.model.component import ActiveComponent
 from fprime_lite.model.errors import FwAssertionError
@@ -389,6 +390,13 @@ class PrmDb(ActiveComponent):
         self._dirty = False
         self._names: dict[int, str] = dict(param_names or {})
 
+    def clean_temporary_files(self) -> list[str]:
+        """Start-up: remove the temporary files a killed save left next to the parameter file."""
+        removed = clean_temporary_files(os.path.dirname(os.path.abspath(self.file_path)))
+        if removed:
+            log.info("%s: removed %d temporary file(s) of an interrupted save", self.name, len(removed))
+        return removed
+
     # --- ports ---------------------------------------------------------------------------------
 
     @guarded_input(PrmGet)
@@ -525,7 +533,7 @@ class PrmDb(ActiveComponent):
         except OSError:
             mode = 0o644
         try:
-            fd, tmp = tempfile.mkstemp(prefix=f".{base}.", suffix=".tmp", dir=directory)
+            fd, tmp = temporary_file(directory, base)
         except OSError as exc:
             return PrmWriteError.OPEN, 0, exc.errno or _errno.EIO, f"cannot create a temporary file: {exc}"
         try:

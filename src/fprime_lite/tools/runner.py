@@ -9,6 +9,10 @@ Outputs in the run folder, each streamed or written atomically:
 - whatever the topology's *report* resources add (the detumble report writes ``truth.csv`` and PNG
   plots).
 
+The run's folder is also the root of every file service (FileUplink, FileDownlink, FileManager)
+whose topology entry gives no ``root``: uplinked files land there, and only files there can be
+downlinked, moved or removed.
+
 A report resource is any resource with some of these methods: ``begin(deployment, out_dir)``,
 ``on_event(decoded_event)``, ``progress() -> dict``, ``summary() -> dict``,
 ``finish(out_dir, plots=bool) -> [paths]``.
@@ -53,6 +57,9 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     out.mkdir(parents=True, exist_ok=True)
     deployment = Deployment(loaded)
     topo = deployment.topology
+    for component in topo.components():  # file services without a root of their own use the run's folder
+        if hasattr(component, "set_default_root"):
+            component.set_default_root(out)
     reports = _reports(loaded)
     stop_names = frozenset(stop_on_events)
 

@@ -31,6 +31,14 @@ rejected (bad CRC, bad length, unknown descriptor). Bytes that cannot start a fr
 ``sitting well`` keep-alives, line noise) are skipped silently and counted in
 :attr:`UplinkDeframer.skipped_bytes`. Nothing a deframer is given makes it raise; its buffer never
 holds more than one maximal frame.
+
+Resynchronisation: a header that fails its checks, or a frame whose CRC fails, is dropped and the
+search for the next start word / plausible header resumes one byte after its start, so valid frames
+that were inside the bytes it claimed are delivered. A header whose claimed length never arrives
+would hold the frames behind it: :meth:`UplinkDeframer.expire` (called by the link when the partial
+frame has waited too long) and :meth:`UplinkDeframer.reset` (the connection is gone, so it can never
+complete) abandon it as ``INCOMPLETE`` and deliver the complete frames found behind it. Bytes of
+rejected frames that were not part of a delivered frame count in :attr:`UplinkDeframer.dropped_bytes`.
 """
 
 from __future__ import annotations
@@ -86,6 +94,7 @@ class DropReason(enum.Enum):
     BAD_CRC = "bad CRC"
     BAD_LENGTH = "bad length"
     UNKNOWN_DESCRIPTOR = "unknown descriptor"
+    INCOMPLETE = "never completed"
 
 
 @dataclass(frozen=True)
@@ -93,7 +102,8 @@ class Dropped:
     """A rejected frame: why, how many bytes it claimed (or had), and what was wrong.
 
     ``value`` is the offending length for BAD_LENGTH, the packet descriptor (or -1 for a frame
-    addressed elsewhere) for UNKNOWN_DESCRIPTOR, and the received CRC for BAD_CRC.
+    addressed elsewhere) for UNKNOWN_DESCRIPTOR, the received CRC for BAD_CRC, and the bytes that
+    had arrived for INCOMPLETE.
     """
 
     reason: DropReason
@@ -118,8 +128,11 @@ class UplinkDeframer:
         self._buf = bytearray()
         self._base = 0  # stream offset of _buf[0]
         self._quiet_until = 0  # no further drop reports for candidates starting before this offset
+        self._pending: int | None = None  # stream offset of a frame started but not complete
         #: Bytes skipped because they could not start a frame (keep-alives, noise), in total.
         self.skipped_bytes = 0
+        #: Bytes of rejected or abandoned frames that were not part of a delivered frame, in total.
+        self.dropped_bytes = 0
         #: Frames accepted, in total.
         self.frames = 0
         #: Frames dropped, in total.
@@ -130,51 +143,95 @@ class UplinkDeframer:
         """Bytes held while waiting for the rest of a frame."""
         return len(self._buf)
 
-    def reset(self) -> None:
-        """Forget a partial frame (the connection it came from is gone)."""
-        self._base += len(self._buf)
-        self._buf.clear()
-        self._quiet_until = self._base
+    @property
+    def pending_offset(self) -> int | None:
+        """Stream offset of the frame that has started but not completed (None: no such frame).
+
+        It changes when that frame completes or is dropped, so a caller can time how long one
+        partial frame has been waiting."""
+        return self._pending
 
     def push(self, data: bytes) -> list[Deframed]:
         """Add received bytes; return the packets and drops they completed."""
+        self._buf += data
+        return self._scan(abandon=0)
+
+    def expire(self) -> list[Deframed]:
+        """The partial frame has waited too long: drop it as INCOMPLETE, resynchronise one byte after
+        its start and return what the bytes behind it complete (a later partial frame waits)."""
+        return self._scan(abandon=1) if self._pending is not None else []
+
+    def reset(self) -> list[Deframed]:
+        """The connection is gone: no partial frame can complete. Drop each as INCOMPLETE, return the
+        complete frames found behind them, and forget the rest (the next connection starts afresh)."""
+        out = self._scan(abandon=-1)
+        self._discard(0, len(self._buf))
+        self._base += len(self._buf)
+        self._buf.clear()
+        self._quiet_until = self._base
+        self._pending = None
+        return out
+
+    def _scan(self, abandon: int) -> list[Deframed]:
+        """Deframe the buffer; abandon up to ``abandon`` partial frames (-1: all of them)."""
         buf = self._buf
-        buf += data
         out: list[Deframed] = []
         pos = 0
+        self._pending = None
         while True:
             start = self._find_start(buf, pos)
             if start < 0:
                 keep = max(pos, len(buf) - (self._SYNC - 1))
-                self.skipped_bytes += keep - pos
+                self._discard(pos, keep - pos)
                 pos = keep
                 break
-            self.skipped_bytes += start - pos
+            self._discard(pos, start - pos)
             pos = start
             step = self._try_frame(buf, pos, out)
-            if step == 0:
-                break  # a frame has started but is not complete yet
+            if step == 0:  # a frame has started but is not complete yet
+                if abandon == 0:
+                    self._pending = self._base + pos
+                    break
+                abandon -= 1
+                have = len(buf) - pos
+                self._drop(out, DropReason.INCOMPLETE, have, have, pos, have, suspect=True)
+                step = 1
+            elif step > 1:  # a whole frame with a good CRC: whatever came before was not its header
+                self._quiet_until = min(self._quiet_until, self._base + pos)
             pos += step
         if pos:
             del buf[:pos]
             self._base += pos
         return out
 
+    def _discard(self, at: int, count: int) -> None:
+        """Account for ``count`` bytes at buffer offset ``at`` that are not part of a delivered frame:
+        inside a rejected frame's span they are dropped, elsewhere skipped."""
+        if count <= 0:
+            return
+        inside = min(count, max(0, self._quiet_until - (self._base + at)))
+        self.dropped_bytes += inside
+        self.skipped_bytes += count - inside
+
     def _drop(self, out: list, reason: DropReason, size: int, value: int, at: int, span: int,
               suspect: bool = False) -> None:
         """Report a rejected frame starting at buffer offset ``at``.
 
-        ``suspect``: the frame failed its header or CRC check, so its start may be noise and the
-        deframer slides one byte on. Such a report is suppressed inside the span of the previous
-        suspect one (a corrupted frame counts once, not once per false header found inside it);
-        the byte slid over then counts as skipped. A frame whose CRC was good is always reported.
+        ``suspect``: the frame failed its header or CRC check (or never completed), so its start may
+        be noise and the deframer slides one byte on (that byte is accounted for here). Such a report
+        is suppressed inside the span of the previous suspect one (a corrupted frame counts once, not
+        once per false header found inside it). A frame whose CRC was good is always reported and
+        its ``span`` bytes count as dropped.
         """
         if suspect:
             absolute = self._base + at
             if absolute < self._quiet_until:
-                self.skipped_bytes += 1
+                self._discard(at, 1)
                 return
             self._quiet_until = absolute + max(span, 1)
+            self._discard(at, 1)
+        else:
+            self.dropped_bytes += span
         self.dropped += 1
         out.append(Dropped(reason, size, value))
 
@@ -288,26 +345,27 @@ class CcsdsTcDeframer(UplinkDeframer):
     def _space_packets(self, field: bytes, total: int, out: list, at: int) -> None:
         offset = 0
         while offset < len(field):
-            if len(field) - offset < _SP_HEADER_SIZE:
-                self._drop(out, DropReason.BAD_LENGTH, total, len(field) - offset, at, total)
+            rest = len(field) - offset
+            if rest < _SP_HEADER_SIZE:
+                self._drop(out, DropReason.BAD_LENGTH, total, rest, at, rest)
                 return
             ident, _, data_len = _SP_HEADER.unpack_from(field, offset)
             size = _SP_HEADER_SIZE + data_len + 1
-            if size > len(field) - offset:
-                self._drop(out, DropReason.BAD_LENGTH, total, size, at, total)
+            if size > rest:
+                self._drop(out, DropReason.BAD_LENGTH, total, size, at, rest)
                 return
             version, packet_type, apid = ident >> 13, (ident >> 12) & 1, ident & 0x7FF
             packet = field[offset + _SP_HEADER_SIZE:offset + size]
             offset += size
             if version != 0 or packet_type != 1:
-                self._drop(out, DropReason.UNKNOWN_DESCRIPTOR, total, apid, at, total)
+                self._drop(out, DropReason.UNKNOWN_DESCRIPTOR, total, apid, at, size)
                 continue
             if apid == IDLE_APID:
                 continue
             if len(packet) >= 2 and _U16.unpack_from(packet)[0] != apid:
-                self._drop(out, DropReason.UNKNOWN_DESCRIPTOR, total, _U16.unpack_from(packet)[0], at, total)
+                self._drop(out, DropReason.UNKNOWN_DESCRIPTOR, total, _U16.unpack_from(packet)[0], at, size)
                 continue
-            _uplink_packet_or_drop(packet, total, out, self, at, total)
+            _uplink_packet_or_drop(packet, total, out, self, at, size)
 
 
 class Framing:

@@ -10,6 +10,7 @@ import pytest
 
 from detumble.components.detumble_manager import DetumbleManager
 from detumble.components.types import (AngularUnit, CoilShape, DetumbleMode, DetumbleState, DetumbleStrategy,
+                            MagnetorquerFace,
                             DipoleMoment, HysteresisAxis, MagneticField, Result, Success, SystemMode,
                             TimeIntervalValue)
 from fprime_lite import CmdResponse, ParamValid, Severity, Time, TimeBase
@@ -729,3 +730,127 @@ def test_every_declared_channel_is_written(h):
     written = {t.name for t in h.telemetry}
     declared = {c.name for c in h.component.spec.own_channels}
     assert declared - written == set()
+
+
+# --- actuator health (issue #16 finding 2; addition to the PROVES design) ----------------------
+# A coil whose stop answers FAILURE is reported WARNING_HI and isolated until ENABLE_COIL.
+
+TORQUE_TICKS = 17  # ticks of one ACTUATING_BDOT period with the default TORQUE_DURATION (320 ms)
+
+
+def calls_to(h, port, since):
+    return [c for c in h.port_calls[since:] if c.port == port]
+
+
+def one_cycle(h):
+    """From wherever the manager is, run until the end of the next torque period."""
+    run_until(h, DetumbleState.ACTUATING_BDOT)
+    run_until(h, DetumbleState.COOLDOWN, limit=TORQUE_TICKS + 2)
+
+
+def test_failed_stop_isolates_the_coil_within_one_torque_period(h):
+    """Actuator Health: the X+ stop answers FAILURE at the end of a torque period → CoilStopFailed
+    (WARNING_HI) naming X_PLUS in that same tick, IsolatedCoils bit 0 set, CoilStopFailures = 1."""
+    h.set_port_return("xPlusStop", Success.FAILURE)
+    enable(h)
+    one_cycle(h)
+    h.assert_event("CoilStopFailed", 0, MagnetorquerFace.X_PLUS)
+    assert h.component.spec.event("CoilStopFailed").severity == Severity.WARNING_HI
+    assert h.tlm_values("IsolatedCoils")[-1] == 0b1
+    assert h.tlm_values("CoilStopFailures")[-1] == 1
+    assert h.component.isolated_faces == (MagnetorquerFace.X_PLUS,)
+
+
+def test_an_isolated_coil_is_never_driven_while_the_others_are(h):
+    """Actuator Health: after isolation no start or stop reaches X+ for three more B-dot cycles, the
+    four other coils are started and stopped as before, and the event is not repeated."""
+    h.set_port_return("xPlusStop", Success.FAILURE)
+    enable(h)
+    one_cycle(h)
+    since = len(h.port_calls)
+    for _ in range(3):
+        one_cycle(h)
+    assert calls_to(h, "xPlusStart", since) == [] and calls_to(h, "xPlusStop", since) == []
+    for start, stop in zip(STARTS[1:], STOPS[1:], strict=True):
+        assert len(calls_to(h, start, since)) == 3 * TORQUE_TICKS, start
+        assert len(calls_to(h, stop, since)) == 3, stop
+    assert len([e for e in h.events if e.name == "CoilStopFailed"]) == 1
+
+
+def test_enable_coil_returns_it_to_service(h):
+    """Actuator Health: ENABLE_COIL X_PLUS answers OK with CoilEnabled; X+ is driven in the next
+    cycle; if its stop fails again it is isolated again."""
+    h.set_port_return("xPlusStop", Success.FAILURE)
+    enable(h)
+    one_cycle(h)
+    h.send_command("ENABLE_COIL", MagnetorquerFace.X_PLUS)
+    h.assert_cmd_response(len(h.cmd_responses) - 1, "ENABLE_COIL", CmdResponse.OK)
+    h.assert_event("CoilEnabled", 0, MagnetorquerFace.X_PLUS)
+    assert h.tlm_values("IsolatedCoils")[-1] == 0
+    h.set_port_return("xPlusStop", Success.SUCCESS)
+    since = len(h.port_calls)
+    one_cycle(h)
+    assert len(calls_to(h, "xPlusStart", since)) == TORQUE_TICKS and len(calls_to(h, "xPlusStop", since)) == 1
+    assert h.component.isolated_faces == ()
+    h.set_port_return("xPlusStop", Success.FAILURE)
+    one_cycle(h)
+    assert h.component.isolated_faces == (MagnetorquerFace.X_PLUS,)
+
+
+def test_isolate_coil_command_stops_once_then_leaves_it_alone(h):
+    """Actuator Health: ISOLATE_COIL Z_MINUS sends one stop, answers OK with CoilIsolatedByCommand,
+    and Z− gets no further call in a whole B-dot cycle."""
+    enable(h)
+    since = len(h.port_calls)
+    h.send_command("ISOLATE_COIL", MagnetorquerFace.Z_MINUS)
+    h.assert_cmd_response(len(h.cmd_responses) - 1, "ISOLATE_COIL", CmdResponse.OK)
+    h.assert_event("CoilIsolatedByCommand", 0, MagnetorquerFace.Z_MINUS)
+    assert len(calls_to(h, "zMinusStop", since)) == 1
+    since = len(h.port_calls)
+    one_cycle(h)
+    assert calls_to(h, "zMinusStart", since) == [] and calls_to(h, "zMinusStop", since) == []
+    assert h.tlm_values("IsolatedCoils")[-1] == 1 << 5
+
+
+def test_stop_failure_when_disabled_mid_actuation_isolates_too(h):
+    """Actuator Health: coils on in ACTUATING_BDOT, then SET_MODE DISABLED with the Y− stop answering
+    FAILURE: Y− is isolated at that run, and later DISABLED runs send it nothing."""
+    enable(h)
+    run_until(h, DetumbleState.ACTUATING_BDOT)
+    tick(h, 3)  # coils on
+    h.set_port_return("yMinusStop", Success.FAILURE)
+    h.send_command("SET_MODE", DetumbleMode.DISABLED)
+    tick(h)
+    h.assert_event("CoilStopFailed", 0, MagnetorquerFace.Y_MINUS)
+    since = len(h.port_calls)
+    tick(h, 5)
+    assert calls_to(h, "yMinusStop", since) == [] and len(calls_to(h, "yPlusStop", since)) == 5
+
+
+def test_a_failing_stop_of_a_coil_that_was_never_on_isolates_nothing(h):
+    """Actuator Health: an unpowered or uninitialised driver answers FAILURE to everything; in mode
+    DISABLED (no start sent) and through B-dot cycles whose starts fail, its failing stops isolate
+    nothing — the coil was never switched on."""
+    h.set_port_return("zMinusStop", Success.FAILURE)
+    h.set_port_return("zMinusStart", Success.FAILURE)
+    tick(h, 5)
+    enable(h)
+    for _ in range(3):
+        one_cycle(h)
+    assert h.component.isolated_faces == () and not h.events_named("CoilStopFailed")
+
+
+def test_successful_stops_never_isolate(h):
+    """Actuator Health: with every stop answering SUCCESS, ten cycles isolate nothing and emit no
+    CoilStopFailed (the detection cannot fire on healthy coils)."""
+    enable(h)
+    for _ in range(10):
+        one_cycle(h)
+    assert h.component.isolated_faces == () and not [e for e in h.events if e.name == "CoilStopFailed"]
+
+
+def test_magnetorquer_face_is_the_coil_layout():
+    """Actuator Health: the command/event enum has exactly coil_layout's coil faces, names and numbers."""
+    from detumble.control.coil_layout import COIL_FACES
+    assert [(f.name, int(f)) for f in MagnetorquerFace] == [(f.name, int(f)) for f in COIL_FACES]
+

@@ -117,6 +117,33 @@ def test_stuck_driver_keeps_its_level(rig):
     h.assert_cmd_response(0, "STOP", CmdResponse.EXECUTION_ERROR)
 
 
+def test_stop_fails_keeps_the_coil_on_and_answers_failure(rig):
+    """Actuator Health: STOP_FAILS — starts still drive the coil; a stop leaves it at its level and
+    answers FAILURE (so the manager can see it)."""
+    h, craft = rig
+    h.component.set_fault(SimDriverFault.STOP_FAILS)
+    assert h.invoke("start", 60) == Success.SUCCESS and craft.coil_level(0) == 60
+    assert h.invoke("stop") == Success.FAILURE
+    assert craft.coil_level(0) == 60
+    h.assert_event_count("DeviceNotReady", 1)
+
+
+def test_latched_output_is_caught_by_the_read_back(rig):
+    """Actuator Health: LATCHED — the device acknowledges writes but its output keeps the level it had;
+    the read-back answers FAILURE with DriveReadbackMismatch (WARNING_HI) instead of a false SUCCESS."""
+    h, craft = rig
+    h.invoke("start", 127)
+    h.component.set_fault(SimDriverFault.LATCHED)
+    assert h.invoke("stop") == Success.FAILURE
+    assert h.invoke("start", 20) == Success.FAILURE
+    assert craft.coil_level(0) == 127
+    h.assert_event("DriveReadbackMismatch", 0, 127, 0)
+    h.assert_event("DriveReadbackMismatch", 1, 127, 20)
+    assert h.component.spec.event("DriveReadbackMismatch").severity == Severity.WARNING_HI
+    h.component.set_fault(SimDriverFault.NONE)
+    assert h.invoke("stop") == Success.SUCCESS and craft.coil_level(0) == 0
+
+
 def test_a_plant_exception_is_a_failed_drive(rig, monkeypatch):
     h, craft = rig
 

@@ -170,23 +170,39 @@ def test_fprime_gds_file_downlinker_rebuilds_the_file(fprime_harness, tmp_path):
     assert (store / "science.dat").read_bytes() == data
 
 
-def test_relative_names_open_under_root_and_absolute_names_as_given(fprime_harness, tmp_path):
+def test_relative_names_open_under_root_and_absolute_names_inside_root_too(fprime_harness, tmp_path):
+    """FS-ROOT-5: a relative source opens under root; an absolute source inside root is sent and
+    carried in START as written."""
     data = write(tmp_path, "deep/dir/x.bin", 40)
     _fd, h = make(fprime_harness, tmp_path)
     command(h, "SendFile", "deep/dir/x.bin", "x.bin")
     tick(h)
     h.assert_cmd_response(0, "SendFile", CmdResponse.OK)
     assert packets(h)[1].data == data
-
-    other = tmp_path / "elsewhere"
-    other.mkdir()
     absolute = str(tmp_path / "deep/dir/x.bin")
-    fd2 = FileDownlink(root=other)
-    h2 = fprime_harness(fd2)
-    command(h2, "SendFile", absolute, "y.bin")
-    tick(h2)
-    h2.assert_cmd_response(0, "SendFile", CmdResponse.OK)
-    assert packets(h2)[0] == StartPacket(0, 40, absolute, "y.bin")
+    command(h, "SendFile", absolute, "y.bin")
+    tick(h)
+    h.assert_cmd_response(1, "SendFile", CmdResponse.OK)
+    assert StartPacket(0, 40, absolute, "y.bin") in packets(h)
+
+
+@pytest.mark.parametrize("source", ["/etc/passwd", "../secret.bin", "LINK/secret.bin", "LINKFILE"])
+def test_sources_outside_root_are_refused(fprime_harness, tmp_path, source):
+    """FS-ROOT-6 (issue #16 finding 6): ``SendFile /etc/passwd``, ``..``, and symbolic links pointing
+    outside root are refused: PathRefused (NO_PERMISSION, 3), FileOpenError, EXECUTION_ERROR, and
+    no file packet goes out."""
+    root = tmp_path / "root"
+    root.mkdir()
+    (tmp_path / "secret.bin").write_bytes(b"secret")
+    (root / "LINK").symlink_to(tmp_path, target_is_directory=True)
+    (root / "LINKFILE").symlink_to(tmp_path / "secret.bin")
+    _fd, h = make(fprime_harness, root)
+    command(h, "SendFile", source, "stolen.bin")
+    tick(h)
+    h.assert_cmd_response(0, "SendFile", CmdResponse.EXECUTION_ERROR)
+    assert h.events_named("PathRefused")[0][:2] == (source, 3)
+    assert h.events_named("FileOpenError") == [(source,)]
+    assert packets(h) == []
 
 
 def test_empty_file_is_f_prime_partial_fail_with_validation_error(fprime_harness, tmp_path):
@@ -500,6 +516,7 @@ def test_declarations_match_f_prime_v4(fprime_harness, tmp_path):
         "SendDataFail": (7, Severity.WARNING_HI, ["sourceFileName", "byteOffset"]),
         "SendStarted": (8, Severity.ACTIVITY_HI, ["fileSize", "sourceFileName", "destFileName"]),
         "FileNameTooLong": (0x40, Severity.WARNING_HI, ["fileName", "size", "limit"]),
+        "PathRefused": (0x41, Severity.WARNING_HI, ["fileName", "status", "reason"]),
     }
     assert [(c.name, c.local_id, c.type.name) for c in spec.own_channels] == [
         ("FilesSent", 0, "U32"), ("PacketsSent", 1, "U32"), ("Warnings", 2, "U32")]

@@ -16,6 +16,7 @@ import zlib
 
 import pytest
 
+from fprime_lite.osal.atomic import is_temporary_name
 from fprime_lite import CmdResponse, Severity
 from fprime_lite.wire.packets import encode_event
 from fprime_lite.svc import file_manager as fm_module
@@ -62,7 +63,7 @@ def assert_failed(h, command):
 
 def leftovers(directory):
     """Temporary files the component left behind."""
-    return [p.name for p in pathlib.Path(directory).iterdir() if p.name.startswith(".fileManager-")]
+    return [p.name for p in pathlib.Path(directory).iterdir() if is_temporary_name(p.name)]
 
 
 # --- the F´ declarations ---------------------------------------------------------------------------
@@ -81,7 +82,8 @@ def test_commands_events_and_channels_have_fprime_ids(fprime_harness, tmp_path):
     assert args["ListDirectory"] == [("dirName", "string", 200)]
     assert args["CalculateCrc"] == [("filename", "string", 200)]
     events = {e.name: (e.local_id, e.severity) for e in comp.spec.own_events}
-    assert len(events) == 30
+    assert len(events) == 31  # F´'s 30 and PathRefused (0x40, not in F´)
+    assert events["PathRefused"] == (0x40, Severity.WARNING_HI)
     assert events["DirectoryCreateError"] == (0x00, Severity.WARNING_HI)
     assert events["ShellCommandFailed"] == (0x04, Severity.WARNING_HI)
     assert events["ShellCommandSucceeded"] == (0x07, Severity.ACTIVITY_HI)
@@ -90,7 +92,7 @@ def test_commands_events_and_channels_have_fprime_ids(fprime_harness, tmp_path):
     assert events["DirectoryListingSubdir"] == (0x19, Severity.ACTIVITY_HI)
     assert events["CalculateCrcSucceeded"] == (0x1C, Severity.ACTIVITY_HI)
     assert events["FileNameFormatError"] == (0x1D, Severity.WARNING_HI)
-    assert sorted(local_id for local_id, _ in events.values()) == list(range(0x1E))
+    assert sorted(local_id for local_id, _ in events.values()) == list(range(0x1E)) + [0x40]
     assert {c.name: c.local_id for c in comp.spec.own_channels} == {"CommandsExecuted": 0, "Errors": 1}
     assert comp.name == "fileManager"
 
@@ -188,13 +190,25 @@ def test_move_file_to_another_directory(fprime_harness, tmp_path):
     h.assert_tlm("CommandsExecuted", 0, 1)
 
 
-def test_move_file_replaces_existing_destination(fprime_harness, tmp_path):
+def test_move_file_replaces_existing_destination_when_overwrite_is_on(fprime_harness, tmp_path):
+    (tmp_path / "new").write_bytes(b"new")
+    (tmp_path / "old").write_bytes(b"old")
+    h = make(fprime_harness, tmp_path, overwrite=True)
+    run(h, "MoveFile", "new", "old")
+    assert (tmp_path / "old").read_bytes() == b"new" and not (tmp_path / "new").exists()
+    assert_ok(h, "MoveFile")
+
+
+def test_move_file_onto_an_existing_file_is_refused_by_default(fprime_harness, tmp_path):
+    """FS-ROOT-7: overwriting is an explicit choice: MoveFile onto an existing file answers
+    ALREADY_EXISTS (1) and changes neither file."""
     (tmp_path / "new").write_bytes(b"new")
     (tmp_path / "old").write_bytes(b"old")
     h = make(fprime_harness, tmp_path)
     run(h, "MoveFile", "new", "old")
-    assert (tmp_path / "old").read_bytes() == b"new" and not (tmp_path / "new").exists()
-    assert_ok(h, "MoveFile")
+    h.assert_event("FileMoveError", 0, "new", "old", FileSystemStatus.ALREADY_EXISTS)
+    assert (tmp_path / "old").read_bytes() == b"old" and (tmp_path / "new").read_bytes() == b"new"
+    assert_failed(h, "MoveFile")
 
 
 def test_move_missing_file_is_doesnt_exist(fprime_harness, tmp_path):
@@ -211,7 +225,7 @@ def _cross_device(monkeypatch):
     real_replace = os.replace
 
     def replace(src, dst):
-        if not os.path.basename(src).startswith(".fileManager-"):
+        if not is_temporary_name(os.path.basename(src)):
             raise OSError(errno.EXDEV, "Invalid cross-device link")
         real_replace(src, dst)
 
@@ -226,7 +240,7 @@ def test_move_file_across_file_systems_copies_then_removes(fprime_harness, tmp_p
     source.chmod(0o640)
     (tmp_path / "dst" / "data.bin").write_bytes(b"stale")
     _cross_device(monkeypatch)
-    h = make(fprime_harness, tmp_path)
+    h = make(fprime_harness, tmp_path, overwrite=True)
     run(h, "MoveFile", "src/data.bin", "dst/data.bin")
     assert not source.exists()
     moved = tmp_path / "dst" / "data.bin"
@@ -658,7 +672,7 @@ def test_shell_command_with_unopenable_log_file_does_not_run(fprime_harness, tmp
 
 # --- paths, counts, robustness ---------------------------------------------------------------------
 
-def test_relative_paths_resolve_under_root_and_absolute_ones_as_given(fprime_harness, tmp_path, monkeypatch):
+def test_relative_paths_resolve_under_root_and_absolute_ones_inside_root(fprime_harness, tmp_path, monkeypatch):
     root = tmp_path / "root"
     root.mkdir()
     elsewhere = tmp_path / "elsewhere"
@@ -667,9 +681,53 @@ def test_relative_paths_resolve_under_root_and_absolute_ones_as_given(fprime_har
     h = make(fprime_harness, root)
     run(h, "CreateDirectory", "sub")
     assert (root / "sub").is_dir() and not (elsewhere / "sub").exists()
-    run(h, "CreateDirectory", str(tmp_path / "abs"))
-    assert (tmp_path / "abs").is_dir()
-    h.assert_event("CreateDirectorySucceeded", 0, str(tmp_path / "abs"))
+    run(h, "CreateDirectory", str(root / "abs"))
+    assert (root / "abs").is_dir()
+    h.assert_event("CreateDirectorySucceeded", 0, str(root / "abs"))
+
+
+@pytest.mark.parametrize("command, args, error, outside_check", [
+    ("RemoveFile", ["../victim.txt", False], "FileRemoveError", lambda t: (t / "victim.txt").exists()),
+    ("RemoveFile", ["ABS/victim.txt", False], "FileRemoveError", lambda t: (t / "victim.txt").exists()),
+    ("RemoveFile", ["LINK/victim.txt", False], "FileRemoveError", lambda t: (t / "victim.txt").exists()),
+    ("CreateDirectory", ["../made"], "DirectoryCreateError", lambda t: not (t / "made").exists()),
+    ("MoveFile", ["inside.txt", "../moved.txt"], "FileMoveError", lambda t: not (t / "moved.txt").exists()),
+    ("MoveFile", ["LINK/victim.txt", "stolen.txt"], "FileMoveError", lambda t: (t / "victim.txt").exists()),
+    ("AppendFile", ["inside.txt", "LINK/victim.txt"], "AppendFileFailed",
+     lambda t: (t / "victim.txt").read_bytes() == b"victim"),
+    ("FileSize", ["/etc/passwd"], "FileSizeError", lambda t: True),
+    ("RemoveDirectory", ["LINK/keep"], "DirectoryRemoveError", lambda t: (t / "keep").is_dir()),
+])
+def test_paths_outside_root_are_refused(fprime_harness, tmp_path, command, args, error, outside_check):
+    """FS-ROOT-8 (issue #16 finding 6): ``..``, absolute paths outside root and symbolic-link escapes are
+    refused: PathRefused, the command's error event with NO_PERMISSION (3), EXECUTION_ERROR, and the
+    file outside root is untouched."""
+    root = tmp_path / "root"
+    root.mkdir()
+    (tmp_path / "victim.txt").write_bytes(b"victim")
+    (tmp_path / "keep").mkdir()
+    (root / "inside.txt").write_bytes(b"inside")
+    (root / "LINK").symlink_to(tmp_path, target_is_directory=True)
+    args = [a.replace("ABS", str(tmp_path)) if isinstance(a, str) else a for a in args]
+    h = make(fprime_harness, root)
+    run(h, command, *args)
+    assert h.events_named("PathRefused")
+    assert h.events_named(error)[0][-1] == 3  # NO_PERMISSION
+    assert_failed(h, command)
+    assert outside_check(tmp_path)
+
+
+def test_removing_a_link_inside_root_removes_the_link_only(fprime_harness, tmp_path):
+    """FS-ROOT-9: RemoveFile of a symbolic link inside root that points outside removes the link, never
+    its target."""
+    root = tmp_path / "root"
+    root.mkdir()
+    (tmp_path / "victim.txt").write_bytes(b"victim")
+    (root / "link.txt").symlink_to(tmp_path / "victim.txt")
+    h = make(fprime_harness, root)
+    run(h, "RemoveFile", "link.txt", False)
+    assert_ok(h, "RemoveFile")
+    assert not (root / "link.txt").is_symlink() and (tmp_path / "victim.txt").read_bytes() == b"victim"
 
 
 def test_default_root_is_the_current_directory_at_construction(fprime_harness, tmp_path, monkeypatch):

@@ -41,8 +41,9 @@ def file_packets(content: bytes, destination: str, chunk: int = 100, *, checksum
     return packets
 
 
-def make(fprime_harness, root, **kwargs):
-    return fprime_harness(FileUplink(base_id=BASE, root=root), **kwargs)
+def make(fprime_harness, root, *, overwrite=True, **kwargs):
+    """Most tests replace existing files, as F´ always does: overwrite on unless a test says so."""
+    return fprime_harness(FileUplink(base_id=BASE, root=root, overwrite=overwrite), **kwargs)
 
 
 def send(h, *packets):
@@ -101,8 +102,10 @@ def test_empty_file_start_then_end(fprime_harness, tmp_path):
     h.assert_tlm_count("Warnings", 0)
 
 
-def test_relative_path_resolves_under_root_and_absolute_path_is_used_as_given(fprime_harness, tmp_path,
-                                                                              monkeypatch):
+def test_relative_path_resolves_under_root_and_absolute_path_inside_root_is_accepted(fprime_harness, tmp_path,
+                                                                                       monkeypatch):
+    """FS-ROOT-1: a relative destination lands under root, an absolute one inside root is accepted; the
+    working directory plays no part."""
     root = tmp_path / "root"
     (root / "seq").mkdir(parents=True)
     elsewhere = tmp_path / "cwd"
@@ -110,12 +113,76 @@ def test_relative_path_resolves_under_root_and_absolute_path_is_used_as_given(fp
     monkeypatch.chdir(elsewhere)  # the working directory plays no part once the root is given
     h = make(fprime_harness, root)
     send(h, *file_packets(b"relative", "seq/run.seq"))
-    send(h, *file_packets(b"absolute", str(tmp_path / "abs.bin")))
+    send(h, *file_packets(b"absolute", str(root / "abs.bin")))
     assert (root / "seq" / "run.seq").read_bytes() == b"relative"
-    assert (tmp_path / "abs.bin").read_bytes() == b"absolute"
+    assert (root / "abs.bin").read_bytes() == b"absolute"
     assert os.listdir(elsewhere) == []
     assert [c.args[0] for c in h.from_port("fileAnnounce")] == [str(root / "seq" / "run.seq"),
-                                                                str(tmp_path / "abs.bin")]
+                                                                str(root / "abs.bin")]
+
+
+@pytest.mark.parametrize("destination", ["../../traversal_rel.txt", "../outside.txt", "seq/../../outside.txt",
+                                         "ABSOLUTE", "LINK/escaped.txt", "LINK/../../outside/x.txt"])
+def test_destinations_outside_root_are_refused(fprime_harness, tmp_path, destination):
+    """FS-ROOT-2 (issue #16 finding 6): ``..``, an absolute path outside root and symbolic-link escapes
+    are refused: PathRefused with Os::File NO_PERMISSION (3), FileOpenError, START mode, nothing
+    written outside root, and the next file inside root still lands."""
+    root = tmp_path / "a" / "root"
+    (root / "seq").mkdir(parents=True)
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (root / "LINK").symlink_to(outside, target_is_directory=True)
+    (root / "LINKFILE").symlink_to(outside / "target.txt")
+    destination = destination.replace("ABSOLUTE", str(outside / "abs.txt"))
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    h = make(fprime_harness, root, overwrite=True)
+    send(h, *file_packets(b"hostile", destination))
+    assert h.events_named("PathRefused")[0][1] == 3
+    assert h.events_named("FileOpenError")
+    assert h.component.receive_mode == ReceiveMode.START
+    assert sorted(p.name for p in tmp_path.rglob("*")) == before
+    send(h, *file_packets(b"fine", "seq/ok.bin"))
+    assert (root / "seq" / "ok.bin").read_bytes() == b"fine"
+
+
+def test_a_link_at_the_destination_is_replaced_never_written_through(fprime_harness, tmp_path):
+    """FS-ROOT-2b: a symbolic link inside root pointing outside is itself replaced (overwrite on); the
+    file it points to outside root is never created or written."""
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    root = tmp_path / "root"
+    root.mkdir()
+    (root / "LINKFILE").symlink_to(outside / "target.txt")
+    h = make(fprime_harness, root, overwrite=True)
+    send(h, *file_packets(b"data", "LINKFILE"))
+    assert not (outside / "target.txt").exists()
+    assert not (root / "LINKFILE").is_symlink() and (root / "LINKFILE").read_bytes() == b"data"
+
+
+def test_an_existing_file_is_replaced_only_when_overwrite_is_on(fprime_harness, tmp_path):
+    """FS-ROOT-3: with the default overwrite=False an existing destination is refused (PathRefused with
+    FILE_EXISTS, 6) and kept byte-for-byte; with overwrite=True it is replaced."""
+    (tmp_path / "conf.ini").write_bytes(b"old")
+    h = fprime_harness(FileUplink(base_id=BASE, root=tmp_path))
+    send(h, *file_packets(b"new", "conf.ini"))
+    assert h.events_named("PathRefused") == [("conf.ini", 6, "exists; overwrite is off")]
+    assert (tmp_path / "conf.ini").read_bytes() == b"old"
+    send(h, *file_packets(b"fresh", "fresh.ini"))  # a new file is fine
+    assert (tmp_path / "fresh.ini").read_bytes() == b"fresh"
+    h2 = make(fprime_harness, tmp_path, overwrite=True)
+    send(h2, *file_packets(b"new", "conf.ini"))
+    assert (tmp_path / "conf.ini").read_bytes() == b"new"
+
+
+def test_the_runner_default_root_applies_only_without_an_explicit_root(tmp_path):
+    """FS-ROOT-4: set_default_root (the run's folder) replaces the working-directory default but never a
+    root given at construction."""
+    run = tmp_path / "run"
+    given = FileUplink(root=tmp_path / "given")
+    default = FileUplink()
+    given.set_default_root(run)
+    default.set_default_root(run)
+    assert given.root == str(tmp_path / "given") and default.root == str(run)
 
 
 def test_default_root_is_the_working_directory_at_construction(fprime_harness, tmp_path, monkeypatch):
@@ -521,6 +588,8 @@ def test_declarations_match_fprime():
         "UplinkCanceled": (8, Severity.ACTIVITY_HI, None, []),
         "DecodeError": (9, Severity.WARNING_HI, None, [("status", "I32", None)]),
         "InvalidPacketReceived": (10, Severity.WARNING_HI, None, [("packetType", "FwPacketDescriptorType", None)]),
+        "PathRefused": (0x40, Severity.WARNING_HI, None, [("fileName", "string", 40), ("status", "I32", None),
+                                                          ("reason", "string", 40)]),  # not in F´
     }
     comp = FileUplink(root=".")
     for name, (local_id, severity, throttle, args) in expected_events.items():

@@ -511,3 +511,60 @@ def test_realtime_run_is_paced_to_the_wall_clock(tmp_path, capsys):
     assert summary["sim_seconds"] == 0.5
     assert 0.8 < summary["real_time_factor"] <= 1.05
     assert "largest lag behind the wall clock" in capsys.readouterr().out
+
+
+# --- resynchronisation (issue #16 finding 3) -------------------------------------------------------
+
+def _bogus_header(framing):
+    """A header that passes every check but claims more bytes than will ever come."""
+    if framing == "ccsds":
+        return struct.pack(">HHB", (1 << 13) | 0x44, (1 << 10) | 1023, 0)  # a 1024-byte TC frame
+    return struct.pack(">II", 0xDEADBEEF, 4000)
+
+
+@pytest.mark.parametrize("framing", ["fprime", "ccsds"])
+def test_commands_behind_a_bogus_header_survive_a_disconnect(fprime_harness, grounds, links, framing):
+    """GL-RESYNC-5: the finding's campaign step — a header claiming 1024 (CCSDS) / 4000 (fprime)
+    bytes, 3 valid commands, then the ground disconnects: all 3 reach commandOut, IncompleteFrame is
+    logged and UplinkDroppedBytes counts the header's bytes (with an UplinkBytesDropped event)."""
+    ground = grounds(framing)
+    link = links("comDriver", base_id=0x1000, port=ground.port, framing=framing, reconnect_min_s=0.05,
+                 partial_frame_timeout_s=60.0)  # only the disconnect may release them here
+    h = fprime_harness(link)
+    link.start_socket_task()
+    ground.accept()
+    commands = [ground.command(NO_OP), ground.command(0x42, b"\x07"), ground.command(0x43)]
+    ground.send(_bogus_header(framing) + b"".join(commands))
+    ground.conn.close()
+    wait_for(lambda: len(h.from_port("commandOut")) == 3, step=lambda: h.invoke("schedIn", 0))
+    assert [c.args[0] for c in h.from_port("commandOut")] == [
+        encode_command(NO_OP), encode_command(0x42, b"\x07"), encode_command(0x43)]
+    h.invoke("schedIn", 0)
+    assert h.events_named("IncompleteFrame")
+    assert h.tlm_values("UplinkDroppedBytes")[-1] == len(_bogus_header(framing))
+    assert h.events_named("UplinkBytesDropped")[-1] == (len(_bogus_header(framing)), len(_bogus_header(framing)))
+
+
+@pytest.mark.parametrize("framing", ["fprime", "ccsds"])
+def test_commands_behind_a_bogus_header_arrive_while_the_link_stays_up(fprime_harness, grounds, links, framing):
+    """GL-RESYNC-6: the same with the link kept up and keep-alives following: the partial frame is
+    abandoned after partial_frame_timeout_s and the 3 commands are dispatched (before: they waited
+    until the keep-alives filled the claimed length)."""
+    ground = grounds(framing)
+    link = links("comDriver", base_id=0x1000, port=ground.port, framing=framing, partial_frame_timeout_s=0.2)
+    h = fprime_harness(link)
+    link.start_socket_task()
+    ground.accept()
+    commands = [ground.command(NO_OP), ground.command(0x42, b"\x07"), ground.command(0x43)]
+    ground.send(_bogus_header(framing) + b"".join(commands) + KEEPALIVE)
+
+    polls = [0]
+
+    def keep_alive():  # one keep-alive per ~50 ms: in 3 s far fewer bytes than either header claims
+        h.invoke("schedIn", 0)
+        polls[0] += 1
+        if polls[0] % 10 == 0:
+            ground.send(KEEPALIVE)
+
+    wait_for(lambda: len(h.from_port("commandOut")) == 3, step=keep_alive, timeout=3.0)
+    assert h.events_named("IncompleteFrame")

@@ -276,3 +276,102 @@ def test_fuzz_mutated_frames_never_raise_and_intact_frames_survive(name, packets
     if not touched:
         assert [o for o in out if isinstance(o, bytes)] == commands
         assert deframer.dropped == 0
+
+
+# --- resynchronisation (issue #16 finding 3) ---------------------------------------------------------
+
+def _plausible_bad_header(name, claimed):
+    """A header that passes every check but claims ``claimed`` bytes that will never come."""
+    if name == "ccsds":
+        return struct.pack(">HHB", (1 << 13) | 0x44, (1 << 10) | (claimed - 1), 0)
+    return struct.pack(">II", 0xDEADBEEF, claimed)
+
+
+THREE = [NO_OP, CONFIGURE, encode_command(0x42, b"\x07")]
+
+
+@pytest.mark.parametrize("name, claimed", [("ccsds", 1024), ("fprime", 4000)])
+def test_valid_frames_behind_a_plausible_bad_header_survive_a_disconnect(name, claimed):
+    """GL-RESYNC-1: a header claiming 1024 (CCSDS) / 4000 (fprime) bytes, then 3 valid commands, then
+    the connection drops: reset() abandons the partial frame as INCOMPLETE and delivers the 3."""
+    framing = make_framing(name)
+    deframer = framing.uplink_deframer()
+    frames = b"".join(framing.frame_uplink(c) for c in THREE)
+    assert deframer.push(_plausible_bad_header(name, claimed) + frames) == []  # still waiting
+    assert deframer.pending_offset == 0
+    out = deframer.reset()
+    assert [o for o in out if isinstance(o, bytes)] == THREE
+    drops = [o for o in out if isinstance(o, Dropped)]
+    assert [d.reason for d in drops] == [DropReason.INCOMPLETE]
+    header = len(_plausible_bad_header(name, claimed))
+    assert deframer.dropped_bytes == header  # only the bad header's bytes were lost
+    assert deframer.buffered == 0 and deframer.pending_offset is None
+
+
+@pytest.mark.parametrize("name, claimed", [("ccsds", 1024), ("fprime", 4000)])
+def test_expire_resynchronises_while_the_link_stays_up(name, claimed):
+    """GL-RESYNC-2: the same bad header followed by the commands and keep-alives (fewer bytes than
+    it claims): expire() delivers the 3 commands; a later frame deframes normally."""
+    framing = make_framing(name)
+    deframer = framing.uplink_deframer()
+    stream = _plausible_bad_header(name, claimed) + b"".join(framing.frame_uplink(c) + KEEPALIVE for c in THREE)
+    assert deframer.push(stream) == []
+    out = deframer.expire()
+    assert [o for o in out if isinstance(o, bytes)] == THREE
+    assert deframer.push(framing.frame_uplink(NO_OP)) == [NO_OP]
+    assert deframer.expire() == []  # nothing pending: nothing to abandon
+
+
+@pytest.mark.parametrize("name", ["fprime", "ccsds"])
+def test_dropped_bytes_count_the_rejected_frame_only(name):
+    """GL-RESYNC-3: a frame with a bad CRC, a keep-alive, a good frame: dropped_bytes is the bad frame's
+    length, skipped_bytes the keep-alive's."""
+    framing = make_framing(name)
+    bad = bytearray(framing.frame_uplink(CONFIGURE))
+    bad[-1] ^= 0x01
+    deframer = framing.uplink_deframer()
+    out = deframer.push(bytes(bad) + KEEPALIVE + framing.frame_uplink(NO_OP))
+    assert out[-1] == NO_OP
+    assert deframer.dropped_bytes == len(bad)
+    assert deframer.skipped_bytes == len(KEEPALIVE)
+
+
+@pytest.mark.parametrize("name", ["fprime", "ccsds"])
+def test_a_partial_frame_cut_by_a_disconnect_is_reported(name):
+    """GL-RESYNC-4: a good frame cut in half by a disconnect is dropped as INCOMPLETE (with the bytes
+    that had arrived), never delivered."""
+    framing = make_framing(name)
+    frame = framing.frame_uplink(CONFIGURE)
+    deframer = framing.uplink_deframer()
+    assert deframer.push(frame[:10]) == []
+    out = deframer.reset()
+    assert out == [Dropped(DropReason.INCOMPLETE, 10, 10)]
+
+
+@pytest.mark.parametrize("name", ["fprime", "ccsds"])
+def test_campaign_of_bogus_headers_and_disconnects_loses_no_valid_command(name):
+    """GL-RESYNC-7 (the finding's campaign): 50 connection cycles, each with 1–3 plausible bogus
+    headers (claiming up to the largest frame) mixed among 3–6 valid commands and keep-alives, pushed
+    in random pieces, then a disconnect: every valid command is delivered, in order."""
+    import random
+
+    rng = random.Random(50)
+    framing = make_framing(name)
+    deframer = framing.uplink_deframer()
+    sent, delivered = [], []
+    for cycle in range(50):
+        parts = []
+        for i in range(rng.randint(3, 6)):
+            command = encode_command(0x1000 + cycle, bytes([i]) * rng.randint(0, 40))
+            sent.append(command)
+            parts.append(framing.frame_uplink(command))
+        for _ in range(rng.randint(1, 3)):
+            claimed = rng.randint(60, 1024) if name == "ccsds" else rng.randint(60, 4095)
+            parts.insert(rng.randrange(len(parts) + 1), _plausible_bad_header(name, claimed))
+        parts.insert(rng.randrange(len(parts) + 1), KEEPALIVE)
+        stream = b"".join(parts)
+        cuts = sorted(rng.sample(range(len(stream)), 3))
+        for a, b in zip([0] + cuts, cuts + [len(stream)], strict=True):
+            delivered += [o for o in deframer.push(stream[a:b]) if isinstance(o, bytes)]
+        delivered += [o for o in deframer.reset() if isinstance(o, bytes)]
+    assert delivered == sent

@@ -4,6 +4,8 @@ Not collected by the project's test run (the name does not match ``test_*.py``):
 ``tests/integration/test_gds.py`` starts fprime-gds and the deployment, then runs
 ``python -m pytest tests/integration/gds_inner/gds_checks.py --dictionary D --zmq-transport IN OUT``.
 Round-trip figures go to the JSON file named by ``FPRIME_LITE_GDS_FIGURES`` when it is set.
+``FPRIME_LITE_GDS_RUNS`` names the folder holding the deployment's run folder, which is the root of
+its file services: files are uplinked into it and downlinked from it.
 """
 
 import json
@@ -16,6 +18,14 @@ import pytest
 
 DEP = "ReferenceDeployment"
 FIGURES: dict = {}
+
+
+@pytest.fixture
+def run_root():
+    """The flying deployment's run folder (the file services' root): the one folder in the runs folder."""
+    runs = [p for p in Path(os.environ["FPRIME_LITE_GDS_RUNS"]).iterdir() if p.is_dir()]
+    assert len(runs) == 1, f"expected one run folder, found {runs}"
+    return runs[0]
 
 
 @pytest.fixture(scope="session", autouse=True)
@@ -71,19 +81,20 @@ def test_magnetic_field_reading(fprime_test_api):
     FIGURES["magnetic_field_G"] = field
 
 
-def test_file_uplink_lands_byte_identical(fprime_test_api, tmp_path):
-    """The GDS's file uplinker cuts the file into packets; FileUplink reassembles it on board."""
+def test_file_uplink_lands_byte_identical(fprime_test_api, tmp_path, run_root):
+    """The GDS's file uplinker cuts the file into packets; FileUplink reassembles it on board, in its
+    root (the run folder)."""
     data = os.urandom(900)  # four 256-byte chunks: the GDS paces its uplink at 0.5 s a chunk
-    source, landed = tmp_path / "uplinked.bin", tmp_path / "landed.bin"
+    source, landed = tmp_path / "uplinked.bin", run_root / f"landed_{os.getpid()}.bin"
     source.write_bytes(data)
-    assert fprime_test_api.uplink_file_and_await_completion(str(source), destination=str(landed), timeout=20)
+    assert fprime_test_api.uplink_file_and_await_completion(str(source), destination=landed.name, timeout=20)
     assert landed.read_bytes() == data
 
 
-def test_file_downlink_reaches_the_ground_store(fprime_test_api, tmp_path):
-    """SendFile on board; the GDS's downlinker writes the file into its store."""
+def test_file_downlink_reaches_the_ground_store(fprime_test_api, run_root):
+    """SendFile on board (a file in the file services' root); the GDS's downlinker writes it into its store."""
     data = os.urandom(2000)
-    source = tmp_path / "on_board.bin"
+    source = run_root / f"on_board_{os.getpid()}.bin"
     source.write_bytes(data)
     name = f"downlinked_{os.getpid()}.bin"
     fprime_test_api.send_and_assert_command("FileHandling.fileDownlink.SendFile", [str(source), name], timeout=10)
@@ -95,13 +106,13 @@ def test_file_downlink_reaches_the_ground_store(fprime_test_api, tmp_path):
     assert landed.read_bytes() == data
 
 
-def test_uplinked_sequence_runs(fprime_test_api, tmp_path):
+def test_uplinked_sequence_runs(fprime_test_api, tmp_path, run_root):
     """A text sequence compiled and uplinked by the GDS, then run with CS_RUN."""
     sequence = tmp_path / "ground.seq"
     sequence.write_text("; two no-ops from the ground\nR00:00:00 CdhCore.cmdDisp.CMD_NO_OP\n"
                         "R00:00:01 CdhCore.cmdDisp.CMD_NO_OP\n")
-    on_board = tmp_path / "ground.bin"
-    assert fprime_test_api.uplink_sequence_and_await_completion(str(sequence), destination=str(on_board),
+    on_board = run_root / f"ground_{os.getpid()}.bin"
+    assert fprime_test_api.uplink_sequence_and_await_completion(str(sequence), destination=on_board.name,
                                                                 timeout=20)
     start = fprime_test_api.get_event_test_history().size()
     fprime_test_api.send_and_assert_command(f"{DEP}.cmdSeq.CS_RUN", [str(on_board), "BLOCK"], timeout=10)
