@@ -34,7 +34,8 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{r['sim_seconds']:.0f} s simulated, best of {r['rounds']} rounds, real-time factors:")
     print(f"  20 Hz  Basilisk {b['basilisk_20hz']:7.0f}   fprime-lite plant-only {b['fprime_lite_plant_20hz']:7.0f}"
           f"   ratio {r['plant_20hz_over_basilisk']:.2f} (median rounds {r['median_plant_20hz_over_basilisk']:.2f})")
-    print(f"  50 Hz  Basilisk {b['basilisk_50hz']:7.0f}   fprime-lite deployment {b['fprime_lite_deployment_50hz']:7.0f}"
+    print(f"  50 Hz  Basilisk {b['basilisk_50hz']:7.0f}   "
+          f"fprime-lite deployment {b['fprime_lite_deployment_50hz']:7.0f}"
           f"   ratio {r['deployment_50hz_over_basilisk']:.2f} (median rounds "
           f"{r['median_deployment_50hz_over_basilisk']:.2f})")
     t = r["case_a_time_below_1_deg_s"]

@@ -1,7 +1,6 @@
 """Seed 004's controllers flown by the F´ deployment agree with the same laws flown plant-only."""
 import csv
 import json
-import math
 import pathlib
 
 import pytest

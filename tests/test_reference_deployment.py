@@ -49,7 +49,7 @@ def test_rate_decreases_over_the_run(flown):
         rates = [float(row["rate_deg_s"]) for row in csv.DictReader(f)]
     tenth = len(rates) // 10
     means = [sum(rates[i * tenth:(i + 1) * tenth]) / tenth for i in range(10)]
-    assert all(b < a for a, b in zip(means, means[1:])), means
+    assert all(b < a for a, b in zip(means, means[1:], strict=False)), means
 
 
 def test_states_cycle_in_the_specified_order(flown):
@@ -61,7 +61,7 @@ def test_states_cycle_in_the_specified_order(flown):
         DetumbleState.ACTUATING_BDOT: {DetumbleState.COOLDOWN},
     }
     assert transitions[0] == DetumbleState.COOLDOWN
-    for a, b in zip(transitions, transitions[1:]):
+    for a, b in zip(transitions, transitions[1:], strict=False):
         assert b in allowed[a], f"{a.name} -> {b.name}"
     assert transitions[-1] == DetumbleState.SENSING_ANGULAR_VELOCITY  # detumbled: idle, sensing ω
     assert DetumbleState.ACTUATING_HYSTERESIS not in transitions  # 30 deg/s is far below BDOT_MAX_THRESHOLD

@@ -7,12 +7,11 @@ import shutil
 
 import pytest
 
-from detumble.components.types import DetumbleMode, DetumbleState, SystemMode
+from detumble.components.types import DetumbleMode, SystemMode
 from detumble.sitl import SafeModeReason
 from fprime_lite.deploy.deployment import Deployment, command_lookup
 from fprime_lite.deploy.topology_loader import load_topology
 from fprime_lite.ground.downlink import GroundRecorder
-from fprime_lite.model.commands import CmdResponse
 from fprime_lite.wire.packets import encode_command
 
 ROOT = pathlib.Path(__file__).parents[1]
@@ -53,7 +52,7 @@ class Rig:
 
     def send(self, name, *args):
         opcode, types = self.lookup(name)
-        payload = b"".join(t.serialize(v) for t, v in zip(types, args))
+        payload = b"".join(t.serialize(v) for t, v in zip(types, args, strict=True))
         self._disp.input_port("seqCmdBuff").entries[self.k](encode_command(opcode, payload), 0)
         self.deployment.scheduler.drain()
         self.deployment.run_for(0.0)

@@ -187,19 +187,19 @@ class FuzzTarget(PassiveComponent):
     """Commands of every argument kind, and parameters, for the command-packet fuzzer."""
 
     @sync_command()
-    def NO_ARGS(self):  # noqa: N802
+    def NO_ARGS(self):
         return CmdResponse.OK
 
     @sync_command()
-    def NUMBERS(self, a: I8, b: U16, c: U32, d: I64, e: F32, f: F64, g: BOOL):  # noqa: N802
+    def NUMBERS(self, a: I8, b: U16, c: U32, d: I64, e: F32, f: F64, g: BOOL):
         return CmdResponse.OK
 
     @sync_command()
-    def TEXT(self, s: String(40), mode: _Mode):  # noqa: N802
+    def TEXT(self, s: String(40), mode: _Mode):
         return CmdResponse.OK
 
     @sync_command()
-    def PAIR(self, p: _Pair, big: U64, small: I16):  # noqa: N802
+    def PAIR(self, p: _Pair, big: U64, small: I16):
         return CmdResponse.OK
 
     GAIN = Param(F64, default=1.0)

@@ -66,8 +66,9 @@ def settling_times_per_axis(t: Sequence[float], ys: Sequence[Sequence[float]],
                             y_finals: Sequence[float | None], y_inits: Sequence[float | None],
                             band: float = DEFAULT_BAND) -> tuple[list[float | None], float | None]:
     """Settling time of each channel and the overall figure (the largest; None if any never settles)."""
-    each = [settling_time(t, y, f, i, band) for y, f, i in zip(ys, y_finals, y_inits)]
-    overall = None if any(x is None for x in each) else max(each)  # type: ignore[type-var]
+    each = [settling_time(t, y, f, i, band) for y, f, i in zip(ys, y_finals, y_inits, strict=True)]
+    settled = [x for x in each if x is not None]
+    overall = max(settled) if len(settled) == len(each) else None
     return each, overall
 
 

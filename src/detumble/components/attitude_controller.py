@@ -79,7 +79,7 @@ class AttitudeController(PassiveComponent):
     # --- commands ------------------------------------------------------------------------------
 
     @sync_command()
-    def FORCE_MODE(self, mode: ControlMode):  # noqa: N802 - F´ command name
+    def FORCE_MODE(self, mode: ControlMode):
         """Switch to ``mode`` and stay there (autonomy MANUAL). POINTING is refused without attitude
         knowledge (NoAttitudeKnowledge) or, with POINTING_ACTUATOR = WHEELS, without wheels
         (ModeUnavailableNoWheels): EXECUTION_ERROR, mode unchanged."""
@@ -91,14 +91,14 @@ class AttitudeController(PassiveComponent):
         return CmdResponse.OK
 
     @sync_command()
-    def SET_AUTO(self):  # noqa: N802 - F´ command name
+    def SET_AUTO(self):
         """Hand the mode to the seed's triggers (AUTO). From IDLE the next cycle starts in DETUMBLE
         (the seed's "mission start")."""
         self._set_autonomy(ControlAutonomy.AUTO)
         return CmdResponse.OK
 
     @sync_command()
-    def SET_TARGET_QUATERNION(self, q0: F64, q1: F64, q2: F64, q3: F64):  # noqa: N802
+    def SET_TARGET_QUATERNION(self, q0: F64, q1: F64, q2: F64, q3: F64):
         """Set the POINTING target ``q_TN`` (scalar first). Refused unless | |q| − 1 | ≤ 1e-3
         (TargetNotUnitQuaternion, VALIDATION_ERROR); accepted targets are re-normalised."""
         q = (q0, q1, q2, q3)
@@ -111,7 +111,7 @@ class AttitudeController(PassiveComponent):
         return CmdResponse.OK
 
     @sync_command()
-    def SET_TARGET_DIRECTION(self, x: F64, y: F64, z: F64):  # noqa: N802
+    def SET_TARGET_DIRECTION(self, x: F64, y: F64, z: F64):
         """Point the body +Z axis along the inertial direction ``(x, y, z)`` (any length), by the
         smallest rotation from the present attitude. Refused for a zero or non-finite vector
         (TargetDirectionInvalid, VALIDATION_ERROR) and without attitude knowledge
@@ -119,10 +119,11 @@ class AttitudeController(PassiveComponent):
         if not _finite(x, y, z) or _norm((x, y, z)) == 0.0:
             self.TargetDirectionInvalid(x, y, z)
             return CmdResponse.VALIDATION_ERROR
-        if not self.attitude_valid:
+        q = self.filter.q
+        if not self.attitude_valid or q is None:
             self.NoAttitudeKnowledge()
             return CmdResponse.EXECUTION_ERROR
-        self._set_target(target_pointing_axis(self.filter.q, BORESIGHT_B, (x, y, z)))
+        self._set_target(target_pointing_axis(q, BORESIGHT_B, (x, y, z)))
         return CmdResponse.OK
 
     # --- parameters (defaults and their derivation: docs/components/attitude_controller.md) ----
@@ -232,18 +233,18 @@ class AttitudeController(PassiveComponent):
         super().__init__(name, base_id=base_id)
         if not 3 <= len(wheel_axes) <= MAX_WHEELS:
             raise ValueError(f"wheel_axes: give 3 to {MAX_WHEELS} unit axes, got {len(wheel_axes)}")
-        self.wheel_axes = tuple(tuple(float(c) for c in a) for a in wheel_axes)
+        self.wheel_axes = tuple((float(a[0]), float(a[1]), float(a[2])) for a in wheel_axes)
         self.mode = ControlMode.IDLE
         self.autonomy = ControlAutonomy.MANUAL
         self.filter = AttitudeFilter()
         self.integrator = ErrorIntegrator(math.radians(1.0), 1.0e-5)
-        self.target: tuple | None = None
+        self.target: tuple[float, float, float, float] | None = None
         self.seed_damper = SeedKaneDamper(1.0e-4, 2.0e-4)
         self.virtual_damper = VirtualDamper(1.0e-4, 2.0e-4)
         self.ticks = 0
         self.cycles = 0
         self.coils_driven = False
-        self.omega: tuple | None = None  # ω̂ rad/s, B
+        self.omega: tuple[float, float, float] | None = None  # ω̂ rad/s, B
         self.b_tesla: tuple | None = None
         self.dipole: tuple = _ZERO  # A·m² achieved by the levels of the present cycle
         self.torque_request: tuple = _ZERO
@@ -308,7 +309,7 @@ class AttitudeController(PassiveComponent):
 
     def _set_target(self, q) -> None:
         self.integrator.reset()
-        self.target = tuple(q)
+        self.target = (float(q[0]), float(q[1]), float(q[2]), float(q[3]))
         self.TargetSet(*self.target)
         self.TargetQuaternion.write(Quaternion(*self.target))
 
@@ -352,13 +353,13 @@ class AttitudeController(PassiveComponent):
                 self._accumulate_gyro()
             if phase == cycle - 1 and self.coils_driven and cycle > 1:
                 self._stop_coils()
-        except Exception:  # noqa: BLE001 - the rate group must keep running
+        except Exception:  # the rate group must keep running
             self.handler_faults += 1
             log.exception("%s: run raised; stopping coils and wheels", self.name)
             try:
                 self._stop_coils()
                 self._command_wheels((0.0,) * len(self.wheel_axes))
-            except Exception:  # noqa: BLE001
+            except Exception:
                 log.exception("%s: making the actuators safe failed too", self.name)
 
     def _cycle(self) -> None:
@@ -438,6 +439,7 @@ class AttitudeController(PassiveComponent):
     def _spin_errors(self) -> tuple[float, float]:
         """``(axis error deg, rate error fraction)`` of ω̂ against ``SPIN_RATE_TARGET`` about +Z."""
         w = self.omega
+        assert w is not None  # AUTO looks at the spin only with a rate estimate
         target = self.SPIN_RATE_TARGET.value * _DEG
         n = _norm(w)
         axis_deg = math.degrees(math.atan2(math.hypot(w[0], w[1]), w[2])) if n > 0.0 else 180.0
@@ -497,10 +499,14 @@ class AttitudeController(PassiveComponent):
             if self.b_tesla is not None:
                 dipole, _ = project_dipole_weighted(tau, self.b_tesla, self._coil_limits())
         elif mode == ControlMode.POINTING and self.omega is not None and self.attitude_valid:
+            q = self.filter.q
+            assert q is not None  # attitude_valid
             if self.target is None:
-                self._set_target(self.filter.q)
+                self._set_target(q)
+            target = self.target
+            assert target is not None  # _set_target set it
             if self._pointing_uses_wheels():
-                tau, qe = pd_torque(self.target, self.filter.q, self.omega, self.K_P.value, self.K_D.value,
+                tau, qe = pd_torque(target, q, self.omega, self.K_P.value, self.K_D.value,
                                     self.SLEW_RATE_LIMIT.value * _DEG)
                 self.integrator.window_rad = self.INTEGRAL_WINDOW.value * _DEG
                 ti = self.integrator.update(qe, dt, self.K_I.value)
@@ -517,7 +523,7 @@ class AttitudeController(PassiveComponent):
                 # the wheels supply what the dump torque does not (it would otherwise disturb the pointing)
                 wheel_u = self._allocate((tau[0] - tau_mag[0], tau[1] - tau_mag[1], tau[2] - tau_mag[2]))
             else:
-                tau, qe = pd_torque(self.target, self.filter.q, self.omega, self.K_P_MAG.value, self.K_D_MAG.value)
+                tau, qe = pd_torque(target, q, self.omega, self.K_P_MAG.value, self.K_D_MAG.value)
                 if self.b_tesla is not None:
                     dipole, _ = project_dipole_weighted(tau, self.b_tesla, self._coil_limits())
             self.pointing_error_deg = math.degrees(quat_angle(qe))
@@ -565,6 +571,7 @@ class AttitudeController(PassiveComponent):
     def _spin_torque(self, dt: float):
         law = self.SPIN_LAW.value
         w = self.omega
+        assert w is not None  # spin control runs only with a rate estimate
         c, i_d = self.C_DAMP.value, self.I_D.value
         if law == SpinLaw.SEED_KANE_DAMPER:
             sd = self.seed_damper
@@ -664,7 +671,7 @@ class AttitudeController(PassiveComponent):
     def _drive_coils(self, m) -> None:
         """Drive the five coils for the dipole ``m``; ``self.dipole`` becomes what the rounded levels give."""
         levels, self.dipole = self._coil_levels(m)
-        for port, level in zip(self._start_ports, levels):
+        for port, level in zip(self._start_ports, levels, strict=True):
             if port.targets[0] is not None:
                 port.calls[0](level)
         self.coils_driven = True

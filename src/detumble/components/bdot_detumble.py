@@ -54,7 +54,7 @@ class BDotDetumble(PassiveComponent):
         self.previous_field: MagneticField | None = None
 
     @sync_input(DipoleMomentGet)
-    def dipoleMomentGet(self):  # noqa: N802 - F´ port name
+    def dipoleMomentGet(self):
         """Read the magnetometer and return ``Result(DipoleMoment A·m², Success)``."""
         if not self.is_connected("magneticFieldGet", 0):
             return _zero_failure()

@@ -98,14 +98,14 @@ class CourseworkController(PassiveComponent):
             self.ControlFault(type(exc).__name__, str(exc)[:80])
 
     @sync_command()
-    def SET_LAW(self, law: CourseworkLaw):  # noqa: N802
+    def SET_LAW(self, law: CourseworkLaw):
         """Fly ``law`` from the next cycle (OFF: actuators at zero). Same as LAW_PRM_SET, plus an event."""
         self.LAW.set(law)
         self._select(CourseworkLaw(law))
         return CmdResponse.OK
 
     @sync_command()
-    def SET_TARGET(self, q0: F64, q1: F64, q2: F64, q3: F64):  # noqa: N802
+    def SET_TARGET(self, q0: F64, q1: F64, q2: F64, q3: F64):
         """The wheel law's target attitude relative to the orbit frame, ``q_BO`` scalar first;
         refused (VALIDATION_ERROR) unless it is a unit quaternion within 1e-6."""
         q = (q0, q1, q2, q3)
@@ -159,7 +159,8 @@ class CourseworkController(PassiveComponent):
     def _rebuild(self) -> None:
         """New law objects from the parameters (their memory starts again)."""
         self._beta = cw.BetaPd(self.BETA_KS.value, self.BETA_KD.value, switched=bool(self.BETA_SWITCHED.value))
-        inertia = ((self.INERTIA_XX.value, 0.0, 0.0), (0.0, self.INERTIA_YY.value, 0.0), (0.0, 0.0, self.INERTIA_ZZ.value))
+        inertia = ((self.INERTIA_XX.value, 0.0, 0.0), (0.0, self.INERTIA_YY.value, 0.0),
+                   (0.0, 0.0, self.INERTIA_ZZ.value))
         self._wheels = cw.WheelsPd(self.WHEEL_KP.value, self.WHEEL_KD.value, inertia,
                                    cw.from_plant_quaternion(self._target),
                                    shortest_path=self.WHEEL_ERROR.value == WheelError.SHORTEST_PATH)

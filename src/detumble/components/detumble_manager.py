@@ -19,7 +19,8 @@ One state's actions run per ``run`` call; a transition takes effect on the next 
 
 Actuator health (an addition to the PROVES design): a coil that was switched on and whose stop
 answers FAILURE may still be on; it is reported (CoilStopFailed, WARNING_HI) and isolated — no start
-or stop reaches it — until the ground sends ENABLE_COIL. Every torque period ends with a stop, so this takes at most one period.
+or stop reaches it — until the ground sends ENABLE_COIL. Every torque period ends with a stop, so this
+takes at most one period.
 """
 
 from __future__ import annotations
@@ -140,7 +141,7 @@ class DetumbleManager(PassiveComponent):
     # --- command (declared first: opcode 0, as in the FPP) -------------------------------------
 
     @sync_command()
-    def SET_MODE(self, mode: DetumbleMode):  # noqa: N802 - F´ command name
+    def SET_MODE(self, mode: DetumbleMode):
         """Set the operating mode. AUTO is refused in SAFE_MODE: EnableFailedSafeMode and
         EXECUTION_ERROR (DEVIATION: the flight code answers OK)."""
         if self._request_mode(DetumbleMode(mode)):
@@ -270,7 +271,7 @@ class DetumbleManager(PassiveComponent):
     # --- actuator health (addition; declared last so every flight id stays as it is) -----------
 
     @sync_command()
-    def ENABLE_COIL(self, face: MagnetorquerFace):  # noqa: N802 - F´ command name
+    def ENABLE_COIL(self, face: MagnetorquerFace):
         """Return an isolated coil to service: it is driven again from the next cycle (a coil that
         still does not stop is isolated again at its next stop)."""
         index = _FACE_INDEX[MagnetorquerFace(face)]
@@ -284,7 +285,7 @@ class DetumbleManager(PassiveComponent):
         return CmdResponse.OK
 
     @sync_command()
-    def ISOLATE_COIL(self, face: MagnetorquerFace):  # noqa: N802
+    def ISOLATE_COIL(self, face: MagnetorquerFace):
         """Take a coil out of service: it is stopped once more, then never driven until ENABLE_COIL."""
         index = _FACE_INDEX[MagnetorquerFace(face)]
         port = self._stop_ports[index]
@@ -382,12 +383,12 @@ class DetumbleManager(PassiveComponent):
     # --- mode control --------------------------------------------------------------------------
 
     @sync_input(SetDetumbleMode)
-    def setMode(self, mode):  # noqa: N802 - F´ port name
+    def setMode(self, mode):
         """SET_MODE without a command response."""
         self._request_mode(DetumbleMode(mode))
 
     @sync_input(SystemModeChanged)
-    def systemModeChanged(self, mode):  # noqa: N802 - F´ port name
+    def systemModeChanged(self, mode):
         """SAFE_MODE forces DISABLED (coils stop on the next run); NORMAL does not re-enable."""
         self._last_system_mode = SystemMode(mode)
         if self._last_system_mode == SystemMode.SAFE_MODE:
@@ -428,7 +429,7 @@ class DetumbleManager(PassiveComponent):
             self.report_fault("run", exc)
             try:
                 self._stop_coils()
-            except Exception:  # noqa: BLE001
+            except Exception:
                 log.exception("%s: stopping the coils failed too", self.name)
             self._reset_cycle()
 
@@ -538,9 +539,11 @@ class DetumbleManager(PassiveComponent):
                                           mt["y_minus"].dipole_moment_to_current(my),
                                           mt["z_minus"].dipole_moment_to_current(mz))
         self._start_coils(levels)
-        if now.total_us < self.torque_start_time.total_us:
-            self.torque_start_time = now  # the clock went backwards: measure from here
-        elapsed = self._elapsed_us(self.torque_start_time, now)
+        start = self.torque_start_time
+        assert start is not None  # set by _enter_actuating_bdot above
+        if now.total_us < start.total_us:
+            self.torque_start_time = start = now  # the clock went backwards: measure from here
+        elapsed = self._elapsed_us(start, now)
         if elapsed >= self.TORQUE_DURATION.value.total_us:
             self._bdot_levels = None
             self.bdot.empty_sample_set()
@@ -595,7 +598,7 @@ class DetumbleManager(PassiveComponent):
     def _start_coils(self, levels) -> None:
         """Drive X+, X−, Y+, Y−, Z− at ``levels`` (each −127…127); unconnected coils are skipped."""
         isolated, may_be_on = self._isolated, self._may_be_on
-        for index, (port, level) in enumerate(zip(self._start_ports, levels)):
+        for index, (port, level) in enumerate(zip(self._start_ports, levels, strict=True)):
             if port.targets[0] is not None and not isolated[index]:  # unconnected coils are skipped
                 if port.calls[0](level) == Success.SUCCESS:
                     may_be_on[index] = level != 0
@@ -628,9 +631,10 @@ class DetumbleManager(PassiveComponent):
         self._write_isolated()
 
     def _write_isolated(self) -> None:
-        self.IsolatedCoils.write(sum(1 << int(face) for face, off in zip(_COIL_FACES, self._isolated) if off))
+        self.IsolatedCoils.write(sum(1 << int(face)
+                                     for face, off in zip(_COIL_FACES, self._isolated, strict=True) if off))
 
     @property
     def isolated_faces(self) -> tuple[MagnetorquerFace, ...]:
         """The coils out of service now."""
-        return tuple(face for face, off in zip(_COIL_FACES, self._isolated) if off)
+        return tuple(face for face, off in zip(_COIL_FACES, self._isolated, strict=True) if off)

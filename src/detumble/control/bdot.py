@@ -95,15 +95,17 @@ class BDot:
         if not dt > 0.0:
             return _ZERO
         b0, b1, _, b3, b4 = self._fields
-        denominator = 12.0 * dt
-        return tuple((b0[k] - 8.0 * b1[k] + 8.0 * b3[k] - b4[k]) / denominator for k in range(3))
+        d = 12.0 * dt
+        return ((b0[0] - 8.0 * b1[0] + 8.0 * b3[0] - b4[0]) / d,
+                (b0[1] - 8.0 * b1[1] + 8.0 * b3[1] - b4[1]) / d,
+                (b0[2] - 8.0 * b1[2] + 8.0 * b3[2] - b4[2]) / d)
 
     def get_magnetic_moment(self) -> tuple[float, float, float]:
         """Dipole ``m = −GAIN · Ḃ``, A·m² (body frame). Zero when the window is not full, Δt is
         unusable or the result is not finite."""
         bdot = self.compute_bdot()
         gain = self.gain
-        moment = tuple(-gain * component for component in bdot)
+        moment = (-gain * bdot[0], -gain * bdot[1], -gain * bdot[2])
         if not all(math.isfinite(c) for c in moment):
             return _ZERO
         return moment

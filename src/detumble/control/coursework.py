@@ -209,7 +209,8 @@ def dumping_dipole(k: float, h_B: Sequence[float], b_B: Sequence[float]) -> Vec3
 
 def clip_dipole(m: Sequence[float], limit: float = REPORT_DIPOLE_LIMIT) -> Vec3:
     """Each axis clipped to ±``limit`` A·m² (the report's first loop)."""
-    return tuple(limit if c > limit else (-limit if c < -limit else float(c)) for c in m)  # type: ignore[return-value]
+    x, y, z = (limit if c > limit else (-limit if c < -limit else float(c)) for c in m)
+    return (x, y, z)
 
 
 def limit_wheel_torque(torque: Sequence[float], h: Sequence[float], torque_limit: float = REPORT_WHEEL_TORQUE_LIMIT,
@@ -217,7 +218,7 @@ def limit_wheel_torque(torque: Sequence[float], h: Sequence[float], torque_limit
     """The report's second loop: each torque to ±``torque_limit``; zero when the wheel's momentum is
     beyond ±``momentum_limit`` and the torque would push it further out."""
     out = []
-    for u, hi in zip(torque, h):
+    for u, hi in zip(torque, h, strict=True):
         u = torque_limit if u > torque_limit else (-torque_limit if u < -torque_limit else float(u))
         if (hi > momentum_limit and u > 0) or (hi < -momentum_limit and u < 0):
             u = 0.0

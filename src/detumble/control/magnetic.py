@@ -12,7 +12,8 @@ import math
 
 Vec3 = tuple[float, float, float]
 
-__all__ = ["project_dipole", "project_dipole_weighted", "seed_project_dipole", "bdot_dipole", "dump_torque", "scale_to_limits", "clip_to_limits"]
+__all__ = ["project_dipole", "project_dipole_weighted", "seed_project_dipole", "bdot_dipole", "dump_torque",
+           "scale_to_limits", "clip_to_limits"]
 
 _ZERO = (0.0, 0.0, 0.0)
 
@@ -32,7 +33,7 @@ def project_dipole(tau_req: Vec3, b: Vec3) -> tuple[Vec3, Vec3]:
     """
     b2 = b[0] * b[0] + b[1] * b[1] + b[2] * b[2]
     if not (b2 > 0.0 and math.isfinite(b2)):
-        return _ZERO, tuple(tau_req)  # type: ignore[return-value]
+        return _ZERO, (tau_req[0], tau_req[1], tau_req[2])
     c = _cross(b, tau_req)
     m = (c[0] / b2, c[1] / b2, c[2] / b2)
     along = (tau_req[0] * b[0] + tau_req[1] * b[1] + tau_req[2] * b[2]) / b2
@@ -108,4 +109,5 @@ def scale_to_limits(m: Vec3, m_max: Vec3) -> Vec3:
 def clip_to_limits(m: Vec3, m_max: Vec3) -> Vec3:
     """Clip each axis to ``±m_max_i`` independently (the direction may change; seed 004's way and the
     flight coils' own saturation)."""
-    return tuple(max(-m_max[i], min(m_max[i], m[i])) for i in range(3))  # type: ignore[return-value]
+    return (max(-m_max[0], min(m_max[0], m[0])), max(-m_max[1], min(m_max[1], m[1])),
+            max(-m_max[2], min(m_max[2], m[2])))

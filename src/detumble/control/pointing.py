@@ -66,6 +66,6 @@ class ErrorIntegrator:
             st = (st[0] + q_err[1] * dt, st[1] + q_err[2] * dt, st[2] + q_err[3] * dt)
             if k_i > 0.0:
                 cap = self.max_torque / k_i
-                st = tuple(max(-cap, min(cap, x)) for x in st)  # type: ignore[assignment]
+                st = (max(-cap, min(cap, st[0])), max(-cap, min(cap, st[1])), max(-cap, min(cap, st[2])))
             self.state = st
         return (-k_i * st[0], -k_i * st[1], -k_i * st[2])

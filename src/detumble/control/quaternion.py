@@ -64,7 +64,7 @@ def is_unit_quaternion(q, tol: float = 1e-3) -> bool:
             return False
     except (TypeError, ValueError):
         return False
-    return abs(quat_norm(tuple(float(c) for c in q)) - 1.0) <= tol
+    return abs(quat_norm((float(q[0]), float(q[1]), float(q[2]), float(q[3]))) - 1.0) <= tol
 
 
 def quat_shortest(q: Quat) -> Quat:

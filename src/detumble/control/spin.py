@@ -76,11 +76,16 @@ class VirtualDamper:
 
     def update(self, omega_B: Vec3, dt: float) -> None:
         if self.omega_d is None:
-            self.omega_d = tuple(omega_B)  # type: ignore[assignment]
+            self.omega_d = (omega_B[0], omega_B[1], omega_B[2])
             return
         c, i_d = self.c_damp, self.i_d
-        self.omega_d = tuple(rk4_scalar(lambda x, w=omega_B[k]: c * (w - x) / i_d, self.omega_d[k], dt)
-                             for k in range(3))  # type: ignore[assignment]
+        od = self.omega_d
+
+        def rate(w: float):
+            return lambda x: c * (w - x) / i_d
+
+        self.omega_d = (rk4_scalar(rate(omega_B[0]), od[0], dt), rk4_scalar(rate(omega_B[1]), od[1], dt),
+                        rk4_scalar(rate(omega_B[2]), od[2], dt))
 
     def torque_request(self, omega_B: Vec3) -> Vec3:
         if self.omega_d is None:
@@ -112,4 +117,5 @@ class SpinRateRegulator:
         s = self.axis
         ws = omega_B[0] * s[0] + omega_B[1] * s[1] + omega_B[2] * s[2]
         kt, along = self.k_transverse, -self.k_spin * (ws - self.rate)
-        return tuple(-kt * (omega_B[k] - ws * s[k]) + along * s[k] for k in range(3))  # type: ignore[return-value]
+        return (-kt * (omega_B[0] - ws * s[0]) + along * s[0], -kt * (omega_B[1] - ws * s[1]) + along * s[1],
+                -kt * (omega_B[2] - ws * s[2]) + along * s[2])

@@ -81,4 +81,5 @@ class WheelAllocator:
 
     def body_momentum(self, momenta: Sequence[float]) -> Vec3:
         """``Σ h_i g_i``: the wheels' momentum in B, N·m·s."""
-        return tuple(sum(h * a[k] for h, a in zip(momenta, self.axes)) for k in range(3))  # type: ignore[return-value]
+        pairs = list(zip(momenta, self.axes, strict=True))
+        return (sum(h * a[0] for h, a in pairs), sum(h * a[1] for h, a in pairs), sum(h * a[2] for h, a in pairs))

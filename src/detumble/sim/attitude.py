@@ -33,12 +33,16 @@ class RigidBody:
     """
 
     def __init__(self, inertia: Mat3, wheel_momentum_B: Vec3 = (0.0, 0.0, 0.0)) -> None:
-        j = tuple(tuple(float(x) for x in row) for row in inertia)
-        if len(j) != 3 or any(len(row) != 3 for row in j):
+        r = [[float(x) for x in row] for row in inertia]
+        if len(r) != 3 or any(len(row) != 3 for row in r):
             raise ValueError("inertia must be a 3x3 matrix")
-        self.inertia: Mat3 = j  # type: ignore[assignment]
+        j = ((r[0][0], r[0][1], r[0][2]), (r[1][0], r[1][1], r[1][2]), (r[2][0], r[2][1], r[2][2]))
+        self.inertia: Mat3 = j
         self.inertia_inv: Mat3 = mat_inv(self.inertia)
-        self.wheel_momentum_B: Vec3 = tuple(float(x) for x in wheel_momentum_B)  # type: ignore[assignment]
+        h = [float(x) for x in wheel_momentum_B]
+        if len(h) != 3:
+            raise ValueError("wheel_momentum_B must have 3 components")
+        self.wheel_momentum_B: Vec3 = (h[0], h[1], h[2])
         self._j = j[0] + j[1] + j[2]
         inv = self.inertia_inv
         self._jinv = inv[0] + inv[1] + inv[2]
@@ -50,7 +54,9 @@ class RigidBody:
         j = self.inertia
         w = state[4:7]
         h = self.wheel_momentum_B
-        return tuple(j[i][0] * w[0] + j[i][1] * w[1] + j[i][2] * w[2] + h[i] for i in range(3))  # type: ignore[return-value]
+        return (j[0][0] * w[0] + j[0][1] * w[1] + j[0][2] * w[2] + h[0],
+                j[1][0] * w[0] + j[1][1] * w[1] + j[1][2] * w[2] + h[1],
+                j[2][0] * w[0] + j[2][1] * w[1] + j[2][2] * w[2] + h[2])
 
     def kinetic_energy(self, state: State) -> float:
         """Rotational kinetic energy ``1/2 omega . J omega`` in J."""

@@ -108,7 +108,7 @@ class Magnetorquer:
         self.spec = spec
         self.level = 0
         self.current_a = 0.0
-        self._normal = FACE_NORMALS_B[face]
+        self._normal = FACE_NORMALS_B[Face(face)]
         self._gain = spec.turns * spec.area_m2  # A m^2 per amp
         self._tau = spec.time_constant_s
 
@@ -198,7 +198,7 @@ class CoilSet:
         """Largest |m| achievable on each body axis with every coil on that axis at full drive."""
         out = [0.0, 0.0, 0.0]
         for face, c in self.coils.items():
-            axis = FACE_AXIS[face]
+            axis = FACE_AXIS[Face(face)]
             out[axis] += c.spec.max_dipole_am2
         return (out[0], out[1], out[2])
 
@@ -210,13 +210,13 @@ class CoilSet:
         """
         by_axis: dict[int, list[int]] = {0: [], 1: [], 2: []}
         for face in self.coils:
-            axis = FACE_AXIS[face]
+            axis = FACE_AXIS[Face(face)]
             by_axis[axis].append(face)
         out = {}
         for axis, faces in by_axis.items():
             for face in faces:
                 share = m_B[axis] / len(faces)
-                sign = FACE_NORMALS_B[face][axis]
+                sign = FACE_NORMALS_B[Face(face)][axis]
                 out[face] = int(sign) * level_for_coil_dipole(self.coils[face].spec, share)
         return out
 
@@ -231,11 +231,12 @@ class TorqueRods:
     kind = "rods"
 
     def __init__(self, max_dipole_am2: tuple[float, float, float]) -> None:
-        self.max_dipole = tuple(float(x) for x in max_dipole_am2)
+        m = [float(x) for x in max_dipole_am2]
+        self.max_dipole = (m[0], m[1], m[2])
         self.dipole_B = (0.0, 0.0, 0.0)
 
     def max_dipole_per_axis(self) -> tuple[float, float, float]:
-        return self.max_dipole  # type: ignore[return-value]
+        return self.max_dipole
 
     def apply_dipole_B(self, m_B: tuple[float, float, float]) -> None:
         lx, ly, lz = self.max_dipole

@@ -154,7 +154,9 @@ class FieldAlongOrbit:
     def _node(self, k: int):
         v = self._nodes.get(k)
         if v is None:
-            t = k * self.table_step_s
+            step = self.table_step_s
+            assert step is not None  # nodes are tabulated only with a table step
+            t = k * step
             v = self.model.b_N(t, self.orbit.position_N(t))
             if len(self._nodes) > 4096:
                 self._nodes.clear()

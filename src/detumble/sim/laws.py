@@ -107,4 +107,7 @@ class BangBangLaw(_Differencing):
         bdot = self._bdot(b_B, t)
         if bdot is None:
             return _ZERO
-        return tuple(-math.copysign(self.m_max[i], bdot[i]) if bdot[i] != 0.0 else 0.0 for i in range(3))  # type: ignore[return-value]
+        m = self.m_max
+        return (-math.copysign(m[0], bdot[0]) if bdot[0] != 0.0 else 0.0,
+                -math.copysign(m[1], bdot[1]) if bdot[1] != 0.0 else 0.0,
+                -math.copysign(m[2], bdot[2]) if bdot[2] != 0.0 else 0.0)

@@ -133,7 +133,7 @@ class TleOrbit:
         h10 = s * (1.0 - s) ** 2 * h
         h01 = s * s * (3.0 - 2.0 * s)
         h11 = s * s * (s - 1.0) * h
-        return tuple(h00 * r0[i] + h10 * v0[i] + h01 * r1[i] + h11 * v1[i] for i in range(3))  # type: ignore[return-value]
+        return tuple(h00 * r0[i] + h10 * v0[i] + h01 * r1[i] + h11 * v1[i] for i in range(3))
 
     def velocity_N(self, t: float) -> tuple[float, float, float]:
         """Inertial velocity, m/s: the derivative of the Hermite interpolant of :meth:`position_N`."""
@@ -145,7 +145,7 @@ class TleOrbit:
         d10 = (3.0 * s * s - 4.0 * s + 1.0) * h
         d01 = -d00
         d11 = (3.0 * s * s - 2.0 * s) * h
-        return tuple((d00 * r0[i] + d10 * v0[i] + d01 * r1[i] + d11 * v1[i]) / h for i in range(3))  # type: ignore[return-value]
+        return tuple((d00 * r0[i] + d10 * v0[i] + d01 * r1[i] + d11 * v1[i]) / h for i in range(3))
 
     def gravity_gradient_coeff(self, r_N: tuple[float, float, float]) -> float:
         r2 = r_N[0] ** 2 + r_N[1] ** 2 + r_N[2] ** 2

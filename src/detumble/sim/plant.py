@@ -38,6 +38,7 @@ def build_orbit(sc: Scenario):
     if o.type == "tle":
         from detumble.sim.epoch import julian_date
 
+        assert o.tle is not None  # the scenario loader requires the TLE lines for type tle
         return TleOrbit(o.tle[0], o.tle[1], julian_date(sc.epoch), o.table_step_s, o.mu_m3_s2)
     return CircularOrbit(
         o.altitude_km * 1e3, math.radians(o.inclination_deg), math.radians(o.raan_deg),
@@ -94,10 +95,11 @@ class Plant:
         self.gyro = Gyro(sc.gyro, _derive_seed(self.seed, 2))
         self._mag_samples = not self.magnetometer.spec.ideal  # an ideal sensor never latches
         self._gyro_samples = not self.gyro.spec.ideal
-        q0 = tuple(sc.q_BN0)
+        q0 = sc.q_BN0
         if sc.attitude_frame == "orbit":
-            q0 = quat_normalize(frames.q_BN_from_orbit(q0, frames.q_ON(self.orbit, 0.0)))  # type: ignore[arg-type]
-        self._state: State = q0 + tuple(sc.omega_BN_B0)  # type: ignore[assignment]
+            q0 = quat_normalize(frames.q_BN_from_orbit(q0, frames.q_ON(self.orbit, 0.0)))
+        w0 = sc.omega_BN_B0
+        self._state: State = (q0[0], q0[1], q0[2], q0[3], w0[0], w0[1], w0[2])
         self._t_ns = 0
         self._update_environment()
         # the sensors' first sample is at t = 0
@@ -107,7 +109,7 @@ class Plant:
         if not sc.gyro.ideal:
             self.gyro.sample_rad_s = self.gyro.measure(self.omega_BN_B)
             self.gyro.sample_time_ns = 0
-        if self.star_tracker is not None and not st.ideal:
+        if self.star_tracker is not None and st is not None and not st.ideal:
             q, valid = self.star_tracker.measure(self.q_BN, self.omega_BN_B)
             self.star_tracker.sample_q, self.star_tracker.sample_valid = q, valid
             self.star_tracker.sample_time_ns = 0
@@ -209,12 +211,12 @@ class Plant:
 
     @property
     def q_BN(self) -> tuple[float, float, float, float]:
-        return self._state[0:4]  # type: ignore[return-value]
+        return self._state[0:4]
 
     @property
     def omega_BN_B(self) -> Vec3:
         """True body rate relative to inertial, in B, rad/s."""
-        return self._state[4:7]  # type: ignore[return-value]
+        return self._state[4:7]
 
     @property
     def rate_deg_s(self) -> float:
@@ -251,7 +253,7 @@ class Plant:
         if w is None:
             return _ZERO
         x = y = z = 0.0
-        for u, g in zip(w.torque_applied, w.axes):
+        for u, g in zip(w.torque_applied, w.axes, strict=True):
             x -= u * g[0]
             y -= u * g[1]
             z -= u * g[2]
@@ -449,7 +451,10 @@ class Plant:
             return
         if frame not in ("inertial", "orbit"):
             raise ValueError(f"target frame must be 'inertial' or 'orbit', got {frame!r}")
-        self._target = (quat_normalize(tuple(float(x) for x in q_target)), frame)  # type: ignore[arg-type]
+        q = [float(x) for x in q_target]
+        if len(q) != 4:
+            raise ValueError(f"target quaternion must have 4 components (scalar first), got {len(q)}")
+        self._target = (quat_normalize((q[0], q[1], q[2], q[3])), frame)
 
     @property
     def pointing_target(self) -> tuple[Quat, str] | None:

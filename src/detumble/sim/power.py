@@ -162,7 +162,7 @@ class ElectricalSystem:
         self.coil_j = 0.0
         self.loss_j = 0.0
         self.unserved_j = 0.0
-        self._sun_cache_t = None
+        self._sun_cache_t: int | None = None
         self._sun = ((1.0, 0.0, 0.0), 1.0)
 
     # --- switches ---------------------------------------------------------------------------------

@@ -59,7 +59,8 @@ def _initial(plant: Plant, parts: list[str], key: str):
             q0, q1, q2, q3 = -q0, -q1, -q2, -q3
         return _index([q1 / (1 + q0), q2 / (1 + q0), q3 / (1 + q0)], parts[2:], key)
     raise KeyError(f"{key}: the initial state is read back as initial.rate.omega_deg_s, "
-                   f"initial.rate.magnitude_deg_s, initial.rate.axis (unit), initial.attitude.quaternion or initial.attitude.mrp")
+                   f"initial.rate.magnitude_deg_s, initial.rate.axis (unit), initial.attitude.quaternion or "
+                   f"initial.attitude.mrp")
 
 
 def _spacecraft(plant: Plant, parts: list[str], key: str):

@@ -228,7 +228,7 @@ def write_outputs(result: RunResult, out_dir: str) -> None:
     lines = [",".join(["time_s", "omega_x_deg_s", "omega_y_deg_s", "omega_z_deg_s", "rate_deg_s", *extra])]
     adcs = result.adcs_rows or [[] for _ in result.rows]
     lines += [",".join([f"{t:.3f}", f"{x:.9g}", f"{y:.9g}", f"{z:.9g}", f"{w:.9g}", *map(_cell, more)])
-              for (t, x, y, z, w), more in zip(result.rows, adcs)]
+              for (t, x, y, z, w), more in zip(result.rows, adcs, strict=True)]
     write_atomic(os.path.join(out_dir, "rate.csv"), "\n".join(lines) + "\n")
 
 

@@ -16,7 +16,7 @@ import random
 from dataclasses import dataclass
 from dataclasses import field as _dc_field
 from importlib import resources
-from typing import Any, Sequence
+from typing import Any, Literal, NoReturn, Sequence, overload
 
 import yaml
 
@@ -222,7 +222,8 @@ def apply_setting(data: dict, setting: str, source: str = "<scenario>") -> None:
         raise ScenarioError(f"--set {setting!r}: the value is not valid YAML: "
                             f"{getattr(exc, 'problem', exc)}") from None
     keys = path_text.strip().split(".")
-    node, walked = data, []
+    node = data
+    walked: list[str] = []
     schema: dict | None = SCHEMA
     for i, key in enumerate(keys):
         last = i == len(keys) - 1
@@ -367,8 +368,16 @@ class _Section:
         self.used.add(key)
         return self.data.get(key, default)
 
-    def fail(self, key: str, msg: str):
+    def fail(self, key: str, msg: str) -> NoReturn:
         self.ctx.fail(self.path + (key,), msg)
+
+    @overload
+    def number(self, key: str, default: float | None, *, positive: bool = ..., nonneg: bool = ...,
+               allow_none: Literal[False] = ...) -> float: ...
+
+    @overload
+    def number(self, key: str, default: float | None, *, positive: bool = ..., nonneg: bool = ...,
+               allow_none: bool) -> float | None: ...
 
     def number(self, key: str, default: float | None, *, positive: bool = False,
                nonneg: bool = False, allow_none: bool = False) -> float | None:
@@ -404,7 +413,9 @@ class _Section:
         p = self.path + (key,)
         if not isinstance(v, (list, tuple)) or len(v) != 3:
             self.ctx.fail(p, f"expected a list of 3 numbers, got {v!r}")
-        return tuple(self.ctx.number(p + (i,), x, nonneg=nonneg) for i, x in enumerate(v))  # type: ignore[return-value]
+        number = self.ctx.number
+        return (number(p + (0,), v[0], nonneg=nonneg), number(p + (1,), v[1], nonneg=nonneg),
+                number(p + (2,), v[2], nonneg=nonneg))
 
     def section(self, key: str) -> "_Section":
         return _Section(self.raw(key, {}), self.path + (key,), self.ctx)
@@ -421,7 +432,7 @@ class _Ctx:
         self.source = source
         self.lines = lines
 
-    def fail(self, path: tuple, msg: str):
+    def fail(self, path: tuple, msg: str) -> NoReturn:
         line = None
         p = path
         while p and line is None:
@@ -508,7 +519,8 @@ def _inertia(s: _Section) -> Mat3:
         d = [s.ctx.number(p + (i,), x) for i, x in enumerate(v)]
         j = ((d[0], 0.0, 0.0), (0.0, d[1], 0.0), (0.0, 0.0, d[2]))
     elif isinstance(v, (list, tuple)) and len(v) == 3 and all(isinstance(r, (list, tuple)) and len(r) == 3 for r in v):
-        j = tuple(tuple(s.ctx.number(p + (i, k), x) for k, x in enumerate(row)) for i, row in enumerate(v))
+        r = [[s.ctx.number(p + (i, k), x) for k, x in enumerate(row)] for i, row in enumerate(v)]
+        j = ((r[0][0], r[0][1], r[0][2]), (r[1][0], r[1][1], r[1][2]), (r[2][0], r[2][1], r[2][2]))
     else:
         s.ctx.fail(p, "expected 3 principal moments [Jxx, Jyy, Jzz] or a 3x3 matrix, kg m^2")
     for i in range(3):
@@ -525,7 +537,7 @@ def _inertia(s: _Section) -> Mat3:
     if eig[0] + eig[1] < eig[2] * (1.0 - 1e-9):
         s.ctx.fail(p, f"principal moments {', '.join(f'{e:.4g}' for e in eig)} violate the triangle "
                       "inequality (J1 + J2 >= J3): no rigid body has them")
-    return j  # type: ignore[return-value]
+    return j
 
 
 def _spacecraft(s: _Section) -> SpacecraftConfig:
@@ -549,7 +561,7 @@ def _spacecraft(s: _Section) -> SpacecraftConfig:
             c = act.section(fname)
             c.allow(*_COIL_KEYS)
             base = coils[face]
-            kw = {}
+            kw: dict[str, Any] = {}
             for key in _COIL_KEYS:
                 if not c.has(key):
                     continue
@@ -594,13 +606,13 @@ def _reaction_wheels(s: _Section, inertia: Mat3) -> tuple[WheelSpec, ...]:
     if not isinstance(axes_raw, (list, tuple)) or not axes_raw or \
             not all(isinstance(a, (list, tuple)) and len(a) == 3 for a in axes_raw):
         s.ctx.fail(p, "expected a list of spin axes, each 3 numbers in the body frame, e.g. [[1, 0, 0], [0, 1, 0]]")
-    axes = []
+    axes: list[Vec3] = []
     for i, a in enumerate(axes_raw):
-        v = tuple(s.ctx.number(p + (i, k), x) for k, x in enumerate(a))
+        v = (s.ctx.number(p + (i, 0), a[0]), s.ctx.number(p + (i, 1), a[1]), s.ctx.number(p + (i, 2), a[2]))
         n = math.sqrt(sum(x * x for x in v))
         if n == 0.0:
             s.ctx.fail(p + (i,), "a spin axis must not be the zero vector")
-        axes.append(tuple(x / n for x in v))
+        axes.append((v[0] / n, v[1] / n, v[2] / n))
     count = len(axes)
     values: dict[str, list[float]] = {}
     for key, default, check in _WHEEL_NUMBERS:
@@ -674,7 +686,8 @@ def _field(s: _Section) -> FieldConfig:
     model = s.string("model", "dipole", FIELD_MODELS)
     b_orbit = s.vec3("b_orbit_t", (0.0, 0.0, 0.0))
     if model == "orbit_constant" and b_orbit == (0.0, 0.0, 0.0) and not s.has("b_orbit_t"):
-        s.fail("b_orbit_t", "model orbit_constant needs the field in the orbit frame, tesla (e.g. [3.0e-5, 3.0e-5, 3.0e-5])")
+        s.fail("b_orbit_t", "model orbit_constant needs the field in the orbit frame, tesla "
+                            "(e.g. [3.0e-5, 3.0e-5, 3.0e-5])")
     g10 = s.number("g10_nt", IGRF2025_G10_NT)
     g11 = s.number("g11_nt", IGRF2025_G11_NT)
     h11 = s.number("h11_nt", IGRF2025_H11_NT)
@@ -759,7 +772,7 @@ def _initial(s: _Section, seed: int) -> tuple[Quat, str, Vec3]:
         n = math.sqrt(sum(x * x for x in qs))
         if abs(n - 1.0) > 1e-6:
             s.ctx.fail(p, f"must be a unit quaternion (scalar first); its norm is {n:.9g}")
-        q = quat_normalize(qs)  # type: ignore[arg-type]
+        q = quat_normalize((qs[0], qs[1], qs[2], qs[3]))
     att.finish()
 
     rate = s.section("rate")
@@ -772,7 +785,8 @@ def _initial(s: _Section, seed: int) -> tuple[Quat, str, Vec3]:
         if rate.has("omega_rad_s"):
             omega = rate.vec3("omega_rad_s", None)
         else:
-            omega = tuple(math.radians(x) for x in rate.vec3("omega_deg_s", None))
+            w = rate.vec3("omega_deg_s", None)
+            omega = (math.radians(w[0]), math.radians(w[1]), math.radians(w[2]))
     else:
         mag = rate.number("magnitude_deg_s", 0.0, nonneg=True)
         random_axis = rate.boolean("random_axis", False)
@@ -790,10 +804,11 @@ def _initial(s: _Section, seed: int) -> tuple[Quat, str, Vec3]:
             if a == (0.0, 0.0, 0.0):
                 rate.fail("axis", "the rotation axis must not be the zero vector")
         e = unit(a)
-        omega = tuple(math.radians(mag) * x for x in e)
+        r = math.radians(mag)
+        omega = (r * e[0], r * e[1], r * e[2])
     rate.finish()
     s.finish()
-    return q, frame, omega  # type: ignore[return-value]
+    return q, frame, omega
 
 
 def _control(s: _Section, dt: float) -> ControlConfig:
@@ -816,11 +831,13 @@ def _control(s: _Section, dt: float) -> ControlConfig:
     target = wheels.raw("target_q_bo", list(WheelsPdConfig.target_q_bo))
     if not isinstance(target, (list, tuple)) or len(target) != 4:
         wheels.fail("target_q_bo", f"expected 4 numbers (scalar first), got {target!r}")
-    q = tuple(s.ctx.number(wheels.path + ("target_q_bo", i), x) for i, x in enumerate(target))
+    tq = [s.ctx.number(wheels.path + ("target_q_bo", i), x) for i, x in enumerate(target)]
+    q = (tq[0], tq[1], tq[2], tq[3])
     if not math.sqrt(sum(c * c for c in q)) > 0.0:
         wheels.fail("target_q_bo", "the target quaternion must not be zero")
-    wheels_pd = WheelsPdConfig(k_p=wheels.number("k_p", WheelsPdConfig.k_p), k_d=wheels.number("k_d", WheelsPdConfig.k_d),
-                               target_q_bo=q,  # type: ignore[arg-type]
+    wheels_pd = WheelsPdConfig(k_p=wheels.number("k_p", WheelsPdConfig.k_p),
+                               k_d=wheels.number("k_d", WheelsPdConfig.k_d),
+                               target_q_bo=q,
                                limits=wheels.string("limits", WheelsPdConfig.limits, ("report", "wheel")),
                                error=wheels.string("error", WheelsPdConfig.error, ("report", "shortest_path")),
                                dump_gain=wheels.number("dump_gain", WheelsPdConfig.dump_gain, nonneg=True))

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 import random
+from typing import Any
 from dataclasses import dataclass
 
 from detumble.sim.vec import rotate_n_to_b
@@ -87,8 +88,9 @@ def skip_gauss(rng: random.Random, n: int) -> None:
     """
     if n <= 0:
         return
-    if rng.gauss_next is not None:  # the pending second half of a pair is the next draw
-        rng.gauss_next = None
+    held: Any = rng  # CPython's Random keeps gauss's cached half in gauss_next, which typeshed omits
+    if held.gauss_next is not None:  # the pending second half of a pair is the next draw
+        held.gauss_next = None
         n -= 1
     r = rng.random
     while n >= 2:
@@ -167,7 +169,8 @@ class Magnetometer(_SampleHold):
     #: The held sample, gauss (body axes); computed when first read after a deferral.
     sample_gauss = property(lambda self: self._held(), lambda self, value: self._hold(value))
 
-    def measure(self, b_B: tuple[float, float, float], m_coils_B: tuple[float, float, float]) -> tuple[float, float, float]:
+    def measure(self, b_B: tuple[float, float, float],
+                m_coils_B: tuple[float, float, float]) -> tuple[float, float, float]:
         """One noisy, quantised measurement (gauss) of true field ``b_B`` (T) with coils at ``m_coils_B``."""
         if self._pending is not None:  # the deferred sample draws its noise first, as eagerly
             self._resolve()

@@ -47,7 +47,8 @@ class SettlingMetrics:
     def summary(self) -> dict:
         axes = [a.time for a in self.axes]
         channels = axes + ([self.attitude.time] if self.attitude is not None else [])
-        overall = None if any(x is None for x in channels) else max(channels)  # type: ignore[type-var]
+        settled = [x for x in channels if x is not None]
+        overall = max(settled) if len(settled) == len(channels) else None
         out = {
             "settling_time_2pct_s": overall,
             "settling_time_2pct_axes_s": axes,

@@ -83,7 +83,9 @@ class StarTracker:
         n1, n2, n3 = g(0.0, 1.0), g(0.0, 1.0), g(0.0, 1.0)
         sc, sb = self._sc, self._sb
         e1, e2, eb, bias = self.e1, self.e2, self.bore, self._bias
-        return tuple(sc * n1 * e1[i] + sc * n2 * e2[i] + sb * n3 * eb[i] + bias[i] for i in range(3))  # type: ignore[return-value]
+        return (sc * n1 * e1[0] + sc * n2 * e2[0] + sb * n3 * eb[0] + bias[0],
+                sc * n1 * e1[1] + sc * n2 * e2[1] + sb * n3 * eb[1] + bias[1],
+                sc * n1 * e1[2] + sc * n2 * e2[2] + sb * n3 * eb[2] + bias[2])
 
     def measure(self, q_BN: Quat, omega_B: Vec3) -> tuple[Quat, bool]:
         """One sample: ``(q_meas, valid)``; an invalid sample keeps the held attitude."""
@@ -115,5 +117,5 @@ class StarTracker:
         q = tuple(s0[i] + f * (s1[i] - s0[i]) for i in range(4))
         n = 1.0 / math.sqrt(sum(x * x for x in q))
         w = tuple(s0[4 + i] + f * (s1[4 + i] - s0[4 + i]) for i in range(3))
-        q_meas, valid = self.measure((q[0] * n, q[1] * n, q[2] * n, q[3] * n), w)  # type: ignore[arg-type]
+        q_meas, valid = self.measure((q[0] * n, q[1] * n, q[2] * n, q[3] * n), w)
         self.sample_q, self.sample_valid, self.sample_time_ns = q_meas, valid, tk

@@ -54,6 +54,6 @@ def adcs_row(plant, with_field: bool = True) -> list:
     t_mag = cross((m[0] + res[0], m[1] + res[1], m[2] + res[2]), b)
     row += [*plant.m_commanded_B, *m, *t_mag, *plant.gravity_gradient_torque_B(), *plant.wheel_torque_on_body_B()]
     if plant.wheel_count:
-        for h, w, u in zip(plant.wheel_momenta, plant.wheel_speeds_rad_s, plant.wheel_torques_nm):
+        for h, w, u in zip(plant.wheel_momenta, plant.wheel_speeds_rad_s, plant.wheel_torques_nm, strict=True):
             row += [h, w, u]
     return row

@@ -196,7 +196,8 @@ class WheelAssembly:
 
 
 def _friction(spec: WheelSpec, omega_rel: float) -> float:
-    s = omega_rel / spec.coulomb_smoothing_rad_s if spec.coulomb_smoothing_rad_s > 0.0 else math.copysign(1e9, omega_rel)
+    smoothing = spec.coulomb_smoothing_rad_s
+    s = omega_rel / smoothing if smoothing > 0.0 else math.copysign(1e9, omega_rel)
     sat = 1.0 if s > 1.0 else (-1.0 if s < -1.0 else s)
     return -spec.viscous_friction_nms * omega_rel - spec.coulomb_friction_nm * sat
 
@@ -266,11 +267,11 @@ def step_with_wheels(body, state, h, u, wheels: WheelAssembly, dt: float, m_B: V
             uy += u[i] * gy
             uz += u[i] * gz
         k1 = f(x0, hx, hy, hz, -ux, -uy, -uz)
-        xa = [x + a * k for x, k in zip(x0, k1)]
+        xa = [x + a * k for x, k in zip(x0, k1, strict=True)]
         k2 = f(xa, hx + a * ux, hy + a * uy, hz + a * uz, -ux, -uy, -uz)
-        xa = [x + a * k for x, k in zip(x0, k2)]
+        xa = [x + a * k for x, k in zip(x0, k2, strict=True)]
         k3 = f(xa, hx + a * ux, hy + a * uy, hz + a * uz, -ux, -uy, -uz)
-        xa = [x + dt * k for x, k in zip(x0, k3)]
+        xa = [x + dt * k for x, k in zip(x0, k3, strict=True)]
         k4 = f(xa, hx + dt * ux, hy + dt * uy, hz + dt * uz, -ux, -uy, -uz)
         new_h = tuple(h[i] + u[i] * dt for i in rng_n)
     else:
@@ -294,14 +295,14 @@ def step_with_wheels(body, state, h, u, wheels: WheelAssembly, dt: float, m_B: V
 
         e, l1 = wheel_terms(x0, h)
         k1 = f(x0, *e)
-        xa = [x + a * k for x, k in zip(x0, k1)]
-        e, l2 = wheel_terms(xa, [hi + a * d for hi, d in zip(h, l1)])
+        xa = [x + a * k for x, k in zip(x0, k1, strict=True)]
+        e, l2 = wheel_terms(xa, [hi + a * d for hi, d in zip(h, l1, strict=True)])
         k2 = f(xa, *e)
-        xa = [x + a * k for x, k in zip(x0, k2)]
-        e, l3 = wheel_terms(xa, [hi + a * d for hi, d in zip(h, l2)])
+        xa = [x + a * k for x, k in zip(x0, k2, strict=True)]
+        e, l3 = wheel_terms(xa, [hi + a * d for hi, d in zip(h, l2, strict=True)])
         k3 = f(xa, *e)
-        xa = [x + dt * k for x, k in zip(x0, k3)]
-        e, l4 = wheel_terms(xa, [hi + dt * d for hi, d in zip(h, l3)])
+        xa = [x + dt * k for x, k in zip(x0, k3, strict=True)]
+        e, l4 = wheel_terms(xa, [hi + dt * d for hi, d in zip(h, l3, strict=True)])
         k4 = f(xa, *e)
         new_h = tuple(h[i] + c * (l1[i] + 2.0 * (l2[i] + l3[i]) + l4[i]) for i in rng_n)
     q = [x0[j] + c * (k1[j] + 2.0 * (k2[j] + k3[j]) + k4[j]) for j in range(7)]

@@ -23,6 +23,7 @@ Plots: ``attitude_mode.png`` (mode vs time), ``pointing_error.png``, ``wheel_mom
 from __future__ import annotations
 
 import csv
+from typing import Any
 import math
 import os
 import pathlib
@@ -61,7 +62,7 @@ def error_statistics(values: list[float], skip_fraction: float = 0.1) -> dict | 
 def settle_time(times: list[float], ok: list[bool], start: float) -> float | None:
     """Seconds from ``start`` to the first sample after which ``ok`` holds to the end (None if never)."""
     last_bad = None
-    for t, good in zip(times, ok):
+    for t, good in zip(times, ok, strict=True):
         if t >= start and not good:
             last_bad = t
     after = [t for t in times if t >= start and (last_bad is None or t > last_bad)]
@@ -87,7 +88,7 @@ class AttitudeRunReport:
         self.spacecraft = spacecraft
         self.controller_name = controller
         self.interval_us = max(1, round(sample_interval_s * US_PER_S))
-        self.controller = None
+        self.controller: Any = None  # the AttitudeController instance, found by name at begin()
         self.start_us = 0
         self._next_us = 0
         self.rows: list[tuple] = []
@@ -226,7 +227,7 @@ class AttitudeRunReport:
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
 
-        from detumble.sitl.run_support import _save
+        from detumble.sitl.plots import _save
 
         stride = max(1, len(self.rows) // 6000)
         rows = self.rows[::stride]
@@ -246,10 +247,10 @@ class AttitudeRunReport:
         plt.close(fig)
 
         fig, ax = plt.subplots(figsize=(9, 4))
-        pe = [(a, r[2]) for a, r in zip(tt, rows) if r[1] == ControlMode.POINTING and r[2] > 0]
+        pe = [(a, r[2]) for a, r in zip(tt, rows, strict=True) if r[1] == ControlMode.POINTING and r[2] > 0]
         if pe:
             ax.semilogy([p[0] for p in pe], [p[1] for p in pe], ".", ms=1.5, label="pointing error (POINTING)")
-        se = [(a, r[3]) for a, r in zip(tt, rows) if r[1] == ControlMode.SPIN_STABLE and r[3] > 0]
+        se = [(a, r[3]) for a, r in zip(tt, rows, strict=True) if r[1] == ControlMode.SPIN_STABLE and r[3] > 0]
         if se:
             ax.semilogy([p[0] for p in se], [p[1] for p in se], ".", ms=1.5, label="momentum to +Z (SPIN_STABLE)")
         ax.axhline(0.1, color="tab:red", ls=":", lw=1, label="0.1°")

@@ -46,7 +46,7 @@ class BdotModule(sysModel.SysModel):
         self.cmdOutMsg = messaging.MTBCmdMsg()
         self.gain = gain
         self.step_s = step_s
-        self.previous = None
+        self.previous: list[float] | None = None
         self.below_1_deg_s = None
 
     def Reset(self, CurrentSimNanos):

@@ -10,6 +10,7 @@ import time
 
 from fprime_lite.deploy.deployment import Deployment
 from fprime_lite.deploy.topology_loader import load_topology
+from fprime_lite.svc.rate_groups import RateGroupBase
 from fprime_lite.tools.plugins import BenchPiece
 
 __all__ = ["measure_deployment", "DEPLOYMENT_PIECE"]
@@ -38,6 +39,8 @@ def measure_deployment(topology, duration_s: float | None = None, chunks: int | 
     if duration_s is None:
         duration_s = round(orbit_s)
     rg50 = loaded.topology.instance(TICK_RATE_GROUP).component
+    if not isinstance(rg50, RateGroupBase):
+        raise ValueError(f"{TICK_RATE_GROUP} is a {type(rg50).__name__}, not a rate group")
     deployment.start()
     if chunks is None:
         chunks = max(8, round(duration_s / 300.0))
@@ -54,6 +57,8 @@ def measure_deployment(topology, duration_s: float | None = None, chunks: int | 
         plant = plant_only(scenario, law="bdot", duration_s=chunk_s).summary
         plant_us.append(plant["wall_seconds"] / plant["steps"] * 1e6)
     timer = loaded.timer
+    if timer is None:
+        raise ValueError("the bench deployment has no rate-group timer (topology 'rate_groups')")
     return {
         "scenario": scenario.name,
         "sim_seconds": duration_s,
@@ -68,7 +73,8 @@ def measure_deployment(topology, duration_s: float | None = None, chunks: int | 
         "plant_only_us_per_tick": min(plant_us),
         "plant_only_us_per_tick_median": sorted(plant_us)[len(plant_us) // 2],
         "tick_cost_ratio": min(deployment_us) / min(plant_us),
-        "tick_cost_ratio_median_of_pieces": statistics.median(d / p for d, p in zip(deployment_us, plant_us)),
+        "tick_cost_ratio_median_of_pieces": statistics.median(
+            d / p for d, p in zip(deployment_us, plant_us, strict=True)),
         "pieces_us_per_tick": {"deployment": deployment_us, "plant_only": plant_us},
         "final_rate_deg_s": spacecraft.truth().rate_deg_s,
     }

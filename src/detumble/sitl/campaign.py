@@ -79,7 +79,8 @@ def _prepare(req: RunRequest) -> Prepared:
         if r.adcs_header:  # the ADCS columns (wheel momenta, pointing error) the metrics may use
             for j, name in enumerate(r.adcs_header):
                 if name.startswith("h") and name.endswith("_Nms") or name == "pointing_error_deg":
-                    trace[name] = np.array([np.nan if row[j] in ("", None) else float(row[j]) for row in r.adcs_rows])
+                    trace[name] = np.array([np.nan if row[j] in ("", None) else float(row[j])
+                                            for row in r.adcs_rows or ()])
         return RunOutput(summary=r.summary, trace=trace,
                          stopped_early=r.summary["sim_seconds"] < duration - 1e-9)
 
@@ -227,9 +228,9 @@ class CoilEnergyMeter:
             coil = coils.get(face)
             before = coil.level if coil is not None else 0
             original(face, level)
-            if coil.level != before:
+            if coil is not None and coil.level != before:
                 self._account(face, before)
-        acts.set_level = set_level  # CoilSet.apply_dipole_B and the drivers both come through here
+        setattr(acts, "set_level", set_level)  # CoilSet.apply_dipole_B and the drivers both come through here
 
     def _power_w(self, face: int, level: int) -> float:
         spec = self.coils[face].spec

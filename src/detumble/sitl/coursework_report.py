@@ -10,6 +10,7 @@ so ``summary.json`` carries the same ``settling_time_2pct_s``, ``settling_time_2
 from __future__ import annotations
 
 import csv
+from typing import Any, TextIO
 import math
 import os
 import pathlib
@@ -43,8 +44,8 @@ class CourseworkRunReport:
         self.metrics: SettlingMetrics | None = None
         self._count = 0
         self._path: pathlib.Path | None = None
-        self._file = None
-        self._writer = None
+        self._file: TextIO | None = None
+        self._writer: Any = None  # a csv writer (its class is private to _csv)
 
     def begin(self, deployment, out_dir: pathlib.Path) -> None:
         plant = self.spacecraft.plant
@@ -52,8 +53,8 @@ class CourseworkRunReport:
         self.metrics = SettlingMetrics(plant, omega_final=(0.0, -plant.orbit.mean_motion, 0.0),
                                        include_attitude=self.wheel_law)
         self._path = pathlib.Path(out_dir) / "truth.csv"
-        self._file = open(self._path.with_name(".truth.csv.part"), "w", encoding="utf-8", newline="")
-        self._writer = csv.writer(self._file, lineterminator="\n")
+        self._file = fh = open(self._path.with_name(".truth.csv.part"), "w", encoding="utf-8", newline="")
+        self._writer = csv.writer(fh, lineterminator="\n")
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s",
                                *adcs_header(plant, with_field=True)])
         self.spacecraft.set_trace(self._sample, self.metrics_us)

@@ -28,16 +28,16 @@ from __future__ import annotations
 import logging
 import math
 
-from fprime_lite import (F64, I32, Channel, CmdResponse, Event, FwEnum, Param, PassiveComponent,
+from fprime_lite import (F64, I32, Channel, Event, FwEnum, Param, PassiveComponent,
                          PortType, Sched, Severity, Struct, sync_command, sync_input)
 from fprime_lite.model.types import U8
 
-from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet, MagneticField, MagneticFieldGet, Result,
-                     SamplingPeriodGet, Success, TimeIntervalValue)
+from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet, MagneticField, MagneticFieldGet,
+                                       Result, SamplingPeriodGet, Success, TimeIntervalValue)
 from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 # the gyro types are shared with the attitude controller, which may not import sitl
-from detumble.components.attitude_types import AngularVelocity, AngularVelocityGet  # noqa: E402
+from detumble.components.attitude_types import AngularVelocity, AngularVelocityGet
 
 __all__ = ["ImuManager", "AxisOrientation", "Acceleration", "AngularVelocity", "AccelerationGet", "AngularVelocityGet",
            "Lis2mdlSamplingFrequency", "Lsm6dsoSamplingFrequency", "SimImuSensor", "SimReadFault",
@@ -266,25 +266,25 @@ class ImuManager(PassiveComponent):
     # --- commands (flight) ---------------------------------------------------------------------
 
     @sync_command()
-    def GET_ACCELERATION(self):  # noqa: N802
+    def GET_ACCELERATION(self):
         """Read the accelerometer and log AccelerationData (as flown: OK, zeros after a failed read)."""
         value, _ = self.accelerationGet_handler()
         self.AccelerationData(value.x, value.y, value.z)
 
     @sync_command()
-    def GET_ANGULAR_VELOCITY(self):  # noqa: N802
+    def GET_ANGULAR_VELOCITY(self):
         """Read the gyro and log AngularVelocityData (rad/s)."""
         value, _ = self.angularVelocityGet_handler()
         self.AngularVelocityData(value.x, value.y, value.z)
 
     @sync_command()
-    def GET_MAGNETIC_FIELD(self):  # noqa: N802
+    def GET_MAGNETIC_FIELD(self):
         """Read the magnetometer and log MagneticFieldData (gauss)."""
         value, _ = self.magneticFieldGet_handler()
         self.MagneticFieldData(value.x, value.y, value.z)
 
     @sync_command()
-    def SIM_SET_READ_FAULT(self, sensor: SimImuSensor, fault: SimReadFault):  # noqa: N802 - F´ spelling
+    def SIM_SET_READ_FAULT(self, sensor: SimImuSensor, fault: SimReadFault):
         """SIMULATION ONLY: inject (or clear with NONE) a read fault on ``sensor``."""
         self.set_read_fault(sensor, fault)
 
@@ -343,7 +343,7 @@ class ImuManager(PassiveComponent):
             values = (_INF, _INF, _INF) + tuple(values[3:])
         return values, (values[3] if len(values) > 3 else None), True
 
-    def accelerationGet_handler(self) -> Result:  # noqa: N802 - mirrors the flight handler name
+    def accelerationGet_handler(self) -> Result:
         v, _, ok = self._read(SimImuSensor.ACCELEROMETER, self.spacecraft.acceleration,
                               self.Lsm6dsoDeviceNotReady)
         if not ok:
@@ -352,7 +352,7 @@ class ImuManager(PassiveComponent):
         self.Acceleration.write(value)
         return Result(value, Success.SUCCESS)
 
-    def angularVelocityGet_handler(self) -> Result:  # noqa: N802
+    def angularVelocityGet_handler(self) -> Result:
         v, _, ok = self._read(SimImuSensor.GYROSCOPE, self.spacecraft.gyro_sample, self.Lsm6dsoDeviceNotReady)
         if not ok:
             return Result(AngularVelocity(0.0, 0.0, 0.0), Success.FAILURE)
@@ -360,7 +360,7 @@ class ImuManager(PassiveComponent):
         self.AngularVelocity.write(value)
         return Result(value, Success.SUCCESS)
 
-    def magneticFieldGet_handler(self) -> Result:  # noqa: N802
+    def magneticFieldGet_handler(self) -> Result:
         v, stamp, ok = self._read(SimImuSensor.MAGNETOMETER, self.spacecraft.magnetometer_sample,
                                   self.Lis2mdlDeviceNotReady)
         if not ok:

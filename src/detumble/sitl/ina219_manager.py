@@ -30,17 +30,17 @@ class Ina219Manager(PassiveComponent):
     """The INA219 on ``rail`` (``system`` or ``solar``) of ``spacecraft``."""
 
     @sync_input(VoltageGet)
-    def voltageGet(self) -> float:  # noqa: N802
+    def voltageGet(self) -> float:
         """Bus voltage, V."""
         return self._read(0, self.Voltage)
 
     @sync_input(CurrentGet)
-    def currentGet(self) -> float:  # noqa: N802
+    def currentGet(self) -> float:
         """Current, A."""
         return self._read(1, self.Current)
 
     @sync_input(PowerGet)
-    def powerGet(self) -> float:  # noqa: N802
+    def powerGet(self) -> float:
         """Power, W."""
         return self._read(2, self.Power)
 
@@ -54,19 +54,19 @@ class Ina219Manager(PassiveComponent):
     PowerReading = Event(Severity.ACTIVITY_LO, "Power: {} W", power=F64)
 
     @sync_command()
-    def GetVoltage(self):  # noqa: N802
+    def GetVoltage(self):
         self.VoltageReading(self.voltageGet())
 
     @sync_command()
-    def GetCurrent(self):  # noqa: N802
+    def GetCurrent(self):
         self.CurrentReading(self.currentGet())
 
     @sync_command()
-    def GetPower(self):  # noqa: N802
+    def GetPower(self):
         self.PowerReading(self.powerGet())
 
     @sync_command()
-    def SIM_SET_NOT_READY(self, not_ready: BOOL):  # noqa: N802
+    def SIM_SET_NOT_READY(self, not_ready: BOOL):
         """SIMULATION ONLY: make the device (not) ready."""
         self.not_ready = bool(not_ready)
 
@@ -85,6 +85,7 @@ class Ina219Manager(PassiveComponent):
         """``(V, A, W)`` as the device reports them (quantised)."""
         self.spacecraft.sync()
         eps = self.spacecraft.power
+        assert eps is not None  # checked in __init__
         v, i, _ = eps.system_reading() if self.rail == "system" else eps.solar_reading()
         v = round(v / VOLTAGE_LSB_V) * VOLTAGE_LSB_V
         i = round(i / CURRENT_LSB_A) * CURRENT_LSB_A

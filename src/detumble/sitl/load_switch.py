@@ -36,17 +36,17 @@ class LoadSwitch(PassiveComponent):
     """Switch ``switch`` (``face0`` … ``face5``, ``payloadPower``, ``payloadBattery``) of ``spacecraft``."""
 
     @sync_command()
-    def TURN_ON(self):  # noqa: N802
+    def TURN_ON(self):
         """Close the switch."""
         self.set_state(On.ON)
 
     @sync_command()
-    def TURN_OFF(self):  # noqa: N802
+    def TURN_OFF(self):
         """Open the switch."""
         self.set_state(On.OFF)
 
     @sync_command()
-    def GET_IS_ON(self):  # noqa: N802
+    def GET_IS_ON(self):
         """Report the state (IsOn event)."""
         self.IsOn(self.state)
 
@@ -59,11 +59,11 @@ class LoadSwitch(PassiveComponent):
     loadSwitchStateChanged = OutputPort(LoadSwitchStateChanged, size=STATE_CHANGED_PORTS)
 
     @sync_input(Signal)
-    def turnOn(self) -> None:  # noqa: N802
+    def turnOn(self) -> None:
         self.set_state(On.ON)
 
     @sync_input(Signal)
-    def turnOff(self) -> None:  # noqa: N802
+    def turnOff(self) -> None:
         self.set_state(On.OFF)
 
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, switch: str, *, base_id: int = 0):

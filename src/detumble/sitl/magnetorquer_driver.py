@@ -50,8 +50,8 @@ from fprime_lite import (I8, I32, Channel, CmdResponse, Event, FwEnum, PassiveCo
 from fprime_lite.model.fw_types import On
 from fprime_lite.model.types import U8
 
-from detumble.control.coil_layout import COIL_FACES
-from detumble.sim.coils import FACE_NAMES, MAX_LEVEL
+from detumble.control.coil_layout import COIL_FACES, Face
+from detumble.sim.coils import FACE_NAMES, MAX_LEVEL, CoilSet
 from detumble.components.types import StartMagnetorquer, StopMagnetorquer, Success
 from detumble.sitl.ports import LoadSwitchStateChanged
 from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
@@ -112,7 +112,7 @@ class MagnetorquerDriver(PassiveComponent):
         return self._apply(0)
 
     @sync_input(LoadSwitchStateChanged)
-    def loadSwitchStateChanged(self, state: On) -> Success:  # noqa: N802
+    def loadSwitchStateChanged(self, state: On) -> Success:
         """The face's power changed: OFF de-initialises the device, ON starts the settling time."""
         self._switch_on = state == On.ON
         if not self._switch_on:
@@ -124,7 +124,7 @@ class MagnetorquerDriver(PassiveComponent):
     # --- commands ------------------------------------------------------------------------------
 
     @sync_command()
-    def START(self, val: I8):  # noqa: N802 - F´ spelling
+    def START(self, val: I8):
         """Drive the coil at ``val`` (−127…127)."""
         if not _valid_level(val):
             self._start(val)
@@ -132,12 +132,12 @@ class MagnetorquerDriver(PassiveComponent):
         return CmdResponse.OK if self._start(val) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
 
     @sync_command()
-    def STOP(self):  # noqa: N802
+    def STOP(self):
         """Switch the coil off."""
         return CmdResponse.OK if self._apply(0) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
 
     @sync_command()
-    def SIM_SET_FAULT(self, fault: SimDriverFault):  # noqa: N802
+    def SIM_SET_FAULT(self, fault: SimDriverFault):
         """SIMULATION ONLY: inject a driver fault (NONE clears it)."""
         self.set_fault(fault)
 
@@ -163,9 +163,11 @@ class MagnetorquerDriver(PassiveComponent):
                              f"{list(spacecraft.coil_faces) or 'none (ideal torque rods)'}")
         self.spacecraft = spacecraft
         self.face = face
-        self.face_name = FACE_NAMES[face]
+        self.face_name = FACE_NAMES[Face(face)]
         self.fault = SimDriverFault.NONE
-        self._coil = spacecraft.plant.actuators.coils[face]  # read-only: the level the coil carries
+        actuators = spacecraft.plant.actuators
+        assert isinstance(actuators, CoilSet)  # the spacecraft has a coil on this face
+        self._coil = actuators.coils[face]  # read-only: the level the coil carries
         self._switch_on = spacecraft.face_powered(face)
         self._initialized = self._switch_on
         self._ready_at_us = spacecraft.clock.current_us

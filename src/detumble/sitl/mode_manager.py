@@ -91,6 +91,9 @@ class ModeManager(PassiveComponent):
         initial_mode: the mode before any state is restored (NORMAL).
     """
 
+    # Instance state, set in __init__ (declared here: the handlers above it use it).
+    _low_voltage_s: int
+
     # --- ports (flight order) ------------------------------------------------------------------
 
     @sync_input(Sched)
@@ -128,7 +131,7 @@ class ModeManager(PassiveComponent):
         self.SafeModeEntryCount.write(self.safe_mode_entries)
 
     @sync_input(CmdResponsePort)
-    def completeSequence(self, opcode: int, cmd_seq: int, response: CmdResponse) -> None:  # noqa: N802
+    def completeSequence(self, opcode: int, cmd_seq: int, response: CmdResponse) -> None:
         """The safe-mode sequence finished."""
         if response == CmdResponse.OK:
             self.SafeModeSequenceCompleted()
@@ -136,7 +139,7 @@ class ModeManager(PassiveComponent):
             self.SafeModeSequenceFailed(response)
 
     @sync_input(ForceSafeModeWithReason)
-    def forceSafeMode(self, reason: SafeModeReason) -> None:  # noqa: N802
+    def forceSafeMode(self, reason: SafeModeReason) -> None:
         """Another component forces safe mode (NONE = EXTERNAL_REQUEST); ignored in safe mode."""
         if self.mode == SystemMode.SAFE_MODE:
             self.SafeModeRequestIgnored()
@@ -147,18 +150,18 @@ class ModeManager(PassiveComponent):
         self._enter_safe_mode(SafeModeReason.EXTERNAL_REQUEST if reason == SafeModeReason.NONE else reason)
 
     @sync_input(GetSystemMode)
-    def getMode(self) -> SystemMode:  # noqa: N802
+    def getMode(self) -> SystemMode:
         """The current system mode."""
         return self.mode
 
     @sync_input(Signal)
-    def prepareForReboot(self) -> None:  # noqa: N802
+    def prepareForReboot(self) -> None:
         """An intentional reboot follows: persist the state with the clean-shutdown flag set."""
         self.PreparingForReboot()
         self._save_state(clean=True, operation="shutdown")
 
     @sync_input(Signal)
-    def packetRouted(self) -> None:  # noqa: N802
+    def packetRouted(self) -> None:
         """A packet reached the router: restart the command-loss timer."""
         self._command_loss_s = 0
         self._command_loss_latched = False
@@ -173,7 +176,7 @@ class ModeManager(PassiveComponent):
     # --- commands ------------------------------------------------------------------------------
 
     @sync_command()
-    def FORCE_SAFE_MODE(self):  # noqa: N802
+    def FORCE_SAFE_MODE(self):
         """Enter safe mode with reason GROUND_COMMAND (OK and nothing changes when already there)."""
         if self.mode == SystemMode.SAFE_MODE:
             return CmdResponse.OK
@@ -183,18 +186,18 @@ class ModeManager(PassiveComponent):
         return CmdResponse.OK
 
     @sync_command()
-    def EXIT_SAFE_MODE(self):  # noqa: N802
+    def EXIT_SAFE_MODE(self):
         """Return to NORMAL, whatever the reason (the flight command always answers OK)."""
         self._exit_safe_mode()
         return CmdResponse.OK
 
     @sync_command()
-    def GET_CURRENT_MODE(self):  # noqa: N802
+    def GET_CURRENT_MODE(self):
         """Report the mode (CurrentModeReading)."""
         self.CurrentModeReading(self.mode)
 
     @sync_command()
-    def GET_SAFE_MODE_REASON(self):  # noqa: N802
+    def GET_SAFE_MODE_REASON(self):
         """Report the safe-mode reason (CurrentSafeModeReasonReading)."""
         self.CurrentSafeModeReasonReading(self.reason)
 

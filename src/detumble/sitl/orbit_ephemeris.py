@@ -15,7 +15,7 @@ class OrbitEphemeris(PassiveComponent):
     """Answers ``orbitFrameGet`` with ``q_ON`` (scalar first), the orbit rate and the time."""
 
     @sync_input(OrbitFrameGet)
-    def orbitFrameGet(self) -> Result:  # noqa: N802 - F´ spelling
+    def orbitFrameGet(self) -> Result:
         (q0, q1, q2, q3), n, stamp = self.spacecraft.orbit_frame_sample()
         return Result(OrbitFrame(q0, q1, q2, q3, n, stamp), Success.SUCCESS)
 

@@ -60,7 +60,7 @@ def read_truth(path: pathlib.Path, max_points: int | None = _MAX_PLOT_POINTS) ->
             columns[name] = []
         for i, row in enumerate(reader):
             if i % stride == 0 or i == rows - 1:
-                for name, value in zip(header, row):
+                for name, value in zip(header, row, strict=True):
                     columns[name].append(value)
     for name in list(columns):
         if name != "strategy":
@@ -130,7 +130,7 @@ def plot_truth(truth_csv: pathlib.Path, out_dir: pathlib.Path, *, thresholds: di
         ax1.plot(tt, data[axis], lw=0.8, color=colour, label=label)
     ax1.set_ylabel("body rate (deg/s)")
     ax2.plot(tt, data["rate_deg_s"], color="black", lw=1.0, label="|ω|")
-    for (name, value), style in zip((thresholds or {}).items(), ("--", ":")):
+    for (name, value), style in zip((thresholds or {}).items(), ("--", ":"), strict=False):
         ax2.axhline(value, color="tab:orange", ls=style, lw=1.0, label=f"{name} {value:g} deg/s")
     ax2.set_ylabel("|ω| (deg/s)")
     ax2.set_yscale("log")
@@ -143,10 +143,11 @@ def plot_truth(truth_csv: pathlib.Path, out_dir: pathlib.Path, *, thresholds: di
     if levels.size:
         bins = min(_HEAT_BINS, levels.shape[1])
         edges = np.linspace(0, levels.shape[1], bins + 1).astype(int)
-        mean = np.array([[row[a:b].mean() if b > a else np.nan for a, b in zip(edges[:-1], edges[1:])]
+        mean = np.array([[row[a:b].mean() if b > a else np.nan for a, b in zip(edges[:-1], edges[1:], strict=True)]
                          for row in levels])
         on_edges = np.linspace(0, levels.shape[1], min(_SHARE_BINS, levels.shape[1]) + 1).astype(int)
-        on = np.array([[(row[a:b] != 0).mean() if b > a else np.nan for a, b in zip(on_edges[:-1], on_edges[1:])]
+        on = np.array([[(row[a:b] != 0).mean() if b > a else np.nan
+                        for a, b in zip(on_edges[:-1], on_edges[1:], strict=True)]
                        for row in levels])
         labels = [FACE_LABELS[f] for f in COIL_FACES][:len(levels)]
         fig = plt.figure(figsize=(10, 5.5))
@@ -163,7 +164,7 @@ def plot_truth(truth_csv: pathlib.Path, out_dir: pathlib.Path, *, thresholds: di
         bar = fig.colorbar(mesh, cax=fig.add_subplot(grid[0, 1]))
         bar.set_label("mean drive level")
         on_t = [tt[min(i, len(tt) - 1)] for i in on_edges]
-        for row, label in zip(on, labels):
+        for row, label in zip(on, labels, strict=True):
             ax2.stairs(row * 100, on_t, lw=1.0, label=label)
         ax2.set_ylabel("time driven (%)")
         ax2.set_ylim(-3, 103)
@@ -195,7 +196,8 @@ def plot_truth(truth_csv: pathlib.Path, out_dir: pathlib.Path, *, thresholds: di
         fig, ax = plt.subplots(figsize=(10, 4))
         for axis, colour in (("bx_uT", "tab:red"), ("by_uT", "tab:green"), ("bz_uT", "tab:blue")):
             ax.plot(tt, data[axis], lw=0.8, color=colour, label=f"B{axis[1]} (body)")
-        magnitude = [math.sqrt(x * x + y * y + z * z) for x, y, z in zip(data["bx_uT"], data["by_uT"], data["bz_uT"])]
+        magnitude = [math.sqrt(x * x + y * y + z * z)
+                     for x, y, z in zip(data["bx_uT"], data["by_uT"], data["bz_uT"], strict=True)]
         ax.plot(tt, magnitude, lw=1.0, color="black", label="|B|")
         ax.set_ylabel("geomagnetic field (µT)")
         finish(fig, [ax], "field.png", "Geomagnetic field in the body frame (truth)")
@@ -225,9 +227,9 @@ def plot_truth(truth_csv: pathlib.Path, out_dir: pathlib.Path, *, thresholds: di
     if "q0" in data:
         error = data.get("pointing_error_deg")
         has_error = error is not None and any(not math.isnan(v) for v in error)
-        fig, axes = plt.subplots(2 if has_error else 1, 1, sharex=True, figsize=(10, 6 if has_error else 4),
+        fig, rows = plt.subplots(2 if has_error else 1, 1, sharex=True, figsize=(10, 6 if has_error else 4),
                                  squeeze=False)
-        axes = [a[0] for a in axes]
+        axes = [a[0] for a in rows]
         for q, colour in (("q0", "black"), ("q1", "tab:red"), ("q2", "tab:green"), ("q3", "tab:blue")):
             axes[0].plot(tt, data[q], lw=0.8, color=colour, label=q)
         axes[0].set_ylabel("q_BN (scalar first)")

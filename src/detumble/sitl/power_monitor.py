@@ -43,18 +43,18 @@ class PowerMonitor(PassiveComponent):
     solPowerGet = OutputPort(PowerGet)
 
     @sync_command()
-    def RESET_TOTAL_POWER(self):  # noqa: N802
+    def RESET_TOTAL_POWER(self):
         self.total_power_mwh = 0.0
         self._last_s = self._now_s()
         self.TotalPowerReset()
 
     @sync_command()
-    def RESET_TOTAL_GENERATION(self):  # noqa: N802
+    def RESET_TOTAL_GENERATION(self):
         self.total_generation_mwh = 0.0
         self.TotalGenerationReset()
 
     @sync_command()
-    def GET_TOTAL_POWER(self):  # noqa: N802
+    def GET_TOTAL_POWER(self):
         self.TotalPowerConsumptionReading(self.total_power_mwh)
 
     TotalPowerConsumption = Channel(F32)

@@ -23,9 +23,10 @@ and sets the motor torque to 0, the safe state.
 
 Fault injection (simulation only): :meth:`ReactionWheelDriver.set_fault` or ``SIM_SET_FAULT``:
 ``NOT_READY`` — the wheel does not answer: commands fail (DeviceNotReady, throttled), reads fail,
-and the motor is switched off at once (it coasts; once the fault is cleared it needs ENABLE); ``STUCK`` — the wheel keeps the torque or speed
-it was last given and every command fails (DeviceNotReady); ``READ_FAIL`` — reads fail
-(WheelReadFailed, throttled), commands still work; ``READ_NAN`` — reads succeed with NaN values.
+and the motor is switched off at once (it coasts; once the fault is cleared it needs ENABLE);
+``STUCK`` — the wheel keeps the torque or speed it was last given and every command fails
+(DeviceNotReady); ``READ_FAIL`` — reads fail (WheelReadFailed, throttled), commands still work;
+``READ_NAN`` — reads succeed with NaN values.
 """
 
 from __future__ import annotations
@@ -73,22 +74,22 @@ class ReactionWheelDriver(PassiveComponent):
     # --- ports ---------------------------------------------------------------------------------
 
     @sync_input(WheelTorqueSet)
-    def torqueSet(self, torque: float) -> Success:  # noqa: N802 - F´ spelling
+    def torqueSet(self, torque: float) -> Success:
         """Motor torque in N·m along the spin axis; clipped to ±max_torque."""
         return self._command_torque(torque)
 
     @sync_input(WheelSpeedSet)
-    def speedSet(self, speed: float) -> Success:  # noqa: N802
+    def speedSet(self, speed: float) -> Success:
         """Speed set-point relative to the body, rad/s."""
         return self._command_speed(speed)
 
     @sync_input(WheelEnableSet)
-    def enableSet(self, enable: bool) -> Success:  # noqa: N802
+    def enableSet(self, enable: bool) -> Success:
         """Motor on (TORQUE mode at 0 N·m) or off (coasting)."""
         return self._enable(bool(enable))
 
     @sync_input(WheelStateGet)
-    def wheelStateGet(self) -> Result:  # noqa: N802
+    def wheelStateGet(self) -> Result:
         """The wheel's speed, momentum, applied torque, mode and the reading's time."""
         return self._read()
 
@@ -110,7 +111,7 @@ class ReactionWheelDriver(PassiveComponent):
     # --- commands ------------------------------------------------------------------------------
 
     @sync_command()
-    def SET_TORQUE(self, torque: F64):  # noqa: N802
+    def SET_TORQUE(self, torque: F64):
         """Command the motor torque, N·m (clipped to ±max_torque)."""
         if not math.isfinite(torque):
             self._command_torque(torque)
@@ -118,7 +119,7 @@ class ReactionWheelDriver(PassiveComponent):
         return CmdResponse.OK if self._command_torque(torque) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
 
     @sync_command()
-    def SET_SPEED(self, speed: F64):  # noqa: N802
+    def SET_SPEED(self, speed: F64):
         """Command the wheel speed relative to the body, rad/s."""
         if not math.isfinite(speed):
             self._command_speed(speed)
@@ -126,17 +127,17 @@ class ReactionWheelDriver(PassiveComponent):
         return CmdResponse.OK if self._command_speed(speed) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
 
     @sync_command()
-    def ENABLE(self):  # noqa: N802
+    def ENABLE(self):
         """Switch the motor on (TORQUE mode, 0 N·m)."""
         return CmdResponse.OK if self._enable(True) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
 
     @sync_command()
-    def DISABLE(self):  # noqa: N802
+    def DISABLE(self):
         """Switch the motor off: the wheel coasts (friction still acts)."""
         return CmdResponse.OK if self._enable(False) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
 
     @sync_command()
-    def SIM_SET_FAULT(self, fault: SimWheelFault):  # noqa: N802
+    def SIM_SET_FAULT(self, fault: SimWheelFault):
         """SIMULATION ONLY: inject a wheel fault (NONE clears it)."""
         self.set_fault(fault)
 
@@ -173,8 +174,8 @@ class ReactionWheelDriver(PassiveComponent):
             raise TypeError(f"{name}: spacecraft must be a SimulatedSpacecraft, got {spacecraft!r}")
         n = spacecraft.wheel_count
         if isinstance(wheel, bool) or not isinstance(wheel, int) or not 0 <= wheel < n:
-            raise ValueError(f"{name}: spacecraft has no wheel {wheel!r}; it has "
-                             f"{f'wheels 0..{n - 1}' if n else 'no reaction wheels (scenario spacecraft.reaction_wheels)'}")
+            has = f"wheels 0..{n - 1}" if n else "no reaction wheels (scenario spacecraft.reaction_wheels)"
+            raise ValueError(f"{name}: spacecraft has no wheel {wheel!r}; it has {has}")
         self.spacecraft = spacecraft
         self.wheel = wheel
         self.max_torque_nm, self.max_momentum_nms = spacecraft.wheel_limits(wheel)
@@ -264,7 +265,7 @@ class ReactionWheelDriver(PassiveComponent):
             return Result(WheelState(_NAN, _NAN, _NAN, self.mode, self.spacecraft.now()), Success.FAILURE)
         try:
             speed, h, u, stamp = self.spacecraft.wheel_sample(self.wheel)
-        except Exception:  # noqa: BLE001 - a plant fault is a failed read, never an exception
+        except Exception:  # a plant fault is a failed read, never an exception
             self.handler_faults += 1
             log.exception("%s: reading wheel %d raised", self.name, self.wheel)
             self.WheelReadFailed()
@@ -277,7 +278,7 @@ class ReactionWheelDriver(PassiveComponent):
     def _plant_call(self, fn, *args) -> bool:
         try:
             fn(*args)
-        except Exception:  # noqa: BLE001 - a plant fault is a failed command, never an exception
+        except Exception:  # a plant fault is a failed command, never an exception
             self.handler_faults += 1
             log.exception("%s: %s%r raised", self.name, getattr(fn, "__name__", fn), args)
             self.DeviceNotReady()

@@ -24,12 +24,12 @@ class ResetManager(PassiveComponent):
     """Resets the flight computer of ``spacecraft`` (instance ``resetManager``)."""
 
     @sync_command()
-    def COLD_RESET(self):  # noqa: N802
+    def COLD_RESET(self):
         self.defer_command_response()  # never answered: the processor resets
         self._reset("cold")
 
     @sync_command()
-    def WARM_RESET(self):  # noqa: N802
+    def WARM_RESET(self):
         self.defer_command_response()
         self._reset("warm")
 
@@ -37,11 +37,11 @@ class ResetManager(PassiveComponent):
     INITIATE_WARM_RESET = Event(Severity.ACTIVITY_HI, "Initiating warm reset", id=1)
 
     @sync_input(Signal)
-    def coldReset(self) -> None:  # noqa: N802
+    def coldReset(self) -> None:
         self._reset("cold")
 
     @sync_input(Signal)
-    def warmReset(self) -> None:  # noqa: N802
+    def warmReset(self) -> None:
         self._reset("warm")
 
     prepareForReboot = OutputPort(Signal)

@@ -26,6 +26,7 @@ from fprime_lite import (I32, U16, U32, Event, OutputPort, PassiveComponent, Por
 from fprime_lite.model.commands import CmdResponse
 from fprime_lite.model.fw_ports import CmdSeqCancel, TimeGet
 from fprime_lite.model.time import Time
+from fprime_lite.deploy.scheduler import ScheduledCall
 
 from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
@@ -53,8 +54,11 @@ def _seconds(t: TimeData) -> int:
 class RtcManager(PassiveComponent):
     """The RTC of ``spacecraft`` (instance ``rtcManager``)."""
 
+    # Instance state, set in __init__ (declared here: the handlers above it use it).
+    _alarm: tuple[TimeData, ScheduledCall] | None
+
     @sync_command()
-    def TIME_SET(self, t: TimeData):  # noqa: N802
+    def TIME_SET(self, t: TimeData):
         """Set the RTC to UTC ``t``."""
         if not self._valid(t):
             self.TimeNotSet(errno.EINVAL)
@@ -70,7 +74,7 @@ class RtcManager(PassiveComponent):
         return CmdResponse.OK
 
     @sync_command()
-    def ALARM_SET(self, t: TimeData):  # noqa: N802
+    def ALARM_SET(self, t: TimeData):
         """Arm the alarm for UTC ``t``."""
         if self._alarm is not None:
             self.AlarmNotSet(t, errno.EALREADY)
@@ -94,7 +98,7 @@ class RtcManager(PassiveComponent):
         return CmdResponse.OK
 
     @sync_command()
-    def ALARM_CANCEL(self, ID: U16):  # noqa: N802, N803 - flight argument name
+    def ALARM_CANCEL(self, ID: U16):
         """Disarm the alarm."""
         if self._alarm is None:
             self.AlarmNotCanceled(ID, 0)
@@ -105,7 +109,7 @@ class RtcManager(PassiveComponent):
         return CmdResponse.OK
 
     @sync_command()
-    def ALARM_LIST(self):  # noqa: N802
+    def ALARM_LIST(self):
         """Report the armed alarm."""
         if self._alarm is not None:
             self.AlarmSet(0, self._alarm[0])
@@ -140,7 +144,7 @@ class RtcManager(PassiveComponent):
     alarmTriggered = OutputPort(AlarmTriggeredPort, size=1)
 
     @sync_input(TimeGet)
-    def timeGetPort(self) -> Time:  # noqa: N802
+    def timeGetPort(self) -> Time:
         """The RTC's time (the simulated clock's)."""
         return self.spacecraft.clock.now()
 

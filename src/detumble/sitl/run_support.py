@@ -11,7 +11,7 @@ Both are topology *resources* (see ``docs/topology.md``):
 
 from __future__ import annotations
 
-from typing import Sequence
+from typing import Any, Sequence, TextIO
 
 import csv
 import math
@@ -70,7 +70,7 @@ class DetumbleRunReport:
         self.spacecraft = spacecraft
         self.manager_name = manager
         self.truth_interval_us = max(1, round(truth_interval_s * US_PER_S))
-        self.manager = None
+        self.manager: Any = None  # the flight manager instance, found by name at begin()
         self.start_us = 0
         self.initial_rate_deg_s = spacecraft.truth().rate_deg_s
         self.last: TruthSample | None = None
@@ -78,8 +78,8 @@ class DetumbleRunReport:
         self.detumble_complete_s: float | None = None
         self.time_below_1_deg_s: float | None = None
         self.samples = 0
-        self._file = None
-        self._writer = None
+        self._file: TextIO | None = None
+        self._writer: Any = None  # a csv writer (its class is private to _csv)
         self._path: pathlib.Path | None = None
         self.power = PowerBudget(spacecraft)
 
@@ -89,8 +89,8 @@ class DetumbleRunReport:
         self.manager = deployment.topology.instance(self.manager_name).component
         self.start_us = deployment.scheduler.now_us
         self._path = pathlib.Path(out_dir) / "truth.csv"
-        self._file = open(self._path.with_name(".truth.csv.part"), "w", encoding="utf-8", newline="")
-        self._writer = csv.writer(self._file, lineterminator="\n")
+        self._file = fh = open(self._path.with_name(".truth.csv.part"), "w", encoding="utf-8", newline="")
+        self._writer = csv.writer(fh, lineterminator="\n")
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
                                "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
                                *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy",
@@ -176,7 +176,7 @@ class DetumbleRunReport:
     def finish(self, out_dir: pathlib.Path, *, plots: bool = True) -> list[pathlib.Path]:
         """Close the truth log; draw the plots; return the files written."""
         self.spacecraft.set_trace(None)
-        if self._file is not None:
+        if self._file is not None and self._path is not None:  # begin() sets both
             self._file.flush()
             os.fsync(self._file.fileno())
             self._file.close()
@@ -186,7 +186,7 @@ class DetumbleRunReport:
         if plots and self._path is not None:
             from detumble.sitl.plots import plot_truth
 
-            thresholds = {name: getattr(self.manager, name).value for name in
+            thresholds: dict[str, float] = {name: getattr(self.manager, name).value for name in
                           ("DEADBAND_UPPER_THRESHOLD", "DEADBAND_LOWER_THRESHOLD")} if self.manager else {}
             written += plot_truth(self._path, pathlib.Path(out_dir), thresholds=thresholds,
                                   marks={"detumble started": self.detumble_started_s,

@@ -80,9 +80,7 @@ def require_spacecraft(owner: str, spacecraft) -> "SimulatedSpacecraft":
     return spacecraft
 
 
-class TruthSample(NamedTuple):
-    """One row of the truth trace."""
-
+class _TruthFields(NamedTuple):
     time_us: int                       #: deployment time, µs since the clock's epoch (``Time.total_us``)
     t_s: float                         #: plant time since the scenario epoch, s
     q_BN: tuple                        #: attitude quaternion, scalar first
@@ -98,6 +96,13 @@ class TruthSample(NamedTuple):
     wheel_momenta: tuple = ()          #: per wheel, N·m·s
     wheel_speeds_rad_s: tuple = ()     #: per wheel, relative to the body, rad/s
     wheel_torques_nm: tuple = ()       #: per wheel, motor torque over the last step, N·m
+
+
+class TruthSample(_TruthFields):
+    """One row of the truth trace (the fields are :class:`_TruthFields`'; a NamedTuple body holds
+    fields only, so the CSV header and row live on this subclass)."""
+
+    __slots__ = ()
 
     CSV_HEADER = ("time_us", "t_s", "q0", "q1", "q2", "q3", "wx_rad_s", "wy_rad_s", "wz_rad_s",
                   "rate_deg_s", "bx_T", "by_T", "bz_T", "mx_Am2", "my_Am2", "mz_Am2",
@@ -136,6 +141,12 @@ class SimulatedSpacecraft:
         origin_us: the clock reading (``clock.current_us``) that is plant t = 0; default: now.
     """
 
+    # Avionics state, set in _init_avionics (declared here: methods above it assign it too).
+    _coil_w: float | None  # the coils' supply power, W; None: recompute
+    _accel_slot: int | None
+    _accel_period_ns: int
+    _flash_dir: str | None
+
     def __init__(self, scenario: Scenario | str, *, clock: SimulatedClock | None = None,
                  seed: int | None = None, origin_us: int | None = None) -> None:
         if isinstance(scenario, str):
@@ -155,7 +166,7 @@ class SimulatedSpacecraft:
         self._trace_interval_ns = 0
         self._trace_next_ns: int | None = None
         self.steps_taken = 0
-        self._attached = []
+        self._attached: list[object] = []  # the schedulers this spacecraft is attached to
         self._init_avionics(seed)
         self.sync()
 
@@ -215,7 +226,7 @@ class SimulatedSpacecraft:
             now = plant.t_ns
             if now != nxt:  # pragma: no cover - guards the ns rounding in Plant.step
                 raise AssertionError(f"plant stepped to {now} ns instead of {nxt} ns")
-            if now == trace_next:
+            if now == trace_next and self._trace is not None:
                 self._trace(self.truth())
                 trace_next += self._trace_interval_ns
         self._trace_next_ns = trace_next
@@ -468,7 +479,8 @@ class SimulatedSpacecraft:
     def _step_power(self, t0_ns: int, t1_ns: int) -> None:
         """Sum the coils' energy over this dynamics step; integrate the electrical system once
         :data:`POWER_STEP_NS` of plant time has gathered (solar input and battery held over it)."""
-        if self._coil_w is None or self._coils_lagged:
+        coil_w = self._coil_w
+        if coil_w is None or self._coils_lagged:
             coil_w = 0.0
             act = self.plant.actuators
             if isinstance(act, CoilSet):
@@ -479,10 +491,11 @@ class SimulatedSpacecraft:
         if self._power_pending_ns == 0:
             self._power_t0_ns = t0_ns
         self._power_pending_ns += t1_ns - t0_ns
-        self._power_coil_j += self._coil_w * (t1_ns - t0_ns) * 1e-9
+        self._power_coil_j += coil_w * (t1_ns - t0_ns) * 1e-9
         if self._power_pending_ns >= POWER_STEP_NS:
             dt = self._power_pending_ns * 1e-9
             plant = self.plant
+            assert self.power is not None  # only called with a power model
             self.power.step(dt, self._power_t0_ns * 1e-9, plant.q_BN, plant.r_N, self._power_coil_j / dt)
             self._power_pending_ns = 0
             self._power_coil_j = 0.0
@@ -520,7 +533,8 @@ class SimulatedSpacecraft:
         if self._flash_dir is None:
             import tempfile
             self._flash = tempfile.TemporaryDirectory(prefix="sitl-flash-")
-            self._flash_dir = self._flash.name
+            self._flash_dir = flash_dir = self._flash.name
+            return flash_dir
         return self._flash_dir
 
     def use_flash_dir(self, path: str) -> None:

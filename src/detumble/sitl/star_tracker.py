@@ -49,7 +49,7 @@ class StarTracker(PassiveComponent):
     """Simulated star tracker on ``spacecraft`` (its scenario must have ``sensors.star_tracker``)."""
 
     @sync_input(AttitudeGet)
-    def attitudeGet(self) -> Result:  # noqa: N802 - F´ spelling
+    def attitudeGet(self) -> Result:
         """The latest attitude solution (see the module docstring)."""
         return self._read()
 
@@ -62,7 +62,7 @@ class StarTracker(PassiveComponent):
         self.Solutions.write(self._solutions)
 
     @sync_command()
-    def GET_ATTITUDE(self):  # noqa: N802
+    def GET_ATTITUDE(self):
         """Read the tracker and log AttitudeData (EXECUTION_ERROR without a valid solution)."""
         value, condition = self._read()
         if condition != Success.SUCCESS:
@@ -71,7 +71,7 @@ class StarTracker(PassiveComponent):
         return CmdResponse.OK
 
     @sync_command()
-    def SIM_SET_FAULT(self, fault: SimStarTrackerFault):  # noqa: N802
+    def SIM_SET_FAULT(self, fault: SimStarTrackerFault):
         """SIMULATION ONLY: inject a star-tracker fault (NONE clears it)."""
         self.set_fault(fault)
 
@@ -116,7 +116,7 @@ class StarTracker(PassiveComponent):
             return Result(self._frozen, Success.SUCCESS)
         try:
             q, valid, stamp = self.spacecraft.star_tracker_sample()
-        except Exception:  # noqa: BLE001 - a plant fault is a failed read, never an exception
+        except Exception:  # a plant fault is a failed read, never an exception
             self.handler_faults += 1
             log.exception("%s: reading the star tracker raised", self.name)
             self.AttitudeReadFailed()

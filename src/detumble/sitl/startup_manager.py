@@ -22,6 +22,7 @@ import struct
 
 from fprime_lite import (BOOL, I64, U64, Channel, CmdResponse, Event, OutputPort, Param, PassiveComponent, Sched,
                          Severity, String, sync_command, sync_input)
+from fprime_lite.model.commands import CommandToken
 from fprime_lite.model.fw_ports import CmdResponsePort, CmdSeqIn
 from fprime_lite.model.fw_types import TimeIntervalValue
 from fprime_lite.model.time import Time
@@ -37,6 +38,11 @@ _TIME = struct.Struct(">HBII")  # time base, context, seconds, microseconds (Fw:
 
 class StartupManager(PassiveComponent):
     """Boot counting and quiescence for ``spacecraft`` (instance ``startupManager``)."""
+
+    # Instance state, set in __init__ (declared here: the handlers above it use it).
+    boot_count: int
+    quiescence_start: Time | None
+    _waiting: CommandToken | None
 
     @sync_input(Sched)
     def run(self, context: int) -> None:
@@ -55,7 +61,7 @@ class StartupManager(PassiveComponent):
     runSequence = OutputPort(CmdSeqIn)
 
     @sync_input(CmdResponsePort)
-    def completeSequence(self, opcode: int, cmd_seq: int, response: CmdResponse) -> None:  # noqa: N802
+    def completeSequence(self, opcode: int, cmd_seq: int, response: CmdResponse) -> None:
         if self._sequence_file == self.STARTUP_SEQUENCE_FILE.value:
             if response == CmdResponse.OK:
                 self.StartupSequenceFinished()
@@ -63,16 +69,16 @@ class StartupManager(PassiveComponent):
                 self.StartupSequenceFailed(response)
 
     @sync_input(CmdSeqIn)
-    def sequenceStarted(self, file_name: str) -> None:  # noqa: N802
+    def sequenceStarted(self, file_name: str) -> None:
         self._sequence_file = file_name
 
     @sync_command()
-    def WAIT_FOR_QUIESCENCE(self):  # noqa: N802
+    def WAIT_FOR_QUIESCENCE(self):
         """Answer OK once the quiescence period after the first boot has passed."""
         self._waiting = self.defer_command_response()
 
     @sync_command()
-    def GET_BOOT_COUNT(self):  # noqa: N802
+    def GET_BOOT_COUNT(self):
         self.CurrentBootCount(self._boot_count(increment=False))
 
     BootCount = Channel(U64)
@@ -96,7 +102,7 @@ class StartupManager(PassiveComponent):
         require_spacecraft(name, spacecraft)
         self.spacecraft = spacecraft
         self.boot_count = 0
-        self.quiescence_start: Time | None = None
+        self.quiescence_start = None
         self._waiting = None
         self._sequence_file = ""
 

@@ -22,7 +22,7 @@ class TorqueRodDriver(PassiveComponent):
     """Three ideal rods along body x, y, z on ``spacecraft`` (its actuators must be ``rods``)."""
 
     @sync_input(DipoleMomentSet)
-    def dipoleSet(self, dipole: DipoleMoment) -> Success:  # noqa: N802 - F´ spelling
+    def dipoleSet(self, dipole: DipoleMoment) -> Success:
         """Command ``dipole`` (A·m², B); FAILURE (rods off) for a non-finite request."""
         request = (dipole.x, dipole.y, dipole.z)
         if not all(math.isfinite(c) for c in request):
@@ -35,7 +35,7 @@ class TorqueRodDriver(PassiveComponent):
         return Success.SUCCESS
 
     @sync_command()
-    def STOP(self):  # noqa: N802
+    def STOP(self):
         """Turn the rods off (dipole 0) until the next command."""
         self._apply((0.0, 0.0, 0.0))
         self.RodsStopped()

@@ -26,12 +26,16 @@ __all__ = ["Watchdog"]
 class Watchdog(PassiveComponent):
     """Pets the hardware watchdog of ``spacecraft`` (instance ``watchdog``)."""
 
+    # Instance state, set in __init__ (declared here: the handlers above it use it).
+    gpio: On
+    transitions: int
+
     @sync_command()
-    def START_WATCHDOG(self):  # noqa: N802
+    def START_WATCHDOG(self):
         self.start()
 
     @sync_command()
-    def STOP_WATCHDOG(self):  # noqa: N802
+    def STOP_WATCHDOG(self):
         if self.is_connected("prepareForReboot", 0):
             self.prepareForReboot[0]()
         self.stop()

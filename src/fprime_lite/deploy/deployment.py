@@ -26,6 +26,7 @@ import os
 from typing import Callable
 
 from fprime_lite.model.component import QueuedComponent
+from fprime_lite.deploy.scheduler import ScheduledCall
 from fprime_lite.deploy.topology_loader import LoadedDeployment
 from fprime_lite.model.types import FwType
 
@@ -69,7 +70,7 @@ class Deployment:
         #: completed software restarts
         self.restarts = 0
         self._start_args: dict = {}
-        self._startup_call = None
+        self._startup_call: ScheduledCall | None = None
 
     def service(self, pattern: str):
         """The component serving a pattern (``command``, ``param``, …), or None."""
@@ -97,7 +98,7 @@ class Deployment:
             if isinstance(comp, QueuedComponent):
                 scheduler.drain_after_each_event(comp)
             if getattr(comp, "command_lookup", False) is None:
-                comp.command_lookup = lookup
+                setattr(comp, "command_lookup", lookup)  # the components that declare the attribute
         for comp in topo.components():
             comp.register_commands()
         scheduler.drain()

@@ -50,7 +50,7 @@ def _time_value_definition() -> dict:
     return {
         "kind": "struct",
         "qualifiedName": TIME.json_ref()["name"],
-        "members": {n: {"type": t.json_ref(), "index": i} for i, (n, t) in enumerate(members)},
+        "members": {n: {"type": fw_type(t).json_ref(), "index": i} for i, (n, t) in enumerate(members)},
         "default": {"timeBase": fw_type(TimeBase).json_value(TimeBase.TB_NONE), "timeContext": 0,
                     "seconds": 0, "useconds": 0},
     }
@@ -127,7 +127,7 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
             "dictionarySpecVersion": DICTIONARY_SPEC_VERSION,
         },
         "typeDefinitions": list(types.definitions.values()),
-        "constants": [{"qualifiedName": n, "type": t.json_ref(), "value": v} for n, t, v in CONSTANTS],
+        "constants": [{"qualifiedName": n, "type": fw_type(t).json_ref(), "value": v} for n, t, v in CONSTANTS],
         "commands": sorted(commands, key=lambda c: c["opcode"]),
         "parameters": sorted(params, key=lambda p: p["id"]),
         "events": sorted(events, key=lambda e: e["id"]),

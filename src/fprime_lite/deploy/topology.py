@@ -18,6 +18,7 @@ from typing import Iterator, NamedTuple
 from fprime_lite.model.component import Component
 from fprime_lite.model.errors import FprimeLiteError, PortConnectionError
 from fprime_lite.model.fw_ports import Ping
+from fprime_lite.svc.health import Health
 
 __all__ = ["Topology", "Instance", "Connection", "PATTERN_PORTS", "TopologyError"]
 
@@ -160,7 +161,10 @@ class Topology:
         """Ping every instance that answers pings, one ``PingSend``/``PingReturn`` index each, and
         give the health component a ping entry per instance, named by its qualified name."""
         health = self.instance(service_name).component
-        send, answer = health.output_port("PingSend"), health.input_port("PingReturn")
+        if not isinstance(health, Health):
+            raise PortConnectionError(f"{service_name} is a {type(health).__name__}, not an Svc.Health: the "
+                                      f"health pattern needs the health component")
+        send = health.output_port("PingSend")
         entries = [entry.name for entry in health.entries]
         for client in self.instances.values():
             comp = client.component
@@ -242,7 +246,7 @@ class Topology:
         modules: dict[str, list[Instance]] = {}
         for inst in self.instances.values():
             modules.setdefault(inst.module, []).append(inst)
-        for i, (module, members) in enumerate(modules.items()):
+        for module, members in modules.items():
             lines.append(f'  subgraph "cluster_{module}" {{')
             lines.append(f'    label="{module}";')
             for inst in members:

@@ -14,8 +14,8 @@ import os
 import pathlib
 from dataclasses import dataclass
 
-from fprime_lite.wire.file_packet import (CancelPacket, CfdpChecksum, DataPacket, EndPacket, FilePacketError, StartPacket,
-                          decode_file_packet)
+from fprime_lite.wire.file_packet import (CancelPacket, CfdpChecksum, DataPacket, EndPacket, FilePacketError,
+                                          StartPacket, decode_file_packet)
 
 __all__ = ["FileReceiver", "ReceivedFile"]
 
@@ -84,17 +84,20 @@ class FileReceiver:
         self._checksum = CfdpChecksum()
 
     def _data(self, data: DataPacket) -> None:
-        self._handle.seek(data.offset)
-        self._handle.write(data.data)
+        handle, record = self._handle, self._active
+        assert handle is not None and record is not None  # only called while a file is open
+        handle.seek(data.offset)
+        handle.write(data.data)
         self._checksum.update(data.data, data.offset)
-        self._active.received_bytes += len(data.data)
+        record.received_bytes += len(data.data)
 
     def _end(self, end: EndPacket) -> None:
-        record = self._active
-        self._handle.flush()
-        os.fsync(self._handle.fileno())
-        self._handle.close()
-        os.replace(self._tmp, record.path)
+        record, handle, tmp = self._active, self._handle, self._tmp
+        assert record is not None and handle is not None and tmp is not None  # a file is open
+        handle.flush()
+        os.fsync(handle.fileno())
+        handle.close()
+        os.replace(tmp, record.path)
         if end.checksum == self._checksum.value and record.received_bytes == record.size:
             record.status = "complete"
         else:
@@ -104,8 +107,10 @@ class FileReceiver:
         self._active = None
 
     def _abandon(self, status: str, detail: str = "") -> None:
-        self._handle.close()
-        self._tmp.unlink(missing_ok=True)
-        self._active.status = status
-        self._active.detail = detail
+        record, handle, tmp = self._active, self._handle, self._tmp
+        assert record is not None and handle is not None and tmp is not None  # a file is open
+        handle.close()
+        tmp.unlink(missing_ok=True)
+        record.status = status
+        record.detail = detail
         self._active = None

@@ -104,9 +104,10 @@ class WideTelemetryTable:
             self._row[index] = get(value)
 
     def _flush(self) -> None:
-        row = self._row
-        row[0] = f"{(self._time_us - self._first_us) / 1e6:.6f}"
-        row[1] = f"{self._time_us / 1e6:.6f}"
+        row, time_us, first_us = self._row, self._time_us, self._first_us
+        assert time_us is not None and first_us is not None  # a row is flushed after a sample set them
+        row[0] = f"{(time_us - first_us) / 1e6:.6f}"
+        row[1] = f"{time_us / 1e6:.6f}"
         self._csv.writerow(row)
 
     def close(self) -> None:

@@ -192,7 +192,7 @@ class ComponentMeta(type):
     """Collects and checks a component class's declarations when the class is created."""
 
     @classmethod
-    def __prepare__(mcs, name: str, bases: tuple[type, ...], /, **kwargs: Any) -> dict[str, object]:
+    def __prepare__(cls, name: str, bases: tuple[type, ...], /, **kwargs: Any) -> dict[str, object]:
         return _ClassBody(name)
 
     def __new__(mcs, name: str, bases: tuple[type, ...], namespace: dict[str, Any], **kwargs: Any) -> ComponentMeta:
@@ -524,7 +524,7 @@ class Component(metaclass=ComponentMeta):
             text = f"{type(exc).__name__}: {exc}"
             self._events["HandlerFault"](fit_utf8(where, 40), fit_utf8(text, 120))
             self._channels["HandlerFaults"].write(self.handler_faults & 0xFFFFFFFF)
-        except Exception:  # noqa: BLE001 - reporting a fault must not raise another
+        except Exception:  # reporting a fault must not raise another
             log.exception("%s: reporting a fault failed", self.name)
 
     # --- commands --------------------------------------------------------------------------------

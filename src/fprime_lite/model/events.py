@@ -92,7 +92,7 @@ def translate_format(fmt: str, arg_types: list[FwType[Any]], where: str) -> str:
 class Event:
     """Declares an event. ``args`` are given as keywords in order (or as ``args=[(name, type)]``)."""
 
-    def __init__(self, severity: Severity, format: str, *, id: int | None = None,  # noqa: A002
+    def __init__(self, severity: Severity, format: str, *, id: int | None = None,
                  throttle: int | None = None, args: list[tuple[str, Any]] | None = None,
                  **kwargs: Any):
         if not isinstance(severity, Severity):
@@ -169,7 +169,7 @@ class BoundEvent:
         throttle = decl.throttle
         if throttle is not None and self.count >= throttle:
             return False  # as F´: a throttled event does nothing more (its arguments are not looked at)
-        values = [t.check(v) for t, v in zip(types, args)]
+        values = [t.check(v) for t, v in zip(types, args, strict=True)]
         if throttle is not None:
             self.count += 1
         comp = self.component
@@ -179,7 +179,8 @@ class BoundEvent:
             return True
         time = comp.get_time()
         if log_connected:
-            comp.logOut[0](self.id, time, self._severity, b"".join(t.pack(v) for t, v in zip(types, values)))
+            payload = b"".join(t.pack(v) for t, v in zip(types, values, strict=True))
+            comp.logOut[0](self.id, time, self._severity, payload)
         if text_connected:
             comp.logTextOut[0](self.id, time, self._severity, f"({comp.name}) {decl.name}: {decl.render(values)}")
         return True

@@ -13,7 +13,8 @@ from fprime_lite.model.time import Time
 from fprime_lite.model.types import U32
 
 __all__ = ["Cmd", "CmdReg", "CmdResponsePort", "Log", "LogText", "Tlm", "PrmGet", "PrmSet",
-           "TimeGet", "Sched", "Com", "BufferSend", "Cycle", "Ping", "FatalEvent", "CmdSeqIn", "CmdSeqCancel", "SPECIAL_PORTS"]
+           "TimeGet", "Sched", "Com", "BufferSend", "Cycle", "Ping", "FatalEvent", "CmdSeqIn", "CmdSeqCancel",
+           "SPECIAL_PORTS"]
 
 Cmd = PortType("Fw.Cmd", opcode=U32, cmd_seq=U32, args=bytes)
 CmdReg = PortType("Fw.CmdReg", opcode=U32)

@@ -94,18 +94,18 @@ class Param(Generic[V]):
     default: V
 
     @overload
-    def __init__(self, type_: FwType[V], *, default: Any = ..., id: int | None = ...,  # noqa: A002
+    def __init__(self, type_: FwType[V], *, default: Any = ..., id: int | None = ...,
                  set_opcode: int | None = ..., save_opcode: int | None = ..., name: str | None = ...,
                  low: Any = ..., high: Any = ..., finite: bool = ...,
                  validate: Callable[[V], str | None] | None = ..., echo: ParamEcho | None = ...) -> None: ...
 
     @overload
-    def __init__(self, type_: builtins.type[V], *, default: Any = ..., id: int | None = ...,  # noqa: A002
+    def __init__(self, type_: builtins.type[V], *, default: Any = ..., id: int | None = ...,
                  set_opcode: int | None = ..., save_opcode: int | None = ..., name: str | None = ...,
                  low: Any = ..., high: Any = ..., finite: bool = ...,
                  validate: Callable[[V], str | None] | None = ..., echo: ParamEcho | None = ...) -> None: ...
 
-    def __init__(self, type_: Any, *, default: Any = _NO_DEFAULT, id: int | None = None,  # noqa: A002
+    def __init__(self, type_: Any, *, default: Any = _NO_DEFAULT, id: int | None = None,
                  set_opcode: int | None = None, save_opcode: int | None = None, name: str | None = None,
                  low: Any = None, high: Any = None, finite: bool = False,
                  validate: Callable[[Any], str | None] | None = None, echo: ParamEcho | None = None) -> None:

@@ -45,16 +45,16 @@ class Channel(Generic[V]):
     type: FwType[V]
 
     @overload
-    def __init__(self, type_: FwType[V], *, id: int | None = ..., update: str = ...,  # noqa: A002
+    def __init__(self, type_: FwType[V], *, id: int | None = ..., update: str = ...,
                  format: str | None = ..., low: dict[str, Any] | None = ..., high: dict[str, Any] | None = ...,
-                 name: str | None = ..., wall_clock: bool = ...) -> None: ...
+                 name: str | None = ..., wall_clock: bool = ..., units: str | None = ...) -> None: ...
 
     @overload
-    def __init__(self, type_: builtins.type[V], *, id: int | None = ..., update: str = ...,  # noqa: A002
+    def __init__(self, type_: builtins.type[V], *, id: int | None = ..., update: str = ...,
                  format: str | None = ..., low: dict[str, Any] | None = ..., high: dict[str, Any] | None = ...,
-                 name: str | None = ..., wall_clock: bool = ...) -> None: ...
+                 name: str | None = ..., wall_clock: bool = ..., units: str | None = ...) -> None: ...
 
-    def __init__(self, type_: Any, *, id: int | None = None, update: str = "always",  # noqa: A002
+    def __init__(self, type_: Any, *, id: int | None = None, update: str = "always",
                  format: str | None = None, low: dict[str, Any] | None = None, high: dict[str, Any] | None = None,
                  name: str | None = None, wall_clock: bool = False, units: str | None = None) -> None:
         if update not in _UPDATES:

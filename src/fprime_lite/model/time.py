@@ -82,9 +82,10 @@ class Time:
     def _comparable(self, other: "Time") -> None:
         a, b = self.time_base, other.time_base
         if a != b and TimeBase.TB_DONT_CARE not in (a, b):
+            known = TimeBase._value2member_map_
             raise ValueError(
-                f"cannot compare times of different bases ({TimeBase(a).name if a in TimeBase._value2member_map_ else a}"
-                f" and {TimeBase(b).name if b in TimeBase._value2member_map_ else b})")
+                f"cannot compare times of different bases ({TimeBase(a).name if a in known else a}"
+                f" and {TimeBase(b).name if b in known else b})")
 
     def __eq__(self, other):
         if not isinstance(other, Time):

@@ -39,7 +39,8 @@ import enum
 import math
 import struct
 import sys
-from typing import TYPE_CHECKING, Annotated, Any, Callable, ClassVar, Generic, TypeVar, Union, cast, get_origin, overload
+from typing import (TYPE_CHECKING, Annotated, Any, Callable, ClassVar, Generic, TypeVar, Union, cast, get_origin,
+                    overload)
 
 from fprime_lite.model.errors import DeclarationError, SerializationError
 
@@ -314,7 +315,7 @@ class StringType(FwType[str]):
 _STRING_TYPES: dict[int, StringType] = {}
 
 
-def String(size: int) -> StringType:  # noqa: N802 - reads like a type in declarations
+def String(size: int) -> StringType:
     """The bounded string type of at most ``size`` UTF-8 bytes (FPP ``string size N``)."""
     if size not in _STRING_TYPES:
         _STRING_TYPES[size] = StringType(size)
@@ -401,7 +402,7 @@ class AliasType(FwType[Any]):
                 "underlyingType": underlying.json_ref()}
 
 
-def Alias(qualified_name: str, target: Any) -> AliasType:  # noqa: N802
+def Alias(qualified_name: str, target: Any) -> AliasType:
     """Declare an alias type, e.g. ``FwOpcodeType = Alias("FwOpcodeType", U32)``."""
     return AliasType(qualified_name, target)
 
@@ -526,7 +527,7 @@ def _resolve_annotation(owner: type, name: str, annotation: Any) -> "FwType":
         module = sys.modules.get(owner.__module__)
         namespace = dict(vars(module)) if module else {}
         try:
-            annotation = eval(annotation, namespace, dict(vars(owner)))  # noqa: S307 - own source
+            annotation = eval(annotation, namespace, dict(vars(owner)))  # own source
         except Exception as exc:  # noqa: BLE001 - reported as a declaration error
             raise DeclarationError(
                 f"{owner.__name__}.{name}: cannot resolve type annotation {annotation!r}: {exc}") from None
@@ -787,7 +788,7 @@ def serialize_values(types: list[FwType], values: list | tuple) -> bytes:
     """Serialize ``values`` back to back (event and command arguments: no count, no sizes)."""
     if len(types) != len(values):
         raise SerializationError(f"expected {len(types)} value(s), got {len(values)}")
-    return b"".join(t.serialize(v) for t, v in zip(types, values))
+    return b"".join(t.serialize(v) for t, v in zip(types, values, strict=True))
 
 
 def deserialize_values(types: list[FwType], data: bytes | bytearray | memoryview,

@@ -74,7 +74,7 @@ def _errno_of(exc: BaseException) -> int | None:
     return exc.errno if isinstance(exc, OSError) else None
 
 
-_FS_BY_ERRNO = {
+_FS_BY_ERRNO: dict[int | None, FileSystemStatus] = {  # errno None (not an OSError): the default
     _errno.EEXIST: FileSystemStatus.ALREADY_EXISTS,
     _errno.ENOSPC: FileSystemStatus.NO_SPACE,
     _errno.EFBIG: FileSystemStatus.NO_SPACE,
@@ -103,7 +103,7 @@ _FS_BY_ERRNO = {
     _errno.ENOTSUP: FileSystemStatus.NOT_SUPPORTED,
 }
 
-_FILE_BY_ERRNO = {
+_FILE_BY_ERRNO: dict[int | None, FileStatus] = {
     _errno.ENOENT: FileStatus.DOESNT_EXIST,
     _errno.ENOSPC: FileStatus.NO_SPACE,
     _errno.EFBIG: FileStatus.NO_SPACE,
@@ -119,7 +119,7 @@ _FILE_BY_ERRNO = {
     _errno.ENFILE: FileStatus.NO_MORE_RESOURCES,
 }
 
-_DIR_BY_ERRNO = {
+_DIR_BY_ERRNO: dict[int | None, DirectoryStatus] = {
     _errno.ENOENT: DirectoryStatus.DOESNT_EXIST,
     _errno.EACCES: DirectoryStatus.NO_PERMISSION,
     _errno.EPERM: DirectoryStatus.NO_PERMISSION,

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import logging
 import struct
+from typing import Annotated
 
 from fprime_lite.model.commands import CmdResponse, async_command
 from fprime_lite.model.component import ActiveComponent
@@ -95,7 +96,7 @@ class CmdDispatcher(ActiveComponent):
         self.NoOpReceived()
 
     @async_command(opcode=1)
-    def CMD_NO_OP_STRING(self, arg1: String(40)):
+    def CMD_NO_OP_STRING(self, arg1: Annotated[str, String(40)]):
         """No-op command with a string, echoed by NoOpStringReceived."""
         self.NoOpStringReceived(arg1)
 
@@ -216,7 +217,7 @@ class CmdDispatcher(ActiveComponent):
                 return
         try:
             self.compCmdSend[entry](opcode, seq, args)
-        except Exception:  # noqa: BLE001 - a faulty target must not take the dispatcher down
+        except Exception:  # a faulty target must not take the dispatcher down
             log.exception("%s: compCmdSend[%d] raised dispatching opcode 0x%X", self.name, entry, opcode)
             with self._lock:
                 self._tracking.pop(seq, None)

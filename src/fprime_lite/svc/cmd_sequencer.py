@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import enum
 from pathlib import Path
+from typing import Annotated
 
 from fprime_lite.model.commands import CmdResponse, CommandToken, async_command
 from fprime_lite.model.component import ActiveComponent
@@ -138,7 +139,8 @@ class CmdSequencer(ActiveComponent):
                                 "Sequence file {}: Current time base doesn't match sequence time: base: {} seq: {}",
                                 id=13, fileName=_LOG_NAME, time_base=U16, seq_time_base=U16)
     CS_TimeContextMismatch = Event(Severity.WARNING_HI,
-                                   "Sequence file {}: Current time context doesn't match sequence context: base: {} seq: {}",
+                                   "Sequence file {}: Current time context doesn't match sequence context: "
+                                   "base: {} seq: {}",
                                    id=14, fileName=_LOG_NAME, currTimeBase=U8, seqTimeBase=U8)
     CS_PortSequenceStarted = Event(Severity.ACTIVITY_HI, "Local request for sequence {} started.", id=15,
                                    filename=_LOG_NAME)
@@ -213,7 +215,7 @@ class CmdSequencer(ActiveComponent):
     # --- commands ---------------------------------------------------------------------------------
 
     @async_command(opcode=0)
-    def CS_RUN(self, fileName: String(FILE_NAME_STRING_SIZE), block: BlockState):  # noqa: N802,N803
+    def CS_RUN(self, fileName: Annotated[str, String(FILE_NAME_STRING_SIZE)], block: BlockState):
         """Load ``fileName`` and, in AUTO mode, run it; BLOCK answers when the sequence ends."""
         if not self._require_run_mode(_RunMode.STOPPED):
             if self._join_waiting:
@@ -229,7 +231,7 @@ class CmdSequencer(ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=1)
-    def CS_VALIDATE(self, fileName: String(FILE_NAME_STRING_SIZE)):  # noqa: N802,N803
+    def CS_VALIDATE(self, fileName: Annotated[str, String(FILE_NAME_STRING_SIZE)]):
         """Load ``fileName`` to check it, then unload it."""
         if not self._require_run_mode(_RunMode.STOPPED):
             return CmdResponse.EXECUTION_ERROR
@@ -240,7 +242,7 @@ class CmdSequencer(ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=2)
-    def CS_CANCEL(self):  # noqa: N802
+    def CS_CANCEL(self):
         """Stop the running sequence (it stays loaded, rewound)."""
         if self._run_mode is _RunMode.RUNNING:
             self._cancel()
@@ -252,7 +254,7 @@ class CmdSequencer(ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=3)
-    def CS_START(self):  # noqa: N802
+    def CS_START(self):
         """Start the loaded sequence (after CS_RUN in MANUAL mode, or after a cancel)."""
         if not self._has_more_records():
             self.CS_NoSequenceActive()
@@ -264,7 +266,7 @@ class CmdSequencer(ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=4)
-    def CS_STEP(self):  # noqa: N802
+    def CS_STEP(self):
         """MANUAL mode: send the next command (the previous one must have completed)."""
         if not self._require_run_mode(_RunMode.RUNNING):
             return CmdResponse.EXECUTION_ERROR
@@ -277,17 +279,17 @@ class CmdSequencer(ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=5)
-    def CS_AUTO(self):  # noqa: N802
+    def CS_AUTO(self):
         """Run sequences through on their own (the default)."""
         return self._set_mode(SeqMode.AUTO)
 
     @async_command(opcode=6)
-    def CS_MANUAL(self):  # noqa: N802
+    def CS_MANUAL(self):
         """Run sequences one CS_STEP at a time."""
         return self._set_mode(SeqMode.STEP)
 
     @async_command(opcode=7)
-    def CS_JOIN_WAIT(self):  # noqa: N802
+    def CS_JOIN_WAIT(self):
         """Answer when the running sequence ends (at once when none runs)."""
         if self._run_mode is not _RunMode.RUNNING:
             self.CS_NoSequenceActive()
@@ -301,7 +303,7 @@ class CmdSequencer(ActiveComponent):
     # --- input ports ------------------------------------------------------------------------------
 
     @async_input(CmdResponsePort)
-    def cmdResponseIn(self, opcode, cmd_seq, response):  # noqa: N802
+    def cmdResponseIn(self, opcode, cmd_seq, response):
         """The dispatcher's answer to the command the sequencer sent."""
         if self._run_mode is _RunMode.STOPPED or not self._awaiting:
             self.CS_UnexpectedCompletion(opcode)
@@ -321,7 +323,7 @@ class CmdSequencer(ActiveComponent):
             self._step()
 
     @async_input(Sched)
-    def schedIn(self, context):  # noqa: N802
+    def schedIn(self, context):
         """Rate-group tick: send a command whose time has come, or time out a silent one."""
         now = self.get_time().total_us
         if self._timer_us is not None and now >= self._timer_us:
@@ -332,7 +334,7 @@ class CmdSequencer(ActiveComponent):
             self._cancel()
 
     @async_input(CmdSeqIn)
-    def seqRunIn(self, file_name):  # noqa: N802
+    def seqRunIn(self, file_name):
         """Run ``file_name`` (empty: the sequence already loaded); the end is told on seqDone."""
         if not self._require_run_mode(_RunMode.STOPPED):
             self._seq_done(CmdResponse.EXECUTION_ERROR)
@@ -352,7 +354,7 @@ class CmdSequencer(ActiveComponent):
         self.CS_PortSequenceStarted(self._log_file_name)
 
     @async_input(Ping)
-    def pingIn(self, key):  # noqa: N802
+    def pingIn(self, key):
         """Health ping: answer with the same key."""
         self.pingOut[0](key)
 
@@ -441,6 +443,7 @@ class CmdSequencer(ActiveComponent):
 
     def _step(self) -> None:
         """Take the next record: end, send now, or set the timer for it."""
+        assert self._sequence is not None  # only a loaded sequence runs
         record = self._sequence.records[self._next]
         self._next += 1
         self._record = record
@@ -459,6 +462,7 @@ class CmdSequencer(ActiveComponent):
         self._awaiting = True
         if self.timeout_s > 0 and self._step_mode == SeqMode.AUTO:
             self._timeout_us = now_us + self.timeout_s * 1_000_000
+        assert self._record is not None  # _step set the record being sent
         self.comCmdOut[0](self._record.command, 0)
 
     def _command_complete(self, opcode: int) -> None:

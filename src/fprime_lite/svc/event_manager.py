@@ -100,10 +100,15 @@ class EventManager(ActiveComponent):
     FatalAnnounce = OutputPort(FatalEvent)
     pingOut = OutputPort(Ping)
 
+    # Instance state, declared here so the command handlers above __init__ see the types.
+    _severity_enabled: dict[Severity, bool]
+    _filtered_ids: frozenset[int]
+    id_filter_size: int
+
     # --- commands ------------------------------------------------------------------------------
 
     @sync_command(opcode=0)
-    def SET_EVENT_FILTER(self, filterLevel: FilterSeverity, filterEnabled: Enabled):  # noqa: N803
+    def SET_EVENT_FILTER(self, filterLevel: FilterSeverity, filterEnabled: Enabled):
         """Send (ENABLED) or stop (DISABLED) the events of one severity."""
         with self._lock:
             state = dict(self._severity_enabled)
@@ -112,7 +117,7 @@ class EventManager(ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=2)
-    def SET_ID_FILTER(self, ID: U32, idFilterEnabled: Enabled):  # noqa: N803
+    def SET_ID_FILTER(self, ID: U32, idFilterEnabled: Enabled):
         """Stop (ENABLED) or resume (DISABLED) sending the event with id ``ID``."""
         if idFilterEnabled == Enabled.ENABLED:
             with self._lock:
@@ -173,8 +178,8 @@ class EventManager(ActiveComponent):
                 raise ValueError(f"{name}: FATAL events cannot be filtered")
             state[severity] = bool(enabled)
         # Both filters are replaced whole (never mutated) so LogRecv can read them without a lock.
-        self._severity_enabled: dict[Severity, bool] = state
-        self._filtered_ids: frozenset[int] = frozenset()
+        self._severity_enabled = state
+        self._filtered_ids = frozenset()
         self.id_filter_size = id_filter_size
         #: Events sent out of PktSend.
         self.events_sent = 0
@@ -222,7 +227,8 @@ class EventManager(ActiveComponent):
         the µs the previous instant's events already took)."""
         last_raw, last_sent = self._last_raw, self._last_sent
         sent = time
-        if last_sent is not None and time.time_base == last_sent.time_base and time.context == last_sent.context \
+        if last_raw is not None and last_sent is not None \
+                and time.time_base == last_sent.time_base and time.context == last_sent.context \
                 and last_raw.total_us <= time.total_us <= last_sent.total_us:
             sent = Time.from_us(last_sent.total_us + 1, time.time_base, time.context)
         self._last_raw, self._last_sent = time, sent

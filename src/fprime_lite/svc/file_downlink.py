@@ -89,6 +89,7 @@ import os
 import stat as _stat
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Annotated
 
 from fprime_lite.osal.confine import PathRefused
 from fprime_lite.osal.os_status import FileStatus, file_status
@@ -314,8 +315,8 @@ class FileDownlink(FileRoot, ActiveComponent):
     # --- commands ---------------------------------------------------------------------------------
 
     @async_command(opcode=0x00)
-    def SendFile(self, sourceFileName: String(FILE_NAME_SIZE),
-                 destFileName: String(FILE_NAME_SIZE)):
+    def SendFile(self, sourceFileName: Annotated[str, String(FILE_NAME_SIZE)],
+                 destFileName: Annotated[str, String(FILE_NAME_SIZE)]):
         """Queue ``sourceFileName`` for downlink to ``destFileName``; answered when it has been sent."""
         return self._command_request(sourceFileName, destFileName, 0, 0)
 
@@ -328,8 +329,8 @@ class FileDownlink(FileRoot, ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=0x02)
-    def SendPartial(self, sourceFileName: String(FILE_NAME_SIZE),
-                    destFileName: String(FILE_NAME_SIZE), startOffset: U32, length: U32):
+    def SendPartial(self, sourceFileName: Annotated[str, String(FILE_NAME_SIZE)],
+                    destFileName: Annotated[str, String(FILE_NAME_SIZE)], startOffset: U32, length: U32):
         """Queue ``length`` bytes (0: to the end) of ``sourceFileName`` from ``startOffset``."""
         return self._command_request(sourceFileName, destFileName, startOffset, length)
 

@@ -89,6 +89,7 @@ import subprocess
 import threading
 import zlib
 from dataclasses import dataclass
+from typing import Annotated
 
 from fprime_lite.osal.confine import PathRefused
 from fprime_lite.osal.os_status import (DirectoryStatus, FileStatus, FileSystemStatus, directory_status,
@@ -124,6 +125,7 @@ DEFAULT_SHELL_TIMEOUT_S = 60.0
 _SHELL_REFUSED = " [refused: ShellCommand is disabled in this deployment]"
 
 _PATH = String(CMD_STRING_SIZE)
+_PathArg = Annotated[str, _PATH]  # a command argument of type _PATH
 _NAME = String(FILE_NAME_STRING_SIZE)
 _CHUNK = 64 * 1024
 
@@ -315,13 +317,13 @@ class FileManager(FileRoot, ActiveComponent):
     # --- ports ------------------------------------------------------------------------------------
 
     @async_input(Ping)
-    def pingIn(self, key: int) -> None:  # noqa: N802 - F´ port name
+    def pingIn(self, key: int) -> None:
         """Health ping: answer with the same key."""
         if self.is_connected("pingOut", 0):
             self.pingOut[0](key)
 
     @sync_input(Sched)
-    def schedIn(self, context: int) -> None:  # noqa: N802 - F´ port name
+    def schedIn(self, context: int) -> None:
         """Rate-group tick: while a listing is in progress, queue one listing step (at most one)."""
         if self._listing is None:
             return
@@ -338,7 +340,7 @@ class FileManager(FileRoot, ActiveComponent):
     # --- commands ---------------------------------------------------------------------------------
 
     @async_command(opcode=0x00)
-    def CreateDirectory(self, dirName: _PATH):  # noqa: N802,N803
+    def CreateDirectory(self, dirName: _PathArg):
         """Create the directory ``dirName`` (its parent must exist; it must not)."""
         self.CreateDirectoryStarted(fit_utf8(dirName, CMD_STRING_SIZE))
         status, cause = self._fs(lambda: os.mkdir(self.resolve(dirName, entry=True)))
@@ -350,7 +352,7 @@ class FileManager(FileRoot, ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x01)
-    def MoveFile(self, sourceFileName: _PATH, destFileName: _PATH):  # noqa: N802,N803
+    def MoveFile(self, sourceFileName: _PathArg, destFileName: _PathArg):
         """Rename ``sourceFileName`` to ``destFileName`` (copy then remove across file systems)."""
         src, dst = fit_utf8(sourceFileName, CMD_STRING_SIZE), fit_utf8(destFileName, CMD_STRING_SIZE)
         self.MoveFileStarted(src, dst)
@@ -364,7 +366,7 @@ class FileManager(FileRoot, ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x02)
-    def RemoveDirectory(self, dirName: _PATH):  # noqa: N802,N803
+    def RemoveDirectory(self, dirName: _PathArg):
         """Remove the empty directory ``dirName``."""
         self.RemoveDirectoryStarted(fit_utf8(dirName, CMD_STRING_SIZE))
         status, cause = self._fs(lambda: os.rmdir(self.resolve(dirName, entry=True)))
@@ -376,7 +378,7 @@ class FileManager(FileRoot, ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x03)
-    def RemoveFile(self, fileName: _PATH, ignoreErrors: BOOL):  # noqa: N802,N803
+    def RemoveFile(self, fileName: _PathArg, ignoreErrors: BOOL):
         """Remove the file ``fileName``; with ``ignoreErrors`` a failure still answers OK."""
         name = fit_utf8(fileName, CMD_STRING_SIZE)
         self.RemoveFileStarted(name)
@@ -393,7 +395,7 @@ class FileManager(FileRoot, ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x04)
-    def ShellCommand(self, command: _PATH, logFileName: _PATH):  # noqa: N802,N803
+    def ShellCommand(self, command: _PathArg, logFileName: _PathArg):
         """Run ``command`` with the shell, appending its output to ``logFileName`` (if allowed)."""
         if not self.allow_shell:
             log.warning("%s: ShellCommand refused (the deployment did not allow shell commands; build "
@@ -410,7 +412,7 @@ class FileManager(FileRoot, ActiveComponent):
         return self._finish(FileSystemStatus.OTHER_ERROR)
 
     @async_command(opcode=0x05)
-    def AppendFile(self, source: _PATH, target: _PATH):  # noqa: N802
+    def AppendFile(self, source: _PathArg, target: _PathArg):
         """Append ``source`` to ``target`` atomically (``target`` is created if missing)."""
         src, dst = fit_utf8(source, CMD_STRING_SIZE), fit_utf8(target, CMD_STRING_SIZE)
         self.AppendFileStarted(src, dst)
@@ -423,7 +425,7 @@ class FileManager(FileRoot, ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x06)
-    def FileSize(self, fileName: _PATH):  # noqa: N802,N803
+    def FileSize(self, fileName: _PathArg):
         """Report the size of ``fileName`` in FileSizeSucceeded."""
         name = fit_utf8(fileName, CMD_STRING_SIZE)
         self.FileSizeStarted(name)
@@ -443,7 +445,7 @@ class FileManager(FileRoot, ActiveComponent):
         return self._finish(status)
 
     @async_command(opcode=0x07)
-    def ListDirectory(self, dirName: String(FILE_NAME_STRING_SIZE)):  # noqa: N802,N803
+    def ListDirectory(self, dirName: Annotated[str, String(FILE_NAME_STRING_SIZE)]):
         """List ``dirName``, ``files_per_tick`` entries per ``schedIn`` tick; answered at the end."""
         name = fit_utf8(dirName, FILE_NAME_STRING_SIZE)
         if self._listing is not None:
@@ -464,13 +466,13 @@ class FileManager(FileRoot, ActiveComponent):
         return None
 
     @async_command(opcode=0x08)
-    def CalculateCrc(self, filename: String(FILE_NAME_STRING_SIZE)):  # noqa: N802
+    def CalculateCrc(self, filename: Annotated[str, String(FILE_NAME_STRING_SIZE)]):
         """Report the CRC of ``filename`` (F´'s ``Os::File`` CRC); no channel is updated."""
         name = fit_utf8(filename, FILE_NAME_STRING_SIZE)
         self.CalculateCrcStarted(name)
         try:
             crc = file_crc(self.resolve(filename))
-        except Exception as exc:  # noqa: BLE001
+        except Exception as exc:
             status = file_status(exc)
             if not isinstance(exc, (OSError, ValueError)):
                 log.exception("%s: CalculateCrc %s: unexpected failure", self.name, filename)
@@ -501,7 +503,7 @@ class FileManager(FileRoot, ActiveComponent):
                 listing.index += 1
                 listing.entries += 1
                 self._list_entry(listing, entry)
-        except Exception:  # noqa: BLE001 - a tick must never raise into the rate group
+        except Exception:  # a tick must never raise into the rate group
             log.exception("%s: ListDirectory %s failed", self.name, listing.dir_name)
             self._listing = None
             self.ListDirectoryError(fit_utf8(listing.dir_name, FILE_NAME_STRING_SIZE),
@@ -621,7 +623,7 @@ class FileManager(FileRoot, ActiveComponent):
             operation()
         except (OSError, ValueError) as exc:
             return filesystem_status(exc), exc
-        except Exception as exc:  # noqa: BLE001 - nothing escapes a command
+        except Exception as exc:  # nothing escapes a command
             log.exception("%s: unexpected failure", self.name)
             return FileSystemStatus.OTHER_ERROR, exc
         return FileSystemStatus.OP_OK, None

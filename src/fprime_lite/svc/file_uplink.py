@@ -246,21 +246,21 @@ class FileUplink(FileRoot, ActiveComponent):
     # --- ports ---------------------------------------------------------------------------------
 
     @async_input(BufferSend, queue_full="block")
-    def bufferSendIn(self, fwBuffer: bytes) -> None:  # noqa: N802,N803 - F´ port and argument names
+    def bufferSendIn(self, fwBuffer: bytes) -> None:
         """Handle one file packet (without its ``FW_PACKET_FILE`` descriptor); never raises."""
         try:
             self._receive(fwBuffer)
-        except Exception:  # noqa: BLE001 - the safety net: a port never raises
+        except Exception:  # the safety net: a port never raises
             self.internal_errors += 1
             log.exception("%s: unexpected error handling a file packet; abandoning the file in progress",
                           self.name)
             try:
                 self._go_to_start_mode()
-            except Exception:  # noqa: BLE001
+            except Exception:
                 log.exception("%s: could not reset the receive state", self.name)
 
     @async_input(Ping)
-    def pingIn(self, key: int) -> None:  # noqa: N802 - F´ port name
+    def pingIn(self, key: int) -> None:
         """Health ping: answer with the same key."""
         if self.is_connected("pingOut", 0):
             self.pingOut[0](key)
@@ -364,6 +364,7 @@ class FileUplink(FileRoot, ActiveComponent):
             self._warn_receive_mode(FilePacketType.DATA)
             return
         transfer = self._file
+        assert transfer is not None  # DATA mode always has a transfer
         sequence = packet.sequence
         if self._last_write_ok and sequence == self._last_sequence:
             self._warn(self.PacketDuplicate, sequence)
@@ -391,6 +392,7 @@ class FileUplink(FileRoot, ActiveComponent):
         self._count_packet()
         if self._mode == ReceiveMode.DATA:
             transfer = self._file
+            assert transfer is not None  # DATA mode always has a transfer
             self._check_sequence(packet.sequence)
             computed = transfer.checksum.value
             if computed != packet.checksum:
@@ -489,6 +491,7 @@ class FileUplink(FileRoot, ActiveComponent):
     @staticmethod
     def _write(transfer: _Transfer, offset: int, data: bytes) -> str | None:
         """Write ``data`` at ``offset`` of the temporary file; None, or what went wrong."""
+        assert transfer.fd is not None  # open until committed or failed; failed transfers are not written
         view = memoryview(data)
         try:
             while view:
@@ -504,6 +507,7 @@ class FileUplink(FileRoot, ActiveComponent):
     def _commit(self, transfer: _Transfer) -> str | None:
         """Make the temporary file durable and rename it over the destination; None, or the problem."""
         fd, transfer.fd = transfer.fd, None
+        assert fd is not None and transfer.temp is not None  # a transfer that did not fail is open
         if not self.overwrite and os.path.lexists(transfer.path):
             os.close(fd)
             return "the destination appeared during the transfer and overwrite is off"

@@ -17,7 +17,8 @@ framer/deframer + ``Svc.FprimeRouter``) in a deployment that runs on one thread:
   ``fileOut`` (connected to ``fileUplink.bufferSendIn``). The GDS sends a file as fast as TCP
   takes it, so when :attr:`GroundLink.max_file_backlog` packets are waiting the socket task stops
   reading and lets TCP flow control hold the GDS back: no file packet is ever dropped for lack
-  of room (the backlog can exceed the limit by what one socket read brings, at most 64 KiB). With ``fileOut`` unconnected, file packets are dropped as an unknown descriptor.
+  of room (the backlog can exceed the limit by what one socket read brings, at most 64 KiB). With
+  ``fileOut`` unconnected, file packets are dropped as an unknown descriptor.
 - **Downlink.** ``comIn`` (connected to the ``PktSend`` of the event manager and of the telemetry
   channelizer) and ``fileIn`` (from ``fileDownlink.bufferSendOut``, file packets with their
   descriptor) only append the packet to the downlink queue and wake the socket task, which
@@ -247,7 +248,7 @@ class GroundLink(PassiveComponent):
     # --- ports ---------------------------------------------------------------------------------
 
     @sync_input(Com)
-    def comIn(self, data: bytes, context: int) -> None:  # noqa: N802 - F´ port name
+    def comIn(self, data: bytes, context: int) -> None:
         """Queue one downlink packet (an event or telemetry packet) for the socket task."""
         queue = self._downlink
         if len(queue) >= self.max_downlink_packets:
@@ -257,17 +258,17 @@ class GroundLink(PassiveComponent):
         self._wake()
 
     @sync_input(BufferSend)
-    def fileIn(self, fwBuffer: bytes) -> None:  # noqa: N802,N803 - F´ port and argument names
+    def fileIn(self, fwBuffer: bytes) -> None:
         """Queue one downlink file packet (``FW_PACKET_FILE`` descriptor first) for the socket task."""
         self.comIn(fwBuffer, 0)
 
     @sync_input(CmdResponsePort)
-    def cmdResponseIn(self, opcode: int, cmd_seq: int, response) -> None:  # noqa: N802 - F´ port name
+    def cmdResponseIn(self, opcode: int, cmd_seq: int, response) -> None:
         """The dispatcher's answer to an uplinked command (counted; the GDS sees the events)."""
         self.responses[getattr(response, "name", str(response))] += 1
 
     @sync_input(Sched)
-    def schedIn(self, context: int) -> None:  # noqa: N802 - F´ port name
+    def schedIn(self, context: int) -> None:
         """Rate-group tick: report link changes and drops, forward commands, write telemetry."""
         self._rearm_throttles()
         notices = self._notices
@@ -355,7 +356,7 @@ class GroundLink(PassiveComponent):
             self._notices.append(("connected",))
             try:
                 reason = self._serve(sock)
-            except Exception as exc:  # noqa: BLE001 - the task must survive anything and reconnect
+            except Exception as exc:  # the task must survive anything and reconnect
                 log.exception("%s: socket task fault", self.name)
                 reason = f"{type(exc).__name__}: {exc}"
             finally:
@@ -423,7 +424,7 @@ class GroundLink(PassiveComponent):
                 self.downlink_bytes += sent
 
     def _frame_pending(self) -> bytes:
-        packets = []
+        packets: list[bytes] = []
         queue = self._downlink
         while queue and len(packets) < 256:
             packets.append(queue.popleft())

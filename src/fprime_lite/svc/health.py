@@ -17,6 +17,8 @@ the tick the count *equals* ``warn_cycles``, FATAL when it equals ``fatal_cycles
 from __future__ import annotations
 
 from dataclasses import dataclass
+from collections.abc import Sequence
+from typing import Annotated
 
 from fprime_lite.model.commands import CmdResponse, async_command
 from fprime_lite.model.component import QueuedComponent
@@ -80,7 +82,7 @@ class Health(QueuedComponent):
         self.HLTH_CHECK_ENABLE(enable)
 
     @async_command(opcode=1)
-    def HLTH_PING_ENABLE(self, entry: String(40), enable: FwEnabled):
+    def HLTH_PING_ENABLE(self, entry: Annotated[str, String(40)], enable: FwEnabled):
         """Ping (ENABLED) or ignore (DISABLED) one entry."""
         tracker = self._find(entry)
         if tracker is None:
@@ -89,7 +91,7 @@ class Health(QueuedComponent):
         self.HLTH_CHECK_PING(enable, entry)
 
     @async_command(opcode=2)
-    def HLTH_CHNG_PING(self, entry: String(40), warningValue: U32, fatalValue: U32):  # noqa: N803
+    def HLTH_CHNG_PING(self, entry: Annotated[str, String(40)], warningValue: U32, fatalValue: U32):
         """Change one entry's warning and FATAL thresholds (ticks)."""
         tracker = self._find(entry)
         if tracker is None:
@@ -121,7 +123,7 @@ class Health(QueuedComponent):
 
     PingLateWarnings = Channel(U32, id=0)
 
-    def __init__(self, name: str = "health", entries: list[PingEntry | tuple] = (), *, base_id: int = 0,
+    def __init__(self, name: str = "health", entries: Sequence[PingEntry | tuple] = (), *, base_id: int = 0,
                  queue_size: int = HEALTH_PING_PORTS, watchdog_code: int = 0):
         super().__init__(name, base_id=base_id, queue_size=queue_size)
         self.enabled = True

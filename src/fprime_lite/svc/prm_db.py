@@ -42,7 +42,7 @@ import stat as _stat
 import struct
 import zlib
 from dataclasses import dataclass
-from typing import Iterable, Mapping
+from typing import Annotated, Iterable, Mapping
 
 from fprime_lite.osal.atomic import clean_temporary_files, temporary_file
 from fprime_lite.model.commands import CmdResponse, async_command
@@ -189,7 +189,7 @@ def encode_param_file(records: Iterable[tuple[int, bytes]], *, with_crc: bool = 
 
 
 def _parse_records(data: bytes, start: int) -> list[tuple[int, bytes]]:
-    records = []
+    records: list[tuple[int, bytes]] = []
     offset = start
     n = len(data)
     while offset < n:
@@ -274,6 +274,11 @@ class PrmDb(ActiveComponent):
 
     pingOut = OutputPort(Ping)
 
+    # Instance state, declared here so the command handlers above __init__ see the types.
+    _active: dict[int, bytes]
+    _staging: dict[int, bytes]
+    _state: PrmDbFileLoadState
+
     # --- commands ------------------------------------------------------------------------------
 
     @async_command(opcode=0)
@@ -296,7 +301,7 @@ class PrmDb(ActiveComponent):
         return CmdResponse.OK
 
     @async_command(opcode=1)
-    def PRM_LOAD_FILE(self, fileName: String(FILE_NAME_STRING_SIZE), merge: Merge):  # noqa: N803
+    def PRM_LOAD_FILE(self, fileName: Annotated[str, String(FILE_NAME_STRING_SIZE)], merge: Merge):
         """Load ``fileName`` into the staging database; PRM_COMMIT_STAGED makes it active."""
         if self._state != PrmDbFileLoadState.IDLE:
             self.PrmDbFileLoadInvalidAction(self._state, PrmLoadAction.LOAD_FILE_COMMAND)
@@ -379,8 +384,8 @@ class PrmDb(ActiveComponent):
             raise ValueError(f"{name}: capacity must be a positive integer, got {capacity!r}")
         self.file_path = os.fspath(file_path)
         self.capacity = capacity
-        self._active: dict[int, bytes] = {}
-        self._staging: dict[int, bytes] = {}
+        self._active = {}
+        self._staging = {}
         self._state = PrmDbFileLoadState.IDLE
         self._dirty = False
         self._names: dict[int, str] = dict(param_names or {})

@@ -50,7 +50,7 @@ class RateGroupDriver(PassiveComponent):
         self._cycle_targets = self.output_port("CycleOut").targets
 
     @sync_input(Cycle)
-    def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
+    def CycleIn(self, cycle_start: Time) -> None:
         tick = self.tick
         out = self.CycleOut
         targets = self._cycle_targets

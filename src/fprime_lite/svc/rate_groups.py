@@ -14,11 +14,12 @@ from __future__ import annotations
 
 import logging
 import time as _wall
+from typing import TYPE_CHECKING
 
 from fprime_lite.model.component import ActiveComponent, PassiveComponent
 from fprime_lite.model.events import Event, Severity
 from fprime_lite.model.fw_ports import Cycle, Ping, Sched
-from fprime_lite.model.ports import OutputPort, async_input, sync_input
+from fprime_lite.model.ports import OutputPort, OutputPortArray, async_input, sync_input
 from fprime_lite.model.telemetry import Channel
 from fprime_lite.model.time import Time
 from fprime_lite.model.types import String, U32
@@ -43,6 +44,13 @@ class RateGroupBase:
     RgMaxTime = Channel(U32, format="{} us", wall_clock=True)
     RgCycleSlips = Channel(U32)
     RgMemberFaults = Channel(U32)
+
+    if TYPE_CHECKING:  # provided by the component class the mixin is combined with
+        name: str
+
+        def output_port(self, name: str) -> OutputPortArray: ...
+
+        def get_time(self) -> Time: ...
 
     def _setup(self, contexts, period_us: int | None) -> None:
         contexts = list(contexts)
@@ -73,7 +81,7 @@ class RateGroupBase:
         for i, call, context in self._members:
             try:
                 call(context)
-            except Exception as exc:  # noqa: BLE001 - a member fault must not stop the group
+            except Exception as exc:  # a member fault must not stop the group
                 self.member_faults += 1
                 log.exception("%s: member %d raised", self.name, i)
                 self.RateGroupMemberFault(i, f"{type(exc).__name__}: {exc}"[:80])
@@ -120,12 +128,12 @@ class ActiveRateGroup(RateGroupBase, ActiveComponent):
     # run_when_idle: in a deterministic deployment an idle group runs its cycle as soon as the
     # driver posts it, as a top-priority rate-group thread would (decision 0004).
     @async_input(Cycle, queue_full="drop", run_when_idle=True)
-    def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
+    def CycleIn(self, cycle_start: Time) -> None:
         self._pending = len(self._queue._heap)  # cycles still waiting behind this one
         self._cycle(cycle_start)
 
     @async_input(Ping)
-    def PingIn(self, key: int) -> None:  # noqa: N802 - F´ port name
+    def PingIn(self, key: int) -> None:
         """Health ping: answer with the same key."""
         if self.is_connected("PingOut", 0):
             self.PingOut[0](key)
@@ -140,7 +148,7 @@ class PassiveRateGroup(RateGroupBase, PassiveComponent):
         self._running = False
 
     @sync_input(Cycle)
-    def CycleIn(self, cycle_start: Time) -> None:  # noqa: N802 - F´ port name
+    def CycleIn(self, cycle_start: Time) -> None:
         if self._running:  # re-entered from inside a member: the previous cycle has not finished
             self._slip()
             return

@@ -52,7 +52,7 @@ class TextLogger(PassiveComponent):
         self._write_lock = threading.Lock()
 
     @sync_input(LogText)
-    def TextLogger(self, event_id: int, time, severity, text: str) -> None:  # noqa: N802 - F´ port name
+    def TextLogger(self, event_id: int, time, severity, text: str) -> None:
         """Write one line for the text event (never raises)."""
         try:
             line = format_text_event(event_id, time, severity, text) + "\n"

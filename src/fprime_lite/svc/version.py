@@ -59,6 +59,7 @@ from __future__ import annotations
 import importlib.metadata
 import logging
 from collections.abc import Sequence
+from typing import Annotated
 
 from fprime_lite.model.commands import guarded_command
 from fprime_lite.model.component import PassiveComponent
@@ -141,7 +142,7 @@ class CustomVersionDb(Struct, namespace="Svc"):
     """One custom version as its ``CustomVersionNN`` channel carries it (F´ ``Svc.CustomVersionDb``)."""
 
     version_enum: VersionEnum
-    version_value: String(80)
+    version_value: Annotated[str, String(80)]
     version_status: VersionStatus
 
 

@@ -378,28 +378,28 @@ class ComponentHarness:
 
     # --- F´ spellings, with F´'s arguments (TesterBase / GTestBase) -----------------------------
 
-    def setTestTime(self, time: Time) -> None:  # noqa: N802 - F´ spelling
+    def setTestTime(self, time: Time) -> None:
         self.set_test_time(time)
 
-    def clearHistory(self) -> None:  # noqa: N802 - F´ spelling
+    def clearHistory(self) -> None:
         self.clear_history()
 
-    def assertCmdResponse_size(self, size: int) -> None:  # noqa: N802 - F´ spelling
+    def assertCmdResponse_size(self, size: int) -> None:
         self.assert_cmd_response_size(size)
 
-    def assertCmdResponse(self, index: int, opCode: int, cmdSeq: int,  # noqa: N802,N803 - F´ spelling
+    def assertCmdResponse(self, index: int, opCode: int, cmdSeq: int,
                           response: CmdResponse) -> None:
         """F´'s ``ASSERT_CMD_RESPONSE(index, opCode, cmdSeq, response)``: ``opCode`` is the global
         opcode (``component.opcode("CMD")``; a command name works too)."""
         self.assert_cmd_response(index, opCode, response, cmd_seq=cmdSeq)
 
-    def assertEvents_size(self, size: int) -> None:  # noqa: N802 - F´ spelling
+    def assertEvents_size(self, size: int) -> None:
         self.assert_events_size(size)
 
-    def assertTlm_size(self, size: int) -> None:  # noqa: N802 - F´ spelling
+    def assertTlm_size(self, size: int) -> None:
         self.assert_tlm_size(size)
 
-    def assertFromPortHistory_size(self, size: int) -> None:  # noqa: N802 - F´ spelling
+    def assertFromPortHistory_size(self, size: int) -> None:
         self.assert_from_port_history_size(size)
 
     def __getattr__(self, attr: str):

@@ -20,7 +20,6 @@ exit status, never with a traceback.
 from __future__ import annotations
 
 import argparse
-import datetime as _dt
 import logging
 import os
 import pathlib
@@ -51,7 +50,8 @@ def build_parser() -> argparse.ArgumentParser:
     sub.required = True
 
     run = sub.add_parser("run", help="run a deployment", description="Run a deployment in simulated time and write "
-                         "summary.json, events.log, channels.csv, channels_wide.csv, truth.csv, dictionary.json and plots "
+                         "summary.json, events.log, channels.csv, channels_wide.csv, truth.csv, dictionary.json and "
+                         "plots "
                          "(docs/outputs.md). Exits 1 when the flight had faults, cycle slips or WARNING_HI/FATAL "
                          "events (--allow-warnings accepts them), 2 for a mistake in the inputs.")
     _topology_arg(run)

@@ -16,7 +16,8 @@ option                     environment variable                 default
 The run is ``fprime-lite run TOPOLOGY --realtime --gds ADDRESS:PORT --framing F`` (an address of
 ``0.0.0.0``, fprime-gds's default ``--ip-address``, means the local host). Each launch writes its outputs
 to a new ``fprime-lite-app-*`` folder inside ``--out`` (printed to the app's log, which fprime-gds
-keeps in its logs folder). SIGTERM from fprime-gds ends the run and the outputs are written. Start fprime-gds with the framing the app uses.
+keeps in its logs folder). SIGTERM from fprime-gds ends the run and the outputs are written. Start
+fprime-gds with the framing the app uses.
 """
 
 from __future__ import annotations

@@ -23,7 +23,7 @@ import argparse
 import pathlib
 from dataclasses import dataclass
 from importlib.metadata import entry_points
-from typing import Callable
+from typing import Callable, Protocol, TypeVar
 
 __all__ = ["Verb", "BenchPiece", "RunPlotter", "PluginError", "verbs", "bench_pieces", "run_plotters",
            "VERBS_GROUP", "BENCH_GROUP", "PLOTS_GROUP"]
@@ -72,7 +72,15 @@ class RunPlotter:
     plot: Callable[[pathlib.Path, pathlib.Path], list[pathlib.Path]]
 
 
-def _load(group: str, kind: type) -> dict:
+class _Named(Protocol):
+    @property
+    def name(self) -> str: ...
+
+
+_P = TypeVar("_P", bound=_Named)
+
+
+def _load(group: str, kind: type[_P]) -> dict[str, _P]:
     found = {}
     for ep in sorted(entry_points(group=group), key=lambda e: e.name):
         try:

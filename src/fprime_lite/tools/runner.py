@@ -27,7 +27,7 @@ import time
 from fprime_lite.osal.atomic import atomic_write_text
 from fprime_lite.deploy.deployment import Deployment
 from fprime_lite.deploy.dictionary import write_dictionary
-from fprime_lite.ground.downlink import GroundRecorder
+from fprime_lite.ground.downlink import DecodedEvent, GroundRecorder
 from fprime_lite.svc.file_downlink import FileDownlink
 from fprime_lite.svc.rate_groups import RateGroupBase
 from fprime_lite.deploy.topology_loader import LoadedDeployment
@@ -63,7 +63,7 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     reports = _reports(loaded)
     stop_names = frozenset(stop_on_events)
 
-    def on_event(event) -> None:
+    def on_event(event: DecodedEvent) -> None:
         for r in reports:
             if hasattr(r, "on_event"):
                 r.on_event(event)
@@ -91,7 +91,7 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     wall = time.perf_counter() - wall0
 
     recorder.close()
-    written = []
+    written: list[pathlib.Path] = []
     for r in reports:
         if hasattr(r, "finish"):
             written += r.finish(out, plots=plots) or []

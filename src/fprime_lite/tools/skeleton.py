@@ -129,7 +129,10 @@ rate_groups:
         - CdhCore.tlmSend.Run
 '''
 
-_DEPLOYMENT_TEST = '''"""Fly {deployment} for a few simulated seconds (skeleton written by ``fprime-lite new deployment``)."""
+_DEPLOYMENT_TEST = '''"""Fly {deployment} for a few simulated seconds.
+
+Skeleton written by ``fprime-lite new deployment``.
+"""
 import pathlib
 
 from fprime_lite.tools import run

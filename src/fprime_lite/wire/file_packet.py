@@ -112,17 +112,18 @@ def encode_file_packet(packet: FilePacket, *, descriptor: bool = True) -> bytes:
     return (_DESCRIPTOR if descriptor else b"") + head + body
 
 
-def _read_path(data: bytes, pos: int, what: str) -> tuple[str | None, int, str | None]:
+def _read_path(data: bytes, pos: int, what: str) -> tuple[str, int, str | None]:
+    """``(path, next position, None)``, or ``("", pos, problem)``."""
     if pos >= len(data):
-        return None, pos, f"START packet ends before its {what} path length"
+        return "", pos, f"START packet ends before its {what} path length"
     n = data[pos]
     raw = data[pos + 1:pos + 1 + n]
     if len(raw) != n:
-        return None, pos, f"START packet's {what} path says {n} bytes but {len(raw)} remain"
+        return "", pos, f"START packet's {what} path says {n} bytes but {len(raw)} remain"
     try:
         return raw.decode("utf-8"), pos + 1 + n, None
     except UnicodeDecodeError:
-        return None, pos, f"START packet's {what} path is not UTF-8"
+        return "", pos, f"START packet's {what} path is not UTF-8"
 
 
 def decode_file_packet(data: bytes, *, descriptor: bool = False) -> FilePacket | FilePacketError:

@@ -83,7 +83,7 @@ _SEQ_FLAGS_UNSEGMENTED = 0b11 << 14
 _SEQ_COUNT_MODULO = 1 << 14
 
 
-def crc16_ccitt(data: bytes) -> int:
+def crc16_ccitt(data: bytes | bytearray | memoryview) -> int:
     """CRC-16-CCITT as CCSDS uses it: polynomial 0x1021, initial value 0xFFFF, no reflection, no final XOR."""
     return binascii.crc_hqx(data, 0xFFFF)
 
@@ -513,7 +513,7 @@ class CcsdsFraming(Framing):
 
 
 #: ``--framing`` name -> framing class.
-FRAMINGS = {"fprime": FprimeFraming, "ccsds": CcsdsFraming}
+FRAMINGS: dict[str, type[Framing]] = {"fprime": FprimeFraming, "ccsds": CcsdsFraming}
 
 
 def make_framing(name: str) -> Framing:

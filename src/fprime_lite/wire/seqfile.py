@@ -52,9 +52,8 @@ from typing import Any, Callable
 
 from fprime_lite.model.errors import DeclarationError, FprimeLiteError, SerializationError
 from fprime_lite.wire.packets import Apid
-from fprime_lite.model.types import (BOOL, F32, F64, I8, I16, I32, I64, U8, U16, U32, U64, AliasType, Array,
-                    ArrayType, BoolType, EnumType, FloatType, FwEnum, FwType, IntType, String,
-                    StringType, Struct, StructType, fw_type)
+from fprime_lite.model.types import (PRIMITIVE_TYPES, AliasType, Array, ArrayType, BoolType, EnumType, FloatType,
+                                     FwEnum, FwType, IntType, String, StringType, Struct, StructType, fw_type)
 
 __all__ = [
     "Descriptor", "FileReadStage", "SerializeStatus", "Record", "Sequence", "TextCommand",
@@ -546,6 +545,7 @@ def parse_text(text: str, path: str = "<text>") -> list[TextCommand]:
     while pos < n:
         # skip blank space, comments and continuations before a statement
         m = _BLANK.match(text, pos)
+        assert m is not None  # _BLANK matches the empty string
         line += text.count("\n", pos, m.end())
         pos = m.end()
         if pos >= n:
@@ -573,7 +573,7 @@ def parse_text(text: str, path: str = "<text>") -> list[TextCommand]:
         if mnemonic is None:
             raise parser.error(f"expected a command name after the time tag, got {parser._show()}")
         parser.take(",")
-        args = []
+        args: list[Any] = []
         while parser.peek() is not None:
             if args:
                 parser.take(",")
@@ -681,7 +681,7 @@ def compile_text(text: str, lookup: CommandLookup, path: str = "<text>") -> Sequ
             raise SequenceTextError(path, cmd.line, f"{cmd.mnemonic} takes {len(arg_types)} "
                                     f"argument(s), got {len(cmd.args)}")
         parts = []
-        for i, (value, t) in enumerate(zip(cmd.args, arg_types)):
+        for i, (value, t) in enumerate(zip(cmd.args, arg_types, strict=True)):
             try:
                 parts.append(t.serialize(_convert(value, t, f"argument {i + 1}")))
             except SerializationError as exc:
@@ -718,10 +718,7 @@ def read_sequence(path: str | Path, *, lookup: CommandLookup | None = None,
 
 # --- a command lookup from an F´ JSON dictionary --------------------------------------------------
 
-_PRIMITIVES: dict[str, FwType] = {
-    "U8": U8, "U16": U16, "U32": U32, "U64": U64, "I8": I8, "I16": I16, "I32": I32, "I64": I64,
-    "F32": F32, "F64": F64, "bool": BOOL,
-}
+_PRIMITIVES: dict[str, FwType] = PRIMITIVE_TYPES
 
 
 class CommandDictionary:
@@ -787,21 +784,22 @@ class CommandDictionary:
             elem = self.type_of(d["elementType"])
             cls = _pytypes.new_class(short, (Array,), {"elem": elem, "size": int(d["size"]),
                                                          "namespace": namespace or None})
-            return cls.__fprime_type__
+            return fw_type(cls)
         if kind == "struct":
             members = sorted(d["members"].items(), key=lambda kv: kv[1]["index"])
             annotations = {}
             for member, spec in members:
                 t = self.type_of(spec["type"])
                 if spec.get("size") is not None:  # an inline array member
-                    t = _pytypes.new_class(f"{short}_{member}", (Array,),
-                                           {"elem": t, "size": int(spec["size"]),
-                                            "namespace": namespace or None}).__fprime_type__
+                    inline = _pytypes.new_class(f"{short}_{member}", (Array,),
+                                                {"elem": t, "size": int(spec["size"]),
+                                                 "namespace": namespace or None})
+                    t = fw_type(inline)
                 annotations[member] = t
 
             def body(ns):
                 ns["__annotations__"] = annotations
 
             cls = _pytypes.new_class(short, (Struct,), {"namespace": namespace or None}, body)
-            return cls.__fprime_type__
+            return fw_type(cls)
         raise ValueError(f"type {qualified!r} has unknown kind {kind!r}")

@@ -418,7 +418,7 @@ def test_set_target_direction(fprime_harness):
     z_n = rotate_b_to_n(h.comp.target, (0.0, 0.0, 1.0))
     d = (2.0, -1.0, 0.5)
     n = math.sqrt(sum(c * c for c in d))
-    assert math.acos(min(1.0, sum(a * b / n for a, b in zip(z_n, d)))) < 1e-6
+    assert math.acos(min(1.0, sum(a * b / n for a, b in zip(z_n, d, strict=True)))) < 1e-6
 
 
 # --- actuation ----------------------------------------------------------------------------------------
@@ -464,7 +464,7 @@ def test_pointing_on_magnetorquers_projects_the_pd_torque(fprime_harness):
     tau = tuple(h.tlm_values("RequestedTorque")[-1])
     m, _ = project_dipole_weighted(tau, tuple(c * 1e-4 for c in h.world.b), h.comp._coil_limits())
     cx = h.comp.X_COIL_MAX_DIPOLE.value
-    assert all(abs(a - e) <= 2 * cx / 127 for a, e in zip(h.comp.dipole, m))
+    assert all(abs(a - e) <= 2 * cx / 127 for a, e in zip(h.comp.dipole, m, strict=True))
 
 
 def test_spin_stable_seed_damper_requests_nothing_from_rest(fprime_harness):
@@ -496,7 +496,7 @@ def test_spin_stable_rate_regulator_drives_toward_the_target_spin(fprime_harness
     b = tuple(c * 1e-4 for c in h.world.b)
     t_mag = (m[1] * b[2] - m[2] * b[1], m[2] * b[0] - m[0] * b[2], m[0] * b[1] - m[1] * b[0])
     err = (3 * DEG, 0.0, 0.5 * DEG - ws)
-    assert sum(a * e for a, e in zip(t_mag, err)) < 0.0
+    assert sum(a * e for a, e in zip(t_mag, err, strict=True)) < 0.0
 
 
 def test_the_cycle_rate_is_the_mean_of_its_ticks(fprime_harness):

@@ -28,9 +28,11 @@ def h(fprime_harness):
 
     harness.set_port_handler("magneticFieldGet", field)
     harness.set_port_return("angularVelocityGet", Result(AngularVelocity(*W), Success.SUCCESS))
-    harness.set_port_return("attitudeGet", Result(AttitudeQuaternion(1.0, 0.0, 0.0, 0.0, True, Time()), Success.SUCCESS))
+    harness.set_port_return("attitudeGet",
+                            Result(AttitudeQuaternion(1.0, 0.0, 0.0, 0.0, True, Time()), Success.SUCCESS))
     harness.set_port_return("orbitFrameGet", Result(OrbitFrame(1.0, 0.0, 0.0, 0.0, N, Time()), Success.SUCCESS))
-    harness.set_port_return("wheelStateGet", Result(WheelState(0.0, 0.0, 0.0, WheelMode.TORQUE, Time()), Success.SUCCESS))
+    harness.set_port_return("wheelStateGet",
+                            Result(WheelState(0.0, 0.0, 0.0, WheelMode.TORQUE, Time()), Success.SUCCESS))
     harness.set_port_return("wheelTorqueSet", Success.SUCCESS)
     harness.set_port_return("dipoleSet", Success.SUCCESS)
     return harness

@@ -343,7 +343,7 @@ def test_full_bdot_cycle_call_by_call(h):
     assert h.tlm_values("TimeBetweenMagneticFieldReadings") == [TimeIntervalValue(seconds=0, useconds=80_000)]
     # Entry: the sampling period, then the five starts.
     assert per_tick[8][0] == ("magneticFieldSamplingPeriodGet", ())
-    expected_starts = [(port, (level,)) for port, level in zip(STARTS, HAND_LEVELS)]
+    expected_starts = [(port, (level,)) for port, level in zip(STARTS, HAND_LEVELS, strict=True)]
     assert per_tick[8][1:] == expected_starts
     for n in range(9, 24):
         assert per_tick[n] == expected_starts, n
@@ -426,7 +426,7 @@ def test_hysteresis_drive_pattern_per_axis(fprime_harness, axis, levels):
     run_until(h, DetumbleState.ACTUATING_HYSTERESIS)
     assert h.tlm_values("DetumbleStrategy") == [DetumbleStrategy.HYSTERESIS]
     calls = calls_of_one_tick(h)
-    assert calls == [(port, (level,)) for port, level in zip(STARTS, levels)]
+    assert calls == [(port, (level,)) for port, level in zip(STARTS, levels, strict=True)]
     assert h.component.state == DetumbleState.COOLDOWN
     h.assert_event("DetumbleStarted", 0, 720.0)
 
@@ -771,7 +771,7 @@ def test_an_isolated_coil_is_never_driven_while_the_others_are(h):
     for _ in range(3):
         one_cycle(h)
     assert calls_to(h, "xPlusStart", since) == [] and calls_to(h, "xPlusStop", since) == []
-    for start, stop in zip(STARTS[1:], STOPS[1:]):
+    for start, stop in zip(STARTS[1:], STOPS[1:], strict=True):
         assert len(calls_to(h, start, since)) == 3 * TORQUE_TICKS, start
         assert len(calls_to(h, stop, since)) == 3, stop
     assert len([e for e in h.events if e.name == "CoilStopFailed"]) == 1

@@ -22,8 +22,8 @@ def test_bias_and_attitude_converge_with_a_noisy_tracker():
         noise = tuple(rng.gauss(0, 10 * arcsec) for _ in range(3))
         q_meas = quat_mul(state[:4], quat_from_axis_angle(noise, math.sqrt(sum(n * n for n in noise)))) \
             if any(noise) else state[:4]
-        f.update(tuple(w + b for w, b in zip(state[4:], bias)), 0.1, q_meas)
-    assert all(abs(math.degrees(e - b)) < 0.005 for e, b in zip(f.bias, bias))
+        f.update(tuple(w + b for w, b in zip(state[4:], bias, strict=True)), 0.1, q_meas)
+    assert all(abs(math.degrees(e - b)) < 0.005 for e, b in zip(f.bias, bias, strict=True))
     assert quat_angle(quat_error(state[:4], f.q)) < 10 * arcsec
 
 

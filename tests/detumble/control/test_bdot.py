@@ -15,7 +15,7 @@ US = 1
 def filled(samples, times_us, gain=3.0, period_us=10_000):
     b = BDot()
     b.configure(gain, period_us)
-    for s, t in zip(samples, times_us):
+    for s, t in zip(samples, times_us, strict=True):
         b.add_sample(s, t)
     return b
 

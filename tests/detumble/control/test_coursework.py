@@ -74,9 +74,9 @@ def test_eq19_cross_product_law_dissipates_rotational_energy():
         m = cw.cross_product_dipole(146.0, w, b)
         tau = (m[1] * b[2] - m[2] * b[1], m[2] * b[0] - m[0] * b[2], m[0] * b[1] - m[1] * b[0])
         b2 = sum(c * c for c in b)
-        w_dot_b = sum(wi * bi for wi, bi in zip(w, b))
+        w_dot_b = sum(wi * bi for wi, bi in zip(w, b, strict=True))
         expected = -146.0 * (sum(c * c for c in w) * b2 - w_dot_b ** 2)
-        assert sum(ti * wi for ti, wi in zip(tau, w)) == pytest.approx(expected, rel=1e-9, abs=1e-30)
+        assert sum(ti * wi for ti, wi in zip(tau, w, strict=True)) == pytest.approx(expected, rel=1e-9, abs=1e-30)
         assert expected <= 0.0
 
 
@@ -146,7 +146,7 @@ def test_dumping_dipole_removes_momentum_across_the_field_only():
         m = cw.dumping_dipole(0.01, h, b)
         tau = (m[1] * b[2] - m[2] * b[1], m[2] * b[0] - m[0] * b[2], m[0] * b[1] - m[1] * b[0])
         b2 = sum(c * c for c in b)
-        along = sum(hi * bi for hi, bi in zip(h, b)) / b2
+        along = sum(hi * bi for hi, bi in zip(h, b, strict=True)) / b2
         h_perp = tuple(h[i] - along * b[i] for i in range(3))
         assert tau == pytest.approx(tuple(-0.01 * c for c in h_perp), rel=1e-9, abs=1e-18)
     assert cw.dumping_dipole(0.01, (1e-3, 0, 0), (0.0, 0.0, 0.0)) == (0.0, 0.0, 0.0)

@@ -3,11 +3,10 @@
 Field in tesla, torque N·m, dipole A·m², time s.
 """
 
-import math
 import random
 
-from detumble.control.magnetic import (bdot_dipole, dump_torque, project_dipole, project_dipole_weighted, scale_to_limits,
-                                       seed_project_dipole)
+from detumble.control.magnetic import (bdot_dipole, dump_torque, project_dipole, project_dipole_weighted,
+                                       scale_to_limits, seed_project_dipole)
 from detumble.sim.vec import cross, dot, norm, sub
 
 
@@ -48,9 +47,9 @@ def test_bdot_uses_the_measured_spacing():
     time gives half the dipole; Δt ≤ 0 gives no dipole."""
     b0, b1 = (0.30, 0.00, 0.40), (0.31, -0.02, 0.40)
     m1 = bdot_dipole(b0, b1, 0.1, 3.0)
-    assert all(abs(x - y) < 1e-12 for x, y in zip(m1, (-0.3, 0.6, 0.0)))
+    assert all(abs(x - y) < 1e-12 for x, y in zip(m1, (-0.3, 0.6, 0.0), strict=True))
     m2 = bdot_dipole(b0, b1, 0.2, 3.0)
-    assert all(abs(2 * x - y) < 1e-12 for x, y in zip(m2, m1))
+    assert all(abs(2 * x - y) < 1e-12 for x, y in zip(m2, m1, strict=True))
     assert bdot_dipole(b0, b1, 0.0, 3.0) is None
     assert bdot_dipole(b0, b1, -0.1, 3.0) is None
 

@@ -19,7 +19,7 @@ def rand_q(rng):
 
 
 def close(a, b, tol=1e-12):
-    return all(abs(x - y) <= tol for x, y in zip(a, b))
+    return all(abs(x - y) <= tol for x, y in zip(a, b, strict=True))
 
 
 def test_product_matches_the_plant_and_composes_dcms():
@@ -32,7 +32,7 @@ def test_product_matches_the_plant_and_composes_dcms():
         assert close(q_cn, vec.quat_mul(q_bn, q_cb))
         c_cb, c_bn = quat_to_dcm(q_cb), quat_to_dcm(q_bn)
         product = tuple(tuple(sum(c_cb[i][k] * c_bn[k][j] for k in range(3)) for j in range(3)) for i in range(3))
-        assert all(close(r1, r2) for r1, r2 in zip(quat_to_dcm(q_cn), product))
+        assert all(close(r1, r2) for r1, r2 in zip(quat_to_dcm(q_cn), product, strict=True))
 
 
 def test_inverse_and_conjugate():

@@ -44,7 +44,8 @@ def test_seed_damper_refuses_non_positive_inertia():
 
 
 def test_virtual_damper_matches_its_closed_form():
-    """ADCS-006: I_d ω̇_d = c(ω − ω_d) with ω held: ω_d(t) = ω + (ω_d0 − ω) e^(−ct/I_d) per axis, to 1e-7 relative (RK4 at 0.1 s)."""
+    """ADCS-006: I_d ω̇_d = c(ω − ω_d) with ω held: ω_d(t) = ω + (ω_d0 − ω) e^(−ct/I_d) per axis, to 1e-7
+    relative (RK4 at 0.1 s)."""
     vd = VirtualDamper(1e-4, 2e-4)
     vd.update((0.0, 0.0, 0.0), 0.1)  # first call: ω_d starts at the body rate
     w = (0.1, -0.2, 0.05)

@@ -11,7 +11,7 @@ ORTHO = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
 
 def body_torque(alloc, u):
     """What the wheels put on the body: −Σ u_i g_i."""
-    return tuple(-sum(ui * g[k] for ui, g in zip(u, alloc.axes)) for k in range(3))
+    return tuple(-sum(ui * g[k] for ui, g in zip(u, alloc.axes, strict=True)) for k in range(3))
 
 
 def test_orthogonal_wheels_give_the_requested_torque():
@@ -28,11 +28,11 @@ def test_four_wheel_pyramid_minimum_norm():
     a = WheelAllocator(axes, 2e-3, 4e-3)
     tau = (1e-4, -5e-5, 2e-4)
     u, _ = a.allocate(tau)
-    assert all(abs(x - y) < 1e-18 for x, y in zip(body_torque(a, u), tau))
+    assert all(abs(x - y) < 1e-18 for x, y in zip(body_torque(a, u), tau, strict=True))
     assert abs(sum(u[0:1]) - u[0]) == 0.0  # exercised
     # minimum norm: adding a null-space vector (1, −1, 1, −1) only increases |u|
     n2 = sum(x * x for x in u)
-    assert all(sum((x + e * d) ** 2 for x, d in zip(u, (1, -1, 1, -1))) > n2 for e in (1e-5, -1e-5))
+    assert all(sum((x + e * d) ** 2 for x, d in zip(u, (1, -1, 1, -1), strict=True)) > n2 for e in (1e-5, -1e-5))
 
 
 def test_torque_limit_scales_the_whole_command():

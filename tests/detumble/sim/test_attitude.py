@@ -48,7 +48,7 @@ def test_axisymmetric_free_precession_matches_closed_form():
             t = k * dt
             c, sn = math.cos(lam * t), math.sin(lam * t)
             expect_w = (w0[0] * c - w0[1] * sn, w0[0] * sn + w0[1] * c, w0[2])
-            max_rate_err = max(max_rate_err, max(abs(a - b) for a, b in zip(s[4:7], expect_w)))
+            max_rate_err = max(max_rate_err, max(abs(a - b) for a, b in zip(s[4:7], expect_w, strict=True)))
             # Rodrigues rotation of z0_N about H_hat by precession_rate * t
             a = precession_rate * t
             ca, sa = math.cos(a), math.sin(a)
@@ -84,20 +84,20 @@ def test_step_env_torques_match_reference_formulas():
             qn = math.sqrt(sum(c * c for c in x[:4]))
             return body.derivative(x, torque(tuple(c / qn for c in x[:4]) + x[4:]))
         k1 = f(state)
-        k2 = f(tuple(a + dt / 2 * b for a, b in zip(state, k1)))
-        k3 = f(tuple(a + dt / 2 * b for a, b in zip(state, k2)))
-        k4 = f(tuple(a + dt * b for a, b in zip(state, k3)))
-        out = tuple(a + dt / 6 * (b + 2 * c + 2 * d + e) for a, b, c, d, e in zip(state, k1, k2, k3, k4))
+        k2 = f(tuple(a + dt / 2 * b for a, b in zip(state, k1, strict=True)))
+        k3 = f(tuple(a + dt / 2 * b for a, b in zip(state, k2, strict=True)))
+        k4 = f(tuple(a + dt * b for a, b in zip(state, k3, strict=True)))
+        out = tuple(a + dt / 6 * (b + 2 * c + 2 * d + e) for a, b, c, d, e in zip(state, k1, k2, k3, k4, strict=True))
         qn = math.sqrt(sum(c * c for c in out[:4]))
         return tuple(c / qn for c in out[:4]) + out[4:]
 
     ref = rk4_ref(s)
     got = body.step_env(s, dt, m_B, b_N, gg, r_hat)
-    dw = max(abs(a - b) for a, b in zip(got[4:], ref[4:]))
+    dw = max(abs(a - b) for a, b in zip(got[4:], ref[4:], strict=True))
     assert dw < 1e-9 * norm(s[4:])  # rad/s; the schemes agree to RK4 order, not bit for bit
-    assert max(abs(a - b) for a, b in zip(got[:4], ref[:4])) < 1e-9
+    assert max(abs(a - b) for a, b in zip(got[:4], ref[:4], strict=True)) < 1e-9
     # and the torque actually did something measurable in one step
-    assert max(abs(a - b) for a, b in zip(got[4:], body.step(s, dt)[4:])) > 1e-5
+    assert max(abs(a - b) for a, b in zip(got[4:], body.step(s, dt)[4:], strict=True)) > 1e-5
 
 
 def test_gravity_gradient_zero_for_isotropic_and_restoring_for_slender():

@@ -52,7 +52,7 @@ def test_field_rotates_with_the_earth():
     b0 = f.b_N(0.0, r0)
     b_t = f.b_N(t, r_t)
     expect = (c * b0[0] - s * b0[1], s * b0[0] + c * b0[1], b0[2])
-    assert max(abs(a - b) for a, b in zip(b_t, expect)) < 1e-6 * NT
+    assert max(abs(a - b) for a, b in zip(b_t, expect, strict=True)) < 1e-6 * NT
 
 
 def test_field_along_420km_orbit_between_19_and_53_uT_min_at_equator_max_near_poles():
@@ -102,9 +102,9 @@ def test_wmm2025_close_to_dipole_except_anomalies_and_table_interpolates():
         r = orbit.position_N(float(k))
         bw, bd = wmm.b_N(float(k), r), dip.b_N(float(k), r)
         assert 15 * UT < norm(bw) < 60 * UT
-        worst = max(worst, norm(tuple(a - b for a, b in zip(bw, bd))))
+        worst = max(worst, norm(tuple(a - b for a, b in zip(bw, bd, strict=True))))
     assert 3 * UT < worst < 18 * UT
     table = FieldAlongOrbit(wmm, orbit, table_step_s=1.0)
     for t in (10.25, 10.5, 333.7):
         direct = wmm.b_N(t, orbit.position_N(t))
-        assert norm(tuple(a - b for a, b in zip(table.b_N(t), direct))) < 20 * NT
+        assert norm(tuple(a - b for a, b in zip(table.b_N(t), direct, strict=True))) < 20 * NT

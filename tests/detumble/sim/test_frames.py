@@ -64,7 +64,7 @@ def test_orbit_frame_axes_and_rate():
     # rotating by n dt about the orbit normal (-y_O) turns x_O toward z_O
     c, s = math.cos(n * dt), math.sin(n * dt)
     expect_x2 = tuple(c * x[i] + s * z[i] for i in range(3))
-    assert max(abs(a - b) for a, b in zip(x2, expect_x2)) < 1e-9
+    assert max(abs(a - b) for a, b in zip(x2, expect_x2, strict=True)) < 1e-9
     q_on = frames.q_ON(orbit, 100.0)
     assert rotate_n_to_b(q_on, r) == pytest.approx((0.0, 0.0, -norm(r)), abs=1e-6)
 

@@ -33,7 +33,7 @@ def test_circular_orbit_geometry():
         assert abs(norm(o.position_N(t)) - a) < 1e-6 * M
     # speed = sqrt(mu/a): finite difference
     p, q = o.position_N(10.0), o.position_N(10.001)
-    v = norm(tuple((y - x) / 0.001 for x, y in zip(p, q)))
+    v = norm(tuple((y - x) / 0.001 for x, y in zip(p, q, strict=True)))
     assert abs(v - math.sqrt(MU / a)) < 1e-3  # m/s
 
 
@@ -65,6 +65,6 @@ def test_tle_orbit_with_sgp4():
         assert 6.65e6 < norm(r) < 6.85e6
         jd = julian_date(epoch) + t / 86400.0
         _, r_km, _ = sat.sgp4(math.floor(jd), jd - math.floor(jd))
-        assert norm(tuple(a - 1e3 * b for a, b in zip(r, r_km))) < 5 * M
+        assert norm(tuple(a - 1e3 * b for a, b in zip(r, r_km, strict=True))) < 5 * M
     assert abs(math.degrees(o.inclination_rad) - 51.6439) < 1e-9
     assert dot(r, r) > 0

@@ -9,7 +9,7 @@ from detumble.sim.orbit import J2_EARTH, CircularOrbit, TleOrbit
 
 def _central_difference(orbit, t, h=1e-2):
     a, b = orbit.position_N(t - h), orbit.position_N(t + h)
-    return tuple((y - x) / (2 * h) for x, y in zip(a, b))
+    return tuple((y - x) / (2 * h) for x, y in zip(a, b, strict=True))
 
 
 def test_circular_velocity_is_the_derivative_of_the_position_with_j2():

@@ -41,13 +41,14 @@ def test_clock_is_integer_nanoseconds_and_advance_to_partial_steps():
     assert p.t_ns == 60_000_000
     p.advance_to(1.0)
     assert p.t_ns == 1_000_000_000
-    with pytest.raises(ValueError, match=r"cannot go back in time: plant is at 1\.000000000 s, asked for 0\.500000000 s"):
+    with pytest.raises(ValueError,
+                       match=r"cannot go back in time: plant is at 1\.000000000 s, asked for 0\.500000000 s"):
         p.advance_to(0.5)
     # the same 1 s of physics in whole steps agrees to integration error
     q = Plant(load_scenario("case_a"))
     for _ in range(20):
         q.step()
-    assert max(abs(a - b) for a, b in zip(p.state, q.state)) < 1e-9
+    assert max(abs(a - b) for a, b in zip(p.state, q.state, strict=True)) < 1e-9
 
 
 def test_getters_are_plain_floats_in_stated_units():

@@ -52,7 +52,8 @@ def test_scenario_path_or_name(tmp_path):
     path.write_text("name: mine\norbit:\n  altitude_km: 500\n")
     assert load_scenario(str(path)).orbit.altitude_km == 500.0
     assert load_scenario("case_a.yaml").name == "case_a"
-    with pytest.raises(ScenarioError, match=r"nope: no such scenario file, and not a packaged scenario \(packaged: .*case_a"):
+    with pytest.raises(ScenarioError,
+                       match=r"nope: no such scenario file, and not a packaged scenario \(packaged: .*case_a"):
         load_scenario("nope")
 
 
@@ -93,11 +94,13 @@ def _bad(text: str):
          r"sensors\.gyro\.noise_density_dps_rthz: must not be negative, got -1\.0"),
         ("sensors:\n  gyro:\n    odr: 104\n", r"sensors\.gyro\.odr: unknown key 'odr'; allowed here: .*odr_hz"),
         ("field:\n  model: igrf13\n", r"field\.model: unknown value 'igrf13'; expected one of: dipole, wmm2025, none"),
-        ("field:\n  model: wmm2025\n  table_step_s: 10\n", r"field\.table_step_s: 10\.0 s: evaluate the WMM at <= 1 Hz"),
+        ("field:\n  model: wmm2025\n  table_step_s: 10\n",
+         r"field\.table_step_s: 10\.0 s: evaluate the WMM at <= 1 Hz"),
         ("control:\n  law: pid\n", r"control\.law: unknown value 'pid'; expected one of: none, kopt, bdot"),
         ("control:\n  period_s: 0.07\n", r"control\.period_s: 0\.07 s must be a whole number of dynamics steps"),
         ("initial:\n  attitude:\n    quaternion: [1.0, 0.1, 0.0, 0.0]\n",
-         r"^s\.yaml:3: initial\.attitude\.quaternion: must be a unit quaternion \(scalar first\); its norm is 1\.00498"),
+         r"^s\.yaml:3: initial\.attitude\.quaternion: must be a unit quaternion \(scalar first\); "
+         r"its norm is 1\.00498"),
         ("initial:\n  attitude:\n    quaternion: [1, 0, 0, 0]\n    mrp: [0, 0, 0]\n",
          r"initial\.attitude\.mrp: give either quaternion or mrp, not both"),
         ("initial:\n  rate:\n    magnitude_deg_s: 30\n    axis: [0, 0, 0]\n",
@@ -152,7 +155,8 @@ def test_settings_override_single_values_with_yaml_types():
 
 
 @pytest.mark.parametrize("setting, message", [
-    ("sensors.magnetometr.noise_std_gauss=0", "has no key 'magnetometr' at sensors (keys there: magnetometer, gyro, accelerometer)"),
+    ("sensors.magnetometr.noise_std_gauss=0",
+     "has no key 'magnetometr' at sensors (keys there: magnetometer, gyro, accelerometer)"),
     ("noise=0", "has no key 'noise' at the top level"),
     ("sensors.magnetometer.noise_std_gauss", "expected KEY.PATH=VALUE"),
     ("sensors.magnetometer.bias_gauss.7=0", "is a list of 3; address an element by its index 0..2"),

@@ -35,8 +35,8 @@ def test_set_adds_whole_sections_known_to_the_schema():
 
 def test_set_still_rejects_unknown_keys_and_lists_what_may_be_added():
     with pytest.raises(ScenarioError, match=re.escape("has no key 'star_trackr' at sensors (keys there: "
-                                                      "magnetometer, gyro, accelerometer); keys that can be added there: "
-                                                      "star_tracker")):
+                                                      "magnetometer, gyro, accelerometer); keys that can be added "
+                                                      "there: star_tracker")):
         load_scenario("default", settings=["sensors.star_trackr.rate_hz=1"])
 
 

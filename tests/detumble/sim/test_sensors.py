@@ -85,7 +85,7 @@ def test_sample_and_hold_at_odr_and_read_time():
     # the held sample is the true field at the ODR instant, to quantisation (0.75 mG) and interpolation
     p2 = _plant()
     p2.advance_to(0.020)
-    assert all(abs(x - y / GAUSS) < 0.0008 for x, y in zip(c[:3], p2.b_B))
+    assert all(abs(x - y / GAUSS) < 0.0008 for x, y in zip(c[:3], p2.b_B, strict=True))
     # gyro at 104 Hz: instants every 9.615385 ms
     g1 = p.gyro_reading()
     assert p.gyro.sample_time_ns == 2 * 9_615_385

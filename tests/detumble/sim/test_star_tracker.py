@@ -47,7 +47,7 @@ def test_error_statistics_match_the_configuration():
         sd, mean = _std(values)
         assert sd == pytest.approx(sigma, rel=0.03)
         assert abs(mean) < 4 * sigma / math.sqrt(N_SAMPLES)
-    corr = sum(a * b for a, b in zip(along, c1)) / (N_SAMPLES * _std(along)[0] * _std(c1)[0])
+    corr = sum(a * b for a, b in zip(along, c1, strict=True)) / (N_SAMPLES * _std(along)[0] * _std(c1)[0])
     assert abs(corr) < 4 / math.sqrt(N_SAMPLES)
 
 

@@ -19,7 +19,7 @@ def matvec(a, v):
     return tuple(sum(a[i][k] * v[k] for k in range(3)) for i in range(3))
 
 
-def matTvec(a, v):  # noqa: N802
+def matTvec(a, v):
     return tuple(sum(a[k][i] * v[k] for k in range(3)) for i in range(3))
 
 
@@ -50,7 +50,8 @@ def test_surrey_is_the_coursework_environment():
     assert plant.b_B == pytest.approx(B_O, abs=1e-18)
     assert [plant.wheels.u_max, plant.wheels.h_max] == [(1e-3,) * 3, (0.1,) * 3]
     # the body without its wheel rotors is the report's isotropic I = 1.67e-3 kg m^2
-    assert [c for row in plant.body.inertia for c in row] == pytest.approx([1.67e-3, 0, 0, 0, 1.67e-3, 0, 0, 0, 1.67e-3], abs=1e-18)
+    assert [c for row in plant.body.inertia for c in row] == pytest.approx(
+        [1.67e-3, 0, 0, 0, 1.67e-3, 0, 0, 0, 1.67e-3], abs=1e-18)
     assert plant.max_dipole_per_axis() == (1.0, 1.0, 1.0)
     assert sc.spacecraft.actuator_saturation == "clip" and sc.control.saturation == "clip"
     assert plant.omega_BO_B == pytest.approx((1.0, 2.0 + N_SEED, 3.0), abs=1e-15)
@@ -84,7 +85,8 @@ def test_sim_surrey_truth_shows_the_orbit_field_turning_with_the_attitude(tmp_pa
         worst_closed = max(worst_closed, max(abs(b[i] - 1e6 * expect[i]) for i in range(3)))
         assert math.sqrt(sum(x * x for x in b)) == pytest.approx(30 * math.sqrt(3), rel=1e-9)
         min_cos = min(min_cos, sum(b[i] * B_O[i] for i in range(3)) / (30 * math.sqrt(3) * 3e-5 * math.sqrt(3)))
-        assert float(row["rate_deg_s"]) == pytest.approx(math.degrees(math.sqrt(14.0)), rel=1e-8)  # 9 digits in the file
+        # 9 digits in the file
+        assert float(row["rate_deg_s"]) == pytest.approx(math.degrees(math.sqrt(14.0)), rel=1e-8)
     assert worst_logged < 1e-6
     assert worst_closed < 2e-3
     assert math.degrees(math.acos(min_cos)) > 40.0

@@ -18,13 +18,13 @@ def test_pointing_error_to_an_inertial_and_an_orbit_target():
     without a target the column is empty."""
     p = Plant(load_scenario("surrey", settings=[f"initial.rate.omega_rad_s=[0, {-N_SEED!r}, 0]",
                                               "dynamics_step_s=0.1", "control.period_s=0.1"]))
-    row = dict(zip(adcs_header(p), adcs_row(p)))
+    row = dict(zip(adcs_header(p), adcs_row(p), strict=True))
     assert row["pointing_error_deg"] == ""
     p.set_pointing_target(quat_mul(p.q_BN, quat_from_axis_angle((0.3, -1.0, 0.2), math.radians(10.0))))
     assert math.degrees(p.pointing_error_rad()) == pytest.approx(10.0, abs=1e-9)
     p.set_pointing_target((1.0, 0.0, 0.0, 0.0), frame="orbit")
     p.advance_to(300.0)
-    row = dict(zip(adcs_header(p), adcs_row(p)))
+    row = dict(zip(adcs_header(p), adcs_row(p), strict=True))
     assert row["pointing_error_deg"] < 1e-6
     p.set_pointing_target(p.q_BN)  # inertial target now: the orbit turns away from it
     p.advance_to(400.0)
@@ -40,7 +40,7 @@ def test_torque_and_wheel_columns():
     p.apply_dipole_B((0.5, -2.0, 0.25))
     p.set_wheel_torques([1e-4, -2e-3, 0.0])
     p.step()
-    row = dict(zip(adcs_header(p), adcs_row(p)))
+    row = dict(zip(adcs_header(p), adcs_row(p), strict=True))
     m = tuple(row[f"m_{a}_Am2"] for a in "xyz")
     assert m == (0.5, -1.0, 0.25)  # clipped per axis
     assert tuple(row[f"mcmd_{a}_Am2"] for a in "xyz") == (0.5, -2.0, 0.25)

@@ -14,10 +14,10 @@ def test_quaternion_convention_scalar_first_passive_rotation():
     t = math.radians(30.0)
     q = (math.cos(t / 2), 0.0, 0.0, math.sin(t / 2))
     n1_B = rotate_n_to_b(q, (1.0, 0.0, 0.0))
-    assert all(abs(a - b) < TOL for a, b in zip(n1_B, (math.cos(t), -math.sin(t), 0.0)))
+    assert all(abs(a - b) < TOL for a, b in zip(n1_B, (math.cos(t), -math.sin(t), 0.0), strict=True))
     # B's first axis expressed in N is N1 turned by +t
     b1_N = rotate_b_to_n(q, (1.0, 0.0, 0.0))
-    assert all(abs(a - b) < TOL for a, b in zip(b1_N, (math.cos(t), math.sin(t), 0.0)))
+    assert all(abs(a - b) < TOL for a, b in zip(b1_N, (math.cos(t), math.sin(t), 0.0), strict=True))
     assert q == quat_from_axis_angle((0.0, 0.0, 1.0), t)
 
 
@@ -41,7 +41,7 @@ def test_composition_matches_dcm_product():
     v = (0.3, -1.2, 2.0)
     direct = rotate_n_to_b(q_cn, v)
     chained = rotate_n_to_b(q_cb, rotate_n_to_b(q_bn, v))
-    assert all(abs(a - b) < TOL for a, b in zip(direct, chained))
+    assert all(abs(a - b) < TOL for a, b in zip(direct, chained, strict=True))
 
 
 def test_mrp_round_trip_and_value():
@@ -50,12 +50,12 @@ def test_mrp_round_trip_and_value():
     # |sigma|^2 = 0.14: q0 = 0.86/1.14
     assert abs(q[0] - 0.86 / 1.14) < TOL
     assert abs(sum(x * x for x in q) - 1.0) < TOL
-    assert all(abs(a - b) < TOL for a, b in zip(quat_to_mrp(q), sigma))
+    assert all(abs(a - b) < TOL for a, b in zip(quat_to_mrp(q), sigma, strict=True))
     # MRP = e tan(phi/4)
     phi = 1.2
     e = (0.0, 1.0, 0.0)
     q2 = mrp_to_quat(tuple(math.tan(phi / 4) * x for x in e))
-    assert all(abs(a - b) < TOL for a, b in zip(q2, quat_from_axis_angle(e, phi)))
+    assert all(abs(a - b) < TOL for a, b in zip(q2, quat_from_axis_angle(e, phi), strict=True))
 
 
 def test_dcm_orthonormal_and_helpers():

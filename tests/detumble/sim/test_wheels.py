@@ -59,7 +59,7 @@ def test_friction_is_internal_and_conserves_momentum():
     for _ in range(20_000):
         plant.step()
     assert norm(sub(plant.total_angular_momentum_N(), h0)) / norm(h0) <= REL_TOL_CONSERVATION
-    assert all(abs(w) < w0 for w, w0 in zip(plant.wheel_speeds_rad_s, speed0))
+    assert all(abs(w) < w0 for w, w0 in zip(plant.wheel_speeds_rad_s, speed0, strict=True))
 
 
 def test_momentum_and_torque_limits_are_never_exceeded():

@@ -29,7 +29,8 @@ def test_without_basilisk_the_piece_measures_nothing_and_says_how_to_install(mon
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(not bench_basilisk.basilisk_installed(), reason="Basilisk is not installed (pip install -e '.[bsk]')")
+@pytest.mark.skipif(not bench_basilisk.basilisk_installed(),
+                    reason="Basilisk is not installed (pip install -e '.[bsk]')")
 def test_a_short_side_by_side_run_reports_every_kind_and_consistent_ratios():
     """PERF-BSK-002: 20 s simulated, one round: the four kinds ran for the asked time and the
     ratios are the quotients of the reported real-time factors."""

@@ -116,8 +116,9 @@ def test_invalid_unit_fails_without_raising(rig, unit):
 
 def test_acceleration_reads_bias_noise_and_the_centripetal_term(rig):
     """IMU-ACC-001: the LSM6DSO in free fall reads its zero-g offset plus the centripetal term at its
-    lever arm, with white noise: never exactly 0; the register holds a sample for one output period; the mean of 400 reads is within 4 sigma/sqrt(n)
-    of bias + w x (w x r), and the spread matches the noise std within 20 %."""
+    lever arm, with white noise: never exactly 0; the register holds a sample for one output period;
+    the mean of 400 reads is within 4 sigma/sqrt(n) of bias + w x (w x r), and the spread matches the
+    noise std within 20 %."""
     h, craft = rig
     reads, truth = [], []
     for k in range(400):

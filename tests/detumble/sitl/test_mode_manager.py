@@ -257,7 +257,7 @@ def test_corrupt_state_file(fprime_harness, tmp_path):
 
 class _Listener(PassiveComponent):
     @sync_input(SystemModeChanged)
-    def systemModeChanged(self, mode):  # noqa: N802
+    def systemModeChanged(self, mode):
         self.seen.append(mode)
 
     def __init__(self, name):

@@ -165,7 +165,8 @@ def test_good_topology_builds_connects_and_runs(parts):
     # Command pattern: registration and dispatch share one index per client.
     sensor.register_commands()
     disp.register_commands()
-    assert disp.output_port("compCmdSend").target_name(disp.table[0x1000 + sensor.spec.command("PING").opcode]) == "sensor.cmdIn[0]"
+    index = disp.table[0x1000 + sensor.spec.command("PING").opcode]
+    assert disp.output_port("compCmdSend").target_name(index) == "sensor.cmdIn[0]"
     assert disp.output_port("compCmdSend").target_name(disp.table[0x100]) == "cmdDisp.cmdIn[0]"
     assert sensor.output_port("timeCaller").target_name(0) == "time.timeGetPort[0]"
     assert sensor.output_port("prmGetOut").target_name(0) == "prm.getPrm[0]"

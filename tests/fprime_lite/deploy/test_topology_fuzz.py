@@ -68,7 +68,9 @@ def mutate(data: bytes, ops: list[tuple[str, int, int, str]]) -> bytes:
             line = lines[k]
             head, sep, tail = line.partition(b": ")
             if sep:
-                lines[k] = head + sep + raw if kind == "value" else re.sub(rb"\S+$", lambda m: raw or b"x", head) + sep + tail
+                new_key = raw or b"x"  # a function replacement: the fuzzed bytes are not a template
+                lines[k] = (head + sep + raw if kind == "value"
+                            else re.sub(rb"\S+$", lambda m, key=new_key: key, head) + sep + tail)
             data = b"\n".join(lines)
         elif kind == "dup_line":
             data = b"\n".join(lines[:k + 1] + lines[k:])

@@ -149,7 +149,8 @@ def test_alias_bomb(tmp_path):
     """TOPO-ROB-011: a 330-byte document expanding to 10^9 values is refused once it passes
     MAX_VALUES, instead of being expanded (it took 35 s at 10^8)."""
     text = "a: &a [" + ",".join(["x"] * 10) + "]\n"
-    text += "".join(f"{b}: &{b} [" + ",".join([f"*{a}"] * 10) + "]\n" for a, b in zip("abcdefgh", "bcdefghi"))
+    text += "".join(f"{b}: &{b} [" + ",".join([f"*{a}"] * 10) + "]\n"
+                    for a, b in zip("abcdefgh", "bcdefghi", strict=True))
     assert len(text) < 360
     refused(write(tmp_path, text), rf"topology\.yaml:\d+: the document expands to more than {MAX_VALUES} values")
 

@@ -75,7 +75,7 @@ def test_member_declared_twice():
     with pytest.raises(DeclarationError, match=r"Twice\.State is declared twice"):
         class Twice(PassiveComponent):
             State = Channel(U32)
-            State = Channel(U8)  # noqa: F811 - the error under test
+            State = Channel(U8)  # the error under test
 
 
 def test_handler_signature_must_fit_port_type():

@@ -6,8 +6,8 @@ import math
 
 import pytest
 
-from fprime_lite import (F64, U32, Channel, CmdResponse, DeclarationError, Event, ParamValid, PassiveComponent, QueuedComponent,
-                         Sched, Severity, Param, async_input, sync_command, sync_input)
+from fprime_lite import (F64, U32, Channel, CmdResponse, DeclarationError, Event, ParamValid, PassiveComponent,
+                         QueuedComponent, Sched, Severity, Param, async_input, sync_command, sync_input)
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.model.params import ParamEcho
 
@@ -19,7 +19,7 @@ class Coil(PassiveComponent):
     LIMIT = Param(U32, default=5, validate=lambda v: None if v % 5 == 0 else f"{v} is not a multiple of 5")
 
     @sync_command()
-    def BOOM(self):  # noqa: N802 - F´ spelling
+    def BOOM(self):
         raise ZeroDivisionError("by design")
 
 

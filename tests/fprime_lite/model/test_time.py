@@ -174,13 +174,13 @@ def test_time_minus_later_time_is_an_error():
 def test_time_arithmetic_with_wrong_types():
     t = Time(WS, 0, 1, 0)
     with pytest.raises(TypeError):
-        t + t  # noqa: B018
+        t + t
     with pytest.raises(TypeError):
-        t + 1  # noqa: B018
+        t + 1
     with pytest.raises(TypeError):
-        t - 1  # noqa: B018
+        t - 1
     with pytest.raises(TypeError):
-        TimeInterval(1) + t  # noqa: B018
+        TimeInterval(1) + t
 
 
 def test_time_is_immutable():
@@ -221,15 +221,15 @@ def test_interval_equality_ordering_and_sum():
     assert a + b == TimeInterval(2, 1)
     assert sorted([b, a, TimeInterval()]) == [TimeInterval(), a, b]
     with pytest.raises(TypeError):
-        a + 1  # noqa: B018
+        a + 1
 
 
 @pytest.mark.parametrize("op", ["<", "<=", ">", ">="])
 def test_interval_ordering_against_non_intervals_is_a_type_error(op):
     with pytest.raises(TypeError):
-        eval(f"TimeInterval(1) {op} 5")  # noqa: S307
+        eval(f"TimeInterval(1) {op} 5")
     with pytest.raises(TypeError):
-        eval(f"TimeInterval(1) {op} Time(WS, 0, 1, 0)")  # noqa: S307
+        eval(f"TimeInterval(1) {op} Time(WS, 0, 1, 0)")
 
 
 # --------------------------------------------------------------------------------------------
@@ -356,7 +356,7 @@ def test_prop_ordering_matches_microseconds(a_us, b_us):
         assert (a - b).total_us == a_us - b_us
     else:
         with pytest.raises(ValueError, match=r"is later than .*; subtract the earlier time"):
-            a - b  # noqa: B018
+            a - b
 
 
 @PROPS

@@ -1052,7 +1052,7 @@ def test_prop_concatenated_values_deserialize_in_sequence(pairs, prefix, suffix)
     buf = prefix + data + suffix
     # each deserializer consumes exactly the bytes its serializer produced
     offset = len(prefix)
-    for t, v, piece in zip(types, values, pieces):
+    for t, v, piece in zip(types, values, pieces, strict=True):
         back, end = t.deserialize(buf, offset)
         assert end == offset + len(piece)
         assert back == v

@@ -75,7 +75,8 @@ def test_commands_events_and_channels_have_fprime_ids(fprime_harness, tmp_path):
                        "ShellCommand": 4, "AppendFile": 5, "FileSize": 6, "ListDirectory": 7,
                        "CalculateCrc": 8}
     assert all(c.kind == "async" for c in comp.spec.commands)
-    args = {c.name: [(n, t.name, t.size if t.kind == "string" else None) for n, t in c.args] for c in comp.spec.commands}
+    args = {c.name: [(n, t.name, t.size if t.kind == "string" else None) for n, t in c.args]
+            for c in comp.spec.commands}
     assert args["RemoveFile"] == [("fileName", "string", 256), ("ignoreErrors", "bool", None)]
     assert args["ShellCommand"] == [("command", "string", 256), ("logFileName", "string", 256)]
     assert args["ListDirectory"] == [("dirName", "string", 200)]

@@ -22,11 +22,11 @@ from fprime_lite.svc.tlm_chan import TlmChan
 
 pytest.importorskip("fprime_gds", reason="fprime-gds 4.4.1 is a test dependency: pip install -e .[test]")
 
-from fprime_gds.common.data_types.cmd_data import CmdData  # noqa: E402
-from fprime_gds.common.decoders.ch_decoder import ChDecoder  # noqa: E402
-from fprime_gds.common.decoders.event_decoder import EventDecoder  # noqa: E402
-from fprime_gds.common.encoders.cmd_encoder import CmdEncoder  # noqa: E402
-from fprime_gds.common.models.dictionaries import Dictionaries  # noqa: E402
+from fprime_gds.common.data_types.cmd_data import CmdData
+from fprime_gds.common.decoders.ch_decoder import ChDecoder
+from fprime_gds.common.decoders.event_decoder import EventDecoder
+from fprime_gds.common.encoders.cmd_encoder import CmdEncoder
+from fprime_gds.common.models.dictionaries import Dictionaries
 
 SVC = pathlib.Path(__file__).parents[2] / "data" / "svc"
 DICTIONARY = SVC / "svc_dictionary.json"

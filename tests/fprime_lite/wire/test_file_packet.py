@@ -12,13 +12,14 @@ from fprime_lite.wire.file_packet import (CancelPacket, CfdpChecksum, DataPacket
 
 pytest.importorskip("fprime_gds", reason="fprime-gds 4.4.1 is a test dependency: pip install -e .[test]")
 
-from fprime_gds.common.data_types import file_data as gds  # noqa: E402
-from fprime_gds.common.decoders.file_decoder import FileDecoder  # noqa: E402
-from fprime_gds.common.encoders.file_encoder import FileEncoder  # noqa: E402
-from fprime_gds.common.files.helpers import CFDPChecksum  # noqa: E402
+from fprime_gds.common.data_types import file_data as gds
+from fprime_gds.common.decoders.file_decoder import FileDecoder
+from fprime_gds.common.encoders.file_encoder import FileEncoder
+from fprime_gds.common.files.helpers import CFDPChecksum
 
 PAIRS = [
-    (StartPacket(0, 1234, "/tmp/src.bin", "/seq/dst.bin"), gds.StartPacketData(0, 1234, "/tmp/src.bin", "/seq/dst.bin")),
+    (StartPacket(0, 1234, "/tmp/src.bin", "/seq/dst.bin"),
+     gds.StartPacketData(0, 1234, "/tmp/src.bin", "/seq/dst.bin")),
     (DataPacket(1, 512, b"\x00\x01binary\xff"), gds.DataPacketData(1, 512, b"\x00\x01binary\xff")),
     (EndPacket(2, 0xDEADBEEF), gds.EndPacketData(2, 0xDEADBEEF)),
     (CancelPacket(3), gds.CancelPacketData(3)),

@@ -371,7 +371,7 @@ def test_campaign_of_bogus_headers_and_disconnects_loses_no_valid_command(name):
         parts.insert(rng.randrange(len(parts) + 1), KEEPALIVE)
         stream = b"".join(parts)
         cuts = sorted(rng.sample(range(len(stream)), 3))
-        for a, b in zip([0] + cuts, cuts + [len(stream)]):
+        for a, b in zip([0] + cuts, cuts + [len(stream)], strict=True):
             delivered += [o for o in deframer.push(stream[a:b]) if isinstance(o, bytes)]
         delivered += [o for o in deframer.reset() if isinstance(o, bytes)]
     assert delivered == sent

@@ -206,8 +206,8 @@ def _build_instance(spec: InstanceConfig, config: TopologyConfig, topology: Topo
         component = cls(spec.name, **kwargs)
     except TypeError as exc:
         problems.add(spec.file, spec.line, f"{what}: cannot create {cls.__name__} with args "
-                                           f"{sorted(k for k in kwargs if k != 'base_id')}: {exc} — give the arguments its "
-                                           f"constructor takes")
+                                           f"{sorted(k for k in kwargs if k != 'base_id')}: {exc} — give the "
+                                           f"arguments its constructor takes")
         return False
     except Exception as exc:  # noqa: BLE001 - reported with its location
         problems.add(spec.file, spec.line, f"{what}: {cls.__name__} raised while being created: {exc} — check its args")

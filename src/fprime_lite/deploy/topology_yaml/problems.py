@@ -69,8 +69,8 @@ class Problems:
 
     def expect_map(self, file: pathlib.Path, value: Any, line: int | None, what: str) -> YMap | None:
         if not isinstance(value, YMap):
-            self.add(file, getattr(value, "line", line), f"{what} must be a mapping, got {kind(value)} — write it as indented "
-                                                                f"'key: value' lines")
+            self.add(file, getattr(value, "line", line), f"{what} must be a mapping, got {kind(value)} — write "
+                                                         f"it as indented 'key: value' lines")
             return None
         return value
 

@@ -242,7 +242,8 @@ class _Reader:
             self.add(line, f"{what} needs 'type' — give an import path such as package.module.Class", file)
             return None
         if not TYPE_PATH.match(value) or any(p.startswith("__") for p in value.split(".")):
-            self.add(line, f"{what}: type '{value[:80]}' must be a dotted import path — write package.module.Class", file)
+            self.add(line, f"{what}: type '{value[:80]}' must be a dotted import path — write "
+                           f"package.module.Class", file)
             return None
         return value
 
@@ -332,7 +333,8 @@ class _Reader:
         for name, spec in section.items():
             line = section.key_lines.get(name)
             if not isinstance(name, str) or not name.isidentifier():
-                self.add(line, f"resource name {name!r} must be an identifier — rename it (instances refer to it as $name)")
+                self.add(line, f"resource name {name!r} must be an identifier — rename it (instances refer to "
+                               f"it as $name)")
                 continue
             what = f"resource '{name}'"
             spec = self.problems.expect_map(self.path, spec, line, what)
@@ -426,7 +428,8 @@ class _Reader:
         ok = type_path is not None and args is not None
         if not _is_int(base_id) or not 0 <= base_id <= U32_MAX:
             self.add(spec.key_lines.get("base_id", line),
-                     f"{what}: base_id must be an integer in 0..0xFFFFFFFF, got {base_id!r} — give a 32-bit base id", file)
+                     f"{what}: base_id must be an integer in 0..0xFFFFFFFF, got {base_id!r} — give a 32-bit "
+                     f"base id", file)
             ok = False
         queue_size = spec.get("queue_size")
         queue_line = spec.key_lines.get("queue_size")
@@ -447,7 +450,7 @@ class _Reader:
                 self.add(gline, f"connection group '{group}' must be a list — write one "
                                f"'- Module.inst.outPort[i] -> Module.inst.inPort[j]' per line", file)
                 continue
-            for text, iline in zip(items, items.item_lines):
+            for text, iline in zip(items, items.item_lines, strict=True):
                 if not isinstance(text, str) or text.count("->") != 1:
                     self.add(iline, f"connection {text!r} must look like "
                                     f"'Module.inst.outPort[i] -> Module.inst.inPort[j]' — write one '->' between two "
@@ -520,14 +523,15 @@ class _Reader:
                      f"rate group '{name}': members must be a list — write one Module.instance.port per line")
             return None
         parsed = RateGroupConfig(name, gline, divisor, offset, base_period_us * divisor)
-        for member, mline in zip(members, members.item_lines):
+        for member, mline in zip(members, members.item_lines, strict=True):
             context = 0
             if isinstance(member, YMap):
                 self.problems.check_keys(self.path, member, MEMBER_KEYS, f"a member of rate group '{name}'")
                 context = member.get("context", 0)
                 member = member.get("port")
                 if not _is_int(context) or not 0 <= context <= U32_MAX:
-                    self.add(mline, f"rate group '{name}': member context must be a U32 — give an integer in 0..4294967295")
+                    self.add(mline, f"rate group '{name}': member context must be a U32 — give an integer in "
+                                    f"0..4294967295")
                     continue
             parsed.members.append(MemberConfig(self.endpoint(self.path, member, mline), context, mline))
         return parsed

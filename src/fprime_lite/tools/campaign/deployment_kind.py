@@ -74,7 +74,7 @@ def _split_param(key: str, declared: dict) -> tuple[str, list[str]]:
 def _with_member(value, members: list[str], new, key: str):
     if not members:
         return new
-    if not dataclasses.is_dataclass(value):
+    if not dataclasses.is_dataclass(value) or isinstance(value, type):
         raise RunSetupError(f"{key}: {type(value).__name__} has no members", key)
     head = members[0]
     if head not in {f.name for f in dataclasses.fields(value)}:

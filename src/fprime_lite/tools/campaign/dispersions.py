@@ -98,7 +98,8 @@ def _canonical_quat(q: np.ndarray) -> list:
 def _scalar(value, field: str, where: str) -> Callable[[np.random.Generator], float]:
     """A fixed number or a nested scalar dispersion."""
     if _is_number(value):
-        return lambda rng, v=float(value): v
+        v = float(value)
+        return lambda rng: v
     if isinstance(value, dict):
         inner = parse_dispersion(value, f"{where}.{field}")
         if inner.dist not in SCALAR_DISTRIBUTIONS:
@@ -207,10 +208,10 @@ def parse_dispersion(spec, where: str) -> Dispersion:
     axis_angle = _scalar(spec.get("axis_angle_deg", 0.0), "axis_angle_deg", where)
     moments, axes = np.linalg.eigh(nominal)
 
-    def sample(rng):
+    def sample_inertia(rng):
         scaled = moments * (1.0 + std * rng.standard_normal(3))
         turn = _rotation(_unit_vector(rng), math.radians(axis_angle(rng)))
         v = turn @ axes
         j = v @ np.diag(scaled) @ v.T
         return _plain(0.5 * (j + j.T))
-    return Dispersion(dist, sample)
+    return Dispersion(dist, sample_inertia)

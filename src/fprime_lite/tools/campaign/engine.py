@@ -118,7 +118,7 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
     # seed-major order: a campaign stopped early has the same draws done for every grid point
     todo = sorted((t for t in tasks if t["run_id"] not in done), key=lambda t: (t["seed_index"], t["point"]))
     started = now_utc()
-    counts = {}
+    counts: dict = {}
     info = None
     status = "interrupted"
     t0 = time.perf_counter()
@@ -133,7 +133,7 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
             with dask_client(workers, scheduler) as (client, info):
                 futures = client.map(execute_run, todo, key=[f"campaign-run-{t['run_id']}" for t in todo],
                                      pure=False)
-                by_key = {f.key: t for f, t in zip(futures, todo)}
+                by_key = {f.key: t for f, t in zip(futures, todo, strict=True)}
                 with progress_bar(len(tasks), len(done), progress, console) as update:
                     for future in as_completed(futures):
                         try:

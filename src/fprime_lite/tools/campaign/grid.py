@@ -76,5 +76,5 @@ def grid_points(grids: list[dict[str, list]]) -> list[dict]:
     for grid in grids:
         keys = list(grid)
         for combo in itertools.product(*(grid[k] for k in keys)):
-            points.append(dict(zip(keys, combo)))
+            points.append(dict(zip(keys, combo, strict=True)))
     return points or [{}]

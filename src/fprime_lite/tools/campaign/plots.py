@@ -8,13 +8,14 @@ one numeric key, a heatmap when it varies two, and a histogram + CDF otherwise.
 from __future__ import annotations
 
 import pathlib
+from typing import Callable
 
 import numpy as np
 
 __all__ = ["draw_plots", "auto_plots"]
 
-AGGREGATES = {"median": np.median, "mean": np.mean, "p95": lambda x: np.percentile(x, 95),
-              "max": np.max, "min": np.min}
+AGGREGATES: dict[str, Callable[[np.ndarray], float]] = {
+    "median": np.median, "mean": np.mean, "p95": lambda x: np.percentile(x, 95), "max": np.max, "min": np.min}
 
 
 def _numeric_axes(df, campaign) -> list[str]:

@@ -79,7 +79,7 @@ class ResultStore:
         self.metric_names = metric_names
         self.snapshot_s = snapshot_s
         self.rows: list[dict] = self._read_journal()
-        self._fh = None
+        self._fh: io.BufferedWriter | None = None
         self._last_snapshot = 0.0
 
     def _read_journal(self) -> list[dict]:
@@ -105,12 +105,13 @@ class ResultStore:
         return {r["run_id"] for r in self.rows}
 
     def add(self, row: dict) -> None:
-        if self._fh is None:
+        fh = self._fh
+        if fh is None:
             self.out_dir.mkdir(parents=True, exist_ok=True)
-            self._fh = open(self.journal, "ab")
-        self._fh.write(json.dumps(row, allow_nan=True).encode("utf-8") + b"\n")
-        self._fh.flush()
-        os.fsync(self._fh.fileno())
+            self._fh = fh = open(self.journal, "ab")
+        fh.write(json.dumps(row, allow_nan=True).encode("utf-8") + b"\n")
+        fh.flush()
+        os.fsync(fh.fileno())
         self.rows.append(row)
         if time.monotonic() - self._last_snapshot >= self.snapshot_s:
             self.snapshot()

@@ -128,7 +128,7 @@ def load_campaign(path) -> Campaign:
         run.key_lines = {}
     else:
         kind_name = run.get("kind")
-        kind = kinds.get(kind_name)
+        kind = kinds.get(kind_name) if isinstance(kind_name, str) else None
         if kind is None:
             guess = difflib.get_close_matches(str(kind_name), sorted(kinds), n=1)
             hint = f"did you mean '{guess[0]}'?" if guess else f"installed kinds: {', '.join(sorted(kinds))}"
@@ -249,7 +249,7 @@ def load_campaign(path) -> Campaign:
     if c.problems:
         raise CampaignError(c.problems)
     return Campaign(path=path, text=path.read_text(encoding="utf-8"), name=name.strip(),
-                    description=str(description or ""), kind=kind_name, run=_plain(run), grids=grids or [{}],
+                    description=str(description or ""), kind=str(kind_name), run=_plain(run), grids=grids or [{}],
                     dispersions=dispersions, dispersion_specs=dispersion_specs, seeds=seeds,
                     master_seed=master_seed, metrics=list(metric_names), timeout_s=timeout, keep=keep,
                     plots=plots, common_random_numbers=crn, where=where)

@@ -104,8 +104,8 @@ def execute_run(task: dict) -> dict:
                 notes[name] = reason
         if timed_out:
             row["status"] = "timeout"
-            row["error"] = f"timed out after {timeout:g} s of wall time at {output.summary.get('sim_seconds', 0):.0f} " \
-                           f"simulated s"
+            sim_s = output.summary.get('sim_seconds', 0)
+            row["error"] = f"timed out after {timeout:g} s of wall time at {sim_s:.0f} simulated s"
     except Exception as exc:  # noqa: BLE001 - a run that raises is recorded and the campaign goes on
         row["status"] = "failed"
         last = traceback.extract_tb(exc.__traceback__)[-1:] if exc.__traceback__ else []

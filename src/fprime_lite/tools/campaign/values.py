@@ -38,7 +38,7 @@ def yaml_text(value) -> str:
 def same_value(a, b, rel: float = 1e-9) -> bool:
     """Whether a read-back value equals the requested one (floats to ``rel``)."""
     if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
-        return len(a) == len(b) and all(same_value(x, y, rel) for x, y in zip(a, b))
+        return len(a) == len(b) and all(same_value(x, y, rel) for x, y in zip(a, b, strict=True))
     if isinstance(a, dict) and isinstance(b, dict):
         return a.keys() == b.keys() and all(same_value(a[k], b[k], rel) for k in a)
     if isinstance(a, (int, float)) and isinstance(b, (int, float)) and not isinstance(a, bool):

@@ -1,5 +1,9 @@
 """Fake FSW speaking the default CCSDS framing (space-packet-space-data-link) to fprime-gds."""
-import socket, struct, time, sys, crcmod
+import socket
+import struct
+import time
+import sys
+import crcmod
 crc16 = crcmod.mkCrcFun(0x11021, initCrc=0xFFFF, xorOut=0, rev=False)
 SCID, VCID, FRAME = 0x44, 1, 1024
 seq = {}; vc = [0]

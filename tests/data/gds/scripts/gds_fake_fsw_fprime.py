@@ -1,9 +1,14 @@
 """Fake flight software speaking fprime framing to a running fprime-gds (TCP client)."""
-import socket, struct, time, zlib, sys, threading
-def frame(pkt): 
+import socket
+import struct
+import time
+import zlib
+import sys
+import threading
+def frame(pkt):
     h = struct.pack(">II", 0xDEADBEEF, len(pkt)) + pkt
     return h + struct.pack(">I", zlib.crc32(h))
-def t(): 
+def t():
     now = time.time(); return struct.pack(">HBII", 2, 0, int(now), int((now % 1) * 1e6))
 def event(eid, args): return struct.pack(">HI", 2, eid) + t() + args
 def chan(cid, val): return struct.pack(">HI", 1, cid) + t() + val
@@ -25,7 +30,7 @@ while time.time() < end:
     buf += data
     while True:
         i = buf.find(b"\xde\xad\xbe\xef")
-        if i < 0: 
+        if i < 0:
             keepalive += buf.count(b"sitting well"); buf = buf[-3:]; break
         keepalive += buf[:i].count(b"sitting well")
         buf = buf[i:]

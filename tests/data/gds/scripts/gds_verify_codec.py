@@ -1,5 +1,6 @@
 # Reference only: run with the fprime-gds 4.4.1 venv python; NOT collected by the project test-suite.
-import struct, zlib
+import struct
+import zlib
 from fprime_gds.common.models.dictionaries import Dictionaries
 from fprime_gds.common.data_types.cmd_data import CmdData
 from fprime_gds.common.encoders.cmd_encoder import CmdEncoder

@@ -1,8 +1,5 @@
 # Reference only: run with the fprime-gds 4.4.1 venv python; NOT collected by the project test-suite.
 from fprime_gds.common.models.dictionaries import Dictionaries
-from fprime_gds.common.loaders.cmd_json_loader import CmdJsonLoader
-from fprime_gds.common.loaders.event_json_loader import EventJsonLoader
-from fprime_gds.common.loaders.ch_json_loader import ChJsonLoader
 from fprime_gds.common.loaders.prm_json_loader import PrmJsonLoader
 from fprime_gds.common.utils.config_manager import ConfigManager
 D = str(__import__("pathlib").Path(__file__).resolve().parent.parent / "minimal_dictionary.json")

@@ -32,5 +32,5 @@ class Heater(PassiveComponent):
         self.powerOut[0](gain * (20.0 - t) * cycles)
 
     @sync_command()
-    def RENAME(self, name: Annotated[str, String(20)]) -> None:  # noqa: N802 - F´ spelling
+    def RENAME(self, name: Annotated[str, String(20)]) -> None:
         self.Label.write(name)

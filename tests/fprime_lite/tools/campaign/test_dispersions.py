@@ -39,8 +39,8 @@ def test_random_vector_has_its_magnitude_and_an_isotropic_direction():
 
 
 def test_rotations_are_unit_quaternions_and_the_angle_is_kept():
-    """CAMP-022: random rotations are unit, scalar-first with q0 >= 0, uniform (E[q0] = 4/(3π): q0 has density (2/π)·sqrt(1 − q0²) on S³);
-    angle_about_random_axis turns the nominal by exactly the angle drawn."""
+    """CAMP-022: random rotations are unit, scalar-first with q0 >= 0, uniform (E[q0] = 4/(3π): q0 has
+    density (2/π)·sqrt(1 − q0²) on S³); angle_about_random_axis turns the nominal by exactly the angle drawn."""
     q = np.array(_draws({"dist": "random_rotation"}))
     assert np.allclose(np.linalg.norm(q, axis=1), 1, atol=1e-12) and q[:, 0].min() >= 0
     sd = math.sqrt(0.25 - (4 / (3 * math.pi)) ** 2)

@@ -42,7 +42,8 @@ def test_dispersions_are_read_back_from_the_built_simulation(two_worker_result):
     _, _, df = two_worker_result
     for _, r in df.iterrows():
         asked = json.loads(r["requested"])
-        assert r["scenario.initial.rate.magnitude_deg_s"] == pytest.approx(asked["scenario.initial.rate.magnitude_deg_s"], rel=1e-12)
+        key = "scenario.initial.rate.magnitude_deg_s"
+        assert r[key] == pytest.approx(asked[key], rel=1e-12)
         assert r["scenario.initial.rate.magnitude_deg_s"] == pytest.approx(r["initial_rate_deg_s"], rel=1e-12)
         assert list(r["scenario.sensors.magnetometer.bias_gauss"]) == asked["scenario.sensors.magnetometer.bias_gauss"]
         assert r["gain"] == asked["gain"]

@@ -32,18 +32,21 @@ def test_master_seed_changes_every_draw(write_campaign):
     a = plan_runs(load_campaign(write_campaign(TINY_PLANT, "a.yaml")), pathlib.Path("x"))
     b = plan_runs(load_campaign(write_campaign(TINY_PLANT.replace("master_seed: 7", "master_seed: 8"), "b.yaml")),
                   pathlib.Path("x"))
-    for ta, tb in zip(a, b):
+    for ta, tb in zip(a, b, strict=True):
         assert ta["seed"] != tb["seed"]
-        assert ta["values"]["scenario.initial.rate.magnitude_deg_s"] != tb["values"]["scenario.initial.rate.magnitude_deg_s"]
+        key = "scenario.initial.rate.magnitude_deg_s"
+        assert ta["values"][key] != tb["values"][key]
 
 
 def test_adding_a_dispersion_keeps_the_others(write_campaign):
     """CAMP-012: each dispersed key draws from its own stream: adding one leaves the others' values."""
-    extra = TINY_PLANT.replace("seeds: 2", "  scenario.initial.rate.axis: {dist: random_vector, magnitude: 1}\nseeds: 2")
+    extra = TINY_PLANT.replace("seeds: 2",
+                               "  scenario.initial.rate.axis: {dist: random_vector, magnitude: 1}\nseeds: 2")
     a = plan_runs(load_campaign(write_campaign(TINY_PLANT, "a.yaml")), pathlib.Path("x"))
     b = plan_runs(load_campaign(write_campaign(extra, "b.yaml")), pathlib.Path("x"))
-    for ta, tb in zip(a, b):
-        assert tb["values"]["scenario.sensors.magnetometer.bias_gauss"] == ta["values"]["scenario.sensors.magnetometer.bias_gauss"]
+    for ta, tb in zip(a, b, strict=True):
+        key = "scenario.sensors.magnetometer.bias_gauss"
+        assert tb["values"][key] == ta["values"][key]
         assert ta["seed"] == tb["seed"]
 
 

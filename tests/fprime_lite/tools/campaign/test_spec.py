@@ -21,7 +21,8 @@ def test_valid_file_loads(write_campaign):
     c = load_campaign(write_campaign(TINY_PLANT))
     assert c.name == "tiny" and c.kind == "plant" and c.seeds == 2 and c.master_seed == 7
     assert c.grids == [{"gain": [1.0, 3.0]}]
-    assert c.varied_keys == ["gain", "scenario.initial.rate.magnitude_deg_s", "scenario.sensors.magnetometer.bias_gauss"]
+    assert c.varied_keys == ["gain", "scenario.initial.rate.magnitude_deg_s",
+                             "scenario.sensors.magnetometer.bias_gauss"]
 
 
 def test_unknown_keys_are_refused_with_file_and_line(write_campaign):
@@ -106,4 +107,5 @@ def test_percentile_with_never():
     assert percentile(np.array([3923.0, 2989.0, math.inf]), 50) == 3923.0  # numpy: nan (inf·0)
     assert percentile(np.array([3923.0, 2989.0, math.inf]), 95) == math.inf
     assert percentile(np.arange(11.0), 95) == np.percentile(np.arange(11.0), 95)
-    assert percentile(np.array([1.0, 2.0, 4.0, 8.0]), 40) == pytest.approx(np.percentile([1.0, 2.0, 4.0, 8.0], 40), rel=1e-15)
+    xs = [1.0, 2.0, 4.0, 8.0]
+    assert percentile(np.array(xs), 40) == pytest.approx(np.percentile(xs, 40), rel=1e-15)
