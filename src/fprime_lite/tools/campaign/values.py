@@ -29,10 +29,32 @@ def plain(value):
 
 
 def yaml_text(value) -> str:
-    """``value`` written as a YAML flow value (for ``KEY=VALUE`` settings); floats exact."""
+    """``value`` written as a YAML flow value (for ``KEY=VALUE`` settings); floats exact.
+
+    A float is written so that YAML 1.1 (PyYAML) reads it back as a float: its resolver wants a dot
+    in the mantissa and a signed exponent, so ``1e-05`` (what JSON writes) would come back as the
+    string ``'1e-05'``; it is written ``1.0e-05``.
+    """
     import json
 
-    return json.dumps(plain(value), allow_nan=False)
+    def text(v) -> str:
+        if isinstance(v, float):
+            if not math.isfinite(v):
+                raise ValueError(f"not a finite number: {v!r}")
+            r = repr(v)
+            mantissa, e, exponent = r.partition("e")
+            if e and "." not in mantissa:
+                mantissa += ".0"
+            if e and exponent[:1] not in "+-":
+                exponent = "+" + exponent
+            return mantissa + e + exponent
+        if isinstance(v, (list, tuple)):
+            return "[" + ", ".join(text(x) for x in v) + "]"
+        if isinstance(v, dict):
+            return "{" + ", ".join(f"{json.dumps(str(k))}: {text(x)}" for k, x in v.items()) + "}"
+        return json.dumps(v)
+
+    return text(plain(value))
 
 
 def same_value(a, b, rel: float = 1e-9) -> bool:
