@@ -34,6 +34,12 @@ def _index(value, rest: list[str], key: str):
         if dataclasses.is_dataclass(value) and not isinstance(value, type):
             value = _attr(value, part, key)  # a nested section (control.beta_pd.k_s)
             continue
+        if (not part.isdigit() and isinstance(value, tuple) and value
+                and all(dataclasses.is_dataclass(v) for v in value)):
+            # a key set for every element at once (reaction_wheels.momentum_noise_std_nms)
+            each = [_attr(v, part, key) for v in value]
+            value = each[0] if all(e == each[0] for e in each) else each
+            continue
         if not (part.isdigit() and isinstance(value, (list, tuple)) and int(part) < len(value)):
             raise KeyError(f"{key}: {part!r} is not an element index of {value!r}")
         value = value[int(part)]

@@ -102,3 +102,12 @@ def test_wheel_and_settling_metrics_come_from_the_run(tmp_path):
     peak = BY_NAME["wheel_momentum_peak_nms"].compute(out, None)
     assert 1e-3 < peak <= 0.1 + 1e-12
     assert BY_NAME["settling_time_2pct_s"].compute(out, None) == out.summary["settling_time_2pct_s"]
+
+
+def test_a_key_set_for_every_wheel_reads_back_once():
+    """CAMP-066: reaction_wheels.momentum_noise_std_nms, set for all wheels at once, is read back
+    from the built plant's wheels (one value when they agree)."""
+    from detumble.sim.readback import read_setting
+
+    plant = Plant(load_scenario("surrey", settings=["spacecraft.reaction_wheels.momentum_noise_std_nms=1.0e-05"]))
+    assert read_setting(plant, "spacecraft.reaction_wheels.momentum_noise_std_nms") == 1e-05
