@@ -13,11 +13,13 @@ import subprocess
 import sys
 import time
 
-import pandas as pd
 import pytest
 
 from fprime_lite.tools.campaign import read_results, run_campaign
 from tests.fprime_lite.tools.campaign.conftest import TINY_PLANT, comparable
+
+pd = pytest.importorskip("pandas", reason="pandas, dask and pyarrow are dependencies: pip install -e .[test]")
+pytest.importorskip("distributed", reason="dask[distributed] is a dependency: pip install -e .[test]")
 
 BIN = pathlib.Path(sys.executable).parent
 START_TIMEOUT_S = 90

@@ -5,11 +5,13 @@ from __future__ import annotations
 import json
 
 import numpy as np
-import pandas as pd
 import pytest
 
 from fprime_lite.tools.campaign import CampaignError, read_results, run_campaign
 from tests.fprime_lite.tools.campaign.conftest import TINY_PLANT, comparable
+
+pd = pytest.importorskip("pandas", reason="pandas, dask and pyarrow are dependencies: pip install -e .[test]")
+pytest.importorskip("distributed", reason="dask[distributed] is a dependency: pip install -e .[test]")
 
 
 @pytest.fixture(scope="module")
