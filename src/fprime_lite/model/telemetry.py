@@ -7,6 +7,14 @@ Declared as attributes of a component class::
 
 and written on an instance as ``self.State.write(value)``. An ``on change`` channel sends its first
 write and then only values that differ from the last one written.
+
+Serialised when downlinked: a write whose ``tlmOut`` connects straight to a channel store that
+declares :attr:`deferred_tlm_input` (TlmChan's ``TlmRecv``) hands the store the time stamp, the
+value and the type's packer instead of the packed bytes; the store packs the latest value when it
+downlinks it or when it is read. Only values that cannot change after the write travel this way
+(numbers, booleans, enums, strings); structs and arrays (mutable Python objects) are packed at
+write, as is every write to any other receiver (a test harness, a tap, a custom component), so
+what such a receiver sees is F´'s ``Fw.Tlm`` call with the value's bytes.
 """
 
 from __future__ import annotations
@@ -18,7 +26,7 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 from fprime_lite.model.errors import DeclarationError, check_member_name
 from fprime_lite.model.events import translate_format
 from fprime_lite.model.time import Time
-from fprime_lite.model.types import _F64, EnumType, FloatType, FwType, IntType, fw_type
+from fprime_lite.model.types import _F64, BoolType, EnumType, FloatType, FwType, IntType, StringType, fw_type
 
 _ZERO_TIME = Time()
 
@@ -109,7 +117,8 @@ class BoundChannel(Generic[V]):
     """A channel of one component instance."""
 
     __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
-                 "_valid_type", "_tlm_targets", "_tlm_calls", "_time_targets", "_time_calls")
+                 "_valid_type", "_tlm_targets", "_tlm_calls", "_time_targets", "_time_calls", "_deferrable",
+                 "_bound_call", "_store")
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         self.component = component
@@ -135,6 +144,10 @@ class BoundChannel(Generic[V]):
         # A value of this exact Python type is valid for the channel without checking (enum
         # members of the channel's enum, and floats for F64).
         self._valid_type = t.cls if isinstance(t, EnumType) else float if t is _F64 else None
+        # Checked values of these types are immutable, so packing them later gives the same bytes.
+        self._deferrable = isinstance(t, (IntType, FloatType, BoolType, EnumType, StringType))
+        self._bound_call: object = None  # the tlmOut call that _store was worked out for
+        self._store = None  # the target's deferred store, or None: send packed bytes
 
     def write(self, value: V, time: Time | None = None) -> None:
         """Record ``value`` and send it (time-stamped now, unless ``time`` is given)."""
@@ -144,8 +157,26 @@ class BoundChannel(Generic[V]):
             return
         self.last = value
         self.written = True
-        if self._tlm_targets[0] is None:
-            return
+        call = self._tlm_calls[0]
+        if call is not self._bound_call:  # first write, or tlmOut was (re)connected since
+            if self._tlm_targets[0] is None:
+                return
+            self._bind(call)
         if time is None:
             time = self._time_calls[0]() if self._time_targets[0] is not None else _ZERO_TIME
-        self._tlm_calls[0](self.id, time, self._serialize(value))
+        store = self._store
+        if store is not None:
+            store(self.id, time, value, self._serialize)
+        else:
+            call(self.id, time, self._serialize(value))
+
+    def _bind(self, call: object) -> None:
+        """Work out how writes reach what ``tlmOut[0]`` now connects to (``call`` is its slot)."""
+        self._bound_call = call
+        self._store = None
+        target = self._tlm_targets[0]
+        if self._deferrable and type(target) is tuple:
+            port = target[0]
+            component = port.component
+            if getattr(component, "deferred_tlm_input", None) == port.name:
+                self._store = component.store_tlm_value
