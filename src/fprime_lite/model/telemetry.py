@@ -11,26 +11,30 @@ write and then only values that differ from the last one written.
 Serialised when downlinked: a write whose ``tlmOut`` connects straight to a channel store that
 declares :attr:`deferred_tlm_input` (TlmChan's ``TlmRecv``) hands the store the time stamp, the
 value and the type's packer instead of the packed bytes; the store packs the latest value when it
-downlinks it or when it is read. Only values that cannot change after the write travel this way
-(numbers, booleans, enums, strings); structs and arrays (mutable Python objects) are packed at
-write, as is every write to any other receiver (a test harness, a tap, a custom component), so
-what such a receiver sees is F´'s ``Fw.Tlm`` call with the value's bytes.
+downlinks it or when it is read. Only values that cannot change after the write travel this way:
+numbers, booleans, enums and strings as they are, and structs whose members are all of those
+kinds or times as a tuple of their member values taken at the write (a struct is a mutable Python
+object). Arrays, structs with struct or array members, and every write to any other receiver (a
+test harness, a tap, a custom component) are packed at write, so what such a receiver sees is
+F´'s ``Fw.Tlm`` call with the value's bytes.
 """
 
 from __future__ import annotations
 
 import builtins
+import operator
 
 from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from fprime_lite.model.errors import DeclarationError, check_member_name
 from fprime_lite.model.events import translate_format
-from fprime_lite.model.time import Time
-from fprime_lite.model.types import _F64, BoolType, EnumType, FloatType, FwType, IntType, StringType, fw_type
+from fprime_lite.model.time import Time, TimeType
+from fprime_lite.model.types import (_F64, BoolType, EnumType, FloatType, FwType, IntType, StringType, StructType,
+                                     fw_type)
 
 _ZERO_TIME = Time()
 
-__all__ = ["Channel", "BoundChannel"]
+__all__ = ["Channel", "BoundChannel", "BoundStructChannel", "bind_channel"]
 
 V = TypeVar("V")
 
@@ -180,3 +184,73 @@ class BoundChannel(Generic[V]):
             component = port.component
             if getattr(component, "deferred_tlm_input", None) == port.name:
                 self._store = component.store_tlm_value
+
+
+#: Member types whose checked values are immutable: a struct made only of these can be snapshotted.
+_SNAPSHOT_MEMBER_TYPES = (IntType, FloatType, BoolType, EnumType, StringType, TimeType)
+
+
+def bind_channel(component: Any, decl: Channel[V], channel_id: int) -> BoundChannel[V]:
+    """The bound channel of ``decl`` on ``component``: a :class:`BoundStructChannel` for a struct of
+    two or more members of immutable kinds, a :class:`BoundChannel` otherwise."""
+    t = decl.type
+    if (isinstance(t, StructType) and len(t.members) >= 2
+            and all(isinstance(mt, _SNAPSHOT_MEMBER_TYPES) for _, mt in t.members)):
+        return BoundStructChannel(component, decl, channel_id)
+    return BoundChannel(component, decl, channel_id)
+
+
+class BoundStructChannel(BoundChannel[V]):
+    """A channel of a struct type whose members are numbers, booleans, enums, strings or times.
+
+    A write checks the value (without calling the member checks when every member already has the
+    exact Python type that is always valid for it: ``float`` for F64, the enum's class), takes the
+    member values as a tuple, and sends that tuple with a packer to a deferred store; other
+    receivers get the bytes at once. The bytes are those of the struct type's own ``pack``.
+    """
+
+    __slots__ = ("_members_of", "_exact", "_pack_members")
+
+    def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
+        super().__init__(component, decl, channel_id)
+        t = decl.type
+        assert isinstance(t, StructType)
+        self._members_of = operator.attrgetter(*[name for name, _ in t.members])
+        self._valid_type = t.cls
+        exact = [float if mt is _F64 else mt.cls if isinstance(mt, EnumType) else None for _, mt in t.members]
+        self._exact = None if None in exact else tuple(exact)
+        self._deferrable = True
+        fixed = t._fixed
+        if fixed is not None:
+            self._pack_members = lambda members: fixed.pack(*members)
+        else:
+            packs = [mt.pack for _, mt in t.members]
+            self._pack_members = lambda members: b"".join([p(v) for p, v in zip(packs, members)])
+        self._serialize = self._pack_members
+
+    def write(self, value: V, time: Time | None = None) -> None:
+        """Record ``value`` and send it (time-stamped now, unless ``time`` is given)."""
+        members = None
+        if type(value) is self._valid_type and self._exact is not None:
+            members = self._members_of(value)
+            if tuple(map(type, members)) != self._exact:
+                members = None
+        if members is None:
+            value = self._check(value)
+            members = self._members_of(value)
+        if self._on_change and self.written and value == self.last:
+            return
+        self.last = value
+        self.written = True
+        call = self._tlm_calls[0]
+        if call is not self._bound_call:
+            if self._tlm_targets[0] is None:
+                return
+            self._bind(call)
+        if time is None:
+            time = self._time_calls[0]() if self._time_targets[0] is not None else _ZERO_TIME
+        store = self._store
+        if store is not None:
+            store(self.id, time, members, self._pack_members)
+        else:
+            call(self.id, time, self._pack_members(members))
