@@ -12,10 +12,10 @@ Serialised when downlinked: a write whose ``tlmOut`` connects straight to a chan
 declares :attr:`deferred_tlm_input` (TlmChan's ``TlmRecv``) hands the store the time stamp, the
 value and the type's packer instead of the packed bytes; the store packs the latest value when it
 downlinks it or when it is read. Only values that cannot change after the write travel this way:
-numbers, booleans, enums and strings as they are, and structs whose members are all of those
-kinds or times as a tuple of their member values taken at the write (a struct is a mutable Python
-object). Arrays, structs with struct or array members, and every write to any other receiver (a
-test harness, a tap, a custom component) are packed at write, so what such a receiver sees is
+numbers, booleans, enums and strings as they are; structs whose members are all of those kinds
+or times, and arrays of numbers, as a tuple of their member values taken at the write (struct and
+array values are mutable Python objects). Other arrays, structs with struct or array members, and
+every write to any other receiver (a test harness, a tap, a custom component) are packed at write, so what such a receiver sees is
 F´'s ``Fw.Tlm`` call with the value's bytes.
 """
 
@@ -29,12 +29,12 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 from fprime_lite.model.errors import DeclarationError, check_member_name
 from fprime_lite.model.events import translate_format
 from fprime_lite.model.time import Time, TimeType
-from fprime_lite.model.types import (_F64, BoolType, EnumType, FloatType, FwType, IntType, StringType, StructType,
+from fprime_lite.model.types import (_F64, ArrayType, BoolType, EnumType, FloatType, FwType, IntType, StringType, StructType,
                                      fw_type)
 
 _ZERO_TIME = Time()
 
-__all__ = ["Channel", "BoundChannel", "BoundStructChannel", "bind_channel"]
+__all__ = ["Channel", "BoundChannel", "BoundSnapshotChannel", "bind_channel"]
 
 V = TypeVar("V")
 
@@ -191,22 +191,26 @@ _SNAPSHOT_MEMBER_TYPES = (IntType, FloatType, BoolType, EnumType, StringType, Ti
 
 
 def bind_channel(component: Any, decl: Channel[V], channel_id: int) -> BoundChannel[V]:
-    """The bound channel of ``decl`` on ``component``: a :class:`BoundStructChannel` for a struct of
-    two or more members of immutable kinds, a :class:`BoundChannel` otherwise."""
+    """The bound channel of ``decl`` on ``component``: a :class:`BoundSnapshotChannel` for a struct
+    of two or more members of immutable kinds or an array of numbers, a :class:`BoundChannel`
+    otherwise."""
     t = decl.type
     if (isinstance(t, StructType) and len(t.members) >= 2
             and all(isinstance(mt, _SNAPSHOT_MEMBER_TYPES) for _, mt in t.members)):
-        return BoundStructChannel(component, decl, channel_id)
+        return BoundSnapshotChannel(component, decl, channel_id)
+    if isinstance(t, ArrayType) and t._fixed is not None:
+        return BoundSnapshotChannel(component, decl, channel_id)
     return BoundChannel(component, decl, channel_id)
 
 
-class BoundStructChannel(BoundChannel[V]):
-    """A channel of a struct type whose members are numbers, booleans, enums, strings or times.
+class BoundSnapshotChannel(BoundChannel[V]):
+    """A channel of a struct whose members are numbers, booleans, enums, strings or times, or of an
+    array of numbers: values that are mutable Python objects made of immutable parts.
 
     A write checks the value (without calling the member checks when every member already has the
     exact Python type that is always valid for it: ``float`` for F64, the enum's class), takes the
     member values as a tuple, and sends that tuple with a packer to a deferred store; other
-    receivers get the bytes at once. The bytes are those of the struct type's own ``pack``.
+    receivers get the bytes at once. The bytes are those of the type's own ``pack``.
     """
 
     __slots__ = ("_members_of", "_exact", "_pack_members")
@@ -214,17 +218,22 @@ class BoundStructChannel(BoundChannel[V]):
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         super().__init__(component, decl, channel_id)
         t = decl.type
-        assert isinstance(t, StructType)
-        self._members_of = operator.attrgetter(*[name for name, _ in t.members])
         self._valid_type = t.cls
-        exact = [float if mt is _F64 else mt.cls if isinstance(mt, EnumType) else None for _, mt in t.members]
-        self._exact = None if None in exact else tuple(exact)
         self._deferrable = True
+        if isinstance(t, StructType):
+            self._members_of = operator.attrgetter(*[name for name, _ in t.members])
+            member_types = [mt for _, mt in t.members]
+        else:
+            assert isinstance(t, ArrayType)
+            self._members_of = tuple
+            member_types = [t.elem] * t.size
+        exact = [float if mt is _F64 else mt.cls if isinstance(mt, EnumType) else None for mt in member_types]
+        self._exact = None if None in exact else tuple(exact)
         fixed = t._fixed
         if fixed is not None:
             self._pack_members = lambda members: fixed.pack(*members)
         else:
-            packs = [mt.pack for _, mt in t.members]
+            packs = [mt.pack for mt in member_types]
             self._pack_members = lambda members: b"".join([p(v) for p, v in zip(packs, members)])
         self._serialize = self._pack_members
 

@@ -667,6 +667,9 @@ class ArrayType(FwType[Any]):
         self.elem = elem
         self.size = size
         self.name = _qualified(getattr(cls, "__fprime_namespace__", None), cls.__name__)
+        #: One struct for the whole array when its elements are plain numbers (else None).
+        self._fixed = (struct.Struct(">" + elem._struct.format[1:] * size)
+                       if isinstance(elem, (IntType, FloatType)) else None)
 
     def check(self, value):
         if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
@@ -682,6 +685,11 @@ class ArrayType(FwType[Any]):
 
     def serialize(self, value):
         return b"".join(self.elem.serialize(v) for v in self.check(value))
+
+    def pack(self, value):
+        if self._fixed is not None:  # numbers: what each element's serialize gives, in one call
+            return self._fixed.pack(*value)
+        return self.serialize(value)
 
     def deserialize(self, data, offset=0):
         items = []

@@ -190,6 +190,9 @@ def _deferred_fixture():
     class Triple(Array, elem=U32, size=3, namespace="Test"):
         pass
 
+    class Quat(Array, elem=F64, size=4, namespace="Test"):
+        pass
+
     class Writer(PassiveComponent):
         Count = Channel(U32)
         Rate = Channel(F64)
@@ -200,6 +203,7 @@ def _deferred_fixture():
         Sample = Channel(Stamped)
         Deep = Channel(Nested)
         Many = Channel(Triple)
+        Attitude = Channel(Quat)
 
         @sync_input(Sched)
         def run(self, context):
@@ -209,18 +213,19 @@ def _deferred_fixture():
     writer.output_port("tlmOut").connect(0, tlm.input_port("TlmRecv"), 0)
     sent = []
     tlm.output_port("PktSend").connect_callable(0, lambda data, ctx: sent.append(data), "ground")
-    return writer, tlm, sent, (Colour, Vec, Stamped, Nested, Triple)
+    return writer, tlm, sent, (Colour, Vec, Stamped, Nested, Triple, Quat)
 
 
 def test_channel_values_are_packed_at_downlink_into_the_bytes_of_the_write():
     """TLM-DEFER-002: every kind of channel written through a tlmOut wired to TlmRecv is downlinked
     (and read by TlmGet) as the bytes of the value written — a struct changed after its write
     included — and numbers, enums, booleans, strings and structs of those are stored unpacked."""
-    writer, tlm, sent, (Colour, Vec, Stamped, Nested, Triple) = _deferred_fixture()
+    writer, tlm, sent, (Colour, Vec, Stamped, Nested, Triple, Quat) = _deferred_fixture()
     at = Time(TimeBase.TB_WORKSTATION_TIME, 0, 3, 250)
     vec, stamped, nested = Vec(1.5, -2.0, 3.25), Stamped(0.5, Colour.GREEN, at), Nested(Vec(1.0, 2.0, 3.0), 9)
     written = {"Count": 7, "Rate": 0.125, "Paint": Colour.GREEN, "Flag": True, "Label": "detumbling",
-               "Vector": vec, "Sample": stamped, "Deep": nested, "Many": Triple([1, 2, 3])}
+               "Vector": vec, "Sample": stamped, "Deep": nested, "Many": Triple([1, 2, 3]),
+               "Attitude": Quat([1, 0.0, -0.5, 0.25])}
     expected = {}
     for name, value in written.items():
         channel = writer.channels[name]
@@ -229,8 +234,9 @@ def test_channel_values_are_packed_at_downlink_into_the_bytes_of_the_write():
     vec.x = 99.0  # the struct objects change after their writes: the downlink keeps what was written
     stamped.colour = Colour.RED
     nested.inner.x = 99.0
+    written["Many"][0] = 5
     packers = {writer.channels[n].id: tlm._latest[writer.channels[n].id][2] for n in written}
-    assert [n for n in written if packers[writer.channels[n].id] is None] == ["Deep", "Many"]
+    assert [n for n in written if packers[writer.channels[n].id] is None] == ["Deep"]
     for chan_id, value in expected.items():
         assert tlm.TlmGet(chan_id) == (TlmValid.VALID, T1, value)
     tlm.input_port("Run").entries[0](0)
@@ -245,7 +251,7 @@ def test_a_struct_write_checks_its_members_as_before():
     converts an int given for an F64 member, as the struct's check does."""
     from fprime_lite.model.errors import SerializationError
 
-    writer, tlm, _, (Colour, Vec, Stamped, _n, _t) = _deferred_fixture()
+    writer, tlm, _, (Colour, Vec, Stamped, _n, _t, Quat) = _deferred_fixture()
     with pytest.raises(SerializationError, match="Vec.y"):
         writer.channels["Vector"].write(Vec(1.0, "fast", 3.0), T1)
     with pytest.raises(SerializationError, match="Stamped.at"):
@@ -253,3 +259,5 @@ def test_a_struct_write_checks_its_members_as_before():
     writer.channels["Vector"].write(Vec(1, 2.0, 3.0), T1)
     assert tlm.TlmGet(writer.channels["Vector"].id)[2] == struct.pack(">ddd", 1.0, 2.0, 3.0)
     assert writer.channels["Vector"].last == Vec(1.0, 2.0, 3.0)
+    with pytest.raises(SerializationError, match="Quat element"):
+        writer.channels["Attitude"].write([1.0, 0.0, None, 0.0], T1)
