@@ -20,6 +20,9 @@ def test_deployment_measurement_interleaves_pieces_and_reports_consistent_figure
     assert d["ticks_per_s"] * d["deployment_wall_s"] == pytest.approx(8.0 * 50 + 1, abs=1)
     assert d["sim_seconds"] == 8.0 and d["real_time_factor"] > 0
     assert d["tick_rate_group"] == "rateGroup50Hz" and d["tick_hz"] == 50.0 and d["plant_only_law"] == "bdot"
+    cpu = d["pieces_cpu_us_per_tick"]
+    assert len(cpu["deployment"]) == len(cpu["plant_only"]) == 2
+    assert d["tick_cost_ratio_cpu"] == pytest.approx(min(cpu["deployment"]) / min(cpu["plant_only"]))
 
 
 def test_the_other_reference_deployments_are_measured_against_their_own_plant_configuration():
