@@ -180,9 +180,10 @@ class BoundChannel(Generic[V]):
         self._store = None
         target = self._tlm_targets[0]
         if self._deferrable and type(target) is tuple:
-            port = target[0]
+            port, index = target
             component = port.component
-            if getattr(component, "deferred_tlm_input", None) == port.name:
+            # Only the store's own input: a slot whose callable was replaced (a tap) gets bytes.
+            if getattr(component, "deferred_tlm_input", None) == port.name and call is port.entries[index]:
                 self._store = component.store_tlm_value
 
 

@@ -261,3 +261,23 @@ def test_a_struct_write_checks_its_members_as_before():
     assert writer.channels["Vector"].last == Vec(1.0, 2.0, 3.0)
     with pytest.raises(SerializationError, match="Quat element"):
         writer.channels["Attitude"].write([1.0, 0.0, None, 0.0], T1)
+
+
+def test_a_tap_on_the_tlm_out_slot_still_sees_every_write_as_bytes():
+    """TLM-DEFER-004: a callable put in a connected tlmOut slot in front of TlmRecv (a tap, as the
+    ground recorder puts on PktSend) receives each write as F´ bytes and TlmChan still stores it."""
+    writer, tlm, _, _types = _deferred_fixture()
+    slot = writer.output_port("tlmOut").calls
+    downstream, seen = slot[0], []
+    rate = writer.channels["Rate"]
+    rate.write(0.5, T1)  # bound to the store first
+    assert tlm._latest[rate.id][2] is not None
+
+    def tap(chan_id, time, value):
+        seen.append((chan_id, time, value))
+        downstream(chan_id, time, value)
+
+    slot[0] = tap
+    rate.write(0.25, T2)
+    assert seen == [(rate.id, T2, struct.pack(">d", 0.25))]
+    assert tlm.TlmGet(rate.id) == (TlmValid.VALID, T2, struct.pack(">d", 0.25))
