@@ -122,7 +122,7 @@ class BoundChannel(Generic[V]):
 
     __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
                  "_valid_type", "_tlm_targets", "_tlm_calls", "_time_targets", "_time_calls", "_deferrable",
-                 "_bound_call", "_store")
+                 "_bound_call", "_store", "_members_of")
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         self.component = component
@@ -152,6 +152,8 @@ class BoundChannel(Generic[V]):
         self._deferrable = isinstance(t, (IntType, FloatType, BoolType, EnumType, StringType))
         self._bound_call: object = None  # the tlmOut call that _store was worked out for
         self._store = None  # the target's deferred store, or None: send packed bytes
+        #: For a mutable value made of immutable parts: what is stored and packed (a tuple of them).
+        self._members_of: Any = None
 
     def write(self, value: V, time: Time | None = None) -> None:
         """Record ``value`` and send it (time-stamped now, unless ``time`` is given)."""
@@ -168,11 +170,13 @@ class BoundChannel(Generic[V]):
             self._bind(call)
         if time is None:
             time = self._time_calls[0]() if self._time_targets[0] is not None else _ZERO_TIME
+        members_of = self._members_of
+        stored = value if members_of is None else members_of(value)
         store = self._store
         if store is not None:
-            store(self.id, time, value, self._serialize)
+            store(self.id, time, stored, self._serialize)
         else:
-            call(self.id, time, self._serialize(value))
+            call(self.id, time, self._serialize(stored))
 
     def _bind(self, call: object) -> None:
         """Work out how writes reach what ``tlmOut[0]`` now connects to (``call`` is its slot)."""
@@ -209,17 +213,16 @@ class BoundSnapshotChannel(BoundChannel[V]):
     array of numbers: values that are mutable Python objects made of immutable parts.
 
     A write checks the value (without calling the member checks when every member already has the
-    exact Python type that is always valid for it: ``float`` for F64, the enum's class), takes the
-    member values as a tuple, and sends that tuple with a packer to a deferred store; other
-    receivers get the bytes at once. The bytes are those of the type's own ``pack``.
+    exact Python type that is always valid for it: ``float`` for F64, the enum's class), and stores
+    or packs the tuple of its member values taken at the write; the bytes are those of the type's
+    own ``pack``.
     """
 
-    __slots__ = ("_members_of", "_exact", "_pack_members")
+    __slots__ = ("_exact", "_full_check")
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         super().__init__(component, decl, channel_id)
         t = decl.type
-        self._valid_type = t.cls
         self._deferrable = True
         if isinstance(t, StructType):
             self._members_of = operator.attrgetter(*[name for name, _ in t.members])
@@ -229,38 +232,19 @@ class BoundSnapshotChannel(BoundChannel[V]):
             self._members_of = tuple
             member_types = [t.elem] * t.size
         exact = [float if mt is _F64 else mt.cls if isinstance(mt, EnumType) else None for mt in member_types]
-        self._exact = None if None in exact else tuple(exact)
+        self._exact = None if None in exact else (t.cls, tuple(exact))
+        self._full_check = t.check
+        self._check = self._quick_check  # every write goes through it (_valid_type stays None)
         fixed = t._fixed
         if fixed is not None:
-            self._pack_members = lambda members: fixed.pack(*members)
+            self._serialize = lambda members: fixed.pack(*members)
         else:
             packs = [mt.pack for mt in member_types]
-            self._pack_members = lambda members: b"".join([p(v) for p, v in zip(packs, members)])
-        self._serialize = self._pack_members
+            self._serialize = lambda members: b"".join([p(v) for p, v in zip(packs, members)])
 
-    def write(self, value: V, time: Time | None = None) -> None:
-        """Record ``value`` and send it (time-stamped now, unless ``time`` is given)."""
-        members = None
-        if type(value) is self._valid_type and self._exact is not None:
-            members = self._members_of(value)
-            if tuple(map(type, members)) != self._exact:
-                members = None
-        if members is None:
-            value = self._check(value)
-            members = self._members_of(value)
-        if self._on_change and self.written and value == self.last:
-            return
-        self.last = value
-        self.written = True
-        call = self._tlm_calls[0]
-        if call is not self._bound_call:
-            if self._tlm_targets[0] is None:
-                return
-            self._bind(call)
-        if time is None:
-            time = self._time_calls[0]() if self._time_targets[0] is not None else _ZERO_TIME
-        store = self._store
-        if store is not None:
-            store(self.id, time, members, self._pack_members)
-        else:
-            call(self.id, time, self._pack_members(members))
+    def _quick_check(self, value: Any) -> Any:
+        """The type's check, skipped for a value whose members all have their exact valid types."""
+        exact = self._exact
+        if exact is not None and type(value) is exact[0] and tuple(map(type, self._members_of(value))) == exact[1]:
+            return value
+        return self._full_check(value)
