@@ -29,9 +29,10 @@ from fprime_lite.tools.plugins import BenchPiece
 __all__ = ["measure_deployment", "tick_rate_group", "DEPLOYMENT_PIECE", "PLANT_ONLY_LAWS", "REFERENCE_DEPLOYMENTS"]
 
 #: Reference deployment (folder under ``deployments/``) -> the plant-only law of its counterpart:
-#: proves_ref's DetumbleManager and adcs_ref's AttitudeController (in DETUMBLE, the mode it flies
-#: from its 30 deg/s start) fly B-dot; coursework's CourseworkController flies the start-up
-#: sequence's wheels_pd.
+#: proves_ref's DetumbleManager flies B-dot; adcs_ref's AttitudeController flies DETUMBLE (B-dot)
+#: from its 30 deg/s start, then SPIN_STABLE and POINTING, for which the runner has no law (its
+#: wheels and star tracker are stepped in the plant either way); coursework's CourseworkController
+#: flies the start-up sequence's wheels_pd.
 REFERENCE_DEPLOYMENTS = {"proves_ref": "bdot", "adcs_ref": "bdot", "coursework": "wheels_pd"}
 #: Scenario name -> plant-only law, for a topology given by path.
 PLANT_ONLY_LAWS = {"default": "bdot", "adcs": "bdot", "surrey": "wheels_pd"}
