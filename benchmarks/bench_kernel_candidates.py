@@ -194,6 +194,18 @@ def _timed(fn, n: int) -> float:
     return best / n * 1e6
 
 
+def _tuple_calls(f):
+    """``(one step, a loop of c steps)`` for a candidate called as ``f(state, dt, m_B, b_N, gg, r_hat_N)``."""
+    def step(s):
+        return f(s, DT, M_B, B_N, GG, R_HAT)
+
+    def loop(c):
+        s = S0
+        for _ in range(c):
+            f(s, DT, M_B, B_N, GG, R_HAT)
+    return step, loop
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--steps", type=int, default=20_000)
@@ -214,25 +226,15 @@ def main() -> int:
         same = "yes" if got == ref else "NO"
         rows.append((name, _timed(loop, n), _timed(boundary, n) if boundary else None, same, build))
 
-    def python_loop(k):
-        f, s = body.step_env, S0
-        for _ in range(k):
-            f(s, DT, M_B, B_N, GG, R_HAT)
-    check("Python (reference)", lambda s: body.step_env(s, DT, M_B, B_N, GG, R_HAT), python_loop)
+    check("Python (reference)", *_tuple_calls(body.step_env))
 
     status = plant_kernel.load()
     if status.module is not None:
         k = status.module.Kernel(body._j, body._jinv, body.wheel_momentum_B)
-
-        def capi_loop(c):
-            f, s = k.step_env, S0
-            for _ in range(c):
-                f(s, DT, M_B, B_N, GG, R_HAT)
         with tempfile.TemporaryDirectory() as tmp:
             t0 = time.perf_counter()
             plant_kernel._build(os.path.join(tmp, "k" + plant_kernel._ext_suffix()), "bench")
-        check("C-API (plant_kernel.c)", lambda s: k.step_env(s, DT, M_B, B_N, GG, R_HAT), capi_loop,
-              build=f"gcc {time.perf_counter() - t0:.2f} s")
+        check("C-API (plant_kernel.c)", *_tuple_calls(k.step_env), build=f"gcc {time.perf_counter() - t0:.2f} s")
     else:
         rows.append(("C-API (plant_kernel.c)", None, None, "-", status.reason))
 
@@ -261,36 +263,21 @@ def main() -> int:
                     lib.step(*s, DT, mx, my, mz, bx, by, bz, GG, rx, ry, rz, out)
                     return tuple(unpack(out, 7))
 
-                def cffi_loop(c, fn=lib.step, out=out, unpack=unpack):
-                    s = S0
-                    for _ in range(c):
-                        q0, q1, q2, q3, w1, w2, w3 = s
-                        fn(q0, q1, q2, q3, w1, w2, w3, DT, mx, my, mz, bx, by, bz, GG, rx, ry, rz, out)
-                        tuple(unpack(out, 7))
-
-                def cffi_nothing(c, fn=lib.nothing, out=out, unpack=unpack):
-                    s = S0
-                    for _ in range(c):
-                        q0, q1, q2, q3, w1, w2, w3 = s
-                        fn(q0, q1, q2, q3, w1, w2, w3, DT, mx, my, mz, bx, by, bz, GG, rx, ry, rz, out)
-                        tuple(unpack(out, 7))
-                check(name, cffi_step, cffi_loop, cffi_nothing, built)
+                def cffi_calls(fn, out=out, unpack=unpack):
+                    def loop(c):
+                        s = S0
+                        for _ in range(c):
+                            q0, q1, q2, q3, w1, w2, w3 = s
+                            fn(q0, q1, q2, q3, w1, w2, w3, DT, mx, my, mz, bx, by, bz, GG, rx, ry, rz, out)
+                            tuple(unpack(out, 7))
+                    return loop
+                check(name, cffi_step, cffi_calls(lib.step), cffi_calls(lib.nothing), built)
             elif hasattr(mod, "set_body"):
                 mod.set_body(consts)
-
-                def typed_loop(c, f=mod.step):
-                    s = S0
-                    for _ in range(c):
-                        f(s, DT, M_B, B_N, GG, R_HAT)
-                check(name, lambda s, f=mod.step: f(s, DT, M_B, B_N, GG, R_HAT), typed_loop, build=built)
+                check(name, *_tuple_calls(mod.step), build=built)
             else:
                 rb = mod.RigidBody(body._j, body._jinv, body.wheel_momentum_B)
-
-                def method_loop(c, f=rb.step_env):
-                    s = S0
-                    for _ in range(c):
-                        f(s, DT, M_B, B_N, GG, R_HAT)
-                check(name, lambda s, f=rb.step_env: f(s, DT, M_B, B_N, GG, R_HAT), method_loop, build=built)
+                check(name, *_tuple_calls(rb.step_env), build=built)
         try:
             cold, cached = numba_warm_up(folder)
             mod = importlib.import_module("cand_numba")

@@ -8,6 +8,10 @@ everything they exchange is plain floats and tuples (no numpy on the per-tick pa
 Within one :meth:`Plant.step` the coil dipole (its mean over the step if the coils have an L/R
 lag), the inertial field ``b_N`` and the orbit direction are held; the attitude-dependent torques
 are re-evaluated at each RK4 stage. The field and orbit are evaluated once per step, at its end.
+
+That RK4 step and (circular orbit, centred dipole) that environment update run in the compiled
+kernel when it can be had (:mod:`.plant_kernel`, ``FPRIME_LITE_PLANT``): the same floats as this
+module's Python path, which is the reference.
 """
 
 from __future__ import annotations
@@ -181,7 +185,26 @@ class Plant:
             self._state = s1
             self._t_ns = t1
         else:
-            s1 = self._step_python(s0, dt, t1, m_tot, b0_N)
+            n_sub = self.substeps
+            wheels = self.wheels
+            if wheels is None:
+                step_env = self._step_env  # RigidBody.step_env, or the kernel's (the same floats)
+                if n_sub == 1:
+                    s1 = step_env(s0, dt, m_tot, b0_N, self._gg, self._r_hat_N)
+                else:
+                    s1, h = s0, dt / n_sub
+                    for _ in range(n_sub):
+                        s1 = step_env(s1, h, m_tot, b0_N, self._gg, self._r_hat_N)
+            else:
+                u = wheels.motor_torques(dt, s0[4:7])
+                s1, hw, h = s0, wheels.h, dt / n_sub
+                for _ in range(n_sub):
+                    s1, hw = step_with_wheels(self.body, s1, hw, u, wheels, h, m_tot, b0_N, self._gg,
+                                              self._r_hat_N)
+                wheels.h = hw
+            self._state = s1
+            self._t_ns = t1
+            self._update_environment()
         # The sensors' samples due in (t0, t1] are only recorded here; each is computed when read.
         if self._mag_samples:
             mag = self.magnetometer
@@ -198,29 +221,6 @@ class Plant:
         st = self.star_tracker
         if st is not None and not st.spec.ideal and st.latest_instant(t0, t1) is not None:
             st.latch(t0, t1, s0, s1)
-
-    def _step_python(self, s0: State, dt: float, t1: int, m_tot: Vec3, b0_N: Vec3) -> State:
-        """The step without the fused kernel call: sub-steps, wheels, or the pure-Python plant."""
-        n_sub = self.substeps
-        wheels = self.wheels
-        if wheels is None:
-            step_env = self._step_env  # RigidBody.step_env, or the kernel's (the same floats)
-            if n_sub == 1:
-                s1 = step_env(s0, dt, m_tot, b0_N, self._gg, self._r_hat_N)
-            else:
-                s1, h = s0, dt / n_sub
-                for _ in range(n_sub):
-                    s1 = step_env(s1, h, m_tot, b0_N, self._gg, self._r_hat_N)
-        else:
-            u = wheels.motor_torques(dt, s0[4:7])
-            s1, hw, h = s0, wheels.h, dt / n_sub
-            for _ in range(n_sub):
-                s1, hw = step_with_wheels(self.body, s1, hw, u, wheels, h, m_tot, b0_N, self._gg, self._r_hat_N)
-            wheels.h = hw
-        self._state = s1
-        self._t_ns = t1
-        self._update_environment()
-        return s1
 
     def advance_to(self, t: float) -> None:
         """Step (in dynamics steps, the last one partial) until the clock reads ``t`` seconds."""
