@@ -16,7 +16,8 @@ import json
 import pathlib
 import sys
 
-from detumble.sitl.bench_basilisk import CASES, INSTALL_HINT, ORBIT_S, basilisk_installed, measure_cases
+from detumble.sitl.bench_basilisk import (CASES, INSTALL_HINT, ORBIT_S, basilisk_installed, measure_cases,
+                                          plausibility_text)
 
 
 def _proves_ref(r: dict) -> None:
@@ -38,8 +39,7 @@ def _newer(case: str, r: dict) -> None:
         print(f"  {case}  {theirs} {b[theirs]:7.0f}   {ours} {b[ours]:7.0f}   ratio {r[name]:.2f} "
               f"(median rounds {r['median_' + name]:.2f})")
     for kind, figures in r["plausibility"].items():
-        text = ", ".join(f"{k} {v:.4g}" if isinstance(v, float) else f"{k} {v}" for k, v in figures.items())
-        print(f"    {kind}: {text}")
+        print(f"    {kind}: {plausibility_text(figures)}")
 
 
 def main(argv: list[str] | None = None) -> int:

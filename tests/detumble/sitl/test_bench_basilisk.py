@@ -75,6 +75,18 @@ def test_cases_are_interleaved_round_by_round_and_ratios_are_quotients(monkeypat
     assert c["coursework_over_basilisk"] == pytest.approx(60.0 / 80.0)
     assert set(a["plausibility"]) == {"basilisk_adcs_c_50hz", "basilisk_adcs_python_50hz", "fprime_lite_adcs_ref_50hz"}
     assert a["plausibility"]["fprime_lite_adcs_ref_50hz"] == {"slew1_settle_s": 1.0}
+    rows = bench_basilisk.BASILISK_PIECE.rows(a)  # two ratios, three plausibility lines
+    assert len(rows) == 5 and "0.10" in rows[0][1] and "slew1_settle_s 1" in rows[4][1]
+
+
+def test_the_bench_piece_picks_the_case_of_the_deployment_it_is_given():
+    """PERF-BSK-005: adcs_ref's and coursework's own topologies fly their cases; any other
+    deployment is compared with Basilisk's case A (proves_ref)."""
+    deployments = REFERENCE.parents[1]
+    assert bench_basilisk.case_of(deployments / "adcs_ref" / "topology.yaml") == "adcs_ref"
+    assert bench_basilisk.case_of(deployments / "coursework" / "topology.yaml") == "coursework"
+    assert bench_basilisk.case_of(REFERENCE) == "proves_ref"
+    assert bench_basilisk.case_of("some/other/topology.yaml") == "proves_ref"
 
 
 def test_an_unknown_case_is_refused_with_the_choices():
