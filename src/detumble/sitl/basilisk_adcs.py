@@ -43,8 +43,8 @@ from Basilisk.architecture import messaging, sysModel
 from Basilisk.fswAlgorithms import (attTrackingError, dipoleMapping, inertial3D, mrpFeedback, mtbFeedforward,
                                     mtbMomentumManagementSimple, rwMotorTorque, tamComm, torque2Dipole)
 from Basilisk.simulation import (GravityGradientEffector, MtbEffector, magneticFieldCenteredDipole, magnetometer,
-                                 planetEphemeris, reactionWheelStateEffector, simpleNav, spacecraft)
-from Basilisk.utilities import SimulationBaseClass, macros, orbitalMotion, simIncludeGravBody, simIncludeRW
+                                 simpleNav, spacecraft)
+from Basilisk.utilities import SimulationBaseClass, macros, orbitalMotion, simIncludeGravBody
 
 from detumble.components.attitude_controller import AttitudeController
 from detumble.control.magnetic import dump_torque, project_dipole_weighted, scale_to_limits
@@ -52,9 +52,9 @@ from detumble.control.pointing import ErrorIntegrator, pd_torque
 from detumble.control.wheel_allocation import WheelAllocator
 from detumble.sim.scenario import load_scenario
 from detumble.sitl import side_by_side as case
+from detumble.sitl.basilisk_parts import balanced_wheels, mrp, quat, rotating_earth, schedule, wheel_momenta
 
 _ARCSEC = math.pi / 180.0 / 3600.0
-_RPM = 2.0 * math.pi / 60.0
 
 
 _DEFAULTS: AttitudeController | None = None
@@ -66,20 +66,6 @@ def _param(name: str) -> float:
     if _DEFAULTS is None:
         _DEFAULTS = AttitudeController("parameterDefaults")
     return float(getattr(_DEFAULTS, name).value)
-
-
-def _mrp(q):
-    """MRP of the scalar-first quaternion ``q`` (short way)."""
-    if q[0] < 0.0:
-        q = (-q[0], -q[1], -q[2], -q[3])
-    return [q[1] / (1.0 + q[0]), q[2] / (1.0 + q[0]), q[3] / (1.0 + q[0])]
-
-
-def _quat(sigma):
-    """Scalar-first quaternion of the MRP ``sigma``."""
-    s2 = sigma[0] ** 2 + sigma[1] ** 2 + sigma[2] ** 2
-    d = 1.0 + s2
-    return ((1.0 - s2) / d, 2.0 * sigma[0] / d, 2.0 * sigma[1] / d, 2.0 * sigma[2] / d)
 
 
 def _coil_limits() -> tuple[float, float, float]:
@@ -124,7 +110,7 @@ class ProjectPointing(sysModel.SysModel):
 
     def UpdateState(self, CurrentSimNanos):
         nav = self.navInMsg()
-        q = _quat(nav.sigma_BN)
+        q = quat(nav.sigma_BN)
         w = nav.omega_BN_B
         omega = (w[0], w[1], w[2])
         tau, qe = pd_torque(self.target, q, omega, self.kp, self.kd, self.rate_limit)
@@ -165,11 +151,6 @@ def run(duration_s: float, step_s: float = 0.02, control: str = "c", control_per
     sc.ModelTag = "sc"
     sc.hub.mHub = s.spacecraft.mass_kg
     wheels = s.spacecraft.reaction_wheels
-    factory = simIncludeRW.rwFactory()
-    for i, w in enumerate(wheels):
-        factory.create("custom", list(w.axis_B), Js=w.inertia_kg_m2, u_max=w.max_torque_nm, useMaxTorque=True,
-                       Omega_max=w.max_momentum_nms / w.inertia_kg_m2 / _RPM, Omega=0.0,
-                       RWModel=messaging.BalancedWheels, label=f"rw{i}")
     # BalancedWheels add nothing to the mass properties (Basilisk takes them as part of the hub) and
     # carry only the spin momentum J_s Ω: the hub's inertia is the scenario's whole one (wheels
     # included), whose angular momentum J ω + Σ J_s Ω_i g_i is the plant's I ω + Σ h_i g_i.
@@ -186,26 +167,16 @@ def run(duration_s: float, step_s: float = 0.02, control: str = "c", control_per
     r_N, v_N = orbitalMotion.elem2rv(s.orbit.mu_m3_s2, oe)
     sc.hub.r_CN_NInit = r_N
     sc.hub.v_CN_NInit = v_N
-    sc.hub.sigma_BNInit = [[x] for x in _mrp(s.q_BN0)]
+    sc.hub.sigma_BNInit = [[x] for x in mrp(s.q_BN0)]
     sc.hub.omega_BN_BInit = [[x] for x in s.omega_BN_B0]
-    rw_effector = reactionWheelStateEffector.ReactionWheelStateEffector()
-    rw_effector.ModelTag = "wheels"
-    factory.addToSpacecraft("wheels", rw_effector, sc)
+    factory, rw_effector = balanced_wheels(sc, wheels, s.omega_BN_B0)
     gg = GravityGradientEffector.GravityGradientEffector()
     gg.ModelTag = "gravityGradient"
     gg.addPlanetName(earth.planetName)
     sc.addDynamicEffector(gg)
 
     # --- the Earth's rotation and its field ------------------------------------------------------
-    ephemeris = planetEphemeris.PlanetEphemeris()
-    ephemeris.setPlanetNames(planetEphemeris.StringVector(["earth"]))
-    here = planetEphemeris.ClassicElements()
-    here.a, here.e, here.i, here.Omega, here.omega, here.f = 1.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    ephemeris.planetElements = planetEphemeris.classicElementVector([here])
-    ephemeris.rightAscension = planetEphemeris.DoubleVector([0.0])
-    ephemeris.declination = planetEphemeris.DoubleVector([math.pi / 2])
-    ephemeris.lst0 = planetEphemeris.DoubleVector([s.earth_angle0_rad])
-    ephemeris.rotRate = planetEphemeris.DoubleVector([s.field.earth_rotation_rate_rad_s])
+    ephemeris = rotating_earth(s.earth_angle0_rad, s.field.earth_rotation_rate_rad_s)
     field = magneticFieldCenteredDipole.MagneticFieldCenteredDipole()
     field.g10, field.g11, field.h11 = s.field.g10_nt * 1e-9, s.field.g11_nt * 1e-9, s.field.h11_nt * 1e-9
     field.planetRadius = s.field.reference_radius_m
@@ -262,7 +233,7 @@ def run(duration_s: float, step_s: float = 0.02, control: str = "c", control_per
         rw_params_msg = factory.getConfigMessage()
         guidance = inertial3D.inertial3D()
         guidance.ModelTag = "inertial3D"
-        guidance.sigma_R0N = _mrp(case.FIRST_TARGET)
+        guidance.sigma_R0N = mrp(case.FIRST_TARGET)
         error = attTrackingError.attTrackingError()
         error.ModelTag = "attTrackingError"
         error.attNavInMsg.subscribeTo(nav.attOutMsg)
@@ -315,15 +286,8 @@ def run(duration_s: float, step_s: float = 0.02, control: str = "c", control_per
         rods.mtbCmdInMsg.subscribeTo(python_law.mtbCmdOutMsg)
         fsw.append(python_law)
 
-    for priority, model in enumerate(reversed([ephemeris, sc, rw_effector, gg, field, nav, rods])):
-        sim.AddModelToTask("dynamics", model, 10 + priority)
-    for priority, model in enumerate(reversed(fsw)):
-        sim.AddModelToTask("fsw", model, 10 + priority)
-    interval = macros.sec2nano(case.TRACE_INTERVAL_S)
-    state_log = sc.scStateOutMsg.recorder(interval)
-    speed_log = rw_effector.rwSpeedOutMsg.recorder(interval)
-    sim.AddModelToTask("dynamics", state_log)
-    sim.AddModelToTask("dynamics", speed_log)
+    state_log, speed_log = schedule(sim, [ephemeris, sc, rw_effector, gg, field, nav, rods], fsw, sc, rw_effector,
+                                    case.TRACE_INTERVAL_S)
     sim.InitializeSimulation()
 
     # the controller is IDLE (wheels at zero torque, rods off) until POINTING is forced
@@ -339,22 +303,14 @@ def run(duration_s: float, step_s: float = 0.02, control: str = "c", control_per
             if python_law is not None:
                 python_law.set_target(case.SECOND_TARGET)
             else:
-                guidance.sigma_R0N = _mrp(case.SECOND_TARGET)
+                guidance.sigma_R0N = mrp(case.SECOND_TARGET)
     wall = time.perf_counter() - t0
     total = sc.scMassOutMsg.read().ISC_PntB_B  # hub and wheels, as the dynamics saw them
     inertia_error = max(abs(total[r][c] - s.spacecraft.inertia_kg_m2[r][c]) for r in range(3) for c in range(3))
 
-    times = [t * 1e-9 for t in state_log.times()]
-    sigmas_bn = state_log.sigma_BN
-    omegas = state_log.omega_BN_B
-    speeds = speed_log.wheelSpeeds
-    axes = [w.axis_B for w in wheels]
-    trace = []
-    for k, t in enumerate(times):
-        w = omegas[k]
-        h = [wheels[i].inertia_kg_m2 * (speeds[k][i] + sum(axes[i][j] * w[j] for j in range(3)))
-             for i in range(len(wheels))]
-        trace.append((t, _quat(sigmas_bn[k]), h))
+    trace = [(t * 1e-9, quat(state_log.sigma_BN[k]), wheel_momenta(wheels, speed_log.wheelSpeeds[k],
+                                                                    state_log.omega_BN_B[k]))
+             for k, t in enumerate(state_log.times())]
     return {"sim_seconds": duration_s, "step_s": step_s, "control": control, "wall_s": wall,
             "real_time_factor": duration_s / wall, "inertia_error_kg_m2": inertia_error,
             **case.plausibility(trace)}

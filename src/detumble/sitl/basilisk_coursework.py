@@ -28,12 +28,11 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import time
 
 from Basilisk.architecture import messaging, sysModel
-from Basilisk.simulation import reactionWheelStateEffector, simpleNav, spacecraft
-from Basilisk.utilities import SimulationBaseClass, macros, simIncludeGravBody, simIncludeRW
+from Basilisk.simulation import simpleNav, spacecraft
+from Basilisk.utilities import SimulationBaseClass, macros, simIncludeGravBody
 
 from detumble.components.coursework_controller import CourseworkController
 from detumble.control import coursework as cw
@@ -41,26 +40,14 @@ from detumble.sim import frames
 from detumble.sim.plant import build_orbit
 from detumble.sim.scenario import load_scenario
 from detumble.sitl import side_by_side as case
+from detumble.sitl.basilisk_parts import balanced_wheels, mrp, quat, schedule, wheel_momenta
 
-_RPM = 2.0 * math.pi / 60.0
-
-
-def _mrp(q):
-    if q[0] < 0.0:
-        q = (-q[0], -q[1], -q[2], -q[3])
-    return [q[1] / (1.0 + q[0]), q[2] / (1.0 + q[0]), q[3] / (1.0 + q[0])]
-
-
-def _quat(sigma):
-    s2 = sigma[0] ** 2 + sigma[1] ** 2 + sigma[2] ** 2
-    d = 1.0 + s2
-    return ((1.0 - s2) / d, 2.0 * sigma[0] / d, 2.0 * sigma[1] / d, 2.0 * sigma[2] / d)
 
 
 def _q_bo(sigma_BN, r_N, v_N):
     """``q_BO`` (scalar first) from MRP σ_BN and the position and velocity in N."""
     q_on = frames.dcm_to_quat(frames.orbit_axes_N(tuple(r_N), tuple(v_N)))
-    return frames.q_BO(_quat(sigma_BN), q_on)
+    return frames.q_BO(quat(sigma_BN), q_on)
 
 
 class ReportWheelLaw(sysModel.SysModel):
@@ -122,7 +109,7 @@ def run(duration_s: float, step_s: float | None = None, control_period_s: float 
     sc.hub.IHubPntBc_B = [list(row) for row in s.spacecraft.inertia_kg_m2]  # BalancedWheels: the whole
     sc.hub.r_CN_NInit = list(r0)
     sc.hub.v_CN_NInit = list(v0)
-    sc.hub.sigma_BNInit = [[x] for x in _mrp(q0)]
+    sc.hub.sigma_BNInit = [[x] for x in mrp(q0)]
     sc.hub.omega_BN_BInit = [[x] for x in w0]
     gravity = simIncludeGravBody.gravBodyFactory()
     earth = gravity.createEarth()
@@ -130,16 +117,7 @@ def run(duration_s: float, step_s: float | None = None, control_period_s: float 
     earth.mu = s.orbit.mu_m3_s2
     gravity.addBodiesTo(sc)
     wheels = s.spacecraft.reaction_wheels
-    factory = simIncludeRW.rwFactory()
-    for i, w in enumerate(wheels):
-        g = w.axis_B
-        relative = w.initial_momentum_nms / w.inertia_kg_m2 - sum(g[j] * w0[j] for j in range(3))
-        factory.create("custom", list(g), Js=w.inertia_kg_m2, u_max=w.max_torque_nm, useMaxTorque=True,
-                       Omega_max=w.max_momentum_nms / w.inertia_kg_m2 / _RPM, Omega=relative / _RPM,
-                       RWModel=messaging.BalancedWheels, label=f"rw{i}")
-    rw_effector = reactionWheelStateEffector.ReactionWheelStateEffector()
-    rw_effector.ModelTag = "wheels"
-    factory.addToSpacecraft("wheels", rw_effector, sc)
+    _, rw_effector = balanced_wheels(sc, wheels, w0)
     nav = simpleNav.SimpleNav()
     nav.ModelTag = "nav"
     nav.scStateInMsg.subscribeTo(sc.scStateOutMsg)
@@ -150,28 +128,16 @@ def run(duration_s: float, step_s: float | None = None, control_period_s: float 
     law.rwSpeedInMsg.subscribeTo(rw_effector.rwSpeedOutMsg)
     rw_effector.rwMotorCmdInMsg.subscribeTo(law.rwCmdOutMsg)
 
-    for priority, model in enumerate(reversed([sc, rw_effector, nav])):
-        sim.AddModelToTask("dynamics", model, 10 + priority)
-    sim.AddModelToTask("fsw", law, 10)
-    interval = macros.sec2nano(case.TRACE_INTERVAL_S)
-    state_log = sc.scStateOutMsg.recorder(interval)
-    speed_log = rw_effector.rwSpeedOutMsg.recorder(interval)
-    sim.AddModelToTask("dynamics", state_log)
-    sim.AddModelToTask("dynamics", speed_log)
+    state_log, speed_log = schedule(sim, [sc, rw_effector, nav], [law], sc, rw_effector, case.TRACE_INTERVAL_S)
     sim.InitializeSimulation()
     sim.ConfigureStopTime(macros.sec2nano(duration_s))
     t0 = time.perf_counter()
     sim.ExecuteSimulation()
     wall = time.perf_counter() - t0
 
-    trace = []
-    axes = [w.axis_B for w in wheels]
-    for k, t in enumerate(state_log.times()):
-        w = state_log.omega_BN_B[k]
-        h = [wheels[i].inertia_kg_m2 * (speed_log.wheelSpeeds[k][i] + sum(axes[i][j] * w[j] for j in range(3)))
-             for i in range(len(wheels))]
-        q = _q_bo(state_log.sigma_BN[k], state_log.r_BN_N[k], state_log.v_BN_N[k])
-        trace.append((t * 1e-9, q, tuple(w), h))
+    trace = [(t * 1e-9, _q_bo(state_log.sigma_BN[k], state_log.r_BN_N[k], state_log.v_BN_N[k]),
+              tuple(state_log.omega_BN_B[k]), wheel_momenta(wheels, speed_log.wheelSpeeds[k], state_log.omega_BN_B[k]))
+             for k, t in enumerate(state_log.times())]
     return {"sim_seconds": duration_s, "step_s": step_s, "control": "python", "wall_s": wall,
             "real_time_factor": duration_s / wall, **case.coursework_plausibility(trace)}
 
