@@ -134,6 +134,7 @@ def measure_deployment(topology, duration_s: float | None = None, chunks: int | 
         "tick_cost_ratio_cpu": min(deployment_cpu_us) / min(plant_cpu_us),
         "pieces_cpu_us_per_tick": {"deployment": deployment_cpu_us, "plant_only": plant_cpu_us},
         "final_rate_deg_s": spacecraft.truth().rate_deg_s,
+        "plant_implementation": spacecraft.plant.implementation,  # both sides' (detumble.sim.plant_kernel)
     }
 
 
@@ -153,6 +154,7 @@ def _rows_of(d: dict, label: str) -> list[tuple[str, str, str]]:
         (f"per {hz} tick, medians",
          f"{d['deployment_us_per_tick_median']:.1f} µs / {d['plant_only_us_per_tick_median']:.1f} µs", ""),
         (f"median of the {d['chunks']} pieces' ratios", f"{d['tick_cost_ratio_median_of_pieces']:.2f}", ""),
+        ("plant (deployment and plant-only alike)", d.get("plant_implementation", "python"), ""),
     ]
 
 
