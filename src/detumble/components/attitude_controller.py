@@ -174,10 +174,13 @@ class AttitudeController(PassiveComponent):
     TRACKER_NOISE_CROSS = Param(F64, default=10.0, low=1e-3, high=3600.0, finite=True)  # arcsec 1σ across boresight
     TRACKER_NOISE_ABOUT = Param(F64, default=70.0, low=1e-3, high=3600.0, finite=True)  # arcsec 1σ about boresight
     RATE_SOURCE = Param(RateSource, default=RateSource.OBSERVER)
-    RATE_OBSERVER_GAIN = Param(F64, default=0.2, low=1e-4, high=100.0, finite=True)  # 1/s: pull toward the gyro
+    RATE_OBSERVER_GAIN = Param(F64, default=0.1, low=1e-4, high=100.0, finite=True)  # 1/s: pull toward the gyro
     INERTIA_XX = Param(F64, default=2.20e-3, low=1e-6, high=10.0, finite=True)  # kg·m², the observer's model
     INERTIA_YY = Param(F64, default=2.15e-3, low=1e-6, high=10.0, finite=True)  # kg·m²
     INERTIA_ZZ = Param(F64, default=2.05e-3, low=1e-6, high=10.0, finite=True)  # kg·m²
+    INERTIA_XY = Param(F64, default=2.0e-5, low=-10.0, high=10.0, finite=True)  # kg·m², product (matrix element)
+    INERTIA_XZ = Param(F64, default=-1.5e-5, low=-10.0, high=10.0, finite=True)  # kg·m²
+    INERTIA_YZ = Param(F64, default=1.0e-5, low=-10.0, high=10.0, finite=True)  # kg·m²
 
     # --- ports ---------------------------------------------------------------------------------
 
@@ -227,6 +230,8 @@ class AttitudeController(PassiveComponent):
                               estimator=AttitudeEstimator)
     AttitudeReinitialised = Event(Severity.WARNING_LO, "MEKF attitude re-initialised on the star tracker (residual or "
                                   "3-sigma above 5 deg)", throttle=5)
+    InertiaModelRefused = Event(Severity.WARNING_LO, "INERTIA_* parameters do not form a positive definite matrix: "
+                                "the rate observer keeps its previous model", throttle=1)
     WheelLimitReached = Event(Severity.WARNING_LO, "A wheel torque or momentum limit cut the requested torque",
                               throttle=5)
 
@@ -260,7 +265,8 @@ class AttitudeController(PassiveComponent):
         self.autonomy = ControlAutonomy.MANUAL
         self.filter: AttitudeFilter | Mekf = self._make_filter(AttitudeEstimator.MEKF)
         self.estimator = AttitudeEstimator.MEKF
-        self.rate_observer = RateObserver((2.20e-3, 2.15e-3, 2.05e-3), 0.2)
+        self.rate_observer = RateObserver(((2.20e-3, 2.0e-5, -1.5e-5), (2.0e-5, 2.15e-3, 1.0e-5),
+                                           (-1.5e-5, 1.0e-5, 2.05e-3)), 0.1)
         self.pd_rate: tuple[float, float, float] | None = None  # rad/s, B: the rate the wheel PD's D term uses
         self.integrator = ErrorIntegrator(math.radians(1.0), 1.0e-5)
         self.target: tuple[float, float, float, float] | None = None
@@ -498,8 +504,13 @@ class AttitudeController(PassiveComponent):
             obs.reset()
             self.pd_rate = None
             return
-        obs.set_model((self.INERTIA_XX.value, self.INERTIA_YY.value, self.INERTIA_ZZ.value),
-                      self.RATE_OBSERVER_GAIN.value)
+        xy, xz, yz = self.INERTIA_XY.value, self.INERTIA_XZ.value, self.INERTIA_YZ.value
+        try:
+            obs.set_model(((self.INERTIA_XX.value, xy, xz), (xy, self.INERTIA_YY.value, yz),
+                           (xz, yz, self.INERTIA_ZZ.value)), self.RATE_OBSERVER_GAIN.value)
+            self.InertiaModelRefused.clear_throttle()
+        except ValueError:  # not positive definite: keep the last good model, say so once per change
+            self.InertiaModelRefused()
         h = _ZERO
         if self.wheel_momenta is not None:
             h = WheelAllocator(self.wheel_axes, 1.0, 1.0).body_momentum(self.wheel_momenta)
