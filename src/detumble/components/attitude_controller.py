@@ -489,7 +489,7 @@ class AttitudeController(PassiveComponent):
     def _applied_torque(self):
         """The body torque of the last cycle, N·m (B): the wheels' −Σ u_i g_i plus the coils' m × B over their duty."""
         tx = ty = tz = 0.0
-        for u, g in zip(self.wheel_torques, self.wheel_axes):
+        for u, g in zip(self.wheel_torques, self.wheel_axes, strict=False):  # () before the first command
             tx, ty, tz = tx - u * g[0], ty - u * g[1], tz - u * g[2]
         if self.b_tesla is not None:  # self.dipole: what the last cycle drove (zero when off)
             mb = _cross(self.dipole, self.b_tesla)

@@ -46,12 +46,12 @@ def _zeros(n: int, m: int) -> Mat:
 
 
 def _matmul(a: Mat, b: Mat) -> Mat:
-    bt = list(zip(*b))
-    return [[sum(x * y for x, y in zip(row, col)) for col in bt] for row in a]
+    bt = list(zip(*b, strict=True))
+    return [[sum(x * y for x, y in zip(row, col, strict=True)) for col in bt] for row in a]
 
 
 def _transpose(a: Mat) -> Mat:
-    return [list(r) for r in zip(*a)]
+    return [list(r) for r in zip(*a, strict=True)]
 
 
 def _inv3(m: Mat) -> Mat:

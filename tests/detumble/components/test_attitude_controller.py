@@ -604,9 +604,10 @@ def test_estimator_parameters_have_ranges(fprime_harness, bad):
 
 
 def test_the_derivative_term_uses_the_rate_observer(fprime_harness):
-    """ADCS-039: with RATE_SOURCE = OBSERVER a gyro step (1 °/s in the cycle's last reading: 0.2 °/s in its mean) moves the D term's rate by only the
-    observer's pull 1 − e^(−L·0.1 s) (L = RATE_OBSERVER_GAIN) of it: the difference of the requested torques of the
-    two sources is −K_D (1 − pull) ω, within 1e-3 relative (the attitude, K_P and the integral are the same)."""
+    """ADCS-039: with RATE_SOURCE = OBSERVER a gyro step (1 °/s in the cycle's last reading: 0.2 °/s in its mean)
+    moves the D term's rate by only the observer's pull 1 − e^(−L·0.1 s) (L = RATE_OBSERVER_GAIN) of it: the
+    difference of the requested torques of the two sources is −K_D (1 − pull) ω, within 1e-3 relative (the
+    attitude, K_P and the integral are the same)."""
     from detumble.components.attitude_types import RateSource
 
     taus = {}

@@ -72,7 +72,7 @@ def fly(filters, duration_s, *, seed=3, rate_deg_s=(0.2, -0.1, 0.3), gyro_spec=G
 
 
 def quad6(p, x):
-    """xᵀ P⁻¹ x for the 6×6 P (Gauss–Jordan; test-side, so numpy-free is not required but keeps it exact)."""
+    """xᵀ P⁻¹ x for the 6×6 P (numpy, test side)."""
     import numpy as np
 
     return float(np.asarray(x) @ np.linalg.solve(np.asarray(p), np.asarray(x)))
@@ -146,8 +146,8 @@ def test_bias_converges_from_a_wrong_start():
 
 
 def test_covariance_stays_symmetric_positive_definite():
-    """MEKF-003: at every cycle of a 200 s run that has an attitude, P is symmetric (|P − Pᵀ| = 0 after each step) and positive
-    definite (Cholesky succeeds, smallest eigenvalue > 0)."""
+    """MEKF-003: at every cycle of a 200 s run that has an attitude, P is symmetric (|P − Pᵀ| = 0 after each step)
+    and positive definite (Cholesky succeeds, smallest eigenvalue > 0)."""
     import numpy as np
 
     worst = []
