@@ -22,7 +22,7 @@ import pathlib
 
 from fprime_lite.tools.campaign import Metric, MetricUnavailable, RunOutput
 
-__all__ = ["METRICS", "STEADY_AFTER_S"]
+__all__ = ["METRICS", "STEADY_AFTER_S", "percentile", "steady_errors"]
 
 STEADY_AFTER_S = 60.0
 _POINTING = ("POINTING", "3")  # the mode column of attitude.csv (by name; a number in older runs)
@@ -71,7 +71,8 @@ def steady_errors(output: RunOutput) -> list[float]:
     return errors
 
 
-def _percentile(values: list[float], p: float) -> float:
+def percentile(values: list[float], p: float) -> float:
+    """The ``p`` quantile (0…1) of ``values`` by linear interpolation."""
     s = sorted(values)
     k = (len(s) - 1) * p
     lo = math.floor(k)
@@ -98,9 +99,9 @@ METRICS = (
     Metric("slew_settle_s", "s", "first target change while POINTING until the true error stays below 0.1 deg",
            _slew_settle),
     Metric("pointing_steady_median_deg", "deg", f"median true pointing error from {STEADY_AFTER_S:g} s after the "
-           "last target change", lambda output, _probe: _percentile(steady_errors(output), 0.5)),
+           "last target change", lambda output, _probe: percentile(steady_errors(output), 0.5)),
     Metric("pointing_steady_p95_deg", "deg", f"95th percentile of the true pointing error from {STEADY_AFTER_S:g} s "
-           "after the last target change", lambda output, _probe: _percentile(steady_errors(output), 0.95)),
+           "after the last target change", lambda output, _probe: percentile(steady_errors(output), 0.95)),
     Metric("wheel_momentum_max_fraction", "1", "largest |h_i|/h_max of any wheel over the run", _wheel_fraction),
     Metric("wheel_limit_events", "1", "wheel torque/momentum limit events in the run's event log", _limit_events),
 )

@@ -622,3 +622,13 @@ def test_the_derivative_term_uses_the_rate_observer(fprime_harness):
     pull = 1.0 - math.exp(-gain * 0.1)
     w = DEG / 5  # the step reaches the cycle's mean in its last reading only: 1 °/s / 5
     assert taus[RateSource.GYRO] - taus[RateSource.OBSERVER] == pytest.approx(-kd * (1 - pull) * w, rel=1e-3)
+
+
+def test_a_non_positive_definite_inertia_is_refused_once(fprime_harness):
+    """ADCS-039: INERTIA_XY = 1 kg·m² (far above the moments) is not a positive definite inertia: the observer keeps
+    its previous model and InertiaModelRefused is logged once (throttle 1), however many cycles follow."""
+    h = make(fprime_harness, params={"INERTIA_XY": 1.0})
+    before = h.comp.rate_observer.inertia
+    tick(h, 30)
+    assert h.comp.rate_observer.inertia == before and before[0][1] == pytest.approx(2.0e-5)
+    assert len(h.events_named("InertiaModelRefused")) == 1
