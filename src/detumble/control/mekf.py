@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 
+from detumble.control.mat3 import det3, inv3
 from detumble.control.quaternion import Quat, Vec3, quat_conj, quat_mul, quat_normalize, quat_shortest
 
 __all__ = ["Mekf"]
@@ -54,17 +55,10 @@ def _transpose(a: Mat) -> Mat:
     return [list(r) for r in zip(*a, strict=True)]
 
 
-def _inv3(m: Mat) -> Mat:
-    a, b, c = m[0]
-    d, e, f = m[1]
-    g, h, i = m[2]
-    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
-    if not det > 0.0:  # S is a covariance: positive definite or something is badly wrong
-        raise ValueError(f"innovation covariance is not positive definite (det {det:g})")
-    s = 1.0 / det
-    return [[s * (e * i - f * h), s * (c * h - b * i), s * (b * f - c * e)],
-            [s * (f * g - d * i), s * (a * i - c * g), s * (c * d - a * f)],
-            [s * (d * h - e * g), s * (b * g - a * h), s * (a * e - b * d)]]
+def _inv_spd3(m: Mat) -> Mat:
+    if not det3(m) > 0.0:  # S is a covariance: positive definite or something is badly wrong
+        raise ValueError(f"innovation covariance is not positive definite (det {det3(m):g})")
+    return [list(r) for r in inv3(m)]
 
 
 def _rotation_transpose(w: Vec3, dt: float) -> Mat:
@@ -230,7 +224,7 @@ class Mekf:
         for i in range(3):
             s[i][i] -= 2.0 * corr
         pht = [[p[i][j] - (corr if i == j else 0.0) for j in range(3)] for i in range(6)]  # P Hᵀ + M
-        k = _matmul(pht, _inv3(s))
+        k = _matmul(pht, _inv_spd3(s))
         dx = [k[i][0] * res[0] + k[i][1] * res[1] + k[i][2] * res[2] for i in range(6)]
         ksk = _matmul(_matmul(k, s), _transpose(k))
         self.P = _symmetric([[p[i][j] - ksk[i][j] for j in range(6)] for i in range(6)])

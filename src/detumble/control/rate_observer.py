@@ -22,20 +22,10 @@ from __future__ import annotations
 
 import math
 
+from detumble.control.mat3 import det3, inv3
 from detumble.control.quaternion import Vec3
 
 __all__ = ["RateObserver"]
-
-
-def _inverse_spd(m):
-    a, b, c = m[0]
-    d, e, f = m[1]
-    g, h, i = m[2]
-    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
-    s = 1.0 / det
-    return ((s * (e * i - f * h), s * (c * h - b * i), s * (b * f - c * e)),
-            (s * (f * g - d * i), s * (a * i - c * g), s * (c * d - a * f)),
-            (s * (d * h - e * g), s * (b * g - a * h), s * (a * e - b * d)))
 
 
 def _mul(m, v):
@@ -65,15 +55,14 @@ class RateObserver:
         ok = ok and all(abs(m[i][j] - m[j][i]) <= 1e-12 * (abs(m[i][j]) + 1e-30) for i in range(3) for j in range(3))
         # positive definite: leading minors
         ok = ok and m[0][0] > 0.0 and m[0][0] * m[1][1] - m[0][1] ** 2 > 0.0
-        ok = ok and (m[0][0] * (m[1][1] * m[2][2] - m[1][2] ** 2) - m[0][1] * (m[0][1] * m[2][2] - m[1][2] * m[0][2])
-                     + m[0][2] * (m[0][1] * m[1][2] - m[1][1] * m[0][2])) > 0.0
+        ok = ok and det3(m) > 0.0
         if not ok:
             raise ValueError(f"inertia_kg_m2 must be three positive moments or a symmetric positive definite 3x3 "
                              f"matrix, got {inertia_kg_m2}")
         if not (math.isfinite(gain_per_s) and gain_per_s > 0.0):
             raise ValueError(f"gain_per_s must be positive, got {gain_per_s}")
         self.inertia = m
-        self.inertia_inv = _inverse_spd(m)
+        self.inertia_inv = inv3(m)
         self.gain = float(gain_per_s)
         self._key = key
 
