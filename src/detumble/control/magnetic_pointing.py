@@ -18,6 +18,12 @@ how fast the field line turns (``test_magnetic_pointing.py`` checks it against t
 of the linearised periodic system). The D term damps the motion relative to the turning line,
 ``ω − α ḃ``.
 
+Robustness. The steering feeds the along-field rate back with the gain ``K_p (1 + ρ²)/(2 r)`` (≈ 1.25e-3
+N·m·s for the defaults), 10–30 times ``K_d``. A field direction that is wrong by ``δ`` (a magnetometer bias:
+the default LIS2MDL's 0.015 G is δ ≈ 3.5° where the field is weakest) leaks ``δ |ω⊥|`` into it, which acts
+as negative damping of ``ω⊥`` unless ``K_d > K_p (1 + ρ²) δ / (2 r)``: with ``K_d`` = 4e-5 N·m·s the
+deployment spun up after converging, with 1e-4 it holds (study).
+
 Frames and units: body B; ``q_target`` = ``q_TN`` (inertial target), ``q_BN`` scalar first; ``ω`` rad/s
 (B relative to N, in B); ``b`` any field unit (only its direction is used); ``bdot_hat`` = the time
 derivative of the unit field direction in inertial space, expressed in B, 1/s; gains ``k_p`` N·m,

@@ -97,24 +97,35 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m detumble.sim.magnetic_pointing_check", description=__doc__.split("\n")[0])
     ap.add_argument("--law", choices=LAWS, default="field_steering")
     ap.add_argument("--kp", type=float, default=1.0e-6, help="N·m (default 1e-6)")
-    ap.add_argument("--kd", type=float, default=4.0e-5, help="N·m·s (default 4e-5)")
+    ap.add_argument("--kd", type=float, default=1.0e-4, help="N·m·s (default 1e-4)")
     ap.add_argument("--rho", type=float, default=2.0)
-    ap.add_argument("--seeds", default="1", help="comma-separated seeds (initial tumble axis and noise)")
+    ap.add_argument("--seeds", default="1", help="comma-separated seeds, or FIRST..LAST (initial tumble axis)")
     ap.add_argument("--rate", type=float, default=0.5, help="initial rate, deg/s")
     ap.add_argument("--duration", type=float, default=5580.0, help="s")
+    ap.add_argument("--dt", type=float, default=0.1, help="dynamics step and control period, s (default 0.1)")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="scenario setting (repeatable)")
     a = ap.parse_args(argv)
     try:
-        seeds = [int(s) for s in a.seeds.split(",")]
+        seeds = [int(s) for s in a.seeds.split(",")] if ".." not in a.seeds else \
+            list(range(int(a.seeds.split("..")[0]), int(a.seeds.split("..")[1]) + 1))
     except ValueError:
-        print(f"--seeds: expected comma-separated integers, got {a.seeds!r}", file=sys.stderr)
+        print(f"--seeds: expected comma-separated integers or FIRST..LAST, got {a.seeds!r}", file=sys.stderr)
         return 2
+    rows = []
     for s in seeds:
-        r = fly(a.law, a.kp, a.kd, rho=a.rho, seed=s, rate_deg_s=a.rate, duration_s=a.duration,
+        r = fly(a.law, a.kp, a.kd, rho=a.rho, seed=s, rate_deg_s=a.rate, duration_s=a.duration, dt_s=a.dt,
                 settings=tuple(a.set))
         med, p95, mx = r.stats()
+        rows.append((med, p95))
         print(f"{a.law} kp={a.kp:.3g} kd={a.kd:.3g} rho={a.rho:g} seed={s}: median {med:.2f} deg, "
               f"p95 {p95:.2f} deg, max {mx:.2f} deg, final {r.errors_deg[-1]:.2f} deg", flush=True)
+    if len(rows) > 1:
+        meds = sorted(m for m, _ in rows)
+        p95s = sorted(p for _, p in rows)
+        ok = sum(1 for m, p in rows if m <= 5.0 and p <= 15.0)
+        print(f"over {len(rows)} seeds: run medians: median {meds[len(meds) // 2]:.2f} deg, worst {meds[-1]:.2f} deg; "
+              f"run p95s: median {p95s[len(p95s) // 2]:.2f} deg, worst {p95s[-1]:.2f} deg; "
+              f"{ok}/{len(rows)} runs meet median <= 5 and p95 <= 15 deg")
     return 0
 
 
