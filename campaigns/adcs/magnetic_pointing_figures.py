@@ -1,8 +1,8 @@
 """Figures of docs/studies/magnetic_pointing.md.
 
     python campaigns/adcs/magnetic_pointing_figures.py floquet --out docs/img/magnetic_pointing
-    python campaigns/adcs/magnetic_pointing_figures.py runs --out docs/img/magnetic_pointing \
-        "SEED_PD, K_D 4e-4=RUN1" "FIELD_STEERING, K_D 4e-5=RUN2" "FIELD_STEERING (default)=RUN3"
+    python campaigns/adcs/magnetic_pointing_figures.py runs \
+        "SEED_PD, K_D 4e-4=RUN1" "FIELD_STEERING, K_D 4e-5=RUN2" "FIELD_STEERING (default)=RUN3" --out DIR
 
 ``floquet``: the Floquet growth rate (1/s, one orbit of the adcs_ref field toward its start-up target) of
 seed 003's projected PD over (K_P, K_D), and of the steering law over (ρ, K_D); printed as tables too.
