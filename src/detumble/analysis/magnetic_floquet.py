@@ -21,16 +21,23 @@ __all__ = ["field_line_along_orbit", "closed_loop_matrix", "floquet_rate", "aver
 def field_line_along_orbit(plant, q_target, samples: int = 1000):
     """``(period s, b̂ (samples+1)×3, ḃ (samples+1)×3)``: the field direction in the target frame over one
     orbit of ``plant`` (a :class:`detumble.sim.plant.Plant`) and its time derivative (1/s, ⟂ b̂)."""
-    from detumble.control.quaternion import quat_to_dcm
-
     period = 2.0 * math.pi / plant.orbit.mean_motion
-    r_tn = np.array(quat_to_dcm(tuple(q_target)))
+    r_tn = _dcm(q_target)
     ts = np.linspace(0.0, period, samples + 1)
     b = np.array([r_tn @ np.array(plant.field.b_N(t, plant.orbit.position_N(t))) for t in ts])
     b /= np.linalg.norm(b, axis=1)[:, None]
     bd = np.gradient(b, ts[1] - ts[0], axis=0)
     bd -= np.sum(bd * b, axis=1)[:, None] * b
     return period, b, bd
+
+
+def _dcm(q) -> np.ndarray:
+    """``[TN]`` (maps N components to T components) of ``q_TN``, scalar first (detumble.control.quaternion's
+    convention; analysis may not import control)."""
+    q0, q1, q2, q3 = (float(c) for c in q)
+    return np.array([[q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 + q0 * q3), 2 * (q1 * q3 - q0 * q2)],
+                     [2 * (q1 * q2 - q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 + q0 * q1)],
+                     [2 * (q1 * q3 + q0 * q2), 2 * (q2 * q3 - q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3]])
 
 
 def averaged_projection(b_hat) -> np.ndarray:

@@ -51,3 +51,17 @@ def test_unknown_law_is_refused():
     period, b, bd = planar(8)
     with pytest.raises(ValueError, match="seed_pd"):
         floquet_rate("bdot", period, b, bd, J, 1.0, 1.0)
+
+
+def test_target_dcm_follows_the_quaternion_convention():
+    """MAGPT-011: the analysis' own DCM of q_TN equals detumble.control.quaternion.quat_to_dcm (1e-14) for
+    random unit quaternions (analysis may not import control, so it carries its own)."""
+    import random
+
+    from detumble.analysis.magnetic_floquet import _dcm
+    from detumble.control.quaternion import quat_normalize, quat_to_dcm
+
+    rng = random.Random(3)
+    for _ in range(20):
+        q = quat_normalize(tuple(rng.gauss(0.0, 1.0) for _ in range(4)))
+        assert np.allclose(_dcm(q), np.array(quat_to_dcm(q)), atol=1e-14)
