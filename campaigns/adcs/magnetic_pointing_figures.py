@@ -90,7 +90,7 @@ def runs(out: pathlib.Path, specs: list[str]) -> None:
     ax.set_ylim(0.5, 200)
     ax.set_xlabel("t (s)")
     ax.set_ylabel("pointing error (deg, truth)")
-    ax.set_title("adcs_ref, magnetorquers only, 0.5 °/s start 45° from the target")
+    ax.set_title("adcs_ref, magnetorquers only, POINTING forced at 5 s (0.5 deg/s start 45 deg off, or at rest on target)")
     ax.legend()
     fig.tight_layout()
     out.mkdir(parents=True, exist_ok=True)

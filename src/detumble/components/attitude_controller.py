@@ -168,6 +168,7 @@ class AttitudeController(PassiveComponent):
     MAG_STEER_ZETA = Param(F64, default=0.7, low=0.0, high=5.0)  # their damping ratio
     MAG_FIELD_RATE_BANDWIDTH = Param(F64, default=0.05, low=1.0e-3, high=1.0)  # rad/s: ḃ estimator
     MAG_FIELD_RATE_MIN = Param(F64, default=5.0e-4, low=1.0e-5, high=1.0e-1)  # 1/s: floor of |ḃ| in the law
+    MAG_SETTLE_TIME = Param(F64, default=120.0, low=0.0, high=3600.0)  # s of known attitude before the coils point
 
     # --- ports ---------------------------------------------------------------------------------
 
@@ -247,6 +248,7 @@ class AttitudeController(PassiveComponent):
         self.filter = AttitudeFilter()
         self.field_rate = FieldDirectionRate()  # db̂_N/dt for magnetorquer-only pointing
         self.bdot_hat_B: tuple | None = None  # its latest estimate in B, 1/s
+        self.attitude_known_s = 0.0  # s since the attitude became known (gyro bias settling, MAG_SETTLE_TIME)
         self.integrator = ErrorIntegrator(math.radians(1.0), 1.0e-5)
         self.target: tuple[float, float, float, float] | None = None
         self.seed_damper = SeedKaneDamper(1.0e-4, 2.0e-4)
@@ -437,6 +439,10 @@ class AttitudeController(PassiveComponent):
         fr = self.field_rate
         fr.bandwidth_rad_s = self.MAG_FIELD_RATE_BANDWIDTH.value
         q = self.filter.q
+        if q is None or not self.attitude_valid:
+            self.attitude_known_s = 0.0
+        else:
+            self.attitude_known_s += dt
         if self.b_tesla is None or q is None or not self.attitude_valid:
             fr.reset()
             self.bdot_hat_B = None
@@ -547,7 +553,9 @@ class AttitudeController(PassiveComponent):
                 wheel_u = self._allocate((tau[0] - tau_mag[0], tau[1] - tau_mag[1], tau[2] - tau_mag[2]))
             else:
                 tau, qe = self._magnetic_pointing_torque(target, q)
-                if self.b_tesla is not None:
+                if self.attitude_known_s < self.MAG_SETTLE_TIME.value:
+                    tau = _ZERO  # the gyro-bias estimate is still settling: the coils wait (no dipole)
+                elif self.b_tesla is not None:
                     dipole, _ = project_dipole_weighted(tau, self.b_tesla, self._coil_limits())
             self.pointing_error_deg = math.degrees(quat_angle(qe))
         self.torque_request = tau

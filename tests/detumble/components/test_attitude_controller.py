@@ -461,9 +461,10 @@ def test_pointing_on_magnetorquers_projects_the_pd_torque(fprime_harness):
     coil-weighted projection of τ = −K_P_MAG q_err.v − K_D_MAG ω (before rounding to drive levels: within one
     level), so m × B is τ's part ⟂ B."""
     h = pointing(fprime_harness, q=quat_from_axis_angle((0.0, 1.0, 0.0), 0.2),
-                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS})
+                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, "MAG_SETTLE_TIME": 0.0})
     tick(h, 5)
     assert all(t == 0.0 for t in h.world.torques[1])
+    assert any(c != 0.0 for c in h.tlm_values("RequestedTorque")[-1])
     tau = tuple(h.tlm_values("RequestedTorque")[-1])
     m, _ = project_dipole_weighted(tau, tuple(c * 1e-4 for c in h.world.b), h.comp._coil_limits())
     cx = h.comp.X_COIL_MAX_DIPOLE.value
@@ -477,7 +478,7 @@ def test_magnetorquer_pointing_steers_with_the_measured_field_line_rate(fprime_h
     rate with K_P_MAG, K_D_MAG, MAG_STEER_RHO, MAG_STEER_ZETA (1e-12 N·m); SEED_PD requests seed 003's PD."""
     r = 2.0e-3
     h = make(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS,
-                                     "MAG_FIELD_RATE_BANDWIDTH": 0.2})
+                                     "MAG_FIELD_RATE_BANDWIDTH": 0.2, "MAG_SETTLE_TIME": 30.0})
     h.world.q = quat_from_axis_angle((0.0, 1.0, 0.0), 0.2)
     t0 = h.test_time.total_us
     b0 = 0.4  # gauss
@@ -506,6 +507,21 @@ def test_magnetorquer_pointing_steers_with_the_measured_field_line_rate(fprime_h
     tick(h, 5)
     pd, _ = pd_torque(c.target, c.filter.q, c.omega, c.K_P_MAG.value, c.K_D_MAG.value)
     assert all(abs(a - e) < 1e-12 for a, e in zip(h.tlm_values("RequestedTorque")[-1], pd, strict=True))
+
+
+def test_magnetorquer_pointing_waits_for_the_gyro_bias_to_settle(fprime_harness):
+    """ADCS-038: POINTING on the coils requests nothing and drives no coil until the attitude has been known for
+    MAG_SETTLE_TIME (here 10 s; the steering's along-field gain would turn a still-settling gyro-bias estimate into
+    a spin-up), then it requests the law's torque."""
+    h = pointing(fprime_harness, q=quat_from_axis_angle((0.0, 1.0, 0.0), 0.2),
+                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, "MAG_SETTLE_TIME": 10.0})
+    seconds(h, 9)
+    assert all(list(t) == [0.0, 0.0, 0.0] for t in h.tlm_values("RequestedTorque"))
+    assert all(lv == 0 for p in STARTS for call in h.from_port(p) for lv in call.args)
+    assert h.comp.mode == ControlMode.POINTING
+    seconds(h, 2)
+    assert any(c != 0.0 for c in h.tlm_values("RequestedTorque")[-1])
+    assert any(lv != 0 for p in STARTS for call in h.from_port(p) for lv in call.args)
 
 
 def test_spin_stable_seed_damper_requests_nothing_from_rest(fprime_harness):
