@@ -89,3 +89,19 @@ def test_full_flight_pointing_median_target(full_flight):
     with the raw gyro gave 0.0165°, docs/studies/attitude_knowledge.md)."""
     summary, _ = full_flight
     assert summary["pointing_error_deg"]["median"] <= 0.01
+
+
+@pytest.mark.slow
+def test_magnetorquer_only_attitude_hold_meets_the_target(tmp_path):
+    """ADCS-042: POINTING_ACTUATOR = MAGNETORQUERS, forced at 5 s with the spacecraft at rest on its target, one
+    orbit (docs/studies/magnetic_pointing.md): the run summary's pointing error (after the first 10 % of POINTING)
+    has a median ≤ 5° and a p95 ≤ 15° (issue 13's target; measured 3.2° / 4.8°), the wheels never turn."""
+    seq = ROOT / "campaigns" / "adcs" / "pointing_magnetorquers.seq"
+    summary, rows = fly(tmp_path, 5580.0, settings=("initial.rate.magnitude_deg_s=0.0",
+                                                    "initial.attitude.quaternion=[0.9238795325112867,0,0.3826834323650898,0]"),
+                        sequence=seq)
+    assert [t["mode"] for t in summary["control_mode_transitions"]] == ["POINTING"]
+    stats = summary["pointing_error_deg"]
+    assert stats["median"] <= 5.0
+    assert stats["p95"] <= 15.0
+    assert all(float(r["h0_nms"]) == 0.0 and float(r["h1_nms"]) == 0.0 and float(r["h2_nms"]) == 0.0 for r in rows)

@@ -31,14 +31,15 @@ from fprime_lite import (F64, U32, Channel, CmdResponse, Event, OutputPort, Para
                          Severity, sync_command, sync_input)
 
 from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, AttitudeEstimator, ControlAutonomy,
-                                                ControlMode, ModeChangeReason, PointingActuator, Quaternion, RateSource,
-                                                SpinLaw, Vector3, WheelValues)
+                                                ControlMode, MagPointingLaw, ModeChangeReason, PointingActuator,
+                                                Quaternion, RateSource, SpinLaw, Vector3, WheelValues)
 from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFieldGet, StartMagnetorquer,
                                        StopMagnetorquer, Success, WheelEnableSet, WheelStateGet, WheelTorqueSet)
 from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.mekf import Mekf
 from detumble.control.rate_observer import RateObserver
 from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
+from detumble.control.magnetic_pointing import FieldDirectionRate, field_steering_torque
 from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
 from detumble.control.pointing import ErrorIntegrator, pd_torque
 from detumble.control.quaternion import (is_unit_quaternion, quat_angle, quat_normalize, quat_shortest,
@@ -135,8 +136,8 @@ class AttitudeController(PassiveComponent):
     K_D = Param(F64, default=2.0e-3)  # N·m·s: PD damping, wheels (ζ ≈ 0.9)
     K_I = Param(F64, default=5.5e-5)  # N·m/s: integral on q_err.v, wheels (an addition to the seed; 0 turns it off)
     INTEGRAL_WINDOW = Param(F64, default=1.0)  # deg: the integral runs only below this error
-    K_P_MAG = Param(F64, default=2.0e-6)  # N·m: PD spring, magnetorquer-only pointing
-    K_D_MAG = Param(F64, default=4.0e-4)  # N·m·s: PD damping, magnetorquer-only pointing
+    K_P_MAG = Param(F64, default=1.0e-6, low=0.0, high=1.0e-3)  # N·m: spring ⟂ B, magnetorquer-only pointing
+    K_D_MAG = Param(F64, default=1.0e-4, low=0.0, high=1.0e-2)  # N·m·s: damping ⟂ B, magnetorquer-only pointing
     C_DAMP = Param(F64, default=1.0e-4)  # N·m·s: damper coefficient (seed c_damp)
     I_D = Param(F64, default=2.0e-4)  # kg·m²: damper virtual inertia (seed I_d)
     K_BDOT = Param(F64, default=3.0)  # A·m²·s/G: M = −k Ḃ when no dipoleMomentGet provider is connected
@@ -181,6 +182,13 @@ class AttitudeController(PassiveComponent):
     INERTIA_XY = Param(F64, default=2.0e-5, low=-10.0, high=10.0, finite=True)  # kg·m², product (matrix element)
     INERTIA_XZ = Param(F64, default=-1.5e-5, low=-10.0, high=10.0, finite=True)  # kg·m²
     INERTIA_YZ = Param(F64, default=1.0e-5, low=-10.0, high=10.0, finite=True)  # kg·m²
+    # magnetorquer-only pointing (detumble.control.magnetic_pointing; docs/studies/magnetic_pointing.md)
+    MAG_POINTING_LAW = Param(MagPointingLaw, default=MagPointingLaw.FIELD_STEERING)
+    MAG_STEER_RHO = Param(F64, default=2.0, low=0.0, high=10.0)  # along-field poles at ρ × the field line's rate
+    MAG_STEER_ZETA = Param(F64, default=0.7, low=0.0, high=5.0)  # their damping ratio
+    MAG_FIELD_RATE_BANDWIDTH = Param(F64, default=0.05, low=1.0e-3, high=1.0)  # rad/s: ḃ estimator
+    MAG_FIELD_RATE_MIN = Param(F64, default=5.0e-4, low=1.0e-5, high=1.0e-1)  # 1/s: floor of |ḃ| in the law
+    MAG_SETTLE_TIME = Param(F64, default=120.0, low=0.0, high=3600.0)  # s of known attitude before the coils point
 
     # --- ports ---------------------------------------------------------------------------------
 
@@ -252,6 +260,7 @@ class AttitudeController(PassiveComponent):
     GyroBiasEstimate = Channel(Vector3)  # deg/s, B
     AttitudeValid = Channel(U32)  # 1 while the star tracker's attitude is recent
     AttitudeSigma3 = Channel(F64, format="{.5f}")  # deg, MEKF 3·√(trace P_θθ) (not written with COMPLEMENTARY)
+    FieldLineRate = Channel(F64, format="{.5f}")  # deg/s, estimated |db̂/dt| of the inertial field direction
 
     # --- construction --------------------------------------------------------------------------
 
@@ -268,6 +277,9 @@ class AttitudeController(PassiveComponent):
         self.rate_observer = RateObserver(((2.20e-3, 2.0e-5, -1.5e-5), (2.0e-5, 2.15e-3, 1.0e-5),
                                            (-1.5e-5, 1.0e-5, 2.05e-3)), 0.1)
         self.pd_rate: tuple[float, float, float] | None = None  # rad/s, B: the rate the wheel PD's D term uses
+        self.field_rate = FieldDirectionRate()  # db̂_N/dt for magnetorquer-only pointing
+        self.bdot_hat_B: tuple | None = None  # its latest estimate in B, 1/s
+        self.attitude_known_s = 0.0  # s since the attitude became known (gyro bias settling, MAG_SETTLE_TIME)
         self.integrator = ErrorIntegrator(math.radians(1.0), 1.0e-5)
         self.target: tuple[float, float, float, float] | None = None
         self.seed_damper = SeedKaneDamper(1.0e-4, 2.0e-4)
@@ -483,6 +495,7 @@ class AttitudeController(PassiveComponent):
         else:
             self.MagneticFieldRetrievalFailed()
             self.b_tesla = None
+        self._track_field_line(dt)
         self.wheel_momenta = self._read_wheel_momenta() if self.wheel_count() else None
         self._update_rate_observer(dt)
 
@@ -516,6 +529,22 @@ class AttitudeController(PassiveComponent):
             h = WheelAllocator(self.wheel_axes, 1.0, 1.0).body_momentum(self.wheel_momenta)
         w = obs.update(self.omega, self._applied_torque(), h, dt)
         self.pd_rate = w if self.RATE_SOURCE.value == RateSource.OBSERVER else self.omega
+
+    def _track_field_line(self, dt: float) -> None:
+        """Feed the field-direction-rate estimator (every cycle with a field and an attitude, so it is
+        settled when magnetorquer pointing starts); a gap in either restarts it."""
+        fr = self.field_rate
+        fr.bandwidth_rad_s = self.MAG_FIELD_RATE_BANDWIDTH.value
+        q = self.filter.q
+        if q is None or not self.attitude_valid:
+            self.attitude_known_s = 0.0
+        else:
+            self.attitude_known_s += dt
+        if self.b_tesla is None or q is None or not self.attitude_valid:
+            fr.reset()
+            self.bdot_hat_B = None
+            return
+        self.bdot_hat_B = fr.update(q, self.b_tesla, dt)
 
     def _read_gyro(self):
         ok, w = self._read("angularVelocityGet")
@@ -621,8 +650,10 @@ class AttitudeController(PassiveComponent):
                 # the wheels supply what the dump torque does not (it would otherwise disturb the pointing)
                 wheel_u = self._allocate((tau[0] - tau_mag[0], tau[1] - tau_mag[1], tau[2] - tau_mag[2]))
             else:
-                tau, qe = pd_torque(target, q, self.omega, self.K_P_MAG.value, self.K_D_MAG.value)
-                if self.b_tesla is not None:
+                tau, qe = self._magnetic_pointing_torque(target, q)
+                if self.attitude_known_s < self.MAG_SETTLE_TIME.value:
+                    tau = _ZERO  # the gyro-bias estimate is still settling: the coils wait (no dipole)
+                elif self.b_tesla is not None:
                     dipole, _ = project_dipole_weighted(tau, self.b_tesla, self._coil_limits())
             self.pointing_error_deg = math.degrees(quat_angle(qe))
         self.torque_request = tau
@@ -635,6 +666,17 @@ class AttitudeController(PassiveComponent):
         if wheel_u is None:
             wheel_u = (0.0,) * len(self.wheel_axes)
         self._command_wheels(wheel_u)
+
+    def _magnetic_pointing_torque(self, target, q):
+        """``(τ_req, q_err)`` of the MAG_POINTING_LAW (before the projection ⟂ B)."""
+        w = self.omega
+        assert w is not None  # POINTING actuates only with a rate estimate
+        kp, kd = self.K_P_MAG.value, self.K_D_MAG.value
+        if self.MAG_POINTING_LAW.value == MagPointingLaw.SEED_PD or self.b_tesla is None:
+            return pd_torque(target, q, w, kp, kd)
+        bd = self.bdot_hat_B if self.bdot_hat_B is not None else _ZERO  # no estimate yet: the law's ρ = 0 case
+        return field_steering_torque(target, q, w, self.b_tesla, bd, kp, kd, self.MAG_STEER_RHO.value,
+                                     self.MAG_STEER_ZETA.value, self.MAG_FIELD_RATE_MIN.value)
 
     def _limit_dipole(self, m):
         return scale_to_limits(m, self._coil_limits())
@@ -718,6 +760,8 @@ class AttitudeController(PassiveComponent):
         self.AttitudeValid.write(1 if self.attitude_valid else 0)
         if isinstance(self.filter, Mekf) and self.filter.q is not None:
             self.AttitudeSigma3.write(math.degrees(self.filter.attitude_sigma3_rad))
+        if self.bdot_hat_B is not None:
+            self.FieldLineRate.write(math.degrees(_norm(self.bdot_hat_B)))
 
     # --- ports out -----------------------------------------------------------------------------
 

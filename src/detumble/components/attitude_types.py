@@ -11,7 +11,7 @@ from fprime_lite import F64, Array, FwEnum, PortType, Struct
 
 from detumble.components.types import Result
 
-__all__ = ["ControlMode", "ControlAutonomy", "SpinLaw", "PointingActuator", "ModeChangeReason",
+__all__ = ["ControlMode", "ControlAutonomy", "SpinLaw", "PointingActuator", "MagPointingLaw", "ModeChangeReason",
            "AttitudeEstimator", "RateSource",
            "Vector3", "Quaternion", "WheelValues", "AngularVelocity", "AngularVelocityGet", "MAX_WHEELS"]
 
@@ -67,6 +67,14 @@ class RateSource(FwEnum, namespace="Components"):
 
     GYRO = 0
     OBSERVER = 1
+
+
+class MagPointingLaw(FwEnum, namespace="Components"):
+    """POINTING on the magnetorquers: seed 003's PD projected ⟂ B (SEED_PD, diverges: see
+    docs/studies/magnetic_pointing.md) or the PD that steers the along-field error (FIELD_STEERING)."""
+
+    SEED_PD = 0
+    FIELD_STEERING = 1
 
 
 class ModeChangeReason(FwEnum, namespace="Components"):

@@ -11,11 +11,14 @@ import math
 import pytest
 
 from detumble.components.attitude_controller import AttitudeController
-from detumble.components.attitude_types import ControlAutonomy, ControlMode, ModeChangeReason, PointingActuator, SpinLaw
+from detumble.components.attitude_types import (ControlAutonomy, ControlMode, MagPointingLaw, ModeChangeReason,
+                                                PointingActuator, SpinLaw)
 from detumble.components.types import (AttitudeQuaternion, DipoleMoment, MagneticField, Result, Success, WheelMode,
                                        WheelState)
 from detumble.control.magnetic import project_dipole_weighted
-from detumble.control.quaternion import quat_from_axis_angle, quat_mul, rotate_b_to_n
+from detumble.control.magnetic_pointing import field_steering_torque
+from detumble.control.pointing import pd_torque
+from detumble.control.quaternion import quat_from_axis_angle, quat_mul, rotate_b_to_n, rotate_n_to_b
 from fprime_lite import CmdResponse, Time, TimeBase
 
 BASE = 0x10070000
@@ -458,13 +461,67 @@ def test_pointing_on_magnetorquers_projects_the_pd_torque(fprime_harness):
     coil-weighted projection of τ = −K_P_MAG q_err.v − K_D_MAG ω (before rounding to drive levels: within one
     level), so m × B is τ's part ⟂ B."""
     h = pointing(fprime_harness, q=quat_from_axis_angle((0.0, 1.0, 0.0), 0.2),
-                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS})
+                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, "MAG_SETTLE_TIME": 0.0})
     tick(h, 5)
     assert all(t == 0.0 for t in h.world.torques[1])
+    assert any(c != 0.0 for c in h.tlm_values("RequestedTorque")[-1])
     tau = tuple(h.tlm_values("RequestedTorque")[-1])
     m, _ = project_dipole_weighted(tau, tuple(c * 1e-4 for c in h.world.b), h.comp._coil_limits())
     cx = h.comp.X_COIL_MAX_DIPOLE.value
     assert all(abs(a - e) <= 2 * cx / 127 for a, e in zip(h.comp.dipole, m, strict=True))
+
+
+def test_magnetorquer_pointing_steers_with_the_measured_field_line_rate(fprime_harness):
+    """ADCS-060: MAG_POINTING_LAW = FIELD_STEERING (default): with the field turning at 2e-3 rad/s (0.115 °/s) in N,
+    FieldLineRate reads that rate within 5 % after 60 s at MAG_FIELD_RATE_BANDWIDTH 0.2 rad/s (the estimator runs in
+    every mode while the attitude is known), and RequestedTorque is field_steering_torque of the controller's attitude, rate, field and field-line
+    rate with K_P_MAG, K_D_MAG, MAG_STEER_RHO, MAG_STEER_ZETA (1e-12 N·m); SEED_PD requests seed 003's PD."""
+    r = 2.0e-3
+    h = make(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS,
+                                     "MAG_FIELD_RATE_BANDWIDTH": 0.2, "MAG_SETTLE_TIME": 30.0})
+    h.world.q = quat_from_axis_angle((0.0, 1.0, 0.0), 0.2)
+    t0 = h.test_time.total_us
+    b0 = 0.4  # gauss
+
+    def turning_field():
+        t = (h.test_time.total_us - t0) / 1e6
+        b_n = (b0 * math.cos(r * t), b0 * math.sin(r * t), 0.1)
+        x, y, z = rotate_n_to_b(h.world.q, b_n)
+        return Result(MagneticField(x=x, y=y, z=z, timestamp=h.test_time), Success.SUCCESS)
+
+    h.set_port_handler("magneticFieldGet", turning_field)
+    seconds(h, 60)
+    h.send_command("SET_TARGET_QUATERNION", 1.0, 0.0, 0.0, 0.0)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    tick(h, 5)
+    c = h.comp
+    expected_rate = r * b0 / math.hypot(b0, 0.1)  # |db̂/dt| of the tilted cone
+    assert h.tlm_values("FieldLineRate")[-1] == pytest.approx(math.degrees(expected_rate), rel=0.05)
+    tau, _ = field_steering_torque(c.target, c.filter.q, c.omega, c.b_tesla, c.bdot_hat_B, c.K_P_MAG.value,
+                                   c.K_D_MAG.value, c.MAG_STEER_RHO.value, c.MAG_STEER_ZETA.value,
+                                   c.MAG_FIELD_RATE_MIN.value)
+    assert all(abs(a - e) < 1e-12 for a, e in zip(h.tlm_values("RequestedTorque")[-1], tau, strict=True))
+    assert any(abs(a - p) > 1e-9 for a, p in zip(tau, pd_torque(c.target, c.filter.q, c.omega, c.K_P_MAG.value,
+                                                                 c.K_D_MAG.value)[0], strict=True))
+    h.send_command("MAG_POINTING_LAW_PRM_SET", MagPointingLaw.SEED_PD)
+    tick(h, 5)
+    pd, _ = pd_torque(c.target, c.filter.q, c.omega, c.K_P_MAG.value, c.K_D_MAG.value)
+    assert all(abs(a - e) < 1e-12 for a, e in zip(h.tlm_values("RequestedTorque")[-1], pd, strict=True))
+
+
+def test_magnetorquer_pointing_waits_for_the_gyro_bias_to_settle(fprime_harness):
+    """ADCS-061: POINTING on the coils requests nothing and drives no coil until the attitude has been known for
+    MAG_SETTLE_TIME (here 10 s; the steering's along-field gain would turn a still-settling gyro-bias estimate into
+    a spin-up), then it requests the law's torque."""
+    h = pointing(fprime_harness, q=quat_from_axis_angle((0.0, 1.0, 0.0), 0.2),
+                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, "MAG_SETTLE_TIME": 10.0})
+    seconds(h, 9)
+    assert all(list(t) == [0.0, 0.0, 0.0] for t in h.tlm_values("RequestedTorque"))
+    assert all(lv == 0 for p in STARTS for call in h.from_port(p) for lv in call.args)
+    assert h.comp.mode == ControlMode.POINTING
+    seconds(h, 2)
+    assert any(c != 0.0 for c in h.tlm_values("RequestedTorque")[-1])
+    assert any(lv != 0 for p in STARTS for call in h.from_port(p) for lv in call.args)
 
 
 def test_spin_stable_seed_damper_requests_nothing_from_rest(fprime_harness):
