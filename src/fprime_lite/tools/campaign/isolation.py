@@ -25,7 +25,7 @@ import sys
 import threading
 import time
 
-__all__ = ["fly_isolated", "grace_s", "killed_row"]
+__all__ = ["fly_isolated", "run_process", "grace_s", "killed_row"]
 
 _HEADER = struct.Struct("<Q")
 _START_TIMEOUT_S = 300.0  # an interpreter start and the campaign imports, on a loaded machine
@@ -106,7 +106,8 @@ class _RunProcess:
             return self.proc.returncode, 0.0
 
 
-def _process() -> _RunProcess:
+def run_process() -> _RunProcess:
+    """This thread's run process, started (and waited for until ready) when it has none or it died."""
     proc = getattr(_local, "proc", None)
     if proc is None or proc.proc.poll() is not None:
         proc = _local.proc = _RunProcess()
@@ -128,7 +129,7 @@ def killed_row(task: dict, status: str, error: str, note: str) -> dict:
 def fly_isolated(task: dict, out_dir) -> tuple[dict, float]:
     """Fly ``task`` in this thread's run process; return (row, the run's CPU seconds)."""
     timeout = float(task["timeout_s"])
-    proc = _process()  # started (and ready) before the run's time starts
+    proc = run_process()  # started (and ready) before the run's time starts
     t0 = time.monotonic()
     try:
         row = proc.run(task, out_dir, t0 + timeout + grace_s(timeout))
