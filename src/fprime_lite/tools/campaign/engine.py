@@ -164,7 +164,7 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
                         except Exception as exc:  # noqa: BLE001 - a lost worker fails its run, not the campaign
                             row = _lost_row(by_key[future.key], exc)
                         store.add(row)
-                        pruner.update(store.rows, row)
+                        pruner.update(row)
                         update(row)
                         future.release()
         status = "complete"

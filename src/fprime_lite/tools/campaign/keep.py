@@ -20,6 +20,7 @@ kill interrupted, and runs that finished without their row reaching the journal)
 
 from __future__ import annotations
 
+import bisect
 import math
 import pathlib
 import shutil
@@ -67,6 +68,12 @@ def _goodness(row: dict, policy: KeepPolicy) -> tuple:
     return (null, signed, row["point"], row["seed_index"])
 
 
+def _badness(row: dict, policy: KeepPolicy) -> tuple:
+    """Sort key, worst first: the exact reverse of :func:`_goodness`."""
+    null, signed, point, seed_index = _goodness(row, policy)
+    return (not null, -signed, -point, -seed_index)
+
+
 def kept_ids(rows, policy: KeepPolicy) -> set[str]:
     """The run ids whose files ``policy`` keeps, given every row so far."""
     if policy.mode == "all":
@@ -74,50 +81,74 @@ def kept_ids(rows, policy: KeepPolicy) -> set[str]:
     keep = {r["run_id"] for r in rows if r["status"] != "ok"} if policy.mode == "failed" or policy.failed else set()
     if policy.mode != "ranked":
         return keep
-    ranked = sorted((r for r in rows if r["status"] == "ok"), key=lambda r: _goodness(r, policy))
-    keep |= {r["run_id"] for r in ranked[:policy.best]}
-    if policy.worst:
-        keep |= {r["run_id"] for r in ranked[-policy.worst:]}
+    ok = [r for r in rows if r["status"] == "ok"]
+    keep |= {r["run_id"] for r in sorted(ok, key=lambda r: _goodness(r, policy))[:policy.best]}
+    keep |= {r["run_id"] for r in sorted(ok, key=lambda r: _badness(r, policy))[:policy.worst]}
     return keep
 
 
 class ArtifactPruner:
     """Deletes the per-run folders under ``artifacts_dir`` that a ranking no longer keeps.
 
-    ``remote_remove(run_id, row)`` (optional) is called for a folder that does not exist on this
-    machine: the worker that wrote it is asked to delete it (a cluster without a shared file system).
+    It holds the current best and worst lists (at most N entries each, kept sorted), so a new row
+    costs O(N), whatever the campaign's size. ``remote_remove(run_id, row)`` (optional) is called for
+    a folder that does not exist on this machine: the worker that wrote it is asked to delete it (a
+    cluster without a shared file system).
     """
 
     def __init__(self, artifacts_dir: pathlib.Path, policy: KeepPolicy, remote_remove=None):
         self.dir = pathlib.Path(artifacts_dir)
         self.policy = policy
         self.remote_remove = remote_remove
-        self.kept: set[str] = set()
+        self._best: list[tuple] = []   # (goodness, run_id), best first
+        self._worst: list[tuple] = []  # (badness, run_id), worst first
+        self._failed: set[str] = set()
+        self._rows: dict[str, dict] = {}
 
     @property
     def active(self) -> bool:
         return self.policy.mode == "ranked"
 
+    @property
+    def kept(self) -> set[str]:
+        return {i for _, i in self._best} | {i for _, i in self._worst} | self._failed
+
+    def _admit(self, row: dict) -> None:
+        run_id = row["run_id"]
+        self._rows[run_id] = row
+        self._failed.discard(run_id)  # a retried run replaces its failed row
+        if row["status"] != "ok":
+            if self.policy.failed:
+                self._failed.add(run_id)
+            return
+        for entries, key, n in ((self._best, _goodness(row, self.policy), self.policy.best),
+                                (self._worst, _badness(row, self.policy), self.policy.worst)):
+            if n:
+                bisect.insort(entries, (key, run_id))
+                del entries[n:]
+
     def start(self, rows: list[dict]) -> None:
         """On (re)start: keep what the journal's rows keep; remove every other run folder."""
         if not self.active:
             return
-        self.kept = kept_ids(rows, self.policy)
+        for row in rows:
+            self._admit(row)
+        kept = self.kept
         if self.dir.is_dir():
             for folder in self.dir.iterdir():
-                if folder.is_dir() and folder.name not in self.kept:
+                if folder.is_dir() and folder.name not in kept:
                     shutil.rmtree(folder, ignore_errors=True)
 
-    def update(self, rows: list[dict], row: dict) -> None:
-        """``row`` has just been added to ``rows``: delete the folders it displaced (or its own)."""
+    def update(self, row: dict) -> None:
+        """A new row: delete the folders it displaced, or its own when it is not kept."""
         if not self.active:
             return
-        now = kept_ids(rows, self.policy)
-        by_id = {r["run_id"]: r for r in rows}
-        for run_id in sorted((self.kept | {row["run_id"]}) - now):
+        before = self.kept
+        self._admit(row)
+        now = self.kept
+        for run_id in sorted((before | {row["run_id"]}) - now):
             folder = self.dir / run_id
             if folder.exists():
                 shutil.rmtree(folder, ignore_errors=True)
-            elif self.remote_remove is not None and run_id in by_id:
-                self.remote_remove(run_id, by_id[run_id])
-        self.kept = now
+            elif self.remote_remove is not None:
+                self.remote_remove(run_id, self._rows[run_id])

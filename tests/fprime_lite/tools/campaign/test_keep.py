@@ -94,3 +94,28 @@ def test_best_runs_keep_their_folders_on_two_workers_and_after_resume(write_camp
                                   df.drop(columns=["wall_s", "cpu_s", "worker"]))
     assert {p.name for p in (out / "runs").iterdir()} == expected(df2)
     assert expected(df2) != expected(df)  # the new draws displaced some of the first best
+
+
+def test_the_pruner_keeps_the_same_set_as_a_full_ranking_whatever_the_order(tmp_path):
+    """CAMP-083: fed 300 random rows one by one (ties, nulls, failures, a failed run retried ok), the
+    pruner's kept set equals kept_ids of all rows so far after every row, and only kept folders remain."""
+    import random
+
+    from fprime_lite.tools.campaign.keep import ArtifactPruner
+
+    rnd = random.Random(4)
+    policy = KeepPolicy("ranked", best=4, worst=3, by="m", order="max", failed=True)
+    pruner = ArtifactPruner(tmp_path, policy)
+    pruner.start([])
+    rows: dict[str, dict] = {}
+    for i in range(300):
+        retry = i % 50 == 49 and any(r["status"] == "failed" for r in rows.values())
+        run_id = next(k for k, r in rows.items() if r["status"] == "failed") if retry else f"r{i:03d}"
+        value = rnd.choice([None, float(rnd.randint(0, 20))])
+        row = _row(run_id, value, point=rnd.randint(0, 5), seed_index=i,
+                   status="ok" if retry or rnd.random() > 0.1 else "failed")
+        (tmp_path / run_id).mkdir(exist_ok=True)
+        rows[run_id] = row
+        pruner.update(row)
+        assert pruner.kept == kept_ids(rows.values(), policy)
+    assert {p.name for p in tmp_path.iterdir()} == kept_ids(rows.values(), policy)
