@@ -149,7 +149,8 @@ def measure_isolation(runs: int, folder: pathlib.Path) -> dict:
             into.append(time.perf_counter() - t0)
     return {"runs": runs, "run_process_start_s": start, "in_process_run_s_median": statistics.median(inside),
             "isolated_run_s_median": statistics.median(isolated),
-            "isolation_overhead_per_run_s_median": statistics.median(b - a for a, b in zip(inside, isolated)),
+            "isolation_overhead_per_run_s_median": statistics.median(
+                b - a for a, b in zip(inside, isolated, strict=True)),
             "isolation_overhead_per_run_s_mean": statistics.fmean(isolated) - statistics.fmean(inside)}
 
 

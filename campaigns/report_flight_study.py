@@ -74,7 +74,7 @@ def main(argv: list[str] | None = None) -> int:
         boot = _p95s(times, resamples)
         rows.append({"point": point, "provider": provider, **{k: asked.get(v) for k, v in KEYS.items()},
                      "times": times, "rates": g[RATE].to_numpy(dtype=float), "boot": boot,
-                     "left": [f"{f:.1f}" for f, c in zip(g["final_rate_deg_s"], g[METRIC]) if np.isnan(c)],
+                     "left": [f"{f:.1f}" for f, c in zip(g["final_rate_deg_s"], g[METRIC], strict=True) if np.isnan(c)],
                      "median": percentile(times, 50), "p95": percentile(times, 95),
                      "p95_ci": (percentile(boot, 2.5), percentile(boot, 97.5)),
                      "energy": float(np.nanmedian(g["coil_energy_j"]))})
@@ -106,7 +106,7 @@ def main(argv: list[str] | None = None) -> int:
     for label, pool in (("best overall", rows), ("best on the flight topology (a parameter uplink, no new software)",
                                                   [r for r in rows if r["provider"] == "flight 5-point"])):
         best = min(pool, key=key)
-        diff = np.array([_difference(b, d) for b, d in zip(best["boot"], default["boot"])])
+        diff = np.array([_difference(b, d) for b, d in zip(best["boot"], default["boot"], strict=True)])
         diff = diff[~np.isnan(diff)]
         gain = _difference(best["p95"], default["p95"])
         share = float(np.mean(diff < 0)) if len(diff) else math.nan

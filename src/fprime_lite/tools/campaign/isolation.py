@@ -137,8 +137,9 @@ def fly_isolated(task: dict, out_dir) -> tuple[dict, float]:
         _local.proc = None
         _, cpu = proc.end(kill=True)
         wall = time.monotonic() - t0
-        return killed_row(task, "timeout", f"killed after {wall:.1f} s of wall time: still running {wall - timeout:.1f} s "
-                                f"past its timeout_s of {timeout:g} s (it never checked its deadline)",
+        return killed_row(task, "timeout", f"killed after {wall:.1f} s of wall time: still running "
+                                           f"{wall - timeout:.1f} s past its timeout_s of {timeout:g} s "
+                                           f"(it never checked its deadline)",
                           "killed at its hard timeout"), cpu
     if row is None:
         _local.proc = None

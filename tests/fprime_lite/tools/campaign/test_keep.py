@@ -20,13 +20,13 @@ def _row(run_id, value, point=0, seed_index=0, status="ok"):
 def test_ranking_is_by_metric_with_nulls_last_and_ties_by_point():
     """CAMP-080: best 2 (min) are the two smallest; max reverses; a null ranks after every number
     (first of the worst); ties go to the lower point; failed runs are ranked only through failed: true."""
-    rows = [_row("a", 3.0, 0), _row("b", 1.0, 1), _row("c", None, 2), _row("d", 1.0, 3), _row("e", 0.5, 4, status="failed"),
-            _row("f", math.nan, 5)]
+    rows = [_row("a", 3.0, 0), _row("b", 1.0, 1), _row("c", None, 2), _row("d", 1.0, 3),
+            _row("e", 0.5, 4, status="failed"), _row("f", math.nan, 5)]
     assert kept_ids(rows, KeepPolicy("ranked", best=2, by="m")) == {"b", "d"}
     assert kept_ids(rows, KeepPolicy("ranked", best=1, by="m", order="max")) == {"a"}
     assert kept_ids(rows, KeepPolicy("ranked", worst=2, by="m")) == {"c", "f"}
     assert kept_ids(rows, KeepPolicy("ranked", best=1, worst=1, by="m", failed=True)) == {"b", "f", "e"}
-    assert kept_ids(rows[::-1], KeepPolicy("ranked", best=3, by="m")) == {"b", "d", "a"}  # order of arrival is irrelevant
+    assert kept_ids(rows[::-1], KeepPolicy("ranked", best=3, by="m")) == {"b", "d", "a"}  # arrival order is irrelevant
 
 
 def test_bad_keep_is_refused_at_its_lines(write_campaign):
@@ -50,7 +50,8 @@ def test_bad_keep_is_refused_at_its_lines(write_campaign):
     assert f"{path}:7: 'keep: order' is min" in text
     assert f"{path}:8: unknown key 'top' in 'keep'" in text
     assert len(info.value.problems) == 4
-    for keep, message in (("{by: value}", "needs 'best: N' and/or 'worst: N'"), ("best", "is one of none, failed, all")):
+    for keep, message in (("{by: value}", "needs 'best: N' and/or 'worst: N'"),
+                          ("best", "is one of none, failed, all")):
         bad = write_campaign(f'campaign: k\nrun: {{kind: "{PROBE}"}}\nmetrics: [value]\nkeep: {keep}\n', "b.yaml")
         with pytest.raises(CampaignError, match=message):
             load_campaign(bad)
