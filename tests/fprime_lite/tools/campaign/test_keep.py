@@ -18,7 +18,7 @@ def _row(run_id, value, point=0, seed_index=0, status="ok"):
 
 
 def test_ranking_is_by_metric_with_nulls_last_and_ties_by_point():
-    """CAMP-080: best 2 (min) are the two smallest; max reverses; a null ranks after every number
+    """CAMP-100: best 2 (min) are the two smallest; max reverses; a null ranks after every number
     (first of the worst); ties go to the lower point; failed runs are ranked only through failed: true."""
     rows = [_row("a", 3.0, 0), _row("b", 1.0, 1), _row("c", None, 2), _row("d", 1.0, 3),
             _row("e", 0.5, 4, status="failed"), _row("f", math.nan, 5)]
@@ -30,7 +30,7 @@ def test_ranking_is_by_metric_with_nulls_last_and_ties_by_point():
 
 
 def test_bad_keep_is_refused_at_its_lines(write_campaign):
-    """CAMP-081: an unknown keep field, a metric not in 'metrics', a zero count and a bad order are
+    """CAMP-101: an unknown keep field, a metric not in 'metrics', a zero count and a bad order are
     reported at their own file:line; a ranking without best/worst and a bad string are refused too."""
     path = write_campaign(f"""\
         campaign: k
@@ -69,7 +69,7 @@ keep: {{best: 3, worst: 1, by: value, order: min}}
 
 
 def test_best_runs_keep_their_folders_on_two_workers_and_after_resume(write_campaign, tmp_path):
-    """CAMP-082: on a LocalCluster of 2 (workers write the folders) exactly the 3 best and the worst
+    """CAMP-102: on a LocalCluster of 2 (workers write the folders) exactly the 3 best and the worst
     run keep DIR/runs/RUN_ID; after raising seeds and --resume the set is the best of all rows
     (the earlier best displaced ones deleted) and a stray folder left by a kill is removed."""
     pd = pytest.importorskip("pandas")
@@ -98,7 +98,7 @@ def test_best_runs_keep_their_folders_on_two_workers_and_after_resume(write_camp
 
 
 def test_the_pruner_keeps_the_same_set_as_a_full_ranking_whatever_the_order(tmp_path):
-    """CAMP-083: fed 300 random rows one by one (ties, nulls, failures, a failed run retried ok), the
+    """CAMP-103: fed 300 random rows one by one (ties, nulls, failures, a failed run retried ok), the
     pruner's kept set equals kept_ids of all rows so far after every row, and only kept folders remain."""
     import random
 
