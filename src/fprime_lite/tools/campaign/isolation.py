@@ -79,9 +79,14 @@ class _RunProcess:
                                      stdin=subprocess.DEVNULL)
         os.close(task_r)
         os.close(row_w)
-        _write_frame(self.task_w, pickle.dumps(list(sys.path)))  # the same imports as this worker
-        if _read_frame(self.row_r, time.monotonic() + _START_TIMEOUT_S) != b"ready":
-            raise RuntimeError("the run process did not start")
+        try:
+            _write_frame(self.task_w, pickle.dumps(list(sys.path)))  # the same imports as this worker
+            ready = _read_frame(self.row_r, time.monotonic() + _START_TIMEOUT_S)
+        except OSError:  # TimeoutError included
+            ready = None
+        if ready != b"ready":
+            code, _ = self.end(kill=True)
+            raise RuntimeError(f"the run process did not start (exit status {code}; its stderr is the worker's)")
 
     def run(self, task: dict, out_dir, deadline: float) -> dict | None:
         """The row, or None when the process ended without one; TimeoutError past ``deadline``."""
@@ -141,6 +146,10 @@ def fly_isolated(task: dict, out_dir) -> tuple[dict, float]:
                                            f"{wall - timeout:.1f} s past its timeout_s of {timeout:g} s "
                                            f"(it never checked its deadline)",
                           "killed at its hard timeout"), cpu
+    except OSError:  # the pipe broke: the process is gone or unusable
+        _local.proc = None
+        proc.end(kill=True)
+        raise
     if row is None:
         _local.proc = None
         code, cpu = proc.end(kill=False)

@@ -149,19 +149,19 @@ def execute_run(task: dict) -> dict:
     t0 = time.perf_counter()
     cpu0 = time.process_time()
     out_dir = pathlib.Path(tempfile.mkdtemp(prefix=f"campaign-{task['run_id']}-"))
-    try:
-        if task.get("timeout_s"):
-            from fprime_lite.tools.campaign.isolation import fly_isolated
+    if task.get("timeout_s"):
+        from fprime_lite.tools.campaign.isolation import fly_isolated, killed_row
 
+        try:
             row, cpu_s = fly_isolated(task, out_dir)
-        else:
-            row = fly(task, out_dir, t0)
+        except (OSError, RuntimeError) as exc:  # no run process (cannot start, pipe broken): this run fails
+            row = killed_row(task, "failed", f"no run process: {type(exc).__name__}: {exc}",
+                             "the run process could not be used")
             cpu_s = time.process_time() - cpu0
-    finally:
-        if "row" in locals():
-            _dispose_files(task, row, out_dir)
-        else:
-            shutil.rmtree(out_dir, ignore_errors=True)
+    else:
+        row = fly(task, out_dir, t0)
+        cpu_s = time.process_time() - cpu0
+    _dispose_files(task, row, out_dir)
     row["wall_s"] = time.perf_counter() - t0
     row["cpu_s"] = cpu_s
     row["worker"] = worker_name()

@@ -3,7 +3,8 @@
 
 Its run section: ``mode`` — ``ok`` (summary ``value`` = 2·x), ``stuck`` (writes its pid to
 ``BASE/stuck-SEED.pid``, then busy-loops without ever polling ``should_stop``) or
-``fail_if_marker`` (raises while ``BASE/marker`` exists, else as ``ok``). Varied keys: ``x``,
+``fail_if_marker`` (raises while ``BASE/marker`` exists, else as ``ok``) or ``exit`` (ends its
+process with status 3). Varied keys: ``x``,
 ``mode``. Every run writes ``out.txt`` into its folder (a per-run file to keep or delete).
 """
 
@@ -29,6 +30,8 @@ def _prepare(req: RunRequest) -> Prepared:
             (req.base_dir / f"stuck-{req.seed}.pid").write_text(str(os.getpid()))
             while True:  # never polls req.should_stop()
                 pass
+        if mode == "exit":
+            os._exit(3)
         if mode == "fail_if_marker" and (req.base_dir / "marker").exists():
             raise RuntimeError("the marker file is there")
         return RunOutput(summary={"value": 2.0 * x, "sim_seconds": 1.0}, out_dir=req.out_dir)

@@ -28,7 +28,8 @@ def _gone(pid: int) -> bool:
 def test_a_busy_loop_that_never_polls_is_killed_and_the_next_run_flies(write_campaign, tmp_path):
     """CAMP-090: with timeout_s 1 a run stuck in a loop that never checks its deadline is recorded
     'timeout' (killed after timeout_s + the 2 s grace, its process gone), and the next run on the
-    same single worker is ok in a fresh run process."""
+    same single worker is ok in a fresh run process; a run whose process exits is 'failed' with its
+    exit status."""
     from fprime_lite.tools.campaign import run_campaign
     from fprime_lite.tools.campaign.isolation import grace_s
 
@@ -36,14 +37,14 @@ def test_a_busy_loop_that_never_polls_is_killed_and_the_next_run_flies(write_cam
         campaign: stuck
         run: {{kind: "{PROBE}"}}
         grid:
-          mode: [stuck, ok]
+          mode: [stuck, exit, ok]
         metrics: [value]
         timeout_s: 1
         """)
     t0 = time.perf_counter()
     df = run_campaign(path, workers=1, out=tmp_path / "o", plots=False, summary=False)
     assert time.perf_counter() - t0 < 120  # not left to loop for ever (generous for a loaded machine)
-    stuck, ok = df.to_dict("records")
+    stuck, died, ok = df.to_dict("records")
     assert stuck["status"] == "timeout" and "killed after" in stuck["error"]
     assert "never checked its deadline" in stuck["error"]
     assert stuck["wall_s"] >= 1 + grace_s(1) and math.isnan(stuck["value"])
@@ -51,6 +52,7 @@ def test_a_busy_loop_that_never_polls_is_killed_and_the_next_run_flies(write_cam
     assert json.loads(stuck["requested"]) == {"mode": "stuck"}
     (pid_file,) = tmp_path.glob("stuck-*.pid")
     assert _gone(int(pid_file.read_text()))
+    assert died["status"] == "failed" and "ended (exit status 3) without a result" in died["error"]
     assert ok["status"] == "ok" and ok["value"] == 2.0 and ok["cpu_s"] >= 0
 
 
