@@ -175,8 +175,10 @@ def main(argv: list[str]) -> int:
     if frame is None:
         return 0
     sys.path[:] = pickle.loads(frame)
+    from fprime_lite.tools.campaign.kinds import metrics, run_kinds
     from fprime_lite.tools.campaign.task import fly
 
+    run_kinds(), metrics()  # load the plug-ins now: not on the first run's clock
     _write_frame(row_w, b"ready")
     while True:
         frame = _read_frame(task_r)

@@ -109,7 +109,7 @@ def test_hard_timeouts_and_kept_best_runs_on_external_workers(external_cluster, 
           x: {dist: uniform, low: 0, high: 10}
         seeds: 3
         metrics: [value]
-        timeout_s: 1
+        timeout_s: 2
         keep: {best: 2, by: value}
         """)
     out = tmp_path / "ext"
