@@ -15,7 +15,7 @@ PROBE = "tests.fprime_lite.tools.campaign.probe_kinds:PROBE_RUN"
 
 
 def test_retry_failed_reruns_only_failed_rows_with_their_seeds(write_campaign, tmp_path, capsys):
-    """CAMP-092: runs that failed (a marker file present) stay failed on a plain --resume; with
+    """CAMP-092: a failed and a timed-out run stay so on a plain --resume; with
     --retry-failed they run again with the same run ids and seeds, their rows replaced (one row per
     run), while the ok rows are not run again (their wall times unchanged)."""
     from fprime_lite.tools.campaign import read_results
@@ -35,12 +35,12 @@ def test_retry_failed_reruns_only_failed_rows_with_their_seeds(write_campaign, t
     journal = out / "rows.jsonl"
     lines = journal.read_text().splitlines()
     failed = [json.loads(lines[0]), json.loads(lines[3])]
-    for r in failed:  # record two runs as failed (as a crashed run would be)
-        r.update(status="failed", error="RuntimeError: boom", metrics={"value": None})
+    for r, status in zip(failed, ("failed", "timeout"), strict=True):  # as a crashed / overlong run would be
+        r.update(status=status, error="RuntimeError: boom", metrics={"value": None})
     journal.write_text("\n".join([json.dumps(failed[0]), lines[1], lines[2], json.dumps(failed[1])]) + "\n")
     (path.parent / "marker").write_text("")
     assert main(["campaign", str(path), "--workers", "1", "--out", str(out), "--resume", "--no-plots"]) == 0
-    assert (read_results(out)["status"] == "failed").sum() == 2  # plain resume: nothing to run
+    assert sorted(read_results(out)["status"]) == ["failed", "ok", "ok", "timeout"]  # plain resume: nothing to run
     assert main(["campaign", str(path), "--out", str(out), "--workers", "1", "--retry-failed", "--no-plots"]) == 0
     still = read_results(out)
     assert (still["status"] == "failed").sum() == 2 and "the marker file is there" in still["error"].dropna().iloc[0]
