@@ -120,7 +120,7 @@ def test_hard_timeouts_and_kept_best_runs_on_external_workers(external_cluster, 
     assert {p.name for p in (out / "runs").iterdir()} == best
 
 
-RESUMABLE = TINY_PLANT.replace("duration_s: 20", "duration_s: 150").replace("seeds: 2", "seeds: 4")
+RESUMABLE = TINY_PLANT.replace("duration_s: 20", "duration_s: 400").replace("seeds: 2", "seeds: 4")  # killable mid-way
 
 
 def test_a_killed_campaign_resumes_to_the_same_table(write_campaign, tmp_path):
