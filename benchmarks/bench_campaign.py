@@ -1,6 +1,8 @@
 """Campaign throughput on this machine: runs per hour, orchestration overhead, 2-worker speed-up.
 
-Run: ``python benchmarks/bench_campaign.py [--plant-runs 8] [--deployment-runs 4] [--json FILE]``.
+Run: ``python benchmarks/bench_campaign.py [--plant-runs 8] [--deployment-runs 4] [--timeout-s S] [--json FILE]``.
+With ``--timeout-s`` the engine's runs get that ``timeout_s`` and so fly in killable run processes
+(hard timeouts) while the bare loop stays in-process: the overhead then includes the isolation.
 
 For one-orbit plant-only runs and one-orbit deployment runs (5580 simulated s each) it measures, in
 one process and one sitting:
@@ -66,7 +68,7 @@ def _cluster_start_stop(workers: int) -> float:
     return time.perf_counter() - t0
 
 
-def measure(text: str, runs: int, folder: pathlib.Path) -> dict:
+def measure(text: str, runs: int, folder: pathlib.Path, timeout_s: float | None = None) -> dict:
     import pandas as pd
 
     from fprime_lite.tools.campaign import load_campaign, run_campaign
@@ -75,14 +77,18 @@ def measure(text: str, runs: int, folder: pathlib.Path) -> dict:
     from fprime_lite.tools.campaign.task import execute_run
 
     path = folder / "c.yaml"
-    path.write_text(textwrap.dedent(text).replace("seeds: N", f"seeds: {runs}"), encoding="utf-8")
+    text = textwrap.dedent(text).replace("seeds: N", f"seeds: {runs}")
+    if timeout_s is not None:
+        text += f"timeout_s: {timeout_s}\n"  # the engine's runs fly in run processes (hard timeouts)
+    path.write_text(text, encoding="utf-8")
     campaign = load_campaign(path)
-    tasks = plan_runs(campaign, folder / "artifacts")
+    # the bare loop flies in this process (no run process), so the overhead includes the isolation
+    tasks = [dict(t, timeout_s=None) for t in plan_runs(campaign, folder / "artifacts")]
     t0 = time.perf_counter()
     rows = [execute_run(t) for t in tasks]
     bare = time.perf_counter() - t0
     bare_df = rows_to_frame(rows, campaign.varied_keys, campaign.metrics)
-    out = {"runs": runs, "bare_s": bare}
+    out = {"runs": runs, "bare_s": bare, "timeout_s": timeout_s}
     frames = {}
     for workers in (1, 2):
         start = _cluster_start_stop(workers)
@@ -117,11 +123,46 @@ def measure(text: str, runs: int, folder: pathlib.Path) -> dict:
     return out
 
 
+def measure_isolation(runs: int, folder: pathlib.Path) -> dict:
+    """The hard-timeout mechanism alone: the same tiny runs flown alternately in this process and in
+    the run process (``timeout_s`` set), in one loop, so both see the same load."""
+    import statistics
+
+    from fprime_lite.tools.campaign import load_campaign
+    from fprime_lite.tools.campaign.isolation import run_process
+    from fprime_lite.tools.campaign.plan import plan_runs
+    from fprime_lite.tools.campaign.task import execute_run
+
+    path = folder / "c.yaml"
+    path.write_text(textwrap.dedent(TINY).replace("seeds: N", f"seeds: {runs}"), encoding="utf-8")
+    tasks = plan_runs(load_campaign(path), folder / "artifacts")
+    execute_run(tasks[0])  # imports, in both processes, before timing
+    t0 = time.perf_counter()
+    run_process()
+    start = time.perf_counter() - t0
+    execute_run(dict(tasks[0], timeout_s=600.0))
+    inside, isolated = [], []
+    for t in tasks:
+        for timeout, into in ((None, inside), (600.0, isolated)):
+            t0 = time.perf_counter()
+            execute_run(dict(t, timeout_s=timeout))
+            into.append(time.perf_counter() - t0)
+    return {"runs": runs, "run_process_start_s": start, "in_process_run_s_median": statistics.median(inside),
+            "isolated_run_s_median": statistics.median(isolated),
+            "isolation_overhead_per_run_s_median": statistics.median(
+                b - a for a, b in zip(inside, isolated, strict=True)),
+            "isolation_overhead_per_run_s_mean": statistics.fmean(isolated) - statistics.fmean(inside)}
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--plant-runs", type=int, default=8)
     p.add_argument("--deployment-runs", type=int, default=4)
     p.add_argument("--tiny-runs", type=int, default=40, help="1-second plant runs: the engine's overhead alone")
+    p.add_argument("--timeout-s", type=float, metavar="S",
+                   help="give the engine's runs this timeout_s: each flies in a killable run process")
+    p.add_argument("--isolation-runs", type=int, default=0,
+                   help="tiny runs flown alternately in-process and in the run process: the hard timeout's cost")
     p.add_argument("--json", metavar="FILE")
     args = p.parse_args(argv)
     result = {"load_before": os.getloadavg(), "cores": os.cpu_count()}
@@ -131,8 +172,12 @@ def main(argv=None) -> int:
                               ("deployment_one_orbit", DEPLOYMENT, args.deployment_runs)):
             if n > 0:
                 (tmp / name).mkdir()
-                result[name] = measure(text, n, tmp / name)
+                result[name] = measure(text, n, tmp / name, args.timeout_s)
                 print(name, json.dumps(result[name], indent=2), flush=True)
+        if args.isolation_runs > 0:
+            (tmp / "isolation").mkdir()
+            result["isolation"] = measure_isolation(args.isolation_runs, tmp / "isolation")
+            print("isolation", json.dumps(result["isolation"], indent=2), flush=True)
     result["load_after"] = os.getloadavg()
     print("load average before", result["load_before"], "after", result["load_after"])
     if args.json:

@@ -1,4 +1,5 @@
-"""``fprime-lite campaign FILE [--workers N | --scheduler tcp://HOST:PORT] [--out DIR] [--resume]``."""
+"""``fprime-lite campaign FILE [--workers N | --scheduler tcp://HOST:PORT] [--out DIR] [--resume]
+[--retry-failed]``."""
 
 from __future__ import annotations
 
@@ -18,6 +19,8 @@ def build_parser(prog: str = "fprime-lite campaign") -> argparse.ArgumentParser:
     where.add_argument("--scheduler", metavar="tcp://HOST:PORT", help="use an existing Dask scheduler")
     p.add_argument("--out", metavar="DIR", help="campaign folder (default: runs/campaign-NAME-TIMESTAMP)")
     p.add_argument("--resume", action="store_true", help="continue the campaign in --out: skip finished runs")
+    p.add_argument("--retry-failed", action="store_true",
+                   help="with --resume (implied): also run again the runs recorded as failed or timeout")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--no-plots", action="store_true", help="do not draw the PNG plots")
     return p
@@ -35,8 +38,10 @@ def main(argv: list[str] | None = None) -> int:
         return int(exc.code or 0)
     try:
         campaign = load_campaign(args.file)
-        out = args.out or (None if args.resume else default_out_dir(campaign))
-        df = run_campaign(campaign, workers=args.workers, scheduler=args.scheduler, out=out, resume=args.resume,
+        resume = args.resume or args.retry_failed
+        out = args.out or (None if resume else default_out_dir(campaign))
+        df = run_campaign(campaign, workers=args.workers, scheduler=args.scheduler, out=out, resume=resume,
+                          retry_failed=args.retry_failed,
                           progress=not args.no_progress and sys.stderr.isatty(), plots=not args.no_plots)
     except FprimeLiteError as exc:
         print(f"fprime-lite campaign: {exc}", file=sys.stderr)

@@ -13,7 +13,7 @@ import tempfile
 import time
 
 from fprime_lite.tools.campaign.errors import CampaignError, RunSetupError
-from fprime_lite.tools.campaign.kinds import RunRequest, run_kinds
+from fprime_lite.tools.campaign.kinds import RunRequest, resolve_kind
 from fprime_lite.tools.campaign.manifest import now_utc, write_manifest
 from fprime_lite.tools.campaign.plan import plan_runs
 from fprime_lite.tools.campaign.results import ResultStore
@@ -53,7 +53,7 @@ def _representatives(campaign: Campaign, tasks: list[dict]) -> list[dict]:
 def preflight(campaign: Campaign, tasks: list[dict]) -> None:
     """Build (without flying) the representative runs in this process; a misspelt key or a bad value
     fails here, naming the campaign file line, before any run is submitted."""
-    kind = run_kinds()[campaign.kind]
+    kind = resolve_kind(campaign.kind)
     problems = []
     for task in _representatives(campaign, tasks):
         with tempfile.TemporaryDirectory(prefix="campaign-check-") as tmp:
@@ -72,25 +72,41 @@ def preflight(campaign: Campaign, tasks: list[dict]) -> None:
 
 def _lost_row(task: dict, exc: BaseException) -> dict:
     """The row of a run whose worker died or whose task could not be delivered."""
-    import json
+    from fprime_lite.tools.campaign.isolation import killed_row
 
-    return {"run_id": task["run_id"], "point": task["point"], "seed_index": task["seed_index"],
-            "seed": task["seed"], "status": "failed", "error": f"{type(exc).__name__}: {exc}",
-            "values": {k: None for k in task["values"]}, "metrics": {m: None for m in task["metrics"]},
-            "notes": json.dumps({"*": "the worker did not return the run"}),
-            "requested": json.dumps(task["values"], sort_keys=True, default=str), "wall_s": None, "cpu_s": None,
-            "worker": None}
+    row = killed_row(task, "failed", f"{type(exc).__name__}: {exc}", "the worker did not return the run")
+    return {**row, "wall_s": None, "cpu_s": None, "worker": None}
+
+
+def _remove_run_folder(path: str) -> None:
+    """Delete a per-run folder (submitted to the worker that wrote it)."""
+    import shutil
+
+    shutil.rmtree(path, ignore_errors=True)
+
+
+def _remote_remover(client, artifacts_dir: pathlib.Path):
+    """Ask the worker that wrote a run's folder to delete it (a cluster without a shared file system)."""
+    from distributed import fire_and_forget
+
+    def remove(run_id: str, row: dict) -> None:
+        address = row.get("worker_address")
+        if address:
+            fire_and_forget(client.submit(_remove_run_folder, str(artifacts_dir / run_id), workers=[address],
+                                          allow_other_workers=False, pure=False))
+    return remove
 
 
 def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None = None, out=None,
-                 resume: bool = False, progress: bool = False, plots: bool = True, console=None,
-                 summary: bool = True):
+                 resume: bool = False, retry_failed: bool = False, progress: bool = False, plots: bool = True,
+                 console=None, summary: bool = True):
     """Run a campaign (a file path or a loaded :class:`Campaign`); return its results DataFrame.
 
     ``workers``: size of the embedded LocalCluster (default: one per core); ``scheduler``: the
     address of an existing Dask scheduler instead. ``out``: the campaign folder (default
     ``runs/campaign-NAME-TIMESTAMP``); ``resume``: keep the rows already in ``out`` and run only the
-    rest.
+    rest; ``retry_failed`` (implies ``resume``): also run again the runs recorded as failed or
+    timeout, their new rows replacing the old (same run ids, same seeds).
     """
     from distributed import as_completed
 
@@ -100,6 +116,7 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
         raise CampaignError(["give --workers (an embedded cluster) or --scheduler (an existing one), not both"])
     if workers is not None and workers < 1:
         raise CampaignError([f"--workers must be at least 1, got {workers}"])
+    resume = resume or retry_failed
     if out is None:
         if resume:
             raise CampaignError(["--resume needs --out: the folder of the campaign to continue"])
@@ -114,7 +131,12 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
     store = ResultStore(out, campaign.varied_keys, campaign.metrics)
     planned = {t["run_id"] for t in tasks}
     store.rows = [r for r in store.rows if r["run_id"] in planned]  # rows of an edited campaign's old runs drop out
-    done = store.done_ids
+    done = {r["run_id"] for r in store.rows if not retry_failed or r["status"] == "ok"}
+    retried = sum(1 for r in store.rows if r["run_id"] not in done)
+    from fprime_lite.tools.campaign.keep import ArtifactPruner
+
+    pruner = ArtifactPruner(out / "runs", campaign.keep)
+    pruner.start(store.rows)
     # seed-major order: a campaign stopped early has the same draws done for every grid point
     todo = sorted((t for t in tasks if t["run_id"] not in done), key=lambda t: (t["seed_index"], t["point"]))
     started = now_utc()
@@ -124,13 +146,14 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
     t0 = time.perf_counter()
     try:
         write_manifest(out, campaign, started=started, ended=None, status="running", cluster=None,
-                       runs=len(tasks), counts={}, resumed_from=len(done))
+                       runs=len(tasks), counts={}, resumed_from=len(done), retried=retried)
         if todo:
             from fprime_lite.tools.campaign.cluster import dask_client
             from fprime_lite.tools.campaign.report import progress_bar
             from fprime_lite.tools.campaign.task import execute_run
 
             with dask_client(workers, scheduler) as (client, info):
+                pruner.remote_remove = _remote_remover(client, out / "runs")
                 futures = client.map(execute_run, todo, key=[f"campaign-run-{t['run_id']}" for t in todo],
                                      pure=False)
                 by_key = {f.key: t for f, t in zip(futures, todo, strict=True)}
@@ -141,6 +164,7 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
                         except Exception as exc:  # noqa: BLE001 - a lost worker fails its run, not the campaign
                             row = _lost_row(by_key[future.key], exc)
                         store.add(row)
+                        pruner.update(row)
                         update(row)
                         future.release()
         status = "complete"
@@ -149,7 +173,7 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
         counts = df["status"].value_counts().to_dict() if len(df) else {}
         write_manifest(out, campaign, started=started, ended=now_utc(), status=status, cluster=info,
                        runs=len(tasks), counts={str(k): int(v) for k, v in counts.items()},
-                       resumed_from=len(done))
+                       resumed_from=len(done), retried=retried)
     wall = time.perf_counter() - t0
     from fprime_lite.tools.campaign.results import read_results
 

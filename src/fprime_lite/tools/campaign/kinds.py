@@ -21,7 +21,7 @@ import pathlib
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
-__all__ = ["RunKind", "RunRequest", "Prepared", "RunOutput", "Metric", "run_kinds", "metrics",
+__all__ = ["RunKind", "RunRequest", "Prepared", "RunOutput", "Metric", "run_kinds", "resolve_kind", "metrics",
            "RUNS_GROUP", "METRICS_GROUP"]
 
 RUNS_GROUP = "fprime_lite.campaign_runs"
@@ -122,6 +122,27 @@ def run_kinds() -> dict[str, RunKind]:
         if isinstance(obj, RunKind):
             kinds[obj.name] = obj
     return kinds
+
+
+def resolve_kind(name: str) -> RunKind:
+    """The run kind called ``name``: an installed one, or ``package.module:NAME`` — a
+    :class:`RunKind` object imported from a module on the path (a kind not packaged as a plug-in,
+    e.g. a test's). Raises ``LookupError`` saying what is wrong."""
+    kinds = run_kinds()
+    if name in kinds:
+        return kinds[name]
+    if not isinstance(name, str) or ":" not in name:
+        raise LookupError(f"unknown run kind {name!r} (installed kinds: {', '.join(sorted(kinds))})")
+    import importlib
+
+    module, _, attr = name.partition(":")
+    try:
+        obj = getattr(importlib.import_module(module), attr)
+    except (ImportError, AttributeError) as exc:
+        raise LookupError(f"run kind {name!r} cannot be imported: {exc}") from None
+    if not isinstance(obj, RunKind):
+        raise LookupError(f"run kind {name!r} is a {type(obj).__name__}, not a RunKind")
+    return obj
 
 
 def metrics() -> dict[str, Metric]:

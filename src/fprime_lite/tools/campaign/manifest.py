@@ -44,7 +44,7 @@ def now_utc() -> str:
 
 
 def write_manifest(out_dir: pathlib.Path, campaign, *, started: str, ended: str | None, status: str,
-                   cluster: dict | None, runs: int, counts: dict, resumed_from: int = 0) -> dict:
+                   cluster: dict | None, runs: int, counts: dict, resumed_from: int = 0, retried: int = 0) -> dict:
     """Write ``out_dir/manifest.json`` atomically and return it."""
     manifest = {
         "campaign": campaign.name,
@@ -56,6 +56,8 @@ def write_manifest(out_dir: pathlib.Path, campaign, *, started: str, ended: str 
         "master_seed": campaign.master_seed,
         "runs": runs,
         "resumed_with": resumed_from,
+        "retried": retried,
+        "keep": campaign.keep.describe(),
         "counts": counts,
         "status": status,
         "started": started,

@@ -17,9 +17,9 @@ def plan_runs(campaign, artifacts_dir: pathlib.Path) -> list[dict]:
     With ``common_random_numbers`` the seed sequence is keyed by the seed index alone, so every grid
     point meets the same dispersed draws and noise seeds (paired comparisons between points).
     """
-    from fprime_lite.tools.campaign.kinds import run_kinds
+    from fprime_lite.tools.campaign.kinds import resolve_kind
 
-    fields = run_kinds()[campaign.kind].fields
+    fields = resolve_kind(campaign.kind).fields
     identity = {"run": campaign.run, "dispersions": campaign.dispersion_specs, "metrics": campaign.metrics,
                 "crn": campaign.common_random_numbers}
     tasks = []
@@ -35,7 +35,7 @@ def plan_runs(campaign, artifacts_dir: pathlib.Path) -> list[dict]:
             tasks.append({
                 "run_id": run_id(identity, point, seed), "point": index, "seed_index": s, "seed": seed,
                 "kind": campaign.kind, "config": config, "values": values, "metrics": campaign.metrics,
-                "timeout_s": campaign.timeout_s, "keep": campaign.keep, "artifacts_dir": str(artifacts_dir),
+                "timeout_s": campaign.timeout_s, "keep": campaign.keep.worker_mode, "artifacts_dir": str(artifacts_dir),
                 "base_dir": str(campaign.base_dir),
             })
     return tasks

@@ -2,7 +2,8 @@
 
 - ``rows.jsonl`` is the journal: one JSON line per finished run, appended and fsync'ed as each
   arrives. A line cut short by a kill is dropped when the journal is read again (that run simply
-  runs again on ``--resume``).
+  runs again on ``--resume``). A run id journaled twice (a failed run retried with
+  ``--retry-failed``) counts by its last line.
 - ``results.parquet`` is rewritten from the journal atomically (temporary file, fsync,
   ``os.replace``) at most every ``snapshot_s`` seconds and at the end, so whatever stops the
   campaign — Ctrl-C, SIGKILL, a power cut — leaves the previous complete file in place.
@@ -98,7 +99,8 @@ class ResultStore:
         if good != len(data):
             with open(self.journal, "r+b") as fh:
                 fh.truncate(good)
-        return rows
+        latest = {r["run_id"]: r for r in rows}  # the last line of a run id replaces the earlier ones
+        return list(latest.values())
 
     @property
     def done_ids(self) -> set[str]:
@@ -112,6 +114,8 @@ class ResultStore:
         fh.write(json.dumps(row, allow_nan=True).encode("utf-8") + b"\n")
         fh.flush()
         os.fsync(fh.fileno())
+        if row["run_id"] in self.done_ids:
+            self.rows = [r for r in self.rows if r["run_id"] != row["run_id"]]
         self.rows.append(row)
         if time.monotonic() - self._last_snapshot >= self.snapshot_s:
             self.snapshot()

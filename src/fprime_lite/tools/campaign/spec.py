@@ -14,12 +14,12 @@ from dataclasses import dataclass, field
 from fprime_lite.tools.campaign.dispersions import Dispersion, parse_dispersion
 from fprime_lite.tools.campaign.errors import CampaignError
 from fprime_lite.tools.campaign.grid import axis_values
+from fprime_lite.tools.campaign.keep import KEEP_FIELDS, KEEP_MODES, KeepPolicy
 
 __all__ = ["Campaign", "load_campaign", "TOP_KEYS", "PLOT_TYPES"]
 
 TOP_KEYS = {"campaign", "description", "run", "grid", "dispersions", "seeds", "master_seed", "metrics",
             "timeout_s", "keep", "plots", "common_random_numbers"}
-KEEP = ("none", "failed", "all")
 PLOT_TYPES = {"line": {"x", "metric"}, "heatmap": {"x", "y", "metric"}, "histogram": {"metric"},
               "cdf": {"metric"}}
 PLOT_KEYS = {"type", "x", "y", "metric", "agg"}
@@ -42,7 +42,7 @@ class Campaign:
     master_seed: int
     metrics: list[str]
     timeout_s: float | None
-    keep: str
+    keep: KeepPolicy
     plots: list[dict]
     common_random_numbers: bool = False
     where: dict[str, str] = field(default_factory=dict)  # campaign key → "file:line"
@@ -91,12 +91,52 @@ class _Checker:
                 self.problem(mapping.key_lines.get(key), f"unknown key '{key}' in {what} — {hint}")
 
 
+def _keep_policy(c: _Checker, raw, key_line, metric_names: list[str]) -> KeepPolicy:
+    """``keep``: none / failed / all, or {best: N, worst: N, by: METRIC, order: min|max, failed: bool}."""
+    from fprime_lite.deploy.topology_yaml.parse import YMap
+
+    usage = (f"'keep' (per-run files kept) is one of {', '.join(KEEP_MODES)}, or a ranking "
+             f"{{best: N, worst: N, by: METRIC, order: min|max, failed: true|false}}")
+    if isinstance(raw, str) and raw in KEEP_MODES:
+        return KeepPolicy(mode=raw)
+    if not isinstance(raw, YMap):
+        c.problem(key_line, f"{usage}, got {raw!r}")
+        return KeepPolicy()
+    c.keys(raw, KEEP_FIELDS, "'keep'")
+    at = lambda k: raw.key_lines.get(k, raw.line)  # noqa: E731
+    counts = {}
+    for k in ("best", "worst"):
+        v = raw.get(k, 0)
+        if k in raw and (isinstance(v, bool) or not isinstance(v, int) or v < 1):
+            c.problem(at(k), f"'keep: {k}' is how many runs to keep, a whole number >= 1, got {v!r}")
+            v = 0
+        counts[k] = v
+    if not ({"best", "worst"} & set(raw)):
+        c.problem(raw.line, f"a ranking 'keep' needs 'best: N' and/or 'worst: N' — {usage}")
+    by = raw.get("by")
+    if by is None:
+        c.problem(raw.line, "a ranking 'keep' needs 'by: METRIC' (one of the campaign's 'metrics')")
+    elif by not in metric_names:
+        hint = difflib.get_close_matches(str(by), metric_names, n=1)
+        c.problem(at("by"), f"'keep: by' {by!r} is not in 'metrics'"
+                  + (f" — did you mean '{hint[0]}'?" if hint else f" ({', '.join(metric_names) or 'none given'})"))
+    order = raw.get("order", "min")
+    if order not in ("min", "max"):
+        c.problem(at("order"), f"'keep: order' is min (smaller is better) or max (larger is better), got {order!r}")
+        order = "min"
+    failed = raw.get("failed", False)
+    if not isinstance(failed, bool):
+        c.problem(at("failed"), f"'keep: failed' is true or false, got {failed!r}")
+        failed = False
+    return KeepPolicy(mode="ranked", best=counts["best"], worst=counts["worst"], by=by, order=order, failed=failed)
+
+
 def load_campaign(path) -> Campaign:
     """Read and validate a campaign file; raise :class:`CampaignError` listing every problem."""
     from fprime_lite.deploy.topology import TopologyError
     from fprime_lite.deploy.topology_yaml.parse import YMap, parse_yaml
     from fprime_lite.tools.campaign.kinds import metrics as named_metrics
-    from fprime_lite.tools.campaign.kinds import run_kinds
+    from fprime_lite.tools.campaign.kinds import resolve_kind, run_kinds
 
     path = pathlib.Path(path)
     if not path.is_file():
@@ -129,7 +169,13 @@ def load_campaign(path) -> Campaign:
     else:
         kind_name = run.get("kind")
         kind = kinds.get(kind_name) if isinstance(kind_name, str) else None
-        if kind is None:
+        if kind is None and isinstance(kind_name, str) and ":" in kind_name:
+            try:
+                kind = resolve_kind(kind_name)
+            except LookupError as exc:
+                c.problem(run.key_lines.get("kind", run.line), f"{exc} — give module.path:NAME of a RunKind "
+                                                               f"importable on every worker")
+        elif kind is None:
             guess = difflib.get_close_matches(str(kind_name), sorted(kinds), n=1)
             hint = f"did you mean '{guess[0]}'?" if guess else f"installed kinds: {', '.join(sorted(kinds))}"
             c.problem(run.key_lines.get("kind", run.line), f"unknown run kind {kind_name!r} — {hint}")
@@ -217,10 +263,7 @@ def load_campaign(path) -> Campaign:
     if not isinstance(crn, bool):
         c.problem(line("common_random_numbers"), f"'common_random_numbers' is true or false, got {crn!r}")
         crn = False
-    keep = doc.get("keep", "none")
-    if keep not in KEEP:
-        c.problem(line("keep"), f"'keep' (per-run files kept) is one of {', '.join(KEEP)}, got {keep!r}")
-        keep = "none"
+    keep = _keep_policy(c, doc.get("keep", "none"), line("keep"), metric_names)
 
     plots = []
     raw_plots = doc.get("plots", [])

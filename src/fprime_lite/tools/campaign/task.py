@@ -1,9 +1,11 @@
 """One campaign run on a worker: build it, read its values back, fly it, compute its metrics.
 
 :func:`execute_run` never raises: whatever happens becomes the row's ``status`` (``ok``,
-``failed`` or ``timeout``) and ``error``. The timeout is cooperative: the run kinds poll
+``failed`` or ``timeout``) and ``error``. The timeout works in two steps: the run kinds poll
 ``should_stop`` from their simulation loop, so a run past its time ends at its next check and
-keeps what it measured so far (its metrics are then null with the reason "timed out").
+keeps what it measured so far (its metrics are then null with the reason "timed out"); a run that
+does not stop by itself (stuck where it never polls) is killed with its run process
+(:mod:`.isolation`) a grace period later and recorded as ``timeout`` all the same.
 """
 
 from __future__ import annotations
@@ -17,10 +19,10 @@ import time
 import traceback
 
 from fprime_lite.tools.campaign.errors import MetricUnavailable
-from fprime_lite.tools.campaign.kinds import RunRequest, metrics, run_kinds
+from fprime_lite.tools.campaign.kinds import RunRequest, metrics, resolve_kind
 from fprime_lite.tools.campaign.values import plain
 
-__all__ = ["execute_run", "worker_name"]
+__all__ = ["execute_run", "fly", "worker_name", "worker_address"]
 
 
 def worker_name() -> str:
@@ -32,6 +34,16 @@ def worker_name() -> str:
         return str(w.name if w.name is not None else w.address)
     except (ImportError, ValueError):
         return "local"
+
+
+def worker_address() -> str | None:
+    """The address of the Dask worker running this task; None outside Dask."""
+    try:
+        from distributed import get_worker
+
+        return str(get_worker().address)
+    except (ImportError, ValueError):
+        return None
 
 
 def _number(value):
@@ -63,24 +75,22 @@ def _metric(name: str, named: dict, output, probes: dict):
     return value, None
 
 
-def execute_run(task: dict) -> dict:
-    """Run ``task`` (made by the engine) and return its results row."""
-    t0 = time.perf_counter()
-    cpu0 = time.process_time()
+def fly(task: dict, out_dir: pathlib.Path, t0: float | None = None) -> dict:
+    """Build, read back, fly and measure ``task`` in this process, its files in ``out_dir``; return
+    the row without wall time, CPU time and worker. ``t0``: when the run's time started."""
+    t0 = time.perf_counter() if t0 is None else t0
     row = {"run_id": task["run_id"], "point": task["point"], "seed_index": task["seed_index"],
            "seed": task["seed"], "status": "ok", "error": None}
     values = task["values"]
     notes: dict[str, str] = {}
     timeout = task.get("timeout_s")
     deadline = t0 + timeout if timeout else math.inf
-    keep = task.get("keep", "none")
-    out_dir = pathlib.Path(tempfile.mkdtemp(prefix=f"campaign-{task['run_id']}-"))
     req = RunRequest(config=task["config"], values=values, seed=task["seed"], out_dir=out_dir,
                      base_dir=pathlib.Path(task["base_dir"]), should_stop=lambda: time.perf_counter() > deadline)
     readback = {k: None for k in values}
     metric_values = {m: None for m in task["metrics"]}
     try:
-        kind = run_kinds()[task["kind"]]
+        kind = resolve_kind(task["kind"])
         named = metrics()
         prepared = kind.prepare(req)
         probes = {}
@@ -111,18 +121,49 @@ def execute_run(task: dict) -> dict:
         last = traceback.extract_tb(exc.__traceback__)[-1:] if exc.__traceback__ else []
         where = f" (at {pathlib.Path(last[0].filename).name}:{last[0].lineno})" if last else ""
         row["error"] = f"{type(exc).__name__}: {exc}{where}"
-    finally:
-        if keep == "all" or (keep == "failed" and row["status"] != "ok"):
-            dest = pathlib.Path(task["artifacts_dir"]) / task["run_id"]
-            shutil.rmtree(dest, ignore_errors=True)
-            shutil.move(str(out_dir), dest)
-        else:
-            shutil.rmtree(out_dir, ignore_errors=True)
     row["values"] = readback
     row["metrics"] = metric_values
     row["notes"] = json.dumps(notes, sort_keys=True)
     row["requested"] = json.dumps(plain(values), sort_keys=True)
+    return row
+
+
+def _dispose_files(task: dict, row: dict, out_dir: pathlib.Path) -> None:
+    """Move the run's folder to ``artifacts_dir/RUN_ID`` when ``keep`` asks, else delete it."""
+    keep = task.get("keep", "none")
+    if keep == "all" or (keep == "failed" and row["status"] != "ok"):
+        dest = pathlib.Path(task["artifacts_dir"]) / task["run_id"]
+        shutil.rmtree(dest, ignore_errors=True)
+        dest.parent.mkdir(parents=True, exist_ok=True)
+        shutil.move(str(out_dir), dest)
+    else:
+        shutil.rmtree(out_dir, ignore_errors=True)
+
+
+def execute_run(task: dict) -> dict:
+    """Run ``task`` (made by the engine) and return its results row.
+
+    With ``timeout_s`` the run flies in this worker's run process (:mod:`.isolation`), which is
+    killed if the run is still going ``timeout_s`` plus a grace after it started; without, here.
+    """
+    t0 = time.perf_counter()
+    cpu0 = time.process_time()
+    out_dir = pathlib.Path(tempfile.mkdtemp(prefix=f"campaign-{task['run_id']}-"))
+    if task.get("timeout_s"):
+        from fprime_lite.tools.campaign.isolation import fly_isolated, killed_row
+
+        try:
+            row, cpu_s = fly_isolated(task, out_dir)
+        except (OSError, RuntimeError) as exc:  # no run process (cannot start, pipe broken): this run fails
+            row = killed_row(task, "failed", f"no run process: {type(exc).__name__}: {exc}",
+                             "the run process could not be used")
+            cpu_s = time.process_time() - cpu0
+    else:
+        row = fly(task, out_dir, t0)
+        cpu_s = time.process_time() - cpu0
+    _dispose_files(task, row, out_dir)
     row["wall_s"] = time.perf_counter() - t0
-    row["cpu_s"] = time.process_time() - cpu0
+    row["cpu_s"] = cpu_s
     row["worker"] = worker_name()
+    row["worker_address"] = worker_address()
     return row

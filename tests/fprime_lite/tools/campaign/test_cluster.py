@@ -52,7 +52,9 @@ def external_cluster(tmp_path):
     port = _free_port()
     address = f"tcp://127.0.0.1:{port}"
     log = open(tmp_path / "dask.log", "w")
-    common = dict(stdout=log, stderr=subprocess.STDOUT, start_new_session=True, cwd=tmp_path)
+    repo = str(pathlib.Path(__file__).resolve().parents[4])  # the probe run kind is imported from tests/
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [repo, os.environ.get("PYTHONPATH")])))
+    common = dict(stdout=log, stderr=subprocess.STDOUT, start_new_session=True, cwd=tmp_path, env=env)
     procs = [subprocess.Popen([str(BIN / "dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port),
                                "--dashboard-address", "127.0.0.1:0"], **common)]
     try:
@@ -95,7 +97,30 @@ def test_a_campaign_runs_on_an_external_scheduler(external_cluster, write_campai
     pd.testing.assert_frame_equal(comparable(ext), comparable(local), check_exact=True)
 
 
-RESUMABLE = TINY_PLANT.replace("duration_s: 20", "duration_s: 150").replace("seeds: 2", "seeds: 4")
+def test_hard_timeouts_and_kept_best_runs_on_external_workers(external_cluster, write_campaign, tmp_path):
+    """CAMP-052: on two `dask worker` processes a run that busy-loops without polling is killed and
+    recorded 'timeout', the other runs are ok, and the folders left are exactly the 2 best runs'."""
+    path = write_campaign("""\
+        campaign: ext_stuck
+        run: {kind: "tests.fprime_lite.tools.campaign.probe_kinds:PROBE_RUN"}
+        grid:
+          mode: [stuck, ok]
+        dispersions:
+          x: {dist: uniform, low: 0, high: 10}
+        seeds: 3
+        metrics: [value]
+        timeout_s: 2
+        keep: {best: 2, by: value}
+        """)
+    out = tmp_path / "ext"
+    df = run_campaign(path, scheduler=external_cluster, out=out, plots=False, summary=False)
+    assert list(df["status"]) == ["timeout"] * 3 + ["ok"] * 3 and set(df["worker"]) <= {"ext-0", "ext-1"}
+    assert df["error"][:3].str.contains("never checked its deadline").all()
+    best = set(df[df["status"] == "ok"].sort_values("value")["run_id"][:2])
+    assert {p.name for p in (out / "runs").iterdir()} == best
+
+
+RESUMABLE = TINY_PLANT.replace("duration_s: 20", "duration_s: 400").replace("seeds: 2", "seeds: 4")  # killable mid-way
 
 
 def test_a_killed_campaign_resumes_to_the_same_table(write_campaign, tmp_path):

@@ -109,3 +109,17 @@ def test_percentile_with_never():
     assert percentile(np.arange(11.0), 95) == np.percentile(np.arange(11.0), 95)
     xs = [1.0, 2.0, 4.0, 8.0]
     assert percentile(np.array(xs), 40) == pytest.approx(np.percentile(xs, 40), rel=1e-15)
+
+
+def test_a_run_kind_by_import_path_is_checked_at_its_line(write_campaign):
+    """CAMP-008: kind: module:NAME loads a RunKind from an importable module (its fields checked);
+    a module or name that cannot be imported, or an object that is not a RunKind, is refused at the kind line."""
+    probe = "tests.fprime_lite.tools.campaign.probe_kinds:PROBE_RUN"
+    good = load_campaign(write_campaign(f'campaign: k\nrun: {{kind: "{probe}", mode: ok}}\n'))
+    assert good.kind.endswith(":PROBE_RUN") and good.run["mode"] == "ok"
+    for kind, message in (("no_such_module_xyz:K", "cannot be imported"),
+                          ("tests.fprime_lite.tools.campaign.probe_kinds:NOPE", "cannot be imported"),
+                          ("tests.fprime_lite.tools.campaign.probe_kinds:os", "is a module, not a RunKind")):
+        path = write_campaign(f'campaign: k\nrun:\n  kind: "{kind}"\n', "bad.yaml")
+        (problem,) = _problems(path)
+        assert problem.startswith(f"{path}:3: run kind '{kind}'") and message in problem, problem
