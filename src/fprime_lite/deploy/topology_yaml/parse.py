@@ -110,19 +110,21 @@ class _BoundedLoader(yaml.SafeLoader):
         self._nodes = 0
 
     def compose_node(self, parent, index):
-        self._depth += 1
+        # counted as _check_shape counts libyaml's events: every node a value, every mapping or
+        # list a level, so that both parsers refuse the same documents at the same line
+        event = self.peek_event()
+        collection = isinstance(event, yaml.CollectionStartEvent)
         self._nodes += 1
+        self._depth += collection
         try:
-            if self._depth > MAX_DEPTH:
-                mark = self.peek_event().start_mark
-                raise _Refused(mark.line + 1, f"nesting deeper than {MAX_DEPTH} levels — a topology needs a "
-                                              f"handful; flatten the document")
+            if collection and self._depth > MAX_DEPTH:
+                raise _Refused(event.start_mark.line + 1, f"nesting deeper than {MAX_DEPTH} levels — a topology "
+                                                          f"needs a handful; flatten the document")
             if self._nodes > MAX_VALUES:
-                mark = self.peek_event().start_mark
-                raise _Refused(mark.line + 1, _TOO_MANY)
+                raise _Refused(event.start_mark.line + 1, _TOO_MANY)
             return super().compose_node(parent, index)
         finally:
-            self._depth -= 1
+            self._depth -= collection
 
 
 class _Converter:
