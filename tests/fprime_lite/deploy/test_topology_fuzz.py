@@ -13,9 +13,9 @@ The default suite runs a bounded Hypothesis property of ``load`` and a bounded c
 ``check``. The long mode (``pytest -m fuzz tests/fprime_lite/deploy/test_topology_fuzz.py -s``)
 runs ``FPRIME_LITE_FUZZ_INPUTS`` inputs through ``check`` (default 1 000 000) and
 ``FPRIME_LITE_FUZZ_LOAD_INPUTS`` through ``load`` (default 20 000), seed ``FPRIME_LITE_FUZZ_SEED``;
-figures go to stdout and, every 10 000 inputs and at the end, to the JSON-lines file
-``FPRIME_LITE_FUZZ_REPORT`` when it is set (docs/reliability.md records them); crashing inputs
-are saved beside the test's temporary folder.
+figures go to stdout and, every 10 000 inputs (``check``) or 1 000 (``load``) and at the end, to
+the JSON-lines file ``FPRIME_LITE_FUZZ_REPORT`` when it is set (docs/reliability.md records them);
+crashing inputs are saved beside the test's temporary folder.
 """
 
 from __future__ import annotations
@@ -177,12 +177,12 @@ def random_input(rng: random.Random, corpus: Corpus) -> tuple[tuple[str, str], b
 
 
 def campaign(corpus: Corpus, stage: str, inputs: int, seed: int, hang_cpu_s: float, report=None,
-             run=None) -> dict:
+             run=None, report_every: int = 10_000) -> dict:
     """``inputs`` random inputs through ``stage`` ('check' or 'load'); the figures.
 
     An input that raises anything but a located TopologyError is a crash; one that uses more than
     ``hang_cpu_s`` of CPU time (``ITIMER_VIRTUAL``, so a busy shared machine does not count) a hang.
-    ``report(figures)`` is called every 10 000 inputs; ``run`` replaces ``corpus.run`` (tests).
+    ``report(figures)`` is called every ``report_every`` inputs; ``run`` replaces ``corpus.run`` (tests).
     """
     run = run or corpus.run
     rng = random.Random(seed)
@@ -215,7 +215,7 @@ def campaign(corpus: Corpus, stage: str, inputs: int, seed: int, hang_cpu_s: flo
             finally:
                 signal.setitimer(signal.ITIMER_VIRTUAL, 0)
             slowest_cpu = max(slowest_cpu, time.process_time() - t0)
-            if report is not None and (i + 1) % 10_000 == 0:
+            if report is not None and (i + 1) % report_every == 0:
                 report(figures(i + 1))
     finally:
         signal.signal(signal.SIGVTALRM, previous)
@@ -263,7 +263,7 @@ def _scratch_folder(tmp_path: pathlib.Path) -> pathlib.Path:
     return tmp_path / "corpus"
 
 
-def _long_campaign(tmp_path, monkeypatch, stage: str, inputs: int, hang_cpu_s: float) -> None:
+def _long_campaign(tmp_path, monkeypatch, stage: str, inputs: int, hang_cpu_s: float, report_every: int) -> None:
     folder = _scratch_folder(tmp_path)
     try:
         corpus = Corpus(folder)
@@ -277,7 +277,7 @@ def _long_campaign(tmp_path, monkeypatch, stage: str, inputs: int, hang_cpu_s: f
                 with open(report_path, "a", encoding="utf-8") as f:
                     f.write(json.dumps({"parser": f"topology_{stage}", **figures}) + "\n")
 
-        result = campaign(corpus, stage, inputs, seed, hang_cpu_s, report=report)
+        result = campaign(corpus, stage, inputs, seed, hang_cpu_s, report=report, report_every=report_every)
         found = result.pop("found")
         report(result)
     finally:
@@ -297,7 +297,8 @@ def _long_campaign(tmp_path, monkeypatch, stage: str, inputs: int, hang_cpu_s: f
 def test_long_check_campaign(tmp_path, monkeypatch):
     """TOPO-FUZZ-005: the long campaign of parsing and the schema — FPRIME_LITE_FUZZ_INPUTS
     (default 1 M) mutations of the three targets; no crash, no input past 2 s of CPU time."""
-    _long_campaign(tmp_path, monkeypatch, "check", int(os.environ.get("FPRIME_LITE_FUZZ_INPUTS", "1000000")), 2.0)
+    _long_campaign(tmp_path, monkeypatch, "check", int(os.environ.get("FPRIME_LITE_FUZZ_INPUTS", "1000000")), 2.0,
+                   10_000)
 
 
 @pytest.mark.fuzz
@@ -305,4 +306,4 @@ def test_long_mutation_campaign(tmp_path, monkeypatch):
     """TOPO-FUZZ-002: the long campaign of full loads (parse, schema, build, wire) —
     FPRIME_LITE_FUZZ_LOAD_INPUTS (default 20 000) mutations; no crash, no input past 10 s of CPU."""
     _long_campaign(tmp_path, monkeypatch, "load", int(os.environ.get("FPRIME_LITE_FUZZ_LOAD_INPUTS", "20000")),
-                   10.0)
+                   10.0, 1_000)
