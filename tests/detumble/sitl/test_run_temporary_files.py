@@ -3,9 +3,6 @@ truth trace of a SITL run and the plant-only ``fprime-lite sim`` results are str
 under names the framework's start-up clean-up recognises, and what a killed run left is removed."""
 
 import os
-import pathlib
-import subprocess
-import sys
 from types import SimpleNamespace
 
 from detumble.sitl.cli import _sim
@@ -15,23 +12,10 @@ from fprime_lite.model.time import SimulatedClock
 from fprime_lite.osal.atomic import is_temporary_name
 
 
-def leftover(folder: pathlib.Path, name: str) -> pathlib.Path:
-    pid = int(subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True,
-                             text=True, check=True).stdout)
-    folder.mkdir(parents=True, exist_ok=True)
-    path = folder / f".fprime-lite-tmp.{pid}.{name}.k1ll3d.part"
-    path.write_bytes(b"half")
-    return path
-
-
-def hidden(folder: pathlib.Path) -> list[str]:
-    return sorted(p.name for p in folder.iterdir() if p.name.startswith("."))
-
-
-def test_the_truth_trace_streams_under_a_recognisable_name(tmp_path):
+def test_the_truth_trace_streams_under_a_recognisable_name(tmp_path, killed_leftover, hidden):
     """TMP-20: while a run records truth.csv it is a recognisable temporary file; a killed run's
     leftover in the folder is removed when recording begins; finishing leaves truth.csv only."""
-    old = leftover(tmp_path, "truth.csv")
+    old = killed_leftover(tmp_path, "truth.csv")
     scheduler = Scheduler(SimulatedClock())
     report = DetumbleRunReport(make_spacecraft(scheduler=scheduler))
     deployment = SimpleNamespace(topology=SimpleNamespace(instance=lambda name: SimpleNamespace(component=None)),
@@ -44,11 +28,12 @@ def test_the_truth_trace_streams_under_a_recognisable_name(tmp_path):
     assert hidden(tmp_path) == [] and (tmp_path / "truth.csv").read_text().startswith("t_s,")
 
 
-def test_fprime_lite_sim_writes_under_recognisable_names_and_cleans_its_folder(tmp_path, monkeypatch):
+def test_fprime_lite_sim_writes_under_recognisable_names_and_cleans_its_folder(tmp_path, monkeypatch, killed_leftover,
+                                                                                 hidden):
     """TMP-21: ``fprime-lite sim`` writes summary.json and rate.csv through recognisable temporary
     files and first removes what a killed run left in its output folder."""
     out = tmp_path / "sim"
-    old = leftover(out, "rate.csv")
+    old = killed_leftover(out, "rate.csv")
     written = []
     replace = os.replace
 

@@ -3,9 +3,6 @@ writes are cleaned at start-up, and named so they can be"): the recorders stream
 start-up clean-up recognises, clean what killed processes left where they start, and never touch
 what a live writer — of another process or of this one — is still writing."""
 
-import pathlib
-import subprocess
-import sys
 
 from fprime_lite.deploy.topology import Topology
 from fprime_lite.ground.downlink import GroundRecorder
@@ -15,29 +12,12 @@ from fprime_lite.tools.api import claim_run_folder
 from fprime_lite.wire.file_packet import DataPacket, StartPacket, encode_file_packet
 
 
-def dead_pid() -> int:
-    done = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True,
-                          text=True, check=True)
-    return int(done.stdout)
-
-
-def leftover(folder: pathlib.Path, name: str) -> pathlib.Path:
-    """What a process killed while writing ``name`` in ``folder`` leaves."""
-    folder.mkdir(parents=True, exist_ok=True)
-    path = folder / f".fprime-lite-tmp.{dead_pid()}.{name}.k1ll3d.part"
-    path.write_bytes(b"half")
-    return path
-
-
-def hidden(folder: pathlib.Path) -> list[str]:
-    return sorted(p.name for p in folder.iterdir() if p.name.startswith("."))
-
-
-def test_the_ground_recorder_streams_under_recognisable_names_and_cleans_at_start(tmp_path):
+def test_the_ground_recorder_streams_under_recognisable_names_and_cleans_at_start(tmp_path, killed_leftover,
+                                                                                 hidden):
     """TMP-10: while a GroundRecorder records, its events.log / channels.csv / channels_wide.csv are
     temporary files the start-up clean-up recognises; a killed recorder's leftover in the folder is
     removed when the next one starts; closing leaves only the final files."""
-    old = leftover(tmp_path, "events.log")
+    old = killed_leftover(tmp_path, "events.log")
     recorder = GroundRecorder(Topology("Demo"), tmp_path)
     assert not old.exists()
     streaming = hidden(tmp_path)
@@ -48,11 +28,12 @@ def test_the_ground_recorder_streams_under_recognisable_names_and_cleans_at_star
     assert {p.name for p in tmp_path.iterdir()} >= {"events.log", "channels.csv", "channels_wide.csv"}
 
 
-def test_a_file_being_reassembled_is_recognisable_and_a_killed_ones_is_cleaned(tmp_path):
+def test_a_file_being_reassembled_is_recognisable_and_a_killed_ones_is_cleaned(tmp_path, killed_leftover,
+                                                                               hidden):
     """TMP-11: a downlinked file being reassembled sits under a recognisable temporary name; the
     half-received file of a killed receiver is removed when a FileReceiver starts on the folder."""
     folder = tmp_path / "downlink"
-    old = leftover(folder, "logs_today.bin")
+    old = killed_leftover(folder, "logs_today.bin")
     receiver = FileReceiver(folder)
     assert not old.exists()
     receiver.receive(encode_file_packet(StartPacket(0, 10, "/flight/a.bin", "logs/today.bin")))
@@ -61,11 +42,11 @@ def test_a_file_being_reassembled_is_recognisable_and_a_killed_ones_is_cleaned(t
     assert is_temporary_name(partial) and ".logs_today.bin." in partial
 
 
-def test_clean_up_spares_what_this_process_is_writing(tmp_path):
+def test_clean_up_spares_what_this_process_is_writing(tmp_path, killed_leftover):
     """TMP-12: a temporary file this process is still streaming into is not removed by a clean-up
     of its folder (another component starting there), though it carries this process's pid; a
     dead process's is."""
-    old = leftover(tmp_path, "truth.csv")
+    old = killed_leftover(tmp_path, "truth.csv")
     handle, tmp = open_temporary(tmp_path / "events.log", "w", encoding="utf-8")
     try:
         handle.write("still writing\n")
@@ -75,13 +56,13 @@ def test_clean_up_spares_what_this_process_is_writing(tmp_path):
         handle.close()
 
 
-def test_claiming_a_run_folder_cleans_what_killed_runs_left(tmp_path):
+def test_claiming_a_run_folder_cleans_what_killed_runs_left(tmp_path, killed_leftover):
     """TMP-13: claiming a new folder under runs/ removes the temporary files killed runs left in
     their folders (events.log, truth.csv, a downlinked file …) and nothing else."""
     runs = tmp_path / "runs"
-    dead = [leftover(runs / "20261201-101010.000", "events.log"),
-            leftover(runs / "20261201-101010.000" / "downlink", "img.bin"),
-            leftover(runs / "20261201-111111.000", "truth.csv")]
+    dead = [killed_leftover(runs / "20261201-101010.000", "events.log"),
+            killed_leftover(runs / "20261201-101010.000" / "downlink", "img.bin"),
+            killed_leftover(runs / "20261201-111111.000", "truth.csv")]
     keep = runs / "20261201-101010.000" / "summary.json"
     keep.write_text("{}")
     folder = claim_run_folder(runs_dir=runs)
