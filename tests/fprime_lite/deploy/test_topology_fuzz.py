@@ -163,6 +163,9 @@ class _Hang(BaseException):
 
 
 def _on_timer(signum, frame):
+    # re-armed first: if the exception is raised where Python swallows it (a gc callback runs
+    # Python code too), the timer fires again instead of leaving the input running for ever
+    signal.setitimer(signal.ITIMER_VIRTUAL, 0.05)
     raise _Hang()
 
 
