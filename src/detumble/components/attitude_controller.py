@@ -30,13 +30,16 @@ import math
 from fprime_lite import (F64, U32, Channel, CmdResponse, Event, OutputPort, Param, PassiveComponent, Sched,
                          Severity, sync_command, sync_input)
 
-from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, ControlAutonomy, ControlMode,
-                                                ModeChangeReason, PointingActuator, Quaternion, SpinLaw, Vector3,
-                                                WheelValues)
+from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, AttitudeEstimator, ControlAutonomy,
+                                                ControlMode, MagPointingLaw, ModeChangeReason, PointingActuator,
+                                                Quaternion, RateSource, SpinLaw, Vector3, WheelValues)
 from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFieldGet, StartMagnetorquer,
                                        StopMagnetorquer, Success, WheelEnableSet, WheelStateGet, WheelTorqueSet)
 from detumble.control.attitude_filter import AttitudeFilter
+from detumble.control.mekf import Mekf
+from detumble.control.rate_observer import RateObserver
 from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
+from detumble.control.magnetic_pointing import FieldDirectionRate, field_steering_torque
 from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
 from detumble.control.pointing import ErrorIntegrator, pd_torque
 from detumble.control.quaternion import (is_unit_quaternion, quat_angle, quat_normalize, quat_shortest,
@@ -52,6 +55,7 @@ log = logging.getLogger("detumble.components.attitude_controller")
 BORESIGHT_B = (0.0, 0.0, 1.0)
 _TESLA_PER_GAUSS = 1e-4
 _DEG = math.pi / 180.0
+_ARCSEC = _DEG / 3600.0
 _ZERO = (0.0, 0.0, 0.0)
 
 
@@ -132,8 +136,8 @@ class AttitudeController(PassiveComponent):
     K_D = Param(F64, default=2.0e-3)  # N·m·s: PD damping, wheels (ζ ≈ 0.9)
     K_I = Param(F64, default=5.5e-5)  # N·m/s: integral on q_err.v, wheels (an addition to the seed; 0 turns it off)
     INTEGRAL_WINDOW = Param(F64, default=1.0)  # deg: the integral runs only below this error
-    K_P_MAG = Param(F64, default=2.0e-6)  # N·m: PD spring, magnetorquer-only pointing
-    K_D_MAG = Param(F64, default=4.0e-4)  # N·m·s: PD damping, magnetorquer-only pointing
+    K_P_MAG = Param(F64, default=1.0e-6, low=0.0, high=1.0e-3)  # N·m: spring ⟂ B, magnetorquer-only pointing
+    K_D_MAG = Param(F64, default=1.0e-4, low=0.0, high=1.0e-2)  # N·m·s: damping ⟂ B, magnetorquer-only pointing
     C_DAMP = Param(F64, default=1.0e-4)  # N·m·s: damper coefficient (seed c_damp)
     I_D = Param(F64, default=2.0e-4)  # kg·m²: damper virtual inertia (seed I_d)
     K_BDOT = Param(F64, default=3.0)  # A·m²·s/G: M = −k Ḃ when no dipoleMomentGet provider is connected
@@ -161,6 +165,30 @@ class AttitudeController(PassiveComponent):
     Y_COIL_MAX_DIPOLE = Param(F64, default=96 * 0.053 * 0.045 * 3.3 / 13.0)  # A·m² per Y coil
     Z_COIL_MAX_DIPOLE = Param(F64, default=153 * math.pi * (0.05755 / 2) ** 2 * 3.3 / 150.7)  # A·m², Z−
     CYCLE_TICKS = Param(U32, default=5)  # run ticks per control cycle (coils off on the last)
+    # attitude estimation and the derivative term's rate (docs/studies/attitude_knowledge.md)
+    ESTIMATOR = Param(AttitudeEstimator, default=AttitudeEstimator.MEKF)
+    #: deg/s, 1σ per axis of one gyro reading: LSM6DSO 0.0038 °/s/√Hz over 52 Hz, with the 70 mdps LSB/√12
+    GYRO_NOISE = Param(F64, default=math.hypot(0.0038 * math.sqrt(52.0), 0.070 / math.sqrt(12.0)),
+                       low=1e-6, high=10.0, finite=True)
+    GYRO_BIAS_WALK = Param(F64, default=1.0e-4, low=0.0, high=1.0, finite=True)  # deg/s/√s, MEKF bias random walk
+    GYRO_BIAS_SIGMA0 = Param(F64, default=1.0, low=1e-6, high=10.0, finite=True)  # deg/s, bias 1σ before any fix
+    TRACKER_NOISE_CROSS = Param(F64, default=10.0, low=1e-3, high=3600.0, finite=True)  # arcsec 1σ across boresight
+    TRACKER_NOISE_ABOUT = Param(F64, default=70.0, low=1e-3, high=3600.0, finite=True)  # arcsec 1σ about boresight
+    RATE_SOURCE = Param(RateSource, default=RateSource.OBSERVER)
+    RATE_OBSERVER_GAIN = Param(F64, default=0.1, low=1e-4, high=100.0, finite=True)  # 1/s: pull toward the gyro
+    INERTIA_XX = Param(F64, default=2.20e-3, low=1e-6, high=10.0, finite=True)  # kg·m², the observer's model
+    INERTIA_YY = Param(F64, default=2.15e-3, low=1e-6, high=10.0, finite=True)  # kg·m²
+    INERTIA_ZZ = Param(F64, default=2.05e-3, low=1e-6, high=10.0, finite=True)  # kg·m²
+    INERTIA_XY = Param(F64, default=2.0e-5, low=-10.0, high=10.0, finite=True)  # kg·m², product (matrix element)
+    INERTIA_XZ = Param(F64, default=-1.5e-5, low=-10.0, high=10.0, finite=True)  # kg·m²
+    INERTIA_YZ = Param(F64, default=1.0e-5, low=-10.0, high=10.0, finite=True)  # kg·m²
+    # magnetorquer-only pointing (detumble.control.magnetic_pointing; docs/studies/magnetic_pointing.md)
+    MAG_POINTING_LAW = Param(MagPointingLaw, default=MagPointingLaw.FIELD_STEERING)
+    MAG_STEER_RHO = Param(F64, default=2.0, low=0.0, high=10.0)  # along-field poles at ρ × the field line's rate
+    MAG_STEER_ZETA = Param(F64, default=0.7, low=0.0, high=5.0)  # their damping ratio
+    MAG_FIELD_RATE_BANDWIDTH = Param(F64, default=0.05, low=1.0e-3, high=1.0)  # rad/s: ḃ estimator
+    MAG_FIELD_RATE_MIN = Param(F64, default=5.0e-4, low=1.0e-5, high=1.0e-1)  # 1/s: floor of |ḃ| in the law
+    MAG_SETTLE_TIME = Param(F64, default=120.0, low=0.0, high=3600.0)  # s of known attitude before the coils point
 
     # --- ports ---------------------------------------------------------------------------------
 
@@ -206,6 +234,12 @@ class AttitudeController(PassiveComponent):
     DipoleMomentRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve the B-dot dipole moment.",
                                         throttle=5)
     WheelCommandFailed = Event(Severity.WARNING_LO, "Wheel {} did not accept its command", wheel=U32, throttle=5)
+    EstimatorSelected = Event(Severity.ACTIVITY_HI, "Attitude estimator {} (attitude and bias carried over)",
+                              estimator=AttitudeEstimator)
+    AttitudeReinitialised = Event(Severity.WARNING_LO, "MEKF attitude re-initialised on the star tracker (residual or "
+                                  "3-sigma above 5 deg)", throttle=5)
+    InertiaModelRefused = Event(Severity.WARNING_LO, "INERTIA_* parameters do not form a positive definite matrix: "
+                                "the rate observer keeps its previous model", throttle=1)
     WheelLimitReached = Event(Severity.WARNING_LO, "A wheel torque or momentum limit cut the requested torque",
                               throttle=5)
 
@@ -225,6 +259,8 @@ class AttitudeController(PassiveComponent):
     TargetQuaternion = Channel(Quaternion)
     GyroBiasEstimate = Channel(Vector3)  # deg/s, B
     AttitudeValid = Channel(U32)  # 1 while the star tracker's attitude is recent
+    AttitudeSigma3 = Channel(F64, format="{.5f}")  # deg, MEKF 3·√(trace P_θθ) (not written with COMPLEMENTARY)
+    FieldLineRate = Channel(F64, format="{.5f}")  # deg/s, estimated |db̂/dt| of the inertial field direction
 
     # --- construction --------------------------------------------------------------------------
 
@@ -236,7 +272,14 @@ class AttitudeController(PassiveComponent):
         self.wheel_axes = tuple((float(a[0]), float(a[1]), float(a[2])) for a in wheel_axes)
         self.mode = ControlMode.IDLE
         self.autonomy = ControlAutonomy.MANUAL
-        self.filter = AttitudeFilter()
+        self.filter: AttitudeFilter | Mekf = self._make_filter(AttitudeEstimator.MEKF)
+        self.estimator = AttitudeEstimator.MEKF
+        self.rate_observer = RateObserver(((2.20e-3, 2.0e-5, -1.5e-5), (2.0e-5, 2.15e-3, 1.0e-5),
+                                           (-1.5e-5, 1.0e-5, 2.05e-3)), 0.1)
+        self.pd_rate: tuple[float, float, float] | None = None  # rad/s, B: the rate the wheel PD's D term uses
+        self.field_rate = FieldDirectionRate()  # db̂_N/dt for magnetorquer-only pointing
+        self.bdot_hat_B: tuple | None = None  # its latest estimate in B, 1/s
+        self.attitude_known_s = 0.0  # s since the attitude became known (gyro bias settling, MAG_SETTLE_TIME)
         self.integrator = ErrorIntegrator(math.radians(1.0), 1.0e-5)
         self.target: tuple[float, float, float, float] | None = None
         self.seed_damper = SeedKaneDamper(1.0e-4, 2.0e-4)
@@ -382,10 +425,37 @@ class AttitudeController(PassiveComponent):
 
     # --- sensing -------------------------------------------------------------------------------
 
+    def _make_filter(self, which):
+        if which == AttitudeEstimator.MEKF:
+            return Mekf(math.radians(self.GYRO_NOISE.value), math.radians(self.GYRO_BIAS_WALK.value),
+                        self.TRACKER_NOISE_CROSS.value * _ARCSEC, self.TRACKER_NOISE_ABOUT.value * _ARCSEC,
+                        BORESIGHT_B, math.radians(self.GYRO_BIAS_SIGMA0.value))
+        return AttitudeFilter(self.FILTER_KP.value, self.FILTER_KI.value)
+
+    def _configure_filter(self) -> None:
+        """Follow ESTIMATOR (a switch keeps the attitude, bias and fix age) and the noise/gain parameters."""
+        which = self.ESTIMATOR.value
+        if which != self.estimator:
+            old, new = self.filter, self._make_filter(which)
+            new.q, new.bias, new.since_measurement_s = old.q, old.bias, old.since_measurement_s
+            if isinstance(new, Mekf) and new.q is not None:  # the new covariance: the tracker's noise, bias σ0
+                new._initialise_attitude(new.q, new.tracker_noise())
+            self.filter, self.estimator = new, which
+            self.EstimatorSelected(which)
+        f = self.filter
+        if isinstance(f, Mekf):
+            f.gyro_noise = math.radians(self.GYRO_NOISE.value)
+            f.bias_walk = math.radians(self.GYRO_BIAS_WALK.value)
+            f.tracker_cross = self.TRACKER_NOISE_CROSS.value * _ARCSEC
+            f.tracker_about = self.TRACKER_NOISE_ABOUT.value * _ARCSEC
+        else:
+            f.k_p = self.FILTER_KP.value
+            f.k_i = self.FILTER_KI.value
+
     def _sense(self, dt: float, now_us: int) -> None:
-        self.filter.k_p = self.FILTER_KP.value
-        self.filter.k_i = self.FILTER_KI.value
+        self._configure_filter()
         gyro = self._read_gyro()
+        n = 1
         if gyro is not None:
             self.GyroRetrievalFailed.clear_throttle()
             n = self._gyro_count + 1  # the mean over the cycle's ticks: the noise the D term sees drops by √n
@@ -404,8 +474,15 @@ class AttitudeController(PassiveComponent):
                 q_meas = quat_normalize((q.q0, q.q1, q.q2, q.q3))
                 age_s = (now_us - stamp_us) / 1e6
         if gyro is not None:
-            self.filter.update(gyro, dt, q_meas, age_s)
-            self.omega = self.filter.omega
+            f = self.filter
+            if isinstance(f, Mekf):
+                before = f.reinitialisations
+                f.update(gyro, dt, q_meas, age_s, samples=n)
+                if f.reinitialisations != before:
+                    self.AttitudeReinitialised()
+            else:
+                f.update(gyro, dt, q_meas, age_s)
+            self.omega = f.omega
         else:
             self.omega = None
         ok, field = self._read("magneticFieldGet")
@@ -418,7 +495,56 @@ class AttitudeController(PassiveComponent):
         else:
             self.MagneticFieldRetrievalFailed()
             self.b_tesla = None
+        self._track_field_line(dt)
         self.wheel_momenta = self._read_wheel_momenta() if self.wheel_count() else None
+        self._update_rate_observer(dt)
+
+    def _applied_torque(self):
+        """The body torque of the last cycle, N·m (B): the wheels' −Σ u_i g_i plus the coils' m × B over their duty."""
+        tx = ty = tz = 0.0
+        for u, g in zip(self.wheel_torques, self.wheel_axes, strict=False):  # () before the first command
+            tx, ty, tz = tx - u * g[0], ty - u * g[1], tz - u * g[2]
+        if self.b_tesla is not None:  # self.dipole: what the last cycle drove (zero when off)
+            mb = _cross(self.dipole, self.b_tesla)
+            d = self._duty()
+            tx, ty, tz = tx + mb[0] * d, ty + mb[1] * d, tz + mb[2] * d
+        return (tx, ty, tz)
+
+    def _update_rate_observer(self, dt: float) -> None:
+        """The derivative term's rate: the bias-corrected gyro, or the model-aided observer (RATE_SOURCE)."""
+        obs = self.rate_observer
+        if self.omega is None:
+            obs.reset()
+            self.pd_rate = None
+            return
+        xy, xz, yz = self.INERTIA_XY.value, self.INERTIA_XZ.value, self.INERTIA_YZ.value
+        try:
+            obs.set_model(((self.INERTIA_XX.value, xy, xz), (xy, self.INERTIA_YY.value, yz),
+                           (xz, yz, self.INERTIA_ZZ.value)), self.RATE_OBSERVER_GAIN.value)
+            self.InertiaModelRefused.clear_throttle()
+        except ValueError:  # not positive definite: keep the last good model, say so once per change
+            self.InertiaModelRefused()
+        h = _ZERO
+        if self.wheel_momenta is not None:
+            h = WheelAllocator(self.wheel_axes, 1.0, 1.0).body_momentum(self.wheel_momenta)
+        w = obs.update(self.omega, self._applied_torque(), h, dt)
+        self.pd_rate = w if self.RATE_SOURCE.value == RateSource.OBSERVER else self.omega
+
+    def _track_field_line(self, dt: float) -> None:
+        """Feed the field-direction-rate estimator (every cycle with a field and an attitude, so it is
+        settled when magnetorquer pointing starts); a gap in either restarts it."""
+        fr = self.field_rate
+        fr.bandwidth_rad_s = self.MAG_FIELD_RATE_BANDWIDTH.value
+        q = self.filter.q
+        if q is None or not self.attitude_valid:
+            self.attitude_known_s = 0.0
+        else:
+            self.attitude_known_s += dt
+        if self.b_tesla is None or q is None or not self.attitude_valid:
+            fr.reset()
+            self.bdot_hat_B = None
+            return
+        self.bdot_hat_B = fr.update(q, self.b_tesla, dt)
 
     def _read_gyro(self):
         ok, w = self._read("angularVelocityGet")
@@ -506,7 +632,8 @@ class AttitudeController(PassiveComponent):
             target = self.target
             assert target is not None  # _set_target set it
             if self._pointing_uses_wheels():
-                tau, qe = pd_torque(target, q, self.omega, self.K_P.value, self.K_D.value,
+                rate = self.pd_rate if self.pd_rate is not None else self.omega
+                tau, qe = pd_torque(target, q, rate, self.K_P.value, self.K_D.value,
                                     self.SLEW_RATE_LIMIT.value * _DEG)
                 self.integrator.window_rad = self.INTEGRAL_WINDOW.value * _DEG
                 ti = self.integrator.update(qe, dt, self.K_I.value)
@@ -523,8 +650,10 @@ class AttitudeController(PassiveComponent):
                 # the wheels supply what the dump torque does not (it would otherwise disturb the pointing)
                 wheel_u = self._allocate((tau[0] - tau_mag[0], tau[1] - tau_mag[1], tau[2] - tau_mag[2]))
             else:
-                tau, qe = pd_torque(target, q, self.omega, self.K_P_MAG.value, self.K_D_MAG.value)
-                if self.b_tesla is not None:
+                tau, qe = self._magnetic_pointing_torque(target, q)
+                if self.attitude_known_s < self.MAG_SETTLE_TIME.value:
+                    tau = _ZERO  # the gyro-bias estimate is still settling: the coils wait (no dipole)
+                elif self.b_tesla is not None:
                     dipole, _ = project_dipole_weighted(tau, self.b_tesla, self._coil_limits())
             self.pointing_error_deg = math.degrees(quat_angle(qe))
         self.torque_request = tau
@@ -537,6 +666,17 @@ class AttitudeController(PassiveComponent):
         if wheel_u is None:
             wheel_u = (0.0,) * len(self.wheel_axes)
         self._command_wheels(wheel_u)
+
+    def _magnetic_pointing_torque(self, target, q):
+        """``(τ_req, q_err)`` of the MAG_POINTING_LAW (before the projection ⟂ B)."""
+        w = self.omega
+        assert w is not None  # POINTING actuates only with a rate estimate
+        kp, kd = self.K_P_MAG.value, self.K_D_MAG.value
+        if self.MAG_POINTING_LAW.value == MagPointingLaw.SEED_PD or self.b_tesla is None:
+            return pd_torque(target, q, w, kp, kd)
+        bd = self.bdot_hat_B if self.bdot_hat_B is not None else _ZERO  # no estimate yet: the law's ρ = 0 case
+        return field_steering_torque(target, q, w, self.b_tesla, bd, kp, kd, self.MAG_STEER_RHO.value,
+                                     self.MAG_STEER_ZETA.value, self.MAG_FIELD_RATE_MIN.value)
 
     def _limit_dipole(self, m):
         return scale_to_limits(m, self._coil_limits())
@@ -618,6 +758,10 @@ class AttitudeController(PassiveComponent):
         b = self.filter.bias
         self.GyroBiasEstimate.write(Vector3([math.degrees(b[0]), math.degrees(b[1]), math.degrees(b[2])]))
         self.AttitudeValid.write(1 if self.attitude_valid else 0)
+        if isinstance(self.filter, Mekf) and self.filter.q is not None:
+            self.AttitudeSigma3.write(math.degrees(self.filter.attitude_sigma3_rad))
+        if self.bdot_hat_B is not None:
+            self.FieldLineRate.write(math.degrees(_norm(self.bdot_hat_B)))
 
     # --- ports out -----------------------------------------------------------------------------
 

@@ -11,7 +11,8 @@ from fprime_lite import F64, Array, FwEnum, PortType, Struct
 
 from detumble.components.types import Result
 
-__all__ = ["ControlMode", "ControlAutonomy", "SpinLaw", "PointingActuator", "ModeChangeReason",
+__all__ = ["ControlMode", "ControlAutonomy", "SpinLaw", "PointingActuator", "MagPointingLaw", "ModeChangeReason",
+           "AttitudeEstimator", "RateSource",
            "Vector3", "Quaternion", "WheelValues", "AngularVelocity", "AngularVelocityGet", "MAX_WHEELS"]
 
 #: Wheel channels carry this many values (unused wheels read 0).
@@ -50,6 +51,30 @@ class PointingActuator(FwEnum, namespace="Components"):
     ANY = 0
     WHEELS = 1
     MAGNETORQUERS = 2
+
+
+class AttitudeEstimator(FwEnum, namespace="Components"):
+    """The attitude estimator: the complementary filter (gains FILTER_KP/KI) or the MEKF (noise from the
+    sensors' specifications)."""
+
+    COMPLEMENTARY = 0
+    MEKF = 1
+
+
+class RateSource(FwEnum, namespace="Components"):
+    """The body rate the wheel PD's derivative term uses: the bias-corrected gyro, or the model-aided
+    rate observer (``detumble.control.rate_observer``)."""
+
+    GYRO = 0
+    OBSERVER = 1
+
+
+class MagPointingLaw(FwEnum, namespace="Components"):
+    """POINTING on the magnetorquers: seed 003's PD projected ⟂ B (SEED_PD, diverges: see
+    docs/studies/magnetic_pointing.md) or the PD that steers the along-field error (FIELD_STEERING)."""
+
+    SEED_PD = 0
+    FIELD_STEERING = 1
 
 
 class ModeChangeReason(FwEnum, namespace="Components"):

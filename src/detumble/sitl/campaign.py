@@ -195,6 +195,17 @@ def _settling_time(output: RunOutput, _probe) -> float:
     return float(settled)
 
 
+def _pointing_statistic(key: str):
+    """The run summary's POINTING error statistic ``key`` (median, p95, max; after the first 10 % of POINTING)."""
+    def compute(output: RunOutput, _probe) -> float:
+        stats = output.summary.get("pointing_error_deg")
+        if not isinstance(stats, dict) or stats.get(key) is None:
+            raise MetricUnavailable("no POINTING statistics in the run summary (the controller never pointed, or "
+                                    "the deployment has no attitude run report)")
+        return float(stats[key])
+    return compute
+
+
 def _final_rate(output: RunOutput, _probe) -> float:
     return float(output.summary["final_rate_deg_s"])
 
@@ -272,6 +283,12 @@ METRICS = (
            lambda output, _probe: _pointing(output, lambda v: v.mean())),
     Metric("pointing_error_max_deg", "deg", "largest pointing error while a target is set (truth)",
            lambda output, _probe: _pointing(output, lambda v: v.max())),
+    Metric("pointing_median_deg", "deg", "median pointing error in POINTING after its first 10 % (run summary)",
+           _pointing_statistic("median")),
+    Metric("pointing_p95_deg", "deg", "95th percentile of the pointing error in POINTING after its first 10 % "
+           "(run summary)", _pointing_statistic("p95")),
+    Metric("pointing_max_deg", "deg", "largest pointing error in POINTING after its first 10 % (run summary)",
+           _pointing_statistic("max")),
     Metric("wheel_momentum_peak_nms", "N m s", "largest |h| of any reaction wheel (truth)", _wheel_momentum_peak),
     Metric("coil_energy_j", "J", "electrical energy spent in the coils (steady-state I²R)",
            lambda output, meter: meter.total_j(), instrument=CoilEnergyMeter),

@@ -111,3 +111,15 @@ def test_a_key_set_for_every_wheel_reads_back_once():
 
     plant = Plant(load_scenario("surrey", settings=["spacecraft.reaction_wheels.momentum_noise_std_nms=1.0e-05"]))
     assert read_setting(plant, "spacecraft.reaction_wheels.momentum_noise_std_nms") == 1e-05
+
+
+def test_pointing_statistics_come_from_the_run_summary():
+    """CAMP-067: pointing_median_deg, pointing_p95_deg and pointing_max_deg are the run summary's POINTING
+    statistics (AttitudeRunReport: after the first 10 % of POINTING); without them, null with a reason."""
+    stats = {"median": 3.8, "p95": 10.4, "max": 13.4, "samples": 100}
+    out = RunOutput({"pointing_error_deg": stats})
+    for name, key in (("pointing_median_deg", "median"), ("pointing_p95_deg", "p95"), ("pointing_max_deg", "max")):
+        assert BY_NAME[name].compute(out, None) == stats[key]
+        for summary in ({}, {"pointing_error_deg": None}):
+            with pytest.raises(MetricUnavailable, match="no POINTING statistics"):
+                BY_NAME[name].compute(RunOutput(summary), None)

@@ -1,0 +1,119 @@
+"""Three-axis pointing with magnetorquers only: a PD on the plane ⟂ B that steers the error the
+field cannot reach (plain floats; no framework import).
+
+Why the plain projected PD fails. A dipole gives ``τ = m × B``: nothing about the field line ``b̂``.
+If the PD on the plane ⟂ ``b̂`` is stiff (``ω_n`` ≫ the rate ``r = |db̂/dt|`` at which the field
+line turns, ≈ 2 n in low Earth orbit), it pins the error onto the line, ``θ ≈ α b̂``, and the line
+turns: ``b̂·θ̈ = α̈ − α r²`` with no torque along ``b̂``, so ``α̈ = r² α`` — a bead on a rotating rod,
+unstable at the rate ``r``. If it is soft enough for orbit averaging (``ω_n`` ≲ n), it is stable but
+its stiffness (~1e-9 N·m/rad for a 1U) is below the disturbances. ``docs/studies/magnetic_pointing.md``
+measures both.
+
+The law here keeps the stiff PD ⟂ ``b̂`` and controls the two slow states along the field line,
+``α = b̂·θ`` and ``β = b̂·ω − r ĝ·θ`` (``ĝ = ḃ/r``), through an offset of the stiff loop's set point
+along ``ĝ``: with the set point ``θ* = s ĝ`` held, ``α̇ = β + 2 r s`` and ``β̇ = r² α`` (rigid body with
+near-isotropic inertia, small errors). Choosing ``s = −(a α + c β)/(2 r)`` with ``a = 2 ζ ρ r`` and
+``c = 1 + ρ²`` places the slow pair at ``λ² + 2 ζ ρ r λ + ρ² r² = 0``: a decay rate ``ζ ρ r``, set by
+how fast the field line turns (``test_magnetic_pointing.py`` checks it against the Floquet multipliers
+of the linearised periodic system). The D term damps the motion relative to the turning line,
+``ω − α ḃ``.
+
+Robustness. The steering feeds the along-field rate back with the gain ``K_p (1 + ρ²)/(2 r)`` (≈ 1.25e-3
+N·m·s for the defaults), 10–30 times ``K_d``. A field direction that is wrong by ``δ`` (a magnetometer bias:
+the default LIS2MDL's 0.015 G is δ ≈ 3.5° where the field is weakest) leaks ``δ |ω⊥|`` into it, which acts
+as negative damping of ``ω⊥`` unless ``K_d > K_p (1 + ρ²) δ / (2 r)``: with ``K_d`` = 4e-5 N·m·s the
+deployment spun up after converging, with 1e-4 it holds (study).
+
+Frames and units: body B; ``q_target`` = ``q_TN`` (inertial target), ``q_BN`` scalar first; ``ω`` rad/s
+(B relative to N, in B); ``b`` any field unit (only its direction is used); ``bdot_hat`` = the time
+derivative of the unit field direction in inertial space, expressed in B, 1/s; gains ``k_p`` N·m,
+``k_d`` N·m·s; torque N·m in B.
+"""
+
+from __future__ import annotations
+
+import math
+
+from detumble.control.quaternion import Quat, Vec3, quat_error, rotate_b_to_n, rotate_n_to_b
+
+__all__ = ["field_steering_torque", "slow_pole_rate", "FieldDirectionRate"]
+
+
+def _dot(a: Vec3, b: Vec3) -> float:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def field_steering_torque(q_target: Quat, q_BN: Quat, omega_B: Vec3, b_B: Vec3, bdot_hat_B: Vec3,
+                          k_p: float, k_d: float, rho: float = 1.0, zeta: float = 0.7,
+                          r_min: float = 5.0e-4) -> tuple[Vec3, Quat]:
+    """``(τ_req, q_err)``: the torque to request (project it ⟂ B for the coils) and the error ``q_BT``.
+
+    ``θ = 2 q_err.v`` (short way round); ``r = max(|ḃ|, r_min)`` so a field line that hardly turns
+    does not blow the offset up (``r_min`` 1/s). With ``rho = 0`` the law is the PD on ``θ`` with the
+    D term relative to the turning line — the unstable "stiff PD" case above.
+    """
+    qe = quat_error(q_target, q_BN)
+    th = (2.0 * qe[1], 2.0 * qe[2], 2.0 * qe[3])
+    bn = math.sqrt(_dot(b_B, b_B))
+    if not (bn > 0.0 and math.isfinite(bn)):
+        return (0.0, 0.0, 0.0), qe
+    bh = (b_B[0] / bn, b_B[1] / bn, b_B[2] / bn)
+    # the part of ḃ along b̂ is noise (a unit vector's derivative is ⟂ to it)
+    along = _dot(bdot_hat_B, bh)
+    bd = (bdot_hat_B[0] - along * bh[0], bdot_hat_B[1] - along * bh[1], bdot_hat_B[2] - along * bh[2])
+    rn = math.sqrt(_dot(bd, bd))
+    alpha = _dot(bh, th)
+    if rn > 0.0 and rho > 0.0:
+        g = (bd[0] / rn, bd[1] / rn, bd[2] / rn)
+        r = max(rn, r_min)
+        beta = _dot(bh, omega_B) - r * _dot(g, th)
+        s = -(2.0 * zeta * rho * r * alpha + (1.0 + rho * rho) * beta) / (2.0 * r)
+    else:
+        g, s = (0.0, 0.0, 0.0), 0.0
+    tau = tuple(-k_p * (th[i] - s * g[i]) - k_d * (omega_B[i] - alpha * bd[i]) for i in range(3))
+    return (tau[0], tau[1], tau[2]), qe
+
+
+def slow_pole_rate(r: float, rho: float = 1.0, zeta: float = 0.7) -> float:
+    """Decay rate (1/s) of the along-field pair, ``ζ ρ r``, for a field line turning at ``r`` rad/s."""
+    return zeta * rho * r
+
+
+class FieldDirectionRate:
+    """Estimate of ``db̂_N/dt`` (1/s) from the measured field and attitude: an α-β tracking filter on
+    the inertial unit direction ``b̂_N = R_NB b̂_B``, bandwidth ``bandwidth_rad_s``.
+
+    :meth:`update` takes one reading and returns the estimate expressed in B (None until two
+    readings have been seen). :meth:`reset` forgets everything (a gap in the readings, a new mode).
+    """
+
+    def __init__(self, bandwidth_rad_s: float = 0.05) -> None:
+        self.bandwidth_rad_s = float(bandwidth_rad_s)
+        self.x: Vec3 | None = None  # filtered b̂_N
+        self.v: Vec3 = (0.0, 0.0, 0.0)  # db̂_N/dt, 1/s
+        self.samples = 0
+
+    def reset(self) -> None:
+        self.x = None
+        self.v = (0.0, 0.0, 0.0)
+        self.samples = 0
+
+    def update(self, q_BN: Quat, b_B: Vec3, dt: float) -> Vec3 | None:
+        """Add the reading ``b_B`` (any unit) at attitude ``q_BN``, ``dt`` s after the previous one."""
+        bn = math.sqrt(_dot(b_B, b_B))
+        if not (bn > 0.0 and math.isfinite(bn)) or not dt > 0.0:
+            return None
+        z = rotate_b_to_n(q_BN, (b_B[0] / bn, b_B[1] / bn, b_B[2] / bn))
+        if self.x is None:
+            self.x, self.samples = z, 1
+            return None
+        # critically damped α-β gains for a continuous bandwidth w: g = 2 w dt, h = (w dt)²
+        wdt = min(self.bandwidth_rad_s * dt, 0.5)
+        g, h = 2.0 * wdt, wdt * wdt
+        x, v = self.x, self.v
+        xp = (x[0] + v[0] * dt, x[1] + v[1] * dt, x[2] + v[2] * dt)
+        e = (z[0] - xp[0], z[1] - xp[1], z[2] - xp[2])
+        self.x = (xp[0] + g * e[0], xp[1] + g * e[1], xp[2] + g * e[2])
+        self.v = (v[0] + h / dt * e[0], v[1] + h / dt * e[1], v[2] + h / dt * e[2])
+        self.samples += 1
+        return rotate_n_to_b(q_BN, self.v)
