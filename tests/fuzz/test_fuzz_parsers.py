@@ -1,7 +1,8 @@
 """Mutation fuzzing of every flight parser except the topology loader (issue #16, ``docs/reliability.md``).
 
-Parsers: parameter files (PrmDb), binary and text sequence files, raw command packets (decoded and
-handed to a component's command input, arguments deserialised), both uplink deframers, file packets.
+Parsers: parameter files (PrmDb), binary and text sequence files, raw command packets (as the ground
+link hands them to CmdDispatcher, routed to the dispatcher's own commands or a component's command
+input, arguments deserialised there), both uplink deframers, file packets.
 
 Each parser gets inputs mutated from valid seeds (bit flips, byte sets, interesting integers, inserts,
 deletes, duplicated ranges, splices, truncation, plus pure random bytes). An input *crashes* when the
@@ -17,6 +18,7 @@ so a machine busy with other work does not count as a hang).
 
 from __future__ import annotations
 
+import collections
 import json
 import os
 import random
@@ -30,6 +32,7 @@ import pytest
 from fprime_lite import (BOOL, F32, F64, I8, I16, I64, U16, U32, U64, CmdResponse, FwEnum, Param,
                          PassiveComponent, String, Struct, fw_type, sync_command)
 from fprime_lite.model.errors import SerializationError
+from fprime_lite.svc.cmd_dispatcher import COM_BUFFER_MAX_SIZE, CmdDispatcher
 from fprime_lite.svc.prm_db import ParamFileError, decode_param_file, encode_param_file, param_file_crc
 from fprime_lite.testing import ComponentHarness
 from fprime_lite.wire.file_packet import (CancelPacket, DataPacket, EndPacket, FilePacketError, StartPacket,
@@ -208,28 +211,64 @@ class FuzzTarget(PassiveComponent):
 
 
 class CommandPath:
-    """decode_command, then the component's command input: every packet that decodes as a command
-    gets exactly one response, and nothing raises."""
+    """Command packets as the ground link hands them over: into ``CmdDispatcher.seqCmdBuff``, routed
+    by opcode (to the dispatcher's own commands or a component's ``cmdIn``, arguments deserialised
+    there), answered through ``compCmdStat`` and the dispatcher's tracking table, out of
+    ``seqCmdStatus``. Every packet gets exactly one answer, on the port it came in, with its context
+    (and its opcode when it decodes); nothing raises and no command stays tracked."""
+
+    SOURCE = 2  # the seqCmdBuff / seqCmdStatus index the "ground link" uses
+    CLEAR_TRACKING = 0x103
 
     def __init__(self):
-        self.h = ComponentHarness(FuzzTarget("target", base_id=0x1000))
-        self.opcodes = [0x1000 + c.opcode for c in self.h.component.spec.commands]
+        self.disp = CmdDispatcher("cmdDisp", base_id=0x100)
+        self.h = ComponentHarness(FuzzTarget("target", base_id=0x1000), unconnected=("cmdRegOut", "cmdResponseOut"))
+        disp, target = self.disp, self.h.component
+        disp.output_port("cmdRegOut").connect(0, disp.input_port("compCmdReg"), 0)  # as CdhCore wires it
+        disp.output_port("compCmdSend").connect(0, disp.input_port("cmdIn"), 0)
+        disp.output_port("cmdResponseOut").connect(0, disp.input_port("compCmdStat"), 0)
+        target.output_port("cmdRegOut").connect(0, disp.input_port("compCmdReg"), 9)
+        disp.output_port("compCmdSend").connect(9, target.input_port("cmdIn"), 0)
+        target.output_port("cmdResponseOut").connect(0, disp.input_port("compCmdStat"), 0)
+        self.answers: list[tuple] = []
+        disp.output_port("seqCmdStatus").connect_callable(
+            self.SOURCE, lambda opcode, context, response: self.answers.append((opcode, context, response)), "ground")
+        disp.register_commands()
+        target.register_commands()
+        self.opcodes = sorted(disp.dispatch_table)
+        assert len(self.opcodes) == 4 + len(target.spec.commands)
         self.seeds = []
         rng = random.Random(3)
         for opcode in self.opcodes:
             self.seeds.append(encode_command(opcode, rng.randbytes(rng.randrange(0, 40))))
         self.seeds.append(encode_command(0x1001, struct.pack(">bHIqfd?", -1, 2, 3, -4, 5.0, 6.0, True)))
         self.seeds.append(encode_command(0x1002, b"\x00\x03abc\x00\x00\x00\x01"))
+        self.seeds.append(encode_command(0x101, b"\x00\x02hi"))  # cmdDisp.CMD_NO_OP_STRING
+        self.context = 0
+        #: (who answered: "cmdDisp" or "target", response name) -> count, to show what was reached
+        self.outcomes: collections.Counter = collections.Counter()
 
     def __call__(self, data: bytes) -> None:
+        self.context = (self.context + 1) & 0xFFFFFFFF
+        self.answers.clear()
+        self.disp.input_port("seqCmdBuff").entries[self.SOURCE](data, self.context)
+        self.disp.dispatch_all()  # the packet, then the answer the target queued back (compCmdStat)
         try:
-            opcode, args = decode_command(data)
+            decoded, args = decode_command(data)
         except SerializationError:
-            return
-        before = len(self.h.cmd_responses)
-        self.h.component._command_in(opcode, 7, args)
-        assert len(self.h.cmd_responses) == before + 1, "a command got no response (or two)"
-        if len(self.h.cmd_responses) > 10_000:
+            decoded, args = None, None
+        # CMD_CLEAR_TRACKING forgets every tracked command, itself included, so (as in F´) its own
+        # OK reaches only the event log, not the source
+        expected = 0 if decoded == self.CLEAR_TRACKING and args == b"" and len(data) <= COM_BUFFER_MAX_SIZE else 1
+        assert len(self.answers) == expected, f"a command got {len(self.answers)} answers, not {expected}"
+        if expected:
+            opcode, context, response = self.answers[0]
+            assert context == self.context and isinstance(response, CmdResponse)
+            if decoded is not None:
+                assert opcode == decoded, "answered for another opcode"
+            self.outcomes["target" if opcode >= 0x1000 else "cmdDisp", response.name] += 1
+        assert not self.disp.pending, "a command is still tracked after its answer"
+        if len(self.h.port_calls) + len(self.h.events) > 10_000:
             self.h.clear_history()
 
 
@@ -374,6 +413,34 @@ def test_the_fuzzer_finds_a_planted_bug():
         globals()["parsers"] = original
     assert result["crashes"] > 0 and "planted" in result["first_crashes"][0][1]
     assert result["hangs"] > 0 and len(bytes.fromhex(result["first_hangs"][0])) % 211 == 0
+
+
+def test_the_command_path_goes_through_the_dispatcher(monkeypatch):
+    """FUZZ-4: the command fuzzer sends packets the way the ground link does, through CmdDispatcher:
+    its inputs reach every routing outcome (a component's command run or refused for its
+    arguments, the dispatcher's own commands, unknown opcodes, malformed packets), and a bug
+    planted in the dispatcher's packet parsing is found."""
+    import fprime_lite.svc.cmd_dispatcher as cmd_dispatcher
+
+    path = parsers()["command_packet"][0]
+    rng = random.Random(21)
+    for _ in range(3000):
+        path(mutate(rng, path.seeds))
+    reached = path.outcomes
+    for outcome in [("target", "OK"), ("target", "FORMAT_ERROR"), ("cmdDisp", "OK"),
+                    ("cmdDisp", "INVALID_OPCODE"), ("cmdDisp", "VALIDATION_ERROR")]:
+        assert reached[outcome] > 0, (outcome, reached)
+
+    parse = cmd_dispatcher._parse_command
+
+    def planted(data):
+        if len(data) > 7 and data[7] == 0x42:
+            raise IndexError("planted")
+        return parse(data)
+
+    monkeypatch.setattr(cmd_dispatcher, "_parse_command", planted)
+    result = campaign("command_packet", 3000)
+    assert result["crashes"] > 0, result
 
 
 @pytest.mark.fuzz

@@ -22,6 +22,7 @@ import sys
 import tempfile
 import time
 from dataclasses import dataclass
+from typing import Callable
 
 from detumble.sim import frames, plant_kernel
 from detumble.sim.coursework_laws import REPORT_CROSS_PRODUCT_GAIN, BetaPdLaw, CrossProductLaw, WheelsPdLaw
@@ -198,9 +199,14 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
 
 
 def write_atomic(path: str, text: str) -> None:
-    """Write ``text`` to ``path`` atomically: temp file in the same folder, fsync, os.replace."""
+    """Write ``text`` to ``path`` atomically: temp file in the same folder, fsync, os.replace.
+
+    The temporary file is named as ``fprime_lite.osal.atomic`` names its own
+    (``.fprime-lite-tmp.<pid>.<name>.<random>.part``; this layer does not import the framework),
+    so the start-up clean-up of ``fprime-lite sim`` and ``run`` recognises what a kill left."""
     folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", dir=folder)
+    name = os.path.basename(path)[:64]
+    fd, tmp = tempfile.mkstemp(prefix=f".fprime-lite-tmp.{os.getpid()}.{name}.", suffix=".part", dir=folder)
     try:
         os.chmod(tmp, _new_file_mode(path))  # mkstemp makes 0600; a result file gets the usual mode
         with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
@@ -258,8 +264,11 @@ def build_parser(prog: str = "python -m detumble.sim") -> argparse.ArgumentParse
     return p
 
 
-def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim") -> int:
-    """Entry point. Returns 0 on success, 2 on bad input (message on stderr)."""
+def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim",
+         clean_out: Callable[[str], object] | None = None) -> int:
+    """Entry point. Returns 0 on success, 2 on bad input (message on stderr). ``clean_out(folder)``,
+    if given, is called on the output folder before anything is written there (``fprime-lite sim``
+    passes the framework's start-up clean-up of temporary files)."""
     parser = build_parser(prog)
     try:
         args = parser.parse_args(argv)
@@ -278,6 +287,8 @@ def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim") ->
     try:
         sc = load_scenario(name, seed=args.seed, settings=args.set)
         result = run(sc, law=args.law, gain=args.gain, duration_s=args.duration, implementation=args.plant)
+        if clean_out is not None and os.path.isdir(args.out):
+            clean_out(args.out)
         write_outputs(result, args.out)
     except (ScenarioError, LawError, plant_kernel.KernelUnavailableError) as exc:
         print(f"error: {exc}", file=sys.stderr)

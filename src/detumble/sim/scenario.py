@@ -1,14 +1,15 @@
 """Scenario files: YAML description of one plant-only or closed-loop simulation run.
 
 ``load_scenario(name_or_path)`` resolves a packaged scenario name (``case_a``, ``default``, ...
-in ``detumble/sim/scenarios/``) or a file path, parses it with ``yaml.safe_load`` and validates
-every key. Unknown keys and bad values raise :class:`ScenarioError` whose message reads
+in ``detumble/sim/scenarios/``) or a file path, parses it with PyYAML's safe loader (libyaml's
+when installed) and validates every key. Unknown keys and bad values raise :class:`ScenarioError` whose message reads
 ``FILE:LINE: dotted.key: what is wrong - what to do``. The full schema (every key, unit and
 default) is documented in ``docs/scenarios.md``.
 """
 
 from __future__ import annotations
 
+import copy
 import datetime as _dt
 import math
 import os
@@ -187,10 +188,9 @@ def load_scenario(name_or_path: str, seed: int | None = None, settings: Sequence
 
 def parse_scenario(text: str, source: str = "<string>", seed: int | None = None,
                    settings: Sequence[str] = ()) -> Scenario:
-    """Validate scenario YAML text. ``yaml.safe_load`` only."""
+    """Validate scenario YAML text. Safe loader only (libyaml's when PyYAML has it)."""
     try:
-        data = yaml.safe_load(text)
-        lines = _line_map(text)
+        data, lines = _read_yaml(text)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f"{source}:{mark.line + 1}" if mark is not None else source
@@ -321,10 +321,34 @@ _EXCLUSIVE: dict[tuple, tuple[str, ...]] = {
 }
 
 
-def _line_map(text: str) -> dict[tuple, int]:
-    """Map key paths to 1-based line numbers using the YAML node tree (safe loader)."""
+#: libyaml's safe loader when PyYAML has it (about ten times faster), else PyYAML's own.
+_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+#: Scenario texts read before: (data, line map) by text, so that loading the same scenario again
+#: (every topology load builds the spacecraft) does not parse it again.
+_read_before: dict[str, tuple[Any, dict[tuple, int]]] = {}
+_READ_BEFORE_MAX = 16
+
+
+def _read_yaml(text: str) -> tuple[Any, dict[tuple, int]]:
+    """The data of scenario YAML ``text`` (safe loader) and the line of each key path; the data is
+    a fresh copy each call, since settings are applied to it in place."""
+    if text not in _read_before:
+        loader = _LOADER(text)
+        try:
+            root = loader.get_single_node()
+            data = loader.construct_document(root) if root is not None else None
+        finally:
+            loader.dispose()
+        if len(_read_before) >= _READ_BEFORE_MAX:
+            _read_before.pop(next(iter(_read_before)))
+        _read_before[text] = (data, _line_map(root))
+    data, lines = _read_before[text]
+    return copy.deepcopy(data), dict(lines)
+
+
+def _line_map(root) -> dict[tuple, int]:
+    """Map key paths to 1-based line numbers using the YAML node tree ``root``."""
     out: dict[tuple, int] = {}
-    root = yaml.compose(text, Loader=yaml.SafeLoader)
 
     def walk(node, path):
         if isinstance(node, yaml.MappingNode):

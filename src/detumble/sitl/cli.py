@@ -7,8 +7,9 @@ from fprime_lite.tools.plugins import Verb
 
 def _sim(argv: list[str]) -> int:
     from detumble.sim.runner import main
+    from fprime_lite.osal.atomic import clean_temporary_files
 
-    return main(argv, prog="fprime-lite sim")
+    return main(argv, prog="fprime-lite sim", clean_out=clean_temporary_files)
 
 
 #: ``fprime-lite sim SCENARIO --law …``: a plant-only run of a scenario with a reference law.

@@ -20,6 +20,7 @@ import pathlib
 
 from fprime_lite.deploy.resources import topology_resource
 from fprime_lite.deploy.scheduler import Scheduler
+from fprime_lite.osal.atomic import clean_temporary_files, open_temporary
 
 from detumble.control.coil_layout import COIL_FACES
 from detumble.sim.scenario import Scenario, load_scenario
@@ -81,6 +82,7 @@ class DetumbleRunReport:
         self._file: TextIO | None = None
         self._writer: Any = None  # a csv writer (its class is private to _csv)
         self._path: pathlib.Path | None = None
+        self._tmp: pathlib.Path | None = None  # where truth.csv is streamed until finish()
         self.power = PowerBudget(spacecraft)
 
     # --- run hooks (called by ``fprime-lite run``) ------------------------------------------------
@@ -89,7 +91,9 @@ class DetumbleRunReport:
         self.manager = deployment.topology.instance(self.manager_name).component
         self.start_us = deployment.scheduler.now_us
         self._path = pathlib.Path(out_dir) / "truth.csv"
-        self._file = fh = open(self._path.with_name(".truth.csv.part"), "w", encoding="utf-8", newline="")
+        clean_temporary_files(self._path.parent)  # what a killed run left (a live run's are kept)
+        self._file, self._tmp = open_temporary(self._path, "w", encoding="utf-8", newline="")
+        fh = self._file
         self._writer = csv.writer(fh, lineterminator="\n")
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
                                "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
@@ -176,11 +180,11 @@ class DetumbleRunReport:
     def finish(self, out_dir: pathlib.Path, *, plots: bool = True) -> list[pathlib.Path]:
         """Close the truth log; draw the plots; return the files written."""
         self.spacecraft.set_trace(None)
-        if self._file is not None and self._path is not None:  # begin() sets both
+        if self._file is not None and self._path is not None and self._tmp is not None:  # begin() sets them
             self._file.flush()
             os.fsync(self._file.fileno())
             self._file.close()
-            os.replace(self._path.with_name(".truth.csv.part"), self._path)
+            os.replace(self._tmp, self._path)
             self._file = None
         written = [self._path] if self._path is not None else []
         if plots and self._path is not None:

@@ -30,7 +30,7 @@ from fprime_lite.deploy.topology_yaml.wire import check_startup, wire_connection
 from fprime_lite.model.time import SimulatedClock
 from fprime_lite.svc.rate_group_driver import RateGroupTimer
 
-__all__ = ["load_topology", "LoadedDeployment", "TopologyError", "resolve_path"]
+__all__ = ["load_topology", "read_topology", "LoadedDeployment", "TopologyError", "resolve_path"]
 
 
 @dataclass
@@ -50,17 +50,18 @@ class LoadedDeployment:
     config: TopologyConfig | None = None
 
 
-def load_topology(path, overrides: dict | None = None, *, scheduler_factory: Callable | None = None,
-                  role_overrides: dict | None = None) -> LoadedDeployment:
-    """Load and validate a topology YAML file; raise :class:`TopologyError` listing every problem.
+def read_topology(path) -> TopologyConfig:
+    """Stages 1 and 2 only: parse ``path`` (with what it extends and includes) and check it into a
+    :class:`TopologyConfig`, importing and constructing nothing; raise :class:`TopologyError`
+    listing every problem found so far. What needs the classes (ports, constructor arguments,
+    connections) is checked only by :func:`load_topology`."""
+    _, config, problems, _ = _read(path)
+    problems.raise_if_any()
+    return config
 
-    ``overrides`` maps a resource name to keyword arguments that replace those in the file;
-    ``role_overrides`` maps a resource role (:mod:`fprime_lite.deploy.resources`) to keyword
-    arguments for the resource holding it (the command line's ``--scenario``, ``--seed``, ``--set``
-    and ``--truth-interval`` use it). ``scheduler_factory(clock)`` makes
-    the scheduler (default :class:`~fprime_lite.deploy.scheduler.Scheduler`; ``run --realtime`` passes a
-    :class:`~fprime_lite.deploy.scheduler.PacedScheduler`).
-    """
+
+def _read(path) -> tuple[pathlib.Path, TopologyConfig, Problems, bool]:
+    """(path, config, problems, whether building may go on to report more): stages 1 and 2."""
     why = path_problem(str(path))
     if why is not None:
         raise TopologyError([f"{str(path)[:200]!r}: the topology path {why}"])
@@ -74,7 +75,23 @@ def load_topology(path, overrides: dict | None = None, *, scheduler_factory: Cal
     if doc is None:  # the reason is among the problems
         raise problems.error()
     config = read_config(doc, path, problems)
-    if "modules" not in doc:
+    # with modules, building goes on despite problems so that those of the build are reported too
+    return path, config, problems, "modules" in doc
+
+
+def load_topology(path, overrides: dict | None = None, *, scheduler_factory: Callable | None = None,
+                  role_overrides: dict | None = None) -> LoadedDeployment:
+    """Load and validate a topology YAML file; raise :class:`TopologyError` listing every problem.
+
+    ``overrides`` maps a resource name to keyword arguments that replace those in the file;
+    ``role_overrides`` maps a resource role (:mod:`fprime_lite.deploy.resources`) to keyword
+    arguments for the resource holding it (the command line's ``--scenario``, ``--seed``, ``--set``
+    and ``--truth-interval`` use it). ``scheduler_factory(clock)`` makes
+    the scheduler (default :class:`~fprime_lite.deploy.scheduler.Scheduler`; ``run --realtime`` passes a
+    :class:`~fprime_lite.deploy.scheduler.PacedScheduler`).
+    """
+    path, config, problems, complete = _read(path)
+    if not complete:
         problems.raise_if_any()
 
     clock, scheduler = make_scheduler(config, scheduler_factory)

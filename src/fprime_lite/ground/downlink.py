@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from typing import Any, Callable
 
 from fprime_lite.model.errors import SerializationError
+from fprime_lite.osal.atomic import clean_temporary_files, open_temporary
 from fprime_lite.model.events import Severity, translate_format
 from fprime_lite.ground.files import FileReceiver
 from fprime_lite.ground.wide_table import WideTelemetryTable
@@ -127,8 +128,7 @@ class _StreamedFile:
 
     def __init__(self, path: pathlib.Path, newline: str | None = None):
         self.path = path
-        self.tmp = path.with_name(f".{path.name}.part")
-        self.file = open(self.tmp, "w", encoding="utf-8", newline=newline)
+        self.file, self.tmp = open_temporary(path, "w", encoding="utf-8", newline=newline)
 
     def close(self) -> None:
         if self.file.closed:
@@ -154,6 +154,7 @@ class GroundRecorder:
         self.decoder = GroundDecoder(topology)
         out_dir = pathlib.Path(out_dir)
         out_dir.mkdir(parents=True, exist_ok=True)
+        clean_temporary_files(out_dir)  # what a killed recorder left (a live one's are kept)
         self._events = _StreamedFile(out_dir / "events.log")
         self._channels = _StreamedFile(out_dir / "channels.csv", newline="")
         self._csv = csv.writer(self._channels.file, lineterminator="\n")

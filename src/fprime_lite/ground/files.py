@@ -14,6 +14,7 @@ import os
 import pathlib
 from dataclasses import dataclass
 
+from fprime_lite.osal.atomic import clean_temporary_files, open_temporary
 from fprime_lite.wire.file_packet import (CancelPacket, CfdpChecksum, DataPacket, EndPacket, FilePacketError,
                                           StartPacket, decode_file_packet)
 
@@ -49,6 +50,7 @@ class FileReceiver:
         self._tmp: pathlib.Path | None = None
         self._handle = None
         self._checksum = CfdpChecksum()
+        clean_temporary_files(self.directory)  # files a killed receiver was reassembling
 
     def receive(self, packet: bytes) -> None:
         """Handle one file packet, descriptor first. Malformed or unexpected packets are counted."""
@@ -79,8 +81,7 @@ class FileReceiver:
         record = ReceivedFile(start.source, start.destination, self.directory / name, start.file_size)
         self.files.append(record)
         self._active = record
-        self._tmp = record.path.with_name(f".{name}.part")
-        self._handle = open(self._tmp, "wb")
+        self._handle, self._tmp = open_temporary(record.path, "wb")
         self._checksum = CfdpChecksum()
 
     def _data(self, data: DataPacket) -> None:

@@ -5,8 +5,10 @@ renamed over the destination; the folder is fsynced so the rename survives a cra
 
 Temporary files are named ``.fprime-lite-tmp.<pid>.<name>.<random>.part`` (:func:`temporary_file`),
 so that what a killed process left behind can be recognised and removed at the next start-up
-(:func:`clean_temporary_files`): a temporary file whose process is gone (or has our own pid, i.e.
-an earlier process that had it) is removed; one of a live process is left alone.
+(:func:`clean_temporary_files`): a temporary file whose process is gone (or has our own pid but
+was not made by this process, i.e. an earlier process had the pid) is removed; one of a live
+process, or one this process made, is left alone — so any component or recorder may clean its
+folder when it starts, even while other writers of the same process are streaming there.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ import re
 import tempfile
 
 __all__ = ["atomic_write_bytes", "atomic_write_text", "file_mode_for", "fsync_directory", "temporary_file",
-           "is_temporary_name", "clean_temporary_files", "TEMP_PREFIX", "TEMP_SUFFIX"]
+           "open_temporary", "is_temporary_name", "clean_temporary_files", "TEMP_PREFIX", "TEMP_SUFFIX"]
 
 #: How every temporary file of an atomic write starts and ends.
 TEMP_PREFIX = ".fprime-lite-tmp."
@@ -26,11 +28,33 @@ _TEMP_NAME = re.compile(r"\.fprime-lite-tmp\.(\d+)\..*\.part\Z", re.DOTALL)
 _NAME_CHARS = 64  # of the destination's name kept in the temporary name (well inside NAME_MAX)
 
 
+#: Temporary files this process made (real paths), which clean_temporary_files never removes:
+#: a writer of this process may still be streaming into one.
+_ours: set[str] = set()
+
+
 def temporary_file(directory, name: str) -> tuple[int, str]:
     """Create a recognisable temporary file in ``directory`` for the destination called ``name``:
     ``(fd, path)``, opened for writing, mode 0600 until the caller sets the final mode."""
-    return tempfile.mkstemp(prefix=f"{TEMP_PREFIX}{os.getpid()}.{name[:_NAME_CHARS]}.", suffix=TEMP_SUFFIX,
-                            dir=directory)
+    fd, path = tempfile.mkstemp(prefix=f"{TEMP_PREFIX}{os.getpid()}.{name[:_NAME_CHARS]}.", suffix=TEMP_SUFFIX,
+                                dir=directory)
+    _ours.add(os.path.realpath(path))
+    return fd, path
+
+
+def open_temporary(path, mode: str = "w", **kwargs):
+    """``(file, temporary path)``: a recognisable temporary file beside ``path`` opened with
+    ``mode`` (``open``'s ``kwargs``), with the mode ``path`` will have, for a writer that streams
+    into it and renames it over ``path`` when done (``os.replace``)."""
+    path = pathlib.Path(path)
+    fd, tmp = temporary_file(path.parent, path.name)
+    try:
+        os.chmod(tmp, file_mode_for(path))
+        return os.fdopen(fd, mode, **kwargs), pathlib.Path(tmp)
+    except BaseException:
+        os.close(fd)
+        os.unlink(tmp)
+        raise
 
 
 def is_temporary_name(name: str) -> bool:
@@ -79,7 +103,7 @@ def clean_temporary_files(folder, *, recursive: bool = False, limit: int = 100_0
             except OSError:
                 continue
             match = _TEMP_NAME.match(entry.name)
-            if match and _owner_gone(int(match.group(1))):
+            if match and _owner_gone(int(match.group(1))) and os.path.realpath(entry.path) not in _ours:
                 try:
                     os.unlink(entry.path)
                     removed.append(entry.path)
@@ -106,6 +130,8 @@ def atomic_write_bytes(path, data: bytes) -> None:
         except FileNotFoundError:
             pass
         raise
+    finally:
+        _ours.discard(os.path.realpath(tmp))
     fsync_directory(path.parent)
 
 

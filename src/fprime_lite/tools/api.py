@@ -25,6 +25,7 @@ import sys
 from typing import Sequence
 
 from fprime_lite.model.errors import FprimeLiteError
+from fprime_lite.osal.atomic import clean_temporary_files
 
 __all__ = ["run", "open_run", "load", "RunResult", "RunSetupError", "claim_run_folder", "plot_run_dir"]
 
@@ -77,7 +78,8 @@ def load(topology="topology.yaml", *, scenario: str | None = None, seed: int | N
 
 def claim_run_folder(out=None, runs_dir="runs") -> pathlib.Path:
     """Create and return the output folder of a run: ``out`` (absent or empty), or a new
-    ``runs/<date>-<time>.<ms>`` with ``-2``, ``-3`` … appended when that name is taken."""
+    ``runs/<date>-<time>.<ms>`` with ``-2``, ``-3`` … appended when that name is taken. Claiming a
+    folder under ``runs`` first removes the temporary files that killed runs left in ``runs``."""
     if out is not None:
         out = pathlib.Path(out)
         if out.exists() and not out.is_dir():
@@ -97,6 +99,7 @@ def claim_run_folder(out=None, runs_dir="runs") -> pathlib.Path:
     except OSError as exc:
         raise RunSetupError(f"cannot create {runs.resolve()} ({exc.strerror}) — run from a folder you can "
                             f"write or give --out DIR") from None
+    clean_temporary_files(runs, recursive=True)  # what killed runs left half-written in their folders
     for n in range(1, 1000):
         folder = runs / (stamp if n == 1 else f"{stamp}-{n}")
         try:

@@ -2,20 +2,32 @@
 subtopology or a base it extends, loading either succeeds or raises TopologyError whose problems
 all read ``file:line: what — what to do`` — never another exception, never a stall.
 
-The default suite runs a bounded Hypothesis property (a few seconds). The long mode is
-``pytest -m fuzz tests/fprime_lite/deploy/test_topology_fuzz.py -s`` with
-``FPRIME_LITE_FUZZ_INPUTS`` inputs (default 20000) and ``FPRIME_LITE_FUZZ_SEED``; it prints its
-figures (recorded in docs/reliability.md) and saves any crashing input beside the report.
+Two stages are fuzzed separately, because they cost very different amounts per input:
+
+- ``check``: :func:`read_topology` — parsing, ``extends``, includes and the schema (everything that
+  reads the bytes; nothing imported or constructed), about a millisecond an input;
+- ``load``: :func:`load_topology` — the same plus importing the types, constructing resources and
+  instances (the simulated spacecraft among them) and wiring, tens of milliseconds an input.
+
+The default suite runs a bounded Hypothesis property of ``load`` and a bounded campaign of
+``check``. The long mode (``pytest -m fuzz tests/fprime_lite/deploy/test_topology_fuzz.py -s``)
+runs ``FPRIME_LITE_FUZZ_INPUTS`` inputs through ``check`` (default 1 000 000) and
+``FPRIME_LITE_FUZZ_LOAD_INPUTS`` through ``load`` (default 20 000), seed ``FPRIME_LITE_FUZZ_SEED``;
+figures go to stdout and, every 10 000 inputs (``check``) or 1 000 (``load``) and at the end, to
+the JSON-lines file ``FPRIME_LITE_FUZZ_REPORT`` when it is set (docs/reliability.md records them);
+crashing inputs are saved beside the test's temporary folder.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import pathlib
 import random
 import re
 import shutil
 import signal
+import tempfile
 import time
 import traceback
 
@@ -23,7 +35,8 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
-from fprime_lite.deploy.topology_loader import TopologyError, load_topology
+from fprime_lite.deploy.topology_loader import TopologyError, load_topology, read_topology
+from fprime_lite.deploy.topology_yaml.schema import TopologyConfig
 
 ROOT = pathlib.Path(__file__).parents[3]
 REF_DIR = ROOT / "deployments" / "proves_ref"
@@ -98,12 +111,16 @@ class Corpus:
         (folder / "local.yaml").write_text(text.replace("fprime_lite:subtopologies/", ""))
         self.originals = {name: (folder / name).read_bytes() for name, _ in TARGETS}
 
-    def load(self, target: tuple[str, str], data: bytes) -> str:
-        """Load with ``target``'s file replaced by ``data``: 'loaded' or 'refused'; anything else raises."""
+    def run(self, stage: str, target: tuple[str, str], data: bytes) -> str:
+        """Check or load (``stage``) with ``target``'s file replaced by ``data``: 'loaded' or
+        'refused'; anything else raises."""
         mutated, entry = target
         (self.folder / mutated).write_bytes(data)
         try:
-            load_topology(self.folder / entry)
+            if stage == "check":
+                assert isinstance(read_topology(self.folder / entry), TopologyConfig)
+            else:
+                load_topology(self.folder / entry)
             return "loaded"
         except TopologyError as exc:
             for problem in exc.problems:
@@ -112,6 +129,9 @@ class Corpus:
         finally:
             (self.folder / mutated).write_bytes(self.originals[mutated])
 
+    def load(self, target: tuple[str, str], data: bytes) -> str:
+        return self.run("load", target, data)
+
 
 @pytest.fixture(scope="module")
 def corpus(tmp_path_factory):
@@ -119,9 +139,10 @@ def corpus(tmp_path_factory):
 
 
 def test_the_corpus_loads(corpus):
-    """TOPO-FUZZ-000: every unmutated target loads, so a refusal is the mutation's doing."""
+    """TOPO-FUZZ-000: every unmutated target loads and checks, so a refusal is the mutation's doing."""
     for target in TARGETS:
         assert corpus.load(target, corpus.originals[target[0]]) == "loaded"
+        assert corpus.run("check", target, corpus.originals[target[0]]) == "loaded"
 
 
 _op = st.tuples(st.sampled_from(OPS), st.integers(0, 10 ** 6), st.integers(0, 255),
@@ -138,54 +159,154 @@ def test_mutated_topologies_load_or_are_refused_with_located_messages(corpus, mo
 
 
 class _Hang(BaseException):
-    """Raised by the per-input alarm; a BaseException so that no ``except Exception`` swallows it."""
+    """Raised by the per-input CPU timer; a BaseException so that no ``except Exception`` swallows it."""
 
 
-def _alarm(signum, frame):
+def _on_timer(signum, frame):
+    # re-armed first: if the exception is raised where Python swallows it (a gc callback runs
+    # Python code too), the timer fires again instead of leaving the input running for ever
+    signal.setitimer(signal.ITIMER_VIRTUAL, 0.05)
     raise _Hang()
+
+
+def random_input(rng: random.Random, corpus: Corpus) -> tuple[tuple[str, str], bytes]:
+    """One input: a target and its file with 1–4 random mutations (80 % hostile payloads)."""
+    target = rng.choice(TARGETS)
+    ops = [(rng.choice(OPS), rng.randrange(10 ** 6), rng.randrange(256),
+            rng.choice(HOSTILE) if rng.random() < 0.8 else
+            "".join(chr(rng.randrange(1, 0x3000)) for _ in range(rng.randrange(8))))
+           for _ in range(rng.randint(1, 4))]
+    return target, mutate(corpus.originals[target[0]], ops)
+
+
+def campaign(corpus: Corpus, stage: str, inputs: int, seed: int, hang_cpu_s: float, report=None,
+             run=None, report_every: int = 10_000) -> dict:
+    """``inputs`` random inputs through ``stage`` ('check' or 'load'); the figures.
+
+    An input that raises anything but a located TopologyError is a crash; one that uses more than
+    ``hang_cpu_s`` of CPU time (``ITIMER_VIRTUAL``, so a busy shared machine does not count) a hang.
+    ``report(figures)`` is called every ``report_every`` inputs; ``run`` replaces ``corpus.run`` (tests).
+    """
+    run = run or corpus.run
+    rng = random.Random(seed)
+    outcomes = {"loaded": 0, "refused": 0, "crash": 0, "hang": 0}
+    slowest_cpu, found = 0.0, []
+    previous = signal.signal(signal.SIGVTALRM, _on_timer)
+    start, cpu_start = time.perf_counter(), time.process_time()
+
+    def figures(done: int) -> dict:
+        wall = time.perf_counter() - start
+        return {"stage": stage, "seed": seed, "inputs": done, **outcomes, "wall_s": round(wall, 1),
+                "cpu_s": round(time.process_time() - cpu_start, 1),
+                "inputs_per_s": round(done / wall, 1) if wall else None,
+                "slowest_input_cpu_ms": round(slowest_cpu * 1e3, 2),
+                "first_findings": [(i, t[0], why[-600:]) for i, t, _, why in found[:5]]}
+
+    try:
+        for i in range(inputs):
+            target, data = random_input(rng, corpus)
+            t0 = time.process_time()
+            signal.setitimer(signal.ITIMER_VIRTUAL, hang_cpu_s)
+            try:
+                outcomes[run(stage, target, data)] += 1
+            except _Hang:
+                outcomes["hang"] += 1
+                found.append((i, target, data, "hang"))
+            except (Exception, AssertionError):  # noqa: BLE001 - a crash is what this counts
+                outcomes["crash"] += 1
+                found.append((i, target, data, traceback.format_exc(limit=4)))
+            finally:
+                signal.setitimer(signal.ITIMER_VIRTUAL, 0)
+            slowest_cpu = max(slowest_cpu, time.process_time() - t0)
+            if report is not None and (i + 1) % report_every == 0:
+                report(figures(i + 1))
+    finally:
+        signal.signal(signal.SIGVTALRM, previous)
+    result = figures(inputs)
+    result["found"] = found
+    return result
+
+
+def test_bounded_check_campaign(corpus, monkeypatch):
+    """TOPO-FUZZ-003: 1 000 mutated inputs (fixed seed) through parsing and the schema: no crash,
+    no hang, and the mutations reach both outcomes."""
+    monkeypatch.chdir(corpus.folder)
+    result = campaign(corpus, "check", 1000, seed=3, hang_cpu_s=2.0)
+    assert result["crash"] == 0 and result["hang"] == 0, result["first_findings"]
+    assert result["loaded"] > 0 and result["refused"] > 0
+
+
+def test_the_campaign_finds_a_planted_crash_and_hang(corpus, monkeypatch):
+    """TOPO-FUZZ-004: the campaign is not blind: a stage that raises KeyError on inputs holding a
+    '!!python' tag and loops forever on inputs of some lengths (bugs planted for this test) is
+    reported as crashing and as hanging, with the input that did it."""
+    monkeypatch.chdir(corpus.folder)
+
+    def planted(stage, target, data):
+        if len(data) % 97 == 0:
+            while True:
+                pass
+        if b"!!python" in data:
+            raise KeyError("planted")
+        return corpus.run(stage, target, data)
+
+    result = campaign(corpus, "check", 600, seed=5, hang_cpu_s=0.05, run=planted)
+    crashes = [(data, why) for _, _, data, why in result["found"] if why != "hang"]
+    hangs = [data for _, _, data, why in result["found"] if why == "hang"]
+    assert result["crash"] == len(crashes) > 0 and all(b"!!python" in d and "planted" in w for d, w in crashes)
+    assert result["hang"] == len(hangs) > 0 and all(len(d) % 97 == 0 for d in hangs)
+
+
+def _scratch_folder(tmp_path: pathlib.Path) -> pathlib.Path:
+    """A folder in memory (tmpfs) when the machine has one: rewriting a file on some disk file
+    systems costs milliseconds, more than checking it."""
+    shm = pathlib.Path("/dev/shm")
+    if shm.is_dir() and os.access(shm, os.W_OK):
+        return pathlib.Path(tempfile.mkdtemp(prefix="fprime-lite-topo-fuzz-", dir=shm))
+    return tmp_path / "corpus"
+
+
+def _long_campaign(tmp_path, monkeypatch, stage: str, inputs: int, hang_cpu_s: float, report_every: int) -> None:
+    folder = _scratch_folder(tmp_path)
+    try:
+        corpus = Corpus(folder)
+        monkeypatch.chdir(corpus.folder)
+        seed = int(os.environ.get("FPRIME_LITE_FUZZ_SEED", "1"))
+        report_path = os.environ.get("FPRIME_LITE_FUZZ_REPORT")
+
+        def report(figures: dict) -> None:
+            print(json.dumps(figures), flush=True)
+            if report_path:
+                with open(report_path, "a", encoding="utf-8") as f:
+                    f.write(json.dumps({"parser": f"topology_{stage}", **figures}) + "\n")
+
+        result = campaign(corpus, stage, inputs, seed, hang_cpu_s, report=report, report_every=report_every)
+        found = result.pop("found")
+        report(result)
+    finally:
+        if folder.parent == pathlib.Path("/dev/shm"):
+            shutil.rmtree(folder, ignore_errors=True)
+    for i, target, data, why in found[:20]:
+        (tmp_path / f"{stage}-{i}-{target[0]}").write_bytes(data)
+        print(f"input {i} ({target[0]}): {why}")
+    print(f"\ntopology {stage} fuzz: seed {seed}, {inputs} inputs in {result['wall_s']} s "
+          f"({result['inputs_per_s']}/s), {result['loaded']} loaded, {result['refused']} refused, "
+          f"{result['crash']} crashes, {result['hang']} hangs, slowest input {result['slowest_input_cpu_ms']} ms "
+          f"CPU (saved crashes: {tmp_path})")
+    assert result["crash"] == 0 and result["hang"] == 0, found[:3]
+
+
+@pytest.mark.fuzz
+def test_long_check_campaign(tmp_path, monkeypatch):
+    """TOPO-FUZZ-005: the long campaign of parsing and the schema — FPRIME_LITE_FUZZ_INPUTS
+    (default 1 M) mutations of the three targets; no crash, no input past 2 s of CPU time."""
+    _long_campaign(tmp_path, monkeypatch, "check", int(os.environ.get("FPRIME_LITE_FUZZ_INPUTS", "1000000")), 2.0,
+                   10_000)
 
 
 @pytest.mark.fuzz
 def test_long_mutation_campaign(tmp_path, monkeypatch):
-    """TOPO-FUZZ-002: the long campaign — N random mutations (1–4 ops) of the three targets; no
-    crash, and no input runs into the 10 s alarm."""
-    corpus = Corpus(tmp_path / "corpus")
-    monkeypatch.chdir(corpus.folder)
-    n = int(os.environ.get("FPRIME_LITE_FUZZ_INPUTS", "20000"))
-    seed = int(os.environ.get("FPRIME_LITE_FUZZ_SEED", "1"))
-    rng = random.Random(seed)
-    outcomes = {"loaded": 0, "refused": 0, "crash": 0, "hang": 0}
-    slowest, crashes = 0.0, []
-    previous = signal.signal(signal.SIGALRM, _alarm)
-    start = time.perf_counter()
-    try:
-        for i in range(n):
-            target = rng.choice(TARGETS)
-            ops = [(rng.choice(OPS), rng.randrange(10 ** 6), rng.randrange(256),
-                    rng.choice(HOSTILE) if rng.random() < 0.8 else
-                    "".join(chr(rng.randrange(1, 0x3000)) for _ in range(rng.randrange(8))))
-                   for _ in range(rng.randint(1, 4))]
-            data = mutate(corpus.originals[target[0]], ops)
-            t0 = time.perf_counter()
-            signal.setitimer(signal.ITIMER_REAL, 10.0)
-            try:
-                outcomes[corpus.load(target, data)] += 1
-            except _Hang:
-                outcomes["hang"] += 1
-                crashes.append((i, target, data, "hang"))
-            except (Exception, AssertionError):  # noqa: BLE001 - a crash is what this counts
-                outcomes["crash"] += 1
-                crashes.append((i, target, data, traceback.format_exc(limit=3)))
-            finally:
-                signal.setitimer(signal.ITIMER_REAL, 0)
-            slowest = max(slowest, time.perf_counter() - t0)
-    finally:
-        signal.signal(signal.SIGALRM, previous)
-    elapsed = time.perf_counter() - start
-    for i, target, data, why in crashes[:20]:
-        (tmp_path / f"crash-{i}-{target[0]}").write_bytes(data)
-        print(f"input {i} ({target[0]}): {why}")
-    print(f"\ntopology loader fuzz: seed {seed}, {n} inputs in {elapsed:.0f} s, {outcomes['loaded']} loaded, "
-          f"{outcomes['refused']} refused, {outcomes['crash']} crashes, {outcomes['hang']} hangs, "
-          f"slowest input {slowest:.2f} s (saved crashes: {tmp_path})")
-    assert outcomes["crash"] == 0 and outcomes["hang"] == 0, crashes[:3]
+    """TOPO-FUZZ-002: the long campaign of full loads (parse, schema, build, wire) —
+    FPRIME_LITE_FUZZ_LOAD_INPUTS (default 20 000) mutations; no crash, no input past 10 s of CPU."""
+    _long_campaign(tmp_path, monkeypatch, "load", int(os.environ.get("FPRIME_LITE_FUZZ_LOAD_INPUTS", "20000")),
+                   10.0, 1_000)

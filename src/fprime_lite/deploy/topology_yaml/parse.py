@@ -19,6 +19,7 @@ Every refusal is a :class:`~fprime_lite.deploy.topology.TopologyError` whose pro
 from __future__ import annotations
 
 import pathlib
+from collections import OrderedDict
 from typing import Any
 
 import yaml
@@ -44,6 +45,10 @@ _MERGE_TAG = "tag:yaml.org,2002:merge"
 _CORE = "tag:yaml.org,2002:"
 #: Scalar tags the loader constructs (what SafeLoader resolves plain scalars to).
 _SCALAR_TAGS = {_CORE + t for t in ("str", "int", "float", "bool", "null", "timestamp", "binary")}
+_STR_TAG = _CORE + "str"
+#: Parsed files kept (by path, text and parser) so that unchanged includes and bases are not
+#: parsed again; each hit is a fresh copy, since later stages may change what they are given.
+_CACHE_SIZE = 64
 
 
 def _short_tag(tag: str) -> str:
@@ -105,19 +110,21 @@ class _BoundedLoader(yaml.SafeLoader):
         self._nodes = 0
 
     def compose_node(self, parent, index):
-        self._depth += 1
+        # counted as _check_shape counts libyaml's events: every node a value, every mapping or
+        # list a level, so that both parsers refuse the same documents at the same line
+        event = self.peek_event()
+        collection = isinstance(event, yaml.CollectionStartEvent)
         self._nodes += 1
+        self._depth += collection
         try:
-            if self._depth > MAX_DEPTH:
-                mark = self.peek_event().start_mark
-                raise _Refused(mark.line + 1, f"nesting deeper than {MAX_DEPTH} levels — a topology needs a "
-                                              f"handful; flatten the document")
+            if collection and self._depth > MAX_DEPTH:
+                raise _Refused(event.start_mark.line + 1, f"nesting deeper than {MAX_DEPTH} levels — a topology "
+                                                          f"needs a handful; flatten the document")
             if self._nodes > MAX_VALUES:
-                mark = self.peek_event().start_mark
-                raise _Refused(mark.line + 1, _TOO_MANY)
+                raise _Refused(event.start_mark.line + 1, _TOO_MANY)
             return super().compose_node(parent, index)
         finally:
-            self._depth -= 1
+            self._depth -= collection
 
 
 class _Converter:
@@ -129,9 +136,14 @@ class _Converter:
         self.budget = MAX_VALUES
         self.open: set[int] = set()   # ids of the collection nodes being converted (cycle check)
         self.problems: list[str] = []
+        self._locs: dict[int, Loc] = {}
 
     def loc(self, node: yaml.Node) -> Loc:
-        return Loc(node.start_mark.line + 1, self.path)
+        line = node.start_mark.line + 1
+        loc = self._locs.get(line)
+        if loc is None:
+            loc = self._locs[line] = Loc(line, self.path)
+        return loc
 
     def convert(self, node: yaml.Node, depth: int = 1) -> Any:
         self.budget -= 1
@@ -158,6 +170,8 @@ class _Converter:
         raise _Refused(node.start_mark.line + 1, f"unexpected YAML node {type(node).__name__} — fix the syntax")
 
     def scalar(self, node: yaml.ScalarNode) -> Any:
+        if node.tag == _STR_TAG:  # what SafeConstructor.construct_yaml_str returns, without its dispatch
+            return node.value
         if node.tag not in _SCALAR_TAGS:
             self.refuse(node, f"tag '{_short_tag(node.tag)}' is not allowed — a topology holds plain values only "
                               f"(text, numbers, booleans, null); remove the tag")
@@ -304,9 +318,37 @@ def _reader_error_line(text: str, exc: yaml.reader.ReaderError) -> int:
     return _line_of(text, exc.position)
 
 
+_parsed: "OrderedDict[tuple[str, str, bool], Any]" = OrderedDict()
+
+
+def _copy(value: Any) -> Any:
+    """A copy of a parsed tree (maps and lists new; scalars, which are immutable, shared)."""
+    if isinstance(value, YMap):
+        return YMap({k: _copy(v) for k, v in value.items()}, line=value.line, key_lines=value.key_lines)
+    if isinstance(value, YList):
+        return YList([_copy(v) for v in value], line=value.line, item_lines=value.item_lines)
+    return value
+
+
 def parse_yaml(path: pathlib.Path) -> Any:
-    """Parse ``path`` safely into YMap/YList values that carry line numbers (None if empty)."""
+    """Parse ``path`` safely into YMap/YList values that carry line numbers (None if empty).
+
+    A file whose text was parsed before (same path, same text, same parser) is not parsed again:
+    the result is copied from the last parse. Only files that parsed without problems are kept.
+    """
     text = read_text(path)
+    key = (str(path), text, _FAST_LOADER is not None)
+    if key in _parsed:
+        _parsed.move_to_end(key)
+        return _copy(_parsed[key])
+    value = _parse_text(path, text)
+    _parsed[key] = value
+    if len(_parsed) > _CACHE_SIZE:
+        _parsed.popitem(last=False)
+    return _copy(value)
+
+
+def _parse_text(path: pathlib.Path, text: str) -> Any:
     loader = None
     try:
         if _FAST_LOADER is not None:
