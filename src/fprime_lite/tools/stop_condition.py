@@ -21,7 +21,7 @@ CHECK_INTERVAL_S = 1.0
 
 _OPS = {">=": lambda a, b: a >= b, "<=": lambda a, b: a <= b, ">": lambda a, b: a > b,
         "<": lambda a, b: a < b, "==": lambda a, b: a == b, "!=": lambda a, b: a != b}
-_FORM = re.compile(r"^\s*([A-Za-z_]\w*)\s*(>=|<=|==|!=|>|<)\s*(\S+)\s*$")
+_FORM = re.compile(r"^\s*([A-Za-z_]\w*)\s*(>=|<=|==|!=|>|<)\s*([^\s<>=!]\S*)\s*$")
 
 
 class StopConditionError(ValueError):
@@ -60,14 +60,14 @@ def parse_stop_condition(text: object) -> StopCondition:
     key, op, raw = m.groups()
     try:
         value: float | str = float(raw)
-        if not math.isfinite(value):
-            raise StopConditionError(f"{text!r}: the value must be finite — {example}")
     except ValueError:
         if not re.fullmatch(r"[A-Za-z_]\w*", raw):
             raise StopConditionError(f"{text!r}: the value is a number or a word — {example}") from None
         if op not in ("==", "!="):
             raise StopConditionError(f"{text!r}: a word compares only with == or != — {example}") from None
         value = raw
+    if isinstance(value, float) and not math.isfinite(value):
+        raise StopConditionError(f"{text!r}: the value must be finite — {example}")
     return StopCondition(key, op, value, f"{key} {op} {raw}")
 
 

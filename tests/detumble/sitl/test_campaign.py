@@ -111,3 +111,19 @@ def test_a_key_set_for_every_wheel_reads_back_once():
 
     plant = Plant(load_scenario("surrey", settings=["spacecraft.reaction_wheels.momentum_noise_std_nms=1.0e-05"]))
     assert read_setting(plant, "spacecraft.reaction_wheels.momentum_noise_std_nms") == 1e-05
+
+
+def test_spin_metrics_come_from_the_attitude_report_s_summary():
+    """CAMP-064: mode_transitions counts the ground's ControlModeChanged transitions; spin_axis_error_*_deg are the
+    AttitudeRunReport's SPIN_STABLE statistics; each is null with its reason when the run has no attitude report
+    or no SPIN_STABLE samples."""
+    summary = {"control_mode_transitions": [{"t_s": 0.0, "mode": "SPIN_STABLE"}, {"t_s": 480.5, "mode": "POINTING"}],
+               "spin_axis_error_deg": {"median": 1.2, "p95": 3.4, "max": 7.5, "samples": 900}}
+    out = RunOutput(summary)
+    assert BY_NAME["mode_transitions"].compute(out, None) == 2.0
+    assert [BY_NAME[f"spin_axis_error_{s}_deg"].compute(out, None) for s in ("median", "p95", "max")] == [1.2, 3.4, 7.5]
+    for name, words in (("mode_transitions", "no attitude report"), ("spin_axis_error_p95_deg", "no attitude report")):
+        with pytest.raises(MetricUnavailable, match=words):
+            BY_NAME[name].compute(RunOutput({"final_rate_deg_s": 1.0}), None)
+    with pytest.raises(MetricUnavailable, match="no SPIN_STABLE samples"):
+        BY_NAME["spin_axis_error_max_deg"].compute(RunOutput({"spin_axis_error_deg": None}), None)
