@@ -33,11 +33,11 @@ from fprime_lite.svc.rate_groups import RateGroupBase
 from fprime_lite.deploy.topology_loader import LoadedDeployment
 from fprime_lite.tools.stop_condition import CHECK_INTERVAL_S, StopCondition, holds_all, parse_stop_condition
 
-__all__ = ["run_deployment", "run_duration", "DEFAULT_DURATION_S", "flight_problems", "PROGRESS_STEP_S", "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
+__all__ = ["run_deployment", "run_duration", "DEFAULT_DURATION_S", "flight_problems", "PROGRESS_STEP_S",
+           "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
 
 #: Simulated seconds between progress updates (and between chunks of the run).
 PROGRESS_STEP_S = 10.0
-
 
 #: Simulated seconds of a run when neither the caller nor the topology's ``run.duration_s`` says.
 DEFAULT_DURATION_S = 600.0
