@@ -5,15 +5,19 @@
 Floor: one RK4 step of the 7-state rigid body with a constant torque (``RigidBody.step``).
 Ticks: ``Plant.step`` of a packaged scenario plus what a driver does each tick (read the
 magnetometer and gyro; for case A also the kopt law and applying its dipole; for surrey command
-the three wheels and read the star tracker). Reported as ticks per
-second and as a ratio to the floor; timings are never asserted anywhere.
+the three wheels and read the star tracker), each with the pure-Python reference plant and with
+the compiled kernel (detumble.sim.plant_kernel; surrey has wheels, so only the Python plant).
+Reported as ticks per second, as a ratio to the floor and compiled against Python, all in one
+run; timings are never asserted anywhere.
 """
 
 from __future__ import annotations
 
 import argparse
+import functools
 import time
 
+from detumble.sim import plant_kernel
 from detumble.sim.attitude import RigidBody
 from detumble.sim.plant import Plant
 from detumble.sim.runner import make_law
@@ -38,8 +42,8 @@ def floor(n: int) -> None:
         s = step(s, 0.05, tau)
 
 
-def plant_default(n: int) -> None:
-    p = Plant(load_scenario("default"))
+def plant_default(n: int, implementation: str) -> None:
+    p = Plant(load_scenario("default"), implementation=implementation)
     step, mag, gyro = p.step, p.magnetometer_reading, p.gyro_reading
     for _ in range(n):
         step()
@@ -47,8 +51,8 @@ def plant_default(n: int) -> None:
         gyro()
 
 
-def plant_case_a_with_law(n: int) -> None:
-    p = Plant(load_scenario("case_a"))
+def plant_case_a_with_law(n: int, implementation: str) -> None:
+    p = Plant(load_scenario("case_a"), implementation=implementation)
     law = make_law("kopt", p)
     step, update, apply = p.step, law.update, p.apply_dipole_B
     for _ in range(n):
@@ -57,9 +61,9 @@ def plant_case_a_with_law(n: int) -> None:
         step()
 
 
-def plant_surrey_wheels(n: int) -> None:
+def plant_surrey_wheels(n: int, implementation: str) -> None:
     """The coursework spacecraft: three wheels commanded every tick, star tracker and gyro read."""
-    p = Plant(load_scenario("surrey"))
+    p = Plant(load_scenario("surrey"), implementation=implementation)
     step, torques, star = p.step, p.set_wheel_torques, p.star_tracker_reading
     u = (1e-4, -2e-4, 5e-5)
     for _ in range(n):
@@ -72,13 +76,20 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ticks", type=int, default=50_000)
     n = ap.parse_args().ticks
+    kernel = plant_kernel.describe("auto")
+    print(f"compiled kernel: {kernel}")
     f = _best(floor, n)
-    print(f"bare RK4 step (floor)                       {f:12,.0f} steps/s  ({1e6 / f:5.2f} us)   ratio 1.00")
-    for label, fn in (("plant tick, default (coils, noisy sensors) ", plant_default),
-                      ("plant tick + kopt law, case A (rods, ideal)", plant_case_a_with_law),
-                      ("plant tick, surrey (3 wheels commanded)   ", plant_surrey_wheels)):
-        r = _best(fn, n)
-        print(f"{label} {r:12,.0f} ticks/s  ({1e6 / r:5.2f} us)   ratio {f / r:.2f}x the floor")
+    print(f"bare RK4 step (floor)                        {f:12,.0f} steps/s  ({1e6 / f:5.2f} us)   ratio 1.00")
+    impls = ("python", "compiled") if kernel == "compiled" else ("python",)
+    for label, fn, kinds in (("plant tick, default (coils, noisy sensors) ", plant_default, impls),
+                             ("plant tick + kopt law, case A (rods, ideal)", plant_case_a_with_law, impls),
+                             ("plant tick, surrey (3 wheels commanded)   ", plant_surrey_wheels, ("python",))):
+        rates = {}
+        for impl in kinds:  # a plant with wheels is always the Python one
+            r = rates[impl] = _best(functools.partial(fn, implementation=impl), n)
+            print(f"{label} {impl:8s} {r:12,.0f} ticks/s  ({1e6 / r:5.2f} us)   ratio {f / r:.2f}x the floor")
+        if len(rates) == 2:
+            print(f"{'':44s} compiled / python: {rates['compiled'] / rates['python']:.2f}x the ticks per second")
 
 
 if __name__ == "__main__":

@@ -8,13 +8,17 @@ everything they exchange is plain floats and tuples (no numpy on the per-tick pa
 Within one :meth:`Plant.step` the coil dipole (its mean over the step if the coils have an L/R
 lag), the inertial field ``b_N`` and the orbit direction are held; the attitude-dependent torques
 are re-evaluated at each RK4 stage. The field and orbit are evaluated once per step, at its end.
+
+That RK4 step and (circular orbit, centred dipole) that environment update run in the compiled
+kernel when it can be had (:mod:`.plant_kernel`, ``FPRIME_LITE_PLANT``): the same floats as this
+module's Python path, which is the reference.
 """
 
 from __future__ import annotations
 
 import math
 
-from detumble.sim import frames
+from detumble.sim import frames, plant_kernel
 from detumble.sim.attitude import RigidBody, State
 from detumble.sim.coils import CoilSet, TorqueRods
 from detumble.sim.field import DipoleField, FieldAlongOrbit, OrbitConstantField, WmmField
@@ -63,10 +67,13 @@ def build_field(sc: Scenario, orbit) -> FieldAlongOrbit | None:
 class Plant:
     """One simulated spacecraft built from a :class:`~detumble.sim.scenario.Scenario`.
 
-    ``seed`` (default: the scenario's) seeds the sensor noise streams.
+    ``seed`` (default: the scenario's) seeds the sensor noise streams. ``implementation`` is
+    ``auto``, ``python`` or ``compiled`` (default: ``$FPRIME_LITE_PLANT``, else ``auto``): whether the
+    RK4 step and the environment run in the compiled kernel (:mod:`.plant_kernel`; the same floats)
+    or in the pure-Python reference. :attr:`implementation` says which one this plant got.
     """
 
-    def __init__(self, scenario: Scenario, seed: int | None = None) -> None:
+    def __init__(self, scenario: Scenario, seed: int | None = None, implementation: str | None = None) -> None:
         sc = scenario
         self.scenario = sc
         self.seed = sc.seed if seed is None else seed
@@ -79,6 +86,16 @@ class Plant:
         self.body = RigidBody(inertia, sc.spacecraft.wheel_momentum_nms)
         self.orbit = build_orbit(sc)
         self.field = build_field(sc, self.orbit)
+        kernel = plant_kernel.kernel_for(self.body, self.orbit, self.field, implementation)
+        if rw:
+            kernel = None  # the wheels' integrator has no compiled twin: this plant is the Python one
+        #: ``"compiled"`` when the RK4 step (and the environment, where it is the circular orbit and
+        #: the centred dipole) runs in the compiled kernel, ``"python"`` for the reference
+        self.implementation = "python" if kernel is None else "compiled"
+        self._step_env = self.body.step_env if kernel is None else kernel.step_env
+        with_env = kernel is not None and kernel.has_environment
+        self._kernel_environment = kernel.environment if with_env else None
+        self._kernel_step = kernel.step if with_env else None
         if sc.spacecraft.actuator_type == "rods":
             self.actuators: CoilSet | TorqueRods = TorqueRods(sc.spacecraft.rods_max_dipole_am2)
         else:
@@ -127,6 +144,10 @@ class Plant:
 
     def _update_environment(self) -> None:
         t = self._t_ns / 1e9
+        if self._kernel_environment is not None:
+            self._r_N, self._r_hat_N, self._b_N = self._kernel_environment(t)
+            self._gg = self.orbit.gg_coeff if self._gravity_gradient else 0.0  # constant on a circular orbit
+            return
         r = self.orbit.position_N(t)
         self._r_N = r
         rn = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
@@ -155,24 +176,35 @@ class Plant:
         m_coils = self.actuators.advance(dt)
         res = self.residual_dipole_B
         m_tot = (m_coils[0] + res[0], m_coils[1] + res[1], m_coils[2] + res[2])
-        n_sub = self.substeps
-        wheels = self.wheels
-        if wheels is None:
-            if n_sub == 1:
-                s1 = self.body.step_env(s0, dt, m_tot, b0_N, self._gg, self._r_hat_N)
-            else:
-                s1, h = s0, dt / n_sub
-                for _ in range(n_sub):
-                    s1 = self.body.step_env(s1, h, m_tot, b0_N, self._gg, self._r_hat_N)
+        kernel_step = self._kernel_step
+        if kernel_step is not None and self.substeps == 1:
+            # the compiled kernel: step_env, then the environment at t1 (_update_environment's floats;
+            # the gravity-gradient coefficient is constant on a circular orbit)
+            s1, self._r_N, self._r_hat_N, self._b_N = kernel_step(s0, dt, m_tot, b0_N, self._gg, self._r_hat_N,
+                                                                  t1 / 1e9)
+            self._state = s1
+            self._t_ns = t1
         else:
-            u = wheels.motor_torques(dt, s0[4:7])
-            s1, hw, h = s0, wheels.h, dt / n_sub
-            for _ in range(n_sub):
-                s1, hw = step_with_wheels(self.body, s1, hw, u, wheels, h, m_tot, b0_N, self._gg, self._r_hat_N)
-            wheels.h = hw
-        self._state = s1
-        self._t_ns = t1
-        self._update_environment()
+            n_sub = self.substeps
+            wheels = self.wheels
+            if wheels is None:
+                step_env = self._step_env  # RigidBody.step_env, or the kernel's (the same floats)
+                if n_sub == 1:
+                    s1 = step_env(s0, dt, m_tot, b0_N, self._gg, self._r_hat_N)
+                else:
+                    s1, h = s0, dt / n_sub
+                    for _ in range(n_sub):
+                        s1 = step_env(s1, h, m_tot, b0_N, self._gg, self._r_hat_N)
+            else:
+                u = wheels.motor_torques(dt, s0[4:7])
+                s1, hw, h = s0, wheels.h, dt / n_sub
+                for _ in range(n_sub):
+                    s1, hw = step_with_wheels(self.body, s1, hw, u, wheels, h, m_tot, b0_N, self._gg,
+                                              self._r_hat_N)
+                wheels.h = hw
+            self._state = s1
+            self._t_ns = t1
+            self._update_environment()
         # The sensors' samples due in (t0, t1] are only recorded here; each is computed when read.
         if self._mag_samples:
             mag = self.magnetometer

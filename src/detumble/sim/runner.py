@@ -23,7 +23,7 @@ import tempfile
 import time
 from dataclasses import dataclass
 
-from detumble.sim import frames
+from detumble.sim import frames, plant_kernel
 from detumble.sim.coursework_laws import REPORT_CROSS_PRODUCT_GAIN, BetaPdLaw, CrossProductLaw, WheelsPdLaw
 from detumble.sim.laws import BangBangLaw, BdotLaw, KoptLaw, NoLaw, clip_to_limits, kopt_gain
 from detumble.sim.plant import Plant
@@ -111,18 +111,20 @@ def _full_state_command(ctl, plant: Plant, b_B, t_read: float) -> None:
 
 
 def run(scenario: Scenario, law: str | None = None, gain: float | None = None, duration_s: float | None = None,
-        seed: int | None = None, *, plant: Plant | None = None, should_stop=None) -> RunResult:
+        seed: int | None = None, *, plant: Plant | None = None, should_stop=None,
+        implementation: str | None = None) -> RunResult:
     """Fly ``scenario`` with a law (default: the scenario's ``control.law``); return summary + samples.
 
     ``plant``: one already built from ``scenario`` (a campaign reads it back first);
-    ``should_stop()``: polled once per recorded sample, ends the run early when true.
+    ``should_stop()``: polled once per recorded sample, ends the run early when true;
+    ``implementation``: the plant's (``auto``, ``python``, ``compiled``; see :mod:`.plant_kernel`).
     """
     sc = scenario
     ctrl = sc.control
     law_name = law if law is not None else ctrl.law
     gain = gain if gain is not None else ctrl.gain
     duration = sc.duration_s if duration_s is None else duration_s
-    plant = Plant(sc, seed) if plant is None else plant
+    plant = Plant(sc, seed, implementation) if plant is None else plant
     ctl = make_law(law_name, plant, gain)
     dt = sc.dynamics_step_s
     n_steps = int(round(duration / dt))
@@ -185,6 +187,7 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
         "sim_seconds": plant.t,
         "wall_seconds": wall,
         "real_time_factor": plant.t / wall if wall > 0 else None,  # the key fprime-lite run writes
+        "plant_implementation": plant.implementation,  # compiled kernel or pure-Python reference (same floats)
         "initial_rate_deg_s": rows[0][4],
         "final_rate_deg_s": plant.rate_deg_s,
         "time_below_1_deg_s": t_below,
@@ -247,6 +250,9 @@ def build_parser(prog: str = "python -m detumble.sim") -> argparse.ArgumentParse
     p.add_argument("--out", required=True, metavar="DIR", help="output folder for summary.json and rate.csv")
     p.add_argument("--duration", type=float, default=None, metavar="S", help="simulated seconds (default: scenario)")
     p.add_argument("--seed", type=int, default=None, help="noise / random-rate seed (default: scenario)")
+    p.add_argument("--plant", choices=plant_kernel.IMPLEMENTATIONS, default=None,
+                   help="plant implementation: compiled kernel, pure-Python reference, or auto (default: "
+                        "$FPRIME_LITE_PLANT, else auto); both give the same floats")
     p.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE",
                    help="override one scenario value, e.g. sensors.magnetometer.noise_std_gauss=0 (repeatable)")
     return p
@@ -271,18 +277,24 @@ def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim") ->
         return 2
     try:
         sc = load_scenario(name, seed=args.seed, settings=args.set)
-        result = run(sc, law=args.law, gain=args.gain, duration_s=args.duration)
+        result = run(sc, law=args.law, gain=args.gain, duration_s=args.duration, implementation=args.plant)
         write_outputs(result, args.out)
-    except (ScenarioError, LawError) as exc:
+    except (ScenarioError, LawError, plant_kernel.KernelUnavailableError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except (ImportError, OSError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
+    except ValueError as exc:  # a bad FPRIME_LITE_PLANT
+        if plant_kernel.ENV_VAR not in str(exc):
+            raise
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
     s = result.summary
     below = s["time_below_1_deg_s"]
     print(f"{s['scenario']}: law {s['law']}, {s['sim_seconds']:.0f} s simulated in {s['wall_seconds']:.1f} s "
-          f"({s['real_time_factor']:.0f}x real time); final rate {s['final_rate_deg_s']:.3f} deg/s; "
+          f"({s['real_time_factor']:.0f}x real time, {s['plant_implementation']} plant); "
+          f"final rate {s['final_rate_deg_s']:.3f} deg/s; "
           f"|w| < 1 deg/s at {'never' if below is None else f'{below:.1f} s'}; wrote {args.out}")
     return 0
 

@@ -22,8 +22,10 @@ import math
 import time
 
 from Basilisk.architecture import messaging, sysModel
-from Basilisk.simulation import MtbEffector, magneticFieldCenteredDipole, planetEphemeris, spacecraft
+from Basilisk.simulation import MtbEffector, magneticFieldCenteredDipole, spacecraft
 from Basilisk.utilities import RigidBodyKinematics, SimulationBaseClass, macros, orbitalMotion, simIncludeGravBody
+
+from detumble.sitl.basilisk_parts import rotating_earth
 
 MU_EARTH = 3.986004415e14          # m^3/s^2
 R_EARTH = 6378136.6                # m
@@ -95,17 +97,7 @@ def run(duration_s: float, step_s: float) -> dict:
     w0 = math.radians(30.0)
     sc.hub.omega_BN_BInit = [[w0 * AXIS[0]], [w0 * AXIS[1]], [w0 * AXIS[2]]]
 
-    # The Earth's rotation: a planet state whose J20002Pfix turns at EARTH_RATE from angle 0. Its
-    # heliocentric "orbit" is a 1 m circle so that the planet stays at the origin for the field.
-    ephemeris = planetEphemeris.PlanetEphemeris()
-    ephemeris.setPlanetNames(planetEphemeris.StringVector(["earth"]))
-    here = planetEphemeris.ClassicElements()
-    here.a, here.e, here.i, here.Omega, here.omega, here.f = 1.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    ephemeris.planetElements = planetEphemeris.classicElementVector([here])
-    ephemeris.rightAscension = planetEphemeris.DoubleVector([0.0])
-    ephemeris.declination = planetEphemeris.DoubleVector([math.pi / 2])
-    ephemeris.lst0 = planetEphemeris.DoubleVector([0.0])
-    ephemeris.rotRate = planetEphemeris.DoubleVector([EARTH_RATE])
+    ephemeris = rotating_earth(0.0, EARTH_RATE)  # the Earth's rotation angle 0 at t = 0
 
     field = magneticFieldCenteredDipole.MagneticFieldCenteredDipole()
     field.g10, field.g11, field.h11 = -30926e-9, -2318e-9, 5817e-9

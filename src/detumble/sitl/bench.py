@@ -77,6 +77,7 @@ def measure_deployment(topology, duration_s: float | None = None, chunks: int | 
             d / p for d, p in zip(deployment_us, plant_us, strict=True)),
         "pieces_us_per_tick": {"deployment": deployment_us, "plant_only": plant_us},
         "final_rate_deg_s": spacecraft.truth().rate_deg_s,
+        "plant_implementation": spacecraft.plant.implementation,  # both sides' (detumble.sim.plant_kernel)
     }
 
 
@@ -92,6 +93,7 @@ def _rows(d: dict) -> list[tuple[str, str, str]]:
         ("per 50 Hz tick, medians",
          f"{d['deployment_us_per_tick_median']:.1f} µs / {d['plant_only_us_per_tick_median']:.1f} µs", ""),
         (f"median of the {d['chunks']} pieces' ratios", f"{d['tick_cost_ratio_median_of_pieces']:.2f}", ""),
+        ("plant (deployment and plant-only alike)", d.get("plant_implementation", "python"), ""),
     ]
 
 

@@ -43,3 +43,53 @@ def test_a_short_side_by_side_run_reports_every_kind_and_consistent_ratios():
     # 20 s is far from detumbled: neither side reports |w| < 1 deg/s yet
     assert d["case_a_time_below_1_deg_s"] == {"basilisk": None, "fprime_lite": None}
     assert len(bench_basilisk.BASILISK_PIECE.rows(d)) == 3
+
+
+def test_cases_are_interleaved_round_by_round_and_ratios_are_quotients(monkeypatch):
+    """PERF-BSK-003: measure_cases flies every kind of every case once per round, in the same order
+    each round, and forms each ratio from the fastest (and the median) rounds of its two kinds."""
+    calls = []
+    factor = {"basilisk_adcs_c_50hz": 1000.0, "basilisk_adcs_python_50hz": 500.0, "fprime_lite_adcs_ref_50hz": 100.0,
+              "basilisk_coursework_100hz": 80.0, "fprime_lite_coursework_100hz": 60.0}
+
+    def fake_child(argv):
+        text = " ".join(argv)
+        if "basilisk_adcs" in text:
+            kind = "basilisk_adcs_c_50hz" if argv[-1] == "c" else "basilisk_adcs_python_50hz"
+        elif "basilisk_coursework" in text:
+            kind = "basilisk_coursework_100hz"
+        else:
+            kind = "fprime_lite_adcs_ref_50hz" if "adcs_ref" in text else "fprime_lite_coursework_100hz"
+        calls.append(kind)
+        scale = 1.0 + 0.1 * calls.count(kind)  # a later round of a kind is faster
+        return {"sim_seconds": 10.0, "real_time_factor": factor[kind] * scale, "slew1_settle_s": 1.0}
+
+    monkeypatch.setattr(bench_basilisk, "_child", fake_child)
+    d = bench_basilisk.measure_cases(["adcs_ref", "coursework"], duration_s=10.0, rounds=2)
+    one_round = ["basilisk_adcs_c_50hz", "basilisk_adcs_python_50hz", "fprime_lite_adcs_ref_50hz",
+                 "basilisk_coursework_100hz", "fprime_lite_coursework_100hz"]
+    assert calls == one_round * 2
+    a, c = d["adcs_ref"], d["coursework"]
+    assert a["adcs_ref_over_basilisk_c"] == pytest.approx((100.0 * 1.2) / (1000.0 * 1.2))
+    assert a["median_adcs_ref_over_basilisk_python"] == pytest.approx((100.0 * 1.15) / (500.0 * 1.15))
+    assert c["coursework_over_basilisk"] == pytest.approx(60.0 / 80.0)
+    assert set(a["plausibility"]) == {"basilisk_adcs_c_50hz", "basilisk_adcs_python_50hz", "fprime_lite_adcs_ref_50hz"}
+    assert a["plausibility"]["fprime_lite_adcs_ref_50hz"] == {"slew1_settle_s": 1.0}
+    rows = bench_basilisk.BASILISK_PIECE.rows(a)  # two ratios, three plausibility lines
+    assert len(rows) == 5 and "0.10" in rows[0][1] and "slew1_settle_s 1" in rows[4][1]
+
+
+def test_the_bench_piece_picks_the_case_of_the_deployment_it_is_given():
+    """PERF-BSK-005: adcs_ref's and coursework's own topologies fly their cases; any other
+    deployment is compared with Basilisk's case A (proves_ref)."""
+    deployments = REFERENCE.parents[1]
+    assert bench_basilisk.case_of(deployments / "adcs_ref" / "topology.yaml") == "adcs_ref"
+    assert bench_basilisk.case_of(deployments / "coursework" / "topology.yaml") == "coursework"
+    assert bench_basilisk.case_of(REFERENCE) == "proves_ref"
+    assert bench_basilisk.case_of("some/other/topology.yaml") == "proves_ref"
+
+
+def test_an_unknown_case_is_refused_with_the_choices():
+    """PERF-BSK-004: a case name that does not exist names the ones that do."""
+    with pytest.raises(ValueError, match="proves_ref, adcs_ref, coursework"):
+        bench_basilisk.measure_cases(["adcs"], duration_s=1.0, rounds=1)

@@ -1,0 +1,286 @@
+"""The compiled plant kernel: which plant implementation runs, and building the compiled one.
+
+The pure-Python plant (:mod:`.attitude`, :mod:`.orbit`, :mod:`.field`) is the reference. For the
+common case - no reaction wheels, a circular orbit and the centred dipole - :class:`~.plant.Plant`
+can hand its RK4 step and its environment update to ``plant_kernel.c``, a small CPython extension
+that repeats the reference's arithmetic operation for operation and gives the same floats, bit
+for bit (docs/decisions/0007-compiled-plant-kernel.md).
+
+Which one runs is chosen per plant (``Plant(..., implementation=...)``) or by the environment
+variable ``FPRIME_LITE_PLANT``:
+
+* ``auto`` (default): the compiled kernel when it can be had, else the pure-Python plant, with a
+  note on the ``detumble.sim.plant_kernel`` logger (level INFO) saying why;
+* ``python``: always the pure-Python reference;
+* ``compiled``: the compiled kernel or an error (:class:`KernelUnavailableError`) saying why not.
+
+The kernel is compiled at its first use on a machine with the C compiler Python was built with
+(``sysconfig``'s ``LDSHARED``, or ``$CC``) and Python's headers, into a cache folder
+(``$FPRIME_LITE_CACHE``, else ``$XDG_CACHE_HOME/fprime-lite``, else ``~/.cache/fprime-lite``),
+once per source, Python version and platform (about 0.3 s). Before a process uses it, the loaded
+kernel must reproduce the reference's floats exactly on a check trajectory; otherwise the pure-Python
+plant is used. Nothing here is needed for correctness: without a compiler everything runs, slower.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.machinery
+import importlib.util
+import logging
+import math
+import os
+import shlex
+import shutil
+import subprocess
+import sys
+import sysconfig
+import tempfile
+import time
+from dataclasses import dataclass
+from importlib import resources
+from types import ModuleType
+
+ENV_VAR = "FPRIME_LITE_PLANT"
+CACHE_ENV_VAR = "FPRIME_LITE_CACHE"
+IMPLEMENTATIONS = ("auto", "python", "compiled")
+#: IEEE arithmetic as the interpreter does it: no fused multiply-adds, no sin+cos merged into sincos
+COMPILE_FLAGS = ("-O2", "-fPIC", "-ffp-contract=off", "-fno-fast-math", "-fno-builtin-sin", "-fno-builtin-cos")
+_SOURCE = "plant_kernel.c"
+_MODULE = "detumble.sim._plant_kernel"
+_BUILD_TIMEOUT_S = 120.0
+
+log = logging.getLogger(__name__)
+
+
+class KernelUnavailableError(RuntimeError):
+    """``FPRIME_LITE_PLANT=compiled`` (or ``implementation="compiled"``) and the kernel cannot be had."""
+
+
+class _NoToolchainError(OSError):
+    """No C compiler or no Python headers on this machine."""
+
+
+@dataclass(frozen=True)
+class KernelStatus:
+    """What :func:`load` found: the module (or None) and, without it, why."""
+
+    module: ModuleType | None
+    reason: str  # "" when the module loaded and passed its check
+    path: str | None = None
+    build_seconds: float | None = None  # set when this process compiled it
+    #: "ok", "no toolchain" (no compiler or headers), "build failed", "import failed" or "refused"
+    #: (built and loaded, but its floats differ from the reference's)
+    outcome: str = "ok"
+
+
+_status: KernelStatus | None = None
+
+
+def requested(implementation: str | None = None) -> str:
+    """The implementation asked for: ``implementation``, else ``$FPRIME_LITE_PLANT``, else ``auto``."""
+    source = "implementation"
+    if implementation is None:
+        implementation = os.environ.get(ENV_VAR, "").strip().lower() or "auto"
+        source = ENV_VAR
+    if implementation not in IMPLEMENTATIONS:
+        raise ValueError(f"{source} must be one of {', '.join(IMPLEMENTATIONS)}, got {implementation!r} "
+                         f"(python: the pure-Python reference plant; compiled: the C kernel; auto: the "
+                         f"kernel when it can be built)")
+    return implementation
+
+
+def cache_dir() -> str:
+    """Where compiled kernels are kept."""
+    path = os.environ.get(CACHE_ENV_VAR)
+    if path:
+        return path
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "fprime-lite")
+
+
+def _source_bytes() -> bytes:
+    return resources.files("detumble.sim").joinpath(_SOURCE).read_bytes()
+
+
+def _ext_suffix() -> str:
+    return sysconfig.get_config_var("EXT_SUFFIX") or importlib.machinery.EXTENSION_SUFFIXES[0]
+
+
+def source_key(source: bytes | None = None) -> str:
+    """Names one build: the C source, the flags, this Python and this platform."""
+    h = hashlib.sha256(_source_bytes() if source is None else source)
+    h.update(" ".join(COMPILE_FLAGS).encode())
+    h.update(sys.version.encode())
+    h.update(_ext_suffix().encode())
+    h.update(sysconfig.get_platform().encode())
+    return h.hexdigest()[:16]
+
+
+def _compile_command(src: str, out: str, key: str) -> list[str]:
+    """The compile-and-link command, from how this Python builds extensions (``$CC`` replaces the compiler)."""
+    ldshared = sysconfig.get_config_var("LDSHARED")
+    include = sysconfig.get_paths().get("include")
+    if not ldshared:
+        raise _NoToolchainError("this Python does not say how it links extensions (sysconfig LDSHARED)")
+    if not include or not os.path.exists(os.path.join(include, "Python.h")):
+        raise _NoToolchainError(f"Python's C headers are not installed (no Python.h in {include}; on Debian: "
+                      f"apt-get install python3-dev)")
+    cmd = shlex.split(ldshared)
+    cc = os.environ.get("CC")
+    if cc:
+        cmd = shlex.split(cc) + cmd[1:]
+    if shutil.which(cmd[0]) is None:
+        raise _NoToolchainError(f"no C compiler: {cmd[0]!r} is not on PATH")
+    return [*cmd, *COMPILE_FLAGS, f'-DFL_SOURCE_KEY="{key}"', "-I", include, src, "-o", out, "-lm"]
+
+
+def _build(path: str, key: str) -> float:
+    """Compile the kernel to ``path`` (atomically: concurrent processes each write their own file)."""
+    folder = os.path.dirname(path)
+    os.makedirs(folder, exist_ok=True)
+    t0 = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix=".build-", dir=folder) as tmp:
+        src = os.path.join(tmp, _SOURCE)
+        with open(src, "wb") as fh:
+            fh.write(_source_bytes())
+        out = os.path.join(tmp, "kernel" + _ext_suffix())
+        cmd = _compile_command(src, out, key)
+        try:
+            done = subprocess.run(cmd, capture_output=True, text=True, timeout=_BUILD_TIMEOUT_S, check=False)
+        except subprocess.TimeoutExpired:
+            raise OSError(f"the C compiler did not finish in {_BUILD_TIMEOUT_S:.0f} s") from None
+        if done.returncode != 0 or not os.path.exists(out):
+            lines = (done.stderr or done.stdout or "").strip().splitlines()
+            raise OSError(f"{cmd[0]} failed (exit {done.returncode}): {lines[-1] if lines else 'no output'}")
+        os.replace(out, path)
+    return time.perf_counter() - t0
+
+
+def _import(path: str) -> ModuleType:
+    loader = importlib.machinery.ExtensionFileLoader(_MODULE, path)
+    spec = importlib.util.spec_from_file_location(_MODULE, path, loader=loader)
+    assert spec is not None  # a path with a loader always gives a spec
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
+
+
+def mismatch(module: ModuleType) -> str | None:
+    """Where the kernel's floats differ from the reference's on a check case, or None when they agree.
+
+    A full inertia tensor with products of inertia, a wheel momentum, gravity gradient, a J2 orbit
+    and a turned Earth: every term of both functions contributes.
+    """
+    from detumble.sim.attitude import RigidBody
+    from detumble.sim.field import DipoleField
+    from detumble.sim.orbit import CircularOrbit
+
+    body = RigidBody(((2.0e-3, 1.0e-4, -5.0e-5), (1.0e-4, 3.0e-3, 8.0e-5), (-5.0e-5, 8.0e-5, 4.0e-3)),
+                     (1.0e-5, -2.0e-5, 3.0e-5))
+    orbit = CircularOrbit(420e3, math.radians(51.6), 0.5, 0.1, j2=1.0826267e-3)
+    field = DipoleField(theta0_rad=0.3)
+    kernel = module.Kernel(body._j, body._jinv, body.wheel_momentum_B, environment_parameters(orbit, field))
+    s: tuple = (0.8, 0.2, -0.4, 0.4, 0.3, -0.2, 0.5)
+    for k in range(60):
+        t = 0.05 * k + 123.4
+        r = orbit.position_N(t)
+        rn = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
+        want_env = (r, (r[0] / rn, r[1] / rn, r[2] / rn), field.b_N(t, r))
+        got_env = kernel.environment(t)
+        if got_env != want_env:
+            return f"environment at t = {t} s: {got_env} != {want_env}"
+        args = (0.05, (0.02, -0.05, 0.01), want_env[2], 3.8e-6, want_env[1])
+        want = body.step_env(s, *args)
+        got = kernel.step_env(s, *args)
+        if got != want:
+            return f"step {k}: {got} != {want}"
+        s = want
+    return None
+
+
+def load() -> KernelStatus:
+    """The compiled kernel for this process: built at first use, imported and checked once."""
+    global _status
+    if _status is None:
+        _status = _load()
+        if _status.module is None:
+            log.info("compiled plant kernel unavailable (%s): using the pure-Python plant", _status.reason)
+    return _status
+
+
+def _load() -> KernelStatus:
+    try:
+        key = source_key()
+        path = os.path.join(cache_dir(), f"plant_kernel-{key}{_ext_suffix()}")
+        built = None
+        if not os.path.exists(path):
+            built = _build(path, key)
+    except _NoToolchainError as exc:
+        return KernelStatus(None, str(exc), outcome="no toolchain")
+    except OSError as exc:
+        return KernelStatus(None, str(exc) or type(exc).__name__, outcome="build failed")
+    try:
+        module = _import(path)
+    except (OSError, ImportError) as exc:
+        return KernelStatus(None, f"cannot import {path}: {exc} (remove it to rebuild)", path,
+                            outcome="import failed")
+    if getattr(module, "SOURCE_KEY", None) != key:
+        return KernelStatus(None, f"{path} was not built from this source (remove it to rebuild)", path,
+                            outcome="import failed")
+    problem = mismatch(module)
+    if problem is not None:
+        return KernelStatus(None, f"the compiled kernel does not reproduce the Python reference here ({problem})",
+                            path, outcome="refused")
+    return KernelStatus(module, "", path, built)
+
+
+def environment_parameters(orbit, field_model) -> tuple[float, ...]:
+    """The kernel's environment constants for a :class:`~.orbit.CircularOrbit` and a
+    :class:`~.field.DipoleField` (the order ``plant_kernel.c`` reads them in)."""
+    o, f = orbit, field_model
+    return (o.radius_m, o.arg_latitude0_rad, o.arg_latitude_rate, o.raan0_rad, o.raan_rate, o._ci, o._si,
+            f.theta0_rad, f.earth_rotation_rate, f._dx, f._dy, f._dz)
+
+
+def kernel_for(body, orbit, field, implementation: str | None = None):
+    """A compiled kernel for one plant's body (and its environment when the orbit is circular and the
+    field the centred dipole evaluated at every step), or None for the pure-Python plant.
+
+    ``field`` is the plant's :class:`~.field.FieldAlongOrbit` (or None). Raises
+    :class:`KernelUnavailableError` when ``compiled`` was asked for and the kernel cannot be had.
+    """
+    from detumble.sim.field import DipoleField, FieldAlongOrbit
+    from detumble.sim.orbit import CircularOrbit
+
+    mode = requested(implementation)
+    if mode == "python":
+        return None
+    status = load()
+    if status.module is None:
+        if mode == "compiled":
+            raise KernelUnavailableError(f"{ENV_VAR}=compiled but the compiled plant kernel is unavailable: "
+                                    f"{status.reason}")
+        return None
+    env = None
+    if (type(orbit) is CircularOrbit and type(field) is FieldAlongOrbit and field.table_step_s is None
+            and type(field.model) is DipoleField):
+        env = environment_parameters(orbit, field.model)
+    return status.module.Kernel(body._j, body._jinv, body.wheel_momentum_B, env)
+
+
+def describe(implementation: str | None = None) -> str:
+    """One line for reports: which plant implementation a new plant gets, and why."""
+    mode = requested(implementation)
+    if mode == "python":
+        return f"python ({ENV_VAR}=python)" if implementation is None else "python (asked for)"
+    status = load()
+    if status.module is not None:
+        return "compiled"
+    return f"python (compiled kernel unavailable: {status.reason})"
+
+
+def _reset_for_tests() -> None:
+    """Forget this process's kernel (tests that change the cache folder or the compiler)."""
+    global _status
+    _status = None
