@@ -30,12 +30,14 @@ import math
 from fprime_lite import (F64, U32, Channel, CmdResponse, Event, OutputPort, Param, PassiveComponent, Sched,
                          Severity, sync_command, sync_input)
 
-from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, ControlAutonomy, ControlMode,
-                                                ModeChangeReason, PointingActuator, Quaternion, SpinLaw, Vector3,
-                                                WheelValues)
+from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, AttitudeEstimator, ControlAutonomy,
+                                                ControlMode, ModeChangeReason, PointingActuator, Quaternion, RateSource,
+                                                SpinLaw, Vector3, WheelValues)
 from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFieldGet, StartMagnetorquer,
                                        StopMagnetorquer, Success, WheelEnableSet, WheelStateGet, WheelTorqueSet)
 from detumble.control.attitude_filter import AttitudeFilter
+from detumble.control.mekf import Mekf
+from detumble.control.rate_observer import RateObserver
 from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
 from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
 from detumble.control.pointing import ErrorIntegrator, pd_torque
@@ -52,6 +54,7 @@ log = logging.getLogger("detumble.components.attitude_controller")
 BORESIGHT_B = (0.0, 0.0, 1.0)
 _TESLA_PER_GAUSS = 1e-4
 _DEG = math.pi / 180.0
+_ARCSEC = _DEG / 3600.0
 _ZERO = (0.0, 0.0, 0.0)
 
 
@@ -161,6 +164,23 @@ class AttitudeController(PassiveComponent):
     Y_COIL_MAX_DIPOLE = Param(F64, default=96 * 0.053 * 0.045 * 3.3 / 13.0)  # A·m² per Y coil
     Z_COIL_MAX_DIPOLE = Param(F64, default=153 * math.pi * (0.05755 / 2) ** 2 * 3.3 / 150.7)  # A·m², Z−
     CYCLE_TICKS = Param(U32, default=5)  # run ticks per control cycle (coils off on the last)
+    # attitude estimation and the derivative term's rate (docs/studies/attitude_knowledge.md)
+    ESTIMATOR = Param(AttitudeEstimator, default=AttitudeEstimator.MEKF)
+    #: deg/s, 1σ per axis of one gyro reading: LSM6DSO 0.0038 °/s/√Hz over 52 Hz, with the 70 mdps LSB/√12
+    GYRO_NOISE = Param(F64, default=math.hypot(0.0038 * math.sqrt(52.0), 0.070 / math.sqrt(12.0)),
+                       low=1e-6, high=10.0, finite=True)
+    GYRO_BIAS_WALK = Param(F64, default=1.0e-4, low=0.0, high=1.0, finite=True)  # deg/s/√s, MEKF bias random walk
+    GYRO_BIAS_SIGMA0 = Param(F64, default=1.0, low=1e-6, high=10.0, finite=True)  # deg/s, bias 1σ before any fix
+    TRACKER_NOISE_CROSS = Param(F64, default=10.0, low=1e-3, high=3600.0, finite=True)  # arcsec 1σ across boresight
+    TRACKER_NOISE_ABOUT = Param(F64, default=70.0, low=1e-3, high=3600.0, finite=True)  # arcsec 1σ about boresight
+    RATE_SOURCE = Param(RateSource, default=RateSource.OBSERVER)
+    RATE_OBSERVER_GAIN = Param(F64, default=0.1, low=1e-4, high=100.0, finite=True)  # 1/s: pull toward the gyro
+    INERTIA_XX = Param(F64, default=2.20e-3, low=1e-6, high=10.0, finite=True)  # kg·m², the observer's model
+    INERTIA_YY = Param(F64, default=2.15e-3, low=1e-6, high=10.0, finite=True)  # kg·m²
+    INERTIA_ZZ = Param(F64, default=2.05e-3, low=1e-6, high=10.0, finite=True)  # kg·m²
+    INERTIA_XY = Param(F64, default=2.0e-5, low=-10.0, high=10.0, finite=True)  # kg·m², product (matrix element)
+    INERTIA_XZ = Param(F64, default=-1.5e-5, low=-10.0, high=10.0, finite=True)  # kg·m²
+    INERTIA_YZ = Param(F64, default=1.0e-5, low=-10.0, high=10.0, finite=True)  # kg·m²
 
     # --- ports ---------------------------------------------------------------------------------
 
@@ -206,6 +226,12 @@ class AttitudeController(PassiveComponent):
     DipoleMomentRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve the B-dot dipole moment.",
                                         throttle=5)
     WheelCommandFailed = Event(Severity.WARNING_LO, "Wheel {} did not accept its command", wheel=U32, throttle=5)
+    EstimatorSelected = Event(Severity.ACTIVITY_HI, "Attitude estimator {} (attitude and bias carried over)",
+                              estimator=AttitudeEstimator)
+    AttitudeReinitialised = Event(Severity.WARNING_LO, "MEKF attitude re-initialised on the star tracker (residual or "
+                                  "3-sigma above 5 deg)", throttle=5)
+    InertiaModelRefused = Event(Severity.WARNING_LO, "INERTIA_* parameters do not form a positive definite matrix: "
+                                "the rate observer keeps its previous model", throttle=1)
     WheelLimitReached = Event(Severity.WARNING_LO, "A wheel torque or momentum limit cut the requested torque",
                               throttle=5)
 
@@ -225,6 +251,7 @@ class AttitudeController(PassiveComponent):
     TargetQuaternion = Channel(Quaternion)
     GyroBiasEstimate = Channel(Vector3)  # deg/s, B
     AttitudeValid = Channel(U32)  # 1 while the star tracker's attitude is recent
+    AttitudeSigma3 = Channel(F64, format="{.5f}")  # deg, MEKF 3·√(trace P_θθ) (not written with COMPLEMENTARY)
 
     # --- construction --------------------------------------------------------------------------
 
@@ -236,7 +263,11 @@ class AttitudeController(PassiveComponent):
         self.wheel_axes = tuple((float(a[0]), float(a[1]), float(a[2])) for a in wheel_axes)
         self.mode = ControlMode.IDLE
         self.autonomy = ControlAutonomy.MANUAL
-        self.filter = AttitudeFilter()
+        self.filter: AttitudeFilter | Mekf = self._make_filter(AttitudeEstimator.MEKF)
+        self.estimator = AttitudeEstimator.MEKF
+        self.rate_observer = RateObserver(((2.20e-3, 2.0e-5, -1.5e-5), (2.0e-5, 2.15e-3, 1.0e-5),
+                                           (-1.5e-5, 1.0e-5, 2.05e-3)), 0.1)
+        self.pd_rate: tuple[float, float, float] | None = None  # rad/s, B: the rate the wheel PD's D term uses
         self.integrator = ErrorIntegrator(math.radians(1.0), 1.0e-5)
         self.target: tuple[float, float, float, float] | None = None
         self.seed_damper = SeedKaneDamper(1.0e-4, 2.0e-4)
@@ -382,10 +413,37 @@ class AttitudeController(PassiveComponent):
 
     # --- sensing -------------------------------------------------------------------------------
 
+    def _make_filter(self, which):
+        if which == AttitudeEstimator.MEKF:
+            return Mekf(math.radians(self.GYRO_NOISE.value), math.radians(self.GYRO_BIAS_WALK.value),
+                        self.TRACKER_NOISE_CROSS.value * _ARCSEC, self.TRACKER_NOISE_ABOUT.value * _ARCSEC,
+                        BORESIGHT_B, math.radians(self.GYRO_BIAS_SIGMA0.value))
+        return AttitudeFilter(self.FILTER_KP.value, self.FILTER_KI.value)
+
+    def _configure_filter(self) -> None:
+        """Follow ESTIMATOR (a switch keeps the attitude, bias and fix age) and the noise/gain parameters."""
+        which = self.ESTIMATOR.value
+        if which != self.estimator:
+            old, new = self.filter, self._make_filter(which)
+            new.q, new.bias, new.since_measurement_s = old.q, old.bias, old.since_measurement_s
+            if isinstance(new, Mekf) and new.q is not None:  # the new covariance: the tracker's noise, bias σ0
+                new._initialise_attitude(new.q, new.tracker_noise())
+            self.filter, self.estimator = new, which
+            self.EstimatorSelected(which)
+        f = self.filter
+        if isinstance(f, Mekf):
+            f.gyro_noise = math.radians(self.GYRO_NOISE.value)
+            f.bias_walk = math.radians(self.GYRO_BIAS_WALK.value)
+            f.tracker_cross = self.TRACKER_NOISE_CROSS.value * _ARCSEC
+            f.tracker_about = self.TRACKER_NOISE_ABOUT.value * _ARCSEC
+        else:
+            f.k_p = self.FILTER_KP.value
+            f.k_i = self.FILTER_KI.value
+
     def _sense(self, dt: float, now_us: int) -> None:
-        self.filter.k_p = self.FILTER_KP.value
-        self.filter.k_i = self.FILTER_KI.value
+        self._configure_filter()
         gyro = self._read_gyro()
+        n = 1
         if gyro is not None:
             self.GyroRetrievalFailed.clear_throttle()
             n = self._gyro_count + 1  # the mean over the cycle's ticks: the noise the D term sees drops by √n
@@ -404,8 +462,15 @@ class AttitudeController(PassiveComponent):
                 q_meas = quat_normalize((q.q0, q.q1, q.q2, q.q3))
                 age_s = (now_us - stamp_us) / 1e6
         if gyro is not None:
-            self.filter.update(gyro, dt, q_meas, age_s)
-            self.omega = self.filter.omega
+            f = self.filter
+            if isinstance(f, Mekf):
+                before = f.reinitialisations
+                f.update(gyro, dt, q_meas, age_s, samples=n)
+                if f.reinitialisations != before:
+                    self.AttitudeReinitialised()
+            else:
+                f.update(gyro, dt, q_meas, age_s)
+            self.omega = f.omega
         else:
             self.omega = None
         ok, field = self._read("magneticFieldGet")
@@ -419,6 +484,38 @@ class AttitudeController(PassiveComponent):
             self.MagneticFieldRetrievalFailed()
             self.b_tesla = None
         self.wheel_momenta = self._read_wheel_momenta() if self.wheel_count() else None
+        self._update_rate_observer(dt)
+
+    def _applied_torque(self):
+        """The body torque of the last cycle, N·m (B): the wheels' −Σ u_i g_i plus the coils' m × B over their duty."""
+        tx = ty = tz = 0.0
+        for u, g in zip(self.wheel_torques, self.wheel_axes, strict=False):  # () before the first command
+            tx, ty, tz = tx - u * g[0], ty - u * g[1], tz - u * g[2]
+        if self.b_tesla is not None:  # self.dipole: what the last cycle drove (zero when off)
+            mb = _cross(self.dipole, self.b_tesla)
+            d = self._duty()
+            tx, ty, tz = tx + mb[0] * d, ty + mb[1] * d, tz + mb[2] * d
+        return (tx, ty, tz)
+
+    def _update_rate_observer(self, dt: float) -> None:
+        """The derivative term's rate: the bias-corrected gyro, or the model-aided observer (RATE_SOURCE)."""
+        obs = self.rate_observer
+        if self.omega is None:
+            obs.reset()
+            self.pd_rate = None
+            return
+        xy, xz, yz = self.INERTIA_XY.value, self.INERTIA_XZ.value, self.INERTIA_YZ.value
+        try:
+            obs.set_model(((self.INERTIA_XX.value, xy, xz), (xy, self.INERTIA_YY.value, yz),
+                           (xz, yz, self.INERTIA_ZZ.value)), self.RATE_OBSERVER_GAIN.value)
+            self.InertiaModelRefused.clear_throttle()
+        except ValueError:  # not positive definite: keep the last good model, say so once per change
+            self.InertiaModelRefused()
+        h = _ZERO
+        if self.wheel_momenta is not None:
+            h = WheelAllocator(self.wheel_axes, 1.0, 1.0).body_momentum(self.wheel_momenta)
+        w = obs.update(self.omega, self._applied_torque(), h, dt)
+        self.pd_rate = w if self.RATE_SOURCE.value == RateSource.OBSERVER else self.omega
 
     def _read_gyro(self):
         ok, w = self._read("angularVelocityGet")
@@ -506,7 +603,8 @@ class AttitudeController(PassiveComponent):
             target = self.target
             assert target is not None  # _set_target set it
             if self._pointing_uses_wheels():
-                tau, qe = pd_torque(target, q, self.omega, self.K_P.value, self.K_D.value,
+                rate = self.pd_rate if self.pd_rate is not None else self.omega
+                tau, qe = pd_torque(target, q, rate, self.K_P.value, self.K_D.value,
                                     self.SLEW_RATE_LIMIT.value * _DEG)
                 self.integrator.window_rad = self.INTEGRAL_WINDOW.value * _DEG
                 ti = self.integrator.update(qe, dt, self.K_I.value)
@@ -618,6 +716,8 @@ class AttitudeController(PassiveComponent):
         b = self.filter.bias
         self.GyroBiasEstimate.write(Vector3([math.degrees(b[0]), math.degrees(b[1]), math.degrees(b[2])]))
         self.AttitudeValid.write(1 if self.attitude_valid else 0)
+        if isinstance(self.filter, Mekf) and self.filter.q is not None:
+            self.AttitudeSigma3.write(math.degrees(self.filter.attitude_sigma3_rad))
 
     # --- ports out -----------------------------------------------------------------------------
 

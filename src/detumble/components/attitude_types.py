@@ -12,6 +12,7 @@ from fprime_lite import F64, Array, FwEnum, PortType, Struct
 from detumble.components.types import Result
 
 __all__ = ["ControlMode", "ControlAutonomy", "SpinLaw", "PointingActuator", "ModeChangeReason",
+           "AttitudeEstimator", "RateSource",
            "Vector3", "Quaternion", "WheelValues", "AngularVelocity", "AngularVelocityGet", "MAX_WHEELS"]
 
 #: Wheel channels carry this many values (unused wheels read 0).
@@ -50,6 +51,22 @@ class PointingActuator(FwEnum, namespace="Components"):
     ANY = 0
     WHEELS = 1
     MAGNETORQUERS = 2
+
+
+class AttitudeEstimator(FwEnum, namespace="Components"):
+    """The attitude estimator: the complementary filter (gains FILTER_KP/KI) or the MEKF (noise from the
+    sensors' specifications)."""
+
+    COMPLEMENTARY = 0
+    MEKF = 1
+
+
+class RateSource(FwEnum, namespace="Components"):
+    """The body rate the wheel PD's derivative term uses: the bias-corrected gyro, or the model-aided
+    rate observer (``detumble.control.rate_observer``)."""
+
+    GYRO = 0
+    OBSERVER = 1
 
 
 class ModeChangeReason(FwEnum, namespace="Components"):

@@ -10,22 +10,18 @@ from __future__ import annotations
 
 from typing import Sequence
 
+from detumble.control.mat3 import inv3
+
 Vec3 = tuple[float, float, float]
 
 __all__ = ["WheelAllocator"]
 
 
 def _inv3(m):
-    a, b, c = m[0]
-    d, e, f = m[1]
-    g, h, i = m[2]
-    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
-    if abs(det) < 1e-12:
-        raise ValueError("the wheel axes do not span three dimensions; the body torque cannot be allocated")
-    s = 1.0 / det
-    return ((s * (e * i - f * h), s * (c * h - b * i), s * (b * f - c * e)),
-            (s * (f * g - d * i), s * (a * i - c * g), s * (c * d - a * f)),
-            (s * (d * h - e * g), s * (b * g - a * h), s * (a * e - b * d)))
+    try:
+        return inv3(m, 1e-12)
+    except ValueError:
+        raise ValueError("the wheel axes do not span three dimensions; the body torque cannot be allocated") from None
 
 
 class WheelAllocator:

@@ -167,6 +167,7 @@ class SimulatedSpacecraft:
         self._trace_next_ns: int | None = None
         self.steps_taken = 0
         self._attached: list[object] = []  # the schedulers this spacecraft is attached to
+        self._times: dict[tuple, Time] = {}  # time_of's latest results
         self._init_avionics(seed)
         self.sync()
 
@@ -239,7 +240,15 @@ class SimulatedSpacecraft:
     def time_of(self, t_ns: int) -> Time:
         """The F´ time (clock base and context) of plant time ``t_ns`` (ns since plant t = 0)."""
         c = self.clock
-        return Time.from_us(c.epoch_us + self.origin_us + t_ns // 1000, c.time_base, c.context)
+        # Sensors and wheels are read several times per sample instant: the few latest times are
+        # kept (a Time is immutable), keyed by everything they are made of.
+        key = (t_ns, self.origin_us, c.epoch_us, c.time_base, c.context)
+        t = self._times.get(key)
+        if t is None:
+            if len(self._times) >= 8:
+                self._times.clear()
+            t = self._times[key] = Time.from_us(c.epoch_us + self.origin_us + t_ns // 1000, c.time_base, c.context)
+        return t
 
     def now(self) -> Time:
         """The clock's present time as an F´ time."""

@@ -30,7 +30,7 @@ from fprime_lite.model.fw_ports import SPECIAL_PORTS
 from fprime_lite.model.params import BoundParam, Param, ParamValid
 from fprime_lite.model.ports import InputPortArray, InputPortDecl, OutputPort, OutputPortArray, bind_input_entries
 from fprime_lite.model.queues import MessageQueue
-from fprime_lite.model.telemetry import BoundChannel, Channel
+from fprime_lite.model.telemetry import BoundChannel, Channel, bind_channel
 from fprime_lite.model.time import Time
 from fprime_lite.model.types import _U32, String, deserialize_values, fit_utf8
 
@@ -427,7 +427,7 @@ class Component(metaclass=ComponentMeta):
             self._events[e.name] = event
         self._channels: dict[str, BoundChannel[Any]] = {}
         for c in spec.channels:
-            channel = BoundChannel(self, c, base_id + c.local_id)
+            channel = bind_channel(self, c, base_id + c.local_id)
             setattr(self, c.attr, channel)
             self._channels[c.name] = channel
         self._params: dict[str, BoundParam[Any]] = {}

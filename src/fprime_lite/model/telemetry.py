@@ -7,22 +7,34 @@ Declared as attributes of a component class::
 
 and written on an instance as ``self.State.write(value)``. An ``on change`` channel sends its first
 write and then only values that differ from the last one written.
+
+Serialised when downlinked: a write whose ``tlmOut`` connects straight to a channel store that
+declares :attr:`deferred_tlm_input` (TlmChan's ``TlmRecv``) hands the store the time stamp, the
+value and the type's packer instead of the packed bytes; the store packs the latest value when it
+downlinks it or when it is read. Only values that cannot change after the write travel this way:
+numbers, booleans, enums and strings as they are; structs whose members are all of those kinds
+or times, and arrays of numbers, as a tuple of their member values taken at the write (struct and
+array values are mutable Python objects). Other arrays, structs with struct or array members, and
+every write to any other receiver (a test harness, a tap, a custom component) are packed at write, so what such a receiver sees is
+F´'s ``Fw.Tlm`` call with the value's bytes.
 """
 
 from __future__ import annotations
 
 import builtins
+import operator
 
 from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from fprime_lite.model.errors import DeclarationError, check_member_name
 from fprime_lite.model.events import translate_format
-from fprime_lite.model.time import Time
-from fprime_lite.model.types import _F64, EnumType, FloatType, FwType, IntType, fw_type
+from fprime_lite.model.time import Time, TimeType
+from fprime_lite.model.types import (_F64, ArrayType, BoolType, EnumType, FloatType, FwType, IntType, StringType, StructType,
+                                     fw_type)
 
 _ZERO_TIME = Time()
 
-__all__ = ["Channel", "BoundChannel"]
+__all__ = ["Channel", "BoundChannel", "BoundSnapshotChannel", "bind_channel"]
 
 V = TypeVar("V")
 
@@ -109,7 +121,8 @@ class BoundChannel(Generic[V]):
     """A channel of one component instance."""
 
     __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
-                 "_valid_type", "_tlm_targets", "_tlm_calls", "_time_targets", "_time_calls")
+                 "_valid_type", "_tlm_targets", "_tlm_calls", "_time_targets", "_time_calls", "_deferrable",
+                 "_bound_call", "_store", "_members_of")
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         self.component = component
@@ -135,6 +148,12 @@ class BoundChannel(Generic[V]):
         # A value of this exact Python type is valid for the channel without checking (enum
         # members of the channel's enum, and floats for F64).
         self._valid_type = t.cls if isinstance(t, EnumType) else float if t is _F64 else None
+        # Checked values of these types are immutable, so packing them later gives the same bytes.
+        self._deferrable = isinstance(t, (IntType, FloatType, BoolType, EnumType, StringType))
+        self._bound_call: object = None  # the tlmOut call that _store was worked out for
+        self._store = None  # the target's deferred store, or None: send packed bytes
+        #: For a mutable value made of immutable parts: what is stored and packed (a tuple of them).
+        self._members_of: Any = None
 
     def write(self, value: V, time: Time | None = None) -> None:
         """Record ``value`` and send it (time-stamped now, unless ``time`` is given)."""
@@ -144,8 +163,88 @@ class BoundChannel(Generic[V]):
             return
         self.last = value
         self.written = True
-        if self._tlm_targets[0] is None:
-            return
+        call = self._tlm_calls[0]
+        if call is not self._bound_call:  # first write, or tlmOut was (re)connected since
+            if self._tlm_targets[0] is None:
+                return
+            self._bind(call)
         if time is None:
             time = self._time_calls[0]() if self._time_targets[0] is not None else _ZERO_TIME
-        self._tlm_calls[0](self.id, time, self._serialize(value))
+        members_of = self._members_of
+        stored = value if members_of is None else members_of(value)
+        store = self._store
+        if store is not None:
+            store(self.id, time, stored, self._serialize)
+        else:
+            call(self.id, time, self._serialize(stored))
+
+    def _bind(self, call: object) -> None:
+        """Work out how writes reach what ``tlmOut[0]`` now connects to (``call`` is its slot)."""
+        self._bound_call = call
+        self._store = None
+        target = self._tlm_targets[0]
+        if self._deferrable and type(target) is tuple:
+            port, index = target
+            component = port.component
+            # Only the store's own input: a slot whose callable was replaced (a tap) gets bytes.
+            if getattr(component, "deferred_tlm_input", None) == port.name and call is port.entries[index]:
+                self._store = component.store_tlm_value
+
+
+#: Member types whose checked values are immutable: a struct made only of these can be snapshotted.
+_SNAPSHOT_MEMBER_TYPES = (IntType, FloatType, BoolType, EnumType, StringType, TimeType)
+
+
+def bind_channel(component: Any, decl: Channel[V], channel_id: int) -> BoundChannel[V]:
+    """The bound channel of ``decl`` on ``component``: a :class:`BoundSnapshotChannel` for a struct
+    of two or more members of immutable kinds or an array of numbers, a :class:`BoundChannel`
+    otherwise."""
+    t = decl.type
+    if (isinstance(t, StructType) and len(t.members) >= 2
+            and all(isinstance(mt, _SNAPSHOT_MEMBER_TYPES) for _, mt in t.members)):
+        return BoundSnapshotChannel(component, decl, channel_id)
+    if isinstance(t, ArrayType) and t._fixed is not None:
+        return BoundSnapshotChannel(component, decl, channel_id)
+    return BoundChannel(component, decl, channel_id)
+
+
+class BoundSnapshotChannel(BoundChannel[V]):
+    """A channel of a struct whose members are numbers, booleans, enums, strings or times, or of an
+    array of numbers: values that are mutable Python objects made of immutable parts.
+
+    A write checks the value (without calling the member checks when every member already has the
+    exact Python type that is always valid for it: ``float`` for F64, the enum's class), and stores
+    or packs the tuple of its member values taken at the write; the bytes are those of the type's
+    own ``pack``.
+    """
+
+    __slots__ = ("_exact", "_full_check")
+
+    def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
+        super().__init__(component, decl, channel_id)
+        t = decl.type
+        self._deferrable = True
+        if isinstance(t, StructType):
+            self._members_of = operator.attrgetter(*[name for name, _ in t.members])
+            member_types = [mt for _, mt in t.members]
+        else:
+            assert isinstance(t, ArrayType)
+            self._members_of = tuple
+            member_types = [t.elem] * t.size
+        exact = [float if mt is _F64 else mt.cls if isinstance(mt, EnumType) else None for mt in member_types]
+        self._exact = None if None in exact else (t.cls, tuple(exact))
+        self._full_check = t.check
+        self._check = self._quick_check  # every write goes through it (_valid_type stays None)
+        fixed = t._fixed
+        if fixed is not None:
+            self._serialize = lambda members: fixed.pack(*members)
+        else:
+            packs = [mt.pack for mt in member_types]
+            self._serialize = lambda members: b"".join([p(v) for p, v in zip(packs, members)])
+
+    def _quick_check(self, value: Any) -> Any:
+        """The type's check, skipped for a value whose members all have their exact valid types."""
+        exact = self._exact
+        if exact is not None and type(value) is exact[0] and tuple(map(type, self._members_of(value))) == exact[1]:
+            return value
+        return self._full_check(value)

@@ -667,6 +667,11 @@ class ArrayType(FwType[Any]):
         self.elem = elem
         self.size = size
         self.name = _qualified(getattr(cls, "__fprime_namespace__", None), cls.__name__)
+        #: One struct for the whole array when its elements are plain numbers (else None).
+        self._fixed = (struct.Struct(">" + elem._struct.format[1:] * size)
+                       if isinstance(elem, (IntType, FloatType)) else None)
+        #: The Python type whose every value is a valid element as it is (F64: float), or None.
+        self._exact_elem = float if elem is _F64 else elem.cls if isinstance(elem, EnumType) else None
 
     def check(self, value):
         if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
@@ -682,6 +687,11 @@ class ArrayType(FwType[Any]):
 
     def serialize(self, value):
         return b"".join(self.elem.serialize(v) for v in self.check(value))
+
+    def pack(self, value):
+        if self._fixed is not None:  # numbers: what each element's serialize gives, in one call
+            return self._fixed.pack(*value)
+        return self.serialize(value)
 
     def deserialize(self, data, offset=0):
         items = []
@@ -739,6 +749,14 @@ class Array(list):
         items = list(items)
         if len(items) != t.size:
             raise SerializationError(f"{t.name} expects exactly {t.size} elements, got {len(items)}")
+        exact = t._exact_elem
+        if exact is not None:  # e.g. floats for F64: each element's check would return it unchanged
+            for v in items:
+                if type(v) is not exact:
+                    break
+            else:
+                super().__init__(items)
+                return
         super().__init__(t.elem.check(v) for v in items)
 
 

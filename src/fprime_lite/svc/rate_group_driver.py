@@ -8,6 +8,7 @@ other 949 ticks of each second.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from fprime_lite.model.component import PassiveComponent
@@ -16,6 +17,11 @@ from fprime_lite.model.ports import OutputPort, sync_input
 from fprime_lite.model.time import Time
 
 __all__ = ["Divider", "RateGroupDriver", "RateGroupTimer"]
+
+#: Dividers whose pattern repeats within this many base ticks (the least common multiple of the
+#: divisors) get a lookup table of what fires on each tick of the pattern; others are evaluated
+#: divider by divider.
+PATTERN_TABLE_MAX = 1 << 16
 
 
 @dataclass(frozen=True)
@@ -47,31 +53,60 @@ class RateGroupDriver(PassiveComponent):
         self.tick = 0  # index of the next base tick to handle
         self._table_of: object = None
         self._table_cache: tuple[tuple[int, int, int], ...] = ()
+        # The firing pattern over one repetition (see _table): outputs firing on tick % period,
+        # and base ticks from there to the next firing tick; None when the pattern is too long.
+        self._period = 1
+        self._fires: list[tuple[int, ...]] | None = None
+        self._waits: list[int] | None = None
         self._cycle_targets = self.output_port("CycleOut").targets
 
     @sync_input(Cycle)
     def CycleIn(self, cycle_start: Time) -> None:
         tick = self.tick
-        out = self.CycleOut
-        targets = self._cycle_targets
-        for i, divisor, offset in self._table():
-            if tick % divisor == offset and targets[i] is not None:
-                out[i](cycle_start)
+        if self._table_of is not self.dividers:
+            self._table()
+        fires = self._fires
+        outputs = (fires[tick % self._period] if fires is not None
+                   else [i for i, divisor, offset in self._table_cache if tick % divisor == offset])
+        if outputs:
+            out = self.CycleOut
+            targets = self._cycle_targets
+            for i in outputs:
+                if targets[i] is not None:
+                    out[i](cycle_start)
         self.tick = tick + 1
 
     def _table(self) -> tuple[tuple[int, int, int], ...]:
-        """``(output, divisor, offset)`` of every divider, rebuilt when ``dividers`` is replaced."""
+        """``(output, divisor, offset)`` of every divider, rebuilt (with the firing pattern) when
+        ``dividers`` is replaced."""
         dividers = self.dividers
         if self._table_of is not dividers:
-            self._table_cache = tuple((i, d.divisor, d.offset) for i, d in enumerate(dividers))
+            table = tuple((i, d.divisor, d.offset) for i, d in enumerate(dividers))
+            period = math.lcm(*(d.divisor for d in dividers)) if dividers else 1
+            if period <= PATTERN_TABLE_MAX:
+                fires = [tuple(i for i, divisor, offset in table if t % divisor == offset) for t in range(period)]
+                waits = [0] * period
+                if table:
+                    wait = next(k for k in range(period) if fires[k])  # at tick `period`, i.e. 0
+                    for t in range(period - 1, -1, -1):  # ticks to the next firing tick, from the end
+                        wait = 0 if fires[t] else wait + 1
+                        waits[t] = wait
+                self._period, self._fires, self._waits = period, fires, (waits if table else None)
+            else:
+                self._period, self._fires, self._waits = 1, None, None
+            self._table_cache = table
             self._table_of = dividers
         return self._table_cache
 
     def ticks_to_next_output(self) -> int:
         """How many base ticks from now until one of the outputs fires (0: this very tick)."""
+        table = self._table()
+        waits = self._waits
+        if waits is not None:
+            return waits[self.tick % self._period]
         best = None
         tick = self.tick
-        for _, divisor, offset in self._table():
+        for _, divisor, offset in table:
             wait = (offset - tick) % divisor
             if best is None or wait < best:
                 best = wait
@@ -116,8 +151,15 @@ class RateGroupTimer:
             self.scheduler.reschedule(self._call, due)
 
     def _fire(self) -> None:
-        self.driver.tick += self._idle_ticks  # the skipped ticks on which nothing fired
-        now = self.scheduler.now_us
+        driver = self.driver
+        driver.tick += self._idle_ticks  # the skipped ticks on which nothing fired
+        clock = self.scheduler.clock
+        now = clock.current_us
         self.cycles += 1
-        self.cycle_in(self.scheduler.clock.now())
-        self._schedule(now + self.base_period_us)
+        self.cycle_in(clock.now())
+        call = self._call
+        if call is None:  # stopped by the cycle it ran
+            self._schedule(now + self.base_period_us)
+            return
+        wait = self._idle_ticks = driver.ticks_to_next_output()  # _schedule, written out
+        self.scheduler.reschedule(call, now + (wait + 1) * self.base_period_us)

@@ -89,9 +89,10 @@ class RateGroupBase:
         elapsed_us = int((_wall.perf_counter() - wall0) * 1e6)
         if elapsed_us > self.max_time_us:
             self.max_time_us = elapsed_us
-        self.RgMaxTime.write(self.max_time_us)
-        # As F´'s ActiveRateGroup: the cycle's time is measured from the driver's cycle start.
+        # One time read stamps RgMaxTime and ends the cycle: both are this instant.
         now = self.get_time()
+        self.RgMaxTime.write(self.max_time_us, now)
+        # As F´'s ActiveRateGroup: the cycle's time is measured from the driver's cycle start.
         overran = (self.period_us is not None and cycle_start.time_base == now.time_base
                    and now.total_us - cycle_start.total_us >= self.period_us)
         if overran or self._pending > 0:

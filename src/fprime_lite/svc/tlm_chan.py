@@ -8,6 +8,12 @@ of ``PktSend``, packed into ``FW_PACKET_TELEM`` packets of at most
 Channels are sent in the order they were first received (deterministic). ``TlmGet`` reads the
 latest stored value of one channel.
 
+Serialised at downlink: a channel write of a component whose ``tlmOut`` connects straight to
+``TlmRecv`` reaches :meth:`TlmChan.store_tlm_value` with the value and its type's packer rather than
+the packed bytes (:mod:`fprime_lite.model.telemetry`); the store keeps value, packer and time and
+packs only the value it downlinks (once a tick) or hands out through ``TlmGet``. The bytes are
+those the write would have packed: only immutable values are stored this way.
+
 Differences from F´: the channel store is a dict and has no fixed hash table to run out of; a
 single record larger than a packet (which F´ cannot hold in a ComBuffer) is sent alone in its own
 packet and counted in :attr:`TlmChan.oversize_records`.
@@ -63,7 +69,8 @@ class TlmChan(ActiveComponent):
         if packet_max < len(_HEADER) + 4 + TIME.size:
             raise ValueError(f"{name}: packet_max {packet_max} cannot hold one telemetry record")
         self.packet_max = packet_max
-        #: channel id -> (time, value bytes) of its latest write; a new tuple for every write.
+        #: channel id -> (time, value, packer) of its latest write, a new tuple for every write;
+        #: ``value`` is F´ bytes when ``packer`` is None, else the Python value ``packer`` packs.
         self._latest: dict[int, tuple] = {}
         #: channel id -> the ``_latest`` entry sent last; an entry not identical to it is new.
         self._sent: dict[int, tuple] = {}
@@ -71,6 +78,9 @@ class TlmChan(ActiveComponent):
         self.records_sent = 0
         self.oversize_records = 0
         self.rejected_writes = 0
+
+    #: The input port whose writers may hand over values instead of bytes (see store_tlm_value).
+    deferred_tlm_input = "TlmRecv"
 
     @sync_input(Tlm)
     def TlmRecv(self, chan_id: int, time, value: bytes) -> None:
@@ -89,7 +99,15 @@ class TlmChan(ActiveComponent):
                 self.rejected_writes += 1
                 log.warning("%s: TlmRecv: cannot store channel %r: %s", self.name, chan_id, exc)
                 return
-        self._latest[chan_id] = (time, value)
+        self._latest[chan_id] = (time, value, None)
+
+    def store_tlm_value(self, chan_id: int, time, value, pack) -> None:
+        """What ``TlmRecv`` does for a write whose bytes are ``pack(value)``, packed when needed.
+
+        Called by channel writes connected to ``TlmRecv`` (never by a port of another type): the id
+        is a channel's own, the value already checked against its type, ``pack`` the type's packer.
+        """
+        self._latest[chan_id] = (time, value, pack)
 
     @guarded_input(TlmGet)
     def TlmGet(self, chan_id: int) -> tuple:
@@ -97,7 +115,8 @@ class TlmChan(ActiveComponent):
         entry = self._latest.get(chan_id)
         if entry is None:
             return TlmValid.INVALID, None, None
-        return TlmValid.VALID, entry[0], entry[1]
+        time, value, pack = entry
+        return TlmValid.VALID, time, value if pack is None else pack(value)
 
     @async_input(Sched)
     def Run(self, context: int) -> None:
@@ -108,9 +127,9 @@ class TlmChan(ActiveComponent):
             if sent.get(chan_id) is entry:
                 continue
             sent[chan_id] = entry
-            time, value = entry
+            time, value, pack = entry
             try:
-                records.append(_U32.pack(chan_id) + TIME.serialize(time) + value)
+                records.append(_U32.pack(chan_id) + TIME.serialize(time) + (value if pack is None else pack(value)))
             except Exception as exc:  # noqa: BLE001 - a bad time stamp is counted, never raised
                 self.rejected_writes += 1
                 log.warning("%s: channel 0x%X has an unusable time stamp: %s", self.name, chan_id, exc)

@@ -548,3 +548,87 @@ def test_idle_stops_everything(fprime_harness):
     h.send_command("FORCE_MODE", ControlMode.IDLE)
     assert not h.comp.coils_driven
     assert all(w[-1] == 0.0 for w in h.world.torques)
+
+
+# --- attitude estimation and the derivative term's rate (docs/studies/attitude_knowledge.md) ---------------
+
+def test_mekf_is_the_default_and_a_switch_keeps_the_attitude(fprime_harness):
+    """ADCS-037: the default estimator is the MEKF: AttitudeSigma3 (deg) is written and falls as fixes arrive;
+    ESTIMATOR → COMPLEMENTARY logs EstimatorSelected, keeps the attitude, its bias and validity (no loss of
+    POINTING), and AttitudeSigma3 is no longer written; back to MEKF starts its covariance from the tracker's noise
+    and the initial bias σ (the complementary filter has no covariance to hand over)."""
+    from detumble.components.attitude_types import AttitudeEstimator
+    from detumble.control.attitude_filter import AttitudeFilter
+    from detumble.control.mekf import Mekf
+
+    h = pointing(fprime_harness, q=quat_from_axis_angle((0.0, 0.0, 1.0), 0.01))
+    assert isinstance(h.comp.filter, Mekf)
+    seconds(h, 2.0)
+    sig = h.tlm_values("AttitudeSigma3")
+    assert sig and sig[-1] < sig[0]
+    q_before = h.comp.filter.q
+    h.param_set("ESTIMATOR", AttitudeEstimator.COMPLEMENTARY)
+    h.load_parameters()
+    h.clear_history()
+    h.world.tracker_valid = False  # no new fix: the switch itself must carry the attitude
+    tick(h, 5)
+    assert isinstance(h.comp.filter, AttitudeFilter)
+    assert h.events_named("EstimatorSelected") == [(AttitudeEstimator.COMPLEMENTARY,)]
+    assert quat_angle_between(h.comp.filter.q, q_before) < 1e-6
+    assert h.comp.mode == ControlMode.POINTING and h.tlm_values("AttitudeValid")[-1] == 1
+    assert h.tlm_values("AttitudeSigma3") == []
+    h.param_set("ESTIMATOR", AttitudeEstimator.MEKF)
+    h.load_parameters()
+    tick(h, 5)
+    assert isinstance(h.comp.filter, Mekf)
+    f = h.comp.filter  # P_θθ = R at the switch, then one 0.1 s step on the gyro (no fix): + Δt² σ_b0² + σ_g² Δt²/5 + …
+    dt = 0.1
+    step = dt * dt * (f.initial_bias_sigma ** 2 + f.gyro_noise ** 2 / 5) + f.bias_walk ** 2 * dt ** 3 / 3
+    expected = 3 * math.sqrt(sum(f.tracker_noise()[i][i] for i in range(3)) + 3 * step)
+    assert f.attitude_sigma3_rad == pytest.approx(expected, rel=1e-6)
+
+
+def quat_angle_between(a, b):
+    from detumble.control.quaternion import quat_angle, quat_error
+
+    return quat_angle(quat_error(a, b))
+
+
+@pytest.mark.parametrize("bad", [{"GYRO_NOISE": -1.0}, {"RATE_OBSERVER_GAIN": 0.0}, {"TRACKER_NOISE_ABOUT": 1e9}])
+def test_estimator_parameters_have_ranges(fprime_harness, bad):
+    """ADCS-038: noise and gain parameters outside their documented range are refused by PRM_SET (VALIDATION_ERROR)."""
+    h = make(fprime_harness)
+    ((name, value),) = bad.items()
+    h.send_command(f"{name}_PRM_SET", value)
+    h.assert_cmd_response(0, f"{name}_PRM_SET", CmdResponse.VALIDATION_ERROR)
+
+
+def test_the_derivative_term_uses_the_rate_observer(fprime_harness):
+    """ADCS-039: with RATE_SOURCE = OBSERVER a gyro step (1 °/s in the cycle's last reading: 0.2 °/s in its mean)
+    moves the D term's rate by only the observer's pull 1 − e^(−L·0.1 s) (L = RATE_OBSERVER_GAIN) of it: the
+    difference of the requested torques of the two sources is −K_D (1 − pull) ω, within 1e-3 relative (the
+    attitude, K_P and the integral are the same)."""
+    from detumble.components.attitude_types import RateSource
+
+    taus = {}
+    for source in (RateSource.GYRO, RateSource.OBSERVER):
+        h = pointing(fprime_harness, params={"RATE_SOURCE": source})
+        h.world.tracker_valid = False
+        tick(h, 10)
+        h.world.omega = (1.0 * DEG, 0.0, 0.0)
+        tick(h, 5)
+        taus[source] = h.tlm_values("RequestedTorque")[-1][0]
+        gain, kd = h.comp.RATE_OBSERVER_GAIN.value, h.comp.K_D.value
+    pull = 1.0 - math.exp(-gain * 0.1)
+    w = DEG / 5  # the step reaches the cycle's mean in its last reading only: 1 °/s / 5
+    assert taus[RateSource.GYRO] - taus[RateSource.OBSERVER] == pytest.approx(-kd * (1 - pull) * w, rel=1e-3)
+
+
+def test_a_non_positive_definite_inertia_is_refused_once(fprime_harness):
+    """ADCS-039: INERTIA_XY = 1 kg·m² (far above the moments) is not a positive definite inertia: the observer keeps
+    its previous model and InertiaModelRefused is logged once (throttle 1), however many cycles follow."""
+    h = make(fprime_harness, params={"INERTIA_XY": 1.0})
+    before = h.comp.rate_observer.inertia
+    tick(h, 30)
+    assert h.comp.rate_observer.inertia == before and before[0][1] == pytest.approx(2.0e-5)
+    assert len(h.events_named("InertiaModelRefused")) == 1

@@ -17,8 +17,32 @@ def test_deployment_measurement_interleaves_pieces_and_reports_consistent_figure
     assert len(pieces["deployment"]) == len(pieces["plant_only"]) == 2
     assert d["deployment_us_per_tick"] == min(pieces["deployment"])
     assert d["tick_cost_ratio"] == pytest.approx(min(pieces["deployment"]) / min(pieces["plant_only"]))
-    assert d["ticks_50hz_per_s"] * d["deployment_wall_s"] == pytest.approx(8.0 * 50 + 1, abs=1)
+    assert d["ticks_per_s"] * d["deployment_wall_s"] == pytest.approx(8.0 * 50 + 1, abs=1)
     assert d["sim_seconds"] == 8.0 and d["real_time_factor"] > 0
+    assert d["tick_rate_group"] == "rateGroup50Hz" and d["tick_hz"] == 50.0 and d["plant_only_law"] == "bdot"
+    cpu = d["pieces_cpu_us_per_tick"]
+    assert len(cpu["deployment"]) == len(cpu["plant_only"]) == 2
+    assert d["tick_cost_ratio_cpu"] == pytest.approx(min(cpu["deployment"]) / min(cpu["plant_only"]))
+
+
+def test_the_other_reference_deployments_are_measured_against_their_own_plant_configuration():
+    """BENCH-002: beside proves_ref the piece measures adcs_ref and coursework, each per tick of its
+    fastest rate group (coursework: 100 Hz) against the plant-only runner on its own scenario."""
+    import argparse
+
+    from detumble.sitl.bench import DEPLOYMENT_PIECE
+
+    d = DEPLOYMENT_PIECE.measure(argparse.Namespace(topology=str(REFERENCE), duration=2.0))
+    others = d["other_deployments"]
+    assert set(others) == {"adcs_ref", "coursework"}
+    assert (others["adcs_ref"]["scenario"], others["adcs_ref"]["tick_hz"], others["adcs_ref"]["plant_only_law"]) \
+        == ("adcs", 50.0, "bdot")
+    course = others["coursework"]
+    assert (course["scenario"], course["tick_hz"], course["plant_only_law"]) == ("surrey", 100.0, "wheels_pd")
+    assert course["ticks_per_s"] * course["deployment_wall_s"] == pytest.approx(2.0 * 100 + 1, abs=1)
+    labels = [row[0] for row in DEPLOYMENT_PIECE.rows(d)]
+    assert any(label.startswith("coursework") for label in labels)
+    assert any("per 100 Hz tick" in label for label in labels)
 
 
 def test_the_piece_is_installed_as_a_bench_plug_in():

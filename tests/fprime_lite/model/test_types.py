@@ -1084,3 +1084,25 @@ def test_fit_utf8_cuts_on_a_character_boundary_and_replaces_lone_surrogates():
     assert fit_utf8("aé", 2) == "a"  # 'é' is two bytes: never half of it
     assert fit_utf8("éé", 3) == "é"
     assert fit_utf8("a\udc80b", 10) == "a?b"
+
+
+class Floats(Array, namespace="Test", elem=F64, size=3):
+    pass
+
+
+def test_arrays_of_exact_valid_elements_are_kept_and_others_checked():
+    """TYP-ARR-FAST: an F64 array of floats (or an enum array of its members) keeps its elements
+    as given; an int is still converted, anything else refused, and the one-call pack gives the
+    bytes of the element-by-element serialize."""
+    exact = Floats([1.5, -0.0, float("inf")])
+    assert list(exact) == [1.5, -0.0, float("inf")] and all(type(v) is float for v in exact)
+    mixed = Floats([1.5, 2, 3.0])
+    assert list(mixed) == [1.5, 2.0, 3.0] and type(mixed[1]) is float
+    with pytest.raises(SerializationError, match="F64 expects a number"):
+        Floats([1.0, "2", 3.0])
+    with pytest.raises(SerializationError, match="F64 expects a number"):
+        Floats([1.0, True, 3.0])
+    modes = Modes([Mode(0), Mode(1), Mode(0)])
+    assert all(type(m) is Mode for m in modes)
+    t = fw_type(Floats)
+    assert t.pack(mixed) == b"".join(F64.serialize(v) for v in mixed) == struct.pack(">ddd", 1.5, 2.0, 3.0)

@@ -39,6 +39,33 @@ def test_driver_fires_outputs_by_divisor_and_offset(fprime_harness):
     assert [t for i, t in fired if i == 2] == [0, 4]
 
 
+@pytest.mark.parametrize("dividers", [[(20, 0), (100, 0), (1000, 0)], [(3, 2), (7, 0), (10, 4)], [(1, 0)],
+                                      [(65537, 3), (2, 1)], [(7, 6)]])
+def test_driver_pattern_table_agrees_with_the_divider_rule(dividers, monkeypatch):
+    """RGD-004: what fires on each base tick and the wait to the next firing tick, read from the
+    driver's pattern table, are those of F´'s rule ``tick % divisor == offset`` over three periods of
+    the pattern (or 3000 ticks of a pattern too long for a table), also after the dividers change."""
+    from fprime_lite.svc import rate_group_driver
+
+    for table_max in (rate_group_driver.PATTERN_TABLE_MAX, 0):  # the table, then the fallback
+        monkeypatch.setattr(rate_group_driver, "PATTERN_TABLE_MAX", table_max)
+        driver = RateGroupDriver("rgDriver", dividers=[(5, 1)])
+        fired = []
+        for i in range(10):
+            driver.output_port("CycleOut").connect_callable(i, lambda t, i=i: fired.append((t, i)), f"out{i}")
+        driver.CycleIn(Time())
+        driver.dividers = tuple(Divider(*d) for d in dividers)  # replaced: the table is rebuilt
+        driver.tick = 0
+        fired.clear()
+        import math
+        span = min(3 * math.lcm(*(d for d, _ in dividers)), 3000)
+        for tick in range(span):
+            expected_wait = min((o - tick) % d for d, o in dividers)
+            assert driver.ticks_to_next_output() == expected_wait, (tick, table_max)
+            driver.CycleIn(tick)
+        assert fired == [(t, i) for t in range(span) for i, (d, o) in enumerate(dividers) if t % d == o]
+
+
 def test_timer_skips_idle_ticks_but_counts_them():
     s = Scheduler()
     driver = RateGroupDriver("rgDriver", dividers=[(20, 0), (1000, 0)])

@@ -161,3 +161,123 @@ def test_writers_on_other_threads_lose_nothing_and_never_break_a_tick():
                 for k in range(n_threads) for c in range(50)}
     assert latest == expected  # every channel's last write reached the ground
     assert tlm.rejected_writes == 0
+
+
+# --- values stored by channel writes and packed at downlink (issue #19) ---------------------------
+
+def _deferred_fixture():
+    from fprime_lite import (BOOL, F64, U32, Array, Channel, FwEnum, PassiveComponent, Sched, String, Struct,
+                             sync_input)
+
+    class Colour(FwEnum, namespace="Test"):
+        RED = 0
+        GREEN = 7
+
+    class Vec(Struct, namespace="Test"):
+        x: F64
+        y: F64
+        z: F64
+
+    class Stamped(Struct, namespace="Test"):
+        v: F64
+        colour: Colour
+        at: Time
+
+    class Nested(Struct, namespace="Test"):
+        inner: Vec
+        n: U32
+
+    class Triple(Array, elem=U32, size=3, namespace="Test"):
+        pass
+
+    class Quat(Array, elem=F64, size=4, namespace="Test"):
+        pass
+
+    class Writer(PassiveComponent):
+        Count = Channel(U32)
+        Rate = Channel(F64)
+        Paint = Channel(Colour)
+        Flag = Channel(BOOL)
+        Label = Channel(String(20))
+        Vector = Channel(Vec)
+        Sample = Channel(Stamped)
+        Deep = Channel(Nested)
+        Many = Channel(Triple)
+        Attitude = Channel(Quat)
+
+        @sync_input(Sched)
+        def run(self, context):
+            pass
+
+    writer, tlm = Writer("writer", base_id=0x100), TlmChan("tlmSend")
+    writer.output_port("tlmOut").connect(0, tlm.input_port("TlmRecv"), 0)
+    sent = []
+    tlm.output_port("PktSend").connect_callable(0, lambda data, ctx: sent.append(data), "ground")
+    return writer, tlm, sent, (Colour, Vec, Stamped, Nested, Triple, Quat)
+
+
+def test_channel_values_are_packed_at_downlink_into_the_bytes_of_the_write():
+    """TLM-DEFER-002: every kind of channel written through a tlmOut wired to TlmRecv is downlinked
+    (and read by TlmGet) as the bytes of the value written — a struct changed after its write
+    included — and numbers, enums, booleans, strings and structs of those are stored unpacked."""
+    writer, tlm, sent, (Colour, Vec, Stamped, Nested, Triple, Quat) = _deferred_fixture()
+    at = Time(TimeBase.TB_WORKSTATION_TIME, 0, 3, 250)
+    vec, stamped, nested = Vec(1.5, -2.0, 3.25), Stamped(0.5, Colour.GREEN, at), Nested(Vec(1.0, 2.0, 3.0), 9)
+    written = {"Count": 7, "Rate": 0.125, "Paint": Colour.GREEN, "Flag": True, "Label": "detumbling",
+               "Vector": vec, "Sample": stamped, "Deep": nested, "Many": Triple([1, 2, 3]),
+               "Attitude": Quat([1, 0.0, -0.5, 0.25])}
+    expected = {}
+    for name, value in written.items():
+        channel = writer.channels[name]
+        expected[channel.id] = channel.decl.type.serialize(value)
+        channel.write(value, T1)
+    vec.x = 99.0  # the struct objects change after their writes: the downlink keeps what was written
+    stamped.colour = Colour.RED
+    nested.inner.x = 99.0
+    written["Many"][0] = 5
+    packers = {writer.channels[n].id: tlm._latest[writer.channels[n].id][2] for n in written}
+    assert [n for n in written if packers[writer.channels[n].id] is None] == ["Deep"]
+    for chan_id, value in expected.items():
+        assert tlm.TlmGet(chan_id) == (TlmValid.VALID, T1, value)
+    tlm.input_port("Run").entries[0](0)
+    tlm.dispatch_all()
+    sizes = {cid: len(v) for cid, v in expected.items()}
+    recs = decode_telemetry(sent[0], lambda i, d, o: o + sizes[i])
+    assert {chan_id: (time, value) for chan_id, time, value in recs} == {cid: (T1, v) for cid, v in expected.items()}
+
+
+def test_a_struct_write_checks_its_members_as_before():
+    """TLM-DEFER-003: a struct channel's quick path still refuses a member of the wrong kind and
+    converts an int given for an F64 member, as the struct's check does."""
+    from fprime_lite.model.errors import SerializationError
+
+    writer, tlm, _, (Colour, Vec, Stamped, _n, _t, Quat) = _deferred_fixture()
+    with pytest.raises(SerializationError, match="Vec.y"):
+        writer.channels["Vector"].write(Vec(1.0, "fast", 3.0), T1)
+    with pytest.raises(SerializationError, match="Stamped.at"):
+        writer.channels["Sample"].write(Stamped(1.0, Colour.RED, "noon"), T1)
+    writer.channels["Vector"].write(Vec(1, 2.0, 3.0), T1)
+    assert tlm.TlmGet(writer.channels["Vector"].id)[2] == struct.pack(">ddd", 1.0, 2.0, 3.0)
+    assert writer.channels["Vector"].last == Vec(1.0, 2.0, 3.0)
+    with pytest.raises(SerializationError, match="Quat element"):
+        writer.channels["Attitude"].write([1.0, 0.0, None, 0.0], T1)
+
+
+def test_a_tap_on_the_tlm_out_slot_still_sees_every_write_as_bytes():
+    """TLM-DEFER-004: a callable put in a connected tlmOut slot in front of TlmRecv (a tap, as the
+    ground recorder puts on PktSend) receives each write as F´ bytes and TlmChan still stores it."""
+    writer, tlm, _, _types = _deferred_fixture()
+    slot = writer.output_port("tlmOut").calls
+    downstream, seen = slot[0], []
+    rate = writer.channels["Rate"]
+    rate.write(0.5, T1)  # bound to the store first
+    assert tlm._latest[rate.id][2] is not None
+
+    def tap(chan_id, time, value):
+        seen.append((chan_id, time, value))
+        downstream(chan_id, time, value)
+
+    slot[0] = tap
+    rate.write(0.25, T2)
+    assert seen == [(rate.id, T2, struct.pack(">d", 0.25))]
+    assert tlm.TlmGet(rate.id) == (TlmValid.VALID, T2, struct.pack(">d", 0.25))

@@ -1,0 +1,242 @@
+"""A multiplicative extended Kalman filter (MEKF) for attitude and gyro bias (plain floats, no
+framework import, no numpy).
+
+State: the reference attitude ``q̂ = q_BN`` (scalar first) and gyro bias ``b̂`` (rad/s, B); the
+filter's 6 error states are ``x = (δθ, δb)``, with the truth ``q = q̂ ⊗ (1, δθ/2)`` (δθ a small
+rotation vector in B, rad) and ``b = b̂ + δb``. ``P`` is their 6×6 covariance (rad², rad²/s,
+rad²/s²). The gyro is an input, not a measurement (Lefferts, Markley & Shuster 1982; Markley &
+Crassidis 2014, ch. 7):
+
+    ω̂ = ω_gyro − b̂;  q̂ ← q̂ ⊗ exp(½ ω̂ Δt)
+    Φ = [[R(−ω̂Δt), −Δt I], [0, I]],   P ← Φ P Φᵀ + Q
+    Q = [[σ_a² + σ_u² Δt³/3, −σ_u² Δt²/2], [−σ_u² Δt²/2, σ_u² Δt]] ⊗ I₃
+
+``σ_a²`` is the variance of the angle increment over ``Δt``: the controller propagates with the
+mean of ``n`` gyro readings, each with white noise ``σ_g`` (rad/s, 1σ per axis; the sensor's noise
+density over its bandwidth plus its quantisation), so ``σ_a² = σ_g² Δt² / n``. ``σ_u`` is the bias
+random walk (rad/s/√s).
+
+Star-tracker update: a solution ``q_m`` taken ``age`` s ago (the tracker holds its last image) is
+carried to now on ``ω̂``; the residual ``r = 2 vec(q̂⁻¹ ⊗ q_m)`` (shortest path) has ``H = [I 0]``
+and noise ``R = σ_c² I + (σ_b² − σ_c²) e eᵀ`` (``e`` the boresight in B, ``σ_c``/``σ_b`` 1σ across
+and about it, rad) plus ``σ_g² age² / n`` for the carrying. When the image lies inside the last
+propagation step (``age ≤ Δt``) the carrying and the propagation used the same gyro mean, so the
+residual's noise is correlated with the state error by ``M = −σ_g² Δt·age / n`` per axis; the gain
+accounts for it (``K = (P Hᵀ + M) S⁻¹``, ``S = H P Hᵀ + R + H M + Mᵀ Hᵀ``). Then
+``P ← P − K S Kᵀ`` (symmetrised) and the error is folded into ``q̂``, ``b̂`` (the reset).
+
+A residual larger than ``reinit_angle_rad``, or an attitude 3σ larger than it (after a long time
+on the gyro alone: the tracker has no solution above 2 °/s), re-initialises the attitude on the
+measurement (``P_θθ = R``, no attitude–bias correlation); the bias and its covariance are kept.
+"""
+
+from __future__ import annotations
+
+import math
+
+from detumble.control.mat3 import det3, inv3
+from detumble.control.quaternion import Quat, Vec3, quat_conj, quat_mul, quat_normalize, quat_shortest
+
+__all__ = ["Mekf"]
+
+Mat = list[list[float]]
+
+
+def _zeros(n: int, m: int) -> Mat:
+    return [[0.0] * m for _ in range(n)]
+
+
+def _matmul(a: Mat, b: Mat) -> Mat:
+    bt = list(zip(*b, strict=True))
+    return [[sum(x * y for x, y in zip(row, col, strict=True)) for col in bt] for row in a]
+
+
+def _transpose(a: Mat) -> Mat:
+    return [list(r) for r in zip(*a, strict=True)]
+
+
+def _inv_spd3(m: Mat) -> Mat:
+    if not det3(m) > 0.0:  # S is a covariance: positive definite or something is badly wrong
+        raise ValueError(f"innovation covariance is not positive definite (det {det3(m):g})")
+    return [list(r) for r in inv3(m)]
+
+
+def _rotation_transpose(w: Vec3, dt: float) -> Mat:
+    """``exp(−[w×] dt)`` by Rodrigues: how a body-frame error vector is carried over the step."""
+    n = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
+    phi = n * dt
+    if phi < 1e-12:
+        return [[1.0, w[2] * dt, -w[1] * dt], [-w[2] * dt, 1.0, w[0] * dt], [w[1] * dt, -w[0] * dt, 1.0]]
+    u = (w[0] / n, w[1] / n, w[2] / n)
+    s, c = math.sin(phi), math.cos(phi)
+    k = 1.0 - c
+    # R(φ about u) = c I + s [u×] + k u uᵀ; its transpose flips the sign of the [u×] part
+    return [[c + k * u[0] * u[0], k * u[0] * u[1] + s * u[2], k * u[0] * u[2] - s * u[1]],
+            [k * u[1] * u[0] - s * u[2], c + k * u[1] * u[1], k * u[1] * u[2] + s * u[0]],
+            [k * u[2] * u[0] + s * u[1], k * u[2] * u[1] - s * u[0], c + k * u[2] * u[2]]]
+
+
+def _propagate(q: Quat, w: Vec3, dt: float) -> Quat:
+    """``q ⊗ exp(½ w dt)``."""
+    n = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
+    if n == 0.0 or dt == 0.0:
+        return q
+    half = 0.5 * n * dt
+    s = math.sin(half) / n
+    return quat_normalize(quat_mul(q, (math.cos(half), w[0] * s, w[1] * s, w[2] * s)))
+
+
+class Mekf:
+    """Attitude + gyro-bias MEKF; same interface as :class:`~detumble.control.attitude_filter.AttitudeFilter`.
+
+    Args:
+        gyro_noise_rad_s: ``σ_g``, white noise of one gyro reading, rad/s (1σ per axis).
+        bias_walk_rad_s_rt_s: ``σ_u``, gyro-bias random walk, rad/s/√s.
+        tracker_cross_rad, tracker_about_rad: star-tracker 1σ across / about the boresight, rad.
+        boresight_B: the tracker's boresight, unit vector in B.
+        initial_bias_sigma_rad_s: 1σ of the bias before any measurement, rad/s per axis.
+        reinit_angle_rad: residual (or attitude 3σ) above which the attitude is re-initialised.
+    """
+
+    def __init__(self, gyro_noise_rad_s: float, bias_walk_rad_s_rt_s: float, tracker_cross_rad: float,
+                 tracker_about_rad: float, boresight_B: Vec3 = (0.0, 0.0, 1.0),
+                 initial_bias_sigma_rad_s: float = math.radians(1.0), reinit_angle_rad: float = math.radians(5.0)):
+        self.gyro_noise = float(gyro_noise_rad_s)
+        self.bias_walk = float(bias_walk_rad_s_rt_s)
+        self.tracker_cross = float(tracker_cross_rad)
+        self.tracker_about = float(tracker_about_rad)
+        n = math.sqrt(sum(c * c for c in boresight_B))
+        if not n > 0.0:
+            raise ValueError(f"boresight_B must be a non-zero vector, got {boresight_B}")
+        self.boresight = (boresight_B[0] / n, boresight_B[1] / n, boresight_B[2] / n)
+        self.initial_bias_sigma = float(initial_bias_sigma_rad_s)
+        self.reinit_angle = float(reinit_angle_rad)
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget everything: no attitude, zero bias with its initial uncertainty."""
+        self.q: Quat | None = None
+        self.bias: Vec3 = (0.0, 0.0, 0.0)
+        self.omega: Vec3 = (0.0, 0.0, 0.0)
+        self.since_measurement_s = math.inf
+        self.P: Mat = _zeros(6, 6)
+        s2 = self.initial_bias_sigma ** 2
+        for i in range(3, 6):
+            self.P[i][i] = s2
+        self.last_residual: Vec3 | None = None  # rad, B: the last star-tracker residual r
+        self.last_innovation_cov: Mat | None = None  # its covariance S, rad²
+        self.reinitialisations = 0
+
+    # --- figures -------------------------------------------------------------------------------
+
+    @property
+    def attitude_sigma3_rad(self) -> float:
+        """3·√(trace P_θθ): the attitude error's 3σ (rad), or inf without an attitude."""
+        if self.q is None:
+            return math.inf
+        p = self.P
+        return 3.0 * math.sqrt(max(0.0, p[0][0] + p[1][1] + p[2][2]))
+
+    @property
+    def bias_sigma_rad_s(self) -> Vec3:
+        p = self.P
+        return (math.sqrt(p[3][3]), math.sqrt(p[4][4]), math.sqrt(p[5][5]))
+
+    def tracker_noise(self) -> Mat:
+        """``R``, rad²: the star tracker's noise in B."""
+        sc2, sb2 = self.tracker_cross ** 2, self.tracker_about ** 2
+        e = self.boresight
+        d = sb2 - sc2
+        return [[(sc2 if i == j else 0.0) + d * e[i] * e[j] for j in range(3)] for i in range(3)]
+
+    # --- the filter ----------------------------------------------------------------------------
+
+    def update(self, omega_gyro_B: Vec3, dt: float, q_measured: Quat | None = None, age_s: float = 0.0,
+               samples: int = 1) -> None:
+        """Advance by ``dt`` s on the mean of ``samples`` gyro readings ``omega_gyro_B`` (rad/s, B, held
+        over the interval that ends now), then correct with ``q_measured`` (``q_BN`` taken ``age_s`` s
+        ago), when given."""
+        n = max(1, int(samples))
+        b = self.bias
+        w = (omega_gyro_B[0] - b[0], omega_gyro_B[1] - b[1], omega_gyro_B[2] - b[2])
+        var_rate = self.gyro_noise ** 2 / n  # of the mean rate, per axis, (rad/s)²
+        self.since_measurement_s += dt
+        if self.q is not None:
+            self.q = _propagate(self.q, w, dt)
+            self._propagate_covariance(w, dt, var_rate)
+        if q_measured is not None:
+            q_m = _propagate(quat_normalize(q_measured), w, age_s) if age_s > 0.0 else quat_normalize(q_measured)
+            corr = var_rate * dt * age_s if 0.0 < age_s <= dt else 0.0
+            self._measure(q_m, var_rate * age_s * age_s, corr)
+            self.since_measurement_s = 0.0
+            b = self.bias
+        self.omega = (omega_gyro_B[0] - b[0], omega_gyro_B[1] - b[1], omega_gyro_B[2] - b[2])
+
+    def _propagate_covariance(self, w: Vec3, dt: float, var_rate: float) -> None:
+        f = _rotation_transpose(w, dt)
+        phi = _zeros(6, 6)
+        for i in range(3):
+            for j in range(3):
+                phi[i][j] = f[i][j]
+            phi[i][i + 3] = -dt
+            phi[i + 3][i + 3] = 1.0
+        p = _matmul(_matmul(phi, self.P), _transpose(phi))
+        su2 = self.bias_walk ** 2
+        qa = var_rate * dt * dt + su2 * dt ** 3 / 3.0
+        qab = -su2 * dt * dt / 2.0
+        qb = su2 * dt
+        for i in range(3):
+            p[i][i] += qa
+            p[i][i + 3] += qab
+            p[i + 3][i] += qab
+            p[i + 3][i + 3] += qb
+        self.P = _symmetric(p)
+
+    def _initialise_attitude(self, q_m: Quat, r: Mat) -> None:
+        self.q = quat_shortest(q_m)
+        p = self.P
+        for i in range(3):
+            for j in range(6):
+                p[i][j] = 0.0
+                p[j][i] = 0.0
+            for j in range(3):
+                p[i][j] = r[i][j]
+        self.last_residual = None
+        self.last_innovation_cov = None
+
+    def _measure(self, q_m: Quat, var_carry: float, corr: float) -> None:
+        r = self.tracker_noise()
+        for i in range(3):
+            r[i][i] += var_carry
+        if self.q is None:
+            self._initialise_attitude(q_m, r)
+            return
+        qe = quat_shortest(quat_mul(quat_conj(self.q), q_m))
+        res = (2.0 * qe[1], 2.0 * qe[2], 2.0 * qe[3])
+        if (math.sqrt(res[0] ** 2 + res[1] ** 2 + res[2] ** 2) > self.reinit_angle
+                or self.attitude_sigma3_rad > self.reinit_angle):
+            self.reinitialisations += 1
+            self._initialise_attitude(q_m, r)
+            return
+        p = self.P
+        # cross-covariance of the state error with the residual's noise: −corr on the attitude block
+        s = [[p[i][j] + r[i][j] for j in range(3)] for i in range(3)]
+        for i in range(3):
+            s[i][i] -= 2.0 * corr
+        pht = [[p[i][j] - (corr if i == j else 0.0) for j in range(3)] for i in range(6)]  # P Hᵀ + M
+        k = _matmul(pht, _inv_spd3(s))
+        dx = [k[i][0] * res[0] + k[i][1] * res[1] + k[i][2] * res[2] for i in range(6)]
+        ksk = _matmul(_matmul(k, s), _transpose(k))
+        self.P = _symmetric([[p[i][j] - ksk[i][j] for j in range(6)] for i in range(6)])
+        self.last_residual = res
+        self.last_innovation_cov = s
+        # reset: fold the error into the reference attitude and the bias
+        q = self.q
+        self.q = quat_normalize(quat_mul(q, (1.0, 0.5 * dx[0], 0.5 * dx[1], 0.5 * dx[2])))
+        b = self.bias
+        self.bias = (b[0] + dx[3], b[1] + dx[4], b[2] + dx[5])
+
+
+def _symmetric(p: Mat) -> Mat:
+    n = len(p)
+    return [[0.5 * (p[i][j] + p[j][i]) for j in range(n)] for i in range(n)]

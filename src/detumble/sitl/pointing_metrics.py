@@ -1,0 +1,107 @@
+"""Campaign metrics of pointing runs on an attitude-control deployment (``deployments/adcs_ref``).
+
+Registered through the ``fprime_lite.campaign_metrics`` entry point ``detumble_pointing``. They read what
+:class:`~detumble.sitl.attitude_report.AttitudeRunReport` wrote: ``summary.json``'s ``slews`` and
+``wheel_momentum_max_fraction``, ``attitude.csv`` (true pointing error every 0.5 s) and ``events.log``.
+
+* ``slew_settle_s``: seconds from the first target change made while POINTING until the true error stays
+  below 0.1° (the issue's slew target);
+* ``pointing_steady_median_deg`` / ``pointing_steady_p95_deg``: statistics of the true error over the POINTING
+  samples from ``STEADY_AFTER_S`` after the last target change (or after the first 10 % of POINTING when
+  there was none) to the end: the steady-state hold;
+* ``wheel_momentum_max_fraction``: largest ``|h_i| / h_max`` of the run;
+* ``wheel_limit_events``: WheelLimitReached (the controller cut a request) plus the wheel drivers' saturation
+  events in the run's event log (0: no limit was ever reached).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import pathlib
+
+from fprime_lite.tools.campaign import Metric, MetricUnavailable, RunOutput
+
+__all__ = ["METRICS", "STEADY_AFTER_S", "percentile", "steady_errors"]
+
+STEADY_AFTER_S = 60.0
+_POINTING = ("POINTING", "3")  # the mode column of attitude.csv (by name; a number in older runs)
+_LIMIT_EVENTS = ("WheelLimitReached", "TorqueSaturated", "MomentumSaturated")
+
+
+def _out(output: RunOutput) -> pathlib.Path:
+    return pathlib.Path(output.out_dir or ".")
+
+
+def _slews(output: RunOutput) -> list:
+    slews = output.summary.get("slews")
+    if slews is None:
+        raise MetricUnavailable("summary.json has no 'slews': the topology has no AttitudeRunReport")
+    return slews
+
+
+def _slew_settle(output: RunOutput, _probe) -> float:
+    slews = _slews(output)
+    if not slews:
+        raise MetricUnavailable("no target change while POINTING (the sequence must change the target after "
+                                "FORCE_MODE POINTING)")
+    settle = slews[0]["settle_below_0p1_deg_s"]
+    if settle is None:
+        raise MetricUnavailable("the slew never settled below 0.1 deg within the run")
+    return float(settle)
+
+
+def steady_errors(output: RunOutput) -> list[float]:
+    """True pointing errors (deg) of the steady hold, as defined in the module docstring."""
+    path = _out(output) / "attitude.csv"
+    if not path.is_file():
+        raise MetricUnavailable("the run wrote no attitude.csv (the topology has no AttitudeRunReport)")
+    with open(path, newline="", encoding="utf-8") as fh:
+        rows = [(float(r["t_s"]), float(r["pointing_error_deg"])) for r in csv.DictReader(fh)
+                if r["mode"] in _POINTING]
+    rows = [r for r in rows if math.isfinite(r[1])]
+    slews = _slews(output)
+    if slews:
+        start = slews[-1]["t_s"] + STEADY_AFTER_S
+        errors = [e for t, e in rows if t >= start]
+    else:
+        errors = [e for _, e in rows[len(rows) // 10:]]
+    if not errors:
+        raise MetricUnavailable(f"no POINTING samples {STEADY_AFTER_S:g} s after the last target change")
+    return errors
+
+
+def percentile(values: list[float], p: float) -> float:
+    """The ``p`` quantile (0…1) of ``values`` by linear interpolation."""
+    s = sorted(values)
+    k = (len(s) - 1) * p
+    lo = math.floor(k)
+    hi = min(lo + 1, len(s) - 1)
+    return s[lo] + (s[hi] - s[lo]) * (k - lo)
+
+
+def _wheel_fraction(output: RunOutput, _probe) -> float:
+    value = output.summary.get("wheel_momentum_max_fraction")
+    if value is None:
+        raise MetricUnavailable("no reaction wheels (summary.json wheel_momentum_max_fraction is null or absent)")
+    return float(value)
+
+
+def _limit_events(output: RunOutput, _probe) -> float:
+    path = _out(output) / "events.log"
+    if not path.is_file():
+        raise MetricUnavailable("the run wrote no events.log")
+    with open(path, encoding="utf-8") as fh:
+        return float(sum(1 for line in fh if any(f".{name} " in line for name in _LIMIT_EVENTS)))
+
+
+METRICS = (
+    Metric("slew_settle_s", "s", "first target change while POINTING until the true error stays below 0.1 deg",
+           _slew_settle),
+    Metric("pointing_steady_median_deg", "deg", f"median true pointing error from {STEADY_AFTER_S:g} s after the "
+           "last target change", lambda output, _probe: percentile(steady_errors(output), 0.5)),
+    Metric("pointing_steady_p95_deg", "deg", f"95th percentile of the true pointing error from {STEADY_AFTER_S:g} s "
+           "after the last target change", lambda output, _probe: percentile(steady_errors(output), 0.95)),
+    Metric("wheel_momentum_max_fraction", "1", "largest |h_i|/h_max of any wheel over the run", _wheel_fraction),
+    Metric("wheel_limit_events", "1", "wheel torque/momentum limit events in the run's event log", _limit_events),
+)
