@@ -41,7 +41,8 @@ import json, sys, time
 from fprime_lite.deploy.deployment import Deployment
 from fprime_lite.deploy.topology_loader import load_topology
 from detumble.sim.runner import run as plant_only
-topology, duration, law, group_name, tick_s = sys.argv[1], float(sys.argv[2]), sys.argv[3], sys.argv[4], float(sys.argv[5])
+topology, law, group_name = sys.argv[1], sys.argv[3], sys.argv[4]
+duration, tick_s = float(sys.argv[2]), float(sys.argv[5])
 loaded = load_topology(topology)
 deployment = Deployment(loaded)
 scenario = loaded.resources["spacecraft"].scenario
@@ -112,7 +113,8 @@ def main(argv: list[str] | None = None) -> int:
                     mins[0] = min(mins[0], figures["deployment_us"])
                     mins[1] = min(mins[1], figures["plant_only_us"])
     for (name, label), (dep, plant) in best.items():
-        print(f"{name:11s} {label:24s} deployment {dep:6.1f} µs / plant-only {plant:6.1f} µs a tick = {dep / plant:.2f}")
+        print(f"{name:11s} {label:24s} deployment {dep:6.1f} µs / plant-only {plant:6.1f} µs a tick "
+              f"= {dep / plant:.2f}")
     return 0
 
 

@@ -39,7 +39,7 @@ class RateObserver:
     pull ``L`` toward the gyro."""
 
     def __init__(self, inertia_kg_m2, gain_per_s: float) -> None:
-        self._key = None
+        self._key: object = None  # the model last set: a repeated set_model is free
         self.set_model(inertia_kg_m2, gain_per_s)
         self.omega: Vec3 | None = None
 

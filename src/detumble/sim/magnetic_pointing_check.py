@@ -70,6 +70,9 @@ def fly(law: str, k_p: float, k_d: float, *, rho: float = 2.0, zeta: float = 0.7
     sc = load_scenario(scenario, seed=seed, settings=base + list(settings))
     plant = Plant(sc, seed)
     plant.set_pointing_target(target)
+    field = plant.field
+    if field is None:
+        raise ValueError(f"scenario {scenario!r} has no magnetic field: magnetorquer pointing needs one")
     m_max = plant.max_dipole_per_axis()
     plant.actuators = TorqueRods(m_max)  # continuous dipole of the coils' capacity
     every = max(1, int(round(sample_s / dt_s)))
@@ -80,21 +83,24 @@ def fly(law: str, k_p: float, k_d: float, *, rho: float = 2.0, zeta: float = 0.7
             tau, _ = pd_torque(target, q, w, k_p, k_d)
         else:
             t = plant.t
-            b1 = _unit(plant.field.b_N(t, plant.orbit.position_N(t)))
-            b0 = _unit(plant.field.b_N(t - 1.0, plant.orbit.position_N(t - 1.0)))
+            b1 = _unit(field.b_N(t, plant.orbit.position_N(t)))
+            b0 = _unit(field.b_N(t - 1.0, plant.orbit.position_N(t - 1.0)))
             bd = rotate_n_to_b(q, (b1[0] - b0[0], b1[1] - b0[1], b1[2] - b0[2]))
             tau, _ = field_steering_torque(target, q, w, b, bd, k_p, k_d, rho, zeta)
         m, _ = project_dipole_weighted(tau, b, m_max)
         plant.apply_dipole_B(scale_to_limits(m, m_max))
         if k % every == 0:
             times.append(plant.t)
-            errors.append(math.degrees(plant.pointing_error_rad()))
+            error = plant.pointing_error_rad()
+            assert error is not None  # the target was set above
+            errors.append(math.degrees(error))
         plant.step(dt_s)
     return CheckResult(times, errors)
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m detumble.sim.magnetic_pointing_check", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m detumble.sim.magnetic_pointing_check",
+                                 description=__doc__.split("\n")[0])
     ap.add_argument("--law", choices=LAWS, default="field_steering")
     ap.add_argument("--kp", type=float, default=1.0e-6, help="N·m (default 1e-6)")
     ap.add_argument("--kd", type=float, default=1.0e-4, help="N·m·s (default 1e-4)")

@@ -10,11 +10,17 @@ the downlinked ``ControlModeChanged`` events, and adds to ``summary.json``:
 * ``spin_axis_error_deg``: the same statistics of the angle between the total angular momentum
   (body + wheels) and body +Z over the SPIN_STABLE samples (after their first 10 %);
 * ``spin_settled_s``: seconds from entering SPIN_STABLE until the momentum stays within 5° of +Z
-  and the rate about +Z within 5 % of its target (the issue's spin target), or None;
+  and the rate about +Z within 5 % of its target (the issue's spin target) for the rest of that first
+  SPIN_STABLE interval, or None; ``spin_settled_dwell_s``: how long it then stayed settled (to the
+  interval's last sample: the mode's end or the run's), or None;
 * ``slews``: for each target change while POINTING, its angle and the time until the true error
   stays below 0.1°;
 * ``wheel_momentum_max_fraction``: the largest ``|h_i| / h_max`` seen, and the same over the last
   orbit-long window (``wheel_momentum_max_fraction_last_orbit``).
+
+``progress()`` (the progress bar's figures, and what ``--stop-when`` conditions test) gives ``mode``,
+``pointing_error_deg`` and ``spin_settled_for_s``: how long the spin has been inside that band without a
+break in the present SPIN_STABLE interval (0 outside it).
 
 Plots: ``attitude_mode.png`` (mode vs time), ``pointing_error.png``, ``wheel_momentum.png``,
 ``dipole.png``; the samples go to ``attitude.csv``. Time ``t_s`` is seconds since the run started.
@@ -38,6 +44,10 @@ __all__ = ["AttitudeRunReport", "error_statistics", "settle_time"]
 
 US_PER_S = 1_000_000
 ORBIT_S = 5578.0
+#: The issue's stable spin: total momentum within this angle of body +Z …
+SPIN_AXIS_BAND_DEG = 5.0
+#: … and the body rate about +Z within this fraction of SPIN_RATE_TARGET.
+SPIN_RATE_BAND = 0.05
 _COLUMNS = ("t_s", "mode", "pointing_error_deg", "spin_axis_error_deg", "spin_rate_deg_s", "rate_deg_s",
             "h0_nms", "h1_nms", "h2_nms", "h3_nms", "mx_cmd_Am2", "my_cmd_Am2", "mz_cmd_Am2",
             "mx_Am2", "my_Am2", "mz_Am2")
@@ -95,6 +105,7 @@ class AttitudeRunReport:
         self.transitions: list[dict] = []
         self._target_changes: list[tuple[float, float]] = []  # (t_s, angle deg) while POINTING
         self._last_target = None
+        self._spin_since: float | None = None  # start of the present in-band SPIN_STABLE streak, s
 
     # --- run hooks -------------------------------------------------------------------------------
 
@@ -134,6 +145,15 @@ class AttitudeRunReport:
         momenta += [0.0] * (4 - len(momenta))
         self.rows.append((t, int(mode), err, spin_err, math.degrees(w[2]), p.rate_deg_s, *momenta,
                           *c.dipole, *p.m_coils_B))
+        if mode == ControlMode.SPIN_STABLE and self._in_band(spin_err, math.degrees(w[2])):
+            if self._spin_since is None:
+                self._spin_since = t
+        else:
+            self._spin_since = None
+
+    def _in_band(self, axis_err_deg: float, rate_z_deg_s: float) -> bool:
+        target = self.controller.SPIN_RATE_TARGET.value
+        return axis_err_deg <= SPIN_AXIS_BAND_DEG and abs(rate_z_deg_s - target) <= SPIN_RATE_BAND * abs(target)
 
     def on_event(self, event) -> None:
         """A downlinked event: ControlModeChanged(from, to, reason) becomes a transition."""
@@ -150,6 +170,8 @@ class AttitudeRunReport:
         out = {"mode": c.mode.name}
         if self.rows and math.isfinite(self.rows[-1][2]):
             out["pointing_error_deg"] = self.rows[-1][2]
+        if self.rows:
+            out["spin_settled_for_s"] = self.rows[-1][0] - self._spin_since if self._spin_since is not None else 0.0
         return out
 
     # --- figures ---------------------------------------------------------------------------------
@@ -160,18 +182,24 @@ class AttitudeRunReport:
     def spin_settled_s(self) -> float | None:
         """Seconds from the first entry into SPIN_STABLE until momentum within 5° of +Z and the rate within
         5 % of SPIN_RATE_TARGET hold for the rest of that SPIN_STABLE interval."""
+        return self._spin_settling()[0]
+
+    def _spin_settling(self) -> tuple[float | None, float | None]:
+        """``(settled_s, dwell_s)`` of the first SPIN_STABLE interval (None, None when it never settled)."""
         first = next((i for i, r in enumerate(self.rows) if r[1] == ControlMode.SPIN_STABLE), None)
         if first is None:
-            return None
+            return None, None
         start = self.rows[first][0]
-        target = self.controller.SPIN_RATE_TARGET.value
         interval = []
         for r in self.rows[first:]:
             if r[1] != ControlMode.SPIN_STABLE:
                 break
             interval.append(r)
-        ok = [r[3] <= 5.0 and abs(r[4] - target) <= 0.05 * abs(target) for r in interval]
-        return settle_time([r[0] for r in interval], ok, start)
+        ok = [self._in_band(r[3], r[4]) for r in interval]
+        settled = settle_time([r[0] for r in interval], ok, start)
+        if settled is None:
+            return None, None
+        return settled, interval[-1][0] - (start + settled)
 
     def slews(self) -> list[dict]:
         out = []
@@ -193,11 +221,13 @@ class AttitudeRunReport:
         return max((abs(r[6 + i]) / limits[i] for r in rows for i in range(n)), default=0.0)
 
     def summary(self) -> dict:
+        settled, dwell = self._spin_settling()
         return {
             "control_mode_transitions": self.transitions,
             "pointing_error_deg": error_statistics(self._column(2, ControlMode.POINTING)),
             "spin_axis_error_deg": error_statistics(self._column(3, ControlMode.SPIN_STABLE)),
-            "spin_settled_s": self.spin_settled_s(),
+            "spin_settled_s": settled,
+            "spin_settled_dwell_s": dwell,
             "slews": self.slews(),
             "wheel_momentum_max_fraction": self.wheel_fraction(),
             "wheel_momentum_max_fraction_last_orbit": self.wheel_fraction(ORBIT_S),

@@ -104,6 +104,7 @@ def measure_deployment(topology, duration_s: float | None = None, chunks: int | 
         plant_cpu_us.append((cpu() - c0) / plant["sim_seconds"] * tick_s * 1e6)
         plant_us.append(plant["wall_seconds"] / plant["sim_seconds"] * tick_s * 1e6)
     timer = loaded.timer
+    assert timer is not None  # tick_rate_group refused a deployment without one
     tick_hz = 1.0 / tick_s
     return {
         "topology": str(topology),

@@ -210,6 +210,24 @@ def _final_rate(output: RunOutput, _probe) -> float:
     return float(output.summary["final_rate_deg_s"])
 
 
+def _mode_transitions(output: RunOutput, _probe) -> float:
+    transitions = output.summary.get("control_mode_transitions")
+    if transitions is None:
+        raise MetricUnavailable("the run has no attitude report (no control_mode_transitions in summary.json)")
+    return float(len(transitions))
+
+
+def _spin_axis_error(statistic: str):
+    def compute(output: RunOutput, _probe) -> float:
+        if "spin_axis_error_deg" not in output.summary:
+            raise MetricUnavailable("the run has no attitude report (no spin_axis_error_deg in summary.json)")
+        stats = output.summary["spin_axis_error_deg"]
+        if stats is None:
+            raise MetricUnavailable("no SPIN_STABLE samples in the run (summary.json spin_axis_error_deg is null)")
+        return float(stats[statistic])
+    return compute
+
+
 
 class CoilEnergyMeter:
     """Integrates the coils' electrical energy: each face's steady-state power
@@ -289,6 +307,11 @@ METRICS = (
            "(run summary)", _pointing_statistic("p95")),
     Metric("pointing_max_deg", "deg", "largest pointing error in POINTING after its first 10 % (run summary)",
            _pointing_statistic("max")),
+    Metric("mode_transitions", "", "number of attitude-control mode changes the ground saw "
+           "(summary.json control_mode_transitions)", _mode_transitions),
+    *(Metric(f"spin_axis_error_{stat}_deg", "deg", f"{stat} angle between the total angular momentum and body "
+             f"+Z over SPIN_STABLE after its first 10 % (summary.json spin_axis_error_deg)", _spin_axis_error(stat))
+      for stat in ("median", "p95", "max")),
     Metric("wheel_momentum_peak_nms", "N m s", "largest |h| of any reaction wheel (truth)", _wheel_momentum_peak),
     Metric("coil_energy_j", "J", "electrical energy spent in the coils (steady-state I²R)",
            lambda output, meter: meter.total_j(), instrument=CoilEnergyMeter),

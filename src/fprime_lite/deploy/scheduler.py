@@ -203,6 +203,11 @@ class Scheduler:
         """End :meth:`run` after the current event."""
         self._stopped = True
 
+    @property
+    def stopped(self) -> bool:
+        """True when the last :meth:`run` was ended by :meth:`stop`."""
+        return self._stopped
+
 
 class PacedScheduler(Scheduler):
     """A scheduler that keeps simulated time from running ahead of the wall clock × ``speed``."""

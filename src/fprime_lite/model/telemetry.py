@@ -15,8 +15,8 @@ downlinks it or when it is read. Only values that cannot change after the write 
 numbers, booleans, enums and strings as they are; structs whose members are all of those kinds
 or times, and arrays of numbers, as a tuple of their member values taken at the write (struct and
 array values are mutable Python objects). Other arrays, structs with struct or array members, and
-every write to any other receiver (a test harness, a tap, a custom component) are packed at write, so what such a receiver sees is
-F´'s ``Fw.Tlm`` call with the value's bytes.
+every write to any other receiver (a test harness, a tap, a custom component) are packed at write,
+so what such a receiver sees is F´'s ``Fw.Tlm`` call with the value's bytes.
 """
 
 from __future__ import annotations
@@ -29,8 +29,8 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 from fprime_lite.model.errors import DeclarationError, check_member_name
 from fprime_lite.model.events import translate_format
 from fprime_lite.model.time import Time, TimeType
-from fprime_lite.model.types import (_F64, ArrayType, BoolType, EnumType, FloatType, FwType, IntType, StringType, StructType,
-                                     fw_type)
+from fprime_lite.model.types import (_F64, ArrayType, BoolType, EnumType, FloatType, FwType, IntType, StringType,
+                                     StructType, fw_type)
 
 _ZERO_TIME = Time()
 
@@ -240,7 +240,7 @@ class BoundSnapshotChannel(BoundChannel[V]):
             self._serialize = lambda members: fixed.pack(*members)
         else:
             packs = [mt.pack for mt in member_types]
-            self._serialize = lambda members: b"".join([p(v) for p, v in zip(packs, members)])
+            self._serialize = lambda members: b"".join([p(v) for p, v in zip(packs, members, strict=True)])
 
     def _quick_check(self, value: Any) -> Any:
         """The type's check, skipped for a value whose members all have their exact valid types."""

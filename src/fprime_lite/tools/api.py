@@ -112,20 +112,21 @@ def claim_run_folder(out=None, runs_dir="runs") -> pathlib.Path:
     raise RunSetupError(f"{runs}: 999 run folders named {stamp}* already exist — give --out DIR")
 
 
-def run(topology="topology.yaml", *, duration_s: float = 600.0, out=None, scenario: str | None = None,
+def run(topology="topology.yaml", *, duration_s: float | None = None, out=None, scenario: str | None = None,
         seed: int | None = None, settings: Sequence[str] = (), params=None, seq=None,
         truth_interval_s: float | None = None, plots: bool = False, progress: bool = False,
         quiet: bool = True) -> "RunResult":
-    """Fly ``topology`` for ``duration_s`` simulated seconds; return its :class:`RunResult`.
+    """Fly ``topology`` for ``duration_s`` simulated seconds (default: the topology's ``run.duration_s``,
+    else 600); return its :class:`RunResult`.
 
     Outputs go to ``out`` (absent or empty) or a new ``runs/<timestamp>``. ``plots`` draws the PNGs
     as the run ends (``result.plot()`` does it later); ``progress`` shows the progress bar;
     ``quiet=False`` prints the summary table.
     """
     from fprime_lite.deploy.preflight import check_run_files
-    from fprime_lite.tools.runner import run_deployment
+    from fprime_lite.tools.runner import run_deployment, run_duration
 
-    if not (isinstance(duration_s, (int, float)) and duration_s > 0):
+    if duration_s is not None and not (isinstance(duration_s, (int, float)) and duration_s > 0):
         raise RunSetupError(f"duration must be a positive number of seconds, got {duration_s!r}")
     for what, value in (("parameter file", params), ("sequence", seq)):
         if value is not None and not pathlib.Path(value).is_file():
@@ -134,7 +135,7 @@ def run(topology="topology.yaml", *, duration_s: float = 600.0, out=None, scenar
     loaded = load(topology, scenario=scenario, seed=seed, settings=settings, truth_interval_s=truth_interval_s)
     check_run_files(loaded, parameter_file=params, sequence=seq)
     folder = claim_run_folder(out)
-    run_deployment(loaded, folder, duration_s=duration_s, parameter_file=params, sequence=seq,
+    run_deployment(loaded, folder, duration_s=run_duration(loaded, duration_s), parameter_file=params, sequence=seq,
                    progress=progress, plots=plots, quiet=quiet)
     return RunResult(folder)
 

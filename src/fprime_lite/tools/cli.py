@@ -55,8 +55,12 @@ def build_parser() -> argparse.ArgumentParser:
                          "(docs/outputs.md). Exits 1 when the flight had faults, cycle slips or WARNING_HI/FATAL "
                          "events (--allow-warnings accepts them), 2 for a mistake in the inputs.")
     _topology_arg(run)
-    run.add_argument("--duration", type=float, default=600.0, metavar="SECONDS",
-                     help="simulated seconds to run (default 600)")
+    run.add_argument("--duration", type=float, default=None, metavar="SECONDS",
+                     help="simulated seconds to run (default: the topology's run.duration_s, else 600)")
+    run.add_argument("--stop-when", action="append", default=[], metavar="'KEY OP VALUE'",
+                     help="end the run early once every such condition holds on the reports' progress values, "
+                          "e.g. 'spin_settled_for_s >= 300' or 'mode == POINTING' (repeatable; checked once per "
+                          "simulated second)")
     run.add_argument("--scenario", metavar="NAME|FILE", help="simulation scenario (packaged name or YAML file)")
     run.add_argument("--seed", type=int, help="seed of the sensor noise (overrides the scenario's)")
     run.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE",
@@ -261,11 +265,16 @@ def _float_text(setting: str, text: str, type_name: str):
 def cmd_run(args) -> int:
     from fprime_lite.deploy.preflight import check_run_files
     from fprime_lite.tools.api import claim_run_folder, load
-    from fprime_lite.tools.runner import run_deployment
+    from fprime_lite.tools.runner import run_deployment, run_duration
+    from fprime_lite.tools.stop_condition import StopConditionError, parse_stop_condition
 
     _checked_settings(args.set)
-    if not args.duration > 0:
+    if args.duration is not None and not args.duration > 0:
         raise UserError(f"--duration must be positive, got {args.duration}")
+    try:
+        args.stop_when = [parse_stop_condition(text) for text in args.stop_when]
+    except StopConditionError as exc:
+        raise UserError(f"--stop-when {exc}") from None
     for option, value in (("--params", args.params), ("--seq", args.seq), ("--scenario", args.scenario)):
         if value is not None and pathlib.Path(value).is_dir():
             raise UserError(f"{option} {value}: is a folder — give a file")
@@ -285,11 +294,13 @@ def cmd_run(args) -> int:
     loaded = load(args.topology, scenario=args.scenario, seed=args.seed, settings=args.set,
                   truth_interval_s=args.truth_interval, scheduler_factory=_paced if realtime else None)
     check_run_files(loaded, parameter_file=args.params, sequence=args.seq)
+    args.duration = run_duration(loaded, args.duration)  # the topology's own run length when not given
     out = claim_run_folder(args.out)
     if not realtime:
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
-                                 plots=not args.no_plots, allow_warnings=args.allow_warnings)
+                                 plots=not args.no_plots, allow_warnings=args.allow_warnings,
+                                 stop_when=args.stop_when)
     else:
         summary = _run_realtime(loaded, out, args, address)
     print(f"outputs in {out}/")
@@ -345,7 +356,7 @@ def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
             link.start_socket_task()
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=False, plots=not args.no_plots,
-                                 allow_warnings=args.allow_warnings)
+                                 allow_warnings=args.allow_warnings, stop_when=args.stop_when)
     finally:
         if link is not None:
             link.close()

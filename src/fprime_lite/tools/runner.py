@@ -31,11 +31,24 @@ from fprime_lite.ground.downlink import DecodedEvent, GroundRecorder
 from fprime_lite.svc.file_downlink import FileDownlink
 from fprime_lite.svc.rate_groups import RateGroupBase
 from fprime_lite.deploy.topology_loader import LoadedDeployment
+from fprime_lite.tools.stop_condition import CHECK_INTERVAL_S, StopCondition, holds_all, parse_stop_condition
 
-__all__ = ["run_deployment", "flight_problems", "PROGRESS_STEP_S", "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
+__all__ = ["run_deployment", "run_duration", "DEFAULT_DURATION_S", "flight_problems", "PROGRESS_STEP_S",
+           "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
 
 #: Simulated seconds between progress updates (and between chunks of the run).
 PROGRESS_STEP_S = 10.0
+
+#: Simulated seconds of a run when neither the caller nor the topology's ``run.duration_s`` says.
+DEFAULT_DURATION_S = 600.0
+
+
+def run_duration(loaded: LoadedDeployment, requested: float | None) -> float:
+    """``requested`` when given, else the topology's ``run.duration_s``, else :data:`DEFAULT_DURATION_S`."""
+    if requested is not None:
+        return float(requested)
+    declared = loaded.config.run.duration_s if loaded.config is not None else None
+    return declared if declared is not None else DEFAULT_DURATION_S
 
 
 def _reports(loaded: LoadedDeployment) -> list:
@@ -45,13 +58,17 @@ def _reports(loaded: LoadedDeployment) -> list:
 
 def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
                    progress: bool = False, plots: bool = True, console=None, allow_warnings: bool = False,
-                   stop_on_events=(), quiet: bool = False) -> dict:
+                   stop_on_events=(), stop_when=(), quiet: bool = False) -> dict:
     """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary.
 
     The summary's ``ok`` is False when the flight had handler faults, rate-group member faults,
     cycle slips or WARNING_HI/FATAL events, unless ``allow_warnings``; ``problems`` says which.
     ``stop_on_events``: full event names (``Module.inst.Event``) whose downlink ends the run early
-    (a campaign stops at DetumbleCompleted). ``quiet`` prints nothing (no summary table).
+    (a campaign stops at DetumbleCompleted). ``stop_when``: conditions (text ``KEY OP VALUE`` or
+    :class:`~fprime_lite.tools.stop_condition.StopCondition`) on the reports' ``progress()`` values,
+    checked once per simulated second; the run ends at the first check where all of them hold. The
+    summary's ``stopped_by`` says what ended a run early (None when it ran its duration).
+    ``quiet`` prints nothing (no summary table).
     """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -62,12 +79,15 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
             component.set_default_root(out)
     reports = _reports(loaded)
     stop_names = frozenset(stop_on_events)
+    conditions = [c if isinstance(c, StopCondition) else parse_stop_condition(c) for c in stop_when]
+    stopped_by: list[str] = []
 
     def on_event(event: DecodedEvent) -> None:
         for r in reports:
             if hasattr(r, "on_event"):
                 r.on_event(event)
         if event.name in stop_names:
+            stopped_by.append(f"event {event.name}")
             deployment.scheduler.stop()
 
     recorder = GroundRecorder(topo, out, on_event=on_event, clock=loaded.clock)
@@ -83,6 +103,8 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     wall0 = time.perf_counter()
     deployment.start(parameter_file=parameter_file, sequence=sequence)
     start_us = deployment.scheduler.now_us
+    if conditions:
+        _watch_conditions(deployment.scheduler, reports, conditions, stopped_by)
     end_us = start_us + round(duration_s * 1_000_000)
     if progress:
         _run_with_progress(deployment, end_us, reports, console)
@@ -97,6 +119,7 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
             written += r.finish(out, plots=plots) or []
     sim_s = (deployment.scheduler.now_us - start_us) / 1e6  # less than duration_s when stopped early
     summary = _summary(deployment, recorder, reports, sim_s, wall)
+    summary["stopped_by"] = stopped_by[0] if stopped_by and sim_s < duration_s - 1e-9 else None
     summary["problems"] = flight_problems(summary)
     summary["ok"] = allow_warnings or not summary["problems"]
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2) + "\n")
@@ -158,6 +181,25 @@ def _summary(deployment: Deployment, recorder: GroundRecorder, reports, sim_s: f
     return summary
 
 
+def _watch_conditions(scheduler, reports, conditions, stopped_by: list) -> None:
+    """Stop ``scheduler`` at the first whole simulated second at which every condition holds."""
+    step_us = round(CHECK_INTERVAL_S * 1_000_000)
+    next_us = [scheduler.now_us + step_us]
+
+    def check(time_us: int) -> None:
+        if time_us < next_us[0] or stopped_by:
+            return
+        next_us[0] = time_us + step_us
+        values: dict = {}
+        for r in reports:
+            if hasattr(r, "progress"):
+                values.update(r.progress())
+        if holds_all(conditions, values):
+            stopped_by.append("stop_when " + " and ".join(c.text for c in conditions))
+            scheduler.stop()
+    scheduler.add_time_listener(check)
+
+
 def _run_with_progress(deployment: Deployment, end_us: int, reports, console) -> None:
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
@@ -171,6 +213,8 @@ def _run_with_progress(deployment: Deployment, end_us: int, reports, console) ->
         wall0 = time.perf_counter()
         while scheduler.now_us < end_us:
             scheduler.run(until_us=min(end_us, scheduler.now_us + step_us))
+            if scheduler.stopped:  # an early-stop event or condition
+                break
             sim_s = (scheduler.now_us - start_us) / 1e6
             wall = time.perf_counter() - wall0
             extra = []

@@ -474,8 +474,9 @@ def test_pointing_on_magnetorquers_projects_the_pd_torque(fprime_harness):
 def test_magnetorquer_pointing_steers_with_the_measured_field_line_rate(fprime_harness):
     """ADCS-060: MAG_POINTING_LAW = FIELD_STEERING (default): with the field turning at 2e-3 rad/s (0.115 °/s) in N,
     FieldLineRate reads that rate within 5 % after 60 s at MAG_FIELD_RATE_BANDWIDTH 0.2 rad/s (the estimator runs in
-    every mode while the attitude is known), and RequestedTorque is field_steering_torque of the controller's attitude, rate, field and field-line
-    rate with K_P_MAG, K_D_MAG, MAG_STEER_RHO, MAG_STEER_ZETA (1e-12 N·m); SEED_PD requests seed 003's PD."""
+    every mode while the attitude is known), and RequestedTorque is field_steering_torque of the controller's
+    attitude, rate, field and field-line rate with K_P_MAG, K_D_MAG, MAG_STEER_RHO, MAG_STEER_ZETA (1e-12 N·m);
+    SEED_PD requests seed 003's PD."""
     r = 2.0e-3
     h = make(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS,
                                      "MAG_FIELD_RATE_BANDWIDTH": 0.2, "MAG_SETTLE_TIME": 30.0})

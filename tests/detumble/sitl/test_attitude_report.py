@@ -38,3 +38,4 @@ def test_spin_settled_counts_from_the_first_spin_stable_sample():
                 (30.0, int(ControlMode.SPIN_STABLE), 0.0, 1.0, 1.50, 0.0, *pad),
                 (40.0, int(ControlMode.POINTING), 0.0, 50.0, 0.0, 0.0, *pad)]
     assert rep.spin_settled_s() == 20.0
+    assert rep._spin_settling() == (20.0, 10.0)  # settled at 20 s, in the band until the last SPIN_STABLE sample

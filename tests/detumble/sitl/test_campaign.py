@@ -123,3 +123,17 @@ def test_pointing_statistics_come_from_the_run_summary():
         for summary in ({}, {"pointing_error_deg": None}):
             with pytest.raises(MetricUnavailable, match="no POINTING statistics"):
                 BY_NAME[name].compute(RunOutput(summary), None)
+def test_spin_metrics_come_from_the_attitude_report_s_summary():
+    """CAMP-068: mode_transitions counts the ground's ControlModeChanged transitions; spin_axis_error_*_deg are the
+    AttitudeRunReport's SPIN_STABLE statistics; each is null with its reason when the run has no attitude report
+    or no SPIN_STABLE samples."""
+    summary = {"control_mode_transitions": [{"t_s": 0.0, "mode": "SPIN_STABLE"}, {"t_s": 480.5, "mode": "POINTING"}],
+               "spin_axis_error_deg": {"median": 1.2, "p95": 3.4, "max": 7.5, "samples": 900}}
+    out = RunOutput(summary)
+    assert BY_NAME["mode_transitions"].compute(out, None) == 2.0
+    assert [BY_NAME[f"spin_axis_error_{s}_deg"].compute(out, None) for s in ("median", "p95", "max")] == [1.2, 3.4, 7.5]
+    for name, words in (("mode_transitions", "no attitude report"), ("spin_axis_error_p95_deg", "no attitude report")):
+        with pytest.raises(MetricUnavailable, match=words):
+            BY_NAME[name].compute(RunOutput({"final_rate_deg_s": 1.0}), None)
+    with pytest.raises(MetricUnavailable, match="no SPIN_STABLE samples"):
+        BY_NAME["spin_axis_error_max_deg"].compute(RunOutput({"spin_axis_error_deg": None}), None)

@@ -52,7 +52,8 @@ def test_driver_pattern_table_agrees_with_the_divider_rule(dividers, monkeypatch
         driver = RateGroupDriver("rgDriver", dividers=[(5, 1)])
         fired = []
         for i in range(10):
-            driver.output_port("CycleOut").connect_callable(i, lambda t, i=i: fired.append((t, i)), f"out{i}")
+            driver.output_port("CycleOut").connect_callable(
+                i, lambda t, i=i, fired=fired: fired.append((t, i)), f"out{i}")
         driver.CycleIn(Time())
         driver.dividers = tuple(Divider(*d) for d in dividers)  # replaced: the table is rebuilt
         driver.tick = 0

@@ -84,6 +84,7 @@ def test_short_run_writes_every_output(tmp_path, capsys):
     (["run", TOPOLOGY, "--scenario", "no_such_scenario", "--no-progress"],
      "with the simulation options {'scenario': 'no_such_scenario'}: no_such_scenario: no such scenario file"),
     (["run", TOPOLOGY, "--duration", "-1"], "--duration must be positive"),
+    (["run", TOPOLOGY, "--stop-when", "rate_deg_s"], "--stop-when 'rate_deg_s' is not KEY OP VALUE"),
     (["run", TOPOLOGY, "--params", "missing.dat"], "--params missing.dat: no such file"),
     (["run", TOPOLOGY, "--set", "sensors.gyro"], "--set 'sensors.gyro': expected KEY.PATH=VALUE"),
     (["run", TOPOLOGY, "--scenario", "case_a", "--set", "orbit.altitud=1"], "case_a.yaml has no key 'altitud'"),
@@ -138,3 +139,59 @@ def test_sim_verb_flies_a_scenario_plant_only(tmp_path, capsys):
     assert (out / "rate.csv").read_text().startswith("time_s,omega_x_deg_s,")
     assert main(["sim", "no_such_scenario", "--out", str(out)]) == 2
     assert "not a packaged scenario" in capsys.readouterr().err
+
+
+def _variant(tmp_path, run_section: str) -> str:
+    path = tmp_path / "variant.yaml"
+    path.write_text(f"extends: {TOPOLOGY}\n{run_section}", encoding="utf-8")
+    return str(path)
+
+
+def test_the_topology_s_run_duration_is_the_default_and_duration_overrides_it(tmp_path):
+    """RUN-050: without --duration, `run` flies the topology's run.duration_s; --duration still overrides it."""
+    topology = _variant(tmp_path, "run:\n  duration_s: 3.5\n")
+    assert main(["run", topology, "--out", str(tmp_path / "a"), "--no-progress", "--no-plots"]) == 0
+    summary = json.loads((tmp_path / "a" / "summary.json").read_text())
+    assert summary["sim_seconds"] == 3.5 and summary["stopped_by"] is None
+    assert main(["run", topology, "--duration", "2", "--out", str(tmp_path / "b"), "--no-progress", "--no-plots"]) == 0
+    assert json.loads((tmp_path / "b" / "summary.json").read_text())["sim_seconds"] == 2.0
+
+
+def test_a_topology_without_a_run_section_runs_600_s():
+    """RUN-050: with neither --duration nor run.duration_s the run lasts 600 simulated seconds."""
+    from fprime_lite.tools.api import load
+    from fprime_lite.tools.runner import DEFAULT_DURATION_S, run_duration
+
+    loaded = load(TOPOLOGY)
+    assert loaded.config.run.duration_s is None
+    assert run_duration(loaded, None) == DEFAULT_DURATION_S == 600.0
+    assert run_duration(loaded, 12.0) == 12.0
+
+
+@pytest.mark.parametrize("section, message", [
+    ("run:\n  duration_s: -5\n", "variant.yaml:3: 'run.duration_s' must be a positive number of simulated seconds"),
+    ("run:\n  duration_s: soon\n", "variant.yaml:3: 'run.duration_s' must be a positive number"),
+    ("run:\n  duraton_s: 60\n", "variant.yaml:3: unknown key 'duraton_s' in 'run' — did you mean 'duration_s'?"),
+    ("run: 60\n", "variant.yaml:2: 'run' must be a mapping"),
+])
+def test_a_bad_run_section_is_a_file_line_error(tmp_path, capsys, section, message):
+    """RUN-051: run.duration_s is checked like every topology key: file:line, what is wrong, what to write."""
+    assert main(["check", _variant(tmp_path, section)]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err
+
+
+def test_stop_when_ends_the_run_at_the_first_check_where_it_holds(tmp_path):
+    """RUN-062: --stop-when 'rate_deg_s > 0' (the detumble report's progress value; the tumble is 30 deg/s) ends
+    the run at the first whole-second check; a key no report publishes never stops it."""
+    out = tmp_path / "a"
+    assert main(["run", TOPOLOGY, "--duration", "20", "--stop-when", "rate_deg_s > 0", "--out", str(out),
+                 "--no-progress", "--no-plots"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert 1.0 <= summary["sim_seconds"] < 1.1
+    assert summary["stopped_by"] == "stop_when rate_deg_s > 0"
+    out = tmp_path / "b"
+    assert main(["run", TOPOLOGY, "--duration", "3", "--stop-when", "no_such_value > 0", "--out", str(out),
+                 "--no-progress", "--no-plots"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["sim_seconds"] == 3.0 and summary["stopped_by"] is None

@@ -23,7 +23,7 @@ from fprime_lite.model.time import TimeBase
 
 __all__ = ["TopologyConfig", "TimeConfig", "ResourceConfig", "ModuleConfig", "InstanceConfig", "EndpointRef",
            "ConnectionConfig", "RateGroupsConfig", "RateGroupConfig", "MemberConfig", "PatternConfig",
-           "StartupConfig", "read_config", "parse_endpoint", "TYPE_PATH"]
+           "StartupConfig", "RunConfig", "read_config", "parse_endpoint", "TYPE_PATH"]
 
 US_PER_S = 1_000_000
 U32_MAX = 0xFFFFFFFF
@@ -37,6 +37,9 @@ GROUP_KEYS = {"divisor", "offset", "members"}
 MEMBER_KEYS = {"port", "context"}
 STARTUP_KEYS = {"sequencer", "sequence"}
 TIME_KEYS = {"time_base", "epoch_us"}
+RUN_KEYS = {"duration_s"}
+#: Longest default run a topology may declare, simulated seconds (a year).
+MAX_RUN_S = 366 * 86400.0
 
 #: An import path: dotted identifiers, at least module.Name, no dunder parts.
 TYPE_PATH = re.compile(r"^[A-Za-z_]\w*(\.[A-Za-z_]\w*)+$")
@@ -178,6 +181,14 @@ class StartupConfig:
     sequence_line: int | None
 
 
+@dataclass(frozen=True)
+class RunConfig:
+    """``run``: how ``fprime-lite run`` flies the deployment when the command line does not say."""
+
+    duration_s: float | None = None
+    duration_line: int | None = None
+
+
 @dataclass
 class TopologyConfig:
     """A whole topology file, checked and typed."""
@@ -195,6 +206,7 @@ class TopologyConfig:
     parameter_file: pathlib.Path | None = None
     parameter_file_line: int | None = None
     startup: StartupConfig | None = None
+    run: RunConfig = field(default_factory=RunConfig)
 
     @property
     def instances(self) -> list[InstanceConfig]:
@@ -284,6 +296,7 @@ class _Reader:
             deployment = "Deployment"
         config = TopologyConfig(self.path, deployment)
         config.time = self.time(doc)
+        config.run = self.run(doc)
         config.resources = self.resources(doc)
         config.resources_line = doc.key_lines.get("resources")
         if "modules" not in doc:
@@ -321,6 +334,24 @@ class _Reader:
             else:
                 epoch_us = value
         return TimeConfig(time_base, epoch_us)
+
+    def run(self, doc: YMap) -> RunConfig:
+        cfg = doc.get("run")
+        if cfg is None:
+            return RunConfig()
+        cfg = self.problems.expect_map(self.path, cfg, doc.key_lines.get("run"), "'run'")
+        if cfg is None:
+            return RunConfig()
+        self.problems.check_keys(self.path, cfg, RUN_KEYS, "'run'")
+        if "duration_s" not in cfg:
+            return RunConfig()
+        value, line = cfg["duration_s"], cfg.key_lines.get("duration_s")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+                or not 0 < value <= MAX_RUN_S:
+            self.add(line, f"'run.duration_s' must be a positive number of simulated seconds (at most "
+                           f"{MAX_RUN_S:.0f}), got {value!r} — e.g. 6000")
+            return RunConfig()
+        return RunConfig(float(value), line)
 
     def resources(self, doc: YMap) -> list[ResourceConfig]:
         section = doc.get("resources")

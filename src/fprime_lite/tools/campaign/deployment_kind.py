@@ -9,6 +9,11 @@ Run section::
       parameter_file: flight.dat      # optional: base parameter file (default: the topology's)
       sequence: startup.seq           # optional: start-up sequence (default: the topology's)
       stop_on_events: [ReferenceDeployment.detumbleManager.DetumbleCompleted]   # optional
+      stop_when: ["spin_settled_for_s >= 300"]   # optional: conditions on the reports' progress values
+
+``duration_s`` may be left out: the topology's ``run.duration_s`` (else 600 s) is used. The run ends
+early at the first listed event, or once every ``stop_when`` condition holds
+(:mod:`fprime_lite.tools.stop_condition`); its summary's ``stopped_by`` says which.
 
 Varied keys: ``topology``, ``duration_s``, ``params.Module.inst.PARAM`` (a struct member as
 ``params.Module.inst.PARAM.member``) and ``scenario.KEY.PATH``.
@@ -33,8 +38,8 @@ from fprime_lite.tools.campaign.values import plain, yaml_text
 
 __all__ = ["DEPLOYMENT_RUN"]
 
-FIELDS = frozenset({"topology", "duration_s", "parameter_file", "sequence", "stop_on_events"})
-REQUIRED = frozenset({"topology", "duration_s"})
+FIELDS = frozenset({"topology", "duration_s", "parameter_file", "sequence", "stop_on_events", "stop_when"})
+REQUIRED = frozenset({"topology"})
 
 
 def check_key(key: str) -> str | None:
@@ -125,7 +130,8 @@ def prepare(req: RunRequest) -> Prepared:
     from fprime_lite.deploy.topology_loader import load_topology
     from fprime_lite.model.errors import SerializationError
     from fprime_lite.svc.prm_db import decode_param_file
-    from fprime_lite.tools.runner import run_deployment
+    from fprime_lite.tools.runner import run_deployment, run_duration
+    from fprime_lite.tools.stop_condition import StopConditionError, parse_stop_condition
 
     cfg, values = req.config, req.values
     topology_path = _resolve(req.base_dir, cfg["topology"])
@@ -172,8 +178,17 @@ def prepare(req: RunRequest) -> Prepared:
     req.out_dir.mkdir(parents=True, exist_ok=True)
     param_file = _parameter_file(loaded, base_file, param_values, declared, req.out_dir) if param_values \
         else base_file
-    duration = float(cfg["duration_s"])
+    duration = run_duration(loaded, cfg.get("duration_s"))
+    if not duration > 0:
+        raise RunSetupError(f"duration_s must be positive, got {duration}", "duration_s")
     stop_events = list(cfg.get("stop_on_events") or [])
+    raw_conditions = cfg.get("stop_when") or []
+    if not isinstance(raw_conditions, list):
+        raise RunSetupError("stop_when is a list of conditions, e.g. ['mode == POINTING']", "stop_when")
+    try:
+        conditions = [parse_stop_condition(text) for text in raw_conditions]
+    except StopConditionError as exc:
+        raise RunSetupError(f"stop_when: {exc}", "stop_when") from None
 
     def execute() -> RunOutput:
         scheduler = loaded.scheduler
@@ -186,7 +201,8 @@ def prepare(req: RunRequest) -> Prepared:
         scheduler.add_time_listener(watchdog)
         sequence = _resolve(req.base_dir, cfg["sequence"]) if cfg.get("sequence") else None
         summary = run_deployment(loaded, req.out_dir, duration_s=duration, parameter_file=param_file,
-                                 sequence=sequence, plots=False, quiet=True, stop_on_events=stop_events)
+                                 sequence=sequence, plots=False, quiet=True, stop_on_events=stop_events,
+                                 stop_when=conditions)
         return RunOutput(summary=summary, out_dir=req.out_dir,
                          stopped_early=summary["sim_seconds"] < duration - 1e-6)
 

@@ -52,3 +52,29 @@ def test_a_misspelt_parameter_fails_before_the_campaign_starts(write_campaign, t
     with pytest.raises(CampaignError, match=r"b.yaml:8: .*has no member 'usecs' \(members: seconds, useconds\)"):
         run_campaign(path, workers=1, out=tmp_path / "o", plots=False, summary=False)
     assert not pathlib.Path(tmp_path / "o").exists()
+
+
+STOPPING = f"""\
+campaign: flight-stop
+run:
+  kind: deployment
+  topology: {TOPOLOGY}
+  duration_s: 30
+  stop_when: ["rate_deg_s > 0"]
+grid:
+  params.ReferenceDeployment.detumbleManager.GAIN: [2.5]
+metrics: [sim_seconds]
+"""
+
+
+def test_stop_when_ends_each_run_early_and_a_bad_condition_fails_first(write_campaign, tmp_path):
+    """CAMP-042: a run section's stop_when ends each run at the first whole-second check where it holds (the
+    row's sim_seconds and stopped_by say so); a malformed condition stops the campaign before any run, naming
+    stop_when."""
+    df = run_campaign(write_campaign(STOPPING), workers=1, out=tmp_path / "o", plots=False, summary=False)
+    (r,) = df.to_dict("records")
+    assert r["status"] == "ok", r["error"]
+    assert 1.0 <= r["sim_seconds"] < 1.1
+    path = write_campaign(STOPPING.replace("rate_deg_s > 0", "rate_deg_s >> 0"), "b.yaml")
+    with pytest.raises(CampaignError, match=r"stop_when: 'rate_deg_s >> 0' is not KEY OP VALUE"):
+        run_campaign(path, workers=1, out=tmp_path / "p", plots=False, summary=False)

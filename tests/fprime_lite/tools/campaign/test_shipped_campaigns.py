@@ -12,7 +12,7 @@ from fprime_lite.tools.campaign.plan import plan_runs
 from fprime_lite.tools.cli import main
 from tests.fprime_lite.tools.campaign.conftest import REPO
 
-SHIPPED = sorted((REPO / "campaigns").glob("*.yaml"))
+SHIPPED = sorted((REPO / "campaigns").glob("*.yaml")) + sorted((REPO / "campaigns" / "adcs").glob("*.yaml"))
 
 
 @pytest.mark.parametrize("path", SHIPPED, ids=[p.name for p in SHIPPED])

@@ -1,0 +1,140 @@
+"""Tabulate the spin-stabilisation campaigns (campaigns/adcs/spin_minor_axis.yaml, spin_major_axis.yaml).
+
+Run: ``python campaigns/adcs/report_spin_study.py runs/spin_minor runs/spin_major [--plot DIR]``.
+Prints, per campaign, the settle-time statistics (null = not settled within the run = never), the
+fraction of runs meeting issue 13's spin target and each of its parts; ``--plot DIR`` draws the
+settle-time CDFs and settle time against the initial rate (``spin_settle.png``).
+
+A run meets the target when (all truth, from the AttitudeRunReport):
+- the spin settled: momentum within 5° of +Z and the rate about +Z within 5 % of its target from
+  ``spin_settled_s`` to the end of SPIN_STABLE, within the run's horizon (shorter than an orbit);
+- it then stayed settled for at least ``MIN_DWELL_S`` (one revolution of the 1.5 °/s spin: every body
+  orientation against the field), and
+- the modes did not chatter: exactly SPIN_STABLE (commanded) then POINTING (AUTO's SPIN_STABLE_REACHED),
+  i.e. two transitions.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import pathlib
+
+import numpy as np
+
+from fprime_lite.tools.campaign import read_results
+from fprime_lite.tools.campaign.report import percentile
+
+ORBIT_S = 5578.0
+MIN_DWELL_S = 240.0          # 360° / 1.5 °/s
+EXPECTED_TRANSITIONS = 2     # SPIN_STABLE (FORCE_MODE), POINTING (SPIN_STABLE_REACHED)
+
+
+def wilson_lower(successes: int, n: int, z: float = 1.96) -> float:
+    """Lower end of the Wilson score interval (95 % for z = 1.96) of a binomial fraction."""
+    if n == 0:
+        return float("nan")
+    p = successes / n
+    centre = p + z * z / (2 * n)
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    return (centre - half) / (1 + z * z / n)
+
+
+def _fmt(x: float, digits: int = 0) -> str:
+    return "never" if not math.isfinite(x) else f"{x:.{digits}f}"
+
+
+def analyse(folder: str) -> dict:
+    df = read_results(folder)
+    ok = df["status"] == "ok"
+    settle = np.where(df["spin_settled_s"].isna() | ~ok, np.inf, df["spin_settled_s"].to_numpy(dtype=float))
+    dwell = df["spin_settled_dwell_s"].fillna(0.0).to_numpy(dtype=float)
+    transitions = df["mode_transitions"].fillna(-1).to_numpy(dtype=float)
+    settled = np.isfinite(settle) & (settle <= ORBIT_S)
+    dwelt = dwell >= MIN_DWELL_S
+    no_chatter = transitions <= EXPECTED_TRANSITIONS
+    qualified = transitions == EXPECTED_TRANSITIONS
+    meets = settled & dwelt & no_chatter & ok.to_numpy()
+    n = len(df)
+    return {
+        "folder": folder, "n": n, "ok": int(ok.sum()), "df": df, "settle": settle,
+        "p50": percentile(settle, 50), "p95": percentile(settle, 95), "max": float(np.max(settle)) if n else math.nan,
+        "settled": int(settled.sum()), "dwelt": int((settled & dwelt).sum()), "no_chatter": int(no_chatter.sum()),
+        "qualified": int(qualified.sum()), "meets": int(meets.sum()), "lower95": wilson_lower(int(meets.sum()), n),
+        "axis_median": float(np.nanmedian(df["spin_axis_error_median_deg"])),
+        "axis_p95_of_p95": percentile(df["spin_axis_error_p95_deg"].to_numpy(dtype=float), 95),
+        "cpu_s": float(df["cpu_s"].sum()), "sim_s": float(df["sim_seconds"].sum()),
+        "failures": df[~meets][["seed_index", "scenario.initial.rate.magnitude_deg_s", "spin_settled_s",
+                                "spin_settled_dwell_s", "mode_transitions", "sim_seconds"]],
+    }
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("folders", nargs="+", help="campaign output folders (results.parquet)")
+    ap.add_argument("--plot", metavar="DIR", help="write spin_settle.png there")
+    args = ap.parse_args(argv)
+    results = [analyse(f) for f in args.folders]
+    print("| campaign | runs (ok) | settle time p50 / p95 / max (s) | settled ≤ 1 orbit | and stayed ≥ 240 s "
+          "| no chatter (≤ 2 transitions) | AUTO declared the spin stable | **meets the target** | 95 % lower bound "
+          "| spin-axis error, median of run medians (deg) | CPU (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for r in results:
+        n = r["n"]
+        print(f"| {pathlib.Path(r['folder']).name} | {n} ({r['ok']}) | {_fmt(r['p50'])} / {_fmt(r['p95'])} / "
+              f"{_fmt(r['max'])} | {r['settled']}/{n} | {r['dwelt']}/{n} | {r['no_chatter']}/{n} | "
+              f"{r['qualified']}/{n} | **{r['meets']}/{n} = {100 * r['meets'] / n:.1f} %** | "
+              f"{100 * r['lower95']:.1f} % | {r['axis_median']:.2f} | {r['cpu_s']:.0f} |")
+    for r in results:
+        if len(r["failures"]):
+            print(f"\n{pathlib.Path(r['folder']).name}: runs not meeting the target")
+            print(r["failures"].to_string(index=False))
+        d = r["df"]
+        rate = d["scenario.initial.rate.magnitude_deg_s"].to_numpy(dtype=float)
+        for lo, hi in ((0.5, 1.0), (1.0, 1.5), (1.5, 2.0)):
+            sel = (rate >= lo) & (rate < hi) if hi < 2.0 else (rate >= lo)
+            if sel.any():
+                s = r["settle"][sel]
+                print(f"{pathlib.Path(r['folder']).name}: initial rate {lo}-{hi} deg/s: {int(sel.sum())} runs, "
+                      f"settle p50 {_fmt(percentile(s, 50))} s, max {_fmt(float(np.max(s)))} s")
+    if args.plot:
+        _plot(results, pathlib.Path(args.plot))
+    return 0
+
+
+def _plot(results, out_dir: pathlib.Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4))
+    for r, colour in zip(results, ("tab:blue", "tab:orange", "tab:green"), strict=False):
+        label = pathlib.Path(r["folder"]).name
+        s = np.sort(r["settle"])
+        finite = np.isfinite(s)
+        a.step(s[finite], np.arange(1, finite.sum() + 1) / len(s), where="post", color=colour, label=label)
+        b.plot(r["df"]["scenario.initial.rate.magnitude_deg_s"], r["settle"], ".", color=colour, ms=4, label=label)
+    a.axhline(0.95, color="grey", ls=":", lw=1)
+    a.set_xlabel("spin settle time (s from SPIN_STABLE entry; 1 orbit = 5578 s)")
+    a.set_ylabel("fraction of runs settled")
+    a.grid(alpha=0.3)
+    a.legend(fontsize=8)
+    b.set_xlabel("initial |ω| (deg/s, random axis)")
+    b.set_ylabel("spin settle time (s)")
+    b.grid(alpha=0.3)
+    b.legend(fontsize=8)
+    fig.suptitle("adcs_ref spin stabilisation: momentum within 5° of +Z and rate within 5 % of 1.5 °/s")
+    fig.tight_layout()
+    from fprime_lite.osal.atomic import atomic_write_bytes
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110)
+    plt.close(fig)
+    atomic_write_bytes(out_dir / "spin_settle.png", buf.getvalue())
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
