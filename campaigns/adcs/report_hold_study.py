@@ -1,0 +1,67 @@
+"""The magnetorquer-only attitude-hold campaign's table (docs/studies/magnetic_pointing.md).
+
+Run: ``python campaigns/adcs/report_hold_study.py RUN_DIR`` on the output folder of
+``fprime-lite campaign campaigns/adcs/hold_magnetorquers.yaml --out RUN_DIR``.
+
+Per run the campaign records the run summary's pointing-error median, p95 and max (deg, true error,
+POINTING after its first 10 %). This prints their spread over the runs, the share of runs meeting
+issue 13's targets (median ≤ 5°, p95 ≤ 15°) with a 95 % Wilson lower bound, and the runs that miss,
+with their start (angle from the target, deg; initial rate, deg/s).
+"""
+
+from __future__ import annotations
+
+import math
+import pathlib
+import sys
+
+import numpy as np
+import pandas as pd
+
+TARGET_Q = (0.9238795325112867, 0.0, 0.3826834323650898, 0.0)
+MEDIAN_TARGET_DEG, P95_TARGET_DEG = 5.0, 15.0
+
+
+def wilson_lower(successes: int, n: int, z: float = 1.96) -> float:
+    """Lower end of the Wilson score interval for a proportion (two-sided 95 % for z = 1.96)."""
+    if n == 0:
+        return float("nan")
+    p = successes / n
+    centre = p + z * z / (2 * n)
+    spread = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    return (centre - spread) / (1 + z * z / n)
+
+
+def offset_deg(q) -> float:
+    """Angle between the initial attitude ``q`` (scalar first) and the target, deg."""
+    dot = abs(sum(a * b for a, b in zip(q, TARGET_Q, strict=True)))
+    return 2.0 * math.degrees(math.acos(min(1.0, dot)))
+
+
+def main(argv: list[str]) -> int:
+    if len(argv) != 1:
+        print(__doc__.strip().splitlines()[2], file=sys.stderr)
+        return 2
+    df = pd.read_parquet(pathlib.Path(argv[0]) / "results.parquet")
+    ok = df[df["status"] == "ok"]
+    print(f"runs: {len(df)} ({len(ok)} ok, {len(df) - len(ok)} not)")
+    for name in ("pointing_median_deg", "pointing_p95_deg", "pointing_max_deg"):
+        v = ok[name].to_numpy(dtype=float)
+        print(f"{name:22s} min {v.min():6.2f}  median {np.median(v):6.2f}  p95 {np.percentile(v, 95):6.2f}"
+              f"  max {v.max():6.2f}")
+    med_ok = ok["pointing_median_deg"] <= MEDIAN_TARGET_DEG
+    p95_ok = ok["pointing_p95_deg"] <= P95_TARGET_DEG
+    n = len(ok)
+    for label, hits in (("median <= 5 deg", med_ok), ("p95 <= 15 deg", p95_ok), ("both", med_ok & p95_ok)):
+        k = int(hits.sum())
+        print(f"runs with {label:16s} {k}/{n}  (95 % lower bound {100 * wilson_lower(k, n):.1f} %)")
+    print("runs missing a target: offset deg, rate deg/s, median, p95, max")
+    for _, row in ok[~(med_ok & p95_ok)].iterrows():
+        print(f"  {offset_deg(row['scenario.initial.attitude.quaternion']):5.1f}"
+              f"  {row['scenario.initial.rate.magnitude_deg_s']:.3f}"
+              f"  {row['pointing_median_deg']:5.2f}  {row['pointing_p95_deg']:5.2f}  {row['pointing_max_deg']:5.2f}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
