@@ -17,19 +17,10 @@ import sys
 
 import numpy as np
 import pandas as pd
+from report_spin_study import wilson_lower  # this folder is on sys.path when run as a script
 
 TARGET_Q = (0.9238795325112867, 0.0, 0.3826834323650898, 0.0)
 MEDIAN_TARGET_DEG, P95_TARGET_DEG = 5.0, 15.0
-
-
-def wilson_lower(successes: int, n: int, z: float = 1.96) -> float:
-    """Lower end of the Wilson score interval for a proportion (two-sided 95 % for z = 1.96)."""
-    if n == 0:
-        return float("nan")
-    p = successes / n
-    centre = p + z * z / (2 * n)
-    spread = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    return (centre - spread) / (1 + z * z / n)
 
 
 def offset_deg(q) -> float:
