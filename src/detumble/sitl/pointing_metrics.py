@@ -11,7 +11,12 @@ Registered through the ``fprime_lite.campaign_metrics`` entry point ``detumble_p
   there was none) to the end: the steady-state hold;
 * ``wheel_momentum_max_fraction``: largest ``|h_i| / h_max`` of the run;
 * ``wheel_limit_events``: WheelLimitReached (the controller cut a request) plus the wheel drivers' saturation
-  events in the run's event log (0: no limit was ever reached).
+  events in the run's event log (0: no limit was ever reached);
+* the pooling columns of ``summary.json``'s ``pointing_error_deg`` and ``spin_axis_error_deg``
+  (:mod:`detumble.analysis.pooled_stats`): ``PREFIX.window_s``, ``PREFIX.sample_interval_s`` (s),
+  ``PREFIX.time_above_s.X`` (s above X deg) and ``PREFIX.histogram_s.I`` (s in histogram bin I, 0 … 126), one
+  float column each, so that a campaign's results.parquet can pool its runs (list them all in ``metrics``:
+  :func:`~detumble.analysis.pooled_stats.column_names` gives the names).
 """
 
 from __future__ import annotations
@@ -22,7 +27,10 @@ import pathlib
 
 from fprime_lite.tools.campaign import Metric, MetricUnavailable, RunOutput
 
-__all__ = ["METRICS", "STEADY_AFTER_S", "percentile", "steady_errors"]
+from detumble.analysis.pooled_stats import (N_BINS, POINTING_THRESHOLDS_DEG, SPIN_THRESHOLDS_DEG, dense_histogram,
+                                            threshold_key)
+
+__all__ = ["METRICS", "POOLING_METRICS", "STEADY_AFTER_S", "percentile", "steady_errors"]
 
 STEADY_AFTER_S = 60.0
 _POINTING = ("POINTING", "3")  # the mode column of attitude.csv (by name; a number in older runs)
@@ -95,6 +103,44 @@ def _limit_events(output: RunOutput, _probe) -> float:
         return float(sum(1 for line in fh if any(f".{name} " in line for name in _LIMIT_EVENTS)))
 
 
+def _pooling_block(output: RunOutput, prefix: str) -> dict:
+    stats = output.summary.get(prefix)
+    if not isinstance(stats, dict):
+        raise MetricUnavailable(f"summary.json {prefix} is null or absent (no samples in that mode, or no "
+                                "AttitudeRunReport)")
+    if "window_s" not in stats:
+        raise MetricUnavailable(f"summary.json {prefix} has no pooling fields (written before they existed)")
+    return stats
+
+
+def _pooling_metric(prefix: str, field: str, key, unit: str, description: str) -> Metric:
+    """One float column of a statistics block's pooling fields: ``field`` (``key`` inside it, when given)."""
+    def compute(output: RunOutput, _probe) -> float:
+        stats = _pooling_block(output, prefix)
+        if field == "histogram_s":
+            return dense_histogram(stats["histogram_s"])[key]
+        value = stats[field] if key is None else stats[field].get(key)
+        if value is None:
+            raise MetricUnavailable(f"summary.json {prefix}.{field} has no {key!r}")
+        return float(value)
+    name = f"{prefix}.{field}" + ("" if key is None else f".{key}")
+    return Metric(name, unit, description, compute)
+
+
+def _pooling_metrics(prefix: str, thresholds: tuple[float, ...], what: str) -> tuple[Metric, ...]:
+    return (
+        _pooling_metric(prefix, "window_s", None, "s", f"time the {what} statistics cover (samples × interval)"),
+        _pooling_metric(prefix, "sample_interval_s", None, "s", f"time each {what} sample stands for"),
+        *(_pooling_metric(prefix, "time_above_s", threshold_key(x), "s", f"time with the {what} above {x:g} deg")
+          for x in thresholds),
+        *(_pooling_metric(prefix, "histogram_s", i, "s", f"time with the {what} in histogram bin {i} "
+                          "(detumble.analysis.pooled_stats)") for i in range(N_BINS)),
+    )
+
+
+POOLING_METRICS = (_pooling_metrics("pointing_error_deg", POINTING_THRESHOLDS_DEG, "POINTING error")
+                   + _pooling_metrics("spin_axis_error_deg", SPIN_THRESHOLDS_DEG, "SPIN_STABLE spin-axis error"))
+
 METRICS = (
     Metric("slew_settle_s", "s", "first target change while POINTING until the true error stays below 0.1 deg",
            _slew_settle),
@@ -104,4 +150,5 @@ METRICS = (
            "after the last target change", lambda output, _probe: percentile(steady_errors(output), 0.95)),
     Metric("wheel_momentum_max_fraction", "1", "largest |h_i|/h_max of any wheel over the run", _wheel_fraction),
     Metric("wheel_limit_events", "1", "wheel torque/momentum limit events in the run's event log", _limit_events),
+    *POOLING_METRICS,
 )
