@@ -50,9 +50,37 @@ KIND = RunKind(name="pooling_probe", fields=frozenset(), required=frozenset(), c
                prepare=_prepare)
 
 
+STEADY = ps.column_names("pointing_steady", ps.POINTING_THRESHOLDS_DEG)
+
+
 def test_every_pooling_field_is_a_named_metric():
-    assert [m.name for m in POOLING_METRICS] == POINTING + SPIN
-    assert all(name in BY_NAME for name in POINTING + SPIN)
+    assert [m.name for m in POOLING_METRICS] == POINTING + SPIN + STEADY
+    assert all(name in BY_NAME for name in POINTING + SPIN + STEADY)
+
+
+def test_steady_hold_columns_pool_the_steady_samples(tmp_path):
+    """A slew at 10 s: the steady hold starts 60 s later; its 100 samples (0.001 … 0.1°, 0.5 s each) give 50 s,
+    25 s above 0.05° and none above 0.1°; samples before it and outside POINTING are left out."""
+    from detumble.sitl.pointing_metrics import STEADY_AFTER_S
+
+    rows = [(t * 0.5, "POINTING", 5.0) for t in range(2 * int(10 + STEADY_AFTER_S))]
+    rows += [(10 + STEADY_AFTER_S + i * 0.5, "POINTING", (i + 1) * 0.001) for i in range(100)]
+    rows += [(500.0, "SPIN_STABLE", 9.0)]
+    (tmp_path / "attitude.csv").write_text("t_s,mode,pointing_error_deg\n"
+                                           + "".join(f"{t},{m},{e}\n" for t, m, e in rows))
+    summary = {"slews": [{"t_s": 10.0, "angle_deg": 90.0, "settle_below_0p1_deg_s": 21.5}],
+               "pointing_error_deg": {"sample_interval_s": 0.5}}
+    out = RunOutput(summary=summary, out_dir=tmp_path)
+    value = {n: BY_NAME[n].compute(out, None) for n in STEADY}
+    assert value["pointing_steady.window_s"] == 50.0
+    assert value["pointing_steady.time_above_s.0.05"] == 25.0 and value["pointing_steady.time_above_s.0.1"] == 0.0
+    assert value["pointing_steady.time_above_s.0.01"] == 45.0
+    assert sum(value[f"pointing_steady.histogram_s.{i}"] for i in range(ps.N_BINS)) == 50.0
+    # a different slew time on the same folder is not served from the cache: 10 s later, 20 samples fewer
+    summary["slews"][0]["t_s"] = 20.0
+    assert BY_NAME["pointing_steady.window_s"].compute(out, None) == 40.0
+    with pytest.raises(MetricUnavailable, match="no sample_interval_s"):
+        BY_NAME["pointing_steady.window_s"].compute(RunOutput(summary={"slews": []}, out_dir=tmp_path), None)
 
 
 def test_metrics_read_the_summary_fields():
@@ -102,6 +130,7 @@ def test_pooling_columns_flow_into_results_parquet(tmp_path):
 
 @pytest.mark.parametrize("name, columns", [("hold_magnetorquers.yaml", POINTING),
                                            ("pointing_magnetorquers.yaml", POINTING),
+                                           ("pointing_wheels.yaml", STEADY),
                                            ("spin_minor_axis.yaml", SPIN), ("spin_major_axis.yaml", SPIN)])
 def test_adcs_campaigns_record_every_pooling_column(name, columns):
     metrics = yaml.safe_load((ADCS / name).read_text(encoding="utf-8"))["metrics"]
