@@ -21,8 +21,8 @@ import sys
 import numpy as np
 import pandas as pd
 
-from detumble.analysis.pooled_stats import (POINTING_THRESHOLDS_DEG, pooled_fraction_above, pooled_lines,
-                                            pooled_percentile, runs_from_columns, wilson_lower)
+from detumble.analysis.pooled_stats import (POINTING_THRESHOLDS_DEG, pooled_lines, runs_from_columns, target_lines,
+                                            wilson_lower)
 
 TARGET_Q = (0.9238795325112867, 0.0, 0.3826834323650898, 0.0)
 MEDIAN_TARGET_DEG, P95_TARGET_DEG = 5.0, 15.0
@@ -42,14 +42,8 @@ def print_pooled(ok) -> None:
         print(f"pooled pointing error: not available, {exc.args[0]} (campaign run before the pooling columns)")
         return
     print("\n".join(pooled_lines(runs, POINTING_THRESHOLDS_DEG, "pointing error (POINTING after its first 10 %)")))
-    if not runs:
-        return
-    median, above = pooled_percentile(runs, 0.5), pooled_fraction_above(runs, P95_TARGET_DEG)
-    verdict = ("met" if median.upper_deg <= MEDIAN_TARGET_DEG else
-               "missed" if median.lower_deg > MEDIAN_TARGET_DEG else "undecided at the bin resolution")
-    print(f"pooled median <= {MEDIAN_TARGET_DEG:g} deg: {verdict};  pooled p95 <= {P95_TARGET_DEG:g} deg "
-          f"(time above {P95_TARGET_DEG:g} deg <= 5 %): {'met' if above <= 0.05 else 'missed'} "
-          f"({100 * above:.2f} % of the time above)")
+    if runs:
+        print("\n".join(target_lines(runs, ((0.5, MEDIAN_TARGET_DEG), (0.95, P95_TARGET_DEG)))))
 
 
 def main(argv: list[str]) -> int:

@@ -40,7 +40,7 @@ __all__ = ["BINS_PER_DECADE", "LOW_DEG", "HIGH_DEG", "EDGES_DEG", "N_BINS", "POI
            "SPIN_THRESHOLDS_DEG", "RunTimes", "PooledPercentile", "Share", "bin_index", "bin_bounds",
            "threshold_key", "pooling_fields", "dense_histogram", "run_times", "pooled_window_s",
            "pooled_fraction_above", "pooled_percentile", "wilson_lower", "per_run_share", "column_names",
-           "runs_from_columns", "pooled_lines"]
+           "runs_from_columns", "pooled_lines", "target_lines"]
 
 BINS_PER_DECADE = 20
 LOW_DEG = 1e-4
@@ -271,4 +271,17 @@ def pooled_lines(runs: Sequence[RunTimes], thresholds_deg: Sequence[float], what
                      f"{q.upper_deg:.4g}] deg)")
     for x in thresholds_deg:
         lines.append(f"  time above {x:g} deg: {100 * pooled_fraction_above(runs, x):.2f} %  (exact)")
+    return lines
+
+
+def target_lines(runs: Sequence[RunTimes], targets: Sequence[tuple[float, float]]) -> list[str]:
+    """Pooled verdicts on percentile targets ``[(p, x_deg), …]`` (p95 ≤ 15°: ``(0.95, 15.0)``), each exact from
+    the fraction of time above x (the pooled p-quantile is ≤ x ⇔ that fraction is ≤ 1 - p); x must be one of
+    the runs' thresholds."""
+    lines = []
+    for p, x in targets:
+        above = pooled_fraction_above(runs, x)
+        verdict = "met" if above <= 1.0 - p else "missed"
+        lines.append(f"pooled p{100 * p:g} <= {x:g} deg (time above {x:g} deg <= {100 * (1 - p):g} %): {verdict} "
+                     f"({100 * above:.2f} % of the time above)")
     return lines
