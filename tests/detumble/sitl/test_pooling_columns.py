@@ -7,7 +7,6 @@ import pathlib
 
 import pandas as pd
 import pytest
-import yaml
 
 from detumble.analysis import pooled_stats as ps
 from detumble.sitl.attitude_report import error_statistics
@@ -133,7 +132,9 @@ def test_pooling_columns_flow_into_results_parquet(tmp_path):
                                            ("pointing_wheels.yaml", STEADY),
                                            ("spin_minor_axis.yaml", SPIN), ("spin_major_axis.yaml", SPIN)])
 def test_adcs_campaigns_record_every_pooling_column(name, columns):
-    metrics = yaml.safe_load((ADCS / name).read_text(encoding="utf-8"))["metrics"]
+    from fprime_lite.tools.campaign import load_campaign
+
+    metrics = load_campaign(ADCS / name).metrics
     assert [c for c in columns if c not in metrics] == []
 
 

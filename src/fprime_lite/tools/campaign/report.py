@@ -103,11 +103,16 @@ def print_summary(df, campaign, console=None, wall_s: float | None = None) -> No
     for col in ("metric", "n", "null", "mean", "p5", "p50", "p95", "min", "max"):
         table.add_column(col, justify="left" if col == "metric" else "right")
     ok = df[df["status"] == "ok"] if len(df) else df
+    grouped = {m for members in campaign.metric_groups.values() for m in members}
     for m in campaign.metrics:
+        if m in grouped:
+            continue
         x = ok[m].to_numpy(dtype=float) if len(ok) else np.array([])
         finite = x[~np.isnan(x)]
         table.add_row(m, str(len(finite)), str(int(np.isnan(x).sum())), *_stats(finite))
     console.print(table)
+    for group, members in campaign.metric_groups.items():
+        console.print(f"{group}: {len(members)} columns in results.parquet (not tabulated here)")
     failures = df[df["status"] != "ok"] if len(df) else df
     for _, r in failures.head(5).iterrows():
         console.print(f"[red]{r['status']}[/red] run {r['run_id']} (point {r['point']}, seed {r['seed_index']}): "

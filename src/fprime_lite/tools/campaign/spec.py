@@ -46,6 +46,8 @@ class Campaign:
     plots: list[dict]
     common_random_numbers: bool = False
     where: dict[str, str] = field(default_factory=dict)  # campaign key → "file:line"
+    #: ``PREFIX.*`` entries of 'metrics' → the named metrics they stand for (already in ``metrics``)
+    metric_groups: dict[str, list[str]] = field(default_factory=dict)
 
     @property
     def base_dir(self) -> pathlib.Path:
@@ -129,6 +131,30 @@ def _keep_policy(c: _Checker, raw, key_line, metric_names: list[str]) -> KeepPol
         c.problem(at("failed"), f"'keep: failed' is true or false, got {failed!r}")
         failed = False
     return KeepPolicy(mode="ranked", best=counts["best"], worst=counts["worst"], by=by, order=order, failed=failed)
+
+
+def _expand_metric_groups(c: _Checker, names: list[str], at, named_metrics) -> tuple[list[str], dict[str, list[str]]]:
+    """Replace each ``PREFIX.*`` entry of 'metrics' by the installed named metrics ``PREFIX.…``, in
+    their registration order; return the expanded list and ``{entry: [names]}``."""
+    if not any(n.endswith(".*") for n in names):
+        return names, {}
+    installed = list(named_metrics())
+    expanded: list[str] = []
+    groups: dict[str, list[str]] = {}
+    for name in names:
+        if not name.endswith(".*"):
+            expanded.append(name)
+            continue
+        prefix = name[:-1]
+        members = [m for m in installed if m.startswith(prefix)]
+        if not members:
+            roots = sorted({m.split(".")[0] + ".*" for m in installed if "." in m})
+            c.problem(at, f"metric group '{name}' matches no installed named metric"
+                          + (f" (groups: {', '.join(roots)})" if roots else ""))
+            continue
+        groups[name] = members
+        expanded += members
+    return expanded, groups
 
 
 def load_campaign(path) -> Campaign:
@@ -251,6 +277,7 @@ def load_campaign(path) -> Campaign:
         c.problem(line("metrics"), "'metrics' is a list of names: run-summary keys or named metrics "
                                    f"({', '.join(sorted(named_metrics())) or 'none installed'})")
         metric_names = []
+    metric_names, metric_groups = _expand_metric_groups(c, metric_names, line("metrics"), named_metrics)
     if len(set(metric_names)) != len(metric_names):
         c.problem(line("metrics"), "'metrics' names a metric twice")
 
@@ -295,4 +322,5 @@ def load_campaign(path) -> Campaign:
                     description=str(description or ""), kind=str(kind_name), run=_plain(run), grids=grids or [{}],
                     dispersions=dispersions, dispersion_specs=dispersion_specs, seeds=seeds,
                     master_seed=master_seed, metrics=list(metric_names), timeout_s=timeout, keep=keep,
-                    plots=plots, common_random_numbers=crn, where=where)
+                    plots=plots, common_random_numbers=crn, where=where,
+                    metric_groups=metric_groups)

@@ -123,3 +123,43 @@ def test_a_run_kind_by_import_path_is_checked_at_its_line(write_campaign):
         path = write_campaign(f'campaign: k\nrun:\n  kind: "{kind}"\n', "bad.yaml")
         (problem,) = _problems(path)
         assert problem.startswith(f"{path}:3: run kind '{kind}'") and message in problem, problem
+
+
+def _registry(names):
+    from fprime_lite.tools.campaign.kinds import Metric
+
+    return {n: Metric(name=n, unit="s", description=n, compute=lambda output, probe: 0.0) for n in names}
+
+
+def test_metric_group_expands_to_its_named_metrics_in_order(write_campaign, monkeypatch):
+    """CAMP-093: 'PREFIX.*' in 'metrics' stands for every installed named metric 'PREFIX.…' in
+    registration order; a group that matches nothing is refused at the 'metrics' line, naming the
+    groups there are; the terminal summary gives the group one line, not one row per member."""
+    import io
+
+    import pandas as pd
+    from rich.console import Console
+
+    from fprime_lite.tools.campaign import kinds
+    from fprime_lite.tools.campaign.report import print_summary
+    from tests.fprime_lite.tools.campaign.conftest import TINY_PLANT
+
+    names = ["err.window_s", "err.bin.1", "err.bin.0", "errx.other", "rate"]
+    monkeypatch.setattr(kinds, "metrics", lambda: _registry(names))
+    listed = "metrics: [final_rate_deg_s, coil_energy_j, initial_rate_deg_s]"
+    c = load_campaign(write_campaign(TINY_PLANT.replace(listed, "metrics: [final_rate_deg_s, err.*]")))
+    assert c.metrics == ["final_rate_deg_s", "err.window_s", "err.bin.1", "err.bin.0"]
+    assert c.metric_groups == {"err.*": ["err.window_s", "err.bin.1", "err.bin.0"]}
+
+    df = pd.DataFrame([{"status": "ok", "point": 0, "final_rate_deg_s": 1.0, "err.window_s": 5.0,
+                        "err.bin.1": 2.0, "err.bin.0": 3.0}])
+    out = io.StringIO()
+    print_summary(df, c, console=Console(file=out, width=200))
+    text = out.getvalue()
+    assert "final_rate_deg_s" in text and "err.*: 3 columns in results.parquet" in text
+    assert "err.bin.1" not in text
+
+    bad = write_campaign(TINY_PLANT.replace(listed, "metrics: [final_rate_deg_s, nope.*]"), name="bad.yaml")
+    problems = _problems(bad)
+    assert len(problems) == 1 and "bad.yaml:10" in problems[0]
+    assert "'nope.*' matches no installed named metric" in problems[0] and "err.*" in problems[0]
