@@ -237,7 +237,7 @@ def _wheel_mismatch(module: ModuleType, body, orbit, field) -> str | None:
                                 viscous_friction_nms=(2e-7 * (i + 1)) if friction and i < 4 else 0.0,
                                 coulomb_friction_nm=(5e-5 if friction and i != 1 else 0.0),
                                 coulomb_smoothing_rad_s=(400.0 if i >= 2 else 0.1),
-                                initial_momentum_nms=(-1e-3, 1.1e-2, 2e-4, 0.0, 0.0)[i] * (w0 > 0.1))
+                                initial_momentum_nms=(-1e-3, 1.1e-2, 2e-4, 0.0, 0.0)[i] if w0 > 0.1 else 0.0)
                       for i, axis in enumerate(axes))
         wheels = WheelAssembly(specs)
         if wheels.friction != friction:

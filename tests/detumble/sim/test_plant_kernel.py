@@ -212,7 +212,8 @@ def test_kernel_functions_equal_the_reference_on_random_inputs():
 
 def test_without_a_compiler_the_python_plant_is_chosen_with_a_logged_note(fresh_kernel, monkeypatch, caplog):
     """SIM-KRN-010: no C compiler ($CC names none): a plant is built all the same, in pure Python, and
-    the reason is logged at INFO; FPRIME_LITE_PLANT=compiled then fails with that reason."""
+    the reason is logged at INFO (a wheel plant too); FPRIME_LITE_PLANT=compiled then fails with that
+    reason."""
     monkeypatch.setenv("CC", "/nonexistent/cc")
     with caplog.at_level(logging.INFO, logger="detumble.sim.plant_kernel"):
         p = Plant(load_scenario("case_a"))
@@ -221,6 +222,11 @@ def test_without_a_compiler_the_python_plant_is_chosen_with_a_logged_note(fresh_
                for r in caplog.records)
     assert not fresh_kernel.exists() or not list(fresh_kernel.glob("plant_kernel-*"))
     p.step()  # and it flies
+    wheels = Plant(load_scenario("surrey"))
+    assert wheels.implementation == "python" and wheels._step_wheels is None and wheels._kernel_step_wheels is None
+    wheels.set_wheel_torque(0, 1e-4)
+    wheels.step()
+    assert wheels.wheel_momenta[0] > 0.0
     monkeypatch.setenv(plant_kernel.ENV_VAR, "compiled")
     with pytest.raises(plant_kernel.KernelUnavailableError, match=r"FPRIME_LITE_PLANT=compiled .*no C compiler"):
         Plant(load_scenario("case_a"))
