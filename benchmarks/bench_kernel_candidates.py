@@ -12,11 +12,12 @@ way the plant would call it:
 * ``Cython``: the same Python compiled by Cython as it is, and a ``.pyx`` with ``cdef double`` locals;
 * ``numba``: ``@njit`` on the same arithmetic, flat float arguments.
 
-The C, Cython and numba bodies are generated from plant_kernel.c's expressions, so every candidate
-does the same operations. For each: time per step (best of 5 x N calls), the cost of crossing the
-boundary (the same arguments and result, no arithmetic; where the candidate has a no-op), whether
-N chained steps are bit-identical to the Python reference, and the build or JIT time. The
-candidates are built in a temporary folder; nothing is installed. Timings are never asserted.
+The C, Cython and numba bodies are generated from one written-out list of step_env's expressions
+(``_rk4_lines``), so every candidate does the same operations. For each: time per step (best of 5 x N
+calls), the cost of crossing the boundary (the same arguments and result, no arithmetic; where the
+candidate has a no-op), whether N chained steps are bit-identical to the Python reference, and the
+build or JIT time. The candidates are built in a temporary folder; nothing is installed. Timings are
+never asserted.
 """
 from __future__ import annotations
 
@@ -25,12 +26,10 @@ import importlib
 import inspect
 import math
 import os
-import re
 import subprocess
 import sys
 import tempfile
 import time
-from importlib import resources
 
 from detumble.sim import plant_kernel
 from detumble.sim.attitude import RigidBody
@@ -40,13 +39,50 @@ DT, M_B, B_N, GG, R_HAT = 0.05, (0.1, -0.05, 0.02), (2e-5, -1e-5, 3e-5), 3.8e-6,
 S0 = (0.8, 0.2, -0.4, 0.4, 0.3, -0.2, 0.4)
 
 
-def _body_lines() -> list[tuple[str, str]]:
-    """``(name, expression)`` of plant_kernel.c's RK4 body, from the direction-cosine matrix to stage 4."""
-    text = resources.files("detumble.sim").joinpath("plant_kernel.c").read_text()
-    body = text[text.index("    const double c11 ="):text.index("/* combine and renormalise")]
-    out = []
-    for m in re.finditer(r"const double (\w+) = ([^;]+);", body):
-        out.append((m.group(1), m.group(2)))
+VARS = ("q0", "q1", "q2", "q3", "w1", "w2", "w3", "b1", "b2", "b3", "r1", "r2", "r3")
+
+
+def _rk4_lines():
+    """``(name, expression)`` of ``RigidBody.step_env``'s arithmetic written out, from the direction-cosine
+    matrix to stage 4, operation for operation (plant_kernel.c's step as decision 0007 measured it; the
+    combination is COMBINE below). ``bx`` .. ``rz`` are arguments of the candidates."""
+    out = [
+        ("c11", "q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3"), ("c12", "2.0 * (q1 * q2 + q0 * q3)"),
+        ("c13", "2.0 * (q1 * q3 - q0 * q2)"), ("c21", "2.0 * (q1 * q2 - q0 * q3)"),
+        ("c22", "q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3"), ("c23", "2.0 * (q2 * q3 + q0 * q1)"),
+        ("c31", "2.0 * (q1 * q3 + q0 * q2)"), ("c32", "2.0 * (q2 * q3 - q0 * q1)"),
+        ("c33", "q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3"),
+    ]
+    for v in ("b", "r"):
+        out += [(f"{v}{i}", f"c{i}1 * {v}x + c{i}2 * {v}y + c{i}3 * {v}z") for i in (1, 2, 3)]
+    out.append(("a", "0.5 * dt"))
+    for s in (1, 2, 3, 4):
+        x = {v: v if s == 1 else f"{v}_{s}" for v in VARS}
+        if s > 1:
+            step = "dt" if s == 4 else "a"
+            out += [(x[v], f"{v} + {step} * k{s - 1}_{i}") for i, v in enumerate(VARS)]
+        q0, q1, q2, q3, w1, w2, w3, b1, b2, b3, r1, r2, r3 = (x[v] for v in VARS)
+        sv, hv, gv = ([f"{c}{i}_{s}" for i in (1, 2, 3)] for c in "shg")
+        out += [(sv[i], f"j{i + 1}1 * {r1} + j{i + 1}2 * {r2} + j{i + 1}3 * {r3}") for i in range(3)]
+        out += [(hv[i], f"j{i + 1}1 * {w1} + j{i + 1}2 * {w2} + j{i + 1}3 * {w3} + h{'xyz'[i]}") for i in range(3)]
+        out += [
+            (gv[0], f"tx + my * {b3} - mz * {b2} + g * "
+                     f"({r2} * {sv[2]} - {r3} * {sv[1]}) - ({w2} * {hv[2]} - {w3} * {hv[1]})"),
+            (gv[1], f"ty + mz * {b1} - mx * {b3} + g * "
+                     f"({r3} * {sv[0]} - {r1} * {sv[2]}) - ({w3} * {hv[0]} - {w1} * {hv[2]})"),
+            (gv[2], f"tz + mx * {b2} - my * {b1} + g * "
+                     f"({r1} * {sv[1]} - {r2} * {sv[0]}) - ({w1} * {hv[1]} - {w2} * {hv[0]})"),
+        ]
+        k = [
+            f"0.5 * (-{q1} * {w1} - {q2} * {w2} - {q3} * {w3})",
+            f"0.5 * ({q0} * {w1} + {q2} * {w3} - {q3} * {w2})",
+            f"0.5 * ({q0} * {w2} - {q1} * {w3} + {q3} * {w1})",
+            f"0.5 * ({q0} * {w3} + {q1} * {w2} - {q2} * {w1})",
+            *(f"i{i + 1}1 * {gv[0]} + i{i + 1}2 * {gv[1]} + i{i + 1}3 * {gv[2]}" for i in range(3)),
+            f"{b2} * {w3} - {b3} * {w2}", f"{b3} * {w1} - {b1} * {w3}", f"{b1} * {w2} - {b2} * {w1}",
+            f"{r2} * {w3} - {r3} * {w2}", f"{r3} * {w1} - {r1} * {w3}", f"{r1} * {w2} - {r2} * {w1}",
+        ]
+        out += [(f"k{s}_{i}", e) for i, e in enumerate(k[:7] if s == 4 else k)]
     return out
 
 
@@ -65,8 +101,7 @@ ARGS = "q0 q1 q2 q3 w1 w2 w3 dt mx my mz bx by bz g rx ry rz".split()
 
 
 def _generated_lines(indent: str, decl: str = "") -> str:
-    skip = {"bx", "by", "bz", "rx", "ry", "rz"}  # arguments here, read from tuples in the C
-    lines = [f"{indent}{decl}{k} = {v}" for k, v in _body_lines() + COMBINE if k not in skip]
+    lines = [f"{indent}{decl}{k} = {v}" for k, v in _rk4_lines() + COMBINE]
     return "\n".join(lines) + "\n"
 
 

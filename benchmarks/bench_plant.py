@@ -6,7 +6,8 @@ Floor: one RK4 step of the 7-state rigid body with a constant torque (``RigidBod
 Ticks: ``Plant.step`` of a packaged scenario plus what a driver does each tick (read the
 magnetometer and gyro; for case A also the kopt law and applying its dipole; for surrey command
 the three wheels and read the star tracker), each with the pure-Python reference plant and with
-the compiled kernel (detumble.sim.plant_kernel; surrey has wheels, so only the Python plant).
+the compiled kernel (detumble.sim.plant_kernel; with the wheels' step since decision 0007's
+late section).
 Reported as ticks per second, as a ratio to the floor and compiled against Python, all in one
 run; timings are never asserted anywhere.
 """
@@ -83,9 +84,9 @@ def main() -> None:
     impls = ("python", "compiled") if kernel == "compiled" else ("python",)
     for label, fn, kinds in (("plant tick, default (coils, noisy sensors) ", plant_default, impls),
                              ("plant tick + kopt law, case A (rods, ideal)", plant_case_a_with_law, impls),
-                             ("plant tick, surrey (3 wheels commanded)   ", plant_surrey_wheels, ("python",))):
+                             ("plant tick, surrey (3 wheels commanded)   ", plant_surrey_wheels, impls)):
         rates = {}
-        for impl in kinds:  # a plant with wheels is always the Python one
+        for impl in kinds:
             r = rates[impl] = _best(functools.partial(fn, implementation=impl), n)
             print(f"{label} {impl:8s} {r:12,.0f} ticks/s  ({1e6 / r:5.2f} us)   ratio {f / r:.2f}x the floor")
         if len(rates) == 2:

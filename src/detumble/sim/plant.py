@@ -9,9 +9,10 @@ Within one :meth:`Plant.step` the coil dipole (its mean over the step if the coi
 lag), the inertial field ``b_N`` and the orbit direction are held; the attitude-dependent torques
 are re-evaluated at each RK4 stage. The field and orbit are evaluated once per step, at its end.
 
-That RK4 step and (circular orbit, centred dipole) that environment update run in the compiled
-kernel when it can be had (:mod:`.plant_kernel`, ``FPRIME_LITE_PLANT``): the same floats as this
-module's Python path, which is the reference.
+That RK4 step (with the reaction wheels' momenta, when the spacecraft has wheels) and (circular
+orbit with the centred dipole or the orbit-constant field) that environment update run in the
+compiled kernel when it can be had (:mod:`.plant_kernel`, ``FPRIME_LITE_PLANT``): the same floats
+as this module's Python path, which is the reference.
 """
 
 from __future__ import annotations
@@ -86,16 +87,18 @@ class Plant:
         self.body = RigidBody(inertia, sc.spacecraft.wheel_momentum_nms)
         self.orbit = build_orbit(sc)
         self.field = build_field(sc, self.orbit)
-        kernel = plant_kernel.kernel_for(self.body, self.orbit, self.field, implementation)
-        if rw:
-            kernel = None  # the wheels' integrator has no compiled twin: this plant is the Python one
-        #: ``"compiled"`` when the RK4 step (and the environment, where it is the circular orbit and
-        #: the centred dipole) runs in the compiled kernel, ``"python"`` for the reference
+        kernel = plant_kernel.kernel_for(self.body, self.orbit, self.field, implementation, self.wheels)
+        #: ``"compiled"`` when the RK4 step (with or without wheels; and the environment, where it is
+        #: the circular orbit with the centred dipole or the orbit-constant field) runs in the compiled
+        #: kernel, ``"python"`` for the reference
         self.implementation = "python" if kernel is None else "compiled"
         self._step_env = self.body.step_env if kernel is None else kernel.step_env
+        self._step_wheels = None if kernel is None or self.wheels is None else kernel.step_wheels
         with_env = kernel is not None and kernel.has_environment
         self._kernel_environment = kernel.environment if with_env else None
-        self._kernel_step = kernel.step if with_env else None
+        # the fused RK4 step + environment: step (no wheels) or step_wheels_env (wheels), the other None
+        self._kernel_step = kernel.step if with_env and self.wheels is None else None
+        self._kernel_step_wheels = kernel.step_wheels_env if with_env and self.wheels is not None else None
         if sc.spacecraft.actuator_type == "rods":
             self.actuators: CoilSet | TorqueRods = TorqueRods(sc.spacecraft.rods_max_dipole_am2)
         else:
@@ -177,6 +180,8 @@ class Plant:
         res = self.residual_dipole_B
         m_tot = (m_coils[0] + res[0], m_coils[1] + res[1], m_coils[2] + res[2])
         kernel_step = self._kernel_step
+        kernel_step_wheels = self._kernel_step_wheels
+        wheels = self.wheels
         if kernel_step is not None and self.substeps == 1:
             # the compiled kernel: step_env, then the environment at t1 (_update_environment's floats;
             # the gravity-gradient coefficient is constant on a circular orbit)
@@ -184,9 +189,15 @@ class Plant:
                                                                   t1 / 1e9)
             self._state = s1
             self._t_ns = t1
+        elif kernel_step_wheels is not None and wheels is not None and self.substeps == 1:
+            # the same with the wheels: their limited torques (Python), the coupled RK4 step, the environment
+            u = wheels.motor_torques(dt, s0[4:7])
+            s1, wheels.h, self._r_N, self._r_hat_N, self._b_N = kernel_step_wheels(
+                s0, wheels.h, u, dt, m_tot, b0_N, self._gg, self._r_hat_N, t1 / 1e9)
+            self._state = s1
+            self._t_ns = t1
         else:
             n_sub = self.substeps
-            wheels = self.wheels
             if wheels is None:
                 step_env = self._step_env  # RigidBody.step_env, or the kernel's (the same floats)
                 if n_sub == 1:
@@ -198,9 +209,13 @@ class Plant:
             else:
                 u = wheels.motor_torques(dt, s0[4:7])
                 s1, hw, h = s0, wheels.h, dt / n_sub
+                step_wheels = self._step_wheels  # the kernel's step_with_wheels (the same floats), or None
                 for _ in range(n_sub):
-                    s1, hw = step_with_wheels(self.body, s1, hw, u, wheels, h, m_tot, b0_N, self._gg,
-                                              self._r_hat_N)
+                    if step_wheels is None:
+                        s1, hw = step_with_wheels(self.body, s1, hw, u, wheels, h, m_tot, b0_N, self._gg,
+                                                  self._r_hat_N)
+                    else:
+                        s1, hw = step_wheels(s1, hw, u, h, m_tot, b0_N, self._gg, self._r_hat_N)
                 wheels.h = hw
             self._state = s1
             self._t_ns = t1

@@ -1,15 +1,17 @@
-/* Compiled plant kernel: the RK4 step of RigidBody.step_env and the circular-orbit + centred-dipole
- * environment of Plant._update_environment, as a CPython extension module (detumble.sim._plant_kernel).
+/* Compiled plant kernel: the RK4 steps of RigidBody.step_env and wheels.step_with_wheels, and the circular-
+ * orbit environment of Plant._update_environment (with the centred dipole or the orbit-constant field), as a
+ * CPython extension module (detumble.sim._plant_kernel).
  *
- * The pure-Python code in attitude.py, orbit.py and field.py is the reference. Every expression below is
- * the reference's, operand for operand and in the same order, so that with IEEE double arithmetic, no
- * contraction into fused multiply-adds (-ffp-contract=off) and the same libm sin/cos/sqrt the
- * interpreter's math module calls, the results are the same floats, bit for bit.
- * detumble.sim.plant_kernel checks that when it loads this module (and refuses it otherwise);
- * tests/detumble/sim/test_plant_kernel.py checks whole trajectories.
+ * The pure-Python code in attitude.py, wheels.py, orbit.py, field.py, frames.py and control/quaternion.py
+ * (rotate_n_to_b) is the reference. Every expression below is the reference's, operand for operand and in
+ * the same order, so that with IEEE double arithmetic, no contraction into fused multiply-adds
+ * (-ffp-contract=off) and the same libm sin/cos/sqrt/pow the interpreter's math module and float ** call,
+ * the results are the same floats, bit for bit. detumble.sim.plant_kernel checks that when it loads this
+ * module (and refuses it otherwise); tests/detumble/sim/test_plant_kernel.py checks whole trajectories.
  *
  * Units and frames as in the Python: state (q0..q3 scalar first = q_BN, omega_BN_B rad/s), m_B A m^2,
- * b_N tesla, r_hat_N unit, gg 1/s^2, t seconds since the scenario epoch, r_N metres.
+ * b_N tesla, r_hat_N unit, gg 1/s^2, t seconds since the scenario epoch, r_N metres; wheel momenta h
+ * (absolute, along each spin axis) N m s, motor torques u N m.
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
@@ -26,190 +28,32 @@ typedef struct {
     double j[9], ji[9], h[3];          /* inertia, its inverse (row major, kg m^2), constant wheel momentum N m s */
 } fl_body;
 
+enum { FL_FIELD_DIPOLE = 1, FL_FIELD_ORBIT_CONSTANT = 2 };
+
 typedef struct {
+    int field;                                        /* FL_FIELD_DIPOLE or FL_FIELD_ORBIT_CONSTANT */
     double a, u0, u_rate, raan0, raan_rate, ci, si;   /* CircularOrbit */
     double theta0, earth_rate, dx, dy, dz;            /* DipoleField (dipole vector in T m^3) */
+    double b_O[3];                                    /* OrbitConstantField (tesla, orbit frame O) */
 } fl_env;
 
-/* RigidBody.step_env with torque_B = tau. */
-static void fl_step_env(const fl_body *bd, const double *st, double dt, const double *m_B, const double *b_N,
-                        double g, const double *r_hat_N, const double *tau, double *out)
-{
-    const double j11 = bd->j[0], j12 = bd->j[1], j13 = bd->j[2];
-    const double j21 = bd->j[3], j22 = bd->j[4], j23 = bd->j[5];
-    const double j31 = bd->j[6], j32 = bd->j[7], j33 = bd->j[8];
-    const double i11 = bd->ji[0], i12 = bd->ji[1], i13 = bd->ji[2];
-    const double i21 = bd->ji[3], i22 = bd->ji[4], i23 = bd->ji[5];
-    const double i31 = bd->ji[6], i32 = bd->ji[7], i33 = bd->ji[8];
-    const double hx = bd->h[0], hy = bd->h[1], hz = bd->h[2];
-    const double mx = m_B[0], my = m_B[1], mz = m_B[2];
-    const double tx = tau[0], ty = tau[1], tz = tau[2];
-    const double q0 = st[0], q1 = st[1], q2 = st[2], q3 = st[3], w1 = st[4], w2 = st[5], w3 = st[6];
-    const double c11 = q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3;
-    const double c12 = 2.0 * (q1 * q2 + q0 * q3);
-    const double c13 = 2.0 * (q1 * q3 - q0 * q2);
-    const double c21 = 2.0 * (q1 * q2 - q0 * q3);
-    const double c22 = q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3;
-    const double c23 = 2.0 * (q2 * q3 + q0 * q1);
-    const double c31 = 2.0 * (q1 * q3 + q0 * q2);
-    const double c32 = 2.0 * (q2 * q3 - q0 * q1);
-    const double c33 = q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3;
-    const double bx = b_N[0];
-    const double by = b_N[1];
-    const double bz = b_N[2];
-    const double b1 = c11 * bx + c12 * by + c13 * bz;
-    const double b2 = c21 * bx + c22 * by + c23 * bz;
-    const double b3 = c31 * bx + c32 * by + c33 * bz;
-    const double rx = r_hat_N[0];
-    const double ry = r_hat_N[1];
-    const double rz = r_hat_N[2];
-    const double r1 = c11 * rx + c12 * ry + c13 * rz;
-    const double r2 = c21 * rx + c22 * ry + c23 * rz;
-    const double r3 = c31 * rx + c32 * ry + c33 * rz;
-    const double a = 0.5 * dt;
-    /* stage 1 */
-    const double s1_1 = j11 * r1 + j12 * r2 + j13 * r3;
-    const double s2_1 = j21 * r1 + j22 * r2 + j23 * r3;
-    const double s3_1 = j31 * r1 + j32 * r2 + j33 * r3;
-    const double h1_1 = j11 * w1 + j12 * w2 + j13 * w3 + hx;
-    const double h2_1 = j21 * w1 + j22 * w2 + j23 * w3 + hy;
-    const double h3_1 = j31 * w1 + j32 * w2 + j33 * w3 + hz;
-    const double g1_1 = tx + my * b3 - mz * b2 + g * (r2 * s3_1 - r3 * s2_1) - (w2 * h3_1 - w3 * h2_1);
-    const double g2_1 = ty + mz * b1 - mx * b3 + g * (r3 * s1_1 - r1 * s3_1) - (w3 * h1_1 - w1 * h3_1);
-    const double g3_1 = tz + mx * b2 - my * b1 + g * (r1 * s2_1 - r2 * s1_1) - (w1 * h2_1 - w2 * h1_1);
-    const double k1_0 = 0.5 * (-q1 * w1 - q2 * w2 - q3 * w3);
-    const double k1_1 = 0.5 * (q0 * w1 + q2 * w3 - q3 * w2);
-    const double k1_2 = 0.5 * (q0 * w2 - q1 * w3 + q3 * w1);
-    const double k1_3 = 0.5 * (q0 * w3 + q1 * w2 - q2 * w1);
-    const double k1_4 = i11 * g1_1 + i12 * g2_1 + i13 * g3_1;
-    const double k1_5 = i21 * g1_1 + i22 * g2_1 + i23 * g3_1;
-    const double k1_6 = i31 * g1_1 + i32 * g2_1 + i33 * g3_1;
-    const double k1_7 = b2 * w3 - b3 * w2;
-    const double k1_8 = b3 * w1 - b1 * w3;
-    const double k1_9 = b1 * w2 - b2 * w1;
-    const double k1_10 = r2 * w3 - r3 * w2;
-    const double k1_11 = r3 * w1 - r1 * w3;
-    const double k1_12 = r1 * w2 - r2 * w1;
-    /* stage 2 */
-    const double q0_2 = q0 + a * k1_0;
-    const double q1_2 = q1 + a * k1_1;
-    const double q2_2 = q2 + a * k1_2;
-    const double q3_2 = q3 + a * k1_3;
-    const double w1_2 = w1 + a * k1_4;
-    const double w2_2 = w2 + a * k1_5;
-    const double w3_2 = w3 + a * k1_6;
-    const double b1_2 = b1 + a * k1_7;
-    const double b2_2 = b2 + a * k1_8;
-    const double b3_2 = b3 + a * k1_9;
-    const double r1_2 = r1 + a * k1_10;
-    const double r2_2 = r2 + a * k1_11;
-    const double r3_2 = r3 + a * k1_12;
-    const double s1_2 = j11 * r1_2 + j12 * r2_2 + j13 * r3_2;
-    const double s2_2 = j21 * r1_2 + j22 * r2_2 + j23 * r3_2;
-    const double s3_2 = j31 * r1_2 + j32 * r2_2 + j33 * r3_2;
-    const double h1_2 = j11 * w1_2 + j12 * w2_2 + j13 * w3_2 + hx;
-    const double h2_2 = j21 * w1_2 + j22 * w2_2 + j23 * w3_2 + hy;
-    const double h3_2 = j31 * w1_2 + j32 * w2_2 + j33 * w3_2 + hz;
-    const double g1_2 = tx + my * b3_2 - mz * b2_2 + g * (r2_2 * s3_2 - r3_2 * s2_2) - (w2_2 * h3_2 - w3_2 * h2_2);
-    const double g2_2 = ty + mz * b1_2 - mx * b3_2 + g * (r3_2 * s1_2 - r1_2 * s3_2) - (w3_2 * h1_2 - w1_2 * h3_2);
-    const double g3_2 = tz + mx * b2_2 - my * b1_2 + g * (r1_2 * s2_2 - r2_2 * s1_2) - (w1_2 * h2_2 - w2_2 * h1_2);
-    const double k2_0 = 0.5 * (-q1_2 * w1_2 - q2_2 * w2_2 - q3_2 * w3_2);
-    const double k2_1 = 0.5 * (q0_2 * w1_2 + q2_2 * w3_2 - q3_2 * w2_2);
-    const double k2_2 = 0.5 * (q0_2 * w2_2 - q1_2 * w3_2 + q3_2 * w1_2);
-    const double k2_3 = 0.5 * (q0_2 * w3_2 + q1_2 * w2_2 - q2_2 * w1_2);
-    const double k2_4 = i11 * g1_2 + i12 * g2_2 + i13 * g3_2;
-    const double k2_5 = i21 * g1_2 + i22 * g2_2 + i23 * g3_2;
-    const double k2_6 = i31 * g1_2 + i32 * g2_2 + i33 * g3_2;
-    const double k2_7 = b2_2 * w3_2 - b3_2 * w2_2;
-    const double k2_8 = b3_2 * w1_2 - b1_2 * w3_2;
-    const double k2_9 = b1_2 * w2_2 - b2_2 * w1_2;
-    const double k2_10 = r2_2 * w3_2 - r3_2 * w2_2;
-    const double k2_11 = r3_2 * w1_2 - r1_2 * w3_2;
-    const double k2_12 = r1_2 * w2_2 - r2_2 * w1_2;
-    /* stage 3 */
-    const double q0_3 = q0 + a * k2_0;
-    const double q1_3 = q1 + a * k2_1;
-    const double q2_3 = q2 + a * k2_2;
-    const double q3_3 = q3 + a * k2_3;
-    const double w1_3 = w1 + a * k2_4;
-    const double w2_3 = w2 + a * k2_5;
-    const double w3_3 = w3 + a * k2_6;
-    const double b1_3 = b1 + a * k2_7;
-    const double b2_3 = b2 + a * k2_8;
-    const double b3_3 = b3 + a * k2_9;
-    const double r1_3 = r1 + a * k2_10;
-    const double r2_3 = r2 + a * k2_11;
-    const double r3_3 = r3 + a * k2_12;
-    const double s1_3 = j11 * r1_3 + j12 * r2_3 + j13 * r3_3;
-    const double s2_3 = j21 * r1_3 + j22 * r2_3 + j23 * r3_3;
-    const double s3_3 = j31 * r1_3 + j32 * r2_3 + j33 * r3_3;
-    const double h1_3 = j11 * w1_3 + j12 * w2_3 + j13 * w3_3 + hx;
-    const double h2_3 = j21 * w1_3 + j22 * w2_3 + j23 * w3_3 + hy;
-    const double h3_3 = j31 * w1_3 + j32 * w2_3 + j33 * w3_3 + hz;
-    const double g1_3 = tx + my * b3_3 - mz * b2_3 + g * (r2_3 * s3_3 - r3_3 * s2_3) - (w2_3 * h3_3 - w3_3 * h2_3);
-    const double g2_3 = ty + mz * b1_3 - mx * b3_3 + g * (r3_3 * s1_3 - r1_3 * s3_3) - (w3_3 * h1_3 - w1_3 * h3_3);
-    const double g3_3 = tz + mx * b2_3 - my * b1_3 + g * (r1_3 * s2_3 - r2_3 * s1_3) - (w1_3 * h2_3 - w2_3 * h1_3);
-    const double k3_0 = 0.5 * (-q1_3 * w1_3 - q2_3 * w2_3 - q3_3 * w3_3);
-    const double k3_1 = 0.5 * (q0_3 * w1_3 + q2_3 * w3_3 - q3_3 * w2_3);
-    const double k3_2 = 0.5 * (q0_3 * w2_3 - q1_3 * w3_3 + q3_3 * w1_3);
-    const double k3_3 = 0.5 * (q0_3 * w3_3 + q1_3 * w2_3 - q2_3 * w1_3);
-    const double k3_4 = i11 * g1_3 + i12 * g2_3 + i13 * g3_3;
-    const double k3_5 = i21 * g1_3 + i22 * g2_3 + i23 * g3_3;
-    const double k3_6 = i31 * g1_3 + i32 * g2_3 + i33 * g3_3;
-    const double k3_7 = b2_3 * w3_3 - b3_3 * w2_3;
-    const double k3_8 = b3_3 * w1_3 - b1_3 * w3_3;
-    const double k3_9 = b1_3 * w2_3 - b2_3 * w1_3;
-    const double k3_10 = r2_3 * w3_3 - r3_3 * w2_3;
-    const double k3_11 = r3_3 * w1_3 - r1_3 * w3_3;
-    const double k3_12 = r1_3 * w2_3 - r2_3 * w1_3;
-    /* stage 4 */
-    const double q0_4 = q0 + dt * k3_0;
-    const double q1_4 = q1 + dt * k3_1;
-    const double q2_4 = q2 + dt * k3_2;
-    const double q3_4 = q3 + dt * k3_3;
-    const double w1_4 = w1 + dt * k3_4;
-    const double w2_4 = w2 + dt * k3_5;
-    const double w3_4 = w3 + dt * k3_6;
-    const double b1_4 = b1 + dt * k3_7;
-    const double b2_4 = b2 + dt * k3_8;
-    const double b3_4 = b3 + dt * k3_9;
-    const double r1_4 = r1 + dt * k3_10;
-    const double r2_4 = r2 + dt * k3_11;
-    const double r3_4 = r3 + dt * k3_12;
-    const double s1_4 = j11 * r1_4 + j12 * r2_4 + j13 * r3_4;
-    const double s2_4 = j21 * r1_4 + j22 * r2_4 + j23 * r3_4;
-    const double s3_4 = j31 * r1_4 + j32 * r2_4 + j33 * r3_4;
-    const double h1_4 = j11 * w1_4 + j12 * w2_4 + j13 * w3_4 + hx;
-    const double h2_4 = j21 * w1_4 + j22 * w2_4 + j23 * w3_4 + hy;
-    const double h3_4 = j31 * w1_4 + j32 * w2_4 + j33 * w3_4 + hz;
-    const double g1_4 = tx + my * b3_4 - mz * b2_4 + g * (r2_4 * s3_4 - r3_4 * s2_4) - (w2_4 * h3_4 - w3_4 * h2_4);
-    const double g2_4 = ty + mz * b1_4 - mx * b3_4 + g * (r3_4 * s1_4 - r1_4 * s3_4) - (w3_4 * h1_4 - w1_4 * h3_4);
-    const double g3_4 = tz + mx * b2_4 - my * b1_4 + g * (r1_4 * s2_4 - r2_4 * s1_4) - (w1_4 * h2_4 - w2_4 * h1_4);
-    const double k4_0 = 0.5 * (-q1_4 * w1_4 - q2_4 * w2_4 - q3_4 * w3_4);
-    const double k4_1 = 0.5 * (q0_4 * w1_4 + q2_4 * w3_4 - q3_4 * w2_4);
-    const double k4_2 = 0.5 * (q0_4 * w2_4 - q1_4 * w3_4 + q3_4 * w1_4);
-    const double k4_3 = 0.5 * (q0_4 * w3_4 + q1_4 * w2_4 - q2_4 * w1_4);
-    const double k4_4 = i11 * g1_4 + i12 * g2_4 + i13 * g3_4;
-    const double k4_5 = i21 * g1_4 + i22 * g2_4 + i23 * g3_4;
-    const double k4_6 = i31 * g1_4 + i32 * g2_4 + i33 * g3_4;
-    /* combine and renormalise the quaternion */
-    const double c = dt / 6.0;
-    const double p0 = q0 + c * (k1_0 + 2.0 * (k2_0 + k3_0) + k4_0);
-    const double p1 = q1 + c * (k1_1 + 2.0 * (k2_1 + k3_1) + k4_1);
-    const double p2 = q2 + c * (k1_2 + 2.0 * (k2_2 + k3_2) + k4_2);
-    const double p3 = q3 + c * (k1_3 + 2.0 * (k2_3 + k3_3) + k4_3);
-    const double n = 1.0 / sqrt(p0 * p0 + p1 * p1 + p2 * p2 + p3 * p3);
-    out[0] = p0 * n;
-    out[1] = p1 * n;
-    out[2] = p2 * n;
-    out[3] = p3 * n;
-    out[4] = w1 + c * (k1_4 + 2.0 * (k2_4 + k3_4) + k4_4);
-    out[5] = w2 + c * (k1_5 + 2.0 * (k2_5 + k3_5) + k4_5);
-    out[6] = w3 + c * (k1_6 + 2.0 * (k2_6 + k3_6) + k4_6);
-}
+/* At most this many reaction wheels (a spacecraft has 3 or 4; the Python plant takes any number, and a
+ * plant with more keeps it). */
+#define FL_MAX_WHEELS 16
 
-/* CircularOrbit.position_N(t), the unit vector Plant._update_environment derives from it, and
- * DipoleField.b_N(t, r_N): out = r_N[3], r_hat_N[3], b_N[3]. */
+typedef struct {
+    int n;                                            /* number of wheels */
+    int friction;                                     /* WheelAssembly.friction */
+    double g[3 * FL_MAX_WHEELS];                      /* spin axes in B, flat g1x g1y g1z g2x ... */
+    double js[FL_MAX_WHEELS];                         /* axial inertia, kg m^2 */
+    double cv[FL_MAX_WHEELS];                         /* viscous friction, N m s/rad */
+    double cc[FL_MAX_WHEELS];                         /* Coulomb friction, N m */
+    double sm[FL_MAX_WHEELS];                         /* Coulomb smoothing speed, rad/s */
+} fl_wheels;
+
+/* CircularOrbit.position_N(t), the unit vector Plant._update_environment derives from it, and the field
+ * at that position: DipoleField.b_N(t, r_N), or OrbitConstantField.b_N(t, r_N) (which needs
+ * CircularOrbit.velocity_N(t) and frames.orbit_axes_N). out = r_N[3], r_hat_N[3], b_N[3]. */
 static void fl_environment(const fl_env *e, double t, double *out)
 {
     const double u = e->u0 + e->u_rate * t;
@@ -221,24 +65,245 @@ static void fl_environment(const fl_env *e, double t, double *out)
     const double y = a * (so * cu + co * su * e->ci);
     const double z = a * (su * e->si);
     const double rn = sqrt(x * x + y * y + z * z);
-    const double th = e->theta0 + e->earth_rate * t;
-    const double c = cos(th), s = sin(th);
-    const double dx = c * e->dx - s * e->dy;
-    const double dy = s * e->dx + c * e->dy;
-    const double dz = e->dz;
-    const double r2 = x * x + y * y + z * z;
-    const double r = sqrt(r2);
-    const double inv_r3 = 1.0 / (r2 * r);
-    const double k = 3.0 * (dx * x + dy * y + dz * z) / r2;
     out[0] = x;
     out[1] = y;
     out[2] = z;
     out[3] = x / rn;
     out[4] = y / rn;
     out[5] = z / rn;
-    out[6] = (k * x - dx) * inv_r3;
-    out[7] = (k * y - dy) * inv_r3;
-    out[8] = (k * z - dz) * inv_r3;
+    if (e->field == FL_FIELD_DIPOLE) {
+        const double th = e->theta0 + e->earth_rate * t;
+        const double c = cos(th), s = sin(th);
+        const double dx = c * e->dx - s * e->dy;
+        const double dy = s * e->dx + c * e->dy;
+        const double dz = e->dz;
+        const double r2 = x * x + y * y + z * z;
+        const double r = sqrt(r2);
+        const double inv_r3 = 1.0 / (r2 * r);
+        const double k = 3.0 * (dx * x + dy * y + dz * z) / r2;
+        out[6] = (k * x - dx) * inv_r3;
+        out[7] = (k * y - dy) * inv_r3;
+        out[8] = (k * z - dz) * inv_r3;
+        return;
+    }
+    /* CircularOrbit.velocity_N (the same u and raan, so the same cosines and sines) */
+    const double du = e->u_rate, dr = e->raan_rate, ci = e->ci;
+    const double v0 = a * (du * (-co * su - so * cu * ci) + dr * (-so * cu - co * su * ci));
+    const double v1 = a * (du * (-so * su + co * cu * ci) + dr * (co * cu - so * su * ci));
+    const double v2 = a * du * cu * e->si;
+    /* frames.orbit_axes_N: its squares are `** 2`, i.e. libm pow (this file is built -fno-builtin-pow) */
+    const double on = sqrt(pow(x, 2.0) + pow(y, 2.0) + pow(z, 2.0));
+    const double z0 = -x / on, z1 = -y / on, z2 = -z / on;
+    const double hx = y * v2 - z * v1;
+    const double hy = z * v0 - x * v2;
+    const double hz = x * v1 - y * v0;
+    const double hn = sqrt(hx * hx + hy * hy + hz * hz);
+    const double y0 = -hx / hn, y1 = -hy / hn, y2 = -hz / hn;
+    const double x0 = y1 * z2 - y2 * z1, x1 = y2 * z0 - y0 * z2, x2 = y0 * z1 - y1 * z0;
+    const double ba = e->b_O[0], bb = e->b_O[1], bc = e->b_O[2];
+    out[6] = ba * x0 + bb * y0 + bc * z0;
+    out[7] = ba * x1 + bb * y1 + bc * z1;
+    out[8] = ba * x2 + bb * y2 + bc * z2;
+}
+
+/* --- the RK4 step: RigidBody.step_env and wheels.step_with_wheels ------------------------------------ */
+
+/* The stage derivative of both (step_env written out, step_with_wheels' inner f): x = q0..q3, w1..w3,
+ * b_B[3], r_hat_B[3]; hw the wheel momentum in B (N m s), t a torque on the body (N m); out = dx/dt. */
+static void fl_stage_deriv(const fl_body *bd, const double *x, double hwx, double hwy, double hwz,
+                           double tx, double ty, double tz, const double *m_B, double g, double *out)
+{
+    const double j11 = bd->j[0], j12 = bd->j[1], j13 = bd->j[2];
+    const double j21 = bd->j[3], j22 = bd->j[4], j23 = bd->j[5];
+    const double j31 = bd->j[6], j32 = bd->j[7], j33 = bd->j[8];
+    const double i11 = bd->ji[0], i12 = bd->ji[1], i13 = bd->ji[2];
+    const double i21 = bd->ji[3], i22 = bd->ji[4], i23 = bd->ji[5];
+    const double i31 = bd->ji[6], i32 = bd->ji[7], i33 = bd->ji[8];
+    const double mx = m_B[0], my = m_B[1], mz = m_B[2];
+    const double q0 = x[0], q1 = x[1], q2 = x[2], q3 = x[3], w1 = x[4], w2 = x[5], w3 = x[6];
+    const double b1 = x[7], b2 = x[8], b3 = x[9], r1 = x[10], r2 = x[11], r3 = x[12];
+    const double s1 = j11 * r1 + j12 * r2 + j13 * r3;
+    const double s2 = j21 * r1 + j22 * r2 + j23 * r3;
+    const double s3 = j31 * r1 + j32 * r2 + j33 * r3;
+    const double h1 = j11 * w1 + j12 * w2 + j13 * w3 + hwx;
+    const double h2 = j21 * w1 + j22 * w2 + j23 * w3 + hwy;
+    const double h3 = j31 * w1 + j32 * w2 + j33 * w3 + hwz;
+    const double g1 = tx + my * b3 - mz * b2 + g * (r2 * s3 - r3 * s2) - (w2 * h3 - w3 * h2);
+    const double g2 = ty + mz * b1 - mx * b3 + g * (r3 * s1 - r1 * s3) - (w3 * h1 - w1 * h3);
+    const double g3 = tz + mx * b2 - my * b1 + g * (r1 * s2 - r2 * s1) - (w1 * h2 - w2 * h1);
+    out[0] = 0.5 * (-q1 * w1 - q2 * w2 - q3 * w3);
+    out[1] = 0.5 * (q0 * w1 + q2 * w3 - q3 * w2);
+    out[2] = 0.5 * (q0 * w2 - q1 * w3 + q3 * w1);
+    out[3] = 0.5 * (q0 * w3 + q1 * w2 - q2 * w1);
+    out[4] = i11 * g1 + i12 * g2 + i13 * g3;
+    out[5] = i21 * g1 + i22 * g2 + i23 * g3;
+    out[6] = i31 * g1 + i32 * g2 + i33 * g3;
+    out[7] = b2 * w3 - b3 * w2;
+    out[8] = b3 * w1 - b1 * w3;
+    out[9] = b1 * w2 - b2 * w1;
+    out[10] = r2 * w3 - r3 * w2;
+    out[11] = r3 * w1 - r1 * w3;
+    out[12] = r1 * w2 - r2 * w1;
+}
+
+/* The RK4 stages with the body torque t held and the wheel momentum hw[s] at stage s: stage s is taken at
+ * x0 + step * k[s - 1], step = dt / 2, dt / 2, dt (the reference's xa lists). */
+static void fl_rk4_stages(const fl_body *bd, const double *x0, double dt, const double hw[4][3], const double *t,
+                          const double *m_B, double g, double k[4][13])
+{
+    const double step[4] = {0.0, 0.5 * dt, 0.5 * dt, dt};
+    double xa[13];
+    fl_stage_deriv(bd, x0, hw[0][0], hw[0][1], hw[0][2], t[0], t[1], t[2], m_B, g, k[0]);
+    for (int s = 1; s < 4; s++) {
+        for (int j = 0; j < 13; j++)
+            xa[j] = x0[j] + step[s] * k[s - 1][j];
+        fl_stage_deriv(bd, xa, hw[s][0], hw[s][1], hw[s][2], t[0], t[1], t[2], m_B, g, k[s]);
+    }
+}
+
+/* The RK4 combination of the body states and the renormalised quaternion: out[7]. */
+static void fl_rk4_combine(const double *x0, const double k[4][13], double dt, double *out)
+{
+    const double c = dt / 6.0;
+    double p[7];
+    for (int j = 0; j < 7; j++)
+        p[j] = x0[j] + c * (k[0][j] + 2.0 * (k[1][j] + k[2][j]) + k[3][j]);
+    const double n = 1.0 / sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
+    out[0] = p[0] * n;
+    out[1] = p[1] * n;
+    out[2] = p[2] * n;
+    out[3] = p[3] * n;
+    out[4] = p[4];
+    out[5] = p[5];
+    out[6] = p[6];
+}
+
+/* RigidBody.step_env with torque_B = tau: b_N and r_hat_N turned into B through the direction-cosine
+ * matrix (step_env's own, not rotate_n_to_b), the body's constant wheel momentum at every stage. */
+static void fl_step_env(const fl_body *bd, const double *st, double dt, const double *m_B, const double *b_N,
+                        double g, const double *r_hat_N, const double *tau, double *out)
+{
+    const double q0 = st[0], q1 = st[1], q2 = st[2], q3 = st[3];
+    const double c11 = q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3;
+    const double c12 = 2.0 * (q1 * q2 + q0 * q3);
+    const double c13 = 2.0 * (q1 * q3 - q0 * q2);
+    const double c21 = 2.0 * (q1 * q2 - q0 * q3);
+    const double c22 = q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3;
+    const double c23 = 2.0 * (q2 * q3 + q0 * q1);
+    const double c31 = 2.0 * (q1 * q3 + q0 * q2);
+    const double c32 = 2.0 * (q2 * q3 - q0 * q1);
+    const double c33 = q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3;
+    double x0[13], k[4][13], hw[4][3];
+    for (int j = 0; j < 7; j++)
+        x0[j] = st[j];
+    x0[7] = c11 * b_N[0] + c12 * b_N[1] + c13 * b_N[2];
+    x0[8] = c21 * b_N[0] + c22 * b_N[1] + c23 * b_N[2];
+    x0[9] = c31 * b_N[0] + c32 * b_N[1] + c33 * b_N[2];
+    x0[10] = c11 * r_hat_N[0] + c12 * r_hat_N[1] + c13 * r_hat_N[2];
+    x0[11] = c21 * r_hat_N[0] + c22 * r_hat_N[1] + c23 * r_hat_N[2];
+    x0[12] = c31 * r_hat_N[0] + c32 * r_hat_N[1] + c33 * r_hat_N[2];
+    for (int s = 0; s < 4; s++)
+        for (int i = 0; i < 3; i++)
+            hw[s][i] = bd->h[i];
+    fl_rk4_stages(bd, x0, dt, (const double (*)[3])hw, tau, m_B, g, k);
+    fl_rk4_combine(x0, (const double (*)[13])k, dt, out);
+}
+
+/* wheels._friction: the bearing friction torque on wheel i at relative speed w (rad/s), N m. */
+static double fl_friction(const fl_wheels *wh, int i, double w)
+{
+    const double smoothing = wh->sm[i];
+    const double s = smoothing > 0.0 ? w / smoothing : copysign(1e9, w);
+    const double sat = s > 1.0 ? 1.0 : (s < -1.0 ? -1.0 : s);
+    return -wh->cv[i] * w - wh->cc[i] * sat;
+}
+
+/* step_with_wheels' wheel_terms: from the stage state x and wheel momenta hs, e = total wheel momentum
+ * in B (with the body's constant one) and the wheels' torque on the body; hdot = u + friction. */
+static void fl_wheel_terms(const fl_body *bd, const fl_wheels *wh, const double *x, const double *hs,
+                           const double *u, double *e, double *hdot)
+{
+    const double w1 = x[4], w2 = x[5], w3 = x[6];
+    double hx = bd->h[0], hy = bd->h[1], hz = bd->h[2];
+    double tx = 0.0, ty = 0.0, tz = 0.0;
+    for (int i = 0; i < wh->n; i++) {
+        const double gx = wh->g[3 * i], gy = wh->g[3 * i + 1], gz = wh->g[3 * i + 2];
+        const double hi = hs[i];
+        hx += hi * gx;
+        hy += hi * gy;
+        hz += hi * gz;
+        const double d = u[i] + fl_friction(wh, i, hi / wh->js[i] - (gx * w1 + gy * w2 + gz * w3));
+        hdot[i] = d;
+        tx -= d * gx;
+        ty -= d * gy;
+        tz -= d * gz;
+    }
+    e[0] = hx; e[1] = hy; e[2] = hz; e[3] = tx; e[4] = ty; e[5] = tz;
+}
+
+/* control.quaternion.rotate_n_to_b: out = [BN(q)] v. */
+static void fl_rotate_n_to_b(const double *q, const double *v, double *out)
+{
+    const double q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3];
+    const double x = v[0], y = v[1], z = v[2];
+    const double q00 = q0 * q0, q11 = q1 * q1, q22 = q2 * q2, q33 = q3 * q3;
+    const double q01 = q0 * q1, q02 = q0 * q2, q03 = q0 * q3, q12 = q1 * q2, q13 = q1 * q3, q23 = q2 * q3;
+    out[0] = (q00 + q11 - q22 - q33) * x + 2.0 * ((q12 + q03) * y + (q13 - q02) * z);
+    out[1] = (q00 - q11 + q22 - q33) * y + 2.0 * ((q12 - q03) * x + (q23 + q01) * z);
+    out[2] = (q00 - q11 - q22 + q33) * z + 2.0 * ((q13 + q02) * x + (q23 - q01) * y);
+}
+
+/* wheels.step_with_wheels: one RK4 step of body + wheel momenta with the motor torques u held.
+ * st[7], h[n] in; out[7] (state), h_out[n] (N m s) out. */
+static void fl_step_wheels(const fl_body *bd, const fl_wheels *wh, const double *st, const double *h,
+                           const double *u, double dt, const double *m_B, const double *b_N, double g,
+                           const double *r_hat_N, double *out, double *h_out)
+{
+    const int n = wh->n;
+    double x0[13], k[4][13];
+    for (int j = 0; j < 7; j++)
+        x0[j] = st[j];
+    fl_rotate_n_to_b(st, b_N, x0 + 7);
+    fl_rotate_n_to_b(st, r_hat_N, x0 + 10);
+    if (!wh->friction) {
+        /* h_dot = u is constant over the step: the wheel momentum is linear in time */
+        const double a = 0.5 * dt;
+        double hx = bd->h[0], hy = bd->h[1], hz = bd->h[2];
+        double ux = 0.0, uy = 0.0, uz = 0.0;
+        for (int i = 0; i < n; i++) {
+            const double gx = wh->g[3 * i], gy = wh->g[3 * i + 1], gz = wh->g[3 * i + 2];
+            hx += h[i] * gx;
+            hy += h[i] * gy;
+            hz += h[i] * gz;
+            ux += u[i] * gx;
+            uy += u[i] * gy;
+            uz += u[i] * gz;
+        }
+        const double hw[4][3] = {{hx, hy, hz}, {hx + a * ux, hy + a * uy, hz + a * uz},
+                                 {hx + a * ux, hy + a * uy, hz + a * uz}, {hx + dt * ux, hy + dt * uy, hz + dt * uz}};
+        const double t[3] = {-ux, -uy, -uz};
+        fl_rk4_stages(bd, x0, dt, hw, t, m_B, g, k);
+        for (int i = 0; i < n; i++)
+            h_out[i] = h[i] + u[i] * dt;
+    } else {
+        /* friction depends on the stage's wheel speed: the wheel momenta are stage states too */
+        const double step[4] = {0.0, 0.5 * dt, 0.5 * dt, dt};
+        const double c = dt / 6.0;
+        double xa[13], e[6], hs[FL_MAX_WHEELS], l[4][FL_MAX_WHEELS];
+        fl_wheel_terms(bd, wh, x0, h, u, e, l[0]);
+        fl_stage_deriv(bd, x0, e[0], e[1], e[2], e[3], e[4], e[5], m_B, g, k[0]);
+        for (int s = 1; s < 4; s++) {
+            for (int j = 0; j < 13; j++)
+                xa[j] = x0[j] + step[s] * k[s - 1][j];
+            for (int i = 0; i < n; i++)
+                hs[i] = h[i] + step[s] * l[s - 1][i];
+            fl_wheel_terms(bd, wh, xa, hs, u, e, l[s]);
+            fl_stage_deriv(bd, xa, e[0], e[1], e[2], e[3], e[4], e[5], m_B, g, k[s]);
+        }
+        for (int i = 0; i < n; i++)
+            h_out[i] = h[i] + c * (l[0][i] + 2.0 * (l[1][i] + l[2][i]) + l[3][i]);
+    }
+    fl_rk4_combine(x0, (const double (*)[13])k, dt, out);
 }
 
 /* --- Python boundary ------------------------------------------------------------------------------ */
@@ -294,41 +359,103 @@ static int check_nargs(Py_ssize_t got, Py_ssize_t lo, Py_ssize_t hi, const char 
     return 0;
 }
 
-/* Body(inertia9, inertia_inv9, wheel_momentum3): a rigid body's constants. */
+/* Kernel(inertia9, inertia_inv9, wheel_momentum3[, environment[, wheels]]): one plant's constants. */
 typedef struct {
     PyObject_HEAD
     fl_body body;
     char has_env;
+    char has_wheels;
+    char wheel_friction;
+    int wheel_count;
     fl_env env;
+    fl_wheels wheels;
 } KernelObject;
 
 static PyMemberDef Kernel_members[] = {
     {"has_environment", T_BOOL, offsetof(KernelObject, has_env), READONLY,
-     "whether environment() and step() are available (made with the environment constants)"},
+     "whether environment(), step() and step_wheels_env() are available (made with the environment constants)"},
+    {"has_wheels", T_BOOL, offsetof(KernelObject, has_wheels), READONLY,
+     "whether step_wheels() and step_wheels_env() are available (made with the wheel constants)"},
+    {"wheel_friction", T_BOOL, offsetof(KernelObject, wheel_friction), READONLY,
+     "whether any wheel has bearing friction (WheelAssembly.friction: the RK4 then integrates it)"},
+    {"wheel_count", T_INT, offsetof(KernelObject, wheel_count), READONLY, "number of wheels (0 without)"},
     {NULL, 0, 0, 0, NULL},
 };
 
+/* environment: the 7 CircularOrbit constants, then the field's: 5 for the dipole (12 in all) or the 3
+ * components of b_O for the orbit-constant field (10 in all); plant_kernel.environment_parameters. */
+static int read_env(PyObject *env, fl_env *e)
+{
+    double p[12];
+    Py_ssize_t n = PyTuple_Check(env) ? PyTuple_GET_SIZE(env) : -1;
+    if (n != 12 && n != 10) {
+        PyErr_SetString(PyExc_TypeError, "environment must be a tuple of 12 floats (circular orbit + dipole) "
+                                         "or 10 (circular orbit + orbit-constant field)");
+        return -1;
+    }
+    if (read_floats(env, p, n, "environment"))
+        return -1;
+    e->a = p[0]; e->u0 = p[1]; e->u_rate = p[2]; e->raan0 = p[3]; e->raan_rate = p[4]; e->ci = p[5];
+    e->si = p[6];
+    if (n == 12) {
+        e->field = FL_FIELD_DIPOLE;
+        e->theta0 = p[7]; e->earth_rate = p[8]; e->dx = p[9]; e->dy = p[10]; e->dz = p[11];
+    } else {
+        e->field = FL_FIELD_ORBIT_CONSTANT;
+        e->b_O[0] = p[7]; e->b_O[1] = p[8]; e->b_O[2] = p[9];
+    }
+    return 0;
+}
+
+/* wheels: a tuple of one 7-tuple per wheel, (gx, gy, gz, J_s, c_v, c_c, Omega_s); the friction switch is
+ * WheelAssembly.friction's rule (any c_v > 0 or c_c > 0). */
+static int read_wheels(PyObject *wheels, fl_wheels *wh)
+{
+    if (!PyTuple_Check(wheels) || PyTuple_GET_SIZE(wheels) < 1 || PyTuple_GET_SIZE(wheels) > FL_MAX_WHEELS) {
+        PyErr_Format(PyExc_TypeError, "wheels must be a tuple of 1 to %d wheels", FL_MAX_WHEELS);
+        return -1;
+    }
+    wh->n = (int)PyTuple_GET_SIZE(wheels);
+    wh->friction = 0;
+    for (int i = 0; i < wh->n; i++) {
+        double p[7];
+        if (read_floats(PyTuple_GET_ITEM(wheels, i), p, 7, "wheel (gx, gy, gz, J_s, c_v, c_c, Omega_s)"))
+            return -1;
+        wh->g[3 * i] = p[0]; wh->g[3 * i + 1] = p[1]; wh->g[3 * i + 2] = p[2];
+        wh->js[i] = p[3]; wh->cv[i] = p[4]; wh->cc[i] = p[5]; wh->sm[i] = p[6];
+        if (p[4] > 0.0 || p[5] > 0.0)
+            wh->friction = 1;
+    }
+    return 0;
+}
+
 static int Kernel_init(KernelObject *self, PyObject *args, PyObject *kwds)
 {
-    PyObject *j, *ji, *h, *env = Py_None;
+    PyObject *j, *ji, *h, *env = Py_None, *wheels = Py_None;
     if (kwds != NULL && PyDict_GET_SIZE(kwds) != 0) {
         PyErr_SetString(PyExc_TypeError, "Kernel takes positional arguments only");
         return -1;
     }
-    if (!PyArg_UnpackTuple(args, "Kernel", 3, 4, &j, &ji, &h, &env))
+    if (!PyArg_UnpackTuple(args, "Kernel", 3, 5, &j, &ji, &h, &env, &wheels))
         return -1;
     if (read_floats(j, self->body.j, 9, "inertia") || read_floats(ji, self->body.ji, 9, "inertia_inv")
         || read_floats(h, self->body.h, 3, "wheel_momentum_B"))
         return -1;
     self->has_env = 0;
+    self->has_wheels = 0;
+    self->wheel_friction = 0;
+    self->wheel_count = 0;
     if (env != Py_None) {
-        double p[12];
-        if (read_floats(env, p, 12, "environment"))
+        if (read_env(env, &self->env))
             return -1;
-        self->env.a = p[0]; self->env.u0 = p[1]; self->env.u_rate = p[2]; self->env.raan0 = p[3];
-        self->env.raan_rate = p[4]; self->env.ci = p[5]; self->env.si = p[6]; self->env.theta0 = p[7];
-        self->env.earth_rate = p[8]; self->env.dx = p[9]; self->env.dy = p[10]; self->env.dz = p[11];
         self->has_env = 1;
+    }
+    if (wheels != Py_None) {
+        if (read_wheels(wheels, &self->wheels))
+            return -1;
+        self->has_wheels = 1;
+        self->wheel_friction = (char)self->wheels.friction;
+        self->wheel_count = self->wheels.n;
     }
     return 0;
 }
@@ -349,7 +476,8 @@ static PyObject *Kernel_step_env(KernelObject *self, PyObject *const *args, Py_s
 static int need_env(KernelObject *self)
 {
     if (!self->has_env) {
-        PyErr_SetString(PyExc_ValueError, "this kernel was made without an environment (circular orbit + dipole)");
+        PyErr_SetString(PyExc_ValueError, "this kernel was made without an environment (a circular orbit with the dipole or "
+                                         "the orbit-constant field)");
         return -1;
     }
     return 0;
@@ -403,13 +531,78 @@ static PyObject *Kernel_step(KernelObject *self, PyObject *const *args, Py_ssize
     return res;
 }
 
+static int need_wheels(KernelObject *self)
+{
+    if (!self->has_wheels) {
+        PyErr_SetString(PyExc_ValueError, "this kernel was made without wheels");
+        return -1;
+    }
+    return 0;
+}
+
+/* The arguments step_wheels and step_wheels_env share: state, h, u, dt, m_B, b_N, gg, r_hat_N. */
+static int read_wheel_args(KernelObject *self, PyObject *const *args, double *st, double *h, double *u,
+                           double *dt, double *m, double *b, double *g, double *r)
+{
+    const Py_ssize_t n = self->wheels.n;
+    return read_floats(args[0], st, 7, "state") || read_floats(args[1], h, n, "wheel momenta h")
+        || read_floats(args[2], u, n, "motor torques u") || read_float(args[3], dt)
+        || read_floats(args[4], m, 3, "m_B") || read_floats(args[5], b, 3, "b_N") || read_float(args[6], g)
+        || read_floats(args[7], r, 3, "r_hat_N") ? -1 : 0;
+}
+
+/* step_wheels(state, h, u, dt, m_B, b_N, gg, r_hat_N) -> (state1, h1): wheels.step_with_wheels */
+static PyObject *Kernel_step_wheels(KernelObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    double st[7], h[FL_MAX_WHEELS], u[FL_MAX_WHEELS], m[3], b[3], r[3], out[7], h1[FL_MAX_WHEELS], dt, g;
+    if (check_nargs(nargs, 8, 8, "step_wheels") || need_wheels(self)
+        || read_wheel_args(self, args, st, h, u, &dt, m, b, &g, r))
+        return NULL;
+    fl_step_wheels(&self->body, &self->wheels, st, h, u, dt, m, b, g, r, out, h1);
+    PyObject *s = float_tuple(out, 7);
+    PyObject *hh = s ? float_tuple(h1, self->wheels.n) : NULL;
+    PyObject *res = hh ? PyTuple_Pack(2, s, hh) : NULL;
+    Py_XDECREF(s);
+    Py_XDECREF(hh);
+    return res;
+}
+
+/* step_wheels_env(state, h, u, dt, m_B, b_N, gg, r_hat_N, t1) -> (state1, h1, r_N, r_hat_N, b_N):
+ * step_wheels, then the environment at the step's end t1 (Plant.step_ns with wheels). */
+static PyObject *Kernel_step_wheels_env(KernelObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    double st[7], h[FL_MAX_WHEELS], u[FL_MAX_WHEELS], m[3], b[3], r[3], out[7], h1[FL_MAX_WHEELS], e[9];
+    double dt, g, t1;
+    if (check_nargs(nargs, 9, 9, "step_wheels_env") || need_wheels(self) || need_env(self)
+        || read_wheel_args(self, args, st, h, u, &dt, m, b, &g, r) || read_float(args[8], &t1))
+        return NULL;
+    fl_step_wheels(&self->body, &self->wheels, st, h, u, dt, m, b, g, r, out, h1);
+    fl_environment(&self->env, t1, e);
+    PyObject *s = float_tuple(out, 7);
+    PyObject *hh = s ? float_tuple(h1, self->wheels.n) : NULL;
+    PyObject *rn = hh ? float_tuple(e, 3) : NULL;
+    PyObject *rh = rn ? float_tuple(e + 3, 3) : NULL;
+    PyObject *bn = rh ? float_tuple(e + 6, 3) : NULL;
+    PyObject *res = bn ? PyTuple_Pack(5, s, hh, rn, rh, bn) : NULL;
+    Py_XDECREF(s);
+    Py_XDECREF(hh);
+    Py_XDECREF(rn);
+    Py_XDECREF(rh);
+    Py_XDECREF(bn);
+    return res;
+}
+
 static PyMethodDef Kernel_methods[] = {
     {"step_env", (PyCFunction)(void (*)(void))Kernel_step_env, METH_FASTCALL,
      "step_env(state, dt, m_B, b_N, gg, r_hat_N[, torque_B]) -> state: RigidBody.step_env"},
     {"environment", (PyCFunction)(void (*)(void))Kernel_environment, METH_FASTCALL,
-     "environment(t) -> (r_N, r_hat_N, b_N): circular orbit and centred dipole at t seconds"},
+     "environment(t) -> (r_N, r_hat_N, b_N): the circular orbit and its field at t seconds"},
     {"step", (PyCFunction)(void (*)(void))Kernel_step, METH_FASTCALL,
      "step(state, dt, m_B, b_N, gg, r_hat_N, t1) -> (state1, r_N, r_hat_N, b_N)"},
+    {"step_wheels", (PyCFunction)(void (*)(void))Kernel_step_wheels, METH_FASTCALL,
+     "step_wheels(state, h, u, dt, m_B, b_N, gg, r_hat_N) -> (state1, h1): wheels.step_with_wheels"},
+    {"step_wheels_env", (PyCFunction)(void (*)(void))Kernel_step_wheels_env, METH_FASTCALL,
+     "step_wheels_env(state, h, u, dt, m_B, b_N, gg, r_hat_N, t1) -> (state1, h1, r_N, r_hat_N, b_N)"},
     {NULL, NULL, 0, NULL},
 };
 
@@ -418,7 +611,8 @@ static PyTypeObject KernelType = {
     .tp_name = "detumble.sim._plant_kernel.Kernel",
     .tp_basicsize = sizeof(KernelObject),
     .tp_flags = Py_TPFLAGS_DEFAULT,
-    .tp_doc = "Kernel(inertia9, inertia_inv9, wheel_momentum_B[, environment12]): one body's compiled step",
+    .tp_doc = "Kernel(inertia9, inertia_inv9, wheel_momentum_B[, environment[, wheels]]): one plant's "
+              "compiled step",
     .tp_methods = Kernel_methods,
     .tp_members = Kernel_members,
     .tp_init = (initproc)Kernel_init,

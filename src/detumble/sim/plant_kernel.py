@@ -1,10 +1,13 @@
 """The compiled plant kernel: which plant implementation runs, and building the compiled one.
 
-The pure-Python plant (:mod:`.attitude`, :mod:`.orbit`, :mod:`.field`) is the reference. For the
-common case - no reaction wheels, a circular orbit and the centred dipole - :class:`~.plant.Plant`
-can hand its RK4 step and its environment update to ``plant_kernel.c``, a small CPython extension
-that repeats the reference's arithmetic operation for operation and gives the same floats, bit
-for bit (docs/decisions/0007-compiled-plant-kernel.md).
+The pure-Python plant (:mod:`.attitude`, :mod:`.wheels`, :mod:`.orbit`, :mod:`.field`) is the
+reference. :class:`~.plant.Plant` hands its RK4 step - the rigid body's, or the coupled body +
+reaction-wheel step of :func:`.wheels.step_with_wheels` (frictionless or with bearing friction) -
+and, on a circular orbit with the centred dipole or the orbit-constant field, its environment
+update to ``plant_kernel.c``, a small CPython extension that repeats the reference's arithmetic
+operation for operation and gives the same floats, bit for bit
+(docs/decisions/0007-compiled-plant-kernel.md). The wheels' commands and limits
+(:meth:`.wheels.WheelAssembly.motor_torques`) stay in Python.
 
 Which one runs is chosen per plant (``Plant(..., implementation=...)``) or by the environment
 variable ``FPRIME_LITE_PLANT``:
@@ -45,7 +48,9 @@ ENV_VAR = "FPRIME_LITE_PLANT"
 CACHE_ENV_VAR = "FPRIME_LITE_CACHE"
 IMPLEMENTATIONS = ("auto", "python", "compiled")
 #: IEEE arithmetic as the interpreter does it: no fused multiply-adds, no sin+cos merged into sincos
-COMPILE_FLAGS = ("-O2", "-fPIC", "-ffp-contract=off", "-fno-fast-math", "-fno-builtin-sin", "-fno-builtin-cos")
+#: (and ``pow(x, 2.0)`` kept a libm call, as ``x ** 2`` is, rather than folded into ``x * x``)
+COMPILE_FLAGS = ("-O2", "-fPIC", "-ffp-contract=off", "-fno-fast-math", "-fno-builtin-sin", "-fno-builtin-cos",
+                 "-fno-builtin-pow")
 _SOURCE = "plant_kernel.c"
 _MODULE = "detumble.sim._plant_kernel"
 _BUILD_TIMEOUT_S = 120.0
@@ -166,14 +171,22 @@ def _import(path: str) -> ModuleType:
     return module
 
 
+def _reference_environment(orbit, field_model, t: float):
+    """``(r_N, r_hat_N, b_N)`` at ``t`` as :meth:`.plant.Plant._update_environment` computes them."""
+    r = orbit.position_N(t)
+    rn = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
+    return r, (r[0] / rn, r[1] / rn, r[2] / rn), field_model.b_N(t, r)
+
+
 def mismatch(module: ModuleType) -> str | None:
     """Where the kernel's floats differ from the reference's on a check case, or None when they agree.
 
     A full inertia tensor with products of inertia, a wheel momentum, gravity gradient, a J2 orbit
-    and a turned Earth: every term of both functions contributes.
+    and a turned Earth: every term of both functions contributes. Then the wheel step
+    (:func:`_wheel_mismatch`) and the orbit-constant field.
     """
     from detumble.sim.attitude import RigidBody
-    from detumble.sim.field import DipoleField
+    from detumble.sim.field import DipoleField, OrbitConstantField
     from detumble.sim.orbit import CircularOrbit
 
     body = RigidBody(((2.0e-3, 1.0e-4, -5.0e-5), (1.0e-4, 3.0e-3, 8.0e-5), (-5.0e-5, 8.0e-5, 4.0e-3)),
@@ -184,9 +197,7 @@ def mismatch(module: ModuleType) -> str | None:
     s: tuple = (0.8, 0.2, -0.4, 0.4, 0.3, -0.2, 0.5)
     for k in range(60):
         t = 0.05 * k + 123.4
-        r = orbit.position_N(t)
-        rn = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
-        want_env = (r, (r[0] / rn, r[1] / rn, r[2] / rn), field.b_N(t, r))
+        want_env = _reference_environment(orbit, field, t)
         got_env = kernel.environment(t)
         if got_env != want_env:
             return f"environment at t = {t} s: {got_env} != {want_env}"
@@ -196,6 +207,73 @@ def mismatch(module: ModuleType) -> str | None:
         if got != want:
             return f"step {k}: {got} != {want}"
         s = want
+    orbit_constant = OrbitConstantField((2.0e-5, -1.0e-5, 3.0e-5), orbit)
+    kernel = module.Kernel(body._j, body._jinv, body.wheel_momentum_B, environment_parameters(orbit, orbit_constant))
+    # frames.orbit_axes_N squares with ** (libm pow), which is not x * x for about 1 x in 1300 here: the
+    # last 8 times are where, on this orbit, x * x instead of ** would change the field (a compiler
+    # that folds pow(x, 2.0) into x * x is refused); elsewhere the sqrt and the division absorb it
+    for t in (*(37.1 * k + 0.3 for k in range(20)), 69.75, 597.5, 1788.0, 1933.75, 3045.25, 4248.5, 4414.75, 6287.0):
+        want_env = _reference_environment(orbit, orbit_constant, t)
+        got_env = kernel.environment(t)
+        if got_env != want_env:
+            return f"orbit-constant environment at t = {t} s: {got_env} != {want_env}"
+    return _wheel_mismatch(module, body, orbit, field)
+
+
+def _wheel_mismatch(module: ModuleType, body, orbit, field) -> str | None:
+    """The wheel step against :func:`.wheels.step_with_wheels`: four wheels in a pyramid (not along the
+    body axes) and a fifth on body x, without friction and with viscous and Coulomb friction (speeds
+    inside and beyond the Coulomb smoothing band), speed-mode and torque-mode commands, a momentum
+    limit reached, a wheel disabled part-way and the fifth coasting from zero momentum on Coulomb
+    friction alone (so that its momentum is the friction's floats, not absorbed in a larger torque)."""
+    from detumble.sim.wheels import WheelAssembly, WheelSpec, step_with_wheels
+
+    c, s3 = math.sqrt(2.0 / 3.0), math.sqrt(1.0 / 3.0)
+    axes = ((c, 0.0, s3), (0.0, c, s3), (-c, 0.0, s3), (0.0, -c, s3), (1.0, 0.0, 0.0))
+    # fast (0.6 rad/s: gyroscopic torques dominate) and slow (2 mrad/s: the magnetic and gravity-gradient
+    # torques show in the rate's last bits)
+    for friction, w0 in ((False, 0.3), (True, 0.3), (False, 1e-3), (True, 1e-3)):
+        specs = tuple(WheelSpec(axis, 1.4e-5 + 1e-6 * i, 4e-3, 1.2e-2 + 1e-3 * i,
+                                viscous_friction_nms=(2e-7 * (i + 1)) if friction and i < 4 else 0.0,
+                                coulomb_friction_nm=(5e-5 if friction and i != 1 else 0.0),
+                                coulomb_smoothing_rad_s=(400.0 if i >= 2 else 0.1),
+                                initial_momentum_nms=(-1e-3, 1.1e-2, 2e-4, 0.0, 0.0)[i] if w0 > 0.1 else 0.0)
+                      for i, axis in enumerate(axes))
+        wheels = WheelAssembly(specs)
+        if wheels.friction != friction:
+            return "the check case's friction switch is not the one it means to check"
+        kernel = module.Kernel(body._j, body._jinv, body.wheel_momentum_B, environment_parameters(orbit, field),
+                               wheel_parameters(wheels))
+        if (kernel.wheel_count, bool(kernel.wheel_friction)) != (len(specs), friction):
+            return f"wheel constants read back as {kernel.wheel_count} wheels, friction {kernel.wheel_friction}"
+        # slow: wheel torques and momenta that do not swamp the environment's torques
+        k_u = 1.0 if w0 > 0.1 else 1e-4
+        m_B = (0.02, -0.05, 0.01) if w0 > 0.1 else (0.2, -0.5, 0.1)
+        wheels.set_torque(0, 3e-3 * k_u)
+        wheels.set_torque(1, 9e-3 * k_u)  # fast: clipped to 4 mN m, then cut at the momentum limit
+        wheels.set_speed(2, -150.0 if w0 > 0.1 else 14.0)
+        wheels.set_torque(3, -1e-3 * k_u)
+        wheels.set_enabled(4, False)
+        st: tuple = (0.8, 0.2, -0.4, 0.4, w0, -0.6 * w0, 1.5 * w0)
+        h = wheels.h
+        for k in range(100):
+            if k == 20:
+                wheels.set_enabled(3, False)
+            t = 0.05 * k + 77.0
+            _, r_hat, b_N = _reference_environment(orbit, field, t)
+            u = wheels.motor_torques(0.05, st[4:7])
+            args = (u, 0.05, m_B, b_N, 3.8e-6, r_hat)
+            want = step_with_wheels(body, st, h, u, wheels, *args[1:])
+            got = kernel.step_wheels(st, h, *args)
+            if got != want:
+                return f"wheel step {k} (friction {friction}, rate {w0}): {got} != {want}"
+            got_env = kernel.step_wheels_env(st, h, *args, t + 0.05)
+            want_env = (*want, *kernel.environment(t + 0.05))
+            if got_env != want_env:
+                return (f"wheel step {k} with its environment (friction {friction}, rate {w0}): "
+                        f"{got_env} != {want_env}")
+            st, h = want
+            wheels.h = h
     return None
 
 
@@ -237,20 +315,40 @@ def _load() -> KernelStatus:
 
 def environment_parameters(orbit, field_model) -> tuple[float, ...]:
     """The kernel's environment constants for a :class:`~.orbit.CircularOrbit` and a
-    :class:`~.field.DipoleField` (the order ``plant_kernel.c`` reads them in)."""
+    :class:`~.field.DipoleField` (12 floats) or an :class:`~.field.OrbitConstantField` on that
+    orbit (10 floats), in the order ``plant_kernel.c`` reads them."""
+    from detumble.sim.field import OrbitConstantField
+
     o, f = orbit, field_model
-    return (o.radius_m, o.arg_latitude0_rad, o.arg_latitude_rate, o.raan0_rad, o.raan_rate, o._ci, o._si,
-            f.theta0_rad, f.earth_rotation_rate, f._dx, f._dy, f._dz)
+    orbit_part = (o.radius_m, o.arg_latitude0_rad, o.arg_latitude_rate, o.raan0_rad, o.raan_rate, o._ci, o._si)
+    if type(f) is OrbitConstantField:
+        if f.orbit is not orbit:
+            raise ValueError("the orbit-constant field must be defined on the plant's own orbit")
+        return (*orbit_part, *f.b_O)
+    return (*orbit_part, f.theta0_rad, f.earth_rotation_rate, f._dx, f._dy, f._dz)
 
 
-def kernel_for(body, orbit, field, implementation: str | None = None):
-    """A compiled kernel for one plant's body (and its environment when the orbit is circular and the
-    field the centred dipole evaluated at every step), or None for the pure-Python plant.
+def wheel_parameters(wheels) -> tuple[tuple[float, ...], ...]:
+    """The kernel's wheel constants for a :class:`~.wheels.WheelAssembly`: per wheel
+    ``(gx, gy, gz, J_s, c_v, c_c, Omega_s)`` (axis in B, kg m^2, N m s/rad, N m, rad/s)."""
+    return tuple((*s.axis_B, s.inertia_kg_m2, s.viscous_friction_nms, s.coulomb_friction_nm,
+                  s.coulomb_smoothing_rad_s) for s in wheels.specs)
+
+
+#: the most wheels the kernel takes (plant_kernel.c FL_MAX_WHEELS); a plant with more keeps the Python step
+MAX_WHEELS = 16
+
+
+def kernel_for(body, orbit, field, implementation: str | None = None, wheels=None):
+    """A compiled kernel for one plant's body (with its reaction wheels when ``wheels``, its
+    :class:`~.wheels.WheelAssembly`, is given; and its environment when the orbit is circular and the
+    field the centred dipole or the orbit-constant field, evaluated at every step), or None for the
+    pure-Python plant.
 
     ``field`` is the plant's :class:`~.field.FieldAlongOrbit` (or None). Raises
     :class:`KernelUnavailableError` when ``compiled`` was asked for and the kernel cannot be had.
     """
-    from detumble.sim.field import DipoleField, FieldAlongOrbit
+    from detumble.sim.field import DipoleField, FieldAlongOrbit, OrbitConstantField
     from detumble.sim.orbit import CircularOrbit
 
     mode = requested(implementation)
@@ -262,11 +360,19 @@ def kernel_for(body, orbit, field, implementation: str | None = None):
             raise KernelUnavailableError(f"{ENV_VAR}=compiled but the compiled plant kernel is unavailable: "
                                     f"{status.reason}")
         return None
+    if wheels is not None and wheels.n > MAX_WHEELS:
+        if mode == "compiled":
+            raise KernelUnavailableError(f"{ENV_VAR}=compiled but the compiled plant kernel takes at most "
+                                         f"{MAX_WHEELS} reaction wheels (this spacecraft has {wheels.n})")
+        log.info("%d reaction wheels: more than the compiled kernel takes, using the pure-Python plant", wheels.n)
+        return None
     env = None
     if (type(orbit) is CircularOrbit and type(field) is FieldAlongOrbit and field.table_step_s is None
-            and type(field.model) is DipoleField):
+            and (type(field.model) is DipoleField
+                 or (type(field.model) is OrbitConstantField and field.model.orbit is orbit))):
         env = environment_parameters(orbit, field.model)
-    return status.module.Kernel(body._j, body._jinv, body.wheel_momentum_B, env)
+    wheel_part = None if wheels is None else wheel_parameters(wheels)
+    return status.module.Kernel(body._j, body._jinv, body.wheel_momentum_B, env, wheel_part)
 
 
 def describe(implementation: str | None = None) -> str:

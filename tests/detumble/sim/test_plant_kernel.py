@@ -72,18 +72,24 @@ def test_case_a_detumble_is_bit_identical_with_the_same_detumble_time():
     assert ref_below is not None and abs(ref_below - BASILISK_DETUMBLED_S) <= 0.1 * BASILISK_DETUMBLED_S
 
 
-def test_plant_only_runner_summaries_agree():
-    """SIM-KRN-002: `fprime-lite sim case_a --law kopt` for 1200 s: every recorded row and the whole
-    summary but the wall-clock figures are equal between the two implementations."""
+def _assert_runner_runs_agree(scenario, law, seconds):
+    """The plant-only runner with either plant: every recorded row and the whole summary but the
+    wall-clock figures are equal."""
     _kernel_or_skip()
-    sc = load_scenario("case_a")
-    a = run(sc, law="kopt", duration_s=1200.0, plant=Plant(sc, implementation="python"))
-    b = run(sc, law="kopt", duration_s=1200.0, plant=Plant(sc, implementation="compiled"))
+    sc = load_scenario(scenario)
+    a = run(sc, law=law, duration_s=seconds, plant=Plant(sc, implementation="python"))
+    b = run(sc, law=law, duration_s=seconds, plant=Plant(sc, implementation="compiled"))
     assert a.rows == b.rows and a.adcs_rows == b.adcs_rows
     assert (a.summary["plant_implementation"], b.summary["plant_implementation"]) == ("python", "compiled")
     wall = {"wall_seconds", "real_time_factor", "plant_implementation"}
     same = [k for k in a.summary if k not in wall]
     assert len(same) > 10 and [a.summary[k] for k in same] == [b.summary[k] for k in same]
+
+
+def test_plant_only_runner_summaries_agree():
+    """SIM-KRN-002: `fprime-lite sim case_a --law kopt` for 1200 s: every recorded row and the whole
+    summary but the wall-clock figures are equal between the two implementations."""
+    _assert_runner_runs_agree("case_a", "kopt", 1200.0)
 
 
 def _noisy_flight(scenario, implementation, steps):
@@ -206,7 +212,8 @@ def test_kernel_functions_equal_the_reference_on_random_inputs():
 
 def test_without_a_compiler_the_python_plant_is_chosen_with_a_logged_note(fresh_kernel, monkeypatch, caplog):
     """SIM-KRN-010: no C compiler ($CC names none): a plant is built all the same, in pure Python, and
-    the reason is logged at INFO; FPRIME_LITE_PLANT=compiled then fails with that reason."""
+    the reason is logged at INFO (a wheel plant too); FPRIME_LITE_PLANT=compiled then fails with that
+    reason."""
     monkeypatch.setenv("CC", "/nonexistent/cc")
     with caplog.at_level(logging.INFO, logger="detumble.sim.plant_kernel"):
         p = Plant(load_scenario("case_a"))
@@ -215,6 +222,11 @@ def test_without_a_compiler_the_python_plant_is_chosen_with_a_logged_note(fresh_
                for r in caplog.records)
     assert not fresh_kernel.exists() or not list(fresh_kernel.glob("plant_kernel-*"))
     p.step()  # and it flies
+    wheels = Plant(load_scenario("surrey"))
+    assert wheels.implementation == "python" and wheels._step_wheels is None and wheels._kernel_step_wheels is None
+    wheels.set_wheel_torque(0, 1e-4)
+    wheels.step()
+    assert wheels.wheel_momenta[0] > 0.0
     monkeypatch.setenv(plant_kernel.ENV_VAR, "compiled")
     with pytest.raises(plant_kernel.KernelUnavailableError, match=r"FPRIME_LITE_PLANT=compiled .*no C compiler"):
         Plant(load_scenario("case_a"))
@@ -287,8 +299,286 @@ def test_the_python_reference_can_be_forced_and_a_bad_choice_is_named(monkeypatc
         Plant(load_scenario("case_a"))
 
 
-def test_wheels_keep_the_python_plant():
-    """SIM-KRN-015: a spacecraft with reaction wheels (no compiled twin of their integrator) is the
-    Python plant even when the kernel is there."""
+def test_a_wheel_plant_gets_the_kernel_and_the_python_plant_when_asked():
+    """SIM-KRN-015: a spacecraft with reaction wheels gets the compiled kernel (RK4 and environment) on
+    auto; FPRIME_LITE_PLANT=python keeps the reference; more wheels than the kernel takes keep the Python
+    plant on auto and are an error naming the limit with compiled."""
+    _kernel_or_skip()
     sc = scenario_from_dict({"spacecraft": {"reaction_wheels": {"model": "cubesat_1u"}}})
-    assert Plant(sc, implementation="auto").implementation == "python"
+    p = Plant(sc, implementation="auto")
+    assert p.implementation == "compiled" and p._kernel_step_wheels is not None
+    assert Plant(sc, implementation="python").implementation == "python"
+    many = dataclasses.replace(sc, spacecraft=dataclasses.replace(
+        sc.spacecraft, reaction_wheels=sc.spacecraft.reaction_wheels[:1] * (plant_kernel.MAX_WHEELS + 1)))
+    assert Plant(many, implementation="auto").implementation == "python"
+    with pytest.raises(plant_kernel.KernelUnavailableError,
+                       match=r"at most 16 reaction wheels \(this spacecraft has 17\)"):
+        Plant(many, implementation="compiled")
+
+
+# --- reaction wheels -------------------------------------------------------------------------------
+
+
+def _wheel_scenario(friction, settings=()):
+    """The default scenario (five coils, noisy sensors with coil coupling, gravity gradient, full
+    inertia) with four 1U-class wheels in a pyramid, one started near its momentum limit; with
+    ``friction`` viscous and Coulomb bearing friction (one wheel's smoothing band wide enough that its
+    speed stays inside it)."""
+    from detumble.sim.wheels import WheelSpec
+
+    sc = load_scenario("default", settings=settings)
+    c, s3 = math.sqrt(2.0 / 3.0), math.sqrt(1.0 / 3.0)
+    axes = ((c, 0.0, s3), (0.0, c, s3), (-c, 0.0, s3), (0.0, -c, s3))
+    specs = tuple(WheelSpec(axis, 1.43e-5, 4.0e-3, 1.5e-2,
+                            viscous_friction_nms=2e-7 * (i + 1) if friction else 0.0,
+                            coulomb_friction_nm=4e-5 if friction else 0.0,
+                            coulomb_smoothing_rad_s=2000.0 if i == 3 else 0.1,
+                            initial_momentum_nms=(1.4e-2, -2e-3, 0.0, 5e-4)[i])
+                  for i, axis in enumerate(axes))
+    return dataclasses.replace(sc, spacecraft=dataclasses.replace(
+        sc.spacecraft, inertia_kg_m2=((2.2e-3, 2.0e-5, -1.5e-5), (2.0e-5, 2.15e-3, 1.0e-5), (-1.5e-5, 1.0e-5, 2.05e-3)),
+        reaction_wheels=specs))
+
+
+def _wheel_flight(scenario, implementation, steps):
+    """Torque commands (some beyond the 4 mN m limit, one wheel pushed into its momentum limit and held
+    there), speed-mode commands, a wheel disabled and enabled again, coil levels, partial steps; every
+    step: the state, the wheels' momenta, applied torques and limit flags, the environment and both
+    sensors."""
+    p = Plant(scenario, seed=5, implementation=implementation)
+    out = []
+    for k in range(steps):
+        if k % 50 == 0:
+            j = k // 50
+            p.set_wheel_torque(0, 3e-3)  # wheel 0 starts at 14 of 15 mN m s: reaches the limit and stays
+            p.set_wheel_torque(1, (-1) ** j * 1e-3 * (j % 7))  # up to 6 mN m: clipped at 4
+            if j % 9 < 6:
+                p.set_wheel_speed(2, 40.0 * ((j % 5) - 2))
+            else:
+                p.set_wheel_torque(2, -2.5e-3)
+            p.set_wheel_torque(3, 5e-4 * math.sin(0.7 * j))
+            p.set_wheel_enabled(3, j % 6 != 5)
+            level = j * 37 % 255 - 127
+            p.set_coil_level(0, level)
+            p.set_coil_level(5, -level // 2)
+        p.step_ns(20_000_000 if k % 7 else 13_000_000)
+        w = p.wheels
+        out.append((p.state, w.h, tuple(w.torque_applied), tuple(w.torque_clipped), tuple(w.momentum_limited),
+                    p.b_N, p._r_hat_N, p.magnetometer_reading(), p.gyro_reading()))
+    return p.implementation, out
+
+
+@pytest.mark.parametrize("friction", [False, True], ids=["frictionless", "friction"])
+def test_wheel_plant_is_bit_identical_over_a_long_commanded_run(friction):
+    """SIM-KRN-020: a four-wheel plant for 20 000 steps (about 370 s) of torque and speed commands with
+    torque clipping, the momentum limit, a wheel disabled and enabled, coils and noisy sensors (with and
+    without bearing friction): every state, wheel momentum, applied torque, limit flag, field and sensor
+    sample is equal between the implementations (0 ulp), so every saturation happens at the same step."""
+    _kernel_or_skip()
+    sc = _wheel_scenario(friction)
+    impl_a, a = _wheel_flight(sc, "python", 20_000)
+    impl_b, b = _wheel_flight(sc, "compiled", 20_000)
+    assert (impl_a, impl_b) == ("python", "compiled")
+    first_diff = next((k for k, (x, y) in enumerate(zip(a, b, strict=True)) if x != y), None)
+    assert first_diff is None, f"step {first_diff} differs: {b[first_diff]} != {a[first_diff]}"
+    # the run covers what it claims: clipping, the momentum limit, a disabled wheel, the speed loop
+    assert any(row[3][1] for row in a) and any(row[4][0] for row in a)
+    assert any(row[2][3] == 0.0 for row in a) and len({row[2][2] for row in a}) > 100
+    assert abs(a[-1][1][0]) <= 1.5e-2 and max(abs(row[1][0]) for row in a) > 1.49e-2
+    assert Plant(sc).wheels.friction == friction
+
+
+@pytest.mark.parametrize("settings", [
+    ["integrator_substeps=3"],  # the kernel's step_wheels in the sub-step loop, its environment after
+    ["field.model=none"],  # the kernel's step_wheels, the environment in Python
+    ["field.model=orbit_constant", "field.b_orbit_t=[2.0e-5, -1.0e-5, 3.0e-5]"],  # the kernel's field
+])
+def test_other_wheel_plant_paths_are_bit_identical(settings):
+    """SIM-KRN-021: a wheel plant with sub-steps, without a field and with the orbit-constant field:
+    2000 commanded steps equal between the implementations."""
+    _kernel_or_skip()
+    sc = _wheel_scenario(True, settings)
+    assert _wheel_flight(sc, "python", 2000) == ("python", _wheel_flight(sc, "compiled", 2000)[1])
+
+
+def test_coursework_plant_only_run_is_bit_identical():
+    """SIM-KRN-022: `fprime-lite sim surrey --law wheels_pd` (seed 004's 214 deg/s tumble, three wheels,
+    the orbit-constant field, ideal sensors) for 600 s: the rows and the summary are equal between the
+    implementations."""
+    _assert_runner_runs_agree("surrey", "wheels_pd", 600.0)
+
+
+def _fly_wheel_deployment(monkeypatch, implementation, topology, module, controller, seconds, sequence=None,
+                          settings=()):
+    """One deployment run (scenario values overridden by ``settings``): the truth trace every 20 ms and,
+    at every tick, the controller's mode or law, the wheels' momenta, applied torques and limit flags."""
+    from detumble.sitl import run_support
+    from fprime_lite.deploy.deployment import Deployment
+    from fprime_lite.deploy.topology_loader import load_topology
+
+    original = run_support.load_scenario
+
+    def load_with_settings(name, settings_given=(), **kwargs):
+        return original(name, settings=[*kwargs.pop("settings", settings_given), *settings], **kwargs)
+
+    monkeypatch.setattr(run_support, "load_scenario", load_with_settings)
+    monkeypatch.setenv(plant_kernel.ENV_VAR, implementation)
+    loaded = load_topology(topology)
+    topo = loaded.topology
+    ctrl = topo.instance(f"{module}.{controller}").component
+    craft = topo.instance(f"{module}.imuManager").component.spacecraft
+    trace, ticks = [], []
+    craft.set_trace(lambda s: trace.append(tuple(s)), 20_000)
+
+    def tick(now_us):
+        w = craft.plant.wheels
+        ticks.append((now_us, getattr(ctrl, "mode", None), getattr(ctrl, "_law", None), w.h, tuple(w.torque_applied),
+                      tuple(w.torque_clipped), tuple(w.momentum_limited)))
+
+    loaded.scheduler.add_time_listener(tick)
+    deployment = Deployment(loaded)
+    deployment.start(sequence=sequence or topology.parent / "startup.seq")
+    deployment.run_for(seconds)
+    return craft.plant.implementation, trace, ticks
+
+
+def test_adcs_deployment_pointing_on_wheels_is_the_same_flight_with_either_plant(monkeypatch, tmp_path):
+    """SIM-KRN-023: deployments/adcs_ref, started slow (0.5 deg/s) and forced to POINTING after 5 s: the
+    AttitudeController slews 45 deg on its three wheels (the PD law, up to 0.28 mN m a wheel) and
+    holds the target, 60 s in all. The truth every 20 ms and the wheels' state and the mode at every tick are the same
+    floats and the same instants with either plant."""
+    _kernel_or_skip()
+    topology = pathlib.Path(__file__).parents[3] / "deployments" / "adcs_ref" / "topology.yaml"
+    seq = tmp_path / "point.seq"
+    seq.write_text("R00:00:00 ReferenceDeployment.attitudeController.SET_TARGET_QUATERNION "
+                   "0.9238795325112867 0.0 0.3826834323650898 0.0\n"
+                   "R00:00:05 ReferenceDeployment.attitudeController.FORCE_MODE POINTING\n")
+    settings = ("initial.rate.magnitude_deg_s=0.5", "initial.rate.axis=[0, 0, 1]")
+    runs = [_fly_wheel_deployment(monkeypatch, impl, topology, "ReferenceDeployment", "attitudeController",
+                                  60.0, seq, settings) for impl in ("python", "compiled")]
+    (impl_a, trace_a, ticks_a), (impl_b, trace_b, ticks_b) = runs
+    assert (impl_a, impl_b) == ("python", "compiled")
+    assert len(trace_a) > 2900 and trace_a == trace_b
+    assert ticks_a == ticks_b
+    assert len({t[1] for t in ticks_a}) == 2  # IDLE, then POINTING
+    assert max(abs(u) for t in ticks_a for u in t[4]) > 1e-4  # the wheels work
+
+
+def test_coursework_deployment_is_the_same_flight_with_either_plant(monkeypatch):
+    """SIM-KRN-024: deployments/coursework (the CourseworkController's wheel PD law at 100 Hz on the
+    214 deg/s tumble, the wheels spinning up to about 3 mN m s in 30 s) for 30 s: truth every 20 ms and
+    the wheels' state and the controller's law at every tick are the same with either plant."""
+    _kernel_or_skip()
+    topology = pathlib.Path(__file__).parents[3] / "deployments" / "coursework" / "topology.yaml"
+    runs = [_fly_wheel_deployment(monkeypatch, impl, topology, "CourseworkDeployment", "controller", 30.0)
+            for impl in ("python", "compiled")]
+    (impl_a, trace_a, ticks_a), (impl_b, trace_b, ticks_b) = runs
+    assert (impl_a, impl_b) == ("python", "compiled")
+    assert len(trace_a) > 1400 and trace_a == trace_b
+    assert ticks_a == ticks_b
+    assert max(abs(h) for h in ticks_a[-1][3]) > 1e-3  # the wheels work
+
+
+@pytest.mark.parametrize("where", ["frictionless state", "frictionless momentum", "friction state",
+                                   "friction momentum", "orbit-constant field"])
+def test_a_kernel_whose_wheel_step_or_field_is_off_by_one_ulp_is_refused(fresh_kernel, monkeypatch, where):
+    """SIM-KRN-025: the load-time check covers the wheel step (both branches, state and wheel momenta)
+    and the orbit-constant field: one ulp off in one of them and the kernel is refused."""
+    _kernel_or_skip()
+    real = plant_kernel.load().module
+
+    def bump(v, i):
+        return (*v[:i], math.nextafter(v[i], math.inf), *v[i + 1:])
+
+    class OneUlpOff:
+        def __init__(self, *args):
+            self._k = real.Kernel(*args)
+            self.field = len(args) > 3 and args[3] is not None and len(args[3]) == 10
+            for name in ("has_environment", "has_wheels", "wheel_friction", "wheel_count", "step_env", "step"):
+                setattr(self, name, getattr(self._k, name))
+
+        def _off(self, branch):
+            return where.startswith(branch) and bool(self._k.wheel_friction) == (branch == "friction")
+
+        def environment(self, t):
+            r, rh, b = self._k.environment(t)
+            return (r, rh, bump(b, 1)) if self.field and where == "orbit-constant field" else (r, rh, b)
+
+        def step_wheels(self, *args):
+            s, h = self._k.step_wheels(*args)
+            for branch in ("frictionless", "friction"):
+                if self._off(branch):
+                    return (bump(s, 4), h) if where.endswith("state") else (s, bump(h, 2))
+            return s, h
+
+        def step_wheels_env(self, *args):
+            s, h = self.step_wheels(*args[:8])
+            return (s, h, *self.environment(args[8]))
+
+    fake = type("FakeModule", (), {"Kernel": OneUlpOff, "SOURCE_KEY": real.SOURCE_KEY})
+    problem = plant_kernel.mismatch(fake)
+    assert problem is not None
+    assert ("orbit-constant" in problem) if where == "orbit-constant field" else (
+        f"friction {where.startswith('friction ')}" in problem)
+    plant_kernel._reset_for_tests()
+    monkeypatch.setattr(plant_kernel, "_import", lambda path: fake)
+    assert plant_kernel.load().outcome == "refused"
+    assert Plant(load_scenario("adcs")).implementation == "python"
+
+
+def test_wheel_step_and_orbit_constant_field_equal_the_reference_on_random_inputs():
+    """SIM-KRN-026: 20 000 random wheel steps (seeded: 1 to 6 wheels on random axes, random inertia,
+    friction or none, momenta near and beyond the limits, torques, states up to 3 rad/s, dt up to 0.2 s)
+    equal wheels.step_with_wheels, and 5000 random times of the orbit-constant field on random orbits
+    equal CircularOrbit + OrbitConstantField: 0 ulp."""
+    _kernel_or_skip()
+    import random
+
+    from detumble.sim.attitude import RigidBody
+    from detumble.sim.field import OrbitConstantField
+    from detumble.sim.orbit import CircularOrbit
+    from detumble.sim.wheels import WheelAssembly, WheelSpec, step_with_wheels
+
+    rng = random.Random(11)
+    module = plant_kernel.load().module
+
+    def vec(scale):
+        return (rng.uniform(-scale, scale), rng.uniform(-scale, scale), rng.uniform(-scale, scale))
+
+    def unit():
+        v = vec(1.0)
+        n = math.sqrt(sum(x * x for x in v))
+        return tuple(x / n for x in v)
+
+    for _ in range(200):
+        d = (rng.uniform(1e-3, 5e-3), rng.uniform(1e-3, 5e-3), rng.uniform(1e-3, 5e-3))
+        p = vec(2e-4)
+        body = RigidBody(((d[0], p[0], p[1]), (p[0], d[1], p[2]), (p[1], p[2], d[2])), vec(1e-4))
+        friction = rng.random() < 0.5
+        specs = tuple(WheelSpec(unit(), rng.uniform(5e-6, 1e-4), 4e-3, 1.5e-2,
+                                viscous_friction_nms=rng.uniform(0.0, 1e-6) if friction else 0.0,
+                                coulomb_friction_nm=rng.uniform(0.0, 1e-4) if friction else 0.0,
+                                coulomb_smoothing_rad_s=rng.choice((0.1, 5.0, 1e3)))
+                      for _ in range(rng.randint(1, 6)))
+        wheels = WheelAssembly(specs)
+        kernel = module.Kernel(body._j, body._jinv, body.wheel_momentum_B, None, plant_kernel.wheel_parameters(wheels))
+        assert not kernel.has_environment and kernel.wheel_count == len(specs)
+        for _ in range(100):
+            q = vec(1.0) + (rng.uniform(-1.0, 1.0),)
+            n = math.sqrt(sum(x * x for x in q))
+            s = tuple(x / n for x in q) + vec(3.0)
+            h = tuple(rng.uniform(-2e-2, 2e-2) for _ in specs)
+            u = tuple(rng.uniform(-5e-3, 5e-3) for _ in specs)
+            args = (rng.uniform(1e-3, 0.2), vec(0.2), vec(5e-5), rng.uniform(0.0, 1e-5), vec(1.0))
+            assert kernel.step_wheels(s, h, u, *args) == step_with_wheels(body, s, h, u, wheels, *args)
+    for _ in range(50):
+        orbit = CircularOrbit(rng.uniform(300e3, 2000e3), rng.uniform(0.0, math.pi), rng.uniform(-4.0, 4.0),
+                              rng.uniform(-4.0, 4.0), j2=rng.choice((0.0, 1.0826267e-3)))
+        field = OrbitConstantField(vec(5e-5), orbit)
+        kernel = module.Kernel(body._j, body._jinv, body.wheel_momentum_B,
+                               plant_kernel.environment_parameters(orbit, field))
+        for _ in range(100):
+            t = rng.uniform(0.0, 1e7)
+            r = orbit.position_N(t)
+            rn = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
+            assert kernel.environment(t) == (r, (r[0] / rn, r[1] / rn, r[2] / rn), field.b_N(t, r))
