@@ -254,8 +254,7 @@ def _phi_p_phi_t(f: Mat, m: float, p: Mat) -> Mat:
     a = []  # Φ P
     for (f0, f1, f2), pk in zip(f, (p[3], p[4], p[5]), strict=True):
         a.append([sum((f0 * x0, f1 * x1, f2 * x2, m * xk)) for x0, x1, x2, xk in zip(p0, p1, p2, pk, strict=True)])
-    for k in (3, 4, 5):
-        a.append([0.0 + x for x in p[k]])
+    a += (p[3], p[4], p[5])  # Φ's identity rows (the sums and 0.0 + below turn their −0.0 into +0.0, as there)
     (g00, g01, g02), (g10, g11, g12), (g20, g21, g22) = f
     return [[sum((r0 * g00, r1 * g01, r2 * g02, r3 * m)), sum((r0 * g10, r1 * g11, r2 * g12, r4 * m)),
              sum((r0 * g20, r1 * g21, r2 * g22, r5 * m)), 0.0 + r3, 0.0 + r4, 0.0 + r5]
