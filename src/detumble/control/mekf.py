@@ -227,11 +227,16 @@ class Mekf:
         s = [[p[i][j] + r[i][j] for j in range(3)] for i in range(3)]
         for i in range(3):
             s[i][i] -= 2.0 * corr
-        pht = [[p[i][j] - (corr if i == j else 0.0) for j in range(3)] for i in range(6)]  # P Hᵀ + M
+        pht = [row[:3] for row in p]  # P Hᵀ + M (M: −corr on the attitude block's diagonal)
+        for i in range(3):
+            pht[i][i] -= corr
         k = _matmul(pht, _inv_spd3(s))
-        dx = [k[i][0] * res[0] + k[i][1] * res[1] + k[i][2] * res[2] for i in range(6)]
-        ksk = _matmul(_matmul(k, s), _transpose(k))
-        self.P = _symmetric([[p[i][j] - ksk[i][j] for j in range(6)] for i in range(6)])
+        r0, r1, r2 = res
+        dx = [k0 * r0 + k1 * r1 + k2 * r2 for k0, k1, k2 in k]
+        # K S Kᵀ: the rows of K are the columns of Kᵀ (what _matmul(·, _transpose(k)) would sum over)
+        ksk = [[sum((a0 * c0, a1 * c1, a2 * c2)) for c0, c1, c2 in k] for a0, a1, a2 in _matmul(k, s)]
+        self.P = _symmetric([[x - y for x, y in zip(prow, krow, strict=True)]
+                             for prow, krow in zip(p, ksk, strict=True)])
         self.last_residual = res
         self.last_innovation_cov = s
         # reset: fold the error into the reference attitude and the bias
