@@ -57,13 +57,18 @@ _TESLA_PER_GAUSS = 1e-4
 _DEG = math.pi / 180.0
 _ARCSEC = _DEG / 3600.0
 _ZERO = (0.0, 0.0, 0.0)
+_SUCCESS = Success.SUCCESS
+_isfinite = math.isfinite
 
 
 def _finite(*values) -> bool:
     try:
-        return all(math.isfinite(v) for v in values)
+        for v in values:
+            if not _isfinite(v):
+                return False
     except TypeError:
         return False
+    return True
 
 
 def _norm(v) -> float:
@@ -309,6 +314,16 @@ class AttitudeController(PassiveComponent):
                              ("xPlusStart", "xMinusStart", "yPlusStart", "yMinusStart", "zMinusStart")]
         self._stop_ports = [self.output_port(n) for n in
                             ("xPlusStop", "xMinusStop", "yPlusStop", "yMinusStop", "zMinusStop")]
+        # The output port arrays read every tick or cycle (``targets[i]`` says whether index i is
+        # connected, ``calls[i]`` calls it), looked up once instead of by name on every call.
+        self._gyro_port = self.output_port("angularVelocityGet")
+        self._torque_ports = self.output_port("wheelTorqueSet")
+        self._state_ports = self.output_port("wheelStateGet")
+        self._enable_ports = self.output_port("wheelEnableSet")
+        # Allocators: Σ h_i g_i needs only the axes (limits 1, 1); the limited one is rebuilt when
+        # the axes or WHEEL_MAX_TORQUE / WHEEL_MAX_MOMENTUM differ from the ones it was built for.
+        self._momentum_alloc: tuple = (None, None)  # (axes, WheelAllocator)
+        self._limit_alloc: tuple = (None, None)  # ((axes, u_max, h_max), WheelAllocator)
 
     # --- state helpers -------------------------------------------------------------------------
 
@@ -320,8 +335,9 @@ class AttitudeController(PassiveComponent):
     def wheel_count(self) -> int:
         """Wheels connected (torque and momentum ports both), in index order."""
         n = 0
+        torque, state = self._torque_ports.targets, self._state_ports.targets
         for i in range(len(self.wheel_axes)):
-            if self.is_connected("wheelTorqueSet", i) and self.is_connected("wheelStateGet", i):
+            if torque[i] is not None and state[i] is not None:
                 n += 1
         return n
 
@@ -387,13 +403,17 @@ class AttitudeController(PassiveComponent):
         are made safe (coils off, wheels at zero torque).
         """
         try:
-            cycle = max(1, int(self.CYCLE_TICKS.value))
+            cycle = int(self.CYCLE_TICKS.value) or 1  # U32: max(1, value)
             phase = self.ticks % cycle
             self.ticks += 1
             if phase == 0:
                 self._cycle()
-            else:
-                self._accumulate_gyro()
+            else:  # between cycles: add this tick's gyro reading to the cycle's mean (failed reads skipped)
+                g = self._read_gyro()
+                if g is not None:
+                    acc = self._gyro_sum
+                    self._gyro_sum = (acc[0] + g[0], acc[1] + g[1], acc[2] + g[2])
+                    self._gyro_count += 1
             if phase == cycle - 1 and self.coils_driven and cycle > 1:
                 self._stop_coils()
         except Exception:  # the rate group must keep running
@@ -518,7 +538,7 @@ class AttitudeController(PassiveComponent):
             self.pd_rate = None
             return
         xy, xz, yz = self.INERTIA_XY.value, self.INERTIA_XZ.value, self.INERTIA_YZ.value
-        try:
+        try:  # free when the parameters are the model's already (RateObserver.set_model compares first)
             obs.set_model(((self.INERTIA_XX.value, xy, xz), (xy, self.INERTIA_YY.value, yz),
                            (xz, yz, self.INERTIA_ZZ.value)), self.RATE_OBSERVER_GAIN.value)
             self.InertiaModelRefused.clear_throttle()
@@ -526,7 +546,7 @@ class AttitudeController(PassiveComponent):
             self.InertiaModelRefused()
         h = _ZERO
         if self.wheel_momenta is not None:
-            h = WheelAllocator(self.wheel_axes, 1.0, 1.0).body_momentum(self.wheel_momenta)
+            h = self._body_momentum(self.wheel_momenta)
         w = obs.update(self.omega, self._applied_torque(), h, dt)
         self.pd_rate = w if self.RATE_SOURCE.value == RateSource.OBSERVER else self.omega
 
@@ -547,18 +567,21 @@ class AttitudeController(PassiveComponent):
         self.bdot_hat_B = fr.update(q, self.b_tesla, dt)
 
     def _read_gyro(self):
-        ok, w = self._read("angularVelocityGet")
-        if ok and w is not None and _finite(w.x, w.y, w.z):
-            return (float(w.x), float(w.y), float(w.z))
-        return None
-
-    def _accumulate_gyro(self) -> None:
-        """Between cycles: add this tick's gyro reading to the cycle's mean (failed reads are skipped)."""
-        g = self._read_gyro()
-        if g is not None:
-            acc = self._gyro_sum
-            self._gyro_sum = (acc[0] + g[0], acc[1] + g[1], acc[2] + g[2])
-            self._gyro_count += 1
+        """The gyro reading ``(x, y, z)`` rad/s (B), or None when the port fails, is not connected or
+        returns a non-finite value."""
+        port = self._gyro_port
+        if port.targets[0] is None:
+            return None
+        w, condition = port.calls[0]()
+        if condition != _SUCCESS or w is None:
+            return None
+        x, y, z = w.x, w.y, w.z
+        try:
+            if not (_isfinite(x) and _isfinite(y) and _isfinite(z)):
+                return None
+        except TypeError:
+            return None
+        return (float(x), float(y), float(z))
 
     # --- AUTO ----------------------------------------------------------------------------------
 
@@ -640,7 +663,7 @@ class AttitudeController(PassiveComponent):
                 tau = (tau[0] + ti[0], tau[1] + ti[1], tau[2] + ti[2])
                 tau_mag = _ZERO
                 if self.b_tesla is not None and self.wheel_momenta is not None:
-                    h_b = WheelAllocator(self.wheel_axes, 1.0, 1.0).body_momentum(self.wheel_momenta)
+                    h_b = self._body_momentum(self.wheel_momenta)
                     dipole, _ = project_dipole_weighted(dump_torque(h_b, self.K_DUMP.value), self.b_tesla,
                                                         self._coil_limits())
                     dipole = self._limit_dipole(dipole)
@@ -681,8 +704,20 @@ class AttitudeController(PassiveComponent):
     def _limit_dipole(self, m):
         return scale_to_limits(m, self._coil_limits())
 
+    def _body_momentum(self, momenta):
+        """``Σ h_i g_i`` over the wheels, N·m·s (B)."""
+        axes, alloc = self._momentum_alloc
+        if axes != self.wheel_axes:
+            alloc = WheelAllocator(self.wheel_axes, 1.0, 1.0)
+            self._momentum_alloc = (self.wheel_axes, alloc)
+        return alloc.body_momentum(momenta)
+
     def _allocate(self, tau):
-        alloc = WheelAllocator(self.wheel_axes, self.WHEEL_MAX_TORQUE.value, self.WHEEL_MAX_MOMENTUM.value)
+        key, alloc = self._limit_alloc
+        wanted = (self.wheel_axes, self.WHEEL_MAX_TORQUE.value, self.WHEEL_MAX_MOMENTUM.value)
+        if key != wanted:  # first use, or a limit parameter changed: the allocator's limits follow
+            alloc = WheelAllocator(*wanted)
+            self._limit_alloc = (wanted, alloc)
         u, limited = alloc.allocate(tau, self.wheel_momenta)
         if limited:
             self.WheelLimitReached()
@@ -743,9 +778,10 @@ class AttitudeController(PassiveComponent):
         self.Autonomy.write(self.autonomy)
         w = self.omega
         if w is not None:
-            self.AngularRate.write(math.degrees(_norm(w)))
-            axis_deg, _ = self._spin_errors()
-            self.SpinAxisError.write(axis_deg)
+            n = _norm(w)
+            self.AngularRate.write(math.degrees(n))
+            # as _spin_errors: the angle between ω̂ and +Z (180 without a rate)
+            self.SpinAxisError.write(math.degrees(math.atan2(math.hypot(w[0], w[1]), w[2])) if n > 0.0 else 180.0)
             self.SpinRate.write(math.degrees(w[2]))
         if self.mode == ControlMode.POINTING and math.isfinite(self.pointing_error_deg):
             self.PointingError.write(self.pointing_error_deg)
@@ -767,39 +803,56 @@ class AttitudeController(PassiveComponent):
 
     def _read(self, port: str, index: int = 0):
         """Call a ``ref condition`` port; ``(ok, value)``. Unconnected counts as a failure."""
-        if not self.is_connected(port, index):
+        out = self.output_port(port)
+        if out.targets[index] is None:
             return False, None
-        value, condition = getattr(self, port)[index]()
-        return condition == Success.SUCCESS, value
+        value, condition = out.calls[index]()
+        return condition == _SUCCESS, value
 
     def _read_wheel_momenta(self):
         """Each wheel's axial momentum (N·m·s) from its driver, or None when one does not answer."""
         momenta = []
+        ports = self._state_ports
+        targets, calls = ports.targets, ports.calls
         for i in range(len(self.wheel_axes)):
-            ok, state = self._read("wheelStateGet", i)
-            if not ok or state is None or not _finite(state.momentum):
+            if targets[i] is None:
                 return None
-            momenta.append(float(state.momentum))
+            state, condition = calls[i]()
+            if condition != _SUCCESS or state is None:
+                return None
+            h = state.momentum
+            try:
+                if not _isfinite(h):
+                    return None
+            except TypeError:
+                return None
+            momenta.append(float(h))
         return tuple(momenta)
 
     def _command_wheels(self, u) -> None:
         """Send one motor torque (N·m) per wheel; a non-zero command enables the wheels first."""
         sent = []
-        wanted = any(t != 0.0 for t in u)
-        if wanted and not self._wheels_enabled:
-            for i in range(len(u)):
-                if self.is_connected("wheelEnableSet", i) and self.wheelEnableSet[i](True) != Success.SUCCESS:
-                    self.WheelCommandFailed(i)
-            self._wheels_enabled = True
+        if not self._wheels_enabled:
+            for t in u:
+                if t != 0.0:  # the first non-zero command enables every wheel
+                    enable = self._enable_ports
+                    for i in range(len(u)):
+                        if enable.targets[i] is not None and enable.calls[i](True) != _SUCCESS:
+                            self.WheelCommandFailed(i)
+                    self._wheels_enabled = True
+                    break
+        ports = self._torque_ports
+        targets, calls = ports.targets, ports.calls
         for i, torque in enumerate(u):
-            if not self.is_connected("wheelTorqueSet", i):
+            if targets[i] is None:
                 sent.append(0.0)
                 continue
-            if self.wheelTorqueSet[i](float(torque)) != Success.SUCCESS:
+            torque = float(torque)
+            if calls[i](torque) != _SUCCESS:
                 self.WheelCommandFailed(i)
             else:
                 self.WheelCommandFailed.clear_throttle()
-            sent.append(float(torque))
+            sent.append(torque)
         self.wheel_torques = tuple(sent)
 
     def _coil_levels(self, m):

@@ -47,7 +47,17 @@ def _zeros(n: int, m: int) -> Mat:
 
 
 def _matmul(a: Mat, b: Mat) -> Mat:
+    """``a b``. Each element is ``sum`` of its products in index order, as a generator over
+    ``zip(row, col)`` would give (the same floats on every Python: 3.12's compensated ``sum`` too);
+    the products are spelled out for the filter's inner dimensions 3 and 6 (a generator costs
+    about four times as much)."""
     bt = list(zip(*b, strict=True))
+    n = len(b)
+    if n == 6:
+        return [[sum((r0 * c[0], r1 * c[1], r2 * c[2], r3 * c[3], r4 * c[4], r5 * c[5])) for c in bt]
+                for r0, r1, r2, r3, r4, r5 in a]
+    if n == 3:
+        return [[sum((r0 * c[0], r1 * c[1], r2 * c[2])) for c in bt] for r0, r1, r2 in a]
     return [[sum(x * y for x, y in zip(row, col, strict=True)) for col in bt] for row in a]
 
 
@@ -174,13 +184,7 @@ class Mekf:
 
     def _propagate_covariance(self, w: Vec3, dt: float, var_rate: float) -> None:
         f = _rotation_transpose(w, dt)
-        phi = _zeros(6, 6)
-        for i in range(3):
-            for j in range(3):
-                phi[i][j] = f[i][j]
-            phi[i][i + 3] = -dt
-            phi[i + 3][i + 3] = 1.0
-        p = _matmul(_matmul(phi, self.P), _transpose(phi))
+        p = _phi_p_phi_t(f, -dt, self.P)
         su2 = self.bias_walk ** 2
         qa = var_rate * dt * dt + su2 * dt ** 3 / 3.0
         qab = -su2 * dt * dt / 2.0
@@ -223,11 +227,16 @@ class Mekf:
         s = [[p[i][j] + r[i][j] for j in range(3)] for i in range(3)]
         for i in range(3):
             s[i][i] -= 2.0 * corr
-        pht = [[p[i][j] - (corr if i == j else 0.0) for j in range(3)] for i in range(6)]  # P Hᵀ + M
+        pht = [row[:3] for row in p]  # P Hᵀ + M (M: −corr on the attitude block's diagonal)
+        for i in range(3):
+            pht[i][i] -= corr
         k = _matmul(pht, _inv_spd3(s))
-        dx = [k[i][0] * res[0] + k[i][1] * res[1] + k[i][2] * res[2] for i in range(6)]
-        ksk = _matmul(_matmul(k, s), _transpose(k))
-        self.P = _symmetric([[p[i][j] - ksk[i][j] for j in range(6)] for i in range(6)])
+        r0, r1, r2 = res
+        dx = [k0 * r0 + k1 * r1 + k2 * r2 for k0, k1, k2 in k]
+        # K S Kᵀ: the rows of K are the columns of Kᵀ (what _matmul(·, _transpose(k)) would sum over)
+        ksk = [[sum((a0 * c0, a1 * c1, a2 * c2)) for c0, c1, c2 in k] for a0, a1, a2 in _matmul(k, s)]
+        self.P = _symmetric([[x - y for x, y in zip(prow, krow, strict=True)]
+                             for prow, krow in zip(p, ksk, strict=True)])
         self.last_residual = res
         self.last_innovation_cov = s
         # reset: fold the error into the reference attitude and the bias
@@ -237,6 +246,26 @@ class Mekf:
         self.bias = (b[0] + dx[3], b[1] + dx[4], b[2] + dx[5])
 
 
+def _phi_p_phi_t(f: Mat, m: float, p: Mat) -> Mat:
+    """``Φ P Φᵀ`` for ``Φ = [[F, m I], [0, I]]`` (F 3×3, ``m = −Δt``), P 6×6.
+
+    The same floats as ``_matmul(_matmul(Φ, P), Φᵀ)`` whenever P is finite: every element there is
+    ``sum`` of six products in index order, and the products with Φ's zeros are ±0.0, which leave
+    a partial ``sum`` unchanged (it starts at +0 and never becomes −0, and 3.12's compensation
+    term does not move either). So only the others are summed, in the same order; an element
+    that is one product with a 1 of Φ is ``0.0 + x`` (as ``sum`` turns −0.0 into +0.0).
+    """
+    p0, p1, p2 = p[0], p[1], p[2]
+    a = []  # Φ P
+    for (f0, f1, f2), pk in zip(f, (p[3], p[4], p[5]), strict=True):
+        a.append([sum((f0 * x0, f1 * x1, f2 * x2, m * xk)) for x0, x1, x2, xk in zip(p0, p1, p2, pk, strict=True)])
+    a += (p[3], p[4], p[5])  # Φ's identity rows (the sums and 0.0 + below turn their −0.0 into +0.0, as there)
+    (g00, g01, g02), (g10, g11, g12), (g20, g21, g22) = f
+    return [[sum((r0 * g00, r1 * g01, r2 * g02, r3 * m)), sum((r0 * g10, r1 * g11, r2 * g12, r4 * m)),
+             sum((r0 * g20, r1 * g21, r2 * g22, r5 * m)), 0.0 + r3, 0.0 + r4, 0.0 + r5]
+            for r0, r1, r2, r3, r4, r5 in a]
+
+
 def _symmetric(p: Mat) -> Mat:
-    n = len(p)
-    return [[0.5 * (p[i][j] + p[j][i]) for j in range(n)] for i in range(n)]
+    cols = zip(*p, strict=True)
+    return [[0.5 * (x + y) for x, y in zip(row, col, strict=True)] for row, col in zip(p, cols, strict=True)]

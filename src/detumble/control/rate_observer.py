@@ -40,10 +40,16 @@ class RateObserver:
 
     def __init__(self, inertia_kg_m2, gain_per_s: float) -> None:
         self._key: object = None  # the model last set: a repeated set_model is free
+        self._key_inertia: object = None  # that model's inertia and gain (the two parts of ``_key``)
+        self._key_gain: object = None
         self.set_model(inertia_kg_m2, gain_per_s)
         self.omega: Vec3 | None = None
 
     def set_model(self, inertia_kg_m2, gain_per_s: float) -> None:
+        """Take a new inertia (kg·m², B) and pull gain (1/s); ValueError when either is unusable (the
+        previous model stays). Setting the model it has already costs one comparison."""
+        if type(inertia_kg_m2) is tuple and gain_per_s == self._key_gain and inertia_kg_m2 == self._key_inertia:
+            return  # the same numbers as last time, given as tuples (anything else takes the long way)
         key = (tuple(tuple(r) if isinstance(r, (tuple, list)) else r for r in inertia_kg_m2), gain_per_s)
         if key == self._key:
             return
@@ -65,6 +71,7 @@ class RateObserver:
         self.inertia_inv = inv3(m)
         self.gain = float(gain_per_s)
         self._key = key
+        self._key_inertia, self._key_gain = key
 
     def reset(self, omega: Vec3 | None = None) -> None:
         self.omega = None if omega is None else (float(omega[0]), float(omega[1]), float(omega[2]))
@@ -85,6 +92,9 @@ class RateObserver:
         a = _mul(self.inertia_inv, (torque_B[0] - gx, torque_B[1] - gy, torque_B[2] - gz))
         k = 1.0 - math.exp(-self.gain * dt)
         half = 0.5 * dt
-        out = tuple(w[i] + a[i] * dt + k * (omega_meas[i] - (w[i] + a[i] * half)) for i in range(3))
-        self.omega = (out[0], out[1], out[2])
-        return self.omega
+        w0, w1, w2 = w
+        a0, a1, a2 = a
+        self.omega = out = (w0 + a0 * dt + k * (omega_meas[0] - (w0 + a0 * half)),
+                            w1 + a1 * dt + k * (omega_meas[1] - (w1 + a1 * half)),
+                            w2 + a2 * dt + k * (omega_meas[2] - (w2 + a2 * half)))
+        return out

@@ -77,5 +77,9 @@ class WheelAllocator:
 
     def body_momentum(self, momenta: Sequence[float]) -> Vec3:
         """``Σ h_i g_i``: the wheels' momentum in B, N·m·s."""
-        pairs = list(zip(momenta, self.axes, strict=True))
-        return (sum(h * a[0] for h, a in pairs), sum(h * a[1] for h, a in pairs), sum(h * a[2] for h, a in pairs))
+        x = y = z = 0.0  # summed in wheel order, as sum() does
+        for h, a in zip(momenta, self.axes, strict=True):
+            x += h * a[0]
+            y += h * a[1]
+            z += h * a[2]
+        return (x, y, z)

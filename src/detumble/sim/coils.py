@@ -171,12 +171,15 @@ class CoilSet:
         return {face: c.level for face, c in self.coils.items()}
 
     def _sum(self, currents=None):
+        """Σ of the coils' ``dipole_B`` (A m^2, B) at their present currents or at ``currents`` (by face),
+        in face order; each coil's term is computed as :meth:`Magnetorquer.dipole_B` does (same floats)."""
         mx = my = mz = 0.0
         for face, c in self.coils.items():
-            d = c.dipole_B(None if currents is None else currents[face])
-            mx += d[0]
-            my += d[1]
-            mz += d[2]
+            m = c._gain * (c.current_a if currents is None else currents[face])
+            n = c._normal
+            mx += m * n[0]
+            my += m * n[1]
+            mz += m * n[2]
         return (mx, my, mz)
 
     def advance(self, dt: float) -> tuple[float, float, float]:
@@ -192,7 +195,16 @@ class CoilSet:
 
     def commanded_dipole_B(self) -> tuple[float, float, float]:
         """The dipole the present levels give once the currents have settled (A m^2, B)."""
-        return self._sum({face: c.target_current_a() for face, c in self.coils.items()})
+        mx = my = mz = 0.0  # _sum at each coil's target_current_a(), written out (the drivers call it per level)
+        for c in self.coils.values():
+            spec = c.spec
+            i = 0.0 if spec.resistance_ohm == 0.0 else c.level / MAX_LEVEL * spec.voltage_v / spec.resistance_ohm
+            m = c._gain * i
+            n = c._normal
+            mx += m * n[0]
+            my += m * n[1]
+            mz += m * n[2]
+        return (mx, my, mz)
 
     def max_dipole_per_axis(self) -> tuple[float, float, float]:
         """Largest |m| achievable on each body axis with every coil on that axis at full drive."""

@@ -270,8 +270,11 @@ class Gyro(_SampleHold):
         self.sample_time_ns = tk_ns
 
     def _resolve(self) -> None:
+        # _interpolated on the states' rate slots 4..6, written out (this runs for every sample read)
         t0, t1, s0, s1 = self._take_pending()
-        self._sample = self._interpolated(t0, t1, self.sample_time_ns, s0[4:7], s1[4:7])
+        s = (self.sample_time_ns - t0) / (t1 - t0) if t1 > t0 else 1.0
+        self._sample = self.measure((s0[4] + s * (s1[4] - s0[4]), s0[5] + s * (s1[5] - s0[5]),
+                                     s0[6] + s * (s1[6] - s0[6])))
 
     def _interpolated(self, t0_ns: int, t1_ns: int, tk: int, w0_B, w1_B) -> tuple[float, float, float]:
         s = (tk - t0_ns) / (t1_ns - t0_ns) if t1_ns > t0_ns else 1.0

@@ -126,6 +126,14 @@ class SimReadFault(FwEnum, namespace="Sim", rep=U8):
 
 _SENSORS = (SimImuSensor.MAGNETOMETER, SimImuSensor.GYROSCOPE, SimImuSensor.ACCELEROMETER,
             SimImuSensor.MAGNETOMETER_PERIOD)
+# looked up once: the reads below run at the controller's 50 Hz
+_STANDARD = AxisOrientation.STANDARD
+_CW = AxisOrientation.ROTATED_90_DEG_CW
+_CCW = AxisOrientation.ROTATED_90_DEG_CCW
+_HALF_TURN = AxisOrientation.ROTATED_180_DEG
+_NO_FAULT = SimReadFault.NONE
+_FAIL = SimReadFault.FAIL
+_SUCCESS = Success.SUCCESS
 
 
 class ImuManager(PassiveComponent):
@@ -314,11 +322,13 @@ class ImuManager(PassiveComponent):
         """Apply AXIS_ORIENTATION (a rotation about the board's z axis) and write its channel."""
         o = self.AXIS_ORIENTATION.value
         self.AxisOrientation.write(o)
-        if o == AxisOrientation.ROTATED_90_DEG_CW:
+        if o == _STANDARD:
+            return x, y, z
+        if o == _CW:
             return y, -x, z
-        if o == AxisOrientation.ROTATED_90_DEG_CCW:
+        if o == _CCW:
             return -y, x, z
-        if o == AxisOrientation.ROTATED_180_DEG:
+        if o == _HALF_TURN:
             return -x, -y, z
         return x, y, z
 
@@ -327,7 +337,7 @@ class ImuManager(PassiveComponent):
     def _read(self, sensor: SimImuSensor, read, failed_event):
         """``(components, stamp, ok)`` after applying the injected fault; never raises."""
         fault = self._faults[sensor]
-        if fault == SimReadFault.FAIL:
+        if fault == _FAIL:
             failed_event()
             return None, None, False
         try:
@@ -337,6 +347,8 @@ class ImuManager(PassiveComponent):
             failed_event()
             return None, None, False
         failed_event.clear_throttle()
+        if fault == _NO_FAULT:
+            return values, (values[3] if len(values) > 3 else None), True
         if fault == SimReadFault.NAN:
             values = (_NAN, _NAN, _NAN) + tuple(values[3:])
         elif fault == SimReadFault.INF:
@@ -358,7 +370,7 @@ class ImuManager(PassiveComponent):
             return Result(AngularVelocity(0.0, 0.0, 0.0), Success.FAILURE)
         value = AngularVelocity(*self._orient(v[0], v[1], v[2]))
         self.AngularVelocity.write(value)
-        return Result(value, Success.SUCCESS)
+        return Result(value, _SUCCESS)
 
     def magneticFieldGet_handler(self) -> Result:
         v, stamp, ok = self._read(SimImuSensor.MAGNETOMETER, self.spacecraft.magnetometer_sample,
@@ -369,4 +381,4 @@ class ImuManager(PassiveComponent):
             stamp = self.spacecraft.now()
         value = MagneticField(*self._orient(v[0], v[1], v[2]), stamp)
         self.MagneticField.write(value)
-        return Result(value, Success.SUCCESS)
+        return Result(value, _SUCCESS)

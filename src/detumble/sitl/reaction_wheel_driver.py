@@ -62,6 +62,13 @@ class SimWheelFault(FwEnum, namespace="Sim", rep=U8):
     READ_NAN = 4
 
 
+# looked up once: reads and torque commands run every control cycle
+_NO_FAULT = SimWheelFault.NONE
+_SUCCESS = Success.SUCCESS
+_DISABLED = WheelMode.DISABLED
+_TORQUE = WheelMode.TORQUE
+
+
 class ReactionWheelDriver(PassiveComponent):
     """Simulated driver of wheel ``wheel`` of ``spacecraft``.
 
@@ -97,7 +104,7 @@ class ReactionWheelDriver(PassiveComponent):
     def run(self, context: int) -> None:
         """Read the wheel, write the channels, and report a momentum-limited wheel."""
         value, condition = self._read()
-        if condition != Success.SUCCESS:
+        if condition != _SUCCESS:
             return
         self.Speed.write(value.speed)
         self.Momentum.write(value.momentum)
@@ -196,6 +203,11 @@ class ReactionWheelDriver(PassiveComponent):
 
     def _refused(self) -> bool:
         """True (and the event logged) when a command cannot reach the wheel."""
+        if self.fault == _NO_FAULT:
+            if self.mode == _DISABLED:
+                self.WheelNotEnabled()
+                return True
+            return False
         if self.fault in (SimWheelFault.NOT_READY, SimWheelFault.STUCK):
             self.DeviceNotReady()
             return True
@@ -207,20 +219,25 @@ class ReactionWheelDriver(PassiveComponent):
     def _command_torque(self, torque) -> Success:
         if self._refused():
             return Success.FAILURE
-        if isinstance(torque, bool) or not isinstance(torque, (int, float)) or not math.isfinite(torque):
+        if type(torque) is not float and (isinstance(torque, bool) or not isinstance(torque, (int, float))):
             self.InvalidTorque(_as_f64(torque))
             self._plant_call(self.spacecraft.set_wheel_torque, self.wheel, 0.0)
             return Success.FAILURE
+        torque = float(torque)
+        if not math.isfinite(torque):
+            self.InvalidTorque(torque)
+            self._plant_call(self.spacecraft.set_wheel_torque, self.wheel, 0.0)
+            return Success.FAILURE
         if abs(torque) > self.max_torque_nm:
-            self.TorqueSaturated(float(torque), self.max_torque_nm)
+            self.TorqueSaturated(torque, self.max_torque_nm)
         else:
             self.TorqueSaturated.clear_throttle()
-        if not self._plant_call(self.spacecraft.set_wheel_torque, self.wheel, float(torque)):
+        if not self._plant_call(self.spacecraft.set_wheel_torque, self.wheel, torque):
             return Success.FAILURE
-        self._set_mode(WheelMode.TORQUE)
-        self.Command.write(float(torque))
+        self._set_mode(_TORQUE)
+        self.Command.write(torque)
         self.DeviceNotReady.clear_throttle()
-        return Success.SUCCESS
+        return _SUCCESS
 
     def _command_speed(self, speed) -> Success:
         if self._refused():
@@ -260,20 +277,31 @@ class ReactionWheelDriver(PassiveComponent):
 
     def _read(self) -> Result:
         fault = self.fault
+        if fault == _NO_FAULT:  # the healthy wheel: no fault to apply to the reading
+            try:
+                speed, h, u, stamp = self.spacecraft.wheel_sample(self.wheel)
+            except Exception:  # noqa: BLE001 - a plant fault is a failed read (_read_raised logs it)
+                return self._read_raised()
+            self.WheelReadFailed.clear_throttle()
+            return Result(WheelState(speed, h, u, self.mode, stamp), _SUCCESS)
         if fault in (SimWheelFault.READ_FAIL, SimWheelFault.NOT_READY):
             self.WheelReadFailed()
             return Result(WheelState(_NAN, _NAN, _NAN, self.mode, self.spacecraft.now()), Success.FAILURE)
         try:
             speed, h, u, stamp = self.spacecraft.wheel_sample(self.wheel)
-        except Exception:  # a plant fault is a failed read, never an exception
-            self.handler_faults += 1
-            log.exception("%s: reading wheel %d raised", self.name, self.wheel)
-            self.WheelReadFailed()
-            return Result(WheelState(_NAN, _NAN, _NAN, self.mode, self.spacecraft.now()), Success.FAILURE)
+        except Exception:  # noqa: BLE001 - a plant fault is a failed read (_read_raised logs it)
+            return self._read_raised()
         if fault == SimWheelFault.READ_NAN:
             speed = h = u = _NAN
         self.WheelReadFailed.clear_throttle()
         return Result(WheelState(speed, h, u, self.mode, stamp), Success.SUCCESS)
+
+    def _read_raised(self) -> Result:
+        """The failed read after the plant raised (called from the ``except`` block: logs the traceback)."""
+        self.handler_faults += 1
+        log.exception("%s: reading wheel %d raised", self.name, self.wheel)
+        self.WheelReadFailed()
+        return Result(WheelState(_NAN, _NAN, _NAN, self.mode, self.spacecraft.now()), Success.FAILURE)
 
     def _plant_call(self, fn, *args) -> bool:
         try:

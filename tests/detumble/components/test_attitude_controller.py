@@ -597,6 +597,21 @@ def test_wheel_limit_event(fprime_harness):
     h.assert_event_count("WheelLimitReached", 5)
 
 
+def test_a_changed_wheel_limit_reaches_the_next_allocation(fprime_harness):
+    """ADCS-035: the allocator is kept between cycles, but a WHEEL_MAX_TORQUE set by command limits the very next
+    cycle's wheel torques (and INERTIA_ZZ the rate observer's model): nothing cached outlives its parameter."""
+    limit = 1.0e-4  # N·m: below the slew's K_D × SLEW_RATE_LIMIT (2.8e-4 N·m), so the allocation saturates
+    h = pointing(fprime_harness, q=quat_from_axis_angle((1.0, 0.0, 0.0), -0.5), params={"WHEEL_MAX_TORQUE": limit})
+    tick(h, 5)
+    assert max(abs(w[-1]) for w in h.world.torques) == pytest.approx(limit)
+    h.send_command("WHEEL_MAX_TORQUE_PRM_SET", limit / 4)
+    h.assert_cmd_response(0, "WHEEL_MAX_TORQUE_PRM_SET", CmdResponse.OK)
+    h.send_command("INERTIA_ZZ_PRM_SET", 3.0e-3)
+    tick(h, 5)
+    assert max(abs(w[-1]) for w in h.world.torques) == pytest.approx(limit / 4)
+    assert h.comp.rate_observer.inertia[2][2] == 3.0e-3
+
+
 def test_idle_stops_everything(fprime_harness):
     """ADCS-036: FORCE_MODE IDLE from POINTING stops the coils at once and sets every wheel torque to zero."""
     h = pointing(fprime_harness, q=quat_from_axis_angle((1.0, 0.0, 0.0), 0.3))

@@ -60,3 +60,22 @@ def test_bad_model_is_refused(inertia, gain, match):
     """RATE-004: a non-positive moment or gain is a clear error naming it."""
     with pytest.raises(ValueError, match=match):
         RateObserver(inertia, gain)
+
+
+def test_a_new_model_is_taken_however_it_is_given():
+    """RATE-004: ``set_model`` skips the work only for the model it already has: new moments (tuples), a new gain,
+    and a list that was changed in place since the last call are all taken; the same numbers again change nothing."""
+    obs = RateObserver(MOMENTS, 0.1)
+    obs.set_model((2.0e-3, 2.0e-3, 2.0e-3), 0.1)
+    assert obs.inertia[0][0] == 2.0e-3 and obs.inertia_inv[0][0] == pytest.approx(500.0)
+    obs.set_model((2.0e-3, 2.0e-3, 2.0e-3), 0.3)
+    assert obs.gain == 0.3
+    rows = [[3.0e-3, 0.0, 0.0], [0.0, 3.0e-3, 0.0], [0.0, 0.0, 3.0e-3]]
+    obs.set_model(rows, 0.3)
+    assert obs.inertia[2][2] == 3.0e-3
+    rows[2][2] = 4.0e-3  # the caller's own list, changed in place
+    obs.set_model(rows, 0.3)
+    assert obs.inertia[2][2] == 4.0e-3 and obs.inertia_inv[2][2] == pytest.approx(250.0)
+    before = obs.inertia_inv
+    obs.set_model(((3.0e-3, 0.0, 0.0), (0.0, 3.0e-3, 0.0), (0.0, 0.0, 4.0e-3)), 0.3)
+    assert obs.inertia_inv is before  # the model it has: nothing recomputed
