@@ -196,7 +196,9 @@ class SimulatedSpacecraft:
 
     def sync(self) -> None:
         """Bring the physics to the clock's present time (no-op when already there)."""
-        if (self.clock.current_us - self.origin_us) * 1000 != self.plant.t_ns:
+        # The plant's time read from its slot (what Plant.t_ns returns): the drivers sync before
+        # every access, about ten times a tick.
+        if (self.clock.current_us - self.origin_us) * 1000 != self.plant._t_ns:
             self.advance_to_us(self.clock.current_us)
 
     def advance_to_us(self, time_us: int) -> None:
@@ -241,8 +243,9 @@ class SimulatedSpacecraft:
         """The F´ time (clock base and context) of plant time ``t_ns`` (ns since plant t = 0)."""
         c = self.clock
         # Sensors and wheels are read several times per sample instant: the few latest times are
-        # kept (a Time is immutable), keyed by everything they are made of.
-        key = (t_ns, self.origin_us, c.epoch_us, c.time_base, c.context)
+        # kept (a Time is immutable), keyed by everything they are made of (a SimulatedClock's
+        # epoch, base and context by its generation, which changes with any of them).
+        key = (t_ns, self.origin_us, c.generation)
         t = self._times.get(key)
         if t is None:
             if len(self._times) >= 8:

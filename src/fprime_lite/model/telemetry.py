@@ -11,10 +11,14 @@ write and then only values that differ from the last one written.
 Serialised when downlinked: a write whose ``tlmOut`` connects straight to a channel store that
 declares :attr:`deferred_tlm_input` (TlmChan's ``TlmRecv``) hands the store the time stamp, the
 value and the type's packer instead of the packed bytes; the store packs the latest value when it
-downlinks it or when it is read. Only values that cannot change after the write travel this way:
-numbers, booleans, enums and strings as they are; structs whose members are all of those kinds
-or times, and arrays of numbers, as a tuple of their member values taken at the write (struct and
-array values are mutable Python objects). Other arrays, structs with struct or array members, and
+downlinks it or when it is read. A store that also names its table of latest entries
+(``deferred_tlm_latest``, a dict: channel id -> ``(time, value, packer)``, what its
+``store_tlm_value`` assigns) gets the entry assigned straight into that table, one call less a
+write; this is worked out when the write first finds ``tlmOut[0]`` connected to a new target.
+Only values that cannot change after the write travel this way: numbers, booleans, enums and
+strings as they are; structs whose members are all of those kinds or times, and arrays of numbers,
+as a tuple of their member values taken at the write (struct and array values are mutable Python
+objects). Other arrays, structs with struct or array members, and
 every write to any other receiver (a test harness, a tap, a custom component) are packed at write,
 so what such a receiver sees is F´'s ``Fw.Tlm`` call with the value's bytes.
 """
@@ -122,7 +126,7 @@ class BoundChannel(Generic[V]):
 
     __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
                  "_valid_type", "_tlm_targets", "_tlm_calls", "_time_targets", "_time_calls", "_deferrable",
-                 "_bound_call", "_store", "_members_of")
+                 "_bound_call", "_store", "_latest", "_members_of")
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         self.component = component
@@ -152,6 +156,7 @@ class BoundChannel(Generic[V]):
         self._deferrable = isinstance(t, (IntType, FloatType, BoolType, EnumType, StringType))
         self._bound_call: object = None  # the tlmOut call that _store was worked out for
         self._store = None  # the target's deferred store, or None: send packed bytes
+        self._latest: dict[int, tuple] | None = None  # the store's table of latest entries, if it names one
         #: For a mutable value made of immutable parts: what is stored and packed (a tuple of them).
         self._members_of: Any = None
 
@@ -172,6 +177,10 @@ class BoundChannel(Generic[V]):
             time = self._time_calls[0]() if self._time_targets[0] is not None else _ZERO_TIME
         members_of = self._members_of
         stored = value if members_of is None else members_of(value)
+        latest = self._latest
+        if latest is not None:  # the store's own table: what its store_tlm_value does, written out
+            latest[self.id] = (time, stored, self._serialize)
+            return
         store = self._store
         if store is not None:
             store(self.id, time, stored, self._serialize)
@@ -182,6 +191,7 @@ class BoundChannel(Generic[V]):
         """Work out how writes reach what ``tlmOut[0]`` now connects to (``call`` is its slot)."""
         self._bound_call = call
         self._store = None
+        self._latest = None
         target = self._tlm_targets[0]
         if self._deferrable and type(target) is tuple:
             port, index = target
@@ -189,6 +199,8 @@ class BoundChannel(Generic[V]):
             # Only the store's own input: a slot whose callable was replaced (a tap) gets bytes.
             if getattr(component, "deferred_tlm_input", None) == port.name and call is port.entries[index]:
                 self._store = component.store_tlm_value
+                latest = getattr(component, "deferred_tlm_latest", None)
+                self._latest = latest if type(latest) is dict else None
 
 
 #: Member types whose checked values are immutable: a struct made only of these can be snapshotted.
