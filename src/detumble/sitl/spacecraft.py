@@ -208,7 +208,7 @@ class SimulatedSpacecraft:
         """
         plant = self.plant
         target = (int(time_us) - self.origin_us) * 1000
-        now = plant.t_ns
+        now = plant._t_ns  # Plant.t_ns's slot: this runs on every scheduler event
         if target <= now:
             if target < now:
                 raise ValueError(f"cannot integrate backwards: the plant is at {self.plant_time_us} us "
@@ -226,7 +226,7 @@ class SimulatedSpacecraft:
                 self._step_power(now, nxt)
             plant.step_ns(nxt - now)  # nxt > now: the plant's own ns step, no float round trip
             self.steps_taken += 1
-            now = plant.t_ns
+            now = plant._t_ns
             if now != nxt:  # pragma: no cover - guards the ns rounding in Plant.step
                 raise AssertionError(f"plant stepped to {now} ns instead of {nxt} ns")
             if now == trace_next and self._trace is not None:
@@ -371,8 +371,9 @@ class SimulatedSpacecraft:
         """``(speed_rad_s, momentum_nms, torque_nm, t)`` as wheel ``i`` reports them now (the
         momentum with the configured reading noise)."""
         self.sync()
-        speed, h, u, _ = self.plant.wheel_reading(i)
-        return (speed, h, u, self.time_of(self.plant.t_ns))
+        plant = self.plant
+        speed, h, u, _ = plant.wheel_reading(i)
+        return (speed, h, u, self.time_of(plant._t_ns))
 
     def wheel_limit_flags(self, i: int) -> tuple[bool, bool]:
         """``(torque_clipped, momentum_limited)`` of wheel ``i`` over the last step."""
@@ -418,7 +419,8 @@ class SimulatedSpacecraft:
         """``(q_ON, n, t)``: the orbit frame O relative to N (scalar first), the orbit rate (rad/s)
         and the time — what an on-board orbit propagator knows."""
         self.sync()
-        return self.plant.q_ON, self.plant.orbit.mean_motion, self.now()
+        plant = self.plant
+        return plant.q_ON, plant.orbit.mean_motion, self.clock.now()
 
     # --- truth ----------------------------------------------------------------------------------
 
