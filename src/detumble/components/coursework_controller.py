@@ -49,6 +49,10 @@ class WheelError(FwEnum, namespace="Components"):
     SHORTEST_PATH = 1
 
 
+# Read once: an enum class attribute costs a metaclass lookup, and the cycle compares three a call.
+_OFF, _CROSS_PRODUCT, _BETA_PD = CourseworkLaw.OFF, CourseworkLaw.CROSS_PRODUCT, CourseworkLaw.BETA_PD
+
+
 def _quat_conj_mul(p, q):
     """``conj(p) ⊗ q``, the Hamilton product (scalar first, the plant's convention) of the
     conjugate of ``p`` and ``q``: the same floats as conjugating first and multiplying (negating is
@@ -90,7 +94,7 @@ class CourseworkController(PassiveComponent):
     def run(self, context: int) -> None:
         """One control cycle (see the module docstring)."""
         law = self._law
-        if law == CourseworkLaw.OFF:
+        if law == _OFF:
             return
         try:
             self._cycle(law)
@@ -176,9 +180,9 @@ class CourseworkController(PassiveComponent):
         b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
         w_B = (rate.x, rate.y, rate.z)
         t = field.timestamp.total_us * 1e-6
-        if law == CourseworkLaw.CROSS_PRODUCT:
+        if law == _CROSS_PRODUCT:
             self._command_dipole(cw.cross_product_dipole(self.CROSS_PRODUCT_GAIN.value, w_B, b_B))
-        elif law == CourseworkLaw.BETA_PD:
+        elif law == _BETA_PD:
             assert self._beta is not None
             m = self._beta.dipole(t, w_B, b_B)
             if self._beta.previous is not None:
