@@ -11,7 +11,7 @@ import struct
 
 import pytest
 
-from fprime_lite import F64, U32, Channel, PassiveComponent, Sched, Time, TimeBase, sync_input
+from fprime_lite import F64, U32, Channel, PassiveComponent, Time, TimeBase
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.model.errors import UnconnectedPortError
 from fprime_lite.model.fw_ports import Cycle
@@ -25,13 +25,11 @@ T2 = Time(TimeBase.TB_WORKSTATION_TIME, 0, 11, 500)
 
 
 class _Writer(PassiveComponent):
+    """Two channels and an output port: all the tests need of a component."""
+
     Rate = Channel(F64)
     Count = Channel(U32)
     cycleOut = OutputPort(Cycle)
-
-    @sync_input(Sched)
-    def run(self, context):
-        pass
 
 
 # --- channel writes straight into TlmChan's table ------------------------------------------------
