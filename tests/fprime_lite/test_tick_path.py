@@ -172,3 +172,49 @@ def test_tick_007_is_connected_and_an_unconnected_call_fail_as_before():
     assert not writer.is_connected("cycleOut")
     with pytest.raises(KeyError, match="no output port 'nope'; output ports: .*cycleOut"):
         writer.is_connected("nope")
+
+
+# --- struct channels with a time member: the quick check --------------------------------------------
+
+def test_tick_008_a_time_member_is_accepted_and_refused_as_the_time_check_does():
+    """TICK-008: a struct channel with a Time member (the magnetometer's reading) takes the quick
+    path for a plain valid Time and refuses, with the time's own SerializationError, a time whose
+    base, context or seconds do not fit (or are not plain ints), exactly as the full check."""
+    from fprime_lite import Struct
+    from fprime_lite.model.errors import SerializationError
+
+    class Stamped(Struct, namespace="Tick"):
+        x: F64
+        y: F64
+        at: Time
+
+    class Sampler(PassiveComponent):
+        Sample = Channel(Stamped)
+
+    sampler, tlm = Sampler("sampler", base_id=0x200), TlmChan("tlm")
+    sampler.output_port("tlmOut").connect(0, tlm.input_port("TlmRecv"), 0)
+    channel = sampler.channels["Sample"]
+    full_check = channel.decl.type.check
+
+    def stamp(base, context, us):
+        t = Time.__new__(Time)
+        t.time_base, t.context, t.total_us = base, context, us
+        return t
+
+    last_second = (0xFFFFFFFF + 1) * 1_000_000 - 1
+    good = [stamp(TimeBase.TB_WORKSTATION_TIME, 0, 5), stamp(0xFFFF, 0xFF, last_second), stamp(0, 0, 0)]
+    for at in good:
+        value = Stamped(1.0, -2.0, at)
+        channel.write(value, T1)
+        assert full_check(value) is value
+        assert tlm.TlmGet(channel.id) == (TlmValid.VALID, T1, channel.decl.type.serialize(value))
+    bad = [stamp(0x10000, 0, 5), stamp(-1, 0, 5), stamp(2, 0x100, 5), stamp(2, -1, 5), stamp(2, True, 5),
+           stamp(2, 0, last_second + 1), stamp(2, 0, -1_000_000), stamp(2, 0, 5.0)]
+    for at in bad:
+        value = Stamped(1.0, -2.0, at)
+        with pytest.raises(Exception) as expected:
+            full_check(value)
+        with pytest.raises(type(expected.value)):
+            channel.write(value, T2)
+    assert isinstance(expected.value, SerializationError)
+    assert tlm.TlmGet(channel.id)[1] == T1  # nothing refused was stored

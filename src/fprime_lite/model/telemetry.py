@@ -32,11 +32,13 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from fprime_lite.model.errors import DeclarationError, check_member_name
 from fprime_lite.model.events import translate_format
-from fprime_lite.model.time import Time, TimeType
+from fprime_lite.model.time import US_PER_S, Time, TimeBase, TimeType
 from fprime_lite.model.types import (_F64, ArrayType, BoolType, EnumType, FloatType, FwType, IntType, StringType,
                                      StructType, fw_type)
 
 _ZERO_TIME = Time()
+#: The first µs whose whole seconds no longer fit Fw.Time's U32 seconds.
+_TIME_US_END = (0xFFFFFFFF + 1) * US_PER_S
 
 __all__ = ["Channel", "BoundChannel", "BoundSnapshotChannel", "bind_channel"]
 
@@ -225,12 +227,13 @@ class BoundSnapshotChannel(BoundChannel[V]):
     array of numbers: values that are mutable Python objects made of immutable parts.
 
     A write checks the value (without calling the member checks when every member already has the
-    exact Python type that is always valid for it: ``float`` for F64, the enum's class), and stores
-    or packs the tuple of its member values taken at the write; the bytes are those of the type's
-    own ``pack``.
+    exact Python type that is always valid for it: ``float`` for F64, the enum's class; or, for a
+    time member, is a :class:`Time` whose base, context and seconds are plain ints within U16, U8
+    and U32, which is what the time's check accepts), and stores or packs the tuple of its member
+    values taken at the write; the bytes are those of the type's own ``pack``.
     """
 
-    __slots__ = ("_exact", "_full_check")
+    __slots__ = ("_exact", "_full_check", "_times_at")
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         super().__init__(component, decl, channel_id)
@@ -243,8 +246,11 @@ class BoundSnapshotChannel(BoundChannel[V]):
             assert isinstance(t, ArrayType)
             self._members_of = tuple
             member_types = [t.elem] * t.size
-        exact = [float if mt is _F64 else mt.cls if isinstance(mt, EnumType) else None for mt in member_types]
+        exact = [float if mt is _F64 else mt.cls if isinstance(mt, EnumType) else Time if isinstance(mt, TimeType)
+                 else None for mt in member_types]
         self._exact = None if None in exact else (t.cls, tuple(exact))
+        #: Positions of the time members, whose fields the quick check looks at.
+        self._times_at = tuple(i for i, mt in enumerate(member_types) if isinstance(mt, TimeType))
         self._full_check = t.check
         self._check = self._quick_check  # every write goes through it (_valid_type stays None)
         fixed = t._fixed
@@ -255,8 +261,18 @@ class BoundSnapshotChannel(BoundChannel[V]):
             self._serialize = lambda members: b"".join([p(v) for p, v in zip(packs, members, strict=True)])
 
     def _quick_check(self, value: Any) -> Any:
-        """The type's check, skipped for a value whose members all have their exact valid types."""
+        """The type's check, skipped for a value whose members all have their exact valid types
+        (and whose times have fields the time's check accepts as they are)."""
         exact = self._exact
-        if exact is not None and type(value) is exact[0] and tuple(map(type, self._members_of(value))) == exact[1]:
-            return value
+        if exact is not None and type(value) is exact[0]:
+            members = self._members_of(value)
+            if tuple(map(type, members)) == exact[1]:
+                for i in self._times_at:  # TimeType.check's tests, on plain ints only
+                    t = members[i]
+                    base, context, us = t.time_base, t.context, t.total_us
+                    if not ((type(base) is int or type(base) is TimeBase) and 0 <= base <= 0xFFFF
+                            and type(context) is int and 0 <= context <= 0xFF
+                            and type(us) is int and 0 <= us < _TIME_US_END):
+                        return self._full_check(value)
+                return value
         return self._full_check(value)
