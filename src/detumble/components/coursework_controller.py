@@ -28,6 +28,9 @@ __all__ = ["CourseworkController", "CourseworkLaw", "WheelError"]
 
 _TESLA_PER_GAUSS = 1e-4
 _ZERO = (0.0, 0.0, 0.0)
+_SUCCESS = Success.SUCCESS
+_WHEEL_LABELS = ("wheel 0", "wheel 1", "wheel 2")  # what a failed wheel read names
+_isfinite = math.isfinite
 
 
 class CourseworkLaw(FwEnum, namespace="Components"):
@@ -46,16 +49,18 @@ class WheelError(FwEnum, namespace="Components"):
     SHORTEST_PATH = 1
 
 
-def _quat_conj(q):
-    return (q[0], -q[1], -q[2], -q[3])
+# Read once: an enum class attribute costs a metaclass lookup, and the cycle compares three a call.
+_OFF, _CROSS_PRODUCT, _BETA_PD = CourseworkLaw.OFF, CourseworkLaw.CROSS_PRODUCT, CourseworkLaw.BETA_PD
 
 
-def _quat_mul(p, q):
-    """Hamilton product, scalar first (the plant's convention)."""
-    return (p[0] * q[0] - p[1] * q[1] - p[2] * q[2] - p[3] * q[3],
-            p[0] * q[1] + p[1] * q[0] + p[2] * q[3] - p[3] * q[2],
-            p[0] * q[2] - p[1] * q[3] + p[2] * q[0] + p[3] * q[1],
-            p[0] * q[3] + p[1] * q[2] - p[2] * q[1] + p[3] * q[0])
+def _quat_conj_mul(p, q):
+    """``conj(p) ⊗ q``, the Hamilton product (scalar first, the plant's convention) of the
+    conjugate of ``p`` and ``q``: the same floats as conjugating first and multiplying (negating is
+    exact, and ``a - (-b)`` rounds as ``a + b``)."""
+    return (p[0] * q[0] + p[1] * q[1] + p[2] * q[2] + p[3] * q[3],
+            p[0] * q[1] - p[1] * q[0] - p[2] * q[3] + p[3] * q[2],
+            p[0] * q[2] + p[1] * q[3] - p[2] * q[0] - p[3] * q[1],
+            p[0] * q[3] - p[1] * q[2] + p[2] * q[1] - p[3] * q[0])
 
 
 class CourseworkController(PassiveComponent):
@@ -89,7 +94,7 @@ class CourseworkController(PassiveComponent):
     def run(self, context: int) -> None:
         """One control cycle (see the module docstring)."""
         law = self._law
-        if law == CourseworkLaw.OFF:
+        if law == _OFF:
             return
         try:
             self._cycle(law)
@@ -175,9 +180,9 @@ class CourseworkController(PassiveComponent):
         b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
         w_B = (rate.x, rate.y, rate.z)
         t = field.timestamp.total_us * 1e-6
-        if law == CourseworkLaw.CROSS_PRODUCT:
+        if law == _CROSS_PRODUCT:
             self._command_dipole(cw.cross_product_dipole(self.CROSS_PRODUCT_GAIN.value, w_B, b_B))
-        elif law == CourseworkLaw.BETA_PD:
+        elif law == _BETA_PD:
             assert self._beta is not None
             m = self._beta.dipole(t, w_B, b_B)
             if self._beta.previous is not None:
@@ -187,43 +192,51 @@ class CourseworkController(PassiveComponent):
             self._wheel_cycle(w_B)
 
     def _wheel_cycle(self, w_B) -> None:
-        attitude = self._read(self.attitudeGet, "star tracker")
-        frame = self._read(self.orbitFrameGet, "orbit frame")
-        states = [self._read(self.wheelStateGet, f"wheel {i}", i) for i in range(3)]
-        if attitude is None or frame is None or any(s is None for s in states) or not attitude.valid:
+        read = self._read
+        attitude = read(self.attitudeGet, "star tracker")
+        frame = read(self.orbitFrameGet, "orbit frame")
+        wheels = self.wheelStateGet
+        s0 = read(wheels, _WHEEL_LABELS[0], 0)  # all three read, in order, whatever the others gave
+        s1 = read(wheels, _WHEEL_LABELS[1], 1)
+        s2 = read(wheels, _WHEEL_LABELS[2], 2)
+        if attitude is None or frame is None or s0 is None or s1 is None or s2 is None or not attitude.valid:
             if attitude is not None and not attitude.valid:
                 self._safe()
                 self.SensorReadFailed("star tracker (no valid solution)")
             return
         q_BN = (attitude.q0, attitude.q1, attitude.q2, attitude.q3)
         q_ON = (frame.q0, frame.q1, frame.q2, frame.q3)
-        q_BO = _quat_mul(_quat_conj(q_ON), q_BN)
-        h = (states[0].momentum, states[1].momentum, states[2].momentum)
-        assert self._wheels is not None
-        self._wheels.n = frame.n
-        torque = self._wheels.torque(cw.from_plant_quaternion(q_BO), w_B, h)
+        q_BO = _quat_conj_mul(q_ON, q_BN)
+        h = (s0.momentum, s1.momentum, s2.momentum)
+        law = self._wheels
+        assert law is not None
+        law.n = frame.n
+        torque = law.torque(cw.from_plant_quaternion(q_BO), w_B, h)
         torque = cw.limit_wheel_torque(torque, h, self.WHEEL_TORQUE_LIMIT.value, self.WHEEL_MOMENTUM_LIMIT.value)
-        if not all(math.isfinite(u) for u in torque):
+        t0, t1, t2 = torque
+        if not (_isfinite(t0) and _isfinite(t1) and _isfinite(t2)):
             raise ArithmeticError(f"non-finite wheel torque {torque}")
-        for i in range(3):
-            self.wheelTorqueSet[i](torque[i])
-        self.WheelTorqueCommand.write(Vector3(list(torque)))
+        set_torque = self.wheelTorqueSet
+        set_torque[0](t0)
+        set_torque[1](t1)
+        set_torque[2](t2)
+        self.WheelTorqueCommand.write(Vector3(torque))
         if self.DUMP_GAIN.value > 0.0:
-            field = self._read(self.magneticFieldGet, "magnetometer")
+            field = read(self.magneticFieldGet, "magnetometer")
             if field is not None:
                 b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
                 self._command_dipole(cw.dumping_dipole(self.DUMP_GAIN.value, h, b_B))
 
     def _command_dipole(self, m) -> None:
         m = cw.clip_dipole(m, self.DIPOLE_LIMIT.value)
-        if not all(math.isfinite(c) for c in m):
+        if not (_isfinite(m[0]) and _isfinite(m[1]) and _isfinite(m[2])):
             raise ArithmeticError(f"non-finite dipole {m}")
         self.dipoleSet[0](DipoleMoment(*m))
-        self.DipoleCommand.write(Vector3(list(m)))
+        self.DipoleCommand.write(Vector3(m))
 
     def _read(self, port, what: str, index: int = 0):
         value, condition = port[index]()
-        if condition != Success.SUCCESS:
+        if condition != _SUCCESS:
             self._safe()
             self.SensorReadFailed(what)
             return None

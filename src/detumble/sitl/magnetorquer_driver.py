@@ -83,6 +83,8 @@ class SimDriverFault(FwEnum, namespace="Sim", rep=U8):
     LATCHED = 4
 
 
+_FAULT_NONE = SimDriverFault.NONE  # read once: an enum class attribute costs a metaclass lookup
+
 class MagnetorquerDriver(PassiveComponent):
     """Simulated DRV2605 manager for the coil on ``face`` of ``spacecraft``.
 
@@ -98,8 +100,7 @@ class MagnetorquerDriver(PassiveComponent):
     def start(self, val: int) -> Success:
         """Drive the coil at level ``val`` (−127…127, sign = current direction). Out-of-range or
         non-integer levels are refused (FAILURE, InvalidDriveLevel) and switch the coil off."""
-        if type(val) is int and val == self._coil.level and self.fault == SimDriverFault.NONE \
-                and self._initialized:
+        if type(val) is int and val == self._coil.level and self.fault is _FAULT_NONE and self._initialized:
             # The manager re-commands the same level every tick: the coil already carries it.
             if self.DeviceNotReady.count:
                 self.DeviceNotReady.clear_throttle()
@@ -225,8 +226,10 @@ class MagnetorquerDriver(PassiveComponent):
         if actual != level:
             self.DriveReadbackMismatch(int(actual), int(level))
             return Success.FAILURE
-        self.DeviceNotReady.clear_throttle()
-        self.DriveReadbackMismatch.clear_throttle()
+        if self.DeviceNotReady.count:  # clear_throttle, where there is something to clear
+            self.DeviceNotReady.clear_throttle()
+        if self.DriveReadbackMismatch.count:
+            self.DriveReadbackMismatch.clear_throttle()
         return Success.SUCCESS
 
     def _set_coil(self, level: int) -> bool:

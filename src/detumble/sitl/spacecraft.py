@@ -196,7 +196,9 @@ class SimulatedSpacecraft:
 
     def sync(self) -> None:
         """Bring the physics to the clock's present time (no-op when already there)."""
-        if (self.clock.current_us - self.origin_us) * 1000 != self.plant.t_ns:
+        # The plant's time read from its slot (what Plant.t_ns returns): the drivers sync before
+        # every access, about ten times a tick.
+        if (self.clock.current_us - self.origin_us) * 1000 != self.plant._t_ns:
             self.advance_to_us(self.clock.current_us)
 
     def advance_to_us(self, time_us: int) -> None:
@@ -206,7 +208,7 @@ class SimulatedSpacecraft:
         """
         plant = self.plant
         target = (int(time_us) - self.origin_us) * 1000
-        now = plant.t_ns
+        now = plant._t_ns  # Plant.t_ns's slot: this runs on every scheduler event
         if target <= now:
             if target < now:
                 raise ValueError(f"cannot integrate backwards: the plant is at {self.plant_time_us} us "
@@ -224,7 +226,7 @@ class SimulatedSpacecraft:
                 self._step_power(now, nxt)
             plant.step_ns(nxt - now)  # nxt > now: the plant's own ns step, no float round trip
             self.steps_taken += 1
-            now = plant.t_ns
+            now = plant._t_ns
             if now != nxt:  # pragma: no cover - guards the ns rounding in Plant.step
                 raise AssertionError(f"plant stepped to {now} ns instead of {nxt} ns")
             if now == trace_next and self._trace is not None:
@@ -241,8 +243,9 @@ class SimulatedSpacecraft:
         """The F´ time (clock base and context) of plant time ``t_ns`` (ns since plant t = 0)."""
         c = self.clock
         # Sensors and wheels are read several times per sample instant: the few latest times are
-        # kept (a Time is immutable), keyed by everything they are made of.
-        key = (t_ns, self.origin_us, c.epoch_us, c.time_base, c.context)
+        # kept (a Time is immutable), keyed by everything they are made of (a SimulatedClock's
+        # epoch, base and context by its generation, which changes with any of them).
+        key = (t_ns, self.origin_us, c.generation)
         t = self._times.get(key)
         if t is None:
             if len(self._times) >= 8:
@@ -368,8 +371,9 @@ class SimulatedSpacecraft:
         """``(speed_rad_s, momentum_nms, torque_nm, t)`` as wheel ``i`` reports them now (the
         momentum with the configured reading noise)."""
         self.sync()
-        speed, h, u, _ = self.plant.wheel_reading(i)
-        return (speed, h, u, self.time_of(self.plant.t_ns))
+        plant = self.plant
+        speed, h, u, _ = plant.wheel_reading(i)
+        return (speed, h, u, self.time_of(plant._t_ns))
 
     def wheel_limit_flags(self, i: int) -> tuple[bool, bool]:
         """``(torque_clipped, momentum_limited)`` of wheel ``i`` over the last step."""
@@ -415,7 +419,8 @@ class SimulatedSpacecraft:
         """``(q_ON, n, t)``: the orbit frame O relative to N (scalar first), the orbit rate (rad/s)
         and the time — what an on-board orbit propagator knows."""
         self.sync()
-        return self.plant.q_ON, self.plant.orbit.mean_motion, self.now()
+        plant = self.plant
+        return plant.q_ON, plant.orbit.mean_motion, self.clock.now()
 
     # --- truth ----------------------------------------------------------------------------------
 

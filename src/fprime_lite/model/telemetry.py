@@ -11,10 +11,14 @@ write and then only values that differ from the last one written.
 Serialised when downlinked: a write whose ``tlmOut`` connects straight to a channel store that
 declares :attr:`deferred_tlm_input` (TlmChan's ``TlmRecv``) hands the store the time stamp, the
 value and the type's packer instead of the packed bytes; the store packs the latest value when it
-downlinks it or when it is read. Only values that cannot change after the write travel this way:
-numbers, booleans, enums and strings as they are; structs whose members are all of those kinds
-or times, and arrays of numbers, as a tuple of their member values taken at the write (struct and
-array values are mutable Python objects). Other arrays, structs with struct or array members, and
+downlinks it or when it is read. A store that also names its table of latest entries
+(``deferred_tlm_latest``, a dict: channel id -> ``(time, value, packer)``, what its
+``store_tlm_value`` assigns) gets the entry assigned straight into that table, one call less a
+write; this is worked out when the write first finds ``tlmOut[0]`` connected to a new target.
+Only values that cannot change after the write travel this way: numbers, booleans, enums and
+strings as they are; structs whose members are all of those kinds or times, and arrays of numbers,
+as a tuple of their member values taken at the write (struct and array values are mutable Python
+objects). Other arrays, structs with struct or array members, and
 every write to any other receiver (a test harness, a tap, a custom component) are packed at write,
 so what such a receiver sees is F´'s ``Fw.Tlm`` call with the value's bytes.
 """
@@ -28,11 +32,13 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from fprime_lite.model.errors import DeclarationError, check_member_name
 from fprime_lite.model.events import translate_format
-from fprime_lite.model.time import Time, TimeType
+from fprime_lite.model.time import US_PER_S, Time, TimeBase, TimeType
 from fprime_lite.model.types import (_F64, ArrayType, BoolType, EnumType, FloatType, FwType, IntType, StringType,
                                      StructType, fw_type)
 
 _ZERO_TIME = Time()
+#: The first µs whose whole seconds no longer fit Fw.Time's U32 seconds.
+_TIME_US_END = (0xFFFFFFFF + 1) * US_PER_S
 
 __all__ = ["Channel", "BoundChannel", "BoundSnapshotChannel", "bind_channel"]
 
@@ -122,7 +128,7 @@ class BoundChannel(Generic[V]):
 
     __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
                  "_valid_type", "_tlm_targets", "_tlm_calls", "_time_targets", "_time_calls", "_deferrable",
-                 "_bound_call", "_store", "_members_of")
+                 "_bound_call", "_store", "_latest", "_members_of")
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         self.component = component
@@ -152,6 +158,7 @@ class BoundChannel(Generic[V]):
         self._deferrable = isinstance(t, (IntType, FloatType, BoolType, EnumType, StringType))
         self._bound_call: object = None  # the tlmOut call that _store was worked out for
         self._store = None  # the target's deferred store, or None: send packed bytes
+        self._latest: dict[int, tuple] | None = None  # the store's table of latest entries, if it names one
         #: For a mutable value made of immutable parts: what is stored and packed (a tuple of them).
         self._members_of: Any = None
 
@@ -172,6 +179,10 @@ class BoundChannel(Generic[V]):
             time = self._time_calls[0]() if self._time_targets[0] is not None else _ZERO_TIME
         members_of = self._members_of
         stored = value if members_of is None else members_of(value)
+        latest = self._latest
+        if latest is not None:  # the store's own table: what its store_tlm_value does, written out
+            latest[self.id] = (time, stored, self._serialize)
+            return
         store = self._store
         if store is not None:
             store(self.id, time, stored, self._serialize)
@@ -182,6 +193,7 @@ class BoundChannel(Generic[V]):
         """Work out how writes reach what ``tlmOut[0]`` now connects to (``call`` is its slot)."""
         self._bound_call = call
         self._store = None
+        self._latest = None
         target = self._tlm_targets[0]
         if self._deferrable and type(target) is tuple:
             port, index = target
@@ -189,6 +201,8 @@ class BoundChannel(Generic[V]):
             # Only the store's own input: a slot whose callable was replaced (a tap) gets bytes.
             if getattr(component, "deferred_tlm_input", None) == port.name and call is port.entries[index]:
                 self._store = component.store_tlm_value
+                latest = getattr(component, "deferred_tlm_latest", None)
+                self._latest = latest if type(latest) is dict else None
 
 
 #: Member types whose checked values are immutable: a struct made only of these can be snapshotted.
@@ -213,12 +227,13 @@ class BoundSnapshotChannel(BoundChannel[V]):
     array of numbers: values that are mutable Python objects made of immutable parts.
 
     A write checks the value (without calling the member checks when every member already has the
-    exact Python type that is always valid for it: ``float`` for F64, the enum's class), and stores
-    or packs the tuple of its member values taken at the write; the bytes are those of the type's
-    own ``pack``.
+    exact Python type that is always valid for it: ``float`` for F64, the enum's class; or, for a
+    time member, is a :class:`Time` whose base, context and seconds are plain ints within U16, U8
+    and U32, which is what the time's check accepts), and stores or packs the tuple of its member
+    values taken at the write; the bytes are those of the type's own ``pack``.
     """
 
-    __slots__ = ("_exact", "_full_check")
+    __slots__ = ("_exact", "_full_check", "_times_at")
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         super().__init__(component, decl, channel_id)
@@ -231,8 +246,11 @@ class BoundSnapshotChannel(BoundChannel[V]):
             assert isinstance(t, ArrayType)
             self._members_of = tuple
             member_types = [t.elem] * t.size
-        exact = [float if mt is _F64 else mt.cls if isinstance(mt, EnumType) else None for mt in member_types]
+        exact = [float if mt is _F64 else mt.cls if isinstance(mt, EnumType) else Time if isinstance(mt, TimeType)
+                 else None for mt in member_types]
         self._exact = None if None in exact else (t.cls, tuple(exact))
+        #: Positions of the time members, whose fields the quick check looks at.
+        self._times_at = tuple(i for i, mt in enumerate(member_types) if isinstance(mt, TimeType))
         self._full_check = t.check
         self._check = self._quick_check  # every write goes through it (_valid_type stays None)
         fixed = t._fixed
@@ -243,8 +261,18 @@ class BoundSnapshotChannel(BoundChannel[V]):
             self._serialize = lambda members: b"".join([p(v) for p, v in zip(packs, members, strict=True)])
 
     def _quick_check(self, value: Any) -> Any:
-        """The type's check, skipped for a value whose members all have their exact valid types."""
+        """The type's check, skipped for a value whose members all have their exact valid types
+        (and whose times have fields the time's check accepts as they are)."""
         exact = self._exact
-        if exact is not None and type(value) is exact[0] and tuple(map(type, self._members_of(value))) == exact[1]:
-            return value
+        if exact is not None and type(value) is exact[0]:
+            members = self._members_of(value)
+            if tuple(map(type, members)) == exact[1]:
+                for i in self._times_at:  # TimeType.check's tests, on plain ints only
+                    t = members[i]
+                    base, context, us = t.time_base, t.context, t.total_us
+                    if not ((type(base) is int or type(base) is TimeBase) and 0 <= base <= 0xFFFF
+                            and type(context) is int and 0 <= context <= 0xFF
+                            and type(us) is int and 0 <= us < _TIME_US_END):
+                        return self._full_check(value)
+                return value
         return self._full_check(value)

@@ -13,8 +13,10 @@ scheduler advances it and every event and channel is stamped from it.
 
 from __future__ import annotations
 
+import operator
 import struct
 import time as _wall
+from typing import Any
 
 from fprime_lite.model.errors import SerializationError
 from fprime_lite.model.types import _U8, _U16, _U32, FwEnum, FwType, _short
@@ -291,28 +293,59 @@ class Clock:
         return Time.from_us(self.epoch_us + self.now_us(), self.time_base, self.context)
 
 
+def _config_property(slot: str, doc: str) -> Any:
+    """A clock setting kept in ``slot``: read as a plain attribute, and setting it tells the
+    clock (``_config_changed``) that the times it made before no longer hold."""
+    def set_value(clock: Any, value: int) -> None:
+        setattr(clock, slot, value)
+        clock._config_changed()
+    return property(operator.attrgetter(slot), set_value, doc=doc)
+
+
 class SimulatedClock(Clock):
-    """A clock that only moves when told to (the scheduler's, and the test harness's)."""
+    """A clock that only moves when told to (the scheduler's, and the test harness's).
+
+    ``now()`` hands every caller at one instant the same :class:`Time`, made once per instant:
+    it is valid while ``current_us`` is the reading it was made at and ``epoch_us``,
+    ``time_base`` and ``context`` keep their values (setting any of them, e.g. an RTC set that
+    moves the epoch, makes the next ``now()`` build a new one and bumps :attr:`generation`).
+    """
+
+    _epoch_us: int
+    _time_base: int
+    _context: int
 
     def __init__(self, time_base: int = TimeBase.TB_WORKSTATION_TIME, context: int = 0,
                  epoch_us: int = 0, start_us: int = 0):
+        self._now: Time | None = None
+        self._now_at: int | None = None  # the current_us _now was made at; None: make a new one
+        #: Bumped whenever ``epoch_us``, ``time_base`` or ``context`` is set: a cache of times made
+        #: from this clock (the simulated spacecraft's) keys on it.
+        self.generation = 0
         super().__init__(time_base, context, epoch_us)
         self.current_us = start_us
-        self._now: Time | None = None
+
+    def _config_changed(self) -> None:
+        self._now_at = None
+        self.generation += 1
+
+    epoch_us = _config_property("_epoch_us", "µs of the time base's epoch at clock reading 0.")
+    time_base = _config_property("_time_base", "The base of the times this clock gives.")
+    context = _config_property("_context", "The context of the times this clock gives.")
 
     def now_us(self) -> int:
         return self.current_us
 
     def now(self) -> Time:
-        us = self.epoch_us + self.current_us
-        t = self._now
-        if t is not None and t.total_us == us and t.time_base == self.time_base and t.context == self.context:
-            return t  # Time is immutable: every caller at this instant can share it
+        if self._now_at == self.current_us:  # Time is immutable: every caller at this instant shares it
+            return self._now  # type: ignore[return-value]
+        current = self.current_us
         t = Time.__new__(Time)
-        t.time_base = self.time_base
-        t.context = self.context
-        t.total_us = us
+        t.time_base = self._time_base
+        t.context = self._context
+        t.total_us = self._epoch_us + current
         self._now = t
+        self._now_at = current
         return t
 
     def set_us(self, microseconds: int) -> None:

@@ -16,7 +16,7 @@ import logging
 import time as _wall
 from typing import TYPE_CHECKING
 
-from fprime_lite.model.component import ActiveComponent, PassiveComponent
+from fprime_lite.model.component import _ZERO_TIME, ActiveComponent, PassiveComponent
 from fprime_lite.model.events import Event, Severity
 from fprime_lite.model.fw_ports import Cycle, Ping, Sched
 from fprime_lite.model.ports import OutputPort, OutputPortArray, async_input, sync_input
@@ -51,6 +51,9 @@ class RateGroupBase:
         def output_port(self, name: str) -> OutputPortArray: ...
 
         def get_time(self) -> Time: ...
+
+        timeCaller: list
+        _time_port: OutputPortArray
 
     def _setup(self, contexts, period_us: int | None) -> None:
         contexts = list(contexts)
@@ -89,8 +92,9 @@ class RateGroupBase:
         elapsed_us = int((_wall.perf_counter() - wall0) * 1e6)
         if elapsed_us > self.max_time_us:
             self.max_time_us = elapsed_us
-        # One time read stamps RgMaxTime and ends the cycle: both are this instant.
-        now = self.get_time()
+        # One time read stamps RgMaxTime and ends the cycle: both are this instant (get_time,
+        # written out: the time port when connected, else the zero time).
+        now = self.timeCaller[0]() if self._time_port.targets[0] is not None else _ZERO_TIME
         self.RgMaxTime.write(self.max_time_us, now)
         # As F´'s ActiveRateGroup: the cycle's time is measured from the driver's cycle start.
         overran = (self.period_us is not None and cycle_start.time_base == now.time_base

@@ -74,6 +74,10 @@ class TlmChan(ActiveComponent):
         self._latest: dict[int, tuple] = {}
         #: channel id -> the ``_latest`` entry sent last; an entry not identical to it is new.
         self._sent: dict[int, tuple] = {}
+        #: The table deferred channel writes assign into directly (``latest[id] = (time, value,
+        #: pack)``, exactly :meth:`store_tlm_value`); a subclass that changes what storing does sets
+        #: it to None so that writes call its ``store_tlm_value`` instead.
+        self.deferred_tlm_latest: dict[int, tuple] | None = self._latest
         self.packets_sent = 0
         self.records_sent = 0
         self.oversize_records = 0
@@ -123,13 +127,19 @@ class TlmChan(ActiveComponent):
         """Send every channel written since the last tick, in packets of at most ``packet_max``."""
         sent = self._sent
         records = []
+        # The bytes of each time stamp, packed once a tick: channels written at one instant share
+        # its Time (keyed by identity: the entries hold every time alive until Run returns).
+        time_bytes: dict[int, bytes] = {}
         for chan_id, entry in self._latest.copy().items():  # a copy: writers may add channels meanwhile
             if sent.get(chan_id) is entry:
                 continue
             sent[chan_id] = entry
             time, value, pack = entry
             try:
-                records.append(_U32.pack(chan_id) + TIME.serialize(time) + (value if pack is None else pack(value)))
+                stamp = time_bytes.get(id(time))
+                if stamp is None:
+                    stamp = time_bytes[id(time)] = TIME.serialize(time)
+                records.append(_U32.pack(chan_id) + stamp + (value if pack is None else pack(value)))
             except Exception as exc:  # noqa: BLE001 - a bad time stamp is counted, never raised
                 self.rejected_writes += 1
                 log.warning("%s: channel 0x%X has an unusable time stamp: %s", self.name, chan_id, exc)

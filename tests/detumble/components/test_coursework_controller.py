@@ -156,3 +156,23 @@ def test_momentum_dumping_commands_the_rods_across_the_field(h):
     assert m == pytest.approx(cw.dumping_dipole(0.01, (2e-3, 2e-3, 2e-3), b), rel=1e-12)
     tau = (m[1] * b[2] - m[2] * b[1], m[2] * b[0] - m[0] * b[2], m[0] * b[1] - m[1] * b[0])
     assert sum(t * 2e-3 for t in tau) < 0.0
+
+
+def test_the_fused_conjugate_product_gives_the_floats_of_conjugating_then_multiplying():
+    """q_BO = conj(q_ON) ⊗ q_BN in one step: bit for bit the product of the conjugate, over random
+    unit and non-unit quaternions (negating is exact and a - (-b) rounds as a + b)."""
+    import random
+
+    from detumble.components.coursework_controller import _quat_conj_mul
+
+    def mul(p, q):
+        return (p[0] * q[0] - p[1] * q[1] - p[2] * q[2] - p[3] * q[3],
+                p[0] * q[1] + p[1] * q[0] + p[2] * q[3] - p[3] * q[2],
+                p[0] * q[2] - p[1] * q[3] + p[2] * q[0] + p[3] * q[1],
+                p[0] * q[3] + p[1] * q[2] - p[2] * q[1] + p[3] * q[0])
+
+    rng = random.Random(19)
+    for _ in range(2000):
+        p = tuple(rng.uniform(-2.0, 2.0) for _ in range(4))
+        q = tuple(rng.uniform(-2.0, 2.0) for _ in range(4))
+        assert _quat_conj_mul(p, q) == mul((p[0], -p[1], -p[2], -p[3]), q)
