@@ -35,6 +35,7 @@ from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, 
                                                 Quaternion, RateSource, SpinLaw, Vector3, WheelValues)
 from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFieldGet, StartMagnetorquer,
                                        StopMagnetorquer, Success, WheelEnableSet, WheelStateGet, WheelTorqueSet)
+from detumble.control import attitude_defaults as _defaults
 from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.mekf import Mekf
 from detumble.control.rate_observer import RateObserver
@@ -52,7 +53,7 @@ __all__ = ["AttitudeController", "BORESIGHT_B"]
 log = logging.getLogger("detumble.components.attitude_controller")
 
 #: The body axis SET_TARGET_DIRECTION points (the seed's "point Z-axis at Sun/Ground").
-BORESIGHT_B = (0.0, 0.0, 1.0)
+BORESIGHT_B = _defaults.BORESIGHT_B
 _TESLA_PER_GAUSS = 1e-4
 _DEG = math.pi / 180.0
 _ARCSEC = _DEG / 3600.0
@@ -136,64 +137,65 @@ class AttitudeController(PassiveComponent):
         return CmdResponse.OK
 
     # --- parameters (defaults and their derivation: docs/components/attitude_controller.md) ----
+    # The defaults, with their units, live in detumble.control.attitude_defaults (shared with the plant-only law).
 
-    K_P = Param(F64, default=1.1e-3)  # N·m: PD spring on q_err.v, wheels (ω_n 0.5 rad/s for 2.2e-3 kg·m²)
-    K_D = Param(F64, default=2.0e-3)  # N·m·s: PD damping, wheels (ζ ≈ 0.9)
-    K_I = Param(F64, default=5.5e-5)  # N·m/s: integral on q_err.v, wheels (an addition to the seed; 0 turns it off)
-    INTEGRAL_WINDOW = Param(F64, default=1.0)  # deg: the integral runs only below this error
-    K_P_MAG = Param(F64, default=1.0e-6, low=0.0, high=1.0e-3)  # N·m: spring ⟂ B, magnetorquer-only pointing
-    K_D_MAG = Param(F64, default=1.0e-4, low=0.0, high=1.0e-2)  # N·m·s: damping ⟂ B, magnetorquer-only pointing
-    C_DAMP = Param(F64, default=1.0e-4)  # N·m·s: damper coefficient (seed c_damp)
-    I_D = Param(F64, default=2.0e-4)  # kg·m²: damper virtual inertia (seed I_d)
-    K_BDOT = Param(F64, default=3.0)  # A·m²·s/G: M = −k Ḃ when no dipoleMomentGet provider is connected
-    SPIN_LAW = Param(SpinLaw, default=SpinLaw.RATE_REGULATOR)
-    SPIN_RATE_TARGET = Param(F64, default=1.5)  # deg/s about body +Z (below the star tracker's 2 deg/s limit)
-    SPIN_K_TRANSVERSE = Param(F64, default=2.0e-4)  # N·m·s
-    SPIN_K_RATE = Param(F64, default=2.0e-4)  # N·m·s
-    DETUMBLE_ENTER_RATE = Param(F64, default=20.0)  # deg/s: |ω| above this → DETUMBLE
-    DETUMBLE_EXIT_RATE = Param(F64, default=1.0)  # deg/s: |ω| below this for MODE_DWELL → SPIN_STABLE (then spin *up*)
-    MODE_DWELL = Param(F64, default=5.0)  # s
-    SPIN_AXIS_ENTER = Param(F64, default=5.0)  # deg: rate within this of +Z counts as stable
-    SPIN_AXIS_RESET = Param(F64, default=8.0)  # deg: beyond this the stability timer restarts
-    SPIN_RATE_ENTER = Param(F64, default=0.05)  # fraction of SPIN_RATE_TARGET
-    SPIN_RATE_RESET = Param(F64, default=0.08)  # fraction
-    SPIN_STABLE_DWELL = Param(F64, default=60.0)  # s of stable spin before POINTING
-    ATTITUDE_TIMEOUT = Param(F64, default=90.0)  # s on the gyro alone (no star-tracker fix) → no attitude knowledge
-    SLEW_RATE_LIMIT = Param(F64, default=8.0)  # deg/s: largest rate a slew commands (wheels)
-    POINTING_ACTUATOR = Param(PointingActuator, default=PointingActuator.ANY)
-    K_DUMP = Param(F64, default=2.0e-3)  # 1/s: magnetic momentum dumping while pointing on wheels
-    WHEEL_MAX_TORQUE = Param(F64, default=2.0e-3)  # N·m per wheel
-    WHEEL_MAX_MOMENTUM = Param(F64, default=4.0e-3)  # N·m·s per wheel
-    FILTER_KP = Param(F64, default=0.5)  # 1/s
-    FILTER_KI = Param(F64, default=0.02)  # 1/s²
-    X_COIL_MAX_DIPOLE = Param(F64, default=96 * 0.053 * 0.045 * 3.3 / 13.0)  # A·m² per X coil at full drive
-    Y_COIL_MAX_DIPOLE = Param(F64, default=96 * 0.053 * 0.045 * 3.3 / 13.0)  # A·m² per Y coil
-    Z_COIL_MAX_DIPOLE = Param(F64, default=153 * math.pi * (0.05755 / 2) ** 2 * 3.3 / 150.7)  # A·m², Z−
-    CYCLE_TICKS = Param(U32, default=5)  # run ticks per control cycle (coils off on the last)
+    K_P = Param(F64, default=_defaults.K_P)  # N·m: PD spring on q_err.v, wheels (ω_n 0.5 rad/s for 2.2e-3 kg·m²)
+    K_D = Param(F64, default=_defaults.K_D)  # N·m·s: PD damping, wheels (ζ ≈ 0.9)
+    K_I = Param(F64, default=_defaults.K_I)
+    INTEGRAL_WINDOW = Param(F64, default=_defaults.INTEGRAL_WINDOW)  # deg: the integral runs only below this error
+    K_P_MAG = Param(F64, default=_defaults.K_P_MAG, low=0.0, high=1.0e-3)  # N·m: spring ⟂ B, magnetorquer-only pointing
+    K_D_MAG = Param(F64, default=_defaults.K_D_MAG, low=0.0, high=1.0e-2)
+    C_DAMP = Param(F64, default=_defaults.C_DAMP)  # N·m·s: damper coefficient (seed c_damp)
+    I_D = Param(F64, default=_defaults.I_D)  # kg·m²: damper virtual inertia (seed I_d)
+    K_BDOT = Param(F64, default=_defaults.K_BDOT)  # A·m²·s/G: M = −k Ḃ when no dipoleMomentGet provider is connected
+    SPIN_LAW = Param(SpinLaw, default=SpinLaw[_defaults.SPIN_LAW])
+    SPIN_RATE_TARGET = Param(F64, default=_defaults.SPIN_RATE_TARGET)
+    SPIN_K_TRANSVERSE = Param(F64, default=_defaults.SPIN_K_TRANSVERSE)  # N·m·s
+    SPIN_K_RATE = Param(F64, default=_defaults.SPIN_K_RATE)  # N·m·s
+    DETUMBLE_ENTER_RATE = Param(F64, default=_defaults.DETUMBLE_ENTER_RATE)  # deg/s: |ω| above this → DETUMBLE
+    DETUMBLE_EXIT_RATE = Param(F64, default=_defaults.DETUMBLE_EXIT_RATE)
+    MODE_DWELL = Param(F64, default=_defaults.MODE_DWELL)  # s
+    SPIN_AXIS_ENTER = Param(F64, default=_defaults.SPIN_AXIS_ENTER)  # deg: rate within this of +Z counts as stable
+    SPIN_AXIS_RESET = Param(F64, default=_defaults.SPIN_AXIS_RESET)  # deg: beyond this the stability timer restarts
+    SPIN_RATE_ENTER = Param(F64, default=_defaults.SPIN_RATE_ENTER)  # fraction of SPIN_RATE_TARGET
+    SPIN_RATE_RESET = Param(F64, default=_defaults.SPIN_RATE_RESET)  # fraction
+    SPIN_STABLE_DWELL = Param(F64, default=_defaults.SPIN_STABLE_DWELL)  # s of stable spin before POINTING
+    ATTITUDE_TIMEOUT = Param(F64, default=_defaults.ATTITUDE_TIMEOUT)
+    SLEW_RATE_LIMIT = Param(F64, default=_defaults.SLEW_RATE_LIMIT)  # deg/s: largest rate a slew commands (wheels)
+    POINTING_ACTUATOR = Param(PointingActuator, default=PointingActuator[_defaults.POINTING_ACTUATOR])
+    K_DUMP = Param(F64, default=_defaults.K_DUMP)  # 1/s: magnetic momentum dumping while pointing on wheels
+    WHEEL_MAX_TORQUE = Param(F64, default=_defaults.WHEEL_MAX_TORQUE)  # N·m per wheel
+    WHEEL_MAX_MOMENTUM = Param(F64, default=_defaults.WHEEL_MAX_MOMENTUM)  # N·m·s per wheel
+    FILTER_KP = Param(F64, default=_defaults.FILTER_KP)  # 1/s
+    FILTER_KI = Param(F64, default=_defaults.FILTER_KI)  # 1/s²
+    X_COIL_MAX_DIPOLE = Param(F64, default=_defaults.X_COIL_MAX_DIPOLE)  # A·m² per X coil at full drive
+    Y_COIL_MAX_DIPOLE = Param(F64, default=_defaults.Y_COIL_MAX_DIPOLE)  # A·m² per Y coil
+    Z_COIL_MAX_DIPOLE = Param(F64, default=_defaults.Z_COIL_MAX_DIPOLE)  # A·m², Z−
+    CYCLE_TICKS = Param(U32, default=_defaults.CYCLE_TICKS)  # run ticks per control cycle (coils off on the last)
     # attitude estimation and the derivative term's rate (docs/studies/attitude_knowledge.md)
-    ESTIMATOR = Param(AttitudeEstimator, default=AttitudeEstimator.MEKF)
+    ESTIMATOR = Param(AttitudeEstimator, default=AttitudeEstimator[_defaults.ESTIMATOR])
     #: deg/s, 1σ per axis of one gyro reading: LSM6DSO 0.0038 °/s/√Hz over 52 Hz, with the 70 mdps LSB/√12
-    GYRO_NOISE = Param(F64, default=math.hypot(0.0038 * math.sqrt(52.0), 0.070 / math.sqrt(12.0)),
+    GYRO_NOISE = Param(F64, default=_defaults.GYRO_NOISE,
                        low=1e-6, high=10.0, finite=True)
-    GYRO_BIAS_WALK = Param(F64, default=1.0e-4, low=0.0, high=1.0, finite=True)  # deg/s/√s, MEKF bias random walk
-    GYRO_BIAS_SIGMA0 = Param(F64, default=1.0, low=1e-6, high=10.0, finite=True)  # deg/s, bias 1σ before any fix
-    TRACKER_NOISE_CROSS = Param(F64, default=10.0, low=1e-3, high=3600.0, finite=True)  # arcsec 1σ across boresight
-    TRACKER_NOISE_ABOUT = Param(F64, default=70.0, low=1e-3, high=3600.0, finite=True)  # arcsec 1σ about boresight
-    RATE_SOURCE = Param(RateSource, default=RateSource.OBSERVER)
-    RATE_OBSERVER_GAIN = Param(F64, default=0.1, low=1e-4, high=100.0, finite=True)  # 1/s: pull toward the gyro
-    INERTIA_XX = Param(F64, default=2.20e-3, low=1e-6, high=10.0, finite=True)  # kg·m², the observer's model
-    INERTIA_YY = Param(F64, default=2.15e-3, low=1e-6, high=10.0, finite=True)  # kg·m²
-    INERTIA_ZZ = Param(F64, default=2.05e-3, low=1e-6, high=10.0, finite=True)  # kg·m²
-    INERTIA_XY = Param(F64, default=2.0e-5, low=-10.0, high=10.0, finite=True)  # kg·m², product (matrix element)
-    INERTIA_XZ = Param(F64, default=-1.5e-5, low=-10.0, high=10.0, finite=True)  # kg·m²
-    INERTIA_YZ = Param(F64, default=1.0e-5, low=-10.0, high=10.0, finite=True)  # kg·m²
+    GYRO_BIAS_WALK = Param(F64, default=_defaults.GYRO_BIAS_WALK, low=0.0, high=1.0, finite=True)
+    GYRO_BIAS_SIGMA0 = Param(F64, default=_defaults.GYRO_BIAS_SIGMA0, low=1e-6, high=10.0, finite=True)
+    TRACKER_NOISE_CROSS = Param(F64, default=_defaults.TRACKER_NOISE_CROSS, low=1e-3, high=3600.0, finite=True)
+    TRACKER_NOISE_ABOUT = Param(F64, default=_defaults.TRACKER_NOISE_ABOUT, low=1e-3, high=3600.0, finite=True)
+    RATE_SOURCE = Param(RateSource, default=RateSource[_defaults.RATE_SOURCE])
+    RATE_OBSERVER_GAIN = Param(F64, default=_defaults.RATE_OBSERVER_GAIN, low=1e-4, high=100.0, finite=True)
+    INERTIA_XX = Param(F64, default=_defaults.INERTIA_XX, low=1e-6, high=10.0, finite=True)
+    INERTIA_YY = Param(F64, default=_defaults.INERTIA_YY, low=1e-6, high=10.0, finite=True)  # kg·m²
+    INERTIA_ZZ = Param(F64, default=_defaults.INERTIA_ZZ, low=1e-6, high=10.0, finite=True)  # kg·m²
+    INERTIA_XY = Param(F64, default=_defaults.INERTIA_XY, low=-10.0, high=10.0, finite=True)
+    INERTIA_XZ = Param(F64, default=_defaults.INERTIA_XZ, low=-10.0, high=10.0, finite=True)  # kg·m²
+    INERTIA_YZ = Param(F64, default=_defaults.INERTIA_YZ, low=-10.0, high=10.0, finite=True)  # kg·m²
     # magnetorquer-only pointing (detumble.control.magnetic_pointing; docs/studies/magnetic_pointing.md)
-    MAG_POINTING_LAW = Param(MagPointingLaw, default=MagPointingLaw.FIELD_STEERING)
-    MAG_STEER_RHO = Param(F64, default=2.0, low=0.0, high=10.0)  # along-field poles at ρ × the field line's rate
-    MAG_STEER_ZETA = Param(F64, default=0.7, low=0.0, high=5.0)  # their damping ratio
-    MAG_FIELD_RATE_BANDWIDTH = Param(F64, default=0.05, low=1.0e-3, high=1.0)  # rad/s: ḃ estimator
-    MAG_FIELD_RATE_MIN = Param(F64, default=5.0e-4, low=1.0e-5, high=1.0e-1)  # 1/s: floor of |ḃ| in the law
-    MAG_SETTLE_TIME = Param(F64, default=120.0, low=0.0, high=3600.0)  # s of known attitude before the coils point
+    MAG_POINTING_LAW = Param(MagPointingLaw, default=MagPointingLaw[_defaults.MAG_POINTING_LAW])
+    MAG_STEER_RHO = Param(F64, default=_defaults.MAG_STEER_RHO, low=0.0, high=10.0)
+    MAG_STEER_ZETA = Param(F64, default=_defaults.MAG_STEER_ZETA, low=0.0, high=5.0)  # their damping ratio
+    MAG_FIELD_RATE_BANDWIDTH = Param(F64, default=_defaults.MAG_FIELD_RATE_BANDWIDTH, low=1.0e-3, high=1.0)
+    MAG_FIELD_RATE_MIN = Param(F64, default=_defaults.MAG_FIELD_RATE_MIN, low=1.0e-5, high=1.0e-1)
+    MAG_SETTLE_TIME = Param(F64, default=_defaults.MAG_SETTLE_TIME, low=0.0, high=3600.0)
 
     # --- ports ---------------------------------------------------------------------------------
 
@@ -285,7 +287,7 @@ class AttitudeController(PassiveComponent):
         self.field_rate = FieldDirectionRate()  # db̂_N/dt for magnetorquer-only pointing
         self.bdot_hat_B: tuple | None = None  # its latest estimate in B, 1/s
         self.attitude_known_s = 0.0  # s since the attitude became known (gyro bias settling, MAG_SETTLE_TIME)
-        self.integrator = ErrorIntegrator(math.radians(1.0), 1.0e-5)
+        self.integrator = ErrorIntegrator(math.radians(1.0), _defaults.INTEGRAL_MAX_TORQUE)
         self.target: tuple[float, float, float, float] | None = None
         self.seed_damper = SeedKaneDamper(1.0e-4, 2.0e-4)
         self.virtual_damper = VirtualDamper(1.0e-4, 2.0e-4)
@@ -427,7 +429,7 @@ class AttitudeController(PassiveComponent):
 
     def _cycle(self) -> None:
         now_us = self.get_time().total_us
-        nominal = max(1, int(self.CYCLE_TICKS.value)) * 0.02
+        nominal = max(1, int(self.CYCLE_TICKS.value)) * _defaults.RATE_GROUP_PERIOD_S
         if self._last_cycle_us is None or now_us <= self._last_cycle_us:
             dt = nominal
         else:

@@ -25,9 +25,11 @@ from dataclasses import dataclass
 from typing import Callable
 
 from detumble.sim import frames, plant_kernel
+from detumble.sim.adcs_law import AdcsLaw, PlantIo, pointing_statistics
 from detumble.sim.coursework_laws import REPORT_CROSS_PRODUCT_GAIN, BetaPdLaw, CrossProductLaw, WheelsPdLaw
 from detumble.sim.laws import BangBangLaw, BdotLaw, KoptLaw, NoLaw, clip_to_limits, kopt_gain
 from detumble.sim.plant import Plant
+from detumble.control.attitude_defaults import DEFAULTS as ADCS_DEFAULTS
 from detumble.sim.scenario import LAWS, Scenario, ScenarioError, load_scenario
 from detumble.sim.settling_metrics import COURSEWORK_LAWS, SettlingMetrics
 from detumble.sim.truth import adcs_header, adcs_row
@@ -73,6 +75,8 @@ def _make_law(name: str, plant: Plant, gain: float | None):
         return BangBangLaw(m_max)
     if name in ("cross_product", "beta_pd", "wheels_pd"):
         return _make_coursework_law(name, plant, gain, m_max)
+    if name == "adcs":
+        return make_adcs_law(plant)
     raise LawError(f"unknown law {name!r}; expected one of: {', '.join(LAWS)}")
 
 
@@ -94,6 +98,20 @@ def _make_coursework_law(name: str, plant: Plant, gain: float | None, m_max):
                          "(spacecraft.reaction_wheels.axes: [[1, 0, 0], [0, 1, 0], [0, 0, 1]])")
     return WheelsPdLaw(w.k_p, w.k_d, plant.body.inertia, n, w.target_q_bo, m_max, limits=w.limits, error=w.error,
                        dump_gain=w.dump_gain)
+
+
+def make_adcs_law(plant: Plant) -> AdcsLaw:
+    """The three-mode controller of ``plant``'s scenario (``control.adcs``) on the plant's wheels (three or
+    four; otherwise it points on the magnetorquers, as the component does without wheels)."""
+    cfg = plant.scenario.control.adcs
+    params = {name: getattr(cfg, name) for name in ADCS_DEFAULTS}
+    n = plant.wheel_count
+    axes = plant.wheel_axes_B if 3 <= n <= 4 else ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    try:
+        return AdcsLaw(axes, 3 <= n <= 4, params, cfg.target_q_bn, bdot_provider=cfg.bdot_provider,
+                       provider_gain=cfg.bdot_provider_gain, auto_start_s=cfg.auto_start_s)
+    except ValueError as exc:
+        raise LawError(f"adcs: {exc}") from None
 
 
 def _full_state_command(ctl, plant: Plant, b_B, t_read: float) -> None:
@@ -123,6 +141,9 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
     sc = scenario
     ctrl = sc.control
     law_name = law if law is not None else ctrl.law
+    if law_name == "adcs" and gain is not None:
+        raise LawError("--gain does not apply to adcs; set its flight parameters with "
+                       "--set control.adcs.<PARAMETER>=VALUE (e.g. control.adcs.K_P=1.1e-3)")
     gain = gain if gain is not None else ctrl.gain
     duration = sc.duration_s if duration_s is None else duration_s
     plant = Plant(sc, seed, implementation) if plant is None else plant
@@ -134,6 +155,16 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
     record_every = max(1, int(round(sc.record_interval_s / dt)))
     active = law_name != "none"
     full_state = getattr(ctl, "full_state", False)
+    ticked = getattr(ctl, "ticked", False)
+    if ticked:  # called every rate-group tick, as the flight component is
+        tick_every = int(round(ctl.tick_s / dt))
+        if tick_every < 1 or abs(tick_every * dt - ctl.tick_s) > 1e-9:
+            raise LawError(f"{law_name} runs every {ctl.tick_s} s (the rate group's tick); dynamics_step_s "
+                           f"{dt} s must divide it")
+        io = PlantIo(plant)
+        target_seen = None
+        sample_every = int(round(0.5 / dt)) or 1  # the attitude report's 0.5 s sampling
+        pointing_deg: list[float] = []
     omega_final = (0.0, -plant.orbit.mean_motion, 0.0) if law_name in COURSEWORK_LAWS else (0.0, 0.0, 0.0)
     metrics = SettlingMetrics(plant, omega_final=omega_final, include_attitude=getattr(ctl, "wheel_law", False))
     threshold2 = math.radians(1.0) ** 2
@@ -152,7 +183,13 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
     record()
     wall0 = time.perf_counter()
     for k in range(n_steps):
-        if active:
+        if ticked:
+            if k % tick_every == 0:
+                ctl.tick(io)
+                if ctl.target is not target_seen:  # the truth log's pointing error follows the target
+                    target_seen = ctl.target
+                    plant.set_pointing_target(target_seen)
+        elif active:
             phase = k % period
             if settle and phase == 0:
                 plant.apply_dipole_B(zero)
@@ -163,6 +200,8 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
                 else:
                     plant.apply_dipole_B(ctl.update((bx * 1e-4, by * 1e-4, bz * 1e-4), t_read))
         plant.step(dt)
+        if ticked and (k + 1) % sample_every == 0 and ctl.mode == "POINTING":  # as the attitude report samples
+            pointing_deg.append(ctl.true_pointing_error_deg(plant.q_BN))
         if (k + 1) % period == 0:
             metrics.update(plant)
         if t_below is None:
@@ -176,6 +215,11 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
     wall = time.perf_counter() - wall0
     if rows[-1][0] != plant.t:
         record()
+    extra: dict = {}
+    if ticked:
+        extra = {"control_mode_transitions": [{"t_s": t, "mode": m, "reason": r} for t, m, r in ctl.transitions],
+                 "final_mode": ctl.mode, "pointing_error_deg": pointing_statistics(pointing_deg),
+                 "control_cycles": ctl.cycles}
     summary = {
         "scenario": sc.name,
         "source": sc.source,
@@ -194,6 +238,7 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
         "time_below_1_deg_s": t_below,
         **metrics.summary(),
         "orbit_period_s": 2.0 * math.pi / plant.orbit.mean_motion,
+        **extra,
     }
     return RunResult(summary, rows, adcs_header(plant), adcs)
 
@@ -310,4 +355,4 @@ def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim",
     return 0
 
 
-__all__ = ["RunResult", "LawError", "run", "make_law", "main", "write_atomic", "write_outputs"]
+__all__ = ["RunResult", "LawError", "run", "make_law", "make_adcs_law", "main", "write_atomic", "write_outputs"]

@@ -16,11 +16,14 @@ import os
 import random
 from dataclasses import dataclass
 from dataclasses import field as _dc_field
+from dataclasses import make_dataclass
 from importlib import resources
 from typing import Any, Literal, NoReturn, Sequence, overload
 
 import yaml
 
+from detumble.control.attitude_defaults import DEFAULTS as ADCS_DEFAULTS
+from detumble.control.attitude_defaults import ENUM_CHOICES as ADCS_ENUMS
 from detumble.sim.coils import FACE_NAMES, CoilSpec, default_coil_layout
 from detumble.sim.epoch import gmst_rad, julian_date, parse_epoch
 from detumble.sim.field import (EARTH_ROTATION_RATE, IGRF2025_G10_NT, IGRF2025_G11_NT, IGRF2025_H11_NT,
@@ -35,7 +38,7 @@ from detumble.sim.wheels import CATALOGUE as WHEEL_CATALOGUE
 from detumble.sim.wheels import WheelSpec, equations_inertia
 from detumble.sim.vec import Mat3, Quat, Vec3, mrp_to_quat, quat_normalize, unit
 
-LAWS = ("none", "kopt", "bdot", "bangbang", "cross_product", "beta_pd", "wheels_pd")
+LAWS = ("none", "kopt", "bdot", "bangbang", "cross_product", "beta_pd", "wheels_pd", "adcs")
 SATURATION = ("clip", "scale")
 FIELD_MODELS = ("dipole", "wmm2025", "none", "orbit_constant")
 
@@ -109,6 +112,19 @@ class WheelsPdConfig:
     dump_gain: float = 0.0      # 1/s: magnetic momentum dumping M = k (h x B)/|B|^2 (0: none, as the report)
 
 
+#: ``control.adcs``: the plant-only three-mode controller (:mod:`detumble.sim.adcs_law`): its target
+#: ``target_q_bn`` (q_TN, scalar first; None holds the attitude POINTING starts from), whether DETUMBLE
+#: takes the BDotDetumble provider's dipole (``bdot_provider``) and that provider's gain, when AUTO
+#: starts (``auto_start_s``: before it the controller idles, as until the start-up sequence's SET_AUTO), and every
+#: flight parameter of the AttitudeController by its own name (default: the component's default).
+AdcsConfig = make_dataclass(
+    "AdcsConfig",
+    [("target_q_bn", "tuple[float, float, float, float] | None", None), ("bdot_provider", bool, True),
+     ("bdot_provider_gain", float, 1.0), ("auto_start_s", float, 0.0)]
+    + [(name, type(value), value) for name, value in ADCS_DEFAULTS.items()],
+    frozen=True)
+
+
 @dataclass(frozen=True)
 class ControlConfig:
     law: str = "none"
@@ -118,6 +134,7 @@ class ControlConfig:
     saturation: str = "scale"
     beta_pd: BetaPdConfig = BetaPdConfig()
     wheels_pd: WheelsPdConfig = WheelsPdConfig()
+    adcs: Any = AdcsConfig()
 
 
 @dataclass(frozen=True)
@@ -302,6 +319,8 @@ SCHEMA: dict = {
         **{k: _LEAF for k in ("law", "gain", "period_s", "sense_settle_s", "saturation")},
         "beta_pd": {k: _LEAF for k in ("k_s", "k_d", "switched")},
         "wheels_pd": {k: _LEAF for k in ("k_p", "k_d", "target_q_bo", "limits", "error", "dump_gain")},
+        "adcs": {k: _LEAF for k in ("target_q_bn", "bdot_provider", "bdot_provider_gain", "auto_start_s",
+                                       *ADCS_DEFAULTS)},
     },
     "power": POWER_SCHEMA,
 }
@@ -866,6 +885,35 @@ def _control(s: _Section, dt: float) -> ControlConfig:
                                error=wheels.string("error", WheelsPdConfig.error, ("report", "shortest_path")),
                                dump_gain=wheels.number("dump_gain", WheelsPdConfig.dump_gain, nonneg=True))
     wheels.finish()
+    adcs = _adcs(s.section("adcs"))
     s.finish()
     return ControlConfig(law=law, gain=gain, period_s=period, sense_settle_s=settle, saturation=saturation,
-                         beta_pd=beta_pd, wheels_pd=wheels_pd)
+                         beta_pd=beta_pd, wheels_pd=wheels_pd, adcs=adcs)
+
+
+def _adcs(a: _Section):
+    """``control.adcs`` (see :data:`AdcsConfig`)."""
+    values: dict[str, Any] = {}
+    target = a.raw("target_q_bn", None)
+    if target is not None:
+        if not isinstance(target, (list, tuple)) or len(target) != 4:
+            a.fail("target_q_bn", f"expected 4 numbers (q_TN, scalar first) or null, got {target!r}")
+        q = tuple(a.ctx.number(a.path + ("target_q_bn", i), x) for i, x in enumerate(target))
+        if abs(math.sqrt(sum(c * c for c in q)) - 1.0) > 1e-3:
+            a.fail("target_q_bn", "must be a unit quaternion (within 1e-3), as SET_TARGET_QUATERNION requires")
+        values["target_q_bn"] = q
+    values["bdot_provider"] = a.boolean("bdot_provider", True)
+    values["bdot_provider_gain"] = a.number("bdot_provider_gain", 1.0, nonneg=True)
+    values["auto_start_s"] = a.number("auto_start_s", 0.0, nonneg=True)
+    for name, default in ADCS_DEFAULTS.items():
+        if name in ADCS_ENUMS:
+            values[name] = a.string(name, str(default), ADCS_ENUMS[name])
+        elif isinstance(default, int):
+            v = a.number(name, default, positive=True)
+            if v != int(v):
+                a.fail(name, f"expected a whole number, got {v!r}")
+            values[name] = int(v)
+        else:
+            values[name] = a.number(name, float(default))
+    a.finish()
+    return AdcsConfig(**values)

@@ -1,0 +1,109 @@
+"""Default settings of the three-mode attitude controller, in one place (plain values; no framework import).
+
+The flight component (:class:`detumble.components.attitude_controller.AttitudeController`) takes
+its parameter defaults from here, and the plant-only law that flies the same controller without
+the framework (:mod:`detumble.sim.adcs_law`) starts from the same values, so a change here moves
+both. The names are the flight parameters' own (ground-visible, hence upper case); units are those
+of the parameters, as the ground reads them: rates in deg/s, angles in deg, torques in N·m,
+momenta in N·m·s, dipoles in A·m², inertias in kg·m², times in s. Enumerated parameters are given
+by their member names (the component maps them onto its enums). Why each value is what it is:
+``docs/components/attitude_controller.md``.
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["DEFAULTS", "ENUM_CHOICES", "RATE_GROUP_PERIOD_S", "INTEGRAL_MAX_TORQUE", "BORESIGHT_B",
+           "BDOT_PROVIDER_GAIN"]
+
+# --- pointing on the wheels (quaternion PD + integral) -----------------------------------------
+K_P = 1.1e-3  # N·m: spring on q_err.v (ω_n 0.5 rad/s for 2.2e-3 kg·m²)
+K_D = 2.0e-3  # N·m·s: damping (ζ ≈ 0.9)
+K_I = 5.5e-5  # N·m/s: integral on q_err.v (0 turns it off)
+INTEGRAL_WINDOW = 1.0  # deg: the integral runs only below this error
+SLEW_RATE_LIMIT = 8.0  # deg/s: largest rate a slew commands
+K_DUMP = 2.0e-3  # 1/s: magnetic momentum dumping while pointing on the wheels
+WHEEL_MAX_TORQUE = 2.0e-3  # N·m per wheel
+WHEEL_MAX_MOMENTUM = 4.0e-3  # N·m·s per wheel
+POINTING_ACTUATOR = "ANY"  # ANY: wheels when they all answer, else the magnetorquers
+
+# --- pointing on the magnetorquers alone -------------------------------------------------------
+K_P_MAG = 1.0e-6  # N·m: spring ⟂ B
+K_D_MAG = 1.0e-4  # N·m·s: damping ⟂ B
+MAG_POINTING_LAW = "FIELD_STEERING"
+MAG_STEER_RHO = 2.0  # along-field poles at ρ × the field line's rate
+MAG_STEER_ZETA = 0.7  # their damping ratio
+MAG_FIELD_RATE_BANDWIDTH = 0.05  # rad/s: the field-direction-rate estimator's bandwidth
+MAG_FIELD_RATE_MIN = 5.0e-4  # 1/s: floor of |ḃ| in the law
+MAG_SETTLE_TIME = 120.0  # s of known attitude before the coils point
+
+# --- detumble and spin -------------------------------------------------------------------------
+K_BDOT = 3.0  # A·m²·s/G: the internal M = −k Ḃ when no dipole provider is connected
+C_DAMP = 1.0e-4  # N·m·s: damper coefficient (seed c_damp)
+I_D = 2.0e-4  # kg·m²: damper virtual inertia (seed I_d)
+SPIN_LAW = "RATE_REGULATOR"
+SPIN_RATE_TARGET = 1.5  # deg/s about body +Z (below the star tracker's 2 deg/s limit)
+SPIN_K_TRANSVERSE = 2.0e-4  # N·m·s
+SPIN_K_RATE = 2.0e-4  # N·m·s
+
+# --- mode triggers -----------------------------------------------------------------------------
+DETUMBLE_ENTER_RATE = 20.0  # deg/s: |ω| above this → DETUMBLE
+DETUMBLE_EXIT_RATE = 1.0  # deg/s: |ω| below this for MODE_DWELL → SPIN_STABLE
+MODE_DWELL = 5.0  # s
+SPIN_AXIS_ENTER = 5.0  # deg: rate within this of +Z counts as stable
+SPIN_AXIS_RESET = 8.0  # deg: beyond this the stability timer restarts
+SPIN_RATE_ENTER = 0.05  # fraction of SPIN_RATE_TARGET
+SPIN_RATE_RESET = 0.08  # fraction
+SPIN_STABLE_DWELL = 60.0  # s of stable spin before POINTING
+ATTITUDE_TIMEOUT = 90.0  # s on the gyro alone (no star-tracker fix) → no attitude knowledge
+
+# --- attitude and rate estimation --------------------------------------------------------------
+ESTIMATOR = "MEKF"
+FILTER_KP = 0.5  # 1/s (complementary filter)
+FILTER_KI = 0.02  # 1/s² (complementary filter)
+#: deg/s, 1σ per axis of one gyro reading: LSM6DSO 0.0038 °/s/√Hz over 52 Hz, with the 70 mdps LSB/√12
+GYRO_NOISE = math.hypot(0.0038 * math.sqrt(52.0), 0.070 / math.sqrt(12.0))
+GYRO_BIAS_WALK = 1.0e-4  # deg/s/√s: MEKF bias random walk
+GYRO_BIAS_SIGMA0 = 1.0  # deg/s: bias 1σ before any fix
+TRACKER_NOISE_CROSS = 10.0  # arcsec 1σ across the boresight
+TRACKER_NOISE_ABOUT = 70.0  # arcsec 1σ about the boresight
+RATE_SOURCE = "OBSERVER"
+RATE_OBSERVER_GAIN = 0.1  # 1/s: the observer's pull toward the gyro
+INERTIA_XX = 2.20e-3  # kg·m², the observer's model (matrix elements)
+INERTIA_YY = 2.15e-3
+INERTIA_ZZ = 2.05e-3
+INERTIA_XY = 2.0e-5
+INERTIA_XZ = -1.5e-5
+INERTIA_YZ = 1.0e-5
+
+# --- actuators and timing ----------------------------------------------------------------------
+X_COIL_MAX_DIPOLE = 96 * 0.053 * 0.045 * 3.3 / 13.0  # A·m² per X coil at full drive (two X coils)
+Y_COIL_MAX_DIPOLE = 96 * 0.053 * 0.045 * 3.3 / 13.0  # A·m² per Y coil (two Y coils)
+Z_COIL_MAX_DIPOLE = 153 * math.pi * (0.05755 / 2) ** 2 * 3.3 / 150.7  # A·m², the single Z− coil
+CYCLE_TICKS = 5  # rate-group ticks per control cycle (the coils are off on the last)
+
+#: s: the period of the rate group that calls the controller (the deployments' 50 Hz group).
+RATE_GROUP_PERIOD_S = 0.02
+#: N·m: the largest torque the pointing integral may hold (not a parameter).
+INTEGRAL_MAX_TORQUE = 1.0e-5
+#: The body axis the star tracker looks along and SET_TARGET_DIRECTION points.
+BORESIGHT_B = (0.0, 0.0, 1.0)
+#: A·m²·s: the default gain of the BDotDetumble dipole provider (``m = −Gain·Ḃ/|B|``, B in gauss).
+BDOT_PROVIDER_GAIN = 1.0
+
+#: The member names each enumerated parameter accepts (those of the flight enums, in their order).
+ENUM_CHOICES: dict[str, tuple[str, ...]] = {
+    "SPIN_LAW": ("SEED_KANE_DAMPER", "VIRTUAL_DAMPER", "RATE_REGULATOR"),
+    "POINTING_ACTUATOR": ("ANY", "WHEELS", "MAGNETORQUERS"),
+    "ESTIMATOR": ("COMPLEMENTARY", "MEKF"),
+    "RATE_SOURCE": ("GYRO", "OBSERVER"),
+    "MAG_POINTING_LAW": ("SEED_PD", "FIELD_STEERING"),
+}
+
+#: Every parameter default by its flight name.
+DEFAULTS: dict[str, float | int | str] = {
+    name: value for name, value in dict(globals()).items()
+    if name.isupper() and not name.startswith("_")
+    and name not in ("RATE_GROUP_PERIOD_S", "INTEGRAL_MAX_TORQUE", "BORESIGHT_B", "BDOT_PROVIDER_GAIN", "ENUM_CHOICES")
+}
