@@ -24,6 +24,7 @@ import math
 
 from fprime_lite import F64, Channel, OutputPort, Param, PassiveComponent, sync_input
 
+from detumble.control.attitude_defaults import BDOT_PROVIDER_GAIN
 from detumble.components.types import DipoleMoment, DipoleMomentGet, MagneticField, MagneticFieldGet, Result, Success
 
 __all__ = ["BDotDetumble", "MIN_FIELD_MAGNITUDE_GAUSS"]
@@ -41,7 +42,7 @@ class BDotDetumble(PassiveComponent):
 
     #: B-dot gain, A·m²·s (m = −Gain·Ḃ/|B|); a negative gain would spin the spacecraft up, NaN or
     #: inf would make every dipole non-finite.
-    Gain = Param(F64, default=1.0, low=0.0, high=1000.0)
+    Gain = Param(F64, default=BDOT_PROVIDER_GAIN, low=0.0, high=1000.0)
 
     magneticFieldGet = OutputPort(MagneticFieldGet)
 

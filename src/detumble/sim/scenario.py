@@ -22,6 +22,7 @@ from typing import Any, Literal, NoReturn, Sequence, overload
 
 import yaml
 
+from detumble.control.attitude_defaults import BDOT_PROVIDER_GAIN
 from detumble.control.attitude_defaults import DEFAULTS as ADCS_DEFAULTS
 from detumble.control.attitude_defaults import ENUM_CHOICES as ADCS_ENUMS
 from detumble.sim.coils import FACE_NAMES, CoilSpec, default_coil_layout
@@ -120,7 +121,7 @@ class WheelsPdConfig:
 AdcsConfig = make_dataclass(
     "AdcsConfig",
     [("target_q_bn", "tuple[float, float, float, float] | None", None), ("bdot_provider", bool, True),
-     ("bdot_provider_gain", float, 1.0), ("auto_start_s", float, 0.0)]
+     ("bdot_provider_gain", float, BDOT_PROVIDER_GAIN), ("auto_start_s", float, 0.0)]
     + [(name, type(value), value) for name, value in ADCS_DEFAULTS.items()],
     frozen=True)
 
@@ -903,7 +904,7 @@ def _adcs(a: _Section):
             a.fail("target_q_bn", "must be a unit quaternion (within 1e-3), as SET_TARGET_QUATERNION requires")
         values["target_q_bn"] = q
     values["bdot_provider"] = a.boolean("bdot_provider", True)
-    values["bdot_provider_gain"] = a.number("bdot_provider_gain", 1.0, nonneg=True)
+    values["bdot_provider_gain"] = a.number("bdot_provider_gain", BDOT_PROVIDER_GAIN, nonneg=True)
     values["auto_start_s"] = a.number("auto_start_s", 0.0, nonneg=True)
     for name, default in ADCS_DEFAULTS.items():
         if name in ADCS_ENUMS:

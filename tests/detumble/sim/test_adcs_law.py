@@ -26,6 +26,9 @@ def test_component_parameter_defaults_are_the_shared_module_s():
         value = bound.value
         assert (value.name if hasattr(value, "name") else value) == attitude_defaults.DEFAULTS[name], name
     assert BORESIGHT_B == attitude_defaults.BORESIGHT_B
+    from detumble.components.bdot_detumble import BDotDetumble
+
+    assert BDotDetumble("b").params["Gain"].value == attitude_defaults.BDOT_PROVIDER_GAIN
     for name, choices in attitude_defaults.ENUM_CHOICES.items():
         enum = type(params[name].value)
         assert tuple(m.name for m in enum) == choices, name
