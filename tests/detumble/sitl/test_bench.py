@@ -35,14 +35,21 @@ def test_the_other_reference_deployments_are_measured_against_their_own_plant_co
     d = DEPLOYMENT_PIECE.measure(argparse.Namespace(topology=str(REFERENCE), duration=2.0))
     others = d["other_deployments"]
     assert set(others) == {"adcs_ref", "coursework"}
-    assert (others["adcs_ref"]["scenario"], others["adcs_ref"]["tick_hz"], others["adcs_ref"]["plant_only_law"]) \
-        == ("adcs", 50.0, "bdot")
+    adcs = others["adcs_ref"]
+    assert (adcs["scenario"], adcs["tick_hz"], adcs["plant_only_law"]) == ("adcs", 50.0, "adcs")
+    # the earlier counterpart, a bare B-dot, stays as a second row timed in the same pieces
+    bdot = adcs["second_counterparts"]["bdot"]
+    assert len(bdot["pieces_us_per_tick"]) == len(adcs["pieces_us_per_tick"]["plant_only"])
+    assert bdot["tick_cost_ratio"] == pytest.approx(adcs["deployment_us_per_tick"] / bdot["plant_only_us_per_tick"])
+    assert others["coursework"]["second_counterparts"] == {}
     course = others["coursework"]
     assert (course["scenario"], course["tick_hz"], course["plant_only_law"]) == ("surrey", 100.0, "wheels_pd")
     assert course["ticks_per_s"] * course["deployment_wall_s"] == pytest.approx(2.0 * 100 + 1, abs=1)
     labels = [row[0] for row in DEPLOYMENT_PIECE.rows(d)]
     assert any(label.startswith("coursework") for label in labels)
     assert any("per 100 Hz tick" in label for label in labels)
+    assert sum("plant-only (adcs)" in label for label in labels) == 1
+    assert sum("plant-only (bdot)" in label for label in labels) == 2  # proves_ref's, and adcs_ref's second row
 
 
 def test_the_piece_is_installed_as_a_bench_plug_in():
