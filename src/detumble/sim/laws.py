@@ -12,6 +12,10 @@ next update. The first update only primes the finite difference and returns zero
 * ``bdot`` - ``m = -gain * dB/dt`` with the gain in the flight units, A m^2 s / G (dB/dt in
   gauss/s; the flight DetumbleManager's GAIN default is 3.0), scaled like ``kopt``.
 * ``bangbang`` - ``m_i = -m_max_i sign(dB_i/dt)``: saturated bang-bang B-dot.
+
+The other laws of :data:`detumble.sim.scenario.LAWS` live beside this module and are made by
+:func:`detumble.sim.runner.make_law`: seed 004's in :mod:`detumble.sim.coursework_laws`, and
+``adcs``, the three-mode attitude controller of adcs_ref, in :mod:`detumble.sim.adcs_law`.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Plant-only runs: fly a scenario with a reference law (no F' framework involved).
 
-``python -m detumble.sim SCENARIO --law none|kopt|bdot|bangbang [--gain G] --out DIR
-[--duration S] [--seed N]`` writes ``DIR/summary.json`` and ``DIR/rate.csv`` (the body rate, then
+``python -m detumble.sim SCENARIO --law none|kopt|bdot|bangbang|cross_product|beta_pd|wheels_pd|adcs
+[--gain G] --out DIR [--duration S] [--seed N]`` writes ``DIR/summary.json`` and ``DIR/rate.csv`` (the body rate, then
 the ADCS truth columns of :mod:`detumble.sim.truth`). :func:`main`
 returns an exit code and reports bad input on stderr without a traceback, so a CLI
 (``fprime-lite sim``) can call it directly.
@@ -9,7 +9,10 @@ returns an exit code and reports bad input on stderr without a traceback, so a C
 Control timing: the law runs every ``control.period_s``. If ``control.sense_settle_s`` > 0 the
 coils are switched off at the start of each period and the field is read that long afterwards
 (the flight manager's COOLDOWN idea); otherwise it is read at the start of the period, with the
-coils still on - and a magnetometer with coil coupling will then see them.
+coils still on - and a magnetometer with coil coupling will then see them. A *ticked* law
+(``adcs``, :mod:`detumble.sim.adcs_law`) keeps its own timing instead: the runner calls its
+``tick`` every rate-group tick (``tick_s``, 20 ms) and it reads and drives the plant itself, as the
+flight component does through its drivers.
 """
 
 from __future__ import annotations
