@@ -59,6 +59,8 @@ def compare(deployment, plant_only, *, time_tol_s, rate_tol_deg_s, pointing_tol_
     assert worst <= rate_tol_deg_s, worst
     for key in ("median", "p95", "max"):
         assert po["pointing_error_deg"][key] == pytest.approx(dep["pointing_error_deg"][key], abs=pointing_tol_deg)
+    for key in ("samples", "window_s"):  # the same samples (and pooling window) on both sides
+        assert po["pointing_error_deg"][key] == dep["pointing_error_deg"][key]
 
 
 @pytest.fixture(scope="module")

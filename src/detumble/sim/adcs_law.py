@@ -27,6 +27,7 @@ from __future__ import annotations
 import math
 from typing import Mapping, Sequence
 
+from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, pooling_fields
 from detumble.control import attitude_defaults
 from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.magnetic import clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
@@ -491,10 +492,14 @@ class AdcsLaw:
         return math.nan if self.target is None else math.degrees(quat_angle(quat_error(self.target, q_BN)))
 
 
-def pointing_statistics(values: Sequence[float], skip_fraction: float = 0.1) -> dict | None:
-    """``{"median", "p95", "max", "samples"}`` (linear interpolation between order statistics) of
-    ``values`` after their first ``skip_fraction``, as the deployment's attitude report gives them."""
-    rest = sorted(values[int(len(values) * skip_fraction):])
+def pointing_statistics(values: Sequence[float], skip_fraction: float = 0.1, *,
+                        sample_interval_s: float | None = None) -> dict | None:
+    """``{"median", "p95", "max", "samples"}`` (deg; linear interpolation between order statistics) of
+    ``values`` after their first ``skip_fraction``, as the deployment's attitude report gives them; with
+    ``sample_interval_s`` (s a sample stands for) also the report's pooling fields over the same samples
+    (:func:`detumble.analysis.pooled_stats.pooling_fields` at its pointing thresholds)."""
+    kept = list(values[int(len(values) * skip_fraction):])
+    rest = sorted(kept)
     if not rest:
         return None
     last = len(rest) - 1
@@ -505,4 +510,7 @@ def pointing_statistics(values: Sequence[float], skip_fraction: float = 0.1) -> 
         j = min(i + 1, last)
         return rest[i] + (rest[j] - rest[i]) * (pos - i)
 
-    return {"median": at(0.5), "p95": at(0.95), "max": rest[-1], "samples": len(rest)}
+    stats = {"median": at(0.5), "p95": at(0.95), "max": rest[-1], "samples": len(rest)}
+    if sample_interval_s is not None:
+        stats.update(pooling_fields(kept, sample_interval_s, POINTING_THRESHOLDS_DEG))
+    return stats

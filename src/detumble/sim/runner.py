@@ -166,7 +166,7 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
                            f"{dt} s must divide it")
         io = PlantIo(plant)
         target_seen = None
-        sample_every = int(round(0.5 / dt)) or 1  # the attitude report's 0.5 s sampling
+        sample_every = max(1, int(round(0.5 / dt)))  # the attitude report's 0.5 s sampling
         pointing_deg: list[float] = []
     omega_final = (0.0, -plant.orbit.mean_motion, 0.0) if law_name in COURSEWORK_LAWS else (0.0, 0.0, 0.0)
     metrics = SettlingMetrics(plant, omega_final=omega_final, include_attitude=getattr(ctl, "wheel_law", False))
@@ -221,7 +221,8 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
     extra: dict = {}
     if ticked:
         extra = {"control_mode_transitions": [{"t_s": t, "mode": m, "reason": r} for t, m, r in ctl.transitions],
-                 "final_mode": ctl.mode, "pointing_error_deg": pointing_statistics(pointing_deg),
+                 "final_mode": ctl.mode,
+                 "pointing_error_deg": pointing_statistics(pointing_deg, sample_interval_s=sample_every * dt),
                  "control_cycles": ctl.cycles}
     summary = {
         "scenario": sc.name,

@@ -144,3 +144,5 @@ def test_pointing_statistics_skip_the_first_tenth():
     s = pointing_statistics([100.0] + [float(i) for i in range(1, 10)])
     assert s == {"median": 5.0, "p95": pytest.approx(8.6), "max": 9.0, "samples": 9}
     assert math.isnan(AdcsLaw().true_pointing_error_deg((1.0, 0.0, 0.0, 0.0)))
+    pooled = pointing_statistics([100.0] + [0.02] * 9, sample_interval_s=0.5)
+    assert pooled["window_s"] == 4.5 and pooled["time_above_s"]["0.01"] == 4.5 and pooled["time_above_s"]["0.05"] == 0
