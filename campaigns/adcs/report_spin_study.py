@@ -2,7 +2,9 @@
 
 Run: ``python campaigns/adcs/report_spin_study.py runs/spin_minor runs/spin_major [--plot DIR]``.
 Prints, per campaign, the settle-time statistics (null = not settled within the run = never), the
-fraction of runs meeting issue 13's spin target and each of its parts; ``--plot DIR`` draws the
+fraction of runs meeting issue 13's spin target and each of its parts, the spin-axis error per run and pooled
+over all runs' SPIN_STABLE time (median and p95 with their histogram brackets, the exact fraction of time above
+1, 5 and 15°: :mod:`detumble.analysis.pooled_stats`); ``--plot DIR`` draws the
 settle-time CDFs and settle time against the initial rate (``spin_settle.png``).
 
 A run meets the target when (all truth, from the AttitudeRunReport):
@@ -25,23 +27,24 @@ import numpy as np
 from fprime_lite.tools.campaign import read_results
 from fprime_lite.tools.campaign.report import percentile
 
+from detumble.analysis.pooled_stats import SPIN_THRESHOLDS_DEG, pooled_lines, runs_from_columns, wilson_lower
+
 ORBIT_S = 5578.0
 MIN_DWELL_S = 240.0          # 360° / 1.5 °/s
 EXPECTED_TRANSITIONS = 2     # SPIN_STABLE (FORCE_MODE), POINTING (SPIN_STABLE_REACHED)
 
 
-def wilson_lower(successes: int, n: int, z: float = 1.96) -> float:
-    """Lower end of the Wilson score interval (95 % for z = 1.96) of a binomial fraction."""
-    if n == 0:
-        return float("nan")
-    p = successes / n
-    centre = p + z * z / (2 * n)
-    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    return (centre - half) / (1 + z * z / n)
-
-
 def _fmt(x: float, digits: int = 0) -> str:
     return "never" if not math.isfinite(x) else f"{x:.{digits}f}"
+
+
+def _pooled(ok_runs) -> list[str]:
+    """The spin-axis error pooled over the ok runs' SPIN_STABLE time (lines of text)."""
+    try:
+        runs = runs_from_columns(ok_runs, "spin_axis_error_deg", SPIN_THRESHOLDS_DEG)
+    except KeyError as exc:
+        return [f"pooled spin-axis error: not available, {exc.args[0]} (campaign run before the pooling columns)"]
+    return pooled_lines(runs, SPIN_THRESHOLDS_DEG, "spin-axis error (SPIN_STABLE after its first 10 %)")
 
 
 def analyse(folder: str) -> dict:
@@ -63,6 +66,7 @@ def analyse(folder: str) -> dict:
         "qualified": int(qualified.sum()), "meets": int(meets.sum()), "lower95": wilson_lower(int(meets.sum()), n),
         "axis_median": float(np.nanmedian(df["spin_axis_error_median_deg"])),
         "axis_p95_of_p95": percentile(df["spin_axis_error_p95_deg"].to_numpy(dtype=float), 95),
+        "pooled": _pooled(df[ok]),
         "cpu_s": float(df["cpu_s"].sum()), "sim_s": float(df["sim_seconds"].sum()),
         "failures": df[~meets][["seed_index", "scenario.initial.rate.magnitude_deg_s", "spin_settled_s",
                                 "spin_settled_dwell_s", "mode_transitions", "sim_seconds"]],
@@ -85,6 +89,10 @@ def main(argv=None) -> int:
               f"{_fmt(r['max'])} | {r['settled']}/{n} | {r['dwelt']}/{n} | {r['no_chatter']}/{n} | "
               f"{r['qualified']}/{n} | **{r['meets']}/{n} = {100 * r['meets'] / n:.1f} %** | "
               f"{100 * r['lower95']:.1f} % | {r['axis_median']:.2f} | {r['cpu_s']:.0f} |")
+    for r in results:
+        print(f"\n{pathlib.Path(r['folder']).name}: spin-axis error, per run: median of run medians "
+              f"{r['axis_median']:.2f} deg, p95 of run p95s {r['axis_p95_of_p95']:.2f} deg")
+        print("\n".join(r["pooled"]))
     for r in results:
         if len(r["failures"]):
             print(f"\n{pathlib.Path(r['folder']).name}: runs not meeting the target")

@@ -6,9 +6,12 @@ the downlinked ``ControlModeChanged`` events, and adds to ``summary.json``:
 
 * ``control_mode_transitions``: ``[{"t_s", "mode"}]`` as the ground received them;
 * ``pointing_error_deg``: ``{"median", "p95", "max", "samples"}`` of the true angle between the
-  body attitude and the controller's target, over the POINTING samples after the first 10 % of them;
+  body attitude and the controller's target, over the POINTING samples after the first 10 % of them,
+  and beside them what pooling runs needs (:mod:`detumble.analysis.pooled_stats`): ``sample_interval_s``,
+  ``window_s`` (samples × interval), ``time_above_s`` at 0.01, 0.05, 0.1, 1, 5, 15° and ``histogram_s``;
 * ``spin_axis_error_deg``: the same statistics of the angle between the total angular momentum
-  (body + wheels) and body +Z over the SPIN_STABLE samples (after their first 10 %);
+  (body + wheels) and body +Z over the SPIN_STABLE samples (after their first 10 %; ``time_above_s`` at
+  1, 5, 15°);
 * ``spin_settled_s``: seconds from entering SPIN_STABLE until the momentum stays within 5° of +Z
   and the rate about +Z within 5 % of its target (the issue's spin target) for the rest of that first
   SPIN_STABLE interval, or None; ``spin_settled_dwell_s``: how long it then stayed settled (to the
@@ -36,6 +39,7 @@ import pathlib
 
 from fprime_lite.deploy.resources import topology_resource
 
+from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, SPIN_THRESHOLDS_DEG, pooling_fields
 from detumble.components.attitude_types import ControlMode
 from detumble.control.quaternion import quat_angle, quat_error
 from detumble.sitl.spacecraft import SimulatedSpacecraft
@@ -53,8 +57,15 @@ _COLUMNS = ("t_s", "mode", "pointing_error_deg", "spin_axis_error_deg", "spin_ra
             "mx_Am2", "my_Am2", "mz_Am2")
 
 
-def error_statistics(values: list[float], skip_fraction: float = 0.1) -> dict | None:
-    """``{"median", "p95", "max", "samples"}`` of ``values`` after dropping their first ``skip_fraction``."""
+def error_statistics(values: list[float], skip_fraction: float = 0.1, *, sample_interval_s: float | None = None,
+                     thresholds_deg: tuple[float, ...] = ()) -> dict | None:
+    """``{"median", "p95", "max", "samples"}`` of ``values`` (deg) after dropping their first ``skip_fraction``.
+
+    Sample-weighted (linear-interpolated percentiles over the kept samples). With ``sample_interval_s`` (s, the
+    time each sample stands for) the pooling fields of :func:`detumble.analysis.pooled_stats.pooling_fields`
+    over the same samples are added: ``sample_interval_s``, ``window_s``, ``time_above_s`` at ``thresholds_deg``
+    and ``histogram_s``. None when no sample is kept.
+    """
     kept = values[int(len(values) * skip_fraction):]
     if not kept:
         return None
@@ -66,7 +77,10 @@ def error_statistics(values: list[float], skip_fraction: float = 0.1) -> dict | 
         hi = min(lo + 1, len(s) - 1)
         return s[lo] + (s[hi] - s[lo]) * (k - lo)
 
-    return {"median": pct(0.5), "p95": pct(0.95), "max": s[-1], "samples": len(s)}
+    stats = {"median": pct(0.5), "p95": pct(0.95), "max": s[-1], "samples": len(s)}
+    if sample_interval_s is not None:
+        stats.update(pooling_fields(kept, sample_interval_s, thresholds_deg))
+    return stats
 
 
 def settle_time(times: list[float], ok: list[bool], start: float) -> float | None:
@@ -222,10 +236,13 @@ class AttitudeRunReport:
 
     def summary(self) -> dict:
         settled, dwell = self._spin_settling()
+        dt = self.interval_us / US_PER_S  # every sample stands for one interval of time
         return {
             "control_mode_transitions": self.transitions,
-            "pointing_error_deg": error_statistics(self._column(2, ControlMode.POINTING)),
-            "spin_axis_error_deg": error_statistics(self._column(3, ControlMode.SPIN_STABLE)),
+            "pointing_error_deg": error_statistics(self._column(2, ControlMode.POINTING), sample_interval_s=dt,
+                                                   thresholds_deg=POINTING_THRESHOLDS_DEG),
+            "spin_axis_error_deg": error_statistics(self._column(3, ControlMode.SPIN_STABLE), sample_interval_s=dt,
+                                                    thresholds_deg=SPIN_THRESHOLDS_DEG),
             "spin_settled_s": settled,
             "spin_settled_dwell_s": dwell,
             "slews": self.slews(),

@@ -11,7 +11,14 @@ Registered through the ``fprime_lite.campaign_metrics`` entry point ``detumble_p
   there was none) to the end: the steady-state hold;
 * ``wheel_momentum_max_fraction``: largest ``|h_i| / h_max`` of the run;
 * ``wheel_limit_events``: WheelLimitReached (the controller cut a request) plus the wheel drivers' saturation
-  events in the run's event log (0: no limit was ever reached).
+  events in the run's event log (0: no limit was ever reached);
+* the pooling columns of ``summary.json``'s ``pointing_error_deg`` and ``spin_axis_error_deg``
+  (:mod:`detumble.analysis.pooled_stats`): ``PREFIX.window_s``, ``PREFIX.sample_interval_s`` (s),
+  ``PREFIX.time_above_s.X`` (s above X deg) and ``PREFIX.histogram_s.I`` (s in histogram bin I, 0 … 126), one
+  float column each, so that a campaign's results.parquet can pool its runs (list them all in ``metrics``:
+  :func:`~detumble.analysis.pooled_stats.column_names` gives the names); ``pointing_steady.…``: the same
+  fields of the steady-hold samples of ``pointing_steady_median_deg`` (each sample standing for
+  ``pointing_error_deg.sample_interval_s``).
 """
 
 from __future__ import annotations
@@ -22,7 +29,10 @@ import pathlib
 
 from fprime_lite.tools.campaign import Metric, MetricUnavailable, RunOutput
 
-__all__ = ["METRICS", "STEADY_AFTER_S", "percentile", "steady_errors"]
+from detumble.analysis.pooled_stats import (N_BINS, POINTING_THRESHOLDS_DEG, SPIN_THRESHOLDS_DEG, dense_histogram,
+                                            pooling_fields, threshold_key)
+
+__all__ = ["METRICS", "POOLING_METRICS", "STEADY_AFTER_S", "percentile", "steady_errors"]
 
 STEADY_AFTER_S = 60.0
 _POINTING = ("POINTING", "3")  # the mode column of attitude.csv (by name; a number in older runs)
@@ -95,6 +105,69 @@ def _limit_events(output: RunOutput, _probe) -> float:
         return float(sum(1 for line in fh if any(f".{name} " in line for name in _LIMIT_EVENTS)))
 
 
+def _pooling_block(output: RunOutput, prefix: str) -> dict:
+    stats = output.summary.get(prefix)
+    if not isinstance(stats, dict):
+        raise MetricUnavailable(f"summary.json {prefix} is null or absent (no samples in that mode, or no "
+                                "AttitudeRunReport)")
+    if "window_s" not in stats:
+        raise MetricUnavailable(f"summary.json {prefix} has no pooling fields (written before they existed)")
+    return stats
+
+
+def _pooling_metric(prefix: str, field: str, key, unit: str, description: str, block) -> Metric:
+    """One float column of a statistics block's pooling fields: ``field`` (``key`` inside it, when given)."""
+    def compute(output: RunOutput, _probe) -> float:
+        stats = block(output, prefix)
+        if field == "histogram_s":
+            return dense_histogram(stats["histogram_s"])[key]
+        value = stats[field] if key is None else stats[field].get(key)
+        if value is None:
+            raise MetricUnavailable(f"summary.json {prefix}.{field} has no {key!r}")
+        return float(value)
+    name = f"{prefix}.{field}" + ("" if key is None else f".{key}")
+    return Metric(name, unit, description, compute)
+
+
+def _pooling_metrics(prefix: str, thresholds: tuple[float, ...], what: str, block=_pooling_block
+                     ) -> tuple[Metric, ...]:
+    return (
+        _pooling_metric(prefix, "window_s", None, "s", f"time the {what} statistics cover (samples × interval)",
+                        block),
+        _pooling_metric(prefix, "sample_interval_s", None, "s", f"time each {what} sample stands for", block),
+        *(_pooling_metric(prefix, "time_above_s", threshold_key(x), "s", f"time with the {what} above {x:g} deg",
+                          block) for x in thresholds),
+        *(_pooling_metric(prefix, "histogram_s", i, "s", f"time with the {what} in histogram bin {i} "
+                          "(detumble.analysis.pooled_stats)", block) for i in range(N_BINS)),
+    )
+
+
+_steady_cache: dict = {}
+
+
+def _steady_block(output: RunOutput, _prefix: str) -> dict:
+    """The pooling fields of :func:`steady_errors` (attitude.csv), each sample standing for the report's sample
+    interval; computed once per run (the key holds attitude.csv's path, size and mtime and the slews)."""
+    stats = output.summary.get("pointing_error_deg")
+    if not isinstance(stats, dict) or "sample_interval_s" not in stats:
+        raise MetricUnavailable("summary.json pointing_error_deg has no sample_interval_s (no POINTING, or "
+                                "written before the pooling fields existed)")
+    path = _out(output) / "attitude.csv"
+    st = path.stat() if path.is_file() else None
+    key = (str(path.resolve()), st.st_size if st else None, st.st_mtime_ns if st else None,
+           repr(output.summary.get("slews")), stats["sample_interval_s"])
+    if key not in _steady_cache:
+        _steady_cache.clear()
+        _steady_cache[key] = pooling_fields(steady_errors(output), float(stats["sample_interval_s"]),
+                                            POINTING_THRESHOLDS_DEG)
+    return _steady_cache[key]
+
+
+POOLING_METRICS = (_pooling_metrics("pointing_error_deg", POINTING_THRESHOLDS_DEG, "POINTING error")
+                   + _pooling_metrics("spin_axis_error_deg", SPIN_THRESHOLDS_DEG, "SPIN_STABLE spin-axis error")
+                   + _pooling_metrics("pointing_steady", POINTING_THRESHOLDS_DEG, "steady-hold pointing error",
+                                      _steady_block))
+
 METRICS = (
     Metric("slew_settle_s", "s", "first target change while POINTING until the true error stays below 0.1 deg",
            _slew_settle),
@@ -104,4 +177,5 @@ METRICS = (
            "after the last target change", lambda output, _probe: percentile(steady_errors(output), 0.95)),
     Metric("wheel_momentum_max_fraction", "1", "largest |h_i|/h_max of any wheel over the run", _wheel_fraction),
     Metric("wheel_limit_events", "1", "wheel torque/momentum limit events in the run's event log", _limit_events),
+    *POOLING_METRICS,
 )
