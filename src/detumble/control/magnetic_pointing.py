@@ -18,11 +18,17 @@ how fast the field line turns (``test_magnetic_pointing.py`` checks it against t
 of the linearised periodic system). The D term damps the motion relative to the turning line,
 ``ω − α ḃ``.
 
-Robustness. The steering feeds the along-field rate back with the gain ``K_p (1 + ρ²)/(2 r)`` (≈ 1.25e-3
-N·m·s for the defaults), 10–30 times ``K_d``. A field direction that is wrong by ``δ`` (a magnetometer bias:
-the default LIS2MDL's 0.015 G is δ ≈ 3.5° where the field is weakest) leaks ``δ |ω⊥|`` into it, which acts
-as negative damping of ``ω⊥`` unless ``K_d > K_p (1 + ρ²) δ / (2 r)``: with ``K_d`` = 4e-5 N·m·s the
-deployment spun up after converging, with 1e-4 it holds (study).
+Robustness. The steering feeds the along-field rate back with the gain ``K_p (1 + ρ²)/(2 r)`` (≈ 5e-3
+N·m·s for the controller's defaults K_p 4e-6 N·m, ρ 2), 10–30 times ``K_d``. A field direction that is wrong
+by ``δ`` (a magnetometer bias: the default LIS2MDL's 0.015 G is δ ≈ 3.5° where the field is weakest) leaks
+``δ |ω⊥|`` into it, which acts as negative damping of ``ω⊥`` unless ``K_d > K_p (1 + ρ²) δ / (2 r)``: with
+``K_p`` 1e-6 and ``K_d`` = 4e-5 N·m·s the deployment spun up after converging, with 1e-4 it held; the present
+defaults (4e-6, 4e-4, ρ 2, ζ 1) keep a Floquet decay of 2.4e-3 /s at twice the scenario's bias (study).
+ζ = 1 maximises the slow pair's decay for a given ρ: its slower root is ``ρ r (ζ − √(ζ² − 1))`` above 1.
+
+The residual dipole (a constant ``m_res`` in B, ~1e-3 A·m² on a 1U) adds ``m_res × B`` ≈ 4e-8 N·m, which the
+stiff loop meets with an offset ≈ ``|m_res × B| / K_p``; :class:`ResidualDipoleEstimator` estimates
+``m_res`` from the angular-momentum balance so the coils can cancel it (feed-forward ``−m_res / duty``).
 
 Frames and units: body B; ``q_target`` = ``q_TN`` (inertial target), ``q_BN`` scalar first; ``ω`` rad/s
 (B relative to N, in B); ``b`` any field unit (only its direction is used); ``bdot_hat`` = the time

@@ -9,6 +9,9 @@ implementation:
 
     python -m detumble.sim.magnetic_pointing_check --law seed_pd --kp 2e-6 --kd 4e-4
     python -m detumble.sim.magnetic_pointing_check --law field_steering --seeds 1,2,3
+    # attitude hold from the hold campaign's worst corner, with the flight's duty, magnetometer bias, gyro noise
+    python -m detumble.sim.magnetic_pointing_check --seeds 1..20 --rate 0.05 --offset 20 --settle 30 \
+        --duty 0.8 --mag-bias 0.012 -0.008 0.005 --rate-noise 1.4e-4 --dt 0.2 [--compensate]
 
 Reports the true pointing error (sampled every 10 s) as median / p95 / max after the first 10 % of
 the run, the run summary's convention.
