@@ -591,6 +591,19 @@ def test_residual_dipole_estimator_runs_only_while_the_coils_point(fprime_harnes
     assert est.windows == 4
 
 
+@pytest.mark.parametrize("bad", [{"MAG_RESIDUAL_DIPOLE_X": 0.06}, {"MAG_RESIDUAL_DIPOLE_Z": -0.06},
+                                 {"MAG_RESIDUAL_WINDOW": 1.0}, {"MAG_RESIDUAL_WINDOW": 1000.0}])
+def test_residual_dipole_parameters_have_ranges(fprime_harness, bad):
+    """ADCS-062: MAG_RESIDUAL_DIPOLE_* outside ±0.05 A·m² and MAG_RESIDUAL_WINDOW outside 5…600 s are refused by
+    PRM_SET (VALIDATION_ERROR) and the value in use is kept."""
+    h = make(fprime_harness)
+    ((name, value),) = bad.items()
+    before = getattr(h.comp, name).value
+    h.send_command(f"{name}_PRM_SET", value)
+    h.assert_cmd_response(0, f"{name}_PRM_SET", CmdResponse.VALIDATION_ERROR)
+    assert getattr(h.comp, name).value == before
+
+
 def test_spin_stable_seed_damper_requests_nothing_from_rest(fprime_harness):
     """ADCS-033: SPIN_LAW = SEED_KANE_DAMPER flies the seed's equations as written: from rest its state is only
     driven by the torque it produced itself, so the requested torque stays zero and no coil is driven (the
