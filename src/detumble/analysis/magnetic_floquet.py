@@ -15,7 +15,8 @@ import math
 
 import numpy as np
 
-__all__ = ["field_line_along_orbit", "closed_loop_matrix", "floquet_rate", "averaged_projection"]
+__all__ = ["field_line_along_orbit", "closed_loop_matrix", "floquet_rate", "averaged_projection",
+           "along_field_offset_from_gravity_gradient"]
 
 
 def field_line_along_orbit(plant, q_target, samples: int = 1000, bias_t=(0.0, 0.0, 0.0)):
@@ -105,3 +106,29 @@ def floquet_rate(law: str, period: float, b_hat, bdot, inertia, k_p: float, k_d:
             k4 = a @ (phi + h * k3)
             phi = phi + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
     return math.log(max(abs(np.linalg.eigvals(phi)))) / period
+
+
+def along_field_offset_from_gravity_gradient(plant, q_target, samples: int = 400):
+    """``(t s, α rad)`` over one orbit: the quasi-static error about the field line that the gravity-gradient
+    torque forces on a body held at ``q_target``.
+
+    No dipole torque acts along b̂, and for the along-field pair ``β̇ = r² α + τ∥ / J`` whatever the law (its
+    control enters ``α̇`` only), so a slowly varying torque along the field, ``τ∥ = τ_gg · b̂``, is met at
+    ``α = −τ∥ / (J r²)``: the along-field stiffness is ``J r²`` (≈ 8e-9 N·m/rad here), set by how fast the field
+    line turns, not by the gains. ``J`` is the mean principal moment (kg·m²), ``τ_gg = 3 μ/R³ r̂ × (J r̂)`` in the
+    target frame (μ of the Earth, 3.986004418e14 m³/s²)."""
+    mu = 3.986004418e14
+    period, b, bd = field_line_along_orbit(plant, q_target, samples)
+    inertia = np.asarray(plant.scenario.spacecraft.inertia_kg_m2, dtype=float)
+    j_mean = float(np.trace(inertia)) / 3.0
+    r_tn = _dcm(q_target)
+    ts = np.linspace(0.0, period, samples + 1)
+    alpha = np.empty(len(ts))
+    for k, t in enumerate(ts):
+        r_n = np.array(plant.orbit.position_N(t), dtype=float)
+        rn = float(np.linalg.norm(r_n))
+        rh = r_tn @ (r_n / rn)
+        tau = 3.0 * mu / rn ** 3 * np.cross(rh, inertia @ rh)
+        rate = float(np.linalg.norm(bd[k]))
+        alpha[k] = -float(tau @ b[k]) / (j_mean * rate * rate)
+    return ts, alpha
