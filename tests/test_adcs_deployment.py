@@ -135,7 +135,8 @@ def test_full_flight_pointing_median_target(full_flight):
 def test_magnetorquer_only_attitude_hold_meets_the_target(tmp_path):
     """ADCS-042: POINTING_ACTUATOR = MAGNETORQUERS, forced at 5 s with the spacecraft at rest on its target, one
     orbit (docs/studies/magnetic_pointing.md): the run summary's pointing error (after the first 10 % of POINTING)
-    has a median ≤ 5° and a p95 ≤ 15° (issue 13's target; measured 3.2° / 4.8°), the wheels never turn."""
+    has a median ≤ 5° and a p95 ≤ 15° (issue 13's target; measured 0.87° / 2.06° with the present defaults, 3.2° /
+    4.8° with the previous ones), the wheels never turn."""
     seq = ROOT / "campaigns" / "adcs" / "pointing_magnetorquers.seq"
     summary, rows = fly(tmp_path, 5580.0, settings=("initial.rate.magnitude_deg_s=0.0",
                                                     "initial.attitude.quaternion=[0.9238795325112867,0,0.3826834323650898,0]"),
@@ -145,3 +146,30 @@ def test_magnetorquer_only_attitude_hold_meets_the_target(tmp_path):
     assert stats["median"] <= 5.0
     assert stats["p95"] <= 15.0
     assert all(float(r["h0_nms"]) == 0.0 and float(r["h1_nms"]) == 0.0 and float(r["h2_nms"]) == 0.0 for r in rows)
+
+
+@pytest.mark.slow
+def test_magnetorquer_hold_from_the_worst_corner_meets_the_target(tmp_path):
+    """ADCS-064: the hold campaign's worst corner on the deployment — 20° from the target about a random axis at
+    0.05 °/s (the draw of campaigns/adcs/hold_magnetorquers_worst.yaml's first run), POINTING_ACTUATOR =
+    MAGNETORQUERS forced at 5 s, one orbit, defaults (K_P_MAG 4e-6, K_D_MAG 4e-4, ζ 1, MAG_SETTLE_TIME 30 s,
+    MAG_RESIDUAL_MODE ESTIMATE): the run summary's median ≤ 5° and p95 ≤ 15° (issue 13's target; the previous
+    defaults missed p95 in 16 of 100 hold runs, mostly at these rates), and the on-board residual-dipole estimate
+    (telemetry ResidualDipole) ends within 1e-4 A·m² per axis of the plant's (1.0, −0.5, 0.8)e-3 A·m² (measured:
+    median 1.00°, p95 4.43°, estimate within 8e-6 A·m²)."""
+    seq = ROOT / "campaigns" / "adcs" / "pointing_magnetorquers.seq"
+    summary, _ = fly(tmp_path, 5580.0, sequence=seq, settings=(
+        "initial.rate.magnitude_deg_s=0.05",
+        "initial.rate.axis=[0.6639284297189,0.7349611899967293,0.13795321456779147]",
+        "initial.attitude.quaternion=[0.873197000649162,0.11579247954753936,0.46534263362703093,0.08703638932423131]"))
+    stats = summary["pointing_error_deg"]
+    assert stats["median"] <= 5.0
+    assert stats["p95"] <= 15.0
+    with open(tmp_path / "channels_wide.csv", newline="") as f:
+        last = None
+        for row in csv.DictReader(f):
+            if row.get(f"{CTRL}.ResidualDipole.0"):
+                last = row
+    assert last is not None
+    estimate = [float(last[f"{CTRL}.ResidualDipole.{i}"]) for i in range(3)]
+    assert all(abs(e - m) <= 1.0e-4 for e, m in zip(estimate, (1.0e-3, -5.0e-4, 8.0e-4), strict=True))

@@ -15,16 +15,22 @@ import math
 
 import numpy as np
 
-__all__ = ["field_line_along_orbit", "closed_loop_matrix", "floquet_rate", "averaged_projection"]
+__all__ = ["field_line_along_orbit", "closed_loop_matrix", "floquet_rate", "averaged_projection",
+           "along_field_offset_from_gravity_gradient"]
 
 
-def field_line_along_orbit(plant, q_target, samples: int = 1000):
+def field_line_along_orbit(plant, q_target, samples: int = 1000, bias_t=(0.0, 0.0, 0.0)):
     """``(period s, b̂ (samples+1)×3, ḃ (samples+1)×3)``: the field direction in the target frame over one
-    orbit of ``plant`` (a :class:`detumble.sim.plant.Plant`) and its time derivative (1/s, ⟂ b̂)."""
+    orbit of ``plant`` (a :class:`detumble.sim.plant.Plant`) and its time derivative (1/s, ⟂ b̂).
+
+    ``bias_t``: a constant field (T) added in the target frame before normalising — what a law holding the
+    target sees through a magnetometer with that bias (pass the result as ``b_law``/``bdot_law`` of
+    :func:`floquet_rate`)."""
     period = 2.0 * math.pi / plant.orbit.mean_motion
     r_tn = _dcm(q_target)
     ts = np.linspace(0.0, period, samples + 1)
     b = np.array([r_tn @ np.array(plant.field.b_N(t, plant.orbit.position_N(t))) for t in ts])
+    b += np.asarray(bias_t, dtype=float)[None, :]
     b /= np.linalg.norm(b, axis=1)[:, None]
     bd = np.gradient(b, ts[1] - ts[0], axis=0)
     bd -= np.sum(bd * b, axis=1)[:, None] * b
@@ -47,15 +53,17 @@ def averaged_projection(b_hat) -> np.ndarray:
 
 
 def closed_loop_matrix(law: str, b, bd, inertia, k_p: float, k_d: float, rho: float = 2.0, zeta: float = 0.7,
-                       r_min: float = 5.0e-4) -> np.ndarray:
+                       r_min: float = 5.0e-4, b_law=None, bd_law=None) -> np.ndarray:
     """6×6 ``A`` of ``d[θ, ω]/dt = A [θ, ω]`` at one instant (field direction ``b``, its rate ``bd``).
 
     ``law``: ``"seed_pd"`` (``τ = −K_p θ/2 − K_d ω``) or ``"field_steering"`` (the linearisation of
     :func:`detumble.control.magnetic_pointing.field_steering_torque`, whose ``θ`` is ``2 q_err.v``).
+    ``b_law``, ``bd_law``: the field direction and rate the law believes (a biased magnetometer), when they
+    differ from the true ones (which set the projection).
     """
-    b = np.asarray(b, dtype=float)
-    bd = np.asarray(bd, dtype=float)
-    p = np.eye(3) - np.outer(b, b)
+    p = np.eye(3) - np.outer(np.asarray(b, dtype=float), np.asarray(b, dtype=float))
+    b = np.asarray(b if b_law is None else b_law, dtype=float)
+    bd = np.asarray(bd if bd_law is None else bd_law, dtype=float)
     if law == "seed_pd":
         k_th, k_w = 0.5 * k_p * np.eye(3), k_d * np.eye(3)
     elif law == "field_steering":
@@ -79,13 +87,18 @@ def closed_loop_matrix(law: str, b, bd, inertia, k_p: float, k_d: float, rho: fl
 
 
 def floquet_rate(law: str, period: float, b_hat, bdot, inertia, k_p: float, k_d: float, substeps: int = 8,
-                 **kw) -> float:
-    """``log(max |eig Φ(T)|)/T`` (1/s) over the samples of one period (RK4, ``A`` held over each sample)."""
+                 b_law=None, bdot_law=None, **kw) -> float:
+    """``log(max |eig Φ(T)|)/T`` (1/s) over the samples of one period (RK4, ``A`` held over each sample).
+
+    ``b_law``, ``bdot_law``: sampled like ``b_hat``: what the law sees, if not the truth (see
+    :func:`closed_loop_matrix`)."""
     n = len(b_hat) - 1
     h = period / n / substeps
     phi = np.eye(6)
     for k in range(n):
-        a = closed_loop_matrix(law, b_hat[k], bdot[k], inertia, k_p, k_d, **kw)
+        a = closed_loop_matrix(law, b_hat[k], bdot[k], inertia, k_p, k_d,
+                               b_law=None if b_law is None else b_law[k],
+                               bd_law=None if bdot_law is None else bdot_law[k], **kw)
         for _ in range(substeps):
             k1 = a @ phi
             k2 = a @ (phi + 0.5 * h * k1)
@@ -93,3 +106,29 @@ def floquet_rate(law: str, period: float, b_hat, bdot, inertia, k_p: float, k_d:
             k4 = a @ (phi + h * k3)
             phi = phi + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
     return math.log(max(abs(np.linalg.eigvals(phi)))) / period
+
+
+def along_field_offset_from_gravity_gradient(plant, q_target, samples: int = 400):
+    """``(t s, α rad)`` over one orbit: the quasi-static error about the field line that the gravity-gradient
+    torque forces on a body held at ``q_target``.
+
+    No dipole torque acts along b̂, and for the along-field pair ``β̇ = r² α + τ∥ / J`` whatever the law (its
+    control enters ``α̇`` only), so a slowly varying torque along the field, ``τ∥ = τ_gg · b̂``, is met at
+    ``α = −τ∥ / (J r²)``: the along-field stiffness is ``J r²`` (≈ 8e-9 N·m/rad here), set by how fast the field
+    line turns, not by the gains. ``J`` is the mean principal moment (kg·m²), ``τ_gg = 3 μ/R³ r̂ × (J r̂)`` in the
+    target frame (μ of the Earth, 3.986004418e14 m³/s²)."""
+    mu = 3.986004418e14
+    period, b, bd = field_line_along_orbit(plant, q_target, samples)
+    inertia = np.asarray(plant.scenario.spacecraft.inertia_kg_m2, dtype=float)
+    j_mean = float(np.trace(inertia)) / 3.0
+    r_tn = _dcm(q_target)
+    ts = np.linspace(0.0, period, samples + 1)
+    alpha = np.empty(len(ts))
+    for k, t in enumerate(ts):
+        r_n = np.array(plant.orbit.position_N(t), dtype=float)
+        rn = float(np.linalg.norm(r_n))
+        rh = r_tn @ (r_n / rn)
+        tau = 3.0 * mu / rn ** 3 * np.cross(rh, inertia @ rh)
+        rate = float(np.linalg.norm(bd[k]))
+        alpha[k] = -float(tau @ b[k]) / (j_mean * rate * rate)
+    return ts, alpha

@@ -31,7 +31,8 @@ from fprime_lite import (F64, U32, Channel, CmdResponse, Event, OutputPort, Para
                          Severity, sync_command, sync_input)
 
 from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, AttitudeEstimator, ControlAutonomy,
-                                                ControlMode, MagPointingLaw, ModeChangeReason, PointingActuator,
+                                                ControlMode, MagPointingLaw, MagResidualMode, ModeChangeReason,
+                                                PointingActuator,
                                                 Quaternion, RateSource, SpinLaw, Vector3, WheelValues)
 from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFieldGet, StartMagnetorquer,
                                        StopMagnetorquer, Success, WheelEnableSet, WheelStateGet, WheelTorqueSet)
@@ -40,7 +41,7 @@ from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.mekf import Mekf
 from detumble.control.rate_observer import RateObserver
 from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
-from detumble.control.magnetic_pointing import FieldDirectionRate, field_steering_torque
+from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipoleEstimator, field_steering_torque
 from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
 from detumble.control.pointing import ErrorIntegrator, pd_torque
 from detumble.control.quaternion import (is_unit_quaternion, quat_angle, quat_normalize, quat_shortest,
@@ -196,6 +197,12 @@ class AttitudeController(PassiveComponent):
     MAG_FIELD_RATE_BANDWIDTH = Param(F64, default=_defaults.MAG_FIELD_RATE_BANDWIDTH, low=1.0e-3, high=1.0)
     MAG_FIELD_RATE_MIN = Param(F64, default=_defaults.MAG_FIELD_RATE_MIN, low=1.0e-5, high=1.0e-1)
     MAG_SETTLE_TIME = Param(F64, default=_defaults.MAG_SETTLE_TIME, low=0.0, high=3600.0)
+    # residual-dipole feed-forward (ResidualDipoleEstimator; docs/studies/magnetic_pointing.md)
+    MAG_RESIDUAL_MODE = Param(MagResidualMode, default=MagResidualMode[_defaults.MAG_RESIDUAL_MODE])
+    MAG_RESIDUAL_DIPOLE_X = Param(F64, default=_defaults.MAG_RESIDUAL_DIPOLE_X, low=-0.05, high=0.05)  # A·m², B
+    MAG_RESIDUAL_DIPOLE_Y = Param(F64, default=_defaults.MAG_RESIDUAL_DIPOLE_Y, low=-0.05, high=0.05)  # A·m², B
+    MAG_RESIDUAL_DIPOLE_Z = Param(F64, default=_defaults.MAG_RESIDUAL_DIPOLE_Z, low=-0.05, high=0.05)  # A·m², B
+    MAG_RESIDUAL_WINDOW = Param(F64, default=_defaults.MAG_RESIDUAL_WINDOW, low=5.0, high=600.0)  # s
 
     # --- ports ---------------------------------------------------------------------------------
 
@@ -249,6 +256,11 @@ class AttitudeController(PassiveComponent):
                                 "the rate observer keeps its previous model", throttle=1)
     WheelLimitReached = Event(Severity.WARNING_LO, "A wheel torque or momentum limit cut the requested torque",
                               throttle=5)
+    ResidualDipoleEstimated = Event(Severity.ACTIVITY_LO, "Residual dipole estimate ready: ({}, {}, {}) A m^2",
+                                    x=F64, y=F64, z=F64)
+    ResidualDipoleEstimateRefused = Event(Severity.WARNING_LO, "Residual dipole estimate ({}, {}, {}) A m^2 beyond the "
+                                          "coil limits or not finite: feed-forward uses MAG_RESIDUAL_DIPOLE_*",
+                                          x=F64, y=F64, z=F64, throttle=5)
 
     # --- telemetry -----------------------------------------------------------------------------
 
@@ -268,6 +280,7 @@ class AttitudeController(PassiveComponent):
     AttitudeValid = Channel(U32)  # 1 while the star tracker's attitude is recent
     AttitudeSigma3 = Channel(F64, format="{.5f}")  # deg, MEKF 3·√(trace P_θθ) (not written with COMPLEMENTARY)
     FieldLineRate = Channel(F64, format="{.5f}")  # deg/s, estimated |db̂/dt| of the inertial field direction
+    ResidualDipole = Channel(Vector3)  # A·m², B: the residual-dipole feed-forward in use (MAG_RESIDUAL_MODE)
 
     # --- construction --------------------------------------------------------------------------
 
@@ -287,6 +300,8 @@ class AttitudeController(PassiveComponent):
         self.field_rate = FieldDirectionRate()  # db̂_N/dt for magnetorquer-only pointing
         self.bdot_hat_B: tuple | None = None  # its latest estimate in B, 1/s
         self.attitude_known_s = 0.0  # s since the attitude became known (gyro bias settling, MAG_SETTLE_TIME)
+        self.residual_estimator = ResidualDipoleEstimator(self.rate_observer.inertia)
+        self.residual_ff: tuple = _ZERO  # A·m², B: the residual-dipole feed-forward of the last POINTING cycle
         self.integrator = ErrorIntegrator(math.radians(1.0), _defaults.INTEGRAL_MAX_TORQUE)
         self.target: tuple[float, float, float, float] | None = None
         self.seed_damper = SeedKaneDamper(1.0e-4, 2.0e-4)
@@ -520,6 +535,7 @@ class AttitudeController(PassiveComponent):
         self._track_field_line(dt)
         self.wheel_momenta = self._read_wheel_momenta() if self.wheel_count() else None
         self._update_rate_observer(dt)
+        self._track_residual_dipole(dt)
 
     def _applied_torque(self):
         """The body torque of the last cycle, N·m (B): the wheels' −Σ u_i g_i plus the coils' m × B over their duty."""
@@ -567,6 +583,36 @@ class AttitudeController(PassiveComponent):
             self.bdot_hat_B = None
             return
         self.bdot_hat_B = fr.update(q, self.b_tesla, dt)
+
+    def _track_residual_dipole(self, dt: float) -> None:
+        """Feed the residual-dipole estimator while the coils point (magnetorquer POINTING past MAG_SETTLE_TIME,
+        small dipoles, a settled gyro bias); elsewhere its open window is dropped and its sums kept."""
+        est = self.residual_estimator
+        if (self.MAG_RESIDUAL_MODE.value != MagResidualMode.ESTIMATE or self.mode != ControlMode.POINTING
+                or self._pointing_uses_wheels() or self.omega is None or self.b_tesla is None
+                or self.attitude_known_s < self.MAG_SETTLE_TIME.value):
+            est.gap()
+            return
+        est.window_s = self.MAG_RESIDUAL_WINDOW.value
+        est.inertia = self.rate_observer.inertia
+        ready = est.estimate is not None
+        m = est.update(self.omega, self._applied_torque(), _ZERO, self.b_tesla, dt)
+        if m is not None and not ready:
+            self.ResidualDipoleEstimated(m[0], m[1], m[2])
+
+    def _residual_feed_forward(self):
+        """The residual dipole to cancel, A·m² (B), by MAG_RESIDUAL_MODE; an estimate past a coil limit is refused."""
+        mode = self.MAG_RESIDUAL_MODE.value
+        if mode == MagResidualMode.OFF:
+            return _ZERO
+        est = self.residual_estimator.estimate
+        if mode == MagResidualMode.ESTIMATE and est is not None:
+            lim = self._coil_limits()
+            if _finite(*est) and all(abs(est[i]) <= lim[i] for i in range(3)):
+                self.ResidualDipoleEstimateRefused.clear_throttle()
+                return est
+            self.ResidualDipoleEstimateRefused(est[0], est[1], est[2])
+        return (self.MAG_RESIDUAL_DIPOLE_X.value, self.MAG_RESIDUAL_DIPOLE_Y.value, self.MAG_RESIDUAL_DIPOLE_Z.value)
 
     def _read_gyro(self):
         """The gyro reading ``(x, y, z)`` rad/s (B), or None when the port fails, is not connected or
@@ -637,6 +683,7 @@ class AttitudeController(PassiveComponent):
 
     def _actuate(self, dt: float) -> None:
         mode = self.mode
+        self.residual_ff = _ZERO
         tau = _ZERO
         dipole = None  # None: coils off this cycle
         wheel_u = None  # None: wheels at zero torque
@@ -680,6 +727,10 @@ class AttitudeController(PassiveComponent):
                     tau = _ZERO  # the gyro-bias estimate is still settling: the coils wait (no dipole)
                 elif self.b_tesla is not None:
                     dipole, _ = project_dipole_weighted(tau, self.b_tesla, self._coil_limits())
+                    # cancel the residual dipole, which acts all the time, with coils on for the duty share
+                    ff = self.residual_ff = self._residual_feed_forward()
+                    d = self._duty()
+                    dipole = (dipole[0] - ff[0] / d, dipole[1] - ff[1] / d, dipole[2] - ff[2] / d)
             self.pointing_error_deg = math.degrees(quat_angle(qe))
         self.torque_request = tau
         if dipole is None:
@@ -800,6 +851,7 @@ class AttitudeController(PassiveComponent):
             self.AttitudeSigma3.write(math.degrees(self.filter.attitude_sigma3_rad))
         if self.bdot_hat_B is not None:
             self.FieldLineRate.write(math.degrees(_norm(self.bdot_hat_B)))
+        self.ResidualDipole.write(Vector3(list(self.residual_ff)))
 
     # --- ports out -----------------------------------------------------------------------------
 

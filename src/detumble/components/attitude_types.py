@@ -11,7 +11,8 @@ from fprime_lite import F64, Array, FwEnum, PortType, Struct
 
 from detumble.components.types import Result
 
-__all__ = ["ControlMode", "ControlAutonomy", "SpinLaw", "PointingActuator", "MagPointingLaw", "ModeChangeReason",
+__all__ = ["ControlMode", "ControlAutonomy", "SpinLaw", "PointingActuator", "MagPointingLaw", "MagResidualMode",
+           "ModeChangeReason",
            "AttitudeEstimator", "RateSource",
            "Vector3", "Quaternion", "WheelValues", "AngularVelocity", "AngularVelocityGet", "MAX_WHEELS"]
 
@@ -75,6 +76,16 @@ class MagPointingLaw(FwEnum, namespace="Components"):
 
     SEED_PD = 0
     FIELD_STEERING = 1
+
+
+class MagResidualMode(FwEnum, namespace="Components"):
+    """Residual-dipole feed-forward on the magnetorquers in POINTING: none (OFF), the ground-calibrated
+    MAG_RESIDUAL_DIPOLE_X/Y/Z (PARAMETER), or the on-board torque-balance estimate (ESTIMATE; the
+    parameters until the estimate is ready)."""
+
+    OFF = 0
+    PARAMETER = 1
+    ESTIMATE = 2
 
 
 class ModeChangeReason(FwEnum, namespace="Components"):

@@ -29,14 +29,19 @@ WHEEL_MAX_MOMENTUM = 4.0e-3  # N·m·s per wheel
 POINTING_ACTUATOR = "ANY"  # ANY: wheels when they all answer, else the magnetorquers
 
 # --- pointing on the magnetorquers alone -------------------------------------------------------
-K_P_MAG = 1.0e-6  # N·m: spring ⟂ B
-K_D_MAG = 1.0e-4  # N·m·s: damping ⟂ B
+K_P_MAG = 4.0e-6  # N·m: spring ⟂ B
+K_D_MAG = 4.0e-4  # N·m·s: damping ⟂ B
 MAG_POINTING_LAW = "FIELD_STEERING"
 MAG_STEER_RHO = 2.0  # along-field poles at ρ × the field line's rate
-MAG_STEER_ZETA = 0.7  # their damping ratio
+MAG_STEER_ZETA = 1.0  # their damping ratio
 MAG_FIELD_RATE_BANDWIDTH = 0.05  # rad/s: the field-direction-rate estimator's bandwidth
 MAG_FIELD_RATE_MIN = 5.0e-4  # 1/s: floor of |ḃ| in the law
-MAG_SETTLE_TIME = 120.0  # s of known attitude before the coils point
+MAG_SETTLE_TIME = 30.0  # s of known attitude before the coils point
+MAG_RESIDUAL_MODE = "ESTIMATE"  # residual-dipole feed-forward: OFF, PARAMETER (MAG_RESIDUAL_DIPOLE_*) or ESTIMATE
+MAG_RESIDUAL_DIPOLE_X = 0.0  # A·m², B: ground-calibrated residual dipole
+MAG_RESIDUAL_DIPOLE_Y = 0.0  # A·m², B
+MAG_RESIDUAL_DIPOLE_Z = 0.0  # A·m², B
+MAG_RESIDUAL_WINDOW = 60.0  # s: the estimator's momentum-balance window
 
 # --- detumble and spin -------------------------------------------------------------------------
 K_BDOT = 3.0  # A·m²·s/G: the internal M = −k Ḃ when no dipole provider is connected
@@ -99,6 +104,7 @@ ENUM_CHOICES: dict[str, tuple[str, ...]] = {
     "ESTIMATOR": ("COMPLEMENTARY", "MEKF"),
     "RATE_SOURCE": ("GYRO", "OBSERVER"),
     "MAG_POINTING_LAW": ("SEED_PD", "FIELD_STEERING"),
+    "MAG_RESIDUAL_MODE": ("OFF", "PARAMETER", "ESTIMATE"),
 }
 
 #: Every parameter default by its flight name.

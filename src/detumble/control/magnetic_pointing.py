@@ -18,11 +18,17 @@ how fast the field line turns (``test_magnetic_pointing.py`` checks it against t
 of the linearised periodic system). The D term damps the motion relative to the turning line,
 ``ω − α ḃ``.
 
-Robustness. The steering feeds the along-field rate back with the gain ``K_p (1 + ρ²)/(2 r)`` (≈ 1.25e-3
-N·m·s for the defaults), 10–30 times ``K_d``. A field direction that is wrong by ``δ`` (a magnetometer bias:
-the default LIS2MDL's 0.015 G is δ ≈ 3.5° where the field is weakest) leaks ``δ |ω⊥|`` into it, which acts
-as negative damping of ``ω⊥`` unless ``K_d > K_p (1 + ρ²) δ / (2 r)``: with ``K_d`` = 4e-5 N·m·s the
-deployment spun up after converging, with 1e-4 it holds (study).
+Robustness. The steering feeds the along-field rate back with the gain ``K_p (1 + ρ²)/(2 r)`` (≈ 5e-3
+N·m·s for the controller's defaults K_p 4e-6 N·m, ρ 2), 10–30 times ``K_d``. A field direction that is wrong
+by ``δ`` (a magnetometer bias: the default LIS2MDL's 0.015 G is δ ≈ 3.5° where the field is weakest) leaks
+``δ |ω⊥|`` into it, which acts as negative damping of ``ω⊥`` unless ``K_d > K_p (1 + ρ²) δ / (2 r)``: with
+``K_p`` 1e-6 and ``K_d`` = 4e-5 N·m·s the deployment spun up after converging, with 1e-4 it held; the present
+defaults (4e-6, 4e-4, ρ 2, ζ 1) keep a Floquet decay of 2.4e-3 /s at twice the scenario's bias (study).
+ζ = 1 maximises the slow pair's decay for a given ρ: its slower root is ``ρ r (ζ − √(ζ² − 1))`` above 1.
+
+The residual dipole (a constant ``m_res`` in B, ~1e-3 A·m² on a 1U) adds ``m_res × B`` ≈ 4e-8 N·m, which the
+stiff loop meets with an offset ≈ ``|m_res × B| / K_p``; :class:`ResidualDipoleEstimator` estimates
+``m_res`` from the angular-momentum balance so the coils can cancel it (feed-forward ``−m_res / duty``).
 
 Frames and units: body B; ``q_target`` = ``q_TN`` (inertial target), ``q_BN`` scalar first; ``ω`` rad/s
 (B relative to N, in B); ``b`` any field unit (only its direction is used); ``bdot_hat`` = the time
@@ -36,7 +42,7 @@ import math
 
 from detumble.control.quaternion import Quat, Vec3, quat_error, rotate_b_to_n, rotate_n_to_b
 
-__all__ = ["field_steering_torque", "slow_pole_rate", "FieldDirectionRate"]
+__all__ = ["field_steering_torque", "slow_pole_rate", "FieldDirectionRate", "ResidualDipoleEstimator"]
 
 
 def _dot(a: Vec3, b: Vec3) -> float:
@@ -117,3 +123,115 @@ class FieldDirectionRate:
         self.v = (v[0] + h / dt * e[0], v[1] + h / dt * e[1], v[2] + h / dt * e[2])
         self.samples += 1
         return rotate_n_to_b(q_BN, self.v)
+
+
+class ResidualDipoleEstimator:
+    """Least-squares estimate of the spacecraft's constant residual dipole ``m`` (A·m², B) from the
+    angular-momentum balance, for feed-forward compensation.
+
+    Over a window of ``window_s`` seconds the momentum the body gained that the modelled torques do not
+    explain is the residual dipole's impulse: ``d = J (ω_end − ω_start) − ∫ (τ_model − ω × (J ω + h)) dt
+    = m × S`` with ``S = ∫ b dt`` (``m`` constant in B). One window gives ``S × d = (|S|² I − S Sᵀ) m``,
+    rank 2 (nothing along ``S``); the field turns in B over an orbit, so the sum over windows
+    ``A m = y`` (``A = Σ w (|S|² I − S Sᵀ)``, ``y = Σ w S × d``, each window weighted by ``w = 1/|S|²`` and the
+    sums fading with the memory ``memory_s``) has full rank. :attr:`estimate` is ``A⁻¹ y`` once
+    ``windows_min`` windows are in and ``A`` is well conditioned (``det A / (tr A / 3)³`` ≥
+    ``conditioning_min``), else None.
+
+    Noise: the rate enters only through the window's end points, so gyro noise σ_ω (rad/s, per reading)
+    gives ``|δm| ≈ √2 J σ_ω / (|b| window_s)`` per window, averaging down as 1/√N. Unmodelled torques that
+    are constant in B, or a coil-scale error (∝ the command), bias it; the study measures it on the
+    deployment.
+
+    Units: ``omega_B`` rad/s, ``torque_B`` N·m (the coils' and wheels' torque over the interval that
+    ends now), ``wheel_momentum_B`` N·m·s, ``b_B`` T, ``inertia`` kg·m² (3×3, B), ``dt`` s.
+    """
+
+    def __init__(self, inertia, window_s: float = 60.0, memory_s: float = 20000.0, windows_min: int = 10,
+                 conditioning_min: float = 0.05) -> None:
+        self.inertia = tuple(tuple(float(x) for x in row) for row in inertia)
+        self.window_s = float(window_s)
+        self.memory_s = float(memory_s)
+        self.windows_min = int(windows_min)
+        self.conditioning_min = float(conditioning_min)
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget everything (a gap in the data, or a new start)."""
+        self.a = [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
+        self.y = [0.0, 0.0, 0.0]
+        self.windows = 0
+        self.estimate: Vec3 | None = None
+        self._restart_window(None)
+
+    def _restart_window(self, omega: Vec3 | None) -> None:
+        self._w0 = omega
+        self._imp = [0.0, 0.0, 0.0]  # ∫ (τ_model − ω × (Jω + h)) dt, N·m·s
+        self._s = [0.0, 0.0, 0.0]  # ∫ b dt, T·s
+        self._elapsed = 0.0
+
+    def gap(self) -> None:
+        """The data stopped for a while (no rate, no field): drop the open window, keep the sums."""
+        self._restart_window(None)
+
+    def update(self, omega_B: Vec3, torque_B: Vec3, wheel_momentum_B: Vec3, b_B: Vec3, dt: float) -> Vec3 | None:
+        """Add one interval of ``dt`` s; returns :attr:`estimate` (A·m², B, or None)."""
+        if not dt > 0.0:
+            return self.estimate
+        if self._w0 is None:
+            self._restart_window(omega_B)
+            return self.estimate
+        j = self.inertia
+        w = omega_B
+        hx = j[0][0] * w[0] + j[0][1] * w[1] + j[0][2] * w[2] + wheel_momentum_B[0]
+        hy = j[1][0] * w[0] + j[1][1] * w[1] + j[1][2] * w[2] + wheel_momentum_B[1]
+        hz = j[2][0] * w[0] + j[2][1] * w[1] + j[2][2] * w[2] + wheel_momentum_B[2]
+        imp, s = self._imp, self._s
+        imp[0] += (torque_B[0] - (w[1] * hz - w[2] * hy)) * dt
+        imp[1] += (torque_B[1] - (w[2] * hx - w[0] * hz)) * dt
+        imp[2] += (torque_B[2] - (w[0] * hy - w[1] * hx)) * dt
+        s[0] += b_B[0] * dt
+        s[1] += b_B[1] * dt
+        s[2] += b_B[2] * dt
+        self._elapsed += dt
+        if self._elapsed < self.window_s:
+            return self.estimate
+        w0 = self._w0
+        dw = (w[0] - w0[0], w[1] - w0[1], w[2] - w0[2])
+        d = tuple(j[i][0] * dw[0] + j[i][1] * dw[1] + j[i][2] * dw[2] - imp[i] for i in range(3))
+        s2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2]
+        if s2 > 0.0:
+            fade = math.exp(-self._elapsed / self.memory_s) if self.memory_s > 0.0 else 1.0
+            a, y = self.a, self.y
+            sxd = (s[1] * d[2] - s[2] * d[1], s[2] * d[0] - s[0] * d[2], s[0] * d[1] - s[1] * d[0])
+            for i in range(3):
+                y[i] = fade * y[i] + sxd[i] / s2
+                for k in range(3):
+                    a[i][k] = fade * a[i][k] + ((1.0 if i == k else 0.0) - s[i] * s[k] / s2)
+            self.windows += 1
+            self.estimate = self._solve()
+        self._restart_window(omega_B)
+        return self.estimate
+
+    def conditioning(self) -> float:
+        """``det A / (tr A / 3)³``: 1 when every direction is equally observed, 0 when one is not at all."""
+        a = self.a
+        tr = a[0][0] + a[1][1] + a[2][2]
+        return _det3(a) / (tr / 3.0) ** 3 if tr > 0.0 else 0.0
+
+    def _solve(self) -> Vec3 | None:
+        if self.windows < self.windows_min or self.conditioning() < self.conditioning_min:
+            return None
+        a, y = self.a, self.y
+        det = _det3(a)
+        # Cramer's rule (A is symmetric positive definite here)
+        out = []
+        for c in range(3):
+            m = [[y[i] if k == c else a[i][k] for k in range(3)] for i in range(3)]
+            out.append(_det3(m) / det)
+        return (out[0], out[1], out[2])
+
+
+def _det3(a) -> float:
+    return (a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+            + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]))

@@ -9,6 +9,9 @@ implementation:
 
     python -m detumble.sim.magnetic_pointing_check --law seed_pd --kp 2e-6 --kd 4e-4
     python -m detumble.sim.magnetic_pointing_check --law field_steering --seeds 1,2,3
+    # attitude hold from the hold campaign's worst corner, with the flight's duty, magnetometer bias, gyro noise
+    python -m detumble.sim.magnetic_pointing_check --seeds 1..20 --rate 0.05 --offset 20 --settle 30 \
+        --duty 0.8 --mag-bias 0.012 -0.008 0.005 --rate-noise 1.4e-4 --dt 0.2 [--compensate]
 
 Reports the true pointing error (sampled every 10 s) as median / p95 / max after the first 10 % of
 the run, the run summary's convention.
@@ -23,9 +26,9 @@ import sys
 from dataclasses import dataclass
 
 from detumble.control.magnetic import project_dipole_weighted, scale_to_limits
-from detumble.control.magnetic_pointing import field_steering_torque
+from detumble.control.magnetic_pointing import FieldDirectionRate, field_steering_torque
 from detumble.control.pointing import pd_torque
-from detumble.control.quaternion import rotate_n_to_b
+from detumble.control.quaternion import Vec3, quat_from_axis_angle, quat_mul, rotate_n_to_b
 from detumble.sim.coils import TorqueRods
 from detumble.sim.plant import Plant
 from detumble.sim.scenario import load_scenario
@@ -53,20 +56,39 @@ def _unit(v):
 
 def fly(law: str, k_p: float, k_d: float, *, rho: float = 2.0, zeta: float = 0.7, seed: int = 1,
         rate_deg_s: float = 0.5, duration_s: float = 5580.0, dt_s: float = 0.1, scenario: str = "adcs",
-        settings: tuple[str, ...] = (), target=DEFAULT_TARGET, sample_s: float = 10.0) -> CheckResult:
-    """Fly ``law`` (``seed_pd`` or ``field_steering``) from identity attitude and a ``rate_deg_s``
-    tumble about a random axis (drawn from ``seed``) toward the inertial ``target``.
+        settings: tuple[str, ...] = (), target=DEFAULT_TARGET, sample_s: float = 10.0,
+        offset_deg: float | None = None, settle_s: float = 0.0, mag_bias_t: Vec3 = (0.0, 0.0, 0.0),
+        residual_ff_am2: Vec3 = (0.0, 0.0, 0.0), rate_axis: Vec3 | None = None, duty: float = 1.0,
+        offset_axis: Vec3 | None = None, rate_noise_rad_s: float = 0.0) -> CheckResult:
+    """Fly ``law`` (``seed_pd`` or ``field_steering``) from a ``rate_deg_s`` tumble about a random axis
+    (drawn from ``seed``, or ``rate_axis``) toward the inertial ``target``.
 
-    ``dt_s``: dynamics step and control period (s). ``settings``: extra scenario ``KEY=VALUE`` strings.
-    The field-line rate ``db̂_N/dt`` is the true one (a 1 s backward difference of the field model).
+    Start attitude: the identity (``offset_deg`` None), or — an attitude-hold start, as
+    ``campaigns/adcs/hold_magnetorquers.yaml`` draws it — the target turned by ``offset_deg`` about a
+    random axis (also drawn from ``seed``, or ``offset_axis``). ``settle_s``: coils off for that long first (the flight
+    MAG_SETTLE_TIME). ``dt_s``: dynamics step and control period (s). ``settings``: extra scenario
+    ``KEY=VALUE`` strings. The field-line rate ``db̂_N/dt`` is the true one (a 1 s backward difference of
+    the field model) when ``mag_bias_t`` is zero; otherwise the law sees the field plus that constant
+    body-frame bias (T) and estimates ``ḃ`` from it with the flight :class:`FieldDirectionRate`.
+    ``residual_ff_am2``: a feed-forward dipole (A·m², B) subtracted from every command (residual-dipole
+    compensation; the plant's own residual is ``spacecraft.residual_dipole_am2``). ``duty``: the coils'
+    on-time share (the flight's (CYCLE_TICKS − 1)/CYCLE_TICKS = 0.8): the applied dipole is the command
+    times it, as an average over the flight cycle. ``rate_noise_rad_s``: white noise (1σ per axis, rad/s)
+    on the rate the law reads, one draw per control period (the flight's mean of five gyro readings is
+    ≈ 2e-4 rad/s at 10 Hz).
     """
     if law not in LAWS:
         raise ValueError(f"law must be one of {', '.join(LAWS)}, got {law!r}")
     rng = random.Random(seed)
-    axis = [rng.gauss(0.0, 1.0) for _ in range(3)]
+    axis = [rng.gauss(0.0, 1.0) for _ in range(3)] if rate_axis is None else list(rate_axis)
+    q0 = (1.0, 0.0, 0.0, 0.0)
+    if offset_deg is not None:
+        off_axis = _unit((rng.gauss(0.0, 1.0), rng.gauss(0.0, 1.0), rng.gauss(0.0, 1.0)) if offset_axis is None
+                         else offset_axis)
+        q0 = quat_mul(target, quat_from_axis_angle(off_axis, math.radians(offset_deg)))
     base = [f"initial.rate.magnitude_deg_s={rate_deg_s}", "initial.rate.axis=[{},{},{}]".format(*axis),
-            "initial.attitude.quaternion=[1,0,0,0]", f"dynamics_step_s={dt_s}", "control.sense_settle_s=0",
-            f"control.period_s={dt_s}"]
+            "initial.attitude.quaternion=[{},{},{},{}]".format(*q0), f"dynamics_step_s={dt_s}",
+            "control.sense_settle_s=0", f"control.period_s={dt_s}"]
     sc = load_scenario(scenario, seed=seed, settings=base + list(settings))
     plant = Plant(sc, seed)
     plant.set_pointing_target(target)
@@ -76,19 +98,35 @@ def fly(law: str, k_p: float, k_d: float, *, rho: float = 2.0, zeta: float = 0.7
     m_max = plant.max_dipole_per_axis()
     plant.actuators = TorqueRods(m_max)  # continuous dipole of the coils' capacity
     every = max(1, int(round(sample_s / dt_s)))
+    biased = any(c != 0.0 for c in mag_bias_t)
+    fdr = FieldDirectionRate()
+    noise = random.Random(seed + 7919)
     times, errors = [], []
     for k in range(int(round(duration_s / dt_s))):
         q, w, b = plant.q_BN, plant.omega_BN_B, plant.b_B
+        if rate_noise_rad_s > 0.0:
+            w = (w[0] + noise.gauss(0.0, rate_noise_rad_s), w[1] + noise.gauss(0.0, rate_noise_rad_s),
+                 w[2] + noise.gauss(0.0, rate_noise_rad_s))
+        if biased:
+            b = (b[0] + mag_bias_t[0], b[1] + mag_bias_t[1], b[2] + mag_bias_t[2])
+            bd_est = fdr.update(q, b, dt_s)
         if law == "seed_pd":
             tau, _ = pd_torque(target, q, w, k_p, k_d)
         else:
-            t = plant.t
-            b1 = _unit(field.b_N(t, plant.orbit.position_N(t)))
-            b0 = _unit(field.b_N(t - 1.0, plant.orbit.position_N(t - 1.0)))
-            bd = rotate_n_to_b(q, (b1[0] - b0[0], b1[1] - b0[1], b1[2] - b0[2]))
+            if biased:
+                bd = bd_est if bd_est is not None else (0.0, 0.0, 0.0)
+            else:
+                t = plant.t
+                b1 = _unit(field.b_N(t, plant.orbit.position_N(t)))
+                b0 = _unit(field.b_N(t - 1.0, plant.orbit.position_N(t - 1.0)))
+                bd = rotate_n_to_b(q, (b1[0] - b0[0], b1[1] - b0[1], b1[2] - b0[2]))
             tau, _ = field_steering_torque(target, q, w, b, bd, k_p, k_d, rho, zeta)
         m, _ = project_dipole_weighted(tau, b, m_max)
-        plant.apply_dipole_B(scale_to_limits(m, m_max))
+        m = (m[0] - residual_ff_am2[0] / duty, m[1] - residual_ff_am2[1] / duty, m[2] - residual_ff_am2[2] / duty)
+        if plant.t < settle_s:
+            m = (0.0, 0.0, 0.0)
+        m = scale_to_limits(m, m_max)
+        plant.apply_dipole_B((m[0] * duty, m[1] * duty, m[2] * duty))
         if k % every == 0:
             times.append(plant.t)
             error = plant.pointing_error_rad()
@@ -102,12 +140,23 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m detumble.sim.magnetic_pointing_check",
                                  description=__doc__.split("\n")[0])
     ap.add_argument("--law", choices=LAWS, default="field_steering")
-    ap.add_argument("--kp", type=float, default=1.0e-6, help="N·m (default 1e-6)")
-    ap.add_argument("--kd", type=float, default=1.0e-4, help="N·m·s (default 1e-4)")
+    ap.add_argument("--kp", type=float, default=4.0e-6, help="N·m (default 4e-6, K_P_MAG)")
+    ap.add_argument("--kd", type=float, default=4.0e-4, help="N·m·s (default 4e-4, K_D_MAG)")
     ap.add_argument("--rho", type=float, default=2.0)
+    ap.add_argument("--zeta", type=float, default=1.0)
     ap.add_argument("--seeds", default="1", help="comma-separated seeds, or FIRST..LAST (initial tumble axis)")
     ap.add_argument("--rate", type=float, default=0.5, help="initial rate, deg/s")
     ap.add_argument("--duration", type=float, default=5580.0, help="s")
+    ap.add_argument("--offset", type=float, default=None,
+                    help="deg: start this far from the target about a random axis (attitude hold), not at identity")
+    ap.add_argument("--settle", type=float, default=0.0, help="s with the coils off first (MAG_SETTLE_TIME)")
+    ap.add_argument("--mag-bias", type=float, nargs=3, default=(0.0, 0.0, 0.0), metavar=("X", "Y", "Z"),
+                    help="gauss: constant magnetometer bias the law sees (its field-line rate then estimated)")
+    ap.add_argument("--rate-noise", type=float, default=0.0,
+                    help="rad/s, 1 sigma per axis and control period, on the rate the law reads (flight: ~2e-4)")
+    ap.add_argument("--duty", type=float, default=1.0, help="coil on-time share (the flight's 0.8; default 1)")
+    ap.add_argument("--compensate", action="store_true",
+                    help="subtract the scenario's residual dipole from every command (exact feed-forward)")
     ap.add_argument("--dt", type=float, default=0.1, help="dynamics step and control period, s (default 0.1)")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="scenario setting (repeatable)")
     a = ap.parse_args(argv)
@@ -119,8 +168,12 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     rows = []
     for s in seeds:
-        r = fly(a.law, a.kp, a.kd, rho=a.rho, seed=s, rate_deg_s=a.rate, duration_s=a.duration, dt_s=a.dt,
-                settings=tuple(a.set))
+        ff = load_scenario("adcs", settings=list(a.set)).spacecraft.residual_dipole_am2 if a.compensate \
+            else (0.0, 0.0, 0.0)
+        r = fly(a.law, a.kp, a.kd, rho=a.rho, zeta=a.zeta, seed=s, rate_deg_s=a.rate, duration_s=a.duration,
+                dt_s=a.dt, settings=tuple(a.set), offset_deg=a.offset, settle_s=a.settle,
+                mag_bias_t=tuple(1e-4 * c for c in a.mag_bias), residual_ff_am2=ff, duty=a.duty,
+                rate_noise_rad_s=a.rate_noise)
         med, p95, mx = r.stats()
         rows.append((med, p95))
         print(f"{a.law} kp={a.kp:.3g} kd={a.kd:.3g} rho={a.rho:g} seed={s}: median {med:.2f} deg, "

@@ -11,8 +11,8 @@ import math
 import pytest
 
 from detumble.components.attitude_controller import AttitudeController
-from detumble.components.attitude_types import (ControlAutonomy, ControlMode, MagPointingLaw, ModeChangeReason,
-                                                PointingActuator, SpinLaw)
+from detumble.components.attitude_types import (ControlAutonomy, ControlMode, MagPointingLaw, MagResidualMode,
+                                                ModeChangeReason, PointingActuator, SpinLaw)
 from detumble.components.types import (AttitudeQuaternion, DipoleMoment, MagneticField, Result, Success, WheelMode,
                                        WheelState)
 from detumble.control.magnetic import project_dipole_weighted
@@ -523,6 +523,85 @@ def test_magnetorquer_pointing_waits_for_the_gyro_bias_to_settle(fprime_harness)
     seconds(h, 2)
     assert any(c != 0.0 for c in h.tlm_values("RequestedTorque")[-1])
     assert any(lv != 0 for p in STARTS for call in h.from_port(p) for lv in call.args)
+
+
+def test_residual_dipole_feed_forward_by_mode(fprime_harness):
+    """ADCS-062: POINTING on the coils cancels the residual dipole: the commanded dipole is the law's projection minus
+    m_res / duty (duty 0.8; within two drive levels), with m_res MAG_RESIDUAL_DIPOLE_X/Y/Z under PARAMETER, the
+    on-board estimate under ESTIMATE once it exists (the parameters before), nothing under OFF; ResidualDipole
+    telemeters the one in use. An estimate beyond the coil limits is refused (ResidualDipoleEstimateRefused,
+    throttled) and the parameters are used instead."""
+    m_par = (8.0e-3, -6.0e-3, 1.0e-3)
+    h = pointing(fprime_harness, q=quat_from_axis_angle((0.0, 1.0, 0.0), 0.2),
+                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, "MAG_SETTLE_TIME": 0.0,
+                         "MAG_RESIDUAL_MODE": MagResidualMode.PARAMETER, "MAG_RESIDUAL_DIPOLE_X": m_par[0],
+                         "MAG_RESIDUAL_DIPOLE_Y": m_par[1], "MAG_RESIDUAL_DIPOLE_Z": m_par[2]})
+    c = h.comp
+    cx, cz = c.X_COIL_MAX_DIPOLE.value, c.Z_COIL_MAX_DIPOLE.value
+    tol = (2 * cx / 127, 2 * cx / 127, 2 * cz / 127)  # one drive level on each of two coils (X, Y) or the Z− coil
+
+    def check(m_ff):
+        tick(h, 5)
+        tau = tuple(h.tlm_values("RequestedTorque")[-1])
+        m, _ = project_dipole_weighted(tau, tuple(v * 1e-4 for v in h.world.b), c._coil_limits())
+        expected = tuple(m[i] - m_ff[i] / 0.8 for i in range(3))
+        assert all(abs(c.dipole[i] - expected[i]) <= tol[i] for i in range(3))
+        assert tuple(h.tlm_values("ResidualDipole")[-1]) == pytest.approx(m_ff, abs=1e-15)
+
+    check(m_par)
+    h.send_command("MAG_RESIDUAL_MODE_PRM_SET", MagResidualMode.OFF)
+    check((0.0, 0.0, 0.0))
+    h.send_command("MAG_RESIDUAL_MODE_PRM_SET", MagResidualMode.ESTIMATE)
+    c.residual_estimator.estimate = None
+    tick(h, 5)
+    c.residual_estimator.estimate = None  # no estimate yet (the harness world cannot make one): the parameters
+    check(m_par)
+    est = (-7.0e-3, 5.0e-3, -1.0e-3)
+    c.residual_estimator.estimate = est
+    check(est)
+    h.assert_event_count("ResidualDipoleEstimateRefused", 0)
+    c.residual_estimator.estimate = (0.5, 0.0, 0.0)  # beyond the X coils' 0.116 A·m²
+    check(m_par)
+    c.residual_estimator.estimate = (math.nan, 0.0, 0.0)
+    for _ in range(10):
+        check(m_par)
+    h.assert_event_count("ResidualDipoleEstimateRefused", 5)  # throttled
+
+
+def test_residual_dipole_estimator_runs_only_while_the_coils_point(fprime_harness):
+    """ADCS-063: the estimator is fed (its windows count up, MAG_RESIDUAL_WINDOW long) only in POINTING on the coils
+    past MAG_SETTLE_TIME with MAG_RESIDUAL_MODE = ESTIMATE; with the wheels pointing, during the settle wait or under
+    another mode it is not, and its sums are kept."""
+    h = pointing(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS,
+                                         "MAG_SETTLE_TIME": 10.0, "MAG_RESIDUAL_WINDOW": 5.0})
+    est = h.comp.residual_estimator
+    seconds(h, 9)
+    assert est.windows == 0
+    seconds(h, 12)
+    assert est.windows == 2 and est.window_s == 5.0
+    h.send_command("MAG_RESIDUAL_MODE_PRM_SET", MagResidualMode.PARAMETER)
+    seconds(h, 12)
+    assert est.windows == 2
+    h.send_command("MAG_RESIDUAL_MODE_PRM_SET", MagResidualMode.ESTIMATE)
+    h.send_command("POINTING_ACTUATOR_PRM_SET", PointingActuator.WHEELS)
+    seconds(h, 12)
+    assert est.windows == 2
+    h.send_command("POINTING_ACTUATOR_PRM_SET", PointingActuator.MAGNETORQUERS)
+    seconds(h, 12)
+    assert est.windows == 4
+
+
+@pytest.mark.parametrize("bad", [{"MAG_RESIDUAL_DIPOLE_X": 0.06}, {"MAG_RESIDUAL_DIPOLE_Z": -0.06},
+                                 {"MAG_RESIDUAL_WINDOW": 1.0}, {"MAG_RESIDUAL_WINDOW": 1000.0}])
+def test_residual_dipole_parameters_have_ranges(fprime_harness, bad):
+    """ADCS-062: MAG_RESIDUAL_DIPOLE_* outside ±0.05 A·m² and MAG_RESIDUAL_WINDOW outside 5…600 s are refused by
+    PRM_SET (VALIDATION_ERROR) and the value in use is kept."""
+    h = make(fprime_harness)
+    ((name, value),) = bad.items()
+    before = getattr(h.comp, name).value
+    h.send_command(f"{name}_PRM_SET", value)
+    h.assert_cmd_response(0, f"{name}_PRM_SET", CmdResponse.VALIDATION_ERROR)
+    assert getattr(h.comp, name).value == before
 
 
 def test_spin_stable_seed_damper_requests_nothing_from_rest(fprime_harness):
