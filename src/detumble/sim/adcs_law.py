@@ -32,7 +32,7 @@ from detumble.control import attitude_defaults
 from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.magnetic import clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
 from detumble.control.magnetic import bdot_dipole
-from detumble.control.magnetic_pointing import FieldDirectionRate, field_steering_torque
+from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipoleEstimator, field_steering_torque
 from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
 from detumble.control.mekf import Mekf
 from detumble.control.pointing import ErrorIntegrator, pd_torque
@@ -144,7 +144,7 @@ class PlantIo:
 
 
 class AdcsLaw:
-    """The three-mode controller in AUTO, one :meth:`tick` per rate-group tick.
+    """The three-mode controller in AUTO (or in a forced mode), one :meth:`tick` per rate-group tick.
 
     Args:
         wheel_axes: unit spin axes of the wheels in B (three to four; default x, y, z).
@@ -158,6 +158,9 @@ class AdcsLaw:
         auto_start_s: plant time (s) from which the controller is in AUTO; before it, it stays in
             IDLE (estimating, coils off, wheels at zero torque) as the component does until the start-up
             sequence's SET_AUTO arrives (in adcs_ref that is the second cycle, t = 0.1 s).
+        force_mode: instead of AUTO, the mode a FORCE_MODE command sets at plant time ``force_at_s``
+            (s) and holds; POINTING is refused, as the component refuses it, without attitude
+            knowledge (the controller then stays in IDLE).
     """
 
     name = "adcs"
@@ -167,7 +170,8 @@ class AdcsLaw:
 
     def __init__(self, wheel_axes: Sequence[Sequence[float]] = _XYZ, wheels: bool = True,
                  params: Mapping[str, object] | None = None, target_q_bn=None, *, bdot_provider: bool = True,
-                 provider_gain: float = attitude_defaults.BDOT_PROVIDER_GAIN, auto_start_s: float = 0.0) -> None:
+                 provider_gain: float = attitude_defaults.BDOT_PROVIDER_GAIN, auto_start_s: float = 0.0,
+                 force_mode: str | None = None, force_at_s: float = 0.0) -> None:
         p = _settings(params)
         self.params = p
         self.axes = tuple((float(a[0]), float(a[1]), float(a[2])) for a in wheel_axes)
@@ -181,6 +185,10 @@ class AdcsLaw:
         self.bdot_provider = bool(bdot_provider)
         self.provider_gain = float(provider_gain)
         self.auto_start_us = int(round(float(auto_start_s) * 1e6))
+        if force_mode not in (None, "DETUMBLE", "SPIN_STABLE", "POINTING"):
+            raise ValueError(f"force_mode {force_mode!r}: use DETUMBLE, SPIN_STABLE, POINTING or None (AUTO)")
+        self.force_mode = force_mode
+        self.force_at_us = int(round(float(force_at_s) * 1e6))
         self.allocator = WheelAllocator(self.axes, p["WHEEL_MAX_TORQUE"], p["WHEEL_MAX_MOMENTUM"])
         self._unit_allocator = WheelAllocator(self.axes, 1.0, 1.0)  # for Σ h_i g_i only
         if p["ESTIMATOR"] == "MEKF":
@@ -193,6 +201,7 @@ class AdcsLaw:
         self.observer = RateObserver(((p["INERTIA_XX"], xy, xz), (xy, p["INERTIA_YY"], yz),
                                       (xz, yz, p["INERTIA_ZZ"])), p["RATE_OBSERVER_GAIN"])
         self.field_rate = FieldDirectionRate(p["MAG_FIELD_RATE_BANDWIDTH"])
+        self.residual = ResidualDipoleEstimator(self.observer.inertia, p["MAG_RESIDUAL_WINDOW"])
         self.integrator = ErrorIntegrator(p["INTEGRAL_WINDOW"] * _DEG, attitude_defaults.INTEGRAL_MAX_TORQUE)
         self.kane = SeedKaneDamper(p["C_DAMP"], p["I_D"])
         self.damper = VirtualDamper(p["C_DAMP"], p["I_D"])
@@ -210,6 +219,8 @@ class AdcsLaw:
         self.filter.reset()
         self.observer.reset()
         self.field_rate.reset()
+        self.residual.reset()
+        self.residual_ff: Vec3 = _ZERO  # A·m², B: the residual-dipole feed-forward of the last cycle
         self.integrator.reset()
         self.kane.reset()
         self.damper.reset()
@@ -229,6 +240,7 @@ class AdcsLaw:
         self.pointing_error_deg = math.nan  # estimated, in POINTING
         self.attitude_known_s = 0.0
         self._gyro_acc, self._gyro_n = _ZERO, 0
+        self._force_pending = True
         self._last_us: int | None = None
         self._last_fix_us: int | None = None
         self._timer_low = 0.0  # DETUMBLE-exit qualification, s
@@ -266,7 +278,12 @@ class AdcsLaw:
         dt = self.cycle_ticks * self.tick_s if last is None or now <= last else (now - last) / 1e6
         self.cycles += 1
         self._estimate(io, dt, now)
-        if now >= self.auto_start_us:
+        if self.force_mode is not None:  # FORCE_MODE: the mode is held, no trigger moves it
+            if self._force_pending and now >= self.force_at_us:
+                self._force_pending = False  # one command: refused POINTING is not retried, as in flight
+                if self.force_mode != "POINTING" or self._can_point():
+                    self._enter(self.force_mode, "COMMAND", now)
+        elif now >= self.auto_start_us:
             self._choose_mode(dt, now)
         self._command(io, dt)
 
@@ -297,6 +314,7 @@ class AdcsLaw:
         self._follow_field_line(dt)
         self.momenta = io.wheel_momenta() if self.wheels else ()
         self._observe_rate(dt)
+        self._track_residual_dipole(dt)
 
     def _follow_field_line(self, dt: float) -> None:
         known = self.attitude_valid
@@ -322,6 +340,32 @@ class AdcsLaw:
         h = self._unit_allocator.body_momentum(self.momenta) if self.wheels else _ZERO
         w = self.observer.update(self.omega, self._body_torque_last_cycle(), h, dt)
         self.pd_rate = w if self.params["RATE_SOURCE"] == "OBSERVER" else self.omega
+
+    def _track_residual_dipole(self, dt: float) -> None:
+        """Feed the residual-dipole estimator while the coils point past MAG_SETTLE_TIME (the
+        component's rule); elsewhere its open window is dropped and its sums kept."""
+        p = self.params
+        if (p["MAG_RESIDUAL_MODE"] != "ESTIMATE" or self.mode != "POINTING" or self._points_on_wheels()
+                or self.attitude_known_s < p["MAG_SETTLE_TIME"]):
+            self.residual.gap()
+            return
+        self.residual.update(self.omega, self._body_torque_last_cycle(), _ZERO, self.b_tesla, dt)
+
+    def _residual_feed_forward(self) -> Vec3:
+        """The residual dipole to cancel, A·m² (B), by MAG_RESIDUAL_MODE; an estimate past a coil
+        limit gives way to the MAG_RESIDUAL_DIPOLE_* parameters."""
+        p = self.params
+        mode = p["MAG_RESIDUAL_MODE"]
+        if mode == "OFF":
+            return _ZERO
+        est = self.residual.estimate
+        if (mode == "ESTIMATE" and est is not None and all(math.isfinite(x) for x in est)
+                and all(abs(est[i]) <= self.limits[i] for i in range(3))):
+            return est
+        return (p["MAG_RESIDUAL_DIPOLE_X"], p["MAG_RESIDUAL_DIPOLE_Y"], p["MAG_RESIDUAL_DIPOLE_Z"])
+
+    def _points_on_wheels(self) -> bool:
+        return self.wheels and self.params["POINTING_ACTUATOR"] != "MAGNETORQUERS"
 
     # --- modes ----------------------------------------------------------------------------------
 
@@ -447,12 +491,16 @@ class AdcsLaw:
                                             p["MAG_STEER_ZETA"], p["MAG_FIELD_RATE_MIN"])
         if self.attitude_known_s < p["MAG_SETTLE_TIME"]:
             return None, qe  # the gyro-bias estimate is still settling: the coils wait
-        return project_dipole_weighted(tau, b, self.limits)[0], qe
+        dipole = project_dipole_weighted(tau, b, self.limits)[0]
+        ff = self.residual_ff = self._residual_feed_forward()  # it acts all the time; the coils only for the duty
+        d = self.duty
+        return (dipole[0] - ff[0] / d, dipole[1] - ff[1] / d, dipole[2] - ff[2] / d), qe
 
     def _command(self, io: PlantIo, dt: float) -> None:
         mode = self.mode
         dipole = None
         torques = None
+        self.residual_ff = _ZERO
         self.pointing_error_deg = math.nan
         if mode == "DETUMBLE":
             dipole = self._bdot()
@@ -467,7 +515,7 @@ class AdcsLaw:
                 self.target = (float(q[0]), float(q[1]), float(q[2]), float(q[3]))
                 self.integrator.reset()
             target = self.target
-            if self.wheels and self.params["POINTING_ACTUATOR"] != "MAGNETORQUERS":
+            if self._points_on_wheels():
                 dipole, torques, qe = self._point_on_wheels(target, q, dt)
             else:
                 dipole, qe = self._point_on_coils(target, q)

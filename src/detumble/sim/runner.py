@@ -112,7 +112,8 @@ def make_adcs_law(plant: Plant) -> AdcsLaw:
     axes = plant.wheel_axes_B if 3 <= n <= 4 else ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
     try:
         return AdcsLaw(axes, 3 <= n <= 4, params, cfg.target_q_bn, bdot_provider=cfg.bdot_provider,
-                       provider_gain=cfg.bdot_provider_gain, auto_start_s=cfg.auto_start_s)
+                       provider_gain=cfg.bdot_provider_gain, auto_start_s=cfg.auto_start_s,
+                       force_mode=cfg.force_mode, force_at_s=cfg.force_at_s)
     except ValueError as exc:
         raise LawError(f"adcs: {exc}") from None
 

@@ -116,12 +116,15 @@ class WheelsPdConfig:
 #: ``control.adcs``: the plant-only three-mode controller (:mod:`detumble.sim.adcs_law`): its target
 #: ``target_q_bn`` (q_TN, scalar first; None holds the attitude POINTING starts from), whether DETUMBLE
 #: takes the BDotDetumble provider's dipole (``bdot_provider``) and that provider's gain, when AUTO
-#: starts (``auto_start_s``: before it the controller idles, as until the start-up sequence's SET_AUTO), and every
-#: flight parameter of the AttitudeController by its own name (default: the component's default).
+#: starts (``auto_start_s``: before it the controller idles, as until the start-up sequence's SET_AUTO), or
+#: instead a mode held from ``force_at_s`` on as FORCE_MODE holds it (``force_mode``: DETUMBLE, SPIN_STABLE or
+#: POINTING; None: AUTO), and every flight parameter of the AttitudeController by its own name (default: the
+#: component's default).
 AdcsConfig = make_dataclass(
     "AdcsConfig",
     [("target_q_bn", "tuple[float, float, float, float] | None", None), ("bdot_provider", bool, True),
-     ("bdot_provider_gain", float, BDOT_PROVIDER_GAIN), ("auto_start_s", float, 0.0)]
+     ("bdot_provider_gain", float, BDOT_PROVIDER_GAIN), ("auto_start_s", float, 0.0),
+     ("force_mode", "str | None", None), ("force_at_s", float, 0.0)]
     + [(name, type(value), value) for name, value in ADCS_DEFAULTS.items()],
     frozen=True)
 
@@ -321,6 +324,7 @@ SCHEMA: dict = {
         "beta_pd": {k: _LEAF for k in ("k_s", "k_d", "switched")},
         "wheels_pd": {k: _LEAF for k in ("k_p", "k_d", "target_q_bo", "limits", "error", "dump_gain")},
         "adcs": {k: _LEAF for k in ("target_q_bn", "bdot_provider", "bdot_provider_gain", "auto_start_s",
+                                       "force_mode", "force_at_s",
                                        *ADCS_DEFAULTS)},
     },
     "power": POWER_SCHEMA,
@@ -906,6 +910,9 @@ def _adcs(a: _Section):
     values["bdot_provider"] = a.boolean("bdot_provider", True)
     values["bdot_provider_gain"] = a.number("bdot_provider_gain", BDOT_PROVIDER_GAIN, nonneg=True)
     values["auto_start_s"] = a.number("auto_start_s", 0.0, nonneg=True)
+    if a.raw("force_mode", None) is not None:
+        values["force_mode"] = a.string("force_mode", "POINTING", ("DETUMBLE", "SPIN_STABLE", "POINTING"))
+    values["force_at_s"] = a.number("force_at_s", 0.0, nonneg=True)
     for name, default in ADCS_DEFAULTS.items():
         if name in ADCS_ENUMS:
             values[name] = a.string(name, str(default), ADCS_ENUMS[name])

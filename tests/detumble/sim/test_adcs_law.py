@@ -146,3 +146,21 @@ def test_pointing_statistics_skip_the_first_tenth():
     assert math.isnan(AdcsLaw().true_pointing_error_deg((1.0, 0.0, 0.0, 0.0)))
     pooled = pointing_statistics([100.0] + [0.02] * 9, sample_interval_s=0.5)
     assert pooled["window_s"] == 4.5 and pooled["time_above_s"]["0.01"] == 4.5 and pooled["time_above_s"]["0.05"] == 0
+
+
+def test_force_mode_holds_a_mode_as_force_mode_does():
+    """ADCS-077: `control.adcs.force_mode` sends one FORCE_MODE at `force_at_s` and holds the mode (no AUTO
+    trigger moves it: a 25 °/s tumble stays in SPIN_STABLE, where AUTO would detumble); POINTING is refused
+    without attitude knowledge (at 25 °/s the star tracker gives no fix: the law stays IDLE, the command is
+    not retried); a mode that does not exist is refused at the scenario key and by the law."""
+    tumble = "initial.rate.magnitude_deg_s=25"
+    spin = ["control.adcs.force_mode=SPIN_STABLE", "control.adcs.force_at_s=2"]
+    summary = run(load_scenario("adcs", settings=[tumble, *spin]), law="adcs", duration_s=20.0).summary
+    assert [(t["mode"], t["t_s"]) for t in summary["control_mode_transitions"]] == [("SPIN_STABLE", 2.0)]
+    point = ["control.adcs.force_mode=POINTING", "control.adcs.force_at_s=2"]
+    summary = run(load_scenario("adcs", settings=[tumble, *point]), law="adcs", duration_s=20.0).summary
+    assert summary["control_mode_transitions"] == []
+    with pytest.raises(ScenarioError, match="control.adcs.force_mode"):
+        load_scenario("adcs", settings=["control.adcs.force_mode=SAFE"])
+    with pytest.raises(ValueError, match="force_mode 'SAFE'"):
+        AdcsLaw(force_mode="SAFE")
