@@ -152,7 +152,10 @@ class CoilSet:
     def __init__(self, layout: dict[int, CoilSpec]) -> None:
         self.coils = {face: Magnetorquer(face, spec) for face, spec in sorted(layout.items())}
         self._lagged = any(c._tau > 0.0 for c in self.coils.values())
-        self.dipole_B = (0.0, 0.0, 0.0)
+        self._dipole_B = (0.0, 0.0, 0.0)
+        #: without lag, a level changed since ``_dipole_B`` was summed: :attr:`dipole_B` sums it again
+        #: when next read (the controller changes several levels per cycle; one sum serves them all)
+        self._dipole_stale = False
         #: every coil's current is at its target and no level changed since: advance() has nothing to do
         self._settled = True
 
@@ -165,7 +168,15 @@ class CoilSet:
         coil.set_level(level)
         self._settled = False
         if not self._lagged:
-            self.dipole_B = self._sum()
+            self._dipole_stale = True  # the currents follow the levels at once; summed when read
+
+    @property
+    def dipole_B(self) -> tuple[float, float, float]:
+        """Total instantaneous dipole (A m^2, B): :meth:`_sum` at the present currents."""
+        if self._dipole_stale:
+            self._dipole_B = self._sum()
+            self._dipole_stale = False
+        return self._dipole_B
 
     def levels(self) -> dict[int, int]:
         return {face: c.level for face, c in self.coils.items()}
@@ -187,9 +198,13 @@ class CoilSet:
         if not self._lagged or self._settled:
             # Settled: each coil's mean current is its (unchanged) current, so the mean dipole is
             # the dipole_B the last advance computed from those very currents - the same floats.
-            return self.dipole_B
+            # Without lag the currents are the levels' own; the sum is redone after a level change.
+            if self._dipole_stale:
+                self._dipole_B = self._sum()
+                self._dipole_stale = False
+            return self._dipole_B
         mean = {face: c.advance(dt) for face, c in self.coils.items()}
-        self.dipole_B = self._sum()
+        self._dipole_B = self._sum()
         self._settled = all(c.current_a == c.target_current_a() for c in self.coils.values())
         return self._sum(mean)
 
