@@ -118,13 +118,15 @@ class Magnetorquer:
         return self.level / MAX_LEVEL * self.spec.voltage_v / self.spec.resistance_ohm
 
     def set_level(self, level: int) -> None:
-        if isinstance(level, bool) or not isinstance(level, int):
+        if type(level) is not int and (isinstance(level, bool) or not isinstance(level, int)):
             raise TypeError(f"drive level must be an int in -127..127, got {level!r}")
         if not -MAX_LEVEL <= level <= MAX_LEVEL:
             raise ValueError(f"drive level {level} outside -127..127")
         self.level = level
         if self._tau == 0.0:
-            self.current_a = self.target_current_a()
+            spec = self.spec  # target_current_a(), written out (the same floats)
+            r = spec.resistance_ohm
+            self.current_a = 0.0 if r == 0.0 else level / MAX_LEVEL * spec.voltage_v / r
 
     def advance(self, dt: float) -> float:
         """Advance the L/R lag by ``dt`` s; return the mean current (A) over the interval."""

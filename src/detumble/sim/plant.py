@@ -339,9 +339,10 @@ class Plant:
 
     def set_coil_level(self, face: int, level: int, t: float | None = None) -> None:
         """Drive the coil on ``face`` (X+ 0, X- 1, Y+ 2, Y- 3, Z- 5) at ``level`` -127...127."""
-        self._sync(t)
+        if t is not None:
+            self._sync(t)
         act = self.actuators
-        if not isinstance(act, CoilSet):
+        if type(act) is not CoilSet and not isinstance(act, CoilSet):
             raise TypeError("this spacecraft has ideal torque rods, not face coils; use apply_dipole_B")
         coil = act.coils.get(face)
         if coil is None or type(level) is not int or level != coil.level:

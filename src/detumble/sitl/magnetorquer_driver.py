@@ -248,12 +248,13 @@ class MagnetorquerDriver(PassiveComponent):
         return _SUCCESS
 
     def _set_coil(self, level: int) -> bool:
+        level = int(level)
         try:
-            self.spacecraft.set_coil_level(self.face, int(level))
+            self.spacecraft.set_coil_level(self.face, level)
         except Exception as exc:  # noqa: BLE001 - a plant fault is a failed drive, never an exception
             self.report_fault(f"coil {self.face_name} drive", exc)
             return False
-        self.DriveLevel.write(int(level))
+        self.DriveLevel.write(level)
         return True
 
 

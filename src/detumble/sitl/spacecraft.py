@@ -331,10 +331,12 @@ class SimulatedSpacecraft:
     def set_coil_level(self, face: int, level: int) -> None:
         """Drive the coil on ``face`` at ``level`` (-127..127) from now on (plant sign conventions:
         a positive level gives a dipole along the face's outward normal, so X- +level is -X)."""
-        self.sync()
-        if level and not self.face_powered(face):
+        plant = self.plant
+        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
+            self.advance_to_us(self.clock.current_us)
+        if level and self.power is not None and not self.power.face_powered(face):
             raise RuntimeError(f"face {face} is unpowered (its load switch is off); its coil cannot be driven")
-        self.plant.set_coil_level(face, level)
+        plant.set_coil_level(face, level)
         self._coil_w = None
 
     def coil_level(self, face: int) -> int:
