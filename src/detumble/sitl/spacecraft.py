@@ -504,17 +504,21 @@ class SimulatedSpacecraft:
                     if coil.level:
                         coil_w += coil_supply_power_w(coil.level, MAX_LEVEL, coil.spec.voltage_v, coil.current_a)
             self._coil_w = coil_w
-        if self._power_pending_ns == 0:
+        pending = self._power_pending_ns
+        if pending == 0:
             self._power_t0_ns = t0_ns
-        self._power_pending_ns += t1_ns - t0_ns
-        self._power_coil_j += coil_w * (t1_ns - t0_ns) * 1e-9
-        if self._power_pending_ns >= POWER_STEP_NS:
-            dt = self._power_pending_ns * 1e-9
+        d_ns = t1_ns - t0_ns
+        pending += d_ns
+        if coil_w:  # adding 0.0 W x dt leaves the sum as it is
+            self._power_coil_j += coil_w * d_ns * 1e-9
+        if pending >= POWER_STEP_NS:
+            dt = pending * 1e-9
             plant = self.plant
             assert self.power is not None  # only called with a power model
             self.power.step(dt, self._power_t0_ns * 1e-9, plant.q_BN, plant.r_N, self._power_coil_j / dt)
-            self._power_pending_ns = 0
+            pending = 0
             self._power_coil_j = 0.0
+        self._power_pending_ns = pending
 
     def set_accelerometer_odr_hz(self, odr_hz: float) -> None:
         """Reconfigure the accelerometer's output data rate."""
