@@ -449,14 +449,16 @@ class Plant:
     def wheel_reading(self, i: int, t: float | None = None) -> tuple[float, float, float, float]:
         """``(speed_rad_s, momentum_nms, torque_nm, t_read)`` as the wheel reports them: momentum
         with the configured noise, speed consistent with it, the motor torque of the last step."""
-        self._sync(t)
+        if t is not None:
+            self._sync(t)
         w = self._wheels()
-        w._index(i)
+        if type(i) is not int or not 0 <= i < w.n:
+            w._index(i)  # raises for anything but a wheel's index
         h = w.measured_momentum(i)
-        om = self.omega_BN_B
+        s = self._state  # omega_BN_B at 4..6
         g = w.axes[i]
-        speed = h / w.js[i] - (g[0] * om[0] + g[1] * om[1] + g[2] * om[2])
-        return (speed, h, w.torque_applied[i], self.t)
+        speed = h / w.js[i] - (g[0] * s[4] + g[1] * s[5] + g[2] * s[6])
+        return (speed, h, w.torque_applied[i], self._t_ns / 1e9)
 
     def total_angular_momentum_N(self) -> Vec3:
         """Body + wheels angular momentum in N, N m s (constant without external torque)."""
