@@ -101,17 +101,27 @@ class MagnetorquerDriver(PassiveComponent):
     def start(self, val: int) -> Success:
         """Drive the coil at level ``val`` (−127…127, sign = current direction). Out-of-range or
         non-integer levels are refused (FAILURE, InvalidDriveLevel) and switch the coil off."""
-        if type(val) is int and self._carries(val):
-            # The manager re-commands the same level every tick: the coil already carries it.
-            self._clear_throttles()
+        # The manager re-commands the same level every tick. A healthy, initialised device whose coil
+        # already carries it and whose on-change DriveLevel last sent it: _apply would only clear the
+        # throttles (the same test in stop; written out, as this runs for each coil every tick).
+        if (type(val) is int and val == self._coil.level and self.fault is _FAULT_NONE and self._initialized
+                and val == self.DriveLevel.last):
+            if self.DeviceNotReady.count:
+                self.DeviceNotReady.clear_throttle()
+            if self.DriveReadbackMismatch.count:
+                self.DriveReadbackMismatch.clear_throttle()
             return _SUCCESS
         return self._start(val)
 
     @sync_input(StopMagnetorquer)
     def stop(self) -> Success:
         """Switch the coil off."""
-        if self._carries(0):  # the controller stops idle coils every tick
-            self._clear_throttles()
+        if (self._coil.level == 0 and self.fault is _FAULT_NONE and self._initialized
+                and self.DriveLevel.last == 0):  # start's short cut for level 0: idle coils are stopped too
+            if self.DeviceNotReady.count:
+                self.DeviceNotReady.clear_throttle()
+            if self.DriveReadbackMismatch.count:
+                self.DriveReadbackMismatch.clear_throttle()
             return _SUCCESS
         return self._apply(0)
 
@@ -210,13 +220,6 @@ class MagnetorquerDriver(PassiveComponent):
         self._initialized = True
         self.DeviceInitialized()
         return True
-
-    def _carries(self, level: int) -> bool:
-        """Whether driving ``level`` (an int) would leave everything as it is: a healthy, initialised
-        device whose coil already carries ``level`` and whose (on-change) DriveLevel channel last
-        sent it. :meth:`_apply` would then only clear the throttles (:meth:`_clear_throttles`)."""
-        return (level == self._coil.level and self.fault is _FAULT_NONE and self._initialized
-                and level == self.DriveLevel.last)
 
     def _clear_throttles(self) -> None:
         """A successful drive lets DeviceNotReady and DriveReadbackMismatch be reported again."""
