@@ -118,13 +118,15 @@ class Magnetorquer:
         return self.level / MAX_LEVEL * self.spec.voltage_v / self.spec.resistance_ohm
 
     def set_level(self, level: int) -> None:
-        if isinstance(level, bool) or not isinstance(level, int):
+        if type(level) is not int and (isinstance(level, bool) or not isinstance(level, int)):
             raise TypeError(f"drive level must be an int in -127..127, got {level!r}")
         if not -MAX_LEVEL <= level <= MAX_LEVEL:
             raise ValueError(f"drive level {level} outside -127..127")
         self.level = level
         if self._tau == 0.0:
-            self.current_a = self.target_current_a()
+            spec = self.spec  # target_current_a(), written out (the same floats)
+            r = spec.resistance_ohm
+            self.current_a = 0.0 if r == 0.0 else level / MAX_LEVEL * spec.voltage_v / r
 
     def advance(self, dt: float) -> float:
         """Advance the L/R lag by ``dt`` s; return the mean current (A) over the interval."""
@@ -152,7 +154,10 @@ class CoilSet:
     def __init__(self, layout: dict[int, CoilSpec]) -> None:
         self.coils = {face: Magnetorquer(face, spec) for face, spec in sorted(layout.items())}
         self._lagged = any(c._tau > 0.0 for c in self.coils.values())
-        self.dipole_B = (0.0, 0.0, 0.0)
+        self._dipole_B = (0.0, 0.0, 0.0)
+        #: without lag, a level changed since ``_dipole_B`` was summed: :attr:`dipole_B` sums it again
+        #: when next read (the controller changes several levels per cycle; one sum serves them all)
+        self._dipole_stale = False
         #: every coil's current is at its target and no level changed since: advance() has nothing to do
         self._settled = True
 
@@ -165,7 +170,15 @@ class CoilSet:
         coil.set_level(level)
         self._settled = False
         if not self._lagged:
-            self.dipole_B = self._sum()
+            self._dipole_stale = True  # the currents follow the levels at once; summed when read
+
+    @property
+    def dipole_B(self) -> tuple[float, float, float]:
+        """Total instantaneous dipole (A m^2, B): :meth:`_sum` at the present currents."""
+        if self._dipole_stale:
+            self._dipole_B = self._sum()
+            self._dipole_stale = False
+        return self._dipole_B
 
     def levels(self) -> dict[int, int]:
         return {face: c.level for face, c in self.coils.items()}
@@ -187,9 +200,13 @@ class CoilSet:
         if not self._lagged or self._settled:
             # Settled: each coil's mean current is its (unchanged) current, so the mean dipole is
             # the dipole_B the last advance computed from those very currents - the same floats.
-            return self.dipole_B
+            # Without lag the currents are the levels' own; the sum is redone after a level change.
+            if self._dipole_stale:
+                self._dipole_B = self._sum()
+                self._dipole_stale = False
+            return self._dipole_B
         mean = {face: c.advance(dt) for face, c in self.coils.items()}
-        self.dipole_B = self._sum()
+        self._dipole_B = self._sum()
         self._settled = all(c.current_a == c.target_current_a() for c in self.coils.values())
         return self._sum(mean)
 

@@ -104,8 +104,10 @@ class Plant:
         else:
             self.actuators = CoilSet(sc.spacecraft.coils)
         self._scale_dipole = sc.spacecraft.actuator_saturation == "scale"
-        self.m_commanded_B: Vec3 = _ZERO
-        self._commanded_from_levels: Vec3 | None = None  # m_commanded_B as set_coil_level last computed it
+        self._m_commanded_B: Vec3 = _ZERO
+        #: set_coil_level ran since ``_m_commanded_B`` was computed (or apply_dipole_B set it): the
+        #: property m_commanded_B computes it from the present levels when next read
+        self._commanded_stale = False
         st = sc.star_tracker
         self.star_tracker: StarTracker | None = StarTracker(st, _derive_seed(self.seed, 4)) if st is not None else None
         self._target: tuple[Quat, str] | None = None
@@ -337,16 +339,25 @@ class Plant:
 
     def set_coil_level(self, face: int, level: int, t: float | None = None) -> None:
         """Drive the coil on ``face`` (X+ 0, X- 1, Y+ 2, Y- 3, Z- 5) at ``level`` -127...127."""
-        self._sync(t)
+        if t is not None:
+            self._sync(t)
         act = self.actuators
-        if not isinstance(act, CoilSet):
+        if type(act) is not CoilSet and not isinstance(act, CoilSet):
             raise TypeError("this spacecraft has ideal torque rods, not face coils; use apply_dipole_B")
         coil = act.coils.get(face)
-        if (coil is not None and type(level) is int and level == coil.level
-                and self.m_commanded_B is self._commanded_from_levels):
-            return  # drivers re-command unchanged levels: the commanded dipole is the one computed last
-        act.set_level(face, level)
-        self.m_commanded_B = self._commanded_from_levels = act.commanded_dipole_B()
+        if coil is None or type(level) is not int or level != coil.level:
+            act.set_level(face, level)  # drivers re-command unchanged levels: nothing to set then
+        self._commanded_stale = True  # m_commanded_B follows the levels from now on
+
+    @property
+    def m_commanded_B(self) -> Vec3:
+        """The commanded dipole, A m^2 in B: what apply_dipole_B was given last, or, after a
+        set_coil_level, the dipole the present levels give once the currents have settled
+        (:meth:`CoilSet.commanded_dipole_B`, computed when read)."""
+        if self._commanded_stale:
+            self._m_commanded_B = self.actuators.commanded_dipole_B()
+            self._commanded_stale = False
+        return self._m_commanded_B
 
     def coil_levels(self) -> dict[int, int]:
         if not isinstance(self.actuators, CoilSet):
@@ -356,7 +367,8 @@ class Plant:
     def apply_dipole_B(self, m_B: Vec3) -> None:
         """Command a body dipole (A m^2): limited per axis (``actuators.saturation``: each axis
         clipped, or the whole vector scaled), split over each axis's coils for coils."""
-        self.m_commanded_B = (float(m_B[0]), float(m_B[1]), float(m_B[2]))
+        self._m_commanded_B = (float(m_B[0]), float(m_B[1]), float(m_B[2]))
+        self._commanded_stale = False
         if self._scale_dipole:
             m_B = scale_to_limits(m_B, self.actuators.max_dipole_per_axis())
         self.actuators.apply_dipole_B(m_B)
@@ -437,14 +449,16 @@ class Plant:
     def wheel_reading(self, i: int, t: float | None = None) -> tuple[float, float, float, float]:
         """``(speed_rad_s, momentum_nms, torque_nm, t_read)`` as the wheel reports them: momentum
         with the configured noise, speed consistent with it, the motor torque of the last step."""
-        self._sync(t)
+        if t is not None:
+            self._sync(t)
         w = self._wheels()
-        w._index(i)
+        if type(i) is not int or not 0 <= i < w.n:
+            w._index(i)  # raises for anything but a wheel's index
         h = w.measured_momentum(i)
-        om = self.omega_BN_B
+        s = self._state  # omega_BN_B at 4..6
         g = w.axes[i]
-        speed = h / w.js[i] - (g[0] * om[0] + g[1] * om[1] + g[2] * om[2])
-        return (speed, h, w.torque_applied[i], self.t)
+        speed = h / w.js[i] - (g[0] * s[4] + g[1] * s[5] + g[2] * s[6])
+        return (speed, h, w.torque_applied[i], self._t_ns / 1e9)
 
     def total_angular_momentum_N(self) -> Vec3:
         """Body + wheels angular momentum in N, N m s (constant without external torque)."""

@@ -199,7 +199,8 @@ class ImuManager(PassiveComponent):
         if hz <= 0.0:  # pragma: no cover - the enum has no 0 Hz value
             self.MagnetometerSamplingFrequencyZeroHz()
             return Result(TimeIntervalValue(0, 0), Success.FAILURE)
-        self.MagnetometerSamplingFrequencyGetFailed.clear_throttle()
+        if self.MagnetometerSamplingFrequencyGetFailed.count:  # clear_throttle, where there is something to clear
+            self.MagnetometerSamplingFrequencyGetFailed.clear_throttle()
         return Result(TimeIntervalValue(0, int(1.0 / hz * 1e6)), Success.SUCCESS)
 
     # --- parameters (flight ids) ---------------------------------------------------------------
@@ -346,7 +347,8 @@ class ImuManager(PassiveComponent):
             self.report_fault(f"{sensor.name} read", exc)
             failed_event()
             return None, None, False
-        failed_event.clear_throttle()
+        if failed_event.count:  # clear_throttle, where there is something to clear
+            failed_event.clear_throttle()
         if fault == _NO_FAULT:
             return values, (values[3] if len(values) > 3 else None), True
         if fault == SimReadFault.NAN:

@@ -84,6 +84,7 @@ class SimDriverFault(FwEnum, namespace="Sim", rep=U8):
 
 
 _FAULT_NONE = SimDriverFault.NONE  # read once: an enum class attribute costs a metaclass lookup
+_SUCCESS = Success.SUCCESS
 
 class MagnetorquerDriver(PassiveComponent):
     """Simulated DRV2605 manager for the coil on ``face`` of ``spacecraft``.
@@ -100,16 +101,28 @@ class MagnetorquerDriver(PassiveComponent):
     def start(self, val: int) -> Success:
         """Drive the coil at level ``val`` (−127…127, sign = current direction). Out-of-range or
         non-integer levels are refused (FAILURE, InvalidDriveLevel) and switch the coil off."""
-        if type(val) is int and val == self._coil.level and self.fault is _FAULT_NONE and self._initialized:
-            # The manager re-commands the same level every tick: the coil already carries it.
+        # The manager re-commands the same level every tick. A healthy, initialised device whose coil
+        # already carries it and whose on-change DriveLevel last sent it: _apply would only clear the
+        # throttles (the same test in stop; written out, as this runs for each coil every tick).
+        if (type(val) is int and val == self._coil.level and self.fault is _FAULT_NONE and self._initialized
+                and val == self.DriveLevel.last):
             if self.DeviceNotReady.count:
                 self.DeviceNotReady.clear_throttle()
-            return Success.SUCCESS
+            if self.DriveReadbackMismatch.count:
+                self.DriveReadbackMismatch.clear_throttle()
+            return _SUCCESS
         return self._start(val)
 
     @sync_input(StopMagnetorquer)
     def stop(self) -> Success:
         """Switch the coil off."""
+        if (self._coil.level == 0 and self.fault is _FAULT_NONE and self._initialized
+                and self.DriveLevel.last == 0):  # start's short cut for level 0: idle coils are stopped too
+            if self.DeviceNotReady.count:
+                self.DeviceNotReady.clear_throttle()
+            if self.DriveReadbackMismatch.count:
+                self.DriveReadbackMismatch.clear_throttle()
+            return _SUCCESS
         return self._apply(0)
 
     @sync_input(LoadSwitchStateChanged)
@@ -208,37 +221,43 @@ class MagnetorquerDriver(PassiveComponent):
         self.DeviceInitialized()
         return True
 
+    def _clear_throttles(self) -> None:
+        """A successful drive lets DeviceNotReady and DriveReadbackMismatch be reported again."""
+        if self.DeviceNotReady.count:  # clear_throttle, where there is something to clear
+            self.DeviceNotReady.clear_throttle()
+        if self.DriveReadbackMismatch.count:
+            self.DriveReadbackMismatch.clear_throttle()
+
     def _apply(self, level: int) -> Success:
-        if not self._powered():
+        if not self._initialized and not self._powered():
             self.DeviceNotReady()
             return Success.FAILURE
         fault = self.fault
-        if fault in (SimDriverFault.NOT_READY, SimDriverFault.STUCK) or (
-                fault == SimDriverFault.STOP_FAILS and level == 0):
-            self.DeviceNotReady()
-            if fault == SimDriverFault.NOT_READY:
-                self._set_coil(0)
-            return Success.FAILURE
-        if fault != SimDriverFault.LATCHED and not self._set_coil(level):
+        if fault is not _FAULT_NONE:
+            if fault in (SimDriverFault.NOT_READY, SimDriverFault.STUCK) or (
+                    fault == SimDriverFault.STOP_FAILS and level == 0):
+                self.DeviceNotReady()
+                if fault == SimDriverFault.NOT_READY:
+                    self._set_coil(0)
+                return Success.FAILURE
+        if (fault is _FAULT_NONE or fault != SimDriverFault.LATCHED) and not self._set_coil(level):
             self.DeviceNotReady()
             return Success.FAILURE
         actual = self._coil.level  # read back what the coil carries now
         if actual != level:
             self.DriveReadbackMismatch(int(actual), int(level))
             return Success.FAILURE
-        if self.DeviceNotReady.count:  # clear_throttle, where there is something to clear
-            self.DeviceNotReady.clear_throttle()
-        if self.DriveReadbackMismatch.count:
-            self.DriveReadbackMismatch.clear_throttle()
-        return Success.SUCCESS
+        self._clear_throttles()
+        return _SUCCESS
 
     def _set_coil(self, level: int) -> bool:
+        level = int(level)
         try:
-            self.spacecraft.set_coil_level(self.face, int(level))
+            self.spacecraft.set_coil_level(self.face, level)
         except Exception as exc:  # noqa: BLE001 - a plant fault is a failed drive, never an exception
             self.report_fault(f"coil {self.face_name} drive", exc)
             return False
-        self.DriveLevel.write(int(level))
+        self.DriveLevel.write(level)
         return True
 
 

@@ -113,7 +113,8 @@ class ReactionWheelDriver(PassiveComponent):
         if limited:
             self.MomentumSaturated(value.momentum, self.max_momentum_nms)
         else:
-            self.MomentumSaturated.clear_throttle()
+            if self.MomentumSaturated.count:  # clear_throttle, where there is something to clear
+                self.MomentumSaturated.clear_throttle()
 
     # --- commands ------------------------------------------------------------------------------
 
@@ -231,12 +232,14 @@ class ReactionWheelDriver(PassiveComponent):
         if abs(torque) > self.max_torque_nm:
             self.TorqueSaturated(torque, self.max_torque_nm)
         else:
-            self.TorqueSaturated.clear_throttle()
+            if self.TorqueSaturated.count:  # clear_throttle, where there is something to clear
+                self.TorqueSaturated.clear_throttle()
         if not self._plant_call(self.spacecraft.set_wheel_torque, self.wheel, torque):
             return Success.FAILURE
         self._set_mode(_TORQUE)
         self.Command.write(torque)
-        self.DeviceNotReady.clear_throttle()
+        if self.DeviceNotReady.count:  # clear_throttle, where there is something to clear
+            self.DeviceNotReady.clear_throttle()
         return _SUCCESS
 
     def _command_speed(self, speed) -> Success:
@@ -251,7 +254,8 @@ class ReactionWheelDriver(PassiveComponent):
             return Success.FAILURE
         self._set_mode(WheelMode.SPEED)
         self.Command.write(float(speed))
-        self.DeviceNotReady.clear_throttle()
+        if self.DeviceNotReady.count:  # clear_throttle, where there is something to clear
+            self.DeviceNotReady.clear_throttle()
         return Success.SUCCESS
 
     def _enable(self, enable: bool) -> Success:
@@ -282,7 +286,8 @@ class ReactionWheelDriver(PassiveComponent):
                 speed, h, u, stamp = self.spacecraft.wheel_sample(self.wheel)
             except Exception:  # noqa: BLE001 - a plant fault is a failed read (_read_raised logs it)
                 return self._read_raised()
-            self.WheelReadFailed.clear_throttle()
+            if self.WheelReadFailed.count:  # clear_throttle, where there is something to clear
+                self.WheelReadFailed.clear_throttle()
             return Result(WheelState(speed, h, u, self.mode, stamp), _SUCCESS)
         if fault in (SimWheelFault.READ_FAIL, SimWheelFault.NOT_READY):
             self.WheelReadFailed()
@@ -293,7 +298,8 @@ class ReactionWheelDriver(PassiveComponent):
             return self._read_raised()
         if fault == SimWheelFault.READ_NAN:
             speed = h = u = _NAN
-        self.WheelReadFailed.clear_throttle()
+        if self.WheelReadFailed.count:  # clear_throttle, where there is something to clear
+            self.WheelReadFailed.clear_throttle()
         return Result(WheelState(speed, h, u, self.mode, stamp), Success.SUCCESS)
 
     def _read_raised(self) -> Result:

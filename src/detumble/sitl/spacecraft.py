@@ -331,10 +331,12 @@ class SimulatedSpacecraft:
     def set_coil_level(self, face: int, level: int) -> None:
         """Drive the coil on ``face`` at ``level`` (-127..127) from now on (plant sign conventions:
         a positive level gives a dipole along the face's outward normal, so X- +level is -X)."""
-        self.sync()
-        if level and not self.face_powered(face):
+        plant = self.plant
+        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
+            self.advance_to_us(self.clock.current_us)
+        if level and self.power is not None and not self.power.face_powered(face):
             raise RuntimeError(f"face {face} is unpowered (its load switch is off); its coil cannot be driven")
-        self.plant.set_coil_level(face, level)
+        plant.set_coil_level(face, level)
         self._coil_w = None
 
     def coil_level(self, face: int) -> int:
@@ -502,17 +504,21 @@ class SimulatedSpacecraft:
                     if coil.level:
                         coil_w += coil_supply_power_w(coil.level, MAX_LEVEL, coil.spec.voltage_v, coil.current_a)
             self._coil_w = coil_w
-        if self._power_pending_ns == 0:
+        pending = self._power_pending_ns
+        if pending == 0:
             self._power_t0_ns = t0_ns
-        self._power_pending_ns += t1_ns - t0_ns
-        self._power_coil_j += coil_w * (t1_ns - t0_ns) * 1e-9
-        if self._power_pending_ns >= POWER_STEP_NS:
-            dt = self._power_pending_ns * 1e-9
+        d_ns = t1_ns - t0_ns
+        pending += d_ns
+        if coil_w:  # adding 0.0 W x dt leaves the sum as it is
+            self._power_coil_j += coil_w * d_ns * 1e-9
+        if pending >= POWER_STEP_NS:
+            dt = pending * 1e-9
             plant = self.plant
             assert self.power is not None  # only called with a power model
             self.power.step(dt, self._power_t0_ns * 1e-9, plant.q_BN, plant.r_N, self._power_coil_j / dt)
-            self._power_pending_ns = 0
+            pending = 0
             self._power_coil_j = 0.0
+        self._power_pending_ns = pending
 
     def set_accelerometer_odr_hz(self, odr_hz: float) -> None:
         """Reconfigure the accelerometer's output data rate."""

@@ -45,6 +45,36 @@ def test_level_to_dipole_chain_and_mirrored_minus_faces():
     assert coils.dipole_B[0] == pytest.approx(2 * 96 * 0.053 * 0.045 * 100 / 127 * 3.3 / 13, rel=1e-14)
 
 
+def test_dipole_sum_follows_every_level_change_without_lag():
+    """Without lag the total dipole is summed when read (one sum for several level changes): it
+    must equal (==, the same floats) the per-coil dipoles summed in face order after every change,
+    both as ``dipole_B`` and as what ``advance`` hands the integrator."""
+    coils = CoilSet(default_coil_layout())
+
+    def reference():
+        mx = my = mz = 0.0
+        for c in coils.coils.values():
+            m = c.dipole_B()
+            mx += m[0]
+            my += m[1]
+            mz += m[2]
+        return (mx, my, mz)
+
+    steps = [(X_PLUS, 64), (Y_MINUS, -90), (Z_MINUS, 127), (X_MINUS, -64), (Y_PLUS, 13), (X_PLUS, 64),
+             (Z_MINUS, -5)]
+    for k, (face, level) in enumerate(steps):
+        coils.set_level(face, level)
+        if k % 2 == 0:
+            assert coils.advance(0.02) == reference()  # advance first (the plant's order) ...
+            assert coils.dipole_B == reference()
+        else:
+            assert coils.dipole_B == reference()  # ... or read first (the magnetometer's)
+            assert coils.advance(0.02) == reference()
+    coils.set_level(Y_PLUS, 0)
+    coils.set_level(X_PLUS, 0)  # two changes, one read
+    assert coils.advance(0.02) == reference() != (0.0, 0.0, 0.0)
+
+
 def test_level_validation_messages():
     coil = Magnetorquer(X_PLUS, CoilSpec())
     with pytest.raises(ValueError, match=r"drive level 128 outside -127\.\.127"):

@@ -131,3 +131,27 @@ def test_recommanding_an_unchanged_coil_level_keeps_the_commanded_dipole_exactly
     p.apply_dipole_B((0.01, 0.0, 0.0))  # a requested dipole, not the levels' own
     p.set_coil_level(5, p.coil_levels()[5])  # unchanged level: m_commanded_B must follow the levels again
     assert p.m_commanded_B == p.actuators.commanded_dipole_B()
+
+
+def test_commanded_dipole_follows_each_level_change_when_read_later():
+    """m_commanded_B is computed from the levels when read: after any run of set_coil_level calls
+    (changed, unchanged, several between reads) it equals (==) the dipole the present levels command,
+    and apply_dipole_B's requested dipole stands until the next set_coil_level."""
+    from detumble.sim.plant import Plant
+    from detumble.sim.scenario import load_scenario
+
+    p = Plant(load_scenario("default"))
+    assert p.m_commanded_B == (0.0, 0.0, 0.0)
+    for face, level in ((0, 60), (1, -60), (2, 17), (3, -17), (5, 127)):
+        p.set_coil_level(face, level)
+    assert p.m_commanded_B == p.actuators.commanded_dipole_B() != (0.0, 0.0, 0.0)
+    p.set_coil_level(2, -40)
+    assert p.m_commanded_B == p.actuators.commanded_dipole_B()
+    p.set_coil_level(5, 0)
+    p.set_coil_level(0, 0)
+    p.step()
+    assert p.m_commanded_B == p.actuators.commanded_dipole_B()
+    p.apply_dipole_B((0.0, 0.01, 0.0))
+    assert p.m_commanded_B == (0.0, 0.01, 0.0)
+    p.step()
+    assert p.m_commanded_B == (0.0, 0.01, 0.0)  # not overwritten by the levels apply_dipole_B chose

@@ -144,6 +144,29 @@ def test_latched_output_is_caught_by_the_read_back(rig):
     assert h.invoke("stop") == Success.SUCCESS and craft.coil_level(0) == 0
 
 
+@pytest.mark.parametrize("port, args", [("stop", ()), ("start", (0,))])
+def test_recommanding_the_carried_level_acts_as_a_full_drive(rig, port, args):
+    """Re-commanding the level the coil already carries takes a short cut; it must leave what a
+    full drive leaves: DriveLevel sent once (a fresh driver's coil is at 0 but the channel has not
+    sent it yet), and both throttles cleared (here DriveReadbackMismatch, tripped by a LATCHED
+    output that kept the coil at 0)."""
+    h, craft = rig
+    assert craft.coil_level(0) == 0
+    assert h.invoke(port, *args) == Success.SUCCESS
+    assert h.tlm_values("DriveLevel") == [0]
+    h.component.set_fault(SimDriverFault.LATCHED)
+    for level in range(1, 8):
+        assert h.invoke("start", level) == Success.FAILURE
+    h.assert_event_count("DriveReadbackMismatch", 5)  # throttled after 5
+    h.component.set_fault(SimDriverFault.NONE)
+    for _ in range(2):
+        assert h.invoke(port, *args) == Success.SUCCESS
+    assert h.tlm_values("DriveLevel") == [0]
+    h.component.set_fault(SimDriverFault.LATCHED)
+    assert h.invoke("start", 9) == Success.FAILURE
+    h.assert_event_count("DriveReadbackMismatch", 6)  # reported again: the throttle was cleared
+
+
 def test_a_plant_exception_is_a_failed_drive(rig, monkeypatch):
     h, craft = rig
 
