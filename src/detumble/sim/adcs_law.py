@@ -14,7 +14,8 @@ the last tick so the next cycle's magnetometer sample is free of their field. Co
 tick on, as a handler's commands act after its time in the deployment.
 
 What it leaves out, because nothing plant-only can produce it: commands (it starts in AUTO with the
-target it is given, as the start-up sequence sets it), telemetry and events, and the fault paths of
+target it is given, as the start-up sequence sets it, or takes one FORCE_MODE at a set time:
+``force_mode``), telemetry and events, and the fault paths of
 failed or non-finite reads (the plant's sensors always answer). The wheels start enabled, as the
 plant's do.
 
@@ -30,8 +31,8 @@ from typing import Mapping, Sequence
 from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, pooling_fields
 from detumble.control import attitude_defaults
 from detumble.control.attitude_filter import AttitudeFilter
-from detumble.control.magnetic import clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
-from detumble.control.magnetic import bdot_dipole
+from detumble.control.magnetic import (bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted,
+                                       scale_to_limits)
 from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipoleEstimator, field_steering_torque
 from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
 from detumble.control.mekf import Mekf
