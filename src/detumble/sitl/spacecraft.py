@@ -167,7 +167,9 @@ class SimulatedSpacecraft:
         self._trace_next_ns: int | None = None
         self.steps_taken = 0
         self._attached: list[object] = []  # the schedulers this spacecraft is attached to
-        self._times: dict[tuple, Time] = {}  # time_of's latest results
+        self._times: dict[int, Time] = {}  # time_of's latest results, by plant time (ns)
+        self._times_generation = -1  # the clock generation and origin they were made with
+        self._times_origin_us = self.origin_us
         self._init_avionics(seed)
         self.sync()
 
@@ -243,14 +245,19 @@ class SimulatedSpacecraft:
         """The F´ time (clock base and context) of plant time ``t_ns`` (ns since plant t = 0)."""
         c = self.clock
         # Sensors and wheels are read several times per sample instant: the few latest times are
-        # kept (a Time is immutable), keyed by everything they are made of (a SimulatedClock's
-        # epoch, base and context by its generation, which changes with any of them).
-        key = (t_ns, self.origin_us, c.generation)
-        t = self._times.get(key)
+        # kept (a Time is immutable), keyed by plant time while what else they are made of holds
+        # (the origin, and a SimulatedClock's epoch, base and context by its generation, which
+        # changes with any of them); a change of either empties the table.
+        times = self._times
+        if c.generation != self._times_generation or self.origin_us != self._times_origin_us:
+            times.clear()
+            self._times_generation = c.generation
+            self._times_origin_us = self.origin_us
+        t = times.get(t_ns)
         if t is None:
-            if len(self._times) >= 8:
-                self._times.clear()
-            t = self._times[key] = Time.from_us(c.epoch_us + self.origin_us + t_ns // 1000, c.time_base, c.context)
+            if len(times) >= 8:
+                times.clear()
+            t = times[t_ns] = Time.from_us(c.epoch_us + self.origin_us + t_ns // 1000, c.time_base, c.context)
         return t
 
     def now(self) -> Time:

@@ -31,7 +31,7 @@ from fprime_lite.model.params import BoundParam, Param, ParamValid
 from fprime_lite.model.ports import InputPortArray, InputPortDecl, OutputPort, OutputPortArray, bind_input_entries
 from fprime_lite.model.queues import MessageQueue
 from fprime_lite.model.telemetry import BoundChannel, Channel, bind_channel
-from fprime_lite.model.time import Time
+from fprime_lite.model.time import NO_CLOCK_READING, Time, simulated_clock_of
 from fprime_lite.model.types import _U32, String, deserialize_values, fit_utf8
 
 __all__ = ["Component", "PassiveComponent", "QueuedComponent", "ActiveComponent", "ComponentSpec",
@@ -417,6 +417,9 @@ class Component(metaclass=ComponentMeta):
             self._outputs[decl.name] = port
             setattr(self, decl.name, port.calls)  # the hot path: an exact list of call slots
         self._time_port = self._outputs["timeCaller"]
+        # The time port's call the clock below was worked out for, and that clock (see _port_time).
+        self._clock_now: Any = None
+        self._clock: Any = NO_CLOCK_READING
         self._commands = {c.opcode: c for c in spec.commands}
         self._command_handlers = {c.opcode: getattr(self, c.name) for c in spec.commands
                                   if c.kind not in ("set", "save")}
@@ -484,7 +487,27 @@ class Component(metaclass=ComponentMeta):
 
     def get_time(self) -> Time:
         """The current time from the time-get port (a zero TB_NONE time when unconnected)."""
-        return self.timeCaller[0]() if self._time_port.targets[0] is not None else _ZERO_TIME
+        call = self.timeCaller[0]
+        clock = self._clock
+        if call is self._clock_now and clock._now_at == clock.current_us:
+            return clock._now  # what call() returns at this instant (see _port_time)
+        return self._port_time(call)
+
+    def _port_time(self, call: Callable[[], Time]) -> Time:
+        """What the time port's slot ``call`` gives now (the zero TB_NONE time when unconnected).
+
+        Also notes whether ``call`` is a :class:`~fprime_lite.model.time.SimulatedClock`'s own
+        ``now`` (:func:`~fprime_lite.model.time.simulated_clock_of`): while the slot holds that very
+        callable and the clock has made its Time of the present instant, the framework's time reads
+        (``get_time``, channel writes, a rate group's cycle end) take that Time without the call.
+        Any other callable, a reconnection or a disconnection is seen at the next read.
+        """
+        if self._time_port.targets[0] is None:
+            return _ZERO_TIME
+        if call is not self._clock_now:
+            self._clock_now = call
+            self._clock = simulated_clock_of(call)
+        return call()
 
     # --- ids -------------------------------------------------------------------------------------
 

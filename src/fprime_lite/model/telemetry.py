@@ -36,7 +36,6 @@ from fprime_lite.model.time import US_PER_S, Time, TimeBase, TimeType
 from fprime_lite.model.types import (_F64, ArrayType, BoolType, EnumType, FloatType, FwType, IntType, StringType,
                                      StructType, fw_type)
 
-_ZERO_TIME = Time()
 #: The first µs whose whole seconds no longer fit Fw.Time's U32 seconds.
 _TIME_US_END = (0xFFFFFFFF + 1) * US_PER_S
 
@@ -127,8 +126,8 @@ class BoundChannel(Generic[V]):
     """A channel of one component instance."""
 
     __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
-                 "_valid_type", "_tlm_targets", "_tlm_calls", "_time_targets", "_time_calls", "_deferrable",
-                 "_bound_call", "_store", "_latest", "_members_of")
+                 "_valid_type", "_tlm_targets", "_tlm_calls", "_time_calls", "_deferrable",
+                 "_bound_call", "_store", "_latest", "_members_of", "_min", "_max")
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         self.component = component
@@ -148,12 +147,13 @@ class BoundChannel(Generic[V]):
         # reads them without going through the component's attributes.
         self._tlm_targets = self._port.targets
         self._tlm_calls = self._port.calls
-        time_port = component.output_port("timeCaller")
-        self._time_targets = time_port.targets
-        self._time_calls = time_port.calls
+        self._time_calls = component.output_port("timeCaller").calls
         # A value of this exact Python type is valid for the channel without checking (enum
-        # members of the channel's enum, and floats for F64).
-        self._valid_type = t.cls if isinstance(t, EnumType) else float if t is _F64 else None
+        # members of the channel's enum, and floats for F64), or, for an integer type, an int
+        # within [_min, _max] (IntType.check's own first test).
+        self._valid_type = (t.cls if isinstance(t, EnumType) else float if t is _F64
+                            else int if isinstance(t, IntType) else None)
+        self._min, self._max = (t.min, t.max) if isinstance(t, IntType) else (0, -1)
         # Checked values of these types are immutable, so packing them later gives the same bytes.
         self._deferrable = isinstance(t, (IntType, FloatType, BoolType, EnumType, StringType))
         self._bound_call: object = None  # the tlmOut call that _store was worked out for
@@ -164,8 +164,10 @@ class BoundChannel(Generic[V]):
 
     def write(self, value: V, time: Time | None = None) -> None:
         """Record ``value`` and send it (time-stamped now, unless ``time`` is given)."""
-        if type(value) is not self._valid_type:
-            value = self._check(value)
+        valid_type = self._valid_type
+        if (type(value) is not valid_type
+                or (valid_type is int and not self._min <= value <= self._max)):  # type: ignore[operator]
+            value = self._check(value)  # converts, or raises the type's error
         if self._on_change and self.written and value == self.last:
             return
         self.last = value
@@ -175,8 +177,12 @@ class BoundChannel(Generic[V]):
             if self._tlm_targets[0] is None:
                 return
             self._bind(call)
-        if time is None:
-            time = self._time_calls[0]() if self._time_targets[0] is not None else _ZERO_TIME
+        if time is None:  # the component's get_time, written out
+            component = self.component
+            time_call = self._time_calls[0]
+            clock = component._clock
+            time = (clock._now if time_call is component._clock_now and clock._now_at == clock.current_us
+                    else component._port_time(time_call))
         members_of = self._members_of
         stored = value if members_of is None else members_of(value)
         latest = self._latest
@@ -233,7 +239,7 @@ class BoundSnapshotChannel(BoundChannel[V]):
     values taken at the write; the bytes are those of the type's own ``pack``.
     """
 
-    __slots__ = ("_exact", "_full_check", "_times_at")
+    __slots__ = ()
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         super().__init__(component, decl, channel_id)
@@ -248,11 +254,14 @@ class BoundSnapshotChannel(BoundChannel[V]):
             member_types = [t.elem] * t.size
         exact = [float if mt is _F64 else mt.cls if isinstance(mt, EnumType) else Time if isinstance(mt, TimeType)
                  else None for mt in member_types]
-        self._exact = None if None in exact else (t.cls, tuple(exact))
-        #: Positions of the time members, whose fields the quick check looks at.
-        self._times_at = tuple(i for i, mt in enumerate(member_types) if isinstance(mt, TimeType))
-        self._full_check = t.check
-        self._check = self._quick_check  # every write goes through it (_valid_type stays None)
+        # Every write goes through the quick check (_valid_type stays None), which falls back on
+        # the type's own; a member type with no always-valid Python type leaves only the latter.
+        if None in exact:
+            self._check = t.check
+        else:
+            times_at = tuple(i for i, mt in enumerate(member_types) if isinstance(mt, TimeType))
+            self._check = _quick_check(t.cls, self._members_of, tuple(e for e in exact if e is not None),
+                                       times_at, t.check)
         fixed = t._fixed
         if fixed is not None:
             self._serialize = lambda members: fixed.pack(*members)
@@ -260,19 +269,48 @@ class BoundSnapshotChannel(BoundChannel[V]):
             packs = [mt.pack for mt in member_types]
             self._serialize = lambda members: b"".join([p(v) for p, v in zip(packs, members, strict=True)])
 
-    def _quick_check(self, value: Any) -> Any:
-        """The type's check, skipped for a value whose members all have their exact valid types
-        (and whose times have fields the time's check accepts as they are)."""
-        exact = self._exact
-        if exact is not None and type(value) is exact[0]:
-            members = self._members_of(value)
-            if tuple(map(type, members)) == exact[1]:
-                for i in self._times_at:  # TimeType.check's tests, on plain ints only
-                    t = members[i]
-                    base, context, us = t.time_base, t.context, t.total_us
-                    if not ((type(base) is int or type(base) is TimeBase) and 0 <= base <= 0xFFFF
-                            and type(context) is int and 0 <= context <= 0xFF
-                            and type(us) is int and 0 <= us < _TIME_US_END):
-                        return self._full_check(value)
-                return value
-        return self._full_check(value)
+
+def _times_fit(members: tuple, times_at: tuple[int, ...]) -> bool:
+    """Whether the time members at ``times_at`` pass TimeType.check's tests as they are: a base,
+    context and µs that are plain ints (or a TimeBase) within U16, U8 and U32 seconds."""
+    for i in times_at:
+        t = members[i]
+        base, context, us = t.time_base, t.context, t.total_us
+        if not ((type(base) is int or type(base) is TimeBase) and 0 <= base <= 0xFFFF
+                and type(context) is int and 0 <= context <= 0xFF
+                and type(us) is int and 0 <= us < _TIME_US_END):
+            return False
+    return True
+
+
+def _quick_check(cls: type, members_of: Any, exact: tuple[type, ...], times_at: tuple[int, ...],
+                 full_check: Any) -> Any:
+    """A snapshot channel's check: ``value`` itself when it is a ``cls`` whose members (as
+    ``members_of`` gives them) have exactly the types ``exact``, position by position, and whose
+    time members fit (:func:`_times_fit`); else what ``full_check(value)`` returns or raises.
+
+    Written out for three and four members (vectors, quaternions, a vector with its time), a loop
+    otherwise: ``tuple(map(type, members))`` alone costs as much as a write's bookkeeping.
+    """
+    if len(exact) in (3, 4):
+        three = len(exact) == 3
+        e0, e1, e2, e3 = exact if not three else (*exact, None)
+
+        def check_short(value: Any) -> Any:
+            if type(value) is cls:
+                m = members_of(value)
+                if (type(m[0]) is e0 and type(m[1]) is e1 and type(m[2]) is e2 and (three or type(m[3]) is e3)
+                        and (not times_at or _times_fit(m, times_at))):
+                    return value
+            return full_check(value)
+        return check_short
+
+    def check(value: Any) -> Any:
+        if type(value) is not cls:
+            return full_check(value)
+        m = members_of(value)
+        for member, e in zip(m, exact, strict=True):
+            if type(member) is not e:
+                return full_check(value)
+        return value if _times_fit(m, times_at) else full_check(value)
+    return check

@@ -359,6 +359,33 @@ class SimulatedClock(Clock):
         self.current_us += microseconds
 
 
+class _NoClockReading:
+    """Stands in for "the time port does not call a :class:`SimulatedClock`'s own ``now``": its
+    ``_now_at`` never equals its ``current_us``, so a reader that tests for the clock's made Time of
+    the present instant always makes the port call instead."""
+
+    _now_at = None
+    current_us = -1
+    _now = None
+
+
+#: The stand-in of :func:`simulated_clock_of` for a call that is not a SimulatedClock's ``now``.
+NO_CLOCK_READING = _NoClockReading()
+
+
+def simulated_clock_of(call: Any) -> SimulatedClock | _NoClockReading:
+    """The :class:`SimulatedClock` whose own :meth:`SimulatedClock.now` ``call`` is (a bound method,
+    e.g. a :class:`~fprime_lite.svc.time_source.TimeSource` connection), else :data:`NO_CLOCK_READING`.
+
+    A reader that has the clock can take ``clock._now`` while ``clock._now_at == clock.current_us``:
+    exactly what ``call()`` would return then, without the call.
+    """
+    clock = getattr(call, "__self__", None)
+    if getattr(call, "__func__", None) is SimulatedClock.now and isinstance(clock, SimulatedClock):
+        return clock
+    return NO_CLOCK_READING
+
+
 class WallClock(Clock):
     """Microseconds of the host's monotonic clock since the clock was made."""
 

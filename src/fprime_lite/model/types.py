@@ -672,6 +672,10 @@ class ArrayType(FwType[Any]):
                        if isinstance(elem, (IntType, FloatType)) else None)
         #: The Python type whose every value is a valid element as it is (F64: float), or None.
         self._exact_elem = float if elem is _F64 else elem.cls if isinstance(elem, EnumType) else None
+        #: The default elements when they are immutable values (numbers, booleans, enums, strings),
+        #: shared by every default array; None for struct and array elements (a fresh one each).
+        self._defaults = (tuple(elem.default for _ in range(size))
+                          if isinstance(elem, (IntType, FloatType, BoolType, EnumType, StringType)) else None)
 
     def check(self, value):
         if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
@@ -742,11 +746,15 @@ class Array(list):
         cls.__fprime_type__ = ArrayType(cls, elem_type, size)
 
     def __init__(self, items=None):
+        # list.__init__ called directly (no super() object): arrays are built on the tick path,
+        # e.g. a controller's Vector3 telemetry every cycle.
         t = type(self).__fprime_type__
         if items is None:
-            super().__init__(t.elem.default for _ in range(t.size))
+            defaults = t._defaults
+            list.__init__(self, defaults if defaults is not None else [t.elem.default for _ in range(t.size)])
             return
-        items = list(items)
+        if type(items) is not list and type(items) is not tuple:  # a caller's sequence is only read
+            items = list(items)
         if len(items) != t.size:
             raise SerializationError(f"{t.name} expects exactly {t.size} elements, got {len(items)}")
         exact = t._exact_elem
@@ -755,9 +763,10 @@ class Array(list):
                 if type(v) is not exact:
                     break
             else:
-                super().__init__(items)
+                list.__init__(self, items)
                 return
-        super().__init__(t.elem.check(v) for v in items)
+        check = t.elem.check
+        list.__init__(self, [check(v) for v in items])
 
 
 @overload

@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import logging
 import time as _wall
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
-from fprime_lite.model.component import _ZERO_TIME, ActiveComponent, PassiveComponent
+from fprime_lite.model.component import ActiveComponent, PassiveComponent
 from fprime_lite.model.events import Event, Severity
 from fprime_lite.model.fw_ports import Cycle, Ping, Sched
 from fprime_lite.model.ports import OutputPort, OutputPortArray, async_input, sync_input
@@ -54,6 +54,10 @@ class RateGroupBase:
 
         timeCaller: list
         _time_port: OutputPortArray
+        _clock: Any
+        _clock_now: Any
+
+        def _port_time(self, call: Any) -> Time: ...
 
     def _setup(self, contexts, period_us: int | None) -> None:
         contexts = list(contexts)
@@ -94,7 +98,10 @@ class RateGroupBase:
             self.max_time_us = elapsed_us
         # One time read stamps RgMaxTime and ends the cycle: both are this instant (get_time,
         # written out: the time port when connected, else the zero time).
-        now = self.timeCaller[0]() if self._time_port.targets[0] is not None else _ZERO_TIME
+        time_call = self.timeCaller[0]
+        clock = self._clock
+        now = (clock._now if time_call is self._clock_now and clock._now_at == clock.current_us
+               else self._port_time(time_call))
         self.RgMaxTime.write(self.max_time_us, now)
         # As F´'s ActiveRateGroup: the cycle's time is measured from the driver's cycle start.
         overran = (self.period_us is not None and cycle_start.time_base == now.time_base

@@ -212,3 +212,22 @@ def test_truth_recorder_writes_csv(make_craft, tmp_path):
 def test_trace_interval_must_be_positive(make_craft):
     with pytest.raises(ValueError, match="interval_us"):
         make_craft().set_trace(lambda s: None, 0)
+
+
+def test_time_of_follows_the_clock_settings_and_the_origin(make_craft):
+    """TICK-015: ``time_of`` hands out one Time per plant instant, and a new one after the clock's
+    epoch, base or context is set (an RTC set) or the origin moves, never the one it kept."""
+    craft = make_craft()
+    epoch = craft.clock.epoch_us
+    t = craft.time_of(40_000_000)
+    assert craft.time_of(40_000_000) is t and t.total_us == epoch + craft.origin_us + 40_000
+    for k in range(12):  # more instants than it keeps: every one is still right
+        assert craft.time_of(k * 1_000_000).total_us == epoch + craft.origin_us + k * 1_000
+    craft.clock.epoch_us = epoch + 7_000_000
+    assert craft.time_of(40_000_000).total_us == epoch + 7_000_000 + craft.origin_us + 40_000
+    craft.clock.time_base = TimeBase.TB_PROC_TIME
+    craft.clock.context = 2
+    moved = craft.time_of(40_000_000)
+    assert (moved.time_base, moved.context) == (TimeBase.TB_PROC_TIME, 2)
+    craft.origin_us += 5
+    assert craft.time_of(40_000_000).total_us == moved.total_us + 5
