@@ -110,12 +110,17 @@ class Battery:
         return self.energy_j / self.capacity_j
 
     def ocv(self) -> float:
-        return cell_ocv(self.soc) * self.cfg.cells_in_series
+        """The pack's open-circuit voltage (V) at its present state of charge."""
+        return cell_ocv(self.energy_j / self.capacity_j) * self.cfg.cells_in_series  # soc, written out
 
     def current_for(self, power_w: float) -> float:
         """Battery current (A, + = discharge) delivering ``power_w`` at its terminals; at most the
         maximum-power current ``OCV/2R`` when the load asks for more than the pack can give."""
-        ocv = self.ocv()
+        return self.current_for_ocv(power_w, self.ocv())
+
+    def current_for_ocv(self, power_w: float, ocv: float) -> float:
+        """:meth:`current_for` with the pack's present open-circuit voltage ``ocv`` (V, what
+        :meth:`ocv` returns now) given by a caller that has it."""
         r = self.cfg.internal_resistance_ohm
         if r <= 0.0:
             return power_w / ocv
@@ -202,7 +207,9 @@ class ElectricalSystem:
     def switched_load_w(self) -> float:
         loads = self.cfg.loads
         sw = self.switches
-        p = loads.avionics_w + loads.face_board_w * sum(sw[f] for f in FACE_SWITCHES)
+        # The number of closed face switches (bools add up to the int sum() gives), written out.
+        p = loads.avionics_w + loads.face_board_w * (sw["face0"] + sw["face1"] + sw["face2"] + sw["face3"]
+                                                     + sw["face4"] + sw["face5"])
         if sw["payloadPower"]:
             p += loads.payload_power_w
         if sw["payloadBattery"]:
@@ -221,8 +228,8 @@ class ElectricalSystem:
         unserved = 0.0
         if net < 0.0 and bat.energy_j >= bat.capacity_j:
             shunted, net = -net, 0.0             # full: the regulator sheds the surplus
-        current = bat.current_for(net) if net != 0.0 else 0.0
-        ocv = bat.ocv()
+        ocv = bat.ocv()  # the pack's energy is that of the step's start until it is set below
+        current = bat.current_for_ocv(net, ocv) if net != 0.0 else 0.0
         delivered = (ocv - current * bat.cfg.internal_resistance_ohm) * current
         if net > 0.0 and delivered < net:        # the pack cannot deliver it all (brown-out)
             unserved = net - delivered

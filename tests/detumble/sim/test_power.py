@@ -164,3 +164,32 @@ def test_power_keys_can_be_set_on_a_scenario_without_them():
     assert sc.power.battery.initial_soc == 0.05 and sc.accelerometer.ideal is True
     with pytest.raises(ScenarioError, match="capacity_wh"):
         load_scenario("default", settings=["power.battery.capacity_w=3"])
+
+
+def test_switched_load_counts_every_face_switch_as_the_sum_over_the_faces():
+    """EPS-LOAD-002: the switched load is exactly ``avionics + face_board · (closed face switches)``
+    (+ the payload lines) for every one of the 256 switch settings: each face counts once."""
+    import itertools
+
+    from detumble.sim.power import FACE_SWITCHES, SWITCH_NAMES
+    eps = ElectricalSystem(PowerConfig(loads=LoadConfig(payload_battery_w=0.7)), JD0, R_EARTH_EQ)
+    loads = eps.cfg.loads
+    for setting in itertools.product((False, True), repeat=len(SWITCH_NAMES)):
+        for name, on in zip(SWITCH_NAMES, setting, strict=True):
+            eps.set_switch(name, on)
+        faces = sum(1 for f in FACE_SWITCHES if eps.switches[f])
+        expected = loads.avionics_w + loads.face_board_w * faces
+        expected += loads.payload_power_w if eps.switches["payloadPower"] else 0.0
+        expected += loads.payload_battery_w if eps.switches["payloadBattery"] else 0.0
+        assert eps.switched_load_w() == expected
+
+
+def test_the_current_at_a_given_ocv_is_the_current_for_the_load():
+    """EPS-BAT-002: ``current_for_ocv(P, ocv())`` is ``current_for(P)`` bit for bit, for loads,
+    charging and a load beyond the pack's maximum power, at several states of charge."""
+    for soc in (0.0, 0.05, 0.37, 0.9, 1.0):
+        bat = Battery(BatteryConfig(initial_soc=soc, internal_resistance_ohm=0.2))
+        for p in (-7.5, -0.3, 0.0, 0.01, 5.0, 1e6):
+            assert bat.current_for_ocv(p, bat.ocv()) == bat.current_for(p)
+    ideal = Battery(BatteryConfig(internal_resistance_ohm=0.0))
+    assert ideal.current_for_ocv(3.0, ideal.ocv()) == 3.0 / ideal.ocv()
