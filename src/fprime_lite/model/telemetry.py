@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from fprime_lite.model.errors import DeclarationError, check_member_name
 from fprime_lite.model.events import translate_format
-from fprime_lite.model.time import US_PER_S, Time, TimeBase, TimeType
+from fprime_lite.model.time import NO_CLOCK_READING, US_PER_S, Time, TimeBase, TimeType
 from fprime_lite.model.types import (_F64, ArrayType, BoolType, EnumType, FloatType, FwType, IntType, StringType,
                                      StructType, fw_type)
 
@@ -127,7 +127,7 @@ class BoundChannel(Generic[V]):
 
     __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
                  "_valid_type", "_tlm_targets", "_tlm_calls", "_time_calls", "_deferrable",
-                 "_bound_call", "_store", "_latest", "_members_of", "_min", "_max")
+                 "_bound_call", "_store", "_latest", "_members_of", "_min", "_max", "_clock", "_clock_now")
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         self.component = component
@@ -148,6 +148,8 @@ class BoundChannel(Generic[V]):
         self._tlm_targets = self._port.targets
         self._tlm_calls = self._port.calls
         self._time_calls = component.output_port("timeCaller").calls
+        self._clock_now: Any = None  # the time call whose clock _clock is (see _time_now)
+        self._clock: Any = NO_CLOCK_READING
         # A value of this exact Python type is valid for the channel without checking (enum
         # members of the channel's enum, and floats for F64), or, for an integer type, an int
         # within [_min, _max] (IntType.check's own first test).
@@ -177,12 +179,11 @@ class BoundChannel(Generic[V]):
             if self._tlm_targets[0] is None:
                 return
             self._bind(call)
-        if time is None:  # the component's get_time, written out
-            component = self.component
+        if time is None:  # the component's get_time, written out (see _time_now)
             time_call = self._time_calls[0]
-            clock = component._clock
-            time = (clock._now if time_call is component._clock_now and clock._now_at == clock.current_us
-                    else component._port_time(time_call))
+            clock = self._clock
+            time = (clock._now if time_call is self._clock_now and clock._now_at == clock.current_us
+                    else self._time_now(time_call))
         members_of = self._members_of
         stored = value if members_of is None else members_of(value)
         latest = self._latest
@@ -194,6 +195,15 @@ class BoundChannel(Generic[V]):
             store(self.id, time, stored, self._serialize)
         else:
             call(self.id, time, self._serialize(stored))
+
+    def _time_now(self, time_call: Any) -> Time:
+        """The time port's answer now through the component's :meth:`Component._port_time`; also
+        keeps the clock it worked out for ``time_call``, which later writes read without the call
+        while the port's slot holds that same callable."""
+        component = self.component
+        time = component._port_time(time_call)
+        self._clock_now, self._clock = component._clock_now, component._clock
+        return time
 
     def _bind(self, call: object) -> None:
         """Work out how writes reach what ``tlmOut[0]`` now connects to (``call`` is its slot)."""
