@@ -134,6 +134,7 @@ _HALF_TURN = AxisOrientation.ROTATED_180_DEG
 _NO_FAULT = SimReadFault.NONE
 _FAIL = SimReadFault.FAIL
 _SUCCESS = Success.SUCCESS
+_GYROSCOPE = SimImuSensor.GYROSCOPE
 
 
 class ImuManager(PassiveComponent):
@@ -367,9 +368,22 @@ class ImuManager(PassiveComponent):
         return Result(value, Success.SUCCESS)
 
     def angularVelocityGet_handler(self) -> Result:
-        v, _, ok = self._read(SimImuSensor.GYROSCOPE, self.spacecraft.gyro_sample, self.Lsm6dsoDeviceNotReady)
-        if not ok:
-            return Result(AngularVelocity(0.0, 0.0, 0.0), Success.FAILURE)
+        if self._faults[_GYROSCOPE] == _NO_FAULT:
+            # _read written out for a healthy gyro (the attitude controller reads it every tick);
+            # AngularVelocity has no time stamp, so the sample's time is not asked for
+            try:
+                v = self.spacecraft.gyro_sample(False)
+            except Exception as exc:  # noqa: BLE001 - a simulation fault is a failed read, never an exception
+                self.report_fault(f"{_GYROSCOPE.name} read", exc)
+                self.Lsm6dsoDeviceNotReady()
+                return Result(AngularVelocity(0.0, 0.0, 0.0), Success.FAILURE)
+            failed = self.Lsm6dsoDeviceNotReady
+            if failed.count:  # clear_throttle, where there is something to clear
+                failed.clear_throttle()
+        else:
+            v, _, ok = self._read(_GYROSCOPE, self.spacecraft.gyro_sample, self.Lsm6dsoDeviceNotReady)
+            if not ok:
+                return Result(AngularVelocity(0.0, 0.0, 0.0), Success.FAILURE)
         value = AngularVelocity(*self._orient(v[0], v[1], v[2]))
         self.AngularVelocity.write(value)
         return Result(value, _SUCCESS)

@@ -278,16 +278,18 @@ class SimulatedSpacecraft:
         s = mag.sample_gauss
         return (s[0], s[1], s[2], self.time_of(mag.sample_time_ns))
 
-    def gyro_sample(self) -> tuple[float, float, float, Time]:
-        """``(wx, wy, wz, t_sample)``: the held LSM6DSO sample in rad/s (body axes) and its time."""
+    def gyro_sample(self, stamped: bool = True) -> tuple:
+        """``(wx, wy, wz, t_sample)``: the held LSM6DSO sample in rad/s (body axes) and its time;
+        ``(wx, wy, wz)`` without the time when ``stamped`` is False (the IMU manager's reads, whose
+        ``AngularVelocity`` carries no time stamp)."""
         self.sync()
         plant = self.plant
         gyro = plant.gyro
         if gyro.spec.ideal:
             w = plant.omega_BN_B
-            return (w[0], w[1], w[2], self.time_of(plant.t_ns))
+            return (w[0], w[1], w[2], self.time_of(plant.t_ns)) if stamped else (w[0], w[1], w[2])
         s = gyro.sample_rad_s
-        return (s[0], s[1], s[2], self.time_of(gyro.sample_time_ns))
+        return (s[0], s[1], s[2], self.time_of(gyro.sample_time_ns)) if stamped else s
 
     def acceleration(self) -> tuple[float, float, float]:
         """The LSM6DSO reading, m/s², body axes: free fall plus the centripetal term at the IMU's lever
