@@ -58,13 +58,31 @@ def quat_normalize(q: Quat) -> Quat:
 
 
 def is_unit_quaternion(q, tol: float = 1e-3) -> bool:
-    """True when ``q`` is four finite numbers with ``| |q| − 1 | ≤ tol``."""
+    """True when ``q`` is four finite numbers with ``| |q| − 1 | ≤ tol``.
+
+    (Each component converted and checked in turn, the first non-finite one deciding; the controller
+    asks this of every star-tracker solution.)
+    """
+    isfinite = math.isfinite
     try:
-        if len(q) != 4 or not all(math.isfinite(float(c)) for c in q):
+        if len(q) != 4:
+            return False
+        c0, c1, c2, c3 = q
+        q0 = float(c0)
+        if not isfinite(q0):
+            return False
+        q1 = float(c1)
+        if not isfinite(q1):
+            return False
+        q2 = float(c2)
+        if not isfinite(q2):
+            return False
+        q3 = float(c3)
+        if not isfinite(q3):
             return False
     except (TypeError, ValueError):
         return False
-    return abs(quat_norm((float(q[0]), float(q[1]), float(q[2]), float(q[3]))) - 1.0) <= tol
+    return abs(math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3) - 1.0) <= tol
 
 
 def quat_shortest(q: Quat) -> Quat:

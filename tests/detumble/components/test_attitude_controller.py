@@ -784,3 +784,14 @@ def test_a_non_positive_definite_inertia_is_refused_once(fprime_harness):
     tick(h, 30)
     assert h.comp.rate_observer.inertia == before and before[0][1] == pytest.approx(2.0e-5)
     assert len(h.events_named("InertiaModelRefused")) == 1
+
+
+def test_three_value_finite_check_answers_as_the_general_one():
+    """_finite3 (the field check every cycle) answers as _finite does: finite numbers, NaN, ±inf, non-numbers."""
+    import itertools
+
+    from detumble.components.attitude_controller import _finite, _finite3
+
+    values = (0.0, -1.5, 3, math.nan, math.inf, -math.inf, None, "1.0", True)
+    for x, y, z in itertools.product(values, repeat=3):
+        assert _finite3(x, y, z) == _finite(x, y, z), (x, y, z)
