@@ -864,8 +864,8 @@ class AttitudeController(PassiveComponent):
         if self.mode == ControlMode.POINTING and math.isfinite(self.pointing_error_deg):
             self.PointingError.write(self.pointing_error_deg)
         self.DamperState.write(float(self.damper_state))
-        self.RequestedTorque.write(Vector3(list(self.torque_request)))
-        self.CommandedDipole.write(Vector3(list(self.dipole)))
+        self.RequestedTorque.write(Vector3(self.torque_request))
+        self.CommandedDipole.write(Vector3(self.dipole))
         self.WheelTorqueCommand.write(WheelValues(_pad(self.wheel_torques)))
         if self.wheel_momenta is not None:
             self.WheelMomentum.write(WheelValues(_pad(self.wheel_momenta)))
@@ -876,7 +876,7 @@ class AttitudeController(PassiveComponent):
             self.AttitudeSigma3.write(math.degrees(self.filter.attitude_sigma3_rad))
         if self.bdot_hat_B is not None:
             self.FieldLineRate.write(math.degrees(_norm(self.bdot_hat_B)))
-        self.ResidualDipole.write(Vector3(list(self.residual_ff)))
+        self.ResidualDipole.write(Vector3(self.residual_ff))
 
     # --- ports out -----------------------------------------------------------------------------
 
