@@ -65,10 +65,11 @@ def _transpose(a: Mat) -> Mat:
     return [list(r) for r in zip(*a, strict=True)]
 
 
-def _inv_spd3(m: Mat) -> Mat:
+def _inv_spd3(m: Mat):
+    """``m⁻¹`` (rows as tuples) of the innovation covariance; ValueError unless ``det m > 0``."""
     if not det3(m) > 0.0:  # S is a covariance: positive definite or something is badly wrong
         raise ValueError(f"innovation covariance is not positive definite (det {det3(m):g})")
-    return [list(r) for r in inv3(m)]
+    return inv3(m)
 
 
 def _rotation_transpose(w: Vec3, dt: float) -> Mat:
