@@ -184,111 +184,22 @@ class Mekf:
         self.omega = (omega_gyro_B[0] - b[0], omega_gyro_B[1] - b[1], omega_gyro_B[2] - b[2])
 
     def _propagate_covariance(self, w: Vec3, dt: float, var_rate: float) -> None:
-        """``P ← sym(Φ P Φᵀ + Q)`` for ``Φ = [[F, −Δt I], [0, I]]``, ``F = exp(−[w×] Δt)``, in one pass.
+        """``P ← sym(Φ P Φᵀ + Q)`` for ``Φ = [[F, −Δt I], [0, I]]``, ``F = exp(−[w×] Δt)``.
 
-        Written out element by element, the same floating-point operations in the same order as
-        ``_symmetric(_phi_p_phi_t(F, −Δt, P) + Q)`` (the reference forms below; MEKF-003 and
-        MEKF-007 check it bit for bit): each ``sum`` the same products in the same order, each Q
-        term added to its element, each symmetrised pair ``0.5 (c_ij + c_ji)`` computed once for
-        both (IEEE addition commutes), with no intermediate 6×6 lists.
+        :func:`_phi_p_phi_t`, Q added to its twelve elements, then :func:`_symmetric6`: the same
+        floating-point operations in the same order as ``_symmetric(Φ P Φᵀ + Q)`` (MEKF-003, MEKF-007).
         """
-        (f00, f01, f02), (f10, f11, f12), (f20, f21, f22) = _rotation_transpose(w, dt)
-        m = -dt
+        p = _phi_p_phi_t(_rotation_transpose(w, dt), -dt, self.P)
         su2 = self.bias_walk ** 2
         qa = var_rate * dt * dt + su2 * dt ** 3 / 3.0
         qab = -su2 * dt * dt / 2.0
         qb = su2 * dt
-        p = self.P
-        p00, p01, p02, p03, p04, p05 = p[0]
-        p10, p11, p12, p13, p14, p15 = p[1]
-        p20, p21, p22, p23, p24, p25 = p[2]
-        p30, p31, p32, p33, p34, p35 = p[3]
-        p40, p41, p42, p43, p44, p45 = p[4]
-        p50, p51, p52, p53, p54, p55 = p[5]
-        # Φ P, rows 0-2 (rows 3-5 are P's own)
-        a00 = sum((f00 * p00, f01 * p10, f02 * p20, m * p30))
-        a01 = sum((f00 * p01, f01 * p11, f02 * p21, m * p31))
-        a02 = sum((f00 * p02, f01 * p12, f02 * p22, m * p32))
-        a03 = sum((f00 * p03, f01 * p13, f02 * p23, m * p33))
-        a04 = sum((f00 * p04, f01 * p14, f02 * p24, m * p34))
-        a05 = sum((f00 * p05, f01 * p15, f02 * p25, m * p35))
-        a10 = sum((f10 * p00, f11 * p10, f12 * p20, m * p40))
-        a11 = sum((f10 * p01, f11 * p11, f12 * p21, m * p41))
-        a12 = sum((f10 * p02, f11 * p12, f12 * p22, m * p42))
-        a13 = sum((f10 * p03, f11 * p13, f12 * p23, m * p43))
-        a14 = sum((f10 * p04, f11 * p14, f12 * p24, m * p44))
-        a15 = sum((f10 * p05, f11 * p15, f12 * p25, m * p45))
-        a20 = sum((f20 * p00, f21 * p10, f22 * p20, m * p50))
-        a21 = sum((f20 * p01, f21 * p11, f22 * p21, m * p51))
-        a22 = sum((f20 * p02, f21 * p12, f22 * p22, m * p52))
-        a23 = sum((f20 * p03, f21 * p13, f22 * p23, m * p53))
-        a24 = sum((f20 * p04, f21 * p14, f22 * p24, m * p54))
-        a25 = sum((f20 * p05, f21 * p15, f22 * p25, m * p55))
-        # (Φ P) Φᵀ plus Q (each Q term added to its element, as before)
-        c00 = sum((a00 * f00, a01 * f01, a02 * f02, a03 * m)) + qa
-        c01 = sum((a00 * f10, a01 * f11, a02 * f12, a04 * m))
-        c02 = sum((a00 * f20, a01 * f21, a02 * f22, a05 * m))
-        c03 = 0.0 + a03 + qab
-        c04 = 0.0 + a04
-        c05 = 0.0 + a05
-        c10 = sum((a10 * f00, a11 * f01, a12 * f02, a13 * m))
-        c11 = sum((a10 * f10, a11 * f11, a12 * f12, a14 * m)) + qa
-        c12 = sum((a10 * f20, a11 * f21, a12 * f22, a15 * m))
-        c13 = 0.0 + a13
-        c14 = 0.0 + a14 + qab
-        c15 = 0.0 + a15
-        c20 = sum((a20 * f00, a21 * f01, a22 * f02, a23 * m))
-        c21 = sum((a20 * f10, a21 * f11, a22 * f12, a24 * m))
-        c22 = sum((a20 * f20, a21 * f21, a22 * f22, a25 * m)) + qa
-        c23 = 0.0 + a23
-        c24 = 0.0 + a24
-        c25 = 0.0 + a25 + qab
-        c30 = sum((p30 * f00, p31 * f01, p32 * f02, p33 * m)) + qab
-        c31 = sum((p30 * f10, p31 * f11, p32 * f12, p34 * m))
-        c32 = sum((p30 * f20, p31 * f21, p32 * f22, p35 * m))
-        c33 = 0.0 + p33 + qb
-        c34 = 0.0 + p34
-        c35 = 0.0 + p35
-        c40 = sum((p40 * f00, p41 * f01, p42 * f02, p43 * m))
-        c41 = sum((p40 * f10, p41 * f11, p42 * f12, p44 * m)) + qab
-        c42 = sum((p40 * f20, p41 * f21, p42 * f22, p45 * m))
-        c43 = 0.0 + p43
-        c44 = 0.0 + p44 + qb
-        c45 = 0.0 + p45
-        c50 = sum((p50 * f00, p51 * f01, p52 * f02, p53 * m))
-        c51 = sum((p50 * f10, p51 * f11, p52 * f12, p54 * m))
-        c52 = sum((p50 * f20, p51 * f21, p52 * f22, p55 * m)) + qab
-        c53 = 0.0 + p53
-        c54 = 0.0 + p54
-        c55 = 0.0 + p55 + qb
-        # symmetrised: element (i, j) and (j, i) are both 0.5 (c_ij + c_ji)
-        s00 = 0.5 * (c00 + c00)
-        s01 = 0.5 * (c01 + c10)
-        s02 = 0.5 * (c02 + c20)
-        s03 = 0.5 * (c03 + c30)
-        s04 = 0.5 * (c04 + c40)
-        s05 = 0.5 * (c05 + c50)
-        s11 = 0.5 * (c11 + c11)
-        s12 = 0.5 * (c12 + c21)
-        s13 = 0.5 * (c13 + c31)
-        s14 = 0.5 * (c14 + c41)
-        s15 = 0.5 * (c15 + c51)
-        s22 = 0.5 * (c22 + c22)
-        s23 = 0.5 * (c23 + c32)
-        s24 = 0.5 * (c24 + c42)
-        s25 = 0.5 * (c25 + c52)
-        s33 = 0.5 * (c33 + c33)
-        s34 = 0.5 * (c34 + c43)
-        s35 = 0.5 * (c35 + c53)
-        s44 = 0.5 * (c44 + c44)
-        s45 = 0.5 * (c45 + c54)
-        s55 = 0.5 * (c55 + c55)
-        self.P = [[s00, s01, s02, s03, s04, s05],
-                  [s01, s11, s12, s13, s14, s15],
-                  [s02, s12, s22, s23, s24, s25],
-                  [s03, s13, s23, s33, s34, s35],
-                  [s04, s14, s24, s34, s44, s45],
-                  [s05, s15, s25, s35, s45, s55]]
+        for i in range(3):
+            p[i][i] += qa
+            p[i][i + 3] += qab
+            p[i + 3][i] += qab
+            p[i + 3][i + 3] += qb
+        self.P = _symmetric6(p)
 
     def _initialise_attitude(self, q_m: Quat, r: Mat) -> None:
         self.q = quat_shortest(q_m)
@@ -305,11 +216,10 @@ class Mekf:
     def _measure(self, q_m: Quat, var_carry: float, corr: float) -> None:
         """Star-tracker update with ``R`` plus ``var_carry`` per axis and the correlation ``corr``.
 
-        The Kalman step is written out element by element: the same floating-point operations in
-        the same order as the matrix form (``_matmul`` of ``P Hᵀ + M`` and ``S⁻¹``, of ``K`` and
-        ``S``, ``K S Kᵀ`` summed over the rows of ``K``, then ``_symmetric(P − K S Kᵀ)``; MEKF-007
-        checks it bit for bit), with each symmetrised pair computed once for both (IEEE addition
-        commutes).
+        The Kalman step row by row with its 3-element sums spelled out: the same floating-point
+        operations in the same order as the matrix form (``_matmul`` of ``P Hᵀ + M`` and ``S⁻¹``, of
+        ``K`` and ``S``, ``K S Kᵀ`` summed over the rows of ``K``, then ``_symmetric(P − K S Kᵀ)``;
+        MEKF-007 checks it bit for bit).
         """
         if self.q is None:
             self._initialise_attitude(q_m, self._measurement_noise(var_carry))
@@ -326,118 +236,38 @@ class Mekf:
         e0, e1, e2 = self.boresight
         d = sb2 - sc2
         p = self.P
-        p00, p01, p02, p03, p04, p05 = p[0]
-        p10, p11, p12, p13, p14, p15 = p[1]
-        p20, p21, p22, p23, p24, p25 = p[2]
-        p30, p31, p32, p33, p34, p35 = p[3]
-        p40, p41, p42, p43, p44, p45 = p[4]
-        p50, p51, p52, p53, p54, p55 = p[5]
+        p0, p1, p2 = p[0], p[1], p[2]
         # S = H P Hᵀ + R + H M + Mᵀ Hᵀ: the attitude block plus R, −2 corr on the diagonal
         c2 = 2.0 * corr
-        s00 = p00 + (sc2 + d * e0 * e0 + var_carry) - c2
-        s01 = p01 + (0.0 + d * e0 * e1)
-        s02 = p02 + (0.0 + d * e0 * e2)
-        s10 = p10 + (0.0 + d * e1 * e0)
-        s11 = p11 + (sc2 + d * e1 * e1 + var_carry) - c2
-        s12 = p12 + (0.0 + d * e1 * e2)
-        s20 = p20 + (0.0 + d * e2 * e0)
-        s21 = p21 + (0.0 + d * e2 * e1)
-        s22 = p22 + (sc2 + d * e2 * e2 + var_carry) - c2
+        s00 = p0[0] + (sc2 + d * e0 * e0 + var_carry) - c2
+        s01 = p0[1] + (0.0 + d * e0 * e1)
+        s02 = p0[2] + (0.0 + d * e0 * e2)
+        s10 = p1[0] + (0.0 + d * e1 * e0)
+        s11 = p1[1] + (sc2 + d * e1 * e1 + var_carry) - c2
+        s12 = p1[2] + (0.0 + d * e1 * e2)
+        s20 = p2[0] + (0.0 + d * e2 * e0)
+        s21 = p2[1] + (0.0 + d * e2 * e1)
+        s22 = p2[2] + (sc2 + d * e2 * e2 + var_carry) - c2
         s = [[s00, s01, s02], [s10, s11, s12], [s20, s21, s22]]
         (n00, n01, n02), (n10, n11, n12), (n20, n21, n22) = _inv_spd3(s)
         # K = (P Hᵀ + M) S⁻¹; P Hᵀ + M: P's first three columns, −corr on the attitude block's diagonal
-        h0 = p00 - corr
-        k00 = sum((h0 * n00, p01 * n10, p02 * n20))
-        k01 = sum((h0 * n01, p01 * n11, p02 * n21))
-        k02 = sum((h0 * n02, p01 * n12, p02 * n22))
-        h1 = p11 - corr
-        k10 = sum((p10 * n00, h1 * n10, p12 * n20))
-        k11 = sum((p10 * n01, h1 * n11, p12 * n21))
-        k12 = sum((p10 * n02, h1 * n12, p12 * n22))
-        h2 = p22 - corr
-        k20 = sum((p20 * n00, p21 * n10, h2 * n20))
-        k21 = sum((p20 * n01, p21 * n11, h2 * n21))
-        k22 = sum((p20 * n02, p21 * n12, h2 * n22))
-        k30 = sum((p30 * n00, p31 * n10, p32 * n20))
-        k31 = sum((p30 * n01, p31 * n11, p32 * n21))
-        k32 = sum((p30 * n02, p31 * n12, p32 * n22))
-        k40 = sum((p40 * n00, p41 * n10, p42 * n20))
-        k41 = sum((p40 * n01, p41 * n11, p42 * n21))
-        k42 = sum((p40 * n02, p41 * n12, p42 * n22))
-        k50 = sum((p50 * n00, p51 * n10, p52 * n20))
-        k51 = sum((p50 * n01, p51 * n11, p52 * n21))
-        k52 = sum((p50 * n02, p51 * n12, p52 * n22))
-        # K S, then P − K S Kᵀ symmetrised: (i, j) and (j, i) both 0.5 ((P − K S Kᵀ)_ij + (P − K S Kᵀ)_ji)
-        m00 = sum((k00 * s00, k01 * s10, k02 * s20))
-        m01 = sum((k00 * s01, k01 * s11, k02 * s21))
-        m02 = sum((k00 * s02, k01 * s12, k02 * s22))
-        m10 = sum((k10 * s00, k11 * s10, k12 * s20))
-        m11 = sum((k10 * s01, k11 * s11, k12 * s21))
-        m12 = sum((k10 * s02, k11 * s12, k12 * s22))
-        m20 = sum((k20 * s00, k21 * s10, k22 * s20))
-        m21 = sum((k20 * s01, k21 * s11, k22 * s21))
-        m22 = sum((k20 * s02, k21 * s12, k22 * s22))
-        m30 = sum((k30 * s00, k31 * s10, k32 * s20))
-        m31 = sum((k30 * s01, k31 * s11, k32 * s21))
-        m32 = sum((k30 * s02, k31 * s12, k32 * s22))
-        m40 = sum((k40 * s00, k41 * s10, k42 * s20))
-        m41 = sum((k40 * s01, k41 * s11, k42 * s21))
-        m42 = sum((k40 * s02, k41 * s12, k42 * s22))
-        m50 = sum((k50 * s00, k51 * s10, k52 * s20))
-        m51 = sum((k50 * s01, k51 * s11, k52 * s21))
-        m52 = sum((k50 * s02, k51 * s12, k52 * s22))
-        r0, r1, r2 = res
-        d = p00 - sum((m00 * k00, m01 * k01, m02 * k02))
-        t00 = 0.5 * (d + d)
-        t01 = 0.5 * ((p01 - sum((m00 * k10, m01 * k11, m02 * k12)))
-                     + (p10 - sum((m10 * k00, m11 * k01, m12 * k02))))
-        t02 = 0.5 * ((p02 - sum((m00 * k20, m01 * k21, m02 * k22)))
-                     + (p20 - sum((m20 * k00, m21 * k01, m22 * k02))))
-        t03 = 0.5 * ((p03 - sum((m00 * k30, m01 * k31, m02 * k32)))
-                     + (p30 - sum((m30 * k00, m31 * k01, m32 * k02))))
-        t04 = 0.5 * ((p04 - sum((m00 * k40, m01 * k41, m02 * k42)))
-                     + (p40 - sum((m40 * k00, m41 * k01, m42 * k02))))
-        t05 = 0.5 * ((p05 - sum((m00 * k50, m01 * k51, m02 * k52)))
-                     + (p50 - sum((m50 * k00, m51 * k01, m52 * k02))))
-        d = p11 - sum((m10 * k10, m11 * k11, m12 * k12))
-        t11 = 0.5 * (d + d)
-        t12 = 0.5 * ((p12 - sum((m10 * k20, m11 * k21, m12 * k22)))
-                     + (p21 - sum((m20 * k10, m21 * k11, m22 * k12))))
-        t13 = 0.5 * ((p13 - sum((m10 * k30, m11 * k31, m12 * k32)))
-                     + (p31 - sum((m30 * k10, m31 * k11, m32 * k12))))
-        t14 = 0.5 * ((p14 - sum((m10 * k40, m11 * k41, m12 * k42)))
-                     + (p41 - sum((m40 * k10, m41 * k11, m42 * k12))))
-        t15 = 0.5 * ((p15 - sum((m10 * k50, m11 * k51, m12 * k52)))
-                     + (p51 - sum((m50 * k10, m51 * k11, m52 * k12))))
-        d = p22 - sum((m20 * k20, m21 * k21, m22 * k22))
-        t22 = 0.5 * (d + d)
-        t23 = 0.5 * ((p23 - sum((m20 * k30, m21 * k31, m22 * k32)))
-                     + (p32 - sum((m30 * k20, m31 * k21, m32 * k22))))
-        t24 = 0.5 * ((p24 - sum((m20 * k40, m21 * k41, m22 * k42)))
-                     + (p42 - sum((m40 * k20, m41 * k21, m42 * k22))))
-        t25 = 0.5 * ((p25 - sum((m20 * k50, m21 * k51, m22 * k52)))
-                     + (p52 - sum((m50 * k20, m51 * k21, m52 * k22))))
-        d = p33 - sum((m30 * k30, m31 * k31, m32 * k32))
-        t33 = 0.5 * (d + d)
-        t34 = 0.5 * ((p34 - sum((m30 * k40, m31 * k41, m32 * k42)))
-                     + (p43 - sum((m40 * k30, m41 * k31, m42 * k32))))
-        t35 = 0.5 * ((p35 - sum((m30 * k50, m31 * k51, m32 * k52)))
-                     + (p53 - sum((m50 * k30, m51 * k31, m52 * k32))))
-        d = p44 - sum((m40 * k40, m41 * k41, m42 * k42))
-        t44 = 0.5 * (d + d)
-        t45 = 0.5 * ((p45 - sum((m40 * k50, m41 * k51, m42 * k52)))
-                     + (p54 - sum((m50 * k40, m51 * k41, m52 * k42))))
-        d = p55 - sum((m50 * k50, m51 * k51, m52 * k52))
-        t55 = 0.5 * (d + d)
-        self.P = [[t00, t01, t02, t03, t04, t05],
-                  [t01, t11, t12, t13, t14, t15],
-                  [t02, t12, t22, t23, t24, t25],
-                  [t03, t13, t23, t33, t34, t35],
-                  [t04, t14, t24, t34, t44, t45],
-                  [t05, t15, t25, t35, t45, t55]]
+        pht = ((p0[0] - corr, p0[1], p0[2]), (p1[0], p1[1] - corr, p1[2]), (p2[0], p2[1], p2[2] - corr),
+               p[3], p[4], p[5])  # of rows 3-5 only the first three columns are read
+        k = [(sum((x0 * n00, x1 * n10, x2 * n20)), sum((x0 * n01, x1 * n11, x2 * n21)),
+              sum((x0 * n02, x1 * n12, x2 * n22))) for x0, x1, x2, *_ in pht]
+        (k00, k01, k02), (k10, k11, k12), (k20, k21, k22), (k30, k31, k32), (k40, k41, k42), (k50, k51, k52) = k
+        # K S, then P − K S Kᵀ (row i of K S against each row of K), symmetrised
+        ks = [(sum((a0 * s00, a1 * s10, a2 * s20)), sum((a0 * s01, a1 * s11, a2 * s21)),
+               sum((a0 * s02, a1 * s12, a2 * s22))) for a0, a1, a2 in k]
+        self.P = _symmetric6([
+            (x0 - sum((a0 * k00, a1 * k01, a2 * k02)), x1 - sum((a0 * k10, a1 * k11, a2 * k12)),
+             x2 - sum((a0 * k20, a1 * k21, a2 * k22)), x3 - sum((a0 * k30, a1 * k31, a2 * k32)),
+             x4 - sum((a0 * k40, a1 * k41, a2 * k42)), x5 - sum((a0 * k50, a1 * k51, a2 * k52)))
+            for (x0, x1, x2, x3, x4, x5), (a0, a1, a2) in zip(p, ks, strict=True)])
         self.last_residual = res
         self.last_innovation_cov = s
         # reset: fold the error into the reference attitude and the bias (dx = K r)
+        r0, r1, r2 = res
         q = self.q
         self.q = quat_normalize(quat_mul(q, (1.0, 0.5 * (k00 * r0 + k01 * r1 + k02 * r2),
                                              0.5 * (k10 * r0 + k11 * r1 + k12 * r2),
@@ -477,3 +307,21 @@ def _phi_p_phi_t(f: Mat, m: float, p: Mat) -> Mat:
 def _symmetric(p: Mat) -> Mat:
     cols = zip(*p, strict=True)
     return [[0.5 * (x + y) for x, y in zip(row, col, strict=True)] for row, col in zip(p, cols, strict=True)]
+
+
+def _symmetric6(c) -> Mat:
+    """:func:`_symmetric` of a 6×6 ``c`` (rows any sequences): each pair ``0.5 (c_ij + c_ji)``
+    computed once for both places (IEEE addition commutes, so the floats are ``_symmetric``'s)."""
+    (c00, c01, c02, c03, c04, c05), (c10, c11, c12, c13, c14, c15), (c20, c21, c22, c23, c24, c25), \
+        (c30, c31, c32, c33, c34, c35), (c40, c41, c42, c43, c44, c45), (c50, c51, c52, c53, c54, c55) = c
+    s01, s02, s03, s04, s05 = 0.5 * (c01 + c10), 0.5 * (c02 + c20), 0.5 * (c03 + c30), 0.5 * (c04 + c40), \
+        0.5 * (c05 + c50)
+    s12, s13, s14, s15 = 0.5 * (c12 + c21), 0.5 * (c13 + c31), 0.5 * (c14 + c41), 0.5 * (c15 + c51)
+    s23, s24, s25 = 0.5 * (c23 + c32), 0.5 * (c24 + c42), 0.5 * (c25 + c52)
+    s34, s35, s45 = 0.5 * (c34 + c43), 0.5 * (c35 + c53), 0.5 * (c45 + c54)
+    return [[0.5 * (c00 + c00), s01, s02, s03, s04, s05],
+            [s01, 0.5 * (c11 + c11), s12, s13, s14, s15],
+            [s02, s12, 0.5 * (c22 + c22), s23, s24, s25],
+            [s03, s13, s23, 0.5 * (c33 + c33), s34, s35],
+            [s04, s14, s24, s34, 0.5 * (c44 + c44), s45],
+            [s05, s15, s25, s35, s45, 0.5 * (c55 + c55)]]

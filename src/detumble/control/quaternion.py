@@ -60,29 +60,22 @@ def quat_normalize(q: Quat) -> Quat:
 def is_unit_quaternion(q, tol: float = 1e-3) -> bool:
     """True when ``q`` is four finite numbers with ``| |q| − 1 | ≤ tol``.
 
-    (Each component converted and checked in turn, the first non-finite one deciding; the controller
-    asks this of every star-tracker solution.)
+    (Each component converted and checked in turn, the first non-finite one deciding, and the norm
+    summed as :func:`quat_norm` sums it; the controller asks this of every star-tracker solution.)
     """
     isfinite = math.isfinite
+    n2 = 0.0
     try:
         if len(q) != 4:
             return False
-        c0, c1, c2, c3 = q
-        q0 = float(c0)
-        if not isfinite(q0):
-            return False
-        q1 = float(c1)
-        if not isfinite(q1):
-            return False
-        q2 = float(c2)
-        if not isfinite(q2):
-            return False
-        q3 = float(c3)
-        if not isfinite(q3):
-            return False
+        for c in q:
+            x = float(c)
+            if not isfinite(x):
+                return False
+            n2 += x * x  # 0.0 + q0² is q0²: then the same sum in the same order as quat_norm's
     except (TypeError, ValueError):
         return False
-    return abs(math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3) - 1.0) <= tol
+    return abs(math.sqrt(n2) - 1.0) <= tol
 
 
 def quat_shortest(q: Quat) -> Quat:

@@ -239,20 +239,18 @@ def test_structured_covariance_step_gives_the_floats_of_the_full_products():
 
 
 def _reference_propagate_covariance(f, w, dt, var_rate):
-    """The covariance step in its matrix form (main before the written-out step): ``sym(Φ P Φᵀ + Q)``."""
-    from detumble.control.mekf import _phi_p_phi_t, _rotation_transpose, _symmetric
+    """The covariance step from the full 6×6 products: ``sym(Φ P Φᵀ + Q)``, Q built as a matrix."""
+    from detumble.control.mekf import _matmul, _rotation_transpose, _symmetric, _transpose
 
-    p = _phi_p_phi_t(_rotation_transpose(w, dt), -dt, f.P)
+    rot = _rotation_transpose(w, dt)
+    phi = [list(rot[i]) + [-dt if j == i else 0.0 for j in range(3)] for i in range(3)]
+    phi += [[0.0] * 3 + [1.0 if j == i else 0.0 for j in range(3)] for i in range(3)]
     su2 = f.bias_walk ** 2
-    qa = var_rate * dt * dt + su2 * dt ** 3 / 3.0
-    qab = -su2 * dt * dt / 2.0
-    qb = su2 * dt
-    for i in range(3):
-        p[i][i] += qa
-        p[i][i + 3] += qab
-        p[i + 3][i] += qab
-        p[i + 3][i + 3] += qb
-    return _symmetric(p)
+    qa, qab, qb = var_rate * dt * dt + su2 * dt ** 3 / 3.0, -su2 * dt * dt / 2.0, su2 * dt
+    q = [[(qa if i < 3 else qb) if i == j else qab if abs(i - j) == 3 else None for j in range(6)] for i in range(6)]
+    full = _matmul(_matmul(phi, f.P), _transpose(phi))
+    return _symmetric([[x if qx is None else x + qx for x, qx in zip(row, qrow, strict=True)]
+                       for row, qrow in zip(full, q, strict=True)])
 
 
 def _reference_measure(f, q_m, var_carry, corr):
@@ -286,11 +284,12 @@ def _hex(m):
     return [[x.hex() for x in row] for row in m]
 
 
-def test_written_out_covariance_steps_give_the_floats_of_the_matrix_forms():
-    """MEKF-007: the propagation and star-tracker steps, written out element by element, give bit for bit the
-    floats of their matrix forms (``sym(Φ P Φᵀ + Q)``; ``K = (P Hᵀ + M) S⁻¹``, ``sym(P − K S Kᵀ)``, the reset) —
-    for random, not necessarily symmetric P with exact and negative zeros, random rates, steps, noises, boresights,
-    carrying variances and correlations; a non-positive-definite S is refused by both."""
+def test_covariance_steps_give_the_floats_of_the_matrix_forms():
+    """MEKF-007: the propagation step (structured products, _symmetric6) and the star-tracker step (rows with
+    their sums spelled out) give bit for bit the floats of their matrix forms (``sym(Φ P Φᵀ + Q)`` from the full
+    6×6 products; ``K = (P Hᵀ + M) S⁻¹``, ``sym(P − K S Kᵀ)``, the reset) — for random, not necessarily
+    symmetric P with exact and negative zeros, random rates, steps, noises, boresights, carrying variances and
+    correlations; a non-positive-definite S is refused by both."""
     import copy
     import random
 
@@ -336,3 +335,19 @@ def test_written_out_covariance_steps_give_the_floats_of_the_matrix_forms():
         assert [x.hex() for x in f.bias] == [x.hex() for x in b_ref], trial
         assert f.last_residual == res_ref and _hex(f.last_innovation_cov) == _hex(s_ref), trial
     assert 0 < refused < 200  # both branches exercised
+
+
+def test_symmetric6_is_symmetric():
+    """MEKF-007: _symmetric6 (each pair summed once) gives _symmetric's floats, for random 6×6 matrices with exact
+    and negative zeros, tiny and huge entries, as lists of lists or tuples."""
+    import random
+
+    from detumble.control.mekf import _symmetric, _symmetric6
+
+    rng = random.Random(8)
+    specials = (0.0, -0.0, 1e-300, -1e-300, 1e300, -1e300)
+    for _ in range(2000):
+        c = [[rng.choice(specials) if rng.random() < 0.2 else rng.uniform(-1.0, 1.0) * 10 ** rng.randint(-20, 5)
+              for _ in range(6)] for _ in range(6)]
+        rows = c if rng.random() < 0.5 else [tuple(r) for r in c]
+        assert _hex(_symmetric6(rows)) == _hex(_symmetric(c))
