@@ -186,10 +186,26 @@ class Mekf:
     def _propagate_covariance(self, w: Vec3, dt: float, var_rate: float) -> None:
         """``P ← sym(Φ P Φᵀ + Q)`` for ``Φ = [[F, −Δt I], [0, I]]``, ``F = exp(−[w×] Δt)``.
 
-        :func:`_phi_p_phi_t`, Q added to its twelve elements, then :func:`_symmetric6`: the same
-        floating-point operations in the same order as ``_symmetric(Φ P Φᵀ + Q)`` (MEKF-003, MEKF-007).
+        :func:`_phi_p_phi_t` row by row with its sums spelled out, Q added to its twelve elements,
+        then :func:`_symmetric6`: the same floating-point operations in the same order as
+        ``_symmetric(Φ P Φᵀ + Q)`` (MEKF-003, MEKF-007).
         """
-        p = _phi_p_phi_t(_rotation_transpose(w, dt), -dt, self.P)
+        f = _rotation_transpose(w, dt)
+        m = -dt
+        p0, p1, p2, p3, p4, p5 = self.P
+        x00, x01, x02, x03, x04, x05 = p0
+        x10, x11, x12, x13, x14, x15 = p1
+        x20, x21, x22, x23, x24, x25 = p2
+        # Φ P: rows 0-2 are F P_top − Δt P_bottom (only Φ's non-zero products, as _phi_p_phi_t), rows 3-5 P's own
+        a0, a1, a2 = [(sum((g0 * x00, g1 * x10, g2 * x20, m * y0)), sum((g0 * x01, g1 * x11, g2 * x21, m * y1)),
+                       sum((g0 * x02, g1 * x12, g2 * x22, m * y2)), sum((g0 * x03, g1 * x13, g2 * x23, m * y3)),
+                       sum((g0 * x04, g1 * x14, g2 * x24, m * y4)), sum((g0 * x05, g1 * x15, g2 * x25, m * y5)))
+                      for (g0, g1, g2), (y0, y1, y2, y3, y4, y5) in zip(f, (p3, p4, p5), strict=True)]
+        # (Φ P) Φᵀ row by row, as _phi_p_phi_t
+        (f00, f01, f02), (f10, f11, f12), (f20, f21, f22) = f
+        p = [[sum((r0 * f00, r1 * f01, r2 * f02, r3 * m)), sum((r0 * f10, r1 * f11, r2 * f12, r4 * m)),
+              sum((r0 * f20, r1 * f21, r2 * f22, r5 * m)), 0.0 + r3, 0.0 + r4, 0.0 + r5]
+             for r0, r1, r2, r3, r4, r5 in (a0, a1, a2, p3, p4, p5)]
         su2 = self.bias_walk ** 2
         qa = var_rate * dt * dt + su2 * dt ** 3 / 3.0
         qab = -su2 * dt * dt / 2.0
