@@ -111,7 +111,7 @@ class AttitudeController(PassiveComponent):
         knowledge (NoAttitudeKnowledge) or, with POINTING_ACTUATOR = WHEELS, without wheels
         (ModeUnavailableNoWheels): EXECUTION_ERROR, mode unchanged."""
         mode = ControlMode(mode)
-        if mode == ControlMode.POINTING and not self._pointing_available(report=True):
+        if mode == ControlMode.POINTING and not self._pointing_available(report=True, fresh=True):
             return CmdResponse.EXECUTION_ERROR
         self._set_autonomy(ControlAutonomy.MANUAL)
         self._change_mode(mode, ModeChangeReason.COMMAND)
@@ -376,17 +376,21 @@ class AttitudeController(PassiveComponent):
                 n += 1
         return n
 
-    def _wheels_available(self) -> bool:
-        return self.wheel_count() == len(self.wheel_axes) and self._read_wheel_momenta() is not None
+    def _wheels_available(self, fresh: bool) -> bool:
+        """Every wheel connected and answering: by the cycle's own reading (``wheel_momenta``, taken in
+        ``_sense``), or, for a command handler between cycles (``fresh``), by reading them now."""
+        momenta = self._read_wheel_momenta() if fresh else self.wheel_momenta
+        return self.wheel_count() == len(self.wheel_axes) and momenta is not None
 
     def _pointing_uses_wheels(self) -> bool:
+        """Whether this cycle points on the wheels (its own wheel reading decides)."""
         choice = self.POINTING_ACTUATOR.value
         if choice == PointingActuator.MAGNETORQUERS:
             return False
-        return self._wheels_available()
+        return self._wheels_available(fresh=False)
 
-    def _pointing_available(self, *, report: bool) -> bool:
-        if self.POINTING_ACTUATOR.value == PointingActuator.WHEELS and not self._wheels_available():
+    def _pointing_available(self, *, report: bool, fresh: bool = False) -> bool:
+        if self.POINTING_ACTUATOR.value == PointingActuator.WHEELS and not self._wheels_available(fresh):
             if report:
                 self.ModeUnavailableNoWheels(ControlMode.POINTING)
             return False

@@ -34,6 +34,7 @@ from fprime_lite.model.types import U8
 
 from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet, MagneticField, MagneticFieldGet,
                                        Result, SamplingPeriodGet, Success, TimeIntervalValue)
+from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
 from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 # the gyro types are shared with the attitude controller, which may not import sitl
@@ -205,7 +206,7 @@ class ImuManager(PassiveComponent):
         else:
             value = AngularVelocity(*_rotated(o, v[0], v[1], v[2]))
         self.AngularVelocity.write(value)
-        return Result(value, _SUCCESS)
+        return _new_result(Result, (value, _SUCCESS))
 
     @sync_input(AngularVelocityMagnitudeGet)
     def angularVelocityMagnitudeGet(self, unit: AngularUnit) -> Result:
@@ -412,4 +413,4 @@ class ImuManager(PassiveComponent):
             stamp = self.spacecraft.now()
         value = MagneticField(*self._orient(v[0], v[1], v[2]), stamp)
         self.MagneticField.write(value)
-        return Result(value, _SUCCESS)
+        return _new_result(Result, (value, _SUCCESS))

@@ -6,14 +6,12 @@ from __future__ import annotations
 from fprime_lite import PassiveComponent, sync_input
 
 from detumble.components.types import OrbitFrame, OrbitFrameGet, Result, Success
+from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
 from detumble.sitl.spacecraft import SimulatedSpacecraft
 
 __all__ = ["OrbitEphemeris"]
 
 _SUCCESS = Success.SUCCESS
-#: ``Result(value, condition)`` is ``_new_result(Result, (value, condition))``: the named tuple's
-#: generated ``__new__`` does exactly that, behind a Python frame (≈ 0.3 µs) this read path skips.
-_new_result = tuple.__new__
 
 
 class OrbitEphemeris(PassiveComponent):

@@ -39,6 +39,7 @@ from fprime_lite import (F64, U8, Channel, CmdResponse, Event, FwEnum, PassiveCo
 
 from detumble.components.types import (Result, Success, WheelEnableSet, WheelMode, WheelSpeedSet, WheelState,
                                        WheelStateGet, WheelTorqueSet)
+from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
 from detumble.sitl.spacecraft import SimulatedSpacecraft
 
 __all__ = ["ReactionWheelDriver", "SimWheelFault", "wheel_instance_name", "make_reaction_wheel_drivers"]
@@ -68,9 +69,6 @@ _SUCCESS = Success.SUCCESS
 _DISABLED = WheelMode.DISABLED
 _TORQUE = WheelMode.TORQUE
 _isfinite = math.isfinite
-#: ``Result(value, condition)`` is ``_new_result(Result, (value, condition))``: the named tuple's
-#: generated ``__new__`` does exactly that, behind a Python frame (≈ 0.3 µs) this read path skips.
-_new_result = tuple.__new__
 
 
 class ReactionWheelDriver(PassiveComponent):

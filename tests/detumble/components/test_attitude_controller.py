@@ -795,3 +795,27 @@ def test_three_value_finite_check_answers_as_the_general_one():
     values = (0.0, -1.5, 3, math.nan, math.inf, -math.inf, None, "1.0", True)
     for x, y, z in itertools.product(values, repeat=3):
         assert _finite3(x, y, z) == _finite(x, y, z), (x, y, z)
+
+
+def test_a_cycle_reads_each_wheel_once_and_a_command_reads_them_afresh(fprime_harness):
+    """ADCS-080: pointing on the wheels, a control cycle reads each wheel's state once (the sensing step's
+    reading decides, for the rest of the cycle, whether the wheels answer: the residual-dipole tracker and the
+    actuator choice reuse it), while FORCE_MODE POINTING between cycles reads the wheels at that moment: a wheel
+    that stopped answering after the last cycle gets the command refused (EXECUTION_ERROR,
+    ModeUnavailableNoWheels)."""
+    h = make(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.WHEELS})
+    tick(h)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    h.assert_cmd_response(0, "FORCE_MODE", CmdResponse.OK)
+    reads = len(h.from_port("wheelStateGet"))
+    tick(h, 5)  # one 10 Hz cycle (CYCLE_TICKS 5)
+    assert h.comp.mode == ControlMode.POINTING and h.comp.cycles == 2
+    calls = h.from_port("wheelStateGet")[reads:]
+    assert sorted(c.index for c in calls) == [0, 1, 2]
+    assert len(h.from_port("wheelTorqueSet")) >= 3  # it did point on them
+    h.send_command("FORCE_MODE", ControlMode.IDLE)
+    h.set_port_handler("wheelStateGet", lambda: Result(None, Success.FAILURE), index=1)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    h.assert_cmd_response(2, "FORCE_MODE", CmdResponse.EXECUTION_ERROR)
+    h.assert_event("ModeUnavailableNoWheels", 0, ControlMode.POINTING)
+    assert h.comp.mode == ControlMode.IDLE

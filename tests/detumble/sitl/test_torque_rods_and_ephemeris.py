@@ -64,15 +64,18 @@ def test_ephemeris_gives_the_orbit_frame_the_plant_uses(fprime_harness, spacecra
 
 
 def test_the_read_ports_return_real_result_named_tuples(fprime_harness, spacecraft):
-    """EPH-101: orbitFrameGet, the wheels' wheelStateGet and the star tracker's attitudeGet build
-    their answers with tuple.__new__ (no Python frame): each is a Result — its type, fields,
-    equality and ``ok`` as Result(value, condition) gives them."""
+    """EPH-101: orbitFrameGet, the wheels' wheelStateGet, the star tracker's attitudeGet and the IMU
+    manager's angularVelocityGet and magneticFieldGet build their answers with tuple.__new__ (no
+    Python frame): each is a Result — its type, fields, equality and ``ok`` as Result(value,
+    condition) gives them."""
     from detumble.components.types import Result
-    from detumble.sitl import ReactionWheelDriver, StarTracker
+    from detumble.sitl import ImuManager, ReactionWheelDriver, StarTracker
 
+    imu = fprime_harness(ImuManager("imuManager", spacecraft))
     answers = [fprime_harness(OrbitEphemeris("orbitEphemeris", spacecraft)).invoke("orbitFrameGet"),
                fprime_harness(ReactionWheelDriver("reactionWheel1", spacecraft, 1)).invoke("wheelStateGet"),
-               fprime_harness(StarTracker("starTracker", spacecraft)).invoke("attitudeGet")]
+               fprime_harness(StarTracker("starTracker", spacecraft)).invoke("attitudeGet"),
+               imu.invoke("angularVelocityGet"), imu.invoke("magneticFieldGet")]
     for answer in answers:
         assert type(answer) is Result and answer.ok and answer.condition == Success.SUCCESS
         assert answer == Result(answer.value, Success.SUCCESS) and answer._fields == ("value", "condition")
