@@ -16,7 +16,7 @@ import json
 import pathlib
 import sys
 
-from detumble.sitl.bench_basilisk import (CASES, INSTALL_HINT, ORBIT_S, basilisk_installed, measure_cases,
+from detumble.sitl.bench_basilisk import (CASES, GOALS, INSTALL_HINT, ORBIT_S, basilisk_installed, measure_cases,
                                           plausibility_text)
 
 
@@ -37,7 +37,7 @@ def _newer(case: str, r: dict) -> None:
     b = r["best_real_time_factor"]
     for name, ours, theirs in CASES[case][1]:
         print(f"  {case}  {theirs} {b[theirs]:7.0f}   {ours} {b[ours]:7.0f}   ratio {r[name]:.2f} "
-              f"(median rounds {r['median_' + name]:.2f})")
+              f"(median rounds {r['median_' + name]:.2f}; goal {GOALS.get(name, 'none: context')})")
     for kind, figures in r["plausibility"].items():
         print(f"    {kind}: {plausibility_text(figures)}")
 

@@ -155,3 +155,31 @@ def test_forced_magnetorquer_hold_plant_only_matches_the_deployment(tmp_path):
     for key in ("median", "p95", "max"):
         assert po["pointing_error_deg"][key] == pytest.approx(dep["pointing_error_deg"][key], abs=1e-6)
     assert po["pointing_error_deg"]["samples"] == dep["pointing_error_deg"]["samples"]
+
+
+def test_side_by_side_pointing_case_plant_only_matches_the_deployment(tmp_path):
+    """ADCS-078: issue 19's pointing case (detumble.sitl.side_by_side: the target at 0 s, FORCE_MODE POINTING at
+    5 s, the 90° change of target at 300 s, all from the start-up sequence) against `force_mode`, `force_at_s`
+    and `target_changes` on the plant-only law (side_by_side.plant_only_settings, what the benchmark flies): the
+    same flight to the last bit over 400 s — the body rate at every second (both slews included), the
+    transition, the POINTING error statistics. (Before the plant-only commands acted from the first cycle after
+    their time, the law slewed one 10 Hz cycle early: 0.3 °/s apart at 6 s and at 301 s.)"""
+    from detumble.sitl import side_by_side as case
+
+    duration = 400.0
+    sequence = tmp_path / "pointing.seq"
+    sequence.write_text(case.sequence_text())
+    overrides = {"spacecraft": {"settings": list(case.SETTINGS)}}
+    dep = run_deployment(load_topology(TOPOLOGY, overrides), tmp_path, duration_s=duration, plots=False,
+                         sequence=sequence, quiet=True)
+    result = run(load_scenario(case.SCENARIO, settings=case.plant_only_settings()), law="adcs", duration_s=duration)
+    with open(tmp_path / "truth.csv", newline="") as f:
+        dep_rates = {round(float(r["t_s"]), 3): float(r["rate_deg_s"]) for r in csv.DictReader(f)}
+    po_rates = {round(r[0], 3): r[4] for r in result.rows}
+    common = sorted(set(dep_rates) & set(po_rates))
+    assert len(common) == 401 and max(po_rates[t] for t in common if 300.0 < t < 320.0) > 1.0  # the second slew
+    assert [t for t in common if dep_rates[t] != po_rates[t]] == []
+    assert [(t["mode"], t["t_s"]) for t in dep["control_mode_transitions"]] == [("POINTING", 5.0)]
+    assert [(t["mode"], t["t_s"]) for t in result.summary["control_mode_transitions"]] == [("POINTING", 5.0)]
+    for key in ("median", "p95", "max", "samples"):
+        assert result.summary["pointing_error_deg"][key] == dep["pointing_error_deg"][key]

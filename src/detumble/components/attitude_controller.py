@@ -73,6 +73,22 @@ def _finite(*values) -> bool:
     return True
 
 
+def _finite3(x, y, z) -> bool:
+    """``_finite(x, y, z)`` for three values (the field's components, every cycle)."""
+    try:
+        return _isfinite(x) and _isfinite(y) and _isfinite(z)
+    except TypeError:
+        return False
+
+
+def _call_ref(out, index: int = 0):
+    """Call output ``out[index]`` (a ``ref condition`` port); ``(ok, value)``. Unconnected counts as a failure."""
+    if out.targets[index] is None:
+        return False, None
+    value, condition = out.calls[index]()
+    return condition == _SUCCESS, value
+
+
 def _norm(v) -> float:
     return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
 
@@ -95,7 +111,7 @@ class AttitudeController(PassiveComponent):
         knowledge (NoAttitudeKnowledge) or, with POINTING_ACTUATOR = WHEELS, without wheels
         (ModeUnavailableNoWheels): EXECUTION_ERROR, mode unchanged."""
         mode = ControlMode(mode)
-        if mode == ControlMode.POINTING and not self._pointing_available(report=True):
+        if mode == ControlMode.POINTING and not self._pointing_available(report=True, fresh=True):
             return CmdResponse.EXECUTION_ERROR
         self._set_autonomy(ControlAutonomy.MANUAL)
         self._change_mode(mode, ModeChangeReason.COMMAND)
@@ -334,6 +350,8 @@ class AttitudeController(PassiveComponent):
         # The output port arrays read every tick or cycle (``targets[i]`` says whether index i is
         # connected, ``calls[i]`` calls it), looked up once instead of by name on every call.
         self._gyro_port = self.output_port("angularVelocityGet")
+        self._attitude_port = self.output_port("attitudeGet")
+        self._field_port = self.output_port("magneticFieldGet")
         self._torque_ports = self.output_port("wheelTorqueSet")
         self._state_ports = self.output_port("wheelStateGet")
         self._enable_ports = self.output_port("wheelEnableSet")
@@ -358,17 +376,21 @@ class AttitudeController(PassiveComponent):
                 n += 1
         return n
 
-    def _wheels_available(self) -> bool:
-        return self.wheel_count() == len(self.wheel_axes) and self._read_wheel_momenta() is not None
+    def _wheels_available(self, fresh: bool) -> bool:
+        """Every wheel connected and answering: by the cycle's own reading (``wheel_momenta``, taken in
+        ``_sense``), or, for a command handler between cycles (``fresh``), by reading them now."""
+        momenta = self._read_wheel_momenta() if fresh else self.wheel_momenta
+        return self.wheel_count() == len(self.wheel_axes) and momenta is not None
 
     def _pointing_uses_wheels(self) -> bool:
+        """Whether this cycle points on the wheels (its own wheel reading decides)."""
         choice = self.POINTING_ACTUATOR.value
         if choice == PointingActuator.MAGNETORQUERS:
             return False
-        return self._wheels_available()
+        return self._wheels_available(fresh=False)
 
-    def _pointing_available(self, *, report: bool) -> bool:
-        if self.POINTING_ACTUATOR.value == PointingActuator.WHEELS and not self._wheels_available():
+    def _pointing_available(self, *, report: bool, fresh: bool = False) -> bool:
+        if self.POINTING_ACTUATOR.value == PointingActuator.WHEELS and not self._wheels_available(fresh):
             if report:
                 self.ModeUnavailableNoWheels(ControlMode.POINTING)
             return False
@@ -494,7 +516,8 @@ class AttitudeController(PassiveComponent):
         gyro = self._read_gyro()
         n = 1
         if gyro is not None:
-            self.GyroRetrievalFailed.clear_throttle()
+            if self.GyroRetrievalFailed.count:  # clear_throttle where there is something to clear
+                self.GyroRetrievalFailed.clear_throttle()
             n = self._gyro_count + 1  # the mean over the cycle's ticks: the noise the D term sees drops by √n
             acc = self._gyro_sum
             gyro = ((acc[0] + gyro[0]) / n, (acc[1] + gyro[1]) / n, (acc[2] + gyro[2]) / n)
@@ -503,7 +526,7 @@ class AttitudeController(PassiveComponent):
         self._gyro_sum, self._gyro_count = _ZERO, 0
         q_meas = None
         age_s = 0.0
-        ok, q = self._read("attitudeGet")
+        ok, q = _call_ref(self._attitude_port)
         if ok and q is not None and q.valid and is_unit_quaternion((q.q0, q.q1, q.q2, q.q3), tol=1e-2):
             stamp_us = q.timestamp.total_us
             if stamp_us != self._last_fix_us and stamp_us <= now_us:  # a new solution (the tracker holds its last)
@@ -522,13 +545,13 @@ class AttitudeController(PassiveComponent):
             self.omega = f.omega
         else:
             self.omega = None
-        ok, field = self._read("magneticFieldGet")
-        if ok and field is not None and _finite(field.x, field.y, field.z):
-            self.MagneticFieldRetrievalFailed.clear_throttle()
-            self._b_gauss = (float(field.x), float(field.y), float(field.z))
+        ok, field = _call_ref(self._field_port)
+        if ok and field is not None and _finite3(field.x, field.y, field.z):
+            if self.MagneticFieldRetrievalFailed.count:
+                self.MagneticFieldRetrievalFailed.clear_throttle()
+            b = self._b_gauss = (float(field.x), float(field.y), float(field.z))
             self._b_stamp_us = field.timestamp.total_us
-            self.b_tesla = (self._b_gauss[0] * _TESLA_PER_GAUSS, self._b_gauss[1] * _TESLA_PER_GAUSS,
-                            self._b_gauss[2] * _TESLA_PER_GAUSS)
+            self.b_tesla = (b[0] * _TESLA_PER_GAUSS, b[1] * _TESLA_PER_GAUSS, b[2] * _TESLA_PER_GAUSS)
         else:
             self.MagneticFieldRetrievalFailed()
             self.b_tesla = None
@@ -559,7 +582,8 @@ class AttitudeController(PassiveComponent):
         try:  # free when the parameters are the model's already (RateObserver.set_model compares first)
             obs.set_model(((self.INERTIA_XX.value, xy, xz), (xy, self.INERTIA_YY.value, yz),
                            (xz, yz, self.INERTIA_ZZ.value)), self.RATE_OBSERVER_GAIN.value)
-            self.InertiaModelRefused.clear_throttle()
+            if self.InertiaModelRefused.count:
+                self.InertiaModelRefused.clear_throttle()
         except ValueError:  # not positive definite: keep the last good model, say so once per change
             self.InertiaModelRefused()
         h = _ZERO
@@ -687,6 +711,7 @@ class AttitudeController(PassiveComponent):
         tau = _ZERO
         dipole = None  # None: coils off this cycle
         wheel_u = None  # None: wheels at zero torque
+        levels = None  # (dipole, _coil_levels(dipole)) when already worked out for the dipole driven below
         self.pointing_error_deg = float("nan")
         if mode == ControlMode.DETUMBLE:
             dipole = self._detumble_dipole()
@@ -713,10 +738,11 @@ class AttitudeController(PassiveComponent):
                 tau_mag = _ZERO
                 if self.b_tesla is not None and self.wheel_momenta is not None:
                     h_b = self._body_momentum(self.wheel_momenta)
-                    dipole, _ = project_dipole_weighted(dump_torque(h_b, self.K_DUMP.value), self.b_tesla,
-                                                        self._coil_limits())
-                    dipole = self._limit_dipole(dipole)
-                    mb = _cross(self._coil_levels(dipole)[1], self.b_tesla)
+                    limits = self._coil_limits()
+                    dipole, _ = project_dipole_weighted(dump_torque(h_b, self.K_DUMP.value), self.b_tesla, limits)
+                    dipole = scale_to_limits(dipole, limits)
+                    levels = (dipole, self._coil_levels(dipole))
+                    mb = _cross(levels[1][1], self.b_tesla)
                     d = self._duty()
                     tau_mag = (mb[0] * d, mb[1] * d, mb[2] * d)
                 # the wheels supply what the dump torque does not (it would otherwise disturb the pointing)
@@ -738,7 +764,9 @@ class AttitudeController(PassiveComponent):
                 self._stop_coils()
             self.dipole = _ZERO
         else:
-            self._drive_coils(self._limit_dipole(dipole))
+            m = self._limit_dipole(dipole)
+            # the levels of the dump dipole are reused when the limit left it as it was (the same object)
+            self._drive_coils(m, levels[1] if levels is not None and levels[0] is m else None)
         if wheel_u is None:
             wheel_u = (0.0,) * len(self.wheel_axes)
         self._command_wheels(wheel_u)
@@ -774,7 +802,7 @@ class AttitudeController(PassiveComponent):
         u, limited = alloc.allocate(tau, self.wheel_momenta)
         if limited:
             self.WheelLimitReached()
-        else:
+        elif self.WheelLimitReached.count:
             self.WheelLimitReached.clear_throttle()
         return u
 
@@ -786,7 +814,8 @@ class AttitudeController(PassiveComponent):
                 if primed:  # the provider's first call after entering DETUMBLE only primes it
                     self.DipoleMomentRetrievalFailed()
                 return None
-            self.DipoleMomentRetrievalFailed.clear_throttle()
+            if self.DipoleMomentRetrievalFailed.count:
+                self.DipoleMomentRetrievalFailed.clear_throttle()
             return (float(m.x), float(m.y), float(m.z))
         if self.b_tesla is None:
             return None
@@ -839,8 +868,8 @@ class AttitudeController(PassiveComponent):
         if self.mode == ControlMode.POINTING and math.isfinite(self.pointing_error_deg):
             self.PointingError.write(self.pointing_error_deg)
         self.DamperState.write(float(self.damper_state))
-        self.RequestedTorque.write(Vector3(list(self.torque_request)))
-        self.CommandedDipole.write(Vector3(list(self.dipole)))
+        self.RequestedTorque.write(Vector3(self.torque_request))
+        self.CommandedDipole.write(Vector3(self.dipole))
         self.WheelTorqueCommand.write(WheelValues(_pad(self.wheel_torques)))
         if self.wheel_momenta is not None:
             self.WheelMomentum.write(WheelValues(_pad(self.wheel_momenta)))
@@ -851,17 +880,13 @@ class AttitudeController(PassiveComponent):
             self.AttitudeSigma3.write(math.degrees(self.filter.attitude_sigma3_rad))
         if self.bdot_hat_B is not None:
             self.FieldLineRate.write(math.degrees(_norm(self.bdot_hat_B)))
-        self.ResidualDipole.write(Vector3(list(self.residual_ff)))
+        self.ResidualDipole.write(Vector3(self.residual_ff))
 
     # --- ports out -----------------------------------------------------------------------------
 
     def _read(self, port: str, index: int = 0):
         """Call a ``ref condition`` port; ``(ok, value)``. Unconnected counts as a failure."""
-        out = self.output_port(port)
-        if out.targets[index] is None:
-            return False, None
-        value, condition = out.calls[index]()
-        return condition == _SUCCESS, value
+        return _call_ref(self.output_port(port), index)
 
     def _read_wheel_momenta(self):
         """Each wheel's axial momentum (N·m·s) from its driver, or None when one does not answer."""
@@ -904,7 +929,7 @@ class AttitudeController(PassiveComponent):
             torque = float(torque)
             if calls[i](torque) != _SUCCESS:
                 self.WheelCommandFailed(i)
-            else:
+            elif self.WheelCommandFailed.count:
                 self.WheelCommandFailed.clear_throttle()
             sent.append(torque)
         self.wheel_torques = tuple(sent)
@@ -919,9 +944,10 @@ class AttitudeController(PassiveComponent):
         f = 1.0 / MAX_DRIVE_LEVEL
         return (lx, -lx, ly, -ly, -lz), (2.0 * lx * f * cx, 2.0 * ly * f * cy, lz * f * cz)
 
-    def _drive_coils(self, m) -> None:
-        """Drive the five coils for the dipole ``m``; ``self.dipole`` becomes what the rounded levels give."""
-        levels, self.dipole = self._coil_levels(m)
+    def _drive_coils(self, m, coil_levels=None) -> None:
+        """Drive the five coils for the dipole ``m``; ``self.dipole`` becomes what the rounded levels give.
+        ``coil_levels``: ``_coil_levels(m)`` when the caller has it already."""
+        levels, self.dipole = coil_levels if coil_levels is not None else self._coil_levels(m)
         for port, level in zip(self._start_ports, levels, strict=True):
             if port.targets[0] is not None:
                 port.calls[0](level)

@@ -63,6 +63,16 @@ def _quat_conj_mul(p, q):
             p[0] * q[3] - p[1] * q[2] + p[2] * q[1] - p[3] * q[0])
 
 
+def _quat_conj_mul_scalar_last(p, q):
+    """``conj(p) ⊗ q`` as :func:`_quat_conj_mul` computes it (``p``, ``q`` scalar first), returned in
+    the report's scalar-last order: ``from_plant_quaternion(_quat_conj_mul(p, q))`` without the
+    reordering call (its ``float()`` is left to the law, which applies it to what it is given)."""
+    return (p[0] * q[1] - p[1] * q[0] - p[2] * q[3] + p[3] * q[2],
+            p[0] * q[2] + p[1] * q[3] - p[2] * q[0] - p[3] * q[1],
+            p[0] * q[3] - p[1] * q[2] + p[2] * q[1] - p[3] * q[0],
+            p[0] * q[0] + p[1] * q[1] + p[2] * q[2] + p[3] * q[3])
+
+
 class CourseworkController(PassiveComponent):
     """Seed 004's controllers: ``LAW`` chooses, the parameters are the report's gains."""
 
@@ -173,22 +183,23 @@ class CourseworkController(PassiveComponent):
     # --- the cycle -----------------------------------------------------------------------------
 
     def _cycle(self, law: CourseworkLaw) -> None:
-        field = self._read(self.magneticFieldGet, "magnetometer")
-        rate = self._read(self.angularVelocityGet, "gyro")
+        read = self._read
+        field = read(self.magneticFieldGet, "magnetometer")
+        rate = read(self.angularVelocityGet, "gyro")
         if field is None or rate is None:
             return
-        b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
         w_B = (rate.x, rate.y, rate.z)
-        t = field.timestamp.total_us * 1e-6
         if law == _CROSS_PRODUCT:
+            b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
             self._command_dipole(cw.cross_product_dipole(self.CROSS_PRODUCT_GAIN.value, w_B, b_B))
         elif law == _BETA_PD:
             assert self._beta is not None
-            m = self._beta.dipole(t, w_B, b_B)
+            b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
+            m = self._beta.dipole(field.timestamp.total_us * 1e-6, w_B, b_B)
             if self._beta.previous is not None:
                 self.Beta.write(self._beta.previous[1])
             self._command_dipole(m)
-        else:
+        else:  # the wheel law needs no b_B here (with DUMP_GAIN > 0 it reads the field again)
             self._wheel_cycle(w_B)
 
     def _wheel_cycle(self, w_B) -> None:
@@ -204,15 +215,14 @@ class CourseworkController(PassiveComponent):
                 self._safe()
                 self.SensorReadFailed("star tracker (no valid solution)")
             return
-        q_BN = (attitude.q0, attitude.q1, attitude.q2, attitude.q3)
-        q_ON = (frame.q0, frame.q1, frame.q2, frame.q3)
-        q_BO = _quat_conj_mul(q_ON, q_BN)
+        q_BO = _quat_conj_mul_scalar_last((frame.q0, frame.q1, frame.q2, frame.q3),
+                                          (attitude.q0, attitude.q1, attitude.q2, attitude.q3))
         h = (s0.momentum, s1.momentum, s2.momentum)
         law = self._wheels
         assert law is not None
         law.n = frame.n
-        torque = law.torque(cw.from_plant_quaternion(q_BO), w_B, h)
-        torque = cw.limit_wheel_torque(torque, h, self.WHEEL_TORQUE_LIMIT.value, self.WHEEL_MOMENTUM_LIMIT.value)
+        torque = cw.limit_wheel_torque(law.torque(q_BO, w_B, h), h, self.WHEEL_TORQUE_LIMIT.value,
+                                       self.WHEEL_MOMENTUM_LIMIT.value)
         t0, t1, t2 = torque
         if not (_isfinite(t0) and _isfinite(t1) and _isfinite(t2)):
             raise ArithmeticError(f"non-finite wheel torque {torque}")

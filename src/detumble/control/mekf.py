@@ -65,10 +65,11 @@ def _transpose(a: Mat) -> Mat:
     return [list(r) for r in zip(*a, strict=True)]
 
 
-def _inv_spd3(m: Mat) -> Mat:
+def _inv_spd3(m: Mat):
+    """``m⁻¹`` (rows as tuples) of the innovation covariance; ValueError unless ``det m > 0``."""
     if not det3(m) > 0.0:  # S is a covariance: positive definite or something is badly wrong
         raise ValueError(f"innovation covariance is not positive definite (det {det3(m):g})")
-    return [list(r) for r in inv3(m)]
+    return inv3(m)
 
 
 def _rotation_transpose(w: Vec3, dt: float) -> Mat:
@@ -183,8 +184,28 @@ class Mekf:
         self.omega = (omega_gyro_B[0] - b[0], omega_gyro_B[1] - b[1], omega_gyro_B[2] - b[2])
 
     def _propagate_covariance(self, w: Vec3, dt: float, var_rate: float) -> None:
+        """``P ← sym(Φ P Φᵀ + Q)`` for ``Φ = [[F, −Δt I], [0, I]]``, ``F = exp(−[w×] Δt)``.
+
+        :func:`_phi_p_phi_t` row by row with its sums spelled out, Q added to its twelve elements,
+        then :func:`_symmetric6`: the same floating-point operations in the same order as
+        ``_symmetric(Φ P Φᵀ + Q)`` (MEKF-003, MEKF-007).
+        """
         f = _rotation_transpose(w, dt)
-        p = _phi_p_phi_t(f, -dt, self.P)
+        m = -dt
+        p0, p1, p2, p3, p4, p5 = self.P
+        x00, x01, x02, x03, x04, x05 = p0
+        x10, x11, x12, x13, x14, x15 = p1
+        x20, x21, x22, x23, x24, x25 = p2
+        # Φ P: rows 0-2 are F P_top − Δt P_bottom (only Φ's non-zero products, as _phi_p_phi_t), rows 3-5 P's own
+        a0, a1, a2 = [(sum((g0 * x00, g1 * x10, g2 * x20, m * y0)), sum((g0 * x01, g1 * x11, g2 * x21, m * y1)),
+                       sum((g0 * x02, g1 * x12, g2 * x22, m * y2)), sum((g0 * x03, g1 * x13, g2 * x23, m * y3)),
+                       sum((g0 * x04, g1 * x14, g2 * x24, m * y4)), sum((g0 * x05, g1 * x15, g2 * x25, m * y5)))
+                      for (g0, g1, g2), (y0, y1, y2, y3, y4, y5) in zip(f, (p3, p4, p5), strict=True)]
+        # (Φ P) Φᵀ row by row, as _phi_p_phi_t
+        (f00, f01, f02), (f10, f11, f12), (f20, f21, f22) = f
+        p = [[sum((r0 * f00, r1 * f01, r2 * f02, r3 * m)), sum((r0 * f10, r1 * f11, r2 * f12, r4 * m)),
+              sum((r0 * f20, r1 * f21, r2 * f22, r5 * m)), 0.0 + r3, 0.0 + r4, 0.0 + r5]
+             for r0, r1, r2, r3, r4, r5 in (a0, a1, a2, p3, p4, p5)]
         su2 = self.bias_walk ** 2
         qa = var_rate * dt * dt + su2 * dt ** 3 / 3.0
         qab = -su2 * dt * dt / 2.0
@@ -194,7 +215,7 @@ class Mekf:
             p[i][i + 3] += qab
             p[i + 3][i] += qab
             p[i + 3][i + 3] += qb
-        self.P = _symmetric(p)
+        self.P = _symmetric6(p)
 
     def _initialise_attitude(self, q_m: Quat, r: Mat) -> None:
         self.q = quat_shortest(q_m)
@@ -209,41 +230,74 @@ class Mekf:
         self.last_innovation_cov = None
 
     def _measure(self, q_m: Quat, var_carry: float, corr: float) -> None:
-        r = self.tracker_noise()
-        for i in range(3):
-            r[i][i] += var_carry
+        """Star-tracker update with ``R`` plus ``var_carry`` per axis and the correlation ``corr``.
+
+        The Kalman step row by row with its 3-element sums spelled out: the same floating-point
+        operations in the same order as the matrix form (``_matmul`` of ``P Hᵀ + M`` and ``S⁻¹``, of
+        ``K`` and ``S``, ``K S Kᵀ`` summed over the rows of ``K``, then ``_symmetric(P − K S Kᵀ)``;
+        MEKF-007 checks it bit for bit).
+        """
         if self.q is None:
-            self._initialise_attitude(q_m, r)
+            self._initialise_attitude(q_m, self._measurement_noise(var_carry))
             return
         qe = quat_shortest(quat_mul(quat_conj(self.q), q_m))
         res = (2.0 * qe[1], 2.0 * qe[2], 2.0 * qe[3])
         if (math.sqrt(res[0] ** 2 + res[1] ** 2 + res[2] ** 2) > self.reinit_angle
                 or self.attitude_sigma3_rad > self.reinit_angle):
             self.reinitialisations += 1
-            self._initialise_attitude(q_m, r)
+            self._initialise_attitude(q_m, self._measurement_noise(var_carry))
             return
+        # R + var_carry I, as tracker_noise() builds R: (σ_c² on the diagonal, else 0) + (σ_b² − σ_c²) e_i e_j
+        sc2, sb2 = self.tracker_cross ** 2, self.tracker_about ** 2
+        e0, e1, e2 = self.boresight
+        d = sb2 - sc2
         p = self.P
-        # cross-covariance of the state error with the residual's noise: −corr on the attitude block
-        s = [[p[i][j] + r[i][j] for j in range(3)] for i in range(3)]
-        for i in range(3):
-            s[i][i] -= 2.0 * corr
-        pht = [row[:3] for row in p]  # P Hᵀ + M (M: −corr on the attitude block's diagonal)
-        for i in range(3):
-            pht[i][i] -= corr
-        k = _matmul(pht, _inv_spd3(s))
-        r0, r1, r2 = res
-        dx = [k0 * r0 + k1 * r1 + k2 * r2 for k0, k1, k2 in k]
-        # K S Kᵀ: the rows of K are the columns of Kᵀ (what _matmul(·, _transpose(k)) would sum over)
-        ksk = [[sum((a0 * c0, a1 * c1, a2 * c2)) for c0, c1, c2 in k] for a0, a1, a2 in _matmul(k, s)]
-        self.P = _symmetric([[x - y for x, y in zip(prow, krow, strict=True)]
-                             for prow, krow in zip(p, ksk, strict=True)])
+        p0, p1, p2 = p[0], p[1], p[2]
+        # S = H P Hᵀ + R + H M + Mᵀ Hᵀ: the attitude block plus R, −2 corr on the diagonal
+        c2 = 2.0 * corr
+        s00 = p0[0] + (sc2 + d * e0 * e0 + var_carry) - c2
+        s01 = p0[1] + (0.0 + d * e0 * e1)
+        s02 = p0[2] + (0.0 + d * e0 * e2)
+        s10 = p1[0] + (0.0 + d * e1 * e0)
+        s11 = p1[1] + (sc2 + d * e1 * e1 + var_carry) - c2
+        s12 = p1[2] + (0.0 + d * e1 * e2)
+        s20 = p2[0] + (0.0 + d * e2 * e0)
+        s21 = p2[1] + (0.0 + d * e2 * e1)
+        s22 = p2[2] + (sc2 + d * e2 * e2 + var_carry) - c2
+        s = [[s00, s01, s02], [s10, s11, s12], [s20, s21, s22]]
+        (n00, n01, n02), (n10, n11, n12), (n20, n21, n22) = _inv_spd3(s)
+        # K = (P Hᵀ + M) S⁻¹; P Hᵀ + M: P's first three columns, −corr on the attitude block's diagonal
+        pht = ((p0[0] - corr, p0[1], p0[2]), (p1[0], p1[1] - corr, p1[2]), (p2[0], p2[1], p2[2] - corr),
+               p[3], p[4], p[5])  # of rows 3-5 only the first three columns are read
+        k = [(sum((x0 * n00, x1 * n10, x2 * n20)), sum((x0 * n01, x1 * n11, x2 * n21)),
+              sum((x0 * n02, x1 * n12, x2 * n22))) for x0, x1, x2, *_ in pht]
+        (k00, k01, k02), (k10, k11, k12), (k20, k21, k22), (k30, k31, k32), (k40, k41, k42), (k50, k51, k52) = k
+        # K S, then P − K S Kᵀ (row i of K S against each row of K), symmetrised
+        ks = [(sum((a0 * s00, a1 * s10, a2 * s20)), sum((a0 * s01, a1 * s11, a2 * s21)),
+               sum((a0 * s02, a1 * s12, a2 * s22))) for a0, a1, a2 in k]
+        self.P = _symmetric6([
+            (x0 - sum((a0 * k00, a1 * k01, a2 * k02)), x1 - sum((a0 * k10, a1 * k11, a2 * k12)),
+             x2 - sum((a0 * k20, a1 * k21, a2 * k22)), x3 - sum((a0 * k30, a1 * k31, a2 * k32)),
+             x4 - sum((a0 * k40, a1 * k41, a2 * k42)), x5 - sum((a0 * k50, a1 * k51, a2 * k52)))
+            for (x0, x1, x2, x3, x4, x5), (a0, a1, a2) in zip(p, ks, strict=True)])
         self.last_residual = res
         self.last_innovation_cov = s
-        # reset: fold the error into the reference attitude and the bias
+        # reset: fold the error into the reference attitude and the bias (dx = K r)
+        r0, r1, r2 = res
         q = self.q
-        self.q = quat_normalize(quat_mul(q, (1.0, 0.5 * dx[0], 0.5 * dx[1], 0.5 * dx[2])))
+        self.q = quat_normalize(quat_mul(q, (1.0, 0.5 * (k00 * r0 + k01 * r1 + k02 * r2),
+                                             0.5 * (k10 * r0 + k11 * r1 + k12 * r2),
+                                             0.5 * (k20 * r0 + k21 * r1 + k22 * r2))))
         b = self.bias
-        self.bias = (b[0] + dx[3], b[1] + dx[4], b[2] + dx[5])
+        self.bias = (b[0] + (k30 * r0 + k31 * r1 + k32 * r2), b[1] + (k40 * r0 + k41 * r1 + k42 * r2),
+                     b[2] + (k50 * r0 + k51 * r1 + k52 * r2))
+
+    def _measurement_noise(self, var_carry: float) -> Mat:
+        """``R + var_carry I``, rad² (B)."""
+        r = self.tracker_noise()
+        for i in range(3):
+            r[i][i] += var_carry
+        return r
 
 
 def _phi_p_phi_t(f: Mat, m: float, p: Mat) -> Mat:
@@ -269,3 +323,21 @@ def _phi_p_phi_t(f: Mat, m: float, p: Mat) -> Mat:
 def _symmetric(p: Mat) -> Mat:
     cols = zip(*p, strict=True)
     return [[0.5 * (x + y) for x, y in zip(row, col, strict=True)] for row, col in zip(p, cols, strict=True)]
+
+
+def _symmetric6(c) -> Mat:
+    """:func:`_symmetric` of a 6×6 ``c`` (rows any sequences): each pair ``0.5 (c_ij + c_ji)``
+    computed once for both places (IEEE addition commutes, so the floats are ``_symmetric``'s)."""
+    (c00, c01, c02, c03, c04, c05), (c10, c11, c12, c13, c14, c15), (c20, c21, c22, c23, c24, c25), \
+        (c30, c31, c32, c33, c34, c35), (c40, c41, c42, c43, c44, c45), (c50, c51, c52, c53, c54, c55) = c
+    s01, s02, s03, s04, s05 = 0.5 * (c01 + c10), 0.5 * (c02 + c20), 0.5 * (c03 + c30), 0.5 * (c04 + c40), \
+        0.5 * (c05 + c50)
+    s12, s13, s14, s15 = 0.5 * (c12 + c21), 0.5 * (c13 + c31), 0.5 * (c14 + c41), 0.5 * (c15 + c51)
+    s23, s24, s25 = 0.5 * (c23 + c32), 0.5 * (c24 + c42), 0.5 * (c25 + c52)
+    s34, s35, s45 = 0.5 * (c34 + c43), 0.5 * (c35 + c53), 0.5 * (c45 + c54)
+    return [[0.5 * (c00 + c00), s01, s02, s03, s04, s05],
+            [s01, 0.5 * (c11 + c11), s12, s13, s14, s15],
+            [s02, s12, 0.5 * (c22 + c22), s23, s24, s25],
+            [s03, s13, s23, 0.5 * (c33 + c33), s34, s35],
+            [s04, s14, s24, s34, 0.5 * (c44 + c44), s45],
+            [s05, s15, s25, s35, s45, 0.5 * (c55 + c55)]]

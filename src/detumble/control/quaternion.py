@@ -58,13 +58,24 @@ def quat_normalize(q: Quat) -> Quat:
 
 
 def is_unit_quaternion(q, tol: float = 1e-3) -> bool:
-    """True when ``q`` is four finite numbers with ``| |q| − 1 | ≤ tol``."""
+    """True when ``q`` is four finite numbers with ``| |q| − 1 | ≤ tol``.
+
+    (Each component converted and checked in turn, the first non-finite one deciding, and the norm
+    summed as :func:`quat_norm` sums it; the controller asks this of every star-tracker solution.)
+    """
+    isfinite = math.isfinite
+    n2 = 0.0
     try:
-        if len(q) != 4 or not all(math.isfinite(float(c)) for c in q):
+        if len(q) != 4:
             return False
+        for c in q:
+            x = float(c)
+            if not isfinite(x):
+                return False
+            n2 += x * x  # 0.0 + q0² is q0²: then the same sum in the same order as quat_norm's
     except (TypeError, ValueError):
         return False
-    return abs(quat_norm((float(q[0]), float(q[1]), float(q[2]), float(q[3]))) - 1.0) <= tol
+    return abs(math.sqrt(n2) - 1.0) <= tol
 
 
 def quat_shortest(q: Quat) -> Quat:

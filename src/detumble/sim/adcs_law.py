@@ -10,12 +10,15 @@ FIELD_STEERING on the magnetorquers when the spacecraft has no wheels).
 Timing is the deployment's: :meth:`AdcsLaw.tick` is called once per rate-group tick
 (``RATE_GROUP_PERIOD_S``, 20 ms); every ``CYCLE_TICKS`` ticks (default 5, so 10 Hz) one control
 cycle runs on tick 0, the gyro is averaged over the cycle's ticks, and the coils are switched off on
-the last tick so the next cycle's magnetometer sample is free of their field. Commands act from the
-tick on, as a handler's commands act after its time in the deployment.
+the last tick so the next cycle's magnetometer sample is free of their field. A command stamped at
+time t acts from the first cycle after t, on the state the cycle before left, as in the deployment,
+where its handler runs after the rate group's cycle of that instant; the transition it causes is
+stamped t, as the component's event is.
 
 What it leaves out, because nothing plant-only can produce it: commands (it starts in AUTO with the
 target it is given, as the start-up sequence sets it, or takes one FORCE_MODE at a set time:
-``force_mode``), telemetry and events, and the fault paths of
+``force_mode``, and SET_TARGET_QUATERNION at set times: ``target_changes``), telemetry and events, and
+the fault paths of
 failed or non-finite reads (the plant's sensors always answer). The wheels start enabled, as the
 plant's do.
 
@@ -159,9 +162,12 @@ class AdcsLaw:
         auto_start_s: plant time (s) from which the controller is in AUTO; before it, it stays in
             IDLE (estimating, coils off, wheels at zero torque) as the component does until the start-up
             sequence's SET_AUTO arrives (in adcs_ref that is the second cycle, t = 0.1 s).
-        force_mode: instead of AUTO, the mode a FORCE_MODE command sets at plant time ``force_at_s``
+        force_mode: instead of AUTO, the mode a FORCE_MODE command sent at plant time ``force_at_s``
             (s) and holds; POINTING is refused, as the component refuses it, without attitude
             knowledge (the controller then stays in IDLE).
+        target_changes: ``(t_s, q_TN)`` pairs: at plant time ``t_s`` (s) the target becomes ``q_TN``
+            (re-normalised, and the error integral cleared, as SET_TARGET_QUATERNION does); in time
+            order. Each acts from the first control cycle after its time (see the module docstring).
     """
 
     name = "adcs"
@@ -172,7 +178,8 @@ class AdcsLaw:
     def __init__(self, wheel_axes: Sequence[Sequence[float]] = _XYZ, wheels: bool = True,
                  params: Mapping[str, object] | None = None, target_q_bn=None, *, bdot_provider: bool = True,
                  provider_gain: float = attitude_defaults.BDOT_PROVIDER_GAIN, auto_start_s: float = 0.0,
-                 force_mode: str | None = None, force_at_s: float = 0.0) -> None:
+                 force_mode: str | None = None, force_at_s: float = 0.0,
+                 target_changes: Sequence[tuple[float, Sequence[float]]] = ()) -> None:
         p = _settings(params)
         self.params = p
         self.axes = tuple((float(a[0]), float(a[1]), float(a[2])) for a in wheel_axes)
@@ -211,11 +218,24 @@ class AdcsLaw:
         if target_q_bn is not None:
             q = tuple(float(c) for c in target_q_bn)
             self.target = quat_shortest(quat_normalize((q[0], q[1], q[2], q[3])))
+        self.initial_target = self.target
+        changes = []
+        for t_s, q_tn in target_changes:
+            if len(q_tn) != 4 or not is_unit_quaternion(tuple(float(c) for c in q_tn)):
+                raise ValueError(f"target change at {t_s} s: {tuple(q_tn)!r} is not a unit quaternion (within "
+                                 "1e-3), as SET_TARGET_QUATERNION requires")
+            q = tuple(float(c) for c in q_tn)
+            changes.append((int(round(float(t_s) * 1e6)), quat_shortest(quat_normalize((q[0], q[1], q[2], q[3])))))
+        if any(b[0] < a[0] for a, b in zip(changes, changes[1:], strict=False)):
+            raise ValueError("target changes must be in time order")
+        self.target_changes: tuple[tuple[int, Quat], ...] = tuple(changes)  # (t µs, q_TN)
         self.reset()
 
     def reset(self) -> None:
-        """Back to the state before the first tick: IDLE, nothing known, the target kept."""
+        """Back to the state before the first tick: IDLE, nothing known, the target given at construction."""
         self.mode = "IDLE"
+        self.target = self.initial_target
+        self._next_change = 0  # index of the first target change not yet applied
         self.transitions: list[tuple[float, str, str]] = []  # (t s, new mode, reason)
         self.filter.reset()
         self.observer.reset()
@@ -275,18 +295,28 @@ class AdcsLaw:
 
     def _control_cycle(self, io: PlantIo) -> None:
         now = io.now_us()
+        self._handle_commands(now)
         last, self._last_us = self._last_us, now
         dt = self.cycle_ticks * self.tick_s if last is None or now <= last else (now - last) / 1e6
         self.cycles += 1
         self._estimate(io, dt, now)
-        if self.force_mode is not None:  # FORCE_MODE: the mode is held, no trigger moves it
-            if self._force_pending and now >= self.force_at_us:
-                self._force_pending = False  # one command: refused POINTING is not retried, as in flight
-                if self.force_mode != "POINTING" or self._can_point():
-                    self._enter(self.force_mode, "COMMAND", now)
-        elif now >= self.auto_start_us:
+        if self.force_mode is None and now >= self.auto_start_us:  # FORCE_MODE holds the mode: no trigger moves it
             self._choose_mode(dt, now)
         self._command(io, dt)
+
+    def _handle_commands(self, now: int) -> None:
+        """The commands stamped before this cycle, as their handlers run in the deployment: after the cycle
+        before (a command sent at a cycle's own time lands after that cycle), on the state it left."""
+        changes, i = self.target_changes, self._next_change
+        while i < len(changes) and changes[i][0] < now:
+            self.target = changes[i][1]
+            self.integrator.reset()
+            i += 1
+        self._next_change = i
+        if self.force_mode is not None and self._force_pending and self.force_at_us < now:
+            self._force_pending = False  # one command: refused POINTING is not retried, as in flight
+            if self.force_mode != "POINTING" or self._can_point():
+                self._enter(self.force_mode, "COMMAND", self.force_at_us)
 
     # --- estimation -----------------------------------------------------------------------------
 

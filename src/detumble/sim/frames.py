@@ -24,28 +24,39 @@ import math
 
 from detumble.sim.vec import Mat3, Quat, Vec3, quat_conj, quat_mul
 
+_sqrt = math.sqrt
+
 
 def dcm_to_quat(m: Mat3) -> Quat:
     """Quaternion (scalar first, q0 >= 0) of a rotation matrix ``[BN]`` (Shepperd's method)."""
-    t = m[0][0] + m[1][1] + m[2][2]
-    cands = (t, m[0][0], m[1][1], m[2][2])
-    k = max(range(4), key=lambda i: cands[i])
+    m0, m1, m2 = m
+    m00, m11, m22 = m0[0], m1[1], m2[2]
+    t = m00 + m11 + m22
+    # The branch of the largest of (t, m00, m11, m22), the first one on a tie (as max() picks it;
+    # a NaN never replaces the one held): the same k as max(range(4), key=...), without the calls.
+    k, best = 0, t
+    if m00 > best:
+        k, best = 1, m00
+    if m11 > best:
+        k, best = 2, m11
+    if m22 > best:
+        k = 3
     if k == 0:
-        q0 = 0.5 * math.sqrt(1.0 + t)
+        q0 = 0.5 * _sqrt(1.0 + t)
         f = 0.25 / q0
-        q = (q0, f * (m[1][2] - m[2][1]), f * (m[2][0] - m[0][2]), f * (m[0][1] - m[1][0]))
+        q = (q0, f * (m1[2] - m2[1]), f * (m2[0] - m0[2]), f * (m0[1] - m1[0]))
     elif k == 1:
-        q1 = 0.5 * math.sqrt(1.0 + 2.0 * m[0][0] - t)
+        q1 = 0.5 * _sqrt(1.0 + 2.0 * m00 - t)
         f = 0.25 / q1
-        q = (f * (m[1][2] - m[2][1]), q1, f * (m[0][1] + m[1][0]), f * (m[2][0] + m[0][2]))
+        q = (f * (m1[2] - m2[1]), q1, f * (m0[1] + m1[0]), f * (m2[0] + m0[2]))
     elif k == 2:
-        q2 = 0.5 * math.sqrt(1.0 + 2.0 * m[1][1] - t)
+        q2 = 0.5 * _sqrt(1.0 + 2.0 * m11 - t)
         f = 0.25 / q2
-        q = (f * (m[2][0] - m[0][2]), f * (m[0][1] + m[1][0]), q2, f * (m[1][2] + m[2][1]))
+        q = (f * (m2[0] - m0[2]), f * (m0[1] + m1[0]), q2, f * (m1[2] + m2[1]))
     else:
-        q3 = 0.5 * math.sqrt(1.0 + 2.0 * m[2][2] - t)
+        q3 = 0.5 * _sqrt(1.0 + 2.0 * m22 - t)
         f = 0.25 / q3
-        q = (f * (m[0][1] - m[1][0]), f * (m[2][0] + m[0][2]), f * (m[1][2] + m[2][1]), q3)
+        q = (f * (m0[1] - m1[0]), f * (m2[0] + m0[2]), f * (m1[2] + m2[1]), q3)
     if q[0] < 0.0:
         q = (-q[0], -q[1], -q[2], -q[3])
     return q
@@ -53,15 +64,16 @@ def dcm_to_quat(m: Mat3) -> Quat:
 
 def orbit_axes_N(r_N: Vec3, v_N: Vec3) -> Mat3:
     """``[ON]``: the rows are O's axes ``x_O, y_O, z_O`` in N (see the module docstring)."""
-    rn = math.sqrt(r_N[0] ** 2 + r_N[1] ** 2 + r_N[2] ** 2)
-    z = (-r_N[0] / rn, -r_N[1] / rn, -r_N[2] / rn)
-    hx = r_N[1] * v_N[2] - r_N[2] * v_N[1]
-    hy = r_N[2] * v_N[0] - r_N[0] * v_N[2]
-    hz = r_N[0] * v_N[1] - r_N[1] * v_N[0]
-    hn = math.sqrt(hx * hx + hy * hy + hz * hz)
-    y = (-hx / hn, -hy / hn, -hz / hn)
-    x = (y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2], y[0] * z[1] - y[1] * z[0])
-    return (x, y, z)
+    r0, r1, r2 = r_N
+    v0, v1, v2 = v_N
+    rn = _sqrt(r0 ** 2 + r1 ** 2 + r2 ** 2)  # ** as written (libm pow: not always x * x)
+    z0, z1, z2 = -r0 / rn, -r1 / rn, -r2 / rn
+    hx = r1 * v2 - r2 * v1
+    hy = r2 * v0 - r0 * v2
+    hz = r0 * v1 - r1 * v0
+    hn = _sqrt(hx * hx + hy * hy + hz * hz)
+    y0, y1, y2 = -hx / hn, -hy / hn, -hz / hn
+    return ((y1 * z2 - y2 * z1, y2 * z0 - y0 * z2, y0 * z1 - y1 * z0), (y0, y1, y2), (z0, z1, z2))
 
 
 def orbit_rate(r_N: Vec3, v_N: Vec3) -> float:
@@ -73,8 +85,10 @@ def orbit_rate(r_N: Vec3, v_N: Vec3) -> float:
 
 
 def q_ON(orbit, t: float) -> Quat:
-    """Quaternion of the orbit frame relative to N at ``t`` s (``orbit`` has position_N/velocity_N)."""
-    return dcm_to_quat(orbit_axes_N(orbit.position_N(t), orbit.velocity_N(t)))
+    """Quaternion of the orbit frame relative to N at ``t`` s (``orbit`` has ``position_velocity_N``,
+    as :mod:`detumble.sim.orbit`'s orbits do: position in m and velocity in m/s, both in N)."""
+    r_N, v_N = orbit.position_velocity_N(t)
+    return dcm_to_quat(orbit_axes_N(r_N, v_N))
 
 
 def q_BO(q_BN: Quat, q_on: Quat) -> Quat:

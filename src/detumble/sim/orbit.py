@@ -20,6 +20,8 @@ MU_EARTH = 3.986004415e14  #: m^3/s^2
 R_EARTH_EQ = 6378136.6  #: m, equatorial radius
 J2_EARTH = 1.0826267e-3
 
+_cos, _sin = math.cos, math.sin
+
 
 class CircularOrbit:
     """Circular orbit; angles in radians, lengths in metres."""
@@ -78,6 +80,21 @@ class CircularOrbit:
             a * (du * (-co * su - so * cu * ci) + dr * (-so * cu - co * su * ci)),
             a * (du * (-so * su + co * cu * ci) + dr * (co * cu - so * su * ci)),
             a * du * cu * self._si,
+        )
+
+    def position_velocity_N(self, t: float) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+        """``(position_N(t), velocity_N(t))`` (m, m/s) with the angles' sines and cosines computed
+        once: the same floats as the two calls."""
+        u = self.arg_latitude0_rad + self.arg_latitude_rate * t
+        raan = self.raan0_rad + self.raan_rate * t
+        cu, su = _cos(u), _sin(u)
+        co, so = _cos(raan), _sin(raan)
+        a, du, dr, ci, si = self.radius_m, self.arg_latitude_rate, self.raan_rate, self._ci, self._si
+        return (
+            (a * (co * cu - so * su * ci), a * (so * cu + co * su * ci), a * (su * si)),
+            (a * (du * (-co * su - so * cu * ci) + dr * (-so * cu - co * su * ci)),
+             a * (du * (-so * su + co * cu * ci) + dr * (co * cu - so * su * ci)),
+             a * du * cu * si),
         )
 
     def gravity_gradient_coeff(self, r_N: tuple[float, float, float]) -> float:
@@ -146,6 +163,10 @@ class TleOrbit:
         d01 = -d00
         d11 = (3.0 * s * s - 2.0 * s) * h
         return tuple((d00 * r0[i] + d10 * v0[i] + d01 * r1[i] + d11 * v1[i]) / h for i in range(3))
+
+    def position_velocity_N(self, t: float) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+        """``(position_N(t), velocity_N(t))``, m and m/s."""
+        return self.position_N(t), self.velocity_N(t)
 
     def gravity_gradient_coeff(self, r_N: tuple[float, float, float]) -> float:
         r2 = r_N[0] ** 2 + r_N[1] ** 2 + r_N[2] ** 2

@@ -401,8 +401,12 @@ class Plant:
 
     def set_wheel_torque(self, i: int, torque_nm: float, t: float | None = None) -> None:
         """Command motor torque ``torque_nm`` (N m) on wheel ``i`` (torque mode)."""
-        self._sync(t)
-        self._wheels().set_torque(i, torque_nm)
+        if t is not None:
+            self._sync(t)
+        w = self.wheels
+        if w is None:
+            w = self._wheels()  # raises: no wheels
+        w.set_torque(i, torque_nm)
 
     def set_wheel_torques(self, torques_nm, t: float | None = None) -> None:
         """Command every wheel's motor torque at once (a sequence of N values, N m)."""
@@ -451,10 +455,13 @@ class Plant:
         with the configured noise, speed consistent with it, the motor torque of the last step."""
         if t is not None:
             self._sync(t)
-        w = self._wheels()
+        w = self.wheels
+        if w is None:
+            w = self._wheels()  # raises: no wheels
         if type(i) is not int or not 0 <= i < w.n:
             w._index(i)  # raises for anything but a wheel's index
-        h = w.measured_momentum(i)
+        sd = w.specs[i].momentum_noise_std_nms  # WheelAssembly.measured_momentum, written out
+        h = w.h[i] + (w.rng.gauss(0.0, sd) if sd > 0.0 else 0.0)
         s = self._state  # omega_BN_B at 4..6
         g = w.axes[i]
         speed = h / w.js[i] - (g[0] * s[4] + g[1] * s[5] + g[2] * s[6])
@@ -486,7 +493,7 @@ class Plant:
     @property
     def q_ON(self) -> Quat:
         """The orbit frame O relative to N now (detumble.sim.frames)."""
-        return frames.q_ON(self.orbit, self.t)
+        return frames.q_ON(self.orbit, self._t_ns / 1e9)  # self.t, without the property call
 
     @property
     def q_BO(self) -> Quat:

@@ -113,7 +113,7 @@ def make_adcs_law(plant: Plant) -> AdcsLaw:
     try:
         return AdcsLaw(axes, 3 <= n <= 4, params, cfg.target_q_bn, bdot_provider=cfg.bdot_provider,
                        provider_gain=cfg.bdot_provider_gain, auto_start_s=cfg.auto_start_s,
-                       force_mode=cfg.force_mode, force_at_s=cfg.force_at_s)
+                       force_mode=cfg.force_mode, force_at_s=cfg.force_at_s, target_changes=cfg.target_changes)
     except ValueError as exc:
         raise LawError(f"adcs: {exc}") from None
 

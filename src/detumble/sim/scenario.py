@@ -118,13 +118,15 @@ class WheelsPdConfig:
 #: takes the BDotDetumble provider's dipole (``bdot_provider``) and that provider's gain, when AUTO
 #: starts (``auto_start_s``: before it the controller idles, as until the start-up sequence's SET_AUTO), or
 #: instead a mode held from ``force_at_s`` on as FORCE_MODE holds it (``force_mode``: DETUMBLE, SPIN_STABLE or
-#: POINTING; None: AUTO), and every flight parameter of the AttitudeController by its own name (default: the
-#: component's default).
+#: POINTING; None: AUTO), the later targets SET_TARGET_QUATERNION would set (``target_changes``: a list of
+#: ``[t_s, q0, q1, q2, q3]``, in time order), and every flight parameter of the AttitudeController by its own
+#: name (default: the component's default).
 AdcsConfig = make_dataclass(
     "AdcsConfig",
     [("target_q_bn", "tuple[float, float, float, float] | None", None), ("bdot_provider", bool, True),
      ("bdot_provider_gain", float, BDOT_PROVIDER_GAIN), ("auto_start_s", float, 0.0),
-     ("force_mode", "str | None", None), ("force_at_s", float, 0.0)]
+     ("force_mode", "str | None", None), ("force_at_s", float, 0.0),
+     ("target_changes", "tuple[tuple[float, tuple[float, float, float, float]], ...]", ())]
     + [(name, type(value), value) for name, value in ADCS_DEFAULTS.items()],
     frozen=True)
 
@@ -324,7 +326,7 @@ SCHEMA: dict = {
         "beta_pd": {k: _LEAF for k in ("k_s", "k_d", "switched")},
         "wheels_pd": {k: _LEAF for k in ("k_p", "k_d", "target_q_bo", "limits", "error", "dump_gain")},
         "adcs": {k: _LEAF for k in ("target_q_bn", "bdot_provider", "bdot_provider_gain", "auto_start_s",
-                                       "force_mode", "force_at_s",
+                                       "force_mode", "force_at_s", "target_changes",
                                        *ADCS_DEFAULTS)},
     },
     "power": POWER_SCHEMA,
@@ -896,6 +898,30 @@ def _control(s: _Section, dt: float) -> ControlConfig:
                          beta_pd=beta_pd, wheels_pd=wheels_pd, adcs=adcs)
 
 
+def _target_changes(a: _Section) -> tuple:
+    """``control.adcs.target_changes``: ``[[t_s, q0, q1, q2, q3], ...]``, times ≥ 0 in order, unit targets."""
+    raw = a.raw("target_changes", None)
+    if raw is None:
+        return ()
+    if not isinstance(raw, (list, tuple)):
+        a.fail("target_changes", f"expected a list of [t_s, q0, q1, q2, q3], got {raw!r}")
+    changes: list[tuple[float, tuple[float, float, float, float]]] = []
+    for i, entry in enumerate(raw):
+        if not isinstance(entry, (list, tuple)) or len(entry) != 5:
+            a.fail("target_changes", f"entry {i}: expected [t_s, q0, q1, q2, q3], got {entry!r}")
+        t, *q = (a.ctx.number(a.path + ("target_changes", i, j), x) for j, x in enumerate(entry))
+        if t < 0.0:
+            a.fail("target_changes", f"entry {i}: the time {t!r} s is negative")
+        if changes and t < changes[-1][0]:
+            a.fail("target_changes", f"entry {i}: {t!r} s comes before the previous entry's {changes[-1][0]!r} s; "
+                   "list the changes in time order")
+        if abs(math.sqrt(sum(c * c for c in q)) - 1.0) > 1e-3:
+            a.fail("target_changes", f"entry {i}: must be a unit quaternion (within 1e-3), as "
+                   "SET_TARGET_QUATERNION requires")
+        changes.append((t, (q[0], q[1], q[2], q[3])))
+    return tuple(changes)
+
+
 def _adcs(a: _Section):
     """``control.adcs`` (see :data:`AdcsConfig`)."""
     values: dict[str, Any] = {}
@@ -913,6 +939,7 @@ def _adcs(a: _Section):
     if a.raw("force_mode", None) is not None:
         values["force_mode"] = a.string("force_mode", "POINTING", ("DETUMBLE", "SPIN_STABLE", "POINTING"))
     values["force_at_s"] = a.number("force_at_s", 0.0, nonneg=True)
+    values["target_changes"] = _target_changes(a)
     for name, default in ADCS_DEFAULTS.items():
         if name in ADCS_ENUMS:
             values[name] = a.string(name, str(default), ADCS_ENUMS[name])

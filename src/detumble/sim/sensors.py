@@ -79,6 +79,18 @@ def _quantise(x: float, lsb: float, limit: float) -> float:
     return x
 
 
+def _quantise3(x: float, y: float, z: float, lsb: float, limit: float) -> tuple[float, float, float]:
+    """``(_quantise(x, lsb, limit), _quantise(y, …), _quantise(z, …))`` in one call (the same operations)."""
+    if lsb > 0.0:
+        floor = math.floor
+        x = floor(x / lsb + 0.5) * lsb
+        y = floor(y / lsb + 0.5) * lsb
+        z = floor(z / lsb + 0.5) * lsb
+    lo = -limit
+    return (limit if x > limit else lo if x < lo else x, limit if y > limit else lo if y < lo else y,
+            limit if z > limit else lo if z < lo else z)
+
+
 def skip_gauss(rng: random.Random, n: int) -> None:
     """Advance ``rng`` exactly as ``n`` calls of ``rng.gauss`` would, without computing them.
 
@@ -166,29 +178,51 @@ class Magnetometer(_SampleHold):
         g = GAUSS_PER_TESLA
         self._k = tuple(g * k for k in spec.coupling_t_per_am2)  # gauss per A m^2
 
+    def _held_gauss(self) -> tuple[float, float, float]:
+        """The held sample, gauss (body axes), computed now if it was deferred.
+
+        :meth:`_resolve` written out (the flight manager reads the magnetometer every cycle): the
+        same operations in the same order as ``_held`` → ``_resolve`` → ``_interpolated`` → ``measure``.
+        """
+        pending = self._pending
+        if pending is None:
+            return self._sample
+        t0, t1, q0, q1, b0_N, b1_N, m = self._take_pending()
+        b0 = rotate_n_to_b((q0[0], q0[1], q0[2], q0[3]), b0_N)
+        b1 = rotate_n_to_b((q1[0], q1[1], q1[2], q1[3]), b1_N)
+        s = (self.sample_time_ns - t0) / (t1 - t0) if t1 > t0 else 1.0
+        sample = self._sample = self._measured(b0[0] + s * (b1[0] - b0[0]), b0[1] + s * (b1[1] - b0[1]),
+                                               b0[2] + s * (b1[2] - b0[2]), m)
+        return sample
+
     #: The held sample, gauss (body axes); computed when first read after a deferral.
-    sample_gauss = property(lambda self: self._held(), lambda self, value: self._hold(value))
+    sample_gauss = property(_held_gauss, lambda self, value: self._hold(value))
 
     def measure(self, b_B: tuple[float, float, float],
                 m_coils_B: tuple[float, float, float]) -> tuple[float, float, float]:
         """One noisy, quantised measurement (gauss) of true field ``b_B`` (T) with coils at ``m_coils_B``."""
         if self._pending is not None:  # the deferred sample draws its noise first, as eagerly
             self._resolve()
+        return self._measured(b_B[0], b_B[1], b_B[2], m_coils_B)
+
+    def _measured(self, bx: float, by: float, bz: float,
+                  m_coils_B: tuple[float, float, float]) -> tuple[float, float, float]:
+        """:meth:`measure` of the field ``(bx, by, bz)`` (T), no deferred sample pending; :func:`_quantise`
+        written out (the same operations)."""
         s = self.spec
         g = GAUSS_PER_TESLA
         k = self._k
         bias = s.bias_gauss
-        x = g * b_B[0] + k[0] * m_coils_B[0] + bias[0]
-        y = g * b_B[1] + k[1] * m_coils_B[1] + bias[1]
-        z = g * b_B[2] + k[2] * m_coils_B[2] + bias[2]
+        x = g * bx + k[0] * m_coils_B[0] + bias[0]
+        y = g * by + k[1] * m_coils_B[1] + bias[1]
+        z = g * bz + k[2] * m_coils_B[2] + bias[2]
         sd = s.noise_std_gauss
         if sd > 0.0:
             gauss = self.rng.gauss
             x += gauss(0.0, sd)
             y += gauss(0.0, sd)
             z += gauss(0.0, sd)
-        lsb, fs = s.resolution_gauss, s.full_scale_gauss
-        return (_quantise(x, lsb, fs), _quantise(y, lsb, fs), _quantise(z, lsb, fs))
+        return _quantise3(x, y, z, s.resolution_gauss, s.full_scale_gauss)
 
     def latch(self, t0_ns: int, t1_ns: int, b0_B, b1_B, m_coils_B) -> None:
         """Take the sample due in (t0, t1] if any; ``b0_B``/``b1_B`` true field (T) at the ends."""
@@ -212,10 +246,7 @@ class Magnetometer(_SampleHold):
         self.sample_time_ns = tk_ns
 
     def _resolve(self) -> None:
-        t0, t1, q0, q1, b0_N, b1_N, m = self._take_pending()
-        b0 = rotate_n_to_b((q0[0], q0[1], q0[2], q0[3]), b0_N)
-        b1 = rotate_n_to_b((q1[0], q1[1], q1[2], q1[3]), b1_N)
-        self._sample = self._interpolated(t0, t1, self.sample_time_ns, b0, b1, m)
+        self._held_gauss()
 
     def _interpolated(self, t0_ns: int, t1_ns: int, tk: int, b0_B, b1_B, m_coils_B) -> tuple[float, float, float]:
         s = (tk - t0_ns) / (t1_ns - t0_ns) if t1_ns > t0_ns else 1.0
@@ -239,19 +270,40 @@ class Gyro(_SampleHold):
     def measure(self, omega_B: tuple[float, float, float]) -> tuple[float, float, float]:
         if self._pending is not None:  # the deferred sample draws its noise first, as eagerly
             self._resolve()
+        return self._measured(omega_B[0], omega_B[1], omega_B[2])
+
+    def _measured(self, wx: float, wy: float, wz: float) -> tuple[float, float, float]:
+        """:meth:`measure` of the rate ``(wx, wy, wz)`` (rad/s), no deferred sample pending."""
         bias = self._bias
-        x, y, z = omega_B[0] + bias[0], omega_B[1] + bias[1], omega_B[2] + bias[2]
+        x, y, z = wx + bias[0], wy + bias[1], wz + bias[2]
         sd = self._sd
         if sd > 0.0:
             gauss = self.rng.gauss
             x += gauss(0.0, sd)
             y += gauss(0.0, sd)
             z += gauss(0.0, sd)
-        lsb, fs = self._lsb, self._fs
-        return (_quantise(x, lsb, fs), _quantise(y, lsb, fs), _quantise(z, lsb, fs))
+        return _quantise3(x, y, z, self._lsb, self._fs)
+
+    def _held_rad_s(self) -> tuple[float, float, float]:
+        """The held sample, rad/s (body axes), computed now if it was deferred (read every tick):
+        ``_held`` → ``_resolve`` → ``measure`` written out, the same operations in the same order."""
+        pending = self._pending
+        if pending is None:
+            return self._sample
+        # _take_pending
+        self._pending = None
+        if self._skipped:
+            skip_gauss(self.rng, self._draws * self._skipped)
+            self._skipped = 0
+        # the rate interpolated to the ODR instant on the states' rate slots 4..6
+        t0, t1, s0, s1 = pending
+        s = (self.sample_time_ns - t0) / (t1 - t0) if t1 > t0 else 1.0
+        sample = self._sample = self._measured(s0[4] + s * (s1[4] - s0[4]), s0[5] + s * (s1[5] - s0[5]),
+                                               s0[6] + s * (s1[6] - s0[6]))
+        return sample
 
     #: The held sample, rad/s (body axes); computed when first read after a deferral.
-    sample_rad_s = property(lambda self: self._held(), lambda self, value: self._hold(value))
+    sample_rad_s = property(_held_rad_s, lambda self, value: self._hold(value))
 
     def latch(self, t0_ns: int, t1_ns: int, w0_B, w1_B) -> None:
         tk = self.latest_instant(t0_ns, t1_ns)
@@ -270,11 +322,7 @@ class Gyro(_SampleHold):
         self.sample_time_ns = tk_ns
 
     def _resolve(self) -> None:
-        # _interpolated on the states' rate slots 4..6, written out (this runs for every sample read)
-        t0, t1, s0, s1 = self._take_pending()
-        s = (self.sample_time_ns - t0) / (t1 - t0) if t1 > t0 else 1.0
-        self._sample = self.measure((s0[4] + s * (s1[4] - s0[4]), s0[5] + s * (s1[5] - s0[5]),
-                                     s0[6] + s * (s1[6] - s0[6])))
+        self._held_rad_s()
 
     def _interpolated(self, t0_ns: int, t1_ns: int, tk: int, w0_B, w1_B) -> tuple[float, float, float]:
         s = (tk - t0_ns) / (t1_ns - t0_ns) if t1_ns > t0_ns else 1.0

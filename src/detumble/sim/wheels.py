@@ -37,6 +37,7 @@ from dataclasses import dataclass
 from detumble.sim.vec import Vec3, rotate_n_to_b
 
 TORQUE, SPEED = "torque", "speed"
+_isfinite = math.isfinite
 
 
 @dataclass(frozen=True)
@@ -115,8 +116,9 @@ class WheelAssembly:
 
     def set_torque(self, i: int, torque_nm: float) -> None:
         """Motor torque on wheel ``i`` (N m, along its axis; the body feels the opposite)."""
-        i = self._index(i)
-        if not math.isfinite(torque_nm):
+        if type(i) is not int or not 0 <= i < self.n:
+            i = self._index(i)  # raises for anything but a wheel's index
+        if not _isfinite(torque_nm):
             raise ValueError(f"wheel {i}: torque must be finite, got {torque_nm!r}")
         self.mode[i] = TORQUE
         self.command[i] = float(torque_nm)
@@ -160,24 +162,28 @@ class WheelAssembly:
     def motor_torques(self, dt: float, omega_B: Vec3) -> tuple[float, ...]:
         """The limited motor torques to hold over the next step of ``dt`` s."""
         out = []
+        enabled, mode, command, u_max, h_max = self.enabled, self.mode, self.command, self.u_max, self.h_max
+        h_all = self.h
+        clipped_out, limited_out = self.torque_clipped, self.momentum_limited
+        friction = self.friction
         for i in range(self.n):
-            if not self.enabled[i]:
+            if not enabled[i]:
                 out.append(0.0)
-                self.torque_clipped[i] = self.momentum_limited[i] = False
+                clipped_out[i] = limited_out[i] = False
                 continue
-            js = self.js[i]
-            if self.mode[i] == SPEED:
+            m = mode[i]
+            if m == SPEED:
                 tau = max(self.specs[i].speed_loop_time_constant_s, 2.0 * dt)
-                u = js * (self.command[i] - self.speed_rad_s(i, omega_B)) / tau
+                u = self.js[i] * (command[i] - self.speed_rad_s(i, omega_B)) / tau
             else:
-                u = self.command[i]
-            um = self.u_max[i]
+                u = command[i]
+            um = u_max[i]
             clipped = u > um or u < -um
             if clipped:
                 u = um if u > 0.0 else -um
-            h, hm = self.h[i], self.h_max[i]
+            h, hm = h_all[i], h_max[i]
             limited = False
-            if self.friction:
+            if friction:
                 f0 = _friction(self.specs[i], self.speed_rad_s(i, omega_B))
             else:
                 f0 = 0.0
@@ -188,8 +194,8 @@ class WheelAssembly:
             elif h1 < -hm and u < 0.0:
                 u = min(0.0, (-hm - h) / dt - f0)
                 limited = True
-            self.torque_clipped[i] = clipped and self.mode[i] == TORQUE
-            self.momentum_limited[i] = limited
+            clipped_out[i] = clipped and m == TORQUE
+            limited_out[i] = limited
             out.append(u)
         self.torque_applied = out
         return tuple(out)

@@ -34,6 +34,7 @@ from fprime_lite.model.types import U8
 
 from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet, MagneticField, MagneticFieldGet,
                                        Result, SamplingPeriodGet, Success, TimeIntervalValue)
+from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
 from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 # the gyro types are shared with the attitude controller, which may not import sitl
@@ -134,6 +135,20 @@ _HALF_TURN = AxisOrientation.ROTATED_180_DEG
 _NO_FAULT = SimReadFault.NONE
 _FAIL = SimReadFault.FAIL
 _SUCCESS = Success.SUCCESS
+_GYROSCOPE = SimImuSensor.GYROSCOPE
+
+
+def _rotated(o, x: float, y: float, z: float) -> tuple[float, float, float]:
+    """``(x, y, z)`` in the board axes of orientation ``o`` (a rotation about the board's z axis)."""
+    if o == _STANDARD:
+        return x, y, z
+    if o == _CW:
+        return y, -x, z
+    if o == _CCW:
+        return -y, x, z
+    if o == _HALF_TURN:
+        return -x, -y, z
+    return x, y, z
 
 
 class ImuManager(PassiveComponent):
@@ -163,8 +178,35 @@ class ImuManager(PassiveComponent):
 
     @sync_input(AngularVelocityGet)
     def angularVelocityGet(self) -> Result:
-        """Angular velocity ω_BN_B, rad/s (the held gyro sample)."""
-        return self.angularVelocityGet_handler()
+        """Angular velocity ω_BN_B, rad/s (the held gyro sample).
+
+        The read itself (the attitude controller calls this port every tick; the other readers go
+        through :meth:`angularVelocityGet_handler`).
+        """
+        if self._faults[_GYROSCOPE] == _NO_FAULT:
+            # _read written out for a healthy gyro (the attitude controller reads it every tick);
+            # AngularVelocity has no time stamp, so the sample's time is not asked for
+            try:
+                v = self.spacecraft.gyro_sample(False)
+            except Exception as exc:  # noqa: BLE001 - a simulation fault is a failed read, never an exception
+                self.report_fault(f"{_GYROSCOPE.name} read", exc)
+                self.Lsm6dsoDeviceNotReady()
+                return Result(AngularVelocity(0.0, 0.0, 0.0), Success.FAILURE)
+            failed = self.Lsm6dsoDeviceNotReady
+            if failed.count:  # clear_throttle, where there is something to clear
+                failed.clear_throttle()
+        else:
+            v, _, ok = self._read(_GYROSCOPE, self.spacecraft.gyro_sample, self.Lsm6dsoDeviceNotReady)
+            if not ok:
+                return Result(AngularVelocity(0.0, 0.0, 0.0), Success.FAILURE)
+        o = self.AXIS_ORIENTATION.value  # _orient, written out for the standard orientation
+        self.AxisOrientation.write(o)
+        if o == _STANDARD:
+            value = AngularVelocity(v[0], v[1], v[2])
+        else:
+            value = AngularVelocity(*_rotated(o, v[0], v[1], v[2]))
+        self.AngularVelocity.write(value)
+        return _new_result(Result, (value, _SUCCESS))
 
     @sync_input(AngularVelocityMagnitudeGet)
     def angularVelocityMagnitudeGet(self, unit: AngularUnit) -> Result:
@@ -323,15 +365,7 @@ class ImuManager(PassiveComponent):
         """Apply AXIS_ORIENTATION (a rotation about the board's z axis) and write its channel."""
         o = self.AXIS_ORIENTATION.value
         self.AxisOrientation.write(o)
-        if o == _STANDARD:
-            return x, y, z
-        if o == _CW:
-            return y, -x, z
-        if o == _CCW:
-            return -y, x, z
-        if o == _HALF_TURN:
-            return -x, -y, z
-        return x, y, z
+        return _rotated(o, x, y, z)
 
     # --- reads ---------------------------------------------------------------------------------
 
@@ -367,12 +401,8 @@ class ImuManager(PassiveComponent):
         return Result(value, Success.SUCCESS)
 
     def angularVelocityGet_handler(self) -> Result:
-        v, _, ok = self._read(SimImuSensor.GYROSCOPE, self.spacecraft.gyro_sample, self.Lsm6dsoDeviceNotReady)
-        if not ok:
-            return Result(AngularVelocity(0.0, 0.0, 0.0), Success.FAILURE)
-        value = AngularVelocity(*self._orient(v[0], v[1], v[2]))
-        self.AngularVelocity.write(value)
-        return Result(value, _SUCCESS)
+        """The gyro read (:meth:`angularVelocityGet`), for the 1 Hz collection and the commands."""
+        return self.angularVelocityGet()
 
     def magneticFieldGet_handler(self) -> Result:
         v, stamp, ok = self._read(SimImuSensor.MAGNETOMETER, self.spacecraft.magnetometer_sample,
@@ -383,4 +413,4 @@ class ImuManager(PassiveComponent):
             stamp = self.spacecraft.now()
         value = MagneticField(*self._orient(v[0], v[1], v[2]), stamp)
         self.MagneticField.write(value)
-        return Result(value, _SUCCESS)
+        return _new_result(Result, (value, _SUCCESS))

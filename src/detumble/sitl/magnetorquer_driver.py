@@ -111,6 +111,8 @@ class MagnetorquerDriver(PassiveComponent):
             if self.DriveReadbackMismatch.count:
                 self.DriveReadbackMismatch.clear_throttle()
             return _SUCCESS
+        if type(val) is int and -MAX_LEVEL <= val <= MAX_LEVEL:  # _valid_level(val): _start would _apply it
+            return self._apply(val)
         return self._start(val)
 
     @sync_input(StopMagnetorquer)
@@ -221,13 +223,6 @@ class MagnetorquerDriver(PassiveComponent):
         self.DeviceInitialized()
         return True
 
-    def _clear_throttles(self) -> None:
-        """A successful drive lets DeviceNotReady and DriveReadbackMismatch be reported again."""
-        if self.DeviceNotReady.count:  # clear_throttle, where there is something to clear
-            self.DeviceNotReady.clear_throttle()
-        if self.DriveReadbackMismatch.count:
-            self.DriveReadbackMismatch.clear_throttle()
-
     def _apply(self, level: int) -> Success:
         if not self._initialized and not self._powered():
             self.DeviceNotReady()
@@ -247,7 +242,11 @@ class MagnetorquerDriver(PassiveComponent):
         if actual != level:
             self.DriveReadbackMismatch(int(actual), int(level))
             return Success.FAILURE
-        self._clear_throttles()
+        # a successful drive lets DeviceNotReady and DriveReadbackMismatch be reported again
+        if self.DeviceNotReady.count:  # clear_throttle, where there is something to clear
+            self.DeviceNotReady.clear_throttle()
+        if self.DriveReadbackMismatch.count:
+            self.DriveReadbackMismatch.clear_throttle()
         return _SUCCESS
 
     def _set_coil(self, level: int) -> bool:

@@ -6,9 +6,12 @@ from __future__ import annotations
 from fprime_lite import PassiveComponent, sync_input
 
 from detumble.components.types import OrbitFrame, OrbitFrameGet, Result, Success
+from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
 from detumble.sitl.spacecraft import SimulatedSpacecraft
 
 __all__ = ["OrbitEphemeris"]
+
+_SUCCESS = Success.SUCCESS
 
 
 class OrbitEphemeris(PassiveComponent):
@@ -17,7 +20,7 @@ class OrbitEphemeris(PassiveComponent):
     @sync_input(OrbitFrameGet)
     def orbitFrameGet(self) -> Result:
         (q0, q1, q2, q3), n, stamp = self.spacecraft.orbit_frame_sample()
-        return Result(OrbitFrame(q0, q1, q2, q3, n, stamp), Success.SUCCESS)
+        return _new_result(Result, (OrbitFrame(q0, q1, q2, q3, n, stamp), _SUCCESS))
 
     def __init__(self, name: str, spacecraft: SimulatedSpacecraft, *, base_id: int = 0):
         super().__init__(name, base_id=base_id)

@@ -39,6 +39,7 @@ from fprime_lite import (F64, U8, Channel, CmdResponse, Event, FwEnum, PassiveCo
 
 from detumble.components.types import (Result, Success, WheelEnableSet, WheelMode, WheelSpeedSet, WheelState,
                                        WheelStateGet, WheelTorqueSet)
+from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
 from detumble.sitl.spacecraft import SimulatedSpacecraft
 
 __all__ = ["ReactionWheelDriver", "SimWheelFault", "wheel_instance_name", "make_reaction_wheel_drivers"]
@@ -67,6 +68,7 @@ _NO_FAULT = SimWheelFault.NONE
 _SUCCESS = Success.SUCCESS
 _DISABLED = WheelMode.DISABLED
 _TORQUE = WheelMode.TORQUE
+_isfinite = math.isfinite
 
 
 class ReactionWheelDriver(PassiveComponent):
@@ -78,12 +80,33 @@ class ReactionWheelDriver(PassiveComponent):
         wheel: the wheel's index in the scenario's ``spacecraft.reaction_wheels.axes``.
     """
 
+    mode: WheelMode  # what the motor is doing (set in __init__; annotated here for the handlers above it)
+
     # --- ports ---------------------------------------------------------------------------------
 
     @sync_input(WheelTorqueSet)
     def torqueSet(self, torque: float) -> Success:
         """Motor torque in N·m along the spin axis; clipped to ±max_torque."""
-        return self._command_torque(torque)
+        if self.fault != _NO_FAULT or self.mode == _DISABLED or type(torque) is not float or not _isfinite(torque):
+            return self._command_torque(torque)
+        # The healthy wheel and a finite float: _command_torque's path for it, written out (every
+        # control cycle sends one to each wheel); the same events, plant call and channel writes.
+        if abs(torque) > self.max_torque_nm:
+            self.TorqueSaturated(torque, self.max_torque_nm)
+        else:
+            if self.TorqueSaturated.count:  # clear_throttle, where there is something to clear
+                self.TorqueSaturated.clear_throttle()
+        try:
+            self.spacecraft.set_wheel_torque(self.wheel, torque)
+        except Exception:  # noqa: BLE001 - a plant fault is a failed command (_plant_call_failed logs it)
+            self._plant_call_failed(self.spacecraft.set_wheel_torque, (self.wheel, torque))
+            return Success.FAILURE
+        self.mode = _TORQUE  # _set_mode(_TORQUE), written out
+        self.Mode.write(_TORQUE)
+        self.Command.write(torque)
+        if self.DeviceNotReady.count:  # clear_throttle, where there is something to clear
+            self.DeviceNotReady.clear_throttle()
+        return _SUCCESS
 
     @sync_input(WheelSpeedSet)
     def speedSet(self, speed: float) -> Success:
@@ -98,12 +121,21 @@ class ReactionWheelDriver(PassiveComponent):
     @sync_input(WheelStateGet)
     def wheelStateGet(self) -> Result:
         """The wheel's speed, momentum, applied torque, mode and the reading's time."""
-        return self._read()
+        fault = self.fault
+        if fault != _NO_FAULT:
+            return self._read_faulty(fault)
+        try:  # the healthy wheel: no fault to apply to the reading
+            speed, h, u, stamp = self.spacecraft.wheel_sample(self.wheel)
+        except Exception:  # noqa: BLE001 - a plant fault is a failed read (_read_raised logs it)
+            return self._read_raised()
+        if self.WheelReadFailed.count:  # clear_throttle, where there is something to clear
+            self.WheelReadFailed.clear_throttle()
+        return _new_result(Result, (WheelState(speed, h, u, self.mode, stamp), _SUCCESS))
 
     @sync_input(Sched)
     def run(self, context: int) -> None:
         """Read the wheel, write the channels, and report a momentum-limited wheel."""
-        value, condition = self._read()
+        value, condition = self.wheelStateGet()
         if condition != _SUCCESS:
             return
         self.Speed.write(value.speed)
@@ -279,16 +311,8 @@ class ReactionWheelDriver(PassiveComponent):
         self.mode = mode
         self.Mode.write(mode)
 
-    def _read(self) -> Result:
-        fault = self.fault
-        if fault == _NO_FAULT:  # the healthy wheel: no fault to apply to the reading
-            try:
-                speed, h, u, stamp = self.spacecraft.wheel_sample(self.wheel)
-            except Exception:  # noqa: BLE001 - a plant fault is a failed read (_read_raised logs it)
-                return self._read_raised()
-            if self.WheelReadFailed.count:  # clear_throttle, where there is something to clear
-                self.WheelReadFailed.clear_throttle()
-            return Result(WheelState(speed, h, u, self.mode, stamp), _SUCCESS)
+    def _read_faulty(self, fault: SimWheelFault) -> Result:
+        """A read under an injected fault (``wheelStateGet`` reads a healthy wheel itself)."""
         if fault in (SimWheelFault.READ_FAIL, SimWheelFault.NOT_READY):
             self.WheelReadFailed()
             return Result(WheelState(_NAN, _NAN, _NAN, self.mode, self.spacecraft.now()), Success.FAILURE)
@@ -312,12 +336,16 @@ class ReactionWheelDriver(PassiveComponent):
     def _plant_call(self, fn, *args) -> bool:
         try:
             fn(*args)
-        except Exception:  # a plant fault is a failed command, never an exception
-            self.handler_faults += 1
-            log.exception("%s: %s%r raised", self.name, getattr(fn, "__name__", fn), args)
-            self.DeviceNotReady()
+        except Exception:  # noqa: BLE001 - a plant fault is a failed command (_plant_call_failed logs it)
+            self._plant_call_failed(fn, args)
             return False
         return True
+
+    def _plant_call_failed(self, fn, args: tuple) -> None:
+        """A plant call raised (called from its ``except`` block: logs the traceback)."""
+        self.handler_faults += 1
+        log.exception("%s: %s%r raised", self.name, getattr(fn, "__name__", fn), args)
+        self.DeviceNotReady()
 
 
 def _as_f64(value) -> float:

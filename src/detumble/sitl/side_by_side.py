@@ -30,7 +30,7 @@ from typing import Iterable, Sequence
 from detumble.control.quaternion import quat_angle, quat_error
 
 __all__ = ["SCENARIO", "SETTINGS", "FIRST_TARGET", "SECOND_TARGET", "POINTING_AT_S", "SECOND_TARGET_AT_S",
-           "SETTLED_DEG", "TRACE_INTERVAL_S", "sequence_text", "target_at", "plausibility",
+           "SETTLED_DEG", "TRACE_INTERVAL_S", "sequence_text", "plant_only_settings", "target_at", "plausibility",
            "COURSEWORK_SCENARIO", "COURSEWORK_SETTLED_DEG", "coursework_plausibility"]
 
 SCENARIO = "adcs"
@@ -54,6 +54,16 @@ def sequence_text() -> str:
             f"R00:00:00 {_CONTROLLER}.SET_TARGET_QUATERNION {q1}\n"
             f"R00:00:{POINTING_AT_S:02.0f} {_CONTROLLER}.FORCE_MODE POINTING\n"
             f"R00:{int(wait // 60):02d}:{wait % 60:02.0f} {_CONTROLLER}.SET_TARGET_QUATERNION {q2}\n")
+
+
+def plant_only_settings() -> list[str]:
+    """The scenario settings that fly the same case on the plant-only ``adcs`` law (``fprime-lite sim adcs --law
+    adcs --set ...``): the start, and the sequence's commands as ``control.adcs`` keys — the same flight to the
+    last bit (ADCS-078)."""
+    second = ", ".join(repr(c) for c in SECOND_TARGET)
+    return [*SETTINGS, "control.adcs.force_mode=POINTING", f"control.adcs.force_at_s={POINTING_AT_S!r}",
+            f"control.adcs.target_q_bn={list(FIRST_TARGET)!r}",
+            f"control.adcs.target_changes=[[{SECOND_TARGET_AT_S!r}, {second}]]"]
 
 
 def _quat(q: Sequence[float]) -> tuple[float, float, float, float]:

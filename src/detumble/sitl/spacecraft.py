@@ -57,6 +57,7 @@ from detumble.sim.power import FACE_SWITCHES, ElectricalSystem, coil_supply_powe
 from detumble.sim.plant import Plant
 from detumble.sim.scenario import Scenario, load_scenario
 from detumble.sim.sensors import GAUSS_PER_TESLA
+from detumble.sim.vec import rotate_n_to_b
 
 __all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us", "require_spacecraft"]
 
@@ -273,26 +274,29 @@ class SimulatedSpacecraft:
         sample includes the coils' coupling ``K · m_coils`` when the coils were on at that instant.
         An ``ideal`` magnetometer returns the true field now, stamped now.
         """
-        self.sync()
         plant = self.plant
+        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
+            self.advance_to_us(self.clock.current_us)
         mag = plant.magnetometer
         if mag.spec.ideal:
-            b = plant.b_B
+            b = rotate_n_to_b(plant._state[:4], plant._b_N)  # Plant.b_B, without the property call
             g = GAUSS_PER_TESLA
             return (b[0] * g, b[1] * g, b[2] * g, self.time_of(plant.t_ns))
         s = mag.sample_gauss
         return (s[0], s[1], s[2], self.time_of(mag.sample_time_ns))
 
-    def gyro_sample(self) -> tuple[float, float, float, Time]:
-        """``(wx, wy, wz, t_sample)``: the held LSM6DSO sample in rad/s (body axes) and its time."""
+    def gyro_sample(self, stamped: bool = True) -> tuple:
+        """``(wx, wy, wz, t_sample)``: the held LSM6DSO sample in rad/s (body axes) and its time;
+        ``(wx, wy, wz)`` without the time when ``stamped`` is False (the IMU manager's reads, whose
+        ``AngularVelocity`` carries no time stamp)."""
         self.sync()
         plant = self.plant
         gyro = plant.gyro
         if gyro.spec.ideal:
             w = plant.omega_BN_B
-            return (w[0], w[1], w[2], self.time_of(plant.t_ns))
+            return (w[0], w[1], w[2], self.time_of(plant.t_ns)) if stamped else (w[0], w[1], w[2])
         s = gyro.sample_rad_s
-        return (s[0], s[1], s[2], self.time_of(gyro.sample_time_ns))
+        return (s[0], s[1], s[2], self.time_of(gyro.sample_time_ns)) if stamped else s
 
     def acceleration(self) -> tuple[float, float, float]:
         """The LSM6DSO reading, m/s², body axes: free fall plus the centripetal term at the IMU's lever
@@ -364,8 +368,10 @@ class SimulatedSpacecraft:
 
     def set_wheel_torque(self, i: int, torque_nm: float) -> None:
         """Motor torque on wheel ``i`` (N·m along its axis) from now on (clipped by the plant)."""
-        self.sync()
-        self.plant.set_wheel_torque(i, torque_nm)
+        plant = self.plant
+        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
+            self.advance_to_us(self.clock.current_us)
+        plant.set_wheel_torque(i, torque_nm)
 
     def set_wheel_speed(self, i: int, speed_rad_s: float) -> None:
         """Speed set-point of wheel ``i`` relative to the body, rad/s, from now on."""
@@ -379,8 +385,9 @@ class SimulatedSpacecraft:
     def wheel_sample(self, i: int) -> tuple[float, float, float, Time]:
         """``(speed_rad_s, momentum_nms, torque_nm, t)`` as wheel ``i`` reports them now (the
         momentum with the configured reading noise)."""
-        self.sync()
         plant = self.plant
+        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
+            self.advance_to_us(self.clock.current_us)
         speed, h, u, _ = plant.wheel_reading(i)
         return (speed, h, u, self.time_of(plant._t_ns))
 
@@ -400,8 +407,15 @@ class SimulatedSpacecraft:
     def star_tracker_sample(self) -> tuple[tuple[float, float, float, float], bool, Time]:
         """``(q_BN, valid, t_sample)``: the held star-tracker solution (scalar first), whether it is
         valid and when it was taken."""
-        self.sync()
-        q0, q1, q2, q3, valid, t = self.plant.star_tracker_reading()
+        plant = self.plant
+        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
+            self.advance_to_us(self.clock.current_us)
+        st = plant.star_tracker
+        if st is not None and st.spec.ideal:  # Plant.star_tracker_reading's ideal case, written out
+            s = plant._state
+            t = plant._t_ns / 1e9
+            return ((s[0], s[1], s[2], s[3]), True, self.time_of(int(round(t * 1e9))))
+        q0, q1, q2, q3, valid, t = plant.star_tracker_reading()
         return ((q0, q1, q2, q3), valid, self.time_of(int(round(t * 1e9))))
 
     def set_pointing_target(self, q_target, frame: str = "inertial") -> None:
@@ -427,8 +441,9 @@ class SimulatedSpacecraft:
     def orbit_frame_sample(self) -> tuple[tuple[float, float, float, float], float, Time]:
         """``(q_ON, n, t)``: the orbit frame O relative to N (scalar first), the orbit rate (rad/s)
         and the time — what an on-board orbit propagator knows."""
-        self.sync()
         plant = self.plant
+        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
+            self.advance_to_us(self.clock.current_us)
         return plant.q_ON, plant.orbit.mean_motion, self.clock.now()
 
     # --- truth ----------------------------------------------------------------------------------

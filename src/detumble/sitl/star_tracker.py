@@ -28,6 +28,7 @@ from fprime_lite import (F64, U32, U8, Channel, CmdResponse, Event, FwEnum, Pass
                          sync_command, sync_input)
 
 from detumble.components.types import AttitudeGet, AttitudeQuaternion, Result, Success
+from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
 from detumble.sitl.spacecraft import SimulatedSpacecraft
 
 __all__ = ["StarTracker", "SimStarTrackerFault"]
@@ -45,18 +46,47 @@ class SimStarTrackerFault(FwEnum, namespace="Sim", rep=U8):
     FROZEN = 3
 
 
+# looked up once: an enum class attribute costs a metaclass lookup, and every control cycle reads
+_FAIL, _NAN_FAULT, _FROZEN = SimStarTrackerFault.FAIL, SimStarTrackerFault.NAN, SimStarTrackerFault.FROZEN
+_SUCCESS, _FAILURE = Success.SUCCESS, Success.FAILURE
+
+
 class StarTracker(PassiveComponent):
     """Simulated star tracker on ``spacecraft`` (its scenario must have ``sensors.star_tracker``)."""
 
     @sync_input(AttitudeGet)
     def attitudeGet(self) -> Result:
         """The latest attitude solution (see the module docstring)."""
-        return self._read()
+        fault = self.fault
+        if fault == _FAIL:
+            self.AttitudeReadFailed()
+            return Result(None, _FAILURE)
+        if fault == _FROZEN and self._frozen is not None:
+            return Result(self._frozen, _SUCCESS)
+        try:
+            q, valid, stamp = self.spacecraft.star_tracker_sample()
+        except Exception:  # a plant fault is a failed read, never an exception
+            self.handler_faults += 1
+            log.exception("%s: reading the star tracker raised", self.name)
+            self.AttitudeReadFailed()
+            return Result(None, _FAILURE)
+        if self.AttitudeReadFailed.count:  # clear_throttle, where there is something to clear
+            self.AttitudeReadFailed.clear_throttle()
+        if fault == _NAN_FAULT:
+            return Result(AttitudeQuaternion(_NAN, _NAN, _NAN, _NAN, True, stamp), _SUCCESS)
+        value = AttitudeQuaternion(q[0], q[1], q[2], q[3], valid, stamp)
+        if not valid:
+            self.NoSolution()
+            return Result(value, _FAILURE)
+        if self.NoSolution.count:  # clear_throttle, where there is something to clear
+            self.NoSolution.clear_throttle()
+        self._solutions += 1
+        return _new_result(Result, (value, _SUCCESS))
 
     @sync_input(Sched)
     def run(self, context: int) -> None:
         """Read the tracker and write the Attitude channel (also when the solution is invalid)."""
-        value, condition = self._read()
+        value, condition = self.attitudeGet()
         if value is not None:
             self.Attitude.write(value)
         self.Solutions.write(self._solutions)
@@ -64,7 +94,7 @@ class StarTracker(PassiveComponent):
     @sync_command()
     def GET_ATTITUDE(self):
         """Read the tracker and log AttitudeData (EXECUTION_ERROR without a valid solution)."""
-        value, condition = self._read()
+        value, condition = self.attitudeGet()
         if condition != Success.SUCCESS:
             return CmdResponse.EXECUTION_ERROR
         self.AttitudeData(value.q0, value.q1, value.q2, value.q3)
@@ -106,28 +136,3 @@ class StarTracker(PassiveComponent):
             q, valid, stamp = self.spacecraft.star_tracker_sample()
             self._frozen = AttitudeQuaternion(*q, True, stamp)
         self.SimFaultSet(self.fault)
-
-    def _read(self) -> Result:
-        fault = self.fault
-        if fault == SimStarTrackerFault.FAIL:
-            self.AttitudeReadFailed()
-            return Result(None, Success.FAILURE)
-        if fault == SimStarTrackerFault.FROZEN and self._frozen is not None:
-            return Result(self._frozen, Success.SUCCESS)
-        try:
-            q, valid, stamp = self.spacecraft.star_tracker_sample()
-        except Exception:  # a plant fault is a failed read, never an exception
-            self.handler_faults += 1
-            log.exception("%s: reading the star tracker raised", self.name)
-            self.AttitudeReadFailed()
-            return Result(None, Success.FAILURE)
-        self.AttitudeReadFailed.clear_throttle()
-        if fault == SimStarTrackerFault.NAN:
-            return Result(AttitudeQuaternion(_NAN, _NAN, _NAN, _NAN, True, stamp), Success.SUCCESS)
-        value = AttitudeQuaternion(*q, valid, stamp)
-        if not valid:
-            self.NoSolution()
-            return Result(value, Success.FAILURE)
-        self.NoSolution.clear_throttle()
-        self._solutions += 1
-        return Result(value, Success.SUCCESS)

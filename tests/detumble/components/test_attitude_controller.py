@@ -784,3 +784,38 @@ def test_a_non_positive_definite_inertia_is_refused_once(fprime_harness):
     tick(h, 30)
     assert h.comp.rate_observer.inertia == before and before[0][1] == pytest.approx(2.0e-5)
     assert len(h.events_named("InertiaModelRefused")) == 1
+
+
+def test_three_value_finite_check_answers_as_the_general_one():
+    """_finite3 (the field check every cycle) answers as _finite does: finite numbers, NaN, ±inf, non-numbers."""
+    import itertools
+
+    from detumble.components.attitude_controller import _finite, _finite3
+
+    values = (0.0, -1.5, 3, math.nan, math.inf, -math.inf, None, "1.0", True)
+    for x, y, z in itertools.product(values, repeat=3):
+        assert _finite3(x, y, z) == _finite(x, y, z), (x, y, z)
+
+
+def test_a_cycle_reads_each_wheel_once_and_a_command_reads_them_afresh(fprime_harness):
+    """ADCS-080: pointing on the wheels, a control cycle reads each wheel's state once (the sensing step's
+    reading decides, for the rest of the cycle, whether the wheels answer: the residual-dipole tracker and the
+    actuator choice reuse it), while FORCE_MODE POINTING between cycles reads the wheels at that moment: a wheel
+    that stopped answering after the last cycle gets the command refused (EXECUTION_ERROR,
+    ModeUnavailableNoWheels)."""
+    h = make(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.WHEELS})
+    tick(h)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    h.assert_cmd_response(0, "FORCE_MODE", CmdResponse.OK)
+    reads = len(h.from_port("wheelStateGet"))
+    tick(h, 5)  # one 10 Hz cycle (CYCLE_TICKS 5)
+    assert h.comp.mode == ControlMode.POINTING and h.comp.cycles == 2
+    calls = h.from_port("wheelStateGet")[reads:]
+    assert sorted(c.index for c in calls) == [0, 1, 2]
+    assert len(h.from_port("wheelTorqueSet")) >= 3  # it did point on them
+    h.send_command("FORCE_MODE", ControlMode.IDLE)
+    h.set_port_handler("wheelStateGet", lambda: Result(None, Success.FAILURE), index=1)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    h.assert_cmd_response(2, "FORCE_MODE", CmdResponse.EXECUTION_ERROR)
+    h.assert_event("ModeUnavailableNoWheels", 0, ControlMode.POINTING)
+    assert h.comp.mode == ControlMode.IDLE

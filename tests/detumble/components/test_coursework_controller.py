@@ -176,3 +176,21 @@ def test_the_fused_conjugate_product_gives_the_floats_of_conjugating_then_multip
         p = tuple(rng.uniform(-2.0, 2.0) for _ in range(4))
         q = tuple(rng.uniform(-2.0, 2.0) for _ in range(4))
         assert _quat_conj_mul(p, q) == mul((p[0], -p[1], -p[2], -p[3]), q)
+
+
+def test_the_scalar_last_conjugate_product_is_the_product_then_the_reordering():
+    """q_BO built straight in the report's scalar-last order (what the wheel cycle hands its law) is
+    bit for bit from_plant_quaternion(_quat_conj_mul(q_ON, q_BN)), signed zeros included."""
+    import random
+
+    from detumble.components.coursework_controller import _quat_conj_mul, _quat_conj_mul_scalar_last
+
+    rng = random.Random(20)
+    values = (0.0, -0.0, 1.0, -1.0, 0.5)
+    for _ in range(4000):
+        p = tuple(rng.choice(values) if rng.random() < 0.3 else rng.uniform(-2.0, 2.0) for _ in range(4))
+        q = tuple(rng.choice(values) if rng.random() < 0.3 else rng.uniform(-2.0, 2.0) for _ in range(4))
+        got = _quat_conj_mul_scalar_last(p, q)
+        want = cw.from_plant_quaternion(_quat_conj_mul(p, q))
+        assert got == want
+        assert all(math.copysign(1.0, a) == math.copysign(1.0, b) for a, b in zip(got, want, strict=True))

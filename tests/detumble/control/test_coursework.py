@@ -150,3 +150,79 @@ def test_dumping_dipole_removes_momentum_across_the_field_only():
         h_perp = tuple(h[i] - along * b[i] for i in range(3))
         assert tau == pytest.approx(tuple(-0.01 * c for c in h_perp), rel=1e-9, abs=1e-18)
     assert cw.dumping_dipole(0.01, (1e-3, 0, 0), (0.0, 0.0, 0.0)) == (0.0, 0.0, 0.0)
+
+
+# --- the written-out wheel law (issue #19): bit for bit the functions it replaced -------------------
+
+def _bits(a, b):
+    """Tuples equal bit for bit and in type (NaN equal to NaN, the sign of zero counted)."""
+    return len(a) == len(b) and all(type(x) is type(y) and ((math.isnan(x) and math.isnan(y)) or
+                                    (x == y and math.copysign(1.0, x) == math.copysign(1.0, y)))
+                                    for x, y in zip(a, b, strict=True))
+
+
+def _old_torque(law_state, q, w_B, h_B):
+    """WheelsPd.torque before issue #19's tick work: error_quaternion, rate_relative_to_orbit and
+    wheel_torque called in turn. ``law_state`` holds k_p, k_d, inertia, target, n, shortest_path and
+    previous (updated as the law updates its own)."""
+    p = law_state["previous"]
+    qq = (float(q[0]), float(q[1]), float(q[2]), float(q[3]))
+    if p is not None and qq[0] * p[0] + qq[1] * p[1] + qq[2] * p[2] + qq[3] * p[3] < 0.0:
+        qq = (-qq[0], -qq[1], -qq[2], -qq[3])
+    law_state["previous"] = qq
+    q_e = cw.error_quaternion(law_state["target"], qq)
+    if law_state["shortest_path"] and q_e[3] >= 0.0:
+        q_e = (-q_e[0], -q_e[1], -q_e[2], q_e[3])
+    w_o = cw.rate_relative_to_orbit(qq, w_B, law_state["n"])
+    return cw.wheel_torque(law_state["k_p"], law_state["k_d"], law_state["inertia"], q_e, w_o, w_B, h_B)
+
+
+def test_wheels_pd_torque_is_bit_for_bit_the_three_functions():
+    """CW-101: WheelsPd.torque (eqs. 25, 14 and 26 written out in one body) gives the floats of
+    error_quaternion, rate_relative_to_orbit and wheel_torque called in turn, cycle after cycle
+    (the continuity flip included), for both error forms, full (non-diagonal) and diagonal
+    inertias with zeros, non-unit targets, a changed target and orbit rate, and non-finite inputs."""
+    rng = random.Random(1919)
+    for case in range(60):
+        if case % 3 == 0:
+            inertia = ((1.67e-3, 0.0, 0.0), (0.0, 1.67e-3, 0.0), (0.0, 0.0, 1.67e-3))
+        else:
+            inertia = tuple(tuple(rng.uniform(-1e-3, 3e-3) for _ in range(3)) for _ in range(3))
+        target = tuple(rng.uniform(-1.0, 1.0) for _ in range(4))
+        state = {"k_p": rng.uniform(0.0, 10.0), "k_d": rng.uniform(0.0, 10.0), "inertia": inertia,
+                 "target": target, "n": rng.uniform(0.0, 2e-3), "shortest_path": case % 2 == 1, "previous": None}
+        law = cw.WheelsPd(state["k_p"], state["k_d"], inertia, target, n=state["n"],
+                          shortest_path=state["shortest_path"])
+        for step in range(60):
+            if step == 30:  # a new target and orbit rate on the same law object
+                law.target = state["target"] = tuple(rng.uniform(-1.0, 1.0) for _ in range(4))
+                law.n = state["n"] = rng.uniform(0.0, 2e-3)
+            q = tuple(rng.gauss(0.0, 1.0) for _ in range(4))
+            w = tuple(rng.uniform(-4.0, 4.0) for _ in range(3))
+            h = tuple(rng.uniform(-0.2, 0.2) for _ in range(3))
+            if step == 45:
+                w = (math.nan, 0.0, math.inf)
+            assert _bits(law.torque(q, w, h), _old_torque(state, q, w, h)), (case, step)
+            assert law.previous == state["previous"] or any(math.isnan(c) for c in state["previous"])
+
+
+# the report's loop, the old code (kept for lengths other than three)
+_old_limit = cw._limit_wheel_torque_loop
+
+
+def test_limit_wheel_torque_is_bit_for_bit_the_loop():
+    """CW-102: the written-out three-wheel limit equals the report's loop (the old code, still the
+    path for other lengths) bit for bit: torques inside, at and beyond the limit, momenta inside
+    and beyond it, signed zeros, NaN and ints; other lengths still go through the loop (and its
+    errors)."""
+    rng = random.Random(23)
+    special = (0.0, -0.0, 1e-3, -1e-3, 0.1, -0.1, math.nan, math.inf, -math.inf, 0, 1)
+    for _ in range(20000):
+        u = tuple(rng.choice(special) if rng.random() < 0.2 else rng.uniform(-3e-3, 3e-3) for _ in range(3))
+        h = tuple(rng.choice(special) if rng.random() < 0.2 else rng.uniform(-0.2, 0.2) for _ in range(3))
+        limits = ((cw.REPORT_WHEEL_TORQUE_LIMIT, cw.REPORT_WHEEL_MOMENTUM_LIMIT) if rng.random() < 0.5
+                  else (rng.uniform(1e-4, 2e-3), rng.uniform(0.01, 0.15)))
+        assert _bits(cw.limit_wheel_torque(u, h, *limits), _old_limit(u, h, *limits))
+    assert cw.limit_wheel_torque([2e-3, -2e-3, 0.0, 5.0], [0.0] * 4) == (1e-3, -1e-3, 0.0)
+    with pytest.raises(ValueError):
+        cw.limit_wheel_torque((0.0, 0.0, 0.0), (0.0, 0.0))

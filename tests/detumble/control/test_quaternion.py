@@ -113,3 +113,44 @@ def test_target_direction_points_the_axis_by_the_smallest_turn():
     assert vec.angle_between(rotate_b_to_n(t, (0.0, 0.0, 1.0)), (0.0, 0.0, -1.0)) < 1e-9
     with pytest.raises(ValueError, match="non-zero"):
         target_pointing_axis(q, (0.0, 0.0, 1.0), (0.0, 0.0, 0.0))
+
+
+def _is_unit_quaternion_reference(q, tol=1e-3):
+    """is_unit_quaternion as it was written before its components were checked one by one."""
+    try:
+        if len(q) != 4 or not all(math.isfinite(float(c)) for c in q):
+            return False
+    except (TypeError, ValueError):
+        return False
+    from detumble.control.quaternion import quat_norm
+
+    return abs(quat_norm((float(q[0]), float(q[1]), float(q[2]), float(q[3]))) - 1.0) <= tol
+
+
+def test_is_unit_quaternion_answers_as_the_all_over_components_form():
+    """ADCS-001: the component-by-component check answers as ``all(isfinite(float(c)))`` plus the norm test did,
+    for random near-unit quaternions around the tolerance, non-finite, non-numeric and overflowing components,
+    other lengths."""
+    import random
+
+    rng = random.Random(12)
+    odd = (math.nan, math.inf, -math.inf, "x", None, "0.5", 1, True, 10 ** 400)  # 10**400: float() overflows
+
+    def outcome(check, q, tol):
+        try:
+            return check(q, tol=tol)
+        except OverflowError:
+            return OverflowError
+
+    for _ in range(20000):
+        n = rng.choice((4, 4, 4, 3, 5, 0))
+        v = [rng.gauss(0.0, 1.0) for _ in range(n)]
+        norm = math.sqrt(sum(c * c for c in v)) or 1.0
+        scale = rng.choice((1.0, 1.0 + 1e-3, 1.0 - 1e-3, 1.0 + rng.uniform(-2e-3, 2e-3), 1.0 + 1e-2))
+        q = [c / norm * scale for c in v]
+        for _ in range(rng.choice((0, 0, 0, 1, 2))):
+            if q:
+                q[rng.randrange(len(q))] = rng.choice(odd)
+        q = tuple(q) if rng.random() < 0.5 else q
+        tol = rng.choice((1e-3, 1e-2))
+        assert outcome(is_unit_quaternion, q, tol) == outcome(_is_unit_quaternion_reference, q, tol), (q, tol)

@@ -164,3 +164,37 @@ def test_force_mode_holds_a_mode_as_force_mode_does():
         load_scenario("adcs", settings=["control.adcs.force_mode=SAFE"])
     with pytest.raises(ValueError, match="force_mode 'SAFE'"):
         AdcsLaw(force_mode="SAFE")
+
+
+def test_commands_act_from_the_first_cycle_after_their_time():
+    """ADCS-079: a FORCE_MODE sent at 2.0 s (a cycle's own instant) acts from the cycle at 2.1 s, its transition
+    stamped 2.0 s as the component's event is; a target change at 1.05 s is in place at the 1.1 s cycle and clears
+    the error integral; changes out of order, non-unit targets and malformed entries are refused at the key."""
+    q_new = (0.7071067811865476, 0.0, 0.0, 0.7071067811865476)
+    law = AdcsLaw(force_mode="SPIN_STABLE", force_at_s=2.0, target_changes=[(1.05, q_new)])
+    plant = Plant(load_scenario("adcs", settings=["initial.rate.magnitude_deg_s=3"]))
+    io = PlantIo(plant)
+    seen = {}
+    law.integrator.state = (1.0, 2.0, 3.0)  # as if pointing had integrated an error
+    for _ in range(int(round(2.2 / law.tick_s))):
+        t_us = io.now_us()
+        law.tick(io)
+        seen[t_us] = (law.mode, law.target, law.integrator.state)
+        plant.step(law.tick_s)
+    assert seen[1_000_000][1:] == (None, (1.0, 2.0, 3.0))
+    assert seen[1_100_000][1:] == (q_new, (0.0, 0.0, 0.0))
+    assert seen[2_000_000][0] == "IDLE" and seen[2_100_000][0] == "SPIN_STABLE"
+    assert law.transitions == [(2.0, "SPIN_STABLE", "COMMAND")]
+    with pytest.raises(ValueError, match="not a unit quaternion"):
+        AdcsLaw(target_changes=[(1.0, (1.0, 1.0, 0.0, 0.0))])
+    with pytest.raises(ValueError, match="time order"):
+        AdcsLaw(target_changes=[(2.0, q_new), (1.0, q_new)])
+    for bad, says in (("[[1, 1, 0, 0]]", "expected \\[t_s, q0, q1, q2, q3\\]"),
+                      ("[[-1, 1, 0, 0, 0]]", "negative"),
+                      ("[[5, 1, 0, 0, 0], [4, 1, 0, 0, 0]]", "time order"),
+                      ("[[5, 1, 1, 0, 0]]", "unit quaternion"),
+                      ("7", "expected a list")):
+        with pytest.raises(ScenarioError, match=f"control.adcs.target_changes.*{says}"):
+            load_scenario("adcs", settings=[f"control.adcs.target_changes={bad}"])
+    scenario = load_scenario("adcs", settings=["control.adcs.target_changes=[[300, 0, 1, 0, 0]]"])
+    assert make_law("adcs", Plant(scenario)).target_changes == ((300_000_000, (0.0, 1.0, 0.0, 0.0)),)

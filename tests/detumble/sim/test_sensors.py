@@ -167,3 +167,76 @@ def test_lazy_samples_equal_eager_ones_whatever_is_read_when():
                 eager.magnetometer.measure((1e-5, 0.0, 0.0), (0.0, 0.0, 0.0))
     assert lazy.magnetometer.sample_time_ns == eager.magnetometer.sample_time_ns
     assert lazy.state == eager.state
+
+
+def _hexes(v):
+    return [x.hex() for x in v]
+
+
+def test_quantise3_is_three_quantise_calls():
+    """SIM-SENS-LAZY-003: the three-axis quantiser gives bit for bit what _quantise gives per axis (rounding,
+    saturation either side, LSB 0 = off, exact and negative zeros)."""
+    import random
+
+    from detumble.sim.sensors import _quantise, _quantise3
+
+    rng = random.Random(4)
+    for _ in range(5000):
+        lsb = rng.choice((0.0, 0.0015, math.radians(0.07), rng.uniform(1e-6, 1.0)))
+        limit = rng.choice((50.0, math.radians(125.0), rng.uniform(0.1, 10.0)))
+        xyz = [rng.choice((0.0, -0.0, limit, -limit, rng.uniform(-2.0, 2.0) * limit)) for _ in range(3)]
+        assert _hexes(_quantise3(*xyz, lsb, limit)) == _hexes([_quantise(v, lsb, limit) for v in xyz])
+
+
+def test_held_samples_are_the_step_by_step_formula():
+    """SIM-SENS-LAZY-004: a deferred sample read through ``sample_rad_s`` / ``sample_gauss`` (the resolve
+    written out) is bit for bit the formula step by step: the unread samples' draws skipped, the true value
+    interpolated to the ODR instant, bias (coil coupling), three gauss() draws, _quantise per axis."""
+    import random
+
+    from detumble.sim.sensors import _quantise, skip_gauss
+    from detumble.sim.vec import rotate_n_to_b
+
+    rng = random.Random(9)
+    for trial in range(300):
+        gspec = GyroSpec(noise_density_dps_rthz=rng.choice((0.0, 0.0038, 0.05)),
+                         bias_dps=tuple(rng.uniform(-0.5, 0.5) for _ in range(3)),
+                         full_scale_dps=rng.choice((125.0, 2000.0)), resolution_dps=rng.choice((None, 0.0)))
+        mspec = MagnetometerSpec(noise_std_gauss=rng.choice((0.0, 0.003)), resolution_gauss=rng.choice((0.0, 0.0015)),
+                                 bias_gauss=tuple(rng.uniform(-0.01, 0.01) for _ in range(3)),
+                                 full_scale_gauss=rng.choice((0.4, 50.0)))
+        gyro, mag = Gyro(gspec, seed=trial), Magnetometer(mspec, seed=trial + 1)
+        for _ in range(rng.randint(0, 2)):  # a pending half of a gauss pair, or not
+            gyro.rng.gauss()
+            mag.rng.gauss()
+        t = 0
+        for _ in range(rng.randint(1, 4)):  # some samples superseded unread
+            t1 = t + 20_000_000
+            s0 = [rng.uniform(-1.0, 1.0) for _ in range(4)] + [rng.uniform(-3.0, 3.0) for _ in range(3)]
+            s1 = [rng.uniform(-1.0, 1.0) for _ in range(4)] + [rng.uniform(-3.0, 3.0) for _ in range(3)]
+            b0_N, b1_N = (tuple(rng.uniform(-5e-5, 5e-5) for _ in range(3)) for _ in range(2))
+            m = tuple(rng.uniform(-0.2, 0.2) for _ in range(3))
+            tk = t + rng.choice((1, 9_615_385, 20_000_000))
+            gyro.defer(t, t1, tk, s0, s1)
+            mag.defer(t, t1, tk, s0, s1, b0_N, b1_N, m)
+            t = t1
+        g_rng, m_rng = random.Random(), random.Random()
+        g_rng.setstate(gyro.rng.getstate())
+        m_rng.setstate(mag.rng.getstate())
+        skip_gauss(g_rng, gyro._draws * gyro._skipped)
+        skip_gauss(m_rng, mag._draws * mag._skipped)
+        s = (tk - (t - 20_000_000)) / 20_000_000
+        w = [s0[4 + i] + s * (s1[4 + i] - s0[4 + i]) + gyro._bias[i] for i in range(3)]
+        if gyro._sd > 0.0:
+            w = [v + g_rng.gauss(0.0, gyro._sd) for v in w]
+        expected = [_quantise(v, gyro._lsb, gyro._fs) for v in w]
+        assert _hexes(gyro.sample_rad_s) == _hexes(expected), trial
+        b0 = rotate_n_to_b(tuple(s0[:4]), b0_N)
+        b1 = rotate_n_to_b(tuple(s1[:4]), b1_N)
+        b = [b0[i] + s * (b1[i] - b0[i]) for i in range(3)]
+        x = [1e4 * b[i] + mag._k[i] * m[i] + mspec.bias_gauss[i] for i in range(3)]
+        if mspec.noise_std_gauss > 0.0:
+            x = [v + m_rng.gauss(0.0, mspec.noise_std_gauss) for v in x]
+        expected = [_quantise(v, mspec.resolution_gauss, mspec.full_scale_gauss) for v in x]
+        assert _hexes(mag.sample_gauss) == _hexes(expected), trial
+        assert gyro.rng.getstate() == g_rng.getstate() and mag.rng.getstate() == m_rng.getstate()

@@ -167,3 +167,81 @@ def test_no_wheels_means_the_wheel_free_integrator():
 def test_bad_wheel_sections_are_clear_errors(wheels, message):
     with pytest.raises(ScenarioError, match=message.replace("(", r"\(").replace(")", r"\)")):
         _free_scenario(wheels)
+
+
+def _old_motor_torques(w, dt, omega_B):
+    """WheelAssembly.motor_torques before issue #19's tick work (attribute reads in the loop)."""
+    from detumble.sim.wheels import SPEED, TORQUE, _friction
+
+    out = []
+    for i in range(w.n):
+        if not w.enabled[i]:
+            out.append(0.0)
+            w.torque_clipped[i] = w.momentum_limited[i] = False
+            continue
+        js = w.js[i]
+        if w.mode[i] == SPEED:
+            tau = max(w.specs[i].speed_loop_time_constant_s, 2.0 * dt)
+            u = js * (w.command[i] - w.speed_rad_s(i, omega_B)) / tau
+        else:
+            u = w.command[i]
+        um = w.u_max[i]
+        clipped = u > um or u < -um
+        if clipped:
+            u = um if u > 0.0 else -um
+        h, hm = w.h[i], w.h_max[i]
+        f0 = _friction(w.specs[i], w.speed_rad_s(i, omega_B)) if w.friction else 0.0
+        above = h + (u + f0) * dt > hm and u > 0.0
+        below = not above and h + (u + f0) * dt < -hm and u < 0.0
+        limited = above or below
+        u = max(0.0, (hm - h) / dt - f0) if above else (min(0.0, (-hm - h) / dt - f0) if below else u)
+        w.torque_clipped[i] = clipped and w.mode[i] == TORQUE
+        w.momentum_limited[i] = limited
+        out.append(u)
+    w.torque_applied = out
+    return tuple(out)
+
+
+@pytest.mark.parametrize("friction", [False, True])
+def test_motor_torques_are_bit_for_bit_the_old_loop(friction):
+    """WHL-101: the motor-torque limits (locals read once) give the old loop's torques and flags bit
+    for bit: torque and speed modes, disabled wheels, commands beyond the torque limit, momenta at
+    and beyond the momentum limit, with and without friction."""
+    import copy
+    import random
+
+    from detumble.sim.wheels import WheelAssembly, WheelSpec
+
+    rng = random.Random(7 + friction)
+    specs = tuple(WheelSpec((1.0, 0.0, 0.0) if i == 0 else ((0.0, 1.0, 0.0) if i == 1 else (0.0, 0.0, 1.0)),
+                            1e-4, 1e-3, 0.01, viscous_friction_nms=1e-6 if friction else 0.0,
+                            coulomb_friction_nm=1e-5 if friction else 0.0) for i in range(3))
+    a = WheelAssembly(specs, 1)
+    for _ in range(3000):
+        for i in range(3):
+            a.enabled[i] = rng.random() > 0.1
+            if rng.random() < 0.3:
+                a.set_speed(i, rng.uniform(-200.0, 200.0))
+            else:
+                a.set_torque(i, rng.uniform(-3e-3, 3e-3))
+        a.h = tuple(rng.choice((0.01, -0.01, 0.0)) if rng.random() < 0.2 else rng.uniform(-0.012, 0.012)
+                    for _ in range(3))
+        b = copy.deepcopy(a)
+        dt, w = rng.choice((0.01, 0.02, 0.001)), tuple(rng.uniform(-3.0, 3.0) for _ in range(3))
+        assert a.motor_torques(dt, w) == _old_motor_torques(b, dt, w)
+        assert (a.torque_applied, a.torque_clipped, a.momentum_limited) == \
+            (b.torque_applied, b.torque_clipped, b.momentum_limited)
+
+
+def test_set_torque_still_refuses_what_is_not_a_wheel_index():
+    """WHL-102: the fast index check of set_torque lets through only what _index accepts."""
+    from detumble.sim.wheels import WheelAssembly, WheelSpec
+
+    a = WheelAssembly((WheelSpec((1.0, 0.0, 0.0), 1e-4, 1e-3, 0.01),) * 2)
+    for bad in (True, False, -1, 2, 1.0, "0", None):
+        with pytest.raises(ValueError, match="no wheel"):
+            a.set_torque(bad, 1e-4)
+    with pytest.raises(ValueError, match="finite"):
+        a.set_torque(1, math.nan)
+    a.set_torque(1, 2e-4)
+    assert a.command == [0.0, 2e-4] and a.mode == ["torque", "torque"]

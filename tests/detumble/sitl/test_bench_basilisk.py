@@ -50,12 +50,15 @@ def test_cases_are_interleaved_round_by_round_and_ratios_are_quotients(monkeypat
     each round, and forms each ratio from the fastest (and the median) rounds of its two kinds."""
     calls = []
     factor = {"basilisk_adcs_c_50hz": 1000.0, "basilisk_adcs_python_50hz": 500.0, "fprime_lite_adcs_ref_50hz": 100.0,
-              "basilisk_coursework_100hz": 80.0, "fprime_lite_coursework_100hz": 60.0}
+              "fprime_lite_adcs_plant_50hz": 400.0, "basilisk_coursework_100hz": 80.0,
+              "fprime_lite_coursework_100hz": 60.0}
 
     def fake_child(argv):
         text = " ".join(argv)
         if "basilisk_adcs" in text:
             kind = "basilisk_adcs_c_50hz" if argv[-1] == "c" else "basilisk_adcs_python_50hz"
+        elif "plant_only_settings" in text:
+            kind = "fprime_lite_adcs_plant_50hz"
         elif "basilisk_coursework" in text:
             kind = "basilisk_coursework_100hz"
         else:
@@ -67,16 +70,20 @@ def test_cases_are_interleaved_round_by_round_and_ratios_are_quotients(monkeypat
     monkeypatch.setattr(bench_basilisk, "_child", fake_child)
     d = bench_basilisk.measure_cases(["adcs_ref", "coursework"], duration_s=10.0, rounds=2)
     one_round = ["basilisk_adcs_c_50hz", "basilisk_adcs_python_50hz", "fprime_lite_adcs_ref_50hz",
-                 "basilisk_coursework_100hz", "fprime_lite_coursework_100hz"]
+                 "fprime_lite_adcs_plant_50hz", "basilisk_coursework_100hz", "fprime_lite_coursework_100hz"]
     assert calls == one_round * 2
     a, c = d["adcs_ref"], d["coursework"]
     assert a["adcs_ref_over_basilisk_c"] == pytest.approx((100.0 * 1.2) / (1000.0 * 1.2))
     assert a["median_adcs_ref_over_basilisk_python"] == pytest.approx((100.0 * 1.15) / (500.0 * 1.15))
+    assert a["adcs_laws_alone_over_basilisk_c"] == pytest.approx(400.0 / 1000.0)
+    assert a["adcs_ref_tick_over_plant_only_tick"] == pytest.approx(400.0 / 100.0)
     assert c["coursework_over_basilisk"] == pytest.approx(60.0 / 80.0)
-    assert set(a["plausibility"]) == {"basilisk_adcs_c_50hz", "basilisk_adcs_python_50hz", "fprime_lite_adcs_ref_50hz"}
+    assert set(a["plausibility"]) == {"basilisk_adcs_c_50hz", "basilisk_adcs_python_50hz", "fprime_lite_adcs_ref_50hz",
+                                      "fprime_lite_adcs_plant_50hz"}
     assert a["plausibility"]["fprime_lite_adcs_ref_50hz"] == {"slew1_settle_s": 1.0}
-    rows = bench_basilisk.BASILISK_PIECE.rows(a)  # two ratios, three plausibility lines
-    assert len(rows) == 5 and "0.10" in rows[0][1] and "slew1_settle_s 1" in rows[4][1]
+    rows = bench_basilisk.BASILISK_PIECE.rows(a)  # four ratios, four plausibility lines
+    assert len(rows) == 8 and "0.10" in rows[0][1] and "slew1_settle_s 1" in rows[7][1]
+    assert [r[2] for r in rows[:4]] == ["≥ 1.5", "≥ 1.5", "context", "≤ 1.5"]  # the laws alone are no goal
 
 
 def test_the_bench_piece_picks_the_case_of_the_deployment_it_is_given():

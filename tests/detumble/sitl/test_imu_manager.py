@@ -327,3 +327,24 @@ def test_a_plant_exception_is_a_failed_read(rig, monkeypatch):
     assert h.invoke("magneticFieldGet").condition == Success.FAILURE
     h.assert_event_count("Lis2mdlDeviceNotReady", 1)
     assert h.component.handler_faults == 1 and h.events_named("HandlerFault")[0][1] == "RuntimeError: boom"
+
+
+def test_a_gyro_exception_is_a_failed_read_and_a_good_read_clears_its_throttle(rig, monkeypatch):
+    """The healthy-gyro read (written out, no time stamp asked for) fails as the generic read does: FAILURE,
+    Lsm6dsoDeviceNotReady, HandlerFault naming the sensor; the next good read clears the event's throttle and
+    returns the sample the spacecraft holds."""
+    h, craft = rig
+
+    def broken(stamped=True):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(craft, "gyro_sample", broken)
+    assert h.invoke("angularVelocityGet").condition == Success.FAILURE
+    h.assert_event_count("Lsm6dsoDeviceNotReady", 1)
+    fault = h.events_named("HandlerFault")[0]
+    assert h.component.handler_faults == 1 and fault[1] == "RuntimeError: boom" and "GYROSCOPE" in fault[0]
+    assert h.component.Lsm6dsoDeviceNotReady.count == 1
+    monkeypatch.undo()
+    value, condition = h.invoke("angularVelocityGet")
+    assert condition == Success.SUCCESS and h.component.Lsm6dsoDeviceNotReady.count == 0
+    assert (value.x, value.y, value.z) == craft.gyro_sample()[:3] == tuple(craft.gyro_sample(False))

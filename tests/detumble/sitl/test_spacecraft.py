@@ -231,3 +231,44 @@ def test_time_of_follows_the_clock_settings_and_the_origin(make_craft):
     assert (moved.time_base, moved.context) == (TimeBase.TB_PROC_TIME, 2)
     craft.origin_us += 5
     assert craft.time_of(40_000_000).total_us == moved.total_us + 5
+
+
+def test_written_out_samples_match_the_plant_getters_they_replace():
+    """SCRAFT-101: the spacecraft's wheel, star-tracker, orbit-frame and ideal-magnetometer samples
+    (the plant getters written out, for the 100 Hz wheel cycle) give exactly what the plant's own
+    getters give at the same instant — the wheel momentum noise as WheelAssembly.measured_momentum
+    draws it — and advance the physics to the clock's time first."""
+    from detumble.sim import frames
+    from detumble.sim.scenario import load_scenario
+    from detumble.sim.sensors import GAUSS_PER_TESLA
+    from detumble.sim.vec import rotate_n_to_b
+
+    clock = SimulatedClock()
+    noisy = ["spacecraft.reaction_wheels.momentum_noise_std_nms=1.0e-04"]
+    craft = SimulatedSpacecraft(load_scenario("surrey", settings=noisy), clock=clock)
+    plant, wheels = craft.plant, craft.plant.wheels
+    assert wheels.specs[0].momentum_noise_std_nms == 1e-4
+    for k in range(1, 40):
+        clock.current_us = 10_000 * k + (3_000 if k % 3 else 0)  # on and between the dynamics steps
+        for i in range(3):
+            if k % 5 == 0:
+                craft.set_wheel_torque(i, 1e-4 * (i + 1) * (-1) ** k)
+                assert wheels.command[i] == 1e-4 * (i + 1) * (-1) ** k
+            rng_state = wheels.rng.getstate()
+            speed, h, u, stamp = craft.wheel_sample(i)
+            assert plant.t_ns == (clock.current_us - craft.origin_us) * 1000
+            after = wheels.rng.getstate()
+            wheels.rng.setstate(rng_state)
+            assert h == wheels.measured_momentum(i) and h != wheels.h[i]
+            wheels.rng.setstate(rng_state)
+            assert (speed, h, u) == plant.wheel_reading(i)[:3] and wheels.rng.getstate() == after
+            assert stamp == craft.time_of(plant.t_ns)
+        q, valid, stamp = craft.star_tracker_sample()
+        r = plant.star_tracker_reading()
+        assert (q, valid) == (r[:4], r[4]) and stamp == craft.time_of(int(round(r[5] * 1e9)))
+        q_on, n, stamp = craft.orbit_frame_sample()
+        assert q_on == frames.q_ON(plant.orbit, plant.t) and n == plant.orbit.mean_motion
+        bx, by, bz, stamp = craft.magnetometer_sample()
+        b = plant.b_B
+        assert (bx, by, bz) == (b[0] * GAUSS_PER_TESLA, b[1] * GAUSS_PER_TESLA, b[2] * GAUSS_PER_TESLA)
+        assert b == rotate_n_to_b(plant.q_BN, plant._b_N) and stamp == craft.time_of(plant.t_ns)

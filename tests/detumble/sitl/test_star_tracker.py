@@ -102,3 +102,30 @@ def test_frozen_fault_repeats_the_old_solution(rig):
 def test_needs_a_star_tracker_in_the_scenario(make_craft):
     with pytest.raises(ValueError, match="has no star tracker"):
         StarTracker("starTracker", make_craft())
+
+
+def test_a_good_read_rearms_the_throttled_events(rig, monkeypatch):
+    """STD-007: a valid solution re-arms NoSolution and a read that works re-arms
+    AttitudeReadFailed: each throttled event is logged five times again in the next bad spell."""
+    h, craft = rig
+    real = craft.star_tracker_sample
+    q, _, stamp = real()
+    monkeypatch.setattr(craft, "star_tracker_sample", lambda: (q, False, stamp))
+    for _ in range(7):
+        assert h.invoke("attitudeGet").condition == Success.FAILURE
+    h.assert_event_count("NoSolution", 5)
+    monkeypatch.setattr(craft, "star_tracker_sample", real)
+    assert h.invoke("attitudeGet").condition == Success.SUCCESS
+    monkeypatch.setattr(craft, "star_tracker_sample", lambda: (q, False, stamp))
+    for _ in range(7):
+        h.invoke("attitudeGet")
+    h.assert_event_count("NoSolution", 10)
+    h.component.set_fault(SimStarTrackerFault.FAIL)
+    for _ in range(6):
+        h.invoke("attitudeGet")
+    h.component.set_fault(SimStarTrackerFault.NONE)
+    h.invoke("attitudeGet")  # works (no solution, but the read itself succeeded)
+    h.component.set_fault(SimStarTrackerFault.FAIL)
+    for _ in range(6):
+        h.invoke("attitudeGet")
+    h.assert_event_count("AttitudeReadFailed", 10)

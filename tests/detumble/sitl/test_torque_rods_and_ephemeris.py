@@ -61,3 +61,23 @@ def test_ephemeris_gives_the_orbit_frame_the_plant_uses(fprime_harness, spacecra
     q_bo = quat_mul(quat_conj((value.q0, value.q1, value.q2, value.q3)), spacecraft.plant.q_BN)
     sign = 1.0 if q_bo[0] >= 0 else -1.0
     assert tuple(sign * c for c in q_bo) == pytest.approx(spacecraft.plant.q_BO, abs=1e-12)
+
+
+def test_the_read_ports_return_real_result_named_tuples(fprime_harness, spacecraft):
+    """EPH-101: orbitFrameGet, the wheels' wheelStateGet, the star tracker's attitudeGet and the IMU
+    manager's angularVelocityGet and magneticFieldGet build their answers with tuple.__new__ (no
+    Python frame): each is a Result — its type, fields, equality and ``ok`` as Result(value,
+    condition) gives them."""
+    from detumble.components.types import Result
+    from detumble.sitl import ImuManager, ReactionWheelDriver, StarTracker
+
+    imu = fprime_harness(ImuManager("imuManager", spacecraft))
+    answers = [fprime_harness(OrbitEphemeris("orbitEphemeris", spacecraft)).invoke("orbitFrameGet"),
+               fprime_harness(ReactionWheelDriver("reactionWheel1", spacecraft, 1)).invoke("wheelStateGet"),
+               fprime_harness(StarTracker("starTracker", spacecraft)).invoke("attitudeGet"),
+               imu.invoke("angularVelocityGet"), imu.invoke("magneticFieldGet")]
+    for answer in answers:
+        assert type(answer) is Result and answer.ok and answer.condition == Success.SUCCESS
+        assert answer == Result(answer.value, Success.SUCCESS) and answer._fields == ("value", "condition")
+        value, condition = answer
+        assert value is answer.value and condition is Success.SUCCESS

@@ -13,6 +13,7 @@ import tempfile
 import time
 
 from fprime_lite.tools.campaign.errors import CampaignError, RunSetupError
+from fprime_lite.tools.campaign.folder_lock import campaign_folder_lock
 from fprime_lite.tools.campaign.kinds import RunRequest, resolve_kind
 from fprime_lite.tools.campaign.manifest import now_utc, write_manifest
 from fprime_lite.tools.campaign.plan import plan_runs
@@ -106,10 +107,9 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
     address of an existing Dask scheduler instead. ``out``: the campaign folder (default
     ``runs/campaign-NAME-TIMESTAMP``); ``resume``: keep the rows already in ``out`` and run only the
     rest; ``retry_failed`` (implies ``resume``): also run again the runs recorded as failed or
-    timeout, their new rows replacing the old (same run ids, same seeds).
+    timeout, their new rows replacing the old (same run ids, same seeds). One process at a time
+    writes into a folder (:mod:`~fprime_lite.tools.campaign.folder_lock`).
     """
-    from distributed import as_completed
-
     if not isinstance(campaign, Campaign):
         campaign = load_campaign(campaign)
     if workers is not None and scheduler is not None:
@@ -128,6 +128,26 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
     tasks = plan_runs(campaign, out / "runs")
     preflight(campaign, tasks)
     out.mkdir(parents=True, exist_ok=True)
+    with campaign_folder_lock(out):
+        _, wall, ran = _run_locked(campaign, tasks, out, workers, scheduler, retry_failed, progress, console)
+    from fprime_lite.tools.campaign.results import read_results
+
+    df = read_results(out)  # the table as written: the Python API and results.parquet agree exactly
+    if plots and len(df):
+        from fprime_lite.tools.campaign.plots import draw_plots
+
+        draw_plots(df, campaign, out / "plots")
+    if summary:
+        from fprime_lite.tools.campaign.report import print_summary
+
+        print_summary(df, campaign, console, wall_s=wall if ran else None)
+    return df
+
+
+def _run_locked(campaign, tasks, out, workers, scheduler, retry_failed, progress, console):
+    """The runs still to do, into ``out`` (held by this process); ``(table, wall s, whether any ran)``."""
+    from distributed import as_completed
+
     store = ResultStore(out, campaign.varied_keys, campaign.metrics)
     planned = {t["run_id"] for t in tasks}
     store.rows = [r for r in store.rows if r["run_id"] in planned]  # rows of an edited campaign's old runs drop out
@@ -174,16 +194,4 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
         write_manifest(out, campaign, started=started, ended=now_utc(), status=status, cluster=info,
                        runs=len(tasks), counts={str(k): int(v) for k, v in counts.items()},
                        resumed_from=len(done), retried=retried)
-    wall = time.perf_counter() - t0
-    from fprime_lite.tools.campaign.results import read_results
-
-    df = read_results(out)  # the table as written: the Python API and results.parquet agree exactly
-    if plots and len(df):
-        from fprime_lite.tools.campaign.plots import draw_plots
-
-        draw_plots(df, campaign, out / "plots")
-    if summary:
-        from fprime_lite.tools.campaign.report import print_summary
-
-        print_summary(df, campaign, console, wall_s=wall if todo else None)
-    return df
+    return df, time.perf_counter() - t0, bool(todo)

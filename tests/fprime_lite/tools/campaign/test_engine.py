@@ -103,3 +103,32 @@ def test_existing_results_need_resume(two_worker_result):
         run_campaign(path, workers=1, out=folder / "out2", plots=False, summary=False)
     df = run_campaign(path, workers=1, out=folder / "out2", resume=True, plots=False, summary=False)
     assert len(df) == 4  # nothing left to run: the same rows
+
+
+def test_one_process_writes_a_campaign_folder_at_a_time(two_worker_result, tmp_path):
+    """CAMP-104: while a campaign process holds its folder, a second one (here a --resume) is refused before it
+    reads or writes anything, with an error naming the holder; the rows are untouched; once the holder is gone
+    the folder is free again (the kernel drops the lock with the process, so a killed campaign leaves none)."""
+    import subprocess
+    import sys
+    import textwrap
+
+    path, folder, _ = two_worker_result
+    out = folder / "out2"
+    before = (out / "rows.jsonl").read_bytes()
+    holder = subprocess.Popen([sys.executable, "-c", textwrap.dedent(f"""
+        import pathlib, sys, time
+        from fprime_lite.tools.campaign.folder_lock import campaign_folder_lock
+        with campaign_folder_lock(pathlib.Path({str(out)!r})):
+            print("held", flush=True)
+            sys.stdin.read()
+        """)], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline().strip() == "held"
+        with pytest.raises(CampaignError, match=rf"already writing into this folder \(pid {holder.pid} on .*--resume"):
+            run_campaign(path, workers=1, out=out, resume=True, plots=False, summary=False)
+        assert (out / "rows.jsonl").read_bytes() == before
+    finally:
+        holder.communicate("")
+    df = run_campaign(path, workers=1, out=out, resume=True, plots=False, summary=False)
+    assert len(df) == 4
