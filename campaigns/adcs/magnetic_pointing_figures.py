@@ -53,7 +53,8 @@ def floquet(out: pathlib.Path) -> None:
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.6))
     lim = 2.5e-3
     for ax, data, x, y, xl, title in (
-            (axes[0], seed, np.log10(kps), np.log10(kds), "log10 K_P (N·m)", "seed 003 PD projected perpendicular to B"),
+            (axes[0], seed, np.log10(kps), np.log10(kds), "log10 K_P (N·m)",
+             "seed 003 PD projected perpendicular to B"),
             (axes[1], steer, rhos, np.log10(kds2), "ρ (K_P 1e-6 N·m)", "field steering")):
         im = ax.pcolormesh(x, y, np.clip(data, -lim, lim), cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
         ax.set_xlabel(xl)
@@ -90,7 +91,8 @@ def runs(out: pathlib.Path, specs: list[str]) -> None:
     ax.set_ylim(0.5, 200)
     ax.set_xlabel("t (s)")
     ax.set_ylabel("pointing error (deg, truth)")
-    ax.set_title("adcs_ref, magnetorquers only, POINTING forced at 5 s (0.5 deg/s start 45 deg off, or at rest on target)")
+    ax.set_title("adcs_ref, magnetorquers only, POINTING forced at 5 s "
+                 "(0.5 deg/s start 45 deg off, or at rest on target)")
     ax.legend()
     fig.tight_layout()
     out.mkdir(parents=True, exist_ok=True)

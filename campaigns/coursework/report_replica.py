@@ -29,7 +29,7 @@ from detumble.analysis.settling import settling_time
 from detumble.control import coursework as cw
 
 N = cw.REPORT_MEAN_MOTION
-I = ((1.67e-3, 0.0, 0.0), (0.0, 1.67e-3, 0.0), (0.0, 0.0, 1.67e-3))
+INERTIA = ((1.67e-3, 0.0, 0.0), (0.0, 1.67e-3, 0.0), (0.0, 0.0, 1.67e-3))
 B_O = (3e-5, 3e-5, 3e-5)
 
 
@@ -45,7 +45,7 @@ def make_rhs(law: str, gain: float, ks: float, kd: float, kp_w: float, kd_w: flo
             return beta.dipole(t, w, b), (0.0, 0.0, 0.0)
         q_e = cw.error_quaternion((0.0, 0.0, 0.0, 1.0), q)
         w_o = cw.rate_relative_to_orbit(q, w)
-        return (0.0, 0.0, 0.0), cw.wheel_torque(kp_w, kd_w, I, q_e, w_o, w, h)
+        return (0.0, 0.0, 0.0), cw.wheel_torque(kp_w, kd_w, INERTIA, q_e, w_o, w, h)
 
     def rhs(t, x):
         calls["n"] += 1
@@ -59,10 +59,10 @@ def make_rhs(law: str, gain: float, ks: float, kd: float, kp_w: float, kd_w: flo
         torque = cw.limit_wheel_torque(torque, h)
         n_mt = (m[1] * b[2] - m[2] * b[1], m[2] * b[0] - m[0] * b[2], m[0] * b[1] - m[1] * b[0])
         w_o = (w[0] + a[0][1] * N, w[1] + a[1][1] * N, w[2] + a[2][1] * N)
-        iw = tuple(I[i][i] * w[i] for i in range(3))
+        iw = tuple(INERTIA[i][i] * w[i] for i in range(3))
         hw = (iw[0] + h[0], iw[1] + h[1], iw[2] + h[2])
         gyro = (w[1] * hw[2] - w[2] * hw[1], w[2] * hw[0] - w[0] * hw[2], w[0] * hw[1] - w[1] * hw[0])
-        w_dot = [(n_mt[i] - torque[i] - gyro[i]) / I[i][i] for i in range(3)]
+        w_dot = [(n_mt[i] - torque[i] - gyro[i]) / INERTIA[i][i] for i in range(3)]
         o1, o2, o3 = w_o
         q1, q2, q3, q4 = q
         q_dot = (0.5 * (o3 * q2 - o2 * q3 + o1 * q4), 0.5 * (-o3 * q1 + o1 * q3 + o2 * q4),
@@ -97,7 +97,8 @@ def main() -> None:
     finals, inits = (0.0, -N, 0.0), (1.0, 2.0, 3.0)
     axes = [settling_time(t, y[4 + i], finals[i], inits[i]) for i in range(3)]
     q4 = settling_time(t, y[3], -1.0, 1.0)
-    out = {"law": args.law, "normalized": not args.no_normalize, "rtol": args.rtol, "atol": args.atol, "t_max_s": args.t_max, "steps": int(len(sol.t) - 1),
+    out = {"law": args.law, "normalized": not args.no_normalize, "rtol": args.rtol, "atol": args.atol,
+           "t_max_s": args.t_max, "steps": int(len(sol.t) - 1),
            "rhs_calls": calls["n"], "wall_s": wall, "settling_axes_s": axes,
            "settling_overall_s": None if None in axes else max(axes), "settling_q4_to_minus1_s": q4,
            "final_omega_rad_s": [float(v) for v in y[4:7, -1]], "final_q": [float(v) for v in y[0:4, -1]],
