@@ -17,9 +17,8 @@ stamped t, as the component's event is.
 
 What it leaves out, because nothing plant-only can produce it: commands (it starts in AUTO with the
 target it is given, as the start-up sequence sets it, or takes one FORCE_MODE at a set time:
-``force_mode``, and SET_TARGET_QUATERNION at set times: ``target_changes``), telemetry and events, and
-the fault paths of
-failed or non-finite reads (the plant's sensors always answer). The wheels start enabled, as the
+``force_mode``, and SET_TARGET_QUATERNION at set times: ``target_changes``), telemetry and events,
+and the fault paths of failed or non-finite reads (the plant's sensors always answer). The wheels start enabled, as the
 plant's do.
 
 Frames and units: body B, inertial N; quaternions ``q_BN`` scalar first; rates rad/s inside (deg/s in
@@ -77,6 +76,12 @@ def _settings(overrides: Mapping[str, object] | None) -> dict:
 
 def _cross(a, b):
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _as_target(q) -> Quat:
+    """A commanded ``q_TN`` as SET_TARGET_QUATERNION stores it: re-normalised, scalar part ≥ 0."""
+    c = tuple(float(x) for x in q)
+    return quat_shortest(quat_normalize((c[0], c[1], c[2], c[3])))
 
 
 def _drive_level(m: float, m_max: float) -> int:
@@ -214,18 +219,14 @@ class AdcsLaw:
         self.kane = SeedKaneDamper(p["C_DAMP"], p["I_D"])
         self.damper = VirtualDamper(p["C_DAMP"], p["I_D"])
         self.regulator = SpinRateRegulator(p["SPIN_K_TRANSVERSE"], p["SPIN_K_RATE"], p["SPIN_RATE_TARGET"] * _DEG)
-        self.target: Quat | None = None
-        if target_q_bn is not None:
-            q = tuple(float(c) for c in target_q_bn)
-            self.target = quat_shortest(quat_normalize((q[0], q[1], q[2], q[3])))
-        self.initial_target = self.target
+        self.initial_target: Quat | None = None if target_q_bn is None else _as_target(target_q_bn)
         changes = []
         for t_s, q_tn in target_changes:
-            if len(q_tn) != 4 or not is_unit_quaternion(tuple(float(c) for c in q_tn)):
-                raise ValueError(f"target change at {t_s} s: {tuple(q_tn)!r} is not a unit quaternion (within "
-                                 "1e-3), as SET_TARGET_QUATERNION requires")
             q = tuple(float(c) for c in q_tn)
-            changes.append((int(round(float(t_s) * 1e6)), quat_shortest(quat_normalize((q[0], q[1], q[2], q[3])))))
+            if len(q) != 4 or not is_unit_quaternion(q):
+                raise ValueError(f"target change at {t_s} s: {q!r} is not a unit quaternion (within 1e-3), as "
+                                 "SET_TARGET_QUATERNION requires")
+            changes.append((int(round(float(t_s) * 1e6)), _as_target(q)))
         if any(b[0] < a[0] for a, b in zip(changes, changes[1:], strict=False)):
             raise ValueError("target changes must be in time order")
         self.target_changes: tuple[tuple[int, Quat], ...] = tuple(changes)  # (t µs, q_TN)

@@ -129,7 +129,7 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
     preflight(campaign, tasks)
     out.mkdir(parents=True, exist_ok=True)
     with campaign_folder_lock(out):
-        _, wall, ran = _run_locked(campaign, tasks, out, workers, scheduler, retry_failed, progress, console)
+        wall, ran = _run_locked(campaign, tasks, out, workers, scheduler, retry_failed, progress, console)
     from fprime_lite.tools.campaign.results import read_results
 
     df = read_results(out)  # the table as written: the Python API and results.parquet agree exactly
@@ -145,7 +145,7 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
 
 
 def _run_locked(campaign, tasks, out, workers, scheduler, retry_failed, progress, console):
-    """The runs still to do, into ``out`` (held by this process); ``(table, wall s, whether any ran)``."""
+    """The runs still to do, into ``out`` (held by this process); ``(wall s, whether any ran)``."""
     from distributed import as_completed
 
     store = ResultStore(out, campaign.varied_keys, campaign.metrics)
@@ -194,4 +194,4 @@ def _run_locked(campaign, tasks, out, workers, scheduler, retry_failed, progress
         write_manifest(out, campaign, started=started, ended=now_utc(), status=status, cluster=info,
                        runs=len(tasks), counts={str(k): int(v) for k, v in counts.items()},
                        resumed_from=len(done), retried=retried)
-    return df, time.perf_counter() - t0, bool(todo)
+    return time.perf_counter() - t0, bool(todo)
