@@ -25,6 +25,7 @@ import yaml
 from detumble.control.attitude_defaults import BDOT_PROVIDER_GAIN
 from detumble.control.attitude_defaults import DEFAULTS as ADCS_DEFAULTS
 from detumble.control.attitude_defaults import ENUM_CHOICES as ADCS_ENUMS
+from detumble.control.quaternion import is_unit_quaternion
 from detumble.sim.coils import FACE_NAMES, CoilSpec, default_coil_layout
 from detumble.sim.epoch import gmst_rad, julian_date, parse_epoch
 from detumble.sim.field import (EARTH_ROTATION_RATE, IGRF2025_G10_NT, IGRF2025_G11_NT, IGRF2025_H11_NT,
@@ -915,7 +916,7 @@ def _target_changes(a: _Section) -> tuple:
         if changes and t < changes[-1][0]:
             a.fail("target_changes", f"entry {i}: {t!r} s comes before the previous entry's {changes[-1][0]!r} s; "
                    "list the changes in time order")
-        if abs(math.sqrt(sum(c * c for c in q)) - 1.0) > 1e-3:
+        if not is_unit_quaternion(q):
             a.fail("target_changes", f"entry {i}: must be a unit quaternion (within 1e-3), as "
                    "SET_TARGET_QUATERNION requires")
         changes.append((t, (q[0], q[1], q[2], q[3])))
@@ -930,7 +931,7 @@ def _adcs(a: _Section):
         if not isinstance(target, (list, tuple)) or len(target) != 4:
             a.fail("target_q_bn", f"expected 4 numbers (q_TN, scalar first) or null, got {target!r}")
         q = tuple(a.ctx.number(a.path + ("target_q_bn", i), x) for i, x in enumerate(target))
-        if abs(math.sqrt(sum(c * c for c in q)) - 1.0) > 1e-3:
+        if not is_unit_quaternion(q):
             a.fail("target_q_bn", "must be a unit quaternion (within 1e-3), as SET_TARGET_QUATERNION requires")
         values["target_q_bn"] = q
     values["bdot_provider"] = a.boolean("bdot_provider", True)

@@ -196,5 +196,7 @@ def test_commands_act_from_the_first_cycle_after_their_time():
                       ("7", "expected a list")):
         with pytest.raises(ScenarioError, match=f"control.adcs.target_changes.*{says}"):
             load_scenario("adcs", settings=[f"control.adcs.target_changes={bad}"])
+    with pytest.raises(ScenarioError, match="control.adcs.target_q_bn.*unit quaternion"):
+        load_scenario("adcs", settings=["control.adcs.target_q_bn=[1, 1, 0, 0]"])
     scenario = load_scenario("adcs", settings=["control.adcs.target_changes=[[300, 0, 1, 0, 0]]"])
     assert make_law("adcs", Plant(scenario)).target_changes == ((300_000_000, (0.0, 1.0, 0.0, 0.0)),)
