@@ -75,6 +75,26 @@ def test_tick_002_a_store_that_names_no_table_gets_its_store_call():
     assert tlm.TlmGet(count.id) == (TlmValid.VALID, T2, struct.pack(">I", 8))
 
 
+def test_tick_002b_an_override_of_store_tlm_value_is_called_without_opting_out():
+    """TICK-002b: TlmChan itself names no table for direct writes when a subclass overrides
+    ``store_tlm_value``: the override sees every deferred write with nothing else to set."""
+    calls = []
+
+    class CountingTlmChan(TlmChan):
+        def store_tlm_value(self, chan_id, time, value, pack):
+            calls.append((chan_id, time, value))
+            super().store_tlm_value(chan_id, time, value, pack)
+
+    assert TlmChan("plain").deferred_tlm_latest is not None  # the plain one keeps its direct table
+    writer, tlm = _Writer("writer", base_id=0x100), CountingTlmChan("tlm")
+    writer.output_port("tlmOut").connect(0, tlm.input_port("TlmRecv"), 0)
+    count = writer.channels["Count"]
+    count.write(7, T1)
+    count.write(8, T2)
+    assert calls == [(count.id, T1, 7), (count.id, T2, 8)]
+    assert tlm.TlmGet(count.id) == (TlmValid.VALID, T2, struct.pack(">I", 8))
+
+
 def test_tick_003_a_restarted_tlm_chan_gets_the_writes_in_its_new_table():
     """TICK-003: TlmChan re-initialised in place (a flight-software restart) and the writer's slot
     re-pointed at its new entry: writes land in the new table, not the one from before."""

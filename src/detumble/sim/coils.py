@@ -124,9 +124,7 @@ class Magnetorquer:
             raise ValueError(f"drive level {level} outside -127..127")
         self.level = level
         if self._tau == 0.0:
-            spec = self.spec  # target_current_a(), written out (the same floats)
-            r = spec.resistance_ohm
-            self.current_a = 0.0 if r == 0.0 else level / MAX_LEVEL * spec.voltage_v / r
+            self.current_a = self.target_current_a()
 
     def advance(self, dt: float) -> float:
         """Advance the L/R lag by ``dt`` s; return the mean current (A) over the interval."""

@@ -172,9 +172,10 @@ class WheelAssembly:
                 clipped_out[i] = limited_out[i] = False
                 continue
             m = mode[i]
+            speed = self.speed_rad_s(i, omega_B) if m == SPEED or friction else 0.0  # both uses: the same value
             if m == SPEED:
                 tau = max(self.specs[i].speed_loop_time_constant_s, 2.0 * dt)
-                u = self.js[i] * (command[i] - self.speed_rad_s(i, omega_B)) / tau
+                u = self.js[i] * (command[i] - speed) / tau
             else:
                 u = command[i]
             um = u_max[i]
@@ -184,7 +185,7 @@ class WheelAssembly:
             h, hm = h_all[i], h_max[i]
             limited = False
             if friction:
-                f0 = _friction(self.specs[i], self.speed_rad_s(i, omega_B))
+                f0 = _friction(self.specs[i], speed)
             else:
                 f0 = 0.0
             h1 = h + (u + f0) * dt
