@@ -52,6 +52,17 @@ def test_tick_001_a_write_after_reconnecting_tlm_out_reaches_the_new_store_only(
     assert writer.channels["Rate"].last == 0.25
 
 
+def _two_writes_reach_the_store(tlm, calls):
+    """Two writes of Count into ``tlm`` (a TlmChan that logs its store calls into ``calls``)."""
+    writer = _Writer("writer", base_id=0x100)
+    writer.output_port("tlmOut").connect(0, tlm.input_port("TlmRecv"), 0)
+    count = writer.channels["Count"]
+    count.write(7, T1)
+    count.write(8, T2)
+    assert calls == [(count.id, T1, 7), (count.id, T2, 8)]
+    assert tlm.TlmGet(count.id) == (TlmValid.VALID, T2, struct.pack(">I", 8))
+
+
 def test_tick_002_a_store_that_names_no_table_gets_its_store_call():
     """TICK-002: a TlmChan subclass that changes what storing does (and so names no table) has its
     ``store_tlm_value`` called for every deferred write."""
@@ -66,13 +77,7 @@ def test_tick_002_a_store_that_names_no_table_gets_its_store_call():
             calls.append((chan_id, time, value))
             super().store_tlm_value(chan_id, time, value, pack)
 
-    writer, tlm = _Writer("writer", base_id=0x100), CountingTlmChan("tlm")
-    writer.output_port("tlmOut").connect(0, tlm.input_port("TlmRecv"), 0)
-    count = writer.channels["Count"]
-    count.write(7, T1)
-    count.write(8, T2)
-    assert calls == [(count.id, T1, 7), (count.id, T2, 8)]
-    assert tlm.TlmGet(count.id) == (TlmValid.VALID, T2, struct.pack(">I", 8))
+    _two_writes_reach_the_store(CountingTlmChan("tlm"), calls)
 
 
 def test_tick_002b_an_override_of_store_tlm_value_is_called_without_opting_out():
@@ -86,13 +91,7 @@ def test_tick_002b_an_override_of_store_tlm_value_is_called_without_opting_out()
             super().store_tlm_value(chan_id, time, value, pack)
 
     assert TlmChan("plain").deferred_tlm_latest is not None  # the plain one keeps its direct table
-    writer, tlm = _Writer("writer", base_id=0x100), CountingTlmChan("tlm")
-    writer.output_port("tlmOut").connect(0, tlm.input_port("TlmRecv"), 0)
-    count = writer.channels["Count"]
-    count.write(7, T1)
-    count.write(8, T2)
-    assert calls == [(count.id, T1, 7), (count.id, T2, 8)]
-    assert tlm.TlmGet(count.id) == (TlmValid.VALID, T2, struct.pack(">I", 8))
+    _two_writes_reach_the_store(CountingTlmChan("tlm"), calls)
 
 
 def test_tick_003_a_restarted_tlm_chan_gets_the_writes_in_its_new_table():
