@@ -21,8 +21,8 @@ import sys
 import numpy as np
 import pandas as pd
 
-from detumble.analysis.pooled_stats import (POINTING_THRESHOLDS_DEG, pooled_lines, runs_from_columns, target_lines,
-                                            wilson_lower)
+from detumble.analysis.pooled_stats import (POINTING_THRESHOLDS_DEG, per_run_share, pooled_lines, runs_from_columns,
+                                            target_lines)
 
 TARGET_Q = (0.9238795325112867, 0.0, 0.3826834323650898, 0.0)
 MEDIAN_TARGET_DEG, P95_TARGET_DEG = 5.0, 15.0
@@ -59,10 +59,9 @@ def main(argv: list[str]) -> int:
               f"  max {v.max():6.2f}")
     med_ok = ok["pointing_median_deg"] <= MEDIAN_TARGET_DEG
     p95_ok = ok["pointing_p95_deg"] <= P95_TARGET_DEG
-    n = len(ok)
     for label, hits in (("median <= 5 deg", med_ok), ("p95 <= 15 deg", p95_ok), ("both", med_ok & p95_ok)):
-        k = int(hits.sum())
-        print(f"runs with {label:16s} {k}/{n}  (95 % lower bound {100 * wilson_lower(k, n):.1f} %)")
+        share = per_run_share(hits)
+        print(f"runs with {label:16s} {share.successes}/{share.n}  (95 % lower bound {100 * share.lower95:.1f} %)")
     print_pooled(ok)
     print("runs missing a target: offset deg, rate deg/s, median, p95, max")
     for _, row in ok[~(med_ok & p95_ok)].iterrows():

@@ -116,8 +116,7 @@ def along_field_offset_from_gravity_gradient(plant, q_target, samples: int = 400
     control enters ``α̇`` only), so a slowly varying torque along the field, ``τ∥ = τ_gg · b̂``, is met at
     ``α = −τ∥ / (J r²)``: the along-field stiffness is ``J r²`` (≈ 8e-9 N·m/rad here), set by how fast the field
     line turns, not by the gains. ``J`` is the mean principal moment (kg·m²), ``τ_gg = 3 μ/R³ r̂ × (J r̂)`` in the
-    target frame (μ of the Earth, 3.986004418e14 m³/s²)."""
-    mu = 3.986004418e14
+    target frame, with the 3 μ/R³ the plant's orbit flies (``gravity_gradient_coeff``)."""
     period, b, bd = field_line_along_orbit(plant, q_target, samples)
     inertia = np.asarray(plant.scenario.spacecraft.inertia_kg_m2, dtype=float)
     j_mean = float(np.trace(inertia)) / 3.0
@@ -125,10 +124,10 @@ def along_field_offset_from_gravity_gradient(plant, q_target, samples: int = 400
     ts = np.linspace(0.0, period, samples + 1)
     alpha = np.empty(len(ts))
     for k, t in enumerate(ts):
-        r_n = np.array(plant.orbit.position_N(t), dtype=float)
-        rn = float(np.linalg.norm(r_n))
-        rh = r_tn @ (r_n / rn)
-        tau = 3.0 * mu / rn ** 3 * np.cross(rh, inertia @ rh)
+        r = plant.orbit.position_N(t)
+        r_n = np.array(r, dtype=float)
+        rh = r_tn @ (r_n / float(np.linalg.norm(r_n)))
+        tau = plant.orbit.gravity_gradient_coeff(r) * np.cross(rh, inertia @ rh)
         rate = float(np.linalg.norm(bd[k]))
         alpha[k] = -float(tau @ b[k]) / (j_mean * rate * rate)
     return ts, alpha

@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import math
 
+from detumble.control.mat3 import det3 as _det3
 from detumble.control.quaternion import Quat, Vec3, quat_error, rotate_b_to_n, rotate_n_to_b
 
 __all__ = ["field_steering_torque", "slow_pole_rate", "FieldDirectionRate", "ResidualDipoleEstimator"]
@@ -230,8 +231,3 @@ class ResidualDipoleEstimator:
             m = [[y[i] if k == c else a[i][k] for k in range(3)] for i in range(3)]
             out.append(_det3(m) / det)
         return (out[0], out[1], out[2])
-
-
-def _det3(a) -> float:
-    return (a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
-            + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]))

@@ -43,6 +43,7 @@ from detumble.control.quaternion import is_unit_quaternion, quat_angle, quat_err
 from detumble.control.rate_observer import RateObserver
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper
 from detumble.control.wheel_allocation import WheelAllocator
+from detumble.sim.vec import cross as _cross
 
 __all__ = ["AdcsLaw", "PlantIo", "MODES", "COIL_FACES", "pointing_statistics"]
 
@@ -72,10 +73,6 @@ def _settings(overrides: Mapping[str, object] | None) -> dict:
             raise ValueError(f"{key} must be a finite number, got {value!r}")
         out[key] = value
     return out
-
-
-def _cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 def _as_target(q) -> Quat:

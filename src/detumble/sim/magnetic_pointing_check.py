@@ -167,9 +167,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"--seeds: expected comma-separated integers or FIRST..LAST, got {a.seeds!r}", file=sys.stderr)
         return 2
     rows = []
+    ff = load_scenario("adcs", settings=list(a.set)).spacecraft.residual_dipole_am2 if a.compensate \
+        else (0.0, 0.0, 0.0)
     for s in seeds:
-        ff = load_scenario("adcs", settings=list(a.set)).spacecraft.residual_dipole_am2 if a.compensate \
-            else (0.0, 0.0, 0.0)
         r = fly(a.law, a.kp, a.kd, rho=a.rho, zeta=a.zeta, seed=s, rate_deg_s=a.rate, duration_s=a.duration,
                 dt_s=a.dt, settings=tuple(a.set), offset_deg=a.offset, settle_s=a.settle,
                 mag_bias_t=tuple(1e-4 * c for c in a.mag_bias), residual_ff_am2=ff, duty=a.duty,

@@ -504,7 +504,7 @@ class Plant:
     def omega_BO_B(self) -> Vec3:
         """True body rate relative to O, in B, rad/s (seed 004 eq. 14)."""
         t = self.t
-        r, v = self.orbit.position_N(t), self.orbit.velocity_N(t)
+        r, v = self.orbit.position_velocity_N(t)  # the same floats as position_N, velocity_N
         n = frames.orbit_rate(r, v)
         y_N = frames.orbit_axes_N(r, v)[1]
         wo = rotate_n_to_b(self.q_BN, (-n * y_N[0], -n * y_N[1], -n * y_N[2]))
