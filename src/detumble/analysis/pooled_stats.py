@@ -37,8 +37,8 @@ from dataclasses import dataclass
 from typing import Any, Iterable, Mapping, Sequence
 
 __all__ = ["BINS_PER_DECADE", "LOW_DEG", "HIGH_DEG", "EDGES_DEG", "N_BINS", "POINTING_THRESHOLDS_DEG",
-           "SPIN_THRESHOLDS_DEG", "RunTimes", "PooledPercentile", "Share", "bin_index", "bin_bounds",
-           "threshold_key", "pooling_fields", "dense_histogram", "run_times", "pooled_window_s",
+           "SPIN_THRESHOLDS_DEG", "error_statistics", "RunTimes", "PooledPercentile", "Share", "bin_index",
+           "bin_bounds", "threshold_key", "pooling_fields", "dense_histogram", "run_times", "pooled_window_s",
            "pooled_fraction_above", "pooled_percentile", "wilson_lower", "per_run_share", "column_names",
            "runs_from_columns", "pooled_lines", "target_lines"]
 
@@ -162,7 +162,7 @@ def pooled_percentile(runs: Sequence[RunTimes], p: float) -> PooledPercentile:
     first reaches ``p·T``. The bracket runs from the first bin whose cumulative time exceeds ``p·T - w`` to
     the first that reaches ``p·T + (1 - p)·w`` (``w``, the largest sample interval), so it also holds the
     linear-interpolated percentile of the concatenated samples (what
-    :func:`~detumble.sitl.attitude_report.error_statistics` computes for one run) when the runs share one
+    :func:`error_statistics` computes for one run) when the runs share one
     interval: that percentile lies between the samples ranked ``floor((n-1)p)`` and ``ceil((n-1)p)``, which
     are in those bins or between them.
     """
@@ -285,3 +285,29 @@ def target_lines(runs: Sequence[RunTimes], targets: Sequence[tuple[float, float]
         lines.append(f"pooled p{100 * p:g} <= {x:g} deg (time above {x:g} deg <= {100 * (1 - p):g} %): {verdict} "
                      f"({100 * above:.2f} % of the time above)")
     return lines
+
+
+def error_statistics(values: list[float], skip_fraction: float = 0.1, *, sample_interval_s: float | None = None,
+                     thresholds_deg: tuple[float, ...] = ()) -> dict | None:
+    """``{"median", "p95", "max", "samples"}`` of ``values`` (deg) after dropping their first ``skip_fraction``.
+
+    Sample-weighted (linear-interpolated percentiles over the kept samples). With ``sample_interval_s`` (s, the
+    time each sample stands for) the pooling fields of :func:`detumble.analysis.pooled_stats.pooling_fields`
+    over the same samples are added: ``sample_interval_s``, ``window_s``, ``time_above_s`` at ``thresholds_deg``
+    and ``histogram_s``. None when no sample is kept.
+    """
+    kept = values[int(len(values) * skip_fraction):]
+    if not kept:
+        return None
+    s = sorted(kept)
+
+    def pct(p):
+        k = (len(s) - 1) * p
+        lo = math.floor(k)
+        hi = min(lo + 1, len(s) - 1)
+        return s[lo] + (s[hi] - s[lo]) * (k - lo)
+
+    stats = {"median": pct(0.5), "p95": pct(0.95), "max": s[-1], "samples": len(s)}
+    if sample_interval_s is not None:
+        stats.update(pooling_fields(kept, sample_interval_s, thresholds_deg))
+    return stats

@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 from typing import Mapping, Sequence
 
-from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, pooling_fields
+from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, error_statistics
 from detumble.control import attitude_defaults
 from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.magnetic import (bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted,
@@ -571,23 +571,8 @@ class AdcsLaw:
 
 def pointing_statistics(values: Sequence[float], skip_fraction: float = 0.1, *,
                         sample_interval_s: float | None = None) -> dict | None:
-    """``{"median", "p95", "max", "samples"}`` (deg; linear interpolation between order statistics) of
-    ``values`` after their first ``skip_fraction``, as the deployment's attitude report gives them; with
-    ``sample_interval_s`` (s a sample stands for) also the report's pooling fields over the same samples
-    (:func:`detumble.analysis.pooled_stats.pooling_fields` at its pointing thresholds)."""
-    kept = list(values[int(len(values) * skip_fraction):])
-    rest = sorted(kept)
-    if not rest:
-        return None
-    last = len(rest) - 1
-
-    def at(share: float) -> float:
-        pos = last * share
-        i = int(pos)
-        j = min(i + 1, last)
-        return rest[i] + (rest[j] - rest[i]) * (pos - i)
-
-    stats = {"median": at(0.5), "p95": at(0.95), "max": rest[-1], "samples": len(rest)}
-    if sample_interval_s is not None:
-        stats.update(pooling_fields(kept, sample_interval_s, POINTING_THRESHOLDS_DEG))
-    return stats
+    """``{"median", "p95", "max", "samples"}`` (deg) of ``values`` after their first ``skip_fraction``, as the
+    deployment's attitude report gives them (:func:`detumble.analysis.pooled_stats.error_statistics`); with
+    ``sample_interval_s`` (s a sample stands for) also its pooling fields at the pointing thresholds."""
+    return error_statistics(list(values), skip_fraction, sample_interval_s=sample_interval_s,
+                            thresholds_deg=POINTING_THRESHOLDS_DEG)

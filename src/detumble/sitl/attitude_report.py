@@ -39,7 +39,7 @@ import pathlib
 
 from fprime_lite.deploy.resources import topology_resource
 
-from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, SPIN_THRESHOLDS_DEG, pooling_fields
+from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, SPIN_THRESHOLDS_DEG, error_statistics
 from detumble.components.attitude_types import ControlMode
 from detumble.control.quaternion import quat_angle, quat_error
 from detumble.sitl.spacecraft import SimulatedSpacecraft
@@ -55,32 +55,6 @@ SPIN_RATE_BAND = 0.05
 _COLUMNS = ("t_s", "mode", "pointing_error_deg", "spin_axis_error_deg", "spin_rate_deg_s", "rate_deg_s",
             "h0_nms", "h1_nms", "h2_nms", "h3_nms", "mx_cmd_Am2", "my_cmd_Am2", "mz_cmd_Am2",
             "mx_Am2", "my_Am2", "mz_Am2")
-
-
-def error_statistics(values: list[float], skip_fraction: float = 0.1, *, sample_interval_s: float | None = None,
-                     thresholds_deg: tuple[float, ...] = ()) -> dict | None:
-    """``{"median", "p95", "max", "samples"}`` of ``values`` (deg) after dropping their first ``skip_fraction``.
-
-    Sample-weighted (linear-interpolated percentiles over the kept samples). With ``sample_interval_s`` (s, the
-    time each sample stands for) the pooling fields of :func:`detumble.analysis.pooled_stats.pooling_fields`
-    over the same samples are added: ``sample_interval_s``, ``window_s``, ``time_above_s`` at ``thresholds_deg``
-    and ``histogram_s``. None when no sample is kept.
-    """
-    kept = values[int(len(values) * skip_fraction):]
-    if not kept:
-        return None
-    s = sorted(kept)
-
-    def pct(p):
-        k = (len(s) - 1) * p
-        lo = math.floor(k)
-        hi = min(lo + 1, len(s) - 1)
-        return s[lo] + (s[hi] - s[lo]) * (k - lo)
-
-    stats = {"median": pct(0.5), "p95": pct(0.95), "max": s[-1], "samples": len(s)}
-    if sample_interval_s is not None:
-        stats.update(pooling_fields(kept, sample_interval_s, thresholds_deg))
-    return stats
 
 
 def settle_time(times: list[float], ok: list[bool], start: float) -> float | None:
