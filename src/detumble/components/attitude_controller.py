@@ -39,7 +39,7 @@ from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFie
 from detumble.control import attitude_defaults as _defaults
 from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.mekf import Mekf
-from detumble.control.rate_observer import RateObserver
+from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
 from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipoleEstimator, field_steering_torque
 from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
@@ -557,21 +557,13 @@ class AttitudeController(PassiveComponent):
             self.b_tesla = None
         self._track_field_line(dt)
         self.wheel_momenta = self._read_wheel_momenta() if self.wheel_count() else None
-        self._update_rate_observer(dt)
-        self._track_residual_dipole(dt)
+        # the last cycle's body torque (self.dipole: what it drove, zero when off), for both users below
+        torque = (applied_torque(self.wheel_torques, self.wheel_axes, self.dipole, self.b_tesla, self._duty())
+                  if self.omega is not None else None)
+        self._update_rate_observer(dt, torque)
+        self._track_residual_dipole(dt, torque)
 
-    def _applied_torque(self):
-        """The body torque of the last cycle, N·m (B): the wheels' −Σ u_i g_i plus the coils' m × B over their duty."""
-        tx = ty = tz = 0.0
-        for u, g in zip(self.wheel_torques, self.wheel_axes, strict=False):  # () before the first command
-            tx, ty, tz = tx - u * g[0], ty - u * g[1], tz - u * g[2]
-        if self.b_tesla is not None:  # self.dipole: what the last cycle drove (zero when off)
-            mb = _cross(self.dipole, self.b_tesla)
-            d = self._duty()
-            tx, ty, tz = tx + mb[0] * d, ty + mb[1] * d, tz + mb[2] * d
-        return (tx, ty, tz)
-
-    def _update_rate_observer(self, dt: float) -> None:
+    def _update_rate_observer(self, dt: float, torque) -> None:
         """The derivative term's rate: the bias-corrected gyro, or the model-aided observer (RATE_SOURCE)."""
         obs = self.rate_observer
         if self.omega is None:
@@ -589,7 +581,7 @@ class AttitudeController(PassiveComponent):
         h = _ZERO
         if self.wheel_momenta is not None:
             h = self._body_momentum(self.wheel_momenta)
-        w = obs.update(self.omega, self._applied_torque(), h, dt)
+        w = obs.update(self.omega, torque, h, dt)
         self.pd_rate = w if self.RATE_SOURCE.value == RateSource.OBSERVER else self.omega
 
     def _track_field_line(self, dt: float) -> None:
@@ -608,7 +600,7 @@ class AttitudeController(PassiveComponent):
             return
         self.bdot_hat_B = fr.update(q, self.b_tesla, dt)
 
-    def _track_residual_dipole(self, dt: float) -> None:
+    def _track_residual_dipole(self, dt: float, torque) -> None:
         """Feed the residual-dipole estimator while the coils point (magnetorquer POINTING past MAG_SETTLE_TIME,
         small dipoles, a settled gyro bias); elsewhere its open window is dropped and its sums kept."""
         est = self.residual_estimator
@@ -620,7 +612,7 @@ class AttitudeController(PassiveComponent):
         est.window_s = self.MAG_RESIDUAL_WINDOW.value
         est.inertia = self.rate_observer.inertia
         ready = est.estimate is not None
-        m = est.update(self.omega, self._applied_torque(), _ZERO, self.b_tesla, dt)
+        m = est.update(self.omega, torque, _ZERO, self.b_tesla, dt)
         if m is not None and not ready:
             self.ResidualDipoleEstimated(m[0], m[1], m[2])
 

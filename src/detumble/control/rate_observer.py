@@ -25,7 +25,7 @@ import math
 from detumble.control.mat3 import det3, inv3
 from detumble.control.quaternion import Vec3
 
-__all__ = ["RateObserver"]
+__all__ = ["RateObserver", "applied_torque"]
 
 
 def _mul(m, v):
@@ -98,3 +98,17 @@ class RateObserver:
                             w1 + a1 * dt + k * (omega_meas[1] - (w1 + a1 * half)),
                             w2 + a2 * dt + k * (omega_meas[2] - (w2 + a2 * half)))
         return out
+
+
+def applied_torque(wheel_torques, wheel_axes, dipole, b_tesla, duty: float) -> Vec3:
+    """The body torque a control cycle applied, N·m (B): the wheels' reaction ``−Σ u_i g_i`` (``u_i`` N·m on
+    spin axis ``g_i``) plus the coils' ``m × B`` (``dipole`` A·m², ``b_tesla`` T, None: no field known) over
+    their ``duty`` (the fraction of the cycle they are on). The observer's and the residual estimator's input."""
+    tx = ty = tz = 0.0
+    for u, g in zip(wheel_torques, wheel_axes, strict=False):  # () before the first command
+        tx, ty, tz = tx - u * g[0], ty - u * g[1], tz - u * g[2]
+    if b_tesla is not None:
+        m, b = dipole, b_tesla
+        mb = (m[1] * b[2] - m[2] * b[1], m[2] * b[0] - m[0] * b[2], m[0] * b[1] - m[1] * b[0])
+        tx, ty, tz = tx + mb[0] * duty, ty + mb[1] * duty, tz + mb[2] * duty
+    return (tx, ty, tz)

@@ -40,7 +40,7 @@ from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_
 from detumble.control.mekf import Mekf
 from detumble.control.pointing import ErrorIntegrator, pd_torque
 from detumble.control.quaternion import is_unit_quaternion, quat_angle, quat_error, quat_normalize, quat_shortest
-from detumble.control.rate_observer import RateObserver
+from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper
 from detumble.control.wheel_allocation import WheelAllocator
 from detumble.sim.vec import cross as _cross
@@ -342,8 +342,9 @@ class AdcsLaw:
         self.b_tesla = (b[0] * 1e-4, b[1] * 1e-4, b[2] * 1e-4)
         self._follow_field_line(dt)
         self.momenta = io.wheel_momenta() if self.wheels else ()
-        self._observe_rate(dt)
-        self._track_residual_dipole(dt)
+        torque = applied_torque(self.wheel_torques, self.axes, self.dipole, self.b_tesla, self.duty)  # last cycle's
+        self._observe_rate(dt, torque)
+        self._track_residual_dipole(dt, torque)
 
     def _follow_field_line(self, dt: float) -> None:
         known = self.attitude_valid
@@ -356,21 +357,12 @@ class AdcsLaw:
         assert q is not None  # attitude_valid
         self.bdot_hat_B = self.field_rate.update(q, self.b_tesla, dt)
 
-    def _body_torque_last_cycle(self):
-        """What the last cycle applied to the body, N·m: −Σ u_i g_i plus m × B over the coils' duty."""
-        tx = ty = tz = 0.0
-        for u, a in zip(self.wheel_torques, self.axes, strict=False):
-            tx, ty, tz = tx - u * a[0], ty - u * a[1], tz - u * a[2]
-        mb = _cross(self.dipole, self.b_tesla)
-        d = self.duty
-        return (tx + mb[0] * d, ty + mb[1] * d, tz + mb[2] * d)
-
-    def _observe_rate(self, dt: float) -> None:
+    def _observe_rate(self, dt: float, torque: Vec3) -> None:
         h = self._unit_allocator.body_momentum(self.momenta) if self.wheels else _ZERO
-        w = self.observer.update(self.omega, self._body_torque_last_cycle(), h, dt)
+        w = self.observer.update(self.omega, torque, h, dt)
         self.pd_rate = w if self.params["RATE_SOURCE"] == "OBSERVER" else self.omega
 
-    def _track_residual_dipole(self, dt: float) -> None:
+    def _track_residual_dipole(self, dt: float, torque: Vec3) -> None:
         """Feed the residual-dipole estimator while the coils point past MAG_SETTLE_TIME (the
         component's rule); elsewhere its open window is dropped and its sums kept."""
         p = self.params
@@ -378,7 +370,7 @@ class AdcsLaw:
                 or self.attitude_known_s < p["MAG_SETTLE_TIME"]):
             self.residual.gap()
             return
-        self.residual.update(self.omega, self._body_torque_last_cycle(), _ZERO, self.b_tesla, dt)
+        self.residual.update(self.omega, torque, _ZERO, self.b_tesla, dt)
 
     def _residual_feed_forward(self) -> Vec3:
         """The residual dipole to cancel, A·m² (B), by MAG_RESIDUAL_MODE; an estimate past a coil

@@ -79,3 +79,15 @@ def test_a_new_model_is_taken_however_it_is_given():
     before = obs.inertia_inv
     obs.set_model(((3.0e-3, 0.0, 0.0), (0.0, 3.0e-3, 0.0), (0.0, 0.0, 4.0e-3)), 0.3)
     assert obs.inertia_inv is before  # the model it has: nothing recomputed
+
+
+def test_applied_torque_is_the_wheels_reaction_plus_the_coils_over_their_duty():
+    """RATE-005: the observer's torque input: −Σ u_i g_i of the wheels plus (m × B)·duty of the coils; without a
+    known field only the wheels' part; no wheel command yet (an empty tuple) counts as none."""
+    from detumble.control.rate_observer import applied_torque
+
+    axes = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    m, b = (0.1, 0.0, 0.0), (0.0, 2e-5, 0.0)  # m × B = (0, 0, 2e-6) N·m
+    assert applied_torque((1e-4, -2e-4, 0.0), axes, m, b, 0.8) == pytest.approx((-1e-4, 2e-4, 1.6e-6), abs=1e-18)
+    assert applied_torque((1e-4, -2e-4, 0.0), axes, m, None, 0.8) == (-1e-4, 2e-4, 0.0)
+    assert applied_torque((), axes, m, b, 1.0) == pytest.approx((0.0, 0.0, 2e-6), abs=1e-18)
