@@ -42,11 +42,11 @@ from detumble.control.mekf import Mekf
 from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
 from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipoleEstimator, field_steering_torque
-from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
+from detumble.control.magnetorquer import face_coil_levels
 from detumble.control.pointing import ErrorIntegrator, pd_torque
 from detumble.control.quaternion import (is_unit_quaternion, quat_angle, quat_normalize, quat_shortest,
                                          target_pointing_axis)
-from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper
+from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
 from detumble.control.wheel_allocation import WheelAllocator
 
 __all__ = ["AttitudeController", "BORESIGHT_B"]
@@ -653,11 +653,7 @@ class AttitudeController(PassiveComponent):
         """``(axis error deg, rate error fraction)`` of ω̂ against ``SPIN_RATE_TARGET`` about +Z."""
         w = self.omega
         assert w is not None  # AUTO looks at the spin only with a rate estimate
-        target = self.SPIN_RATE_TARGET.value * _DEG
-        n = _norm(w)
-        axis_deg = math.degrees(math.atan2(math.hypot(w[0], w[1]), w[2])) if n > 0.0 else 180.0
-        frac = abs(w[2] - target) / abs(target) if target != 0.0 else abs(w[2])
-        return axis_deg, frac
+        return spin_errors(w, self.SPIN_RATE_TARGET.value * _DEG)
 
     def _auto_mode(self, dt: float) -> None:
         if self.mode == ControlMode.IDLE:
@@ -929,12 +925,8 @@ class AttitudeController(PassiveComponent):
     def _coil_levels(self, m):
         """``(levels X+, X−, Y+, Y−, Z−, achieved dipole A·m²)`` for the dipole ``m`` (A·m², B): half of
         m_x on each X coil, half of m_y on each Y coil, m_z on Z−; X−, Y− and Z− face the other way."""
-        cx, cy, cz = self.X_COIL_MAX_DIPOLE.value, self.Y_COIL_MAX_DIPOLE.value, self.Z_COIL_MAX_DIPOLE.value
-        lx = _level(0.5 * m[0], cx)
-        ly = _level(0.5 * m[1], cy)
-        lz = _level(m[2], cz)
-        f = 1.0 / MAX_DRIVE_LEVEL
-        return (lx, -lx, ly, -ly, -lz), (2.0 * lx * f * cx, 2.0 * ly * f * cy, lz * f * cz)
+        return face_coil_levels(m, self.X_COIL_MAX_DIPOLE.value, self.Y_COIL_MAX_DIPOLE.value,
+                                self.Z_COIL_MAX_DIPOLE.value)
 
     def _drive_coils(self, m, coil_levels=None) -> None:
         """Drive the five coils for the dipole ``m``; ``self.dipole`` becomes what the rounded levels give.
@@ -950,14 +942,6 @@ class AttitudeController(PassiveComponent):
             if port.targets[0] is not None:
                 port.calls[0]()
         self.coils_driven = False
-
-
-def _level(m: float, m_max: float) -> int:
-    """Drive level −127…127 for dipole ``m`` on a coil whose full drive gives ``m_max`` A·m²."""
-    if not m_max > 0.0 or not math.isfinite(m):
-        return 0
-    level = round_half_away_from_zero(m / m_max * MAX_DRIVE_LEVEL)
-    return max(-MAX_DRIVE_LEVEL, min(MAX_DRIVE_LEVEL, level))
 
 
 def _cross(a, b):

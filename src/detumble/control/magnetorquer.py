@@ -17,7 +17,8 @@ import math
 
 from detumble.control.coil_layout import CoilShape, DirectionSign
 
-__all__ = ["CoilShape", "DirectionSign", "Magnetorquer", "round_half_away_from_zero", "MAX_DRIVE_LEVEL"]
+__all__ = ["CoilShape", "DirectionSign", "Magnetorquer", "round_half_away_from_zero", "MAX_DRIVE_LEVEL", "drive_level",
+           "face_coil_levels"]
 
 #: Full-scale drive level (the I8 range used by the coil drivers is −127…127).
 MAX_DRIVE_LEVEL = 127
@@ -35,6 +36,25 @@ def round_half_away_from_zero(x: float) -> int:
     if magnitude - whole >= 0.5:
         whole += 1
     return -whole if x < 0 else whole
+
+
+
+def drive_level(m: float, m_max: float) -> int:
+    """Drive level −127…127 for dipole ``m`` (A·m²) on a coil whose full drive gives ``m_max`` A·m²
+    (0 for a non-finite ``m`` or a coil that gives nothing)."""
+    if not m_max > 0.0 or not math.isfinite(m):
+        return 0
+    level = round_half_away_from_zero(m / m_max * MAX_DRIVE_LEVEL)
+    return max(-MAX_DRIVE_LEVEL, min(MAX_DRIVE_LEVEL, level))
+
+
+def face_coil_levels(m, cx: float, cy: float, cz: float):
+    """``((levels X+, X−, Y+, Y−, Z−), achieved dipole A·m²)`` for the dipole ``m`` (A·m², B) on the five face
+    coils (``cx``, ``cy``, ``cz``: one X, Y or Z coil's full-drive dipole, A·m²): half of m_x on each X coil,
+    half of m_y on each Y coil, m_z on Z−; X−, Y− and Z− face the other way."""
+    lx, ly, lz = drive_level(0.5 * m[0], cx), drive_level(0.5 * m[1], cy), drive_level(m[2], cz)
+    f = 1.0 / MAX_DRIVE_LEVEL
+    return (lx, -lx, ly, -ly, -lz), (2.0 * lx * f * cx, 2.0 * ly * f * cy, lz * f * cz)
 
 
 class Magnetorquer:

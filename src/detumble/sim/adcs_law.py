@@ -36,12 +36,12 @@ from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.magnetic import (bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted,
                                        scale_to_limits)
 from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipoleEstimator, field_steering_torque
-from detumble.control.magnetorquer import MAX_DRIVE_LEVEL, round_half_away_from_zero
+from detumble.control.magnetorquer import face_coil_levels
 from detumble.control.mekf import Mekf
 from detumble.control.pointing import ErrorIntegrator, pd_torque
 from detumble.control.quaternion import is_unit_quaternion, quat_angle, quat_error, quat_normalize, quat_shortest
 from detumble.control.rate_observer import RateObserver, applied_torque
-from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper
+from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
 from detumble.control.wheel_allocation import WheelAllocator
 from detumble.sim.vec import cross as _cross
 
@@ -79,13 +79,6 @@ def _as_target(q) -> Quat:
     """A commanded ``q_TN`` as SET_TARGET_QUATERNION stores it: re-normalised, scalar part ≥ 0."""
     c = tuple(float(x) for x in q)
     return quat_shortest(quat_normalize((c[0], c[1], c[2], c[3])))
-
-
-def _drive_level(m: float, m_max: float) -> int:
-    """Drive level −127…127 for ``m`` A·m² on a coil that gives ``m_max`` A·m² at full drive."""
-    if not (m_max > 0.0 and math.isfinite(m)):
-        return 0
-    return max(-MAX_DRIVE_LEVEL, min(MAX_DRIVE_LEVEL, round_half_away_from_zero(m / m_max * MAX_DRIVE_LEVEL)))
 
 
 class PlantIo:
@@ -406,11 +399,7 @@ class AdcsLaw:
 
     def spin_errors(self) -> tuple[float, float]:
         """``(angle of ω̂ from +Z deg, |ω̂_z − target| / target)``."""
-        w = self.omega
-        goal = self.params["SPIN_RATE_TARGET"] * _DEG
-        size = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
-        off_axis = math.degrees(math.atan2(math.hypot(w[0], w[1]), w[2])) if size > 0.0 else 180.0
-        return off_axis, (abs(w[2] - goal) / abs(goal) if goal != 0.0 else abs(w[2]))
+        return spin_errors(self.omega, self.params["SPIN_RATE_TARGET"] * _DEG)
 
     def _can_point(self) -> bool:
         if self.params["POINTING_ACTUATOR"] == "WHEELS" and not self.wheels:
@@ -446,10 +435,7 @@ class AdcsLaw:
     def _levels(self, m):
         """``(levels X+, X−, Y+, Y−, Z−, the dipole they give A·m²)``: half of m_x and m_y on each coil of
         the pair, m_z on Z−; X−, Y− and Z− face the other way."""
-        cx, cy, cz = self.coil_max
-        lx, ly, lz = _drive_level(0.5 * m[0], cx), _drive_level(0.5 * m[1], cy), _drive_level(m[2], cz)
-        f = 1.0 / MAX_DRIVE_LEVEL
-        return (lx, -lx, ly, -ly, -lz), (2.0 * lx * f * cx, 2.0 * ly * f * cy, lz * f * cz)
+        return face_coil_levels(m, *self.coil_max)
 
     def _bdot(self):
         """DETUMBLE's dipole, A·m² (None: no dipole this cycle, the coils stay off)."""
