@@ -103,7 +103,7 @@ class MagnetorquerDriver(PassiveComponent):
         non-integer levels are refused (FAILURE, InvalidDriveLevel) and switch the coil off."""
         # The manager re-commands the same level every tick. A healthy, initialised device whose coil
         # already carries it and whose on-change DriveLevel last sent it: _apply would only clear the
-        # throttles (the same test in stop; written out, as this runs for each coil every tick).
+        # throttles (written out, as this runs for each coil every tick; stop is start(0)).
         if (type(val) is int and val == self._coil.level and self.fault is _FAULT_NONE and self._initialized
                 and val == self.DriveLevel.last):
             if self.DeviceNotReady.count:
@@ -117,15 +117,8 @@ class MagnetorquerDriver(PassiveComponent):
 
     @sync_input(StopMagnetorquer)
     def stop(self) -> Success:
-        """Switch the coil off."""
-        if (self._coil.level == 0 and self.fault is _FAULT_NONE and self._initialized
-                and self.DriveLevel.last == 0):  # start's short cut for level 0: idle coils are stopped too
-            if self.DeviceNotReady.count:
-                self.DeviceNotReady.clear_throttle()
-            if self.DriveReadbackMismatch.count:
-                self.DriveReadbackMismatch.clear_throttle()
-            return _SUCCESS
-        return self._apply(0)
+        """Switch the coil off: level 0, as ``start(0)`` (its short cut included: idle coils are stopped too)."""
+        return self.start(0)
 
     @sync_input(LoadSwitchStateChanged)
     def loadSwitchStateChanged(self, state: On) -> Success:
