@@ -352,6 +352,7 @@ class AttitudeController(PassiveComponent):
         self._gyro_port = self.output_port("angularVelocityGet")
         self._attitude_port = self.output_port("attitudeGet")
         self._field_port = self.output_port("magneticFieldGet")
+        self._dipole_port = self.output_port("dipoleMomentGet")
         self._torque_ports = self.output_port("wheelTorqueSet")
         self._state_ports = self.output_port("wheelStateGet")
         self._enable_ports = self.output_port("wheelEnableSet")
@@ -795,8 +796,8 @@ class AttitudeController(PassiveComponent):
         return u
 
     def _detumble_dipole(self):
-        if self.is_connected("dipoleMomentGet", 0):
-            ok, m = self._read("dipoleMomentGet")
+        if self._dipole_port.targets[0] is not None:
+            ok, m = _call_ref(self._dipole_port)
             primed, self._bdot_primed = self._bdot_primed, True
             if not ok or m is None or not _finite(m.x, m.y, m.z):
                 if primed:  # the provider's first call after entering DETUMBLE only primes it
@@ -871,10 +872,6 @@ class AttitudeController(PassiveComponent):
         self.ResidualDipole.write(Vector3(self.residual_ff))
 
     # --- ports out -----------------------------------------------------------------------------
-
-    def _read(self, port: str, index: int = 0):
-        """Call a ``ref condition`` port; ``(ok, value)``. Unconnected counts as a failure."""
-        return _call_ref(self.output_port(port), index)
 
     def _read_wheel_momenta(self):
         """Each wheel's axial momentum (N·m·s) from its driver, or None when one does not answer."""
