@@ -88,9 +88,11 @@ class ReactionWheelDriver(PassiveComponent):
     def torqueSet(self, torque: float) -> Success:
         """Motor torque in N·m along the spin axis; clipped to ±max_torque."""
         if self.fault != _NO_FAULT or self.mode == _DISABLED or type(torque) is not float or not _isfinite(torque):
-            return self._command_torque(torque)
-        # The healthy wheel and a finite float: _command_torque's path for it, written out (every
-        # control cycle sends one to each wheel); the same events, plant call and channel writes.
+            checked = self._checked_torque(torque)  # refusals and invalid torques are answered there
+            if checked is None:
+                return Success.FAILURE
+            torque = checked
+        # Every control cycle sends one to each wheel: the plant call and mode change written out.
         if abs(torque) > self.max_torque_nm:
             self.TorqueSaturated(torque, self.max_torque_nm)
         else:
@@ -154,9 +156,9 @@ class ReactionWheelDriver(PassiveComponent):
     def SET_TORQUE(self, torque: F64):
         """Command the motor torque, N·m (clipped to ±max_torque)."""
         if not math.isfinite(torque):
-            self._command_torque(torque)
+            self.torqueSet(torque)
             return CmdResponse.VALIDATION_ERROR
-        return CmdResponse.OK if self._command_torque(torque) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
+        return CmdResponse.OK if self.torqueSet(torque) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
 
     @sync_command()
     def SET_SPEED(self, speed: F64):
@@ -249,30 +251,21 @@ class ReactionWheelDriver(PassiveComponent):
             return True
         return False
 
-    def _command_torque(self, torque) -> Success:
+    def _checked_torque(self, torque) -> float | None:
+        """``torque`` as a float when the wheel takes commands and it is a finite number; else None, the
+        refusal or InvalidTorque logged (an invalid one also sets the motor torque to zero)."""
         if self._refused():
-            return Success.FAILURE
+            return None
         if type(torque) is not float and (isinstance(torque, bool) or not isinstance(torque, (int, float))):
             self.InvalidTorque(_as_f64(torque))
             self._plant_call(self.spacecraft.set_wheel_torque, self.wheel, 0.0)
-            return Success.FAILURE
+            return None
         torque = float(torque)
         if not math.isfinite(torque):
             self.InvalidTorque(torque)
             self._plant_call(self.spacecraft.set_wheel_torque, self.wheel, 0.0)
-            return Success.FAILURE
-        if abs(torque) > self.max_torque_nm:
-            self.TorqueSaturated(torque, self.max_torque_nm)
-        else:
-            if self.TorqueSaturated.count:  # clear_throttle, where there is something to clear
-                self.TorqueSaturated.clear_throttle()
-        if not self._plant_call(self.spacecraft.set_wheel_torque, self.wheel, torque):
-            return Success.FAILURE
-        self._set_mode(_TORQUE)
-        self.Command.write(torque)
-        if self.DeviceNotReady.count:  # clear_throttle, where there is something to clear
-            self.DeviceNotReady.clear_throttle()
-        return _SUCCESS
+            return None
+        return torque
 
     def _command_speed(self, speed) -> Success:
         if self._refused():
