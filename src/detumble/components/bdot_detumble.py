@@ -24,13 +24,13 @@ import math
 
 from fprime_lite import F64, Channel, OutputPort, Param, PassiveComponent, sync_input
 
-from detumble.control.attitude_defaults import BDOT_PROVIDER_GAIN
+from detumble.control.attitude_defaults import BDOT_MIN_FIELD_GAUSS, BDOT_PROVIDER_GAIN
 from detumble.components.types import DipoleMoment, DipoleMomentGet, MagneticField, MagneticFieldGet, Result, Success
 
 __all__ = ["BDotDetumble", "MIN_FIELD_MAGNITUDE_GAUSS"]
 
-#: Below this |B| (gauss) no dipole is computed.
-MIN_FIELD_MAGNITUDE_GAUSS = 1e-6
+#: Below this |B| (gauss) no dipole is computed (the plant-only law's provider uses the same value).
+MIN_FIELD_MAGNITUDE_GAUSS = BDOT_MIN_FIELD_GAUSS
 
 
 def _zero_failure() -> Result:

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 
 __all__ = ["DEFAULTS", "ENUM_CHOICES", "RATE_GROUP_PERIOD_S", "INTEGRAL_MAX_TORQUE", "BORESIGHT_B",
-           "BDOT_PROVIDER_GAIN"]
+           "BDOT_PROVIDER_GAIN", "BDOT_MIN_FIELD_GAUSS"]
 
 # --- pointing on the wheels (quaternion PD + integral) -----------------------------------------
 K_P = 1.1e-3  # N·m: spring on q_err.v (ω_n 0.5 rad/s for 2.2e-3 kg·m²)
@@ -88,6 +88,9 @@ Y_COIL_MAX_DIPOLE = 96 * 0.053 * 0.045 * 3.3 / 13.0  # A·m² per Y coil (two Y 
 Z_COIL_MAX_DIPOLE = 153 * math.pi * (0.05755 / 2) ** 2 * 3.3 / 150.7  # A·m², the single Z− coil
 CYCLE_TICKS = 5  # rate-group ticks per control cycle (the coils are off on the last)
 
+#: Every parameter default by its flight name: the upper-case names above this line (what follows is not a parameter).
+DEFAULTS: dict[str, float | int | str] = {name: value for name, value in dict(globals()).items() if name.isupper()}
+
 #: s: the period of the rate group that calls the controller (the deployments' 50 Hz group).
 RATE_GROUP_PERIOD_S = 0.02
 #: N·m: the largest torque the pointing integral may hold (not a parameter).
@@ -96,6 +99,8 @@ INTEGRAL_MAX_TORQUE = 1.0e-5
 BORESIGHT_B = (0.0, 0.0, 1.0)
 #: A·m²·s: the default gain of the BDotDetumble dipole provider (``m = −Gain·Ḃ/|B|``, B in gauss).
 BDOT_PROVIDER_GAIN = 1.0
+#: gauss: below this |B| the BDotDetumble provider computes no dipole.
+BDOT_MIN_FIELD_GAUSS = 1e-6
 
 #: The member names each enumerated parameter accepts (those of the flight enums, in their order).
 ENUM_CHOICES: dict[str, tuple[str, ...]] = {
@@ -105,11 +110,4 @@ ENUM_CHOICES: dict[str, tuple[str, ...]] = {
     "RATE_SOURCE": ("GYRO", "OBSERVER"),
     "MAG_POINTING_LAW": ("SEED_PD", "FIELD_STEERING"),
     "MAG_RESIDUAL_MODE": ("OFF", "PARAMETER", "ESTIMATE"),
-}
-
-#: Every parameter default by its flight name.
-DEFAULTS: dict[str, float | int | str] = {
-    name: value for name, value in dict(globals()).items()
-    if name.isupper() and not name.startswith("_")
-    and name not in ("RATE_GROUP_PERIOD_S", "INTEGRAL_MAX_TORQUE", "BORESIGHT_B", "BDOT_PROVIDER_GAIN", "ENUM_CHOICES")
 }

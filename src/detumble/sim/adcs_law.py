@@ -448,7 +448,7 @@ class AdcsLaw:
             self._provider_prev = (b, stamp)
             return None
         size = math.sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2])
-        if size < 1e-6 or stamp == prev[1]:
+        if size < attitude_defaults.BDOT_MIN_FIELD_GAUSS or stamp == prev[1]:
             return None
         if stamp < prev[1]:  # the clock went back: start again from this reading
             self._provider_prev = (b, stamp)
