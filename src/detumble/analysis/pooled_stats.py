@@ -37,8 +37,9 @@ from dataclasses import dataclass
 from typing import Any, Iterable, Mapping, Sequence
 
 __all__ = ["BINS_PER_DECADE", "LOW_DEG", "HIGH_DEG", "EDGES_DEG", "N_BINS", "POINTING_THRESHOLDS_DEG",
-           "SPIN_THRESHOLDS_DEG", "error_statistics", "RunTimes", "PooledPercentile", "Share", "bin_index",
-           "bin_bounds", "threshold_key", "pooling_fields", "dense_histogram", "run_times", "pooled_window_s",
+           "SPIN_THRESHOLDS_DEG", "error_statistics", "percentile", "sorted_percentile", "RunTimes",
+           "PooledPercentile", "Share", "bin_index", "bin_bounds", "threshold_key", "pooling_fields",
+           "dense_histogram", "run_times", "pooled_window_s",
            "pooled_fraction_above", "pooled_percentile", "wilson_lower", "per_run_share", "column_names",
            "runs_from_columns", "pooled_lines", "target_lines"]
 
@@ -287,6 +288,20 @@ def target_lines(runs: Sequence[RunTimes], targets: Sequence[tuple[float, float]
     return lines
 
 
+def sorted_percentile(s: Sequence[float], p: float) -> float:
+    """The ``p`` quantile (0…1) of the sorted samples ``s`` by linear interpolation between order statistics
+    (numpy's default method)."""
+    k = (len(s) - 1) * p
+    lo = math.floor(k)
+    hi = min(lo + 1, len(s) - 1)
+    return s[lo] + (s[hi] - s[lo]) * (k - lo)
+
+
+def percentile(values: Iterable[float], p: float) -> float:
+    """The ``p`` quantile (0…1) of ``values`` by linear interpolation (:func:`sorted_percentile`)."""
+    return sorted_percentile(sorted(values), p)
+
+
 def error_statistics(values: list[float], skip_fraction: float = 0.1, *, sample_interval_s: float | None = None,
                      thresholds_deg: tuple[float, ...] = ()) -> dict | None:
     """``{"median", "p95", "max", "samples"}`` of ``values`` (deg) after dropping their first ``skip_fraction``.
@@ -300,14 +315,7 @@ def error_statistics(values: list[float], skip_fraction: float = 0.1, *, sample_
     if not kept:
         return None
     s = sorted(kept)
-
-    def pct(p):
-        k = (len(s) - 1) * p
-        lo = math.floor(k)
-        hi = min(lo + 1, len(s) - 1)
-        return s[lo] + (s[hi] - s[lo]) * (k - lo)
-
-    stats = {"median": pct(0.5), "p95": pct(0.95), "max": s[-1], "samples": len(s)}
+    stats = {"median": sorted_percentile(s, 0.5), "p95": sorted_percentile(s, 0.95), "max": s[-1], "samples": len(s)}
     if sample_interval_s is not None:
         stats.update(pooling_fields(kept, sample_interval_s, thresholds_deg))
     return stats

@@ -30,7 +30,7 @@ import pathlib
 from fprime_lite.tools.campaign import Metric, MetricUnavailable, RunOutput
 
 from detumble.analysis.pooled_stats import (N_BINS, POINTING_THRESHOLDS_DEG, SPIN_THRESHOLDS_DEG, dense_histogram,
-                                            pooling_fields, threshold_key)
+                                            percentile, pooling_fields, threshold_key)
 
 __all__ = ["METRICS", "POOLING_METRICS", "STEADY_AFTER_S", "percentile", "steady_errors"]
 
@@ -79,15 +79,6 @@ def steady_errors(output: RunOutput) -> list[float]:
     if not errors:
         raise MetricUnavailable(f"no POINTING samples {STEADY_AFTER_S:g} s after the last target change")
     return errors
-
-
-def percentile(values: list[float], p: float) -> float:
-    """The ``p`` quantile (0…1) of ``values`` by linear interpolation."""
-    s = sorted(values)
-    k = (len(s) - 1) * p
-    lo = math.floor(k)
-    hi = min(lo + 1, len(s) - 1)
-    return s[lo] + (s[hi] - s[lo]) * (k - lo)
 
 
 def _wheel_fraction(output: RunOutput, _probe) -> float:
@@ -142,25 +133,34 @@ def _pooling_metrics(prefix: str, thresholds: tuple[float, ...], what: str, bloc
     )
 
 
-_steady_cache: dict = {}
+_steady_cache: dict = {}  # the last run's: "key", "errors" and its pooling fields by sample interval
+
+
+def _steady(output: RunOutput) -> dict:
+    """:func:`steady_errors` of ``output``, read from attitude.csv once per run for all the metrics that use
+    it (the key holds attitude.csv's path, size and mtime and the slews)."""
+    path = _out(output) / "attitude.csv"
+    st = path.stat() if path.is_file() else None
+    key = (str(path.resolve()), st.st_size if st else None, st.st_mtime_ns if st else None,
+           repr(output.summary.get("slews")))
+    if _steady_cache.get("key") != key:
+        errors = steady_errors(output)
+        _steady_cache.clear()
+        _steady_cache.update(key=key, errors=errors, pooled={})
+    return _steady_cache
 
 
 def _steady_block(output: RunOutput, _prefix: str) -> dict:
     """The pooling fields of :func:`steady_errors` (attitude.csv), each sample standing for the report's sample
-    interval; computed once per run (the key holds attitude.csv's path, size and mtime and the slews)."""
+    interval; computed once per run."""
     stats = output.summary.get("pointing_error_deg")
     if not isinstance(stats, dict) or "sample_interval_s" not in stats:
         raise MetricUnavailable("summary.json pointing_error_deg has no sample_interval_s (no POINTING, or "
                                 "written before the pooling fields existed)")
-    path = _out(output) / "attitude.csv"
-    st = path.stat() if path.is_file() else None
-    key = (str(path.resolve()), st.st_size if st else None, st.st_mtime_ns if st else None,
-           repr(output.summary.get("slews")), stats["sample_interval_s"])
-    if key not in _steady_cache:
-        _steady_cache.clear()
-        _steady_cache[key] = pooling_fields(steady_errors(output), float(stats["sample_interval_s"]),
-                                            POINTING_THRESHOLDS_DEG)
-    return _steady_cache[key]
+    steady, interval = _steady(output), float(stats["sample_interval_s"])
+    if interval not in steady["pooled"]:
+        steady["pooled"][interval] = pooling_fields(steady["errors"], interval, POINTING_THRESHOLDS_DEG)
+    return steady["pooled"][interval]
 
 
 POOLING_METRICS = (_pooling_metrics("pointing_error_deg", POINTING_THRESHOLDS_DEG, "POINTING error")
@@ -172,9 +172,9 @@ METRICS = (
     Metric("slew_settle_s", "s", "first target change while POINTING until the true error stays below 0.1 deg",
            _slew_settle),
     Metric("pointing_steady_median_deg", "deg", f"median true pointing error from {STEADY_AFTER_S:g} s after the "
-           "last target change", lambda output, _probe: percentile(steady_errors(output), 0.5)),
+           "last target change", lambda output, _probe: percentile(_steady(output)["errors"], 0.5)),
     Metric("pointing_steady_p95_deg", "deg", f"95th percentile of the true pointing error from {STEADY_AFTER_S:g} s "
-           "after the last target change", lambda output, _probe: percentile(steady_errors(output), 0.95)),
+           "after the last target change", lambda output, _probe: percentile(_steady(output)["errors"], 0.95)),
     Metric("wheel_momentum_max_fraction", "1", "largest |h_i|/h_max of any wheel over the run", _wheel_fraction),
     Metric("wheel_limit_events", "1", "wheel torque/momentum limit events in the run's event log", _limit_events),
     *POOLING_METRICS,
