@@ -291,6 +291,25 @@ def write_outputs(result: RunResult, out_dir: str) -> None:
     write_atomic(os.path.join(out_dir, "rate.csv"), "\n".join(lines) + "\n")
 
 
+class OutputFolderError(Exception):
+    """The ``--out`` folder cannot take a run's outputs (the message says why and what to do)."""
+
+
+def _output_folder(out_dir: str) -> str | None:
+    """Make sure ``out_dir`` is a folder the run can write in; returns it when this call created
+    it (None when it was already there). Raises :class:`OutputFolderError` otherwise."""
+    if os.path.exists(out_dir) and not os.path.isdir(out_dir):
+        raise OutputFolderError("is a file, not a folder — give a new or empty folder")
+    existed = os.path.isdir(out_dir)
+    try:
+        os.makedirs(out_dir, exist_ok=True)
+    except OSError as exc:
+        raise OutputFolderError(f"cannot create the folder ({exc.strerror}) — choose a folder you can write") from None
+    if not os.access(out_dir, os.W_OK | os.X_OK):
+        raise OutputFolderError("cannot write in this folder (permission denied) — choose a folder you can write")
+    return None if existed else out_dir
+
+
 def _cell(v) -> str:
     return v if isinstance(v, str) else f"{v:.12g}"
 
@@ -334,13 +353,20 @@ def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim",
     if args.gain is not None and not (math.isfinite(args.gain) and args.gain > 0):
         print(f"error: --gain must be positive, got {args.gain}", file=sys.stderr)
         return 2
+    created = None
     try:
         sc = load_scenario(name, seed=args.seed, settings=args.set)
+        created = _output_folder(args.out)  # before flying: a long run must not end unable to write
         result = run(sc, law=args.law, gain=args.gain, duration_s=args.duration, implementation=args.plant)
-        if clean_out is not None and os.path.isdir(args.out):
+        if clean_out is not None:
             clean_out(args.out)
         write_outputs(result, args.out)
+    except OutputFolderError as exc:
+        print(f"error: --out {args.out}: {exc}", file=sys.stderr)
+        return 2
     except (ScenarioError, LawError, plant_kernel.KernelUnavailableError) as exc:
+        if created is not None and not os.listdir(created):
+            os.rmdir(created)  # the folder this call made, still empty: leave nothing behind
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except (ImportError, OSError) as exc:

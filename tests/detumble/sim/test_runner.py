@@ -62,3 +62,25 @@ def test_set_overrides_a_scenario_value_and_names_a_bad_key(tmp_path, capsys):
     assert abs(json.loads((out / "summary.json").read_text())["initial_rate_deg_s"] - 7.0) < 1e-9
     assert main(["default", "--set", "initial.rat=1", "--out", str(tmp_path / "x")]) == 2
     assert "has no key 'rat' at initial" in capsys.readouterr().err
+
+
+def test_an_output_folder_that_cannot_be_written_is_refused_before_flying(tmp_path, capsys, monkeypatch):
+    import detumble.sim.runner as runner
+
+    flown = []
+    monkeypatch.setattr(runner, "run", lambda *a, **k: flown.append(a))
+    a_file = tmp_path / "a_file"
+    a_file.write_text("keep me\n")
+    assert main(["case_a", "--out", str(a_file), "--duration", "1"]) == 2
+    assert f"error: --out {a_file}: is a file, not a folder" in capsys.readouterr().err
+    assert main(["case_a", "--out", str(a_file / "sub"), "--duration", "1"]) == 2
+    err = capsys.readouterr().err
+    assert f"error: --out {a_file / 'sub'}: cannot create the folder" in err and "Traceback" not in err
+    assert a_file.read_text() == "keep me\n" and flown == []
+
+
+def test_a_run_refused_after_its_folder_was_made_leaves_no_empty_folder(tmp_path, capsys):
+    out = tmp_path / "new"
+    assert main(["case_a", "--law", "wheels_pd", "--out", str(out), "--duration", "1"]) == 2
+    assert "error: wheels_pd needs three reaction wheels" in capsys.readouterr().err  # case_a has none
+    assert not out.exists()
