@@ -122,12 +122,18 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
             raise CampaignError(["--resume needs --out: the folder of the campaign to continue"])
         out = default_out_dir(campaign)
     out = pathlib.Path(out)
+    if out.exists() and not out.is_dir():
+        raise CampaignError([f"--out {out}: is a file, not a folder — give a new or empty folder"])
     if (out / "rows.jsonl").exists() and not resume:
         raise CampaignError([f"--out {out}: holds results already — add --resume to continue that campaign, "
                              f"or choose another folder"])
     tasks = plan_runs(campaign, out / "runs")
     preflight(campaign, tasks)
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise CampaignError([f"--out {out}: cannot create the folder ({exc.strerror}) — choose a folder you can "
+                             f"write"]) from None
     with campaign_folder_lock(out):
         wall, ran = _run_locked(campaign, tasks, out, workers, scheduler, retry_failed, progress, console)
     from fprime_lite.tools.campaign.results import read_results

@@ -105,6 +105,24 @@ def test_existing_results_need_resume(two_worker_result):
     assert len(df) == 4  # nothing left to run: the same rows
 
 
+def test_an_out_that_is_a_file_or_cannot_be_made_is_refused_before_any_run(two_worker_result, tmp_path, monkeypatch):
+    """CAMP-105: ``--out`` naming a file, or a folder that cannot be created, is a campaign problem that says
+    so before the pre-flight check or any run flies; the file is left as it was."""
+    import fprime_lite.tools.campaign.engine as engine
+
+    path, _, _ = two_worker_result
+    checked = []
+    monkeypatch.setattr(engine, "preflight", lambda *a: checked.append(a))
+    a_file = tmp_path / "a_file"
+    a_file.write_text("keep me\n")
+    with pytest.raises(CampaignError, match="is a file, not a folder"):
+        run_campaign(path, workers=1, out=a_file, plots=False, summary=False)
+    assert checked == []
+    with pytest.raises(CampaignError, match=r"cannot create the folder \(Not a directory\)"):
+        run_campaign(path, workers=1, out=a_file / "sub", plots=False, summary=False)
+    assert a_file.read_text() == "keep me\n"
+
+
 def test_one_process_writes_a_campaign_folder_at_a_time(two_worker_result, tmp_path):
     """CAMP-104: while a campaign process holds its folder, a second one (here a --resume) is refused before it
     reads or writes anything, with an error naming the holder; the rows are untouched; once the holder is gone
