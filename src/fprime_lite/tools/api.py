@@ -26,6 +26,7 @@ from typing import Sequence
 
 from fprime_lite.model.errors import FprimeLiteError
 from fprime_lite.osal.atomic import clean_temporary_files
+from fprime_lite.osal.folders import file_in_the_way, make_output_folder
 
 __all__ = ["run", "open_run", "load", "RunResult", "RunSetupError", "claim_run_folder", "plot_run_dir"]
 
@@ -82,15 +83,12 @@ def claim_run_folder(out=None, runs_dir="runs") -> pathlib.Path:
     folder under ``runs`` first removes the temporary files that killed runs left in ``runs``."""
     if out is not None:
         out = pathlib.Path(out)
-        if out.exists() and not out.is_dir():
-            raise RunSetupError(f"--out {out}: is a file, not a folder — give a new or empty folder")
-        if out.is_dir() and any(out.iterdir()):
-            raise RunSetupError(f"--out {out}: the folder exists and is not empty — choose another or remove it")
-        try:
-            out.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise RunSetupError(f"--out {out}: cannot create the folder ({exc.strerror}) — choose a folder "
-                                f"you can write") from None
+        problem = file_in_the_way(out)
+        if problem is None and out.is_dir() and any(out.iterdir()):
+            problem = "the folder exists and is not empty — choose another or remove it"
+        problem = problem or make_output_folder(out)
+        if problem is not None:
+            raise RunSetupError(f"--out {out}: {problem}")
         return out
     stamp = _dt.datetime.now().strftime("%Y%m%d-%H%M%S.%f")[:-3]
     runs = pathlib.Path(runs_dir)

@@ -12,6 +12,7 @@ import pathlib
 import tempfile
 import time
 
+from fprime_lite.osal.folders import file_in_the_way, make_output_folder
 from fprime_lite.tools.campaign.errors import CampaignError, RunSetupError
 from fprime_lite.tools.campaign.folder_lock import campaign_folder_lock
 from fprime_lite.tools.campaign.kinds import RunRequest, resolve_kind
@@ -122,18 +123,17 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
             raise CampaignError(["--resume needs --out: the folder of the campaign to continue"])
         out = default_out_dir(campaign)
     out = pathlib.Path(out)
-    if out.exists() and not out.is_dir():
-        raise CampaignError([f"--out {out}: is a file, not a folder — give a new or empty folder"])
+    in_the_way = file_in_the_way(out)
+    if in_the_way is not None:
+        raise CampaignError([f"--out {out}: {in_the_way}"])
     if (out / "rows.jsonl").exists() and not resume:
         raise CampaignError([f"--out {out}: holds results already — add --resume to continue that campaign, "
                              f"or choose another folder"])
     tasks = plan_runs(campaign, out / "runs")
     preflight(campaign, tasks)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise CampaignError([f"--out {out}: cannot create the folder ({exc.strerror}) — choose a folder you can "
-                             f"write"]) from None
+    cannot_create = make_output_folder(out)
+    if cannot_create is not None:
+        raise CampaignError([f"--out {out}: {cannot_create}"])
     with campaign_folder_lock(out):
         wall, ran = _run_locked(campaign, tasks, out, workers, scheduler, retry_failed, progress, console)
     from fprime_lite.tools.campaign.results import read_results
