@@ -105,22 +105,32 @@ class SetupError(Exception):
     """A side that cannot be checked out or a case that does not fly."""
 
 
+#: What a flight reads of a checkout; a folder side is copied so that both sides fly from folders of the same
+#: length (a path in an event is cut at the string's declared size, so it must be cut at the same place).
+CHECKOUT_PARTS = ("src", "deployments", "campaigns", "examples")
+
+
 def _checkout(spec: str, scratch: pathlib.Path, label: str) -> pathlib.Path:
-    """The folder of the checkout ``spec`` names: the folder itself, or the git revision exported into
-    ``scratch/label``."""
+    """``scratch/label``, holding the checkout ``spec`` names: a folder's flight inputs copied, or the git
+    revision exported."""
+    target = scratch / label
+    shutil.rmtree(target, ignore_errors=True)
     folder = pathlib.Path(spec)
     if folder.is_dir():
         if not (folder / "src" / "fprime_lite").is_dir():
             raise SetupError(f"{spec}: a folder, but not a checkout of fprime-lite (no src/fprime_lite)")
-        return folder.resolve()
+        ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.so", ".venv", "runs")
+        for part in CHECKOUT_PARTS:
+            if (folder / part).is_dir():
+                shutil.copytree(folder / part, target / part, ignore=ignore)
+        return target
     found = subprocess.run(["git", "-C", str(REPO), "rev-parse", "--verify", "--quiet", f"{spec}^{{commit}}"],
                            capture_output=True, text=True, check=False)
     if found.returncode:
         raise SetupError(f"{spec}: neither a folder nor a git revision of {REPO}")
     commit = found.stdout.strip()
-    target = scratch / label
     target.mkdir(parents=True)
-    archive = subprocess.run(["git", "-C", str(REPO), "archive", "--format=tar", commit],
+    archive = subprocess.run(["git", "-C", str(REPO), "archive", "--format=tar", commit, "--", *CHECKOUT_PARTS],
                              capture_output=True, check=False)
     if archive.returncode:
         raise SetupError(f"{spec}: git archive failed: {archive.stderr.decode(errors='replace')}")
@@ -300,9 +310,8 @@ def main(argv: list[str] | None = None) -> int:
     scratch.mkdir(parents=True, exist_ok=True)
     try:
         try:
-            trees = {"base": _checkout(args.base, scratch, "base-tree"),
-                     "other": _checkout(args.other, scratch, "other-tree")}
-            outs = {side: scratch / f"{side}-out" for side in trees}
+            trees = {"base": _checkout(args.base, scratch, "base"), "other": _checkout(args.other, scratch, "othr")}
+            outs = {side: scratch / f"{side}-out" for side in trees}  # outputs beside, not inside, the trees
             for o in outs.values():
                 shutil.rmtree(o, ignore_errors=True)
             with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
