@@ -41,14 +41,21 @@ def _unknown_command_sequence(d):
     return ["--seq", str(d / "u.seq")]
 
 
+def _empty_sequence(d):
+    (d / "e.seq").write_text("; nothing here yet\n\n")
+    return ["--seq", str(d / "e.seq")]
+
+
 @pytest.mark.parametrize("make, expected", [
     (_truncated_params, "parameter file .*p.dat: not a valid PrmDb file: PARAMETER_VALUE_SIZE"),
     (_garbage_sequence, "sequence .*g.bin: "),
     (_unknown_command_sequence, "u.seq:1: 'Foo.bar.BAZ' is not a command"),
+    (_empty_sequence, "sequence .*e.seq: it holds no command .* write one command a line"),
 ])
 def test_broken_parameter_file_or_sequence_is_refused_before_flying(tmp_path, capsys, make, expected):
-    """FH-001: run refuses a truncated parameter file, a garbage sequence and a sequence naming an
-    unknown command with a one-line error and exit 2, before anything flies (no run folder)."""
+    """FH-001: run refuses a truncated parameter file, a garbage sequence, a sequence naming an
+    unknown command and one with no command at all (it was an IndexError in the sequencer's run handler
+    once flying) with a one-line error and exit 2, before anything flies (no run folder)."""
     import re
 
     args = make(tmp_path)
