@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import logging
+import math
 import os
 import pathlib
 import sys
@@ -269,8 +270,8 @@ def cmd_run(args) -> int:
     from fprime_lite.tools.stop_condition import StopConditionError, parse_stop_condition
 
     _checked_settings(args.set)
-    if args.duration is not None and not args.duration > 0:
-        raise UserError(f"--duration must be positive, got {args.duration}")
+    if args.duration is not None and not 0 < args.duration < math.inf:
+        raise UserError(f"--duration must be a positive, finite number of seconds, got {args.duration}")
     try:
         args.stop_when = [parse_stop_condition(text) for text in args.stop_when]
     except StopConditionError as exc:
