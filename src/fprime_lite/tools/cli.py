@@ -24,6 +24,7 @@ import logging
 import math
 import os
 import pathlib
+import signal
 import sys
 
 from fprime_lite.model.errors import FprimeLiteError
@@ -301,10 +302,14 @@ def cmd_run(args) -> int:
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
                                  plots=not args.no_plots, allow_warnings=args.allow_warnings,
-                                 stop_when=args.stop_when)
+                                 stop_when=args.stop_when, interruptible=True)
     else:
         summary = _run_realtime(loaded, out, args, address)
     print(f"outputs in {out}/")
+    if summary.get("stopped_by") == "interrupted" and not realtime:
+        print(f"fprime-lite run: interrupted by {summary['signal']} at t = {summary['sim_seconds']:.3f} s; the "
+              f"outputs up to then are in {out}/", file=sys.stderr)
+        return 128 + signal.Signals[summary["signal"]].value  # 130 for SIGINT, 143 for SIGTERM, as a shell says
     if not summary["ok"]:
         print(f"fprime-lite run: the flight reported problems: {'; '.join(summary['problems'])} "
               f"(--allow-warnings accepts them)", file=sys.stderr)
@@ -334,10 +339,8 @@ def _paced(clock):
 
 def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
     """Run paced to the wall clock, with the ground link when ``address`` is given; SIGINT and
-    SIGTERM end the run early and the outputs are still written."""
-    import signal
-    import threading
-
+    SIGTERM end the run early and the outputs are still written (the way a paced run is ended, by the
+    user or by fprime-gds: exit status 0 unless the flight reported problems)."""
     from fprime_lite.tools.runner import run_deployment
 
     link = None
@@ -348,21 +351,15 @@ def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
         print(f"ground link: {args.framing} framing, connecting to {link.host}:{link.port} "
               f"(instance {loaded.topology.deployment}.{link.name})", flush=True)
     scheduler = loaded.scheduler
-    previous = {}
-    if threading.current_thread() is threading.main_thread():
-        for sig in (signal.SIGINT, signal.SIGTERM):
-            previous[sig] = signal.signal(sig, lambda *_: scheduler.stop())
     try:
         if link is not None:
             link.start_socket_task()
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=False, plots=not args.no_plots,
-                                 allow_warnings=args.allow_warnings, stop_when=args.stop_when)
+                                 allow_warnings=args.allow_warnings, stop_when=args.stop_when, interruptible=True)
     finally:
         if link is not None:
             link.close()
-        for sig, handler in previous.items():
-            signal.signal(sig, handler)
     print(f"realtime: largest lag behind the wall clock {scheduler.max_lag_s * 1e3:.1f} ms")
     if link is not None:
         print(f"ground link: {link.connections} connection(s), {link.commands_forwarded} command(s) "
