@@ -44,6 +44,28 @@ def _topology_arg(p: argparse.ArgumentParser) -> None:
                    help="topology YAML file (default: ./topology.yaml)")
 
 
+def _parse(parser: argparse.ArgumentParser, argv) -> argparse.Namespace:
+    """``parser.parse_args(argv)``, with a did-you-mean for a misspelt option of the chosen verb
+    (``--duraton`` → ``--duration``)."""
+    import difflib
+
+    parsed, extras = parser.parse_known_args(argv)
+    if not extras:
+        return parsed
+    verbs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    chosen = verbs[0].choices.get(str(parsed.command)) if verbs else None
+    options = [o for a in (chosen or parser)._actions for o in a.option_strings]
+    hints = []
+    for token in extras:
+        name = token.split("=", 1)[0]
+        guess = difflib.get_close_matches(name, options, n=1) if name.startswith("--") else []
+        if guess:
+            hints.append(guess[0] if len(extras) == 1 else f"{guess[0]} for {name}")
+    hint = f" — did you mean {', '.join(hints)}?" if hints else ""
+    (chosen or parser).error(f"unrecognized arguments: {' '.join(extras)}{hint}")
+    raise AssertionError("argparse's error() exits")  # pragma: no cover
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="fprime-lite", description="F´ components in Python: run, check and "
                                      "inspect deployments; fly the simulated spacecraft.")
@@ -426,7 +448,7 @@ def main(argv: list[str] | None = None) -> int:
     elif argv and argv[0] not in BUILT_IN and not argv[0].startswith("-") and argv[0] in _application_verbs():
         return _application_verbs()[argv[0]].main(argv[1:])
     else:
-        args = build_parser().parse_args(argv)
+        args = _parse(build_parser(), argv)
     logging.basicConfig(level=logging.INFO if getattr(args, "verbose", False) else logging.ERROR,
                         format="%(levelname)s %(name)s: %(message)s")
     try:
