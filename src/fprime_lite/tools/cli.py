@@ -5,6 +5,7 @@
     fprime-lite check [TOPOLOGY]        validate a topology
     fprime-lite graph [TOPOLOGY]        print the topology as DOT or Mermaid
     fprime-lite params [TOPOLOGY] -o F  write a parameter file holding every parameter's default
+                                        (--list: print them with their ids, types and units)
     fprime-lite plot RUN_DIR            draw the plots of a finished run again
     fprime-lite new component|deployment NAME   write a skeleton that passes its own test
     fprime-lite bench                   measure speed and memory
@@ -122,9 +123,15 @@ def build_parser() -> argparse.ArgumentParser:
     graph.add_argument("--format", choices=("dot", "mermaid"), default="dot")
     graph.add_argument("--patterns", action="store_true", help="include pattern connections (command, event, …)")
 
-    params = sub.add_parser("params", help="write a parameter file with every parameter's default")
+    params = sub.add_parser("params", help="write a parameter file with every parameter's default; list them",
+                            description="Write F´'s PrmDb file holding every parameter's default (or the value "
+                            "--set gives it) with -o FILE, and/or print every parameter of the topology with its "
+                            "id, type, value and units with --list.")
     _topology_arg(params)
-    params.add_argument("-o", "--output", required=True, metavar="FILE")
+    params.add_argument("-o", "--output", metavar="FILE", help="the parameter file to write")
+    params.add_argument("--list", action="store_true",
+                        help="print a table of the parameters: name, id, type, value (the default or --set) "
+                             "and units")
     params.add_argument("--set", action="append", default=[], metavar="Module.inst.PARAM=VALUE",
                         help="write VALUE instead of the default, e.g. ReferenceDeployment.detumbleManager.GAIN=2.5 "
                              "(repeatable; enum values by name)")
@@ -217,7 +224,10 @@ def cmd_params(args) -> int:
     from fprime_lite.svc.prm_db import encode_param_file
     from fprime_lite.osal.atomic import atomic_write_bytes
 
-    _output_file(args.output, "-o")
+    if args.output is None and not args.list:
+        raise UserError("give -o FILE (write the parameter file), --list (print the parameters) or both")
+    if args.output is not None:
+        _output_file(args.output, "-o")
     topo = _load(args.topology).topology
     declared = {}
     for instance in topo.instances.values():
@@ -228,6 +238,10 @@ def cmd_params(args) -> int:
     for setting in args.set:
         name, value = _param_setting(setting, declared)
         values[name] = value
+    if args.list:
+        sys.stdout.write(_param_table(declared, values))
+    if args.output is None:
+        return 0
     records = sorted((name, declared[name][0], declared[name][1].type.serialize(value))
                      for name, value in values.items())  # by full name, as fprime-prm-write orders them
     atomic_write_bytes(args.output, encode_param_file([(pid, data) for _, pid, data in records]))
@@ -235,6 +249,25 @@ def cmd_params(args) -> int:
     print(f"wrote {args.output}: {len(records)} parameters ({ParamValid.DEFAULT.name} values of the "
           f"topology{changed})")
     return 0
+
+
+def _param_table(declared: dict, values: dict) -> str:
+    """``params --list``: one row a parameter, in id order — full name, id, F´ type, the value the file
+    holds (enum constants by name; ``—`` for a parameter without default, which the file leaves
+    out) and the declared units (``—`` when none)."""
+    import json
+
+    rows = [("parameter", "id", "type", "value", "units")]
+    for name, (pid, p) in sorted(declared.items(), key=lambda item: item[1][0]):
+        if name in values:
+            value = p.type.json_value(values[name])
+            text = value.rsplit(".", 1)[1] if p.type.kind == "enum" else json.dumps(value, ensure_ascii=False)
+        else:
+            text = "—"
+        rows.append((name, f"0x{pid:X}", p.type.name, text, p.units or "—"))
+    widths = [max(len(row[i]) for row in rows) for i in range(4)]
+    return "".join("  ".join(cell.ljust(w) for cell, w in zip(row[:4], widths, strict=True)) + f"  {row[4]}\n"
+                   for row in rows)
 
 
 def _param_setting(setting: str, declared: dict) -> tuple[str, object]:

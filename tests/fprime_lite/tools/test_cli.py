@@ -67,6 +67,29 @@ def test_params_set_writes_chosen_values_checked_against_their_types(tmp_path, c
     assert not (tmp_path / "q.dat").exists()
 
 
+def test_params_list_prints_every_parameter_with_its_units(tmp_path, capsys):
+    """UNITS-005: `params --list` prints one row a parameter (name, id, type, value, units) in id order,
+    --set values included, and writes no file unless -o is given; -o with --list writes the same
+    file as -o alone; neither is a usage error."""
+    assert main(["params", TOPOLOGY, "--list", "--set", "ReferenceDeployment.detumbleManager.GAIN=2.5"]) == 0
+    out = capsys.readouterr().out
+    rows = {line.split()[0]: line.split() for line in out.splitlines()[1:]}
+    assert out.splitlines()[0].split() == ["parameter", "id", "type", "value", "units"]
+    assert rows["ReferenceDeployment.detumbleManager.GAIN"] == ["ReferenceDeployment.detumbleManager.GAIN",
+                                                              "0x1005A027", "F64", "2.5", "A·m²·s/G"]
+    assert rows["ReferenceDeployment.detumbleManager.X_PLUS_RESISTANCE"][-1] == "Ω"
+    assert rows["ReferenceDeployment.detumbleManager.HYSTERESIS_AXIS"][-2:] == ["X_AXIS", "—"]
+    assert rows["ReferenceDeployment.modeManager.SafeModeEntryVoltage"][-1] == "V"
+    assert len(rows) == 48 and not list(tmp_path.iterdir())
+    listed, alone = tmp_path / "listed.dat", tmp_path / "alone.dat"
+    assert main(["params", TOPOLOGY, "--list", "-o", str(listed)]) == 0
+    assert main(["params", TOPOLOGY, "-o", str(alone)]) == 0
+    assert listed.read_bytes() == alone.read_bytes()
+    capsys.readouterr()
+    assert main(["params", TOPOLOGY]) == 2
+    assert "give -o FILE (write the parameter file), --list (print the parameters) or both" in capsys.readouterr().err
+
+
 def test_short_run_writes_every_output(tmp_path, capsys):
     out = tmp_path / "run"
     assert main(["run", TOPOLOGY, "--duration", "5", "--out", str(out), "--no-progress", "--seed", "3"]) == 0
