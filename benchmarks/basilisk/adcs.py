@@ -1,6 +1,6 @@
 """Basilisk's equivalent of the adcs_ref pointing case (issue #19), written with Basilisk's own modules.
 
-The manoeuvre, spacecraft and environment are :mod:`detumble.sitl.side_by_side`'s (scenario
+The manoeuvre, spacecraft and environment are :mod:`basilisk.side_by_side`'s (scenario
 ``adcs``, read through :func:`detumble.sim.scenario.load_scenario`, so both sides take the same
 numbers). Two Basilisk tasks:
 
@@ -28,9 +28,9 @@ with limits, magnetic dumping with the coil-weighted projection and its feed-for
 
 The control task is disabled until POINTING_AT_S and the second target is set at
 SECOND_TARGET_AT_S, between ``ExecuteSimulation`` calls. Truth (attitude, wheel speeds) is recorded
-every TRACE_INTERVAL_S. Run as ``python -m detumble.sitl.basilisk_adcs [--duration S] [--step S]
+every TRACE_INTERVAL_S. Run as ``python -m basilisk.adcs [--duration S] [--step S]
 [--control c|python]``; prints one JSON line: simulated and wall seconds of the run proper (set-up
-excluded) and :func:`detumble.sitl.side_by_side.plausibility`'s figures.
+excluded) and :func:`basilisk.side_by_side.plausibility`'s figures.
 """
 from __future__ import annotations
 
@@ -51,8 +51,8 @@ from detumble.control.magnetic import dump_torque, project_dipole_weighted, scal
 from detumble.control.pointing import ErrorIntegrator, pd_torque
 from detumble.control.wheel_allocation import WheelAllocator
 from detumble.sim.scenario import load_scenario
-from detumble.sitl import side_by_side as case
-from detumble.sitl.basilisk_parts import balanced_wheels, mrp, quat, rotating_earth, schedule, wheel_momenta
+from basilisk import side_by_side as case
+from basilisk.parts import balanced_wheels, mrp, quat, rotating_earth, schedule, wheel_momenta
 
 _ARCSEC = math.pi / 180.0 / 3600.0
 

@@ -1,11 +1,12 @@
-"""fprime-lite against Basilisk, side by side in one sitting (issue #19): the ``basilisk`` piece of
-``fprime-lite bench`` and ``benchmarks/bench_vs_basilisk.py``.
+"""fprime-lite against Basilisk, side by side in one sitting (issue #19): what
+``benchmarks/bench_vs_basilisk.py`` and the ``basilisk`` piece of ``fprime-lite bench``
+(:mod:`detumble.tools.bench_basilisk`, which finds this folder in a checkout) measure.
 
 Four kinds of run, each in a fresh child process, interleaved round by round so that every kind
 sees the same load on a shared machine:
 
 1. ``basilisk_20hz``: Basilisk, case A, dynamics and its Python B-dot at 20 Hz (0.05 s)
-   (:mod:`detumble.sitl.basilisk_case_a`);
+   (:mod:`basilisk.case_a`);
 2. ``fprime_lite_plant_20hz``: the plant-only runner, case A, kopt law, 20 Hz (what
    ``fprime-lite sim case_a --law kopt`` flies);
 3. ``basilisk_50hz``: Basilisk, case A at 50 Hz (0.02 s);
@@ -13,16 +14,16 @@ sees the same load on a shared machine:
    component, rate group, channel and event; ``fprime-lite run`` without its output files).
 
 The newer deployments have their own cases (:func:`measure_case`, ``--case`` of the benchmark
-script; definitions in :mod:`detumble.sitl.side_by_side`):
+script; definitions in :mod:`basilisk.side_by_side`):
 
 * ``adcs_ref``: the pointing case, ``basilisk_adcs_c_50hz`` (every law in Basilisk's C modules,
-  :mod:`detumble.sitl.basilisk_adcs`), ``basilisk_adcs_python_50hz`` (the project's laws in one
+  :mod:`basilisk.adcs`), ``basilisk_adcs_python_50hz`` (the project's laws in one
   Python module), ``fprime_lite_adcs_ref_50hz`` (the whole adcs_ref deployment flying the same
   sequence) and ``fprime_lite_adcs_plant_50hz`` (the same flight software without the framework: the
-  plant-only ``adcs`` law on :func:`~detumble.sitl.side_by_side.plant_only_settings`, the deployment's
+  plant-only ``adcs`` law on :func:`~basilisk.side_by_side.plant_only_settings`, the deployment's
   flight to the last bit: its ratio to Basilisk is context, the bound a framework cannot beat, and its
   ratio to the deployment is the deployment's tick over the plant-only tick on this case);
-* ``coursework``: WHEELS_PD, ``basilisk_coursework_100hz`` (:mod:`detumble.sitl.basilisk_coursework`)
+* ``coursework``: WHEELS_PD, ``basilisk_coursework_100hz`` (:mod:`basilisk.coursework`)
   and ``fprime_lite_coursework_100hz`` (the whole coursework deployment as shipped).
 
 Each child times only its run proper (set-up excluded) and reports the real-time factor. The
@@ -36,18 +37,18 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import json
+import os
 import pathlib
 import statistics
 import subprocess
 import sys
 
-from fprime_lite.tools.plugins import BenchPiece
-
 __all__ = ["measure", "measure_cases", "case_of", "plausibility_text", "CASES", "GOALS", "basilisk_installed",
-           "BASILISK_PIECE", "INSTALL_HINT"]
+           "piece_figures", "piece_rows", "INSTALL_HINT"]
 
 ORBIT_S = 5578.0  #: one case-A orbit (420 km), simulated seconds
-DEPLOYMENTS = pathlib.Path(__file__).resolve().parents[3] / "deployments"
+BENCHMARKS = pathlib.Path(__file__).resolve().parents[1]  #: benchmarks/, where the package ``basilisk`` is
+DEPLOYMENTS = BENCHMARKS.parent / "deployments"
 INSTALL_HINT = "pip install -e '.[bsk]'  (Basilisk from PyPI, package bsk)"
 
 _PLANT = """
@@ -83,7 +84,7 @@ _ADCS = """
 import json, os, tempfile, time
 from fprime_lite.deploy.deployment import Deployment
 from fprime_lite.tools.api import load
-from detumble.sitl import side_by_side as case
+from basilisk import side_by_side as case
 loaded = load({topology!r}, settings=list(case.SETTINGS))
 craft = loaded.resources["spacecraft"]
 trace = []
@@ -106,7 +107,7 @@ _ADCS_PLANT = """
 import json
 from detumble.sim.runner import run
 from detumble.sim.scenario import load_scenario
-from detumble.sitl import side_by_side as case
+from basilisk import side_by_side as case
 r = run(load_scenario(case.SCENARIO, settings=case.plant_only_settings()), law="adcs", duration_s={duration})
 s, cols = r.summary, r.adcs_header
 q, h = [cols.index(f"q{{i}}") for i in range(4)], [i for i, c in enumerate(cols) if c.endswith("_Nms")]
@@ -119,7 +120,7 @@ _COURSEWORK = """
 import json, time
 from fprime_lite.deploy.deployment import Deployment
 from fprime_lite.tools.api import load
-from detumble.sitl import side_by_side as case
+from basilisk import side_by_side as case
 loaded = load({topology!r})
 craft = loaded.resources["spacecraft"]
 trace = []
@@ -159,7 +160,7 @@ def _kinds(case: str, topology: str, duration_s: float) -> dict[str, list[str]]:
     py = sys.executable
     d = str(duration_s)
     if case == "proves_ref":
-        case_a = [py, "-m", "detumble.sitl.basilisk_case_a", "--duration", d]
+        case_a = [py, "-m", "basilisk.case_a", "--duration", d]
         return {
             "basilisk_20hz": case_a + ["--step", "0.05"],
             "fprime_lite_plant_20hz": [py, "-c", _PLANT.format(duration=duration_s)],
@@ -167,7 +168,7 @@ def _kinds(case: str, topology: str, duration_s: float) -> dict[str, list[str]]:
             "fprime_lite_deployment_50hz": [py, "-c", _DEPLOYMENT.format(topology=topology, duration=duration_s)],
         }
     if case == "adcs_ref":
-        adcs = [py, "-m", "detumble.sitl.basilisk_adcs", "--duration", d, "--step", "0.02"]
+        adcs = [py, "-m", "basilisk.adcs", "--duration", d, "--step", "0.02"]
         return {
             "basilisk_adcs_c_50hz": adcs + ["--control", "c"],
             "basilisk_adcs_python_50hz": adcs + ["--control", "python"],
@@ -176,7 +177,7 @@ def _kinds(case: str, topology: str, duration_s: float) -> dict[str, list[str]]:
         }
     if case == "coursework":
         return {
-            "basilisk_coursework_100hz": [py, "-m", "detumble.sitl.basilisk_coursework", "--duration", d],
+            "basilisk_coursework_100hz": [py, "-m", "basilisk.coursework", "--duration", d],
             "fprime_lite_coursework_100hz": [py, "-c", _COURSEWORK.format(topology=topology, duration=duration_s)],
         }
     raise ValueError(f"no side-by-side case {case!r}; choose one of {', '.join(CASES)}")
@@ -187,7 +188,9 @@ def basilisk_installed() -> bool:
 
 
 def _child(argv: list[str]) -> dict:
-    done = subprocess.run(argv, capture_output=True, text=True, check=False)
+    # the children import this package (``-m basilisk.case_a``, ``from basilisk import side_by_side``)
+    path = os.pathsep.join(p for p in (str(BENCHMARKS), os.environ.get("PYTHONPATH", "")) if p)
+    done = subprocess.run(argv, capture_output=True, text=True, check=False, env={**os.environ, "PYTHONPATH": path})
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(argv[:3])}…: failed\n{done.stderr[-2000:]}")
     return json.loads(done.stdout.strip().splitlines()[-1])
@@ -258,7 +261,8 @@ def case_of(topology) -> str:
     return "proves_ref"
 
 
-def _rows(d: dict) -> list[tuple[str, str, str]]:
+def piece_rows(d: dict) -> list[tuple[str, str, str]]:
+    """The ``fprime-lite bench`` table rows of :func:`piece_figures`' figures."""
     if not d.get("installed"):
         return [("Basilisk side by side", f"not measured: Basilisk is not installed — {INSTALL_HINT}", "")]
     b = d["best_real_time_factor"]
@@ -285,7 +289,9 @@ def _rows(d: dict) -> list[tuple[str, str, str]]:
     ]
 
 
-def _measure(options: argparse.Namespace) -> dict:
+def piece_figures(options: argparse.Namespace) -> dict:
+    """What the ``basilisk`` bench piece measures with ``fprime-lite bench``'s options: the case of
+    ``options.topology`` (:func:`case_of`), three rounds of ``options.duration`` (default one orbit)."""
     if not basilisk_installed():
         return {"installed": False, "how_to_install": INSTALL_HINT}
     duration = options.duration if options.duration is not None else ORBIT_S
@@ -297,6 +303,3 @@ def _measure(options: argparse.Namespace) -> dict:
         return measure_cases([case], duration, 3, {case: options.topology}, progress)[case]
     return measure(options.topology, duration, progress=progress)
 
-
-#: The bench piece: ``basilisk`` in ``bench.json``.
-BASILISK_PIECE = BenchPiece(name="basilisk", measure=_measure, rows=_rows)

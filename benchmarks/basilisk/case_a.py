@@ -9,8 +9,8 @@ orbit 420 km, i = 51.6°, RAAN 30°, argument of latitude 0; Basilisk's own dipo
 (0.36353657, 0.86429949, 0.34760259); rods of 0.2 A m²; m = −(k/|B|²)(B_now − B_prev)/Δt with
 k = 2n(1 + sin i) J_min, the whole vector scaled down so that max|m_i| ≤ 0.2.
 
-Run as ``python -m detumble.sitl.basilisk_case_a [--duration S] [--step S]`` by the ``basilisk``
-piece of ``fprime-lite bench`` (:mod:`detumble.sitl.bench_basilisk`; needs
+Run as ``python -m basilisk.case_a [--duration S] [--step S]`` by the ``basilisk``
+piece of ``fprime-lite bench`` (:mod:`basilisk.bench`; needs
 ``pip install -e '.[bsk]'``); prints one JSON line: simulated seconds, wall seconds of the run
 proper (set-up excluded), time below 1 °/s.
 """
@@ -25,7 +25,7 @@ from Basilisk.architecture import messaging, sysModel
 from Basilisk.simulation import MtbEffector, magneticFieldCenteredDipole, spacecraft
 from Basilisk.utilities import RigidBodyKinematics, SimulationBaseClass, macros, orbitalMotion, simIncludeGravBody
 
-from detumble.sitl.basilisk_parts import rotating_earth
+from basilisk.parts import rotating_earth
 
 MU_EARTH = 3.986004415e14          # m^3/s^2
 R_EARTH = 6378136.6                # m

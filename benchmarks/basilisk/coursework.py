@@ -20,9 +20,9 @@ the orbit frame. Here, in Basilisk (the scenario read through
 The field (constant in the orbit frame) and the rods are left out: WHEELS_PD commands no dipole, so
 they put no torque on the body (the deployment still evaluates the field: it reads the
 magnetometer every cycle). No gravity gradient (the scenario has none). Truth is recorded every
-TRACE_INTERVAL_S. Run as ``python -m detumble.sitl.basilisk_coursework [--duration S]``; prints
+TRACE_INTERVAL_S. Run as ``python -m basilisk.coursework [--duration S]``; prints
 one JSON line: simulated and wall seconds of the run proper and
-:func:`detumble.sitl.side_by_side.coursework_plausibility`'s figures.
+:func:`basilisk.side_by_side.coursework_plausibility`'s figures.
 """
 from __future__ import annotations
 
@@ -39,8 +39,8 @@ from detumble.control import coursework as cw
 from detumble.sim import frames
 from detumble.sim.plant import build_orbit
 from detumble.sim.scenario import load_scenario
-from detumble.sitl import side_by_side as case
-from detumble.sitl.basilisk_parts import balanced_wheels, mrp, quat, schedule, wheel_momenta
+from basilisk import side_by_side as case
+from basilisk.parts import balanced_wheels, mrp, quat, schedule, wheel_momenta
 
 
 

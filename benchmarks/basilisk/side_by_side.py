@@ -2,7 +2,7 @@
 definitions and their plausibility figures. One definition serves both sides, so that they fly the
 same manoeuvre.
 
-**adcs_ref pointing** (``deployments/adcs_ref``; Basilisk: :mod:`detumble.sitl.basilisk_adcs`):
+**adcs_ref pointing** (``deployments/adcs_ref``; Basilisk: :mod:`basilisk.adcs`):
 
 * spacecraft, orbit, field, wheels and sensors: scenario ``adcs`` (``deployments/adcs_ref``) with
   :data:`SETTINGS` (a 0.5 °/s start, as ``docs/studies/attitude_modes.md``'s "pointing on the wheels");
@@ -15,7 +15,7 @@ sides report: when each slew settles below :data:`SETTLED_DEG` for good, the fin
 the largest wheel momentum.
 
 **coursework wheels** (``deployments/coursework`` as shipped: its start-up sequence flies WHEELS_PD;
-Basilisk: :mod:`detumble.sitl.basilisk_coursework`): scenario ``surrey``, the report's eq. 26 on
+Basilisk: :mod:`basilisk.coursework`): scenario ``surrey``, the report's eq. 26 on
 the wheels from 214 °/s to the orbit frame. :func:`coursework_plausibility` reduces a trace of
 (time, ``q_BO``, ``ω_BN_B``, wheel momenta) to when the attitude to the orbit frame settles below
 :data:`COURSEWORK_SETTLED_DEG` for good, the final error and rate and the largest wheel momentum.
@@ -50,7 +50,7 @@ def sequence_text() -> str:
     q1 = " ".join(repr(c) for c in FIRST_TARGET)
     q2 = " ".join(repr(c) for c in SECOND_TARGET)
     wait = SECOND_TARGET_AT_S - POINTING_AT_S
-    return (f"; issue #19's pointing case (detumble.sitl.side_by_side)\n"
+    return (f"; issue #19's pointing case (basilisk.side_by_side)\n"
             f"R00:00:00 {_CONTROLLER}.SET_TARGET_QUATERNION {q1}\n"
             f"R00:00:{POINTING_AT_S:02.0f} {_CONTROLLER}.FORCE_MODE POINTING\n"
             f"R00:{int(wait // 60):02d}:{wait % 60:02.0f} {_CONTROLLER}.SET_TARGET_QUATERNION {q2}\n")

@@ -23,7 +23,10 @@ APPLICATION = {
     "analysis": ({"analysis"}, None),
     "sim": ({"sim", "control", "analysis"}, None),
     "components": ({"components", "control"}, "ground"),
-    "sitl": ({"sitl", "components", "control", "sim", "analysis"}, "tools"),
+    "drivers": ({"drivers", "components", "control", "sim", "analysis"}, "ground"),
+    "proves": ({"proves", "drivers", "components", "control", "sim", "analysis"}, "ground"),
+    "reports": ({"reports", "proves", "drivers", "components", "control", "sim", "analysis"}, "tools"),
+    "tools": ({"tools", "reports", "proves", "drivers", "components", "control", "sim", "analysis"}, "tools"),
 }
 
 

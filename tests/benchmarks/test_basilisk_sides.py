@@ -7,8 +7,10 @@ import pytest
 
 pytest.importorskip("Basilisk", reason="Basilisk is not installed (pip install -e '.[bsk]')")
 
-from detumble.sitl import basilisk_adcs, basilisk_coursework, bench_basilisk  # noqa: E402
-from detumble.sitl import side_by_side as case  # noqa: E402
+from basilisk import adcs as basilisk_adcs  # noqa: E402
+from basilisk import bench as bench_basilisk  # noqa: E402
+from basilisk import coursework as basilisk_coursework  # noqa: E402
+from basilisk import side_by_side as case  # noqa: E402
 
 
 @pytest.mark.parametrize("control", ["c", "python"])

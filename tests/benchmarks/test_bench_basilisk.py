@@ -7,26 +7,47 @@ import pathlib
 
 import pytest
 
-from detumble.sitl import bench_basilisk
+from basilisk import bench as bench_basilisk
+from detumble.tools import bench_basilisk as shim
 from fprime_lite.tools.plugins import bench_pieces
 
-REFERENCE = pathlib.Path(__file__).resolve().parents[3] / "deployments" / "proves_ref" / "topology.yaml"
+REFERENCE = pathlib.Path(__file__).resolve().parents[2] / "deployments" / "proves_ref" / "topology.yaml"
 
 
 def test_the_basilisk_piece_is_installed_as_a_bench_plug_in():
     """PLUG-004: fprime-lite bench finds the Basilisk comparison through its entry point."""
-    assert bench_pieces()["basilisk"] is bench_basilisk.BASILISK_PIECE
+    assert bench_pieces()["basilisk"] is shim.BASILISK_PIECE
 
 
 def test_without_basilisk_the_piece_measures_nothing_and_says_how_to_install(monkeypatch):
     """PERF-BSK-001: Basilisk missing -> no child is started; the table row gives the pip command."""
     monkeypatch.setattr(bench_basilisk, "basilisk_installed", lambda: False)
     monkeypatch.setattr(bench_basilisk, "_child", lambda argv: pytest.fail("no run without Basilisk"))
-    figures = bench_basilisk.BASILISK_PIECE.measure(argparse.Namespace(topology=str(REFERENCE), duration=None))
+    figures = shim.BASILISK_PIECE.measure(argparse.Namespace(topology=str(REFERENCE), duration=None))
     assert figures == {"installed": False, "how_to_install": bench_basilisk.INSTALL_HINT}
-    (row,) = bench_basilisk.BASILISK_PIECE.rows(figures)
+    (row,) = shim.BASILISK_PIECE.rows(figures)
     assert "pip install -e '.[bsk]'" in row[1]
 
+
+
+def test_outside_a_checkout_the_piece_says_where_the_comparison_is(monkeypatch, tmp_path):
+    """PERF-BSK-006: the comparison is not installed with the package: without a checkout's
+    benchmarks/basilisk/ beside src/ the piece runs nothing and its row names the script to run."""
+    monkeypatch.setattr(shim, "BENCHMARKS", tmp_path / "benchmarks")
+    monkeypatch.setattr(bench_basilisk, "_child", lambda argv: pytest.fail("nothing runs outside a checkout"))
+    figures = shim.BASILISK_PIECE.measure(argparse.Namespace(topology=str(REFERENCE), duration=None))
+    assert figures == {"installed": False, "how_to_run": shim.NOT_IN_A_CHECKOUT}
+    (row,) = shim.BASILISK_PIECE.rows(figures)
+    assert row[1].startswith("not measured:") and "python benchmarks/bench_vs_basilisk.py" in row[1]
+
+
+def test_the_script_without_basilisk_exits_2_with_the_pip_command(monkeypatch, capsys):
+    """PERF-BSK-007: python benchmarks/bench_vs_basilisk.py without Basilisk: exit 2, the pip command."""
+    import bench_vs_basilisk
+
+    monkeypatch.setattr(bench_vs_basilisk, "basilisk_installed", lambda: False)
+    assert bench_vs_basilisk.main([]) == 2
+    assert "pip install -e '.[bsk]'" in capsys.readouterr().err
 
 @pytest.mark.slow
 @pytest.mark.skipif(not bench_basilisk.basilisk_installed(),
@@ -42,7 +63,7 @@ def test_a_short_side_by_side_run_reports_every_kind_and_consistent_ratios():
     assert d["deployment_50hz_over_basilisk"] == pytest.approx(b["fprime_lite_deployment_50hz"] / b["basilisk_50hz"])
     # 20 s is far from detumbled: neither side reports |w| < 1 deg/s yet
     assert d["case_a_time_below_1_deg_s"] == {"basilisk": None, "fprime_lite": None}
-    assert len(bench_basilisk.BASILISK_PIECE.rows(d)) == 3
+    assert len(shim.BASILISK_PIECE.rows(d)) == 3
 
 
 def test_cases_are_interleaved_round_by_round_and_ratios_are_quotients(monkeypatch):
@@ -55,11 +76,11 @@ def test_cases_are_interleaved_round_by_round_and_ratios_are_quotients(monkeypat
 
     def fake_child(argv):
         text = " ".join(argv)
-        if "basilisk_adcs" in text:
+        if "basilisk.adcs" in text:
             kind = "basilisk_adcs_c_50hz" if argv[-1] == "c" else "basilisk_adcs_python_50hz"
         elif "plant_only_settings" in text:
             kind = "fprime_lite_adcs_plant_50hz"
-        elif "basilisk_coursework" in text:
+        elif "basilisk.coursework" in text:
             kind = "basilisk_coursework_100hz"
         else:
             kind = "fprime_lite_adcs_ref_50hz" if "adcs_ref" in text else "fprime_lite_coursework_100hz"
@@ -81,7 +102,7 @@ def test_cases_are_interleaved_round_by_round_and_ratios_are_quotients(monkeypat
     assert set(a["plausibility"]) == {"basilisk_adcs_c_50hz", "basilisk_adcs_python_50hz", "fprime_lite_adcs_ref_50hz",
                                       "fprime_lite_adcs_plant_50hz"}
     assert a["plausibility"]["fprime_lite_adcs_ref_50hz"] == {"slew1_settle_s": 1.0}
-    rows = bench_basilisk.BASILISK_PIECE.rows(a)  # four ratios, four plausibility lines
+    rows = shim.BASILISK_PIECE.rows(a)  # four ratios, four plausibility lines
     assert len(rows) == 8 and "0.10" in rows[0][1] and "slew1_settle_s 1" in rows[7][1]
     assert [r[2] for r in rows[:4]] == ["≥ 1.5", "≥ 1.5", "context", "≤ 1.5"]  # the laws alone are no goal
 

@@ -7,7 +7,7 @@ import math
 import pytest
 
 from detumble.control.quaternion import quat_from_axis_angle, quat_mul
-from detumble.sitl import side_by_side as case
+from basilisk import side_by_side as case
 from fprime_lite.wire.seqfile import parse_text
 
 

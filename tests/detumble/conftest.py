@@ -6,7 +6,7 @@ import pytest
 
 from detumble.sim.scenario import load_scenario
 from detumble.sim.sensors import GyroSpec, MagnetometerSpec
-from detumble.sitl import SimulatedSpacecraft, scenario_epoch_us
+from detumble.drivers.spacecraft import SimulatedSpacecraft, scenario_epoch_us
 from fprime_lite import SimulatedClock
 
 _DEFAULT = load_scenario("default")

@@ -53,8 +53,8 @@ from fprime_lite.model.types import U8
 from detumble.control.coil_layout import COIL_FACES, Face
 from detumble.sim.coils import FACE_NAMES, MAX_LEVEL, CoilSet
 from detumble.components.types import StartMagnetorquer, StopMagnetorquer, Success
-from detumble.sitl.ports import LoadSwitchStateChanged
-from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
+from detumble.drivers.ports import LoadSwitchStateChanged
+from detumble.drivers.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 #: Time after a face's switch closes before its DRV2605 can be initialised (flight: 1 s).
 LOAD_SWITCH_SETTLE_US = 1_000_000
@@ -62,7 +62,7 @@ LOAD_SWITCH_SETTLE_US = 1_000_000
 __all__ = ["MagnetorquerDriver", "SimDriverFault", "DRIVER_FACES", "driver_instance_name",
            "make_magnetorquer_drivers"]
 
-log = logging.getLogger("detumble.sitl")
+log = logging.getLogger("detumble.drivers")
 
 #: Faces with a coil in the reference 1U (X+ 0, X− 1, Y+ 2, Y− 3, Z− 5), as plain ints.
 DRIVER_FACES = tuple(int(face) for face in COIL_FACES)

@@ -7,7 +7,7 @@ from fprime_lite import PassiveComponent, sync_input
 
 from detumble.components.types import OrbitFrame, OrbitFrameGet, Result, Success
 from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.drivers.spacecraft import SimulatedSpacecraft
 
 __all__ = ["OrbitEphemeris"]
 

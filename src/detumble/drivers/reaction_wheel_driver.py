@@ -40,11 +40,11 @@ from fprime_lite import (F64, U8, Channel, CmdResponse, Event, FwEnum, PassiveCo
 from detumble.components.types import (Result, Success, WheelEnableSet, WheelMode, WheelSpeedSet, WheelState,
                                        WheelStateGet, WheelTorqueSet)
 from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.drivers.spacecraft import SimulatedSpacecraft
 
 __all__ = ["ReactionWheelDriver", "SimWheelFault", "wheel_instance_name", "make_reaction_wheel_drivers"]
 
-log = logging.getLogger("detumble.sitl")
+log = logging.getLogger("detumble.drivers")
 _NAN = float("nan")
 
 

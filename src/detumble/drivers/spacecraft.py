@@ -45,8 +45,10 @@ from __future__ import annotations
 
 import datetime as _dt
 import math
-from typing import Callable, NamedTuple
+from typing import Callable, NamedTuple, Sequence
 
+from fprime_lite.deploy.resources import topology_resource
+from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.model.time import SimulatedClock, Time
 
 from detumble.sim.accelerometer import Accelerometer
@@ -59,7 +61,8 @@ from detumble.sim.scenario import Scenario, load_scenario
 from detumble.sim.sensors import GAUSS_PER_TESLA
 from detumble.sim.vec import rotate_n_to_b
 
-__all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us", "require_spacecraft"]
+__all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us", "require_spacecraft",
+           "make_spacecraft"]
 
 _UNIX_EPOCH = _dt.datetime(1970, 1, 1, tzinfo=_dt.timezone.utc)
 
@@ -618,3 +621,23 @@ class SimulatedSpacecraft:
     def __repr__(self) -> str:
         return (f"<SimulatedSpacecraft {self.scenario.name!r} t={self.plant.t:.6f} s "
                 f"|w|={self.plant.rate_deg_s:.3f} deg/s>")
+
+
+@topology_resource(role="simulation")
+def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler | None = None, *,
+                    seed: int | None = None, settings: Sequence[str] = ()) -> SimulatedSpacecraft:
+    """The simulated spacecraft of ``scenario`` stepping on ``scheduler``'s clock from now.
+
+    ``settings`` override single scenario values (``"sensors.magnetometer.noise_std_gauss=0"``)
+    when ``scenario`` is a name or file.
+    """
+    if scheduler is None:
+        raise ValueError("make_spacecraft needs the deployment's scheduler (args: {scheduler: $scheduler})")
+    if isinstance(scenario, str):
+        scenario = load_scenario(scenario, settings=settings)
+    elif settings:
+        raise ValueError("settings apply to a scenario given by name or file, not to a loaded Scenario")
+    clock = scheduler.clock
+    if clock.current_us == 0 and clock.epoch_us == 0:
+        clock.epoch_us = scenario_epoch_us(scenario)
+    return SimulatedSpacecraft.for_scheduler(scenario, scheduler, seed=seed)

@@ -29,11 +29,11 @@ from fprime_lite import (F64, U32, U8, Channel, CmdResponse, Event, FwEnum, Pass
 
 from detumble.components.types import AttitudeGet, AttitudeQuaternion, Result, Success
 from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.drivers.spacecraft import SimulatedSpacecraft
 
 __all__ = ["StarTracker", "SimStarTrackerFault"]
 
-log = logging.getLogger("detumble.sitl")
+log = logging.getLogger("detumble.drivers")
 _NAN = float("nan")
 
 

@@ -13,7 +13,7 @@ from fprime_lite import CmdResponse, Channel, Event, PassiveComponent, Severity,
 from fprime_lite.model.types import F64
 
 from detumble.components.types import DipoleMoment, DipoleMomentSet, Success
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.drivers.spacecraft import SimulatedSpacecraft
 
 __all__ = ["TorqueRodDriver"]
 

@@ -35,16 +35,16 @@ from fprime_lite.model.types import U8
 from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet, MagneticField, MagneticFieldGet,
                                        Result, SamplingPeriodGet, Success, TimeIntervalValue)
 from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
-from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
+from detumble.drivers.spacecraft import SimulatedSpacecraft, require_spacecraft
 
-# the gyro types are shared with the attitude controller, which may not import sitl
+# the gyro types are shared with the attitude controller, which may not import proves
 from detumble.components.attitude_types import AngularVelocity, AngularVelocityGet
 
 __all__ = ["ImuManager", "AxisOrientation", "Acceleration", "AngularVelocity", "AccelerationGet", "AngularVelocityGet",
            "Lis2mdlSamplingFrequency", "Lsm6dsoSamplingFrequency", "SimImuSensor", "SimReadFault",
            "LIS2MDL_HZ", "LSM6DSO_HZ"]
 
-log = logging.getLogger("detumble.sitl")
+log = logging.getLogger("detumble.proves")
 
 _NAN = float("nan")
 _INF = float("inf")
@@ -153,7 +153,7 @@ def _rotated(o, x: float, y: float, z: float) -> tuple[float, float, float]:
 
 class ImuManager(PassiveComponent):
     """Simulated IMU manager (LIS2MDL magnetometer + LSM6DSO gyro/accelerometer) on a
-    :class:`~detumble.sitl.spacecraft.SimulatedSpacecraft`.
+    :class:`~detumble.drivers.spacecraft.SimulatedSpacecraft`.
 
     Args:
         name: instance name (the reference deployment's is ``imuManager``).

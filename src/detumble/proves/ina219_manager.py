@@ -16,8 +16,8 @@ from __future__ import annotations
 
 from fprime_lite import BOOL, F64, Channel, Event, PassiveComponent, Severity, sync_command, sync_input
 
-from detumble.sitl.ports import CurrentGet, PowerGet, VoltageGet
-from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
+from detumble.drivers.ports import CurrentGet, PowerGet, VoltageGet
+from detumble.drivers.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["Ina219Manager", "VOLTAGE_LSB_V", "CURRENT_LSB_A"]
 

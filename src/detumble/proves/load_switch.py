@@ -23,8 +23,8 @@ from fprime_lite import Channel, Event, OutputPort, PassiveComponent, Severity, 
 from fprime_lite.model.fw_types import On
 
 from detumble.sim.power import SWITCH_NAMES
-from detumble.sitl.ports import LoadSwitchStateChanged, Signal
-from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
+from detumble.drivers.ports import LoadSwitchStateChanged, Signal
+from detumble.drivers.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["LoadSwitch", "STATE_CHANGED_PORTS"]
 

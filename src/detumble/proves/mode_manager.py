@@ -41,7 +41,7 @@ from fprime_lite.model.fw_types import TimeIntervalValue
 from fprime_lite.osal.atomic import atomic_write_bytes
 
 from detumble.components.types import GetSystemMode, SystemMode, SystemModeChanged
-from detumble.sitl.ports import Signal, VoltageGet
+from detumble.drivers.ports import Signal, VoltageGet
 
 __all__ = ["ModeManager", "SafeModeReason", "ForceSafeModeWithReason", "MODE_CHANGED_PORTS",
            "LOAD_SWITCH_PORTS", "STATE_FILE_NAME"]

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from fprime_lite import F32, Channel, Event, OutputPort, PassiveComponent, Sched, Severity, sync_command, sync_input
 
-from detumble.sitl.ports import CurrentGet, PowerGet, VoltageGet
+from detumble.drivers.ports import CurrentGet, PowerGet, VoltageGet
 
 __all__ = ["PowerMonitor"]
 

@@ -14,8 +14,8 @@ from __future__ import annotations
 
 from fprime_lite import Event, OutputPort, PassiveComponent, Severity, sync_command, sync_input
 
-from detumble.sitl.ports import Signal
-from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
+from detumble.drivers.ports import Signal
+from detumble.drivers.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["ResetManager"]
 

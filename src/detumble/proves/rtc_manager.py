@@ -28,7 +28,7 @@ from fprime_lite.model.fw_ports import CmdSeqCancel, TimeGet
 from fprime_lite.model.time import Time
 from fprime_lite.deploy.scheduler import ScheduledCall
 
-from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
+from detumble.drivers.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["RtcManager", "TimeData", "AlarmTriggeredPort"]
 

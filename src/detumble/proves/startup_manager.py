@@ -28,7 +28,7 @@ from fprime_lite.model.fw_types import TimeIntervalValue
 from fprime_lite.model.time import Time
 from fprime_lite.osal.atomic import atomic_write_bytes
 
-from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
+from detumble.drivers.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["StartupManager"]
 

@@ -17,8 +17,8 @@ from __future__ import annotations
 from fprime_lite import U32, Channel, Event, OutputPort, PassiveComponent, Sched, Severity, sync_command, sync_input
 from fprime_lite.model.fw_types import On
 
-from detumble.sitl.ports import Signal
-from detumble.sitl.spacecraft import SimulatedSpacecraft, require_spacecraft
+from detumble.drivers.ports import Signal
+from detumble.drivers.spacecraft import SimulatedSpacecraft, require_spacecraft
 
 __all__ = ["Watchdog"]
 

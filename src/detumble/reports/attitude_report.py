@@ -1,6 +1,6 @@
 """AttitudeRunReport: the attitude controller's figures of one run (a topology resource).
 
-It sits beside :class:`~detumble.sitl.run_support.DetumbleRunReport` (which owns the truth trace
+It sits beside :class:`~detumble.reports.detumble_report.DetumbleRunReport` (which owns the truth trace
 and ``truth.csv``): this report samples the truth on a scheduler time listener of its own, follows
 the downlinked ``ControlModeChanged`` events, and adds to ``summary.json``:
 
@@ -42,7 +42,7 @@ from fprime_lite.deploy.resources import topology_resource
 from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, SPIN_THRESHOLDS_DEG, error_statistics
 from detumble.components.attitude_types import ControlMode
 from detumble.control.quaternion import quat_angle, quat_error
-from detumble.sitl.spacecraft import SimulatedSpacecraft
+from detumble.drivers.spacecraft import SimulatedSpacecraft
 
 __all__ = ["AttitudeRunReport", "error_statistics", "settle_time"]
 
@@ -248,7 +248,7 @@ class AttitudeRunReport:
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
 
-        from detumble.sitl.plots import _save
+        from detumble.reports.plots import _save
 
         stride = max(1, len(self.rows) // 6000)
         rows = self.rows[::stride]

@@ -19,7 +19,7 @@ from fprime_lite.deploy.resources import topology_resource
 
 from detumble.sim.settling_metrics import SettlingMetrics
 from detumble.sim.truth import adcs_header, adcs_row
-from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthSample
+from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthSample
 
 __all__ = ["CourseworkRunReport"]
 

@@ -1,17 +1,14 @@
-"""What the reference deployment needs around its components: the spacecraft and the run report.
+"""The detumble deployments' run report, a topology *resource* (see ``docs/topology.md``).
 
-Both are topology *resources* (see ``docs/topology.md``):
-
-- :func:`make_spacecraft` builds the simulated spacecraft on the deployment's scheduler, and sets the
-  clock's epoch to the scenario's UTC epoch so that every event and channel carries real UTC time.
-- :class:`DetumbleRunReport` watches a run: it streams the truth trace to ``truth.csv``, follows the
-  downlinked DetumbleStarted / DetumbleCompleted events, reports progress, adds the detumble figures
-  to ``summary.json`` and draws the plots.
+:class:`DetumbleRunReport` watches a run: it streams the truth trace to ``truth.csv``, follows the
+downlinked DetumbleStarted / DetumbleCompleted events, reports progress, adds the detumble figures
+to ``summary.json`` and draws the plots. The spacecraft it watches is the ``simulation`` resource,
+:func:`detumble.drivers.spacecraft.make_spacecraft`.
 """
 
 from __future__ import annotations
 
-from typing import Any, Sequence, TextIO
+from typing import Any, TextIO
 
 import csv
 import math
@@ -19,39 +16,17 @@ import os
 import pathlib
 
 from fprime_lite.deploy.resources import topology_resource
-from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.osal.atomic import clean_temporary_files, open_temporary
 
 from detumble.control.coil_layout import COIL_FACES
-from detumble.sim.scenario import Scenario, load_scenario
 from detumble.sim.truth import adcs_header, adcs_row
-from detumble.sitl.power_budget import POWER_COLUMNS as _POWER_COLUMNS, PowerBudget, plot_power
-from detumble.sitl.spacecraft import SimulatedSpacecraft, TruthSample, scenario_epoch_us
+from detumble.reports.power_budget import POWER_COLUMNS as _POWER_COLUMNS, PowerBudget, plot_power
+from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthSample
 from detumble.components.types import DetumbleState
 
-__all__ = ["make_spacecraft", "DetumbleRunReport"]
+__all__ = ["DetumbleRunReport"]
 
 US_PER_S = 1_000_000
-
-
-@topology_resource(role="simulation")
-def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler | None = None, *,
-                    seed: int | None = None, settings: Sequence[str] = ()) -> SimulatedSpacecraft:
-    """The simulated spacecraft of ``scenario`` stepping on ``scheduler``'s clock from now.
-
-    ``settings`` override single scenario values (``"sensors.magnetometer.noise_std_gauss=0"``)
-    when ``scenario`` is a name or file.
-    """
-    if scheduler is None:
-        raise ValueError("make_spacecraft needs the deployment's scheduler (args: {scheduler: $scheduler})")
-    if isinstance(scenario, str):
-        scenario = load_scenario(scenario, settings=settings)
-    elif settings:
-        raise ValueError("settings apply to a scenario given by name or file, not to a loaded Scenario")
-    clock = scheduler.clock
-    if clock.current_us == 0 and clock.epoch_us == 0:
-        clock.epoch_us = scenario_epoch_us(scenario)
-    return SimulatedSpacecraft.for_scheduler(scenario, scheduler, seed=seed)
 
 
 @topology_resource(role="report")
@@ -188,7 +163,7 @@ class DetumbleRunReport:
             self._file = None
         written = [self._path] if self._path is not None else []
         if plots and self._path is not None:
-            from detumble.sitl.plots import plot_truth
+            from detumble.reports.plots import plot_truth
 
             thresholds: dict[str, float] = {name: getattr(self.manager, name).value for name in
                           ("DEADBAND_UPPER_THRESHOLD", "DEADBAND_LOWER_THRESHOLD")} if self.manager else {}

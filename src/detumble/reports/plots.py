@@ -282,7 +282,7 @@ def plot_run_dir(run_dir: pathlib.Path, out_dir: pathlib.Path | None = None) -> 
                  "detumble completed": summary.get("detumble_complete_s")}
     out = pathlib.Path(out_dir or run_dir)
     written = plot_truth(run_dir / "truth.csv", out, thresholds=_thresholds_from_channels(run_dir), marks=marks)
-    from detumble.sitl.power_budget import plot_power  # a run with an electrical system: its power.png
+    from detumble.reports.power_budget import plot_power  # a run with an electrical system: its power.png
 
     return written + plot_power(run_dir / "truth.csv", out, marks.get("detumble started"),
                                 marks.get("detumble completed"))

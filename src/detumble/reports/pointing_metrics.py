@@ -1,7 +1,7 @@
 """Campaign metrics of pointing runs on an attitude-control deployment (``deployments/adcs_ref``).
 
 Registered through the ``fprime_lite.campaign_metrics`` entry point ``detumble_pointing``. They read what
-:class:`~detumble.sitl.attitude_report.AttitudeRunReport` wrote: ``summary.json``'s ``slews`` and
+:class:`~detumble.reports.attitude_report.AttitudeRunReport` wrote: ``summary.json``'s ``slews`` and
 ``wheel_momentum_max_fraction``, ``attitude.csv`` (true pointing error every 0.5 s) and ``events.log``.
 
 * ``slew_settle_s``: seconds from the first target change made while POINTING until the true error stays

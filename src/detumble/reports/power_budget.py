@@ -84,7 +84,7 @@ def plot_power(truth_csv: pathlib.Path, out_dir: pathlib.Path, started_s=None, c
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from detumble.sitl.plots import _save, read_truth
+    from detumble.reports.plots import _save, read_truth
 
     data = read_truth(truth_csv)
     t = data["t_s"]

@@ -11,7 +11,7 @@ import pathlib
 import pytest
 
 from detumble.components.types import DetumbleState, MagnetorquerFace
-from detumble.sitl import SimDriverFault
+from detumble.drivers.magnetorquer_driver import SimDriverFault
 from fprime_lite.deploy.deployment import Deployment
 from fprime_lite.deploy.topology_loader import load_topology
 

@@ -2,8 +2,9 @@
 ports (stand-in for the DetumbleManager, which is tested on its own) detumbles the spacecraft."""
 
 from detumble.sim.coils import level_for_coil_dipole
-from detumble.sitl import (ImuManager, SimulatedSpacecraft, TruthRecorder, driver_instance_name,
-                                     make_magnetorquer_drivers, scenario_epoch_us)
+from detumble.drivers.magnetorquer_driver import driver_instance_name, make_magnetorquer_drivers
+from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthRecorder, scenario_epoch_us
+from detumble.proves.imu_manager import ImuManager
 from detumble.components.types import AngularUnit, Success
 from fprime_lite import SimulatedClock
 from fprime_lite.deploy.scheduler import Scheduler

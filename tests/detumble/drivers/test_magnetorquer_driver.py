@@ -5,8 +5,8 @@ import dataclasses
 import pytest
 
 from detumble.sim.scenario import SpacecraftConfig
-from detumble.sitl import (DRIVER_FACES, MagnetorquerDriver, SimDriverFault, driver_instance_name,
-                                     make_magnetorquer_drivers)
+from detumble.drivers.magnetorquer_driver import (DRIVER_FACES, MagnetorquerDriver, SimDriverFault,
+                                                  driver_instance_name, make_magnetorquer_drivers)
 from detumble.components.types import StartMagnetorquer, StopMagnetorquer, Success
 from fprime_lite import CmdResponse, OutputPort, PassiveComponent, Severity
 

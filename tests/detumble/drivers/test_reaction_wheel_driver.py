@@ -6,8 +6,8 @@ import pytest
 
 from detumble.components.types import Success, WheelMode, WheelTorqueSet
 from detumble.sim.scenario import load_scenario
-from detumble.sitl import (ReactionWheelDriver, SimWheelFault, make_reaction_wheel_drivers,
-                           wheel_instance_name)
+from detumble.drivers.reaction_wheel_driver import (ReactionWheelDriver, SimWheelFault, make_reaction_wheel_drivers,
+                                                    wheel_instance_name)
 from fprime_lite import CmdResponse, OutputPort, PassiveComponent, Severity
 
 SURREY = load_scenario("surrey", settings=["initial.rate.omega_rad_s=[0, 0, 0]"])

@@ -6,7 +6,7 @@ import pytest
 
 from detumble.sim.coils import X_PLUS
 from detumble.sim.plant import Plant
-from detumble.sitl import SimulatedSpacecraft, TruthRecorder, TruthSample, scenario_epoch_us
+from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthRecorder, TruthSample, scenario_epoch_us
 from fprime_lite import SimulatedClock, Time, TimeBase
 from fprime_lite.deploy.scheduler import Scheduler
 

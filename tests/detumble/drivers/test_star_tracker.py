@@ -8,7 +8,7 @@ from detumble.components.types import Success
 from detumble.sim.frames import attitude_error_rad
 from detumble.sim.scenario import load_scenario
 from detumble.sim.star_tracker import ARCSEC
-from detumble.sitl import SimStarTrackerFault, StarTracker
+from detumble.drivers.star_tracker import SimStarTrackerFault, StarTracker
 from fprime_lite import CmdResponse
 
 # case A slowed to 1 deg/s so that the tracker (2 deg/s limit) has solutions; 4 Hz updates

@@ -8,9 +8,9 @@ from fprime_lite.model.time import SimulatedClock
 
 from detumble.components.types import DipoleMoment, Success
 from detumble.sim.vec import quat_mul, quat_conj
-from detumble.sitl.orbit_ephemeris import OrbitEphemeris
-from detumble.sitl.spacecraft import SimulatedSpacecraft
-from detumble.sitl.torque_rod_driver import TorqueRodDriver
+from detumble.drivers.orbit_ephemeris import OrbitEphemeris
+from detumble.drivers.spacecraft import SimulatedSpacecraft
+from detumble.drivers.torque_rod_driver import TorqueRodDriver
 
 
 @pytest.fixture
@@ -69,7 +69,9 @@ def test_the_read_ports_return_real_result_named_tuples(fprime_harness, spacecra
     Python frame): each is a Result — its type, fields, equality and ``ok`` as Result(value,
     condition) gives them."""
     from detumble.components.types import Result
-    from detumble.sitl import ImuManager, ReactionWheelDriver, StarTracker
+    from detumble.drivers.reaction_wheel_driver import ReactionWheelDriver
+    from detumble.drivers.star_tracker import StarTracker
+    from detumble.proves.imu_manager import ImuManager
 
     imu = fprime_harness(ImuManager("imuManager", spacecraft))
     answers = [fprime_harness(OrbitEphemeris("orbitEphemeris", spacecraft)).invoke("orbitFrameGet"),

@@ -4,14 +4,14 @@ import datetime as dt
 
 import pytest
 
-from detumble.sitl.reset_manager import ResetManager
-from detumble.sitl.rtc_manager import RtcManager, TimeData
-from detumble.sitl.startup_manager import StartupManager
-from detumble.sitl.watchdog import Watchdog
+from detumble.proves.reset_manager import ResetManager
+from detumble.proves.rtc_manager import RtcManager, TimeData
+from detumble.proves.startup_manager import StartupManager
+from detumble.proves.watchdog import Watchdog
 from fprime_lite import CmdResponse, Severity
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.model.fw_types import TimeIntervalValue
-from detumble.sitl import SimulatedSpacecraft
+from detumble.drivers.spacecraft import SimulatedSpacecraft
 
 
 @pytest.fixture

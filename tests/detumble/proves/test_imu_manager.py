@@ -5,9 +5,9 @@ import math
 import pytest
 
 from detumble.sim.coils import X_PLUS
-from detumble.sitl.imu_manager import AxisOrientation, Lsm6dsoSamplingFrequency
-from detumble.sitl import (Acceleration, AngularVelocity, ImuManager, Lis2mdlSamplingFrequency,
-                                     SimImuSensor, SimReadFault)
+from detumble.proves.imu_manager import AxisOrientation, Lsm6dsoSamplingFrequency
+from detumble.proves.imu_manager import (Acceleration, AngularVelocity, ImuManager, Lis2mdlSamplingFrequency,
+                                         SimImuSensor, SimReadFault)
 from detumble.components.types import AngularUnit, MagneticField, Success, TimeIntervalValue
 from fprime_lite import CmdResponse, Severity
 

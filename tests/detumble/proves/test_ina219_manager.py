@@ -2,7 +2,7 @@
 
 import pytest
 
-from detumble.sitl.ina219_manager import CURRENT_LSB_A, VOLTAGE_LSB_V, Ina219Manager
+from detumble.proves.ina219_manager import CURRENT_LSB_A, VOLTAGE_LSB_V, Ina219Manager
 from fprime_lite import CmdResponse, Severity
 
 

@@ -2,8 +2,8 @@
 
 import pytest
 
-from detumble.sitl import SimulatedSpacecraft
-from detumble.sitl.load_switch import LoadSwitch
+from detumble.drivers.spacecraft import SimulatedSpacecraft
+from detumble.proves.load_switch import LoadSwitch
 from fprime_lite import CmdResponse, Severity
 from fprime_lite.model.fw_types import On, Success
 

@@ -4,8 +4,8 @@ command-loss transitions, load switches, persistence and unintended-reboot detec
 import pytest
 
 from detumble.components.types import SystemMode, SystemModeChanged
-from detumble.sitl import ModeManager, SafeModeReason
-from detumble.sitl.mode_manager import STATE_FILE_NAME
+from detumble.proves.mode_manager import ModeManager, SafeModeReason
+from detumble.proves.mode_manager import STATE_FILE_NAME
 from fprime_lite import CmdResponse, PassiveComponent, Severity, sync_input
 from fprime_lite.model.fw_types import TimeIntervalValue
 

@@ -2,7 +2,7 @@
 
 import pytest
 
-from detumble.sitl.power_monitor import PowerMonitor
+from detumble.proves.power_monitor import PowerMonitor
 from fprime_lite import CmdResponse, Time
 
 

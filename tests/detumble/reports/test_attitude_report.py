@@ -5,7 +5,7 @@ from types import SimpleNamespace
 import pytest
 
 from detumble.components.attitude_types import ControlMode
-from detumble.sitl.attitude_report import AttitudeRunReport, error_statistics, settle_time
+from detumble.reports.attitude_report import AttitudeRunReport, error_statistics, settle_time
 
 
 def test_error_statistics_drop_the_first_tenth():

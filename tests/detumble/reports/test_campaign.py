@@ -13,7 +13,7 @@ import pytest
 from detumble.sim.plant import Plant
 from detumble.sim.readback import read_setting
 from detumble.sim.scenario import load_scenario
-from detumble.sitl.campaign import METRICS, PLANT_RUN, CoilEnergyMeter
+from detumble.reports.campaign import METRICS, PLANT_RUN, CoilEnergyMeter
 from fprime_lite.tools.campaign import MetricUnavailable, RunOutput, RunRequest
 from fprime_lite.tools.campaign.kinds import metrics, run_kinds
 

@@ -2,7 +2,7 @@
 
 import pytest
 
-from detumble.sitl.pointing_metrics import METRICS, STEADY_AFTER_S
+from detumble.reports.pointing_metrics import METRICS, STEADY_AFTER_S
 from fprime_lite.tools.campaign import MetricUnavailable, RunOutput
 
 BY_NAME = {m.name: m for m in METRICS}

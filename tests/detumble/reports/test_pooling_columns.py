@@ -8,8 +8,8 @@ import pathlib
 import pytest
 
 from detumble.analysis import pooled_stats as ps
-from detumble.sitl.attitude_report import error_statistics
-from detumble.sitl.pointing_metrics import METRICS, POOLING_METRICS
+from detumble.reports.attitude_report import error_statistics
+from detumble.reports.pointing_metrics import METRICS, POOLING_METRICS
 from fprime_lite.tools.campaign import MetricUnavailable, RunOutput
 from fprime_lite.tools.campaign.kinds import Prepared, RunKind
 from fprime_lite.tools.campaign.results import rows_to_frame
@@ -61,7 +61,7 @@ def test_every_pooling_field_is_a_named_metric():
 def test_steady_hold_columns_pool_the_steady_samples(tmp_path):
     """A slew at 10 s: the steady hold starts 60 s later; its 100 samples (0.001 … 0.1°, 0.5 s each) give 50 s,
     25 s above 0.05° and none above 0.1°; samples before it and outside POINTING are left out."""
-    from detumble.sitl.pointing_metrics import STEADY_AFTER_S
+    from detumble.reports.pointing_metrics import STEADY_AFTER_S
 
     rows = [(t * 0.5, "POINTING", 5.0) for t in range(2 * int(10 + STEADY_AFTER_S))]
     rows += [(10 + STEADY_AFTER_S + i * 0.5, "POINTING", (i + 1) * 0.001) for i in range(100)]
@@ -217,7 +217,7 @@ def test_the_attitude_report_summary_carries_the_pooling_fields():
     from types import SimpleNamespace
 
     from detumble.components.attitude_types import ControlMode
-    from detumble.sitl.attitude_report import AttitudeRunReport
+    from detumble.reports.attitude_report import AttitudeRunReport
 
     rep = AttitudeRunReport(SimpleNamespace(plant=SimpleNamespace(wheel_count=0)), controller="c",
                             sample_interval_s=0.25)

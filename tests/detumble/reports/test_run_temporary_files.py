@@ -5,8 +5,9 @@ under names the framework's start-up clean-up recognises, and what a killed run 
 import os
 from types import SimpleNamespace
 
-from detumble.sitl.cli import _sim
-from detumble.sitl.run_support import DetumbleRunReport, make_spacecraft
+from detumble.tools.cli import _sim
+from detumble.drivers.spacecraft import make_spacecraft
+from detumble.reports.detumble_report import DetumbleRunReport
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.model.time import SimulatedClock
 from fprime_lite.osal.atomic import is_temporary_name

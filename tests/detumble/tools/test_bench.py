@@ -10,7 +10,7 @@ REFERENCE = pathlib.Path(__file__).resolve().parents[3] / "deployments" / "prove
 
 
 def test_deployment_measurement_interleaves_pieces_and_reports_consistent_figures():
-    from detumble.sitl.bench import measure_deployment
+    from detumble.tools.bench import measure_deployment
 
     d = measure_deployment(REFERENCE, duration_s=8.0, chunks=2)
     pieces = d["pieces_us_per_tick"]
@@ -30,7 +30,7 @@ def test_the_other_reference_deployments_are_measured_against_their_own_plant_co
     fastest rate group (coursework: 100 Hz) against the plant-only runner on its own scenario."""
     import argparse
 
-    from detumble.sitl.bench import DEPLOYMENT_PIECE
+    from detumble.tools.bench import DEPLOYMENT_PIECE
 
     d = DEPLOYMENT_PIECE.measure(argparse.Namespace(topology=str(REFERENCE), duration=2.0))
     others = d["other_deployments"]
@@ -54,6 +54,6 @@ def test_the_other_reference_deployments_are_measured_against_their_own_plant_co
 
 def test_the_piece_is_installed_as_a_bench_plug_in():
     """PLUG-003: fprime-lite bench finds the detumble piece through its entry point."""
-    from detumble.sitl.bench import DEPLOYMENT_PIECE
+    from detumble.tools.bench import DEPLOYMENT_PIECE
 
     assert bench_pieces()["deployment"] is DEPLOYMENT_PIECE
