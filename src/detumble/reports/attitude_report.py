@@ -43,6 +43,7 @@ from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, SPIN_THRESHO
 from detumble.components.attitude_types import ControlMode
 from detumble.control.quaternion import quat_angle, quat_error
 from detumble.drivers.spacecraft import SimulatedSpacecraft
+from detumble.reports.figures import save_figure
 
 __all__ = ["AttitudeRunReport", "error_statistics", "settle_time"]
 
@@ -248,8 +249,6 @@ class AttitudeRunReport:
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
 
-        from detumble.reports.plots import _save
-
         stride = max(1, len(self.rows) // 6000)
         rows = self.rows[::stride]
         t = [r[0] for r in rows]
@@ -264,7 +263,7 @@ class AttitudeRunReport:
         ax.set_title("Attitude control mode")
         ax.grid(alpha=0.3)
         fig.tight_layout()
-        written.append(_save(fig, out_dir / "attitude_mode.png"))
+        written.append(save_figure(fig, out_dir / "attitude_mode.png"))
         plt.close(fig)
 
         fig, ax = plt.subplots(figsize=(9, 4))
@@ -281,7 +280,7 @@ class AttitudeRunReport:
         ax.grid(alpha=0.3, which="both")
         ax.set_title("True pointing error and spin-axis error")
         fig.tight_layout()
-        written.append(_save(fig, out_dir / "pointing_error.png"))
+        written.append(save_figure(fig, out_dir / "pointing_error.png"))
         plt.close(fig)
 
         n = self.spacecraft.plant.wheel_count
@@ -297,7 +296,7 @@ class AttitudeRunReport:
             ax.legend(fontsize=8)
             ax.grid(alpha=0.3)
             fig.tight_layout()
-            written.append(_save(fig, out_dir / "wheel_momentum.png"))
+            written.append(save_figure(fig, out_dir / "wheel_momentum.png"))
             plt.close(fig)
 
         fig, ax = plt.subplots(figsize=(9, 4))
@@ -309,6 +308,6 @@ class AttitudeRunReport:
         ax.grid(alpha=0.3)
         ax.set_title("Commanded dipole (coils on 80 % of each control cycle)")
         fig.tight_layout()
-        written.append(_save(fig, out_dir / "dipole.png"))
+        written.append(save_figure(fig, out_dir / "dipole.png"))
         plt.close(fig)
         return written

@@ -26,17 +26,17 @@ from __future__ import annotations
 import csv
 import json
 import math
-import os
 import pathlib
 
 from fprime_lite.tools.plugins import RunPlotter
 
 from detumble.components.types import DetumbleState, DetumbleStrategy
 from detumble.control.coil_layout import COIL_FACES, FACE_LABELS
+from detumble.reports.figures import read_truth, save_figure
+from detumble.reports.power_budget import plot_power
 
-__all__ = ["plot_truth", "plot_run_dir", "read_truth", "RUN_PLOTTER"]
+__all__ = ["plot_truth", "plot_run_dir", "RUN_PLOTTER"]
 
-_MAX_PLOT_POINTS = 4000
 _HEAT_BINS = 400
 _SHARE_BINS = 60
 _LEVEL_COLUMNS = ("level_xp", "level_xm", "level_yp", "level_ym", "level_zm")
@@ -44,35 +44,6 @@ _THRESHOLDS = ("DEADBAND_UPPER_THRESHOLD", "DEADBAND_LOWER_THRESHOLD")
 _THRESHOLD_CHANNELS = {"DEADBAND_UPPER_THRESHOLD": "DeadbandUpperThresholdParam",
                        "DEADBAND_LOWER_THRESHOLD": "DeadbandLowerThresholdParam"}
 _LEGEND = {"loc": "upper left", "bbox_to_anchor": (1.01, 1.0), "borderaxespad": 0.0, "fontsize": 8}
-
-
-def read_truth(path: pathlib.Path, max_points: int | None = _MAX_PLOT_POINTS) -> dict[str, list]:
-    """Columns of ``truth.csv`` (numbers as floats, empty cells NaN, ``strategy`` as text),
-    decimated to at most ``max_points`` rows (memory stays flat; None keeps every row)."""
-    with open(path, encoding="utf-8") as f:
-        rows = sum(1 for _ in f) - 1
-    stride = 1 if max_points is None else max(1, math.ceil(rows / max_points))
-    columns: dict[str, list] = {}
-    with open(path, encoding="utf-8", newline="") as f:
-        reader = csv.reader(f)
-        header = next(reader)
-        for name in header:
-            columns[name] = []
-        for i, row in enumerate(reader):
-            if i % stride == 0 or i == rows - 1:
-                for name, value in zip(header, row, strict=True):
-                    columns[name].append(value)
-    for name in list(columns):
-        if name != "strategy":
-            columns[name] = [float(v) if v != "" else math.nan for v in columns[name]]
-    return columns
-
-
-def _save(fig, path: pathlib.Path) -> pathlib.Path:
-    tmp = path.with_name(f".{path.stem}.part.png")
-    fig.savefig(tmp, dpi=110, bbox_inches="tight")
-    os.replace(tmp, path)
-    return path
 
 
 def _mark(axes, marks: dict[str, float | None], scale: float, *, label: bool) -> None:
@@ -120,7 +91,7 @@ def plot_truth(truth_csv: pathlib.Path, out_dir: pathlib.Path, *, thresholds: di
             ax.set_xlim(tt[0], tt[-1])
         axes[-1].set_xlabel(xlabel)
         fig.suptitle(title)
-        written.append(_save(fig, out_dir / name))
+        written.append(save_figure(fig, out_dir / name))
         plt.close(fig)
 
     # rate.png
@@ -175,7 +146,7 @@ def plot_truth(truth_csv: pathlib.Path, out_dir: pathlib.Path, *, thresholds: di
         ax2.set_xlabel(xlabel)
         n = levels.shape[1] / bins
         fig.suptitle(f"Magnetorquer drive levels (truth samples; {n:.0f} sample(s) per bin)")
-        written.append(_save(fig, out_dir / "drive_levels.png"))
+        written.append(save_figure(fig, out_dir / "drive_levels.png"))
         plt.close(fig)
 
     # state.png
@@ -282,8 +253,6 @@ def plot_run_dir(run_dir: pathlib.Path, out_dir: pathlib.Path | None = None) -> 
                  "detumble completed": summary.get("detumble_complete_s")}
     out = pathlib.Path(out_dir or run_dir)
     written = plot_truth(run_dir / "truth.csv", out, thresholds=_thresholds_from_channels(run_dir), marks=marks)
-    from detumble.reports.power_budget import plot_power  # a run with an electrical system: its power.png
-
     return written + plot_power(run_dir / "truth.csv", out, marks.get("detumble started"),
                                 marks.get("detumble completed"))
 

@@ -12,6 +12,8 @@ import bisect
 import math
 import pathlib
 
+from detumble.reports.figures import read_truth, save_figure
+
 __all__ = ["PowerBudget", "plot_power", "POWER_COLUMNS"]
 
 #: Columns the run report appends to ``truth.csv`` (``nan`` without an electrical system).
@@ -84,8 +86,6 @@ def plot_power(truth_csv: pathlib.Path, out_dir: pathlib.Path, started_s=None, c
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from detumble.reports.plots import _save, read_truth
-
     data = read_truth(truth_csv)
     t = data["t_s"]
     if not t or "soc" not in data or all(math.isnan(v) for v in data["soc"]):
@@ -122,6 +122,6 @@ def plot_power(truth_csv: pathlib.Path, out_dir: pathlib.Path, started_s=None, c
     ax2.legend(loc="upper right", fontsize=8)
     fig.suptitle("Power budget")
     fig.tight_layout()
-    written = [_save(fig, out_dir / "power.png")]
+    written = [save_figure(fig, out_dir / "power.png")]
     plt.close(fig)
     return written

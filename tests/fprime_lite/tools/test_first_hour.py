@@ -169,7 +169,7 @@ def test_drive_level_plot_has_one_row_per_coil_and_legends_sit_outside(finished_
     from detumble.reports import plots
 
     figures = []
-    monkeypatch.setattr(plots, "_save", lambda fig, path: figures.append((path.name, fig)) or path)
+    monkeypatch.setattr(plots, "save_figure", lambda fig, path: figures.append((path.name, fig)) or path)
     monkeypatch.setattr(plt, "close", lambda fig=None: None)
     plots.plot_truth(finished_run / "truth.csv", tmp_path, thresholds={"DEADBAND_UPPER_THRESHOLD": 8.0},
                      marks={"detumble completed": 60.0})
