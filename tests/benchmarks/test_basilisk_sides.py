@@ -8,7 +8,7 @@ import pytest
 pytest.importorskip("Basilisk", reason="Basilisk is not installed (pip install -e '.[bsk]')")
 
 from basilisk import adcs as basilisk_adcs  # noqa: E402
-from basilisk import bench as bench_basilisk  # noqa: E402
+from basilisk import bench as comparison  # noqa: E402
 from basilisk import coursework as basilisk_coursework  # noqa: E402
 from basilisk import side_by_side as case  # noqa: E402
 
@@ -31,8 +31,8 @@ def test_coursework_basilisk_and_the_deployment_fly_the_same_wheel_law():
     law in a Python module against the whole coursework deployment: the same settle time (to the 1 s
     trace), wheel momentum peak within 1 %, final rate within 1e-3 °/s (the orbit rate, 0.0617 °/s)."""
     bsk = basilisk_coursework.run(60.0)
-    kinds = bench_basilisk._kinds("coursework", str(bench_basilisk.CASES["coursework"][0]), 60.0)
-    ours = bench_basilisk._child(kinds["fprime_lite_coursework_100hz"])
+    kinds = comparison._kinds("coursework", str(comparison.CASES["coursework"][0]), 60.0)
+    ours = comparison._child(kinds["fprime_lite_coursework_100hz"])
     assert bsk["settle_s"] is not None and ours["settle_s"] == pytest.approx(bsk["settle_s"], abs=1.0)
     assert ours["max_wheel_momentum_nms"] == pytest.approx(bsk["max_wheel_momentum_nms"], rel=0.01)
     assert ours["final_rate_deg_s"] == pytest.approx(bsk["final_rate_deg_s"], abs=1e-3)
@@ -47,8 +47,8 @@ def test_the_90_degree_slew_settles_alike_in_basilisk_and_the_adcs_deployment():
     estimates, coil duty and level rounding, which Basilisk's side has not)."""
     duration = case.SECOND_TARGET_AT_S + 40.0
     bsk = basilisk_adcs.run(duration, control="python")
-    kinds = bench_basilisk._kinds("adcs_ref", str(bench_basilisk.CASES["adcs_ref"][0]), duration)
-    ours = bench_basilisk._child(kinds["fprime_lite_adcs_ref_50hz"])
+    kinds = comparison._kinds("adcs_ref", str(comparison.CASES["adcs_ref"][0]), duration)
+    ours = comparison._child(kinds["fprime_lite_adcs_ref_50hz"])
     assert bsk["slew2_settle_s"] is not None and ours["slew2_settle_s"] is not None
     assert ours["slew2_settle_s"] == pytest.approx(bsk["slew2_settle_s"], abs=3.0)
     assert ours["max_wheel_momentum_nms"] == pytest.approx(bsk["max_wheel_momentum_nms"], rel=0.10)

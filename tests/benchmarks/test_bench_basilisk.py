@@ -7,7 +7,7 @@ import pathlib
 
 import pytest
 
-from basilisk import bench as bench_basilisk
+from basilisk import bench as comparison
 from detumble.tools import bench_basilisk as shim
 from fprime_lite.tools.plugins import bench_pieces
 
@@ -21,10 +21,10 @@ def test_the_basilisk_piece_is_installed_as_a_bench_plug_in():
 
 def test_without_basilisk_the_piece_measures_nothing_and_says_how_to_install(monkeypatch):
     """PERF-BSK-001: Basilisk missing -> no child is started; the table row gives the pip command."""
-    monkeypatch.setattr(bench_basilisk, "basilisk_installed", lambda: False)
-    monkeypatch.setattr(bench_basilisk, "_child", lambda argv: pytest.fail("no run without Basilisk"))
+    monkeypatch.setattr(comparison, "basilisk_installed", lambda: False)
+    monkeypatch.setattr(comparison, "_child", lambda argv: pytest.fail("no run without Basilisk"))
     figures = shim.BASILISK_PIECE.measure(argparse.Namespace(topology=str(REFERENCE), duration=None))
-    assert figures == {"installed": False, "how_to_install": bench_basilisk.INSTALL_HINT}
+    assert figures == {"installed": False, "how_to_install": comparison.INSTALL_HINT}
     (row,) = shim.BASILISK_PIECE.rows(figures)
     assert "pip install -e '.[bsk]'" in row[1]
 
@@ -34,7 +34,7 @@ def test_outside_a_checkout_the_piece_says_where_the_comparison_is(monkeypatch, 
     """PERF-BSK-006: the comparison is not installed with the package: without a checkout's
     benchmarks/basilisk/ beside src/ the piece runs nothing and its row names the script to run."""
     monkeypatch.setattr(shim, "BENCHMARKS", tmp_path / "benchmarks")
-    monkeypatch.setattr(bench_basilisk, "_child", lambda argv: pytest.fail("nothing runs outside a checkout"))
+    monkeypatch.setattr(comparison, "_child", lambda argv: pytest.fail("nothing runs outside a checkout"))
     figures = shim.BASILISK_PIECE.measure(argparse.Namespace(topology=str(REFERENCE), duration=None))
     assert figures == {"installed": False, "how_to_run": shim.NOT_IN_A_CHECKOUT}
     (row,) = shim.BASILISK_PIECE.rows(figures)
@@ -50,12 +50,12 @@ def test_the_script_without_basilisk_exits_2_with_the_pip_command(monkeypatch, c
     assert "pip install -e '.[bsk]'" in capsys.readouterr().err
 
 @pytest.mark.slow
-@pytest.mark.skipif(not bench_basilisk.basilisk_installed(),
+@pytest.mark.skipif(not comparison.basilisk_installed(),
                     reason="Basilisk is not installed (pip install -e '.[bsk]')")
 def test_a_short_side_by_side_run_reports_every_kind_and_consistent_ratios():
     """PERF-BSK-002: 20 s simulated, one round: the four kinds ran for the asked time and the
     ratios are the quotients of the reported real-time factors."""
-    d = bench_basilisk.measure(REFERENCE, duration_s=20.0, rounds=1)
+    d = comparison.measure(REFERENCE, duration_s=20.0, rounds=1)
     assert set(d["runs"]) == {"basilisk_20hz", "fprime_lite_plant_20hz", "basilisk_50hz", "fprime_lite_deployment_50hz"}
     assert all(len(v) == 1 and v[0]["sim_seconds"] == pytest.approx(20.0) for v in d["runs"].values())
     b = d["best_real_time_factor"]
@@ -88,8 +88,8 @@ def test_cases_are_interleaved_round_by_round_and_ratios_are_quotients(monkeypat
         scale = 1.0 + 0.1 * calls.count(kind)  # a later round of a kind is faster
         return {"sim_seconds": 10.0, "real_time_factor": factor[kind] * scale, "slew1_settle_s": 1.0}
 
-    monkeypatch.setattr(bench_basilisk, "_child", fake_child)
-    d = bench_basilisk.measure_cases(["adcs_ref", "coursework"], duration_s=10.0, rounds=2)
+    monkeypatch.setattr(comparison, "_child", fake_child)
+    d = comparison.measure_cases(["adcs_ref", "coursework"], duration_s=10.0, rounds=2)
     one_round = ["basilisk_adcs_c_50hz", "basilisk_adcs_python_50hz", "fprime_lite_adcs_ref_50hz",
                  "fprime_lite_adcs_plant_50hz", "basilisk_coursework_100hz", "fprime_lite_coursework_100hz"]
     assert calls == one_round * 2
@@ -111,13 +111,13 @@ def test_the_bench_piece_picks_the_case_of_the_deployment_it_is_given():
     """PERF-BSK-005: adcs_ref's and coursework's own topologies fly their cases; any other
     deployment is compared with Basilisk's case A (proves_ref)."""
     deployments = REFERENCE.parents[1]
-    assert bench_basilisk.case_of(deployments / "adcs_ref" / "topology.yaml") == "adcs_ref"
-    assert bench_basilisk.case_of(deployments / "coursework" / "topology.yaml") == "coursework"
-    assert bench_basilisk.case_of(REFERENCE) == "proves_ref"
-    assert bench_basilisk.case_of("some/other/topology.yaml") == "proves_ref"
+    assert comparison.case_of(deployments / "adcs_ref" / "topology.yaml") == "adcs_ref"
+    assert comparison.case_of(deployments / "coursework" / "topology.yaml") == "coursework"
+    assert comparison.case_of(REFERENCE) == "proves_ref"
+    assert comparison.case_of("some/other/topology.yaml") == "proves_ref"
 
 
 def test_an_unknown_case_is_refused_with_the_choices():
     """PERF-BSK-004: a case name that does not exist names the ones that do."""
     with pytest.raises(ValueError, match="proves_ref, adcs_ref, coursework"):
-        bench_basilisk.measure_cases(["adcs"], duration_s=1.0, rounds=1)
+        comparison.measure_cases(["adcs"], duration_s=1.0, rounds=1)
