@@ -131,6 +131,7 @@ def main(argv: list[str] | None = None) -> int:
 
 def _print(r: dict, pieces: dict[str, BenchPiece]) -> None:
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     p = r["port_call"]
@@ -142,8 +143,8 @@ def _print(r: dict, pieces: dict[str, BenchPiece]) -> None:
                   "≤ 1.5")
     for name, piece in pieces.items():
         if name in r:
-            for row in piece.rows(r[name]):
-                table.add_row(*row)
+            for row in piece.rows(r[name]):  # a plug-in's text is shown as written ("pip install -e '.[bsk]'")
+                table.add_row(*(escape(cell) for cell in row))
     table.add_row("peak RSS (this process)", f"{r['peak_rss_mb']:.0f} MB", "")
     if "memory" in r:
         m = r["memory"]
