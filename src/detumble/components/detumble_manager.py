@@ -421,7 +421,8 @@ class DetumbleManager(PassiveComponent):
 
         No exception escapes: a fault (a provider raising, a malformed reply) stops the coils, is
         reported (``report_fault``: the HandlerFault event, the HandlerFaults channel, the log)
-        and restarts the cycle from COOLDOWN, so the next call tries again.
+        and restarts the cycle from COOLDOWN, so the next call tries again. A fault while stopping
+        the coils is reported too ("run: safing").
         """
         try:
             self._run()
@@ -429,8 +430,8 @@ class DetumbleManager(PassiveComponent):
             self.report_fault("run", exc)
             try:
                 self._stop_coils()
-            except Exception:
-                log.exception("%s: stopping the coils failed too", self.name)
+            except Exception as safing:  # noqa: BLE001 - reported, never raised into the rate group
+                self.report_fault("run: safing", safing)
             self._reset_cycle()
 
     def _run(self) -> None:
