@@ -679,3 +679,24 @@ def test_an_injected_fault_reaches_the_ground(key, index, monkeypatch, tmp_path)
             f"{type(component).__name__} commands actuators: the recipe must check that they went safe"
         if expect.safe is not None:
             assert expect.safe, f"{type(component).__name__}: the actuators did not go safe after the fault"
+
+
+def test_in_flight_the_faults_reach_the_ground_recorders(tmp_path):
+    """The same path end to end: the ADCS reference deployment flies 2 s with its star tracker's
+    and its wheels' plant reads raising; the ground's events.log, channels.csv and summary.json see
+    every fault."""
+    from fprime_lite.tools.runner import run_deployment
+    loaded = load_topology(REPO / "deployments/adcs_ref/topology.yaml")
+    by_name = {c.name: c for c in loaded.topology.components()}
+    tracker, wheel = by_name["starTracker"], by_name["reactionWheel0"]
+    tracker.spacecraft.star_tracker_sample = _raise
+    wheel.spacecraft.wheel_sample = _raise
+    summary = run_deployment(loaded, tmp_path, duration_s=2.0, plots=False, quiet=True)
+    assert summary["handler_faults"] == sum(c.handler_faults for c in by_name.values())  # every wheel: one plant
+    assert tracker.handler_faults > 0 and wheel.handler_faults > 0
+    assert any("handler fault" in p for p in summary["problems"])
+    events = (tmp_path / "events.log").read_text()
+    assert f"starTracker.HandlerFault WARNING_HI Handler attitude read raised {INJECTED}" in events
+    assert f"reactionWheel0.HandlerFault WARNING_HI Handler wheel 0 read raised {INJECTED}" in events
+    channels = (tmp_path / "channels.csv").read_text()
+    assert ".starTracker.HandlerFaults," in channels and ".reactionWheel0.HandlerFaults," in channels

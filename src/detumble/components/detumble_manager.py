@@ -25,7 +25,6 @@ takes at most one period.
 
 from __future__ import annotations
 
-import logging
 import math
 from dataclasses import dataclass
 
@@ -50,8 +49,6 @@ from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet,
                     SystemModeChanged, TimeIntervalValue)
 
 __all__ = ["DetumbleManager"]
-
-log = logging.getLogger("detumble.components.detumble_manager")
 
 _FULL_SCALE = 127
 

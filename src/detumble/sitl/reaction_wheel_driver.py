@@ -36,7 +36,6 @@ the motor as it was.
 
 from __future__ import annotations
 
-import logging
 import math
 
 from fprime_lite import (F64, U8, Channel, CmdResponse, Event, FwEnum, PassiveComponent, Sched, Severity,
@@ -49,7 +48,6 @@ from detumble.sitl.spacecraft import SimulatedSpacecraft
 
 __all__ = ["ReactionWheelDriver", "SimWheelFault", "wheel_instance_name", "make_reaction_wheel_drivers"]
 
-log = logging.getLogger("detumble.sitl")
 _NAN = float("nan")
 
 

@@ -23,8 +23,6 @@ reported (``report_fault``: the HandlerFault event, the HandlerFaults channel, t
 
 from __future__ import annotations
 
-import logging
-
 from fprime_lite import (F64, U32, U8, Channel, CmdResponse, Event, FwEnum, PassiveComponent, Sched, Severity,
                          sync_command, sync_input)
 
@@ -34,7 +32,6 @@ from detumble.sitl.spacecraft import SimulatedSpacecraft
 
 __all__ = ["StarTracker", "SimStarTrackerFault"]
 
-log = logging.getLogger("detumble.sitl")
 _NAN = float("nan")
 
 
