@@ -248,19 +248,16 @@ def _param_table(declared: dict, values: dict) -> str:
 
 def _param_setting(setting: str, declared: dict) -> tuple[str, object]:
     """``Module.inst.PARAM=VALUE`` → (name, value checked against the parameter's F´ type)."""
-    import difflib
-
     import yaml
 
-    from fprime_lite.model.errors import SerializationError
+    from fprime_lite.model.errors import SerializationError, did_you_mean
 
     name, sep, text = setting.partition("=")
     name = name.strip()
     if not sep or not name:
         raise UserError(f"--set {setting!r}: expected Module.inst.PARAM=VALUE")
     if name not in declared:
-        guess = difflib.get_close_matches(name, list(declared), n=1)
-        hint = f" — did you mean {guess[0]}?" if guess else " (fprime-lite dict lists them)"
+        hint = did_you_mean(name, declared, " (fprime-lite dict lists them)", " — did you mean {}?")
         raise UserError(f"--set {setting!r}: the topology has no parameter {name}{hint}")
     try:
         value = yaml.safe_load(text)
