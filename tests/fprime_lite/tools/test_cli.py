@@ -106,7 +106,9 @@ def test_short_run_writes_every_output(tmp_path, capsys):
     (["run", "nope.yaml", "--no-progress"], "nope.yaml: no such topology file"),
     (["run", TOPOLOGY, "--scenario", "no_such_scenario", "--no-progress"],
      "with the simulation options {'scenario': 'no_such_scenario'}: no_such_scenario: no such scenario file"),
-    (["run", TOPOLOGY, "--duration", "-1"], "--duration must be positive"),
+    (["run", TOPOLOGY, "--duration", "-1"], "--duration must be a positive, finite number of seconds, got -1.0"),
+    (["run", TOPOLOGY, "--duration", "inf"], "--duration must be a positive, finite number of seconds, got inf"),
+    (["run", TOPOLOGY, "--duration", "nan"], "--duration must be a positive, finite number of seconds, got nan"),
     (["run", TOPOLOGY, "--stop-when", "rate_deg_s"], "--stop-when 'rate_deg_s' is not KEY OP VALUE"),
     (["run", TOPOLOGY, "--params", "missing.dat"], "--params missing.dat: no such file"),
     (["run", TOPOLOGY, "--set", "sensors.gyro"], "--set 'sensors.gyro': expected KEY.PATH=VALUE"),
@@ -218,3 +220,26 @@ def test_stop_when_ends_the_run_at_the_first_check_where_it_holds(tmp_path):
                  "--no-progress", "--no-plots"]) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert summary["sim_seconds"] == 3.0 and summary["stopped_by"] is None
+
+
+@pytest.mark.parametrize("argv, hint", [
+    (["run", "--duraton", "5"], "unrecognized arguments: --duraton — did you mean --duration?"),
+    (["graph", "--qqqq"], None),  # nothing close enough among graph's options: no guess
+    (["run", "--seed=3", "--no-progrss", "--truth-intervl=2"],
+     "did you mean --no-progress for --no-progrss, --truth-interval for --truth-intervl?"),
+    (["check", "--patterns"], "did you mean"),  # an option of another verb (graph) is not guessed for check
+])
+def test_a_misspelt_option_gets_a_did_you_mean(argv, hint, capsys):
+    """CLI-020 (issue 28): an option the verb does not have is refused (exit 2) with the closest option of
+    that verb, when one is close."""
+    with pytest.raises(SystemExit) as exit_:
+        main(argv)
+    assert exit_.value.code == 2
+    err = capsys.readouterr().err
+    assert f"fprime-lite {argv[0]}: error: unrecognized arguments" in err
+    if argv[0] == "check":
+        assert hint not in err
+    elif hint is None:
+        assert "did you mean" not in err
+    else:
+        assert hint in err
