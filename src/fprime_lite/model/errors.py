@@ -29,11 +29,17 @@ def check_member_name(name, what: str):
     return name
 
 
-def did_you_mean(word, choices: Iterable[str], otherwise: str, template: str = "did you mean '{}'?") -> str:
-    """The hint of a message about an unknown name: ``template`` filled with the choice closest to
-    ``word`` (difflib's, the one suggestion of every reader), or ``otherwise`` when none is close."""
+def closest(word, choices: Iterable[str]) -> str | None:
+    """The choice closest to ``word`` (difflib's; the one suggestion of every reader), or None."""
     guess = difflib.get_close_matches(str(word), list(choices), n=1)
-    return template.format(guess[0]) if guess else otherwise
+    return guess[0] if guess else None
+
+
+def did_you_mean(word, choices: Iterable[str], otherwise: str, template: str = "did you mean '{}'?") -> str:
+    """The hint of a message about an unknown name: ``template`` filled with the choice
+    :func:`closest` to ``word``, or ``otherwise`` when none is close."""
+    guess = closest(word, choices)
+    return template.format(guess) if guess is not None else otherwise
 
 
 def check_units(units, what: str):

@@ -48,7 +48,7 @@ def _topology_arg(p: argparse.ArgumentParser) -> None:
 def _parse(parser: argparse.ArgumentParser, argv) -> argparse.Namespace:
     """``parser.parse_args(argv)``, with a did-you-mean for a misspelt option of the chosen verb
     (``--duraton`` → ``--duration``)."""
-    import difflib
+    from fprime_lite.model.errors import closest
 
     parsed, extras = parser.parse_known_args(argv)
     if not extras:
@@ -59,9 +59,9 @@ def _parse(parser: argparse.ArgumentParser, argv) -> argparse.Namespace:
     hints = []
     for token in extras:
         name = token.split("=", 1)[0]
-        guess = difflib.get_close_matches(name, options, n=1) if name.startswith("--") else []
-        if guess:
-            hints.append(guess[0] if len(extras) == 1 else f"{guess[0]} for {name}")
+        guess = closest(name, options) if name.startswith("--") else None
+        if guess is not None:
+            hints.append(guess if len(extras) == 1 else f"{guess} for {name}")
     hint = f" — did you mean {', '.join(hints)}?" if hints else ""
     (chosen or parser).error(f"unrecognized arguments: {' '.join(extras)}{hint}")
     raise AssertionError("argparse's error() exits")  # pragma: no cover
