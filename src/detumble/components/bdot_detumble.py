@@ -42,7 +42,7 @@ class BDotDetumble(PassiveComponent):
 
     #: B-dot gain, A·m²·s (m = −Gain·Ḃ/|B|); a negative gain would spin the spacecraft up, NaN or
     #: inf would make every dipole non-finite.
-    Gain = Param(F64, default=BDOT_PROVIDER_GAIN, low=0.0, high=1000.0)
+    Gain = Param(F64, default=BDOT_PROVIDER_GAIN, low=0.0, high=1000.0, units="A·m²·s")
 
     magneticFieldGet = OutputPort(MagneticFieldGet)
 

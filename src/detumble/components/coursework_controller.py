@@ -85,20 +85,20 @@ class CourseworkController(PassiveComponent):
     dipoleSet = OutputPort(DipoleMomentSet)
 
     LAW = Param(CourseworkLaw, default=CourseworkLaw.OFF)
-    CROSS_PRODUCT_GAIN = Param(F64, default=146.0)   # k of M = k (ω × B), A·m² per (rad/s · T)
-    BETA_KS = Param(F64, default=990.0)              # K_s, A·m² per rad/s
-    BETA_KD = Param(F64, default=0.06)               # K_d, A·m² per rad/s of β̇
+    CROSS_PRODUCT_GAIN = Param(F64, default=146.0, units="A·m²/(rad/s·T)")  # k of M = k (ω × B), body frame
+    BETA_KS = Param(F64, default=990.0, units="A·m²/(rad/s)")   # K_s, on the body-y rate error
+    BETA_KD = Param(F64, default=0.06, units="A·m²/(rad/s)")    # K_d, on β̇
     BETA_SWITCHED = Param(BOOL, default=False)       # eq. 23 or 24 (True) or both, as the listing (False)
-    WHEEL_KP = Param(F64, default=5.0)               # K_p, 1/s² (times I)
-    WHEEL_KD = Param(F64, default=9.0)               # K_d, 1/s (times I)
+    WHEEL_KP = Param(F64, default=5.0, units="1/s²")  # K_p (times I)
+    WHEEL_KD = Param(F64, default=9.0, units="1/s")   # K_d (times I)
     WHEEL_ERROR = Param(WheelError, default=WheelError.REPORT)
-    INERTIA_XX = Param(F64, default=1.67e-3)         # kg·m², principal (products taken as zero)
-    INERTIA_YY = Param(F64, default=1.67e-3)
-    INERTIA_ZZ = Param(F64, default=1.67e-3)
-    DIPOLE_LIMIT = Param(F64, default=1.0)           # A·m² per axis
-    WHEEL_TORQUE_LIMIT = Param(F64, default=1e-3)    # N·m per wheel
-    WHEEL_MOMENTUM_LIMIT = Param(F64, default=0.1)   # N·m·s per wheel
-    DUMP_GAIN = Param(F64, default=0.0)              # 1/s: magnetic momentum dumping with WHEELS_PD (0: none)
+    INERTIA_XX = Param(F64, default=1.67e-3, units="kg·m², body frame")  # principal (products taken as zero)
+    INERTIA_YY = Param(F64, default=1.67e-3, units="kg·m², body frame")
+    INERTIA_ZZ = Param(F64, default=1.67e-3, units="kg·m², body frame")
+    DIPOLE_LIMIT = Param(F64, default=1.0, units="A·m² per body axis")
+    WHEEL_TORQUE_LIMIT = Param(F64, default=1e-3, units="N·m per wheel")
+    WHEEL_MOMENTUM_LIMIT = Param(F64, default=0.1, units="N·m·s per wheel")
+    DUMP_GAIN = Param(F64, default=0.0, units="1/s")  # magnetic momentum dumping with WHEELS_PD (0: none)
 
     @sync_input(Sched)
     def run(self, context: int) -> None:

@@ -231,11 +231,12 @@ class ModeManager(PassiveComponent):
     SafeModeEntryCount = Channel(U32)
     CurrentSafeModeReason = Channel(SafeModeReason)
 
-    SafeModeEntryVoltage = Param(F32, default=6.7)        # V
-    SafeModeRecoveryVoltage = Param(F32, default=8.0)     # V
-    SafeModeDebounceSeconds = Param(U32, default=10)      # s (1 Hz samples)
+    SafeModeEntryVoltage = Param(F32, default=6.7, units="V")
+    SafeModeRecoveryVoltage = Param(F32, default=8.0, units="V")
+    SafeModeDebounceSeconds = Param(U32, default=10, units="s")      # 1 Hz samples
     SAFEMODE_SEQUENCE_FILE = Param(String(200), default="/seq/enter_safe.bin")
-    COMM_LOSS_TIME = Param(TimeIntervalValue, default=TimeIntervalValue(seconds=3 * 24 * 3600, useconds=0))
+    COMM_LOSS_TIME = Param(TimeIntervalValue, default=TimeIntervalValue(seconds=3 * 24 * 3600, useconds=0),
+                           units="s, µs")
 
     def __init__(self, name: str, *, base_id: int = 0, spacecraft=None,
                  initial_mode: SystemMode = SystemMode.NORMAL):

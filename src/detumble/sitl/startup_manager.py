@@ -92,7 +92,7 @@ class StartupManager(PassiveComponent):
                                   response=CmdResponse)
 
     ARMED = Param(BOOL, default=True)
-    QUIESCENCE_TIME = Param(TimeIntervalValue, default=TimeIntervalValue(seconds=45 * 60, useconds=0))
+    QUIESCENCE_TIME = Param(TimeIntervalValue, default=TimeIntervalValue(seconds=45 * 60, useconds=0), units="s, µs")
     QUIESCENCE_START_FILE = Param(String(200), default="/quiescence_start.bin")
     STARTUP_SEQUENCE_FILE = Param(String(200), default="/seq/startup.bin")
     BOOT_COUNT_FILE = Param(String(200), default="/boot_count.bin")

@@ -5,6 +5,10 @@ All ten top-level keys are present even when empty. Type definitions hold every 
 commands, events, channels and parameters use, plus the framework's aliases and enums
 (``FwOpcodeType`` …, ``TimeBase``, ``ComCfg.Apid``) and constants (``ComCfg.SpacecraftId``,
 ``ComCfg.TmFrameFixedSize``), which fprime-gds reads to configure its codecs.
+
+A parameter declared with ``units=`` carries them in its optional ``annotation`` (the one field F´'s
+dictionary has for them: ``fpp-to-dict`` puts a parameter's ``@`` comment there, after ``default``),
+as ``"units: N·m"``; fprime-gds 4.4.1 reads parameters without it and loads the dictionary unchanged.
 """
 
 from __future__ import annotations
@@ -20,7 +24,7 @@ from fprime_lite.model.time import TIME, TimeBase
 from fprime_lite.deploy.topology import Topology
 from fprime_lite.model.types import U8, U16, U32, Alias, FwType, fw_type
 
-__all__ = ["build_dictionary", "write_dictionary", "FRAMEWORK_VERSION"]
+__all__ = ["build_dictionary", "write_dictionary", "param_annotation", "FRAMEWORK_VERSION"]
 
 #: The F´ release whose dictionary format and framework types we follow.
 FRAMEWORK_VERSION = "4.0.0"
@@ -76,6 +80,11 @@ class _TypeCollector:
         return t.json_ref()
 
 
+def param_annotation(units: str) -> str:
+    """The ``annotation`` of a parameter declared with ``units=``."""
+    return f"units: {units}"
+
+
 def _params(collector: _TypeCollector, args) -> list[dict]:
     return [{"name": n, "type": collector.add(t), "ref": False} for n, t in args]
 
@@ -117,6 +126,8 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
             entry = {"name": f"{prefix}.{p.name}", "type": types.add(p.type), "id": comp.base_id + p.local_id}
             if p.has_default:
                 entry["default"] = p.type.json_value(p.default)
+            if p.units is not None:
+                entry["annotation"] = param_annotation(p.units)
             params.append(entry)
     return {
         "metadata": {

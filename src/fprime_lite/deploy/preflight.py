@@ -24,7 +24,7 @@ from fprime_lite.model.types import deserialize_values
 from fprime_lite.deploy.deployment import command_lookup
 from fprime_lite.deploy.topology import Topology
 from fprime_lite.svc.prm_db import ParamFileError, decode_param_file
-from fprime_lite.wire.seqfile import Descriptor, SequenceFileError, SequenceTextError, read_sequence
+from fprime_lite.wire.seqfile import Descriptor, SequenceEmpty, SequenceFileError, SequenceTextError, read_sequence
 
 __all__ = ["PreflightError", "check_parameter_file", "check_sequence", "check_run_files", "topology_file_problems"]
 
@@ -84,6 +84,10 @@ def check_sequence(topology: Topology, path, sequencer: str | None) -> int:
         sequence = read_sequence(os.fspath(path), lookup=lookup)
     except SequenceTextError as exc:  # already names path:line
         raise PreflightError(f"sequence {exc}") from None
+    except SequenceEmpty:
+        raise PreflightError(f"sequence {path}: it holds no command (CmdSequencer would ignore it with "
+                             f"CS_NoRecords) — write one command a line, e.g. 'R00:00:05 "
+                             f"CdhCore.cmdDisp.CMD_NO_OP' (docs/sequences.md), or leave the sequence out") from None
     except SequenceFileError as exc:
         raise PreflightError(f"sequence {path}: {exc}") from None
     except OSError as exc:

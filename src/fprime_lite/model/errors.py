@@ -26,6 +26,14 @@ def check_member_name(name, what: str):
     return name
 
 
+def check_units(units, what: str):
+    """``units`` if it is None or a non-empty text without ``]`` (it is shown as ``name [units]``);
+    else DeclarationError."""
+    if units is not None and (not isinstance(units, str) or not units.strip() or "]" in units):
+        raise DeclarationError(f"{what} units must be a non-empty text without ']', got {units!r}")
+    return units
+
+
 class SerializationError(FprimeLiteError, ValueError):
     """A value does not fit its F´ type, or bytes do not deserialize to that type."""
 

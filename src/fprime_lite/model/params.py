@@ -29,7 +29,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Generic, TypeVar, overload
 
-from fprime_lite.model.errors import DeclarationError, SerializationError, check_member_name
+from fprime_lite.model.errors import DeclarationError, SerializationError, check_member_name, check_units
 from fprime_lite.model.types import FwEnum, FwType, fw_type
 
 __all__ = ["ParamValid", "Param", "ParamEcho", "BoundParam", "camel_stem"]
@@ -88,6 +88,9 @@ class Param(Generic[V]):
     ``name`` gives the parameter an F´ name other than its attribute's (see :class:`Channel`).
     ``low``, ``high``, ``finite`` and ``validate`` restrict the values a PRM_SET or the parameter
     file may give it; ``echo`` asks the framework for its ``…ParamSet`` event and ``…Param`` channel.
+    ``units`` (e.g. ``"N·m"``, with the frame where it matters) is documentation for the ground, as a
+    channel's: ``fprime-lite params --list`` shows it and the dictionary carries it as the parameter's
+    ``annotation`` (``"units: N·m"``). It changes no value, id or file byte.
     """
 
     type: FwType[V]
@@ -97,18 +100,21 @@ class Param(Generic[V]):
     def __init__(self, type_: FwType[V], *, default: Any = ..., id: int | None = ...,
                  set_opcode: int | None = ..., save_opcode: int | None = ..., name: str | None = ...,
                  low: Any = ..., high: Any = ..., finite: bool = ...,
-                 validate: Callable[[V], str | None] | None = ..., echo: ParamEcho | None = ...) -> None: ...
+                 validate: Callable[[V], str | None] | None = ..., echo: ParamEcho | None = ...,
+                 units: str | None = ...) -> None: ...
 
     @overload
     def __init__(self, type_: builtins.type[V], *, default: Any = ..., id: int | None = ...,
                  set_opcode: int | None = ..., save_opcode: int | None = ..., name: str | None = ...,
                  low: Any = ..., high: Any = ..., finite: bool = ...,
-                 validate: Callable[[V], str | None] | None = ..., echo: ParamEcho | None = ...) -> None: ...
+                 validate: Callable[[V], str | None] | None = ..., echo: ParamEcho | None = ...,
+                 units: str | None = ...) -> None: ...
 
     def __init__(self, type_: Any, *, default: Any = _NO_DEFAULT, id: int | None = None,
                  set_opcode: int | None = None, save_opcode: int | None = None, name: str | None = None,
                  low: Any = None, high: Any = None, finite: bool = False,
-                 validate: Callable[[Any], str | None] | None = None, echo: ParamEcho | None = None) -> None:
+                 validate: Callable[[Any], str | None] | None = None, echo: ParamEcho | None = None,
+                 units: str | None = None) -> None:
         for label, value in (("id", id), ("set_opcode", set_opcode), ("save_opcode", save_opcode)):
             if value is not None and (not isinstance(value, int) or value < 0):
                 raise DeclarationError(f"param {label} must be a non-negative integer, got {value!r}")
@@ -129,6 +135,7 @@ class Param(Generic[V]):
         self.finite = bool(finite)
         self.validate = validate
         self.echo = echo
+        self.units = check_units(units, "param")
         self.name = ""
         self.attr = ""
 

@@ -30,7 +30,7 @@ import operator
 
 from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
-from fprime_lite.model.errors import DeclarationError, check_member_name
+from fprime_lite.model.errors import DeclarationError, check_member_name, check_units
 from fprime_lite.model.events import translate_format
 from fprime_lite.model.time import NO_CLOCK_READING, US_PER_S, Time, TimeBase, TimeType
 from fprime_lite.model.types import (_F64, ArrayType, BoolType, EnumType, FloatType, FwType, IntType, StringType,
@@ -91,9 +91,7 @@ class Channel(Generic[V]):
         self.high = dict(high or {})
         self.wall_clock = bool(wall_clock)
         self.fprime_name = check_member_name(name, "channel")
-        if units is not None and (not isinstance(units, str) or not units.strip() or "]" in units):
-            raise DeclarationError(f"channel units must be a non-empty text without ']', got {units!r}")
-        self.units = units
+        self.units = check_units(units, "channel")
         self.name = ""
         self.attr = ""
         self.framework = False  # True for the members the framework gives every component

@@ -5,6 +5,7 @@
     fprime-lite check [TOPOLOGY]        validate a topology
     fprime-lite graph [TOPOLOGY]        print the topology as DOT or Mermaid
     fprime-lite params [TOPOLOGY] -o F  write a parameter file holding every parameter's default
+                                        (--list: print them with their ids, types and units)
     fprime-lite plot RUN_DIR            draw the plots of a finished run again
     fprime-lite new component|deployment NAME   write a skeleton that passes its own test
     fprime-lite bench                   measure speed and memory
@@ -21,8 +22,10 @@ from __future__ import annotations
 
 import argparse
 import logging
+import math
 import os
 import pathlib
+import signal
 import sys
 
 from fprime_lite.model.errors import FprimeLiteError
@@ -40,6 +43,28 @@ class UserError(Exception):
 def _topology_arg(p: argparse.ArgumentParser) -> None:
     p.add_argument("topology", nargs="?", default="topology.yaml",
                    help="topology YAML file (default: ./topology.yaml)")
+
+
+def _parse(parser: argparse.ArgumentParser, argv) -> argparse.Namespace:
+    """``parser.parse_args(argv)``, with a did-you-mean for a misspelt option of the chosen verb
+    (``--duraton`` → ``--duration``)."""
+    import difflib
+
+    parsed, extras = parser.parse_known_args(argv)
+    if not extras:
+        return parsed
+    verbs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    chosen = verbs[0].choices.get(str(parsed.command)) if verbs else None
+    options = [o for a in (chosen or parser)._actions for o in a.option_strings]
+    hints = []
+    for token in extras:
+        name = token.split("=", 1)[0]
+        guess = difflib.get_close_matches(name, options, n=1) if name.startswith("--") else []
+        if guess:
+            hints.append(guess[0] if len(extras) == 1 else f"{guess[0]} for {name}")
+    hint = f" — did you mean {', '.join(hints)}?" if hints else ""
+    (chosen or parser).error(f"unrecognized arguments: {' '.join(extras)}{hint}")
+    raise AssertionError("argparse's error() exits")  # pragma: no cover
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -98,9 +123,15 @@ def build_parser() -> argparse.ArgumentParser:
     graph.add_argument("--format", choices=("dot", "mermaid"), default="dot")
     graph.add_argument("--patterns", action="store_true", help="include pattern connections (command, event, …)")
 
-    params = sub.add_parser("params", help="write a parameter file with every parameter's default")
+    params = sub.add_parser("params", help="write a parameter file with every parameter's default; list them",
+                            description="Write F´'s PrmDb file holding every parameter's default (or the value "
+                            "--set gives it) with -o FILE, and/or print every parameter of the topology with its "
+                            "id, type, value and units with --list.")
     _topology_arg(params)
-    params.add_argument("-o", "--output", required=True, metavar="FILE")
+    params.add_argument("-o", "--output", metavar="FILE", help="the parameter file to write")
+    params.add_argument("--list", action="store_true",
+                        help="print a table of the parameters: name, id, type, value (the default or --set) "
+                             "and units")
     params.add_argument("--set", action="append", default=[], metavar="Module.inst.PARAM=VALUE",
                         help="write VALUE instead of the default, e.g. ReferenceDeployment.detumbleManager.GAIN=2.5 "
                              "(repeatable; enum values by name)")
@@ -193,7 +224,10 @@ def cmd_params(args) -> int:
     from fprime_lite.svc.prm_db import encode_param_file
     from fprime_lite.osal.atomic import atomic_write_bytes
 
-    _output_file(args.output, "-o")
+    if args.output is None and not args.list:
+        raise UserError("give -o FILE (write the parameter file), --list (print the parameters) or both")
+    if args.output is not None:
+        _output_file(args.output, "-o")
     topo = _load(args.topology).topology
     declared = {}
     for instance in topo.instances.values():
@@ -204,6 +238,10 @@ def cmd_params(args) -> int:
     for setting in args.set:
         name, value = _param_setting(setting, declared)
         values[name] = value
+    if args.list:
+        sys.stdout.write(_param_table(declared, values))
+    if args.output is None:
+        return 0
     records = sorted((name, declared[name][0], declared[name][1].type.serialize(value))
                      for name, value in values.items())  # by full name, as fprime-prm-write orders them
     atomic_write_bytes(args.output, encode_param_file([(pid, data) for _, pid, data in records]))
@@ -211,6 +249,25 @@ def cmd_params(args) -> int:
     print(f"wrote {args.output}: {len(records)} parameters ({ParamValid.DEFAULT.name} values of the "
           f"topology{changed})")
     return 0
+
+
+def _param_table(declared: dict, values: dict) -> str:
+    """``params --list``: one row a parameter, in id order — full name, id, F´ type, the value the file
+    holds (enum constants by name; ``—`` for a parameter without default, which the file leaves
+    out) and the declared units (``—`` when none)."""
+    import json
+
+    rows = [("parameter", "id", "type", "value", "units")]
+    for name, (pid, p) in sorted(declared.items(), key=lambda item: item[1][0]):
+        if name in values:
+            value = p.type.json_value(values[name])
+            text = value.rsplit(".", 1)[1] if p.type.kind == "enum" else json.dumps(value, ensure_ascii=False)
+        else:
+            text = "—"
+        rows.append((name, f"0x{pid:X}", p.type.name, text, p.units or "—"))
+    widths = [max(len(row[i]) for row in rows) for i in range(4)]
+    return "".join("  ".join(cell.ljust(w) for cell, w in zip(row[:4], widths, strict=True)) + f"  {row[4]}\n"
+                   for row in rows)
 
 
 def _param_setting(setting: str, declared: dict) -> tuple[str, object]:
@@ -269,8 +326,8 @@ def cmd_run(args) -> int:
     from fprime_lite.tools.stop_condition import StopConditionError, parse_stop_condition
 
     _checked_settings(args.set)
-    if args.duration is not None and not args.duration > 0:
-        raise UserError(f"--duration must be positive, got {args.duration}")
+    if args.duration is not None and not 0 < args.duration < math.inf:
+        raise UserError(f"--duration must be a positive, finite number of seconds, got {args.duration}")
     try:
         args.stop_when = [parse_stop_condition(text) for text in args.stop_when]
     except StopConditionError as exc:
@@ -300,10 +357,14 @@ def cmd_run(args) -> int:
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
                                  plots=not args.no_plots, allow_warnings=args.allow_warnings,
-                                 stop_when=args.stop_when)
+                                 stop_when=args.stop_when, interruptible=True)
     else:
         summary = _run_realtime(loaded, out, args, address)
     print(f"outputs in {out}/")
+    if summary.get("stopped_by") == "interrupted" and not realtime:
+        print(f"fprime-lite run: interrupted by {summary['signal']} at t = {summary['sim_seconds']:.3f} s; the "
+              f"outputs up to then are in {out}/", file=sys.stderr)
+        return 128 + signal.Signals[summary["signal"]].value  # 130 for SIGINT, 143 for SIGTERM, as a shell says
     if not summary["ok"]:
         print(f"fprime-lite run: the flight reported problems: {'; '.join(summary['problems'])} "
               f"(--allow-warnings accepts them)", file=sys.stderr)
@@ -333,10 +394,8 @@ def _paced(clock):
 
 def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
     """Run paced to the wall clock, with the ground link when ``address`` is given; SIGINT and
-    SIGTERM end the run early and the outputs are still written."""
-    import signal
-    import threading
-
+    SIGTERM end the run early and the outputs are still written (the way a paced run is ended, by the
+    user or by fprime-gds: exit status 0 unless the flight reported problems)."""
     from fprime_lite.tools.runner import run_deployment
 
     link = None
@@ -347,21 +406,15 @@ def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
         print(f"ground link: {args.framing} framing, connecting to {link.host}:{link.port} "
               f"(instance {loaded.topology.deployment}.{link.name})", flush=True)
     scheduler = loaded.scheduler
-    previous = {}
-    if threading.current_thread() is threading.main_thread():
-        for sig in (signal.SIGINT, signal.SIGTERM):
-            previous[sig] = signal.signal(sig, lambda *_: scheduler.stop())
     try:
         if link is not None:
             link.start_socket_task()
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=False, plots=not args.no_plots,
-                                 allow_warnings=args.allow_warnings, stop_when=args.stop_when)
+                                 allow_warnings=args.allow_warnings, stop_when=args.stop_when, interruptible=True)
     finally:
         if link is not None:
             link.close()
-        for sig, handler in previous.items():
-            signal.signal(sig, handler)
     print(f"realtime: largest lag behind the wall clock {scheduler.max_lag_s * 1e3:.1f} ms")
     if link is not None:
         print(f"ground link: {link.connections} connection(s), {link.commands_forwarded} command(s) "
@@ -428,7 +481,7 @@ def main(argv: list[str] | None = None) -> int:
     elif argv and argv[0] not in BUILT_IN and not argv[0].startswith("-") and argv[0] in _application_verbs():
         return _application_verbs()[argv[0]].main(argv[1:])
     else:
-        args = build_parser().parse_args(argv)
+        args = _parse(build_parser(), argv)
     logging.basicConfig(level=logging.INFO if getattr(args, "verbose", False) else logging.ERROR,
                         format="%(levelname)s %(name)s: %(message)s")
     try:

@@ -20,8 +20,11 @@ A report resource is any resource with some of these methods: ``begin(deployment
 
 from __future__ import annotations
 
+import contextlib
 import json
 import pathlib
+import signal
+import threading
 import time
 
 from fprime_lite.osal.atomic import atomic_write_text
@@ -58,7 +61,7 @@ def _reports(loaded: LoadedDeployment) -> list:
 
 def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
                    progress: bool = False, plots: bool = True, console=None, allow_warnings: bool = False,
-                   stop_on_events=(), stop_when=(), quiet: bool = False) -> dict:
+                   stop_on_events=(), stop_when=(), quiet: bool = False, interruptible: bool = False) -> dict:
     """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary.
 
     The summary's ``ok`` is False when the flight had handler faults, rate-group member faults,
@@ -68,7 +71,10 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     :class:`~fprime_lite.tools.stop_condition.StopCondition`) on the reports' ``progress()`` values,
     checked once per simulated second; the run ends at the first check where all of them hold. The
     summary's ``stopped_by`` says what ended a run early (None when it ran its duration).
-    ``quiet`` prints nothing (no summary table).
+    ``quiet`` prints nothing (no summary table). ``interruptible``: SIGINT (Ctrl-C) and SIGTERM end the
+    flight where it is, as an early stop does, and the outputs up to that instant are written as usual;
+    the summary then says ``stopped_by: "interrupted"`` and ``signal`` (``"SIGINT"``/``"SIGTERM"``).
+    Only the main thread can take signals; elsewhere the flag does nothing.
     """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -106,11 +112,15 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     if conditions:
         _watch_conditions(deployment.scheduler, reports, conditions, stopped_by)
     end_us = start_us + round(duration_s * 1_000_000)
-    if progress:
-        _run_with_progress(deployment, end_us, reports, console)
-    else:
-        deployment.scheduler.run(until_us=end_us)  # stop() (an early-stop event) ends it sooner
+    signals: list[str] = []
+    with _stop_on_signals(deployment.scheduler, signals, enabled=interruptible):
+        if progress:
+            _run_with_progress(deployment, end_us, reports, console)
+        else:
+            deployment.scheduler.run(until_us=end_us)  # stop() (an early-stop event) ends it sooner
     wall = time.perf_counter() - wall0
+    if signals:
+        stopped_by.insert(0, "interrupted")
 
     recorder.close()
     written: list[pathlib.Path] = []
@@ -120,6 +130,8 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     sim_s = (deployment.scheduler.now_us - start_us) / 1e6  # less than duration_s when stopped early
     summary = _summary(deployment, recorder, reports, sim_s, wall)
     summary["stopped_by"] = stopped_by[0] if stopped_by and sim_s < duration_s - 1e-9 else None
+    if summary["stopped_by"] == "interrupted":
+        summary["signal"] = signals[0]
     summary["problems"] = flight_problems(summary)
     summary["ok"] = allow_warnings or not summary["problems"]
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2) + "\n")
@@ -179,6 +191,27 @@ def _summary(deployment: Deployment, recorder: GroundRecorder, reports, sim_s: f
     for r in reports:
         summary.update(r.summary())
     return summary
+
+
+@contextlib.contextmanager
+def _stop_on_signals(scheduler, received: list[str], *, enabled: bool):
+    """While the flight runs: SIGINT and SIGTERM stop ``scheduler`` (the signal's name is appended to
+    ``received``) instead of raising in the middle of a tick; the previous handlers come back after it,
+    so a second Ctrl-C while the outputs are written acts as usual."""
+    if not enabled or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def stop(signum, _frame) -> None:
+        received.append(signal.Signals(signum).name)
+        scheduler.stop()
+
+    previous = {sig: signal.signal(sig, stop) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
 
 
 def _watch_conditions(scheduler, reports, conditions, stopped_by: list) -> None:

@@ -697,7 +697,8 @@ def read_sequence(path: str | Path, *, lookup: CommandLookup | None = None,
     """Read a sequence file: text when it ends in ``.seq`` (needs ``lookup``), else binary.
 
     Raises OSError (FileNotFoundError …) when the file cannot be read, SequenceTextError or
-    another SequenceFileError when it is not a valid sequence.
+    another SequenceFileError when it is not a valid sequence, SequenceEmpty when it holds no command
+    (a text file of blank lines and comments, too).
     """
     path = Path(path)
     if path.suffix.lower() == ".seq":
@@ -712,7 +713,10 @@ def read_sequence(path: str | Path, *, lookup: CommandLookup | None = None,
             raise SequenceTextError(str(path), 0, "text sequences need a command dictionary; give "
                                     "the sequencer a command_lookup, or compile the file with "
                                     "fprime-seqgen")
-        return compile_text(text, lookup, str(path))
+        sequence = compile_text(text, lookup, str(path))
+        if not sequence.records:  # what fprime-seqgen makes of it: a file of no records (CS_NoRecords)
+            raise SequenceEmpty()
+        return sequence
     return decode_binary(path.read_bytes(), capacity=capacity, check_header=check_header)
 
 

@@ -48,12 +48,16 @@ class Core(PassiveComponent):
         pass
 
 
-@pytest.fixture
-def topology():
+def _demo(component) -> Topology:
     t = Topology("Demo")
     t.add("CdhCore", Core("cmdDisp", base_id=0x100))
-    t.add("Demo", Widget("widget", base_id=0x1005A000))
+    t.add("Demo", component)
     return t
+
+
+@pytest.fixture
+def topology():
+    return _demo(Widget("widget", base_id=0x1005A000))
 
 
 def test_top_level_keys_and_metadata(topology):
@@ -86,6 +90,47 @@ def test_names_are_module_qualified_with_global_ids(topology):
     assert params["Demo.widget.GAIN"] == {"name": "Demo.widget.GAIN", "type": {"name": "F64", "kind": "float",
                                                                                 "size": 64},
                                           "id": 0x1005A000 + 39, "default": 3.0}
+
+
+class Wheel(PassiveComponent):
+    SPIN_RATE = Param(F64, default=0.5, units="deg/s, body +Z")
+    FRICTION = Param(F64, default=1e-6, units="N·m·s/rad")
+    LABEL = Param(String(16), default="abc")
+
+
+@pytest.fixture
+def wheel_topology():
+    return _demo(Wheel("wheel", base_id=0x2000))
+
+
+def test_a_parameter_with_units_carries_them_as_its_annotation_after_default(wheel_topology):
+    """UNITS-003: `units=` is the parameter's optional F´ `annotation` ("units: …"), written after
+    `default` as fpp-to-dict orders the fields; a parameter without units has no annotation, and no
+    other entry gains one."""
+    d = build_dictionary(wheel_topology)
+    params = {p["name"]: p for p in d["parameters"]}
+    spin = params["Demo.wheel.SPIN_RATE"]
+    assert list(spin) == ["name", "type", "id", "default", "annotation"]
+    assert spin["annotation"] == "units: deg/s, body +Z"
+    assert params["Demo.wheel.FRICTION"]["annotation"] == "units: N·m·s/rad"
+    assert list(params["Demo.wheel.LABEL"]) == ["name", "type", "id", "default"]
+    assert all("annotation" not in entry for key in ("commands", "events", "telemetryChannels") for entry in d[key])
+
+
+def test_fprime_gds_loads_parameters_with_annotations(wheel_topology, tmp_path):
+    """UNITS-004: fprime-gds 4.4.1 loads a dictionary whose parameters carry annotations, and its
+    parameter templates keep their ids, types and defaults."""
+    from fprime_gds.common.loaders.prm_json_loader import PrmJsonLoader
+    from fprime_gds.common.models.dictionaries import Dictionaries
+
+    path = tmp_path / "dictionary.json"
+    write_dictionary(wheel_topology, path)
+    assert "\\u00b7" in path.read_text()  # written as json.dumps writes every dictionary (ASCII escapes)
+    Dictionaries().load_dictionaries(str(path), None, None)
+    params = PrmJsonLoader(str(path)).get_name_dict(None)
+    assert params["Demo.wheel.SPIN_RATE"].get_id() == 0x2000
+    assert params["Demo.wheel.SPIN_RATE"].prm_default_val == 0.5
+    assert params["Demo.wheel.FRICTION"].get_type_obj().__name__ == "F64Type"
 
 
 def test_type_definitions_include_used_and_framework_types(topology):

@@ -107,3 +107,39 @@ def test_param_send_uses_prm_set(h):
 def test_param_validity_codes_match_fprime():
     assert [(v.name, int(v)) for v in ParamValid] == [
         ("UNINIT", 0), ("VALID", 1), ("INVALID", 2), ("DEFAULT", 3)]
+
+
+def test_param_units_are_documentation_text_like_a_channels():
+    """UNITS-001: `Param(..., units=)` keeps the text (frames included); it must be a non-empty text
+    without ']' (the same rule and wording as a channel's units); None means none declared."""
+    from fprime_lite import Channel
+    from fprime_lite.model.errors import DeclarationError
+
+    assert Param(F64, default=1.0, units="N·m, body frame").units == "N·m, body frame"
+    assert Param(F64, default=1.0).units is None
+    for bad in ("", "  ", "A [peak]", 3, b"V"):
+        with pytest.raises(DeclarationError, match=r"param units must be a non-empty text without '\]'"):
+            Param(F64, default=1.0, units=bad)
+        with pytest.raises(DeclarationError, match=r"channel units must be a non-empty text without '\]'"):
+            Channel(F64, units=bad)
+
+
+def test_param_units_change_no_id_value_or_command(fprime_harness):
+    """UNITS-002: units are documentation only: the same component with and without them has the
+    same parameter ids, opcodes, defaults and serialized values."""
+
+    class Plain(PassiveComponent):
+        GAIN = Param(F64, default=3.0, id=39)
+        RATE = Param(F64, default=0.5)
+
+    class WithUnits(PassiveComponent):
+        GAIN = Param(F64, default=3.0, id=39, units="A·m²·s/G")
+        RATE = Param(F64, default=0.5, units="deg/s")
+
+    def shape(cls):
+        comp = cls("c", base_id=0x100)
+        return ([(p.name, p.local_id, p.default, p.type.serialize(p.default)) for p in comp.spec.params],
+                [(c.name, c.opcode) for c in comp.spec.commands])
+
+    assert shape(Plain) == shape(WithUnits)
+    assert [p.units for p in WithUnits("c", base_id=0).spec.params] == ["A·m²·s/G", "deg/s"]

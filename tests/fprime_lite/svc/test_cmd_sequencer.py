@@ -158,6 +158,21 @@ def test_text_sequence_error_event(fprime_harness, tmp_path):
     assert h.tlm_values("CS_Errors") == [1]
 
 
+@pytest.mark.parametrize("text", ["", "\n\n", "; only a comment\n   \n"], ids=["empty", "blank", "comments"])
+def test_text_sequence_without_commands_is_no_records_not_a_fault(fprime_harness, tmp_path, text):
+    """CS-3b: a .seq file with no command (empty, blank lines, comments) is what fprime-seqgen makes a file of
+    no records from: CS_NoRecords (WARNING_LO, not counted as an error), CS_RUN answers EXECUTION_ERROR,
+    nothing is sent and no handler fault is reported (it was an IndexError inside the run handler)."""
+    (tmp_path / "empty.seq").write_text(text)
+    seq, h = make(fprime_harness, tmp_path, command_lookup=CommandDictionary.from_json(DICT))
+    command(h, "CS_RUN", "empty.seq", BlockState.NO_BLOCK)
+    h.assert_cmd_response(0, "CS_RUN", CmdResponse.EXECUTION_ERROR)
+    h.assert_event("CS_NoRecords", 0, "empty.seq")
+    h.assert_event_count("HandlerFault", 0)
+    assert packets(h) == [] and not seq.running
+    assert h.tlm_values("CS_Errors") == []
+
+
 # --- file errors ------------------------------------------------------------------------------
 
 def test_bad_crc_runs_nothing(fprime_harness, tmp_path):

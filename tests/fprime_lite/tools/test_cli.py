@@ -67,6 +67,29 @@ def test_params_set_writes_chosen_values_checked_against_their_types(tmp_path, c
     assert not (tmp_path / "q.dat").exists()
 
 
+def test_params_list_prints_every_parameter_with_its_units(tmp_path, capsys):
+    """UNITS-005: `params --list` prints one row a parameter (name, id, type, value, units) in id order,
+    --set values included, and writes no file unless -o is given; -o with --list writes the same
+    file as -o alone; neither is a usage error."""
+    assert main(["params", TOPOLOGY, "--list", "--set", "ReferenceDeployment.detumbleManager.GAIN=2.5"]) == 0
+    out = capsys.readouterr().out
+    rows = {line.split()[0]: line.split() for line in out.splitlines()[1:]}
+    assert out.splitlines()[0].split() == ["parameter", "id", "type", "value", "units"]
+    assert rows["ReferenceDeployment.detumbleManager.GAIN"] == ["ReferenceDeployment.detumbleManager.GAIN",
+                                                              "0x1005A027", "F64", "2.5", "A·m²·s/G"]
+    assert rows["ReferenceDeployment.detumbleManager.X_PLUS_RESISTANCE"][-1] == "Ω"
+    assert rows["ReferenceDeployment.detumbleManager.HYSTERESIS_AXIS"][-2:] == ["X_AXIS", "—"]
+    assert rows["ReferenceDeployment.modeManager.SafeModeEntryVoltage"][-1] == "V"
+    assert len(rows) == 48 and not list(tmp_path.iterdir())
+    listed, alone = tmp_path / "listed.dat", tmp_path / "alone.dat"
+    assert main(["params", TOPOLOGY, "--list", "-o", str(listed)]) == 0
+    assert main(["params", TOPOLOGY, "-o", str(alone)]) == 0
+    assert listed.read_bytes() == alone.read_bytes()
+    capsys.readouterr()
+    assert main(["params", TOPOLOGY]) == 2
+    assert "give -o FILE (write the parameter file), --list (print the parameters) or both" in capsys.readouterr().err
+
+
 def test_short_run_writes_every_output(tmp_path, capsys):
     out = tmp_path / "run"
     assert main(["run", TOPOLOGY, "--duration", "5", "--out", str(out), "--no-progress", "--seed", "3"]) == 0
@@ -83,7 +106,9 @@ def test_short_run_writes_every_output(tmp_path, capsys):
     (["run", "nope.yaml", "--no-progress"], "nope.yaml: no such topology file"),
     (["run", TOPOLOGY, "--scenario", "no_such_scenario", "--no-progress"],
      "with the simulation options {'scenario': 'no_such_scenario'}: no_such_scenario: no such scenario file"),
-    (["run", TOPOLOGY, "--duration", "-1"], "--duration must be positive"),
+    (["run", TOPOLOGY, "--duration", "-1"], "--duration must be a positive, finite number of seconds, got -1.0"),
+    (["run", TOPOLOGY, "--duration", "inf"], "--duration must be a positive, finite number of seconds, got inf"),
+    (["run", TOPOLOGY, "--duration", "nan"], "--duration must be a positive, finite number of seconds, got nan"),
     (["run", TOPOLOGY, "--stop-when", "rate_deg_s"], "--stop-when 'rate_deg_s' is not KEY OP VALUE"),
     (["run", TOPOLOGY, "--params", "missing.dat"], "--params missing.dat: no such file"),
     (["run", TOPOLOGY, "--set", "sensors.gyro"], "--set 'sensors.gyro': expected KEY.PATH=VALUE"),
@@ -195,3 +220,26 @@ def test_stop_when_ends_the_run_at_the_first_check_where_it_holds(tmp_path):
                  "--no-progress", "--no-plots"]) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert summary["sim_seconds"] == 3.0 and summary["stopped_by"] is None
+
+
+@pytest.mark.parametrize("argv, hint", [
+    (["run", "--duraton", "5"], "unrecognized arguments: --duraton — did you mean --duration?"),
+    (["graph", "--qqqq"], None),  # nothing close enough among graph's options: no guess
+    (["run", "--seed=3", "--no-progrss", "--truth-intervl=2"],
+     "did you mean --no-progress for --no-progrss, --truth-interval for --truth-intervl?"),
+    (["check", "--patterns"], "did you mean"),  # an option of another verb (graph) is not guessed for check
+])
+def test_a_misspelt_option_gets_a_did_you_mean(argv, hint, capsys):
+    """CLI-020 (issue 28): an option the verb does not have is refused (exit 2) with the closest option of
+    that verb, when one is close."""
+    with pytest.raises(SystemExit) as exit_:
+        main(argv)
+    assert exit_.value.code == 2
+    err = capsys.readouterr().err
+    assert f"fprime-lite {argv[0]}: error: unrecognized arguments" in err
+    if argv[0] == "check":
+        assert hint not in err
+    elif hint is None:
+        assert "did you mean" not in err
+    else:
+        assert hint in err

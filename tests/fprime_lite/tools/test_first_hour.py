@@ -41,14 +41,21 @@ def _unknown_command_sequence(d):
     return ["--seq", str(d / "u.seq")]
 
 
+def _empty_sequence(d):
+    (d / "e.seq").write_text("; nothing here yet\n\n")
+    return ["--seq", str(d / "e.seq")]
+
+
 @pytest.mark.parametrize("make, expected", [
     (_truncated_params, "parameter file .*p.dat: not a valid PrmDb file: PARAMETER_VALUE_SIZE"),
     (_garbage_sequence, "sequence .*g.bin: "),
     (_unknown_command_sequence, "u.seq:1: 'Foo.bar.BAZ' is not a command"),
+    (_empty_sequence, "sequence .*e.seq: it holds no command .* write one command a line"),
 ])
 def test_broken_parameter_file_or_sequence_is_refused_before_flying(tmp_path, capsys, make, expected):
-    """FH-001: run refuses a truncated parameter file, a garbage sequence and a sequence naming an
-    unknown command with a one-line error and exit 2, before anything flies (no run folder)."""
+    """FH-001: run refuses a truncated parameter file, a garbage sequence, a sequence naming an
+    unknown command and one with no command at all (it was an IndexError in the sequencer's run handler
+    once flying) with a one-line error and exit 2, before anything flies (no run folder)."""
     import re
 
     args = make(tmp_path)
@@ -330,3 +337,36 @@ def test_attitude_dipole_and_wheel_plots_appear_with_their_truth_columns(tmp_pat
     (tmp_path / "b").mkdir()
     names = {p.name for p in plot_truth(tmp_path / "adcs.csv", tmp_path / "b")}
     assert names >= {"attitude.png", "dipole.png", "wheels.png"}
+
+
+@pytest.mark.parametrize("sig, status", [("SIGINT", 130), ("SIGTERM", 143)])
+def test_an_interrupted_run_keeps_what_flew(tmp_path, sig, status):
+    """FH-012 (issue 28): Ctrl-C or SIGTERM on a plain `run` ends the flight where it is and writes every
+    output up to that instant — events, channels, truth, a summary saying stopped_by "interrupted" and the
+    signal — with no temporary file left for the next run to delete, and exits 128 + the signal's number
+    (130, 143), as a shell reports a job a signal ended."""
+    import signal
+    import time
+
+    out = tmp_path / "run"
+    proc = subprocess.Popen([sys.executable, "-m", "fprime_lite.tools.cli", "run", TOPOLOGY, "--duration", "20000",
+                             "--no-plots", "--no-progress", "--out", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120
+        while not (out / "dictionary.json").is_file() and time.monotonic() < deadline:  # written as it starts
+            time.sleep(0.1)
+        time.sleep(1.5)  # some seconds of flight
+        proc.send_signal(getattr(signal, sig))
+        stdout, stderr = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == status, stdout + stderr
+    assert f"interrupted by {sig}" in stderr and "Traceback" not in stderr
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["stopped_by"] == "interrupted" and summary["signal"] == sig
+    assert 0 < summary["sim_seconds"] < 20000
+    assert sorted(p.name for p in out.iterdir()) == ["channels.csv", "channels_wide.csv", "dictionary.json",
+                                                     "events.log", "summary.json", "truth.csv"]
+    last = (out / "truth.csv").read_text().splitlines()[-1]
+    assert float(last.split(",")[0]) == pytest.approx(summary["sim_seconds"], abs=1.0)  # sampled each second

@@ -178,6 +178,15 @@ def test_extra_bytes_and_no_records():
         decode_binary(encode_binary(Sequence([])))
 
 
+def test_text_file_without_commands_is_empty(tmp_path):
+    """SEQ-TXT-EMPTY: a .seq file of blank lines and comments reads as SequenceEmpty, as the binary of no
+    records fprime-seqgen would make from it does."""
+    path = tmp_path / "nothing.seq"
+    path.write_text("; a comment\n\n")
+    with pytest.raises(SequenceEmpty):
+        read_sequence(path, lookup=lambda name: None)
+
+
 def test_capacity():
     """SEQ-BIN-10: a size beyond the sequencer's buffer is refused before reading on."""
     with pytest.raises(SequenceSizeError, match="173 bytes"):
