@@ -38,13 +38,13 @@ _isfinite = math.isfinite
 
 
 def _parameter(name: str) -> Param:
-    """Parameter ``name`` as control.attitude_defaults gives it (default, range)."""
-    _units, low, high, finite = _defaults.PARAMETERS[name]
+    """Parameter ``name`` as control.attitude_defaults gives it (default, units, range)."""
+    units, low, high, finite = _defaults.PARAMETERS[name]
     enum = _ENUMS.get(name)
     if enum is not None:
         return Param(enum, default=enum[str(_defaults.DEFAULTS[name])])
     return Param(U32 if name == "CYCLE_TICKS" else F64, default=_defaults.DEFAULTS[name], low=low, high=high,
-                 finite=finite)
+                 finite=finite, units=units)
 
 
 def _read(out, index: int = 0):

@@ -104,7 +104,8 @@ BDOT_MIN_FIELD_GAUSS = 1e-6
 
 #: Every parameter in the flight dictionary's order (its ids follow it): name → (units, low, high, finite), the
 #: range a PRM_SET or the parameter file may give it (None: unbounded; finite: NaN and ±inf refused). Units as the
-#: ground reads the value ("" for an enumerated parameter, "1" for a ratio).
+#: ground reads the value (the component declares them, ``Param(units=…)``; "" for an enumerated parameter, "1" for
+#: a ratio).
 PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "K_P": ("N·m", None, None, False),
     "K_D": ("N·m·s", None, None, False),
@@ -147,12 +148,12 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "TRACKER_NOISE_ABOUT": ("arcsec", 1e-3, 3600.0, True),
     "RATE_SOURCE": ("", None, None, False),
     "RATE_OBSERVER_GAIN": ("1/s", 1e-4, 100.0, True),
-    "INERTIA_XX": ("kg·m²", 1e-6, 10.0, True),
-    "INERTIA_YY": ("kg·m²", 1e-6, 10.0, True),
-    "INERTIA_ZZ": ("kg·m²", 1e-6, 10.0, True),
-    "INERTIA_XY": ("kg·m²", -10.0, 10.0, True),
-    "INERTIA_XZ": ("kg·m²", -10.0, 10.0, True),
-    "INERTIA_YZ": ("kg·m²", -10.0, 10.0, True),
+    "INERTIA_XX": ("kg·m², body frame", 1e-6, 10.0, True),
+    "INERTIA_YY": ("kg·m², body frame", 1e-6, 10.0, True),
+    "INERTIA_ZZ": ("kg·m², body frame", 1e-6, 10.0, True),
+    "INERTIA_XY": ("kg·m², body frame", -10.0, 10.0, True),
+    "INERTIA_XZ": ("kg·m², body frame", -10.0, 10.0, True),
+    "INERTIA_YZ": ("kg·m², body frame", -10.0, 10.0, True),
     "MAG_POINTING_LAW": ("", None, None, False),
     "MAG_STEER_RHO": ("1", 0.0, 10.0, False),
     "MAG_STEER_ZETA": ("1", 0.0, 5.0, False),
@@ -160,9 +161,9 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "MAG_FIELD_RATE_MIN": ("1/s", 1.0e-5, 1.0e-1, False),
     "MAG_SETTLE_TIME": ("s", 0.0, 3600.0, False),
     "MAG_RESIDUAL_MODE": ("", None, None, False),
-    "MAG_RESIDUAL_DIPOLE_X": ("A·m²", -0.05, 0.05, False),
-    "MAG_RESIDUAL_DIPOLE_Y": ("A·m²", -0.05, 0.05, False),
-    "MAG_RESIDUAL_DIPOLE_Z": ("A·m²", -0.05, 0.05, False),
+    "MAG_RESIDUAL_DIPOLE_X": ("A·m², body frame", -0.05, 0.05, False),
+    "MAG_RESIDUAL_DIPOLE_Y": ("A·m², body frame", -0.05, 0.05, False),
+    "MAG_RESIDUAL_DIPOLE_Z": ("A·m², body frame", -0.05, 0.05, False),
     "MAG_RESIDUAL_WINDOW": ("s", 5.0, 600.0, False),
 }
 #: Each parameter's units (the first column of :data:`PARAMETERS`).

@@ -48,8 +48,8 @@ from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
 from detumble.control.wheel_allocation import WheelAllocator
 
-__all__ = ["ThreeModeLaw", "checked_parameters", "ControllerIo", "DipoleProvider", "Notify", "Quiet", "MODES", "REASONS", "IDLE",
-           "DETUMBLE", "SPIN_STABLE", "POINTING", "MANUAL", "AUTO", "XYZ"]
+__all__ = ["ThreeModeLaw", "checked_parameters", "ControllerIo", "DipoleProvider", "Notify", "Quiet", "MODES",
+           "REASONS", "IDLE", "DETUMBLE", "SPIN_STABLE", "POINTING", "MANUAL", "AUTO", "XYZ"]
 
 #: The modes (ControlMode), by value.
 MODES = ("IDLE", "DETUMBLE", "SPIN_STABLE", "POINTING")
