@@ -23,6 +23,7 @@ from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFie
                                        StopMagnetorquer, Success, WheelEnableSet, WheelStateGet, WheelTorqueSet)
 from detumble.control import attitude_defaults as _defaults
 from detumble.control.mekf import Mekf
+from detumble.control.spin import spin_axis_error_deg
 from detumble.control.three_mode import POINTING, XYZ, ThreeModeLaw
 
 __all__ = ["AttitudeController", "BORESIGHT_B"]
@@ -318,8 +319,7 @@ class AttitudeController(PassiveComponent):
         if w is not None:
             n = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
             self.AngularRate.write(math.degrees(n))
-            # as spin_errors: the angle between ω̂ and +Z (180 without a rate)
-            self.SpinAxisError.write(math.degrees(math.atan2(math.hypot(w[0], w[1]), w[2])) if n > 0.0 else 180.0)
+            self.SpinAxisError.write(spin_axis_error_deg(w))
             self.SpinRate.write(math.degrees(w[2]))
         if law.mode == POINTING and _isfinite(law.pointing_error_deg):
             self.PointingError.write(law.pointing_error_deg)

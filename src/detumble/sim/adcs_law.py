@@ -19,6 +19,7 @@ from typing import Mapping, Sequence, cast
 
 from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, error_statistics
 from detumble.control import attitude_defaults
+from detumble.control.magnetic import normalised_bdot_dipole
 from detumble.control.quaternion import is_unit_quaternion, quat_angle, quat_error
 from detumble.control.three_mode import MODES, REASONS, XYZ, ControllerIo, Quiet, ThreeModeLaw, checked_parameters
 
@@ -182,8 +183,7 @@ class AdcsLaw(Quiet):
         self._provider_prev = (b, stamp)
         if prev is None or stamp < prev[1]:  # the first reading only primes; a clock gone back starts again
             return None
-        step, c = (stamp - prev[1]) / 1e6, -self.provider_gain / size
-        m = (c * (b[0] - prev[0][0]) / step, c * (b[1] - prev[0][1]) / step, c * (b[2] - prev[0][2]) / step)
+        m = normalised_bdot_dipole(prev[0], b, (stamp - prev[1]) / 1e6, self.provider_gain, size)
         return m if all(math.isfinite(x) for x in m) else None
 
     def true_pointing_error_deg(self, q_BN) -> float:
