@@ -30,7 +30,7 @@ COIL_FACES = (0, 1, 2, 3, 5)
 
 
 class PlantIo:
-    """The law's :class:`~detumble.control.three_mode.ControllerIo` on a plant (three or four wheels, or none)."""
+    """The law's ``ControllerIo`` on a plant: three or four wheels (else none), face coils or torque rods."""
 
     def __init__(self, plant) -> None:
         self.plant = plant
@@ -67,7 +67,6 @@ class PlantIo:
         return tuple(self.plant.wheel_reading(i)[1] for i in range(self.wheels))
 
     def drive_coils(self, levels: Sequence[int], dipole_B) -> None:
-        """The five face coils at ``levels`` (X+, X−, Y+, Y−, Z−); torque rods get ``dipole_B``."""
         if self.face_coils:
             for face, level in zip(COIL_FACES, levels, strict=True):
                 self.plant.set_coil_level(face, level)
@@ -112,16 +111,13 @@ class AdcsLaw(Quiet):
             raise ValueError(f"force_mode {force_mode!r}: use DETUMBLE, SPIN_STABLE, POINTING or None (AUTO)")
         self.force_mode, self.force_at_us = force_mode, int(round(float(force_at_s) * 1e6))
         self.initial_target = None if target_q_bn is None else tuple(float(c) for c in target_q_bn)
-        changes = []
-        for t_s, q_tn in target_changes:
-            q = tuple(float(c) for c in q_tn)
+        self.target_changes = tuple((int(round(float(t) * 1e6)), tuple(float(c) for c in q)) for t, q in target_changes)
+        for t_us, q in self.target_changes:  # (t µs, q_TN)
             if len(q) != 4 or not is_unit_quaternion(q):
-                raise ValueError(f"target change at {t_s} s: {q!r} is not a unit quaternion (within 1e-3), as "
-                                 "SET_TARGET_QUATERNION requires")
-            changes.append((int(round(float(t_s) * 1e6)), q))
-        if any(b[0] < a[0] for a, b in zip(changes, changes[1:], strict=False)):
+                raise ValueError(f"target change at {t_us / 1e6} s: {q!r} is not a unit quaternion (within 1e-3), "
+                                 "as SET_TARGET_QUATERNION requires")
+        if list(self.target_changes) != sorted(self.target_changes, key=lambda c: c[0]):
             raise ValueError("target changes must be in time order")
-        self.target_changes = tuple(changes)  # (t µs, q_TN)
         self.reset()
 
     def reset(self) -> None:
