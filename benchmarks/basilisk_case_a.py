@@ -1,8 +1,8 @@
-"""Basilisk's case A (moved into the package: ``detumble.sitl.basilisk_case_a``; this runs it).
+"""Basilisk's case A alone (``benchmarks/basilisk/case_a.py``; this runs it from any folder).
 
     python benchmarks/basilisk_case_a.py [--duration 5578] [--step 0.05]
 """
-from detumble.sitl.basilisk_case_a import main
+from basilisk.case_a import main
 
 if __name__ == "__main__":
     main()

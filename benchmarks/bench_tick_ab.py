@@ -8,7 +8,7 @@ measured alternately in one sitting on the CPU clock.
 ``src`` is exported to a temporary folder and every measurement runs in a child process with that
 folder first on ``PYTHONPATH``, revision after revision, round after round, so that both see the
 same load. A measurement flies the deployment for ``--duration`` simulated seconds in four pieces,
-each followed by the same length of its plant-only counterpart (``detumble.sitl.bench``: the
+each followed by the same length of its plant-only counterpart (``detumble.tools.bench``: the
 runner on the deployment's scenario with the matching law), timed with ``time.thread_time`` —
 a loaded shared machine moves wall-clock times by 2-4x and CPU times far less. Printed per
 deployment and revision: the fastest piece of each side over all rounds (µs a tick) and their

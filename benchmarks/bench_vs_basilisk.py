@@ -4,7 +4,7 @@
     python benchmarks/bench_vs_basilisk.py [--case proves_ref|adcs_ref|coursework|all]
                                            [--duration 5578] [--rounds 3] [--json FILE]
 
-The measurement is :func:`detumble.sitl.bench_basilisk.measure_cases` (its module docstring lists
+The measurement is :func:`basilisk.bench.measure_cases` (its module docstring lists
 the kinds of run of each case); with ``--case all`` every kind of every case is flown in turn in
 each round, all in child processes of this one. ``fprime-lite bench`` runs the proves_ref case as
 its ``basilisk`` piece.
@@ -16,7 +16,7 @@ import json
 import pathlib
 import sys
 
-from detumble.sitl.bench_basilisk import (CASES, GOALS, INSTALL_HINT, ORBIT_S, basilisk_installed, measure_cases,
+from basilisk.bench import (CASES, GOALS, INSTALL_HINT, ORBIT_S, basilisk_installed, measure_cases,
                                           plausibility_text)
 
 

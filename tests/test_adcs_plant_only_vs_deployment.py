@@ -161,7 +161,7 @@ def test_forced_magnetorquer_hold_plant_only_matches_the_deployment(tmp_path):
 
 
 def test_side_by_side_pointing_case_plant_only_matches_the_deployment(tmp_path):
-    """ADCS-078: issue 19's pointing case (detumble.sitl.side_by_side: the target at 0 s, FORCE_MODE POINTING at
+    """ADCS-078: issue 19's pointing case (basilisk.side_by_side: the target at 0 s, FORCE_MODE POINTING at
     5 s, the 90° change of target at 300 s, all from the start-up sequence) against `force_mode`, `force_at_s`
     and `target_changes` on the plant-only law (side_by_side.plant_only_settings, what the benchmark flies): the
     same flight to the last bit over 400 s — the body rate at every second (both slews included), the
@@ -169,7 +169,7 @@ def test_side_by_side_pointing_case_plant_only_matches_the_deployment(tmp_path):
     checks its two adapters: the component's ports, the sequencer's timing and the drivers against PlantIo and
     the plant-only commands. (Before the plant-only commands acted from the first cycle after their time, the
     law slewed one 10 Hz cycle early: 0.3 °/s apart at 6 s and at 301 s.)"""
-    from detumble.sitl import side_by_side as case
+    from basilisk import side_by_side as case
 
     duration = 400.0
     sequence = tmp_path / "pointing.seq"

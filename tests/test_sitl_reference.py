@@ -8,7 +8,7 @@ import shutil
 import pytest
 
 from detumble.components.types import DetumbleMode, SystemMode
-from detumble.sitl import SafeModeReason
+from detumble.proves.mode_manager import SafeModeReason
 from fprime_lite.deploy.deployment import Deployment, command_lookup
 from fprime_lite.deploy.topology_loader import load_topology
 from fprime_lite.ground.downlink import GroundRecorder

@@ -5,7 +5,7 @@
 The controller's parameters are set by the sequence (at 0 s); the geometry is fixed: initial attitude 90° about
 (1, 1, 1)/√3 from the target, a 0.05 °/s tumble, FORCE_MODE POINTING at 30 s, a target change to identity at
 90 s, 400 s in all (seed 1). Prints the slew and the steady statistics the campaign metrics compute
-(``detumble.sitl.pointing_metrics``: from 60 s after the target change).
+(``detumble.reports.pointing_metrics``: from 60 s after the target change).
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from fprime_lite.deploy.topology_loader import load_topology
 from fprime_lite.tools.campaign import RunOutput
 from fprime_lite.tools.runner import run_deployment
 
-from detumble.sitl.pointing_metrics import percentile, steady_errors
+from detumble.reports.pointing_metrics import percentile, steady_errors
 
 TOPOLOGY = pathlib.Path(__file__).parents[2] / "deployments" / "adcs_ref" / "topology.yaml"
 CTRL = "ReferenceDeployment.attitudeController"

@@ -4,7 +4,7 @@ Run: ``python campaigns/adcs/report_wheels_study.py RUN_DIR`` on the output fold
 ``fprime-lite campaign campaigns/adcs/pointing_wheels.yaml --out RUN_DIR``.
 
 Per run the campaign records the steady hold's true pointing error median and p95 (deg, POINTING from 60 s after
-the last target change, :mod:`detumble.sitl.pointing_metrics`). This prints their spread over the runs, the share
+the last target change, :mod:`detumble.reports.pointing_metrics`). This prints their spread over the runs, the share
 of runs meeting issue 13's wheel targets (median ≤ 0.01°, p95 ≤ 0.05°) with a 95 % Wilson lower bound, and the
 same targets on the error pooled over all runs' steady-hold time (median and p95 with their histogram brackets,
 the exact fraction of time above 0.01° and 0.05°: :mod:`detumble.analysis.pooled_stats`).

@@ -1,11 +1,14 @@
 """The PROVES detumble application.
 
-Modules (import what you need; this package imports nothing itself):
+Layers, lowest first (docs/architecture.md; import what you need, this package imports nothing itself):
 
-* :mod:`detumble.components.types` — F´ enums, structs and port types (Components / Drv / Fw namespaces).
-* :mod:`detumble.control.bdot`, :mod:`detumble.control.strategy_selector`, :mod:`detumble.control.magnetorquer` — the
-  control-law helpers, plain Python with no framework import.
-* :mod:`detumble.components.detumble_manager` — the DetumbleManager component.
-* :mod:`detumble.components.bdot_detumble` — the BDotDetumble dipole provider component.
-* :mod:`detumble.sim` — the simulated spacecraft.
+* :mod:`detumble.control` and :mod:`detumble.analysis` — control laws, flight arithmetic and metrics on
+  sampled series, plain Python with no framework import;
+* :mod:`detumble.sim` — the plant of the simulated spacecraft (no framework import);
+* :mod:`detumble.components` — the flight components (DetumbleManager, BDotDetumble, AttitudeController,
+  CourseworkController) and their F´ types (:mod:`detumble.components.types`);
+* :mod:`detumble.drivers` — the simulated drivers and the spacecraft they drive;
+* :mod:`detumble.proves` — the PROVES flight components as flown (mode manager, IMU, power, housekeeping);
+* :mod:`detumble.reports` — run reports, plots, the power budget and campaign metrics;
+* :mod:`detumble.tools` — the ``sim`` verb and the bench pieces of ``fprime-lite``.
 """

@@ -22,7 +22,7 @@ Thresholds. The pooled p-quantile of the time-weighted distribution is ≤ x exa
 time above x is ≤ 1 - p (pooled p95 ≤ 15° ⇔ at most 5 % of the time above 15°): :func:`pooled_fraction_above`
 is exact, with no bin error.
 
-Campaign columns. The attitude-control campaign metrics (:mod:`detumble.sitl.pointing_metrics`) give every field
+Campaign columns. The attitude-control campaign metrics (:mod:`detumble.reports.pointing_metrics`) give every field
 one float column, named ``PREFIX.window_s``, ``PREFIX.sample_interval_s``, ``PREFIX.time_above_s.X`` (X as in
 :func:`threshold_key`) and ``PREFIX.histogram_s.I`` (I = 0 … 126); :func:`runs_from_columns` reads them back.
 

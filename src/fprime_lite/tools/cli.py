@@ -21,6 +21,7 @@ exit status, never with a traceback.
 from __future__ import annotations
 
 import argparse
+import json
 import logging
 import math
 import os
@@ -111,7 +112,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     dic = sub.add_parser("dict", help="write the F´ JSON dictionary")
     _topology_arg(dic)
-    dic.add_argument("-o", "--output", required=True, metavar="FILE", help="where to write the dictionary")
+    dic.add_argument("-o", "--output", required=True, metavar="FILE",
+                     help="where to write the dictionary ('-' for standard output)")
+    dic.add_argument("--force", action="store_true", help="replace FILE even when it is not an F´ dictionary")
     dic.add_argument("--gds", action="store_true", help="include the ground link that 'run --gds' adds (the "
                      "dictionary to start fprime-gds with)")
 
@@ -128,7 +131,8 @@ def build_parser() -> argparse.ArgumentParser:
                             "--set gives it) with -o FILE, and/or print every parameter of the topology with its "
                             "id, type, value and units with --list.")
     _topology_arg(params)
-    params.add_argument("-o", "--output", metavar="FILE", help="the parameter file to write")
+    params.add_argument("-o", "--output", metavar="FILE", help="the parameter file to write ('-' for standard output)")
+    params.add_argument("--force", action="store_true", help="replace FILE even when it is not a parameter file")
     params.add_argument("--list", action="store_true",
                         help="print a table of the parameters: name, id, type, value (the default or --set) "
                              "and units")
@@ -199,18 +203,51 @@ def cmd_check(args) -> int:
 
 
 def cmd_dict(args) -> int:
-    from fprime_lite.deploy.dictionary import write_dictionary
+    from fprime_lite.deploy.dictionary import build_dictionary, write_dictionary
 
     topology = _load(args.topology).topology
     if args.gds:
         from fprime_lite.deploy.com_stack import add_ground_link
 
         add_ground_link(topology)
-    _output_file(args.output, "-o")
+    if args.output == "-":
+        d = build_dictionary(topology)
+        sys.stdout.write(json.dumps(d, indent=2) + "\n")
+        return 0
+    _replaceable_output(args.output, "-o", _is_dictionary, "an F´ JSON dictionary", args.force)
     d = write_dictionary(topology, args.output)
     print(f"wrote {args.output}: {len(d['commands'])} commands, {len(d['events'])} events, "
           f"{len(d['telemetryChannels'])} channels, {len(d['parameters'])} parameters")
     return 0
+
+
+def _is_dictionary(path: pathlib.Path) -> bool:
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, ValueError):
+        return False
+    return isinstance(data, dict) and isinstance(data.get("metadata"), dict) and "commands" in data
+
+
+def _is_param_file(path: pathlib.Path) -> bool:
+    from fprime_lite.svc.prm_db import ParamFileError, decode_param_file
+
+    try:
+        decode_param_file(path.read_bytes())
+    except (OSError, ParamFileError):
+        return False
+    return True
+
+
+def _replaceable_output(path: str, option: str, is_ours, what: str, force: bool) -> pathlib.Path:
+    """An output file the user named (see :func:`_output_file`) that may replace an existing file only when
+    that file is ``what`` the verb writes (``is_ours(path)``) or ``force``: a typo such as ``params -o
+    topology.yaml`` must not destroy the user's own file."""
+    p = _output_file(path, option)
+    if p.exists() and not force and not is_ours(p):
+        raise UserError(f"{option} {path}: the file exists and is not {what} — choose another name, or add "
+                        f"--force to replace it")
+    return p
 
 
 def cmd_graph(args) -> int:
@@ -226,8 +263,10 @@ def cmd_params(args) -> int:
 
     if args.output is None and not args.list:
         raise UserError("give -o FILE (write the parameter file), --list (print the parameters) or both")
-    if args.output is not None:
-        _output_file(args.output, "-o")
+    if args.output == "-" and args.list:
+        raise UserError("-o - writes the parameter file to standard output: leave out --list")
+    if args.output not in (None, "-"):
+        _replaceable_output(args.output, "-o", _is_param_file, "a parameter file (F´ PrmDb)", args.force)
     topo = _load(args.topology).topology
     declared = {}
     for instance in topo.instances.values():
@@ -244,8 +283,13 @@ def cmd_params(args) -> int:
         return 0
     records = sorted((name, declared[name][0], declared[name][1].type.serialize(value))
                      for name, value in values.items())  # by full name, as fprime-prm-write orders them
-    atomic_write_bytes(args.output, encode_param_file([(pid, data) for _, pid, data in records]))
+    data = encode_param_file([(pid, data) for _, pid, data in records])
     changed = f"; {len(args.set)} set on the command line" if args.set else ""
+    if args.output == "-":
+        sys.stdout.buffer.write(data)
+        sys.stdout.flush()
+        return 0
+    atomic_write_bytes(args.output, data)
     print(f"wrote {args.output}: {len(records)} parameters ({ParamValid.DEFAULT.name} values of the "
           f"topology{changed})")
     return 0
@@ -255,8 +299,6 @@ def _param_table(declared: dict, values: dict) -> str:
     """``params --list``: one row a parameter, in id order — full name, id, F´ type, the value the file
     holds (enum constants by name; ``—`` for a parameter without default, which the file leaves
     out) and the declared units (``—`` when none)."""
-    import json
-
     rows = [("parameter", "id", "type", "value", "units")]
     for name, (pid, p) in sorted(declared.items(), key=lambda item: item[1][0]):
         if name in values:

@@ -4,13 +4,13 @@ Python entry points, so that the framework never names an application.
 An application declares, in its ``pyproject.toml``::
 
     [project.entry-points."fprime_lite.verbs"]
-    sim = "detumble.sitl.cli:SIM_VERB"            # a Verb
+    sim = "detumble.tools.cli:SIM_VERB"            # a Verb
 
     [project.entry-points."fprime_lite.bench"]
-    detumble = "detumble.sitl.bench:DEPLOYMENT_PIECE"   # a BenchPiece
+    detumble = "detumble.tools.bench:DEPLOYMENT_PIECE"   # a BenchPiece
 
     [project.entry-points."fprime_lite.plots"]
-    detumble = "detumble.sitl.plots:RUN_PLOTTER"        # a RunPlotter
+    detumble = "detumble.reports.plots:RUN_PLOTTER"        # a RunPlotter
 
 A verb parses its own arguments (``main(argv) -> exit status``); a bench piece measures with the
 options of ``fprime-lite bench`` and returns its figures and the rows of the summary table; a run

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from detumble.analysis import pooled_stats as ps
-from detumble.sitl.attitude_report import error_statistics
+from detumble.reports.attitude_report import error_statistics
 
 W = 0.5  # the attitude report's sample interval, s
 

@@ -412,16 +412,16 @@ def _fly_wheel_deployment(monkeypatch, implementation, topology, module, control
                           settings=()):
     """One deployment run (scenario values overridden by ``settings``): the truth trace every 20 ms and,
     at every tick, the controller's mode or law, the wheels' momenta, applied torques and limit flags."""
-    from detumble.sitl import run_support
+    from detumble.drivers import spacecraft as spacecraft_module
     from fprime_lite.deploy.deployment import Deployment
     from fprime_lite.deploy.topology_loader import load_topology
 
-    original = run_support.load_scenario
+    original = spacecraft_module.load_scenario
 
     def load_with_settings(name, settings_given=(), **kwargs):
         return original(name, settings=[*kwargs.pop("settings", settings_given), *settings], **kwargs)
 
-    monkeypatch.setattr(run_support, "load_scenario", load_with_settings)
+    monkeypatch.setattr(spacecraft_module, "load_scenario", load_with_settings)
     monkeypatch.setenv(plant_kernel.ENV_VAR, implementation)
     loaded = load_topology(topology)
     topo = loaded.topology

@@ -242,7 +242,8 @@ def test_the_reference_resources_are_marked():
     """TOPO-ROB-019: the detumble application's resources declare themselves, so the reference
     deployment still loads."""
     from fprime_lite.deploy.resources import resource_role
-    from detumble.sitl.run_support import DetumbleRunReport, make_spacecraft
+    from detumble.drivers.spacecraft import make_spacecraft
+    from detumble.reports.detumble_report import DetumbleRunReport
 
     assert resource_role(make_spacecraft) == "simulation" and resource_role(DetumbleRunReport) == "report"
     assert set(load_topology(REF_DIR / "topology.yaml").resources) >= {"spacecraft", "report"}

@@ -243,3 +243,39 @@ def test_a_misspelt_option_gets_a_did_you_mean(argv, hint, capsys):
         assert "did you mean" not in err
     else:
         assert hint in err
+
+
+@pytest.mark.parametrize("verb", ["params", "dict"])
+def test_an_output_never_replaces_a_file_of_another_kind_unless_forced(verb, tmp_path, capsys):
+    """CLI-021 (issue 28): `params -o topology.yaml` or `dict -o thermostat.py` (a slip of the keyboard) is
+    refused, exit 2, and the file is left as it was; the verb's own kind of file is replaced as before;
+    --force replaces anything."""
+    mine = tmp_path / "thermostat.py"
+    mine.write_text("print('my own code')\n")
+    assert main([verb, TOPOLOGY, "-o", str(mine)]) == 2
+    assert "the file exists and is not" in capsys.readouterr().err
+    assert mine.read_text() == "print('my own code')\n"
+    own = tmp_path / ("p.dat" if verb == "params" else "d.json")
+    assert main([verb, TOPOLOGY, "-o", str(own)]) == 0
+    first = own.read_bytes()
+    assert main([verb, TOPOLOGY, "-o", str(own)]) == 0  # its own output is replaced without asking
+    assert own.read_bytes() == first
+    assert main([verb, TOPOLOGY, "-o", str(mine), "--force"]) == 0
+    assert mine.read_bytes() == first
+
+
+def test_dash_writes_to_standard_output(capsysbinary, tmp_path):
+    """CLI-022 (issue 28): `-o -` writes the parameter file or the dictionary to standard output, byte for
+    byte what -o FILE writes; nothing else is printed there."""
+    from fprime_lite.svc.prm_db import decode_param_file
+
+    assert main(["params", TOPOLOGY, "-o", str(tmp_path / "p.dat")]) == 0
+    capsysbinary.readouterr()
+    assert main(["params", TOPOLOGY, "-o", "-"]) == 0
+    out = capsysbinary.readouterr().out
+    assert out == (tmp_path / "p.dat").read_bytes() and decode_param_file(out).records
+    assert main(["dict", TOPOLOGY, "-o", str(tmp_path / "d.json")]) == 0
+    capsysbinary.readouterr()
+    assert main(["dict", TOPOLOGY, "-o", "-"]) == 0
+    assert capsysbinary.readouterr().out == (tmp_path / "d.json").read_bytes()
+    assert main(["params", TOPOLOGY, "-o", "-", "--list"]) == 2

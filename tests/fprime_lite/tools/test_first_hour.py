@@ -173,10 +173,10 @@ def test_drive_level_plot_has_one_row_per_coil_and_legends_sit_outside(finished_
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from detumble.sitl import plots
+    from detumble.reports import plots
 
     figures = []
-    monkeypatch.setattr(plots, "_save", lambda fig, path: figures.append((path.name, fig)) or path)
+    monkeypatch.setattr(plots, "save_figure", lambda fig, path: figures.append((path.name, fig)) or path)
     monkeypatch.setattr(plt, "close", lambda fig=None: None)
     plots.plot_truth(finished_run / "truth.csv", tmp_path, thresholds={"DEADBAND_UPPER_THRESHOLD": 8.0},
                      marks={"detumble completed": 60.0})
@@ -312,7 +312,7 @@ def test_attitude_dipole_and_wheel_plots_appear_with_their_truth_columns(tmp_pat
     import csv
     import math
 
-    from detumble.sitl.plots import plot_truth
+    from detumble.reports.plots import plot_truth
 
     base = ["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT", "bz_uT",
             "level_xp", "level_xm", "level_yp", "level_ym", "level_zm", "strategy"]

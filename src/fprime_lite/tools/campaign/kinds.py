@@ -4,10 +4,10 @@ The framework provides the ``deployment`` run kind; an application adds its own 
 through entry points (``pyproject.toml``)::
 
     [project.entry-points."fprime_lite.campaign_runs"]
-    plant = "detumble.sitl.campaign:PLANT_RUN"          # a RunKind
+    plant = "detumble.reports.campaign:PLANT_RUN"          # a RunKind
 
     [project.entry-points."fprime_lite.campaign_metrics"]
-    detumble = "detumble.sitl.campaign:METRICS"         # a Metric, or a tuple of Metrics
+    detumble = "detumble.reports.campaign:METRICS"         # a Metric, or a tuple of Metrics
 
 A kind turns a :class:`RunRequest` into a :class:`Prepared` run: the simulation built but not yet
 flown. The engine reads the varied values back from it (``readback``), lets metrics attach probes to

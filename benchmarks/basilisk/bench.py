@@ -1,0 +1,305 @@
+"""fprime-lite against Basilisk, side by side in one sitting (issue #19): what
+``benchmarks/bench_vs_basilisk.py`` and the ``basilisk`` piece of ``fprime-lite bench``
+(:mod:`detumble.tools.bench_basilisk`, which finds this folder in a checkout) measure.
+
+Four kinds of run, each in a fresh child process, interleaved round by round so that every kind
+sees the same load on a shared machine:
+
+1. ``basilisk_20hz``: Basilisk, case A, dynamics and its Python B-dot at 20 Hz (0.05 s)
+   (:mod:`basilisk.case_a`);
+2. ``fprime_lite_plant_20hz``: the plant-only runner, case A, kopt law, 20 Hz (what
+   ``fprime-lite sim case_a --law kopt`` flies);
+3. ``basilisk_50hz``: Basilisk, case A at 50 Hz (0.02 s);
+4. ``fprime_lite_deployment_50hz``: the whole F´ deployment of the topology at 50 Hz (every
+   component, rate group, channel and event; ``fprime-lite run`` without its output files).
+
+The newer deployments have their own cases (:func:`measure_case`, ``--case`` of the benchmark
+script; definitions in :mod:`basilisk.side_by_side`):
+
+* ``adcs_ref``: the pointing case, ``basilisk_adcs_c_50hz`` (every law in Basilisk's C modules,
+  :mod:`basilisk.adcs`), ``basilisk_adcs_python_50hz`` (the project's laws in one
+  Python module), ``fprime_lite_adcs_ref_50hz`` (the whole adcs_ref deployment flying the same
+  sequence) and ``fprime_lite_adcs_plant_50hz`` (the same flight software without the framework: the
+  plant-only ``adcs`` law on :func:`~basilisk.side_by_side.plant_only_settings`, the deployment's
+  flight to the last bit: its ratio to Basilisk is context, the bound a framework cannot beat, and its
+  ratio to the deployment is the deployment's tick over the plant-only tick on this case);
+* ``coursework``: WHEELS_PD, ``basilisk_coursework_100hz`` (:mod:`basilisk.coursework`)
+  and ``fprime_lite_coursework_100hz`` (the whole coursework deployment as shipped).
+
+Each child times only its run proper (set-up excluded) and reports the real-time factor. The
+figures are the fastest round of each kind, the ratios are formed from them, and the median
+round's ratios are reported beside them. Both case-A runs report when |ω| < 1 °/s, a check that
+the two sides simulate the same thing. Basilisk is optional: ``pip install -e '.[bsk]'`` (PyPI
+name ``bsk``); without it the piece says so and measures nothing.
+"""
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import json
+import os
+import pathlib
+import statistics
+import subprocess
+import sys
+
+__all__ = ["measure", "measure_cases", "case_of", "plausibility_text", "CASES", "GOALS", "basilisk_installed",
+           "piece_figures", "piece_rows", "INSTALL_HINT"]
+
+ORBIT_S = 5578.0  #: one case-A orbit (420 km), simulated seconds
+BENCHMARKS = pathlib.Path(__file__).resolve().parents[1]  #: benchmarks/, where the package ``basilisk`` is
+DEPLOYMENTS = BENCHMARKS.parent / "deployments"
+INSTALL_HINT = "pip install -e '.[bsk]'  (Basilisk from PyPI, package bsk)"
+
+_PLANT = """
+import json
+from detumble.sim.runner import run
+from detumble.sim.scenario import load_scenario
+s = run(load_scenario("case_a"), law="kopt", duration_s={duration}).summary
+print(json.dumps({{"sim_seconds": s["sim_seconds"], "wall_s": s["wall_seconds"],
+                  "real_time_factor": s["sim_seconds"] / s["wall_seconds"],
+                  "time_below_1_deg_s": s["time_below_1_deg_s"], "final_rate_deg_s": s["final_rate_deg_s"]}}))
+"""
+
+_DEPLOYMENT = """
+import json, time
+from fprime_lite.deploy.deployment import Deployment
+from fprime_lite.deploy.topology_loader import load_topology
+loaded = load_topology({topology!r})
+deployment = Deployment(loaded)
+deployment.start()
+t0 = time.perf_counter()
+deployment.run_for({duration})
+wall = time.perf_counter() - t0
+craft = loaded.resources.get("spacecraft")
+rate = craft.truth().rate_deg_s if craft is not None else None
+print(json.dumps({{"sim_seconds": {duration}, "wall_s": wall, "real_time_factor": {duration} / wall,
+                  "final_rate_deg_s": rate}}))
+"""
+
+
+# The adcs_ref deployment flying the pointing case (side_by_side's sequence and settings), its truth
+# sampled every TRACE_INTERVAL_S as the Basilisk side records it.
+_ADCS = """
+import json, os, tempfile, time
+from fprime_lite.deploy.deployment import Deployment
+from fprime_lite.tools.api import load
+from basilisk import side_by_side as case
+loaded = load({topology!r}, settings=list(case.SETTINGS))
+craft = loaded.resources["spacecraft"]
+trace = []
+with tempfile.TemporaryDirectory() as folder:
+    seq = os.path.join(folder, "pointing.seq")
+    with open(seq, "w") as f:
+        f.write(case.sequence_text())
+    deployment = Deployment(loaded)
+    deployment.start(sequence=seq)
+    craft.set_trace(lambda s: trace.append((s.t_s, s.q_BN, s.wheel_momenta)), round(case.TRACE_INTERVAL_S * 1e6))
+    t0 = time.perf_counter()
+    deployment.run_for({duration})
+    wall = time.perf_counter() - t0
+print(json.dumps({{"sim_seconds": {duration}, "wall_s": wall, "real_time_factor": {duration} / wall,
+                  **case.plausibility(trace)}}))
+"""
+
+# The same flight without the framework: the plant-only adcs law with the sequence's commands as settings.
+_ADCS_PLANT = """
+import json
+from detumble.sim.runner import run
+from detumble.sim.scenario import load_scenario
+from basilisk import side_by_side as case
+r = run(load_scenario(case.SCENARIO, settings=case.plant_only_settings()), law="adcs", duration_s={duration})
+s, cols = r.summary, r.adcs_header
+q, h = [cols.index(f"q{{i}}") for i in range(4)], [i for i, c in enumerate(cols) if c.endswith("_Nms")]
+trace = [(row[0], [extra[i] for i in q], [extra[i] for i in h]) for row, extra in zip(r.rows, r.adcs_rows)]
+print(json.dumps({{"sim_seconds": s["sim_seconds"], "wall_s": s["wall_seconds"],
+                  "real_time_factor": s["sim_seconds"] / s["wall_seconds"], **case.plausibility(trace)}}))
+"""
+
+_COURSEWORK = """
+import json, time
+from fprime_lite.deploy.deployment import Deployment
+from fprime_lite.tools.api import load
+from basilisk import side_by_side as case
+loaded = load({topology!r})
+craft = loaded.resources["spacecraft"]
+trace = []
+deployment = Deployment(loaded)
+deployment.start()
+craft.set_trace(lambda s: trace.append((s.t_s, s.q_BO, s.omega_BN_B, s.wheel_momenta)),
+                round(case.TRACE_INTERVAL_S * 1e6))
+t0 = time.perf_counter()
+deployment.run_for({duration})
+wall = time.perf_counter() - t0
+print(json.dumps({{"sim_seconds": {duration}, "wall_s": wall, "real_time_factor": {duration} / wall,
+                  **case.coursework_plausibility(trace)}}))
+"""
+
+#: case -> (its deployment, [(ratio name, fprime-lite kind, Basilisk kind)])
+CASES = {
+    "proves_ref": (DEPLOYMENTS / "proves_ref" / "topology.yaml",
+                   [("plant_20hz_over_basilisk", "fprime_lite_plant_20hz", "basilisk_20hz"),
+                    ("deployment_50hz_over_basilisk", "fprime_lite_deployment_50hz", "basilisk_50hz")]),
+    "adcs_ref": (DEPLOYMENTS / "adcs_ref" / "topology.yaml",
+                 [("adcs_ref_over_basilisk_c", "fprime_lite_adcs_ref_50hz", "basilisk_adcs_c_50hz"),
+                  ("adcs_ref_over_basilisk_python", "fprime_lite_adcs_ref_50hz", "basilisk_adcs_python_50hz"),
+                  ("adcs_laws_alone_over_basilisk_c", "fprime_lite_adcs_plant_50hz", "basilisk_adcs_c_50hz"),
+                  # plant-only real-time factor over the deployment's: the deployment's tick over the plant-only tick
+                  ("adcs_ref_tick_over_plant_only_tick", "fprime_lite_adcs_plant_50hz", "fprime_lite_adcs_ref_50hz")]),
+    "coursework": (DEPLOYMENTS / "coursework" / "topology.yaml",
+                   [("coursework_over_basilisk", "fprime_lite_coursework_100hz", "basilisk_coursework_100hz")]),
+}
+#: ratio -> issue 19's goal; the others are context (adcs_laws_alone_*: the flight software without the framework)
+GOALS = {"plant_20hz_over_basilisk": "≥ 3", "deployment_50hz_over_basilisk": "≥ 1.5",
+         "adcs_ref_over_basilisk_c": "≥ 1.5", "adcs_ref_over_basilisk_python": "≥ 1.5",
+         "coursework_over_basilisk": "≥ 1.5", "adcs_ref_tick_over_plant_only_tick": "≤ 1.5"}
+
+
+def _kinds(case: str, topology: str, duration_s: float) -> dict[str, list[str]]:
+    """The child command of every kind of run of ``case`` (in the order they are flown)."""
+    py = sys.executable
+    d = str(duration_s)
+    if case == "proves_ref":
+        case_a = [py, "-m", "basilisk.case_a", "--duration", d]
+        return {
+            "basilisk_20hz": case_a + ["--step", "0.05"],
+            "fprime_lite_plant_20hz": [py, "-c", _PLANT.format(duration=duration_s)],
+            "basilisk_50hz": case_a + ["--step", "0.02"],
+            "fprime_lite_deployment_50hz": [py, "-c", _DEPLOYMENT.format(topology=topology, duration=duration_s)],
+        }
+    if case == "adcs_ref":
+        adcs = [py, "-m", "basilisk.adcs", "--duration", d, "--step", "0.02"]
+        return {
+            "basilisk_adcs_c_50hz": adcs + ["--control", "c"],
+            "basilisk_adcs_python_50hz": adcs + ["--control", "python"],
+            "fprime_lite_adcs_ref_50hz": [py, "-c", _ADCS.format(topology=topology, duration=duration_s)],
+            "fprime_lite_adcs_plant_50hz": [py, "-c", _ADCS_PLANT.format(duration=duration_s)],
+        }
+    if case == "coursework":
+        return {
+            "basilisk_coursework_100hz": [py, "-m", "basilisk.coursework", "--duration", d],
+            "fprime_lite_coursework_100hz": [py, "-c", _COURSEWORK.format(topology=topology, duration=duration_s)],
+        }
+    raise ValueError(f"no side-by-side case {case!r}; choose one of {', '.join(CASES)}")
+
+
+def basilisk_installed() -> bool:
+    return importlib.util.find_spec("Basilisk") is not None
+
+
+def _child(argv: list[str]) -> dict:
+    # the children import this package (``-m basilisk.case_a``, ``from basilisk import side_by_side``)
+    path = os.pathsep.join(p for p in (str(BENCHMARKS), os.environ.get("PYTHONPATH", "")) if p)
+    done = subprocess.run(argv, capture_output=True, text=True, check=False, env={**os.environ, "PYTHONPATH": path})
+    if done.returncode != 0:
+        raise RuntimeError(f"{' '.join(argv[:3])}…: failed\n{done.stderr[-2000:]}")
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def measure_cases(cases, duration_s: float = ORBIT_S, rounds: int = 3, topologies=None, progress=None) -> dict:
+    """Fly every kind of every case in ``cases`` ``rounds`` times, all interleaved in each round.
+
+    ``topologies`` maps a case to the deployment it flies (default: the case's own). Returns
+    ``{case: figures}``; a case's figures hold its runs, the fastest and the median round of each
+    kind, its ratios (fastest rounds, and median rounds) and, for the newer cases, both sides'
+    plausibility figures (the first round's).
+    """
+    topologies = dict(topologies or {})
+    plan: dict[str, tuple[str, list[str]]] = {}
+    for case in cases:
+        if case not in CASES:
+            raise ValueError(f"no side-by-side case {case!r}; choose one of {', '.join(CASES)}")
+        topology = str(pathlib.Path(topologies.get(case, CASES[case][0])).resolve())
+        topologies[case] = topology
+        for kind, argv in _kinds(case, topology, duration_s).items():
+            plan[kind] = (case, argv)
+    runs: dict[str, list[dict]] = {k: [] for k in plan}
+    for r in range(rounds):
+        for kind, (_, argv) in plan.items():
+            runs[kind].append(_child(argv))
+            if progress is not None:
+                progress(f"round {r + 1}/{rounds} {kind}: {runs[kind][-1]['real_time_factor']:.0f}× real time")
+    out: dict[str, dict] = {}
+    for case in cases:
+        mine = {k: v for k, v in runs.items() if plan[k][0] == case}
+        best = {k: max(x["real_time_factor"] for x in v) for k, v in mine.items()}
+        median = {k: statistics.median(x["real_time_factor"] for x in v) for k, v in mine.items()}
+        figures = {"installed": True, "case": case, "topology": topologies[case], "sim_seconds": duration_s,
+                   "rounds": rounds, "runs": mine, "best_real_time_factor": best,
+                   "median_real_time_factor": median}
+        for name, ours, theirs in CASES[case][1]:
+            figures[name] = best[ours] / best[theirs]
+            figures[f"median_{name}"] = median[ours] / median[theirs]
+        if case != "proves_ref":
+            skip = ("sim_seconds", "wall_s", "real_time_factor", "step_s", "control")
+            figures["plausibility"] = {k: {f: x for f, x in v[0].items() if f not in skip} for k, v in mine.items()}
+        out[case] = figures
+    return out
+
+
+def measure(topology, duration_s: float = ORBIT_S, rounds: int = 3, progress=None) -> dict:
+    """Fly proves_ref's four kinds ``rounds`` times, interleaved; figures and ratios (see the module doc)."""
+    d = measure_cases(["proves_ref"], duration_s, rounds, {"proves_ref": topology}, progress)["proves_ref"]
+    runs = d["runs"]
+    d["case_a_time_below_1_deg_s"] = {"basilisk": runs["basilisk_20hz"][0]["time_below_1_deg_s"],
+                                      "fprime_lite": runs["fprime_lite_plant_20hz"][0]["time_below_1_deg_s"]}
+    return d
+
+
+def plausibility_text(figures: dict) -> str:
+    """One line of a run's plausibility figures (``name value, ...``)."""
+    return ", ".join(f"{k} {v:.4g}" if isinstance(v, float) else f"{k} {v}" for k, v in figures.items())
+
+
+def case_of(topology) -> str:
+    """The side-by-side case of a deployment: the case whose own topology file it is (adcs_ref,
+    coursework), else proves_ref (Basilisk's case A against whatever deployment is given)."""
+    path = pathlib.Path(topology).resolve()
+    for case, (own, _) in CASES.items():
+        if path == own.resolve():
+            return case
+    return "proves_ref"
+
+
+def piece_rows(d: dict) -> list[tuple[str, str, str]]:
+    """The ``fprime-lite bench`` table rows of :func:`piece_figures`' figures."""
+    if not d.get("installed"):
+        return [("Basilisk side by side", f"not measured: Basilisk is not installed — {INSTALL_HINT}", "")]
+    b = d["best_real_time_factor"]
+    if d.get("case", "proves_ref") != "proves_ref":
+        rows = [(f"{d['case']}, {d['sim_seconds']:.0f} s: {ours} / {theirs} (real-time factors, "
+                 f"best of {d['rounds']})",
+                 f"{b[ours]:,.0f} / {b[theirs]:,.0f} = {d[name]:.2f} (median rounds {d['median_' + name]:.2f})",
+                 GOALS.get(name, "context"))
+                for name, ours, theirs in CASES[d["case"]][1]]
+        for kind, figures in d["plausibility"].items():
+            rows.append((f"{kind}: plausibility", plausibility_text(figures), ""))
+        return rows
+    t = d["case_a_time_below_1_deg_s"]
+    return [
+        (f"case A 20 Hz, {d['sim_seconds']:.0f} s: fprime-lite plant-only / Basilisk (real-time factors, "
+         f"best of {d['rounds']})",
+         f"{b['fprime_lite_plant_20hz']:,.0f} / {b['basilisk_20hz']:,.0f} = {d['plant_20hz_over_basilisk']:.2f} "
+         f"(median rounds {d['median_plant_20hz_over_basilisk']:.2f})", GOALS["plant_20hz_over_basilisk"]),
+        ("50 Hz: whole deployment / Basilisk case A",
+         f"{b['fprime_lite_deployment_50hz']:,.0f} / {b['basilisk_50hz']:,.0f} = "
+         f"{d['deployment_50hz_over_basilisk']:.2f} (median rounds {d['median_deployment_50hz_over_basilisk']:.2f})",
+         GOALS["deployment_50hz_over_basilisk"]),
+        ("case A |ω| < 1 °/s at: fprime-lite / Basilisk", f"{t['fprime_lite']} s / {t['basilisk']} s", ""),
+    ]
+
+
+def piece_figures(options: argparse.Namespace) -> dict:
+    """What the ``basilisk`` bench piece measures with ``fprime-lite bench``'s options: the case of
+    ``options.topology`` (:func:`case_of`), three rounds of ``options.duration`` (default one orbit)."""
+    if not basilisk_installed():
+        return {"installed": False, "how_to_install": INSTALL_HINT}
+    duration = options.duration if options.duration is not None else ORBIT_S
+    def progress(line: str) -> None:
+        print(line, file=sys.stderr, flush=True)
+
+    case = case_of(options.topology)
+    if case != "proves_ref":
+        return measure_cases([case], duration, 3, {case: options.topology}, progress)[case]
+    return measure(options.topology, duration, progress=progress)
+

@@ -1,0 +1,94 @@
+"""The run report of the coursework deployment: truth log and seed 004's settling figures.
+
+A topology resource (role ``report``) beside the spacecraft. It samples the truth at the control
+period (``metrics_interval_s``, default the coursework's 0.01 s) and feeds the same on-line
+settling trackers the plant-only runner uses (:class:`detumble.sim.settling_metrics.SettlingMetrics`),
+so ``summary.json`` carries the same ``settling_time_2pct_s``, ``settling_time_2pct_axes_s`` and
+``time_below_threshold_s`` as ``fprime-lite sim``; every ``truth_interval_s`` a row goes to
+``truth.csv`` (ω in deg/s and the ADCS columns of :mod:`detumble.sim.truth`).
+"""
+from __future__ import annotations
+
+import csv
+from typing import Any, TextIO
+import math
+import os
+import pathlib
+
+from fprime_lite.deploy.resources import topology_resource
+
+from detumble.sim.settling_metrics import SettlingMetrics
+from detumble.sim.truth import adcs_header, adcs_row
+from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthSample
+
+__all__ = ["CourseworkRunReport"]
+
+US_PER_S = 1_000_000
+
+
+@topology_resource(role="report")
+class CourseworkRunReport:
+    """Args: the spacecraft (``$spacecraft``), whether the wheel law flies (its attitude channel
+    counts in the overall settling time), the truth-log and metric intervals (simulated s)."""
+
+    def __init__(self, spacecraft: SimulatedSpacecraft, *, wheel_law: bool = False, truth_interval_s: float = 1.0,
+                 metrics_interval_s: float = 0.01):
+        for name, value in (("truth_interval_s", truth_interval_s), ("metrics_interval_s", metrics_interval_s)):
+            if not value > 0:
+                raise ValueError(f"{name} must be positive, got {value}")
+        self.spacecraft = spacecraft
+        self.wheel_law = wheel_law
+        self.metrics_us = max(1, round(metrics_interval_s * US_PER_S))
+        self.rows_every = max(1, round(truth_interval_s / metrics_interval_s))
+        self.initial_rate_deg_s = spacecraft.truth().rate_deg_s
+        self.metrics: SettlingMetrics | None = None
+        self._count = 0
+        self._path: pathlib.Path | None = None
+        self._file: TextIO | None = None
+        self._writer: Any = None  # a csv writer (its class is private to _csv)
+
+    def begin(self, deployment, out_dir: pathlib.Path) -> None:
+        plant = self.spacecraft.plant
+        self.start_us = deployment.scheduler.now_us
+        self.metrics = SettlingMetrics(plant, omega_final=(0.0, -plant.orbit.mean_motion, 0.0),
+                                       include_attitude=self.wheel_law)
+        self._path = pathlib.Path(out_dir) / "truth.csv"
+        self._file = fh = open(self._path.with_name(".truth.csv.part"), "w", encoding="utf-8", newline="")
+        self._writer = csv.writer(fh, lineterminator="\n")
+        self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s",
+                               *adcs_header(plant, with_field=True)])
+        self.spacecraft.set_trace(self._sample, self.metrics_us)
+
+    def _sample(self, s: TruthSample) -> None:
+        assert self.metrics is not None and self._writer is not None
+        self.metrics.update(self.spacecraft.plant)
+        if self._count % self.rows_every == 0:
+            w = s.omega_BN_B
+            t = s.t_s - self.start_us / US_PER_S
+            self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
+                                   s.rate_deg_s, *adcs_row(self.spacecraft.plant, with_field=True)])
+        self._count += 1
+
+    def on_event(self, event) -> None:
+        pass
+
+    def progress(self) -> dict:
+        return {"rate_deg_s": self.spacecraft.truth().rate_deg_s, "state": ""}
+
+    def summary(self) -> dict:
+        out = {"initial_rate_deg_s": self.initial_rate_deg_s, "final_rate_deg_s": self.spacecraft.truth().rate_deg_s,
+               "scenario": self.spacecraft.scenario.name, "physics_steps": self.spacecraft.steps_taken}
+        if self.metrics is not None:
+            out.update(self.metrics.summary())
+        return out
+
+    def finish(self, out_dir: pathlib.Path, *, plots: bool = True) -> list[pathlib.Path]:
+        self.spacecraft.set_trace(None)
+        if self._file is None or self._path is None:
+            return []
+        self._file.flush()
+        os.fsync(self._file.fileno())
+        self._file.close()
+        os.replace(self._path.with_name(".truth.csv.part"), self._path)
+        self._file = None
+        return [self._path]

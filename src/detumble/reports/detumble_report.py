@@ -1,0 +1,176 @@
+"""The detumble deployments' run report, a topology *resource* (see ``docs/topology.md``).
+
+:class:`DetumbleRunReport` watches a run: it streams the truth trace to ``truth.csv``, follows the
+downlinked DetumbleStarted / DetumbleCompleted events, reports progress, adds the detumble figures
+to ``summary.json`` and draws the plots. The spacecraft it watches is the ``simulation`` resource,
+:func:`detumble.drivers.spacecraft.make_spacecraft`.
+"""
+
+from __future__ import annotations
+
+from typing import Any, TextIO
+
+import csv
+import math
+import os
+import pathlib
+
+from fprime_lite.deploy.resources import topology_resource
+from fprime_lite.osal.atomic import clean_temporary_files, open_temporary
+
+from detumble.control.coil_layout import COIL_FACES
+from detumble.sim.truth import adcs_header, adcs_row
+from detumble.reports.power_budget import POWER_COLUMNS as _POWER_COLUMNS, PowerBudget, plot_power
+from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthSample
+from detumble.components.types import DetumbleState
+
+__all__ = ["DetumbleRunReport"]
+
+US_PER_S = 1_000_000
+
+
+@topology_resource(role="report")
+class DetumbleRunReport:
+    """Follows one run of a detumble deployment and writes its detumble-specific outputs.
+
+    Args:
+        spacecraft: the simulated spacecraft (``$spacecraft``).
+        manager: the qualified name of the DetumbleManager instance.
+        truth_interval_s: how often the truth trace is sampled (simulated seconds).
+    """
+
+    def __init__(self, spacecraft: SimulatedSpacecraft, *, manager: str = "ReferenceDeployment.detumbleManager",
+                 truth_interval_s: float = 1.0):
+        if not truth_interval_s > 0:
+            raise ValueError(f"truth_interval_s must be positive, got {truth_interval_s}")
+        self.spacecraft = spacecraft
+        self.manager_name = manager
+        self.truth_interval_us = max(1, round(truth_interval_s * US_PER_S))
+        self.manager: Any = None  # the flight manager instance, found by name at begin()
+        self.start_us = 0
+        self.initial_rate_deg_s = spacecraft.truth().rate_deg_s
+        self.last: TruthSample | None = None
+        self.detumble_started_s: float | None = None
+        self.detumble_complete_s: float | None = None
+        self.time_below_1_deg_s: float | None = None
+        self.samples = 0
+        self._file: TextIO | None = None
+        self._writer: Any = None  # a csv writer (its class is private to _csv)
+        self._path: pathlib.Path | None = None
+        self._tmp: pathlib.Path | None = None  # where truth.csv is streamed until finish()
+        self.power = PowerBudget(spacecraft)
+
+    # --- run hooks (called by ``fprime-lite run``) ------------------------------------------------
+
+    def begin(self, deployment, out_dir: pathlib.Path) -> None:
+        self.manager = deployment.topology.instance(self.manager_name).component
+        self.start_us = deployment.scheduler.now_us
+        self._path = pathlib.Path(out_dir) / "truth.csv"
+        clean_temporary_files(self._path.parent)  # what a killed run left (a live run's are kept)
+        self._file, self._tmp = open_temporary(self._path, "w", encoding="utf-8", newline="")
+        fh = self._file
+        self._writer = csv.writer(fh, lineterminator="\n")
+        self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
+                               "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
+                               *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy",
+                               *adcs_header(self.spacecraft.plant, with_field=False), *_POWER_COLUMNS])
+        self._state_us = {s: 0 for s in DetumbleState}
+        self._progress_us = {s: 0 for s in DetumbleState}
+        self._state_since = deployment.scheduler.now_us
+        deployment.scheduler.add_time_listener(self._on_time)
+        self.spacecraft.set_trace(self._sample, self.truth_interval_us)
+
+    def _on_time(self, time_us: int) -> None:
+        """Credit the time since the last event to the state the manager was in (exact fractions)."""
+        state = self.manager.state
+        self._state_us[state] += time_us - self._state_since
+        self._progress_us[state] += time_us - self._state_since
+        self._state_since = time_us
+
+    def _sample(self, s: TruthSample) -> None:
+        self.last = s
+        self.samples += 1
+        t = s.t_s - self.start_us / US_PER_S
+        if self.time_below_1_deg_s is None and s.rate_deg_s < 1.0:
+            self.time_below_1_deg_s = t
+        w = s.omega_BN_B
+        levels = [s.coil_levels.get(f, 0) for f in COIL_FACES]
+        strategy = getattr(self.manager, "strategy", None)
+        total = sum(self._state_us.values())
+        fractions = [self._state_us[st] / total if total else 0.0 for st in DetumbleState]
+        self._state_us = {st: 0 for st in DetumbleState}
+        self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
+                               s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *levels,
+                               *(f"{f:.4f}" for f in fractions), strategy.name if strategy is not None else "",
+                               *adcs_row(self.spacecraft.plant, with_field=False), *self.power.sample(t)])
+
+    def on_event(self, event) -> None:
+        """A downlinked event (``fprime_lite.ground.downlink.DecodedEvent``)."""
+        t = event.time.total_us / US_PER_S - (self.spacecraft.clock.epoch_us + self.start_us) / US_PER_S
+        if event.name.endswith(".DetumbleStarted") and self.detumble_started_s is None:
+            self.detumble_started_s = t
+        elif event.name.endswith(".DetumbleCompleted") and self.detumble_started_s is not None \
+                and self.detumble_complete_s is None:
+            self.detumble_complete_s = t
+
+    def progress(self) -> dict:
+        """The body rate now, and how the time since the previous call was shared among the
+        manager's states (the states taking 5 % or more, largest first: ``ACTUATING_BDOT 68%``)."""
+        truth = self.spacecraft.truth()
+        return {"rate_deg_s": truth.rate_deg_s, "state": self._state_shares()}
+
+    def state_shares(self) -> dict[str, float]:
+        """Share of the simulated time since the previous call spent in each state (sums to 1);
+        resets the count."""
+        shares = getattr(self, "_progress_us", None)
+        if not shares:
+            return {}
+        total = sum(shares.values())
+        out = {st.name: us / total for st, us in shares.items()} if total else {}
+        self._progress_us = {st: 0 for st in DetumbleState}
+        return out
+
+    def _state_shares(self) -> str:
+        shares = self.state_shares()
+        if not shares:
+            return self.manager.state.name if self.manager is not None else "?"
+        ranked = sorted(((v, k) for k, v in shares.items() if v >= 0.05), reverse=True)
+        return " ".join(f"{name} {share:.0%}" for share, name in ranked)
+
+    def summary(self) -> dict:
+        final = self.spacecraft.truth()
+        power = self.power.summary(self.detumble_started_s, self.detumble_complete_s)
+        return {
+            "initial_rate_deg_s": self.initial_rate_deg_s,
+            "final_rate_deg_s": final.rate_deg_s,
+            "detumble_started_s": self.detumble_started_s,
+            "detumble_complete_s": self.detumble_complete_s,
+            "time_below_1_deg_s": self.time_below_1_deg_s,
+            "scenario": self.spacecraft.scenario.name,
+            "physics_steps": self.spacecraft.steps_taken,
+            **({"power": power} if power else {}),
+            "flight_software_resets": self.spacecraft.resets,
+        }
+
+    def finish(self, out_dir: pathlib.Path, *, plots: bool = True) -> list[pathlib.Path]:
+        """Close the truth log; draw the plots; return the files written."""
+        self.spacecraft.set_trace(None)
+        if self._file is not None and self._path is not None and self._tmp is not None:  # begin() sets them
+            self._file.flush()
+            os.fsync(self._file.fileno())
+            self._file.close()
+            os.replace(self._tmp, self._path)
+            self._file = None
+        written = [self._path] if self._path is not None else []
+        if plots and self._path is not None:
+            from detumble.reports.plots import plot_truth
+
+            thresholds: dict[str, float] = {name: getattr(self.manager, name).value for name in
+                          ("DEADBAND_UPPER_THRESHOLD", "DEADBAND_LOWER_THRESHOLD")} if self.manager else {}
+            written += plot_truth(self._path, pathlib.Path(out_dir), thresholds=thresholds,
+                                  marks={"detumble started": self.detumble_started_s,
+                                         "detumble completed": self.detumble_complete_s})
+            if self.spacecraft.power is not None:
+                written += plot_power(self._path, pathlib.Path(out_dir), self.detumble_started_s,
+                                      self.detumble_complete_s)
+        return written
