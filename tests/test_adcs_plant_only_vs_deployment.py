@@ -1,4 +1,7 @@
-"""The plant-only law `adcs` flies the same controller as deployments/adcs_ref (issues 13 and 19).
+"""The plant-only law `adcs` flies the same controller as deployments/adcs_ref (issues 13, 19 and 26).
+
+Both fly one law, detumble.control.three_mode.ThreeModeLaw, through two adapters (the AttitudeController
+component and detumble.sim.adcs_law); these tests check that the adapters make it fly the same flight.
 
 Each test flies the same scenario twice — the whole deployment (`fprime-lite run`: rate groups, sequencer,
 drivers, BDotDetumble, AttitudeController) and the plant-only runner with `--law adcs` — and compares what the
@@ -162,8 +165,10 @@ def test_side_by_side_pointing_case_plant_only_matches_the_deployment(tmp_path):
     5 s, the 90° change of target at 300 s, all from the start-up sequence) against `force_mode`, `force_at_s`
     and `target_changes` on the plant-only law (side_by_side.plant_only_settings, what the benchmark flies): the
     same flight to the last bit over 400 s — the body rate at every second (both slews included), the
-    transition, the POINTING error statistics. (Before the plant-only commands acted from the first cycle after
-    their time, the law slewed one 10 Hz cycle early: 0.3 °/s apart at 6 s and at 301 s.)"""
+    transition, the POINTING error statistics. Both sides fly one law (detumble.control.three_mode), so this
+    checks its two adapters: the component's ports, the sequencer's timing and the drivers against PlantIo and
+    the plant-only commands. (Before the plant-only commands acted from the first cycle after their time, the
+    law slewed one 10 Hz cycle early: 0.3 °/s apart at 6 s and at 301 s.)"""
     from basilisk import side_by_side as case
 
     duration = 400.0

@@ -5,7 +5,7 @@ the component (or, in the DetumbleManager's compact coil rows, ``X_PLUS_VOLTAGE 
 with units ``V / Ω / …``) must begin its units cell with the declaration's ``units=`` (``—`` when it
 declares none), and every parameter of the component must be in the table. The component classes
 are found through the reference topologies (by their ``type:``), so a module that moves needs no
-change here. attitude_controller.md is not covered yet (its parameters gain units separately).
+change here.
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ PAGES = [  # page, topology, instance
     ("simulated_drivers.md", "deployments/proves_ref/topology.yaml", "imuManager"),
     ("bdot_detumble.md", "deployments/proves_ref/topology_bdot_detumble.yaml", "bdotDetumble"),
     ("coursework_controller.md", "deployments/coursework/topology.yaml", "controller"),
+    ("attitude_controller.md", "deployments/adcs_ref/topology.yaml", "attitudeController"),
 ]
 
 

@@ -25,6 +25,7 @@ import math
 from fprime_lite import F64, Channel, OutputPort, Param, PassiveComponent, sync_input
 
 from detumble.control.attitude_defaults import BDOT_MIN_FIELD_GAUSS, BDOT_PROVIDER_GAIN
+from detumble.control.magnetic import normalised_bdot_dipole
 from detumble.components.types import DipoleMoment, DipoleMomentGet, MagneticField, MagneticFieldGet, Result, Success
 
 __all__ = ["BDotDetumble", "MIN_FIELD_MAGNITUDE_GAUSS"]
@@ -81,10 +82,9 @@ class BDotDetumble(PassiveComponent):
         dt = dt_us / 1e6
         gain = self.Gain.value
         self.GainParam.write(gain)
-        scale = -gain / magnitude
-        moment = DipoleMoment(x=scale * (field.x - previous.x) / dt,
-                              y=scale * (field.y - previous.y) / dt,
-                              z=scale * (field.z - previous.z) / dt)
+        x, y, z = normalised_bdot_dipole((previous.x, previous.y, previous.z), (field.x, field.y, field.z), dt, gain,
+                                         magnitude)
+        moment = DipoleMoment(x=x, y=y, z=z)
         self.previous_field = field
         if not (math.isfinite(moment.x) and math.isfinite(moment.y) and math.isfinite(moment.z)):
             return _zero_failure()

@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["DEFAULTS", "ENUM_CHOICES", "RATE_GROUP_PERIOD_S", "INTEGRAL_MAX_TORQUE", "BORESIGHT_B",
-           "BDOT_PROVIDER_GAIN", "BDOT_MIN_FIELD_GAUSS"]
+__all__ = ["DEFAULTS", "PARAMETERS", "UNITS", "ENUM_CHOICES", "RATE_GROUP_PERIOD_S", "INTEGRAL_MAX_TORQUE",
+           "BORESIGHT_B", "BDOT_PROVIDER_GAIN", "BDOT_MIN_FIELD_GAUSS"]
 
 # --- pointing on the wheels (quaternion PD + integral) -----------------------------------------
 K_P = 1.1e-3  # N·m: spring on q_err.v (ω_n 0.5 rad/s for 2.2e-3 kg·m²)
@@ -101,6 +101,73 @@ BORESIGHT_B = (0.0, 0.0, 1.0)
 BDOT_PROVIDER_GAIN = 1.0
 #: gauss: below this |B| the BDotDetumble provider computes no dipole.
 BDOT_MIN_FIELD_GAUSS = 1e-6
+
+#: Every parameter in the flight dictionary's order (its ids follow it): name → (units, low, high, finite), the
+#: range a PRM_SET or the parameter file may give it (None: unbounded; finite: NaN and ±inf refused). Units as the
+#: ground reads the value (the component declares them, ``Param(units=…)``; "" for an enumerated parameter, "1" for
+#: a ratio).
+PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
+    "K_P": ("N·m", None, None, False),
+    "K_D": ("N·m·s", None, None, False),
+    "K_I": ("N·m/s", None, None, False),
+    "INTEGRAL_WINDOW": ("deg", None, None, False),
+    "K_P_MAG": ("N·m", 0.0, 1.0e-3, False),
+    "K_D_MAG": ("N·m·s", 0.0, 1.0e-2, False),
+    "C_DAMP": ("N·m·s", None, None, False),
+    "I_D": ("kg·m²", None, None, False),
+    "K_BDOT": ("A·m²·s/G", None, None, False),
+    "SPIN_LAW": ("", None, None, False),
+    "SPIN_RATE_TARGET": ("deg/s", None, None, False),
+    "SPIN_K_TRANSVERSE": ("N·m·s", None, None, False),
+    "SPIN_K_RATE": ("N·m·s", None, None, False),
+    "DETUMBLE_ENTER_RATE": ("deg/s", None, None, False),
+    "DETUMBLE_EXIT_RATE": ("deg/s", None, None, False),
+    "MODE_DWELL": ("s", None, None, False),
+    "SPIN_AXIS_ENTER": ("deg", None, None, False),
+    "SPIN_AXIS_RESET": ("deg", None, None, False),
+    "SPIN_RATE_ENTER": ("1", None, None, False),
+    "SPIN_RATE_RESET": ("1", None, None, False),
+    "SPIN_STABLE_DWELL": ("s", None, None, False),
+    "ATTITUDE_TIMEOUT": ("s", None, None, False),
+    "SLEW_RATE_LIMIT": ("deg/s", None, None, False),
+    "POINTING_ACTUATOR": ("", None, None, False),
+    "K_DUMP": ("1/s", None, None, False),
+    "WHEEL_MAX_TORQUE": ("N·m", None, None, False),
+    "WHEEL_MAX_MOMENTUM": ("N·m·s", None, None, False),
+    "FILTER_KP": ("1/s", None, None, False),
+    "FILTER_KI": ("1/s²", None, None, False),
+    "X_COIL_MAX_DIPOLE": ("A·m²", None, None, False),
+    "Y_COIL_MAX_DIPOLE": ("A·m²", None, None, False),
+    "Z_COIL_MAX_DIPOLE": ("A·m²", None, None, False),
+    "CYCLE_TICKS": ("ticks", None, None, False),
+    "ESTIMATOR": ("", None, None, False),
+    "GYRO_NOISE": ("deg/s", 1e-6, 10.0, True),
+    "GYRO_BIAS_WALK": ("deg/s/√s", 0.0, 1.0, True),
+    "GYRO_BIAS_SIGMA0": ("deg/s", 1e-6, 10.0, True),
+    "TRACKER_NOISE_CROSS": ("arcsec", 1e-3, 3600.0, True),
+    "TRACKER_NOISE_ABOUT": ("arcsec", 1e-3, 3600.0, True),
+    "RATE_SOURCE": ("", None, None, False),
+    "RATE_OBSERVER_GAIN": ("1/s", 1e-4, 100.0, True),
+    "INERTIA_XX": ("kg·m², body frame", 1e-6, 10.0, True),
+    "INERTIA_YY": ("kg·m², body frame", 1e-6, 10.0, True),
+    "INERTIA_ZZ": ("kg·m², body frame", 1e-6, 10.0, True),
+    "INERTIA_XY": ("kg·m², body frame", -10.0, 10.0, True),
+    "INERTIA_XZ": ("kg·m², body frame", -10.0, 10.0, True),
+    "INERTIA_YZ": ("kg·m², body frame", -10.0, 10.0, True),
+    "MAG_POINTING_LAW": ("", None, None, False),
+    "MAG_STEER_RHO": ("1", 0.0, 10.0, False),
+    "MAG_STEER_ZETA": ("1", 0.0, 5.0, False),
+    "MAG_FIELD_RATE_BANDWIDTH": ("rad/s", 1.0e-3, 1.0, False),
+    "MAG_FIELD_RATE_MIN": ("1/s", 1.0e-5, 1.0e-1, False),
+    "MAG_SETTLE_TIME": ("s", 0.0, 3600.0, False),
+    "MAG_RESIDUAL_MODE": ("", None, None, False),
+    "MAG_RESIDUAL_DIPOLE_X": ("A·m², body frame", -0.05, 0.05, False),
+    "MAG_RESIDUAL_DIPOLE_Y": ("A·m², body frame", -0.05, 0.05, False),
+    "MAG_RESIDUAL_DIPOLE_Z": ("A·m², body frame", -0.05, 0.05, False),
+    "MAG_RESIDUAL_WINDOW": ("s", 5.0, 600.0, False),
+}
+#: Each parameter's units (the first column of :data:`PARAMETERS`).
+UNITS: dict[str, str] = {name: row[0] for name, row in PARAMETERS.items()}
 
 #: The member names each enumerated parameter accepts (those of the flight enums, in their order).
 ENUM_CHOICES: dict[str, tuple[str, ...]] = {

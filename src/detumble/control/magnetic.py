@@ -12,8 +12,8 @@ import math
 
 Vec3 = tuple[float, float, float]
 
-__all__ = ["project_dipole", "project_dipole_weighted", "seed_project_dipole", "bdot_dipole", "dump_torque",
-           "scale_to_limits", "clip_to_limits"]
+__all__ = ["project_dipole", "project_dipole_weighted", "seed_project_dipole", "bdot_dipole", "normalised_bdot_dipole",
+           "dump_torque", "scale_to_limits", "clip_to_limits"]
 
 _ZERO = (0.0, 0.0, 0.0)
 
@@ -82,6 +82,14 @@ def bdot_dipole(b_prev: Vec3, b_now: Vec3, dt_s: float, gain: float) -> Vec3 | N
         return None
     s = -gain / dt_s
     return (s * (b_now[0] - b_prev[0]), s * (b_now[1] - b_prev[1]), s * (b_now[2] - b_prev[2]))
+
+
+def normalised_bdot_dipole(b_prev: Vec3, b_now: Vec3, dt_s: float, gain: float, b_size: float) -> Vec3:
+    """BDotDetumble's ``m = −Gain·Ḃ/|B|`` with ``Ḃ = (B_now − B_prev)/Δt`` (B in gauss, ``b_size`` = |B_now|,
+    ``dt_s`` > 0 in s, ``gain`` A·m²·s; m A·m²): the provider component and its plant-only stand-in."""
+    scale = -gain / b_size
+    return (scale * (b_now[0] - b_prev[0]) / dt_s, scale * (b_now[1] - b_prev[1]) / dt_s,
+            scale * (b_now[2] - b_prev[2]) / dt_s)
 
 
 def dump_torque(h_wheels_B: Vec3, gain: float, h_target_B: Vec3 = _ZERO) -> Vec3:

@@ -19,16 +19,20 @@ import math
 
 Vec3 = tuple[float, float, float]
 
-__all__ = ["SeedKaneDamper", "VirtualDamper", "SpinRateRegulator", "rk4_scalar", "spin_errors"]
+__all__ = ["SeedKaneDamper", "VirtualDamper", "SpinRateRegulator", "rk4_scalar", "spin_errors", "spin_axis_error_deg"]
 
 
 
 def spin_errors(w: Vec3, target_rad_s: float) -> tuple[float, float]:
     """``(angle of ω from +Z deg, |ω_z − target| / |target|)`` for the rate ``w`` (rad/s, B) and the spin
     target (rad/s about +Z; a zero target gives ``|ω_z|``); a zero rate is 180° off the axis."""
+    return spin_axis_error_deg(w), (abs(w[2] - target_rad_s) / abs(target_rad_s) if target_rad_s != 0.0 else abs(w[2]))
+
+
+def spin_axis_error_deg(w: Vec3) -> float:
+    """The angle between the rate ``w`` (B) and +Z, deg; 180 for a zero rate."""
     size = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
-    axis_deg = math.degrees(math.atan2(math.hypot(w[0], w[1]), w[2])) if size > 0.0 else 180.0
-    return axis_deg, (abs(w[2] - target_rad_s) / abs(target_rad_s) if target_rad_s != 0.0 else abs(w[2]))
+    return math.degrees(math.atan2(math.hypot(w[0], w[1]), w[2])) if size > 0.0 else 180.0
 
 
 def rk4_scalar(f, x: float, dt: float) -> float:

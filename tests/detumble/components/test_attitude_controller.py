@@ -213,7 +213,7 @@ def test_detumble_takes_the_bdot_provider_dipole_when_connected(fprime_harness):
     h.world.dipole = Result(DipoleMoment(x=0.0, y=0.0, z=0.0), Success.FAILURE)
     tick(h)
     h.assert_event_count("DipoleMomentRetrievalFailed", 1)
-    assert not h.comp.coils_driven
+    assert not h.comp.law.coils_driven
 
 
 # --- AUTO transitions ---------------------------------------------------------------------------------
@@ -466,7 +466,7 @@ def test_pointing_on_magnetorquers_projects_the_pd_torque(fprime_harness):
     assert all(t == 0.0 for t in h.world.torques[1])
     assert any(c != 0.0 for c in h.tlm_values("RequestedTorque")[-1])
     tau = tuple(h.tlm_values("RequestedTorque")[-1])
-    m, _ = project_dipole_weighted(tau, tuple(c * 1e-4 for c in h.world.b), h.comp._coil_limits())
+    m, _ = project_dipole_weighted(tau, tuple(c * 1e-4 for c in h.world.b), h.comp.law.coil_limits())
     cx = h.comp.X_COIL_MAX_DIPOLE.value
     assert all(abs(a - e) <= 2 * cx / 127 for a, e in zip(h.comp.dipole, m, strict=True))
 
@@ -498,15 +498,15 @@ def test_magnetorquer_pointing_steers_with_the_measured_field_line_rate(fprime_h
     c = h.comp
     expected_rate = r * b0 / math.hypot(b0, 0.1)  # |db̂/dt| of the tilted cone
     assert h.tlm_values("FieldLineRate")[-1] == pytest.approx(math.degrees(expected_rate), rel=0.05)
-    tau, _ = field_steering_torque(c.target, c.filter.q, c.omega, c.b_tesla, c.bdot_hat_B, c.K_P_MAG.value,
-                                   c.K_D_MAG.value, c.MAG_STEER_RHO.value, c.MAG_STEER_ZETA.value,
+    tau, _ = field_steering_torque(c.target, c.law.filter.q, c.law.omega, c.law.b_tesla, c.law.bdot_hat_B,
+                                   c.K_P_MAG.value, c.K_D_MAG.value, c.MAG_STEER_RHO.value, c.MAG_STEER_ZETA.value,
                                    c.MAG_FIELD_RATE_MIN.value)
     assert all(abs(a - e) < 1e-12 for a, e in zip(h.tlm_values("RequestedTorque")[-1], tau, strict=True))
-    assert any(abs(a - p) > 1e-9 for a, p in zip(tau, pd_torque(c.target, c.filter.q, c.omega, c.K_P_MAG.value,
+    assert any(abs(a - p) > 1e-9 for a, p in zip(tau, pd_torque(c.target, c.law.filter.q, c.law.omega, c.K_P_MAG.value,
                                                                  c.K_D_MAG.value)[0], strict=True))
     h.send_command("MAG_POINTING_LAW_PRM_SET", MagPointingLaw.SEED_PD)
     tick(h, 5)
-    pd, _ = pd_torque(c.target, c.filter.q, c.omega, c.K_P_MAG.value, c.K_D_MAG.value)
+    pd, _ = pd_torque(c.target, c.law.filter.q, c.law.omega, c.K_P_MAG.value, c.K_D_MAG.value)
     assert all(abs(a - e) < 1e-12 for a, e in zip(h.tlm_values("RequestedTorque")[-1], pd, strict=True))
 
 
@@ -543,7 +543,7 @@ def test_residual_dipole_feed_forward_by_mode(fprime_harness):
     def check(m_ff):
         tick(h, 5)
         tau = tuple(h.tlm_values("RequestedTorque")[-1])
-        m, _ = project_dipole_weighted(tau, tuple(v * 1e-4 for v in h.world.b), c._coil_limits())
+        m, _ = project_dipole_weighted(tau, tuple(v * 1e-4 for v in h.world.b), c.law.coil_limits())
         expected = tuple(m[i] - m_ff[i] / 0.8 for i in range(3))
         assert all(abs(c.dipole[i] - expected[i]) <= tol[i] for i in range(3))
         assert tuple(h.tlm_values("ResidualDipole")[-1]) == pytest.approx(m_ff, abs=1e-15)
@@ -552,17 +552,17 @@ def test_residual_dipole_feed_forward_by_mode(fprime_harness):
     h.send_command("MAG_RESIDUAL_MODE_PRM_SET", MagResidualMode.OFF)
     check((0.0, 0.0, 0.0))
     h.send_command("MAG_RESIDUAL_MODE_PRM_SET", MagResidualMode.ESTIMATE)
-    c.residual_estimator.estimate = None
+    c.law.residual_estimator.estimate = None
     tick(h, 5)
-    c.residual_estimator.estimate = None  # no estimate yet (the harness world cannot make one): the parameters
+    c.law.residual_estimator.estimate = None  # no estimate yet (the harness world cannot make one): the parameters
     check(m_par)
     est = (-7.0e-3, 5.0e-3, -1.0e-3)
-    c.residual_estimator.estimate = est
+    c.law.residual_estimator.estimate = est
     check(est)
     h.assert_event_count("ResidualDipoleEstimateRefused", 0)
-    c.residual_estimator.estimate = (0.5, 0.0, 0.0)  # beyond the X coils' 0.116 A·m²
+    c.law.residual_estimator.estimate = (0.5, 0.0, 0.0)  # beyond the X coils' 0.116 A·m²
     check(m_par)
-    c.residual_estimator.estimate = (math.nan, 0.0, 0.0)
+    c.law.residual_estimator.estimate = (math.nan, 0.0, 0.0)
     for _ in range(10):
         check(m_par)
     h.assert_event_count("ResidualDipoleEstimateRefused", 5)  # throttled
@@ -574,7 +574,7 @@ def test_residual_dipole_estimator_runs_only_while_the_coils_point(fprime_harnes
     another mode it is not, and its sums are kept."""
     h = pointing(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS,
                                          "MAG_SETTLE_TIME": 10.0, "MAG_RESIDUAL_WINDOW": 5.0})
-    est = h.comp.residual_estimator
+    est = h.comp.law.residual_estimator
     seconds(h, 9)
     assert est.windows == 0
     seconds(h, 12)
@@ -658,7 +658,7 @@ def test_sensor_failures_are_reported_and_throttled(fprime_harness):
     seconds(h, 2)
     h.assert_event_count("GyroRetrievalFailed", 5)
     h.assert_event_count("MagneticFieldRetrievalFailed", 5)
-    assert not h.comp.coils_driven
+    assert not h.comp.law.coils_driven
     h.world.gyro_ok = True
     tick(h, 5)
     h.world.gyro_ok = False
@@ -688,7 +688,7 @@ def test_a_changed_wheel_limit_reaches_the_next_allocation(fprime_harness):
     h.send_command("INERTIA_ZZ_PRM_SET", 3.0e-3)
     tick(h, 5)
     assert max(abs(w[-1]) for w in h.world.torques) == pytest.approx(limit / 4)
-    assert h.comp.rate_observer.inertia[2][2] == 3.0e-3
+    assert h.comp.law.rate_observer.inertia[2][2] == 3.0e-3
 
 
 def test_idle_stops_everything(fprime_harness):
@@ -696,9 +696,9 @@ def test_idle_stops_everything(fprime_harness):
     h = pointing(fprime_harness, q=quat_from_axis_angle((1.0, 0.0, 0.0), 0.3))
     h.world.momenta = [1e-3, 0.0, 0.0]
     tick(h, 6)  # tick 0 of the second cycle: coils on
-    assert h.comp.coils_driven
+    assert h.comp.law.coils_driven
     h.send_command("FORCE_MODE", ControlMode.IDLE)
-    assert not h.comp.coils_driven
+    assert not h.comp.law.coils_driven
     assert all(w[-1] == 0.0 for w in h.world.torques)
 
 
@@ -714,26 +714,27 @@ def test_mekf_is_the_default_and_a_switch_keeps_the_attitude(fprime_harness):
     from detumble.control.mekf import Mekf
 
     h = pointing(fprime_harness, q=quat_from_axis_angle((0.0, 0.0, 1.0), 0.01))
-    assert isinstance(h.comp.filter, Mekf)
+    assert isinstance(h.comp.law.filter, Mekf)
     seconds(h, 2.0)
     sig = h.tlm_values("AttitudeSigma3")
     assert sig and sig[-1] < sig[0]
-    q_before = h.comp.filter.q
+    q_before = h.comp.law.filter.q
     h.param_set("ESTIMATOR", AttitudeEstimator.COMPLEMENTARY)
     h.load_parameters()
     h.clear_history()
     h.world.tracker_valid = False  # no new fix: the switch itself must carry the attitude
     tick(h, 5)
-    assert isinstance(h.comp.filter, AttitudeFilter)
+    assert isinstance(h.comp.law.filter, AttitudeFilter)
     assert h.events_named("EstimatorSelected") == [(AttitudeEstimator.COMPLEMENTARY,)]
-    assert quat_angle_between(h.comp.filter.q, q_before) < 1e-6
+    assert quat_angle_between(h.comp.law.filter.q, q_before) < 1e-6
     assert h.comp.mode == ControlMode.POINTING and h.tlm_values("AttitudeValid")[-1] == 1
     assert h.tlm_values("AttitudeSigma3") == []
     h.param_set("ESTIMATOR", AttitudeEstimator.MEKF)
     h.load_parameters()
     tick(h, 5)
-    assert isinstance(h.comp.filter, Mekf)
-    f = h.comp.filter  # P_θθ = R at the switch, then one 0.1 s step on the gyro (no fix): + Δt² σ_b0² + σ_g² Δt²/5 + …
+    assert isinstance(h.comp.law.filter, Mekf)
+    # P_θθ = R at the switch, then one 0.1 s step on the gyro (no fix): + Δt² σ_b0² + σ_g² Δt²/5 + …
+    f = h.comp.law.filter
     dt = 0.1
     step = dt * dt * (f.initial_bias_sigma ** 2 + f.gyro_noise ** 2 / 5) + f.bias_walk ** 2 * dt ** 3 / 3
     expected = 3 * math.sqrt(sum(f.tracker_noise()[i][i] for i in range(3)) + 3 * step)
@@ -780,21 +781,24 @@ def test_a_non_positive_definite_inertia_is_refused_once(fprime_harness):
     """ADCS-039: INERTIA_XY = 1 kg·m² (far above the moments) is not a positive definite inertia: the observer keeps
     its previous model and InertiaModelRefused is logged once (throttle 1), however many cycles follow."""
     h = make(fprime_harness, params={"INERTIA_XY": 1.0})
-    before = h.comp.rate_observer.inertia
+    before = h.comp.law.rate_observer.inertia
     tick(h, 30)
-    assert h.comp.rate_observer.inertia == before and before[0][1] == pytest.approx(2.0e-5)
+    assert h.comp.law.rate_observer.inertia == before and before[0][1] == pytest.approx(2.0e-5)
     assert len(h.events_named("InertiaModelRefused")) == 1
 
 
 def test_three_value_finite_check_answers_as_the_general_one():
-    """_finite3 (the field check every cycle) answers as _finite does: finite numbers, NaN, ±inf, non-numbers."""
+    """_finite3 (the component's check of a reading's x, y, z) answers as the law's _finite does: finite numbers,
+    NaN, ±inf, non-numbers."""
     import itertools
+    from types import SimpleNamespace
 
-    from detumble.components.attitude_controller import _finite, _finite3
+    from detumble.components.attitude_controller import _finite3
+    from detumble.control.three_mode import _finite
 
     values = (0.0, -1.5, 3, math.nan, math.inf, -math.inf, None, "1.0", True)
     for x, y, z in itertools.product(values, repeat=3):
-        assert _finite3(x, y, z) == _finite(x, y, z), (x, y, z)
+        assert _finite3(SimpleNamespace(x=x, y=y, z=z)) == _finite(x, y, z), (x, y, z)
 
 
 def test_a_cycle_reads_each_wheel_once_and_a_command_reads_them_afresh(fprime_harness):
@@ -809,7 +813,7 @@ def test_a_cycle_reads_each_wheel_once_and_a_command_reads_them_afresh(fprime_ha
     h.assert_cmd_response(0, "FORCE_MODE", CmdResponse.OK)
     reads = len(h.from_port("wheelStateGet"))
     tick(h, 5)  # one 10 Hz cycle (CYCLE_TICKS 5)
-    assert h.comp.mode == ControlMode.POINTING and h.comp.cycles == 2
+    assert h.comp.mode == ControlMode.POINTING and h.comp.law.cycles == 2
     calls = h.from_port("wheelStateGet")[reads:]
     assert sorted(c.index for c in calls) == [0, 1, 2]
     assert len(h.from_port("wheelTorqueSet")) >= 3  # it did point on them
@@ -819,3 +823,29 @@ def test_a_cycle_reads_each_wheel_once_and_a_command_reads_them_afresh(fprime_ha
     h.assert_cmd_response(2, "FORCE_MODE", CmdResponse.EXECUTION_ERROR)
     h.assert_event("ModeUnavailableNoWheels", 0, ControlMode.POINTING)
     assert h.comp.mode == ControlMode.IDLE
+
+
+def test_a_fault_in_run_reaches_the_ground_and_makes_the_actuators_safe(fprime_harness):
+    """ADCS-081: an exception inside ``run`` (here the gyro port raising while the controller points on its wheels
+    with the coils dumping momentum) is contained and reported through report_fault (decision 0005): the
+    HandlerFault event names ``run`` and the exception, the HandlerFaults channel counts it, the coils are stopped
+    and every wheel is sent zero torque; the next tick runs again."""
+    h = pointing(fprime_harness, q=quat_from_axis_angle((1.0, 0.0, 0.0), 0.1))
+    h.world.momenta = [1e-3, 0.0, 0.0]
+    tick(h, 6)  # the second cycle's first tick: the coils drive
+    assert h.comp.law.coils_driven and any(t[-1] != 0.0 for t in h.world.torques)
+    stops = [len(h.from_port(p)) for p in STOPS]
+
+    def broken():
+        raise RuntimeError("gyro bus hung")
+
+    h.set_port_handler("angularVelocityGet", broken)
+    h.invoke("run", 0)
+    h.assert_event("HandlerFault", 0, "run", "RuntimeError: gyro bus hung")
+    assert h.tlm_values("HandlerFaults") == [1] and h.comp.handler_faults == 1
+    assert [len(h.from_port(p)) for p in STOPS] == [n + 1 for n in stops]
+    assert [t[-1] for t in h.world.torques] == [0.0, 0.0, 0.0]
+    assert not h.comp.law.coils_driven
+    h.set_port_handler("angularVelocityGet", h.world.gyro)
+    tick(h, 6)
+    assert h.comp.handler_faults == 1 and any(t[-1] != 0.0 for t in h.world.torques)

@@ -1,5 +1,6 @@
-"""The plant-only three-mode controller (detumble.sim.adcs_law): one source of defaults shared with the flight
-component, no framework import, the deployment's timing, and scenario/CLI plumbing (issues 13 and 19)."""
+"""The plant-only three-mode controller (detumble.sim.adcs_law, an adapter of detumble.control.three_mode): one
+law and one source of defaults shared with the flight component, no framework import, the deployment's timing, and
+scenario/CLI plumbing (issues 13, 19 and 26)."""
 
 import json
 import math
@@ -32,11 +33,24 @@ def test_component_parameter_defaults_are_the_shared_module_s():
     for name, choices in attitude_defaults.ENUM_CHOICES.items():
         enum = type(params[name].value)
         assert tuple(m.name for m in enum) == choices, name
+        assert [int(m) for m in enum] == list(range(len(choices))), name  # the law takes them by index
+    from detumble.components.attitude_types import ControlAutonomy, ControlMode, ModeChangeReason
+    from detumble.control import three_mode
+
+    assert [(m.name, int(m)) for m in ControlMode] == [(n, i) for i, n in enumerate(three_mode.MODES)]
+    assert [(m.name, int(m)) for m in ModeChangeReason] == [(n, i) for i, n in enumerate(three_mode.REASONS)]
+    assert (int(ControlAutonomy.MANUAL), int(ControlAutonomy.AUTO)) == (three_mode.MANUAL, three_mode.AUTO)
+    declared = AttitudeController.__fprime_spec__.params
+    assert [p.name for p in declared] == list(attitude_defaults.PARAMETERS)
+    for p in declared:  # the declared ranges are the table's
+        _units, low, high, finite = attitude_defaults.PARAMETERS[p.name]
+        assert (p.low, p.high, p.finite) == (low, high, finite), p.name
 
 
 def test_law_and_defaults_import_no_framework():
-    """ADCS-071: the law, the runner and the defaults import nothing of fprime_lite."""
-    code = ("import sys, detumble.sim.adcs_law, detumble.sim.runner, detumble.control.attitude_defaults; "
+    """ADCS-071: the law, its plant-only adapter, the runner and the defaults import nothing of fprime_lite."""
+    code = ("import sys, detumble.control.three_mode, detumble.sim.adcs_law, detumble.sim.runner, "
+            "detumble.control.attitude_defaults; "
             "print([m for m in sys.modules if m.split('.')[0] == 'fprime_lite'])")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"

@@ -1,0 +1,829 @@
+"""Seed 003's three-mode attitude controller, written once (plain floats; no framework import).
+
+:class:`ThreeModeLaw` is the whole controller: DETUMBLE (B-dot) → SPIN_STABLE (spin about body +Z) →
+POINTING (quaternion PD on the wheels, or on the magnetorquers), its AUTO triggers, its commands and
+its estimators. Two adapters fly it: the F´ component
+:class:`detumble.components.attitude_controller.AttitudeController` (ports, commands, events,
+telemetry, parameters) and the plant-only law of ``fprime-lite sim --law adcs``
+(:mod:`detumble.sim.adcs_law`). Behaviour and every parameter's reason:
+``docs/components/attitude_controller.md``.
+
+It reads and drives the spacecraft through a :class:`ControllerIo`, asks DETUMBLE's dipole of a
+:class:`DipoleProvider` when one is connected, and tells what happens through a :class:`Notify` (F´
+events by name, the mode and target changes, the end of each cycle for telemetry; :class:`Quiet`
+tells nobody).
+
+Timing: :meth:`ThreeModeLaw.tick` once per rate-group tick (``RATE_GROUP_PERIOD_S``, 20 ms). Every
+``CYCLE_TICKS`` ticks (default 5, so 10 Hz) one control cycle runs on tick 0: read the gyro (the mean
+of the cycle's readings), the star tracker and the magnetometer, update the estimators, choose the
+mode, compute and actuate. The coils are switched off on the last tick of each cycle, so the next
+cycle's magnetometer reading is free of their field; they drive ``(CYCLE_TICKS − 1)/CYCLE_TICKS`` of
+the time. Wheels are commanded once per cycle and hold their torque.
+
+Parameters are attributes named as the flight parameters (the ground's names, upper case), in their
+units (``control.attitude_defaults.UNITS``: deg/s, deg, N·m, …); :meth:`ThreeModeLaw.set_parameters`
+changes them and a change acts from the next cycle. Enumerated parameters, modes, reasons and the
+autonomy are plain ints in the order of the flight enums (``attitude_defaults.ENUM_CHOICES``,
+:data:`MODES`, :data:`REASONS`).
+
+Frames and units: body B, inertial N; quaternions ``q_BN`` scalar first; rates rad/s inside; field
+gauss at the I/O, tesla inside; torque N·m; momentum N·m·s; dipole A·m²; time stamps integer µs.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Mapping, Protocol, Sequence
+
+from detumble.control import attitude_defaults as defaults
+from detumble.control.attitude_filter import AttitudeFilter
+from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
+from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipoleEstimator, field_steering_torque
+from detumble.control.magnetorquer import face_coil_levels
+from detumble.control.mekf import Mekf
+from detumble.control.pointing import ErrorIntegrator, pd_torque
+from detumble.control.quaternion import (Quat, Vec3, is_unit_quaternion, quat_angle, quat_normalize, quat_shortest,
+                                         target_pointing_axis)
+from detumble.control.rate_observer import RateObserver, applied_torque
+from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
+from detumble.control.wheel_allocation import WheelAllocator
+
+__all__ = ["ThreeModeLaw", "checked_parameters", "ControllerIo", "DipoleProvider", "Notify", "Quiet", "MODES",
+           "REASONS", "IDLE", "DETUMBLE", "SPIN_STABLE", "POINTING", "MANUAL", "AUTO", "XYZ"]
+
+#: The modes (ControlMode), by value.
+MODES = ("IDLE", "DETUMBLE", "SPIN_STABLE", "POINTING")
+IDLE, DETUMBLE, SPIN_STABLE, POINTING = range(4)
+#: Why a mode changed (ModeChangeReason), by value.
+REASONS = ("COMMAND", "AUTO_START", "RATE_HIGH", "RATE_LOW", "SPIN_STABLE_REACHED", "ATTITUDE_LOST")
+_COMMAND, _AUTO_START, _RATE_HIGH, _RATE_LOW, _SPIN_STABLE_REACHED, _ATTITUDE_LOST = range(6)
+#: ControlAutonomy: MANUAL (the mode stays where it was put) or AUTO (the triggers choose it).
+MANUAL, AUTO = 0, 1
+#: Three orthogonal wheels on x, y, z (the default wheel axes).
+XYZ: tuple[Vec3, Vec3, Vec3] = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+
+def _member(param: str, name: str) -> int:
+    return defaults.ENUM_CHOICES[param].index(name)
+
+
+_SEED_KANE_DAMPER, _VIRTUAL_DAMPER = _member("SPIN_LAW", "SEED_KANE_DAMPER"), _member("SPIN_LAW", "VIRTUAL_DAMPER")
+_WHEELS, _MAGNETORQUERS = _member("POINTING_ACTUATOR", "WHEELS"), _member("POINTING_ACTUATOR", "MAGNETORQUERS")
+_MEKF = _member("ESTIMATOR", "MEKF")
+_OBSERVER = _member("RATE_SOURCE", "OBSERVER")
+_SEED_PD = _member("MAG_POINTING_LAW", "SEED_PD")
+_OFF, _ESTIMATE = _member("MAG_RESIDUAL_MODE", "OFF"), _member("MAG_RESIDUAL_MODE", "ESTIMATE")
+
+_TESLA_PER_GAUSS = 1e-4
+_DEG = math.pi / 180.0
+_ARCSEC = _DEG / 3600.0
+_ZERO = (0.0, 0.0, 0.0)
+_isfinite = math.isfinite
+
+
+class ControllerIo(Protocol):
+    """The spacecraft as the law reads and drives it (a failed read returns None)."""
+
+    def now_us(self) -> int:
+        """The time now, µs."""
+
+    def gyro(self) -> Vec3 | None:
+        """One gyro reading, rad/s (B), finite."""
+
+    def attitude(self) -> tuple[Quat, int] | None:
+        """The star tracker's held solution ``(q_BN, image time µs)`` when it says it is valid."""
+
+    def field(self) -> tuple[Vec3, int] | None:
+        """The magnetometer's held sample ``(b gauss in B, sample time µs)``, finite."""
+
+    def wheel_count(self) -> int:
+        """How many wheels are connected (index order)."""
+
+    def wheel_momenta(self) -> tuple[float, ...] | None:
+        """Each wheel's axial momentum, N·m·s; None when one does not answer."""
+
+    def drive_coils(self, levels: Sequence[int], dipole_B: Vec3) -> None:
+        """Drive the five coils X+, X−, Y+, Y−, Z− at ``levels`` (−127…127), which give ``dipole_B`` (A·m²)."""
+
+    def stop_coils(self) -> None:
+        """Every coil off."""
+
+    def set_wheel_torques(self, torques: Sequence[float]) -> tuple[float, ...]:
+        """Command one motor torque per wheel (N·m); returns what each wheel was sent (0 where none)."""
+
+
+class DipoleProvider(Protocol):
+    """DETUMBLE's external dipole source (the BDotDetumble component, or its plant-only stand-in)."""
+
+    def has_dipole_provider(self) -> bool:
+        """Whether one is connected (otherwise DETUMBLE flies the internal ``−K_BDOT Ḃ``)."""
+
+    def provider_dipole(self) -> Vec3 | None:
+        """Its dipole now, A·m² (B), finite; None when it has none (its first call only primes it)."""
+
+
+class Notify(Protocol):
+    """Where the law's events and telemetry go."""
+
+    def event(self, name: str, *args: object) -> None:
+        """The F´ event ``name`` (enumerated arguments as ints)."""
+
+    def clear_event(self, name: str) -> None:
+        """A good reading or result: the event ``name`` may be emitted again (clear its throttle)."""
+
+    def mode_changed(self, old: int, new: int, reason: int) -> None:
+        """The mode changed from ``old`` to ``new`` (:data:`MODES`) for ``reason`` (:data:`REASONS`)."""
+
+    def target_set(self, q: Quat) -> None:
+        """A new POINTING target ``q_TN`` (commanded, or the attitude captured on entering POINTING)."""
+
+    def cycle_done(self) -> None:
+        """A control cycle ended (its state is the cycle's telemetry)."""
+
+
+class Quiet:
+    """A :class:`Notify` that tells nobody."""
+
+    def event(self, name: str, *args: object) -> None:
+        pass
+
+    def clear_event(self, name: str) -> None:
+        pass
+
+    def mode_changed(self, old: int, new: int, reason: int) -> None:
+        pass
+
+    def target_set(self, q: Quat) -> None:
+        pass
+
+    def cycle_done(self) -> None:
+        pass
+
+
+def checked_parameters(overrides: Mapping[str, object] | None) -> dict:
+    """``attitude_defaults.DEFAULTS`` with ``overrides`` (flight names; enums by member name); ValueError naming a
+    bad one."""
+    out = dict(defaults.DEFAULTS)
+    for key, value in (overrides or {}).items():
+        if key not in out:
+            raise ValueError(f"unknown attitude-controller parameter {key!r}; known: {', '.join(sorted(out))}")
+        choices = defaults.ENUM_CHOICES.get(key)
+        if choices is not None:
+            if value not in choices:
+                raise ValueError(f"{key} must be one of {', '.join(choices)}, got {value!r}")
+        elif isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise ValueError(f"{key} must be a finite number, got {value!r}")
+        out[key] = value
+    return out
+
+
+def _finite(*values) -> bool:
+    try:
+        for v in values:
+            if not _isfinite(v):
+                return False
+    except TypeError:
+        return False
+    return True
+
+
+def _norm(v) -> float:
+    return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+
+
+def _cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+class ThreeModeLaw:
+    """DETUMBLE → SPIN_STABLE → POINTING with every trigger a parameter; one :meth:`tick` per rate-group tick.
+
+    Args:
+        io: the sensors and actuators (:class:`ControllerIo`).
+        notify: where events and telemetry go (:class:`Notify`).
+        provider: DETUMBLE's external dipole (:class:`DipoleProvider`).
+        wheel_axes: unit spin axes of the wheels in B, one per wheel index (default x, y, z).
+        params: flight parameter name → value (enums as member names or values) over
+            ``attitude_defaults.DEFAULTS``; the estimators start from them.
+
+    The commands (:meth:`force_mode`, :meth:`set_auto`, :meth:`set_target_quaternion`,
+    :meth:`set_target_direction`) answer ``"OK"``, ``"VALIDATION_ERROR"`` or ``"EXECUTION_ERROR"``.
+    """
+
+    # parameters (set_parameters), units in attitude_defaults.UNITS
+    K_P: float
+    K_D: float
+    K_I: float
+    INTEGRAL_WINDOW: float
+    K_P_MAG: float
+    K_D_MAG: float
+    C_DAMP: float
+    I_D: float
+    K_BDOT: float
+    SPIN_LAW: int
+    SPIN_RATE_TARGET: float
+    SPIN_K_TRANSVERSE: float
+    SPIN_K_RATE: float
+    DETUMBLE_ENTER_RATE: float
+    DETUMBLE_EXIT_RATE: float
+    MODE_DWELL: float
+    SPIN_AXIS_ENTER: float
+    SPIN_AXIS_RESET: float
+    SPIN_RATE_ENTER: float
+    SPIN_RATE_RESET: float
+    SPIN_STABLE_DWELL: float
+    ATTITUDE_TIMEOUT: float
+    SLEW_RATE_LIMIT: float
+    POINTING_ACTUATOR: int
+    K_DUMP: float
+    WHEEL_MAX_TORQUE: float
+    WHEEL_MAX_MOMENTUM: float
+    FILTER_KP: float
+    FILTER_KI: float
+    X_COIL_MAX_DIPOLE: float
+    Y_COIL_MAX_DIPOLE: float
+    Z_COIL_MAX_DIPOLE: float
+    CYCLE_TICKS: int
+    ESTIMATOR: int
+    GYRO_NOISE: float
+    GYRO_BIAS_WALK: float
+    GYRO_BIAS_SIGMA0: float
+    TRACKER_NOISE_CROSS: float
+    TRACKER_NOISE_ABOUT: float
+    RATE_SOURCE: int
+    RATE_OBSERVER_GAIN: float
+    INERTIA_XX: float
+    INERTIA_YY: float
+    INERTIA_ZZ: float
+    INERTIA_XY: float
+    INERTIA_XZ: float
+    INERTIA_YZ: float
+    MAG_POINTING_LAW: int
+    MAG_STEER_RHO: float
+    MAG_STEER_ZETA: float
+    MAG_FIELD_RATE_BANDWIDTH: float
+    MAG_FIELD_RATE_MIN: float
+    MAG_SETTLE_TIME: float
+    MAG_RESIDUAL_MODE: int
+    MAG_RESIDUAL_DIPOLE_X: float
+    MAG_RESIDUAL_DIPOLE_Y: float
+    MAG_RESIDUAL_DIPOLE_Z: float
+    MAG_RESIDUAL_WINDOW: float
+
+    def __init__(self, io: ControllerIo, notify: Notify, provider: DipoleProvider,
+                 wheel_axes: Sequence[Sequence[float]] = XYZ, params: Mapping[str, object] | None = None) -> None:
+        self.io, self.notify, self.provider = io, notify, provider
+        self.wheel_axes = tuple((float(a[0]), float(a[1]), float(a[2])) for a in wheel_axes)
+        self.set_parameters({**defaults.DEFAULTS, **(params or {})})
+        self.mode = IDLE
+        self.autonomy = MANUAL
+        self.estimator = self.ESTIMATOR
+        self.filter: AttitudeFilter | Mekf = self._make_filter(self.ESTIMATOR)
+        xy, xz, yz = self.INERTIA_XY, self.INERTIA_XZ, self.INERTIA_YZ
+        self.rate_observer = RateObserver(((self.INERTIA_XX, xy, xz), (xy, self.INERTIA_YY, yz),
+                                           (xz, yz, self.INERTIA_ZZ)), self.RATE_OBSERVER_GAIN)
+        self.pd_rate: Vec3 | None = None  # rad/s, B: the rate the wheel PD's D term uses
+        self.field_rate = FieldDirectionRate(self.MAG_FIELD_RATE_BANDWIDTH)  # db̂_N/dt, magnetorquer pointing
+        self.bdot_hat_B: Vec3 | None = None  # its latest estimate in B, 1/s
+        self.attitude_known_s = 0.0  # s since the attitude became known (gyro bias settling, MAG_SETTLE_TIME)
+        self.residual_estimator = ResidualDipoleEstimator(self.rate_observer.inertia, self.MAG_RESIDUAL_WINDOW)
+        self.residual_ff: Vec3 = _ZERO  # A·m², B: the residual-dipole feed-forward of the last POINTING cycle
+        self.integrator = ErrorIntegrator(self.INTEGRAL_WINDOW * _DEG, defaults.INTEGRAL_MAX_TORQUE)
+        self.target: Quat | None = None
+        self.seed_damper = SeedKaneDamper(self.C_DAMP, self.I_D)
+        self.virtual_damper = VirtualDamper(self.C_DAMP, self.I_D)
+        self.ticks = 0
+        self.cycles = 0
+        self.coils_driven = False
+        self.omega: Vec3 | None = None  # ω̂ rad/s, B
+        self.b_tesla: Vec3 | None = None
+        self.b_gauss: Vec3 = _ZERO  # the cycle's magnetometer sample, gauss (B), and its time µs
+        self.b_stamp_us = 0
+        self.dipole: Vec3 = _ZERO  # A·m² achieved by the levels of the present cycle
+        self.torque_request: Vec3 = _ZERO
+        self.wheel_torques: tuple[float, ...] = ()
+        self.wheel_momenta: tuple[float, ...] | None = None
+        self.pointing_error_deg = math.nan
+        self.damper_state = 0.0  # seed w_d, |ω_d| of the 3-axis damper, or the spin-rate error (rad/s)
+        self.last_cycle_us: int | None = None
+        self._dwell_s = 0.0  # DETUMBLE-exit qualification timer
+        self._stable_s = 0.0  # SPIN_STABLE qualification timer
+        self._b_prev: tuple | None = None  # (b gauss, t µs) for the internal B-dot
+        self._bdot_primed = False  # the dipole provider has been called in this DETUMBLE
+        self._gyro_sum: Vec3 = _ZERO  # rad/s, summed over the ticks since the last cycle
+        self._gyro_count = 0
+        self._last_fix_us: int | None = None  # time stamp of the last star-tracker solution used
+        # Σ h_i g_i needs only the axes (limits 1, 1); the limited allocator is rebuilt when the axes or
+        # WHEEL_MAX_TORQUE / WHEEL_MAX_MOMENTUM differ from the ones it was built for.
+        self._momentum_alloc: tuple = (None, None)  # (axes, WheelAllocator)
+        self._limit_alloc: tuple = (None, None)  # ((axes, u_max, h_max), WheelAllocator)
+
+    def set_parameters(self, values: Mapping[str, object]) -> None:
+        """Take parameter values by flight name (enums by member name or value); they act from the next cycle."""
+        for name, value in values.items():
+            if name not in defaults.DEFAULTS:
+                raise ValueError(f"unknown attitude-controller parameter {name!r}")
+            choices = defaults.ENUM_CHOICES.get(name)
+            if choices is not None:
+                value = choices.index(value) if isinstance(value, str) else int(value)  # type: ignore[call-overload]
+            setattr(self, name, value)
+        self.cycle_ticks = max(1, int(self.CYCLE_TICKS))  # ticks per control cycle
+
+    # --- commands -------------------------------------------------------------------------------
+
+    def force_mode(self, mode: int) -> str:
+        """FORCE_MODE: switch to ``mode`` and stay there (MANUAL). POINTING is refused without attitude
+        knowledge or, with POINTING_ACTUATOR = WHEELS, without wheels (the wheels are read afresh)."""
+        if mode == POINTING and not self._pointing_available(report=True, fresh=True):
+            return "EXECUTION_ERROR"
+        self._set_autonomy(MANUAL)
+        self._change_mode(mode, _COMMAND)
+        return "OK"
+
+    def set_auto(self) -> str:
+        """SET_AUTO: the triggers choose the mode; from IDLE the next cycle starts DETUMBLE."""
+        self._set_autonomy(AUTO)
+        return "OK"
+
+    def set_target_quaternion(self, q: Sequence[float]) -> str:
+        """SET_TARGET_QUATERNION: the POINTING target ``q_TN`` (scalar first), unit within 1e-3, re-normalised."""
+        q0, q1, q2, q3 = q
+        if not is_unit_quaternion(q):
+            norm = math.sqrt(sum(c * c for c in q)) if _finite(*q) else float("nan")
+            self.notify.event("TargetNotUnitQuaternion", q0, q1, q2, q3, norm)
+            return "VALIDATION_ERROR"
+        self.notify.clear_event("TargetNotUnitQuaternion")
+        self.set_target(quat_shortest(quat_normalize((q0, q1, q2, q3))))
+        return "OK"
+
+    def set_target_direction(self, x: float, y: float, z: float) -> str:
+        """SET_TARGET_DIRECTION: point the boresight (+Z) along the inertial ``(x, y, z)`` by the smallest turn."""
+        if not _finite(x, y, z) or _norm((x, y, z)) == 0.0:
+            self.notify.event("TargetDirectionInvalid", x, y, z)
+            return "VALIDATION_ERROR"
+        q = self.filter.q
+        if not self.attitude_valid or q is None:
+            self.notify.event("NoAttitudeKnowledge")
+            return "EXECUTION_ERROR"
+        self.set_target(target_pointing_axis(q, defaults.BORESIGHT_B, (x, y, z)))
+        return "OK"
+
+    def set_target(self, q: Sequence[float]) -> None:
+        """Take ``q_TN`` as the target as it is (the error integral starts again)."""
+        self.integrator.reset()
+        self.target = (float(q[0]), float(q[1]), float(q[2]), float(q[3]))
+        self.notify.target_set(self.target)
+
+    def safe(self) -> None:
+        """Coils off and wheels at zero torque (after a fault); the wheels are zeroed even when stopping the
+        coils raises (the exception then goes on to the caller, which reports it)."""
+        try:
+            self._stop_coils()
+        finally:
+            self._command_wheels((0.0,) * len(self.wheel_axes))
+
+    # --- state ----------------------------------------------------------------------------------
+
+    @property
+    def attitude_valid(self) -> bool:
+        """True while the filter holds an attitude and its last star-tracker fix is recent."""
+        return self.filter.q is not None and self.filter.since_measurement_s <= self.ATTITUDE_TIMEOUT
+
+    @property
+    def duty(self) -> float:
+        """The share of a cycle the coils drive."""
+        cycle = self.cycle_ticks
+        return (cycle - 1) / cycle if cycle > 1 else 1.0
+
+    def coil_limits(self) -> Vec3:
+        """Largest dipole per axis, A·m²: two coils on X and Y, the single Z− coil on Z."""
+        return (2.0 * self.X_COIL_MAX_DIPOLE, 2.0 * self.Y_COIL_MAX_DIPOLE, self.Z_COIL_MAX_DIPOLE)
+
+    def _wheels_available(self, fresh: bool) -> bool:
+        """Every wheel connected and answering: by the cycle's own reading, or, for a command between
+        cycles (``fresh``), by reading them now."""
+        io = self.io
+        momenta = io.wheel_momenta() if fresh else self.wheel_momenta
+        return io.wheel_count() == len(self.wheel_axes) and momenta is not None
+
+    def _pointing_uses_wheels(self) -> bool:
+        if self.POINTING_ACTUATOR == _MAGNETORQUERS:
+            return False
+        return self._wheels_available(fresh=False)
+
+    def _pointing_available(self, *, report: bool, fresh: bool = False) -> bool:
+        if self.POINTING_ACTUATOR == _WHEELS and not self._wheels_available(fresh):
+            if report:
+                self.notify.event("ModeUnavailableNoWheels", POINTING)
+            return False
+        if not self.attitude_valid:
+            if report:
+                self.notify.event("NoAttitudeKnowledge")
+            return False
+        return True
+
+    def _set_autonomy(self, autonomy: int) -> None:
+        if autonomy != self.autonomy:
+            self.autonomy = autonomy
+            self.notify.event("AutonomyChanged", autonomy)
+
+    def _change_mode(self, mode: int, reason: int) -> None:
+        if mode == self.mode:
+            return
+        old = self.mode
+        self.mode = mode
+        self._dwell_s = 0.0
+        self._stable_s = 0.0
+        self._b_prev = None
+        self._bdot_primed = False
+        self.seed_damper.reset()
+        self.virtual_damper.reset()
+        self.integrator.reset()
+        if mode == POINTING and self.target is None and self.filter.q is not None:
+            self.set_target(self.filter.q)  # nothing commanded yet: hold the present attitude
+        if mode in (IDLE, DETUMBLE, SPIN_STABLE):
+            self._command_wheels((0.0,) * len(self.wheel_axes))
+        if mode == IDLE:
+            self._stop_coils()
+        self.notify.mode_changed(old, mode, reason)
+
+    # --- the tick -------------------------------------------------------------------------------
+
+    def tick(self) -> None:
+        """One rate-group tick: a control cycle on tick 0 of every CYCLE_TICKS, else the gyro reading
+        joins the cycle's mean (a failed read is skipped); the coils go off on the cycle's last tick."""
+        cycle = self.cycle_ticks
+        phase = self.ticks % cycle
+        self.ticks += 1
+        if phase == 0:
+            self._cycle()
+        else:
+            g = self.io.gyro()
+            if g is not None:
+                acc = self._gyro_sum
+                self._gyro_sum = (acc[0] + g[0], acc[1] + g[1], acc[2] + g[2])
+                self._gyro_count += 1
+        if phase == cycle - 1 and self.coils_driven and cycle > 1:
+            self._stop_coils()
+
+    def _cycle(self) -> None:
+        now_us = self.io.now_us()
+        nominal = self.cycle_ticks * defaults.RATE_GROUP_PERIOD_S
+        if self.last_cycle_us is None or now_us <= self.last_cycle_us:
+            dt = nominal
+        else:
+            dt = (now_us - self.last_cycle_us) / 1e6
+        self.last_cycle_us = now_us
+        self.cycles += 1
+        self._sense(dt, now_us)
+        if self.autonomy == AUTO:
+            self._auto_mode(dt)
+        elif self.mode == POINTING and not self.attitude_valid:
+            self.notify.event("AttitudeKnowledgeLost")
+            self._change_mode(SPIN_STABLE, _ATTITUDE_LOST)
+        self._actuate(dt)
+        self.notify.cycle_done()
+
+    # --- sensing --------------------------------------------------------------------------------
+
+    def _make_filter(self, which: int) -> AttitudeFilter | Mekf:
+        if which == _MEKF:
+            return Mekf(math.radians(self.GYRO_NOISE), math.radians(self.GYRO_BIAS_WALK),
+                        self.TRACKER_NOISE_CROSS * _ARCSEC, self.TRACKER_NOISE_ABOUT * _ARCSEC,
+                        defaults.BORESIGHT_B, math.radians(self.GYRO_BIAS_SIGMA0))
+        return AttitudeFilter(self.FILTER_KP, self.FILTER_KI)
+
+    def _configure_filter(self) -> None:
+        """Follow ESTIMATOR (a switch keeps the attitude, bias and fix age) and the noise/gain parameters."""
+        which = self.ESTIMATOR
+        if which != self.estimator:
+            old, new = self.filter, self._make_filter(which)
+            new.q, new.bias, new.since_measurement_s = old.q, old.bias, old.since_measurement_s
+            if isinstance(new, Mekf) and new.q is not None:  # the new covariance: the tracker's noise, bias σ0
+                new._initialise_attitude(new.q, new.tracker_noise())
+            self.filter, self.estimator = new, which
+            self.notify.event("EstimatorSelected", which)
+        f = self.filter
+        if isinstance(f, Mekf):
+            f.gyro_noise = math.radians(self.GYRO_NOISE)
+            f.bias_walk = math.radians(self.GYRO_BIAS_WALK)
+            f.tracker_cross = self.TRACKER_NOISE_CROSS * _ARCSEC
+            f.tracker_about = self.TRACKER_NOISE_ABOUT * _ARCSEC
+        else:
+            f.k_p = self.FILTER_KP
+            f.k_i = self.FILTER_KI
+
+    def _sense(self, dt: float, now_us: int) -> None:
+        io, notify = self.io, self.notify
+        self._configure_filter()
+        gyro = io.gyro()
+        n = 1
+        if gyro is not None:
+            notify.clear_event("GyroRetrievalFailed")
+            n = self._gyro_count + 1  # the mean over the cycle's ticks: the noise the D term sees drops by √n
+            acc = self._gyro_sum
+            gyro = ((acc[0] + gyro[0]) / n, (acc[1] + gyro[1]) / n, (acc[2] + gyro[2]) / n)
+        else:
+            notify.event("GyroRetrievalFailed")
+        self._gyro_sum, self._gyro_count = _ZERO, 0
+        q_meas = None
+        age_s = 0.0
+        fix = io.attitude()
+        if fix is not None and is_unit_quaternion(fix[0], tol=1e-2):
+            stamp_us = fix[1]
+            if stamp_us != self._last_fix_us and stamp_us <= now_us:  # a new solution (the tracker holds its last)
+                self._last_fix_us = stamp_us
+                q_meas = quat_normalize(fix[0])
+                age_s = (now_us - stamp_us) / 1e6
+        if gyro is not None:
+            f = self.filter
+            if isinstance(f, Mekf):
+                before = f.reinitialisations
+                f.update(gyro, dt, q_meas, age_s, samples=n)
+                if f.reinitialisations != before:
+                    notify.event("AttitudeReinitialised")
+            else:
+                f.update(gyro, dt, q_meas, age_s)
+            self.omega = f.omega
+        else:
+            self.omega = None
+        field = io.field()
+        if field is not None:
+            notify.clear_event("MagneticFieldRetrievalFailed")
+            b, self.b_stamp_us = field
+            self.b_gauss = b
+            self.b_tesla = (b[0] * _TESLA_PER_GAUSS, b[1] * _TESLA_PER_GAUSS, b[2] * _TESLA_PER_GAUSS)
+        else:
+            notify.event("MagneticFieldRetrievalFailed")
+            self.b_tesla = None
+        self._track_field_line(dt)
+        self.wheel_momenta = io.wheel_momenta() if io.wheel_count() else None
+        # the last cycle's body torque (self.dipole: what it drove, zero when off), for both users below
+        torque = (applied_torque(self.wheel_torques, self.wheel_axes, self.dipole, self.b_tesla, self.duty)
+                  if self.omega is not None else None)
+        self._update_rate_observer(dt, torque)
+        self._track_residual_dipole(dt, torque)
+
+    def _update_rate_observer(self, dt: float, torque) -> None:
+        """The derivative term's rate: the bias-corrected gyro, or the model-aided observer (RATE_SOURCE)."""
+        obs = self.rate_observer
+        if self.omega is None:
+            obs.reset()
+            self.pd_rate = None
+            return
+        xy, xz, yz = self.INERTIA_XY, self.INERTIA_XZ, self.INERTIA_YZ
+        try:  # free when the parameters are the model's already (RateObserver.set_model compares first)
+            obs.set_model(((self.INERTIA_XX, xy, xz), (xy, self.INERTIA_YY, yz), (xz, yz, self.INERTIA_ZZ)),
+                          self.RATE_OBSERVER_GAIN)
+            self.notify.clear_event("InertiaModelRefused")
+        except ValueError:  # not positive definite: keep the last good model, say so once per change
+            self.notify.event("InertiaModelRefused")
+        h = _ZERO
+        if self.wheel_momenta is not None:
+            h = self._body_momentum(self.wheel_momenta)
+        w = obs.update(self.omega, torque, h, dt)
+        self.pd_rate = w if self.RATE_SOURCE == _OBSERVER else self.omega
+
+    def _track_field_line(self, dt: float) -> None:
+        """Feed the field-direction-rate estimator (every cycle with a field and an attitude, so it is
+        settled when magnetorquer pointing starts); a gap in either restarts it."""
+        fr = self.field_rate
+        fr.bandwidth_rad_s = self.MAG_FIELD_RATE_BANDWIDTH
+        q = self.filter.q
+        if q is None or not self.attitude_valid:
+            self.attitude_known_s = 0.0
+        else:
+            self.attitude_known_s += dt
+        if self.b_tesla is None or q is None or not self.attitude_valid:
+            fr.reset()
+            self.bdot_hat_B = None
+            return
+        self.bdot_hat_B = fr.update(q, self.b_tesla, dt)
+
+    def _track_residual_dipole(self, dt: float, torque) -> None:
+        """Feed the residual-dipole estimator while the coils point (magnetorquer POINTING past MAG_SETTLE_TIME,
+        small dipoles, a settled gyro bias); elsewhere its open window is dropped and its sums kept."""
+        est = self.residual_estimator
+        if (self.MAG_RESIDUAL_MODE != _ESTIMATE or self.mode != POINTING or self._pointing_uses_wheels()
+                or self.omega is None or self.b_tesla is None or self.attitude_known_s < self.MAG_SETTLE_TIME):
+            est.gap()
+            return
+        est.window_s = self.MAG_RESIDUAL_WINDOW
+        est.inertia = self.rate_observer.inertia
+        ready = est.estimate is not None
+        m = est.update(self.omega, torque, _ZERO, self.b_tesla, dt)
+        if m is not None and not ready:
+            self.notify.event("ResidualDipoleEstimated", m[0], m[1], m[2])
+
+    def _residual_feed_forward(self) -> Vec3:
+        """The residual dipole to cancel, A·m² (B), by MAG_RESIDUAL_MODE; an estimate past a coil limit is refused."""
+        mode = self.MAG_RESIDUAL_MODE
+        if mode == _OFF:
+            return _ZERO
+        est = self.residual_estimator.estimate
+        if mode == _ESTIMATE and est is not None:
+            lim = self.coil_limits()
+            if _finite(*est) and all(abs(est[i]) <= lim[i] for i in range(3)):
+                self.notify.clear_event("ResidualDipoleEstimateRefused")
+                return est
+            self.notify.event("ResidualDipoleEstimateRefused", est[0], est[1], est[2])
+        return (self.MAG_RESIDUAL_DIPOLE_X, self.MAG_RESIDUAL_DIPOLE_Y, self.MAG_RESIDUAL_DIPOLE_Z)
+
+    # --- AUTO -----------------------------------------------------------------------------------
+
+    def spin_errors(self) -> tuple[float, float]:
+        """``(axis error deg, rate error fraction)`` of ω̂ against ``SPIN_RATE_TARGET`` about +Z."""
+        w = self.omega
+        assert w is not None  # AUTO looks at the spin only with a rate estimate
+        return spin_errors(w, self.SPIN_RATE_TARGET * _DEG)
+
+    def _auto_mode(self, dt: float) -> None:
+        if self.mode == IDLE:
+            self._change_mode(DETUMBLE, _AUTO_START)
+            return
+        if self.omega is None:
+            return  # no rate: keep the mode (B-dot needs no gyro)
+        rate_deg = math.degrees(_norm(self.omega))
+        if self.mode != DETUMBLE and rate_deg > self.DETUMBLE_ENTER_RATE:
+            self._change_mode(DETUMBLE, _RATE_HIGH)
+            return
+        if self.mode == DETUMBLE:
+            self._dwell_s = self._dwell_s + dt if rate_deg < self.DETUMBLE_EXIT_RATE else 0.0
+            if self._dwell_s >= self.MODE_DWELL:
+                self._change_mode(SPIN_STABLE, _RATE_LOW)
+        elif self.mode == SPIN_STABLE:
+            axis_deg, frac = self.spin_errors()
+            if axis_deg <= self.SPIN_AXIS_ENTER and frac <= self.SPIN_RATE_ENTER:
+                self._stable_s += dt
+            elif axis_deg > self.SPIN_AXIS_RESET or frac > self.SPIN_RATE_RESET:
+                self._stable_s = 0.0
+            if self._stable_s >= self.SPIN_STABLE_DWELL:
+                if self._pointing_available(report=True):
+                    self._change_mode(POINTING, _SPIN_STABLE_REACHED)
+        elif self.mode == POINTING and not self.attitude_valid:
+            self.notify.event("AttitudeKnowledgeLost")
+            self._change_mode(SPIN_STABLE, _ATTITUDE_LOST)
+
+    # --- actuation ------------------------------------------------------------------------------
+
+    def _actuate(self, dt: float) -> None:
+        mode = self.mode
+        self.residual_ff = _ZERO
+        tau = _ZERO
+        dipole = None  # None: coils off this cycle
+        wheel_u = None  # None: wheels at zero torque
+        levels = None  # (dipole, _coil_levels(dipole)) when already worked out for the dipole driven below
+        self.pointing_error_deg = float("nan")
+        if mode == DETUMBLE:
+            dipole = self._detumble_dipole()
+            if dipole is not None:  # B-dot: each axis saturates on its own, as the flight coils do
+                dipole = clip_to_limits(dipole, self.coil_limits())
+        elif mode == SPIN_STABLE and self.omega is not None:
+            tau = self._spin_torque(dt)
+            if self.b_tesla is not None:
+                dipole, _ = project_dipole_weighted(tau, self.b_tesla, self.coil_limits())
+        elif mode == POINTING and self.omega is not None and self.attitude_valid:
+            q = self.filter.q
+            assert q is not None  # attitude_valid
+            if self.target is None:
+                self.set_target(q)
+            target = self.target
+            assert target is not None  # set_target set it
+            if self._pointing_uses_wheels():
+                rate = self.pd_rate if self.pd_rate is not None else self.omega
+                tau, qe = pd_torque(target, q, rate, self.K_P, self.K_D, self.SLEW_RATE_LIMIT * _DEG)
+                self.integrator.window_rad = self.INTEGRAL_WINDOW * _DEG
+                ti = self.integrator.update(qe, dt, self.K_I)
+                tau = (tau[0] + ti[0], tau[1] + ti[1], tau[2] + ti[2])
+                tau_mag = _ZERO
+                if self.b_tesla is not None and self.wheel_momenta is not None:
+                    h_b = self._body_momentum(self.wheel_momenta)
+                    limits = self.coil_limits()
+                    dipole, _ = project_dipole_weighted(dump_torque(h_b, self.K_DUMP), self.b_tesla, limits)
+                    dipole = scale_to_limits(dipole, limits)
+                    levels = (dipole, self._coil_levels(dipole))
+                    mb = _cross(levels[1][1], self.b_tesla)
+                    d = self.duty
+                    tau_mag = (mb[0] * d, mb[1] * d, mb[2] * d)
+                # the wheels supply what the dump torque does not (it would otherwise disturb the pointing)
+                wheel_u = self._allocate((tau[0] - tau_mag[0], tau[1] - tau_mag[1], tau[2] - tau_mag[2]))
+            else:
+                tau, qe = self._magnetic_pointing_torque(target, q)
+                if self.attitude_known_s < self.MAG_SETTLE_TIME:
+                    tau = _ZERO  # the gyro-bias estimate is still settling: the coils wait (no dipole)
+                elif self.b_tesla is not None:
+                    dipole, _ = project_dipole_weighted(tau, self.b_tesla, self.coil_limits())
+                    # cancel the residual dipole, which acts all the time, with coils on for the duty share
+                    ff = self.residual_ff = self._residual_feed_forward()
+                    d = self.duty
+                    dipole = (dipole[0] - ff[0] / d, dipole[1] - ff[1] / d, dipole[2] - ff[2] / d)
+            self.pointing_error_deg = math.degrees(quat_angle(qe))
+        self.torque_request = tau
+        if dipole is None:
+            if self.coils_driven:
+                self._stop_coils()
+            self.dipole = _ZERO
+        else:
+            m = scale_to_limits(dipole, self.coil_limits())
+            # the levels of the dump dipole are reused when the limit left it as it was (the same object)
+            self._drive_coils(m, levels[1] if levels is not None and levels[0] is m else None)
+        if wheel_u is None:
+            wheel_u = (0.0,) * len(self.wheel_axes)
+        self._command_wheels(wheel_u)
+
+    def _magnetic_pointing_torque(self, target: Quat, q: Quat):
+        """``(τ_req, q_err)`` of the MAG_POINTING_LAW (before the projection ⟂ B)."""
+        w = self.omega
+        assert w is not None  # POINTING actuates only with a rate estimate
+        kp, kd = self.K_P_MAG, self.K_D_MAG
+        if self.MAG_POINTING_LAW == _SEED_PD or self.b_tesla is None:
+            return pd_torque(target, q, w, kp, kd)
+        bd = self.bdot_hat_B if self.bdot_hat_B is not None else _ZERO  # no estimate yet: the law's ρ = 0 case
+        return field_steering_torque(target, q, w, self.b_tesla, bd, kp, kd, self.MAG_STEER_RHO,
+                                     self.MAG_STEER_ZETA, self.MAG_FIELD_RATE_MIN)
+
+    def _body_momentum(self, momenta) -> Vec3:
+        """``Σ h_i g_i`` over the wheels, N·m·s (B)."""
+        axes, alloc = self._momentum_alloc
+        if axes != self.wheel_axes:
+            alloc = WheelAllocator(self.wheel_axes, 1.0, 1.0)
+            self._momentum_alloc = (self.wheel_axes, alloc)
+        return alloc.body_momentum(momenta)
+
+    def _allocate(self, tau: Vec3):
+        key, alloc = self._limit_alloc
+        wanted = (self.wheel_axes, self.WHEEL_MAX_TORQUE, self.WHEEL_MAX_MOMENTUM)
+        if key != wanted:  # first use, or a limit parameter changed: the allocator's limits follow
+            alloc = WheelAllocator(*wanted)
+            self._limit_alloc = (wanted, alloc)
+        u, limited = alloc.allocate(tau, self.wheel_momenta)
+        if limited:
+            self.notify.event("WheelLimitReached")
+        else:
+            self.notify.clear_event("WheelLimitReached")
+        return u
+
+    def _detumble_dipole(self) -> Vec3 | None:
+        provider = self.provider
+        if provider.has_dipole_provider():
+            m = provider.provider_dipole()
+            primed, self._bdot_primed = self._bdot_primed, True
+            if m is None:
+                if primed:  # the provider's first call after entering DETUMBLE only primes it
+                    self.notify.event("DipoleMomentRetrievalFailed")
+                return None
+            self.notify.clear_event("DipoleMomentRetrievalFailed")
+            return m
+        if self.b_tesla is None:
+            return None
+        now = (self.b_gauss, self.b_stamp_us)
+        prev, self._b_prev = self._b_prev, now
+        if prev is None:
+            return None
+        return bdot_dipole(prev[0], now[0], (now[1] - prev[1]) / 1e6, self.K_BDOT)
+
+    def _spin_torque(self, dt: float) -> Vec3:
+        law = self.SPIN_LAW
+        w = self.omega
+        assert w is not None  # spin control runs only with a rate estimate
+        c, i_d = self.C_DAMP, self.I_D
+        if law == _SEED_KANE_DAMPER:
+            sd = self.seed_damper
+            sd.c_damp, sd.i_d = c, i_d
+            b = self.b_tesla
+            # τ_mag: the magnetic torque the previous cycle's dipole produced (its on-time share)
+            tau_mag = _cross(self.dipole, b) if b is not None else _ZERO
+            d = self.duty
+            sd.update((tau_mag[0] * d, tau_mag[1] * d, tau_mag[2] * d), dt)
+            self.damper_state = sd.w_d
+            return sd.torque_request()
+        if law == _VIRTUAL_DAMPER:
+            vd = self.virtual_damper
+            vd.c_damp, vd.i_d = c, i_d
+            vd.update(w, dt)
+            self.damper_state = _norm(vd.omega_d) if vd.omega_d is not None else 0.0
+            return vd.torque_request(w)
+        reg = SpinRateRegulator(self.SPIN_K_TRANSVERSE, self.SPIN_K_RATE, self.SPIN_RATE_TARGET * _DEG)
+        self.damper_state = w[2] - reg.rate
+        return reg.torque_request(w)
+
+    # --- actuators ------------------------------------------------------------------------------
+
+    def _command_wheels(self, u) -> None:
+        self.wheel_torques = self.io.set_wheel_torques(u)
+
+    def _coil_levels(self, m: Vec3):
+        """``(levels X+, X−, Y+, Y−, Z−, achieved dipole A·m²)`` for the dipole ``m`` (A·m², B): half of
+        m_x on each X coil, half of m_y on each Y coil, m_z on Z−; X−, Y− and Z− face the other way."""
+        return face_coil_levels(m, self.X_COIL_MAX_DIPOLE, self.Y_COIL_MAX_DIPOLE, self.Z_COIL_MAX_DIPOLE)
+
+    def _drive_coils(self, m: Vec3, coil_levels=None) -> None:
+        """Drive the five coils for the dipole ``m``; ``self.dipole`` becomes what the rounded levels give.
+        ``coil_levels``: ``_coil_levels(m)`` when the caller has it already."""
+        levels, self.dipole = coil_levels if coil_levels is not None else self._coil_levels(m)
+        self.io.drive_coils(levels, self.dipole)
+        self.coils_driven = True
+
+    def _stop_coils(self) -> None:
+        self.io.stop_coils()
+        self.coils_driven = False
