@@ -27,6 +27,7 @@ import time
 from dataclasses import dataclass
 from typing import Callable
 
+from detumble.errors import DetumbleError
 from detumble.sim import frames, plant_kernel
 from detumble.sim.adcs_law import AdcsLaw, PlantIo, pointing_statistics
 from detumble.sim.coursework_laws import REPORT_CROSS_PRODUCT_GAIN, BetaPdLaw, CrossProductLaw, WheelsPdLaw
@@ -40,7 +41,7 @@ from detumble.sim.truth import adcs_header, adcs_row
 DEFAULT_BDOT_GAIN = 3.0  # A m^2 s / G, the flight DetumbleManager default
 
 
-class LawError(ValueError):
+class LawError(DetumbleError, ValueError):
     """A law that cannot be made for this scenario (what is wrong and what to do instead)."""
 
 
@@ -291,7 +292,7 @@ def write_outputs(result: RunResult, out_dir: str) -> None:
     write_atomic(os.path.join(out_dir, "rate.csv"), "\n".join(lines) + "\n")
 
 
-class OutputFolderError(Exception):
+class OutputFolderError(DetumbleError):
     """The ``--out`` folder cannot take a run's outputs (the message says why and what to do)."""
 
 
