@@ -47,7 +47,7 @@ import datetime as _dt
 import math
 from typing import Callable, NamedTuple, Sequence
 
-from fprime_lite.deploy.resources import topology_resource
+from fprime_lite.deploy.resources import ResetLine, topology_resource
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.model.time import SimulatedClock, Time
 
@@ -134,7 +134,7 @@ class TruthRecorder:
                 fh.write(",".join(repr(v) for v in row.csv_row()) + "\n")
 
 
-class SimulatedSpacecraft:
+class SimulatedSpacecraft(ResetLine):
     """One simulated spacecraft, stepped on the deployment's clock.
 
     Args:

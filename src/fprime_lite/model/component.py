@@ -553,6 +553,19 @@ class Component(metaclass=ComponentMeta):
         except Exception:  # reporting a fault must not raise another
             log.exception("%s: reporting a fault failed", self.name)
 
+    # --- start-up hooks (the deployment calls them on every component, in this order) --------------
+
+    def clean_temporary_files(self) -> list[str]:
+        """Start-up, first of all: remove the temporary files that a killed earlier run left
+        half-written, and return their paths. The default removes nothing (a component that writes
+        no files); PrmDb and the file services override it."""
+        return []
+
+    def use_command_lookup(self, lookup: Callable[[str], Any]) -> None:
+        """Start-up, before commands are registered: the deployment's command table,
+        ``lookup(name) -> (opcode, argument types)``, for a component that compiles command names
+        (the sequencer's text sequences). The default ignores it."""
+
     # --- commands --------------------------------------------------------------------------------
 
     def register_commands(self) -> None:
