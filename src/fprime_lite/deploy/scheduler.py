@@ -166,8 +166,6 @@ class Scheduler:
         listeners = self._listeners
         busy = self._busy
         before = None if type(self)._before_event is Scheduler._before_event else self._before_event
-        # SimulatedClock.set_us written out (an earlier time still goes through it, to raise).
-        plain_clock = type(clock).set_us is SimulatedClock.set_us
         n = 0
         while not self._stopped and (max_events is None or n < max_events):
             while heap and heap[0][2].cancelled:
@@ -183,10 +181,7 @@ class Scheduler:
             else:
                 call = pop(heap)[2]
                 if t != clock.current_us:
-                    if plain_clock and t > clock.current_us:
-                        clock.current_us = t
-                    else:
-                        clock.set_us(t)
+                    clock.set_us(t)
                     for listener in listeners:
                         listener(t)
                 if call.period_us is not None:

@@ -468,9 +468,6 @@ class Component(metaclass=ComponentMeta):
 
     def is_connected(self, port: str, index: int = 0) -> bool:
         """Whether output ``port[index]`` is connected (F´'s ``isConnected_<port>_OutputPort``)."""
-        outputs = self._outputs
-        if port in outputs:  # output_port() written out: components ask this several times a tick
-            return outputs[port].targets[index] is not None
         return self.output_port(port).targets[index] is not None  # raises the KeyError that names the ports
 
     @property
