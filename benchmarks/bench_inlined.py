@@ -124,7 +124,7 @@ def _proves_ref(name="proves_ref"):
 def case_magnetorquer_recommand(repeat):
     """proves_ref: MagnetorquerDriver.start re-commanding the level its coil carries (the detumble
     manager does it for each coil every cycle): the short cut vs the full drive ``_apply`` it stands for."""
-    from detumble.sitl.magnetorquer_driver import MagnetorquerDriver
+    from detumble.drivers.magnetorquer_driver import MagnetorquerDriver
 
     loaded = _proves_ref()
     driver = next(i.component for i in loaded.topology.instances.values()
@@ -194,7 +194,7 @@ def _instance(loaded, cls):
 def case_wheel_torque_command(repeat):
     """coursework, adcs_ref: ReactionWheelDriver.torqueSet of a healthy wheel with the plant call and
     the mode change written out vs ``_plant_call`` and ``_set_mode``."""
-    from detumble.sitl.reaction_wheel_driver import ReactionWheelDriver
+    from detumble.drivers.reaction_wheel_driver import ReactionWheelDriver
 
     driver = _instance(_proves_ref("coursework"), ReactionWheelDriver)
     folded = _refold(ReactionWheelDriver.torqueSet, """        try:
@@ -215,7 +215,7 @@ def case_wheel_torque_command(repeat):
 def case_gyro_read(repeat):
     """adcs_ref, coursework: ImuManager.angularVelocityGet of a healthy gyro with ``_read`` and
     ``_orient`` written out vs called."""
-    from detumble.sitl.imu_manager import ImuManager
+    from detumble.proves.imu_manager import ImuManager
 
     imu = _instance(_proves_ref("adcs_ref"), ImuManager)
     folded = _refold(ImuManager.angularVelocityGet, """        if self._faults[_GYROSCOPE] == _NO_FAULT:
