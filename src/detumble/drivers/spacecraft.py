@@ -58,7 +58,7 @@ from detumble.sim.orbit import R_EARTH_EQ
 from detumble.sim.power import FACE_SWITCHES, ElectricalSystem, coil_supply_power_w
 from detumble.sim.plant import Plant
 from detumble.sim.scenario import Scenario, load_scenario
-from detumble.sim.sensors import GAUSS_PER_TESLA
+from detumble.control.units import GAUSS_PER_TESLA
 
 __all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us", "require_spacecraft",
            "make_spacecraft"]

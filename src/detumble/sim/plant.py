@@ -26,7 +26,8 @@ from detumble.sim.field import DipoleField, FieldAlongOrbit, OrbitConstantField,
 from detumble.sim.laws import scale_to_limits
 from detumble.sim.orbit import CircularOrbit, TleOrbit
 from detumble.sim.scenario import Scenario
-from detumble.sim.sensors import GAUSS_PER_TESLA, Gyro, Magnetometer
+from detumble.control.units import GAUSS_PER_TESLA
+from detumble.sim.sensors import Gyro, Magnetometer
 from detumble.sim.star_tracker import StarTracker
 from detumble.sim.vec import Quat, Vec3, cross, mat_vec, quat_normalize, rotate_b_to_n, rotate_n_to_b, scale
 from detumble.sim.wheels import WheelAssembly, equations_inertia, step_with_wheels

@@ -34,6 +34,7 @@ from detumble.sim.coursework_laws import REPORT_CROSS_PRODUCT_GAIN, BetaPdLaw, C
 from detumble.sim.laws import BangBangLaw, BdotLaw, KoptLaw, NoLaw, clip_to_limits, kopt_gain
 from detumble.sim.plant import Plant
 from detumble.control.attitude_defaults import DEFAULTS as ADCS_DEFAULTS
+from detumble.control.units import TESLA_PER_GAUSS
 from detumble.sim.scenario import LAWS, Scenario, ScenarioError, load_scenario
 from detumble.sim.settling_metrics import COURSEWORK_LAWS, SettlingMetrics
 from detumble.sim.truth import adcs_header, adcs_row
@@ -200,10 +201,11 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
                 plant.apply_dipole_B(zero)
             if phase == settle:
                 bx, by, bz, t_read = plant.magnetometer_reading()
+                b_B = (bx * TESLA_PER_GAUSS, by * TESLA_PER_GAUSS, bz * TESLA_PER_GAUSS)  # gauss -> T
                 if full_state:
-                    _full_state_command(ctl, plant, (bx * 1e-4, by * 1e-4, bz * 1e-4), t_read)
+                    _full_state_command(ctl, plant, b_B, t_read)
                 else:
-                    plant.apply_dipole_B(ctl.update((bx * 1e-4, by * 1e-4, bz * 1e-4), t_read))
+                    plant.apply_dipole_B(ctl.update(b_B, t_read))
         plant.step(dt)
         if ticked and (k + 1) % sample_every == 0 and ctl.mode == "POINTING":  # as the attitude report samples
             pointing_deg.append(ctl.true_pointing_error_deg(plant.q_BN))

@@ -32,9 +32,9 @@ import random
 from typing import Any
 from dataclasses import dataclass
 
+from detumble.control.units import GAUSS_PER_TESLA
 from detumble.sim.vec import rotate_n_to_b
 
-GAUSS_PER_TESLA = 1e4
 LSM6DSO_SENSITIVITY_MDPS = {125.0: 4.375, 250.0: 8.75, 500.0: 17.5, 1000.0: 35.0, 2000.0: 70.0}
 
 
