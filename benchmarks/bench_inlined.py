@@ -199,8 +199,8 @@ def case_wheel_torque_command(repeat):
     driver = _instance(_proves_ref("coursework"), ReactionWheelDriver)
     folded = _refold(ReactionWheelDriver.torqueSet, """        try:
             self.spacecraft.set_wheel_torque(self.wheel, torque)
-        except Exception:
-            self._plant_call_failed(self.spacecraft.set_wheel_torque, (self.wheel, torque))
+        except Exception as exc:
+            self._plant_call_failed(self.spacecraft.set_wheel_torque, (self.wheel, torque), exc)
             return Success.FAILURE
         self.mode = _TORQUE
         self.Mode.write(_TORQUE)
