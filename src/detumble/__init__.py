@@ -10,5 +10,6 @@ Layers, lowest first (docs/architecture.md; import what you need, this package i
 * :mod:`detumble.drivers` — the simulated drivers and the spacecraft they drive;
 * :mod:`detumble.proves` — the PROVES flight components as flown (mode manager, IMU, power, housekeeping);
 * :mod:`detumble.reports` — run reports, plots, the power budget and campaign metrics;
-* :mod:`detumble.tools` — the ``sim`` verb and the bench pieces of ``fprime-lite``.
+* :mod:`detumble.tools` — the ``sim`` verb and the bench pieces of ``fprime-lite``;
+* :mod:`detumble.errors` — ``DetumbleError``, the root of the application's errors (imports nothing).
 """

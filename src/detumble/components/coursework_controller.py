@@ -24,10 +24,10 @@ from detumble.components.attitude_types import AngularVelocityGet, Vector3
 from detumble.components.types import (AttitudeGet, DipoleMoment, DipoleMomentSet, MagneticFieldGet, OrbitFrameGet,
                                        Success, WheelStateGet, WheelTorqueSet)
 from detumble.control import coursework as cw
+from detumble.control.units import TESLA_PER_GAUSS
 
 __all__ = ["CourseworkController", "CourseworkLaw", "WheelError"]
 
-_TESLA_PER_GAUSS = 1e-4
 _ZERO = (0.0, 0.0, 0.0)
 _SUCCESS = Success.SUCCESS
 _WHEEL_LABELS = ("wheel 0", "wheel 1", "wheel 2")  # what a failed wheel read names
@@ -196,11 +196,11 @@ class CourseworkController(PassiveComponent):
             return
         w_B = (rate.x, rate.y, rate.z)
         if law == _CROSS_PRODUCT:
-            b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
+            b_B = (field.x * TESLA_PER_GAUSS, field.y * TESLA_PER_GAUSS, field.z * TESLA_PER_GAUSS)
             self._command_dipole(cw.cross_product_dipole(self.CROSS_PRODUCT_GAIN.value, w_B, b_B))
         elif law == _BETA_PD:
             assert self._beta is not None
-            b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
+            b_B = (field.x * TESLA_PER_GAUSS, field.y * TESLA_PER_GAUSS, field.z * TESLA_PER_GAUSS)
             m = self._beta.dipole(field.timestamp.total_us * 1e-6, w_B, b_B)
             if self._beta.previous is not None:
                 self.Beta.write(self._beta.previous[1])
@@ -240,7 +240,7 @@ class CourseworkController(PassiveComponent):
         if self.DUMP_GAIN.value > 0.0:
             field = read(self.magneticFieldGet, "magnetometer")
             if field is not None:
-                b_B = (field.x * _TESLA_PER_GAUSS, field.y * _TESLA_PER_GAUSS, field.z * _TESLA_PER_GAUSS)
+                b_B = (field.x * TESLA_PER_GAUSS, field.y * TESLA_PER_GAUSS, field.z * TESLA_PER_GAUSS)
                 self._command_dipole(cw.dumping_dipole(self.DUMP_GAIN.value, h, b_B))
 
     def _command_dipole(self, m) -> None:

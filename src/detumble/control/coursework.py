@@ -30,6 +30,8 @@ from __future__ import annotations
 import math
 from typing import Sequence
 
+from detumble.control.mat3 import cross as _cross
+
 __all__ = ["REPORT_MEAN_MOTION", "Vec3", "Quat", "from_plant_quaternion", "to_plant_quaternion", "dcm_ob",
            "rate_relative_to_orbit", "cross_product_dipole", "BetaPd", "WheelsPd", "error_quaternion", "wheel_torque",
            "dumping_dipole",
@@ -74,9 +76,6 @@ def _mat_vec(a, v) -> Vec3:
             a[1][0] * v[0] + a[1][1] * v[1] + a[1][2] * v[2],
             a[2][0] * v[0] + a[2][1] * v[1] + a[2][2] * v[2])
 
-
-def _cross(a, b) -> Vec3:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 def rate_relative_to_orbit(q: Sequence[float], w_B: Sequence[float], n: float = REPORT_MEAN_MOTION) -> Vec3:
@@ -209,7 +208,10 @@ class WheelsPd:
     def torque(self, q: Sequence[float], w_B: Sequence[float], h_B: Sequence[float]) -> Vec3:
         # error_quaternion, rate_relative_to_orbit and wheel_torque written out in one body (the
         # wheel cycle runs at 100 Hz): the same operations in the same order, so the same floats
-        # (tests/detumble/control/test_coursework.py checks it against the three functions).
+        # (tests/detumble/control/test_coursework.py checks it against the three functions). Kept
+        # (issue 26): 6.2-9.9 µs less a call than the three calls, once a 100 Hz coursework tick
+        # (≈ 71 µs of CPU): 9-14 % of it; `python benchmarks/bench_inlined.py wheels_pd_torque`
+        # (3 sittings on the shared 2-core machine, 2026-12-03, each the best of 40).
         p = self.previous
         q1, q2, q3, q4 = float(q[0]), float(q[1]), float(q[2]), float(q[3])
         if p is not None and q1 * p[0] + q2 * p[1] + q3 * p[2] + q4 * p[3] < 0.0:
@@ -270,7 +272,10 @@ def limit_wheel_torque(torque: Sequence[float], h: Sequence[float], torque_limit
     beyond ±``momentum_limit`` and the torque would push it further out."""
     if len(torque) != 3 or len(h) != 3:
         return _limit_wheel_torque_loop(torque, h, torque_limit, momentum_limit)
-    # the loop below written out for three wheels (the wheel cycle runs at 100 Hz)
+    # the loop below written out for three wheels (the wheel cycle runs at 100 Hz). Kept (issue 26):
+    # 0.63-3.4 µs less a call than the loop (median of 7 sittings 1.4 µs), once a coursework tick
+    # (≈ 71 µs of CPU): about 2 % of it; `python benchmarks/bench_inlined.py limit_wheel_torque`
+    # (3 sittings on the shared 2-core machine, 2026-12-03, each the best of 40).
     lo = -torque_limit
     u0, u1, u2 = torque
     u0 = torque_limit if u0 > torque_limit else (lo if u0 < lo else float(u0))

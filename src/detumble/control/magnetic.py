@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 
+from detumble.control.mat3 import cross as _cross
+
 Vec3 = tuple[float, float, float]
 
 __all__ = ["project_dipole", "project_dipole_weighted", "seed_project_dipole", "bdot_dipole", "normalised_bdot_dipole",
@@ -17,9 +19,6 @@ __all__ = ["project_dipole", "project_dipole_weighted", "seed_project_dipole", "
 
 _ZERO = (0.0, 0.0, 0.0)
 
-
-def _cross(a: Vec3, b: Vec3) -> Vec3:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 def project_dipole(tau_req: Vec3, b: Vec3) -> tuple[Vec3, Vec3]:

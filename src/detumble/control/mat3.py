@@ -1,8 +1,13 @@
-"""3×3 matrix helpers on nested tuples/lists of plain floats (no numpy in the per-tick path)."""
+"""3-vector and 3×3 matrix helpers on nested tuples/lists of plain floats (no numpy in the per-tick path)."""
 
 from __future__ import annotations
 
-__all__ = ["det3", "inv3"]
+__all__ = ["cross", "det3", "inv3"]
+
+
+def cross(a, b) -> tuple[float, float, float]:
+    """``a × b`` of two 3-vectors (any frame, both in the same one)."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 def det3(m) -> float:

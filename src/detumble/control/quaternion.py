@@ -145,7 +145,9 @@ def dcm_to_quat(c: Mat3) -> Quat:
 
 
 def rotate_n_to_b(q: Quat, v_N: Vec3) -> Vec3:
-    """``v_B = [BN(q)] v_N`` (written out: this is on the per-tick path)."""
+    """``v_B = [BN(q)] v_N``, from the quaternion's products directly (no [BN] matrix: fewer
+    operations than ``quat_to_dcm(q)`` times ``v_N``, and rounded differently, so the two are not
+    interchangeable where the last bit counts)."""
     q0, q1, q2, q3 = q
     x, y, z = v_N
     q00, q11, q22, q33 = q0 * q0, q1 * q1, q2 * q2, q3 * q3

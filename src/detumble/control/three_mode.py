@@ -40,12 +40,14 @@ from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
 from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipoleEstimator, field_steering_torque
 from detumble.control.magnetorquer import face_coil_levels
+from detumble.control.mat3 import cross as _cross
 from detumble.control.mekf import Mekf
 from detumble.control.pointing import ErrorIntegrator, pd_torque
 from detumble.control.quaternion import (Quat, Vec3, is_unit_quaternion, quat_angle, quat_normalize, quat_shortest,
                                          target_pointing_axis)
 from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
+from detumble.control.units import TESLA_PER_GAUSS
 from detumble.control.wheel_allocation import WheelAllocator
 
 __all__ = ["ThreeModeLaw", "checked_parameters", "ControllerIo", "DipoleProvider", "Notify", "Quiet", "MODES",
@@ -74,7 +76,6 @@ _OBSERVER = _member("RATE_SOURCE", "OBSERVER")
 _SEED_PD = _member("MAG_POINTING_LAW", "SEED_PD")
 _OFF, _ESTIMATE = _member("MAG_RESIDUAL_MODE", "OFF"), _member("MAG_RESIDUAL_MODE", "ESTIMATE")
 
-_TESLA_PER_GAUSS = 1e-4
 _DEG = math.pi / 180.0
 _ARCSEC = _DEG / 3600.0
 _ZERO = (0.0, 0.0, 0.0)
@@ -190,9 +191,6 @@ def _finite(*values) -> bool:
 def _norm(v) -> float:
     return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
 
-
-def _cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 class ThreeModeLaw:
@@ -325,7 +323,12 @@ class ThreeModeLaw:
                 raise ValueError(f"unknown attitude-controller parameter {name!r}")
             choices = defaults.ENUM_CHOICES.get(name)
             if choices is not None:
-                value = choices.index(value) if isinstance(value, str) else int(value)  # type: ignore[call-overload]
+                if isinstance(value, str):
+                    value = choices.index(value)
+                elif isinstance(value, int):  # an F´ enum member (an IntEnum) or its value
+                    value = int(value)
+                else:
+                    raise ValueError(f"{name} takes one of {', '.join(choices)}, got {value!r}")
             setattr(self, name, value)
         self.cycle_ticks = max(1, int(self.CYCLE_TICKS))  # ticks per control cycle
 
@@ -552,7 +555,7 @@ class ThreeModeLaw:
             notify.clear_event("MagneticFieldRetrievalFailed")
             b, self.b_stamp_us = field
             self.b_gauss = b
-            self.b_tesla = (b[0] * _TESLA_PER_GAUSS, b[1] * _TESLA_PER_GAUSS, b[2] * _TESLA_PER_GAUSS)
+            self.b_tesla = (b[0] * TESLA_PER_GAUSS, b[1] * TESLA_PER_GAUSS, b[2] * TESLA_PER_GAUSS)
         else:
             notify.event("MagneticFieldRetrievalFailed")
             self.b_tesla = None

@@ -47,7 +47,7 @@ import datetime as _dt
 import math
 from typing import Callable, NamedTuple, Sequence
 
-from fprime_lite.deploy.resources import topology_resource
+from fprime_lite.deploy.resources import ResetLine, topology_resource
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.model.time import SimulatedClock, Time
 
@@ -58,8 +58,7 @@ from detumble.sim.orbit import R_EARTH_EQ
 from detumble.sim.power import FACE_SWITCHES, ElectricalSystem, coil_supply_power_w
 from detumble.sim.plant import Plant
 from detumble.sim.scenario import Scenario, load_scenario
-from detumble.sim.sensors import GAUSS_PER_TESLA
-from detumble.sim.vec import rotate_n_to_b
+from detumble.control.units import GAUSS_PER_TESLA
 
 __all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us", "require_spacecraft",
            "make_spacecraft"]
@@ -134,7 +133,7 @@ class TruthRecorder:
                 fh.write(",".join(repr(v) for v in row.csv_row()) + "\n")
 
 
-class SimulatedSpacecraft:
+class SimulatedSpacecraft(ResetLine):
     """One simulated spacecraft, stepped on the deployment's clock.
 
     Args:
@@ -277,12 +276,11 @@ class SimulatedSpacecraft:
         sample includes the coils' coupling ``K · m_coils`` when the coils were on at that instant.
         An ``ideal`` magnetometer returns the true field now, stamped now.
         """
+        self.sync()
         plant = self.plant
-        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
-            self.advance_to_us(self.clock.current_us)
         mag = plant.magnetometer
         if mag.spec.ideal:
-            b = rotate_n_to_b(plant._state[:4], plant._b_N)  # Plant.b_B, without the property call
+            b = plant.b_B
             g = GAUSS_PER_TESLA
             return (b[0] * g, b[1] * g, b[2] * g, self.time_of(plant.t_ns))
         s = mag.sample_gauss
@@ -345,9 +343,8 @@ class SimulatedSpacecraft:
     def set_coil_level(self, face: int, level: int) -> None:
         """Drive the coil on ``face`` at ``level`` (-127..127) from now on (plant sign conventions:
         a positive level gives a dipole along the face's outward normal, so X- +level is -X)."""
+        self.sync()
         plant = self.plant
-        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
-            self.advance_to_us(self.clock.current_us)
         if level and self.power is not None and not self.power.face_powered(face):
             raise RuntimeError(f"face {face} is unpowered (its load switch is off); its coil cannot be driven")
         plant.set_coil_level(face, level)
@@ -371,9 +368,8 @@ class SimulatedSpacecraft:
 
     def set_wheel_torque(self, i: int, torque_nm: float) -> None:
         """Motor torque on wheel ``i`` (N·m along its axis) from now on (clipped by the plant)."""
+        self.sync()
         plant = self.plant
-        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
-            self.advance_to_us(self.clock.current_us)
         plant.set_wheel_torque(i, torque_nm)
 
     def set_wheel_speed(self, i: int, speed_rad_s: float) -> None:
@@ -388,9 +384,8 @@ class SimulatedSpacecraft:
     def wheel_sample(self, i: int) -> tuple[float, float, float, Time]:
         """``(speed_rad_s, momentum_nms, torque_nm, t)`` as wheel ``i`` reports them now (the
         momentum with the configured reading noise)."""
+        self.sync()
         plant = self.plant
-        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
-            self.advance_to_us(self.clock.current_us)
         speed, h, u, _ = plant.wheel_reading(i)
         return (speed, h, u, self.time_of(plant._t_ns))
 
@@ -410,14 +405,8 @@ class SimulatedSpacecraft:
     def star_tracker_sample(self) -> tuple[tuple[float, float, float, float], bool, Time]:
         """``(q_BN, valid, t_sample)``: the held star-tracker solution (scalar first), whether it is
         valid and when it was taken."""
+        self.sync()
         plant = self.plant
-        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
-            self.advance_to_us(self.clock.current_us)
-        st = plant.star_tracker
-        if st is not None and st.spec.ideal:  # Plant.star_tracker_reading's ideal case, written out
-            s = plant._state
-            t = plant._t_ns / 1e9
-            return ((s[0], s[1], s[2], s[3]), True, self.time_of(int(round(t * 1e9))))
         q0, q1, q2, q3, valid, t = plant.star_tracker_reading()
         return ((q0, q1, q2, q3), valid, self.time_of(int(round(t * 1e9))))
 
@@ -444,9 +433,8 @@ class SimulatedSpacecraft:
     def orbit_frame_sample(self) -> tuple[tuple[float, float, float, float], float, Time]:
         """``(q_ON, n, t)``: the orbit frame O relative to N (scalar first), the orbit rate (rad/s)
         and the time — what an on-board orbit propagator knows."""
+        self.sync()
         plant = self.plant
-        if (self.clock.current_us - self.origin_us) * 1000 != plant._t_ns:  # sync(), written out
-            self.advance_to_us(self.clock.current_us)
         return plant.q_ON, plant.orbit.mean_motion, self.clock.now()
 
     # --- truth ----------------------------------------------------------------------------------

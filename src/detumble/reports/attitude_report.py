@@ -38,6 +38,7 @@ import os
 import pathlib
 
 from fprime_lite.deploy.resources import topology_resource
+from fprime_lite.model.time import US_PER_S
 
 from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, SPIN_THRESHOLDS_DEG, error_statistics
 from detumble.components.attitude_types import ControlMode
@@ -47,7 +48,6 @@ from detumble.reports.figures import save_figure
 
 __all__ = ["AttitudeRunReport", "error_statistics", "settle_time"]
 
-US_PER_S = 1_000_000
 ORBIT_S = 5578.0
 #: The issue's stable spin: total momentum within this angle of body +Z …
 SPIN_AXIS_BAND_DEG = 5.0

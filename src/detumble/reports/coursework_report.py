@@ -16,6 +16,7 @@ import os
 import pathlib
 
 from fprime_lite.deploy.resources import topology_resource
+from fprime_lite.model.time import US_PER_S
 
 from detumble.sim.settling_metrics import SettlingMetrics
 from detumble.sim.truth import adcs_header, adcs_row
@@ -23,7 +24,6 @@ from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthSample
 
 __all__ = ["CourseworkRunReport"]
 
-US_PER_S = 1_000_000
 
 
 @topology_resource(role="report")

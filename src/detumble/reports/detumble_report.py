@@ -16,6 +16,7 @@ import os
 import pathlib
 
 from fprime_lite.deploy.resources import topology_resource
+from fprime_lite.model.time import US_PER_S
 from fprime_lite.osal.atomic import clean_temporary_files, open_temporary
 
 from detumble.control.coil_layout import COIL_FACES
@@ -26,7 +27,6 @@ from detumble.components.types import DetumbleState
 
 __all__ = ["DetumbleRunReport"]
 
-US_PER_S = 1_000_000
 
 
 @topology_resource(role="report")

@@ -210,16 +210,7 @@ class CoilSet:
 
     def commanded_dipole_B(self) -> tuple[float, float, float]:
         """The dipole the present levels give once the currents have settled (A m^2, B)."""
-        mx = my = mz = 0.0  # _sum at each coil's target_current_a(), written out (the drivers call it per level)
-        for c in self.coils.values():
-            spec = c.spec
-            i = 0.0 if spec.resistance_ohm == 0.0 else c.level / MAX_LEVEL * spec.voltage_v / spec.resistance_ohm
-            m = c._gain * i
-            n = c._normal
-            mx += m * n[0]
-            my += m * n[1]
-            mz += m * n[2]
-        return (mx, my, mz)
+        return self._sum({face: c.target_current_a() for face, c in self.coils.items()})
 
     def max_dipole_per_axis(self) -> tuple[float, float, float]:
         """Largest |m| achievable on each body axis with every coil on that axis at full drive."""

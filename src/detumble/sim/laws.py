@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 
 from detumble.control.magnetic import clip_to_limits, scale_to_limits  # noqa: F401 - re-exported
+from detumble.control.units import GAUSS_PER_TESLA
 from detumble.sim.vec import Vec3
 
 _ZERO = (0.0, 0.0, 0.0)
@@ -96,7 +97,7 @@ class BdotLaw(_Differencing):
         bdot = self._bdot(b_B, t)
         if bdot is None:
             return _ZERO
-        c = -self.gain * 1e4  # T/s -> G/s
+        c = -self.gain * GAUSS_PER_TESLA  # T/s -> G/s
         return self.limit((c * bdot[0], c * bdot[1], c * bdot[2]), self.m_max)
 
 

@@ -26,7 +26,8 @@ from detumble.sim.field import DipoleField, FieldAlongOrbit, OrbitConstantField,
 from detumble.sim.laws import scale_to_limits
 from detumble.sim.orbit import CircularOrbit, TleOrbit
 from detumble.sim.scenario import Scenario
-from detumble.sim.sensors import GAUSS_PER_TESLA, Gyro, Magnetometer
+from detumble.control.units import GAUSS_PER_TESLA
+from detumble.sim.sensors import Gyro, Magnetometer
 from detumble.sim.star_tracker import StarTracker
 from detumble.sim.vec import Quat, Vec3, cross, mat_vec, quat_normalize, rotate_b_to_n, rotate_n_to_b, scale
 from detumble.sim.wheels import WheelAssembly, equations_inertia, step_with_wheels
@@ -460,8 +461,7 @@ class Plant:
             w = self._wheels()  # raises: no wheels
         if type(i) is not int or not 0 <= i < w.n:
             w._index(i)  # raises for anything but a wheel's index
-        sd = w.specs[i].momentum_noise_std_nms  # WheelAssembly.measured_momentum, written out
-        h = w.h[i] + (w.rng.gauss(0.0, sd) if sd > 0.0 else 0.0)
+        h = w.measured_momentum(i)
         s = self._state  # omega_BN_B at 4..6
         g = w.axes[i]
         speed = h / w.js[i] - (g[0] * s[4] + g[1] * s[5] + g[2] * s[6])
@@ -493,7 +493,7 @@ class Plant:
     @property
     def q_ON(self) -> Quat:
         """The orbit frame O relative to N now (detumble.sim.frames)."""
-        return frames.q_ON(self.orbit, self._t_ns / 1e9)  # self.t, without the property call
+        return frames.q_ON(self.orbit, self.t)
 
     @property
     def q_BO(self) -> Quat:

@@ -44,6 +44,8 @@ from dataclasses import dataclass
 from importlib import resources
 from types import ModuleType
 
+from detumble.errors import DetumbleError
+
 ENV_VAR = "FPRIME_LITE_PLANT"
 CACHE_ENV_VAR = "FPRIME_LITE_CACHE"
 IMPLEMENTATIONS = ("auto", "python", "compiled")
@@ -58,11 +60,11 @@ _BUILD_TIMEOUT_S = 120.0
 log = logging.getLogger(__name__)
 
 
-class KernelUnavailableError(RuntimeError):
+class KernelUnavailableError(DetumbleError, RuntimeError):
     """``FPRIME_LITE_PLANT=compiled`` (or ``implementation="compiled"``) and the kernel cannot be had."""
 
 
-class _NoToolchainError(OSError):
+class _NoToolchainError(DetumbleError, OSError):
     """No C compiler or no Python headers on this machine."""
 
 

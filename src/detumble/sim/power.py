@@ -111,7 +111,7 @@ class Battery:
 
     def ocv(self) -> float:
         """The pack's open-circuit voltage (V) at its present state of charge."""
-        return cell_ocv(self.energy_j / self.capacity_j) * self.cfg.cells_in_series  # soc, written out
+        return cell_ocv(self.soc) * self.cfg.cells_in_series
 
     def current_for(self, power_w: float) -> float:
         """Battery current (A, + = discharge) delivering ``power_w`` at its terminals; at most the
@@ -207,9 +207,7 @@ class ElectricalSystem:
     def switched_load_w(self) -> float:
         loads = self.cfg.loads
         sw = self.switches
-        # The number of closed face switches (bools add up to the int sum() gives), written out.
-        p = loads.avionics_w + loads.face_board_w * (sw["face0"] + sw["face1"] + sw["face2"] + sw["face3"]
-                                                     + sw["face4"] + sw["face5"])
+        p = loads.avionics_w + loads.face_board_w * sum(sw[name] for name in FACE_SWITCHES)
         if sw["payloadPower"]:
             p += loads.payload_power_w
         if sw["payloadBattery"]:

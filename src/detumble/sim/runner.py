@@ -27,12 +27,14 @@ import time
 from dataclasses import dataclass
 from typing import Callable
 
+from detumble.errors import DetumbleError
 from detumble.sim import frames, plant_kernel
 from detumble.sim.adcs_law import AdcsLaw, PlantIo, pointing_statistics
 from detumble.sim.coursework_laws import REPORT_CROSS_PRODUCT_GAIN, BetaPdLaw, CrossProductLaw, WheelsPdLaw
 from detumble.sim.laws import BangBangLaw, BdotLaw, KoptLaw, NoLaw, clip_to_limits, kopt_gain
 from detumble.sim.plant import Plant
 from detumble.control.attitude_defaults import DEFAULTS as ADCS_DEFAULTS
+from detumble.control.units import TESLA_PER_GAUSS
 from detumble.sim.scenario import LAWS, Scenario, ScenarioError, load_scenario
 from detumble.sim.settling_metrics import COURSEWORK_LAWS, SettlingMetrics
 from detumble.sim.truth import adcs_header, adcs_row
@@ -40,7 +42,7 @@ from detumble.sim.truth import adcs_header, adcs_row
 DEFAULT_BDOT_GAIN = 3.0  # A m^2 s / G, the flight DetumbleManager default
 
 
-class LawError(ValueError):
+class LawError(DetumbleError, ValueError):
     """A law that cannot be made for this scenario (what is wrong and what to do instead)."""
 
 
@@ -199,10 +201,11 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
                 plant.apply_dipole_B(zero)
             if phase == settle:
                 bx, by, bz, t_read = plant.magnetometer_reading()
+                b_B = (bx * TESLA_PER_GAUSS, by * TESLA_PER_GAUSS, bz * TESLA_PER_GAUSS)  # gauss -> T
                 if full_state:
-                    _full_state_command(ctl, plant, (bx * 1e-4, by * 1e-4, bz * 1e-4), t_read)
+                    _full_state_command(ctl, plant, b_B, t_read)
                 else:
-                    plant.apply_dipole_B(ctl.update((bx * 1e-4, by * 1e-4, bz * 1e-4), t_read))
+                    plant.apply_dipole_B(ctl.update(b_B, t_read))
         plant.step(dt)
         if ticked and (k + 1) % sample_every == 0 and ctl.mode == "POINTING":  # as the attitude report samples
             pointing_deg.append(ctl.true_pointing_error_deg(plant.q_BN))
@@ -291,7 +294,7 @@ def write_outputs(result: RunResult, out_dir: str) -> None:
     write_atomic(os.path.join(out_dir, "rate.csv"), "\n".join(lines) + "\n")
 
 
-class OutputFolderError(Exception):
+class OutputFolderError(DetumbleError):
     """The ``--out`` folder cannot take a run's outputs (the message says why and what to do)."""
 
 

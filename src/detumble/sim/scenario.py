@@ -22,6 +22,7 @@ from typing import Any, Literal, NoReturn, Sequence, overload
 
 import yaml
 
+from detumble.errors import DetumbleError
 from detumble.control.attitude_defaults import BDOT_PROVIDER_GAIN
 from detumble.control.attitude_defaults import DEFAULTS as ADCS_DEFAULTS
 from detumble.control.attitude_defaults import ENUM_CHOICES as ADCS_ENUMS
@@ -45,7 +46,7 @@ SATURATION = ("clip", "scale")
 FIELD_MODELS = ("dipole", "wmm2025", "none", "orbit_constant")
 
 
-class ScenarioError(ValueError):
+class ScenarioError(DetumbleError, ValueError):
     """A scenario file or dictionary is invalid; the message names file, line and key."""
 
 

@@ -32,9 +32,9 @@ import random
 from typing import Any
 from dataclasses import dataclass
 
+from detumble.control.units import GAUSS_PER_TESLA
 from detumble.sim.vec import rotate_n_to_b
 
-GAUSS_PER_TESLA = 1e4
 LSM6DSO_SENSITIVITY_MDPS = {125.0: 4.375, 250.0: 8.75, 500.0: 17.5, 1000.0: 35.0, 2000.0: 70.0}
 
 
@@ -80,15 +80,8 @@ def _quantise(x: float, lsb: float, limit: float) -> float:
 
 
 def _quantise3(x: float, y: float, z: float, lsb: float, limit: float) -> tuple[float, float, float]:
-    """``(_quantise(x, lsb, limit), _quantise(y, …), _quantise(z, …))`` in one call (the same operations)."""
-    if lsb > 0.0:
-        floor = math.floor
-        x = floor(x / lsb + 0.5) * lsb
-        y = floor(y / lsb + 0.5) * lsb
-        z = floor(z / lsb + 0.5) * lsb
-    lo = -limit
-    return (limit if x > limit else lo if x < lo else x, limit if y > limit else lo if y < lo else y,
-            limit if z > limit else lo if z < lo else z)
+    """Each of the three components quantised to ``lsb`` and limited to ±``limit`` (:func:`_quantise`)."""
+    return (_quantise(x, lsb, limit), _quantise(y, lsb, limit), _quantise(z, lsb, limit))
 
 
 def skip_gauss(rng: random.Random, n: int) -> None:
@@ -179,20 +172,14 @@ class Magnetometer(_SampleHold):
         self._k = tuple(g * k for k in spec.coupling_t_per_am2)  # gauss per A m^2
 
     def _held_gauss(self) -> tuple[float, float, float]:
-        """The held sample, gauss (body axes), computed now if it was deferred.
-
-        :meth:`_resolve` written out (the flight manager reads the magnetometer every cycle): the
-        same operations in the same order as ``_held`` → ``_resolve`` → ``_interpolated`` → ``measure``.
-        """
-        pending = self._pending
-        if pending is None:
+        """The held sample, gauss (body axes), computed now if it was deferred: the field at the
+        step's ends rotated into B, interpolated to the sample's instant and measured."""
+        if self._pending is None:
             return self._sample
         t0, t1, q0, q1, b0_N, b1_N, m = self._take_pending()
         b0 = rotate_n_to_b((q0[0], q0[1], q0[2], q0[3]), b0_N)
         b1 = rotate_n_to_b((q1[0], q1[1], q1[2], q1[3]), b1_N)
-        s = (self.sample_time_ns - t0) / (t1 - t0) if t1 > t0 else 1.0
-        sample = self._sample = self._measured(b0[0] + s * (b1[0] - b0[0]), b0[1] + s * (b1[1] - b0[1]),
-                                               b0[2] + s * (b1[2] - b0[2]), m)
+        sample = self._sample = self._interpolated(t0, t1, self.sample_time_ns, b0, b1, m)
         return sample
 
     #: The held sample, gauss (body axes); computed when first read after a deferral.
@@ -207,8 +194,7 @@ class Magnetometer(_SampleHold):
 
     def _measured(self, bx: float, by: float, bz: float,
                   m_coils_B: tuple[float, float, float]) -> tuple[float, float, float]:
-        """:meth:`measure` of the field ``(bx, by, bz)`` (T), no deferred sample pending; :func:`_quantise`
-        written out (the same operations)."""
+        """:meth:`measure` of the field ``(bx, by, bz)`` (T), no deferred sample pending."""
         s = self.spec
         g = GAUSS_PER_TESLA
         k = self._k
@@ -285,21 +271,13 @@ class Gyro(_SampleHold):
         return _quantise3(x, y, z, self._lsb, self._fs)
 
     def _held_rad_s(self) -> tuple[float, float, float]:
-        """The held sample, rad/s (body axes), computed now if it was deferred (read every tick):
-        ``_held`` → ``_resolve`` → ``measure`` written out, the same operations in the same order."""
-        pending = self._pending
-        if pending is None:
+        """The held sample, rad/s (body axes), computed now if it was deferred: the rate (the states'
+        slots 4..6) interpolated to the sample's instant and measured."""
+        if self._pending is None:
             return self._sample
-        # _take_pending
-        self._pending = None
-        if self._skipped:
-            skip_gauss(self.rng, self._draws * self._skipped)
-            self._skipped = 0
-        # the rate interpolated to the ODR instant on the states' rate slots 4..6
-        t0, t1, s0, s1 = pending
-        s = (self.sample_time_ns - t0) / (t1 - t0) if t1 > t0 else 1.0
-        sample = self._sample = self._measured(s0[4] + s * (s1[4] - s0[4]), s0[5] + s * (s1[5] - s0[5]),
-                                               s0[6] + s * (s1[6] - s0[6]))
+        t0, t1, s0, s1 = self._take_pending()
+        sample = self._sample = self._interpolated(t0, t1, self.sample_time_ns, (s0[4], s0[5], s0[6]),
+                                                   (s1[4], s1[5], s1[6]))
         return sample
 
     #: The held sample, rad/s (body axes); computed when first read after a deferral.

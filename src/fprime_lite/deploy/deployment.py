@@ -14,10 +14,16 @@ re-initialises every component the topology file declared — each is constructe
 (same object, same arguments: state, queues, throttles and parameters back to their initial values)
 and keeps its wiring — then runs the start-up above again: commands are registered, the parameter
 file is read again and the parameters are reloaded, the rate groups restart, the start-up sequence
-runs. Resources (the simulated hardware) keep running; a resource with ``flight_software_reset()``
-is told first (what a reset does to its hardware), and one with ``attach_flight_software(deployment)``
-gets the deployment at start so that its reset line can call :meth:`request_reset`. Components added
-outside the file (the ground link) are not re-initialised: the ground's connection survives.
+runs. Resources (the simulated hardware) keep running; one that holds the reset line (a
+:class:`~fprime_lite.deploy.resources.ResetLine`) gets the deployment at its first start, so that
+the line can call :meth:`request_reset`, and is told before each restart (what a reset does to its
+hardware). Components added outside the file (the ground link) are not re-initialised: the
+ground's connection survives.
+
+What the deployment asks of its parts is declared, not probed: every component has the start-up
+hooks ``clean_temporary_files()`` and ``use_command_lookup(lookup)`` (no-ops unless overridden),
+PrmDb is the ``param`` service that reads the parameter file, and the start-up sequence goes into
+the sequencer's one input port of type ``Svc.CmdSeqIn``.
 """
 
 from __future__ import annotations
@@ -26,9 +32,13 @@ import os
 from typing import Callable
 
 from fprime_lite.model.component import QueuedComponent
+from fprime_lite.model.time import US_PER_S
+from fprime_lite.deploy.resources import ResetLine
 from fprime_lite.deploy.scheduler import ScheduledCall
+from fprime_lite.deploy.topology import sequence_run_port
 from fprime_lite.deploy.topology_loader import LoadedDeployment
 from fprime_lite.model.types import FwType
+from fprime_lite.svc.prm_db import PrmDb
 
 __all__ = ["Deployment", "command_lookup"]
 
@@ -87,22 +97,20 @@ class Deployment:
         topo, scheduler = self.topology, self.scheduler
         prm_db = self.service("param")
         param_path = parameter_file or self.loaded.parameter_file
-        if prm_db is not None and hasattr(prm_db, "read_param_file") and param_path is not None:
+        reads_file = isinstance(prm_db, PrmDb)
+        if reads_file and param_path is not None:
             prm_db.file_path = os.fspath(param_path)
         for comp in topo.components():  # what a killed earlier run left half-written
-            clean = getattr(comp, "clean_temporary_files", None)
-            if callable(clean):
-                clean()
+            comp.clean_temporary_files()
         lookup = command_lookup(topo)
         for comp in topo.components():
             if isinstance(comp, QueuedComponent):
                 scheduler.drain_after_each_event(comp)
-            if getattr(comp, "command_lookup", False) is None:
-                setattr(comp, "command_lookup", lookup)  # the components that declare the attribute
+            comp.use_command_lookup(lookup)
         for comp in topo.components():
             comp.register_commands()
         scheduler.drain()
-        if prm_db is not None and hasattr(prm_db, "read_param_file"):
+        if reads_file:
             prm_db.read_param_file()  # a missing or bad file is reported by PrmDb's own event
             scheduler.drain()
         for comp in topo.components():
@@ -115,13 +123,17 @@ class Deployment:
             sequencer = self.loaded.startup_sequencer
             if sequencer is None:
                 raise RuntimeError("a start-up sequence needs 'startup.sequencer' in the topology")
-            run = topo.instance(sequencer).component.input_port("seqRunIn").entries[0]
+            component = topo.instance(sequencer).component
+            port = sequence_run_port(component)
+            if port is None:  # the loader refuses such a topology; a Topology built in Python may have one
+                raise RuntimeError(f"the start-up sequencer {sequencer} needs exactly one input port of type "
+                                   f"Svc.CmdSeqIn")
+            run = component.input_port(port).entries[0]
             self._startup_call = scheduler.call_at(scheduler.now_us, lambda: run(os.fspath(sequence)))
         if self.restarts == 0:
             for resource in list(self.resources.values()):
-                attach = getattr(resource, "attach_flight_software", None)
-                if callable(attach):
-                    attach(self)
+                if isinstance(resource, ResetLine):
+                    resource.attach_flight_software(self)
 
     def request_reset(self, kind: str = "cold") -> None:
         """Restart the software once the present event has finished (a reset line was pulled)."""
@@ -133,9 +145,8 @@ class Deployment:
             raise RuntimeError("the deployment has not started; there is nothing to restart")
         topo, scheduler = self.topology, self.scheduler
         for resource in list(self.resources.values()):
-            reset = getattr(resource, "flight_software_reset", None)
-            if callable(reset):
-                reset()
+            if isinstance(resource, ResetLine):
+                resource.flight_software_reset()
         if self.loaded.timer is not None:
             self.loaded.timer.stop()
         if self._startup_call is not None:
@@ -171,4 +182,4 @@ class Deployment:
 
     def run_for(self, seconds: float) -> int:
         """Run ``seconds`` of simulated time; return the number of scheduler events."""
-        return self.scheduler.run(until_us=self.scheduler.now_us + round(seconds * 1_000_000))
+        return self.scheduler.run(until_us=self.scheduler.now_us + round(seconds * US_PER_S))

@@ -17,12 +17,17 @@ The loader builds only factories marked this way (any other callable named as a 
 included. Marking a factory therefore promises that **calling it has no effect outside the
 process**: no file written, no process started, no socket opened — those belong in the run hooks
 (``begin``, ``finish``) that only ``fprime-lite run`` calls.
+
+A resource wired to the flight computer's reset line (the simulated spacecraft) says so by
+deriving from :class:`ResetLine`: the deployment attaches itself to it at start and tells it
+before each software restart.
 """
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from typing import Callable, TypeVar
 
-__all__ = ["topology_resource", "resource_role", "ROLES"]
+__all__ = ["topology_resource", "resource_role", "ROLES", "ResetLine"]
 
 #: Roles a resource may hold, and what the tools pass to it.
 ROLES = {
@@ -54,3 +59,19 @@ def resource_role(factory: object) -> str | None:
     """The role ``factory`` declared with :func:`topology_resource` ('' for none); None if it never
     declared itself a resource."""
     return getattr(factory, _ROLE_ATTRIBUTE, None)
+
+
+class ResetLine(ABC):
+    """A resource that holds the flight computer's reset line (a simulated spacecraft).
+
+    The deployment calls :meth:`attach_flight_software` once, at its first start, and
+    :meth:`flight_software_reset` before each software restart (:class:`~.deployment.Deployment`).
+    """
+
+    @abstractmethod
+    def attach_flight_software(self, deployment) -> None:
+        """Wire the reset line to ``deployment`` (its ``request_reset(kind)`` restarts the software)."""
+
+    @abstractmethod
+    def flight_software_reset(self) -> None:
+        """The software restarts: reset what the flight computer's reset resets in the hardware."""

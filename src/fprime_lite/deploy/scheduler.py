@@ -158,43 +158,13 @@ class Scheduler:
         Returns the number of events run. :meth:`stop` ends the run early.
         """
         self._stopped = False
-        # The loop of next_time_us / _before_event / _run_next written out: it runs once per
-        # event (every 50 Hz tick of a deployment), and the calls cost as much as the bookkeeping.
-        heap = self._heap
-        pop, push, seq = heapq.heappop, heapq.heappush, self._seq
-        clock = self.clock
-        listeners = self._listeners
-        busy = self._busy
-        before = None if type(self)._before_event is Scheduler._before_event else self._before_event
-        # SimulatedClock.set_us written out (an earlier time still goes through it, to raise).
-        plain_clock = type(clock).set_us is SimulatedClock.set_us
         n = 0
         while not self._stopped and (max_events is None or n < max_events):
-            while heap and heap[0][2].cancelled:
-                pop(heap)
-            if not heap:
+            t = self.next_time_us()
+            if t is None or (until_us is not None and t > until_us):
                 break
-            t = heap[0][0]
-            if until_us is not None and t > until_us:
-                break
-            if before is not None:
-                before(t)
-                self._run_next(t)
-            else:
-                call = pop(heap)[2]
-                if t != clock.current_us:
-                    if plain_clock and t > clock.current_us:
-                        clock.current_us = t
-                    else:
-                        clock.set_us(t)
-                    for listener in listeners:
-                        listener(t)
-                if call.period_us is not None:
-                    push(heap, (t + call.period_us, next(seq), call))
-                call.fn()
-                self.events_run += 1
-                if busy:
-                    self.drain()
+            self._before_event(t)
+            self._run_next(t)
             n += 1
         if until_us is not None and not self._stopped and until_us > self.clock.current_us:
             self._before_event(until_us)

@@ -17,10 +17,17 @@ from typing import Iterator, NamedTuple
 
 from fprime_lite.model.component import Component
 from fprime_lite.model.errors import FprimeLiteError, PortConnectionError
-from fprime_lite.model.fw_ports import Ping
+from fprime_lite.model.fw_ports import CmdSeqIn, Ping
 from fprime_lite.svc.health import Health
 
-__all__ = ["Topology", "Instance", "Connection", "PATTERN_PORTS", "TopologyError"]
+__all__ = ["Topology", "Instance", "Connection", "PATTERN_PORTS", "TopologyError", "sequence_run_port"]
+
+
+def sequence_run_port(component: Component) -> str | None:
+    """The input port through which ``component`` runs a sequence file: its one input port of F´'s
+    ``Svc.CmdSeqIn`` type (CmdSequencer's ``seqRunIn``); None when it has none or several."""
+    ports = [name for name, decl in component.spec.inputs.items() if decl.port_type is CmdSeqIn]
+    return ports[0] if len(ports) == 1 else None
 
 
 class TopologyError(FprimeLiteError):

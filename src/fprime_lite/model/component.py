@@ -468,9 +468,6 @@ class Component(metaclass=ComponentMeta):
 
     def is_connected(self, port: str, index: int = 0) -> bool:
         """Whether output ``port[index]`` is connected (F´'s ``isConnected_<port>_OutputPort``)."""
-        outputs = self._outputs
-        if port in outputs:  # output_port() written out: components ask this several times a tick
-            return outputs[port].targets[index] is not None
         return self.output_port(port).targets[index] is not None  # raises the KeyError that names the ports
 
     @property
@@ -552,6 +549,19 @@ class Component(metaclass=ComponentMeta):
             self._channels["HandlerFaults"].write(self.handler_faults & 0xFFFFFFFF)
         except Exception:  # reporting a fault must not raise another
             log.exception("%s: reporting a fault failed", self.name)
+
+    # --- start-up hooks (the deployment calls them on every component, in this order) --------------
+
+    def clean_temporary_files(self) -> list[str]:
+        """Start-up, first of all: remove the temporary files that a killed earlier run left
+        half-written, and return their paths. The default removes nothing (a component that writes
+        no files); PrmDb and the file services override it."""
+        return []
+
+    def use_command_lookup(self, lookup: Callable[[str], Any]) -> None:
+        """Start-up, before commands are registered: the deployment's command table,
+        ``lookup(name) -> (opcode, argument types)``, for a component that compiles command names
+        (the sequencer's text sequences). The default ignores it."""
 
     # --- commands --------------------------------------------------------------------------------
 

@@ -1,5 +1,12 @@
 """Exceptions raised by fprime_lite.
 
+Every exception class of the framework derives from :class:`FprimeLiteError` (keeping its other
+bases, e.g. ``SerializationError`` is also a ``ValueError``), so ``except FprimeLiteError`` catches
+whatever fprime_lite raises on purpose. The one exception is ``osal.confine.PathRefused``: ``osal``
+is below this layer and what it raises are OS errors (a ``PermissionError``, F´'s NO_PERMISSION).
+``FwAssertionError`` is under the root too, but it is a bug, not a user's mistake: the command-line
+verbs let it through with its traceback. docs/architecture.md ("Errors") draws the tree.
+
 Every error names what is wrong and, where it can, what to do instead. Errors that a user's own
 declaration or wiring causes are raised as early as possible: declaration errors when the component
 class is created, connection errors when ports are connected.
@@ -75,7 +82,7 @@ class QueueFullError(FprimeLiteError):
     """An async input port's queue was full and its overflow behaviour is ``assert``."""
 
 
-class FwAssertionError(AssertionError):
+class FwAssertionError(FprimeLiteError, AssertionError):
     """A framework invariant was broken (F´'s FW_ASSERT).
 
     The message names the component and the port or member involved.

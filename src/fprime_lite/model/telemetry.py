@@ -11,10 +11,8 @@ write and then only values that differ from the last one written.
 Serialised when downlinked: a write whose ``tlmOut`` connects straight to a channel store that
 declares :attr:`deferred_tlm_input` (TlmChan's ``TlmRecv``) hands the store the time stamp, the
 value and the type's packer instead of the packed bytes; the store packs the latest value when it
-downlinks it or when it is read. A store that also names its table of latest entries
-(``deferred_tlm_latest``, a dict: channel id -> ``(time, value, packer)``, what its
-``store_tlm_value`` assigns) gets the entry assigned straight into that table, one call less a
-write; this is worked out when the write first finds ``tlmOut[0]`` connected to a new target.
+downlinks it or when it is read; this is worked out when the write first finds ``tlmOut[0]``
+connected to a new target.
 Only values that cannot change after the write travel this way: numbers, booleans, enums and
 strings as they are; structs whose members are all of those kinds or times, and arrays of numbers,
 as a tuple of their member values taken at the write (struct and array values are mutable Python
@@ -125,7 +123,7 @@ class BoundChannel(Generic[V]):
 
     __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
                  "_valid_type", "_tlm_targets", "_tlm_calls", "_time_calls", "_deferrable",
-                 "_bound_call", "_store", "_latest", "_members_of", "_min", "_max", "_clock", "_clock_now")
+                 "_bound_call", "_store", "_members_of", "_min", "_max", "_clock", "_clock_now")
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         self.component = component
@@ -158,7 +156,6 @@ class BoundChannel(Generic[V]):
         self._deferrable = isinstance(t, (IntType, FloatType, BoolType, EnumType, StringType))
         self._bound_call: object = None  # the tlmOut call that _store was worked out for
         self._store = None  # the target's deferred store, or None: send packed bytes
-        self._latest: dict[int, tuple] | None = None  # the store's table of latest entries, if it names one
         #: For a mutable value made of immutable parts: what is stored and packed (a tuple of them).
         self._members_of: Any = None
 
@@ -177,17 +174,17 @@ class BoundChannel(Generic[V]):
             if self._tlm_targets[0] is None:
                 return
             self._bind(call)
-        if time is None:  # the component's get_time, written out (see _time_now)
+        # The component's get_time, written out (see _time_now). Kept (issue 26): 88-109 ns less a
+        # write than calling it, 12.5 writes an adcs_ref tick (≈ 77 µs of CPU), 12.3 coursework
+        # (≈ 71 µs), 4.7 proves_ref (≈ 32 µs): 1.4-1.7 % of each; `python benchmarks/bench_inlined.py
+        # channel_write_time` (3 sittings on the shared 2-core machine, 2026-12-03, each the best of 40).
+        if time is None:
             time_call = self._time_calls[0]
             clock = self._clock
             time = (clock._now if time_call is self._clock_now and clock._now_at == clock.current_us
                     else self._time_now(time_call))
         members_of = self._members_of
         stored = value if members_of is None else members_of(value)
-        latest = self._latest
-        if latest is not None:  # the store's own table: what its store_tlm_value does, written out
-            latest[self.id] = (time, stored, self._serialize)
-            return
         store = self._store
         if store is not None:
             store(self.id, time, stored, self._serialize)
@@ -207,7 +204,6 @@ class BoundChannel(Generic[V]):
         """Work out how writes reach what ``tlmOut[0]`` now connects to (``call`` is its slot)."""
         self._bound_call = call
         self._store = None
-        self._latest = None
         target = self._tlm_targets[0]
         if self._deferrable and type(target) is tuple:
             port, index = target
@@ -215,8 +211,6 @@ class BoundChannel(Generic[V]):
             # Only the store's own input: a slot whose callable was replaced (a tap) gets bytes.
             if getattr(component, "deferred_tlm_input", None) == port.name and call is port.entries[index]:
                 self._store = component.store_tlm_value
-                latest = getattr(component, "deferred_tlm_latest", None)
-                self._latest = latest if type(latest) is dict else None
 
 
 #: Member types whose checked values are immutable: a struct made only of these can be snapshotted.
@@ -298,7 +292,10 @@ def _quick_check(cls: type, members_of: Any, exact: tuple[type, ...], times_at: 
     time members fit (:func:`_times_fit`); else what ``full_check(value)`` returns or raises.
 
     Written out for three and four members (vectors, quaternions, a vector with its time), a loop
-    otherwise: ``tuple(map(type, members))`` alone costs as much as a write's bookkeeping.
+    otherwise: ``tuple(map(type, members))`` alone costs as much as a write's bookkeeping. Kept
+    (issue 26): 0.8-2.0 µs less a check than the loop, 2.7 checks an adcs_ref tick (≈ 77 µs of
+    CPU) and 3.0 a coursework one (≈ 71 µs): 3-8 % of either; ``python benchmarks/bench_inlined.py
+    snapshot_check`` (3 sittings on the shared 2-core machine, 2026-12-03, each the best of 40).
     """
     if len(exact) in (3, 4):
         three = len(exact) == 3

@@ -333,6 +333,12 @@ class CmdSequencer(ActiveComponent):
             self.CS_SequenceTimeout(self._log_file_name, self._executed)
             self._cancel()
 
+    def use_command_lookup(self, lookup: CommandLookup) -> None:
+        """Start-up: compile text sequences with the deployment's commands, unless the topology gave
+        a ``command_lookup`` of its own."""
+        if self.command_lookup is None:
+            self.command_lookup = lookup
+
     @async_input(CmdSeqIn)
     def seqRunIn(self, file_name):
         """Run ``file_name`` (empty: the sequence already loaded); the end is told on seqDone."""

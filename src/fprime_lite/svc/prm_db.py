@@ -47,7 +47,7 @@ from typing import Annotated, Iterable, Mapping
 from fprime_lite.osal.atomic import clean_temporary_files, temporary_file
 from fprime_lite.model.commands import CmdResponse, async_command
 from fprime_lite.model.component import ActiveComponent
-from fprime_lite.model.errors import FwAssertionError
+from fprime_lite.model.errors import FprimeLiteError, FwAssertionError
 from fprime_lite.model.events import Event, Severity
 from fprime_lite.model.fw_ports import Ping, PrmGet, PrmSet
 from fprime_lite.model.params import ParamValid
@@ -141,7 +141,7 @@ class Merge(FwEnum, namespace="Svc.PrmDb", rep=U8):
 
 # --- the file format ------------------------------------------------------------------------------
 
-class ParamFileError(Exception):
+class ParamFileError(FprimeLiteError):
     """A parameter file that cannot be loaded: ``stage``, ``record`` (0-based) and byte ``offset``."""
 
     def __init__(self, stage: PrmReadError, record: int, offset: int, message: str):

@@ -161,11 +161,4 @@ class RateGroupTimer:
         if call is None:  # stopped by the cycle it ran
             self._schedule(now + self.base_period_us)
             return
-        # _schedule and the driver's ticks_to_next_output, written out: its table, while it holds.
-        waits = driver._waits
-        if waits is not None and driver._table_of is driver.dividers:
-            wait = waits[driver.tick % driver._period]
-        else:
-            wait = driver.ticks_to_next_output()
-        self._idle_ticks = wait
-        self.scheduler.reschedule(call, now + (wait + 1) * self.base_period_us)
+        self._schedule(now + self.base_period_us)

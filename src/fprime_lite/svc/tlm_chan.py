@@ -74,11 +74,6 @@ class TlmChan(ActiveComponent):
         self._latest: dict[int, tuple] = {}
         #: channel id -> the ``_latest`` entry sent last; an entry not identical to it is new.
         self._sent: dict[int, tuple] = {}
-        #: The table deferred channel writes assign into directly (``latest[id] = (time, value,
-        #: pack)``, exactly :meth:`store_tlm_value`); None when a subclass overrides
-        #: ``store_tlm_value``, so that writes call the override.
-        self.deferred_tlm_latest: dict[int, tuple] | None = (
-            self._latest if type(self).store_tlm_value is TlmChan.store_tlm_value else None)
         self.packets_sent = 0
         self.records_sent = 0
         self.oversize_records = 0

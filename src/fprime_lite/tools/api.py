@@ -24,15 +24,11 @@ import pathlib
 import sys
 from typing import Sequence
 
-from fprime_lite.model.errors import FprimeLiteError
 from fprime_lite.osal.atomic import clean_temporary_files
 from fprime_lite.osal.folders import file_in_the_way, make_output_folder
+from fprime_lite.tools.errors import RunSetupError
 
 __all__ = ["run", "open_run", "load", "RunResult", "RunSetupError", "claim_run_folder", "plot_run_dir"]
-
-
-class RunSetupError(FprimeLiteError):
-    """A mistake in what a run was asked to do (a path, an option); the message says what to change."""
 
 
 def load(topology="topology.yaml", *, scenario: str | None = None, seed: int | None = None,

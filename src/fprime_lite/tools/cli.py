@@ -29,7 +29,7 @@ import pathlib
 import signal
 import sys
 
-from fprime_lite.model.errors import FprimeLiteError
+from fprime_lite.model.errors import FprimeLiteError, FwAssertionError
 
 __all__ = ["main"]
 
@@ -37,7 +37,7 @@ EXIT_USAGE = 2
 EXIT_FAILED = 1
 
 
-class UserError(Exception):
+class UserError(FprimeLiteError):
     """A mistake the user can fix; printed without a traceback."""
 
 
@@ -525,10 +525,9 @@ def main(argv: list[str] | None = None) -> int:
                         format="%(levelname)s %(name)s: %(message)s")
     try:
         return COMMANDS[args.command](args)
-    except UserError as exc:
-        print(f"fprime-lite {args.command}: {exc}", file=sys.stderr)
-        return EXIT_USAGE
-    except FprimeLiteError as exc:
+    except FwAssertionError:
+        raise  # a broken framework invariant is a bug: its traceback is what to report
+    except FprimeLiteError as exc:  # UserError and every other mistake the message explains
         print(f"fprime-lite {args.command}: {exc}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:

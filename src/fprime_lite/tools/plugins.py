@@ -25,6 +25,8 @@ from dataclasses import dataclass
 from importlib.metadata import entry_points
 from typing import Callable, Protocol, TypeVar
 
+from fprime_lite.model.errors import FprimeLiteError
+
 __all__ = ["Verb", "BenchPiece", "RunPlotter", "PluginError", "verbs", "bench_pieces", "run_plotters",
            "VERBS_GROUP", "BENCH_GROUP", "PLOTS_GROUP"]
 
@@ -33,7 +35,7 @@ BENCH_GROUP = "fprime_lite.bench"
 PLOTS_GROUP = "fprime_lite.plots"
 
 
-class PluginError(Exception):
+class PluginError(FprimeLiteError):
     """An installed plug-in that cannot be loaded or is not what its group expects."""
 
 

@@ -15,10 +15,12 @@ import keyword
 import pathlib
 import re
 
+from fprime_lite.model.errors import FprimeLiteError
+
 __all__ = ["SkeletonError", "new_component", "new_deployment", "module_name"]
 
 
-class SkeletonError(Exception):
+class SkeletonError(FprimeLiteError):
     """The skeleton cannot be written (bad name, existing file, missing folder)."""
 
 

@@ -14,6 +14,8 @@ import math
 import re
 from dataclasses import dataclass
 
+from fprime_lite.model.errors import FprimeLiteError
+
 __all__ = ["StopCondition", "parse_stop_condition", "StopConditionError", "CHECK_INTERVAL_S", "holds_all"]
 
 #: Simulated seconds between two evaluations of the conditions.
@@ -24,7 +26,7 @@ _OPS = {">=": lambda a, b: a >= b, "<=": lambda a, b: a <= b, ">": lambda a, b: 
 _FORM = re.compile(r"^\s*([A-Za-z_]\w*)\s*(>=|<=|==|!=|>|<)\s*([^\s<>=!]\S*)\s*$")
 
 
-class StopConditionError(ValueError):
+class StopConditionError(FprimeLiteError, ValueError):
     """A condition that cannot be read; the message says what to write."""
 
 

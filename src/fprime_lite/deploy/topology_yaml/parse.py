@@ -25,6 +25,7 @@ from typing import Any
 import yaml
 
 from fprime_lite.deploy.topology import TopologyError
+from fprime_lite.model.errors import FprimeLiteError
 
 __all__ = ["Loc", "YMap", "YList", "parse_yaml", "UnreadableFile", "kind", "MAX_FILE_BYTES", "MAX_DEPTH", "MAX_VALUES"]
 
@@ -88,7 +89,7 @@ _TOO_MANY = (f"the document expands to more than {MAX_VALUES} values (each alias
              f"topology needs a few hundred; remove repeated aliases or split the file")
 
 
-class _Refused(Exception):
+class _Refused(FprimeLiteError):
     """A document refused while converting; ``line`` is 1-based."""
 
     def __init__(self, line: int, message: str):

@@ -19,13 +19,12 @@ from fprime_lite.deploy.topology import PATTERN_PORTS
 from fprime_lite.deploy.topology_yaml.files import is_file, parse_into, path_problem, resolve_path
 from fprime_lite.deploy.topology_yaml.parse import YList, YMap, kind
 from fprime_lite.deploy.topology_yaml.problems import Problems
-from fprime_lite.model.time import TimeBase
+from fprime_lite.model.time import US_PER_S, TimeBase
 
 __all__ = ["TopologyConfig", "TimeConfig", "ResourceConfig", "ModuleConfig", "InstanceConfig", "EndpointRef",
            "ConnectionConfig", "RateGroupsConfig", "RateGroupConfig", "MemberConfig", "PatternConfig",
            "StartupConfig", "RunConfig", "read_config", "parse_endpoint", "TYPE_PATH"]
 
-US_PER_S = 1_000_000
 U32_MAX = 0xFFFFFFFF
 
 MODULE_KEYS = {"include", "instances"}

@@ -14,7 +14,7 @@ from __future__ import annotations
 import pathlib
 
 from fprime_lite.deploy.scheduler import Scheduler
-from fprime_lite.deploy.topology import PATTERN_PORTS, Topology
+from fprime_lite.deploy.topology import PATTERN_PORTS, Topology, sequence_run_port
 from fprime_lite.deploy.topology_yaml.problems import Problems
 from fprime_lite.deploy.topology_yaml.schema import EndpointRef, TopologyConfig
 from fprime_lite.model.errors import PortConnectionError, did_you_mean
@@ -128,10 +128,18 @@ def wire_patterns(config: TopologyConfig, topology: Topology, problems: Problems
 
 
 def check_startup(config: TopologyConfig, topology: Topology, problems: Problems) -> None:
-    """The start-up sequencer must be an instance of the topology."""
+    """The start-up sequencer must be an instance of the topology with one sequence-run port."""
     startup = config.startup
-    if startup is not None and startup.sequencer not in topology.instances \
-            and not problems.already_reported(startup.sequencer):
+    if startup is None:
+        return
+    if startup.sequencer not in topology.instances:
+        if not problems.already_reported(startup.sequencer):
+            problems.add(config.path, startup.sequencer_line,
+                         f"'startup.sequencer' must name the sequencer instance, got {startup.sequencer!r} — "
+                         f"name a CmdSequencer declared under 'modules'")
+        return
+    component = topology.instance(startup.sequencer).component
+    if sequence_run_port(component) is None:
         problems.add(config.path, startup.sequencer_line,
-                     f"'startup.sequencer' must name the sequencer instance, got {startup.sequencer!r} — "
-                     f"name a CmdSequencer declared under 'modules'")
+                     f"'startup.sequencer' {startup.sequencer} ({type(component).__name__}) needs exactly one input "
+                     f"port of type Svc.CmdSeqIn to take the start-up sequence — name a CmdSequencer")

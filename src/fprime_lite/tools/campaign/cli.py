@@ -27,7 +27,7 @@ def build_parser(prog: str = "fprime-lite campaign") -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from fprime_lite.model.errors import FprimeLiteError
+    from fprime_lite.model.errors import FprimeLiteError, FwAssertionError
     from fprime_lite.tools.campaign.engine import default_out_dir, run_campaign
     from fprime_lite.tools.campaign.spec import load_campaign
 
@@ -43,6 +43,8 @@ def main(argv: list[str] | None = None) -> int:
         df = run_campaign(campaign, workers=args.workers, scheduler=args.scheduler, out=out, resume=resume,
                           retry_failed=args.retry_failed,
                           progress=not args.no_progress and sys.stderr.isatty(), plots=not args.no_plots)
+    except FwAssertionError:
+        raise  # a broken framework invariant is a bug: its traceback is what to report
     except FprimeLiteError as exc:
         print(f"fprime-lite campaign: {exc}", file=sys.stderr)
         return 2

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from fprime_lite.model.errors import FprimeLiteError
+from fprime_lite.tools.errors import RunSetupError  # the API's: a run kind raises it for bad input
 
 __all__ = ["CampaignError", "RunSetupError", "MetricUnavailable"]
 
@@ -17,13 +18,5 @@ class CampaignError(FprimeLiteError):
                          + "\n".join(f"  {p}" for p in self.problems))
 
 
-class RunSetupError(FprimeLiteError):
-    """A run kind cannot build a run; ``key`` is the campaign key at fault (None: the run section)."""
-
-    def __init__(self, message: str, key: str | None = None):
-        super().__init__(message)
-        self.key = key
-
-
-class MetricUnavailable(Exception):
+class MetricUnavailable(FprimeLiteError):
     """A metric that cannot be computed for this run; the message is the recorded reason."""
