@@ -73,6 +73,11 @@ def test_wall_clock_measurements_are_the_only_thing_left_out(tmp_path):
     assert identity.compare_file(a / "summary.json", b / "summary.json") == (
         "final_rate_deg_s: 1.5 against 1.5000000000000002")
 
+    (b / "summary.json").write_text(json.dumps({**summary, "extra": {"annotation": "units: s"}}))
+    assert identity.compare_file(a / "summary.json", b / "summary.json") == "key extra only in OTHER"
+    (a / "summary.json").write_text(json.dumps({**summary, "extra": {}}))
+    assert identity.compare_file(a / "summary.json", b / "summary.json", ignored_keys=frozenset({"annotation"})) is None
+
     head = "time,channel,value\n"
     (a / "channels.csv").write_text(head + "1.0,D.rateGroup50Hz.RgMaxTime,114 us\n1.0,D.ctrl.Mode,AUTO\n")
     (b / "channels.csv").write_text(head + "1.0,D.rateGroup50Hz.RgMaxTime,103 us\n1.0,D.ctrl.Mode,AUTO\n")

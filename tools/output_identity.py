@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Do two revisions of fprime-lite fly the same flights? ("outputs identical", as a command.)
 
-    python tools/output_identity.py [BASE [OTHER]] [--cases NAME,...] [--quick] [--keep DIR] [--list]
+    python tools/output_identity.py [BASE [OTHER]] [--cases NAME,...] [--quick] [--ignore-json-key KEY]
+                                    [--keep DIR] [--list]
 
 BASE and OTHER are each a git revision of this repository (``main``, ``HEAD~3``, a hash) or a folder
 holding a checkout (a work tree, another clone). The defaults compare ``HEAD`` with the work tree, which
@@ -17,7 +18,8 @@ compared byte for byte; a file that differs is read again as CSV, JSON or lines 
 differing row, column or key and both values). The only things left out of the comparison are the
 measurements of wall-clock time, which differ between two runs of the same tree: the summaries'
 ``wall_seconds`` and ``real_time_factor`` (and any key with ``wall`` in it) and the rate groups'
-``RgMaxTime`` channel.
+``RgMaxTime`` channel — and the JSON keys named with ``--ignore-json-key``, for what a change adds on
+purpose (it is then identical but for those keys).
 
 Exit status: 0 when every file is identical, 1 when one differs or is missing on one side, 2 when a
 side could not be set up or a case failed to fly (its output is shown).
@@ -166,11 +168,12 @@ def _is_wall_key(key: str) -> bool:
     return "wall" in key or key in WALL_KEYS
 
 
-def _strip_wall(value):
+def _strip_wall(value, ignored: frozenset[str] = frozenset()):
+    """``value`` without its wall-clock keys and the ``ignored`` ones, at any depth."""
     if isinstance(value, dict):
-        return {k: _strip_wall(v) for k, v in value.items() if not _is_wall_key(k)}
+        return {k: _strip_wall(v, ignored) for k, v in value.items() if not _is_wall_key(k) and k not in ignored}
     if isinstance(value, list):
-        return [_strip_wall(v) for v in value]
+        return [_strip_wall(v, ignored) for v in value]
     return value
 
 
@@ -234,10 +237,11 @@ def _text(path: pathlib.Path, root: pathlib.Path | None) -> str:
     return text.replace(str(root), "<checkout>") if root is not None else text
 
 
-def compare_file(base: pathlib.Path, other: pathlib.Path, roots: tuple[pathlib.Path, pathlib.Path] | None = None
-                 ) -> str | None:
-    """None when the two files fly the same (identical, or identical but for wall-clock measurements and the
-    folders of the two checkouts, ``roots``); otherwise where they first differ."""
+def compare_file(base: pathlib.Path, other: pathlib.Path, roots: tuple[pathlib.Path, pathlib.Path] | None = None,
+                 ignored_keys: frozenset[str] = frozenset()) -> str | None:
+    """None when the two files fly the same (identical, or identical but for wall-clock measurements, the
+    folders of the two checkouts, ``roots``, and JSON keys named in ``ignored_keys``); otherwise where they
+    first differ."""
     if filecmp.cmp(base, other, shallow=False):
         return None
     root_a, root_b = roots if roots is not None else (None, None)
@@ -252,7 +256,7 @@ def compare_file(base: pathlib.Path, other: pathlib.Path, roots: tuple[pathlib.P
             a, b = json.loads(ta), json.loads(tb)
         except ValueError as exc:
             return f"not JSON on one side: {exc}"
-        return _first_json_difference(_strip_wall(a), _strip_wall(b))
+        return _first_json_difference(_strip_wall(a, ignored_keys), _strip_wall(b, ignored_keys))
     if base.suffix == ".csv":
         return _first_csv_difference(_csv_rows(ta), _csv_rows(tb))
     la, lb = ta.splitlines(), tb.splitlines()
@@ -263,7 +267,8 @@ def compare_file(base: pathlib.Path, other: pathlib.Path, roots: tuple[pathlib.P
 
 
 def compare_cases(base_out: pathlib.Path, other_out: pathlib.Path, cases,
-                  roots: tuple[pathlib.Path, pathlib.Path] | None = None) -> list[tuple[str, str, str | None]]:
+                  roots: tuple[pathlib.Path, pathlib.Path] | None = None,
+                  ignored_keys: frozenset[str] = frozenset()) -> list[tuple[str, str, str | None]]:
     """``(case, file, difference or None)`` for every output file of every case on either side (``roots``: the
     two checkouts' folders, which the outputs may name)."""
     rows: list[tuple[str, str, str | None]] = []
@@ -277,7 +282,7 @@ def compare_cases(base_out: pathlib.Path, other_out: pathlib.Path, cases,
             if not (a / rel).is_file() or not (b / rel).is_file():
                 rows.append((case.name, rel, f"only in {'BASE' if (a / rel).is_file() else 'OTHER'}"))
             else:
-                rows.append((case.name, rel, compare_file(a / rel, b / rel, roots)))
+                rows.append((case.name, rel, compare_file(a / rel, b / rel, roots, ignored_keys)))
     return rows
 
 
@@ -291,6 +296,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--quick", action="store_true", help="fly each case for a few tens of seconds only")
     parser.add_argument("--keep", type=pathlib.Path, help="keep the checkouts and outputs in this folder")
     parser.add_argument("--list", action="store_true", help="list the cases and exit")
+    parser.add_argument("--ignore-json-key", action="append", default=[], metavar="KEY",
+                        help="leave JSON keys named KEY out of the comparison, at any depth (repeatable): what a "
+                             "change adds on purpose, e.g. the parameters' 'annotation' when units are declared")
     parser.add_argument("-j", "--jobs", type=int, default=min(2, os.cpu_count() or 1), help="flights at once")
     args = parser.parse_args(argv)
     if args.list:
@@ -321,7 +329,8 @@ def main(argv: list[str] | None = None) -> int:
         except SetupError as exc:
             print(f"output_identity: {exc}", file=sys.stderr)
             return 2
-        rows = compare_cases(outs["base"], outs["other"], cases, (trees["base"], trees["other"]))
+        rows = compare_cases(outs["base"], outs["other"], cases, (trees["base"], trees["other"]),
+                             frozenset(args.ignore_json_key))
     finally:
         if args.keep is None:
             shutil.rmtree(scratch, ignore_errors=True)
