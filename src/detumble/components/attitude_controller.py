@@ -439,8 +439,9 @@ class AttitudeController(PassiveComponent):
     def run(self, context):
         """50 Hz tick: a control cycle on tick 0 of every CYCLE_TICKS, coils off on the last tick.
 
-        No exception escapes: a fault is counted in ``handler_faults``, logged, and the actuators
-        are made safe (coils off, wheels at zero torque).
+        No exception escapes: a fault is reported (``report_fault("run", exc)``: the HandlerFault
+        event, the HandlerFaults channel, the log) and the actuators are made safe (coils off,
+        wheels at zero torque); a fault while making them safe is reported too ("run: safing").
         """
         try:
             cycle = int(self.CYCLE_TICKS.value) or 1  # U32: max(1, value)
@@ -456,14 +457,13 @@ class AttitudeController(PassiveComponent):
                     self._gyro_count += 1
             if phase == cycle - 1 and self.coils_driven and cycle > 1:
                 self._stop_coils()
-        except Exception:  # the rate group must keep running
-            self.handler_faults += 1
-            log.exception("%s: run raised; stopping coils and wheels", self.name)
+        except Exception as exc:  # noqa: BLE001 - the rate group must keep running; fail safe instead
+            self.report_fault("run", exc)
             try:
                 self._stop_coils()
                 self._command_wheels((0.0,) * len(self.wheel_axes))
-            except Exception:
-                log.exception("%s: making the actuators safe failed too", self.name)
+            except Exception as safing:  # noqa: BLE001 - reported, never raised into the rate group
+                self.report_fault("run: safing", safing)
 
     def _cycle(self) -> None:
         now_us = self.get_time().total_us

@@ -10,7 +10,8 @@ cycle: read the magnetometer (gauss → T), the gyro (rad/s), and for the wheel 
 (q_BN), the orbit frame (q_ON) and the three wheels' momenta; compute; command the torque rods
 (A·m², each axis clipped to ``DIPOLE_LIMIT``) and the wheels (N·m, limited as the report does).
 A failed read, a non-finite result or an exception inside the cycle puts the actuators safe (rods
-0, wheel torques 0), raises a throttled WARNING_HI and the next cycle tries again.
+0, wheel torques 0), raises a throttled WARNING_HI and the next cycle tries again; an exception
+(a non-finite result is one) is also reported (``report_fault``: HandlerFault, HandlerFaults).
 """
 from __future__ import annotations
 
@@ -109,7 +110,12 @@ class CourseworkController(PassiveComponent):
         try:
             self._cycle(law)
         except Exception as exc:  # noqa: BLE001 - a fault in the cycle must leave the actuators safe
-            self._safe()
+            self.report_fault("run", exc)
+            try:
+                self._safe()
+            except Exception as safing:  # noqa: BLE001 - reported, never raised into the rate group
+                self.report_fault("run: safing", safing)
+                return
             self.ControlFault(type(exc).__name__, str(exc)[:80])
 
     @sync_command()

@@ -25,7 +25,6 @@ takes at most one period.
 
 from __future__ import annotations
 
-import logging
 import math
 from dataclasses import dataclass
 
@@ -50,8 +49,6 @@ from detumble.components.types import (AngularUnit, AngularVelocityMagnitudeGet,
                     SystemModeChanged, TimeIntervalValue)
 
 __all__ = ["DetumbleManager"]
-
-log = logging.getLogger("detumble.components.detumble_manager")
 
 _FULL_SCALE = 127
 
@@ -422,7 +419,8 @@ class DetumbleManager(PassiveComponent):
 
         No exception escapes: a fault (a provider raising, a malformed reply) stops the coils, is
         reported (``report_fault``: the HandlerFault event, the HandlerFaults channel, the log)
-        and restarts the cycle from COOLDOWN, so the next call tries again.
+        and restarts the cycle from COOLDOWN, so the next call tries again. A fault while stopping
+        the coils is reported too ("run: safing").
         """
         try:
             self._run()
@@ -430,8 +428,8 @@ class DetumbleManager(PassiveComponent):
             self.report_fault("run", exc)
             try:
                 self._stop_coils()
-            except Exception:
-                log.exception("%s: stopping the coils failed too", self.name)
+            except Exception as safing:  # noqa: BLE001 - reported, never raised into the rate group
+                self.report_fault("run: safing", safing)
             self._reset_cycle()
 
     def _run(self) -> None:

@@ -248,6 +248,8 @@ class MagnetorquerDriver(PassiveComponent):
             self.spacecraft.set_coil_level(self.face, level)
         except Exception as exc:  # noqa: BLE001 - a plant fault is a failed drive, never an exception
             self.report_fault(f"coil {self.face_name} drive", exc)
+            if level:  # the level the coil carries is not known: switch it off (a failure is reported too)
+                self._set_coil(0)
             return False
         self.DriveLevel.write(level)
         return True

@@ -27,11 +27,15 @@ and the motor is switched off at once (it coasts; once the fault is cleared it n
 ``STUCK`` — the wheel keeps the torque or speed it was last given and every command fails
 (DeviceNotReady); ``READ_FAIL`` — reads fail (WheelReadFailed, throttled), commands still work;
 ``READ_NAN`` — reads succeed with NaN values.
+
+An exception raised inside the plant is reported (``report_fault``: the HandlerFault event, the
+HandlerFaults channel, the log). In a command it fails the command (DeviceNotReady) and sets the
+motor torque to zero, the safe state; in a read it fails the read (WheelReadFailed) and leaves
+the motor as it was.
 """
 
 from __future__ import annotations
 
-import logging
 import math
 
 from fprime_lite import (F64, U8, Channel, CmdResponse, Event, FwEnum, PassiveComponent, Sched, Severity,
@@ -44,7 +48,6 @@ from detumble.drivers.spacecraft import SimulatedSpacecraft
 
 __all__ = ["ReactionWheelDriver", "SimWheelFault", "wheel_instance_name", "make_reaction_wheel_drivers"]
 
-log = logging.getLogger("detumble.drivers")
 _NAN = float("nan")
 
 
@@ -100,8 +103,8 @@ class ReactionWheelDriver(PassiveComponent):
                 self.TorqueSaturated.clear_throttle()
         try:
             self.spacecraft.set_wheel_torque(self.wheel, torque)
-        except Exception:  # noqa: BLE001 - a plant fault is a failed command (_plant_call_failed logs it)
-            self._plant_call_failed(self.spacecraft.set_wheel_torque, (self.wheel, torque))
+        except Exception as exc:  # noqa: BLE001 - a plant fault is a failed command (_plant_call_failed reports it)
+            self._plant_call_failed(self.spacecraft.set_wheel_torque, (self.wheel, torque), exc)
             return Success.FAILURE
         self.mode = _TORQUE  # _set_mode(_TORQUE), written out
         self.Mode.write(_TORQUE)
@@ -128,8 +131,8 @@ class ReactionWheelDriver(PassiveComponent):
             return self._read_faulty(fault)
         try:  # the healthy wheel: no fault to apply to the reading
             speed, h, u, stamp = self.spacecraft.wheel_sample(self.wheel)
-        except Exception:  # noqa: BLE001 - a plant fault is a failed read (_read_raised logs it)
-            return self._read_raised()
+        except Exception as exc:  # noqa: BLE001 - a plant fault is a failed read (_read_raised reports it)
+            return self._read_raised(exc)
         if self.WheelReadFailed.count:  # clear_throttle, where there is something to clear
             self.WheelReadFailed.clear_throttle()
         return _new_result(Result, (WheelState(speed, h, u, self.mode, stamp), _SUCCESS))
@@ -311,34 +314,46 @@ class ReactionWheelDriver(PassiveComponent):
             return Result(WheelState(_NAN, _NAN, _NAN, self.mode, self.spacecraft.now()), Success.FAILURE)
         try:
             speed, h, u, stamp = self.spacecraft.wheel_sample(self.wheel)
-        except Exception:  # noqa: BLE001 - a plant fault is a failed read (_read_raised logs it)
-            return self._read_raised()
+        except Exception as exc:  # noqa: BLE001 - a plant fault is a failed read (_read_raised reports it)
+            return self._read_raised(exc)
         if fault == SimWheelFault.READ_NAN:
             speed = h = u = _NAN
         if self.WheelReadFailed.count:  # clear_throttle, where there is something to clear
             self.WheelReadFailed.clear_throttle()
         return Result(WheelState(speed, h, u, self.mode, stamp), Success.SUCCESS)
 
-    def _read_raised(self) -> Result:
-        """The failed read after the plant raised (called from the ``except`` block: logs the traceback)."""
-        self.handler_faults += 1
-        log.exception("%s: reading wheel %d raised", self.name, self.wheel)
+    def _read_raised(self, exc: Exception) -> Result:
+        """The failed read after the plant raised ``exc``: reported, WheelReadFailed, FAILURE. The
+        motor keeps its command (a read commands nothing; the reader decides what to do)."""
+        self.report_fault(f"wheel {self.wheel} read", exc)
         self.WheelReadFailed()
         return Result(WheelState(_NAN, _NAN, _NAN, self.mode, self.spacecraft.now()), Success.FAILURE)
 
     def _plant_call(self, fn, *args) -> bool:
         try:
             fn(*args)
-        except Exception:  # noqa: BLE001 - a plant fault is a failed command (_plant_call_failed logs it)
-            self._plant_call_failed(fn, args)
+        except Exception as exc:  # noqa: BLE001 - a plant fault is a failed command (_plant_call_failed reports it)
+            self._plant_call_failed(fn, args, exc)
             return False
         return True
 
-    def _plant_call_failed(self, fn, args: tuple) -> None:
-        """A plant call raised (called from its ``except`` block: logs the traceback)."""
-        self.handler_faults += 1
-        log.exception("%s: %s%r raised", self.name, getattr(fn, "__name__", fn), args)
+    def _plant_call_failed(self, fn, args: tuple, exc: Exception) -> None:
+        """A plant call ``fn(*args)`` raised ``exc``: reported, DeviceNotReady, and the motor torque
+        set to zero (the safe state) unless that is the call that failed."""
+        self.report_fault(f"wheel {self.wheel} {getattr(fn, '__name__', 'command')}", exc)
         self.DeviceNotReady()
+        if not (fn == self.spacecraft.set_wheel_torque and args[1:] == (0.0,)):
+            self._make_safe()
+
+    def _make_safe(self) -> None:
+        """Motor torque to zero after a failed command (the mode follows unless the motor is off)."""
+        try:
+            self.spacecraft.set_wheel_torque(self.wheel, 0.0)
+        except Exception as exc:  # noqa: BLE001 - reported, never raised to the caller
+            self.report_fault(f"wheel {self.wheel} safing", exc)
+            return
+        if self.mode != _DISABLED:
+            self._set_mode(_TORQUE)
 
 
 def _as_f64(value) -> float:

@@ -17,12 +17,11 @@ Fault injection (simulation only): :meth:`StarTracker.set_fault` or ``SIM_SET_FA
 ``FAIL`` — reads fail (AttitudeReadFailed, throttled); ``NAN`` — reads *succeed* with NaN
 components (a corrupted solution the consumer must catch); ``FROZEN`` — the tracker keeps
 returning the solution it had when the fault was set, with its old time stamp, as valid (a hung
-tracker: only the time stamp tells).
+tracker: only the time stamp tells). An exception raised inside the plant is a failed read too,
+reported (``report_fault``: the HandlerFault event, the HandlerFaults channel, the log).
 """
 
 from __future__ import annotations
-
-import logging
 
 from fprime_lite import (F64, U32, U8, Channel, CmdResponse, Event, FwEnum, PassiveComponent, Sched, Severity,
                          sync_command, sync_input)
@@ -33,7 +32,6 @@ from detumble.drivers.spacecraft import SimulatedSpacecraft
 
 __all__ = ["StarTracker", "SimStarTrackerFault"]
 
-log = logging.getLogger("detumble.drivers")
 _NAN = float("nan")
 
 
@@ -65,9 +63,8 @@ class StarTracker(PassiveComponent):
             return Result(self._frozen, _SUCCESS)
         try:
             q, valid, stamp = self.spacecraft.star_tracker_sample()
-        except Exception:  # a plant fault is a failed read, never an exception
-            self.handler_faults += 1
-            log.exception("%s: reading the star tracker raised", self.name)
+        except Exception as exc:  # noqa: BLE001 - a plant fault is a failed read, never an exception
+            self.report_fault("attitude read", exc)
             self.AttitudeReadFailed()
             return Result(None, _FAILURE)
         if self.AttitudeReadFailed.count:  # clear_throttle, where there is something to clear

@@ -7,6 +7,9 @@ class is created, connection errors when ports are connected.
 
 from __future__ import annotations
 
+import difflib
+from typing import Iterable
+
 
 class FprimeLiteError(Exception):
     """Base class of every fprime_lite error."""
@@ -24,6 +27,19 @@ def check_member_name(name, what: str):
     if name is not None and not (isinstance(name, str) and name.isidentifier()):
         raise DeclarationError(f"{what} name must be an identifier, got {name!r}")
     return name
+
+
+def closest(word, choices: Iterable[str]) -> str | None:
+    """The choice closest to ``word`` (difflib's; the one suggestion of every reader), or None."""
+    guess = difflib.get_close_matches(str(word), list(choices), n=1)
+    return guess[0] if guess else None
+
+
+def did_you_mean(word, choices: Iterable[str], otherwise: str, template: str = "did you mean '{}'?") -> str:
+    """The hint of a message about an unknown name: ``template`` filled with the choice
+    :func:`closest` to ``word``, or ``otherwise`` when none is close."""
+    guess = closest(word, choices)
+    return template.format(guess) if guess is not None else otherwise
 
 
 def check_units(units, what: str):

@@ -217,8 +217,8 @@ class CmdDispatcher(ActiveComponent):
                 return
         try:
             self.compCmdSend[entry](opcode, seq, args)
-        except Exception:  # a faulty target must not take the dispatcher down
-            log.exception("%s: compCmdSend[%d] raised dispatching opcode 0x%X", self.name, entry, opcode)
+        except Exception as exc:  # noqa: BLE001 - a faulty target must not take the dispatcher down
+            self.report_fault(f"compCmdSend[{entry}] 0x{opcode:X}", exc)
             with self._lock:
                 self._tracking.pop(seq, None)
             self.OpCodeError(opcode, CmdResponse.EXECUTION_ERROR)

@@ -539,9 +539,8 @@ class FileDownlink(FileRoot, ActiveComponent):
         """Hand one packet to ``bufferSendOut``; a receiver that raises fails the transfer."""
         try:
             self.bufferSendOut[0](encode_file_packet(packet, descriptor=True))
-        except Exception:  # a downstream fault must not escape the rate group
-            log.exception("%s: bufferSendOut raised while sending %s of %r", self.name,
-                          type(packet).__name__, transfer.request.source)
+        except Exception as exc:  # noqa: BLE001 - a downstream fault must not escape the rate group
+            self.report_fault(f"bufferSendOut ({type(packet).__name__})", exc)
             self.SendDataFail(transfer.log_source, transfer.offset & _U32_MAX)
             self._finish(transfer, SendFileStatus.STATUS_ERROR)
             return False
@@ -570,8 +569,8 @@ class FileDownlink(FileRoot, ActiveComponent):
             if self.is_connected("FileComplete", index):
                 try:
                     self.FileComplete[index](response)
-                except Exception:  # a listener's fault stays with the listener
-                    log.exception("%s: FileComplete[%d] raised", self.name, index)
+                except Exception as exc:  # noqa: BLE001 - a listener's fault must not escape the downlink
+                    self.report_fault(f"FileComplete[{index}]", exc)
 
     def _warning(self) -> None:
         """F´'s ``Warnings::warning()``: count a FileOpenError or FileReadError."""

@@ -343,7 +343,7 @@ class FileManager(FileRoot, ActiveComponent):
     def CreateDirectory(self, dirName: _PathArg):
         """Create the directory ``dirName`` (its parent must exist; it must not)."""
         self.CreateDirectoryStarted(fit_utf8(dirName, CMD_STRING_SIZE))
-        status, cause = self._fs(lambda: os.mkdir(self.resolve(dirName, entry=True)))
+        status, cause = self._fs("CreateDirectory", lambda: os.mkdir(self.resolve(dirName, entry=True)))
         if status:
             self._log_failure("CreateDirectory", dirName, status, cause)
             self.DirectoryCreateError(fit_utf8(dirName, CMD_STRING_SIZE), status)
@@ -356,8 +356,8 @@ class FileManager(FileRoot, ActiveComponent):
         """Rename ``sourceFileName`` to ``destFileName`` (copy then remove across file systems)."""
         src, dst = fit_utf8(sourceFileName, CMD_STRING_SIZE), fit_utf8(destFileName, CMD_STRING_SIZE)
         self.MoveFileStarted(src, dst)
-        status, cause = self._fs(lambda: self._move(self.resolve(sourceFileName, entry=True),
-                                                    self.resolve(destFileName, entry=True)))
+        status, cause = self._fs("MoveFile", lambda: self._move(self.resolve(sourceFileName, entry=True),
+                                                                self.resolve(destFileName, entry=True)))
         if status:
             self._log_failure("MoveFile", f"{sourceFileName} -> {destFileName}", status, cause)
             self.FileMoveError(src, dst, status)
@@ -369,7 +369,7 @@ class FileManager(FileRoot, ActiveComponent):
     def RemoveDirectory(self, dirName: _PathArg):
         """Remove the empty directory ``dirName``."""
         self.RemoveDirectoryStarted(fit_utf8(dirName, CMD_STRING_SIZE))
-        status, cause = self._fs(lambda: os.rmdir(self.resolve(dirName, entry=True)))
+        status, cause = self._fs("RemoveDirectory", lambda: os.rmdir(self.resolve(dirName, entry=True)))
         if status:
             self._log_failure("RemoveDirectory", dirName, status, cause)
             self.DirectoryRemoveError(fit_utf8(dirName, CMD_STRING_SIZE), status)
@@ -382,7 +382,7 @@ class FileManager(FileRoot, ActiveComponent):
         """Remove the file ``fileName``; with ``ignoreErrors`` a failure still answers OK."""
         name = fit_utf8(fileName, CMD_STRING_SIZE)
         self.RemoveFileStarted(name)
-        status, cause = self._fs(lambda: os.remove(self.resolve(fileName, entry=True)))
+        status, cause = self._fs("RemoveFile", lambda: os.remove(self.resolve(fileName, entry=True)))
         if status:
             self._log_failure("RemoveFile", fileName, status, cause)
             self.FileRemoveError(name, status)
@@ -416,7 +416,7 @@ class FileManager(FileRoot, ActiveComponent):
         """Append ``source`` to ``target`` atomically (``target`` is created if missing)."""
         src, dst = fit_utf8(source, CMD_STRING_SIZE), fit_utf8(target, CMD_STRING_SIZE)
         self.AppendFileStarted(src, dst)
-        status, cause = self._fs(lambda: self._append(self.resolve(source), self.resolve(target)))
+        status, cause = self._fs("AppendFile", lambda: self._append(self.resolve(source), self.resolve(target)))
         if status:
             self._log_failure("AppendFile", f"{source} -> {target}", status, cause)
             self.AppendFileFailed(src, dst, status)
@@ -436,7 +436,7 @@ class FileManager(FileRoot, ActiveComponent):
             with _open_regular(self.resolve(fileName)) as f:  # F´ opens the file to read its size
                 size = os.fstat(f.fileno()).st_size
 
-        status, cause = self._fs(measure)
+        status, cause = self._fs("FileSize", measure)
         if status:
             self._log_failure("FileSize", fileName, status, cause)
             self.FileSizeError(name, status)
@@ -458,6 +458,8 @@ class FileManager(FileRoot, ActiveComponent):
             path = self.resolve(dirName)
             names = sorted(os.listdir(path))
         except Exception as exc:  # noqa: BLE001 - every failure is reported, none escapes
+            if not isinstance(exc, (OSError, ValueError)):  # not the file system's answer: a fault
+                self.report_fault("ListDirectory", exc)
             status = directory_status(exc)
             self._log_failure("ListDirectory", dirName, status, exc)
             self.ListDirectoryError(name, status)
@@ -472,10 +474,10 @@ class FileManager(FileRoot, ActiveComponent):
         self.CalculateCrcStarted(name)
         try:
             crc = file_crc(self.resolve(filename))
-        except Exception as exc:
+        except Exception as exc:  # noqa: BLE001 - every failure is reported, none escapes
             status = file_status(exc)
-            if not isinstance(exc, (OSError, ValueError)):
-                log.exception("%s: CalculateCrc %s: unexpected failure", self.name, filename)
+            if not isinstance(exc, (OSError, ValueError)):  # not the file system's answer: a fault
+                self.report_fault("CalculateCrc", exc)
             self._log_failure("CalculateCrc", filename, status, exc)
             self.CalculateCrcFailed(name, status)
             return CmdResponse.EXECUTION_ERROR
@@ -503,8 +505,8 @@ class FileManager(FileRoot, ActiveComponent):
                 listing.index += 1
                 listing.entries += 1
                 self._list_entry(listing, entry)
-        except Exception:  # a tick must never raise into the rate group
-            log.exception("%s: ListDirectory %s failed", self.name, listing.dir_name)
+        except Exception as exc:  # noqa: BLE001 - a tick must never raise into the rate group
+            self.report_fault("ListDirectory tick", exc)
             self._listing = None
             self.ListDirectoryError(fit_utf8(listing.dir_name, FILE_NAME_STRING_SIZE),
                                     DirectoryStatus.OTHER_ERROR)
@@ -607,6 +609,8 @@ class FileManager(FileRoot, ActiveComponent):
                     _kill_group(proc)
                     returncode = proc.wait()
         except Exception as exc:  # noqa: BLE001 - cannot open the log file or start the shell
+            if not isinstance(exc, (OSError, ValueError)):  # not the system's answer: a fault
+                self.report_fault("ShellCommand", exc)
             log.warning("%s: ShellCommand %r not run: %s", self.name, command, exc)
             return SHELL_NOT_RUN
         status = wait_status(returncode)
@@ -617,14 +621,15 @@ class FileManager(FileRoot, ActiveComponent):
 
     # --- helpers ----------------------------------------------------------------------------------
 
-    def _fs(self, operation) -> tuple[FileSystemStatus, BaseException | None]:
-        """Run ``operation``; ``(OP_OK, None)`` or the F´ status of what it raised."""
+    def _fs(self, command: str, operation) -> tuple[FileSystemStatus, BaseException | None]:
+        """Run ``operation`` of ``command``; ``(OP_OK, None)`` or the F´ status of what it raised
+        (anything but the file system's own ``OSError``/``ValueError`` is a fault, reported)."""
         try:
             operation()
         except (OSError, ValueError) as exc:
             return filesystem_status(exc), exc
-        except Exception as exc:  # nothing escapes a command
-            log.exception("%s: unexpected failure", self.name)
+        except Exception as exc:  # noqa: BLE001 - nothing escapes a command
+            self.report_fault(command, exc)
             return FileSystemStatus.OTHER_ERROR, exc
         return FileSystemStatus.OP_OK, None
 

@@ -250,14 +250,13 @@ class FileUplink(FileRoot, ActiveComponent):
         """Handle one file packet (without its ``FW_PACKET_FILE`` descriptor); never raises."""
         try:
             self._receive(fwBuffer)
-        except Exception:  # the safety net: a port never raises
+        except Exception as exc:  # noqa: BLE001 - the safety net: a port never raises
             self.internal_errors += 1
-            log.exception("%s: unexpected error handling a file packet; abandoning the file in progress",
-                          self.name)
+            self.report_fault("bufferSendIn", exc)  # the file in progress is abandoned
             try:
                 self._go_to_start_mode()
-            except Exception:
-                log.exception("%s: could not reset the receive state", self.name)
+            except Exception as reset:  # noqa: BLE001 - reported, never raised
+                self.report_fault("bufferSendIn: reset", reset)
 
     @async_input(Ping)
     def pingIn(self, key: int) -> None:

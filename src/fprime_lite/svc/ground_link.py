@@ -356,8 +356,9 @@ class GroundLink(PassiveComponent):
             self._notices.append(("connected",))
             try:
                 reason = self._serve(sock)
-            except Exception as exc:  # the task must survive anything and reconnect
-                log.exception("%s: socket task fault", self.name)
+            except Exception as exc:  # noqa: BLE001 - the task must survive anything and reconnect
+                log.warning("%s: socket task fault (reported at the next schedIn): %s", self.name, exc)
+                self._notices.append(("fault", exc))  # report_fault runs on the deployment's thread
                 reason = f"{type(exc).__name__}: {exc}"
             finally:
                 self._connected.clear()
@@ -481,6 +482,8 @@ class GroundLink(PassiveComponent):
             self.LinkConnected(self.host[:64], self.port)
         elif kind == "disconnected":
             self.LinkDisconnected(notice[1][:80])
+        elif kind == "fault":
+            self.report_fault("socket task", notice[1])
         elif kind == "dropped":
             drop: Dropped = notice[1]
             if drop.reason is DropReason.BAD_CRC:

@@ -50,10 +50,12 @@ class TextLogger(PassiveComponent):
         self.stream = stream
         self.lines_written = 0
         self._write_lock = threading.Lock()
+        self._reporting = False  # inside report_fault: its event comes back to this port
 
     @sync_input(LogText)
     def TextLogger(self, event_id: int, time, severity, text: str) -> None:
-        """Write one line for the text event (never raises)."""
+        """Write one line for the text event (never raises: a stream that fails is a fault,
+        reported with ``report_fault``)."""
         try:
             line = format_text_event(event_id, time, severity, text) + "\n"
             stream = self.stream if self.stream is not None else sys.stdout
@@ -62,4 +64,11 @@ class TextLogger(PassiveComponent):
                 stream.flush()
             self.lines_written += 1
         except Exception as exc:  # noqa: BLE001 - logging must never break the component emitting
-            log.warning("%s: cannot write text event %r: %s", self.name, event_id, exc)
+            if self._reporting:  # the fault's own HandlerFault event, failing the same way: logged only
+                log.warning("%s: cannot write text event %r: %s", self.name, event_id, exc)
+                return
+            self._reporting = True
+            try:
+                self.report_fault("TextLogger", exc)
+            finally:
+                self._reporting = False

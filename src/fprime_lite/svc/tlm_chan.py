@@ -100,9 +100,9 @@ class TlmChan(ActiveComponent):
             try:
                 value = bytes(value)
                 _U32.pack(chan_id)
-            except Exception as exc:  # noqa: BLE001 - a bad write is counted, never raised to the writer
+            except Exception as exc:  # noqa: BLE001 - a bad write is counted and reported, never raised to the writer
                 self.rejected_writes += 1
-                log.warning("%s: TlmRecv: cannot store channel %r: %s", self.name, chan_id, exc)
+                self.report_fault("TlmRecv", exc)
                 return
         self._latest[chan_id] = (time, value, None)
 
@@ -141,9 +141,9 @@ class TlmChan(ActiveComponent):
                 if stamp is None:
                     stamp = time_bytes[id(time)] = TIME.serialize(time)
                 records.append(_U32.pack(chan_id) + stamp + (value if pack is None else pack(value)))
-            except Exception as exc:  # noqa: BLE001 - a bad time stamp is counted, never raised
+            except Exception as exc:  # noqa: BLE001 - a bad time stamp is counted and reported, never raised
                 self.rejected_writes += 1
-                log.warning("%s: channel 0x%X has an unusable time stamp: %s", self.name, chan_id, exc)
+                self.report_fault(f"Run: channel 0x{chan_id:X}", exc)
         if not records:
             return
         for packet in self._pack(records):

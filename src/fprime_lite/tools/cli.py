@@ -49,7 +49,7 @@ def _topology_arg(p: argparse.ArgumentParser) -> None:
 def _parse(parser: argparse.ArgumentParser, argv) -> argparse.Namespace:
     """``parser.parse_args(argv)``, with a did-you-mean for a misspelt option of the chosen verb
     (``--duraton`` → ``--duration``)."""
-    import difflib
+    from fprime_lite.model.errors import closest
 
     parsed, extras = parser.parse_known_args(argv)
     if not extras:
@@ -60,9 +60,9 @@ def _parse(parser: argparse.ArgumentParser, argv) -> argparse.Namespace:
     hints = []
     for token in extras:
         name = token.split("=", 1)[0]
-        guess = difflib.get_close_matches(name, options, n=1) if name.startswith("--") else []
-        if guess:
-            hints.append(guess[0] if len(extras) == 1 else f"{guess[0]} for {name}")
+        guess = closest(name, options) if name.startswith("--") else None
+        if guess is not None:
+            hints.append(guess if len(extras) == 1 else f"{guess} for {name}")
     hint = f" — did you mean {', '.join(hints)}?" if hints else ""
     (chosen or parser).error(f"unrecognized arguments: {' '.join(extras)}{hint}")
     raise AssertionError("argparse's error() exits")  # pragma: no cover
@@ -314,19 +314,16 @@ def _param_table(declared: dict, values: dict) -> str:
 
 def _param_setting(setting: str, declared: dict) -> tuple[str, object]:
     """``Module.inst.PARAM=VALUE`` → (name, value checked against the parameter's F´ type)."""
-    import difflib
-
     import yaml
 
-    from fprime_lite.model.errors import SerializationError
+    from fprime_lite.model.errors import SerializationError, did_you_mean
 
     name, sep, text = setting.partition("=")
     name = name.strip()
     if not sep or not name:
         raise UserError(f"--set {setting!r}: expected Module.inst.PARAM=VALUE")
     if name not in declared:
-        guess = difflib.get_close_matches(name, list(declared), n=1)
-        hint = f" — did you mean {guess[0]}?" if guess else " (fprime-lite dict lists them)"
+        hint = did_you_mean(name, declared, " (fprime-lite dict lists them)", " — did you mean {}?")
         raise UserError(f"--set {setting!r}: the topology has no parameter {name}{hint}")
     try:
         value = yaml.safe_load(text)

@@ -176,7 +176,25 @@ def test_a_plant_exception_is_a_failed_drive(rig, monkeypatch):
     monkeypatch.setattr(craft, "set_coil_level", broken)
     assert h.invoke("start", 3) == Success.FAILURE
     h.assert_event_count("DeviceNotReady", 1)
-    assert h.component.handler_faults == 1 and h.events_named("HandlerFault")[0][1] == "RuntimeError: boom"
+    # reported twice: the drive, then the switch-off that should have made the coil safe
+    assert h.component.handler_faults == 2
+    assert h.events_named("HandlerFault") == [("coil x_plus drive", "RuntimeError: boom")] * 2
+
+
+def test_a_plant_exception_switches_the_coil_off(rig, monkeypatch):
+    h, craft = rig
+    assert h.invoke("start", 3) == Success.SUCCESS and craft.coil_level(0) == 3
+    real = craft.set_coil_level
+
+    def broken_unless_off(face, level):
+        if level:
+            raise RuntimeError("boom")
+        real(face, level)
+
+    monkeypatch.setattr(craft, "set_coil_level", broken_unless_off)
+    assert h.invoke("start", 5) == Success.FAILURE
+    assert craft.coil_level(0) == 0 and h.tlm_values("DriveLevel")[-1] == 0
+    assert h.events_named("HandlerFault") == [("coil x_plus drive", "RuntimeError: boom")]
 
 
 def test_construction_checks_the_face(make_craft, default_scenario):

@@ -202,7 +202,10 @@ def test_a_plant_exception_is_a_failed_command(rig, monkeypatch):
     monkeypatch.setattr(craft, "set_wheel_torque", broken)
     assert h.invoke("torqueSet", 1e-4) == Success.FAILURE
     h.assert_event_count("DeviceNotReady", 1)
-    assert h.component.handler_faults == 1
+    # reported twice: the command, then the zero torque that should have made the wheel safe
+    assert h.component.handler_faults == 2
+    assert [e[0] for e in h.events_named("HandlerFault")] == ["wheel 0 broken", "wheel 0 safing"]
+    assert h.tlm_values("HandlerFaults") == [1, 2]
 
 
 def test_construction_and_factory(make_craft):

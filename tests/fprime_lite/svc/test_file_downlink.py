@@ -317,7 +317,10 @@ def test_receiver_that_raises_fails_the_transfer_without_escaping(fprime_harness
     h.assert_cmd_response(0, "SendFile", CmdResponse.EXECUTION_ERROR)
     h.assert_event("SendDataFail", 0, "a.bin", 0)
     assert h.tlm_values("PacketsSent") == [1]
-    assert fd.handler_faults == 0 and not fd.busy
+    assert not fd.busy
+    # contained, and reported (decision 0005)
+    assert fd.handler_faults == 1
+    assert h.events_named("HandlerFault") == [("bufferSendOut (DataPacket)", "RuntimeError: link buffer gone")]
 
 
 def test_command_failures_disabled_answers_ok_as_f_prime_default(fprime_harness, tmp_path):

@@ -161,7 +161,9 @@ def test_permission_error_maps_to_no_permission(fprime_harness, tmp_path, monkey
     assert_failed(h, "CreateDirectory")
 
 
-def test_unexpected_exception_is_other_error_and_not_a_fault(fprime_harness, tmp_path, monkeypatch):
+def test_unexpected_exception_is_other_error_and_a_reported_fault(fprime_harness, tmp_path, monkeypatch):
+    """Not an OSError or ValueError (the file system's own answers): OTHER_ERROR, and the fault is
+    reported (decision 0005: HandlerFault, HandlerFaults)."""
     def broken(*args, **kwargs):
         raise RuntimeError("boom")
 
@@ -171,7 +173,9 @@ def test_unexpected_exception_is_other_error_and_not_a_fault(fprime_harness, tmp
     run(h, "RemoveDirectory", "d")
     h.assert_event("DirectoryRemoveError", 0, "d", FileSystemStatus.OTHER_ERROR)
     assert_failed(h, "RemoveDirectory")
-    assert h.component.handler_faults == 0
+    assert h.component.handler_faults == 1
+    assert h.events_named("HandlerFault") == [("RemoveDirectory", "RuntimeError: boom")]
+    assert h.tlm_values("HandlerFaults") == [1]
 
 
 # --- MoveFile --------------------------------------------------------------------------------------

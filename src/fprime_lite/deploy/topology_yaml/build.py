@@ -18,7 +18,6 @@ import does; the topology cannot name a module without naming a class in it.
 
 from __future__ import annotations
 
-import difflib
 import importlib
 import inspect
 import pathlib
@@ -31,7 +30,7 @@ from fprime_lite.deploy.topology import Topology
 from fprime_lite.deploy.topology_yaml.problems import Problems
 from fprime_lite.deploy.topology_yaml.schema import InstanceConfig, ResourceConfig, TopologyConfig
 from fprime_lite.model.component import Component
-from fprime_lite.model.errors import DeclarationError, PortConnectionError
+from fprime_lite.model.errors import DeclarationError, PortConnectionError, did_you_mean
 from fprime_lite.model.time import SimulatedClock
 
 __all__ = ["import_type", "build_resources", "build_instances", "make_scheduler", "BUILTIN_RESOURCES"]
@@ -84,9 +83,8 @@ def import_type(file: pathlib.Path, type_path: str, line: int | None, what: str,
             obj = None
         if obj is None:
             names = [n for n in dir(owner) if not n.startswith("_")]
-            guess = difflib.get_close_matches(attr, names, n=1)
             prefix = ".".join(parts[:split + depth])
-            hint = f" — did you mean '{prefix}.{guess[0]}'?" if guess else " — check the type path"
+            hint = " — " + did_you_mean(attr, names, "check the type path", f"did you mean '{prefix}.{{}}'?")
             problems.add(file, line, f"{what}: module '{prefix}' has no '{attr}'{hint}")
             return None
     return obj

@@ -7,14 +7,14 @@ stages skip whatever depends on it without reporting the same mistake twice.
 
 from __future__ import annotations
 
-import difflib
 import pathlib
 from typing import Any, Iterable
 
 from fprime_lite.deploy.topology import TopologyError
 from fprime_lite.deploy.topology_yaml.parse import MAX_PROBLEMS, Loc, YMap, kind
+from fprime_lite.model.errors import did_you_mean
 
-__all__ = ["Problems", "MAX_PROBLEMS"]
+__all__ = ["Problems", "MAX_PROBLEMS", "unknown_key_message"]
 
 
 
@@ -63,9 +63,7 @@ class Problems:
                 if len(self.items) >= MAX_PROBLEMS:  # counted only: spare the suggestion
                     self.add(file, mapping.key_lines.get(key), "")
                     continue
-                guess = difflib.get_close_matches(str(key), allowed, n=1)
-                hint = f"did you mean '{guess[0]}'?" if guess else f"allowed keys: {', '.join(allowed)}"
-                self.add(file, mapping.key_lines.get(key), f"unknown key {_key(key)} in {what} — {hint}")
+                self.add(file, mapping.key_lines.get(key), unknown_key_message(key, allowed, what))
 
     def expect_map(self, file: pathlib.Path, value: Any, line: int | None, what: str) -> YMap | None:
         if not isinstance(value, YMap):
@@ -92,3 +90,11 @@ class Problems:
 
 def _key(key: Any) -> str:
     return f"'{key}'" if isinstance(key, str) else repr(key)
+
+
+def unknown_key_message(key: Any, allowed: Iterable[str], what: str) -> str:
+    """``unknown key 'x' in WHAT — did you mean 'y'?`` (else the allowed keys): the message of a key
+    that a mapping of the topology or of a campaign file may not have."""
+    allowed = sorted(allowed)
+    hint = did_you_mean(key, allowed, "allowed keys: " + ", ".join(allowed))
+    return f"unknown key {_key(key)} in {what} — {hint}"

@@ -11,14 +11,13 @@ out of range, already connected) comes back as a :class:`PortConnectionError` th
 
 from __future__ import annotations
 
-import difflib
 import pathlib
 
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.deploy.topology import PATTERN_PORTS, Topology
 from fprime_lite.deploy.topology_yaml.problems import Problems
 from fprime_lite.deploy.topology_yaml.schema import EndpointRef, TopologyConfig
-from fprime_lite.model.errors import PortConnectionError
+from fprime_lite.model.errors import PortConnectionError, did_you_mean
 from fprime_lite.svc.rate_group_driver import RateGroupDriver, RateGroupTimer
 from fprime_lite.svc.rate_groups import ActiveRateGroup, PassiveRateGroup
 
@@ -38,15 +37,13 @@ class _Wirer:
         if instance is None and self.problems.already_reported(ref.instance):
             return None  # already reported where it was declared
         if instance is None:
-            guess = difflib.get_close_matches(ref.instance, list(self.topology.instances), n=1)
-            hint = f"did you mean '{guess[0]}'?" if guess else "declare it under 'modules'"
+            hint = did_you_mean(ref.instance, self.topology.instances, "declare it under 'modules'")
             self.problems.add(file, line, f"unknown instance '{ref.instance}' — {hint}")
             return None
         comp = instance.component
         ports = comp.spec.outputs if direction == "output" else comp.spec.inputs
         if ref.port not in ports:
-            guess = difflib.get_close_matches(ref.port, list(ports), n=1)
-            hint = f"did you mean '{guess[0]}'?" if guess else f"its {direction} ports: {', '.join(ports) or 'none'}"
+            hint = did_you_mean(ref.port, ports, f"its {direction} ports: {', '.join(ports) or 'none'}")
             self.problems.add(file, line, f"{type(comp).__name__} {ref.instance} has no {direction} port "
                                           f"'{ref.port}' — {hint}")
             return None

@@ -32,6 +32,7 @@ from __future__ import annotations
 import dataclasses
 import pathlib
 
+from fprime_lite.model.errors import did_you_mean
 from fprime_lite.tools.campaign.errors import RunSetupError
 from fprime_lite.tools.campaign.kinds import Prepared, RunKind, RunOutput, RunRequest
 from fprime_lite.tools.campaign.values import plain, yaml_text
@@ -68,10 +69,7 @@ def _split_param(key: str, declared: dict) -> tuple[str, list[str]]:
     parts = key[len("params."):].split(".")
     name = ".".join(parts[:3])
     if name not in declared:
-        import difflib
-
-        guess = difflib.get_close_matches(name, list(declared), n=1)
-        hint = f" — did you mean params.{guess[0]}?" if guess else " (fprime-lite dict lists the parameters)"
+        hint = did_you_mean(name, declared, " (fprime-lite dict lists the parameters)", " — did you mean params.{}?")
         raise RunSetupError(f"the topology has no parameter {name}{hint}", key)
     return name, parts[3:]
 

@@ -31,6 +31,8 @@ from typing import Any, Callable
 
 import numpy as np
 
+from fprime_lite.model.errors import did_you_mean
+
 __all__ = ["Dispersion", "parse_dispersion", "DISTRIBUTIONS"]
 
 DISTRIBUTIONS = {
@@ -130,10 +132,7 @@ def parse_dispersion(spec, where: str) -> Dispersion:
         raise ValueError(f"a dispersion is a mapping with 'dist' (one of {', '.join(DISTRIBUTIONS)})")
     dist = spec["dist"]
     if dist not in DISTRIBUTIONS:
-        import difflib
-
-        guess = difflib.get_close_matches(str(dist), list(DISTRIBUTIONS), n=1)
-        hint = f" — did you mean '{guess[0]}'?" if guess else f" — use one of {', '.join(DISTRIBUTIONS)}"
+        hint = " — " + did_you_mean(dist, DISTRIBUTIONS, f"use one of {', '.join(DISTRIBUTIONS)}")
         raise ValueError(f"unknown dist '{dist}'{hint}")
     required, optional = DISTRIBUTIONS[dist]
     fields = set(spec) - {"dist"}

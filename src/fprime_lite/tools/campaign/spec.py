@@ -6,11 +6,11 @@ Parsed with the topology loader's line-keeping SafeLoader; every problem is repo
 
 from __future__ import annotations
 
-import difflib
 import math
 import pathlib
 from dataclasses import dataclass, field
 
+from fprime_lite.model.errors import did_you_mean
 from fprime_lite.tools.campaign.dispersions import Dispersion, parse_dispersion
 from fprime_lite.tools.campaign.errors import CampaignError
 from fprime_lite.tools.campaign.grid import axis_values
@@ -86,11 +86,11 @@ class _Checker:
         self.problems.append(f"{self.at(line)}: {message}")
 
     def keys(self, mapping, allowed, what: str) -> None:
+        from fprime_lite.deploy.topology_yaml.problems import unknown_key_message
+
         for key in mapping:
-            if key not in allowed:
-                guess = difflib.get_close_matches(str(key), sorted(allowed), n=1)
-                hint = f"did you mean '{guess[0]}'?" if guess else f"allowed keys: {', '.join(sorted(allowed))}"
-                self.problem(mapping.key_lines.get(key), f"unknown key '{key}' in {what} — {hint}")
+            if key not in allowed:  # (named as text: a campaign quotes a number key too)
+                self.problem(mapping.key_lines.get(key), unknown_key_message(str(key), allowed, what))
 
 
 def _keep_policy(c: _Checker, raw, key_line, metric_names: list[str]) -> KeepPolicy:
@@ -119,9 +119,9 @@ def _keep_policy(c: _Checker, raw, key_line, metric_names: list[str]) -> KeepPol
     if by is None:
         c.problem(raw.line, "a ranking 'keep' needs 'by: METRIC' (one of the campaign's 'metrics')")
     elif by not in metric_names:
-        hint = difflib.get_close_matches(str(by), metric_names, n=1)
         c.problem(at("by"), f"'keep: by' {by!r} is not in 'metrics'"
-                  + (f" — did you mean '{hint[0]}'?" if hint else f" ({', '.join(metric_names) or 'none given'})"))
+                  + did_you_mean(by, metric_names, f" ({', '.join(metric_names) or 'none given'})",
+                                 " — did you mean '{}'?"))
     order = raw.get("order", "min")
     if order not in ("min", "max"):
         c.problem(at("order"), f"'keep: order' is min (smaller is better) or max (larger is better), got {order!r}")
@@ -202,8 +202,7 @@ def load_campaign(path) -> Campaign:
                 c.problem(run.key_lines.get("kind", run.line), f"{exc} — give module.path:NAME of a RunKind "
                                                                f"importable on every worker")
         elif kind is None:
-            guess = difflib.get_close_matches(str(kind_name), sorted(kinds), n=1)
-            hint = f"did you mean '{guess[0]}'?" if guess else f"installed kinds: {', '.join(sorted(kinds))}"
+            hint = did_you_mean(kind_name, sorted(kinds), f"installed kinds: {', '.join(sorted(kinds))}")
             c.problem(run.key_lines.get("kind", run.line), f"unknown run kind {kind_name!r} — {hint}")
         else:
             c.keys(run, kind.fields | {"kind"}, f"the '{kind_name}' run section")
