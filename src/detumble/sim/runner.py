@@ -54,6 +54,10 @@ class RunResult:
     adcs_rows: list[list] | None = None
 
 
+#: The laws ``--gain`` sets (the others take their gains from the scenario's ``control.<law>`` block).
+GAIN_LAWS = ("kopt", "bdot", "cross_product")
+
+
 def make_law(name: str, plant: Plant, gain: float | None = None, saturation: str | None = None):
     """Instantiate a reference law for ``plant``. ``gain`` overrides the law's default;
     ``saturation`` (default: the scenario's ``control.saturation``) is ``scale`` or ``clip``."""
@@ -91,8 +95,8 @@ def _make_coursework_law(name: str, plant: Plant, gain: float | None, m_max):
     if name == "cross_product":
         return CrossProductLaw(REPORT_CROSS_PRODUCT_GAIN if gain is None else gain, m_max)
     if gain is not None:
-        raise LawError(f"--gain sets the single gain of cross_product, kopt or bdot; set {name}'s gains with "
-                         f"--set control.{name}.<gain>=VALUE")
+        raise LawError(f"--gain sets the single gain of {', '.join(GAIN_LAWS)}; set {name}'s gains with "
+                       f"--set control.{name}.<gain>=VALUE")
     if name == "beta_pd":
         b = cfg.beta_pd
         return BetaPdLaw(b.k_s, b.k_d, n, m_max, switched=b.switched)
@@ -150,7 +154,11 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
     if law_name == "adcs" and gain is not None:
         raise LawError("--gain does not apply to adcs; set its flight parameters with "
                        "--set control.adcs.<PARAMETER>=VALUE (e.g. control.adcs.K_P=1.1e-3)")
-    gain = gain if gain is not None else ctrl.gain
+    if law_name in ("none", "bangbang") and gain is not None:
+        raise LawError(f"--gain does not apply to {law_name}, which has no gain; laws with one gain: "
+                       f"{', '.join(GAIN_LAWS)}")
+    if gain is None and law_name == ctrl.law:  # the scenario's gain is its own law's: another law keeps its default
+        gain = ctrl.gain
     duration = sc.duration_s if duration_s is None else duration_s
     plant = Plant(sc, seed, implementation) if plant is None else plant
     ctl = make_law(law_name, plant, gain)
@@ -324,7 +332,9 @@ def build_parser(prog: str = "python -m detumble.sim") -> argparse.ArgumentParse
     p.add_argument("--scenario", dest="scenario_opt", metavar="NAME|FILE", help="same as the positional argument")
     p.add_argument("--law", choices=LAWS, default=None, help="control law (default: the scenario's control.law)")
     p.add_argument("--gain", type=float, default=None,
-                   help="kopt: k in kg m^2/s (default 2n(1+sin i)J_min); bdot: A m^2 s/G (default 3.0)")
+                   help="kopt: k in kg m^2/s (default 2n(1+sin i)J_min); bdot: A m^2 s/G (default 3.0); "
+                        "cross_product: k (default the report's); the scenario's control.gain applies only "
+                        "to the scenario's own control.law")
     p.add_argument("--out", required=True, metavar="DIR", help="output folder for summary.json and rate.csv")
     p.add_argument("--duration", type=float, default=None, metavar="S", help="simulated seconds (default: scenario)")
     p.add_argument("--seed", type=int, default=None, help="noise / random-rate seed (default: scenario)")

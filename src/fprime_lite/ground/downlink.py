@@ -167,6 +167,8 @@ class GroundRecorder:
         self.on_channel = on_channel
         self.events_by_severity: Counter = Counter()
         self.events_by_name: Counter = Counter()
+        #: severity name → Counter of the event names downlinked at that severity
+        self.event_names_by_severity: dict[str, Counter] = {}
         self.channel_updates = 0
         self.undecodable = 0
         #: Downlinked files, written under ``downlink/`` (the directory appears with the first file).
@@ -225,6 +227,7 @@ class GroundRecorder:
     def _event(self, e: DecodedEvent) -> None:
         self.events_by_severity[e.severity.name] += 1
         self.events_by_name[e.name] += 1
+        self.event_names_by_severity.setdefault(e.severity.name, Counter())[e.name] += 1
         self._events.file.write(f"{format_time(e.time)} {e.name} {e.severity.name} {e.text}\n")
         if self.on_event is not None:
             self.on_event(e)

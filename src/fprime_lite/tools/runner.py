@@ -26,6 +26,7 @@ import pathlib
 import signal
 import threading
 import time
+from typing import Mapping
 
 from fprime_lite.osal.atomic import atomic_write_text
 from fprime_lite.deploy.deployment import Deployment
@@ -132,7 +133,7 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     summary["stopped_by"] = stopped_by[0] if stopped_by and sim_s < duration_s - 1e-9 else None
     if summary["stopped_by"] == "interrupted":
         summary["signal"] = signals[0]
-    summary["problems"] = flight_problems(summary)
+    summary["problems"] = flight_problems(summary, recorder.event_names_by_severity)
     summary["ok"] = allow_warnings or not summary["problems"]
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2) + "\n")
     if not quiet:
@@ -144,8 +145,14 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
 FAILING_SEVERITIES = ("WARNING_HI", "FATAL")
 
 
-def flight_problems(summary: dict) -> list[str]:
-    """What went wrong in a flight, one short phrase each (empty when nothing did)."""
+#: How many event names a problem lists before "and N more".
+PROBLEM_NAMES = 3
+
+
+def flight_problems(summary: dict, event_names: Mapping[str, Mapping[str, int]] | None = None) -> list[str]:
+    """What went wrong in a flight, one short phrase each (empty when nothing did). ``event_names``:
+    severity → {event name: count}, which the phrases of WARNING_HI and FATAL events name (the most
+    frequent first)."""
     problems = []
     for key, what in (("handler_faults", "handler fault(s)"), ("member_faults", "rate-group member fault(s)"),
                       ("cycle_slips", "cycle slip(s)")):
@@ -154,8 +161,18 @@ def flight_problems(summary: dict) -> list[str]:
     for severity in FAILING_SEVERITIES:
         n = summary.get("events_by_severity", {}).get(severity, 0)
         if n:
-            problems.append(f"{n} {severity} event(s) (see events.log)")
+            problems.append(f"{n} {severity} event(s){_named((event_names or {}).get(severity, {}))} (see events.log)")
     return problems
+
+
+def _named(counts: Mapping[str, int]) -> str:
+    """``: A.b.C ×2, D.e.F`` — the names, most frequent first (then alphabetical), at most PROBLEM_NAMES."""
+    if not counts:
+        return ""
+    ranked = sorted(counts.items(), key=lambda item: (-item[1], item[0]))
+    shown = [f"{name} ×{n}" if n > 1 else name for name, n in ranked[:PROBLEM_NAMES]]
+    more = f" and {len(ranked) - PROBLEM_NAMES} more" if len(ranked) > PROBLEM_NAMES else ""
+    return ": " + ", ".join(shown) + more
 
 
 #: Summary keys measured on the wall clock; every other key is a function of the inputs.

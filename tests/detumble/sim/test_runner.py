@@ -84,3 +84,28 @@ def test_a_run_refused_after_its_folder_was_made_leaves_no_empty_folder(tmp_path
     assert main(["case_a", "--law", "wheels_pd", "--out", str(out), "--duration", "1"]) == 2
     assert "error: wheels_pd needs three reaction wheels" in capsys.readouterr().err  # case_a has none
     assert not out.exists()
+
+
+def test_each_law_takes_its_own_default_gain_not_the_scenario_s(tmp_path, capsys):
+    """SIM-GAIN-001 (issue 28): the scenario's control.gain belongs to its control.law (default.yaml: bdot,
+    3.0 A·m²·s/G). `--law kopt` on it flies kopt's own k = 2n(1 + sin i)J_min (it flew k = 3.0); `--law
+    beta_pd` flies (it failed on a --gain nobody gave); the scenario's own law still takes its gain; and a
+    --gain for a law that has none is refused."""
+    from detumble.sim.laws import kopt_gain
+    from detumble.sim.plant import Plant
+    from detumble.sim.scenario import load_scenario
+    import numpy as np
+
+    plant = Plant(load_scenario("default"))
+    j_min = float(min(np.linalg.eigvalsh(np.array(plant.body.inertia))))
+    k_star = kopt_gain(plant.orbit.mean_motion, plant.orbit.inclination_rad, j_min)
+    assert main(["default", "--law", "kopt", "--duration", "2", "--out", str(tmp_path / "k")]) == 0
+    assert json.loads((tmp_path / "k" / "summary.json").read_text())["gain"] == k_star != 3.0
+    assert main(["default", "--law", "beta_pd", "--duration", "2", "--out", str(tmp_path / "b")]) == 0
+    assert main(["default", "--duration", "2", "--out", str(tmp_path / "own")]) == 0  # bdot, the scenario's law
+    assert json.loads((tmp_path / "own" / "summary.json").read_text())["gain"] == 3.0
+    capsys.readouterr()
+    assert main(["default", "--law", "none", "--gain", "2", "--duration", "2", "--out", str(tmp_path / "n")]) == 2
+    err = capsys.readouterr().err
+    assert "--gain does not apply to none, which has no gain; laws with one gain: kopt, bdot, cross_product" in err
+    assert not (tmp_path / "n").exists()

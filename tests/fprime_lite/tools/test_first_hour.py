@@ -81,7 +81,8 @@ def test_run_fails_on_warning_hi_events_unless_allowed(tmp_path, capsys):
     seq.write_text('R00:00:01 FileHandling.fileDownlink.SendFile "/nonexistent/x" "x"\n')
     common = [TOPOLOGY, "--seq", str(seq), "--duration", "3", "--no-plots"]
     assert main(["run", *common, "--out", str(tmp_path / "a")]) == 1
-    assert "WARNING_HI event(s)" in capsys.readouterr().err
+    assert ("3 WARNING_HI event(s): FileHandling.fileDownlink.FileOpenError, FileHandling.fileDownlink.PathRefused, "
+            "ReferenceDeployment.cmdSeq.CS_CommandError (see events.log)") in capsys.readouterr().err  # issue 28
     summary = json.loads((tmp_path / "a" / "summary.json").read_text())
     assert summary["ok"] is False and any("WARNING_HI" in p for p in summary["problems"])
     assert main(["run", *common, "--out", str(tmp_path / "b"), "--allow-warnings"]) == 0
@@ -97,6 +98,9 @@ def test_a_clean_flight_is_ok():
                             "events_by_severity": {"WARNING_LO": 3, "ACTIVITY_HI": 9}}) == []
     assert flight_problems({"handler_faults": 2, "cycle_slips": 1, "events_by_severity": {"FATAL": 1}}) == [
         "2 handler fault(s)", "1 cycle slip(s)", "1 FATAL event(s) (see events.log)"]
+    names = {"WARNING_HI": {"D.a.Lost": 1, "D.b.Fault": 4, "D.c.X": 1, "D.d.Y": 1}, "WARNING_LO": {"D.e.Z": 2}}
+    assert flight_problems({"events_by_severity": {"WARNING_HI": 7, "WARNING_LO": 2}}, names) == [
+        "7 WARNING_HI event(s): D.b.Fault ×4, D.a.Lost, D.c.X and 1 more (see events.log)"]
 
 
 def _no_sequencer_topology(tmp_path) -> str:
