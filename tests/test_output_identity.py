@@ -40,13 +40,28 @@ def perturbed(tmp_path_factory):
     return tree
 
 
-def test_a_checkout_flies_identically_to_itself(capsys):
-    status = identity.main([str(ROOT), str(ROOT), "--quick", "--cases", "proves_ref,sim_kopt,params_proves_ref"])
+def test_a_checkout_flies_identically_to_itself(capsys, tmp_path):
+    status = identity.main([str(ROOT), str(ROOT), "--quick", "--cases", "proves_ref,sim_kopt,params_proves_ref",
+                            "--keep", str(tmp_path)])
     out = capsys.readouterr().out
     assert status == 0, out
     assert "DIFFERS" not in out
     assert "proves_ref/truth.csv" in out and "sim_kopt/rate.csv" in out and "params_proves_ref/params.dat" in out
     assert "files identical" in out
+    flown = json.loads((tmp_path / "base-out" / "sim_kopt" / "summary.json").read_text())
+    assert flown["law"] == "kopt"  # the case flies the law it names, not the scenario's own
+
+
+def test_every_case_flies_what_it_names(tmp_path):
+    """Each plant-only case passes its law and its settings; each deployment case its settings and sequence."""
+    for case in identity.CASES:
+        argv = identity._command(case, tmp_path, tmp_path / case.name, quick=False)
+        for setting in case.settings:
+            assert f"--set={setting}" in argv, (case.name, setting)
+        for arg in case.extra:
+            assert arg in argv, (case.name, arg)
+        if case.kind == "sim":
+            assert "--law" in argv and argv[argv.index("--law") + 1] in case.name, case.name
 
 
 def test_a_different_flight_is_reported_with_where_it_differs(perturbed, capsys):

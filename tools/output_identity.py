@@ -83,14 +83,13 @@ CASES = (
          ("--seq", "deployments/coursework/cross_product.seq")),
     Case("coursework_beta_pd", "run", "deployments/coursework/topology.yaml", 300, 20, (),
          ("--seq", "deployments/coursework/beta_pd.seq")),
-    Case("sim_adcs_modes", "sim", "adcs", 500, 60, ("--law", "adcs", *(f"--set={s}" for s in _SLOW_TUMBLE))),
-    Case("sim_adcs_magnetorquer_hold", "sim", "adcs", 700, 30,
-         ("--law", "adcs", *(f"--set={s}" for s in (*_HOLD_START, *_HOLD_FORCED)))),
-    Case("sim_kopt", "sim", "default", 600, 30, ("--law", "kopt")),
-    Case("sim_bdot", "sim", "case_a", 600, 30, ("--law", "bdot")),
-    Case("sim_cross_product", "sim", "surrey", 600, 30, ("--law", "cross_product", "--gain", "500")),
-    Case("sim_beta_pd", "sim", "surrey", 300, 30, ("--law", "beta_pd")),
-    Case("sim_wheels_pd", "sim", "surrey", 120, 20, ("--law", "wheels_pd")),
+    Case("sim_adcs_modes", "sim", "adcs", 500, 60, _SLOW_TUMBLE, ("--law", "adcs")),
+    Case("sim_adcs_magnetorquer_hold", "sim", "adcs", 700, 30, (*_HOLD_START, *_HOLD_FORCED), ("--law", "adcs")),
+    Case("sim_kopt", "sim", "default", 600, 30, (), ("--law", "kopt")),
+    Case("sim_bdot", "sim", "case_a", 600, 30, (), ("--law", "bdot")),
+    Case("sim_cross_product", "sim", "surrey", 600, 30, (), ("--law", "cross_product", "--gain", "500")),
+    Case("sim_beta_pd", "sim", "surrey", 300, 30, (), ("--law", "beta_pd")),
+    Case("sim_wheels_pd", "sim", "surrey", 120, 20, (), ("--law", "wheels_pd")),
     Case("params_proves_ref", "params", "deployments/proves_ref/topology.yaml"),
     Case("params_adcs_ref", "params", "deployments/adcs_ref/topology.yaml"),
     Case("params_coursework", "params", "deployments/coursework/topology.yaml"),
@@ -143,12 +142,13 @@ def _checkout(spec: str, scratch: pathlib.Path, label: str) -> pathlib.Path:
 def _command(case: Case, tree: pathlib.Path, out: pathlib.Path, quick: bool) -> list[str]:
     duration = str(case.quick_s if quick and case.quick_s else case.duration_s)
     extra = list(case.extra)  # paths relative to the checkout, which is the flight's working folder
+    sets = [f"--set={s}" for s in case.settings]
     if case.kind == "run":
-        sets = [f"--set={s}" for s in case.settings]
         return [sys.executable, "-c", _CLI, "run", case.target, "--duration", duration, "--no-plots",
                 "--no-progress", "--allow-warnings", "--out", str(out), *sets, *extra]
     if case.kind == "sim":
-        return [sys.executable, "-m", "detumble.sim", case.target, "--duration", duration, "--out", str(out), *extra]
+        return [sys.executable, "-m", "detumble.sim", case.target, "--duration", duration, "--out", str(out), *sets,
+                *extra]
     if case.kind == "params":
         out.mkdir(parents=True, exist_ok=True)
         return [sys.executable, "-c", _CLI, "params", case.target, "-o", str(out / "params.dat")]
