@@ -53,17 +53,21 @@ def test_the_script_without_basilisk_exits_2_with_the_pip_command(monkeypatch, c
 @pytest.mark.skipif(not comparison.basilisk_installed(),
                     reason="Basilisk is not installed (pip install -e '.[bsk]')")
 def test_a_short_side_by_side_run_reports_every_kind_and_consistent_ratios():
-    """PERF-BSK-002: 20 s simulated, one round: the four kinds ran for the asked time and the
-    ratios are the quotients of the reported real-time factors."""
+    """PERF-BSK-002: 20 s simulated, one round: the six kinds ran for the asked time and the
+    ratios are the quotients of the reported real-time factors (the run kind's against the faster
+    Basilisk at 50 Hz)."""
     d = comparison.measure(REFERENCE, duration_s=20.0, rounds=1)
-    assert set(d["runs"]) == {"basilisk_20hz", "fprime_lite_plant_20hz", "basilisk_50hz", "fprime_lite_deployment_50hz"}
+    assert set(d["runs"]) == {"basilisk_20hz", "fprime_lite_plant_20hz", "basilisk_50hz", "basilisk_lean_50hz",
+                              "fprime_lite_deployment_50hz", "fprime_lite_run_50hz"}
     assert all(len(v) == 1 and v[0]["sim_seconds"] == pytest.approx(20.0) for v in d["runs"].values())
     b = d["best_real_time_factor"]
     assert d["plant_20hz_over_basilisk"] == pytest.approx(b["fprime_lite_plant_20hz"] / b["basilisk_20hz"])
     assert d["deployment_50hz_over_basilisk"] == pytest.approx(b["fprime_lite_deployment_50hz"] / b["basilisk_50hz"])
-    # 20 s is far from detumbled: neither side reports |w| < 1 deg/s yet
-    assert d["case_a_time_below_1_deg_s"] == {"basilisk": None, "fprime_lite": None}
-    assert len(shim.BASILISK_PIECE.rows(d)) == 3
+    assert d["run_50hz_over_fastest_basilisk"] == pytest.approx(
+        b["fprime_lite_run_50hz"] / max(b["basilisk_50hz"], b["basilisk_lean_50hz"]))
+    # 20 s is far from detumbled: no side reports |w| < 1 deg/s yet
+    assert d["case_a_time_below_1_deg_s"] == {"basilisk": None, "basilisk_lean": None, "fprime_lite": None}
+    assert len(shim.BASILISK_PIECE.rows(d)) == 5
 
 
 def test_cases_are_interleaved_round_by_round_and_ratios_are_quotients(monkeypatch):
@@ -104,7 +108,41 @@ def test_cases_are_interleaved_round_by_round_and_ratios_are_quotients(monkeypat
     assert a["plausibility"]["fprime_lite_adcs_ref_50hz"] == {"slew1_settle_s": 1.0}
     rows = shim.BASILISK_PIECE.rows(a)  # four ratios, four plausibility lines
     assert len(rows) == 8 and "0.10" in rows[0][1] and "slew1_settle_s 1" in rows[7][1]
-    assert [r[2] for r in rows[:4]] == ["≥ 1.5", "≥ 1.5", "context", "≤ 1.5"]  # the laws alone are no goal
+    # issue 32's goal: the same laws in Python, ≥ 1.0; the C laws and the laws alone are context
+    assert [r[2] for r in rows[:4]] == ["context", "≥ 1.0", "context", "context"]
+
+
+def test_the_run_ratio_is_taken_against_the_faster_basilisk_of_each_round(monkeypatch):
+    """PERF-BSK-008: proves_ref's goal ratio (issue 32) divides ``fprime-lite run``'s real-time
+    factor by the faster of the two Basilisk 50 Hz configurations, whichever it is, and the
+    lean configuration is flown as ``case_a --lean``."""
+    factor = {"basilisk_20hz": 300.0, "fprime_lite_plant_20hz": 3000.0, "basilisk_50hz": 250.0,
+              "basilisk_lean_50hz": 400.0, "fprime_lite_deployment_50hz": 700.0, "fprime_lite_run_50hz": 500.0}
+    argvs = {}
+
+    def fake_child(argv):
+        text = " ".join(argv)
+        if "basilisk.case_a" in text:
+            kind = ("basilisk_lean_50hz" if "--lean" in argv else
+                    "basilisk_20hz" if "0.05" in argv else "basilisk_50hz")
+        elif "run_deployment" in text:
+            kind = "fprime_lite_run_50hz"
+        elif "load_scenario" in text:
+            kind = "fprime_lite_plant_20hz"
+        else:
+            kind = "fprime_lite_deployment_50hz"
+        argvs[kind] = argv
+        return {"sim_seconds": 10.0, "real_time_factor": factor[kind], "time_below_1_deg_s": None}
+
+    monkeypatch.setattr(comparison, "_child", fake_child)
+    d = comparison.measure(REFERENCE, duration_s=10.0, rounds=1)
+    assert set(argvs) == set(factor)
+    assert d["run_50hz_over_fastest_basilisk"] == pytest.approx(500.0 / 400.0)
+    factor["basilisk_50hz"] = 450.0  # now the first-written configuration is the faster one
+    d = comparison.measure(REFERENCE, duration_s=10.0, rounds=1)
+    assert d["run_50hz_over_fastest_basilisk"] == pytest.approx(500.0 / 450.0)
+    rows = shim.BASILISK_PIECE.rows(d)
+    assert rows[0][2] == "≥ 2.0" and "500 / 450 = 1.11" in rows[0][1]
 
 
 def test_the_bench_piece_picks_the_case_of_the_deployment_it_is_given():

@@ -23,6 +23,8 @@ def test_deployment_measurement_interleaves_pieces_and_reports_consistent_figure
     cpu = d["pieces_cpu_us_per_tick"]
     assert len(cpu["deployment"]) == len(cpu["plant_only"]) == 2
     assert d["tick_cost_ratio_cpu"] == pytest.approx(min(cpu["deployment"]) / min(cpu["plant_only"]))
+    assert d["fprime_part_cpu_us_per_tick"] == pytest.approx(min(cpu["deployment"]) - min(cpu["plant_only"]))
+    assert d["fprime_part_us_per_tick"] == pytest.approx(min(pieces["deployment"]) - min(pieces["plant_only"]))
 
 
 def test_the_other_reference_deployments_are_measured_against_their_own_plant_configuration():
@@ -50,6 +52,11 @@ def test_the_other_reference_deployments_are_measured_against_their_own_plant_co
     assert any("per 100 Hz tick" in label for label in labels)
     assert sum("plant-only (adcs)" in label for label in labels) == 1
     assert sum("plant-only (bdot)" in label for label in labels) == 2  # proves_ref's, and adcs_ref's second row
+    # BENCH-003 (issue 32): each deployment's F´ part of a tick in µs; only adcs_ref's has a goal
+    fprime_rows = [row for row in DEPLOYMENT_PIECE.rows(d) if row[0].startswith("F´ part of a")]
+    assert len(fprime_rows) == 3
+    assert [row[2] for row in fprime_rows] == ["", "≤ 22 µs", ""]
+    assert f"= {adcs['fprime_part_cpu_us_per_tick']:.1f} µs" in fprime_rows[1][1]
 
 
 def test_the_piece_is_installed_as_a_bench_plug_in():
