@@ -22,7 +22,7 @@ from fprime_lite.wire.com_cfg import CONSTANTS
 from fprime_lite.wire.packets import Apid
 from fprime_lite.model.time import TIME, TimeBase
 from fprime_lite.deploy.topology import Topology
-from fprime_lite.model.types import U8, U16, U32, Alias, FwType, fw_type
+from fprime_lite.model.types import U8, U16, U32, U64, Alias, FwEnum, FwType, fw_type
 
 __all__ = ["build_dictionary", "write_dictionary", "param_annotation", "FRAMEWORK_VERSION"]
 
@@ -44,6 +44,32 @@ FRAMEWORK_ALIASES = [
     Alias("FwTlmPacketizeIdType", U16),
 ]
 _TIME_CONTEXT = FRAMEWORK_ALIASES[8]
+
+
+class DpState(FwEnum, namespace="Fw", rep=U8):
+    """F´ ``Fw.DpState`` (fprime-lite has no data products; fpp-to-dict lists it in every dictionary)."""
+
+    UNTRANSMITTED = 0
+    PARTIAL = 1
+    TRANSMITTED = 2
+
+
+class ProcType(FwEnum, namespace="Fw.DpCfg", rep=U8, default="PROC_TYPE_NONE"):
+    """F´ ``Fw.DpCfg.ProcType`` (listed by fpp-to-dict in every dictionary, as ``Fw.DpState``)."""
+
+    PROC_TYPE_NONE = 0x00
+    PROC_TYPE_ZLIB_DEFLATE = 0x01
+    PROC_TYPE_ONE = 0x02
+    PROC_TYPE_TWO = 0x04
+
+
+#: The data-product definitions fpp-to-dict puts in every dictionary (F´'s framework definitions
+#: for data products), so that fprime-lite's dictionary is the one F´'s tool builds.
+_DP_ALIASES = [Alias("FwDpIdType", FwIdType), Alias("FwDpPriorityType", U32)]
+_FW_SIZE_TYPE = {"kind": "alias", "qualifiedName": "FwSizeType",
+                 "type": {"name": "PlatformSizeType", "kind": "qualifiedIdentifier"},
+                 "underlyingType": U64.json_ref()}
+_DP_CONSTANTS = [("Fw.DpCfg.CONTAINER_USER_DATA_SIZE", U64, 32)]
 
 
 
@@ -94,8 +120,11 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
     types = _TypeCollector()
     for alias in FRAMEWORK_ALIASES:
         types.add(alias)
-    for framework_enum in (TimeBase, Apid, CmdResponse):
+    for framework_enum in (TimeBase, Apid, CmdResponse, DpState, ProcType):
         types.add(fw_type(framework_enum))
+    for alias in _DP_ALIASES:
+        types.add(alias)
+    types.definitions["FwSizeType"] = _FW_SIZE_TYPE
     commands, events, channels, params = [], [], [], []
     for instance in topology.instances.values():
         comp = instance.component
@@ -106,6 +135,8 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
             if c.kind == "async":
                 entry["priority"] = c.priority
                 entry["queueFullBehavior"] = c.queue_full
+            if c.param is not None and c.param.units is not None:  # fpp-to-dict gives the commands
+                entry["annotation"] = param_annotation(c.param.units)  # their parameter's annotation
             commands.append(entry)
         for e in comp.spec.events:
             entry = {"name": f"{prefix}.{e.name}", "severity": e.severity.name, "id": comp.base_id + e.local_id,
@@ -138,7 +169,8 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
             "dictionarySpecVersion": DICTIONARY_SPEC_VERSION,
         },
         "typeDefinitions": list(types.definitions.values()),
-        "constants": [{"qualifiedName": n, "type": fw_type(t).json_ref(), "value": v} for n, t, v in CONSTANTS],
+        "constants": [{"kind": "constant", "qualifiedName": n, "type": fw_type(t).json_ref(), "value": v}
+                      for n, t, v in CONSTANTS + _DP_CONSTANTS],
         "commands": sorted(commands, key=lambda c: c["opcode"]),
         "parameters": sorted(params, key=lambda p: p["id"]),
         "events": sorted(events, key=lambda e: e["id"]),

@@ -1,0 +1,401 @@
+"""Load FPP models: F´ component and topology definitions bound to Python implementations.
+
+:func:`load_fpp` analyses FPP files with F´'s own analyser (``fprime-fpp-python``), with the
+framework definitions fprime-lite ships (``framework/*.fpp``) or a user's F´ checkout in their place,
+then binds every component definition a topology instantiates to its Python implementation class
+and checks that the two declare the same members: commands (opcode, kind, arguments, priority),
+events (id, severity, format, throttle, arguments), channels (id, update policy), parameters (id,
+default, set/save opcodes) and general ports (direction, size, port type). Every mismatch is
+refused before anything flies, as ``FPP file:line: what differs — Python file:line``.
+
+Which class implements a component ``M.Name`` (``docs/fpp.md``), first match wins:
+
+1. an explicit registration, :func:`register_implementation` or ``implementations=`` of
+   :func:`load_fpp`;
+2. an annotation on the component definition, ``@ fprime-lite: package.module.Class``;
+3. fprime-lite's own services for F´'s Svc components (``Svc.CommandDispatcher`` …);
+4. the naming rule: class ``Name`` in the module ``name.py`` (``Name`` in snake case) beside the
+   FPP file that defines the component.
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import inspect
+import pathlib
+import re
+import sys
+from dataclasses import dataclass, field
+from typing import Any, Iterable
+
+from fprime_lite.deploy.fpp.export import SVC_COMPONENT_NAMES, framework_files
+from fprime_lite.deploy.topology import TopologyError
+from fprime_lite.model.component import ComponentSpec
+from fprime_lite.model.events import Severity
+
+__all__ = ["FppError", "FppModel", "FppInstance", "load_fpp", "register_implementation", "fpp_available"]
+
+_REGISTRY: dict[str, type] = {}
+_ANNOTATION = re.compile(r"^\s*fprime-lite:\s*([A-Za-z_][\w.]*)\s*$")
+_SEVERITY = {"Fatal": Severity.FATAL, "WarningHigh": Severity.WARNING_HI, "WarningLow": Severity.WARNING_LO,
+             "Command": Severity.COMMAND, "ActivityHigh": Severity.ACTIVITY_HI,
+             "ActivityLow": Severity.ACTIVITY_LO, "Diagnostic": Severity.DIAGNOSTIC}
+
+
+class FppError(TopologyError):
+    """An FPP model that does not analyse, or that does not fit its Python implementation."""
+
+
+def fpp_available() -> bool:
+    """Whether F´'s FPP analyser (the ``fprime-fpp-python`` package, extra ``fpp``) is installed."""
+    return importlib.util.find_spec("fpp") is not None
+
+
+def register_implementation(fpp_name: str, cls: type) -> None:
+    """Bind FPP component ``fpp_name`` (``Components.Thermostat``) to Python class ``cls``."""
+    _REGISTRY[fpp_name] = cls
+
+
+@dataclass
+class _ComponentView:
+    """What the dictionary and the checks need of an instance: its spec, name and base id."""
+
+    name: str
+    base_id: int
+    spec: ComponentSpec
+    cls: type
+
+
+@dataclass
+class FppInstance:
+    """A component instance of an FPP topology, bound to its implementation."""
+
+    module: str
+    component: _ComponentView
+    fpp_component: str
+    queue_size: int | None = None
+    priority: int | None = None
+    where: str = ""
+
+    @property
+    def name(self) -> str:
+        return self.component.name
+
+    @property
+    def qualified_name(self) -> str:
+        return f"{self.module}.{self.component.name}" if self.module else self.component.name
+
+
+@dataclass
+class FppModel:
+    """An analysed FPP model: its topology's instances (bound) and connections. It has what
+    :func:`~fprime_lite.deploy.dictionary.build_dictionary` reads of a topology."""
+
+    deployment: str
+    instances: dict[str, FppInstance] = field(default_factory=dict)
+    connections: list[tuple[str, str, int, str, str, int]] = field(default_factory=list)
+    #: FPP component name -> the class bound to it
+    bindings: dict[str, type] = field(default_factory=dict)
+
+    def to_dot(self) -> str:
+        """The connection graph in Graphviz DOT."""
+        lines = [f'digraph "{self.deployment}" {{', "  rankdir=LR;"]
+        lines += [f'  "{s}" -> "{t}" [label="{sp}[{si}] -> {tp}[{ti}]"];' for s, sp, si, t, tp, ti in self.connections]
+        return "\n".join(lines + ["}"]) + "\n"
+
+    def to_mermaid(self) -> str:
+        """The connection graph as a Mermaid flowchart."""
+        lines = ["flowchart LR"]
+        lines += [f"  {s.replace('.', '_')} -->|{sp}[{si}] → {tp}[{ti}]| {t.replace('.', '_')}"
+                  for s, sp, si, t, tp, ti in self.connections]
+        return "\n".join(lines) + "\n"
+
+
+def _loc(node: Any) -> str:
+    try:
+        return str(node.location.display)
+    except AttributeError:
+        return str(getattr(node, "span", "?"))
+
+
+def _python_loc(cls: type, member: Any = None) -> str:
+    target = member if member is not None and inspect.isfunction(member) else cls
+    try:
+        path = inspect.getsourcefile(target) or "?"
+        line = inspect.getsourcelines(target)[1]
+    except (OSError, TypeError):
+        return f"{cls.__module__}.{cls.__qualname__}"
+    return f"{path}:{line} ({cls.__qualname__})"
+
+
+def _snake(name: str) -> str:
+    return re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", name).lower()
+
+
+def _import_class(dotted: str) -> type:
+    module, _, name = dotted.rpartition(".")
+    return getattr(importlib.import_module(module), name)
+
+
+def _implementation(fpp_name: str, node: Any, explicit: dict[str, type]) -> tuple[type | None, str]:
+    """(class, how it was found) or (None, what was tried)."""
+    if fpp_name in explicit:
+        return explicit[fpp_name], "explicit registration"
+    if fpp_name in _REGISTRY:
+        return _REGISTRY[fpp_name], "register_implementation"
+    for line in list(node.pre_annotation) + list(node.post_annotation):
+        match = _ANNOTATION.match(line)
+        if match:
+            try:
+                return _import_class(match.group(1)), f"annotation {match.group(1)}"
+            except (ImportError, AttributeError) as exc:
+                return None, f"its annotation names {match.group(1)}, which does not import ({exc})"
+    reverse = {fpp: py for py, fpp in SVC_COMPONENT_NAMES.items()}
+    if fpp_name in reverse:
+        return _import_class(reverse[fpp_name]), "fprime-lite service"
+    short = fpp_name.rsplit(".", 1)[-1]
+    folder = pathlib.Path(str(node.location.uri)).parent
+    candidate = folder / f"{_snake(short)}.py"
+    if candidate.is_file():
+        if str(folder) not in sys.path:
+            sys.path.insert(0, str(folder))
+        module = importlib.import_module(candidate.stem)
+        cls = getattr(module, short, None)
+        if isinstance(cls, type):
+            return cls, f"naming rule {candidate}"
+        return None, f"{candidate} has no class {short}"
+    return None, (f"no registration, no '@ fprime-lite: module.Class' annotation, and no {candidate.name} "
+                  f"beside {node.location.uri}")
+
+
+def _check_component(fpp_name: str, comp: Any, cls: type) -> list[str]:
+    """Every difference between FPP component ``comp`` and the class ``cls`` implementing it."""
+    spec: ComponentSpec | None = getattr(cls, "__fprime_spec__", None)
+    where_py = _python_loc(cls)
+    if spec is None:
+        return [f"{_loc(comp.node)}: {fpp_name} is implemented by {cls.__qualname__}, which is not a component "
+                f"class — {where_py}"]
+    out: list[str] = []
+
+    def refuse(node: Any, what: str, member: Any = None) -> None:
+        out.append(f"{_loc(node)}: {fpp_name}: {what} — {_python_loc(cls, member)}")
+
+    kind = str(comp.node.kind).rsplit(".", 1)[-1].lower()
+    if kind != spec.kind:
+        refuse(comp.node, f"FPP declares a {kind} component, {cls.__qualname__} is {spec.kind}")
+    # commands (the parameters' PRM_SET / PRM_SAVE are compared with the parameters)
+    py_commands = {c.name: c for c in spec.commands if c.kind not in ("set", "save")}
+    seen: set[str] = set()
+    for opcode, command in comp.command_map.items():
+        if type(command).__name__ != "NonParam":
+            continue
+        name, node = command.name, command.node
+        seen.add(name)
+        py = py_commands.get(name)
+        if py is None:
+            refuse(node, f"command {name} has no handler: give {cls.__qualname__} a method {name} decorated as a "
+                         f"command")
+            continue
+        handler = getattr(cls, name, None)
+        fpp_kind = str(command.kind).split("NonParamKind.", 1)[-1].split(">")[0].lower().rstrip(">")
+        fpp_kind = fpp_kind.split("(")[0]
+        if fpp_kind != py.kind:
+            refuse(node, f"command {name} is {fpp_kind} in FPP, {py.kind} in Python", handler)
+        if opcode != py.opcode:
+            refuse(node, f"command {name} has opcode 0x{opcode:X} in FPP, 0x{py.opcode:X} in Python", handler)
+        fpp_args = [p.name for p in node.params]
+        py_args = [n for n, _ in py.args]
+        if fpp_args != py_args:
+            refuse(node, f"command {name}'s handler takes ({', '.join(py_args)}), FPP declares "
+                         f"({', '.join(fpp_args)})", handler)
+    for name in py_commands.keys() - seen:
+        refuse(comp.node, f"{cls.__qualname__} handles command {name}, which the FPP component does not declare",
+               getattr(cls, name, None))
+    # events
+    py_events = {e.name: e for e in spec.events}
+    seen = set()
+    for event_id, event in comp.event_map.items():
+        name, node = event.name, event.node
+        seen.add(name)
+        pe = py_events.get(name)
+        if pe is None:
+            refuse(node, f"event {name} has no implementation: declare it in {cls.__qualname__}")
+            continue
+        if event_id != pe.local_id:
+            refuse(node, f"event {name} has id 0x{event_id:X} in FPP, 0x{pe.local_id:X} in Python")
+        severity = _SEVERITY.get(str(node.severity).rsplit(".", 1)[-1])
+        if severity is not pe.severity:
+            refuse(node, f"event {name} is {node.severity} in FPP, {pe.severity.name} in Python")
+        if node.format != pe.format:
+            refuse(node, f"event {name} formats {node.format!r} in FPP, {pe.format!r} in Python")
+        throttle = event.throttle.count if event.throttle is not None else None
+        if throttle != pe.throttle:
+            refuse(node, f"event {name} is throttled at {throttle} in FPP, {pe.throttle} in Python")
+        if [p.name for p in node.params] != [n for n, _ in pe.args]:
+            refuse(node, f"event {name} takes ({', '.join(p.name for p in node.params)}) in FPP, "
+                         f"({', '.join(n for n, _ in pe.args)}) in Python")
+    for name in py_events.keys() - seen:
+        refuse(comp.node, f"{cls.__qualname__} declares event {name}, which the FPP component does not")
+    # channels
+    py_channels = {c.name: c for c in spec.channels}
+    seen = set()
+    for channel_id, channel in comp.tlm_channel_map.items():
+        name, node = channel.name, channel.node
+        seen.add(name)
+        pc = py_channels.get(name)
+        if pc is None:
+            refuse(node, f"channel {name} has no implementation: declare it in {cls.__qualname__}")
+            continue
+        if channel_id != pc.local_id:
+            refuse(node, f"channel {name} has id 0x{channel_id:X} in FPP, 0x{pc.local_id:X} in Python")
+        update = "on change" if "OnChange" in str(channel.update) else "always"
+        if update != pc.update:
+            refuse(node, f"channel {name} updates {update} in FPP, {pc.update} in Python")
+    for name in py_channels.keys() - seen:
+        refuse(comp.node, f"{cls.__qualname__} declares channel {name}, which the FPP component does not")
+    # parameters
+    py_params = {p.name: p for p in spec.params}
+    seen = set()
+    for param_id, param in comp.param_map.items():
+        name, node = param.name, param.node
+        seen.add(name)
+        pp = py_params.get(name)
+        if pp is None:
+            refuse(node, f"parameter {name} has no implementation: declare it in {cls.__qualname__}")
+            continue
+        if param_id != pp.local_id:
+            refuse(node, f"parameter {name} has id 0x{param_id:X} in FPP, 0x{pp.local_id:X} in Python")
+        for what, fpp_opcode in (("SET", param.set_opcode), ("SAVE", param.save_opcode)):
+            py_opcode = spec.command(f"{name.upper()}_PRM_{what}").opcode
+            if fpp_opcode != py_opcode:
+                refuse(node, f"parameter {name}'s {what.lower()} opcode is 0x{fpp_opcode:X} in FPP, "
+                             f"0x{py_opcode:X} in Python")
+    for name in py_params.keys() - seen:
+        refuse(comp.node, f"{cls.__qualname__} declares parameter {name}, which the FPP component does not")
+    # general ports
+    special = set(spec.special.values())
+    py_ports = {n: ("input", d.kind, d.size, d.port_type.name) for n, d in spec.inputs.items() if n not in special}
+    py_ports.update({n: ("output", "output", d.size, d.port_type.name)
+                     for n, d in spec.outputs.items() if n not in special})
+    seen = set()
+    for name, port in comp.port_map.items():
+        if type(port).__name__ != "General":
+            continue
+        seen.add(name)
+        node = port.node
+        direction = "input" if "Input" in str(port.direction) else "output"
+        py_port = py_ports.get(name)
+        handler = getattr(cls, name, None)
+        if py_port is None:
+            refuse(node, f"{direction} port {name} has no implementation"
+                         + (f": give {cls.__qualname__} a handler method {name}" if direction == "input" else
+                            f": declare {name} = OutputPort(...) in {cls.__qualname__}"))
+            continue
+        if direction != py_port[0]:
+            refuse(node, f"port {name} is an {direction} in FPP, an {py_port[0]} in Python", handler)
+        if port.size != py_port[2]:
+            refuse(node, f"port {name} has {port.size} index(es) in FPP, {py_port[2]} in Python", handler)
+        fpp_type = _port_type_name(port)
+        if fpp_type is not None and fpp_type != py_port[3]:
+            refuse(node, f"port {name} is of type {fpp_type} in FPP, {py_port[3]} in Python", handler)
+    for name in py_ports.keys() - seen:
+        refuse(comp.node, f"{cls.__qualname__} has port {name}, which the FPP component does not declare",
+               getattr(cls, name, None))
+    return out
+
+
+def _port_type_name(port: Any) -> str | None:
+    ty = port.ty
+    symbol = getattr(ty, "symbol", None) or getattr(ty, "def_", None)
+    if symbol is None:
+        return None
+    name = getattr(symbol, "qualified_name", None)
+    if isinstance(name, str):
+        return name
+    return None
+
+
+def _diagnostics(model: Any) -> list[str]:
+    out = []
+    for diagnostic in model.diagnostics:
+        if "Error" in str(diagnostic.level):
+            out.append(str(getattr(diagnostic, "display", diagnostic)))
+    return out
+
+
+def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pathlib.Path] = (),
+             fprime_checkout: str | pathlib.Path | None = None,
+             implementations: dict[str, type] | None = None) -> FppModel:
+    """Analyse FPP ``paths`` (with ``imports`` to resolve references, as ``fpp-to-dict -i``) and bind
+    the components of its topology; raise :class:`FppError` listing every problem.
+
+    The framework's definitions come from fprime-lite's ``framework/*.fpp`` unless
+    ``fprime_checkout`` names an F´ checkout whose ``default/config`` and ``Fw``/``Svc`` FPP files
+    are given in ``imports`` instead (then nothing of fprime-lite's is added)."""
+    if not fpp_available():
+        raise FppError(["FPP models need F´'s analyser: pip install 'fprime-lite[fpp]' (fprime-fpp-python)"])
+    import fpp
+
+    sources = [str(p) for p in paths]
+    missing = [p for p in sources + [str(i) for i in imports] if not pathlib.Path(p).is_file()]
+    if missing:
+        raise FppError([f"{p}: no such FPP file — give the path of a .fpp file" for p in missing])
+    extra = [] if fprime_checkout is not None else [str(p) for p in framework_files()]
+    model = fpp.analyze(sources, imports=[str(p) for p in imports] + extra or None)
+    problems = _diagnostics(model)
+    if problems:
+        raise FppError(problems)
+    analysis = model.analysis
+    topologies = [(s, t) for s, t in analysis.topology_map.items()
+                  if any(u.is_source for u in model.ast if str(u.uri) == str(t.node.location.uri))]
+    if not topologies:
+        topologies = list(analysis.topology_map.items())
+    if len(topologies) != 1:
+        raise FppError([f"{', '.join(sources)}: {len(topologies)} topologies — give the files of exactly one "
+                        f"topology (its components may come from imports)"])
+    symbol, topology = topologies[0]
+    qualified = analysis.get_qualified_name(symbol)
+    result = FppModel(qualified.rsplit(".", 1)[-1])
+    explicit = dict(implementations or {})
+    problems = []
+    checked: dict[str, type | None] = {}
+    for instance in topology.instance_map:
+        inst = instance if hasattr(instance, "base_id") else None
+        if inst is None:
+            continue
+        comp = inst.component
+        comp_name = analysis.get_qualified_name(comp.symbol)
+        if comp_name not in checked:
+            cls, how = _implementation(comp_name, comp.node, explicit)
+            checked[comp_name] = cls
+            if cls is None:
+                problems.append(f"{_loc(comp.node)}: component {comp_name} has no Python implementation: {how}")
+            else:
+                problems += _check_component(comp_name, comp, cls)
+                result.bindings[comp_name] = cls
+        cls = checked[comp_name]
+        if cls is None:
+            continue
+        name = inst.qualified_name
+        module, _, short = name.rpartition(".")
+        view = _ComponentView(short, inst.base_id, cls.__fprime_spec__, cls)
+        result.instances[name] = FppInstance(module, view, comp_name, inst.queue_size, inst.priority, _loc(inst.node))
+    if problems:
+        raise FppError(problems)
+    for connection in _connections(topology):
+        result.connections.append(connection)
+    return result
+
+
+def _connections(topology: Any) -> list[tuple[str, str, int, str, str, int]]:
+    """(source instance, port, index, target instance, port, index) of every connection."""
+    out = []
+    from_numbers, to_numbers = topology.from_port_number_map, topology.to_port_number_map
+    for connections in topology.output_connection_map.values():
+        for c in connections:
+            source, target = c.from_.port, c.to.port
+            out.append((source.interface_instance.qualified_name, source.unqualified_name.rsplit(".", 1)[-1],
+                        from_numbers.get(c, 0), target.interface_instance.qualified_name,
+                        target.unqualified_name.rsplit(".", 1)[-1], to_numbers.get(c, 0)))
+    return out
