@@ -68,7 +68,7 @@ class ProcType(FwEnum, namespace="Fw.DpCfg", rep=U8, default="PROC_TYPE_NONE"):
 _DP_ALIASES = [Alias("FwDpIdType", FwIdType), Alias("FwDpPriorityType", U32)]
 _FW_SIZE_TYPE = {"kind": "alias", "qualifiedName": "FwSizeType",
                  "type": {"name": "PlatformSizeType", "kind": "qualifiedIdentifier"},
-                 "underlyingType": U64.json_ref()}
+                 "underlyingType": fw_type(U64).json_ref()}
 _DP_CONSTANTS = [("Fw.DpCfg.CONTAINER_USER_DATA_SIZE", U64, 32)]
 
 

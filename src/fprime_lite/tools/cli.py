@@ -46,6 +46,34 @@ def _topology_arg(p: argparse.ArgumentParser) -> None:
                    help="topology YAML file (default: ./topology.yaml)")
 
 
+def _model_arg(p: argparse.ArgumentParser) -> None:
+    p.add_argument("topology", nargs="*", default=["topology.yaml"], metavar="MODEL",
+                   help="topology YAML file (default: ./topology.yaml), or FPP files of one topology and its "
+                   "components (docs/fpp.md)")
+    p.add_argument("-i", "--imports", default="", metavar="FILE,FILE",
+                   help="FPP files that only resolve references, as fpp-to-dict -i")
+
+
+def _load_model(args):
+    """The FPP model (:class:`~fprime_lite.deploy.fpp.loader.FppModel`) the verb's files name, or the
+    YAML deployment; ``args.topology`` is left as one string for the messages."""
+    paths = list(args.topology)
+    fpp_files = [p for p in paths if p.endswith(".fpp")]
+    imports = [p for p in args.imports.split(",") if p]
+    if fpp_files or imports:
+        from fprime_lite.deploy.fpp.loader import load_fpp
+
+        if len(fpp_files) != len(paths):
+            raise UserError(f"{' '.join(paths)}: give either FPP files or one topology YAML, not both")
+        args.topology = " ".join(paths)
+        return load_fpp(fpp_files, imports=imports), None
+    if len(paths) != 1:
+        raise UserError(f"{' '.join(paths)}: give one topology YAML (several files are FPP files only)")
+    args.topology = paths[0]
+    loaded = _load(args.topology)
+    return loaded.topology, loaded
+
+
 def _parse(parser: argparse.ArgumentParser, argv) -> argparse.Namespace:
     """``parser.parse_args(argv)``, with a did-you-mean for a misspelt option of the chosen verb
     (``--duraton`` → ``--duration``)."""
@@ -111,7 +139,7 @@ def build_parser() -> argparse.ArgumentParser:
                      "space-packet-space-data-link (the GDS's default), fprime = fprime (default: ccsds)")
 
     dic = sub.add_parser("dict", help="write the F´ JSON dictionary")
-    _topology_arg(dic)
+    _model_arg(dic)
     dic.add_argument("-o", "--output", required=True, metavar="FILE",
                      help="where to write the dictionary ('-' for standard output)")
     dic.add_argument("--force", action="store_true", help="replace FILE even when it is not an F´ dictionary")
@@ -119,10 +147,10 @@ def build_parser() -> argparse.ArgumentParser:
                      "dictionary to start fprime-gds with)")
 
     check = sub.add_parser("check", help="validate a topology")
-    _topology_arg(check)
+    _model_arg(check)
 
     graph = sub.add_parser("graph", help="print the topology as DOT or Mermaid")
-    _topology_arg(graph)
+    _model_arg(graph)
     graph.add_argument("--format", choices=("dot", "mermaid"), default="dot")
     graph.add_argument("--patterns", action="store_true", help="include pattern connections (command, event, …)")
 
@@ -192,11 +220,14 @@ def cmd_check(args) -> int:
     from fprime_lite.deploy.preflight import topology_file_problems
     from fprime_lite.deploy.topology import TopologyError
 
-    loaded = _load(args.topology)
+    topo, loaded = _load_model(args)
+    if loaded is None:
+        print(f"{args.topology}: OK — FPP topology {topo.deployment}: {len(topo.instances)} instances bound to their "
+              f"Python implementations, {len(topo.connections)} connections")
+        return 0
     problems = topology_file_problems(loaded)
     if problems:
         raise TopologyError(problems)
-    topo = loaded.topology
     print(f"{args.topology}: OK — deployment {topo.deployment}: {len(topo.instances)} instances, "
           f"{len(topo.connections)} connections")
     return 0
@@ -205,7 +236,9 @@ def cmd_check(args) -> int:
 def cmd_dict(args) -> int:
     from fprime_lite.deploy.dictionary import build_dictionary, write_dictionary
 
-    topology = _load(args.topology).topology
+    topology, loaded = _load_model(args)
+    if args.gds and loaded is None:
+        raise UserError("--gds adds the ground link to a YAML deployment; an FPP topology wires its own")
     if args.gds:
         from fprime_lite.deploy.com_stack import add_ground_link
 
@@ -251,7 +284,10 @@ def _replaceable_output(path: str, option: str, is_ours, what: str, force: bool)
 
 
 def cmd_graph(args) -> int:
-    topo = _load(args.topology).topology
+    topo, loaded = _load_model(args)
+    if loaded is None:
+        sys.stdout.write(topo.to_dot() if args.format == "dot" else topo.to_mermaid())
+        return 0
     sys.stdout.write(topo.to_dot(args.patterns) if args.format == "dot" else topo.to_mermaid(args.patterns))
     return 0
 

@@ -27,8 +27,8 @@ from fprime_lite.model.ports import PortType
 from fprime_lite.model.types import (AliasType, ArrayType, BoolType, EnumType, FloatType, FwType, IntType,
                                      StringType, StructType, fw_type)
 
-__all__ = ["FRAMEWORK_DIR", "SVC_COMPONENT_NAMES", "HAND_WRITTEN_NAMES", "HAND_WRITTEN_PORTS", "fpp_name_of", "export_components",
-           "export_topology", "fpp_type_name", "fpp_value"]
+__all__ = ["FRAMEWORK_DIR", "SVC_COMPONENT_NAMES", "HAND_WRITTEN_NAMES", "HAND_WRITTEN_PORTS", "fpp_name_of",
+           "export_components", "export_topology", "fpp_type_name", "fpp_value", "framework_files"]
 
 #: Where the framework's FPP (config.fpp, ports.fpp, svc.fpp) is installed with the package.
 FRAMEWORK_DIR = pathlib.Path(__file__).with_name("framework")
@@ -418,7 +418,8 @@ def framework_files() -> list[pathlib.Path]:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m fprime_lite.deploy.fpp.export",
-                                     description="Write the framework's svc.fpp, or a deployment's FPP, from the Python.")
+                                     description="Write the framework's svc.fpp, or a deployment's FPP, "
+                                                 "from the Python.")
     parser.add_argument("topology", nargs="?", help="a topology YAML: write its components.fpp and topology.fpp")
     parser.add_argument("--framework", action="store_true", help="write framework/svc.fpp")
     parser.add_argument("-o", "--out", help="output folder (default: fpp/ beside the topology)")

@@ -361,10 +361,10 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
     problems = []
     checked: dict[str, type | None] = {}
     for instance in topology.instance_map:
-        inst = instance if hasattr(instance, "base_id") else None
-        if inst is None:
-            continue
-        comp = inst.component
+        if not isinstance(instance, fpp.InterfaceInstance.Component) or instance.component is None:
+            continue  # a nested topology's instances are in the map too
+        inst: Any = instance
+        comp: Any = instance.component
         comp_name = analysis.get_qualified_name(comp.symbol)
         if comp_name not in checked:
             cls, how = _implementation(comp_name, comp.node, explicit)
@@ -374,12 +374,12 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
             else:
                 problems += _check_component(comp_name, comp, cls)
                 result.bindings[comp_name] = cls
-        cls = checked[comp_name]
-        if cls is None:
+        bound: Any = checked[comp_name]
+        if bound is None:
             continue
         name = inst.qualified_name
         module, _, short = name.rpartition(".")
-        view = _ComponentView(short, inst.base_id, cls.__fprime_spec__, cls)
+        view = _ComponentView(short, inst.base_id, bound.__fprime_spec__, bound)
         result.instances[name] = FppInstance(module, view, comp_name, inst.queue_size, inst.priority, _loc(inst.node))
     if problems:
         raise FppError(problems)
