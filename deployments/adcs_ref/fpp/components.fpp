@@ -1033,23 +1033,6 @@ module Drv {
   port WheelTorqueSet(torque: F64) -> Fw.Success
 }
 
-module Fw {
-  enum On : I32 {
-    OFF = 0
-    ON = 1
-  } default OFF
-
-  enum Success : U8 {
-    SUCCESS = 0
-    FAILURE = 1
-  } default SUCCESS
-
-  struct TimeIntervalValue {
-    seconds: U32
-    useconds: U32
-  } default { seconds = 0, useconds = 0 }
-}
-
 module Sim {
   enum SimDriverFault : U8 {
     NONE = 0

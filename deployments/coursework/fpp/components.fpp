@@ -327,13 +327,6 @@ module Drv {
   port WheelTorqueSet(torque: F64) -> Fw.Success
 }
 
-module Fw {
-  enum Success : U8 {
-    SUCCESS = 0
-    FAILURE = 1
-  } default SUCCESS
-}
-
 module Sim {
   enum SimImuSensor : U8 {
     ALL = 0

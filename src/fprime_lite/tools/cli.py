@@ -61,17 +61,29 @@ def _load_model(args):
     fpp_files = [p for p in paths if p.endswith(".fpp")]
     imports = [p for p in args.imports.split(",") if p]
     if fpp_files or imports:
-        from fprime_lite.deploy.fpp.loader import load_fpp
+        from fprime_lite.deploy.fpp.loader import check_components, load_fpp
 
         if len(fpp_files) != len(paths):
             raise UserError(f"{' '.join(paths)}: give either FPP files or one topology YAML, not both")
         args.topology = " ".join(paths)
+        if args.command == "check" and not _defines_topology(fpp_files):
+            bound = check_components(fpp_files, imports=imports)
+            return bound, None
         return load_fpp(fpp_files, imports=imports), None
     if len(paths) != 1:
         raise UserError(f"{' '.join(paths)}: give one topology YAML (several files are FPP files only)")
     args.topology = paths[0]
     loaded = _load(args.topology)
     return loaded.topology, loaded
+
+
+def _defines_topology(paths: list[str]) -> bool:
+    """Whether one of the FPP files defines a topology (else ``check`` binds its components alone)."""
+    import re
+
+    pattern = re.compile(r"^\s*topology\s+\$?\w+\s*\{", re.MULTILINE)
+    return any(pattern.search(pathlib.Path(p).read_text(encoding="utf-8", errors="replace"))
+               for p in paths if pathlib.Path(p).is_file())
 
 
 def _parse(parser: argparse.ArgumentParser, argv) -> argparse.Namespace:
@@ -221,6 +233,10 @@ def cmd_check(args) -> int:
     from fprime_lite.deploy.topology import TopologyError
 
     topo, loaded = _load_model(args)
+    if isinstance(topo, dict):
+        print(f"{args.topology}: OK — {len(topo)} FPP component(s) bound to their Python implementations: "
+              + ", ".join(f"{name} → {cls.__module__}.{cls.__qualname__}" for name, cls in topo.items()))
+        return 0
     if loaded is None:
         print(f"{args.topology}: OK — FPP topology {topo.deployment}: {len(topo.instances)} instances bound to their "
               f"Python implementations, {len(topo.connections)} connections")

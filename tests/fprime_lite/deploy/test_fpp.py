@@ -143,4 +143,6 @@ def test_the_verbs_take_fpp_files(tmp_path, capsys):
     assert dictionary_differences(json.loads(out.read_text()), yaml_dict) == []
     assert main(["graph", *files, "--format", "mermaid"]) == 0
     assert "CdhCore_cmdDisp" in capsys.readouterr().out
-    assert main(["check", files[0]]) == 2  # the components alone: no topology
+    assert main(["check", files[0]]) == 0  # the components alone: each bound to its class
+    assert "Components.DetumbleManager → detumble.components.detumble_manager.DetumbleManager" in \
+        capsys.readouterr().out

@@ -286,11 +286,13 @@ def _spec_types(spec: ComponentSpec) -> list[FwType[Any]]:
 
 
 def export_components(classes: Iterable[type[Component]], *, skip: frozenset[str] = HAND_WRITTEN_NAMES,
-                      skip_ports: frozenset[str] = HAND_WRITTEN_PORTS) -> str:
-    """FPP text defining ``classes`` and the named types and port types they use, except the types
-    named in ``skip`` and the ports named in ``skip_ports`` (defined elsewhere)."""
+                      skip_ports: frozenset[str] = HAND_WRITTEN_PORTS, also: Iterable[FwType[Any]] = ()) -> str:
+    """FPP text defining ``classes``, the named types and port types they use and the types ``also``,
+    except the types named in ``skip`` and the ports named in ``skip_ports`` (defined elsewhere)."""
     writer = _Writer()
     types: dict[str, FwType[Any]] = {}
+    for t in also:
+        _named_types(t, types)
     ports: dict[str, PortType] = {}
     components: dict[str, tuple[type, ComponentSpec]] = {}
     for cls in classes:
@@ -373,8 +375,12 @@ def framework_svc_text() -> str:
     for dotted in SVC_COMPONENT_NAMES:
         module, _, cls = dotted.rpartition(".")
         classes.append(getattr(importlib.import_module(module), cls))
-    return (_HEADER.format(args=" --framework", source="the services in src/fprime_lite/svc/")
-            + export_components(classes))
+    from fprime_lite.model import fw_types
+
+    fw = [fw_type(getattr(fw_types, name)) for name in fw_types.__all__]
+    return (_HEADER.format(args=" --framework", source="the services in src/fprime_lite/svc/ and the Fw types "
+                                                       "of src/fprime_lite/model/fw_types.py")
+            + export_components(classes, also=fw))
 
 
 def deployment_texts(topology_path: str | pathlib.Path) -> dict[str, str]:

@@ -31,12 +31,15 @@ from typing import Any, Iterable
 
 from fprime_lite.deploy.fpp.export import SVC_COMPONENT_NAMES, framework_files
 from fprime_lite.deploy.topology import TopologyError
-from fprime_lite.model.component import ComponentSpec
+from fprime_lite.model.component import FRAMEWORK_CHANNELS, FRAMEWORK_EVENTS, ComponentSpec
 from fprime_lite.model.events import Severity
 
-__all__ = ["FppError", "FppModel", "FppInstance", "load_fpp", "register_implementation", "fpp_available"]
+__all__ = ["FppError", "FppModel", "FppInstance", "load_fpp", "check_components", "register_implementation", "fpp_available"]
 
 _REGISTRY: dict[str, type] = {}
+#: The events and channel fprime-lite gives every component (HandlerFault, HandlerFaults …): an FPP
+#: model need not declare them (fprime-lite's own FPP does, so that fpp-to-dict lists them too).
+_FRAMEWORK_MEMBERS = frozenset(FRAMEWORK_EVENTS) | frozenset(FRAMEWORK_CHANNELS)
 _ANNOTATION = re.compile(r"^\s*fprime-lite:\s*([A-Za-z_][\w.]*)\s*$")
 _SEVERITY = {"Fatal": Severity.FATAL, "WarningHigh": Severity.WARNING_HI, "WarningLow": Severity.WARNING_LO,
              "Command": Severity.COMMAND, "ActivityHigh": Severity.ACTIVITY_HI,
@@ -235,7 +238,7 @@ def _check_component(fpp_name: str, comp: Any, cls: type) -> list[str]:
         if [p.name for p in node.params] != [n for n, _ in pe.args]:
             refuse(node, f"event {name} takes ({', '.join(p.name for p in node.params)}) in FPP, "
                          f"({', '.join(n for n, _ in pe.args)}) in Python")
-    for name in py_events.keys() - seen:
+    for name in py_events.keys() - seen - _FRAMEWORK_MEMBERS:
         refuse(comp.node, f"{cls.__qualname__} declares event {name}, which the FPP component does not")
     # channels
     py_channels = {c.name: c for c in spec.channels}
@@ -252,7 +255,7 @@ def _check_component(fpp_name: str, comp: Any, cls: type) -> list[str]:
         update = "on change" if "OnChange" in str(channel.update) else "always"
         if update != pc.update:
             refuse(node, f"channel {name} updates {update} in FPP, {pc.update} in Python")
-    for name in py_channels.keys() - seen:
+    for name in py_channels.keys() - seen - _FRAMEWORK_MEMBERS:
         refuse(comp.node, f"{cls.__qualname__} declares channel {name}, which the FPP component does not")
     # parameters
     py_params = {p.name: p for p in spec.params}
@@ -324,6 +327,64 @@ def _diagnostics(model: Any) -> list[str]:
     return out
 
 
+def _analyze(paths: Iterable[str | pathlib.Path], imports: Iterable[str | pathlib.Path],
+             fprime_checkout: str | pathlib.Path | None) -> tuple[Any, list[str]]:
+    """(the analysed model, the source file names); raise FppError on any FPP error."""
+    if not fpp_available():
+        raise FppError(["FPP models need F´'s analyser: pip install 'fprime-lite[fpp]' (fprime-fpp-python)"])
+    import fpp
+
+    sources = [str(p) for p in paths]
+    imported = [str(p) for p in imports]
+    missing = [p for p in sources + imported if not pathlib.Path(p).is_file()]
+    if missing:
+        raise FppError([f"{p}: no such FPP file — give the path of a .fpp file" for p in missing])
+    if not sources:
+        raise FppError(["no FPP file given — name the .fpp files of a topology or of components"])
+    extra = [] if fprime_checkout is not None else [str(p) for p in framework_files()]
+    model = fpp.analyze(sources, imports=imported + extra or None)
+    problems = _diagnostics(model)
+    if problems:
+        raise FppError(problems)
+    return model, sources
+
+
+def _bind(comp_name: str, comp: Any, explicit: dict[str, type], problems: list[str]) -> type | None:
+    """The class implementing ``comp`` (problems appended when there is none or it does not fit)."""
+    cls, how = _implementation(comp_name, comp.node, explicit)
+    if cls is None:
+        problems.append(f"{_loc(comp.node)}: component {comp_name} has no Python implementation: {how}")
+        return None
+    found = _check_component(comp_name, comp, cls)
+    problems += found
+    return None if found else cls
+
+
+def check_components(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pathlib.Path] = (),
+                     fprime_checkout: str | pathlib.Path | None = None,
+                     implementations: dict[str, type] | None = None) -> dict[str, type]:
+    """Bind every component defined in ``paths`` (not in ``imports``) to its implementation; return
+    FPP name -> class, or raise :class:`FppError` listing every problem."""
+    model, sources = _analyze(paths, imports, fprime_checkout)
+    analysis = model.analysis
+    source_files = {str(pathlib.Path(p).resolve()) for p in sources}
+    explicit = dict(implementations or {})
+    problems: list[str] = []
+    bound: dict[str, type] = {}
+    for symbol, comp in analysis.component_map.items():
+        if str(pathlib.Path(str(comp.node.location.uri)).resolve()) not in source_files:
+            continue
+        name = analysis.get_qualified_name(symbol)
+        cls = _bind(name, comp, explicit, problems)
+        if cls is not None:
+            bound[name] = cls
+    if problems:
+        raise FppError(problems)
+    if not bound:
+        raise FppError([f"{', '.join(sources)}: no component definition — give the files that define components"])
+    return bound
+
+
 def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pathlib.Path] = (),
              fprime_checkout: str | pathlib.Path | None = None,
              implementations: dict[str, type] | None = None) -> FppModel:
@@ -331,34 +392,24 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
     the components of its topology; raise :class:`FppError` listing every problem.
 
     The framework's definitions come from fprime-lite's ``framework/*.fpp`` unless
-    ``fprime_checkout`` names an F´ checkout whose ``default/config`` and ``Fw``/``Svc`` FPP files
-    are given in ``imports`` instead (then nothing of fprime-lite's is added)."""
-    if not fpp_available():
-        raise FppError(["FPP models need F´'s analyser: pip install 'fprime-lite[fpp]' (fprime-fpp-python)"])
+    ``fprime_checkout`` is given: then the user's F´ files given in ``imports`` stand in for them
+    and nothing of fprime-lite's is added."""
     import fpp
 
-    sources = [str(p) for p in paths]
-    missing = [p for p in sources + [str(i) for i in imports] if not pathlib.Path(p).is_file()]
-    if missing:
-        raise FppError([f"{p}: no such FPP file — give the path of a .fpp file" for p in missing])
-    extra = [] if fprime_checkout is not None else [str(p) for p in framework_files()]
-    model = fpp.analyze(sources, imports=[str(p) for p in imports] + extra or None)
-    problems = _diagnostics(model)
-    if problems:
-        raise FppError(problems)
+    model, sources = _analyze(paths, imports, fprime_checkout)
     analysis = model.analysis
+    source_files = {str(pathlib.Path(p).resolve()) for p in sources}
     topologies = [(s, t) for s, t in analysis.topology_map.items()
-                  if any(u.is_source for u in model.ast if str(u.uri) == str(t.node.location.uri))]
-    if not topologies:
-        topologies = list(analysis.topology_map.items())
+                  if str(pathlib.Path(str(t.node.location.uri)).resolve()) in source_files]
     if len(topologies) != 1:
         raise FppError([f"{', '.join(sources)}: {len(topologies)} topologies — give the files of exactly one "
-                        f"topology (its components may come from imports)"])
+                        f"topology (its components may come from imports), or check components alone with "
+                        f"check_components"])
     symbol, topology = topologies[0]
     qualified = analysis.get_qualified_name(symbol)
     result = FppModel(qualified.rsplit(".", 1)[-1])
     explicit = dict(implementations or {})
-    problems = []
+    problems: list[str] = []
     checked: dict[str, type | None] = {}
     for instance in topology.instance_map:
         if not isinstance(instance, fpp.InterfaceInstance.Component) or instance.component is None:
@@ -367,13 +418,10 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
         comp: Any = instance.component
         comp_name = analysis.get_qualified_name(comp.symbol)
         if comp_name not in checked:
-            cls, how = _implementation(comp_name, comp.node, explicit)
-            checked[comp_name] = cls
-            if cls is None:
-                problems.append(f"{_loc(comp.node)}: component {comp_name} has no Python implementation: {how}")
-            else:
-                problems += _check_component(comp_name, comp, cls)
-                result.bindings[comp_name] = cls
+            implementation = _bind(comp_name, comp, explicit, problems)
+            checked[comp_name] = implementation
+            if implementation is not None:
+                result.bindings[comp_name] = implementation
         bound: Any = checked[comp_name]
         if bound is None:
             continue
@@ -383,8 +431,7 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
         result.instances[name] = FppInstance(module, view, comp_name, inst.queue_size, inst.priority, _loc(inst.node))
     if problems:
         raise FppError(problems)
-    for connection in _connections(topology):
-        result.connections.append(connection)
+    result.connections.extend(_connections(topology))
     return result
 
 

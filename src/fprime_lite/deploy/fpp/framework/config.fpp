@@ -14,6 +14,10 @@ type PlatformTaskPriorityType = U8
 type PlatformTaskIdType = I32
 type PlatformQueuePriorityType = U8
 
+# --- sizes ------------------------------------------------------------------------------------
+# The size of F´'s fixed-length strings (Fw::String), in bytes
+constant FW_FIXED_LENGTH_STRING_SIZE = 256
+
 # --- the framework's integer aliases ---------------------------------------------------------
 type FwSizeType = PlatformSizeType
 type FwSignedSizeType = PlatformSignedSizeType

@@ -61,6 +61,19 @@ module Fw {
   port BufferSend(ref fwBuffer: Fw.Buffer)
   port Signal()
 
+  # The level of a digital line
+  enum Logic { HIGH = 0, LOW = 1 }
+
+}
+
+module Drv {
+
+  # F´'s GPIO driver ports (a PROVES load switch drives one); fprime-lite's simulated drivers do
+  # not implement them
+  enum GpioStatus { OP_OK = 0, NOT_OPENED = 1, INVALID_MODE = 2, UNKNOWN_ERROR = 3 }
+  port GpioWrite($state: Fw.Logic) -> GpioStatus
+  port GpioRead(ref $state: Fw.Logic) -> GpioStatus
+
 }
 
 module Svc {
@@ -73,6 +86,11 @@ module Svc {
   port CmdSeqCancel()
   port WatchDog(code: U32)
   port FileAnnounce(ref file_name: Fw.String)
+  # The time interface a time source implements (F´ v4: `import Svc.Time`)
+  interface Time {
+    sync input port timeGetPort: Fw.Time
+  }
+
   port Version(ref version_id: VersionCfg.VersionEnum, ref version_string: Fw.String, ref status: VersionStatus)
 
 }

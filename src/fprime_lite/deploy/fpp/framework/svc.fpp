@@ -1,4 +1,4 @@
-# Written by fprime-lite (python -m fprime_lite.deploy.fpp.export --framework) from the services in src/fprime_lite/svc/.
+# Written by fprime-lite (python -m fprime_lite.deploy.fpp.export --framework) from the services in src/fprime_lite/svc/ and the Fw types of src/fprime_lite/model/fw_types.py.
 # Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp_export.py checks it is current.
 
 module Fw {
@@ -25,6 +25,11 @@ module Fw {
     ENABLED = 1
   } default DISABLED
 
+  enum On : I32 {
+    OFF = 0
+    ON = 1
+  } default OFF
+
   enum StringFormatStatus : U8 {
     SUCCESS = 0
     OVERFLOWED = 1
@@ -32,6 +37,16 @@ module Fw {
     SIZE_OVERFLOW = 3
     OTHER_ERROR = 4
   } default SUCCESS
+
+  enum Success : U8 {
+    SUCCESS = 0
+    FAILURE = 1
+  } default SUCCESS
+
+  struct TimeIntervalValue {
+    seconds: U32
+    useconds: U32
+  } default { seconds = 0, useconds = 0 }
 }
 
 module Svc {
