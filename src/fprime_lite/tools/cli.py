@@ -196,6 +196,8 @@ def build_parser() -> argparse.ArgumentParser:
     new.add_argument("--dir", default=".", metavar="DIR", help="the folder to write into (default: .)")
     new.add_argument("--component", default="Counter", metavar="NAME",
                      help="deployment only: the name of its component (default: Counter)")
+    new.add_argument("--fpp", action="store_true", help="component only: write its interface as NAME.fpp and "
+                     "a Python class with the handlers only (docs/fpp.md)")
 
     bench = sub.add_parser("bench", help="measure speed and memory", add_help=False)
     bench.add_argument("args", nargs=argparse.REMAINDER)
@@ -535,7 +537,9 @@ def cmd_new(args) -> int:
 
     try:
         if args.kind == "component":
-            written = new_component(args.name, args.dir)
+            written = new_component(args.name, args.dir, fpp=args.fpp)
+        elif args.fpp:
+            raise UserError("--fpp applies to 'new component'; a deployment's topology is YAML")
         else:
             written = new_deployment(args.name, args.dir, component=args.component)
     except SkeletonError as exc:

@@ -32,9 +32,12 @@ from typing import Any, Iterable
 from fprime_lite.deploy.fpp.export import SVC_COMPONENT_NAMES, framework_files
 from fprime_lite.deploy.topology import TopologyError
 from fprime_lite.model.component import FRAMEWORK_CHANNELS, FRAMEWORK_EVENTS, ComponentSpec
+from fprime_lite.deploy.fpp.synthesize import declares_nothing, synthesize
+from fprime_lite.model.errors import DeclarationError
 from fprime_lite.model.events import Severity
 
-__all__ = ["FppError", "FppModel", "FppInstance", "load_fpp", "check_components", "register_implementation", "fpp_available"]
+__all__ = ["FppError", "FppModel", "FppInstance", "load_fpp", "check_components", "register_implementation",
+           "fpp_available", "component_class"]
 
 _REGISTRY: dict[str, type] = {}
 #: The events and channel fprime-lite gives every component (HandlerFault, HandlerFaults …): an FPP
@@ -161,9 +164,12 @@ def _implementation(fpp_name: str, node: Any, explicit: dict[str, type]) -> tupl
     folder = pathlib.Path(str(node.location.uri)).parent
     candidate = folder / f"{_snake(short)}.py"
     if candidate.is_file():
-        if str(folder) not in sys.path:
+        if str(folder) not in sys.path:  # so that the module's own imports of its neighbours work
             sys.path.insert(0, str(folder))
-        module = importlib.import_module(candidate.stem)
+        try:
+            module = _module_at(candidate)
+        except Exception as exc:  # noqa: BLE001 - the user's module failed to import: reported, not raised
+            return None, f"{candidate} does not import: {type(exc).__name__}: {exc}"
         cls = getattr(module, short, None)
         if isinstance(cls, type):
             return cls, f"naming rule {candidate}"
@@ -172,7 +178,22 @@ def _implementation(fpp_name: str, node: Any, explicit: dict[str, type]) -> tupl
                   f"beside {node.location.uri}")
 
 
-def _check_component(fpp_name: str, comp: Any, cls: type) -> list[str]:
+def _module_at(path: pathlib.Path) -> Any:
+    """The module of file ``path`` (loaded from that file even when a module of the same name from
+    another folder was imported before)."""
+    loaded = sys.modules.get(path.stem)
+    if loaded is not None and pathlib.Path(getattr(loaded, "__file__", "") or "").resolve() == path.resolve():
+        return loaded
+    spec = importlib.util.spec_from_file_location(path.stem, path)
+    if spec is None or spec.loader is None:
+        raise ImportError(f"cannot load {path}")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[path.stem] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def _check_component(fpp_name: str, comp: Any, cls: type, analysis: Any) -> list[str]:
     """Every difference between FPP component ``comp`` and the class ``cls`` implementing it."""
     spec: ComponentSpec | None = getattr(cls, "__fprime_spec__", None)
     where_py = _python_loc(cls)
@@ -299,7 +320,7 @@ def _check_component(fpp_name: str, comp: Any, cls: type) -> list[str]:
             refuse(node, f"port {name} is an {direction} in FPP, an {py_port[0]} in Python", handler)
         if port.size != py_port[2]:
             refuse(node, f"port {name} has {port.size} index(es) in FPP, {py_port[2]} in Python", handler)
-        fpp_type = _port_type_name(port)
+        fpp_type = _port_type_name(port, analysis)
         if fpp_type is not None and fpp_type != py_port[3]:
             refuse(node, f"port {name} is of type {fpp_type} in FPP, {py_port[3]} in Python", handler)
     for name in py_ports.keys() - seen:
@@ -308,15 +329,11 @@ def _check_component(fpp_name: str, comp: Any, cls: type) -> list[str]:
     return out
 
 
-def _port_type_name(port: Any) -> str | None:
-    ty = port.ty
-    symbol = getattr(ty, "symbol", None) or getattr(ty, "def_", None)
-    if symbol is None:
-        return None
-    name = getattr(symbol, "qualified_name", None)
-    if isinstance(name, str):
-        return name
-    return None
+def _port_type_name(port: Any, analysis: Any) -> str | None:
+    """The qualified name of a general port instance's port type (None for a serial port)."""
+    definition = getattr(port.ty, "definition", None)
+    symbol = analysis.symbol_map.get(definition.node_id) if definition is not None else None
+    return analysis.get_qualified_name(symbol) if symbol is not None else None
 
 
 def _diagnostics(model: Any) -> list[str]:
@@ -349,13 +366,21 @@ def _analyze(paths: Iterable[str | pathlib.Path], imports: Iterable[str | pathli
     return model, sources
 
 
-def _bind(comp_name: str, comp: Any, explicit: dict[str, type], problems: list[str]) -> type | None:
-    """The class implementing ``comp`` (problems appended when there is none or it does not fit)."""
+def _bind(comp_name: str, comp: Any, explicit: dict[str, type], problems: list[str], analysis: Any) -> type | None:
+    """The class implementing ``comp`` (problems appended when there is none or it does not fit): the
+    class itself when it declares its members, checked against the FPP; the class the FPP makes of
+    it when it supplies handlers only (:mod:`~fprime_lite.deploy.fpp.synthesize`)."""
     cls, how = _implementation(comp_name, comp.node, explicit)
     if cls is None:
         problems.append(f"{_loc(comp.node)}: component {comp_name} has no Python implementation: {how}")
         return None
-    found = _check_component(comp_name, comp, cls)
+    if declares_nothing(cls):
+        try:
+            cls = synthesize(comp_name, comp, cls, analysis, _loc)
+        except DeclarationError as exc:
+            problems.append(f"{exc} — {_python_loc(cls)}")
+            return None
+    found = _check_component(comp_name, comp, cls, analysis)
     problems += found
     return None if found else cls
 
@@ -375,7 +400,7 @@ def check_components(paths: Iterable[str | pathlib.Path], *, imports: Iterable[s
         if str(pathlib.Path(str(comp.node.location.uri)).resolve()) not in source_files:
             continue
         name = analysis.get_qualified_name(symbol)
-        cls = _bind(name, comp, explicit, problems)
+        cls = _bind(name, comp, explicit, problems, analysis)
         if cls is not None:
             bound[name] = cls
     if problems:
@@ -418,7 +443,7 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
         comp: Any = instance.component
         comp_name = analysis.get_qualified_name(comp.symbol)
         if comp_name not in checked:
-            implementation = _bind(comp_name, comp, explicit, problems)
+            implementation = _bind(comp_name, comp, explicit, problems, analysis)
             checked[comp_name] = implementation
             if implementation is not None:
                 result.bindings[comp_name] = implementation
@@ -446,3 +471,18 @@ def _connections(topology: Any) -> list[tuple[str, str, int, str, str, int]]:
                         from_numbers.get(c, 0), target.interface_instance.qualified_name,
                         target.unqualified_name.rsplit(".", 1)[-1], to_numbers.get(c, 0)))
     return out
+
+
+def component_class(paths: str | pathlib.Path | Iterable[str | pathlib.Path], name: str | None = None, *,
+                    imports: Iterable[str | pathlib.Path] = (),
+                    implementations: dict[str, type] | None = None) -> type:
+    """The component class FPP file(s) ``paths`` define, bound to its implementation (the class
+    itself, checked, or the one made from a handlers-only class): what a harness test takes.
+    ``name`` (``Components.Counter``) chooses among several components."""
+    files = [paths] if isinstance(paths, (str, pathlib.Path)) else list(paths)
+    bound = check_components(files, imports=imports, implementations=implementations)
+    if name is None and len(bound) == 1:
+        return next(iter(bound.values()))
+    if name not in bound:
+        raise FppError([f"{', '.join(map(str, files))}: no component {name!r}; they define {', '.join(bound)}"])
+    return bound[name]

@@ -1,0 +1,62 @@
+"""FPP component definitions bound to Python classes that supply handlers only (docs/fpp.md), and
+`fprime-lite new component NAME --fpp` (issue 30)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+pytest.importorskip("fpp", reason="FPP models need fprime-fpp-python (the test extra installs it)")
+
+from fprime_lite.deploy.fpp.loader import FppError, component_class  # noqa: E402
+from fprime_lite.tools.cli import main  # noqa: E402
+
+
+@pytest.fixture
+def skeleton(tmp_path, capsys):
+    assert main(["new", "component", "MyHeater", "--fpp", "--dir", str(tmp_path)]) == 0
+    capsys.readouterr()
+    return tmp_path
+
+
+@pytest.mark.slow  # a pytest run in a subprocess (several seconds)
+def test_the_fpp_skeleton_passes_its_own_harness_test(skeleton):
+    """FPPC-001: `new component NAME --fpp` writes NAME.fpp, a handlers-only class and a harness
+    test that passes as written."""
+    assert sorted(p.name for p in skeleton.iterdir()) == ["my_heater.fpp", "my_heater.py", "test_my_heater.py"]
+    done = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", str(skeleton)],
+                          cwd=skeleton, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "1 passed" in done.stdout
+
+
+def test_the_fpp_declares_what_the_class_gets(skeleton, monkeypatch):
+    """FPPC-002: the bound class has the FPP's members with the FPP's ids, opcodes and default."""
+    monkeypatch.syspath_prepend(str(skeleton))
+    cls = component_class(skeleton / "my_heater.fpp")
+    spec = cls.__fprime_spec__
+    assert [c.name for c in spec.commands] == ["RESET", "STEP_PRM_SET", "STEP_PRM_SAVE"]
+    assert [c.opcode for c in spec.commands] == [0, 1, 2]
+    assert spec.param("STEP").default == 1
+    assert spec.event("Counted").format == "Count is now {}"
+    assert spec.channel("Count").update == "on change"
+    assert spec.inputs["run"].port_type.name == "Svc.Sched"
+
+
+@pytest.mark.parametrize("old, new, expected", [
+    ("def RESET(self)", "def RESET_LATER(self)", "my_heater.fpp:22:5: command RESET has no handler"),
+    ("def run(self, context: int)", "def run(self)", "my_heater.fpp:19:5: input port run:"),
+])
+def test_a_handler_that_is_missing_or_does_not_fit_is_refused(skeleton, monkeypatch, old, new, expected):
+    """FPPC-003: a missing handler, or one whose signature does not fit its port, is refused with
+    the FPP file:line and the Python class's file:line."""
+    monkeypatch.syspath_prepend(str(skeleton))
+    module = skeleton / "my_heater.py"
+    module.write_text(module.read_text().replace(old, new))
+    with pytest.raises(FppError) as caught:
+        component_class(skeleton / "my_heater.fpp")
+    (problem,) = caught.value.problems
+    assert problem.startswith(str(skeleton / expected)) or expected in problem, problem
+    assert "my_heater.py:" in problem
