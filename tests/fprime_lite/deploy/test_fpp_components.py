@@ -60,3 +60,47 @@ def test_a_handler_that_is_missing_or_does_not_fit_is_refused(skeleton, monkeypa
     (problem,) = caught.value.problems
     assert problem.startswith(str(skeleton / expected)) or expected in problem, problem
     assert "my_heater.py:" in problem
+
+
+@pytest.fixture
+def fpp_deployment(tmp_path, capsys):
+    """A deployment skeleton whose component is the FPP one: `type: fpp:counter.fpp:...`."""
+    assert main(["new", "deployment", "Dep", "--dir", str(tmp_path)]) == 0
+    folder = tmp_path / "Dep"
+    for name in ("counter.py", "counter.md", "test_counter.py"):
+        (folder / name).unlink()
+    assert main(["new", "component", "Counter", "--fpp", "--dir", str(folder)]) == 0
+    topology = folder / "topology.yaml"
+    text = topology.read_text()
+    assert "{type: counter.Counter," in text
+    topology.write_text(text.replace("{type: counter.Counter,", '{type: "fpp:counter.fpp:Components.Counter",'))
+    capsys.readouterr()
+    return folder
+
+
+@pytest.mark.slow  # flies 3 simulated seconds
+def test_a_yaml_topology_takes_an_fpp_component_and_flies_it(fpp_deployment, capsys):
+    """FPPC-004: a YAML instance `type: fpp:FILE.fpp:Module.Component` is the FPP component bound to
+    its handlers; the deployment checks, has its commands in the dictionary and flies."""
+    from fprime_lite.tools import run
+
+    topology = fpp_deployment / "topology.yaml"
+    assert main(["check", str(topology)]) == 0
+    out = fpp_deployment / "d.json"
+    assert main(["dict", str(topology), "-o", str(out)]) == 0
+    import json
+
+    names = {c["name"] for c in json.loads(out.read_text())["commands"]}
+    assert {"Dep.counter.RESET", "Dep.counter.STEP_PRM_SET"} <= names
+    result = run(str(topology), duration_s=3, out=str(fpp_deployment / "run"))
+    assert result.ok
+    assert (result.events.name == "Dep.counter.Counted").sum() == 4  # ticks at 0, 1, 2 and 3 s
+
+
+def test_a_yaml_reference_to_a_missing_fpp_file_is_refused(fpp_deployment, capsys):
+    """FPPC-005: a reference to an FPP file that is not there is a topology problem with its line."""
+    topology = fpp_deployment / "topology.yaml"
+    topology.write_text(topology.read_text().replace("fpp:counter.fpp:", "fpp:nothere.fpp:"))
+    assert main(["check", str(topology)]) == 2
+    err = capsys.readouterr().err
+    assert "topology.yaml:11:" in err and "nothere.fpp: no such FPP file" in err

@@ -196,10 +196,9 @@ def _module_at(path: pathlib.Path) -> Any:
 def _check_component(fpp_name: str, comp: Any, cls: type, analysis: Any) -> list[str]:
     """Every difference between FPP component ``comp`` and the class ``cls`` implementing it."""
     spec: ComponentSpec | None = getattr(cls, "__fprime_spec__", None)
-    where_py = _python_loc(cls)
     if spec is None:
         return [f"{_loc(comp.node)}: {fpp_name} is implemented by {cls.__qualname__}, which is not a component "
-                f"class — {where_py}"]
+                f"class — {_python_loc(cls)}"]
     out: list[str] = []
 
     def refuse(node: Any, what: str, member: Any = None) -> None:
