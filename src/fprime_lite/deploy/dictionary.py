@@ -18,6 +18,7 @@ import json
 from fprime_lite import __version__
 from fprime_lite.osal.atomic import atomic_write_text
 from fprime_lite.model.commands import CmdResponse
+from fprime_lite.model.params import Param
 from fprime_lite.wire.com_cfg import CONSTANTS
 from fprime_lite.wire.packets import Apid
 from fprime_lite.model.time import TIME, TimeBase
@@ -111,6 +112,16 @@ def param_annotation(units: str) -> str:
     return f"units: {units}"
 
 
+def _annotation(member) -> str | None:
+    """A member's ``annotation``: the ``@`` comment of its FPP definition (a component bound from
+    FPP, docs/fpp.md), else a parameter's units (``units: …``), else none."""
+    text = getattr(member, "annotation", None)
+    if isinstance(text, str):
+        return text
+    units = getattr(member, "units", None)
+    return param_annotation(units) if isinstance(member, Param) and units is not None else None
+
+
 def _params(collector: _TypeCollector, args) -> list[dict]:
     return [{"name": n, "type": collector.add(t), "ref": False} for n, t in args]
 
@@ -135,14 +146,17 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
             if c.kind == "async":
                 entry["priority"] = c.priority
                 entry["queueFullBehavior"] = c.queue_full
-            if c.param is not None and c.param.units is not None:  # fpp-to-dict gives the commands
-                entry["annotation"] = param_annotation(c.param.units)  # their parameter's annotation
+            annotation = _annotation(c.param if c.param is not None else c)
+            if annotation is not None:  # fpp-to-dict gives a parameter's commands its annotation
+                entry["annotation"] = annotation
             commands.append(entry)
         for e in comp.spec.events:
             entry = {"name": f"{prefix}.{e.name}", "severity": e.severity.name, "id": comp.base_id + e.local_id,
                      "formalParams": _params(types, e.args), "format": e.format}
             if e.throttle is not None:
                 entry["throttle"] = e.throttle
+            if _annotation(e) is not None:
+                entry["annotation"] = _annotation(e)
             events.append(entry)
         for ch in comp.spec.channels:
             entry = {"name": f"{prefix}.{ch.name}", "type": types.add(ch.type), "id": comp.base_id + ch.local_id,
@@ -152,13 +166,15 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
             limits = {side: dict(levels) for side, levels in (("low", ch.low), ("high", ch.high)) if levels}
             if limits:
                 entry["limits"] = limits
+            if _annotation(ch) is not None:
+                entry["annotation"] = _annotation(ch)
             channels.append(entry)
         for p in comp.spec.params:
             entry = {"name": f"{prefix}.{p.name}", "type": types.add(p.type), "id": comp.base_id + p.local_id}
             if p.has_default:
                 entry["default"] = p.type.json_value(p.default)
-            if p.units is not None:
-                entry["annotation"] = param_annotation(p.units)
+            if _annotation(p) is not None:
+                entry["annotation"] = _annotation(p)
             params.append(entry)
     return {
         "metadata": {
@@ -177,7 +193,8 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
         "telemetryChannels": sorted(channels, key=lambda c: c["id"]),
         "records": [],
         "containers": [],
-        "telemetryPacketSets": [],
+        # an FPP topology's packets (deploy/fpp/loader.py); a YAML topology has none
+        "telemetryPacketSets": list(getattr(topology, "telemetry_packet_sets", [])),
     }
 
 

@@ -67,7 +67,8 @@ def test_top_level_keys_and_metadata(topology):
     assert d["metadata"]["deploymentName"] == "Demo"
     assert d["metadata"]["dictionarySpecVersion"] == "1.0.0"
     assert {c["qualifiedName"]: c["value"] for c in d["constants"]} == {
-        "ComCfg.SpacecraftId": 0x44, "ComCfg.TmFrameFixedSize": 1024}
+        "ComCfg.SpacecraftId": 0x44, "ComCfg.TmFrameFixedSize": 1024,
+        "Fw.DpCfg.CONTAINER_USER_DATA_SIZE": 32}  # fpp-to-dict lists it in every dictionary
 
 
 def test_names_are_module_qualified_with_global_ids(topology):

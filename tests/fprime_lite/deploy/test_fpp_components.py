@@ -104,3 +104,63 @@ def test_a_yaml_reference_to_a_missing_fpp_file_is_refused(fpp_deployment, capsy
     assert main(["check", str(topology)]) == 2
     err = capsys.readouterr().err
     assert "topology.yaml:11:" in err and "nothere.fpp: no such FPP file" in err
+
+
+_PACKET_TOPOLOGY = """module Dep {
+  instance counter: Components.Counter base id 0x1000
+  instance counter2: Components.Counter base id 0x2000
+  %s Dep {
+    instance counter
+    instance counter2
+    telemetry packets DepPackets {
+      packet Counts id 1 group 1 {
+        counter.Count
+      }
+      packet Other id 2 group 2 {
+        counter2.Count
+      }
+    } omit {
+    }
+  }
+}
+"""
+
+
+@pytest.mark.slow  # runs fpp-to-dict
+def test_a_handlers_only_topology_with_packets_against_fpp_to_dict(tmp_path, capsys, monkeypatch):
+    """FPPC-006: an FPP topology of handlers-only components with a telemetry packet set gives the
+    dictionary fpp-to-dict gives (ids, opcodes, formats, packets), but for fprime-lite's own
+    members and the ground-system definitions docs/fpp.md lists. fpp-python 3.4 takes packets only
+    in a `deployment topology`, which fpp-to-dict 3.0 does not parse: each reads its own spelling."""
+    import json
+    import shutil
+
+    from fprime_lite.deploy.dictionary import build_dictionary
+    from fprime_lite.deploy.fpp import export
+    from fprime_lite.deploy.fpp.dict_diff import dictionary_differences
+    from fprime_lite.deploy.fpp.loader import load_fpp
+
+    tool = shutil.which("fpp-to-dict")
+    if tool is None:
+        pytest.skip("fpp-to-dict is not installed (pip install 'fprime-lite[fpp]' installs fprime-fpp-to-dict)")
+    assert main(["new", "component", "Counter", "--fpp", "--dir", str(tmp_path)]) == 0
+    monkeypatch.syspath_prepend(str(tmp_path))
+    (tmp_path / "ours.fpp").write_text(_PACKET_TOPOLOGY % "deployment topology")
+    (tmp_path / "theirs.fpp").write_text(_PACKET_TOPOLOGY % "topology")
+    ours = build_dictionary(load_fpp([tmp_path / "counter.fpp", tmp_path / "ours.fpp"]))  # type: ignore[arg-type]
+    out = tmp_path / "out"
+    out.mkdir()
+    imports = ",".join(str(p) for p in export.framework_files())
+    subprocess.run([tool, "-i", imports, str(tmp_path / "counter.fpp"), str(tmp_path / "theirs.fpp"), "-d", str(out)],
+                   check=True, capture_output=True, timeout=120)
+    theirs = json.loads((out / "DepTopologyDictionary.json").read_text())
+    assert ours["telemetryPacketSets"] == theirs["telemetryPacketSets"]
+    assert ours["telemetryPacketSets"][0]["members"][1]["members"] == ["Dep.counter2.Count"]
+    own = [f"events Dep.{i}.{e}: only in ours" for i in ("counter", "counter2")
+           for e in ("HandlerFault", "ParamDefaulted", "ParamSetRefused")]
+    own += [f"telemetryChannels Dep.{i}.HandlerFaults: only in ours" for i in ("counter", "counter2")]
+    ground = ["constants ComCfg.SpacecraftId: only in ours", "constants ComCfg.TmFrameFixedSize: only in ours",
+              "metadata.deploymentName differs: ours 'Dep' / fpp-to-dict 'Dep.Dep'"]
+    ground += [f"typeDefinitions {t}: only in ours"
+               for t in ("ComCfg.Apid", "Fw.CmdResponse", "FwIdType", "FwPrmIdType", "TimeBase")]
+    assert sorted(dictionary_differences(ours, theirs)) == sorted(own + ground)

@@ -103,6 +103,8 @@ class FppModel:
     connections: list[tuple[str, str, int, str, str, int]] = field(default_factory=list)
     #: FPP component name -> the class bound to it
     bindings: dict[str, type] = field(default_factory=dict)
+    #: the topology's telemetry packet sets, as the dictionary lists them
+    telemetry_packet_sets: list[dict] = field(default_factory=list)
 
     def to_dot(self) -> str:
         """The connection graph in Graphviz DOT."""
@@ -418,9 +420,9 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
     The framework's definitions come from fprime-lite's ``framework/*.fpp`` unless
     ``fprime_checkout`` is given: then the user's F´ files given in ``imports`` stand in for them
     and nothing of fprime-lite's is added."""
+    model, sources = _analyze(paths, imports, fprime_checkout)  # first: it says so when fpp is missing
     import fpp
 
-    model, sources = _analyze(paths, imports, fprime_checkout)
     analysis = model.analysis
     source_files = {str(pathlib.Path(p).resolve()) for p in sources}
     topologies = [(s, t) for s, t in analysis.topology_map.items()
@@ -456,7 +458,29 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
     if problems:
         raise FppError(problems)
     result.connections.extend(_connections(topology))
+    result.telemetry_packet_sets = _packet_sets(analysis, symbol, result)
     return result
+
+
+def _packet_sets(analysis: Any, symbol: Any, model: FppModel) -> list[dict]:
+    """The topology's telemetry packet sets: packets (id, group, channels by name) and the omitted
+    channels, in the dictionary's shape."""
+    dictionary = analysis.dictionary_map.get(symbol)
+    if dictionary is None:
+        return []
+    names = {}
+    for instance in model.instances.values():
+        component = instance.component
+        for channel in component.spec.channels:
+            names[component.base_id + channel.local_id] = f"{instance.qualified_name}.{channel.name}"
+    out = []
+    for name, packet_set in dictionary.tlm_packet_set_map.items():
+        members = [{"name": p.name, "id": packet_id, "group": p.group,
+                    "members": [names.get(i, str(i)) for i in p.member_id_list]}
+                   for packet_id, p in sorted(packet_set.packet_map.items())]
+        out.append({"name": name, "members": members,
+                    "omitted": [names.get(i, str(i)) for i in packet_set.omitted_id_set]})
+    return out
 
 
 def _connections(topology: Any) -> list[tuple[str, str, int, str, str, int]]:

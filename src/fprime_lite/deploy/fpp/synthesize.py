@@ -184,6 +184,7 @@ def synthesize(fpp_name: str, comp: Any, cls: type, analysis: Any, where: Callab
             body[command.name] = guarded_command(opcode=opcode)(fn)
         else:
             body[command.name] = sync_command(opcode=opcode)(fn)
+        _annotate(body[command.name].__fprime_command__, node)
     for event_id, event in comp.event_map.items():
         node = event.node
         if event.name in FRAMEWORK_EVENTS:
@@ -191,24 +192,33 @@ def synthesize(fpp_name: str, comp: Any, cls: type, analysis: Any, where: Callab
         args = [(p.name, types.of(p.type_name.resolved_type, f"{where(node)}: {event.name}({p.name})"))
                 for p in node.params]
         throttle = event.throttle.count if event.throttle is not None else None
-        body[event.name] = Event(_SEVERITY[str(node.severity).rsplit(".", 1)[-1]], node.format, id=event_id,
-                                 throttle=throttle, args=args)
+        body[event.name] = _annotate(Event(_SEVERITY[str(node.severity).rsplit(".", 1)[-1]], node.format,
+                                           id=event_id, throttle=throttle, args=args), node)
     for channel_id, channel in comp.tlm_channel_map.items():
         if channel.name in FRAMEWORK_CHANNELS:
             continue
         update = "on change" if "OnChange" in str(channel.update) else "always"
-        body[channel.name] = Channel(types.of(channel.channel_type, f"{where(channel.node)}: {channel.name}"),
-                                     id=channel_id, update=update)
+        body[channel.name] = _annotate(Channel(types.of(channel.channel_type, f"{where(channel.node)}: {channel.name}"),
+                                               id=channel_id, update=update), channel.node)
     for param_id, param in comp.param_map.items():
         ptype = types.of(param.param_type, f"{where(param.node)}: {param.name}")
         kwargs: dict[str, Any] = {"id": param_id, "set_opcode": param.set_opcode, "save_opcode": param.save_opcode}
         if param.default is not None:
             kwargs["default"] = _value(ptype, param.default)
-        body[param.name] = Param(ptype, **kwargs)
+        body[param.name] = _annotate(Param(ptype, **kwargs), param.node)
     try:
         return type(cls)(cls.__name__, (cls,), body)
     except DeclarationError as exc:
         raise DeclarationError(f"{where(comp.node)}: {exc}") from None
+
+
+def _annotate(decl: Any, node: Any) -> Any:
+    """Give ``decl`` the FPP member's ``@`` annotation, which the dictionary carries as fpp-to-dict
+    does (``annotation``; a parameter's commands carry the parameter's)."""
+    text = "\n".join(list(node.pre_annotation) + list(node.post_annotation))
+    if text:
+        decl.annotation = text
+    return decl
 
 
 def _value(t: FwType[Any], value: Any) -> Any:
