@@ -52,6 +52,9 @@ def _model_arg(p: argparse.ArgumentParser) -> None:
                    "components (docs/fpp.md)")
     p.add_argument("-i", "--imports", default="", metavar="FILE,FILE",
                    help="FPP files that only resolve references, as fpp-to-dict -i")
+    p.add_argument("--no-framework-fpp", action="store_true",
+                   help="FPP only: leave out fprime-lite's framework definitions (give your F´ checkout's "
+                   "FPP files with -i instead)")
 
 
 def _load_model(args):
@@ -66,10 +69,10 @@ def _load_model(args):
         if len(fpp_files) != len(paths):
             raise UserError(f"{' '.join(paths)}: give either FPP files or one topology YAML, not both")
         args.topology = " ".join(paths)
+        framework = not args.no_framework_fpp
         if args.command == "check" and not _defines_topology(fpp_files):
-            bound = check_components(fpp_files, imports=imports)
-            return bound, None
-        return load_fpp(fpp_files, imports=imports), None
+            return check_components(fpp_files, imports=imports, framework=framework), None
+        return load_fpp(fpp_files, imports=imports, framework=framework), None
     if len(paths) != 1:
         raise UserError(f"{' '.join(paths)}: give one topology YAML (several files are FPP files only)")
     args.topology = paths[0]

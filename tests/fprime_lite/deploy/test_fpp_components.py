@@ -164,3 +164,17 @@ def test_a_handlers_only_topology_with_packets_against_fpp_to_dict(tmp_path, cap
     ground += [f"typeDefinitions {t}: only in ours"
                for t in ("ComCfg.Apid", "Fw.CmdResponse", "FwIdType", "FwPrmIdType", "TimeBase")]
     assert sorted(dictionary_differences(ours, theirs)) == sorted(own + ground)
+
+
+def test_the_framework_definitions_can_come_from_the_user(skeleton, capsys, monkeypatch):
+    """FPPC-007: --no-framework-fpp leaves fprime-lite's framework FPP out: the model must then get
+    F´'s definitions from the user's files (-i), here the same files given by hand."""
+    from fprime_lite.deploy.fpp import export
+
+    monkeypatch.syspath_prepend(str(skeleton))
+    fpp_file = str(skeleton / "my_heater.fpp")
+    assert main(["check", fpp_file, "--no-framework-fpp"]) == 2
+    assert "in scope" in capsys.readouterr().err  # Svc.Sched, FwOpcodeType … are not defined without them
+    imports = ",".join(str(p) for p in export.framework_files())
+    assert main(["check", fpp_file, "--no-framework-fpp", "-i", imports]) == 0
+    assert "Components.MyHeater → my_heater.MyHeater" in capsys.readouterr().out

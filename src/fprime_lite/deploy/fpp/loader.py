@@ -346,7 +346,7 @@ def _diagnostics(model: Any) -> list[str]:
 
 
 def _analyze(paths: Iterable[str | pathlib.Path], imports: Iterable[str | pathlib.Path],
-             fprime_checkout: str | pathlib.Path | None) -> tuple[Any, list[str]]:
+             framework: bool) -> tuple[Any, list[str]]:
     """(the analysed model, the source file names); raise FppError on any FPP error."""
     if not fpp_available():
         raise FppError(["FPP models need F´'s analyser: pip install 'fprime-lite[fpp]' (fprime-fpp-python)"])
@@ -359,7 +359,7 @@ def _analyze(paths: Iterable[str | pathlib.Path], imports: Iterable[str | pathli
         raise FppError([f"{p}: no such FPP file — give the path of a .fpp file" for p in missing])
     if not sources:
         raise FppError(["no FPP file given — name the .fpp files of a topology or of components"])
-    extra = [] if fprime_checkout is not None else [str(p) for p in framework_files()]
+    extra = [str(p) for p in framework_files()] if framework else []
     model = fpp.analyze(sources, imports=imported + extra or None)
     problems = _diagnostics(model)
     if problems:
@@ -387,11 +387,10 @@ def _bind(comp_name: str, comp: Any, explicit: dict[str, type], problems: list[s
 
 
 def check_components(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pathlib.Path] = (),
-                     fprime_checkout: str | pathlib.Path | None = None,
-                     implementations: dict[str, type] | None = None) -> dict[str, type]:
+                     framework: bool = True, implementations: dict[str, type] | None = None) -> dict[str, type]:
     """Bind every component defined in ``paths`` (not in ``imports``) to its implementation; return
     FPP name -> class, or raise :class:`FppError` listing every problem."""
-    model, sources = _analyze(paths, imports, fprime_checkout)
+    model, sources = _analyze(paths, imports, framework)
     analysis = model.analysis
     source_files = {str(pathlib.Path(p).resolve()) for p in sources}
     explicit = dict(implementations or {})
@@ -412,15 +411,14 @@ def check_components(paths: Iterable[str | pathlib.Path], *, imports: Iterable[s
 
 
 def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pathlib.Path] = (),
-             fprime_checkout: str | pathlib.Path | None = None,
-             implementations: dict[str, type] | None = None) -> FppModel:
+             framework: bool = True, implementations: dict[str, type] | None = None) -> FppModel:
     """Analyse FPP ``paths`` (with ``imports`` to resolve references, as ``fpp-to-dict -i``) and bind
     the components of its topology; raise :class:`FppError` listing every problem.
 
-    The framework's definitions come from fprime-lite's ``framework/*.fpp`` unless
-    ``fprime_checkout`` is given: then the user's F´ files given in ``imports`` stand in for them
-    and nothing of fprime-lite's is added."""
-    model, sources = _analyze(paths, imports, fprime_checkout)  # first: it says so when fpp is missing
+    The framework's definitions come from fprime-lite's ``framework/*.fpp``; with ``framework=False``
+    nothing of fprime-lite's is added, and the F´ files of the user's checkout given in ``imports``
+    stand in for them."""
+    model, sources = _analyze(paths, imports, framework)  # first: it says so when fpp is missing
     import fpp
 
     analysis = model.analysis
