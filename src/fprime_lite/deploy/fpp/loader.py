@@ -223,10 +223,12 @@ def _check_component(fpp_name: str, comp: Any, cls: type, analysis: Any) -> list
                          f"command")
             continue
         handler = getattr(cls, name, None)
-        fpp_kind = str(command.kind).split("NonParamKind.", 1)[-1].split(">")[0].lower().rstrip(">")
-        fpp_kind = fpp_kind.split("(")[0]
+        fpp_kind = type(command.kind).__name__.lower()  # NonParamKind.Sync | Guarded | Async
         if fpp_kind != py.kind:
             refuse(node, f"command {name} is {fpp_kind} in FPP, {py.kind} in Python", handler)
+        elif fpp_kind == "async" and (command.kind.priority or 0) != py.priority:
+            refuse(node, f"command {name} has priority {command.kind.priority} in FPP, {py.priority} in Python",
+                   handler)
         if opcode != py.opcode:
             refuse(node, f"command {name} has opcode 0x{opcode:X} in FPP, 0x{py.opcode:X} in Python", handler)
         fpp_args = [p.name for p in node.params]
@@ -319,6 +321,10 @@ def _check_component(fpp_name: str, comp: Any, cls: type, analysis: Any) -> list
             continue
         if direction != py_port[0]:
             refuse(node, f"port {name} is an {direction} in FPP, an {py_port[0]} in Python", handler)
+        elif direction == "input":
+            fpp_kind = type(port.kind).__name__.replace("Input", "").lower()  # SyncInput | GuardedInput | AsyncInput
+            if fpp_kind != py_port[1]:
+                refuse(node, f"input port {name} is {fpp_kind} in FPP, {py_port[1]} in Python", handler)
         if port.size != py_port[2]:
             refuse(node, f"port {name} has {port.size} index(es) in FPP, {py_port[2]} in Python", handler)
         fpp_type = _port_type_name(port, analysis)

@@ -141,7 +141,7 @@ def synthesize(fpp_name: str, comp: Any, cls: type, analysis: Any, where: Callab
         if type(port).__name__ != "General":
             continue
         port_type = _port_type(port, analysis, types, f"{where(port.node)}: port {name}")
-        if "Output" in str(port.kind):
+        if type(port.kind).__name__ == "Output":
             body[name] = OutputPort(port_type, size=port.size)
             continue
         fn = _copy(handler(name, port.node, "input port"), name)
@@ -149,12 +149,12 @@ def synthesize(fpp_name: str, comp: Any, cls: type, analysis: Any, where: Callab
             InputPortDecl(port_type, "sync", port.size, name=name).check_handler(cls.__qualname__, fn)
         except DeclarationError as exc:
             raise DeclarationError(f"{where(port.node)}: input port {name}: {exc}") from None
-        kind = str(port.kind)
-        if "Async" in kind:
+        kind = type(port.kind).__name__  # SyncInput | GuardedInput | AsyncInput
+        if kind == "AsyncInput":
             priority = getattr(port.kind, "priority", None) or 0
             queue_full = str(getattr(port.kind, "queue_full", "Assert")).rsplit(".", 1)[-1].lower()
             decorate = async_input(port_type, size=port.size, priority=priority, queue_full=queue_full)
-        elif "Guarded" in kind:
+        elif kind == "GuardedInput":
             decorate = guarded_input(port_type, size=port.size)
         else:
             decorate = sync_input(port_type, size=port.size)
@@ -175,12 +175,12 @@ def synthesize(fpp_name: str, comp: Any, cls: type, analysis: Any, where: Callab
             raise DeclarationError(f"{where(node)}: command {command.name} takes ({declared}); "
                                    f"{cls.__qualname__}.{command.name} takes ({', '.join(user)})")
         fn.__signature__ = inspect.Signature(params)
-        kind = str(command.kind)
-        if "Async" in kind:
+        kind = type(command.kind).__name__  # Sync | Guarded | Async
+        if kind == "Async":
             priority = getattr(command.kind, "priority", None) or 0
             queue_full = str(getattr(command.kind, "queue_full", "Assert")).rsplit(".", 1)[-1].lower()
             body[command.name] = async_command(opcode=opcode, priority=priority, queue_full=queue_full)(fn)
-        elif "Guarded" in kind:
+        elif kind == "Guarded":
             body[command.name] = guarded_command(opcode=opcode)(fn)
         else:
             body[command.name] = sync_command(opcode=opcode)(fn)
