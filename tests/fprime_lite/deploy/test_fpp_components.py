@@ -178,3 +178,36 @@ def test_the_framework_definitions_can_come_from_the_user(skeleton, capsys, monk
     imports = ",".join(str(p) for p in export.framework_files())
     assert main(["check", fpp_file, "--no-framework-fpp", "-i", imports]) == 0
     assert "Components.MyHeater → my_heater.MyHeater" in capsys.readouterr().out
+
+
+def test_fpp_connection_patterns_connect_the_special_ports(tmp_path, capsys, monkeypatch):
+    """FPPC-008: an FPP topology's command, event and telemetry patterns, resolved by F´'s analyser
+    against fprime-lite's services (Svc.CommandDispatcher …), connect a component's special ports."""
+    from fprime_lite.deploy.fpp.loader import load_fpp
+
+    assert main(["new", "component", "Counter", "--fpp", "--dir", str(tmp_path)]) == 0
+    monkeypatch.syspath_prepend(str(tmp_path))
+    (tmp_path / "top.fpp").write_text("""module Dep {
+  instance cmdDisp: Svc.CommandDispatcher base id 0x100 queue size 10
+  instance events: Svc.EventManager base id 0x200 queue size 10
+  instance tlmSend: Svc.TlmChan base id 0x300 queue size 10
+  instance counter: Components.Counter base id 0x1000
+  topology Dep {
+    instance cmdDisp
+    instance events
+    instance tlmSend
+    instance counter
+    command connections instance cmdDisp
+    event connections instance events
+    telemetry connections instance tlmSend
+  }
+}
+""")
+    model = load_fpp([tmp_path / "counter.fpp", tmp_path / "top.fpp"])
+    counter = {c for c in model.connections if "Dep.counter" in (c[0], c[3])}
+    assert counter == {("Dep.cmdDisp", "compCmdSend", 0, "Dep.counter", "cmdIn", 0),
+                       ("Dep.counter", "cmdRegOut", 0, "Dep.cmdDisp", "compCmdReg", 0),
+                       ("Dep.counter", "cmdResponseOut", 0, "Dep.cmdDisp", "compCmdStat", 0),
+                       ("Dep.counter", "logOut", 0, "Dep.events", "LogRecv", 0),
+                       ("Dep.counter", "tlmOut", 0, "Dep.tlmSend", "TlmRecv", 0)}
+    assert model.instances["Dep.cmdDisp"].queue_size == 10
