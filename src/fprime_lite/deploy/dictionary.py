@@ -18,11 +18,12 @@ import json
 from fprime_lite import __version__
 from fprime_lite.osal.atomic import atomic_write_text
 from fprime_lite.model.commands import CmdResponse
+from fprime_lite.model.params import Param
 from fprime_lite.wire.com_cfg import CONSTANTS
 from fprime_lite.wire.packets import Apid
 from fprime_lite.model.time import TIME, TimeBase
 from fprime_lite.deploy.topology import Topology
-from fprime_lite.model.types import U8, U16, U32, Alias, FwType, fw_type
+from fprime_lite.model.types import U8, U16, U32, U64, Alias, FwEnum, FwType, fw_type
 
 __all__ = ["build_dictionary", "write_dictionary", "param_annotation", "FRAMEWORK_VERSION"]
 
@@ -44,6 +45,32 @@ FRAMEWORK_ALIASES = [
     Alias("FwTlmPacketizeIdType", U16),
 ]
 _TIME_CONTEXT = FRAMEWORK_ALIASES[8]
+
+
+class DpState(FwEnum, namespace="Fw", rep=U8):
+    """F´ ``Fw.DpState`` (fprime-lite has no data products; fpp-to-dict lists it in every dictionary)."""
+
+    UNTRANSMITTED = 0
+    PARTIAL = 1
+    TRANSMITTED = 2
+
+
+class ProcType(FwEnum, namespace="Fw.DpCfg", rep=U8, default="PROC_TYPE_NONE"):
+    """F´ ``Fw.DpCfg.ProcType`` (listed by fpp-to-dict in every dictionary, as ``Fw.DpState``)."""
+
+    PROC_TYPE_NONE = 0x00
+    PROC_TYPE_ZLIB_DEFLATE = 0x01
+    PROC_TYPE_ONE = 0x02
+    PROC_TYPE_TWO = 0x04
+
+
+#: The data-product definitions fpp-to-dict puts in every dictionary (F´'s framework definitions
+#: for data products), so that fprime-lite's dictionary is the one F´'s tool builds.
+_DP_ALIASES = [Alias("FwDpIdType", FwIdType), Alias("FwDpPriorityType", U32)]
+_FW_SIZE_TYPE = {"kind": "alias", "qualifiedName": "FwSizeType",
+                 "type": {"name": "PlatformSizeType", "kind": "qualifiedIdentifier"},
+                 "underlyingType": fw_type(U64).json_ref()}
+_DP_CONSTANTS = [("Fw.DpCfg.CONTAINER_USER_DATA_SIZE", U64, 32)]
 
 
 
@@ -85,6 +112,16 @@ def param_annotation(units: str) -> str:
     return f"units: {units}"
 
 
+def _annotation(member) -> str | None:
+    """A member's ``annotation``: the ``@`` comment of its FPP definition (a component bound from
+    FPP, docs/fpp.md), else a parameter's units (``units: …``), else none."""
+    text = getattr(member, "annotation", None)
+    if isinstance(text, str):
+        return text
+    units = getattr(member, "units", None)
+    return param_annotation(units) if isinstance(member, Param) and units is not None else None
+
+
 def _params(collector: _TypeCollector, args) -> list[dict]:
     return [{"name": n, "type": collector.add(t), "ref": False} for n, t in args]
 
@@ -94,8 +131,11 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
     types = _TypeCollector()
     for alias in FRAMEWORK_ALIASES:
         types.add(alias)
-    for framework_enum in (TimeBase, Apid, CmdResponse):
+    for framework_enum in (TimeBase, Apid, CmdResponse, DpState, ProcType):
         types.add(fw_type(framework_enum))
+    for alias in _DP_ALIASES:
+        types.add(alias)
+    types.definitions["FwSizeType"] = _FW_SIZE_TYPE
     commands, events, channels, params = [], [], [], []
     for instance in topology.instances.values():
         comp = instance.component
@@ -106,12 +146,17 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
             if c.kind == "async":
                 entry["priority"] = c.priority
                 entry["queueFullBehavior"] = c.queue_full
+            annotation = _annotation(c.param if c.param is not None else c)
+            if annotation is not None:  # fpp-to-dict gives a parameter's commands its annotation
+                entry["annotation"] = annotation
             commands.append(entry)
         for e in comp.spec.events:
             entry = {"name": f"{prefix}.{e.name}", "severity": e.severity.name, "id": comp.base_id + e.local_id,
                      "formalParams": _params(types, e.args), "format": e.format}
             if e.throttle is not None:
                 entry["throttle"] = e.throttle
+            if _annotation(e) is not None:
+                entry["annotation"] = _annotation(e)
             events.append(entry)
         for ch in comp.spec.channels:
             entry = {"name": f"{prefix}.{ch.name}", "type": types.add(ch.type), "id": comp.base_id + ch.local_id,
@@ -121,13 +166,15 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
             limits = {side: dict(levels) for side, levels in (("low", ch.low), ("high", ch.high)) if levels}
             if limits:
                 entry["limits"] = limits
+            if _annotation(ch) is not None:
+                entry["annotation"] = _annotation(ch)
             channels.append(entry)
         for p in comp.spec.params:
             entry = {"name": f"{prefix}.{p.name}", "type": types.add(p.type), "id": comp.base_id + p.local_id}
             if p.has_default:
                 entry["default"] = p.type.json_value(p.default)
-            if p.units is not None:
-                entry["annotation"] = param_annotation(p.units)
+            if _annotation(p) is not None:
+                entry["annotation"] = _annotation(p)
             params.append(entry)
     return {
         "metadata": {
@@ -138,14 +185,16 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
             "dictionarySpecVersion": DICTIONARY_SPEC_VERSION,
         },
         "typeDefinitions": list(types.definitions.values()),
-        "constants": [{"qualifiedName": n, "type": fw_type(t).json_ref(), "value": v} for n, t, v in CONSTANTS],
+        "constants": [{"kind": "constant", "qualifiedName": n, "type": fw_type(t).json_ref(), "value": v}
+                      for n, t, v in CONSTANTS + _DP_CONSTANTS],
         "commands": sorted(commands, key=lambda c: c["opcode"]),
         "parameters": sorted(params, key=lambda p: p["id"]),
         "events": sorted(events, key=lambda e: e["id"]),
         "telemetryChannels": sorted(channels, key=lambda c: c["id"]),
         "records": [],
         "containers": [],
-        "telemetryPacketSets": [],
+        # an FPP topology's packets (deploy/fpp/loader.py); a YAML topology has none
+        "telemetryPacketSets": list(getattr(topology, "telemetry_packet_sets", [])),
     }
 
 

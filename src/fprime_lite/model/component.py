@@ -269,11 +269,14 @@ def _build_spec(cls: Any) -> ComponentSpec:
             pdecl.finish(owner)
             spec.params.append(pdecl)
             prm = pdecl.name
-            ordered_commands.append((CommandDecl(f"{prm}_PRM_SET", "set", [("val", pdecl.type)],
+            # F´ names a parameter's commands after the name in upper case (SafeModeEntryVoltage:
+            # SAFEMODEENTRYVOLTAGE_PRM_SET), as fpp-to-dict's dictionary has them
+            ordered_commands.append((CommandDecl(f"{prm.upper()}_PRM_SET", "set", [("val", pdecl.type)],
                                                  requested_opcode=pdecl.set_opcode, param=pdecl),
-                                     f"command {prm}_PRM_SET"))
-            ordered_commands.append((CommandDecl(f"{prm}_PRM_SAVE", "save", [], requested_opcode=pdecl.save_opcode,
-                                                 param=pdecl), f"command {prm}_PRM_SAVE"))
+                                     f"command {prm.upper()}_PRM_SET"))
+            ordered_commands.append((CommandDecl(f"{prm.upper()}_PRM_SAVE", "save", [],
+                                                 requested_opcode=pdecl.save_opcode, param=pdecl),
+                                     f"command {prm.upper()}_PRM_SAVE"))
             if pdecl.echo is not None:
                 spec.echoes[prm] = _echo_members(owner, pdecl)
     generated_events = [event for event, _ in spec.echoes.values()]
@@ -646,11 +649,11 @@ class Component(metaclass=ComponentMeta):
             if end != len(args):
                 raise SerializationError(f"{len(args) - end} byte(s) left over")
         except SerializationError as exc:
-            log.info("%s: %s_PRM_SET: bad value: %s", self.name, decl.name, exc)
+            log.info("%s: %s_PRM_SET: bad value: %s", self.name, decl.name.upper(), exc)
             return CmdResponse.VALIDATION_ERROR
         problem = decl.invalid_reason(value)
         if problem is not None:
-            log.warning("%s: %s_PRM_SET refused: %s", self.name, decl.name, problem)
+            log.warning("%s: %s_PRM_SET refused: %s", self.name, decl.name.upper(), problem)
             self._events["ParamSetRefused"](fit_utf8(decl.name, 40), fit_utf8(problem, 120))
             return CmdResponse.VALIDATION_ERROR
         with self._lock:

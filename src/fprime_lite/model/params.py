@@ -5,7 +5,8 @@ Declared as attributes of a component class::
     GAIN = Param(F64, default=3.0, id=39, low=0.0, high=100.0)
 
 and read on an instance as ``self.GAIN.value`` (``self.GAIN.validity`` says where it came from).
-Each parameter ``P`` generates the commands ``P_PRM_SET(val)`` and ``P_PRM_SAVE``. At start-up the
+Each parameter ``P`` generates the commands ``P_PRM_SET(val)`` and ``P_PRM_SAVE`` (the name in upper
+case, as F´ spells them: ``Gain`` gives ``GAIN_PRM_SET``). At start-up the
 deployment calls ``load_parameters()``: every parameter is fetched from PrmDb through the param-get
 port, then the ``parameters_loaded()`` hook runs. A PRM_SET calls ``parameter_updated(local_id)``.
 

@@ -251,11 +251,11 @@ class ComponentHarness:
         validity, data = self._param_store.get(bound.id, (ParamValid.UNINIT, None))
         if data is None:
             raise FwAssertionError(f"harness: no value stored for {name}; call param_set({name!r}, value) first")
-        self.send_raw_command(self.component.opcode(f"{name}_PRM_SET"), data, cmd_seq=cmd_seq)
+        self.send_raw_command(self.component.opcode(f"{name.upper()}_PRM_SET"), data, cmd_seq=cmd_seq)
 
     def param_save(self, name: str, *, cmd_seq: int = 0) -> None:
         """Send the component's PRM_SAVE command for ``name``."""
-        self.send_raw_command(self.component.opcode(f"{name}_PRM_SAVE"), b"", cmd_seq=cmd_seq)
+        self.send_raw_command(self.component.opcode(f"{name.upper()}_PRM_SAVE"), b"", cmd_seq=cmd_seq)
 
     # --- time ------------------------------------------------------------------------------------
 

@@ -46,6 +46,49 @@ def _topology_arg(p: argparse.ArgumentParser) -> None:
                    help="topology YAML file (default: ./topology.yaml)")
 
 
+def _model_arg(p: argparse.ArgumentParser) -> None:
+    p.add_argument("topology", nargs="*", default=["topology.yaml"], metavar="MODEL",
+                   help="topology YAML file (default: ./topology.yaml), or FPP files of one topology and its "
+                   "components (docs/fpp.md)")
+    p.add_argument("-i", "--imports", default="", metavar="FILE,FILE",
+                   help="FPP files that only resolve references, as fpp-to-dict -i")
+    p.add_argument("--no-framework-fpp", action="store_true",
+                   help="FPP only: leave out fprime-lite's framework definitions (give your F´ checkout's "
+                   "FPP files with -i instead)")
+
+
+def _load_model(args):
+    """The FPP model (:class:`~fprime_lite.deploy.fpp.loader.FppModel`) the verb's files name, or the
+    YAML deployment; ``args.topology`` is left as one string for the messages."""
+    paths = list(args.topology)
+    fpp_files = [p for p in paths if p.endswith(".fpp")]
+    imports = [p for p in args.imports.split(",") if p]
+    if fpp_files or imports:
+        from fprime_lite.deploy.fpp.loader import check_components, load_fpp
+
+        if len(fpp_files) != len(paths):
+            raise UserError(f"{' '.join(paths)}: give either FPP files or one topology YAML, not both")
+        args.topology = " ".join(paths)
+        framework = not args.no_framework_fpp
+        if args.command == "check" and not _defines_topology(fpp_files):
+            return check_components(fpp_files, imports=imports, framework=framework), None
+        return load_fpp(fpp_files, imports=imports, framework=framework), None
+    if len(paths) != 1:
+        raise UserError(f"{' '.join(paths)}: give one topology YAML (several files are FPP files only)")
+    args.topology = paths[0]
+    loaded = _load(args.topology)
+    return loaded.topology, loaded
+
+
+def _defines_topology(paths: list[str]) -> bool:
+    """Whether one of the FPP files defines a topology (else ``check`` binds its components alone)."""
+    import re
+
+    pattern = re.compile(r"^\s*topology\s+\$?\w+\s*\{", re.MULTILINE)
+    return any(pattern.search(pathlib.Path(p).read_text(encoding="utf-8", errors="replace"))
+               for p in paths if pathlib.Path(p).is_file())
+
+
 def _parse(parser: argparse.ArgumentParser, argv) -> argparse.Namespace:
     """``parser.parse_args(argv)``, with a did-you-mean for a misspelt option of the chosen verb
     (``--duraton`` → ``--duration``)."""
@@ -111,7 +154,7 @@ def build_parser() -> argparse.ArgumentParser:
                      "space-packet-space-data-link (the GDS's default), fprime = fprime (default: ccsds)")
 
     dic = sub.add_parser("dict", help="write the F´ JSON dictionary")
-    _topology_arg(dic)
+    _model_arg(dic)
     dic.add_argument("-o", "--output", required=True, metavar="FILE",
                      help="where to write the dictionary ('-' for standard output)")
     dic.add_argument("--force", action="store_true", help="replace FILE even when it is not an F´ dictionary")
@@ -119,10 +162,10 @@ def build_parser() -> argparse.ArgumentParser:
                      "dictionary to start fprime-gds with)")
 
     check = sub.add_parser("check", help="validate a topology")
-    _topology_arg(check)
+    _model_arg(check)
 
     graph = sub.add_parser("graph", help="print the topology as DOT or Mermaid")
-    _topology_arg(graph)
+    _model_arg(graph)
     graph.add_argument("--format", choices=("dot", "mermaid"), default="dot")
     graph.add_argument("--patterns", action="store_true", help="include pattern connections (command, event, …)")
 
@@ -156,6 +199,8 @@ def build_parser() -> argparse.ArgumentParser:
     new.add_argument("--dir", default=".", metavar="DIR", help="the folder to write into (default: .)")
     new.add_argument("--component", default="Counter", metavar="NAME",
                      help="deployment only: the name of its component (default: Counter)")
+    new.add_argument("--fpp", action="store_true", help="component only: write its interface as NAME.fpp and "
+                     "a Python class with the handlers only (docs/fpp.md)")
 
     bench = sub.add_parser("bench", help="measure speed and memory", add_help=False)
     bench.add_argument("args", nargs=argparse.REMAINDER)
@@ -192,11 +237,18 @@ def cmd_check(args) -> int:
     from fprime_lite.deploy.preflight import topology_file_problems
     from fprime_lite.deploy.topology import TopologyError
 
-    loaded = _load(args.topology)
+    topo, loaded = _load_model(args)
+    if isinstance(topo, dict):
+        print(f"{args.topology}: OK — {len(topo)} FPP component(s) bound to their Python implementations: "
+              + ", ".join(f"{name} → {cls.__module__}.{cls.__qualname__}" for name, cls in topo.items()))
+        return 0
+    if loaded is None:
+        print(f"{args.topology}: OK — FPP topology {topo.deployment}: {len(topo.instances)} instances bound to their "
+              f"Python implementations, {len(topo.connections)} connections")
+        return 0
     problems = topology_file_problems(loaded)
     if problems:
         raise TopologyError(problems)
-    topo = loaded.topology
     print(f"{args.topology}: OK — deployment {topo.deployment}: {len(topo.instances)} instances, "
           f"{len(topo.connections)} connections")
     return 0
@@ -205,7 +257,9 @@ def cmd_check(args) -> int:
 def cmd_dict(args) -> int:
     from fprime_lite.deploy.dictionary import build_dictionary, write_dictionary
 
-    topology = _load(args.topology).topology
+    topology, loaded = _load_model(args)
+    if args.gds and loaded is None:
+        raise UserError("--gds adds the ground link to a YAML deployment; an FPP topology wires its own")
     if args.gds:
         from fprime_lite.deploy.com_stack import add_ground_link
 
@@ -251,7 +305,10 @@ def _replaceable_output(path: str, option: str, is_ours, what: str, force: bool)
 
 
 def cmd_graph(args) -> int:
-    topo = _load(args.topology).topology
+    topo, loaded = _load_model(args)
+    if loaded is None:
+        sys.stdout.write(topo.to_dot() if args.format == "dot" else topo.to_mermaid())
+        return 0
     sys.stdout.write(topo.to_dot(args.patterns) if args.format == "dot" else topo.to_mermaid(args.patterns))
     return 0
 
@@ -483,7 +540,9 @@ def cmd_new(args) -> int:
 
     try:
         if args.kind == "component":
-            written = new_component(args.name, args.dir)
+            written = new_component(args.name, args.dir, fpp=args.fpp)
+        elif args.fpp:
+            raise UserError("--fpp applies to 'new component'; a deployment's topology is YAML")
         else:
             written = new_deployment(args.name, args.dir, component=args.component)
     except SkeletonError as exc:

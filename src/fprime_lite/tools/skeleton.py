@@ -2,7 +2,8 @@
 
 A component skeleton is three files in the chosen folder: ``<name>.py`` (a passive component with a
 rate-group input, one command, one event, one channel and one parameter), ``test_<name>.py`` (its
-harness test) and ``<name>.md`` (a documentation stub). A deployment skeleton is a new folder
+harness test) and ``<name>.md`` (a documentation stub); with ``--fpp``, ``<name>.fpp`` (the same
+component in FPP), ``<name>.py`` (its handlers only) and ``test_<name>.py``. A deployment skeleton is a new folder
 ``NAME/`` holding a component skeleton (``--component``, default ``Counter``), ``topology.yaml``
 (CdhCore's command, event and telemetry services, a time source, and a 1 Hz rate group driving the
 component and the telemetry channelizer), ``test_deployment.py`` (flies the topology for a few
@@ -163,6 +164,96 @@ group; the run writes `runs/<timestamp>/` (see fprime-lite's docs/outputs.md).
 '''
 
 
+_FPP_COMPONENT = """module Components {{
+
+  @ {name}: a passive component (skeleton written by fprime-lite new component --fpp).
+  @ Each rate-group tick adds STEP to a counter, writes Count and logs Counted; RESET zeroes it.
+  @ The behaviour is in {module}.py (handlers only); this file is its interface.
+  passive component {name} {{
+
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+
+    @ One rate-group tick
+    sync input port run: Svc.Sched
+
+    @ Set the counter back to zero
+    sync command RESET opcode 0x0
+
+    @ The counter after a tick
+    event Counted(count: U32) severity activity low id 0x0 format "Count is now {{}}"
+
+    @ The counter
+    telemetry Count: U32 id 0x0 update on change
+
+    @ Added to the counter each tick
+    param STEP: U32 default 1 id 0x0 set opcode 0x1 save opcode 0x2
+
+  }}
+
+}}
+"""
+
+_FPP_HANDLERS = '''"""{name}'s behaviour: handlers only, as a .cpp has them; the interface is {module}.fpp.
+
+fprime-lite binds this class to the FPP component ``Components.{name}`` by the naming rule (class
+{name} in {module}.py beside {module}.fpp) and declares what the FPP declares (docs/fpp.md of
+fprime-lite). The members (``self.STEP``, ``self.Count``, ``self.Counted``) come from the FPP.
+"""
+from fprime_lite import CmdResponse, PassiveComponent
+
+
+class {name}(PassiveComponent):
+    def __init__(self, name: str, *, base_id: int = 0):
+        super().__init__(name, base_id=base_id)
+        self.count = 0
+
+    def run(self, context: int) -> None:
+        """Rate-group tick (input port run: Svc.Sched)."""
+        self.count += self.STEP.value
+        self.Count.write(self.count)
+        self.Counted(self.count)
+
+    def RESET(self) -> CmdResponse:  # noqa: N802 - F´ command names are upper case
+        """Command RESET: set the counter back to zero."""
+        self.count = 0
+        return CmdResponse.OK
+'''
+
+_FPP_TEST = '''"""The harness test of {name} (skeleton written by ``fprime-lite new component --fpp``)."""
+import pathlib
+
+from fprime_lite import CmdResponse, ParamValid
+from fprime_lite.deploy.fpp.loader import component_class
+
+#: {name} as {module}.fpp declares it, with the handlers of {module}.py
+{name} = component_class(pathlib.Path(__file__).with_name("{module}.fpp"))
+
+
+def test_each_tick_adds_step_and_reset_clears(fprime_harness):
+    h = fprime_harness({name}("{instance}", base_id=0x1000))
+    h.load_parameters()                                  # STEP takes its FPP default, 1
+    h.invoke("run", 0)
+    h.invoke("run", 0)
+    h.assert_tlm("Count", 1, 2)
+    h.assert_event("Counted", 1, 2)
+    h.send_command("RESET")
+    h.assert_cmd_response(0, "RESET", CmdResponse.OK)
+    h.param_set("STEP", 5, ParamValid.VALID)
+    h.load_parameters()
+    h.invoke_to_run(0, 0)                                # F´'s spelling: invoke_to_<port>(portNum, args)
+    h.assertTlm_Count(2, 5)
+    assert h.component.opcode("STEP_PRM_SET") == 0x1001  # the opcodes the FPP gives
+'''
+
+
 def _write_new(files: dict[pathlib.Path, str]) -> list[pathlib.Path]:
     existing = [str(p) for p in files if p.exists()]
     if existing:
@@ -181,13 +272,20 @@ def _component_files(name: str, folder: pathlib.Path) -> dict[pathlib.Path, str]
             folder / f"{module}.md": _COMPONENT_DOC.format(**fields)}
 
 
-def new_component(name: str, folder=".") -> list[pathlib.Path]:
-    """Write the skeleton of component ``name`` into ``folder`` (which must exist)."""
+def new_component(name: str, folder=".", *, fpp: bool = False) -> list[pathlib.Path]:
+    """Write the skeleton of component ``name`` into ``folder`` (which must exist); with ``fpp``, its
+    interface as ``<name>.fpp`` and a Python class with the handlers only (docs/fpp.md)."""
     _check_name(name, "component")
     folder = pathlib.Path(folder)
     if not folder.is_dir():
         raise SkeletonError(f"{folder}: no such folder — create it first or give --dir")
-    return _write_new(_component_files(name, folder))
+    if not fpp:
+        return _write_new(_component_files(name, folder))
+    module = module_name(name)
+    fields = {"name": name, "module": module, "instance": name[0].lower() + name[1:]}
+    return _write_new({folder / f"{module}.fpp": _FPP_COMPONENT.format(**fields),
+                       folder / f"{module}.py": _FPP_HANDLERS.format(**fields),
+                       folder / f"test_{module}.py": _FPP_TEST.format(**fields)})
 
 
 def new_deployment(name: str, parent=".", component: str = "Counter") -> list[pathlib.Path]:

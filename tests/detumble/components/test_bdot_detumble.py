@@ -97,7 +97,7 @@ def test_gain_parameter_scales_the_dipole(h):
     m1 = get(h).value.x
     h.param_set("Gain", 2.5)
     h.param_send("Gain", cmd_seq=3)
-    h.assert_cmd_response(0, "Gain_PRM_SET", CmdResponse.OK, cmd_seq=3)
+    h.assert_cmd_response(0, "GAIN_PRM_SET", CmdResponse.OK, cmd_seq=3)
     h.advance_time(useconds=100_000)
     h.mag.fields.append((0.32, 0.0, 0.4))  # same Ḃ again
     m2 = get(h).value.x

@@ -213,6 +213,6 @@ def test_bdot_detumble_gain_is_bounded(fprime_harness, bad):
 
     h = fprime_harness(BDotDetumble("bdotDetumble"))
     h.load_parameters()
-    h.send_raw_command(h.component.opcode("Gain_PRM_SET"), h.component.spec.param("Gain").type.serialize(bad))
-    h.assert_cmd_response(0, "Gain_PRM_SET", CmdResponse.VALIDATION_ERROR)
+    h.send_raw_command(h.component.opcode("GAIN_PRM_SET"), h.component.spec.param("Gain").type.serialize(bad))
+    h.assert_cmd_response(0, "GAIN_PRM_SET", CmdResponse.VALIDATION_ERROR)
     assert h.component.Gain.value == 1.0 and h.events_named("ParamSetRefused")[0][0] == "Gain"

@@ -67,7 +67,8 @@ def test_top_level_keys_and_metadata(topology):
     assert d["metadata"]["deploymentName"] == "Demo"
     assert d["metadata"]["dictionarySpecVersion"] == "1.0.0"
     assert {c["qualifiedName"]: c["value"] for c in d["constants"]} == {
-        "ComCfg.SpacecraftId": 0x44, "ComCfg.TmFrameFixedSize": 1024}
+        "ComCfg.SpacecraftId": 0x44, "ComCfg.TmFrameFixedSize": 1024,
+        "Fw.DpCfg.CONTAINER_USER_DATA_SIZE": 32}  # fpp-to-dict lists it in every dictionary
 
 
 def test_names_are_module_qualified_with_global_ids(topology):
@@ -105,7 +106,8 @@ def wheel_topology():
 
 def test_a_parameter_with_units_carries_them_as_its_annotation_after_default(wheel_topology):
     """UNITS-003: `units=` is the parameter's optional F´ `annotation` ("units: …"), written after
-    `default` as fpp-to-dict orders the fields; a parameter without units has no annotation, and no
+    `default` as fpp-to-dict orders the fields; its PRM_SET and PRM_SAVE commands carry the same
+    annotation (as fpp-to-dict gives them), a parameter without units has no annotation, and no
     other entry gains one."""
     d = build_dictionary(wheel_topology)
     params = {p["name"]: p for p in d["parameters"]}
@@ -114,7 +116,12 @@ def test_a_parameter_with_units_carries_them_as_its_annotation_after_default(whe
     assert spin["annotation"] == "units: deg/s, body +Z"
     assert params["Demo.wheel.FRICTION"]["annotation"] == "units: N·m·s/rad"
     assert list(params["Demo.wheel.LABEL"]) == ["name", "type", "id", "default"]
-    assert all("annotation" not in entry for key in ("commands", "events", "telemetryChannels") for entry in d[key])
+    commands = {c["name"]: c for c in d["commands"]}
+    assert commands["Demo.wheel.SPIN_RATE_PRM_SET"]["annotation"] == "units: deg/s, body +Z"
+    assert commands["Demo.wheel.SPIN_RATE_PRM_SAVE"]["annotation"] == "units: deg/s, body +Z"
+    assert "annotation" not in commands["Demo.wheel.LABEL_PRM_SET"]
+    assert all("annotation" not in entry for key in ("events", "telemetryChannels") for entry in d[key])
+    assert all("annotation" not in c for c in d["commands"] if not c["name"].endswith(("_PRM_SET", "_PRM_SAVE")))
 
 
 def test_fprime_gds_loads_parameters_with_annotations(wheel_topology, tmp_path):

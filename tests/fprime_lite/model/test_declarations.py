@@ -300,7 +300,7 @@ def test_channels_and_params_may_share_an_event_s_fprime_name_through_name():
 
     spec = Comp.__fprime_spec__
     assert [c.name for c in spec.own_channels] == ["Level"] and [p.name for p in spec.params] == ["Level"]
-    assert [c.name for c in spec.commands] == ["Level_PRM_SET", "Level_PRM_SAVE"]
+    assert [c.name for c in spec.commands] == ["LEVEL_PRM_SET", "LEVEL_PRM_SAVE"]
     comp = Comp("comp")
     assert comp.channels["Level"] is comp.Level_channel and comp.params["Level"] is comp.Level_param
     assert comp.events["Level"] is comp.Level

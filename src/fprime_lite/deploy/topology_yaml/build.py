@@ -90,6 +90,21 @@ def import_type(file: pathlib.Path, type_path: str, line: int | None, what: str,
     return obj
 
 
+def _fpp_component(spec: InstanceConfig, what: str, problems: Problems) -> Any:
+    """The component class of ``type: fpp:FILE.fpp[:Module.Component]`` (FILE relative to the
+    topology file), bound to its implementation; None with the problems reported."""
+    from fprime_lite.deploy.fpp.loader import FppError, component_class
+
+    file_part, _, name = spec.type_path[4:].partition(":")
+    path = (spec.file.parent / file_part).resolve()
+    try:
+        return component_class(path, name or None)
+    except FppError as exc:
+        for problem in exc.problems:
+            problems.add(spec.file, spec.type_line, f"{what}: {problem}")
+        return None
+
+
 class _Args:
     """Resolves ``$name`` references in constructor arguments."""
 
@@ -181,7 +196,10 @@ def build_instances(config: TopologyConfig, topology: Topology, resources: dict[
 def _build_instance(spec: InstanceConfig, config: TopologyConfig, topology: Topology, args: _Args,
                     problems: Problems) -> bool:
     what = f"instance {spec.qualified}"
-    cls = import_type(spec.file, spec.type_path, spec.type_line, what, problems)
+    if spec.type_path.startswith("fpp:"):
+        cls = _fpp_component(spec, what, problems)
+    else:
+        cls = import_type(spec.file, spec.type_path, spec.type_line, what, problems)
     if cls is None:
         return False
     if not (inspect.isclass(cls) and issubclass(cls, Component)):

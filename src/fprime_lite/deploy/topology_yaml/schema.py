@@ -252,6 +252,12 @@ class _Reader:
         if not isinstance(value, str) or not value:
             self.add(line, f"{what} needs 'type' — give an import path such as package.module.Class", file)
             return None
+        if value.startswith("fpp:"):  # an FPP component definition (docs/fpp.md): fpp:FILE.fpp[:M.Name]
+            if not value[4:].split(":", 1)[0].endswith(".fpp"):
+                self.add(line, f"{what}: type '{value[:80]}' must name an FPP file — write fpp:file.fpp or "
+                               f"fpp:file.fpp:Module.Component", file)
+                return None
+            return value
         if not TYPE_PATH.match(value) or any(p.startswith("__") for p in value.split(".")):
             self.add(line, f"{what}: type '{value[:80]}' must be a dotted import path — write "
                            f"package.module.Class", file)

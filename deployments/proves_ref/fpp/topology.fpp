@@ -1,0 +1,453 @@
+# Written by fprime-lite (python -m fprime_lite.deploy.fpp.export deployments/proves_ref/topology.yaml) from deployments/proves_ref/topology.yaml.
+# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp_export.py checks it is current.
+
+module CdhCore {
+  instance cmdDisp: Svc.CommandDispatcher base id 0x01000100 queue size 10
+
+  instance events: Svc.EventManager base id 0x01000200 queue size 10
+
+  instance $health: Svc.Health base id 0x01000300 queue size 25
+
+  instance version: Svc.Version base id 0x01000400
+
+  instance textLogger: Svc.PassiveTextLogger base id 0x01000500
+
+  instance tlmSend: Svc.TlmChan base id 0x01006000 queue size 10
+}
+
+module FileHandling {
+  instance fileUplink: Svc.FileUplink base id 0x05000100 queue size 30
+
+  instance fileDownlink: Svc.FileDownlink base id 0x05000200 queue size 30
+
+  instance fileManager: Svc.FileManager base id 0x05000300 queue size 10
+
+  instance prmDb: Svc.PrmDb base id 0x05000400 queue size 10
+}
+
+module ReferenceDeployment {
+  instance rateGroupDriver: Svc.RateGroupDriver base id 0x10000000
+
+  instance rateGroup50Hz: Svc.ActiveRateGroup base id 0x10001000 queue size 10
+
+  instance rateGroup10Hz: Svc.ActiveRateGroup base id 0x10002000 queue size 10
+
+  instance rateGroup1Hz: Svc.ActiveRateGroup base id 0x10003000 queue size 10
+
+  instance chronoTime: Svc.PosixTime base id 0x10004000
+
+  instance cmdSeq: Svc.CmdSequencer base id 0x10006000 queue size 10
+
+  instance modeManager: Components.ModeManager base id 0x1000A000
+
+  instance imuManager: Components.ImuManager base id 0x10017000
+
+  instance drv2605Face0Manager: Components.MagnetorquerDriver base id 0x10055000
+
+  instance drv2605Face1Manager: Components.MagnetorquerDriver base id 0x10056000
+
+  instance drv2605Face2Manager: Components.MagnetorquerDriver base id 0x10057000
+
+  instance drv2605Face3Manager: Components.MagnetorquerDriver base id 0x10058000
+
+  instance drv2605Face5Manager: Components.MagnetorquerDriver base id 0x10059000
+
+  instance detumbleManager: Components.DetumbleManager base id 0x1005A000
+
+  instance face4LoadSwitch: Components.LoadSwitch base id 0x1002F000
+
+  instance face0LoadSwitch: Components.LoadSwitch base id 0x10030000
+
+  instance face1LoadSwitch: Components.LoadSwitch base id 0x10031000
+
+  instance face2LoadSwitch: Components.LoadSwitch base id 0x10032000
+
+  instance face3LoadSwitch: Components.LoadSwitch base id 0x10033000
+
+  instance face5LoadSwitch: Components.LoadSwitch base id 0x10034000
+
+  instance payloadPowerLoadSwitch: Components.LoadSwitch base id 0x10035000
+
+  instance payloadBatteryLoadSwitch: Components.LoadSwitch base id 0x10036000
+
+  instance watchdog: Components.Watchdog base id 0x10015000
+
+  instance rtcManager: Components.RtcManager base id 0x10016000
+
+  instance resetManager: Components.ResetManager base id 0x10037000
+
+  instance startupManager: Components.StartupManager base id 0x1003B000
+
+  instance powerMonitor: Components.PowerMonitor base id 0x10038000
+
+  instance ina219SysManager: Components.Ina219Manager base id 0x10039000
+
+  instance ina219SolManager: Components.Ina219Manager base id 0x1003A000
+
+  topology ReferenceDeployment {
+    instance CdhCore.cmdDisp
+    instance CdhCore.events
+    instance CdhCore.$health
+    instance CdhCore.version
+    instance CdhCore.textLogger
+    instance CdhCore.tlmSend
+    instance FileHandling.fileUplink
+    instance FileHandling.fileDownlink
+    instance FileHandling.fileManager
+    instance FileHandling.prmDb
+    instance rateGroupDriver
+    instance rateGroup50Hz
+    instance rateGroup10Hz
+    instance rateGroup1Hz
+    instance chronoTime
+    instance cmdSeq
+    instance modeManager
+    instance imuManager
+    instance drv2605Face0Manager
+    instance drv2605Face1Manager
+    instance drv2605Face2Manager
+    instance drv2605Face3Manager
+    instance drv2605Face5Manager
+    instance detumbleManager
+    instance face4LoadSwitch
+    instance face0LoadSwitch
+    instance face1LoadSwitch
+    instance face2LoadSwitch
+    instance face3LoadSwitch
+    instance face5LoadSwitch
+    instance payloadPowerLoadSwitch
+    instance payloadBatteryLoadSwitch
+    instance watchdog
+    instance rtcManager
+    instance resetManager
+    instance startupManager
+    instance powerMonitor
+    instance ina219SysManager
+    instance ina219SolManager
+    connections Sequencer {
+      cmdSeq.comCmdOut[0] -> CdhCore.cmdDisp.seqCmdBuff[0]
+      CdhCore.cmdDisp.seqCmdStatus[0] -> cmdSeq.cmdResponseIn[0]
+      cmdSeq.seqStartOut[0] -> startupManager.sequenceStarted[0]
+      cmdSeq.seqDone[0] -> startupManager.completeSequence[0]
+    }
+    connections Detumble {
+      detumbleManager.angularVelocityMagnitudeGet[0] -> imuManager.angularVelocityMagnitudeGet[0]
+      detumbleManager.magneticFieldGet[0] -> imuManager.magneticFieldGet[0]
+      detumbleManager.magneticFieldSamplingPeriodGet[0] -> imuManager.magneticFieldSamplingPeriodGet[0]
+      detumbleManager.getSystemMode[0] -> modeManager.getMode[0]
+      modeManager.modeChanged[0] -> detumbleManager.systemModeChanged[0]
+      detumbleManager.xPlusStart[0] -> drv2605Face0Manager.start[0]
+      detumbleManager.xPlusStop[0] -> drv2605Face0Manager.stop[0]
+      detumbleManager.xMinusStart[0] -> drv2605Face1Manager.start[0]
+      detumbleManager.xMinusStop[0] -> drv2605Face1Manager.stop[0]
+      detumbleManager.yPlusStart[0] -> drv2605Face2Manager.start[0]
+      detumbleManager.yPlusStop[0] -> drv2605Face2Manager.stop[0]
+      detumbleManager.yMinusStart[0] -> drv2605Face3Manager.start[0]
+      detumbleManager.yMinusStop[0] -> drv2605Face3Manager.stop[0]
+      detumbleManager.zMinusStart[0] -> drv2605Face5Manager.start[0]
+      detumbleManager.zMinusStop[0] -> drv2605Face5Manager.stop[0]
+    }
+    connections ModeManager {
+      resetManager.prepareForReboot[0] -> modeManager.prepareForReboot[0]
+      watchdog.prepareForReboot[0] -> modeManager.prepareForReboot[0]
+      modeManager.stopWatchdog[0] -> watchdog.stop[0]
+      modeManager.voltageGet[0] -> ina219SysManager.voltageGet[0]
+      modeManager.loadSwitchTurnOff[0] -> face4LoadSwitch.turnOff[0]
+      modeManager.loadSwitchTurnOff[1] -> face0LoadSwitch.turnOff[0]
+      modeManager.loadSwitchTurnOff[2] -> face1LoadSwitch.turnOff[0]
+      modeManager.loadSwitchTurnOff[3] -> face2LoadSwitch.turnOff[0]
+      modeManager.loadSwitchTurnOff[4] -> face3LoadSwitch.turnOff[0]
+      modeManager.loadSwitchTurnOff[5] -> face5LoadSwitch.turnOff[0]
+      modeManager.loadSwitchTurnOff[6] -> payloadPowerLoadSwitch.turnOff[0]
+      modeManager.loadSwitchTurnOff[7] -> payloadBatteryLoadSwitch.turnOff[0]
+      modeManager.loadSwitchTurnOn[0] -> face4LoadSwitch.turnOn[0]
+      modeManager.loadSwitchTurnOn[1] -> face0LoadSwitch.turnOn[0]
+      modeManager.loadSwitchTurnOn[2] -> face1LoadSwitch.turnOn[0]
+      modeManager.loadSwitchTurnOn[3] -> face2LoadSwitch.turnOn[0]
+      modeManager.loadSwitchTurnOn[4] -> face3LoadSwitch.turnOn[0]
+      modeManager.loadSwitchTurnOn[5] -> face5LoadSwitch.turnOn[0]
+    }
+    connections LoadSwitches {
+      face0LoadSwitch.loadSwitchStateChanged[2] -> drv2605Face0Manager.loadSwitchStateChanged[0]
+      face1LoadSwitch.loadSwitchStateChanged[2] -> drv2605Face1Manager.loadSwitchStateChanged[0]
+      face2LoadSwitch.loadSwitchStateChanged[2] -> drv2605Face2Manager.loadSwitchStateChanged[0]
+      face3LoadSwitch.loadSwitchStateChanged[2] -> drv2605Face3Manager.loadSwitchStateChanged[0]
+      face5LoadSwitch.loadSwitchStateChanged[2] -> drv2605Face5Manager.loadSwitchStateChanged[0]
+    }
+    connections sysPowerMonitor {
+      powerMonitor.sysVoltageGet[0] -> ina219SysManager.voltageGet[0]
+      powerMonitor.sysCurrentGet[0] -> ina219SysManager.currentGet[0]
+      powerMonitor.sysPowerGet[0] -> ina219SysManager.powerGet[0]
+      powerMonitor.solVoltageGet[0] -> ina219SolManager.voltageGet[0]
+      powerMonitor.solCurrentGet[0] -> ina219SolManager.currentGet[0]
+      powerMonitor.solPowerGet[0] -> ina219SolManager.powerGet[0]
+    }
+    connections RateGroups {
+      rateGroupDriver.CycleOut[0] -> rateGroup50Hz.CycleIn[0]
+      rateGroup50Hz.RateGroupMemberOut[0] -> detumbleManager.run[0]
+      rateGroupDriver.CycleOut[1] -> rateGroup10Hz.CycleIn[0]
+      rateGroup10Hz.RateGroupMemberOut[0] -> cmdSeq.schedIn[0]
+      rateGroupDriver.CycleOut[2] -> rateGroup1Hz.CycleIn[0]
+      rateGroup1Hz.RateGroupMemberOut[0] -> watchdog.run[0]
+      rateGroup1Hz.RateGroupMemberOut[1] -> imuManager.run[0]
+      rateGroup1Hz.RateGroupMemberOut[2] -> startupManager.run[0]
+      rateGroup1Hz.RateGroupMemberOut[3] -> powerMonitor.run[0]
+      rateGroup1Hz.RateGroupMemberOut[4] -> modeManager.run[0]
+      rateGroup1Hz.RateGroupMemberOut[5] -> CdhCore.tlmSend.Run[0]
+      rateGroup1Hz.RateGroupMemberOut[6] -> CdhCore.$health.Run[0]
+      rateGroup1Hz.RateGroupMemberOut[7] -> FileHandling.fileDownlink.Run[0]
+    }
+    connections Pattern_command {
+      CdhCore.cmdDisp.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[0]
+      CdhCore.cmdDisp.compCmdSend[0] -> CdhCore.cmdDisp.cmdIn[0]
+      CdhCore.cmdDisp.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      CdhCore.events.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[1]
+      CdhCore.cmdDisp.compCmdSend[1] -> CdhCore.events.cmdIn[0]
+      CdhCore.events.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      CdhCore.$health.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[2]
+      CdhCore.cmdDisp.compCmdSend[2] -> CdhCore.$health.cmdIn[0]
+      CdhCore.$health.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      CdhCore.version.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[3]
+      CdhCore.cmdDisp.compCmdSend[3] -> CdhCore.version.cmdIn[0]
+      CdhCore.version.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      FileHandling.fileDownlink.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[4]
+      CdhCore.cmdDisp.compCmdSend[4] -> FileHandling.fileDownlink.cmdIn[0]
+      FileHandling.fileDownlink.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      FileHandling.fileManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[5]
+      CdhCore.cmdDisp.compCmdSend[5] -> FileHandling.fileManager.cmdIn[0]
+      FileHandling.fileManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      FileHandling.prmDb.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[6]
+      CdhCore.cmdDisp.compCmdSend[6] -> FileHandling.prmDb.cmdIn[0]
+      FileHandling.prmDb.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      cmdSeq.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[7]
+      CdhCore.cmdDisp.compCmdSend[7] -> cmdSeq.cmdIn[0]
+      cmdSeq.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      modeManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[8]
+      CdhCore.cmdDisp.compCmdSend[8] -> modeManager.cmdIn[0]
+      modeManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      imuManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[9]
+      CdhCore.cmdDisp.compCmdSend[9] -> imuManager.cmdIn[0]
+      imuManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      drv2605Face0Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[10]
+      CdhCore.cmdDisp.compCmdSend[10] -> drv2605Face0Manager.cmdIn[0]
+      drv2605Face0Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      drv2605Face1Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[11]
+      CdhCore.cmdDisp.compCmdSend[11] -> drv2605Face1Manager.cmdIn[0]
+      drv2605Face1Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      drv2605Face2Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[12]
+      CdhCore.cmdDisp.compCmdSend[12] -> drv2605Face2Manager.cmdIn[0]
+      drv2605Face2Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      drv2605Face3Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[13]
+      CdhCore.cmdDisp.compCmdSend[13] -> drv2605Face3Manager.cmdIn[0]
+      drv2605Face3Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      drv2605Face5Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[14]
+      CdhCore.cmdDisp.compCmdSend[14] -> drv2605Face5Manager.cmdIn[0]
+      drv2605Face5Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      detumbleManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[15]
+      CdhCore.cmdDisp.compCmdSend[15] -> detumbleManager.cmdIn[0]
+      detumbleManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      face4LoadSwitch.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[16]
+      CdhCore.cmdDisp.compCmdSend[16] -> face4LoadSwitch.cmdIn[0]
+      face4LoadSwitch.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      face0LoadSwitch.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[17]
+      CdhCore.cmdDisp.compCmdSend[17] -> face0LoadSwitch.cmdIn[0]
+      face0LoadSwitch.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      face1LoadSwitch.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[18]
+      CdhCore.cmdDisp.compCmdSend[18] -> face1LoadSwitch.cmdIn[0]
+      face1LoadSwitch.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      face2LoadSwitch.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[19]
+      CdhCore.cmdDisp.compCmdSend[19] -> face2LoadSwitch.cmdIn[0]
+      face2LoadSwitch.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      face3LoadSwitch.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[20]
+      CdhCore.cmdDisp.compCmdSend[20] -> face3LoadSwitch.cmdIn[0]
+      face3LoadSwitch.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      face5LoadSwitch.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[21]
+      CdhCore.cmdDisp.compCmdSend[21] -> face5LoadSwitch.cmdIn[0]
+      face5LoadSwitch.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      payloadPowerLoadSwitch.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[22]
+      CdhCore.cmdDisp.compCmdSend[22] -> payloadPowerLoadSwitch.cmdIn[0]
+      payloadPowerLoadSwitch.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      payloadBatteryLoadSwitch.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[23]
+      CdhCore.cmdDisp.compCmdSend[23] -> payloadBatteryLoadSwitch.cmdIn[0]
+      payloadBatteryLoadSwitch.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      watchdog.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[24]
+      CdhCore.cmdDisp.compCmdSend[24] -> watchdog.cmdIn[0]
+      watchdog.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      rtcManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[25]
+      CdhCore.cmdDisp.compCmdSend[25] -> rtcManager.cmdIn[0]
+      rtcManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      resetManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[26]
+      CdhCore.cmdDisp.compCmdSend[26] -> resetManager.cmdIn[0]
+      resetManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      startupManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[27]
+      CdhCore.cmdDisp.compCmdSend[27] -> startupManager.cmdIn[0]
+      startupManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      powerMonitor.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[28]
+      CdhCore.cmdDisp.compCmdSend[28] -> powerMonitor.cmdIn[0]
+      powerMonitor.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ina219SysManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[29]
+      CdhCore.cmdDisp.compCmdSend[29] -> ina219SysManager.cmdIn[0]
+      ina219SysManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ina219SolManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[30]
+      CdhCore.cmdDisp.compCmdSend[30] -> ina219SolManager.cmdIn[0]
+      ina219SolManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+    }
+    connections Pattern_event {
+      CdhCore.cmdDisp.logOut[0] -> CdhCore.events.LogRecv[0]
+      CdhCore.events.logOut[0] -> CdhCore.events.LogRecv[0]
+      CdhCore.$health.logOut[0] -> CdhCore.events.LogRecv[0]
+      CdhCore.version.logOut[0] -> CdhCore.events.LogRecv[0]
+      CdhCore.textLogger.logOut[0] -> CdhCore.events.LogRecv[0]
+      CdhCore.tlmSend.logOut[0] -> CdhCore.events.LogRecv[0]
+      FileHandling.fileUplink.logOut[0] -> CdhCore.events.LogRecv[0]
+      FileHandling.fileDownlink.logOut[0] -> CdhCore.events.LogRecv[0]
+      FileHandling.fileManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      FileHandling.prmDb.logOut[0] -> CdhCore.events.LogRecv[0]
+      rateGroupDriver.logOut[0] -> CdhCore.events.LogRecv[0]
+      rateGroup50Hz.logOut[0] -> CdhCore.events.LogRecv[0]
+      rateGroup10Hz.logOut[0] -> CdhCore.events.LogRecv[0]
+      rateGroup1Hz.logOut[0] -> CdhCore.events.LogRecv[0]
+      chronoTime.logOut[0] -> CdhCore.events.LogRecv[0]
+      cmdSeq.logOut[0] -> CdhCore.events.LogRecv[0]
+      modeManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      imuManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      drv2605Face0Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      drv2605Face1Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      drv2605Face2Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      drv2605Face3Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      drv2605Face5Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      detumbleManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      face4LoadSwitch.logOut[0] -> CdhCore.events.LogRecv[0]
+      face0LoadSwitch.logOut[0] -> CdhCore.events.LogRecv[0]
+      face1LoadSwitch.logOut[0] -> CdhCore.events.LogRecv[0]
+      face2LoadSwitch.logOut[0] -> CdhCore.events.LogRecv[0]
+      face3LoadSwitch.logOut[0] -> CdhCore.events.LogRecv[0]
+      face5LoadSwitch.logOut[0] -> CdhCore.events.LogRecv[0]
+      payloadPowerLoadSwitch.logOut[0] -> CdhCore.events.LogRecv[0]
+      payloadBatteryLoadSwitch.logOut[0] -> CdhCore.events.LogRecv[0]
+      watchdog.logOut[0] -> CdhCore.events.LogRecv[0]
+      rtcManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      resetManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      startupManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      powerMonitor.logOut[0] -> CdhCore.events.LogRecv[0]
+      ina219SysManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ina219SolManager.logOut[0] -> CdhCore.events.LogRecv[0]
+    }
+    connections Pattern_telemetry {
+      CdhCore.cmdDisp.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      CdhCore.events.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      CdhCore.$health.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      CdhCore.version.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      CdhCore.textLogger.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      CdhCore.tlmSend.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      FileHandling.fileUplink.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      FileHandling.fileDownlink.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      FileHandling.fileManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      FileHandling.prmDb.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      rateGroupDriver.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      rateGroup50Hz.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      rateGroup10Hz.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      rateGroup1Hz.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      chronoTime.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      cmdSeq.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      modeManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      imuManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      drv2605Face0Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      drv2605Face1Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      drv2605Face2Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      drv2605Face3Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      drv2605Face5Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      detumbleManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      face4LoadSwitch.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      face0LoadSwitch.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      face1LoadSwitch.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      face2LoadSwitch.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      face3LoadSwitch.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      face5LoadSwitch.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      payloadPowerLoadSwitch.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      payloadBatteryLoadSwitch.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      watchdog.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      rtcManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      resetManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      startupManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      powerMonitor.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ina219SysManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ina219SolManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+    }
+    connections Pattern_param {
+      modeManager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      modeManager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      imuManager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      imuManager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      detumbleManager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      detumbleManager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      startupManager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      startupManager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+    }
+    connections Pattern_health {
+      CdhCore.$health.PingSend[0] -> CdhCore.cmdDisp.pingIn[0]
+      CdhCore.cmdDisp.pingOut[0] -> CdhCore.$health.PingReturn[0]
+      CdhCore.$health.PingSend[1] -> CdhCore.events.pingIn[0]
+      CdhCore.events.pingOut[0] -> CdhCore.$health.PingReturn[1]
+      CdhCore.$health.PingSend[2] -> CdhCore.tlmSend.pingIn[0]
+      CdhCore.tlmSend.pingOut[0] -> CdhCore.$health.PingReturn[2]
+      CdhCore.$health.PingSend[3] -> FileHandling.fileUplink.pingIn[0]
+      FileHandling.fileUplink.pingOut[0] -> CdhCore.$health.PingReturn[3]
+      CdhCore.$health.PingSend[4] -> FileHandling.fileDownlink.pingIn[0]
+      FileHandling.fileDownlink.pingOut[0] -> CdhCore.$health.PingReturn[4]
+      CdhCore.$health.PingSend[5] -> FileHandling.fileManager.pingIn[0]
+      FileHandling.fileManager.pingOut[0] -> CdhCore.$health.PingReturn[5]
+      CdhCore.$health.PingSend[6] -> FileHandling.prmDb.pingIn[0]
+      FileHandling.prmDb.pingOut[0] -> CdhCore.$health.PingReturn[6]
+      CdhCore.$health.PingSend[7] -> rateGroup50Hz.PingIn[0]
+      rateGroup50Hz.PingOut[0] -> CdhCore.$health.PingReturn[7]
+      CdhCore.$health.PingSend[8] -> rateGroup10Hz.PingIn[0]
+      rateGroup10Hz.PingOut[0] -> CdhCore.$health.PingReturn[8]
+      CdhCore.$health.PingSend[9] -> rateGroup1Hz.PingIn[0]
+      rateGroup1Hz.PingOut[0] -> CdhCore.$health.PingReturn[9]
+      CdhCore.$health.PingSend[10] -> cmdSeq.pingIn[0]
+      cmdSeq.pingOut[0] -> CdhCore.$health.PingReturn[10]
+    }
+    connections Pattern_time {
+      CdhCore.cmdDisp.timeCaller[0] -> chronoTime.timeGetPort[0]
+      CdhCore.events.timeCaller[0] -> chronoTime.timeGetPort[0]
+      CdhCore.$health.timeCaller[0] -> chronoTime.timeGetPort[0]
+      CdhCore.version.timeCaller[0] -> chronoTime.timeGetPort[0]
+      CdhCore.textLogger.timeCaller[0] -> chronoTime.timeGetPort[0]
+      CdhCore.tlmSend.timeCaller[0] -> chronoTime.timeGetPort[0]
+      FileHandling.fileUplink.timeCaller[0] -> chronoTime.timeGetPort[0]
+      FileHandling.fileDownlink.timeCaller[0] -> chronoTime.timeGetPort[0]
+      FileHandling.fileManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      FileHandling.prmDb.timeCaller[0] -> chronoTime.timeGetPort[0]
+      rateGroupDriver.timeCaller[0] -> chronoTime.timeGetPort[0]
+      rateGroup50Hz.timeCaller[0] -> chronoTime.timeGetPort[0]
+      rateGroup10Hz.timeCaller[0] -> chronoTime.timeGetPort[0]
+      rateGroup1Hz.timeCaller[0] -> chronoTime.timeGetPort[0]
+      chronoTime.timeCaller[0] -> chronoTime.timeGetPort[0]
+      cmdSeq.timeCaller[0] -> chronoTime.timeGetPort[0]
+      modeManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      imuManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      drv2605Face0Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      drv2605Face1Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      drv2605Face2Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      drv2605Face3Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      drv2605Face5Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      detumbleManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      face4LoadSwitch.timeCaller[0] -> chronoTime.timeGetPort[0]
+      face0LoadSwitch.timeCaller[0] -> chronoTime.timeGetPort[0]
+      face1LoadSwitch.timeCaller[0] -> chronoTime.timeGetPort[0]
+      face2LoadSwitch.timeCaller[0] -> chronoTime.timeGetPort[0]
+      face3LoadSwitch.timeCaller[0] -> chronoTime.timeGetPort[0]
+      face5LoadSwitch.timeCaller[0] -> chronoTime.timeGetPort[0]
+      payloadPowerLoadSwitch.timeCaller[0] -> chronoTime.timeGetPort[0]
+      payloadBatteryLoadSwitch.timeCaller[0] -> chronoTime.timeGetPort[0]
+      watchdog.timeCaller[0] -> chronoTime.timeGetPort[0]
+      rtcManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      resetManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      startupManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      powerMonitor.timeCaller[0] -> chronoTime.timeGetPort[0]
+      ina219SysManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      ina219SolManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+    }
+  }
+}
