@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+import os
 import pathlib
 import signal
 import threading
@@ -62,7 +63,8 @@ def _reports(loaded: LoadedDeployment) -> list:
 
 def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
                    progress: bool = False, plots: bool = True, console=None, allow_warnings: bool = False,
-                   stop_on_events=(), stop_when=(), quiet: bool = False, interruptible: bool = False) -> dict:
+                   stop_on_events=(), stop_when=(), quiet: bool = False, interruptible: bool = False,
+                   file_root=None) -> dict:
     """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary.
 
     The summary's ``ok`` is False when the flight had handler faults, rate-group member faults,
@@ -75,7 +77,10 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     ``quiet`` prints nothing (no summary table). ``interruptible``: SIGINT (Ctrl-C) and SIGTERM end the
     flight where it is, as an early stop does, and the outputs up to that instant are written as usual;
     the summary then says ``stopped_by: "interrupted"`` and ``signal`` (``"SIGINT"``/``"SIGTERM"``).
-    Only the main thread can take signals; elsewhere the flag does nothing.
+    Only the main thread can take signals; elsewhere the flag does nothing. ``file_root``: the file
+    services without a root of their own are confined to this folder instead of ``out_dir`` and
+    resolve relative paths against the working directory, which must lie inside it, as F´'s do (the
+    F´ integration tests need it: ``fprime-lite conformance``).
     """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -83,7 +88,10 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     topo = deployment.topology
     for component in topo.components():  # file services without a root of their own use the run's folder
         if hasattr(component, "set_default_root"):
-            component.set_default_root(out)
+            if file_root is None:
+                component.set_default_root(out)
+            else:
+                component.set_default_root(os.getcwd(), confine_to=file_root)
     reports = _reports(loaded)
     stop_names = frozenset(stop_on_events)
     conditions = [c if isinstance(c, StopCondition) else parse_stop_condition(c) for c in stop_when]
