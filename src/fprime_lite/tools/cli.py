@@ -113,8 +113,8 @@ def build_parser() -> argparse.ArgumentParser:
                      "space-packet-space-data-link (the GDS's default), fprime = fprime (default: ccsds)")
     run.add_argument("--file-root", metavar="DIR", help="confine the file services (fileUplink, fileDownlink, "
                      "fileManager) to DIR instead of the output folder, with relative paths resolved against the "
-                     "working directory (which must be inside DIR), as F´'s are; F´'s own integration tests use "
-                     "/tmp and 'conformance' passes --file-root /tmp")
+                     "working directory (which must be inside DIR) and uplinked or moved files replacing existing "
+                     "ones, as F´'s do; F´'s own integration tests use /tmp and 'conformance' passes --file-root /tmp")
 
     dic = sub.add_parser("dict", help="write the F´ JSON dictionary")
     _topology_arg(dic)

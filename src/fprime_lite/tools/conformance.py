@@ -282,13 +282,14 @@ def run(args, pytest_args: list[str]) -> int:
         status = _run_pytest(groups, command + pytest_args, work, env)
     except _Stop as stop:
         print(f"conformance: {stop}: stopping the ground system and the deployment", file=sys.stderr)
-        _stop(groups)
         return 128 + stop.signum
     finally:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not cut the clean-up short
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
+        _stop(groups)
+        shutil.rmtree(sockets, ignore_errors=True)
         for sig, handler in previous.items():
             signal.signal(sig, handler)
-    _stop(groups)
-    shutil.rmtree(sockets, ignore_errors=True)
     wall = time.monotonic() - started
     counts = read_junit(work / "junit.xml")
     print(format_table(counts))
