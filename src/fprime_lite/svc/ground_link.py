@@ -327,11 +327,6 @@ class GroundLink(PassiveComponent):
         self._thread.join(timeout + 1.0)
         self._thread = None
 
-    def wait_connected(self, timeout_s: float | None = None) -> bool:
-        """Whether the socket task holds a connection to the ground system, waiting up to
-        ``timeout_s`` seconds of wall time for one (None: until there is one)."""
-        return self._connected.wait(timeout_s)
-
     def close(self) -> None:
         """Stop the socket task and release the wake-up sockets."""
         self.stop_socket_task()

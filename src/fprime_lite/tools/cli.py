@@ -488,8 +488,9 @@ def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
 
 def _announce_connection(link) -> None:
     """Print one line when the ground link first connects (``fprime-lite conformance`` waits for it)."""
-    if link.wait_connected():
-        print(f"ground link: connected to {link.host}:{link.port}", flush=True)
+    while not link.wait_connected(1.0):
+        pass
+    print(f"ground link: connected to {link.host}:{link.port}", flush=True)
 
 
 def _checked_settings(settings: list[str]) -> list[str]:

@@ -222,10 +222,11 @@ def _wait_connected(groups, timeout_s: float) -> None:
             return
         time.sleep(0.2)
     raise ConformanceError(f"the deployment did not connect to the GDS within {timeout_s:g} s (--startup-timeout); "
-                           f"deployment output:\n{groups.log('deployment', 2000)}\nGDS output:\n{groups.log('gds', 2000)}")
+                           f"deployment output:\n{groups.log('deployment', 2000)}\n"
+                           f"GDS output:\n{groups.log('gds', 2000)}")
 
 
-class _Stop(Exception):
+class _SignalError(Exception):
     """SIGTERM or SIGINT received by the verb."""
 
     def __init__(self, signum: int):
@@ -234,7 +235,7 @@ class _Stop(Exception):
 
 
 def _raise_stop(signum, frame):
-    raise _Stop(signum)
+    raise _SignalError(signum)
 
 
 # --- the run -----------------------------------------------------------------------------------------
@@ -272,15 +273,17 @@ def run(args, pytest_args: list[str]) -> int:
         print(f"conformance: deployment connected after {time.monotonic() - started:.1f} s; running pytest with "
               f"{python}", flush=True)
         (work / "pytest.ini").write_text("[pytest]\n")  # the suite's own rootdir settings, none of ours
-        command = [python, "-m", "pytest", str(tests), "-c", str(work / "pytest.ini"), "--rootdir", str(tests if
-                   tests.is_dir() else tests.parent), "-p", "no:cacheprovider", "-rfEs", "-o", "junit_family=xunit1", "--junitxml",
-                   str(work / "junit.xml"), "--dictionary", str(dictionary), "--zmq-transport", *zmq, "--logs",
-                   str(work / "api-logs"), "--log-directly", "--file-storage-directory", str(files)]
+        rootdir = tests if tests.is_dir() else tests.parent
+        command = [python, "-m", "pytest", str(tests), "-c", str(work / "pytest.ini"), "--rootdir", str(rootdir),
+                   "-p", "no:cacheprovider", "-rfEs", "-o", "junit_family=xunit1", "--junitxml",
+                   str(work / "junit.xml"),
+                   "--dictionary", str(dictionary), "--zmq-transport", *zmq, "--logs", str(work / "api-logs"),
+                   "--log-directly", "--file-storage-directory", str(files)]
         if config is not None:
             command += ["--deployment-config", str(config)]
         env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
         status = _run_pytest(groups, command + pytest_args, work, env)
-    except _Stop as stop:
+    except _SignalError as stop:
         print(f"conformance: {stop}: stopping the ground system and the deployment", file=sys.stderr)
         return 128 + stop.signum
     finally:
@@ -298,7 +301,7 @@ def run(args, pytest_args: list[str]) -> int:
 
 
 def _run_pytest(groups, command: list[str], work: pathlib.Path, env: dict) -> int:
-    """Run pytest in its own process group, echoing its output; on _Stop, interrupt it first."""
+    """Run pytest in its own process group, echoing its output; on _SignalError, interrupt it first."""
     proc = groups.start("pytest", command, cwd=work, env=env)
     log = groups.log_path("pytest")
     shown = 0
@@ -306,7 +309,7 @@ def _run_pytest(groups, command: list[str], work: pathlib.Path, env: dict) -> in
         while proc.poll() is None:
             shown = _echo(log, shown)
             time.sleep(0.5)
-    except _Stop:
+    except _SignalError:
         groups.stop("pytest", grace_s=20, sig=signal.SIGINT)  # pytest writes its report on Ctrl-C
         _echo(log, shown)
         raise

@@ -82,8 +82,8 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     Only the main thread can take signals; elsewhere the flag does nothing. ``file_root``: the file
     services without a root of their own are confined to this folder instead of ``out_dir`` and
     resolve relative paths against the working directory, which must lie inside it, and an uplinked
-    or moved file replaces an existing one (an uplinked one in place), as F´'s services do (the F´ integration tests need it:
-    ``fprime-lite conformance``).
+    or moved file replaces an existing one (an uplinked one in place), as F´'s services do (the F´
+    integration tests need it: ``fprime-lite conformance``).
     """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
