@@ -71,18 +71,20 @@ class SuiteCounts:
     failed: int = 0
     errors: int = 0
     skipped: int = 0
+    xfailed: int = 0
     seconds: float = 0.0
     not_passed: list[str] = dataclasses.field(default_factory=list)  # "name: outcome"
 
     @property
     def total(self) -> int:
-        return self.passed + self.failed + self.errors + self.skipped
+        return self.passed + self.failed + self.errors + self.skipped + self.xfailed
 
     def add(self, other: SuiteCounts) -> None:
         self.passed += other.passed
         self.failed += other.failed
         self.errors += other.errors
         self.skipped += other.skipped
+        self.xfailed += other.xfailed
         self.seconds += other.seconds
 
 
@@ -116,6 +118,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--run-arg", action="append", default=[], metavar="ARG",
                    help="one more argument for 'fprime-lite run' (repeatable), e.g. --run-arg=--seq "
                         "--run-arg=idle.seq")
+    p.add_argument("--expected-failures", metavar="FILE",
+                   help="tests expected to fail, one a line: NODE_ID (relative to TESTS_DIR) then the reason; they "
+                        "run as xfail and do not fail the run (needs fprime-lite in --python's environment)")
     p.add_argument("--startup-timeout", type=float, default=120.0, metavar="SECONDS",
                    help="how long to wait for the deployment to connect to the GDS (default: 120)")
     return p
@@ -159,12 +164,18 @@ def _check_inputs(args) -> tuple[pathlib.Path, pathlib.Path, pathlib.Path | None
             raise ConformanceError(f"--deployment-config {config}: expected a JSON object of strings, e.g. "
                                    f'{{"Svc.CommandDispatcher": "CdhCore.cmdDisp"}}')
     python = args.python or os.environ.get(PYTHON_ENV) or sys.executable
-    probe = subprocess.run([python, "-c", "import sys, pytest, fprime_gds; print('%d.%d' % sys.version_info[:2])"],
-                           capture_output=True, text=True) if shutil.which(python) or os.path.isfile(python) else None
+    # absolute (pytest runs from the work folder), but not resolved: a venv's python is a symbolic link
+    python = os.path.abspath(python) if os.sep in python else (shutil.which(python) or python)
+    modules = "sys, pytest, fprime_gds" + (", fprime_lite.testing.expected_failures" if args.expected_failures else "")
+    probe = subprocess.run([python, "-c", f"import {modules}; print('%d.%d' % sys.version_info[:2])"],
+                           capture_output=True, text=True) if os.path.isfile(python) else None
     if probe is None or probe.returncode != 0:
         why = "not found" if probe is None else (probe.stderr.strip().splitlines() or ["failed"])[-1]
-        raise ConformanceError(f"--python {python}: cannot run pytest with fprime-gds ({why}) — give an interpreter "
-                               f"with pytest and fprime-gds==4.4.1 installed (pip install -e .[test] in its venv)")
+        raise ConformanceError(f"--python {python}: cannot import {modules} ({why}) — give an interpreter with "
+                               f"pytest and fprime-gds==4.4.1 (and fprime-lite for --expected-failures) installed: "
+                               f"pip install -e '.[upstream]' in its venv")
+    if args.expected_failures and not pathlib.Path(args.expected_failures).is_file():
+        raise ConformanceError(f"--expected-failures {args.expected_failures}: no such file")
     root = pathlib.Path(args.file_root)
     if not root.is_dir():
         raise ConformanceError(f"--file-root {args.file_root}: not an existing folder")
@@ -281,6 +292,9 @@ def run(args, pytest_args: list[str]) -> int:
                    "--log-directly", "--file-storage-directory", str(files)]
         if config is not None:
             command += ["--deployment-config", str(config)]
+        if args.expected_failures:
+            command += ["-p", "fprime_lite.testing.expected_failures", "--fprime-lite-expected-failures",
+                        str(pathlib.Path(args.expected_failures).resolve())]
         env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1"}
         status = _run_pytest(groups, command + pytest_args, work, env)
     except _SignalError as stop:
@@ -351,9 +365,12 @@ def read_junit(path: pathlib.Path) -> dict[str, SuiteCounts]:
         key = case.get("file") or case.get("classname") or "?"  # xunit1 names the file
         counts = files.setdefault(key, SuiteCounts())
         counts.seconds += float(case.get("time") or 0.0)
-        tags = {child.tag for child in case}
+        tags = {child.tag: child for child in case}
         test = case.get("name", "?")
-        if "failure" in tags:
+        if "skipped" in tags and tags["skipped"].get("type") == "pytest.xfail":
+            counts.xfailed += 1
+            counts.not_passed.append(f"{test}: xfailed ({tags['skipped'].get('message', '')})")
+        elif "failure" in tags:
             counts.failed += 1
             counts.not_passed.append(f"{test}: failed")
         elif "error" in tags:
@@ -372,16 +389,20 @@ def format_table(files: dict[str, SuiteCounts]) -> str:
     if not files:
         return "no test results (pytest wrote no JUnit report)"
     width = max(len("total"), *(len(k) for k in files))
-    head = f"{'file':<{width}}  {'passed':>6}  {'failed':>6}  {'errors':>6}  {'skipped':>7}  {'seconds':>8}"
+    head = (f"{'file':<{width}}  {'passed':>6}  {'failed':>6}  {'errors':>6}  {'skipped':>7}  {'xfailed':>7}  "
+            f"{'seconds':>8}")
     lines = [head, "-" * len(head)]
     total = SuiteCounts()
+
+    def row(name: str, c: SuiteCounts) -> str:
+        return (f"{name:<{width}}  {c.passed:>6}  {c.failed:>6}  {c.errors:>6}  {c.skipped:>7}  {c.xfailed:>7}  "
+                f"{c.seconds:>8.1f}")
+
     for name in sorted(files):
-        c = files[name]
-        total.add(c)
-        lines.append(f"{name:<{width}}  {c.passed:>6}  {c.failed:>6}  {c.errors:>6}  {c.skipped:>7}  {c.seconds:>8.1f}")
+        total.add(files[name])
+        lines.append(row(name, files[name]))
     lines.append("-" * len(head))
-    lines.append(f"{'total':<{width}}  {total.passed:>6}  {total.failed:>6}  {total.errors:>6}  {total.skipped:>7}  "
-                 f"{total.seconds:>8.1f}")
+    lines.append(row("total", total))
     for name in sorted(files):
         for entry in files[name].not_passed:
             lines.append(f"  {name}::{entry}")
