@@ -3,6 +3,7 @@ end-to-end runs against the stock fprime-gds are in tests/integration/test_upstr
 
 from __future__ import annotations
 
+import pathlib
 import subprocess
 import sys
 import textwrap
@@ -96,3 +97,39 @@ def test_a_listed_test_without_a_reason_is_refused(tmp_path):
     result = _run_suite(tmp_path, "test_suite.py::test_fails\n")
     assert result.returncode == 4  # pytest's usage error
     assert "expected.txt:1: 'test_suite.py::test_fails' has no reason" in result.stderr
+
+
+def test_a_run_with_a_file_root_gives_the_file_services_fprimes_behaviour(tmp_path, monkeypatch):
+    """run --file-root (what conformance passes): the services without a root of their own are
+    confined to it, take relative paths from the working directory, replace existing files, and
+    FileUplink writes in place; a plain run keeps them in the run folder with overwrite off."""
+    from fprime_lite.tools.api import load
+    from fprime_lite.tools.runner import run_deployment
+
+    topology = pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml"
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    for file_root in (None, tmp_path):
+        loaded = load(str(topology))
+        out = tmp_path / f"run-{file_root is not None}"
+        run_deployment(loaded, out, duration_s=0.1, plots=False, quiet=True, file_root=file_root)
+        manager = loaded.topology.instance("FileHandling.fileManager").component
+        uplink = loaded.topology.instance("FileHandling.fileUplink").component
+        if file_root is None:
+            assert manager.root_path == manager.confinement_root == str(out.resolve())
+            assert (manager.overwrite, uplink.overwrite, uplink.in_place) == (False, False, False)
+        else:
+            assert (manager.root_path, manager.confinement_root) == (str(work.resolve()), str(tmp_path.resolve()))
+            assert (manager.overwrite, uplink.overwrite, uplink.in_place) == (True, True, True)
+
+
+def test_run_refuses_a_file_root_that_does_not_hold_the_working_directory(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    topology = str(pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml")
+    assert fprime_lite(["run", topology, "--file-root", str(tmp_path / "nope")]) == 2
+    assert "--file-root" in capsys.readouterr().err
+    (tmp_path / "elsewhere").mkdir()
+    assert fprime_lite(["run", topology, "--file-root", str(tmp_path / "elsewhere")]) == 2
+    assert "is not inside it" in capsys.readouterr().err
+    assert not (tmp_path / "runs").exists()  # refused before a run folder was made
