@@ -2,8 +2,8 @@
 
 Marked ``upstream`` (minutes; excluded from the default ``python -m pytest``; ``.ci/run`` runs
 ``python -m pytest -m upstream`` after the default suite). The suites live in ``../shared/upstream``
-seen from the project root (never copied into the project); every test here skips, saying so,
-where that folder is absent.
+seen from the project root (never copied into the project); the tests that run them skip, saying
+so, where that folder is absent.
 
 - F´'s reusable suites (``fprime_int``: PrmDb, EventManager, Health, CdhCore, FileHandling) on
   the reference deployment, with both framings: must pass (one racy test may fail, listed with its
@@ -38,11 +38,9 @@ TOPOLOGY = ROOT / "deployments" / "proves_ref" / "topology.yaml"
 LISTS = pathlib.Path(__file__).parent / "upstream"
 PROVES_PYTHON = os.environ.get("FPRIME_LITE_TEST_PYTHON") or str(ROOT / ".venv-upstream" / "bin" / "python")
 
-pytestmark = [
-    pytest.mark.upstream,
-    pytest.mark.skipif(not UPSTREAM.is_dir(), reason=f"{UPSTREAM} is absent: the upstream suites are kept in "
-                       f"shared/upstream beside the project (see its README), not in the project"),
-]
+pytestmark = pytest.mark.upstream
+needs_upstream = pytest.mark.skipif(not UPSTREAM.is_dir(), reason=f"{UPSTREAM} is absent: the upstream suites are "
+                                    f"kept in shared/upstream beside the project (see its README), not in the project")
 
 
 def conformance(suite: pathlib.Path, out: pathlib.Path, *args: str, timeout: float = 1800) -> tuple[int, str]:
@@ -82,6 +80,7 @@ def health_files():
     clean()
 
 
+@needs_upstream
 @pytest.mark.parametrize("framing", ["fprime", "ccsds"])
 def test_fprime_reusable_suites_pass(framing, tmp_path, health_files):
     suite = UPSTREAM / "fprime_int"
@@ -95,6 +94,7 @@ def test_fprime_reusable_suites_pass(framing, tmp_path, health_files):
     assert counts["passed"] + counts["xfailed"] == expected and counts["xfailed"] <= 1, output[-4000:]
 
 
+@needs_upstream
 @pytest.mark.parametrize("framing", ["fprime", "ccsds"])
 def test_proves_suite_fails_only_where_listed(framing, tmp_path):
     if not os.path.isfile(PROVES_PYTHON):
