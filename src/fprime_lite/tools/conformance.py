@@ -250,7 +250,7 @@ def _wait_connected(groups, timeout_s: float) -> None:
                            f"GDS output:\n{groups.log('gds', 2000)}")
 
 
-class _SignalError(Exception):
+class _SignalError(FprimeLiteError):
     """SIGTERM or SIGINT received by the verb."""
 
     def __init__(self, signum: int):
