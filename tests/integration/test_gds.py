@@ -26,7 +26,6 @@ import os
 import pathlib
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import tempfile
@@ -35,6 +34,7 @@ import time
 import pytest
 
 from fprime_lite.tools.cli import main as fprime_lite
+from fprime_lite.tools.processes import ProcessGroups, free_port
 
 ROOT = pathlib.Path(__file__).parents[2]
 TOPOLOGY = ROOT / "deployments" / "proves_ref" / "topology.yaml"
@@ -46,60 +46,6 @@ GDS_FRAMING = {"fprime": "fprime", "ccsds": "space-packet-space-data-link"}
 pytestmark = pytest.mark.skipif(
     GDS is None or importlib.util.find_spec("fprime_gds") is None,
     reason="fprime-gds is not installed (it is a test dependency: pip install -e .[test])")
-
-
-def free_port() -> int:
-    """A loopback port free for TCP and UDP (the GDS's ip adapter binds both)."""
-    for _ in range(50):
-        with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as tcp:
-            tcp.bind(("127.0.0.1", 0))
-            port = tcp.getsockname()[1]
-            with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as udp:
-                try:
-                    udp.bind(("127.0.0.1", port))
-                except OSError:
-                    continue
-        return port
-    raise RuntimeError("no free loopback port")
-
-
-class ProcessGroups:
-    """Processes started in their own sessions; :meth:`stop_all` ends every group."""
-
-    def __init__(self, log_dir: pathlib.Path):
-        self.log_dir = log_dir
-        self.procs: dict[str, subprocess.Popen] = {}
-
-    def start(self, name: str, argv: list[str], **kwargs) -> subprocess.Popen:
-        log = open(self.log_dir / f"{name}.log", "wb")
-        proc = subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                start_new_session=True, **kwargs)
-        log.close()
-        self.procs[name] = proc
-        return proc
-
-    def log(self, name: str) -> str:
-        path = self.log_dir / f"{name}.log"
-        return path.read_text(errors="replace")[-4000:] if path.exists() else ""
-
-    def signal(self, name: str, sig: int) -> None:
-        try:
-            os.killpg(self.procs[name].pid, sig)
-        except ProcessLookupError:
-            pass
-
-    def stop_all(self, grace_s: float = 5.0) -> None:
-        for name in self.procs:
-            self.signal(name, signal.SIGTERM)
-        deadline = time.monotonic() + grace_s
-        for proc in self.procs.values():
-            try:
-                proc.wait(max(0.1, deadline - time.monotonic()))
-            except subprocess.TimeoutExpired:
-                pass
-        for name, proc in self.procs.items():  # fprime-gds's comm child ignores SIGTERM
-            self.signal(name, signal.SIGKILL)
-            proc.wait(5)
 
 
 def wait_for_file(pattern_dir: pathlib.Path, pattern: str, timeout: float) -> pathlib.Path | None:

@@ -24,7 +24,7 @@ from typing import Callable
 
 from fprime_lite.model.time import SimulatedClock
 
-__all__ = ["Scheduler", "PacedScheduler", "ScheduledCall"]
+__all__ = ["Scheduler", "PacedScheduler", "ScheduledCall", "HOLD_THRESHOLD_S"]
 
 log = logging.getLogger("fprime_lite")
 
@@ -184,6 +184,11 @@ class Scheduler:
         return self._stopped
 
 
+#: A handler that holds its component this long (wall seconds) keeps it busy as long in simulated
+#: time when paced (:meth:`PacedScheduler.drain`); shorter ones count as instantaneous.
+HOLD_THRESHOLD_S = 0.05
+
+
 class PacedScheduler(Scheduler):
     """A scheduler that keeps simulated time from running ahead of the wall clock × ``speed``."""
 
@@ -198,6 +203,37 @@ class PacedScheduler(Scheduler):
         self._monotonic = monotonic
         self._origin: tuple[float, int] | None = None
         self.max_lag_s = 0.0
+        self._held: dict = {}  # component -> simulated time (us) until which it is still busy
+
+    def drain(self) -> None:
+        """Dispatch queued messages as :meth:`Scheduler.drain` does, one message at a time, and keep
+        a component whose handler held it for ``HOLD_THRESHOLD_S`` of wall time or more busy for as
+        long in simulated time: the messages queued for it meanwhile (a health ping) wait until then,
+        as they wait for an F´ active component's thread. In a simulated (unpaced) run a handler
+        takes no simulated time; paced to the wall clock, a file operation of seconds makes the
+        component late to answer its pings (F´'s Health integration test relies on it).
+        """
+        busy = self._busy
+        held = self._held
+        now = self.clock.current_us
+        while busy:
+            component = next(iter(busy))
+            del busy[component]
+            if component in held:
+                continue  # its release call marks it again
+            while len(component.queue):
+                start = self._monotonic()
+                component.dispatch_all(1, contain_faults=True)
+                held_us = round((self._monotonic() - start) * 1e6 * self.speed)
+                if held_us >= HOLD_THRESHOLD_S * 1e6:
+                    held[component] = now + held_us
+                    self.call_at(now + held_us, functools.partial(self._release, component))
+                    break
+
+    def _release(self, component) -> None:
+        del self._held[component]
+        if len(component.queue):
+            self._busy[component] = None
 
     def _before_event(self, t: int) -> None:
         if self._origin is None:

@@ -188,7 +188,8 @@ class Topology:
             self.connect(service_name, "PingSend", index, client.qualified_name, ping_in[0], 0, group="pattern:health")
             self.connect(client.qualified_name, ping_out[0], 0, service_name, "PingReturn", index,
                          group="pattern:health")
-            entries.append(client.qualified_name)
+            # F´'s generated ping entries are named FileHandling_fileManager: the qualified name with '_'
+            entries.append(client.qualified_name.replace(".", "_"))
         health.set_ping_entries([*health.entries, *((name, HEALTH_WARN_CYCLES, HEALTH_FATAL_CYCLES)
                                                      for name in entries[len(health.entries):])])
 

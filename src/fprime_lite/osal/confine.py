@@ -40,24 +40,34 @@ class Confinement:
     Args:
         root: the directory the service may use (created if missing; symbolic links in it are
             resolved once, here).
+        base: the directory relative paths are resolved against (default: ``root``); it must lie
+            inside ``root`` (created if missing). A conformance run confines a service to ``/tmp``
+            while its relative paths still name files in the run's folder.
     """
 
-    def __init__(self, root: str | os.PathLike):
+    def __init__(self, root: str | os.PathLike, base: str | os.PathLike | None = None):
         os.makedirs(os.fspath(root), exist_ok=True)
         self.root = os.path.realpath(os.fspath(root))
+        if base is None:
+            self.base = self.root
+        else:
+            os.makedirs(os.fspath(base), exist_ok=True)
+            self.base = os.path.realpath(os.fspath(base))
+            if self.base != self.root and not self.base.startswith(self.root.rstrip(os.sep) + os.sep):
+                raise ValueError(f"the base folder {self.base} is not inside the root {self.root}")
 
     def contents(self, path: str) -> str:
         """The real path of what ``path`` names, for reading or writing its contents (symbolic links
         followed all the way). Raises :class:`PathRefused`."""
         self._check_text(path)
-        return self._inside(path, os.path.realpath(os.path.join(self.root, path)))
+        return self._inside(path, os.path.realpath(os.path.join(self.base, path)))
 
     def entry(self, path: str) -> str:
         """The path of the directory entry ``path`` names, for removing, renaming or creating it:
         the folder is resolved, the last name is not (a link is the link itself). Raises
         :class:`PathRefused`."""
         self._check_text(path)
-        lexical = os.path.normpath(os.path.join(self.root, path))
+        lexical = os.path.normpath(os.path.join(self.base, path))
         folder, name = os.path.split(lexical)
         real = os.path.join(os.path.realpath(folder), name)
         if real == self.root:

@@ -31,17 +31,25 @@ class FileRoot:
 
     @property
     def root_path(self) -> str:
-        """The directory every path lies in (symbolic links resolved)."""
+        """The directory relative paths resolve against (symbolic links resolved): the root every
+        path lies in, unless ``set_default_root`` was given a wider ``confine_to``."""
+        return self._confinement.base
+
+    @property
+    def confinement_root(self) -> str:
+        """The directory every path must lie in (symbolic links resolved)."""
         return self._confinement.root
 
-    def set_default_root(self, folder) -> None:
+    def set_default_root(self, folder, confine_to=None) -> None:
         """Use ``folder`` as the root unless one was given at construction (the runner passes the
-        run's folder)."""
+        run's folder). ``confine_to``: a wider folder holding ``folder`` that paths may reach
+        (``run --file-root``); relative paths still resolve against ``folder``."""
         if not self._root_given:
-            self._confinement = Confinement(folder)
+            self._confinement = Confinement(confine_to if confine_to is not None else folder, base=folder)
 
     def clean_temporary_files(self) -> list[str]:
-        """Start-up: remove the temporary files that a killed process left under the root."""
+        """Start-up: remove the temporary files that a killed process left under the root (the
+        service's own folder, never a wider ``confine_to`` other runs share)."""
         removed = clean_temporary_files(self.root_path, recursive=True)
         if removed:
             log.info("%s: removed %d temporary file(s) left under %s", self.name, len(removed), self.root_path)

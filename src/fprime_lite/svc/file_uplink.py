@@ -183,6 +183,11 @@ class FileUplink(FileRoot, ActiveComponent):
             it (default: the current directory at construction, or the run's folder — see
             :meth:`set_default_root`).
         overwrite: whether a file may replace an existing one (default: refused).
+        in_place: with ``overwrite``, a file received whole is written into an existing regular
+            destination file (same inode: a reader holding it open sees the new content, as with
+            F´'s in-place write) instead of renamed over it; the destination changes only once the
+            checksum matched, but a crash during that last copy leaves it partly written.
+            ``fprime-lite run --file-root`` sets both (F´'s FileHandling suite needs it).
     """
 
     pingOut = OutputPort(Ping)
@@ -227,10 +232,11 @@ class FileUplink(FileRoot, ActiveComponent):
                               ("reason", String(FILE_NAME_ARG_SIZE))])
 
     def __init__(self, name: str = "fileUplink", *, base_id: int = 0, queue_size: int = 10,
-                 root: str | os.PathLike | None = None, overwrite: bool = False):
+                 root: str | os.PathLike | None = None, overwrite: bool = False, in_place: bool = False):
         super().__init__(name, base_id=base_id, queue_size=queue_size)
         self._init_root(root)
         self.overwrite = bool(overwrite)
+        self.in_place = bool(in_place)
         self._mode = ReceiveMode.START
         self._last_sequence = 0
         #: None before the first DATA packet of a file (F´ MAX_STATUS), else whether it was written.
@@ -510,6 +516,9 @@ class FileUplink(FileRoot, ActiveComponent):
         if not self.overwrite and os.path.lexists(transfer.path):
             os.close(fd)
             return "the destination appeared during the transfer and overwrite is off"
+        if self.in_place and self.overwrite and os.path.isfile(transfer.path) \
+                and not os.path.islink(transfer.path):
+            return self._copy_in_place(fd, transfer)
         try:
             try:
                 os.fchmod(fd, file_mode_for(pathlib.Path(transfer.path)))
@@ -521,6 +530,26 @@ class FileUplink(FileRoot, ActiveComponent):
             return str(exc)
         transfer.temp = None
         fsync_directory(pathlib.Path(transfer.path).parent)
+        return None
+
+    def _copy_in_place(self, fd: int, transfer: _Transfer) -> str | None:
+        """``in_place``: copy the verified temporary file into the existing destination (truncated
+        first), fsync it and delete the temporary file; None, or the problem."""
+        try:
+            try:
+                with open(transfer.path, "r+b") as dest:
+                    dest.truncate(0)
+                    offset = 0
+                    while chunk := os.pread(fd, 1 << 16, offset):
+                        dest.write(chunk)
+                        offset += len(chunk)
+                    dest.flush()
+                    os.fsync(dest.fileno())
+            finally:
+                os.close(fd)
+        except OSError as exc:
+            return str(exc)
+        self._delete_temporary(transfer)
         return None
 
     def _delete_temporary(self, transfer: _Transfer) -> None:

@@ -10,6 +10,7 @@
     fprime-lite new component|deployment NAME   write a skeleton that passes its own test
     fprime-lite bench                   measure speed and memory
     fprime-lite campaign FILE           run a gain sweep / Monte Carlo on Dask (docs/campaigns.md)
+    fprime-lite conformance TESTS_DIR   run an fprime-gds integration suite against the flying deployment
 
 Applications add verbs of their own through the ``fprime_lite.verbs`` entry points
 (:mod:`fprime_lite.tools.plugins`); the detumble application adds ``sim``.
@@ -28,6 +29,7 @@ import os
 import pathlib
 import signal
 import sys
+import threading
 
 from fprime_lite.model.errors import FprimeLiteError, FwAssertionError
 
@@ -109,6 +111,10 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--framing", choices=("ccsds", "fprime"), default="ccsds",
                      help="ground-link framing, as fprime-gds --framing-selection: ccsds = "
                      "space-packet-space-data-link (the GDS's default), fprime = fprime (default: ccsds)")
+    run.add_argument("--file-root", metavar="DIR", help="confine the file services (fileUplink, fileDownlink, "
+                     "fileManager) to DIR instead of the output folder, with relative paths resolved against the "
+                     "working directory (which must be inside DIR) and uplinked or moved files replacing existing "
+                     "ones, as F´'s do; F´'s own integration tests use /tmp and 'conformance' passes --file-root /tmp")
 
     dic = sub.add_parser("dict", help="write the F´ JSON dictionary")
     _topology_arg(dic)
@@ -161,6 +167,9 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("args", nargs=argparse.REMAINDER)
     campaign = sub.add_parser("campaign", help="run a gain sweep or Monte Carlo campaign on Dask", add_help=False)
     campaign.add_argument("args", nargs=argparse.REMAINDER)
+    conformance = sub.add_parser("conformance", help="run an fprime-gds integration suite against the flying "
+                                 "deployment (docs/ground.md)", add_help=False)
+    conformance.add_argument("args", nargs=argparse.REMAINDER)
     for verb in _application_verbs().values():
         plug = sub.add_parser(verb.name, help=verb.help, add_help=False)
         plug.add_argument("args", nargs=argparse.REMAINDER)
@@ -391,12 +400,13 @@ def cmd_run(args) -> int:
                   truth_interval_s=args.truth_interval, scheduler_factory=_paced if realtime else None)
     check_run_files(loaded, parameter_file=args.params, sequence=args.seq)
     args.duration = run_duration(loaded, args.duration)  # the topology's own run length when not given
+    _check_file_root(args.file_root)
     out = claim_run_folder(args.out)
     if not realtime:
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
                                  plots=not args.no_plots, allow_warnings=args.allow_warnings,
-                                 stop_when=args.stop_when, interruptible=True)
+                                 stop_when=args.stop_when, interruptible=True, file_root=args.file_root)
     else:
         summary = _run_realtime(loaded, out, args, address)
     print(f"outputs in {out}/")
@@ -409,6 +419,18 @@ def cmd_run(args) -> int:
               f"(--allow-warnings accepts them)", file=sys.stderr)
         return EXIT_FAILED
     return 0
+
+
+def _check_file_root(file_root: str | None) -> None:
+    """``--file-root DIR``: an existing folder that holds the working directory."""
+    if file_root is None:
+        return
+    root = pathlib.Path(file_root)
+    if not root.is_dir():
+        raise UserError(f"--file-root {file_root}: not an existing folder")
+    if not pathlib.Path.cwd().resolve().is_relative_to(root.resolve()):
+        raise UserError(f"--file-root {file_root}: the working directory {pathlib.Path.cwd()} is not inside it — "
+                        f"run from a folder inside {file_root} (relative paths resolve against it)")
 
 
 def _output_file(path: str, option: str) -> pathlib.Path:
@@ -448,9 +470,12 @@ def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
     try:
         if link is not None:
             link.start_socket_task()
+            threading.Thread(target=_announce_connection, args=(link,), name="announce-connection",
+                             daemon=True).start()
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=False, plots=not args.no_plots,
-                                 allow_warnings=args.allow_warnings, stop_when=args.stop_when, interruptible=True)
+                                 allow_warnings=args.allow_warnings, stop_when=args.stop_when, interruptible=True,
+                                 file_root=args.file_root)
     finally:
         if link is not None:
             link.close()
@@ -459,6 +484,13 @@ def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
         print(f"ground link: {link.connections} connection(s), {link.commands_forwarded} command(s) "
               f"forwarded, {link.downlink_frames} frame(s) / {link.downlink_bytes} bytes sent")
     return summary
+
+
+def _announce_connection(link) -> None:
+    """Print one line when the ground link first connects (``fprime-lite conformance`` waits for it)."""
+    while not link.wait_connected(1.0):
+        pass
+    print(f"ground link: connected to {link.host}:{link.port}", flush=True)
 
 
 def _checked_settings(settings: list[str]) -> list[str]:
@@ -499,6 +531,12 @@ def cmd_bench(args) -> int:
     return bench_main(args.args)
 
 
+def cmd_conformance(args) -> int:
+    from fprime_lite.tools.conformance import main as conformance_main
+
+    return conformance_main(args.args)
+
+
 def cmd_campaign(args) -> int:
     from fprime_lite.tools.campaign.cli import main as campaign_main
 
@@ -506,11 +544,12 @@ def cmd_campaign(args) -> int:
 
 
 COMMANDS = {"run": cmd_run, "dict": cmd_dict, "check": cmd_check, "graph": cmd_graph,
-            "params": cmd_params, "bench": cmd_bench, "campaign": cmd_campaign, "plot": cmd_plot, "new": cmd_new}
+            "params": cmd_params, "bench": cmd_bench, "campaign": cmd_campaign, "plot": cmd_plot, "new": cmd_new,
+            "conformance": cmd_conformance}
 BUILT_IN = set(COMMANDS)
 
 #: Verbs that parse their own options (application verbs do too).
-PASS_THROUGH = {"bench", "campaign"}
+PASS_THROUGH = {"bench", "campaign", "conformance"}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -11,7 +11,7 @@ Outputs in the run folder, each streamed or written atomically:
 
 The run's folder is also the root of every file service (FileUplink, FileDownlink, FileManager)
 whose topology entry gives no ``root``: uplinked files land there, and only files there can be
-downlinked, moved or removed.
+downlinked, moved or removed (``file_root`` widens that for ``fprime-lite conformance``).
 
 A report resource is any resource with some of these methods: ``begin(deployment, out_dir)``,
 ``on_event(decoded_event)``, ``progress() -> dict``, ``summary() -> dict``,
@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+import os
 import pathlib
 import signal
 import threading
@@ -33,6 +34,8 @@ from fprime_lite.deploy.deployment import Deployment
 from fprime_lite.deploy.dictionary import write_dictionary
 from fprime_lite.ground.downlink import DecodedEvent, GroundRecorder
 from fprime_lite.svc.file_downlink import FileDownlink
+from fprime_lite.svc.file_manager import FileManager
+from fprime_lite.svc.file_uplink import FileUplink
 from fprime_lite.svc.rate_groups import RateGroupBase
 from fprime_lite.deploy.topology_loader import LoadedDeployment
 from fprime_lite.tools.stop_condition import CHECK_INTERVAL_S, StopCondition, holds_all, parse_stop_condition
@@ -62,7 +65,8 @@ def _reports(loaded: LoadedDeployment) -> list:
 
 def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
                    progress: bool = False, plots: bool = True, console=None, allow_warnings: bool = False,
-                   stop_on_events=(), stop_when=(), quiet: bool = False, interruptible: bool = False) -> dict:
+                   stop_on_events=(), stop_when=(), quiet: bool = False, interruptible: bool = False,
+                   file_root=None) -> dict:
     """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary.
 
     The summary's ``ok`` is False when the flight had handler faults, rate-group member faults,
@@ -75,7 +79,11 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     ``quiet`` prints nothing (no summary table). ``interruptible``: SIGINT (Ctrl-C) and SIGTERM end the
     flight where it is, as an early stop does, and the outputs up to that instant are written as usual;
     the summary then says ``stopped_by: "interrupted"`` and ``signal`` (``"SIGINT"``/``"SIGTERM"``).
-    Only the main thread can take signals; elsewhere the flag does nothing.
+    Only the main thread can take signals; elsewhere the flag does nothing. ``file_root``: the file
+    services without a root of their own are confined to this folder instead of ``out_dir`` and
+    resolve relative paths against the working directory, which must lie inside it, and an uplinked
+    or moved file replaces an existing one (an uplinked one in place), as F´'s services do (the F´
+    integration tests need it: ``fprime-lite conformance``).
     """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -83,7 +91,14 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     topo = deployment.topology
     for component in topo.components():  # file services without a root of their own use the run's folder
         if hasattr(component, "set_default_root"):
-            component.set_default_root(out)
+            if file_root is None:
+                component.set_default_root(out)
+            else:
+                component.set_default_root(os.getcwd(), confine_to=file_root)
+                if isinstance(component, (FileUplink, FileManager)):
+                    component.overwrite = True  # F´'s services replace an existing file …
+                if isinstance(component, FileUplink):
+                    component.in_place = True  # … and FileUplink writes into it
     reports = _reports(loaded)
     stop_names = frozenset(stop_on_events)
     conditions = [c if isinstance(c, StopCondition) else parse_stop_condition(c) for c in stop_when]

@@ -131,6 +131,38 @@ def test_paced_scheduler_records_lag_when_behind():
         PacedScheduler(speed=0)
 
 
+class Slow(ActiveComponent):
+    """``item`` takes ``cost[value]`` seconds of (fake) wall time."""
+
+    def __init__(self, name, log, wall, cost, clock):
+        super().__init__(name)
+        self.log, self.wall, self.cost, self.clock = log, wall, cost, clock
+
+    @async_input(Item)
+    def item(self, value):
+        self.log.append((value, self.clock.current_us))
+        self.wall[0] += self.cost.get(value, 0.0)
+
+
+def test_paced_scheduler_keeps_a_component_busy_as_long_as_its_handler_held_it():
+    """A 3 s handler keeps its component's queue waiting 3 simulated seconds, as an F´ thread would
+    (what makes a busy FileManager late to answer Health's pings); short handlers take no time."""
+    from fprime_lite.deploy.scheduler import HOLD_THRESHOLD_S
+
+    wall = [0.0]
+    s = PacedScheduler(sleep=lambda dt: wall.__setitem__(0, wall[0] + dt), monotonic=lambda: wall[0])
+    log = []
+    slow = Slow("slow", log, wall, {0: 3.0, 2: HOLD_THRESHOLD_S / 2}, s.clock)
+    s.drain_after_each_event(slow)
+    port = slow.input_port("item").entries[0]
+    s.call_at(0, lambda: port(0))
+    s.call_at(1_000_000, lambda: port(1))  # queued while the 3 s handler holds the component
+    s.call_at(4_000_000, lambda: port(2))  # short: handled at once …
+    s.call_at(4_000_000, lambda: port(3))  # … and so is the message behind it
+    s.run(until_us=5_000_000)
+    assert log == [(0, 0), (1, 3_000_000), (2, 4_000_000), (3, 4_000_000)]
+
+
 class Eager(ActiveComponent):
     """An active component whose ``item`` port runs at once when it is idle."""
 

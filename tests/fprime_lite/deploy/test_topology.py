@@ -301,11 +301,13 @@ def test_health_pattern_pings_every_component_that_answers_pings():
     topo = loaded.topology
     health = topo.instance("CdhCore.health").component
     names = [e.name for e in health.entries]
-    assert {"CdhCore.cmdDisp", "CdhCore.events", "CdhCore.tlmSend", "FileHandling.prmDb",
-            "ReferenceDeployment.rateGroup50Hz", "ReferenceDeployment.cmdSeq"} <= set(names)
-    assert "CdhCore.health" not in names
+    # F´ v4 names a ping entry by the qualified instance name with '_' (F´'s Health suite commands
+    # HLTH_PING_ENABLE FileHandling_fileManager)
+    assert {"CdhCore_cmdDisp", "CdhCore_events", "CdhCore_tlmSend", "FileHandling_prmDb", "FileHandling_fileManager",
+            "ReferenceDeployment_rateGroup50Hz", "ReferenceDeployment_cmdSeq"} <= set(names)
+    assert "CdhCore_health" not in names
     assert all((e.warn_cycles, e.fatal_cycles) == (HEALTH_WARN_CYCLES, HEALTH_FATAL_CYCLES) for e in health.entries)
-    index = names.index("ReferenceDeployment.cmdSeq")
+    index = names.index("ReferenceDeployment_cmdSeq")
     assert health.output_port("PingSend").target_name(index) == "cmdSeq.pingIn[0]"
     deployment = Deployment(loaded)
     deployment.start()
@@ -315,7 +317,7 @@ def test_health_pattern_pings_every_component_that_answers_pings():
     seq.output_port("pingOut").calls[0] = lambda key: None  # stops answering
     deployment.run_for(HEALTH_WARN_CYCLES + 1)
     assert health.warnings == 1
-    assert [t.entry.name for t in health._trackers if t.cycle_count > 1] == ["ReferenceDeployment.cmdSeq"]
+    assert [t.entry.name for t in health._trackers if t.cycle_count > 1] == ["ReferenceDeployment_cmdSeq"]
 
 
 def test_options_for_a_role_no_resource_holds_are_refused(tmp_path):

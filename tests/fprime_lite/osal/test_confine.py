@@ -56,3 +56,17 @@ def test_the_root_itself_is_not_an_entry(tree):
         c.entry(".")
     with pytest.raises(ValueError):
         c.contents("a\0b")
+
+
+def test_a_base_inside_a_wider_root_takes_relative_paths(tmp_path):
+    """CONFINE-5: ``base`` (run --file-root: the working directory) resolves relative paths; absolute
+    paths anywhere in the wider root are allowed; outside it they are still refused."""
+    root = tmp_path / "root"
+    base = root / "work"
+    c = Confinement(root, base=base)
+    assert c.contents("PrmDb.dat") == str(base.resolve() / "PrmDb.dat")
+    assert c.entry(str(root / "other.txt")) == str(root.resolve() / "other.txt")
+    with pytest.raises(PathRefused, match="outside the root"):
+        c.contents(str(tmp_path / "elsewhere.txt"))
+    with pytest.raises(ValueError, match="not inside the root"):
+        Confinement(base, base=tmp_path)

@@ -145,6 +145,26 @@ def test_destinations_outside_root_are_refused(fprime_harness, tmp_path, destina
     assert (root / "seq" / "ok.bin").read_bytes() == b"fine"
 
 
+def test_in_place_writes_into_the_existing_file_a_reader_holds_open(fprime_harness, tmp_path):
+    """FS-ROOT-5: with ``in_place`` (run --file-root, F´'s FileHandling suite) a file received whole is
+    written into the existing destination, so a reader holding it open sees the new bytes, as with
+    F´'s in-place write; without it the replace is atomic and the reader keeps the old file. A bad
+    checksum leaves the destination untouched either way."""
+    for in_place, seen in ((True, b"new content"), (False, b"")):
+        folder = tmp_path / str(in_place)
+        folder.mkdir()
+        (folder / "out.txt").write_bytes(b"")
+        h = make(fprime_harness, folder)
+        h.component.in_place = in_place
+        with open(folder / "out.txt", "rb") as reader:
+            send(h, *file_packets(b"new content", "out.txt"))
+            assert reader.read() == seen
+        assert (folder / "out.txt").read_bytes() == b"new content"
+        assert sorted(p.name for p in folder.iterdir()) == ["out.txt"]  # no temporary file left
+        send(h, *file_packets(b"corrupt", "out.txt", checksum=1))
+        assert (folder / "out.txt").read_bytes() == b"new content"
+
+
 def test_a_link_at_the_destination_is_replaced_never_written_through(fprime_harness, tmp_path):
     """FS-ROOT-2b: a symbolic link inside root pointing outside is itself replaced (overwrite on); the
     file it points to outside root is never created or written."""

@@ -1,0 +1,135 @@
+"""``fprime-lite conformance``: its report, its refusals and the expected-failures plugin (fast; the
+end-to-end runs against the stock fprime-gds are in tests/integration/test_upstream.py)."""
+
+from __future__ import annotations
+
+import pathlib
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+from fprime_lite.tools.cli import main as fprime_lite
+from fprime_lite.tools.conformance import format_table, read_junit
+
+JUNIT = """<?xml version="1.0" encoding="utf-8"?>
+<testsuites><testsuite name="pytest">
+  <testcase classname="CdhCore.test_cdh_core" file="CdhCore/test_cdh_core.py" name="test_a" time="1.5"/>
+  <testcase classname="CdhCore.test_cdh_core" file="CdhCore/test_cdh_core.py" name="test_b" time="0.5">
+    <failure message="boom">trace</failure></testcase>
+  <testcase classname="PrmDb.test_cmd_PrmDb" file="PrmDb/test_cmd_PrmDb.py" name="test_c" time="0.1">
+    <error message="setup">trace</error></testcase>
+  <testcase classname="PrmDb.test_cmd_PrmDb" file="PrmDb/test_cmd_PrmDb.py" name="test_d" time="0.0">
+    <skipped type="pytest.skip" message="manual">skip</skipped></testcase>
+  <testcase classname="PrmDb.test_cmd_PrmDb" file="PrmDb/test_cmd_PrmDb.py" name="test_e" time="0.2">
+    <skipped type="pytest.xfail" message="no antenna">xfail</skipped></testcase>
+</testsuite></testsuites>
+"""
+
+
+def test_the_table_counts_each_outcome_per_file(tmp_path):
+    path = tmp_path / "junit.xml"
+    path.write_text(JUNIT)
+    files = read_junit(path)
+    cdh, prm = files["CdhCore/test_cdh_core.py"], files["PrmDb/test_cmd_PrmDb.py"]
+    assert (cdh.passed, cdh.failed, cdh.errors, cdh.skipped, cdh.xfailed) == (1, 1, 0, 0, 0)
+    assert (prm.passed, prm.failed, prm.errors, prm.skipped, prm.xfailed) == (0, 0, 1, 1, 1)
+    assert cdh.seconds == pytest.approx(2.0)
+    table = format_table(files).splitlines()
+    assert next(line for line in table if line.startswith("total")).split() == ["total", "1", "1", "1", "1", "1", "2.3"]
+    assert "  CdhCore/test_cdh_core.py::test_b: failed" in table
+    assert "  PrmDb/test_cmd_PrmDb.py::test_e: xfailed (no antenna)" in table
+    assert read_junit(tmp_path / "missing.xml") == {}
+    assert format_table({}) == "no test results (pytest wrote no JUnit report)"
+
+
+@pytest.mark.parametrize("args, message", [
+    (["NO_SUCH_DIR"], "TESTS_DIR NO_SUCH_DIR: no such folder or file"),
+    (["TESTS", "--topology", "nope.yaml"], "--topology nope.yaml: no such file"),
+    (["TESTS", "--topology", "TOPO", "--deployment-config", "BAD"], "not JSON"),
+    (["TESTS", "--topology", "TOPO", "--deployment-config", "LIST"], "expected a JSON object of strings"),
+    (["TESTS", "--topology", "TOPO", "--python", "/no/such/python"], "--python /no/such/python: cannot import"),
+    (["TESTS", "--topology", "TOPO", "--expected-failures", "nope.txt"], "--expected-failures nope.txt: no such file"),
+    (["TESTS", "--topology", "TOPO", "--file-root", "/no/such/root"], "--file-root /no/such/root: not an existing"),
+])
+def test_mistakes_are_refused_before_anything_starts(tmp_path, monkeypatch, capsys, args, message):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "suite").mkdir()
+    (tmp_path / "topology.yaml").write_text("deployment: X\n")
+    (tmp_path / "bad.json").write_text("{")
+    (tmp_path / "list.json").write_text("[1]")
+    names = {"TESTS": "suite", "TOPO": "topology.yaml", "BAD": "bad.json", "LIST": "list.json"}
+    assert fprime_lite(["conformance", *[names.get(a, a) for a in args]]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("fprime-lite conformance: ") and message in err
+    assert not list(tmp_path.glob("fprime-lite-conformance-*"))  # no work folder was made
+
+
+def _run_suite(tmp_path, listing: str | None) -> subprocess.CompletedProcess:
+    (tmp_path / "test_suite.py").write_text(textwrap.dedent("""
+        def test_fails():
+            assert False
+        def test_passes():
+            pass
+    """))
+    argv = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+            "-p", "fprime_lite.testing.expected_failures", str(tmp_path / "test_suite.py"), "--rootdir", str(tmp_path),
+            "-c", str(tmp_path / "pytest.ini")]
+    (tmp_path / "pytest.ini").write_text("[pytest]\n")
+    if listing is not None:
+        (tmp_path / "expected.txt").write_text(listing)
+        argv += ["--fprime-lite-expected-failures", str(tmp_path / "expected.txt")]
+    return subprocess.run(argv, capture_output=True, text=True, cwd=tmp_path)
+
+
+def test_listed_failures_run_as_expected_failures(tmp_path):
+    plain = _run_suite(tmp_path, None)
+    assert plain.returncode == 1 and "1 failed, 1 passed" in plain.stdout
+    listed = _run_suite(tmp_path, "# why each fails\n\ntest_suite.py::test_fails  no such component yet\n"
+                                  "test_suite.py::test_gone  a test the suite no longer has\n")
+    assert listed.returncode == 0, listed.stdout
+    assert "1 passed, 1 xfailed" in listed.stdout
+    assert "1 listed test(s) not collected: test_suite.py::test_gone" in listed.stdout
+
+
+def test_a_listed_test_without_a_reason_is_refused(tmp_path):
+    result = _run_suite(tmp_path, "test_suite.py::test_fails\n")
+    assert result.returncode == 4  # pytest's usage error
+    assert "expected.txt:1: 'test_suite.py::test_fails' has no reason" in result.stderr
+
+
+def test_a_run_with_a_file_root_gives_the_file_services_fprimes_behaviour(tmp_path, monkeypatch):
+    """run --file-root (what conformance passes): the services without a root of their own are
+    confined to it, take relative paths from the working directory, replace existing files, and
+    FileUplink writes in place; a plain run keeps them in the run folder with overwrite off."""
+    from fprime_lite.tools.api import load
+    from fprime_lite.tools.runner import run_deployment
+
+    topology = pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml"
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    for file_root in (None, tmp_path):
+        loaded = load(str(topology))
+        out = tmp_path / f"run-{file_root is not None}"
+        run_deployment(loaded, out, duration_s=0.1, plots=False, quiet=True, file_root=file_root)
+        manager = loaded.topology.instance("FileHandling.fileManager").component
+        uplink = loaded.topology.instance("FileHandling.fileUplink").component
+        if file_root is None:
+            assert manager.root_path == manager.confinement_root == str(out.resolve())
+            assert (manager.overwrite, uplink.overwrite, uplink.in_place) == (False, False, False)
+        else:
+            assert (manager.root_path, manager.confinement_root) == (str(work.resolve()), str(tmp_path.resolve()))
+            assert (manager.overwrite, uplink.overwrite, uplink.in_place) == (True, True, True)
+
+
+def test_run_refuses_a_file_root_that_does_not_hold_the_working_directory(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    topology = str(pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml")
+    assert fprime_lite(["run", topology, "--file-root", str(tmp_path / "nope")]) == 2
+    assert "--file-root" in capsys.readouterr().err
+    (tmp_path / "elsewhere").mkdir()
+    assert fprime_lite(["run", topology, "--file-root", str(tmp_path / "elsewhere")]) == 2
+    assert "is not inside it" in capsys.readouterr().err
+    assert not (tmp_path / "runs").exists()  # refused before a run folder was made
