@@ -7,8 +7,8 @@ pytest plugin :mod:`detumble.tools.pytest_plant`).
 
 Enabled only when the environment variable ``FPRIME_LITE_PLANT_CONTROL`` is ``HOST:PORT`` with a
 loopback HOST (127.0.0.1, ::1 or localhost; anything else is refused at start-up). The deployment
-then listens there (TCP) for one client at a time. Protocol: one JSON object per line, at most
-4096 bytes; each request gets one JSON line back, ``{"ok": true, ...}`` or ``{"ok": false,
+then listens there (TCP, from its first 100 ms of flight) for one client at a time. Protocol: one
+JSON object per line, at most 4096 bytes; each request gets one JSON line back, ``{"ok": true, ...}`` or ``{"ok": false,
 "error": "..."}``. Requests are queued (at most 16 waiting; more are answered "busy") and carried
 out on the deployment's own thread by a poll every 100 ms of deployment time, so nothing races the
 flight software; a reply not ready within 10 s of wall time is answered "timeout".
@@ -36,6 +36,7 @@ import json
 import os
 import queue
 import socket
+import sys
 import threading
 import time
 
@@ -75,24 +76,37 @@ class PlantControl:
         self.requests: queue.Queue = queue.Queue(MAX_PENDING)
         self.served = 0
         self._server: socket.socket | None = None
-        if address:
-            host, port = parse_address(address)
-            family = socket.AF_INET6 if ":" in host else socket.AF_INET
-            server = socket.socket(family, socket.SOCK_STREAM)
-            server.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-            server.bind((host, port))
-            server.listen(1)
-            self._server = server
-            threading.Thread(target=self._accept, name="plant-control", daemon=True).start()
+        self._listen = parse_address(address) if address else None
+        if self._listen is not None:
+            # the socket opens at the first poll, when the deployment flies (not when `dict` or `check`
+            # merely build the topology)
             scheduler.call_every(POLL_US, self.poll)
             if os.environ.get(RTC_ENV_VAR) == "wall":
                 clock = scheduler.clock
                 clock.epoch_us = round(time.time() * 1e6) - clock.current_us
 
+    def _open(self) -> None:
+        assert self._listen is not None
+        host, port = self._listen
+        server = socket.socket(socket.AF_INET6 if ":" in host else socket.AF_INET, socket.SOCK_STREAM)
+        server.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        server.bind((host, port))
+        server.listen(1)
+        self._server = server
+        threading.Thread(target=self._accept, name="plant-control", daemon=True).start()
+
     # --- deployment thread ------------------------------------------------------------------------
 
     def poll(self) -> None:
-        """Carry out the waiting requests (on the deployment's thread)."""
+        """Carry out the waiting requests (on the deployment's thread); the first poll opens the socket
+        (a port that cannot be bound is reported on stderr once and the channel stays closed)."""
+        if self._server is None and self._listen is not None:
+            try:
+                self._open()
+            except OSError as exc:
+                print(f"plant control: cannot listen on {self.address}: {exc}", file=sys.stderr)
+                self._listen = None
+                return
         while True:
             try:
                 request, reply = self.requests.get_nowait()

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import os
 import types
+from typing import Any
 
 from fprime_lite import (I32, U32, Channel, CmdResponse, Event, FwEnum, Param, PassiveComponent, Severity, String,
                          sync_command)
@@ -38,7 +39,7 @@ def _fill_file_status(namespace) -> None:
 
 
 #: F´'s ``Os.FileStatus`` as an F´ type (the events carry it), with the Os layer's members and values.
-FileStatus = types.new_class("FileStatus", (FwEnum,), {"namespace": "Os"}, _fill_file_status)
+FileStatus: Any = types.new_class("FileStatus", (FwEnum,), {"namespace": "Os"}, _fill_file_status)
 
 
 class PacketAuthenticatorStatus(FwEnum, namespace="Components"):

@@ -122,3 +122,135 @@ def test_flight_event_ids_of_the_sensor_managers(make_craft):
     assert tmp.event_id("DeviceNotReady") == 0x10048000 and tmp.event_id("Temperature") == 0x10048008
     assert veml.event_id("SensorChannelGetFailed") == 0x1004D007 and veml.event_id("VisibleLight") == 0x1004D00C
     assert tc.event_id("SequenceNumberGet") == 0x2100B006 and tc.event_id("SequenceNumberReadFailed") == 0x2100B00E
+
+
+def test_plant_control_serves_a_loopback_client_on_the_deployment_thread(make_craft):
+    """PC-002: the socket opens at the first poll; a request is answered only when the deployment's
+    thread polls; a line longer than 4096 bytes is refused and the connection closed."""
+    import socket
+    import threading
+
+    from detumble.tools.pytest_plant import PlantClient
+
+    class Scheduler:                      # what PlantControl uses of the scheduler
+        def __init__(self, clock):
+            self.clock, self.polls = clock, []
+
+        def call_every(self, period_us, fn):
+            self.polls.append((period_us, fn))
+
+    craft = make_craft()
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    sched = Scheduler(craft.clock)
+    control = PlantControl(craft, sched, f"127.0.0.1:{port}")
+    assert sched.polls == [(100_000, control.poll)]
+    control.poll()                        # opens the socket
+    replies = []
+    client = PlantClient(f"127.0.0.1:{port}", timeout_s=5)
+    t = threading.Thread(target=lambda: replies.append(client.request("battery_soc", soc=0.5)))
+    t.start()
+    for _ in range(500):
+        if replies:
+            break
+        control.poll()
+        t.join(0.01)
+    t.join(5)
+    client.close()
+    assert replies and replies[0]["ok"] and craft.power.battery.soc == pytest.approx(0.5)
+    with socket.create_connection(("127.0.0.1", port), timeout=5) as raw:
+        raw.sendall(b"x" * 5000 + b"\n")
+        assert b"longer than 4096" in raw.makefile("rb").readline()
+
+
+def test_com_delay_releases_once_per_status_every_divider_plus_one_ticks(fprime_harness):
+    """CD-001: with DIVIDER 2 the held status goes out on ticks 0, 3, 6 … and only when the radio
+    answered since the last release; setting DIVIDER logs DividerSet."""
+    from detumble.proves.com_delay import ComDelay
+    from fprime_lite.model.fw_types import Success
+    h = fprime_harness(ComDelay("downlinkDelay", base_id=0x1001E000))
+    h.load_parameters()
+    h.send_command("DIVIDER_PRM_SET", 2)
+    assert h.events[-1].name == "DividerSet" and h.events[-1].args == (2,)
+    released = []
+    for tick in range(9):
+        before = len(h.from_port("comStatusOut"))
+        h.invoke("run", 0)
+        if len(h.from_port("comStatusOut")) > before:
+            released.append(tick)
+            if tick < 6:                      # the radio answers after each packet but the third
+                h.invoke("comStatusIn", Success.SUCCESS)
+    assert released == [0, 3, 6]
+    h.invoke("run", 0)
+    h.invoke("run", 0)
+    h.invoke("run", 0)                        # tick 9: nothing held since tick 6
+    assert len(h.from_port("comStatusOut")) == 3
+
+
+def test_lora_sends_a_framed_beacon_to_the_peer_only_when_enabled(fprime_harness, make_craft):
+    """LORA-002: an opportunity while DISABLED sends nothing; ENABLED sends one fprime frame
+    (DEADBEEF …) to the ground peer and the modem stays busy for its time on air; CONTINUOUS_WAVE
+    answers OK twice in a row."""
+    from detumble.proves.lora import LoRa, TransmitState
+    from fprime_lite.model.fw_types import Success
+    craft = make_craft()
+    h = fprime_harness(LoRa("lora", craft, base_id=0x1001F000))
+    h.load_parameters()
+    h.invoke("comStatusIn", Success.SUCCESS)
+    assert not craft.radio_peer and len(h.from_port("comStatusOut")) == 1
+    h.send_command("TRANSMIT", TransmitState.ENABLED)
+    h.invoke("comStatusIn", Success.SUCCESS)
+    heard = bytes(craft.radio_peer)
+    assert heard[:4] == bytes.fromhex("DEADBEEF") and h.component.packets_sent == 1
+    h.invoke("comStatusIn", Success.SUCCESS)          # same instant: still on the air
+    assert h.component.packets_sent == 1
+    h.send_command("CONTINUOUS_WAVE", 5)
+    h.send_command("CONTINUOUS_WAVE", 5)
+    assert [r.response for r in h.cmd_responses][-2:] == [CmdResponse.OK, CmdResponse.OK]
+    assert not [e for e in h.events if e.name == "ConfigurationFailed"]
+
+
+def test_camera_image_arrives_in_chunks_and_is_saved(fprime_harness, make_craft):
+    """CAM-001: TAKE_IMAGE with face 4 powered → ImageTransferStarted(size), progress at 25/50/75 %,
+    ImageTransferComplete and the file on the flash; unpowered → CommandError, EXECUTION_ERROR."""
+    import os
+
+    from detumble.proves.camera_handler import CameraHandler
+    craft = make_craft()
+    h = fprime_harness(CameraHandler("cameraHandler", craft, base_id=0x1002B000, image_bytes=4000,
+                                     bytes_per_tick=1000))
+    h.send_command("TAKE_IMAGE")
+    h.assert_cmd_response(0, "TAKE_IMAGE", CmdResponse.OK)
+    for _ in range(6):
+        h.invoke("schedIn", 0)
+    names = [e.name for e in h.events]
+    assert names.count("ImageTransferStarted") == 1 and names.count("ImageTransferProgress") == 3
+    done = [e for e in h.events if e.name == "ImageTransferComplete"]
+    assert done and done[0].args[1] == 4000
+    path = os.path.join(craft.flash_dir, done[0].args[0].lstrip("/"))
+    with open(path, "rb") as fh:
+        image = fh.read()
+    assert len(image) == 4000 and image[:2] == b"\xff\xd8" and image[-2:] == b"\xff\xd9"
+    craft.set_load_switch("face4", False)
+    h.send_command("TAKE_IMAGE")
+    h.assert_cmd_response(1, "TAKE_IMAGE", CmdResponse.EXECUTION_ERROR)
+    assert h.events[-1].name == "CommandError"
+
+
+def test_sequence_number_and_format(fprime_harness, make_craft):
+    """TC-001 / FS-001: SET_SEQ_NUM persists the number GET_SEQ_NUM reads back; FORMAT empties the
+    flash, after which the number reads 0 again."""
+    from detumble.proves.fs_format import FsFormat
+    from detumble.proves.tc_security_deframer import TcSecurityDeframer
+    craft = make_craft()
+    tc = fprime_harness(TcSecurityDeframer("tcSecurityDeframer", craft, base_id=0x2100B000))
+    tc.load_parameters()
+    fs = fprime_harness(FsFormat("fsFormat", craft, base_id=0x10078000))
+    tc.send_command("SET_SEQ_NUM", 1234)
+    tc.send_command("GET_SEQ_NUM")
+    assert tc.events[-1].name == "SequenceNumberGet" and tc.events[-1].args == (1234,)
+    fs.send_command("FORMAT")
+    assert fs.events[-1].name == "FileSystemFormatted"
+    tc.send_command("GET_SEQ_NUM")
+    assert tc.events[-1].args == (0,)
