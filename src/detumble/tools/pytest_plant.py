@@ -26,6 +26,10 @@ What it does around each test body (after the test's fixtures have set up):
   configured, before the test module reads it); while the test runs, what the simulated ground peer
   hears from the radio is written to it.
 
+It also makes ``Framing/src/`` in the working directory, where ``sync_sequence_number_test.py`` writes
+the uplink sequence number for PROVES's GDS framing plugin (PROVES runs the suite from its repository,
+which has that folder).
+
 Only the standard library and pytest are imported, so the plugin loads in the suite's own Python
 (PROVES needs ≥ 3.12) with fprime-lite installed there without its dependencies.
 """
@@ -112,6 +116,9 @@ def pytest_configure(config: pytest.Config) -> None:
     address = config.getoption("--sim-plant", default=None)
     if not address:
         return
+    # PROVES runs its suite from its repository, where sync_sequence_number_test.py writes the uplink
+    # sequence number for its GDS framing plugin: Framing/src/ relative to the working directory
+    os.makedirs(os.path.join("Framing", "src"), exist_ok=True)
     master, slave = os.openpty()
     os.environ["LORA_PASSTHROUGH_TTY"] = os.ttyname(slave)
     config.stash[_STATE] = {"client": PlantClient(address), "pty": (master, slave)}
