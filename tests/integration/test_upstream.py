@@ -2,14 +2,15 @@
 
 Marked ``upstream`` (minutes; excluded from the default ``python -m pytest``; ``.ci/run`` runs
 ``python -m pytest -m upstream`` after the default suite). The suites live in ``../shared/upstream``
-seen from the project root (never copied into the project); every test here skips, saying so,
-where that folder is absent.
+seen from the project root (never copied into the project); the tests that run them skip, saying
+so, where that folder is absent.
 
 - F´'s reusable suites (``fprime_int``: PrmDb, EventManager, Health, CdhCore, FileHandling) on
   the reference deployment, with both framings: must pass (one racy test may fail, listed with its
   reason in ``upstream/fprime_int_expected_failures.txt``). Health runs with the fprime framing
-  only (it sleeps about 4 minutes) and needs ``/tmp/1MiB.txt``, which F´'s CI makes: the fixture
-  writes 1 MiB of random bytes there when the file is missing.
+  only (it sleeps about 4 minutes) and needs ``/tmp/1MiB.txt``, which F´'s CI makes, and no
+  ``/tmp/2MiB.txt``: the fixture writes 1 MiB of random bytes to the first when it is missing and
+  removes the second before and after.
 - PROVES's suite (``proves_int``, 45 tests) needs Python >= 3.12: it runs with the interpreter
   ``$FPRIME_LITE_TEST_PYTHON`` names, else ``.venv-upstream/bin/python`` (``.ci/run`` builds it with
   ``pip install -e '.[upstream]'``), and skips, saying so, without one. It runs with ``--sim-plant``
@@ -38,11 +39,9 @@ TOPOLOGY = ROOT / "deployments" / "proves_ref" / "topology.yaml"
 LISTS = pathlib.Path(__file__).parent / "upstream"
 PROVES_PYTHON = os.environ.get("FPRIME_LITE_TEST_PYTHON") or str(ROOT / ".venv-upstream" / "bin" / "python")
 
-pytestmark = [
-    pytest.mark.upstream,
-    pytest.mark.skipif(not UPSTREAM.is_dir(), reason=f"{UPSTREAM} is absent: the upstream suites are kept in "
-                       f"shared/upstream beside the project (see its README), not in the project"),
-]
+pytestmark = pytest.mark.upstream
+needs_upstream = pytest.mark.skipif(not UPSTREAM.is_dir(), reason=f"{UPSTREAM} is absent: the upstream suites are "
+                                    f"kept in shared/upstream beside the project (see its README), not in the project")
 
 
 def conformance(suite: pathlib.Path, out: pathlib.Path, *args: str, timeout: float = 1800) -> tuple[int, str]:
@@ -62,16 +61,29 @@ def outcomes(out: pathlib.Path) -> dict[str, int]:
 
 
 @pytest.fixture
-def one_mib_file():
-    """F´'s Health suite appends /tmp/1MiB.txt to itself; F´'s CI makes it, so do we when it is missing."""
-    path = pathlib.Path("/tmp/1MiB.txt")
-    if not path.exists():
-        path.write_bytes(os.urandom(1 << 20))
-    return path
+def health_files():
+    """F´'s Health suite appends /tmp/1MiB.txt to /tmp/2MiB.txt, then /tmp/2MiB.txt to itself eight
+    times (256 MiB) and removes it with a last command nobody waits for. F´'s CI makes the first file
+    on a fresh machine, so do we when it is missing; the second must not exist beforehand (each run
+    would start from the last one's size and double it: 64 GiB after one leftover of 256 MiB), so it
+    is removed before and after, with the temporary files of an append the end of a run cut short."""
+    one_mib, two_mib = pathlib.Path("/tmp/1MiB.txt"), pathlib.Path("/tmp/2MiB.txt")
+    if not one_mib.exists():
+        one_mib.write_bytes(os.urandom(1 << 20))
+
+    def clean():
+        two_mib.unlink(missing_ok=True)
+        for part in pathlib.Path("/tmp").glob(".fprime-lite-tmp.*.2MiB.txt.*.part"):
+            part.unlink(missing_ok=True)
+
+    clean()
+    yield one_mib
+    clean()
 
 
+@needs_upstream
 @pytest.mark.parametrize("framing", ["fprime", "ccsds"])
-def test_fprime_reusable_suites_pass(framing, tmp_path, one_mib_file):
+def test_fprime_reusable_suites_pass(framing, tmp_path, health_files):
     suite = UPSTREAM / "fprime_int"
     extra = [] if framing == "fprime" else ["--", "--deselect", "Health/test_cmd_health.py::test_send_health_command"]
     status, output = conformance(suite, tmp_path / "work", "--framing", framing, "--expected-failures",
@@ -83,6 +95,7 @@ def test_fprime_reusable_suites_pass(framing, tmp_path, one_mib_file):
     assert counts["passed"] + counts["xfailed"] == expected and counts["xfailed"] <= 1, output[-4000:]
 
 
+@needs_upstream
 @pytest.mark.parametrize("framing", ["fprime", "ccsds"])
 def test_proves_suite_fails_only_where_listed(framing, tmp_path):
     if not os.path.isfile(PROVES_PYTHON):

@@ -13,7 +13,7 @@ __all__ = ["add_ground_link"]
 
 def add_ground_link(topology, *, host: str = DEFAULT_HOST, port: int = DEFAULT_PORT,
                     framing: str | Framing = "ccsds", module: str | None = None, name: str = GROUND_LINK_NAME,
-                    base_id: int = GROUND_LINK_BASE_ID, rate_group: str | None = None, **link_args) -> GroundLink:
+                    base_id: int | None = None, rate_group: str | None = None, **link_args) -> GroundLink:
     """Add a :class:`GroundLink` to a loaded topology and wire it as F´ wires its com stack.
 
     - events and telemetry: the ``PktSend`` of the topology's ``event`` and ``telemetry`` services
@@ -26,7 +26,10 @@ def add_ground_link(topology, *, host: str = DEFAULT_HOST, port: int = DEFAULT_P
     - ``schedIn`` becomes a member of ``rate_group`` (default: the fastest rate group with room).
 
     ``module`` defaults to the module named after the deployment (``ReferenceDeployment``), else
-    ``Com``. Raises :class:`~fprime_lite.deploy.topology.TopologyError` when the topology cannot take it.
+    ``Com``. ``base_id`` defaults to ``GROUND_LINK_BASE_ID`` (0x10070000), or, when an instance of
+    the topology already has its base id in that 0x1000 block (the coursework deployment's star
+    tracker), to the first 0x1000 block above every instance's base id. Raises
+    :class:`~fprime_lite.deploy.topology.TopologyError` when the topology cannot take it.
     """
     problems = [f"the topology has no '{kind}' pattern; the ground link needs its {kind} service"
                 for kind in ("command", "event", "telemetry") if kind not in topology.patterns]
@@ -35,6 +38,8 @@ def add_ground_link(topology, *, host: str = DEFAULT_HOST, port: int = DEFAULT_P
     if module is None:
         module = topology.deployment if any(i.module == topology.deployment
                                             for i in topology.instances.values()) else "Com"
+    if base_id is None:
+        base_id = _free_base_id(topology)
     link = GroundLink(name, base_id=base_id, host=host, port=port, framing=framing, **link_args)
     qualified = f"{module}.{name}"
     topology.add(module, link, where=f"{qualified} (added for the ground link)")
@@ -94,3 +99,12 @@ def add_ground_link(topology, *, host: str = DEFAULT_HOST, port: int = DEFAULT_P
     if problems:
         raise TopologyError(problems)
     return link
+
+
+def _free_base_id(topology) -> int:
+    """GROUND_LINK_BASE_ID unless an instance's base id lies in its 0x1000 block, else the first
+    0x1000 block above every base id (the topology's own check still refuses any id clash)."""
+    blocks = {instance.component.base_id & ~0xFFF for instance in topology.instances.values()}
+    if GROUND_LINK_BASE_ID not in blocks:
+        return GROUND_LINK_BASE_ID
+    return max(blocks) + 0x1000

@@ -176,7 +176,7 @@ def _check_inputs(args) -> tuple[pathlib.Path, pathlib.Path, pathlib.Path | None
     # absolute (pytest runs from the work folder), but not resolved: a venv's python is a symbolic link
     python = os.path.abspath(python) if os.sep in python else (shutil.which(python) or python)
     modules = "sys, pytest, fprime_gds" + (", fprime_lite.testing.expected_failures" if args.expected_failures else "")
-    probe = subprocess.run([python, "-c", f"import {modules}; print('%d.%d' % sys.version_info[:2])"],
+    probe = subprocess.run([python, "-c", f"import {modules}, importlib.metadata as m; print(m.version('fprime-gds'))"],
                            capture_output=True, text=True) if os.path.isfile(python) else None
     if probe is None or probe.returncode != 0:
         why = "not found" if probe is None else (probe.stderr.strip().splitlines() or ["failed"])[-1]
@@ -185,6 +185,10 @@ def _check_inputs(args) -> tuple[pathlib.Path, pathlib.Path, pathlib.Path | None
                                f"pip install -e '.[upstream]' in its venv")
     if args.expected_failures and not pathlib.Path(args.expected_failures).is_file():
         raise ConformanceError(f"--expected-failures {args.expected_failures}: no such file")
+    theirs, ours = probe.stdout.strip(), _gds_version()
+    if theirs != ours:
+        raise ConformanceError(f"--python {python}: has fprime-gds {theirs}, the ground system here is {ours} — the "
+                               f"test API and the GDS must be the same release (pip install 'fprime-gds=={ours}')")
     root = pathlib.Path(args.file_root)
     if not root.is_dir():
         raise ConformanceError(f"--file-root {args.file_root}: not an existing folder")
@@ -220,6 +224,15 @@ def _write_dictionary(topology: pathlib.Path, work: pathlib.Path) -> pathlib.Pat
         shutil.copyfile(params, work / "PrmDb.dat")
         return work / "PrmDb.dat"
     return None
+
+
+def _gds_version() -> str:
+    import importlib.metadata
+
+    try:
+        return importlib.metadata.version("fprime-gds")
+    except importlib.metadata.PackageNotFoundError:
+        raise ConformanceError("fprime-gds is not installed beside fprime-lite — pip install -e .[test]") from None
 
 
 def _gds_program() -> str:

@@ -36,3 +36,19 @@ def test_the_deployment_config_names_instances_of_the_right_types(folder):
         if fprime_name == "Svc.PrmDb.filename":
             continue
         assert type(topology.instance(instance).component).__name__ == TYPES[fprime_name], (fprime_name, instance)
+
+
+@pytest.mark.parametrize("folder", DEPLOYMENTS, ids=lambda p: p.name)
+def test_every_reference_deployment_takes_the_ground_link(folder):
+    """conformance flies each deployment with the ground link: its ids must not clash (the coursework
+    star tracker has the link's default block 0x10070000, so the link moves above every base id)."""
+    from fprime_lite.deploy.com_stack import add_ground_link
+    from fprime_lite.svc.ground_link import GROUND_LINK_BASE_ID
+
+    topology = load(str(folder / "topology.yaml")).topology
+    link = add_ground_link(topology)
+    bases = {i.component.base_id for i in topology.instances.values() if i.component is not link}
+    if GROUND_LINK_BASE_ID in bases:
+        assert link.base_id == (max(bases) & ~0xFFF) + 0x1000
+    else:
+        assert link.base_id == GROUND_LINK_BASE_ID  # the reference deployment's dictionary keeps its ids
