@@ -254,3 +254,51 @@ def test_sequence_number_and_format(fprime_harness, make_craft):
     assert fs.events[-1].name == "FileSystemFormatted"
     tc.send_command("GET_SEQ_NUM")
     assert tc.events[-1].args == (0,)
+
+
+def test_thermal_manager_warns_outside_the_limits_and_skips_unread_sensors(fprime_harness, make_craft):
+    """TM-001: a face above FACE_TEMP_UPPER_THRESHOLD → TemperatureAboveThreshold(FACE, index, °C); a
+    battery cell below its lower limit → TemperatureBelowThreshold(BATTERY, …); a failed read is
+    skipped; throttled at 5 and re-armed when every reading is back inside."""
+    from detumble.components.types import Result
+    from detumble.proves.thermal_manager import TempSensorType, ThermalManager
+    from fprime_lite.model.fw_types import Success
+    h = fprime_harness(ThermalManager("thermalManager", base_id=0x10041000))
+    h.load_parameters()
+    h.set_port_return("faceTempGet", Result(20.0, Success.SUCCESS))
+    h.set_port_return("battCellTempGet", Result(20.0, Success.SUCCESS))
+    h.set_port_return("picoTempGet", Result(25.0, Success.SUCCESS))
+    h.invoke("run", 0)
+    assert not h.events
+    h.send_command("FACE_TEMP_UPPER_THRESHOLD_PRM_SET", 10.0)
+    h.send_command("BATT_CELL_TEMP_LOWER_THRESHOLD_PRM_SET", 25.0)
+    h.invoke("run", 0)
+    above = [e.args for e in h.events if e.name == "TemperatureAboveThreshold"]
+    below = [e.args for e in h.events if e.name == "TemperatureBelowThreshold"]
+    assert above == [(TempSensorType.FACE, i, 20.0) for i in range(5)]
+    assert below == [(TempSensorType.BATTERY, i, 20.0) for i in range(4)]
+    h.set_port_return("faceTempGet", Result(0.0, Success.FAILURE))
+    h.set_port_return("battCellTempGet", Result(0.0, Success.FAILURE))
+    h.clear_history()
+    h.invoke("run", 0)
+    assert not h.events
+
+
+def test_light_sensor_reads_the_sun_on_its_face(fprime_harness, make_craft):
+    """VEML-001: lux = sunlight on the face (W/m²) x 97.7 lm/W; 0 on a face turned away; not ready
+    with its switch open."""
+    from detumble.proves.veml6031_manager import LUX_PER_W_M2, Veml6031Manager
+    from fprime_lite.model.fw_types import Success
+    craft = make_craft()
+    craft.clock.set_us(1_000_000)             # a second of flight: the electrical system has stepped
+    sensors = [Veml6031Manager(f"veml{f}", craft, f, base_id=0x1004D000 + f * 0x1000) for f in range(6)]
+    lux = [s.visibleLightGet() for s in sensors]
+    flux = craft.power.face_flux_w_m2
+    assert [r.value for r in lux] == [pytest.approx(q * LUX_PER_W_M2) for q in flux]
+    # sunlit at the default epoch: one to three faces see the Sun, and their fluxes are the components
+    # of the Sun's flux along the body axes, S/d² = 1317 W/m² in June (d = 1.0146 AU)
+    lit = [q for q in flux if q > 0.0]
+    assert 1 <= len(lit) <= 3
+    assert sum(q * q for q in flux) ** 0.5 == pytest.approx(1361.0 / 1.0146 ** 2, rel=0.01)
+    craft.set_load_switch("face2", False)
+    assert sensors[2].visibleLightGet().condition == Success.FAILURE
