@@ -1,5 +1,5 @@
 # Written by fprime-lite (python -m fprime_lite.deploy.fpp.export deployments/adcs_ref/topology.yaml) from deployments/adcs_ref/topology.yaml.
-# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp_export.py checks it is current.
+# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp.py checks it is current.
 
 module Components {
   enum AngularUnit : I32 {
@@ -35,6 +35,12 @@ module Components {
     SPIN_STABLE = 2
     POINTING = 3
   } default IDLE
+
+  enum DeployResult : I32 {
+    DEPLOY_RESULT_SUCCESS = 0
+    DEPLOY_RESULT_ABORT = 1
+    DEPLOY_RESULT_FAILED = 2
+  } default DEPLOY_RESULT_SUCCESS
 
   enum DetumbleMode : I32 {
     DISABLED = 0
@@ -108,6 +114,18 @@ module Components {
     SPIN_STABLE_REACHED = 4
     ATTITUDE_LOST = 5
   } default COMMAND
+
+  enum PacketAuthenticatorStatus : I32 {
+    Authenticated = 0
+    VerifyError = 1
+  } default Authenticated
+
+  enum PacketParserStatus : I32 {
+    Ok = 0
+    SpiParseError = 1
+    SequenceNumberParseError = 2
+    MacParseError = 3
+  } default Ok
 
   enum PointingActuator : I32 {
     ANY = 0
@@ -693,6 +711,294 @@ module Components {
     telemetry HandlerFaults: U32 id 0x3 update on change
   }
 
+  @ fprime-lite: detumble.proves.burnwire.Burnwire
+  passive component Burnwire {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port burnStart: Fw.Signal
+    sync input port burnStop: Fw.Signal
+    sync input port schedIn: Svc.Sched
+    sync command START_BURNWIRE opcode 0x0
+    sync command STOP_BURNWIRE opcode 0x1
+    event SetBurnwireState(burnwire_state: Fw.On) severity activity high id 0x0 format "Burnwire State: {}"
+    event SafetyTimerStatus(burnwire_state: Fw.On) severity activity high id 0x1 format "Safety Timer State: {} "
+    event SafetyTimerState(burnwire_status: U32) severity activity high id 0x2 format "Safety Timer Will Burn For: {} Seconds"
+    event BurnwireEndCount(end_count: U32) severity activity low id 0x3 format "Burnwire Burned for {} Seconds"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x4 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x5 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x6 format "{} parameter file value refused ({}); default loaded"
+    telemetry HandlerFaults: U32 id 0x0 update on change
+    @ units: s
+    param SAFETY_TIMER: U32 default 10 id 0x0 set opcode 0x2 save opcode 0x3
+  }
+
+  @ fprime-lite: detumble.proves.antenna_deployer.AntennaDeployer
+  passive component AntennaDeployer {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port schedIn: Svc.Sched
+    output port burnStart: Fw.Signal
+    output port burnStop: Fw.Signal
+    sync command DEPLOY opcode 0x0
+    sync command DEPLOY_STOP opcode 0x1
+    sync command RESET_DEPLOYMENT_STATE opcode 0x2
+    sync command SET_DEPLOYMENT_STATE(deployed: bool) opcode 0x3
+    event DeployAttempt(attempt: U32) severity activity high id 0x0 format "Antenna deployment attempt {} started"
+    event DeploySuccess(attempt: U32) severity activity high id 0x1 format "Antenna deployment succeeded on attempt {}"
+    event DeployFinish(result: Components.DeployResult, attempts: U32) severity activity high id 0x2 format "Antenna deployment finished with result {} after {} attempts"
+    event AntennaBurnSignalCount(ticks: U32) severity activity low id 0x3 format "Burn signal active for {} scheduler ticks"
+    event DeploymentAlreadyComplete severity activity high id 0x4 format "Antenna deployment skipped - antenna already deployed"
+    event FileOperationError(filePath: string size 200, operation: string size 40) severity warning high id 0x5 format "File operation failed: {} on file {}"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x6 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x7 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x8 format "{} parameter file value refused ({}); default loaded"
+    telemetry DeployAttemptCount: U32 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+    @ units: s
+    param RETRY_DELAY_SEC: U32 default 30 id 0x0 set opcode 0x4 save opcode 0x5
+    param MAX_DEPLOY_ATTEMPTS: U32 default 3 id 0x1 set opcode 0x6 save opcode 0x7
+    @ units: s
+    param BURN_DURATION_SEC: U32 default 8 id 0x2 set opcode 0x8 save opcode 0x9
+  }
+
+  @ fprime-lite: detumble.proves.com_delay.ComDelay
+  passive component ComDelay {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port run: Svc.Sched
+    sync input port comStatusIn: Fw.SuccessCondition
+    output port comStatusOut: Fw.SuccessCondition
+    event DividerSet(divider: U16) severity activity high id 0x0 format "Set divider to: {}"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x1 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x2 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x3 format "{} parameter file value refused ({}); default loaded"
+    telemetry HandlerFaults: U32 id 0x0 update on change
+    @ units: ticks
+    param DIVIDER: U16 default 299 id 0x0 set opcode 0x0 save opcode 0x1
+  }
+
+  @ fprime-lite: detumble.proves.lora.LoRa
+  passive component LoRa {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port enableTransmit: Fw.Signal
+    sync input port disableTransmit: Fw.Signal
+    sync input port comStatusIn: Fw.SuccessCondition
+    output port comStatusOut: Fw.SuccessCondition
+    sync command CONTINUOUS_WAVE(seconds: U16) opcode 0x8
+    sync command TRANSMIT(enabled: Zephyr.TransmitState) opcode 0x9
+    event ConfigurationFailed(mode: Zephyr.LoRaMode) severity warning high id 0x0 format "Failed to configure LoRa into mode: {}" throttle 2
+    event SendFailed(status: I32) severity warning high id 0x1 format "Failed to send LoRa message: {}" throttle 2
+    event AllocationFailed(allocation_size: U64) severity warning high id 0x2 format "Failed to allocate buffer of: {} bytes" throttle 2
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x3 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x4 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x5 format "{} parameter file value refused ({}); default loaded"
+    telemetry BytesReceived: U64 id 0x0 update on change
+    telemetry BytesSent: U64 id 0x1 update on change
+    telemetry LastRssi: I16 id 0x2 update on change
+    telemetry LastSnr: I8 id 0x3 update on change
+    telemetry HandlerFaults: U32 id 0x4 update on change
+    param CODING_RATE: Zephyr.LoRaCodingRate default Zephyr.LoRaCodingRate.CR_4_5 id 0x0 set opcode 0x0 save opcode 0x1
+    param DATA_RATE: Zephyr.LoRaDataRate default Zephyr.LoRaDataRate.SF_8 id 0x1 set opcode 0x2 save opcode 0x3
+    param BANDWIDTH_TX: Zephyr.LoRaBandwidth default Zephyr.LoRaBandwidth.BW_125_KHZ id 0x2 set opcode 0x4 save opcode 0x5
+    param BANDWIDTH_RX: Zephyr.LoRaBandwidth default Zephyr.LoRaBandwidth.BW_125_KHZ id 0x3 set opcode 0x6 save opcode 0x7
+  }
+
+  @ fprime-lite: detumble.proves.fs_format.FsFormat
+  passive component FsFormat {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync command FORMAT opcode 0x0
+    event FileSystemFormatted severity activity high id 0x0 format "File System formatted successfully"
+    event FileSystemFormatFailed severity warning high id 0x1 format "File System format failed"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x2 format "Handler {} raised {}" throttle 10
+    telemetry HandlerFaults: U32 id 0x0 update on change
+  }
+
+  @ fprime-lite: detumble.proves.pico_temp_manager.PicoTempManager
+  passive component PicoTempManager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port picoTemperatureGet: Drv.picoTemperatureGet
+    sync command GetPicoTemperature opcode 0x0
+    event DeviceNotReady severity warning low id 0x0 format "Device not ready" throttle 5
+    event SensorSampleFetchFailed(ret: I32) severity warning low id 0x1 format "Sensor fetch failed with return code: {}" throttle 5
+    event SensorChannelGetFailed(ret: I32) severity warning low id 0x2 format "Sensor channel get failed with return code: {}" throttle 5
+    event PicoTemperature(temperature: F64) severity activity high id 0x3 format "Pico Temperature: {}°C"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x4 format "Handler {} raised {}" throttle 10
+    telemetry PicoTemperature: F64 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+  }
+
+  @ fprime-lite: detumble.proves.tmp112_manager.Tmp112Manager
+  passive component Tmp112Manager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port temperatureGet: Drv.temperatureGet
+    sync input port loadSwitchStateChanged: Components.loadSwitchStateChanged
+    sync command GetTemperature opcode 0x0
+    event DeviceNotReady severity warning low id 0x0 format "Device not ready" throttle 5
+    event DeviceInitFailed(ret: I32) severity warning low id 0x1 format "Initialization failed with return code: {}" throttle 5
+    event DeviceNil severity warning low id 0x2 format "Device is nil" throttle 5
+    event DeviceStateNil severity warning low id 0x3 format "Device state is nil" throttle 5
+    event TcaUnhealthy severity warning low id 0x4 format "TCA device is unhealthy" throttle 5
+    event MuxUnhealthy severity warning low id 0x5 format "MUX device is unhealthy" throttle 5
+    event SensorSampleFetchFailed(ret: I32) severity warning low id 0x6 format "Sensor fetch failed with return code: {}" throttle 5
+    event SensorChannelGetFailed(ret: I32) severity warning low id 0x7 format "Sensor channel get failed with return code: {}" throttle 5
+    event Temperature(temperature: F64) severity activity high id 0x8 format "Temperature: {}°C"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x9 format "Handler {} raised {}" throttle 10
+    telemetry Temperature: F64 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+  }
+
+  @ fprime-lite: detumble.proves.veml6031_manager.Veml6031Manager
+  passive component Veml6031Manager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port visibleLightGet: Drv.lightGet
+    sync input port loadSwitchStateChanged: Components.loadSwitchStateChanged
+    sync command GetVisibleLight opcode 0x6
+    event DeviceNotReady severity warning low id 0x0 format "Device not ready" throttle 5
+    event DeviceInitFailed(ret: I32) severity warning low id 0x1 format "Initialization failed with return code: {}" throttle 5
+    event DeviceNil severity warning low id 0x2 format "Device is nil" throttle 5
+    event DeviceStateNil severity warning low id 0x3 format "Device state is nil" throttle 5
+    event TcaUnhealthy severity warning low id 0x4 format "TCA device is unhealthy" throttle 5
+    event MuxUnhealthy severity warning low id 0x5 format "MUX device is unhealthy" throttle 5
+    event SensorSampleFetchFailed(ret: I32) severity warning low id 0x6 format "Sensor fetch failed with return code: {}" throttle 5
+    event SensorChannelGetFailed(ret: I32) severity warning low id 0x7 format "Sensor channel get failed with return code: {}" throttle 5
+    event InvalidGainParam(gain: U8) severity warning low id 0x8 format "Invalid gain parameter: {}" throttle 5
+    event InvalidIntegrationTimeParam(it: U8) severity warning low id 0x9 format "Invalid integration time parameter: {}" throttle 5
+    event InvalidDiv4Param(div4: U8) severity warning low id 0xA format "Invalid effective photodiode size parameter: {}" throttle 5
+    event SensorAttrSetFailed(attr: string size 40, val: U8, ret: I32) severity warning low id 0xB format "Sensor attribute {}={} set failed with return code: {}" throttle 5
+    event VisibleLight(lux: F32) severity activity high id 0xC format "Visible light: {} lux"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0xD format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0xE format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0xF format "{} parameter file value refused ({}); default loaded"
+    telemetry VisibleLight: F32 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+    param GAIN: Drv.GAIN default Drv.GAIN.VEML6031_GAIN_0_5 id 0x0 set opcode 0x0 save opcode 0x1
+    param INTEGRATION_TIME: Drv.IT default Drv.IT.VEML6031_IT_25 id 0x1 set opcode 0x2 save opcode 0x3
+    param EFFECTIVE_PHOTODIODE_SIZE: Drv.DIV4 default Drv.DIV4.VEML6031_SIZE_1_4 id 0x2 set opcode 0x4 save opcode 0x5
+  }
+
+  @ fprime-lite: detumble.proves.camera_handler.CameraHandler
+  passive component CameraHandler {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port schedIn: Svc.Sched
+    sync command TAKE_IMAGE opcode 0x0
+    sync command PING opcode 0x1
+    sync command SEND_COMMAND(cmd: string size 40) opcode 0x2
+    event CommandError(cmd: string size 40) severity warning high id 0x0 format "Failed to send {} command"
+    event CommandSuccess(cmd: string size 40) severity activity high id 0x1 format "Command {} sent successfully"
+    event ImageTransferStarted($size: U32) severity activity high id 0x2 format "Image transfer started, expecting {} bytes"
+    event ImageTransferProgress(percent: U8, received: U32, expected: U32) severity activity high id 0x3 format "Image transfer {}% complete ({}/{} bytes)"
+    event ImageTransferComplete(path: string size 100, $size: U32) severity activity high id 0x4 format "Image saved: {} ({} bytes)"
+    event FailedCommandCurrentlyReceiving severity warning low id 0x5 format "Cannot send command while image is receiving!"
+    event PongReceived severity activity high id 0x6 format "Ping Received"
+    event BadPongReceived severity warning high id 0x7 format "Ping Received when we did not expect it!"
+    event FileWriteError severity warning high id 0x8 format "File write error occurred during image transfer"
+    event FileReadError severity warning high id 0x9 format "File read error occurred during image transfer"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0xA format "Handler {} raised {}" throttle 10
+    telemetry BytesReceived: U32 id 0x0 update always
+    telemetry ExpectedSize: U32 id 0x1 update always
+    telemetry IsReceiving: bool id 0x2 update always
+    telemetry FileOpen: bool id 0x3 update always
+    telemetry FileErrorCount: U32 id 0x4 update always
+    telemetry ImagesSaved: U32 id 0x5 update always
+    telemetry HandlerFaults: U32 id 0x6 update on change
+  }
+
+  @ fprime-lite: detumble.proves.thermal_manager.ThermalManager
+  passive component ThermalManager {
+    enum TempSensorType : I32 {
+      FACE = 0
+      BATTERY = 1
+    } default FACE
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port run: Svc.Sched
+    output port faceTempGet: [5] Drv.temperatureGet
+    output port battCellTempGet: [4] Drv.temperatureGet
+    output port picoTempGet: Drv.picoTemperatureGet
+    event TemperatureBelowThreshold(sensorType: Components.ThermalManager.TempSensorType, sensorId: U32, temperature: F64) severity warning low id 0x0 format "{} temperature below threshold: Sensor {} at {} °C" throttle 5
+    event TemperatureAboveThreshold(sensorType: Components.ThermalManager.TempSensorType, sensorId: U32, temperature: F64) severity warning low id 0x1 format "{} temperature above threshold: Sensor {} at {} °C" throttle 5
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x2 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x3 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x4 format "{} parameter file value refused ({}); default loaded"
+    telemetry HandlerFaults: U32 id 0x0 update on change
+    @ units: C
+    param FACE_TEMP_LOWER_THRESHOLD: F64 default -40.0 id 0x0 set opcode 0x0 save opcode 0x1
+    @ units: C
+    param FACE_TEMP_UPPER_THRESHOLD: F64 default 60.0 id 0x1 set opcode 0x2 save opcode 0x3
+    @ units: C
+    param BATT_CELL_TEMP_LOWER_THRESHOLD: F64 default 5.0 id 0x2 set opcode 0x4 save opcode 0x5
+    @ units: C
+    param BATT_CELL_TEMP_UPPER_THRESHOLD: F64 default 60.0 id 0x3 set opcode 0x6 save opcode 0x7
+  }
+
   @ fprime-lite: detumble.components.bdot_detumble.BDotDetumble
   passive component BDotDetumble {
     time get port timeCaller
@@ -959,6 +1265,36 @@ module Components {
     telemetry Solutions: U32 id 0x1 update on change
     telemetry HandlerFaults: U32 id 0x2 update on change
   }
+
+  @ fprime-lite: detumble.proves.tc_security_deframer.TcSecurityDeframer
+  passive component TcSecurityDeframer {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync command GET_SEQ_NUM opcode 0x0
+    sync command SET_SEQ_NUM(seq_num: U32) opcode 0x1
+    event AuthenticationFailed(auth_status: Components.PacketAuthenticatorStatus, rc: I32) severity warning high id 0x1 format "Authentication failed: Status={}, PSA Return Code={}" throttle 2
+    event SequenceNumberInvalid(packet_seq_num: U32, seq_num: U32, window: U32) severity warning high id 0x2 format "Sequence number less than last accepted or out of window: Received={}, LastAccepted={}, Window={}" throttle 2
+    event ParsingFailed(parse_status: Components.PacketParserStatus) severity warning high id 0x3 format "Parsing failed: {}" throttle 2
+    event SpiInvalid(packet_spi: U32) severity warning high id 0x4 format "SPI invalid: Received={}" throttle 2
+    event SequenceNumberGet(seq_num: U32) severity activity high id 0x6 format "Sequence number is {}"
+    event SequenceNumberSet(seq_num: U32) severity activity high id 0x7 format "Sequence number set to {}"
+    event SequenceNumberWriteFailed(status: Os.FileStatus) severity warning high id 0x8 format "Failed to write sequence number, error: {}" throttle 2
+    event SequenceNumberReadFailed(status: Os.FileStatus) severity warning high id 0xE format "Failed to read sequence number, error: {}" throttle 2
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0xF format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x10 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x11 format "{} parameter file value refused ({}); default loaded"
+    telemetry CurrentSequenceNumber: U32 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+    param SEQ_NUM_WINDOW: U32 default 50000 id 0x0 set opcode 0x2 save opcode 0x3
+    param SEQ_NUM_FILE_PATH: string size 200 default "//sequence_number.txt" id 0x1 set opcode 0x4 save opcode 0x5
+  }
 }
 
 module Drv {
@@ -982,6 +1318,29 @@ module Drv {
     valid: bool
     timestamp: Fw.TimeValue
   } default { q0 = 0.0, q1 = 0.0, q2 = 0.0, q3 = 0.0, valid = false, timestamp = { timeBase = TimeBase.TB_NONE, timeContext = 0, seconds = 0, useconds = 0 } }
+
+  enum DIV4 : U8 {
+    VEML6031_SIZE_4_4 = 0
+    VEML6031_SIZE_1_4 = 1
+  } default VEML6031_SIZE_4_4
+
+  enum GAIN : U8 {
+    VEML6031_GAIN_1 = 0
+    VEML6031_GAIN_2 = 1
+    VEML6031_GAIN_0_66 = 2
+    VEML6031_GAIN_0_5 = 3
+  } default VEML6031_GAIN_1
+
+  enum IT : U8 {
+    VEML6031_IT_3_125 = 0
+    VEML6031_IT_6_25 = 1
+    VEML6031_IT_12_5 = 2
+    VEML6031_IT_25 = 3
+    VEML6031_IT_50 = 4
+    VEML6031_IT_100 = 5
+    VEML6031_IT_200 = 6
+    VEML6031_IT_400 = 7
+  } default VEML6031_IT_3_125
 
   struct MagneticField {
     x: F64
@@ -1031,6 +1390,36 @@ module Drv {
   port WheelStateGet
 
   port WheelTorqueSet(torque: F64) -> Fw.Success
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port lightGet
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port picoTemperatureGet
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port temperatureGet
+}
+
+module Fw {
+  port SuccessCondition(condition: Fw.Success)
+}
+
+module Os {
+  enum FileStatus : I32 {
+    OP_OK = 0
+    DOESNT_EXIST = 1
+    NO_SPACE = 2
+    NO_PERMISSION = 3
+    BAD_SIZE = 4
+    NOT_OPENED = 5
+    FILE_EXISTS = 6
+    NOT_SUPPORTED = 7
+    INVALID_MODE = 8
+    INVALID_ARGUMENT = 9
+    NO_MORE_RESOURCES = 10
+    OTHER_ERROR = 11
+  } default OP_OK
 }
 
 module Sim {
@@ -1071,4 +1460,37 @@ module Sim {
     READ_FAIL = 3
     READ_NAN = 4
   } default NONE
+}
+
+module Zephyr {
+  enum LoRaBandwidth : U16 {
+    BW_125_KHZ = 125
+    BW_250_KHZ = 250
+    BW_500_KHZ = 500
+  } default BW_125_KHZ
+
+  enum LoRaCodingRate : U8 {
+    CR_4_5 = 1
+    CR_4_6 = 2
+    CR_4_7 = 3
+    CR_4_8 = 4
+  } default CR_4_5
+
+  enum LoRaDataRate : U8 {
+    SF_7 = 7
+    SF_8 = 8
+    SF_9 = 9
+    SF_10 = 10
+  } default SF_7
+
+  enum LoRaMode : U8 {
+    Transmit = 0
+    Receive = 1
+  } default Transmit
+
+  enum TransmitState : U8 {
+    ENABLED = 0
+    DISABLED = 1
+    DISABLING = 2
+  } default ENABLED
 }

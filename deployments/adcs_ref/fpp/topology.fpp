@@ -1,5 +1,5 @@
 # Written by fprime-lite (python -m fprime_lite.deploy.fpp.export deployments/adcs_ref/topology.yaml) from deployments/adcs_ref/topology.yaml.
-# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp_export.py checks it is current.
+# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp.py checks it is current.
 
 module AdcsDeployment {
   topology AdcsDeployment {
@@ -42,17 +42,67 @@ module AdcsDeployment {
     instance ReferenceDeployment.powerMonitor
     instance ReferenceDeployment.ina219SysManager
     instance ReferenceDeployment.ina219SolManager
+    instance ReferenceDeployment.payloadSeq
+    instance ReferenceDeployment.burnwire
+    instance ReferenceDeployment.antennaDeployer
+    instance ReferenceDeployment.downlinkDelay
+    instance ReferenceDeployment.lora
+    instance ReferenceDeployment.fsFormat
+    instance ReferenceDeployment.picoTempManager
+    instance ReferenceDeployment.tmp112Face0Manager
+    instance ReferenceDeployment.tmp112Face1Manager
+    instance ReferenceDeployment.tmp112Face2Manager
+    instance ReferenceDeployment.tmp112Face3Manager
+    instance ReferenceDeployment.tmp112Face4Manager
+    instance ReferenceDeployment.tmp112Face5Manager
+    instance ReferenceDeployment.tmp112BattCell1Manager
+    instance ReferenceDeployment.tmp112BattCell2Manager
+    instance ReferenceDeployment.tmp112BattCell3Manager
+    instance ReferenceDeployment.tmp112BattCell4Manager
+    instance ReferenceDeployment.veml6031Face0Manager
+    instance ReferenceDeployment.veml6031Face1Manager
+    instance ReferenceDeployment.veml6031Face2Manager
+    instance ReferenceDeployment.veml6031Face3Manager
+    instance ReferenceDeployment.veml6031Face4Manager
+    instance ReferenceDeployment.veml6031Face5Manager
+    instance ReferenceDeployment.cameraHandler
+    instance ReferenceDeployment.thermalManager
     instance ReferenceDeployment.bdotDetumble
     instance ReferenceDeployment.attitudeController
     instance ReferenceDeployment.reactionWheel0
     instance ReferenceDeployment.reactionWheel1
     instance ReferenceDeployment.reactionWheel2
     instance ReferenceDeployment.starTracker
+    instance ComCcsdsUart.tcSecurityDeframer
     connections Sequencer {
       ReferenceDeployment.cmdSeq.comCmdOut[0] -> CdhCore.cmdDisp.seqCmdBuff[0]
       CdhCore.cmdDisp.seqCmdStatus[0] -> ReferenceDeployment.cmdSeq.cmdResponseIn[0]
       ReferenceDeployment.cmdSeq.seqStartOut[0] -> ReferenceDeployment.startupManager.sequenceStarted[0]
       ReferenceDeployment.cmdSeq.seqDone[0] -> ReferenceDeployment.startupManager.completeSequence[0]
+      ReferenceDeployment.payloadSeq.comCmdOut[0] -> CdhCore.cmdDisp.seqCmdBuff[2]
+      CdhCore.cmdDisp.seqCmdStatus[2] -> ReferenceDeployment.payloadSeq.cmdResponseIn[0]
+      ReferenceDeployment.rtcManager.cancelSequences[0] -> ReferenceDeployment.cmdSeq.seqCancelIn[0]
+      ReferenceDeployment.rtcManager.cancelSequences[1] -> ReferenceDeployment.payloadSeq.seqCancelIn[0]
+    }
+    connections Antenna {
+      ReferenceDeployment.antennaDeployer.burnStart[0] -> ReferenceDeployment.burnwire.burnStart[0]
+      ReferenceDeployment.antennaDeployer.burnStop[0] -> ReferenceDeployment.burnwire.burnStop[0]
+    }
+    connections Thermal {
+      ReferenceDeployment.thermalManager.faceTempGet[0] -> ReferenceDeployment.tmp112Face0Manager.temperatureGet[0]
+      ReferenceDeployment.thermalManager.faceTempGet[1] -> ReferenceDeployment.tmp112Face1Manager.temperatureGet[0]
+      ReferenceDeployment.thermalManager.faceTempGet[2] -> ReferenceDeployment.tmp112Face2Manager.temperatureGet[0]
+      ReferenceDeployment.thermalManager.faceTempGet[3] -> ReferenceDeployment.tmp112Face3Manager.temperatureGet[0]
+      ReferenceDeployment.thermalManager.faceTempGet[4] -> ReferenceDeployment.tmp112Face5Manager.temperatureGet[0]
+      ReferenceDeployment.thermalManager.battCellTempGet[0] -> ReferenceDeployment.tmp112BattCell1Manager.temperatureGet[0]
+      ReferenceDeployment.thermalManager.battCellTempGet[1] -> ReferenceDeployment.tmp112BattCell2Manager.temperatureGet[0]
+      ReferenceDeployment.thermalManager.battCellTempGet[2] -> ReferenceDeployment.tmp112BattCell3Manager.temperatureGet[0]
+      ReferenceDeployment.thermalManager.battCellTempGet[3] -> ReferenceDeployment.tmp112BattCell4Manager.temperatureGet[0]
+      ReferenceDeployment.thermalManager.picoTempGet[0] -> ReferenceDeployment.picoTempManager.picoTemperatureGet[0]
+    }
+    connections Radio {
+      ReferenceDeployment.downlinkDelay.comStatusOut[0] -> ReferenceDeployment.lora.comStatusIn[0]
+      ReferenceDeployment.lora.comStatusOut[0] -> ReferenceDeployment.downlinkDelay.comStatusIn[0]
     }
     connections Detumble {
       ReferenceDeployment.detumbleManager.angularVelocityMagnitudeGet[0] -> ReferenceDeployment.imuManager.angularVelocityMagnitudeGet[0]
@@ -82,6 +132,18 @@ module AdcsDeployment {
       ReferenceDeployment.modeManager.loadSwitchTurnOn[5] -> ReferenceDeployment.face5LoadSwitch.turnOn[0]
     }
     connections LoadSwitches {
+      ReferenceDeployment.face0LoadSwitch.loadSwitchStateChanged[0] -> ReferenceDeployment.tmp112Face0Manager.loadSwitchStateChanged[0]
+      ReferenceDeployment.face1LoadSwitch.loadSwitchStateChanged[0] -> ReferenceDeployment.tmp112Face1Manager.loadSwitchStateChanged[0]
+      ReferenceDeployment.face2LoadSwitch.loadSwitchStateChanged[0] -> ReferenceDeployment.tmp112Face2Manager.loadSwitchStateChanged[0]
+      ReferenceDeployment.face3LoadSwitch.loadSwitchStateChanged[0] -> ReferenceDeployment.tmp112Face3Manager.loadSwitchStateChanged[0]
+      ReferenceDeployment.face4LoadSwitch.loadSwitchStateChanged[0] -> ReferenceDeployment.tmp112Face4Manager.loadSwitchStateChanged[0]
+      ReferenceDeployment.face5LoadSwitch.loadSwitchStateChanged[0] -> ReferenceDeployment.tmp112Face5Manager.loadSwitchStateChanged[0]
+      ReferenceDeployment.face0LoadSwitch.loadSwitchStateChanged[1] -> ReferenceDeployment.veml6031Face0Manager.loadSwitchStateChanged[0]
+      ReferenceDeployment.face1LoadSwitch.loadSwitchStateChanged[1] -> ReferenceDeployment.veml6031Face1Manager.loadSwitchStateChanged[0]
+      ReferenceDeployment.face2LoadSwitch.loadSwitchStateChanged[1] -> ReferenceDeployment.veml6031Face2Manager.loadSwitchStateChanged[0]
+      ReferenceDeployment.face3LoadSwitch.loadSwitchStateChanged[1] -> ReferenceDeployment.veml6031Face3Manager.loadSwitchStateChanged[0]
+      ReferenceDeployment.face4LoadSwitch.loadSwitchStateChanged[1] -> ReferenceDeployment.veml6031Face4Manager.loadSwitchStateChanged[0]
+      ReferenceDeployment.face5LoadSwitch.loadSwitchStateChanged[1] -> ReferenceDeployment.veml6031Face5Manager.loadSwitchStateChanged[0]
       ReferenceDeployment.face0LoadSwitch.loadSwitchStateChanged[2] -> ReferenceDeployment.drv2605Face0Manager.loadSwitchStateChanged[0]
       ReferenceDeployment.face1LoadSwitch.loadSwitchStateChanged[2] -> ReferenceDeployment.drv2605Face1Manager.loadSwitchStateChanged[0]
       ReferenceDeployment.face2LoadSwitch.loadSwitchStateChanged[2] -> ReferenceDeployment.drv2605Face2Manager.loadSwitchStateChanged[0]
@@ -235,24 +297,102 @@ module AdcsDeployment {
       ReferenceDeployment.ina219SolManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[30]
       CdhCore.cmdDisp.compCmdSend[30] -> ReferenceDeployment.ina219SolManager.cmdIn[0]
       ReferenceDeployment.ina219SolManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
-      ReferenceDeployment.bdotDetumble.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[31]
-      CdhCore.cmdDisp.compCmdSend[31] -> ReferenceDeployment.bdotDetumble.cmdIn[0]
+      ReferenceDeployment.payloadSeq.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[31]
+      CdhCore.cmdDisp.compCmdSend[31] -> ReferenceDeployment.payloadSeq.cmdIn[0]
+      ReferenceDeployment.payloadSeq.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.burnwire.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[32]
+      CdhCore.cmdDisp.compCmdSend[32] -> ReferenceDeployment.burnwire.cmdIn[0]
+      ReferenceDeployment.burnwire.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.antennaDeployer.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[33]
+      CdhCore.cmdDisp.compCmdSend[33] -> ReferenceDeployment.antennaDeployer.cmdIn[0]
+      ReferenceDeployment.antennaDeployer.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.downlinkDelay.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[34]
+      CdhCore.cmdDisp.compCmdSend[34] -> ReferenceDeployment.downlinkDelay.cmdIn[0]
+      ReferenceDeployment.downlinkDelay.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.lora.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[35]
+      CdhCore.cmdDisp.compCmdSend[35] -> ReferenceDeployment.lora.cmdIn[0]
+      ReferenceDeployment.lora.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.fsFormat.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[36]
+      CdhCore.cmdDisp.compCmdSend[36] -> ReferenceDeployment.fsFormat.cmdIn[0]
+      ReferenceDeployment.fsFormat.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.picoTempManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[37]
+      CdhCore.cmdDisp.compCmdSend[37] -> ReferenceDeployment.picoTempManager.cmdIn[0]
+      ReferenceDeployment.picoTempManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.tmp112Face0Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[38]
+      CdhCore.cmdDisp.compCmdSend[38] -> ReferenceDeployment.tmp112Face0Manager.cmdIn[0]
+      ReferenceDeployment.tmp112Face0Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.tmp112Face1Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[39]
+      CdhCore.cmdDisp.compCmdSend[39] -> ReferenceDeployment.tmp112Face1Manager.cmdIn[0]
+      ReferenceDeployment.tmp112Face1Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.tmp112Face2Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[40]
+      CdhCore.cmdDisp.compCmdSend[40] -> ReferenceDeployment.tmp112Face2Manager.cmdIn[0]
+      ReferenceDeployment.tmp112Face2Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.tmp112Face3Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[41]
+      CdhCore.cmdDisp.compCmdSend[41] -> ReferenceDeployment.tmp112Face3Manager.cmdIn[0]
+      ReferenceDeployment.tmp112Face3Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.tmp112Face4Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[42]
+      CdhCore.cmdDisp.compCmdSend[42] -> ReferenceDeployment.tmp112Face4Manager.cmdIn[0]
+      ReferenceDeployment.tmp112Face4Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.tmp112Face5Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[43]
+      CdhCore.cmdDisp.compCmdSend[43] -> ReferenceDeployment.tmp112Face5Manager.cmdIn[0]
+      ReferenceDeployment.tmp112Face5Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.tmp112BattCell1Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[44]
+      CdhCore.cmdDisp.compCmdSend[44] -> ReferenceDeployment.tmp112BattCell1Manager.cmdIn[0]
+      ReferenceDeployment.tmp112BattCell1Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.tmp112BattCell2Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[45]
+      CdhCore.cmdDisp.compCmdSend[45] -> ReferenceDeployment.tmp112BattCell2Manager.cmdIn[0]
+      ReferenceDeployment.tmp112BattCell2Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.tmp112BattCell3Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[46]
+      CdhCore.cmdDisp.compCmdSend[46] -> ReferenceDeployment.tmp112BattCell3Manager.cmdIn[0]
+      ReferenceDeployment.tmp112BattCell3Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.tmp112BattCell4Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[47]
+      CdhCore.cmdDisp.compCmdSend[47] -> ReferenceDeployment.tmp112BattCell4Manager.cmdIn[0]
+      ReferenceDeployment.tmp112BattCell4Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.veml6031Face0Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[48]
+      CdhCore.cmdDisp.compCmdSend[48] -> ReferenceDeployment.veml6031Face0Manager.cmdIn[0]
+      ReferenceDeployment.veml6031Face0Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.veml6031Face1Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[49]
+      CdhCore.cmdDisp.compCmdSend[49] -> ReferenceDeployment.veml6031Face1Manager.cmdIn[0]
+      ReferenceDeployment.veml6031Face1Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.veml6031Face2Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[50]
+      CdhCore.cmdDisp.compCmdSend[50] -> ReferenceDeployment.veml6031Face2Manager.cmdIn[0]
+      ReferenceDeployment.veml6031Face2Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.veml6031Face3Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[51]
+      CdhCore.cmdDisp.compCmdSend[51] -> ReferenceDeployment.veml6031Face3Manager.cmdIn[0]
+      ReferenceDeployment.veml6031Face3Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.veml6031Face4Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[52]
+      CdhCore.cmdDisp.compCmdSend[52] -> ReferenceDeployment.veml6031Face4Manager.cmdIn[0]
+      ReferenceDeployment.veml6031Face4Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.veml6031Face5Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[53]
+      CdhCore.cmdDisp.compCmdSend[53] -> ReferenceDeployment.veml6031Face5Manager.cmdIn[0]
+      ReferenceDeployment.veml6031Face5Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.cameraHandler.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[54]
+      CdhCore.cmdDisp.compCmdSend[54] -> ReferenceDeployment.cameraHandler.cmdIn[0]
+      ReferenceDeployment.cameraHandler.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.thermalManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[55]
+      CdhCore.cmdDisp.compCmdSend[55] -> ReferenceDeployment.thermalManager.cmdIn[0]
+      ReferenceDeployment.thermalManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ReferenceDeployment.bdotDetumble.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[56]
+      CdhCore.cmdDisp.compCmdSend[56] -> ReferenceDeployment.bdotDetumble.cmdIn[0]
       ReferenceDeployment.bdotDetumble.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
-      ReferenceDeployment.attitudeController.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[32]
-      CdhCore.cmdDisp.compCmdSend[32] -> ReferenceDeployment.attitudeController.cmdIn[0]
+      ReferenceDeployment.attitudeController.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[57]
+      CdhCore.cmdDisp.compCmdSend[57] -> ReferenceDeployment.attitudeController.cmdIn[0]
       ReferenceDeployment.attitudeController.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
-      ReferenceDeployment.reactionWheel0.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[33]
-      CdhCore.cmdDisp.compCmdSend[33] -> ReferenceDeployment.reactionWheel0.cmdIn[0]
+      ReferenceDeployment.reactionWheel0.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[58]
+      CdhCore.cmdDisp.compCmdSend[58] -> ReferenceDeployment.reactionWheel0.cmdIn[0]
       ReferenceDeployment.reactionWheel0.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
-      ReferenceDeployment.reactionWheel1.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[34]
-      CdhCore.cmdDisp.compCmdSend[34] -> ReferenceDeployment.reactionWheel1.cmdIn[0]
+      ReferenceDeployment.reactionWheel1.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[59]
+      CdhCore.cmdDisp.compCmdSend[59] -> ReferenceDeployment.reactionWheel1.cmdIn[0]
       ReferenceDeployment.reactionWheel1.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
-      ReferenceDeployment.reactionWheel2.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[35]
-      CdhCore.cmdDisp.compCmdSend[35] -> ReferenceDeployment.reactionWheel2.cmdIn[0]
+      ReferenceDeployment.reactionWheel2.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[60]
+      CdhCore.cmdDisp.compCmdSend[60] -> ReferenceDeployment.reactionWheel2.cmdIn[0]
       ReferenceDeployment.reactionWheel2.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
-      ReferenceDeployment.starTracker.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[36]
-      CdhCore.cmdDisp.compCmdSend[36] -> ReferenceDeployment.starTracker.cmdIn[0]
+      ReferenceDeployment.starTracker.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[61]
+      CdhCore.cmdDisp.compCmdSend[61] -> ReferenceDeployment.starTracker.cmdIn[0]
       ReferenceDeployment.starTracker.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ComCcsdsUart.tcSecurityDeframer.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[62]
+      CdhCore.cmdDisp.compCmdSend[62] -> ComCcsdsUart.tcSecurityDeframer.cmdIn[0]
+      ComCcsdsUart.tcSecurityDeframer.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
     }
     connections Pattern_event {
       CdhCore.cmdDisp.logOut[0] -> CdhCore.events.LogRecv[0]
@@ -294,12 +434,38 @@ module AdcsDeployment {
       ReferenceDeployment.powerMonitor.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.ina219SysManager.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.ina219SolManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.payloadSeq.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.burnwire.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.antennaDeployer.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.downlinkDelay.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.lora.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.fsFormat.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.picoTempManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.tmp112Face0Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.tmp112Face1Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.tmp112Face2Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.tmp112Face3Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.tmp112Face4Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.tmp112Face5Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.tmp112BattCell1Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.tmp112BattCell2Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.tmp112BattCell3Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.tmp112BattCell4Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.veml6031Face0Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.veml6031Face1Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.veml6031Face2Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.veml6031Face3Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.veml6031Face4Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.veml6031Face5Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.cameraHandler.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.thermalManager.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.bdotDetumble.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.attitudeController.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.reactionWheel0.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.reactionWheel1.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.reactionWheel2.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.starTracker.logOut[0] -> CdhCore.events.LogRecv[0]
+      ComCcsdsUart.tcSecurityDeframer.logOut[0] -> CdhCore.events.LogRecv[0]
     }
     connections Pattern_telemetry {
       CdhCore.cmdDisp.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
@@ -341,12 +507,38 @@ module AdcsDeployment {
       ReferenceDeployment.powerMonitor.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.ina219SysManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.ina219SolManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.payloadSeq.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.burnwire.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.antennaDeployer.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.downlinkDelay.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.lora.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.fsFormat.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.picoTempManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.tmp112Face0Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.tmp112Face1Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.tmp112Face2Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.tmp112Face3Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.tmp112Face4Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.tmp112Face5Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.tmp112BattCell1Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.tmp112BattCell2Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.tmp112BattCell3Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.tmp112BattCell4Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.veml6031Face0Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.veml6031Face1Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.veml6031Face2Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.veml6031Face3Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.veml6031Face4Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.veml6031Face5Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.cameraHandler.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.thermalManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.bdotDetumble.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.attitudeController.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.reactionWheel0.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.reactionWheel1.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.reactionWheel2.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.starTracker.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ComCcsdsUart.tcSecurityDeframer.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
     }
     connections Pattern_param {
       ReferenceDeployment.modeManager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
@@ -357,10 +549,34 @@ module AdcsDeployment {
       ReferenceDeployment.detumbleManager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
       ReferenceDeployment.startupManager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
       ReferenceDeployment.startupManager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.burnwire.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.burnwire.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.antennaDeployer.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.antennaDeployer.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.downlinkDelay.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.downlinkDelay.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.lora.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.lora.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.veml6031Face0Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.veml6031Face0Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.veml6031Face1Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.veml6031Face1Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.veml6031Face2Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.veml6031Face2Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.veml6031Face3Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.veml6031Face3Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.veml6031Face4Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.veml6031Face4Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.veml6031Face5Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.veml6031Face5Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.thermalManager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.thermalManager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
       ReferenceDeployment.bdotDetumble.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
       ReferenceDeployment.bdotDetumble.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
       ReferenceDeployment.attitudeController.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
       ReferenceDeployment.attitudeController.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ComCcsdsUart.tcSecurityDeframer.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ComCcsdsUart.tcSecurityDeframer.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
     }
     connections Pattern_health {
       CdhCore.$health.PingSend[0] -> CdhCore.cmdDisp.pingIn[0]
@@ -385,6 +601,8 @@ module AdcsDeployment {
       ReferenceDeployment.rateGroup1Hz.PingOut[0] -> CdhCore.$health.PingReturn[9]
       CdhCore.$health.PingSend[10] -> ReferenceDeployment.cmdSeq.pingIn[0]
       ReferenceDeployment.cmdSeq.pingOut[0] -> CdhCore.$health.PingReturn[10]
+      CdhCore.$health.PingSend[11] -> ReferenceDeployment.payloadSeq.pingIn[0]
+      ReferenceDeployment.payloadSeq.pingOut[0] -> CdhCore.$health.PingReturn[11]
     }
     connections Pattern_time {
       CdhCore.cmdDisp.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
@@ -426,12 +644,38 @@ module AdcsDeployment {
       ReferenceDeployment.powerMonitor.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.ina219SysManager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.ina219SolManager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.payloadSeq.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.burnwire.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.antennaDeployer.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.downlinkDelay.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.lora.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.fsFormat.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.picoTempManager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.tmp112Face0Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.tmp112Face1Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.tmp112Face2Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.tmp112Face3Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.tmp112Face4Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.tmp112Face5Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.tmp112BattCell1Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.tmp112BattCell2Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.tmp112BattCell3Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.tmp112BattCell4Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.veml6031Face0Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.veml6031Face1Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.veml6031Face2Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.veml6031Face3Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.veml6031Face4Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.veml6031Face5Manager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.cameraHandler.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.thermalManager.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.bdotDetumble.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.attitudeController.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.reactionWheel0.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.reactionWheel1.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.reactionWheel2.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.starTracker.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ComCcsdsUart.tcSecurityDeframer.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
     }
   }
 }
@@ -448,6 +692,10 @@ module CdhCore {
   instance textLogger: Svc.PassiveTextLogger base id 0x01000500
 
   instance tlmSend: Svc.TlmChan base id 0x01006000 queue size 10
+}
+
+module ComCcsdsUart {
+  instance tcSecurityDeframer: Components.TcSecurityDeframer base id 0x2100B000
 }
 
 module FileHandling {
@@ -518,6 +766,56 @@ module ReferenceDeployment {
   instance ina219SysManager: Components.Ina219Manager base id 0x10039000
 
   instance ina219SolManager: Components.Ina219Manager base id 0x1003A000
+
+  instance payloadSeq: Svc.CmdSequencer base id 0x10062000 queue size 10
+
+  instance burnwire: Components.Burnwire base id 0x1001B000
+
+  instance antennaDeployer: Components.AntennaDeployer base id 0x10022000
+
+  instance downlinkDelay: Components.ComDelay base id 0x1001E000
+
+  instance lora: Components.LoRa base id 0x1001F000
+
+  instance fsFormat: Components.FsFormat base id 0x10078000
+
+  instance picoTempManager: Components.PicoTempManager base id 0x10079000
+
+  instance tmp112Face0Manager: Components.Tmp112Manager base id 0x10042000
+
+  instance tmp112Face1Manager: Components.Tmp112Manager base id 0x10043000
+
+  instance tmp112Face2Manager: Components.Tmp112Manager base id 0x10044000
+
+  instance tmp112Face3Manager: Components.Tmp112Manager base id 0x10045000
+
+  instance tmp112Face4Manager: Components.Tmp112Manager base id 0x10046000
+
+  instance tmp112Face5Manager: Components.Tmp112Manager base id 0x10047000
+
+  instance tmp112BattCell1Manager: Components.Tmp112Manager base id 0x10048000
+
+  instance tmp112BattCell2Manager: Components.Tmp112Manager base id 0x10049000
+
+  instance tmp112BattCell3Manager: Components.Tmp112Manager base id 0x1004A000
+
+  instance tmp112BattCell4Manager: Components.Tmp112Manager base id 0x1004B000
+
+  instance veml6031Face0Manager: Components.Veml6031Manager base id 0x1004D000
+
+  instance veml6031Face1Manager: Components.Veml6031Manager base id 0x1004E000
+
+  instance veml6031Face2Manager: Components.Veml6031Manager base id 0x1004F000
+
+  instance veml6031Face3Manager: Components.Veml6031Manager base id 0x10050000
+
+  instance veml6031Face4Manager: Components.Veml6031Manager base id 0x10051000
+
+  instance veml6031Face5Manager: Components.Veml6031Manager base id 0x10052000
+
+  instance cameraHandler: Components.CameraHandler base id 0x1002B000
+
+  instance thermalManager: Components.ThermalManager base id 0x10041000
 
   instance bdotDetumble: Components.BDotDetumble base id 0x1005B000
 

@@ -1,5 +1,5 @@
 # Written by fprime-lite (python -m fprime_lite.deploy.fpp.export deployments/coursework/topology.yaml) from deployments/coursework/topology.yaml.
-# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp_export.py checks it is current.
+# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp.py checks it is current.
 
 module Components {
   enum AngularUnit : I32 {

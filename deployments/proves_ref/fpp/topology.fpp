@@ -1,5 +1,5 @@
 # Written by fprime-lite (python -m fprime_lite.deploy.fpp.export deployments/proves_ref/topology.yaml) from deployments/proves_ref/topology.yaml.
-# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp_export.py checks it is current.
+# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp.py checks it is current.
 
 module CdhCore {
   instance cmdDisp: Svc.CommandDispatcher base id 0x01000100 queue size 10
@@ -13,6 +13,10 @@ module CdhCore {
   instance textLogger: Svc.PassiveTextLogger base id 0x01000500
 
   instance tlmSend: Svc.TlmChan base id 0x01006000 queue size 10
+}
+
+module ComCcsdsUart {
+  instance tcSecurityDeframer: Components.TcSecurityDeframer base id 0x2100B000
 }
 
 module FileHandling {
@@ -84,6 +88,56 @@ module ReferenceDeployment {
 
   instance ina219SolManager: Components.Ina219Manager base id 0x1003A000
 
+  instance payloadSeq: Svc.CmdSequencer base id 0x10062000 queue size 10
+
+  instance burnwire: Components.Burnwire base id 0x1001B000
+
+  instance antennaDeployer: Components.AntennaDeployer base id 0x10022000
+
+  instance downlinkDelay: Components.ComDelay base id 0x1001E000
+
+  instance lora: Components.LoRa base id 0x1001F000
+
+  instance fsFormat: Components.FsFormat base id 0x10078000
+
+  instance picoTempManager: Components.PicoTempManager base id 0x10079000
+
+  instance tmp112Face0Manager: Components.Tmp112Manager base id 0x10042000
+
+  instance tmp112Face1Manager: Components.Tmp112Manager base id 0x10043000
+
+  instance tmp112Face2Manager: Components.Tmp112Manager base id 0x10044000
+
+  instance tmp112Face3Manager: Components.Tmp112Manager base id 0x10045000
+
+  instance tmp112Face4Manager: Components.Tmp112Manager base id 0x10046000
+
+  instance tmp112Face5Manager: Components.Tmp112Manager base id 0x10047000
+
+  instance tmp112BattCell1Manager: Components.Tmp112Manager base id 0x10048000
+
+  instance tmp112BattCell2Manager: Components.Tmp112Manager base id 0x10049000
+
+  instance tmp112BattCell3Manager: Components.Tmp112Manager base id 0x1004A000
+
+  instance tmp112BattCell4Manager: Components.Tmp112Manager base id 0x1004B000
+
+  instance veml6031Face0Manager: Components.Veml6031Manager base id 0x1004D000
+
+  instance veml6031Face1Manager: Components.Veml6031Manager base id 0x1004E000
+
+  instance veml6031Face2Manager: Components.Veml6031Manager base id 0x1004F000
+
+  instance veml6031Face3Manager: Components.Veml6031Manager base id 0x10050000
+
+  instance veml6031Face4Manager: Components.Veml6031Manager base id 0x10051000
+
+  instance veml6031Face5Manager: Components.Veml6031Manager base id 0x10052000
+
+  instance cameraHandler: Components.CameraHandler base id 0x1002B000
+
+  instance thermalManager: Components.ThermalManager base id 0x10041000
+
   topology ReferenceDeployment {
     instance CdhCore.cmdDisp
     instance CdhCore.events
@@ -124,11 +178,61 @@ module ReferenceDeployment {
     instance powerMonitor
     instance ina219SysManager
     instance ina219SolManager
+    instance payloadSeq
+    instance burnwire
+    instance antennaDeployer
+    instance downlinkDelay
+    instance lora
+    instance fsFormat
+    instance picoTempManager
+    instance tmp112Face0Manager
+    instance tmp112Face1Manager
+    instance tmp112Face2Manager
+    instance tmp112Face3Manager
+    instance tmp112Face4Manager
+    instance tmp112Face5Manager
+    instance tmp112BattCell1Manager
+    instance tmp112BattCell2Manager
+    instance tmp112BattCell3Manager
+    instance tmp112BattCell4Manager
+    instance veml6031Face0Manager
+    instance veml6031Face1Manager
+    instance veml6031Face2Manager
+    instance veml6031Face3Manager
+    instance veml6031Face4Manager
+    instance veml6031Face5Manager
+    instance cameraHandler
+    instance thermalManager
+    instance ComCcsdsUart.tcSecurityDeframer
     connections Sequencer {
       cmdSeq.comCmdOut[0] -> CdhCore.cmdDisp.seqCmdBuff[0]
       CdhCore.cmdDisp.seqCmdStatus[0] -> cmdSeq.cmdResponseIn[0]
       cmdSeq.seqStartOut[0] -> startupManager.sequenceStarted[0]
       cmdSeq.seqDone[0] -> startupManager.completeSequence[0]
+      payloadSeq.comCmdOut[0] -> CdhCore.cmdDisp.seqCmdBuff[2]
+      CdhCore.cmdDisp.seqCmdStatus[2] -> payloadSeq.cmdResponseIn[0]
+      rtcManager.cancelSequences[0] -> cmdSeq.seqCancelIn[0]
+      rtcManager.cancelSequences[1] -> payloadSeq.seqCancelIn[0]
+    }
+    connections Antenna {
+      antennaDeployer.burnStart[0] -> burnwire.burnStart[0]
+      antennaDeployer.burnStop[0] -> burnwire.burnStop[0]
+    }
+    connections Thermal {
+      thermalManager.faceTempGet[0] -> tmp112Face0Manager.temperatureGet[0]
+      thermalManager.faceTempGet[1] -> tmp112Face1Manager.temperatureGet[0]
+      thermalManager.faceTempGet[2] -> tmp112Face2Manager.temperatureGet[0]
+      thermalManager.faceTempGet[3] -> tmp112Face3Manager.temperatureGet[0]
+      thermalManager.faceTempGet[4] -> tmp112Face5Manager.temperatureGet[0]
+      thermalManager.battCellTempGet[0] -> tmp112BattCell1Manager.temperatureGet[0]
+      thermalManager.battCellTempGet[1] -> tmp112BattCell2Manager.temperatureGet[0]
+      thermalManager.battCellTempGet[2] -> tmp112BattCell3Manager.temperatureGet[0]
+      thermalManager.battCellTempGet[3] -> tmp112BattCell4Manager.temperatureGet[0]
+      thermalManager.picoTempGet[0] -> picoTempManager.picoTemperatureGet[0]
+    }
+    connections Radio {
+      downlinkDelay.comStatusOut[0] -> lora.comStatusIn[0]
+      lora.comStatusOut[0] -> downlinkDelay.comStatusIn[0]
     }
     connections Detumble {
       detumbleManager.angularVelocityMagnitudeGet[0] -> imuManager.angularVelocityMagnitudeGet[0]
@@ -168,6 +272,18 @@ module ReferenceDeployment {
       modeManager.loadSwitchTurnOn[5] -> face5LoadSwitch.turnOn[0]
     }
     connections LoadSwitches {
+      face0LoadSwitch.loadSwitchStateChanged[0] -> tmp112Face0Manager.loadSwitchStateChanged[0]
+      face1LoadSwitch.loadSwitchStateChanged[0] -> tmp112Face1Manager.loadSwitchStateChanged[0]
+      face2LoadSwitch.loadSwitchStateChanged[0] -> tmp112Face2Manager.loadSwitchStateChanged[0]
+      face3LoadSwitch.loadSwitchStateChanged[0] -> tmp112Face3Manager.loadSwitchStateChanged[0]
+      face4LoadSwitch.loadSwitchStateChanged[0] -> tmp112Face4Manager.loadSwitchStateChanged[0]
+      face5LoadSwitch.loadSwitchStateChanged[0] -> tmp112Face5Manager.loadSwitchStateChanged[0]
+      face0LoadSwitch.loadSwitchStateChanged[1] -> veml6031Face0Manager.loadSwitchStateChanged[0]
+      face1LoadSwitch.loadSwitchStateChanged[1] -> veml6031Face1Manager.loadSwitchStateChanged[0]
+      face2LoadSwitch.loadSwitchStateChanged[1] -> veml6031Face2Manager.loadSwitchStateChanged[0]
+      face3LoadSwitch.loadSwitchStateChanged[1] -> veml6031Face3Manager.loadSwitchStateChanged[0]
+      face4LoadSwitch.loadSwitchStateChanged[1] -> veml6031Face4Manager.loadSwitchStateChanged[0]
+      face5LoadSwitch.loadSwitchStateChanged[1] -> veml6031Face5Manager.loadSwitchStateChanged[0]
       face0LoadSwitch.loadSwitchStateChanged[2] -> drv2605Face0Manager.loadSwitchStateChanged[0]
       face1LoadSwitch.loadSwitchStateChanged[2] -> drv2605Face1Manager.loadSwitchStateChanged[0]
       face2LoadSwitch.loadSwitchStateChanged[2] -> drv2605Face2Manager.loadSwitchStateChanged[0]
@@ -187,15 +303,21 @@ module ReferenceDeployment {
       rateGroup50Hz.RateGroupMemberOut[0] -> detumbleManager.run[0]
       rateGroupDriver.CycleOut[1] -> rateGroup10Hz.CycleIn[0]
       rateGroup10Hz.RateGroupMemberOut[0] -> cmdSeq.schedIn[0]
+      rateGroup10Hz.RateGroupMemberOut[1] -> payloadSeq.schedIn[0]
+      rateGroup10Hz.RateGroupMemberOut[2] -> cameraHandler.schedIn[0]
+      rateGroup10Hz.RateGroupMemberOut[3] -> downlinkDelay.run[0]
       rateGroupDriver.CycleOut[2] -> rateGroup1Hz.CycleIn[0]
       rateGroup1Hz.RateGroupMemberOut[0] -> watchdog.run[0]
       rateGroup1Hz.RateGroupMemberOut[1] -> imuManager.run[0]
       rateGroup1Hz.RateGroupMemberOut[2] -> startupManager.run[0]
       rateGroup1Hz.RateGroupMemberOut[3] -> powerMonitor.run[0]
       rateGroup1Hz.RateGroupMemberOut[4] -> modeManager.run[0]
-      rateGroup1Hz.RateGroupMemberOut[5] -> CdhCore.tlmSend.Run[0]
-      rateGroup1Hz.RateGroupMemberOut[6] -> CdhCore.$health.Run[0]
-      rateGroup1Hz.RateGroupMemberOut[7] -> FileHandling.fileDownlink.Run[0]
+      rateGroup1Hz.RateGroupMemberOut[5] -> burnwire.schedIn[0]
+      rateGroup1Hz.RateGroupMemberOut[6] -> antennaDeployer.schedIn[0]
+      rateGroup1Hz.RateGroupMemberOut[7] -> thermalManager.run[0]
+      rateGroup1Hz.RateGroupMemberOut[8] -> CdhCore.tlmSend.Run[0]
+      rateGroup1Hz.RateGroupMemberOut[9] -> CdhCore.$health.Run[0]
+      rateGroup1Hz.RateGroupMemberOut[10] -> FileHandling.fileDownlink.Run[0]
     }
     connections Pattern_command {
       CdhCore.cmdDisp.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[0]
@@ -291,6 +413,84 @@ module ReferenceDeployment {
       ina219SolManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[30]
       CdhCore.cmdDisp.compCmdSend[30] -> ina219SolManager.cmdIn[0]
       ina219SolManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      payloadSeq.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[31]
+      CdhCore.cmdDisp.compCmdSend[31] -> payloadSeq.cmdIn[0]
+      payloadSeq.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      burnwire.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[32]
+      CdhCore.cmdDisp.compCmdSend[32] -> burnwire.cmdIn[0]
+      burnwire.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      antennaDeployer.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[33]
+      CdhCore.cmdDisp.compCmdSend[33] -> antennaDeployer.cmdIn[0]
+      antennaDeployer.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      downlinkDelay.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[34]
+      CdhCore.cmdDisp.compCmdSend[34] -> downlinkDelay.cmdIn[0]
+      downlinkDelay.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      lora.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[35]
+      CdhCore.cmdDisp.compCmdSend[35] -> lora.cmdIn[0]
+      lora.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      fsFormat.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[36]
+      CdhCore.cmdDisp.compCmdSend[36] -> fsFormat.cmdIn[0]
+      fsFormat.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      picoTempManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[37]
+      CdhCore.cmdDisp.compCmdSend[37] -> picoTempManager.cmdIn[0]
+      picoTempManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      tmp112Face0Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[38]
+      CdhCore.cmdDisp.compCmdSend[38] -> tmp112Face0Manager.cmdIn[0]
+      tmp112Face0Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      tmp112Face1Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[39]
+      CdhCore.cmdDisp.compCmdSend[39] -> tmp112Face1Manager.cmdIn[0]
+      tmp112Face1Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      tmp112Face2Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[40]
+      CdhCore.cmdDisp.compCmdSend[40] -> tmp112Face2Manager.cmdIn[0]
+      tmp112Face2Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      tmp112Face3Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[41]
+      CdhCore.cmdDisp.compCmdSend[41] -> tmp112Face3Manager.cmdIn[0]
+      tmp112Face3Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      tmp112Face4Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[42]
+      CdhCore.cmdDisp.compCmdSend[42] -> tmp112Face4Manager.cmdIn[0]
+      tmp112Face4Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      tmp112Face5Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[43]
+      CdhCore.cmdDisp.compCmdSend[43] -> tmp112Face5Manager.cmdIn[0]
+      tmp112Face5Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      tmp112BattCell1Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[44]
+      CdhCore.cmdDisp.compCmdSend[44] -> tmp112BattCell1Manager.cmdIn[0]
+      tmp112BattCell1Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      tmp112BattCell2Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[45]
+      CdhCore.cmdDisp.compCmdSend[45] -> tmp112BattCell2Manager.cmdIn[0]
+      tmp112BattCell2Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      tmp112BattCell3Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[46]
+      CdhCore.cmdDisp.compCmdSend[46] -> tmp112BattCell3Manager.cmdIn[0]
+      tmp112BattCell3Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      tmp112BattCell4Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[47]
+      CdhCore.cmdDisp.compCmdSend[47] -> tmp112BattCell4Manager.cmdIn[0]
+      tmp112BattCell4Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      veml6031Face0Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[48]
+      CdhCore.cmdDisp.compCmdSend[48] -> veml6031Face0Manager.cmdIn[0]
+      veml6031Face0Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      veml6031Face1Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[49]
+      CdhCore.cmdDisp.compCmdSend[49] -> veml6031Face1Manager.cmdIn[0]
+      veml6031Face1Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      veml6031Face2Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[50]
+      CdhCore.cmdDisp.compCmdSend[50] -> veml6031Face2Manager.cmdIn[0]
+      veml6031Face2Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      veml6031Face3Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[51]
+      CdhCore.cmdDisp.compCmdSend[51] -> veml6031Face3Manager.cmdIn[0]
+      veml6031Face3Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      veml6031Face4Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[52]
+      CdhCore.cmdDisp.compCmdSend[52] -> veml6031Face4Manager.cmdIn[0]
+      veml6031Face4Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      veml6031Face5Manager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[53]
+      CdhCore.cmdDisp.compCmdSend[53] -> veml6031Face5Manager.cmdIn[0]
+      veml6031Face5Manager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      cameraHandler.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[54]
+      CdhCore.cmdDisp.compCmdSend[54] -> cameraHandler.cmdIn[0]
+      cameraHandler.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      thermalManager.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[55]
+      CdhCore.cmdDisp.compCmdSend[55] -> thermalManager.cmdIn[0]
+      thermalManager.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ComCcsdsUart.tcSecurityDeframer.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[56]
+      CdhCore.cmdDisp.compCmdSend[56] -> ComCcsdsUart.tcSecurityDeframer.cmdIn[0]
+      ComCcsdsUart.tcSecurityDeframer.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
     }
     connections Pattern_event {
       CdhCore.cmdDisp.logOut[0] -> CdhCore.events.LogRecv[0]
@@ -332,6 +532,32 @@ module ReferenceDeployment {
       powerMonitor.logOut[0] -> CdhCore.events.LogRecv[0]
       ina219SysManager.logOut[0] -> CdhCore.events.LogRecv[0]
       ina219SolManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      payloadSeq.logOut[0] -> CdhCore.events.LogRecv[0]
+      burnwire.logOut[0] -> CdhCore.events.LogRecv[0]
+      antennaDeployer.logOut[0] -> CdhCore.events.LogRecv[0]
+      downlinkDelay.logOut[0] -> CdhCore.events.LogRecv[0]
+      lora.logOut[0] -> CdhCore.events.LogRecv[0]
+      fsFormat.logOut[0] -> CdhCore.events.LogRecv[0]
+      picoTempManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      tmp112Face0Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      tmp112Face1Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      tmp112Face2Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      tmp112Face3Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      tmp112Face4Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      tmp112Face5Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      tmp112BattCell1Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      tmp112BattCell2Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      tmp112BattCell3Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      tmp112BattCell4Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      veml6031Face0Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      veml6031Face1Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      veml6031Face2Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      veml6031Face3Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      veml6031Face4Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      veml6031Face5Manager.logOut[0] -> CdhCore.events.LogRecv[0]
+      cameraHandler.logOut[0] -> CdhCore.events.LogRecv[0]
+      thermalManager.logOut[0] -> CdhCore.events.LogRecv[0]
+      ComCcsdsUart.tcSecurityDeframer.logOut[0] -> CdhCore.events.LogRecv[0]
     }
     connections Pattern_telemetry {
       CdhCore.cmdDisp.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
@@ -373,6 +599,32 @@ module ReferenceDeployment {
       powerMonitor.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ina219SysManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ina219SolManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      payloadSeq.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      burnwire.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      antennaDeployer.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      downlinkDelay.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      lora.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      fsFormat.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      picoTempManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      tmp112Face0Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      tmp112Face1Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      tmp112Face2Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      tmp112Face3Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      tmp112Face4Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      tmp112Face5Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      tmp112BattCell1Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      tmp112BattCell2Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      tmp112BattCell3Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      tmp112BattCell4Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      veml6031Face0Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      veml6031Face1Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      veml6031Face2Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      veml6031Face3Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      veml6031Face4Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      veml6031Face5Manager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      cameraHandler.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      thermalManager.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ComCcsdsUart.tcSecurityDeframer.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
     }
     connections Pattern_param {
       modeManager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
@@ -383,6 +635,30 @@ module ReferenceDeployment {
       detumbleManager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
       startupManager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
       startupManager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      burnwire.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      burnwire.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      antennaDeployer.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      antennaDeployer.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      downlinkDelay.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      downlinkDelay.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      lora.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      lora.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      veml6031Face0Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      veml6031Face0Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      veml6031Face1Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      veml6031Face1Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      veml6031Face2Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      veml6031Face2Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      veml6031Face3Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      veml6031Face3Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      veml6031Face4Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      veml6031Face4Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      veml6031Face5Manager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      veml6031Face5Manager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      thermalManager.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      thermalManager.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ComCcsdsUart.tcSecurityDeframer.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ComCcsdsUart.tcSecurityDeframer.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
     }
     connections Pattern_health {
       CdhCore.$health.PingSend[0] -> CdhCore.cmdDisp.pingIn[0]
@@ -407,6 +683,8 @@ module ReferenceDeployment {
       rateGroup1Hz.PingOut[0] -> CdhCore.$health.PingReturn[9]
       CdhCore.$health.PingSend[10] -> cmdSeq.pingIn[0]
       cmdSeq.pingOut[0] -> CdhCore.$health.PingReturn[10]
+      CdhCore.$health.PingSend[11] -> payloadSeq.pingIn[0]
+      payloadSeq.pingOut[0] -> CdhCore.$health.PingReturn[11]
     }
     connections Pattern_time {
       CdhCore.cmdDisp.timeCaller[0] -> chronoTime.timeGetPort[0]
@@ -448,6 +726,32 @@ module ReferenceDeployment {
       powerMonitor.timeCaller[0] -> chronoTime.timeGetPort[0]
       ina219SysManager.timeCaller[0] -> chronoTime.timeGetPort[0]
       ina219SolManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      payloadSeq.timeCaller[0] -> chronoTime.timeGetPort[0]
+      burnwire.timeCaller[0] -> chronoTime.timeGetPort[0]
+      antennaDeployer.timeCaller[0] -> chronoTime.timeGetPort[0]
+      downlinkDelay.timeCaller[0] -> chronoTime.timeGetPort[0]
+      lora.timeCaller[0] -> chronoTime.timeGetPort[0]
+      fsFormat.timeCaller[0] -> chronoTime.timeGetPort[0]
+      picoTempManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      tmp112Face0Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      tmp112Face1Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      tmp112Face2Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      tmp112Face3Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      tmp112Face4Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      tmp112Face5Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      tmp112BattCell1Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      tmp112BattCell2Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      tmp112BattCell3Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      tmp112BattCell4Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      veml6031Face0Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      veml6031Face1Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      veml6031Face2Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      veml6031Face3Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      veml6031Face4Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      veml6031Face5Manager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      cameraHandler.timeCaller[0] -> chronoTime.timeGetPort[0]
+      thermalManager.timeCaller[0] -> chronoTime.timeGetPort[0]
+      ComCcsdsUart.tcSecurityDeframer.timeCaller[0] -> chronoTime.timeGetPort[0]
     }
   }
 }

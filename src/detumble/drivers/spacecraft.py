@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import math
+from collections import deque
 from typing import Callable, NamedTuple, Sequence
 
 from fprime_lite.deploy.resources import ResetLine, topology_resource
@@ -57,6 +58,7 @@ from detumble.sim.epoch import julian_date
 from detumble.sim.orbit import R_EARTH_EQ
 from detumble.sim.power import FACE_SWITCHES, ElectricalSystem, coil_supply_power_w
 from detumble.sim.plant import Plant
+from detumble.sim.thermal import ThermalModel
 from detumble.sim.scenario import Scenario, load_scenario
 from detumble.control.units import GAUSS_PER_TESLA
 
@@ -491,6 +493,8 @@ class SimulatedSpacecraft(ResetLine):
         sc = self.scenario
         self.power = (ElectricalSystem(sc.power, julian_date(sc.epoch), R_EARTH_EQ)
                       if sc.power.enabled else None)
+        #: face and interior temperatures (with the power model: the loads heat the interior)
+        self.thermal = ThermalModel() if self.power is not None else None
         self.accelerometer = Accelerometer(sc.accelerometer, (sc.seed if seed is None else seed) * 7919 + 3)
         act = self.plant.actuators
         self._coils_lagged = isinstance(act, CoilSet) and act._lagged  # currents change between commands
@@ -502,6 +506,8 @@ class SimulatedSpacecraft(ResetLine):
         self._accel_period_ns = max(1, self.plant.gyro.period_ns)
         self._accel_sample = (0.0, 0.0, 0.0)
         self._flash_dir = None
+        #: what the simulated LoRa ground peer heard from the radio, oldest first (64 KiB kept)
+        self.radio_peer: deque[int] = deque(maxlen=65536)
         self.resets = 0                                      #: flight-software resets so far
         self.reset_handler: Callable[[str], None] | None = None
 
@@ -529,6 +535,8 @@ class SimulatedSpacecraft(ResetLine):
             plant = self.plant
             assert self.power is not None  # only called with a power model
             self.power.step(dt, self._power_t0_ns * 1e-9, plant.q_BN, plant.r_N, self._power_coil_j / dt)
+            assert self.thermal is not None  # made with the power model
+            self.thermal.step(dt, self.power.face_flux_w_m2, self.power.load_w)
             pending = 0
             self._power_coil_j = 0.0
         self._power_pending_ns = pending
@@ -558,6 +566,36 @@ class SimulatedSpacecraft(ResetLine):
             if face in self.coil_faces:
                 self.plant.set_coil_level(face, 0)
                 self._coil_w = None
+
+    def temperature_c(self, where: str) -> float:
+        """The temperature (°C) at ``where``: ``face0`` … ``face5`` (a face panel) or ``interior``
+        (battery cells, flight computer); 20 °C without a power model (no thermal model either)."""
+        self.sync()
+        th = self.thermal
+        if th is None:
+            return 20.0
+        if where == "interior":
+            return th.interior_c
+        if where in FACE_SWITCHES:
+            return th.face_c(FACE_SWITCHES.index(where))
+        raise ValueError(f"no temperature at {where!r}; places are {list(FACE_SWITCHES)} and 'interior'")
+
+    def face_sunlight_w_m2(self, face: int) -> float:
+        """Sunlight falling on face ``face`` (0 X+ … 5 Z−), W/m², over the last power step (0 in
+        eclipse or without a power model)."""
+        self.sync()
+        return 0.0 if self.power is None else self.power.face_flux_w_m2[face]
+
+    @property
+    def burnwire_on(self) -> bool:
+        """True while the antenna burnwire's GPIOs are high (always False without a power model)."""
+        return self.power is not None and self.power.burnwire_on
+
+    def set_burnwire(self, on: bool) -> None:
+        """Drive the antenna burnwire's GPIOs from now on (its heater is a load on the battery)."""
+        self.sync()
+        if self.power is not None:
+            self.power.burnwire_on = bool(on)
 
     @property
     def flash_dir(self) -> str:
@@ -598,10 +636,11 @@ class SimulatedSpacecraft(ResetLine):
 
     def hardware_reset(self) -> None:
         """What a reset of the flight computer does to the hardware: the load-switch GPIOs return to
-        their power-on state (open) and every coil driver stops."""
+        their power-on state (open), the burnwire GPIOs go low and every coil driver stops."""
         if self.power is not None:
             for name in self.power.switches:
                 self.set_load_switch(name, False)
+            self.power.burnwire_on = False
         for face in self.coil_faces:
             self.plant.set_coil_level(face, 0)
         self._coil_w = None

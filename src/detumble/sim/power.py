@@ -12,7 +12,8 @@ Model
   axes, ``n_i`` the face's outward normal). The array feeds the bus directly; when the battery is
   full the charge regulator shunts what the loads do not take (counted as ``shunted``).
 * **Loads** — an always-on avionics baseline ``avionics_w``; per face board ``face_board_w`` while its
-  load switch is on; the payload loads while theirs are on; every coil's supply power
+  load switch is on; the payload loads while theirs are on; the antenna burnwire ``burnwire_w`` while
+  its GPIOs are high; every coil's supply power
   ``|V_applied · I|`` (``V²/R`` at a steady level) while driven. A coil on a face whose switch is
   off cannot be driven (the spacecraft bridge enforces it).
 * **Battery** — ``cells_in_series`` Li-ion cells; stored energy ``E = SoC · capacity_wh``; open-circuit
@@ -83,6 +84,9 @@ class LoadConfig:
     face_board_w: float = 0.03            #: sensors and DRV2605 standby on a powered face board
     payload_power_w: float = 1.2          #: payload while payloadPower is on
     payload_battery_w: float = 0.0        #: payload battery line while payloadBattery is on
+    #: the antenna burnwire while its GPIOs are high: two nichrome wires from the battery, ~0.8 A at
+    #: 7.4 V (an assumption: the flight sources give no figure)
+    burnwire_w: float = 6.0
 
 
 @dataclass(frozen=True)
@@ -153,12 +157,15 @@ class ElectricalSystem:
         self.earth_radius_m = earth_radius_m
         self.battery = Battery(cfg.battery)
         self.switches = {name: name in cfg.switches_on for name in SWITCH_NAMES}
+        self.burnwire_on = False          #: the burnwire GPIOs (not a load switch: fed from the battery)
         self._areas = tuple(float(a) for a in cfg.solar.panel_area_m2)
         # present (last step's) figures
         self.solar_w = 0.0
         self.load_w = 0.0
         self.coil_w = 0.0
         self.eclipse = False
+        #: sunlight on each face (X+, X−, Y+, Y−, Z+, Z−), W/m², over the last step (0 in eclipse)
+        self.face_flux_w_m2: tuple = (0.0,) * 6
         self.bus_v = self.battery.terminal_v
         # energy accumulators, J
         self.solar_j = 0.0
@@ -196,13 +203,17 @@ class ElectricalSystem:
         s_N, d_au = self.sun(t_s)
         if in_umbra(r_N, s_N, self.earth_radius_m):
             self.eclipse = True
+            self.face_flux_w_m2 = (0.0,) * 6
             return 0.0
         self.eclipse = False
         s = rotate_n_to_b(q_BN, s_N)
+        flux = SOLAR_CONSTANT_W_M2 / (d_au * d_au)
+        self.face_flux_w_m2 = (flux * max(0.0, s[0]), flux * max(0.0, -s[0]), flux * max(0.0, s[1]),
+                               flux * max(0.0, -s[1]), flux * max(0.0, s[2]), flux * max(0.0, -s[2]))
         a = self._areas
         lit = (a[0] * max(0.0, s[0]) + a[1] * max(0.0, -s[0]) + a[2] * max(0.0, s[1]) + a[3] * max(0.0, -s[1])
                + a[4] * max(0.0, s[2]) + a[5] * max(0.0, -s[2]))
-        return SOLAR_CONSTANT_W_M2 / (d_au * d_au) * self.cfg.solar.efficiency * lit
+        return flux * self.cfg.solar.efficiency * lit
 
     def switched_load_w(self) -> float:
         loads = self.cfg.loads
@@ -212,6 +223,8 @@ class ElectricalSystem:
             p += loads.payload_power_w
         if sw["payloadBattery"]:
             p += loads.payload_battery_w
+        if self.burnwire_on:
+            p += loads.burnwire_w
         return p
 
     def step(self, dt: float, t_s: float, q_BN, r_N, coil_w: float) -> None:

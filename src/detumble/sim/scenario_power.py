@@ -14,7 +14,7 @@ POWER_SCHEMA = {
     "enabled": None, "switches_on": None,
     "battery": dict.fromkeys(("capacity_wh", "initial_soc", "internal_resistance_ohm", "cells_in_series")),
     "solar": dict.fromkeys(("panel_area_m2", "efficiency")),
-    "loads": dict.fromkeys(("avionics_w", "face_board_w", "payload_power_w", "payload_battery_w")),
+    "loads": dict.fromkeys(("avionics_w", "face_board_w", "payload_power_w", "payload_battery_w", "burnwire_w")),
 }
 ACCELEROMETER_SCHEMA = dict.fromkeys(("ideal", "bias_mps2", "noise_std_mps2", "lsb_mps2", "full_scale_mps2",
                                       "lever_arm_m"))
@@ -69,7 +69,8 @@ def parse_power(s) -> PowerConfig:
     loads = LoadConfig(avionics_w=lo.number("avionics_w", dl.avionics_w, nonneg=True),
                        face_board_w=lo.number("face_board_w", dl.face_board_w, nonneg=True),
                        payload_power_w=lo.number("payload_power_w", dl.payload_power_w, nonneg=True),
-                       payload_battery_w=lo.number("payload_battery_w", dl.payload_battery_w, nonneg=True))
+                       payload_battery_w=lo.number("payload_battery_w", dl.payload_battery_w, nonneg=True),
+                       burnwire_w=lo.number("burnwire_w", dl.burnwire_w, nonneg=True))
     lo.finish()
 
     on = s.raw("switches_on", list(d.switches_on))

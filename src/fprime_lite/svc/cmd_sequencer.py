@@ -33,7 +33,7 @@ from typing import Annotated
 from fprime_lite.model.commands import CmdResponse, CommandToken, async_command
 from fprime_lite.model.component import ActiveComponent
 from fprime_lite.model.events import Event, Severity
-from fprime_lite.model.fw_ports import CmdResponsePort, CmdSeqIn, Com, Ping, Sched
+from fprime_lite.model.fw_ports import CmdResponsePort, CmdSeqCancel, CmdSeqIn, Com, Ping, Sched
 from fprime_lite.model.ports import OutputPort, async_input
 from fprime_lite.wire.seqfile import (Descriptor, FileReadStage, Record, Sequence, SequenceCrcError,
                        SequenceEmpty, SequenceFormatError, SequenceRecordError,
@@ -244,13 +244,7 @@ class CmdSequencer(ActiveComponent):
     @async_command(opcode=2)
     def CS_CANCEL(self):
         """Stop the running sequence (it stays loaded, rewound)."""
-        if self._run_mode is _RunMode.RUNNING:
-            self._cancel()
-            self.CS_SequenceCanceled(self._log_file_name)
-            self._cancel_count += 1
-            self.CS_CancelCommands.write(self._cancel_count)
-        else:
-            self.CS_NoSequenceActive()
+        self._cancel_running()
         return CmdResponse.OK
 
     @async_command(opcode=3)
@@ -358,6 +352,20 @@ class CmdSequencer(ActiveComponent):
         if self._step_mode == SeqMode.AUTO:
             self._start()
         self.CS_PortSequenceStarted(self._log_file_name)
+
+    @async_input(CmdSeqCancel)
+    def seqCancelIn(self):
+        """Another component cancels the running sequence (as CS_CANCEL; F´'s ``seqCancelIn``)."""
+        self._cancel_running()
+
+    def _cancel_running(self) -> None:
+        if self._run_mode is _RunMode.RUNNING:
+            self._cancel()
+            self.CS_SequenceCanceled(self._log_file_name)
+            self._cancel_count += 1
+            self.CS_CancelCommands.write(self._cancel_count)
+        else:
+            self.CS_NoSequenceActive()
 
     @async_input(Ping)
     def pingIn(self, key):

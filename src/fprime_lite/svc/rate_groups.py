@@ -32,7 +32,7 @@ log = logging.getLogger("fprime_lite")
 class RateGroupBase:
     """The cycle logic shared by both rate-group kinds (mixed into a component class)."""
 
-    MAX_MEMBERS = 10
+    MAX_MEMBERS = 25  # F´ ActiveRateGroupOutputPorts: 10 in F´'s default config, 25 in PROVES's
     RateGroupMemberOut = OutputPort(Sched, size=MAX_MEMBERS)
 
     RateGroupStarted = Event(Severity.DIAGNOSTIC, "Rate group started.")

@@ -52,6 +52,10 @@ FRAMINGS = {"fprime": "fprime", "ccsds": "space-packet-space-data-link"}
 
 #: The environment variable naming the default ``--python``.
 PYTHON_ENV = "FPRIME_LITE_TEST_PYTHON"
+#: The deployment's plant-control side channel and RTC choice (the application's contract: the PROVES reference
+#: deployment's plant_control resource reads them; see docs/components/proves_suite_components.md).
+PLANT_ENV = "FPRIME_LITE_PLANT_CONTROL"
+RTC_ENV = "FPRIME_LITE_RTC"
 
 EXIT_SETUP = 2
 
@@ -121,6 +125,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--expected-failures", metavar="FILE",
                    help="tests expected to fail, one a line: NODE_ID (relative to TESTS_DIR) then the reason; they "
                         "run as xfail and do not fail the run (needs fprime-lite in --python's environment)")
+    p.add_argument("--sim-plant", action="store_true",
+                   help="let the suite drive the simulated plant: the deployment listens for plant-control requests "
+                        "on a free loopback port (FPRIME_LITE_PLANT_CONTROL) with its RTC at the wall clock's UTC "
+                        "(FPRIME_LITE_RTC=wall), and pytest gets --sim-plant 127.0.0.1:PORT (the plugin that runs "
+                        "PROVES's manual tests; needs fprime-lite in --python's environment)")
     p.add_argument("--startup-timeout", type=float, default=120.0, metavar="SECONDS",
                    help="how long to wait for the deployment to connect to the GDS (default: 120)")
     return p
@@ -292,7 +301,12 @@ def run(args, pytest_args: list[str]) -> int:
                       str(work / "run"), "--no-plots", "--allow-warnings", "--file-root", str(root)]
         if params is not None:
             deployment += ["--params", str(params)]
-        groups.start("deployment", deployment + list(args.run_arg), cwd=work)
+        deployment_env = dict(os.environ)
+        if args.sim_plant:
+            plant = f"127.0.0.1:{free_port()}"
+            deployment_env.update({PLANT_ENV: plant, RTC_ENV: "wall"})
+            pytest_args = ["--sim-plant", plant] + list(pytest_args)
+        groups.start("deployment", deployment + list(args.run_arg), cwd=work, env=deployment_env)
         _wait_connected(groups, args.startup_timeout)
         print(f"conformance: deployment connected after {time.monotonic() - started:.1f} s; running pytest with "
               f"{python}", flush=True)

@@ -13,7 +13,7 @@ TOPOLOGY = str(ROOT / "deployments" / "proves_ref" / "topology.yaml")
 
 def test_check_reports_ok(capsys):
     assert main(["check", TOPOLOGY]) == 0
-    assert "OK — deployment ReferenceDeployment: 39 instances" in capsys.readouterr().out
+    assert "OK — deployment ReferenceDeployment: 65 instances" in capsys.readouterr().out
 
 
 def test_dict_writes_a_dictionary_with_flight_names(tmp_path, capsys):
@@ -80,7 +80,7 @@ def test_params_list_prints_every_parameter_with_its_units(tmp_path, capsys):
     assert rows["ReferenceDeployment.detumbleManager.X_PLUS_RESISTANCE"][-1] == "Ω"
     assert rows["ReferenceDeployment.detumbleManager.HYSTERESIS_AXIS"][-2:] == ["X_AXIS", "—"]
     assert rows["ReferenceDeployment.modeManager.SafeModeEntryVoltage"][-1] == "V"
-    assert len(rows) == 48 and not list(tmp_path.iterdir())
+    assert len(rows) == 81 and not list(tmp_path.iterdir())
     listed, alone = tmp_path / "listed.dat", tmp_path / "alone.dat"
     assert main(["params", TOPOLOGY, "--list", "-o", str(listed)]) == 0
     assert main(["params", TOPOLOGY, "-o", str(alone)]) == 0

@@ -363,7 +363,7 @@ def export_topology(topology: Any, *, name: str | None = None) -> str:
 
 
 _HEADER = ("# Written by fprime-lite (python -m fprime_lite.deploy.fpp.export{args}) from {source}.\n"
-           "# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp_export.py checks it is current.\n\n")
+           "# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp.py checks it is current.\n\n")
 
 
 def framework_svc_text() -> str:

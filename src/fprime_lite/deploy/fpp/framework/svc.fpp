@@ -1,5 +1,5 @@
 # Written by fprime-lite (python -m fprime_lite.deploy.fpp.export --framework) from the services in src/fprime_lite/svc/ and the Fw types of src/fprime_lite/model/fw_types.py.
-# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp_export.py checks it is current.
+# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp.py checks it is current.
 
 module Fw {
   enum CmdResponse : U8 {
@@ -159,6 +159,7 @@ module Svc {
     async input port cmdResponseIn: Fw.CmdResponse priority 0 assert
     async input port schedIn: Svc.Sched priority 0 assert
     async input port seqRunIn: Svc.CmdSeqIn priority 0 assert
+    async input port seqCancelIn: Svc.CmdSeqCancel priority 0 assert
     async input port pingIn: Svc.Ping priority 0 assert
     output port pingOut: Svc.Ping
     output port seqDone: Fw.CmdResponse
@@ -494,7 +495,7 @@ module Svc {
     telemetry port tlmOut
     async input port CycleIn: Svc.Cycle priority 0 drop
     async input port PingIn: Svc.Ping priority 0 assert
-    output port RateGroupMemberOut: [10] Svc.Sched
+    output port RateGroupMemberOut: [25] Svc.Sched
     output port PingOut: Svc.Ping
     event RateGroupStarted severity diagnostic id 0x0 format "Rate group started."
     event RateGroupCycleSlip(cycle: U32) severity warning high id 0x1 format "Rate group cycle slipped on cycle {}" throttle 5
