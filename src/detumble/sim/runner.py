@@ -25,11 +25,13 @@ import sys
 import tempfile
 import time
 from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, cast
 
 from detumble.errors import DetumbleError
 from detumble.sim import frames, plant_kernel
-from detumble.sim.adcs_law import AdcsLaw, PlantIo, pointing_statistics
+from detumble.analysis.pointing_windows import pointing_summary
+from detumble.control.targets import LABELS
+from detumble.sim.adcs_law import AdcsLaw, PlantIo
 from detumble.sim.coursework_laws import REPORT_CROSS_PRODUCT_GAIN, BetaPdLaw, CrossProductLaw, WheelsPdLaw
 from detumble.sim.laws import BangBangLaw, BdotLaw, KoptLaw, NoLaw, clip_to_limits, kopt_gain
 from detumble.sim.plant import Plant
@@ -178,7 +180,7 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
         io = PlantIo(plant)
         target_seen = None
         sample_every = max(1, int(round(0.5 / dt)))  # the attitude report's 0.5 s sampling
-        pointing_deg: list[float] = []
+        pointing_deg: list[tuple] = []  # (t_s, true error deg, target key, label, on wheels) in POINTING
     omega_final = (0.0, -plant.orbit.mean_motion, 0.0) if law_name in COURSEWORK_LAWS else (0.0, 0.0, 0.0)
     metrics = SettlingMetrics(plant, omega_final=omega_final, include_attitude=getattr(ctl, "wheel_law", False))
     threshold2 = math.radians(1.0) ** 2
@@ -216,7 +218,11 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
                     plant.apply_dipole_B(ctl.update(b_B, t_read))
         plant.step(dt)
         if ticked and (k + 1) % sample_every == 0 and ctl.mode == "POINTING":  # as the attitude report samples
-            pointing_deg.append(ctl.true_pointing_error_deg(plant.q_BN))
+            three_mode = cast(AdcsLaw, ctl).law
+            ref = three_mode.reference
+            label = LABELS[ref.label] if ref is not None else ""
+            pointing_deg.append((plant.t, cast(AdcsLaw, ctl).true_pointing_error_deg(plant.q_BN, plant.ephemeris),
+                                 (three_mode.target_spec, label), label, three_mode.pointing_on_wheels))
         if (k + 1) % period == 0:
             metrics.update(plant)
         if t_below is None:
@@ -234,7 +240,7 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
     if ticked:
         extra = {"control_mode_transitions": [{"t_s": t, "mode": m, "reason": r} for t, m, r in ctl.transitions],
                  "final_mode": ctl.mode,
-                 "pointing_error_deg": pointing_statistics(pointing_deg, sample_interval_s=sample_every * dt),
+                 **pointing_summary(pointing_deg, sample_every * dt),
                  "control_cycles": ctl.cycles}
     summary = {
         "scenario": sc.name,
