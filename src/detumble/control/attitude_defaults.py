@@ -46,6 +46,8 @@ MAG_RESIDUAL_WINDOW = 60.0  # s: the estimator's momentum-balance window
 # --- moving targets (control.targets) ----------------------------------------------------------
 GS_MIN_ELEVATION = 10.0  # deg: a ground station is tracked while it sees the spacecraft this high or higher
 WHEEL_FEED_FORWARD = "REFERENCE"  # REFERENCE: I (α_r − ω × ω_r); REFERENCE_GYROSCOPIC: + ω × (I ω + h_w)
+RATE_BLEND_ANGLE = 0.1  # deg: above this pointing error (a slew) the rate observer pulls at RATE_BLEND_GAIN
+RATE_BLEND_GAIN = 2.0  # 1/s: the observer's pull toward the gyro during a slew
 
 # --- detumble and spin -------------------------------------------------------------------------
 K_BDOT = 3.0  # A·m²·s/G: the internal M = −k Ḃ when no dipole provider is connected
@@ -171,6 +173,8 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "MAG_RESIDUAL_WINDOW": ("s", 5.0, 600.0, False),
     "GS_MIN_ELEVATION": ("deg", 0.0, 90.0, False),
     "WHEEL_FEED_FORWARD": ("", None, None, False),
+    "RATE_BLEND_ANGLE": ("deg", 0.0, 180.0, False),
+    "RATE_BLEND_GAIN": ("1/s", 1e-4, 1000.0, True),
 }
 #: Each parameter's units (the first column of :data:`PARAMETERS`).
 UNITS: dict[str, str] = {name: row[0] for name, row in PARAMETERS.items()}

@@ -275,6 +275,8 @@ class ThreeModeLaw:
     MAG_RESIDUAL_WINDOW: float
     GS_MIN_ELEVATION: float
     WHEEL_FEED_FORWARD: int
+    RATE_BLEND_ANGLE: float
+    RATE_BLEND_GAIN: float
 
     def __init__(self, io: ControllerIo, notify: Notify, provider: DipoleProvider,
                  wheel_axes: Sequence[Sequence[float]] = XYZ, params: Mapping[str, object] | None = None) -> None:
@@ -694,7 +696,11 @@ class ThreeModeLaw:
         h = _ZERO
         if self.wheel_momenta is not None:
             h = self._body_momentum(self.wheel_momenta)
-        w = obs.update(self.omega, torque, h, dt)
+        # a slew (the last cycle's error above RATE_BLEND_ANGLE): pull toward the gyro at RATE_BLEND_GAIN, so the
+        # model's inertia error cannot build up a rate error over the slew's large torques
+        # (docs/studies/robust_rates.md); at the default gain the step is the same floats as before
+        blend = self.mode == POINTING and self.pointing_error_deg > self.RATE_BLEND_ANGLE
+        w = obs.update(self.omega, torque, h, dt, self.RATE_BLEND_GAIN if blend else None)
         self.pd_rate = w if self.RATE_SOURCE == _OBSERVER else self.omega
 
     def _track_field_line(self, dt: float) -> None:

@@ -222,7 +222,8 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
             ref = three_mode.reference
             label = LABELS[ref.label] if ref is not None else ""
             pointing_deg.append((plant.t, cast(AdcsLaw, ctl).true_pointing_error_deg(plant.q_BN, plant.ephemeris),
-                                 (three_mode.target_spec, label), label, three_mode.pointing_on_wheels))
+                                 (three_mode.target_spec, label), label, three_mode.pointing_on_wheels,
+                                 three_mode.target))
         if (k + 1) % period == 0:
             metrics.update(plant)
         if t_below is None:
@@ -240,7 +241,7 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
     if ticked:
         extra = {"control_mode_transitions": [{"t_s": t, "mode": m, "reason": r} for t, m, r in ctl.transitions],
                  "final_mode": ctl.mode,
-                 **pointing_summary(pointing_deg, sample_every * dt),
+                 **pointing_summary(pointing_deg, sample_every * dt, slews=True),
                  "control_cycles": ctl.cycles}
     summary = {
         "scenario": sc.name,
