@@ -15,11 +15,9 @@ above the goals (``time_above_s`` and the intervals' ``acquisition_s`` show what
 
 from __future__ import annotations
 
-import math
 from typing import Sequence
 
 from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, error_statistics
-from detumble.control.quaternion import quat_angle, quat_error
 
 __all__ = ["ACQUISITION_THRESHOLD_WHEELS_DEG", "ACQUISITION_THRESHOLD_COILS_DEG", "pointing_windows",
            "acquisition_time", "pointing_summary"]
@@ -56,8 +54,9 @@ def pointing_windows(samples: Sequence[tuple], sample_interval_s: float) -> dict
          "acquisition_s": the first interval's, "acquisition_threshold_deg": its threshold,
          "intervals": [{"t_s", "target", "threshold_deg", "acquisition_s", "samples", "steady_samples"}],
          "by_target": {label: steady error_statistics},
-         "slews": [{"t_s", "angle_deg", "settle_below_0p1_deg_s"}] (samples with a sixth element, the target
-                  quaternion: each interval that a target change started while POINTING)}
+         "slews": [{"t_s", "angle_deg", "settle_below_0p1_deg_s"}] (samples with a sixth element, the angle in
+                  deg between the sample's target and the previous sample's: each interval that a target change
+                  started while POINTING)}
     """
     intervals: list[list] = []
     prev = None
@@ -76,11 +75,10 @@ def pointing_windows(samples: Sequence[tuple], sample_interval_s: float) -> dict
         threshold = ACQUISITION_THRESHOLD_WHEELS_DEG if iv[0][4] else ACQUISITION_THRESHOLD_COILS_DEG
         acq = acquisition_time(times, errors, threshold)
         before = intervals[k - 1][-1] if k else None
-        contiguous = before is not None and iv[0][0] - before[0] <= 1.5 * sample_interval_s
-        if contiguous and len(before) > 5 and len(iv[0]) > 5:
+        if (before is not None and iv[0][0] - before[0] <= 1.5 * sample_interval_s and len(before) > 5
+                and len(iv[0]) > 5):
             # a target change while POINTING: the slew's angle and its settling below 0.1° (the issue's slew figure)
-            angle = math.degrees(quat_angle(quat_error(iv[0][5], before[5])))
-            slews.append({"t_s": times[0], "angle_deg": angle,
+            slews.append({"t_s": times[0], "angle_deg": iv[0][5],
                           "settle_below_0p1_deg_s": acquisition_time(times, errors, SLEW_SETTLE_DEG)})
         kept = [] if acq is None else [e for t, e in zip(times, errors, strict=True) if t - times[0] >= acq]
         steady += kept
@@ -107,8 +105,8 @@ def pointing_windows(samples: Sequence[tuple], sample_interval_s: float) -> dict
 def pointing_summary(samples: Sequence[tuple], sample_interval_s: float, slews: bool = False) -> dict:
     """The summary.json keys of :func:`pointing_windows`: ``pointing_error_deg`` (the steady statistics with
     ``window``, ``acquisition_s`` and ``acquisition_threshold_deg`` of the first interval; None without a steady
-    sample), ``pointing_intervals`` and ``pointing_error_by_target_deg``; with ``slews`` also ``slews`` (samples carrying
-    their target quaternion as a sixth element)."""
+    sample), ``pointing_intervals`` and ``pointing_error_by_target_deg``; with ``slews`` also ``slews`` (samples
+    carrying as a sixth element the angle, deg, from the previous sample's target to theirs)."""
     w = pointing_windows(samples, sample_interval_s)
     block = w["steady"]
     if block is not None:

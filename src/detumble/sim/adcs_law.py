@@ -201,6 +201,6 @@ def _target_entry(q) -> tuple:
     return tuple(float(c) for c in q)
 
 
-#: ``{"median", "p95", "max", "samples"}`` (deg) of errors after their first tenth (the pre-issue-27 window), with the pooling
-#: fields when given ``sample_interval_s``: the deployment's attitude report's statistics.
+#: ``{"median", "p95", "max", "samples"}`` (deg) of errors after their first tenth (the window before issue 27), with
+#: the pooling fields when given ``sample_interval_s`` (the summaries now use analysis.pointing_windows).
 pointing_statistics = functools.partial(error_statistics, thresholds_deg=POINTING_THRESHOLDS_DEG)

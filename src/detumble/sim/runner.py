@@ -30,6 +30,7 @@ from typing import Callable, cast
 from detumble.errors import DetumbleError
 from detumble.sim import frames, plant_kernel
 from detumble.analysis.pointing_windows import pointing_summary
+from detumble.control.quaternion import quat_angle, quat_error
 from detumble.control.targets import LABELS
 from detumble.sim.adcs_law import AdcsLaw, PlantIo
 from detumble.sim.coursework_laws import REPORT_CROSS_PRODUCT_GAIN, BetaPdLaw, CrossProductLaw, WheelsPdLaw
@@ -111,6 +112,11 @@ def _make_coursework_law(name: str, plant: Plant, gain: float | None, m_max):
                        dump_gain=w.dump_gain)
 
 
+def _turn_deg(q, previous) -> float:
+    """The angle between two targets (0 without a previous one), deg."""
+    return 0.0 if q is None or previous is None else math.degrees(quat_angle(quat_error(q, previous)))
+
+
 def make_adcs_law(plant: Plant) -> AdcsLaw:
     """The three-mode controller of ``plant``'s scenario (``control.adcs``) on the plant's wheels (three or
     four; otherwise it points on the magnetorquers, as the component does without wheels)."""
@@ -180,7 +186,8 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
         io = PlantIo(plant)
         target_seen = None
         sample_every = max(1, int(round(0.5 / dt)))  # the attitude report's 0.5 s sampling
-        pointing_deg: list[tuple] = []  # (t_s, true error deg, target key, label, on wheels) in POINTING
+        pointing_deg: list[tuple] = []  # (t_s, true error deg, target key, label, on wheels, turn deg) in POINTING
+        slew_prev = None  # the law's target at the last POINTING sample
     omega_final = (0.0, -plant.orbit.mean_motion, 0.0) if law_name in COURSEWORK_LAWS else (0.0, 0.0, 0.0)
     metrics = SettlingMetrics(plant, omega_final=omega_final, include_attitude=getattr(ctl, "wheel_law", False))
     threshold2 = math.radians(1.0) ** 2
@@ -223,7 +230,8 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
             label = LABELS[ref.label] if ref is not None else ""
             pointing_deg.append((plant.t, cast(AdcsLaw, ctl).true_pointing_error_deg(plant.q_BN, plant.ephemeris),
                                  (three_mode.target_spec, label), label, three_mode.pointing_on_wheels,
-                                 three_mode.target))
+                                 _turn_deg(three_mode.target, slew_prev)))
+            slew_prev = three_mode.target
         if (k + 1) % period == 0:
             metrics.update(plant)
         if t_below is None:
