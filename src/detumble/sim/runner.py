@@ -30,6 +30,7 @@ from typing import Callable, cast
 from detumble.errors import DetumbleError
 from detumble.sim import frames, plant_kernel
 from detumble.analysis.pointing_windows import pointing_summary
+from detumble.analysis.pooled_stats import sorted_percentile
 from detumble.control.quaternion import quat_angle, quat_error
 from detumble.control.targets import LABELS
 from detumble.sim.adcs_law import AdcsLaw, PlantIo
@@ -110,6 +111,23 @@ def _make_coursework_law(name: str, plant: Plant, gain: float | None, m_max):
                          "(spacecraft.reaction_wheels.axes: [[1, 0, 0], [0, 1, 0], [0, 0, 1]])")
     return WheelsPdLaw(w.k_p, w.k_d, plant.body.inertia, n, w.target_q_bo, m_max, limits=w.limits, error=w.error,
                        dump_gain=w.dump_gain)
+
+
+#: s: the wheels campaign's steady window starts this long after the last target change (reports.pointing_metrics)
+STEADY_AFTER_SLEW_S = 60.0
+
+
+def _steady_after_slew(samples: list[tuple], slews) -> dict:
+    """``steady_after_slew_median_deg`` / ``_p95_deg``: the POINTING errors from STEADY_AFTER_SLEW_S after the last
+    slew to the end (the window of the deployment's ``pointing_steady_*`` campaign metrics); empty without a slew."""
+    if not slews:
+        return {}
+    start = slews[-1]["t_s"] + STEADY_AFTER_SLEW_S
+    kept = sorted(s[1] for s in samples if s[0] >= start and math.isfinite(s[1]))
+    if not kept:
+        return {}
+    return {"steady_after_slew_median_deg": sorted_percentile(kept, 0.5),
+            "steady_after_slew_p95_deg": sorted_percentile(kept, 0.95)}
 
 
 def _turn_deg(q, previous) -> float:
@@ -251,6 +269,7 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
                  "final_mode": ctl.mode,
                  **pointing_summary(pointing_deg, sample_every * dt, slews=True),
                  "control_cycles": ctl.cycles}
+        extra.update(_steady_after_slew(pointing_deg, extra.get("slews")))
     summary = {
         "scenario": sc.name,
         "source": sc.source,
