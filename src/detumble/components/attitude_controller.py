@@ -15,15 +15,17 @@ import math
 from fprime_lite import (F64, U32, Channel, CmdResponse, Event, OutputPort, Param, PassiveComponent, Sched,
                          Severity, sync_command, sync_input)
 
-from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, AttitudeEstimator, ControlAutonomy,
-                                                ControlMode, MagPointingLaw, MagResidualMode, ModeChangeReason,
-                                                PointingActuator, Quaternion, RateSource, SpinLaw, Vector3,
-                                                WheelValues)
+from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, AttitudeEstimator, BodyAxis,
+                                                ControlAutonomy, ControlMode, EphemerisGet, MagPointingLaw,
+                                                MagResidualMode, ModeChangeReason, PointingActuator,
+                                                PointingReference, Quaternion, RateSource, SpinLaw, TargetKind,
+                                                Vector3, WheelFeedForward, WheelValues)
 from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFieldGet, StartMagnetorquer,
                                        StopMagnetorquer, Success, WheelEnableSet, WheelStateGet, WheelTorqueSet)
 from detumble.control import attitude_defaults as _defaults
 from detumble.control.mekf import Mekf
 from detumble.control.spin import spin_axis_error_deg
+from detumble.control.targets import Ephemeris
 from detumble.control.three_mode import POINTING, XYZ, ThreeModeLaw
 
 __all__ = ["AttitudeController", "BORESIGHT_B"]
@@ -33,7 +35,8 @@ BORESIGHT_B = _defaults.BORESIGHT_B
 _SUCCESS = Success.SUCCESS
 _MODES, _AUTONOMIES = tuple(ControlMode), tuple(ControlAutonomy)
 _ENUMS = {"SPIN_LAW": SpinLaw, "POINTING_ACTUATOR": PointingActuator, "ESTIMATOR": AttitudeEstimator,
-          "RATE_SOURCE": RateSource, "MAG_POINTING_LAW": MagPointingLaw, "MAG_RESIDUAL_MODE": MagResidualMode}
+          "RATE_SOURCE": RateSource, "MAG_POINTING_LAW": MagPointingLaw, "MAG_RESIDUAL_MODE": MagResidualMode,
+          "WHEEL_FEED_FORWARD": WheelFeedForward}
 _COILS = ("xPlus", "xMinus", "yPlus", "yMinus", "zMinus")
 _isfinite = math.isfinite
 
@@ -95,6 +98,24 @@ class AttitudeController(PassiveComponent):
         """Point the body +Z axis along the inertial direction ``(x, y, z)`` by the smallest rotation."""
         return CmdResponse[self.law.set_target_direction(x, y, z)]
 
+    @sync_command()
+    def SET_TARGET_NADIR(self, primary: BodyAxis, secondary: BodyAxis):
+        """Point body ``primary`` at nadir and ``secondary`` along the velocity (LVLH); needs the ephemeris."""
+        return CmdResponse[self.law.set_target_nadir(int(primary), int(secondary))]
+
+    @sync_command()
+    def SET_TARGET_GROUND_STATION(self, latitude: F64, longitude: F64, altitude: F64, primary: BodyAxis,
+                                  secondary: BodyAxis):
+        """Track a ground station (geodetic deg, deg, m) with ``primary`` while in view (GS_MIN_ELEVATION),
+        ``secondary`` along the velocity; nadir with the same axes otherwise."""
+        return CmdResponse[self.law.set_target_ground_station(latitude, longitude, altitude, int(primary),
+                                                             int(secondary))]
+
+    @sync_command()
+    def SET_TARGET_SUN(self, primary: BodyAxis, secondary: BodyAxis):
+        """Point body ``primary`` at the Sun, ``secondary`` toward the orbit normal; needs the ephemeris."""
+        return CmdResponse[self.law.set_target_sun(int(primary), int(secondary))]
+
     # --- parameters: control.attitude_defaults.PARAMETERS, in the dictionary's order -----------
 
     for _name in _defaults.PARAMETERS:
@@ -115,6 +136,8 @@ class AttitudeController(PassiveComponent):
     wheelTorqueSet = OutputPort(WheelTorqueSet, size=MAX_WHEELS)
     wheelStateGet = OutputPort(WheelStateGet, size=MAX_WHEELS)
     wheelEnableSet = OutputPort(WheelEnableSet, size=MAX_WHEELS)
+    #: Optional: the ephemeris (orbit, Earth angle, Sun) the moving targets need.
+    ephemerisGet = OutputPort(EphemerisGet)
 
     # --- events --------------------------------------------------------------------------------
 
@@ -153,6 +176,28 @@ class AttitudeController(PassiveComponent):
                                           "coil limits or not finite: feed-forward uses MAG_RESIDUAL_DIPOLE_*",
                                           x=F64, y=F64, z=F64, throttle=5)
 
+    TargetNadirSet = Event(Severity.ACTIVITY_HI, "Pointing target: {} to nadir, {} along the velocity",
+                           primary=BodyAxis, secondary=BodyAxis)
+    TargetStationSet = Event(Severity.ACTIVITY_HI, "Pointing target: ground station at {.4f} deg, {.4f} deg, {.1f} m "
+                             "with {} ({} along the velocity)", latitude=F64, longitude=F64, altitude=F64,
+                             primary=BodyAxis, secondary=BodyAxis)
+    TargetSunSet = Event(Severity.ACTIVITY_HI, "Pointing target: {} to the Sun, {} toward the orbit normal",
+                         primary=BodyAxis, secondary=BodyAxis)
+    TargetAxesInvalid = Event(Severity.WARNING_LO, "Target axes {} and {} refused: give two perpendicular axes",
+                              primary=BodyAxis, secondary=BodyAxis, throttle=5)
+    TargetStationInvalid = Event(Severity.WARNING_LO, "Ground station ({}, {}, {}) refused: latitude in [-90, 90] "
+                                 "deg, longitude in [-180, 360] deg, altitude in [-500, 10000] m, all finite",
+                                 latitude=F64, longitude=F64, altitude=F64, throttle=5)
+    NoEphemeris = Event(Severity.WARNING_LO, "No ephemeris (ephemerisGet): nadir, ground-station and Sun targets "
+                        "are not available", throttle=5)
+    EphemerisRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve the ephemeris: holding the last "
+                                     "reference attitude", throttle=5)
+    TargetReferenceUndefined = Event(Severity.WARNING_LO, "The {} target's reference is undefined now (its two "
+                                     "directions are parallel): holding the last reference attitude",
+                                     kind=TargetKind, throttle=5)
+    GroundStationInView = Event(Severity.ACTIVITY_LO, "Ground station in view: tracking it")
+    GroundStationOutOfView = Event(Severity.ACTIVITY_LO, "Ground station out of view: pointing at nadir")
+
     # --- telemetry -----------------------------------------------------------------------------
 
     Mode = Channel(ControlMode)
@@ -172,6 +217,8 @@ class AttitudeController(PassiveComponent):
     AttitudeSigma3 = Channel(F64, format="{.5f}")  # deg, MEKF 3·√(trace P_θθ) (not written with COMPLEMENTARY)
     FieldLineRate = Channel(F64, format="{.5f}")  # deg/s, estimated |db̂/dt| of the inertial field direction
     ResidualDipole = Channel(Vector3)  # A·m², B: the residual-dipole feed-forward in use (MAG_RESIDUAL_MODE)
+    ActiveTarget = Channel(PointingReference)  # the reference POINTING follows
+    ReferenceRate = Channel(Vector3)  # deg/s, in the target frame: the reference's rate relative to N
 
     # --- construction and the law's plant I/O --------------------------------------------------
 
@@ -190,6 +237,7 @@ class AttitudeController(PassiveComponent):
         self._torque_ports = self.output_port("wheelTorqueSet")
         self._state_ports = self.output_port("wheelStateGet")
         self._enable_ports = self.output_port("wheelEnableSet")
+        self._ephemeris_port = self.output_port("ephemerisGet")
         self._wheels_enabled = False
         self.law = ThreeModeLaw(self, self, self, wheel_axes, {n: b.value for n, b in self.params.items()})
 
@@ -283,6 +331,18 @@ class AttitudeController(PassiveComponent):
             sent.append(torque)
         return tuple(sent)
 
+    def ephemeris(self):
+        e = _read(self._ephemeris_port)
+        if e is None:
+            return None
+        values = (e.rx, e.ry, e.rz, e.vx, e.vy, e.vz, e.earthAngle, e.sunX, e.sunY, e.sunZ)
+        try:
+            if not all(_isfinite(v) for v in values):
+                return None
+        except TypeError:
+            return None
+        return Ephemeris((e.rx, e.ry, e.rz), (e.vx, e.vy, e.vz), e.earthAngle, (e.sunX, e.sunY, e.sunZ))
+
     def drive_coils(self, levels, dipole_B) -> None:
         for port, level in zip(self._start_ports, levels, strict=True):
             if port.targets[0] is not None:
@@ -338,3 +398,10 @@ class AttitudeController(PassiveComponent):
             d = law.bdot_hat_B
             self.FieldLineRate.write(math.degrees(math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])))
         self.ResidualDipole.write(Vector3(law.residual_ff))
+        ref = law.reference
+        if ref is not None:
+            self.ActiveTarget.write(PointingReference(ref.label))
+            if law.target_spec is not None and law.target_spec.needs_ephemeris:
+                w = ref.omega_R
+                self.ReferenceRate.write(Vector3([math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2])]))
+                self.TargetQuaternion.write(Quaternion(*ref.q_RN))

@@ -13,7 +13,8 @@ from detumble.components.types import Result
 
 __all__ = ["ControlMode", "ControlAutonomy", "SpinLaw", "PointingActuator", "MagPointingLaw", "MagResidualMode",
            "ModeChangeReason",
-           "AttitudeEstimator", "RateSource",
+           "AttitudeEstimator", "RateSource", "WheelFeedForward", "BodyAxis", "PointingReference", "TargetKind",
+           "Ephemeris", "EphemerisGet",
            "Vector3", "Quaternion", "WheelValues", "AngularVelocity", "AngularVelocityGet", "MAX_WHEELS"]
 
 #: Wheel channels carry this many values (unused wheels read 0).
@@ -88,6 +89,45 @@ class MagResidualMode(FwEnum, namespace="Components"):
     ESTIMATE = 2
 
 
+class WheelFeedForward(FwEnum, namespace="Components"):
+    """What a moving target's wheel law feeds forward: the reference's own torque ``I (α_r − ω × ω_r)``
+    (REFERENCE), or that plus the gyroscopic ``ω × (I ω + h_w)`` (REFERENCE_GYROSCOPIC)."""
+
+    REFERENCE = 0
+    REFERENCE_GYROSCOPIC = 1
+
+
+class BodyAxis(FwEnum, namespace="Components"):
+    """A body axis a target points (``control.targets.BODY_AXES``)."""
+
+    PLUS_X = 0
+    MINUS_X = 1
+    PLUS_Y = 2
+    MINUS_Y = 3
+    PLUS_Z = 4
+    MINUS_Z = 5
+
+
+class PointingReference(FwEnum, namespace="Components"):
+    """The reference POINTING follows (``control.targets.LABELS``): an inertial attitude, nadir (LVLH), a
+    ground station in view, the nadir fallback of a station out of view, or the Sun."""
+
+    INERTIAL = 0
+    NADIR = 1
+    GROUND_STATION = 2
+    STATION_FALLBACK = 3
+    SUN = 4
+
+
+class TargetKind(FwEnum, namespace="Components"):
+    """The kind of target commanded (``control.targets.TARGET_KINDS``)."""
+
+    INERTIAL = 0
+    NADIR = 1
+    GROUND_STATION = 2
+    SUN = 3
+
+
 class ModeChangeReason(FwEnum, namespace="Components"):
     """Why the mode changed (argument of ControlModeChanged)."""
 
@@ -126,4 +166,24 @@ class AngularVelocity(Struct, namespace="Drv"):
 
 #: Angular velocity in rad/s; returns ``Result(AngularVelocity, Success)`` (the IMU manager's port).
 AngularVelocityGet = PortType("Components.AngularVelocityGet", returns=Result)
+
+
+class Ephemeris(Struct, namespace="Drv"):
+    """Where the spacecraft is: position ``rx, ry, rz`` (m) and velocity ``vx, vy, vz`` (m/s) in N, the Earth
+    rotation angle ``earthAngle`` (rad) and the Sun's unit direction ``sunX, sunY, sunZ`` in N."""
+
+    rx: F64
+    ry: F64
+    rz: F64
+    vx: F64
+    vy: F64
+    vz: F64
+    earthAngle: F64
+    sunX: F64
+    sunY: F64
+    sunZ: F64
+
+
+#: The ephemeris now; returns ``Result(Ephemeris, Success)`` (an on-board orbit propagator or GPS).
+EphemerisGet = PortType("Drv.EphemerisGet", returns=Result)
 

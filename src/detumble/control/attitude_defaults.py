@@ -43,6 +43,12 @@ MAG_RESIDUAL_DIPOLE_Y = 0.0  # A·m², B
 MAG_RESIDUAL_DIPOLE_Z = 0.0  # A·m², B
 MAG_RESIDUAL_WINDOW = 60.0  # s: the estimator's momentum-balance window
 
+# --- moving targets (control.targets) ----------------------------------------------------------
+GS_MIN_ELEVATION = 10.0  # deg: a ground station is tracked while it sees the spacecraft this high or higher
+WHEEL_FEED_FORWARD = "REFERENCE"  # REFERENCE: I (α_r − ω × ω_r); REFERENCE_GYROSCOPIC: + ω × (I ω + h_w)
+RATE_BLEND_ANGLE = 0.1  # deg: above this pointing error (a slew) the rate observer pulls at RATE_BLEND_GAIN
+RATE_BLEND_GAIN = 2.0  # 1/s: the observer's pull toward the gyro during a slew
+
 # --- detumble and spin -------------------------------------------------------------------------
 K_BDOT = 3.0  # A·m²·s/G: the internal M = −k Ḃ when no dipole provider is connected
 C_DAMP = 1.0e-4  # N·m·s: damper coefficient (seed c_damp)
@@ -165,6 +171,10 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "MAG_RESIDUAL_DIPOLE_Y": ("A·m², body frame", -0.05, 0.05, False),
     "MAG_RESIDUAL_DIPOLE_Z": ("A·m², body frame", -0.05, 0.05, False),
     "MAG_RESIDUAL_WINDOW": ("s", 5.0, 600.0, False),
+    "GS_MIN_ELEVATION": ("deg", 0.0, 90.0, False),
+    "WHEEL_FEED_FORWARD": ("", None, None, False),
+    "RATE_BLEND_ANGLE": ("deg", 0.0, 180.0, False),
+    "RATE_BLEND_GAIN": ("1/s", 1e-4, 1000.0, True),
 }
 #: Each parameter's units (the first column of :data:`PARAMETERS`).
 UNITS: dict[str, str] = {name: row[0] for name, row in PARAMETERS.items()}
@@ -177,4 +187,5 @@ ENUM_CHOICES: dict[str, tuple[str, ...]] = {
     "RATE_SOURCE": ("GYRO", "OBSERVER"),
     "MAG_POINTING_LAW": ("SEED_PD", "FIELD_STEERING"),
     "MAG_RESIDUAL_MODE": ("OFF", "PARAMETER", "ESTIMATE"),
+    "WHEEL_FEED_FORWARD": ("REFERENCE", "REFERENCE_GYROSCOPIC"),
 }

@@ -76,9 +76,11 @@ class RateObserver:
     def reset(self, omega: Vec3 | None = None) -> None:
         self.omega = None if omega is None else (float(omega[0]), float(omega[1]), float(omega[2]))
 
-    def update(self, omega_meas: Vec3, torque_B: Vec3, wheel_momentum_B: Vec3, dt: float) -> Vec3:
+    def update(self, omega_meas: Vec3, torque_B: Vec3, wheel_momentum_B: Vec3, dt: float,
+               gain_per_s: float | None = None) -> Vec3:
         """Advance by ``dt`` under ``torque_B`` (the body torque applied over the interval) and correct with
-        ``omega_meas`` (bias-corrected gyro mean over it); returns the estimate now."""
+        ``omega_meas`` (bias-corrected gyro mean over it); returns the estimate now. ``gain_per_s``: the pull for
+        this step instead of the model's (a slew's larger one; ``inf``: the gyro mean carried to now)."""
         w = self.omega
         if w is None:
             self.omega = w = (float(omega_meas[0]), float(omega_meas[1]), float(omega_meas[2]))
@@ -90,7 +92,7 @@ class RateObserver:
         gy = w[2] * hx - w[0] * hz
         gz = w[0] * hy - w[1] * hx
         a = _mul(self.inertia_inv, (torque_B[0] - gx, torque_B[1] - gy, torque_B[2] - gz))
-        k = 1.0 - math.exp(-self.gain * dt)
+        k = 1.0 - math.exp(-(self.gain if gain_per_s is None else gain_per_s) * dt)
         half = 0.5 * dt
         w0, w1, w2 = w
         a0, a1, a2 = a

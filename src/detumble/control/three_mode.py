@@ -43,10 +43,12 @@ from detumble.control.magnetorquer import face_coil_levels
 from detumble.control.mat3 import cross as _cross
 from detumble.control.mekf import Mekf
 from detumble.control.pointing import ErrorIntegrator, pd_torque
-from detumble.control.quaternion import (Quat, Vec3, is_unit_quaternion, quat_angle, quat_normalize, quat_shortest,
-                                         target_pointing_axis)
+from detumble.control.quaternion import (Quat, Vec3, is_unit_quaternion, quat_angle, quat_error, quat_normalize,
+                                         quat_shortest, rotate_n_to_b, target_pointing_axis)
 from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
+from detumble.control.targets import (GROUND_STATION, STATION_FALLBACK, Ephemeris, InertialTarget, NadirTarget,
+                                      Reference, StationTarget, SunTarget, Target, axes_error, station_error)
 from detumble.control.units import TESLA_PER_GAUSS
 from detumble.control.wheel_allocation import WheelAllocator
 
@@ -75,6 +77,7 @@ _MEKF = _member("ESTIMATOR", "MEKF")
 _OBSERVER = _member("RATE_SOURCE", "OBSERVER")
 _SEED_PD = _member("MAG_POINTING_LAW", "SEED_PD")
 _OFF, _ESTIMATE = _member("MAG_RESIDUAL_MODE", "OFF"), _member("MAG_RESIDUAL_MODE", "ESTIMATE")
+_FF_GYROSCOPIC = _member("WHEEL_FEED_FORWARD", "REFERENCE_GYROSCOPIC")
 
 _DEG = math.pi / 180.0
 _ARCSEC = _DEG / 3600.0
@@ -111,6 +114,9 @@ class ControllerIo(Protocol):
 
     def set_wheel_torques(self, torques: Sequence[float]) -> tuple[float, ...]:
         """Command one motor torque per wheel (N·m); returns what each wheel was sent (0 where none)."""
+
+    def ephemeris(self) -> Ephemeris | None:
+        """Where the spacecraft is now (orbit, Earth angle, Sun: ``control.targets.Ephemeris``); None without."""
 
 
 class DipoleProvider(Protocol):
@@ -267,6 +273,10 @@ class ThreeModeLaw:
     MAG_RESIDUAL_DIPOLE_Y: float
     MAG_RESIDUAL_DIPOLE_Z: float
     MAG_RESIDUAL_WINDOW: float
+    GS_MIN_ELEVATION: float
+    WHEEL_FEED_FORWARD: int
+    RATE_BLEND_ANGLE: float
+    RATE_BLEND_GAIN: float
 
     def __init__(self, io: ControllerIo, notify: Notify, provider: DipoleProvider,
                  wheel_axes: Sequence[Sequence[float]] = XYZ, params: Mapping[str, object] | None = None) -> None:
@@ -287,7 +297,9 @@ class ThreeModeLaw:
         self.residual_estimator = ResidualDipoleEstimator(self.rate_observer.inertia, self.MAG_RESIDUAL_WINDOW)
         self.residual_ff: Vec3 = _ZERO  # A·m², B: the residual-dipole feed-forward of the last POINTING cycle
         self.integrator = ErrorIntegrator(self.INTEGRAL_WINDOW * _DEG, defaults.INTEGRAL_MAX_TORQUE)
-        self.target: Quat | None = None
+        self.target: Quat | None = None  # the attitude to hold now, q_RN (the reference's; None: no target yet)
+        self.target_spec: Target | None = None  # what was commanded (control.targets)
+        self.reference: Reference | None = None  # the target's reference now: attitude, rate, acceleration, label
         self.seed_damper = SeedKaneDamper(self.C_DAMP, self.I_D)
         self.virtual_damper = VirtualDamper(self.C_DAMP, self.I_D)
         self.ticks = 0
@@ -371,11 +383,105 @@ class ThreeModeLaw:
         self.set_target(target_pointing_axis(q, defaults.BORESIGHT_B, (x, y, z)))
         return "OK"
 
+    def set_target_nadir(self, primary: int, secondary: int) -> str:
+        """SET_TARGET_NADIR: body ``primary`` (BodyAxis) to nadir, ``secondary`` along the velocity (LVLH)."""
+        if not self._axes_ok(primary, secondary):
+            return "VALIDATION_ERROR"
+        return self._set_moving_target(NadirTarget(int(primary), int(secondary)))
+
+    def set_target_ground_station(self, latitude_deg: float, longitude_deg: float, altitude_m: float,
+                                  primary: int, secondary: int) -> str:
+        """SET_TARGET_GROUND_STATION: body ``primary`` at the station (WGS-84 geodetic, deg, deg, m) while it sees
+        the spacecraft at GS_MIN_ELEVATION or more, ``secondary`` along the velocity; nadir otherwise."""
+        why = station_error(latitude_deg, longitude_deg, altitude_m)
+        if why is not None:
+            self.notify.event("TargetStationInvalid", latitude_deg, longitude_deg, altitude_m)
+            return "VALIDATION_ERROR"
+        self.notify.clear_event("TargetStationInvalid")
+        if not self._axes_ok(primary, secondary):
+            return "VALIDATION_ERROR"
+        return self._set_moving_target(StationTarget(float(latitude_deg), float(longitude_deg), float(altitude_m),
+                                                     int(primary), int(secondary), float(self.GS_MIN_ELEVATION)))
+
+    def set_target_sun(self, primary: int, secondary: int) -> str:
+        """SET_TARGET_SUN: body ``primary`` at the Sun, ``secondary`` toward the orbit normal."""
+        if not self._axes_ok(primary, secondary):
+            return "VALIDATION_ERROR"
+        return self._set_moving_target(SunTarget(int(primary), int(secondary)))
+
+    def _axes_ok(self, primary: int, secondary: int) -> bool:
+        if axes_error(primary, secondary) is not None:
+            self.notify.event("TargetAxesInvalid", primary, secondary)
+            return False
+        self.notify.clear_event("TargetAxesInvalid")
+        return True
+
+    def _set_moving_target(self, spec: Target) -> str:
+        """Take a target that needs the ephemeris: refused (EXECUTION_ERROR) without one or where its reference is
+        undefined now (e.g. the Sun along the orbit normal)."""
+        eph = self.io.ephemeris()
+        if eph is None:
+            self.notify.event("NoEphemeris")
+            return "EXECUTION_ERROR"
+        try:
+            ref = spec.reference(eph)
+        except ValueError:
+            self.notify.event("TargetReferenceUndefined", spec.kind)
+            return "EXECUTION_ERROR"
+        self.notify.clear_event("NoEphemeris")
+        self.target_spec = spec
+        self._take_reference(ref)
+        if isinstance(spec, NadirTarget):
+            self.notify.event("TargetNadirSet", spec.primary, spec.secondary)
+        elif isinstance(spec, StationTarget):
+            self.notify.event("TargetStationSet", spec.latitude_deg, spec.longitude_deg, spec.altitude_m,
+                              spec.primary, spec.secondary)
+        elif isinstance(spec, SunTarget):
+            self.notify.event("TargetSunSet", spec.primary, spec.secondary)
+        self.notify.target_set(ref.q_RN)
+        return "OK"
+
     def set_target(self, q: Sequence[float]) -> None:
-        """Take ``q_TN`` as the target as it is (the error integral starts again)."""
+        """Take ``q_TN`` as the (inertial) target as it is (the error integral starts again)."""
+        q = (float(q[0]), float(q[1]), float(q[2]), float(q[3]))
+        self.target_spec = InertialTarget(q)
+        self._take_reference(self.target_spec.reference())
+        self.notify.target_set(q)
+
+    def _take_reference(self, ref: Reference) -> None:
+        """A new target's reference (the error integral starts again)."""
         self.integrator.reset()
-        self.target = (float(q[0]), float(q[1]), float(q[2]), float(q[3]))
-        self.notify.target_set(self.target)
+        self.reference = ref
+        self.target = ref.q_RN
+
+    def _update_reference(self) -> None:
+        """Follow a moving target: its reference from the ephemeris now (a failed read or an undefined reference
+        holds the last attitude, without feed-forward)."""
+        spec = self.target_spec
+        if spec is None or not spec.needs_ephemeris:
+            return
+        eph = self.io.ephemeris()
+        old = self.reference
+        assert old is not None  # a moving target was taken with a reference
+        ref = None
+        if eph is None:
+            self.notify.event("EphemerisRetrievalFailed")
+        else:
+            self.notify.clear_event("EphemerisRetrievalFailed")
+            try:
+                ref = spec.reference(eph)
+            except ValueError:
+                self.notify.event("TargetReferenceUndefined", spec.kind)
+        if ref is None:
+            ref = Reference(old.q_RN, _ZERO, _ZERO, old.label)
+        if ref.label != old.label:
+            if ref.label == GROUND_STATION:
+                self.notify.event("GroundStationInView")
+            elif ref.label == STATION_FALLBACK and old.label == GROUND_STATION:
+                self.notify.event("GroundStationOutOfView")
+            self.integrator.reset()
+        self.reference = ref
+        self.target = ref.q_RN
 
     def safe(self) -> None:
         """Coils off and wheels at zero torque (after a fault); the wheels are zeroed even when stopping the
@@ -408,6 +514,11 @@ class ThreeModeLaw:
         io = self.io
         momenta = io.wheel_momenta() if fresh else self.wheel_momenta
         return io.wheel_count() == len(self.wheel_axes) and momenta is not None
+
+    @property
+    def pointing_on_wheels(self) -> bool:
+        """Whether POINTING flies (or would fly) on the wheels now (the cycle's own wheel reading)."""
+        return self._pointing_uses_wheels()
 
     def _pointing_uses_wheels(self) -> bool:
         if self.POINTING_ACTUATOR == _MAGNETORQUERS:
@@ -479,6 +590,7 @@ class ThreeModeLaw:
         self.last_cycle_us = now_us
         self.cycles += 1
         self._sense(dt, now_us)
+        self._update_reference()
         if self.autonomy == AUTO:
             self._auto_mode(dt)
         elif self.mode == POINTING and not self.attitude_valid:
@@ -584,7 +696,11 @@ class ThreeModeLaw:
         h = _ZERO
         if self.wheel_momenta is not None:
             h = self._body_momentum(self.wheel_momenta)
-        w = obs.update(self.omega, torque, h, dt)
+        # a slew (the last cycle's error above RATE_BLEND_ANGLE): pull toward the gyro at RATE_BLEND_GAIN, so the
+        # model's inertia error cannot build up a rate error over the slew's large torques
+        # (docs/studies/robust_rates.md); at the default gain the step is the same floats as before
+        blend = self.mode == POINTING and self.pointing_error_deg > self.RATE_BLEND_ANGLE
+        w = obs.update(self.omega, torque, h, dt, self.RATE_BLEND_GAIN if blend else None)
         self.pd_rate = w if self.RATE_SOURCE == _OBSERVER else self.omega
 
     def _track_field_line(self, dt: float) -> None:
@@ -694,7 +810,15 @@ class ThreeModeLaw:
             assert target is not None  # set_target set it
             if self._pointing_uses_wheels():
                 rate = self.pd_rate if self.pd_rate is not None else self.omega
+                ref = self.reference
+                ff = None
+                if ref is not None and (ref.omega_R != _ZERO or ref.alpha_R != _ZERO):
+                    # a moving reference: the PD acts on the rate relative to it, and the torque its motion needs
+                    # is fed forward (an inertial target skips this, so its floats are those of the plain PD)
+                    rate, ff = self._reference_feed_forward(ref, quat_error(target, q), rate)
                 tau, qe = pd_torque(target, q, rate, self.K_P, self.K_D, self.SLEW_RATE_LIMIT * _DEG)
+                if ff is not None:
+                    tau = (tau[0] + ff[0], tau[1] + ff[1], tau[2] + ff[2])
                 self.integrator.window_rad = self.INTEGRAL_WINDOW * _DEG
                 ti = self.integrator.update(qe, dt, self.K_I)
                 tau = (tau[0] + ti[0], tau[1] + ti[1], tau[2] + ti[2])
@@ -733,6 +857,28 @@ class ThreeModeLaw:
         if wheel_u is None:
             wheel_u = (0.0,) * len(self.wheel_axes)
         self._command_wheels(wheel_u)
+
+    def _reference_feed_forward(self, ref: Reference, q_err: Quat, rate: Vec3) -> tuple[Vec3, Vec3]:
+        """``(ω − ω_r, τ_ff)`` in B for the reference ``ref`` seen from the attitude ``q_err`` (= q_BR): the
+        reference rate ``ω_r = [BR] ω_R`` and acceleration ``α_r = [BR] α_R``; ``τ_ff = I (α_r − ω × ω_r)`` (the
+        torque that keeps a body on the reference turning with it), plus ``ω × (I ω + h_w)`` with
+        WHEEL_FEED_FORWARD = REFERENCE_GYROSCOPIC. ``I``: the INERTIA_* model; ``ω``: the D term's rate."""
+        w_r = rotate_n_to_b(q_err, ref.omega_R)
+        a_r = rotate_n_to_b(q_err, ref.alpha_R)
+        inertia = self.rate_observer.inertia
+        wxr = _cross(rate, w_r)
+        d = (a_r[0] - wxr[0], a_r[1] - wxr[1], a_r[2] - wxr[2])
+        ff = (inertia[0][0] * d[0] + inertia[0][1] * d[1] + inertia[0][2] * d[2],
+              inertia[1][0] * d[0] + inertia[1][1] * d[1] + inertia[1][2] * d[2],
+              inertia[2][0] * d[0] + inertia[2][1] * d[1] + inertia[2][2] * d[2])
+        if self.WHEEL_FEED_FORWARD == _FF_GYROSCOPIC:
+            h = self._body_momentum(self.wheel_momenta) if self.wheel_momenta is not None else _ZERO
+            iw = (inertia[0][0] * rate[0] + inertia[0][1] * rate[1] + inertia[0][2] * rate[2] + h[0],
+                  inertia[1][0] * rate[0] + inertia[1][1] * rate[1] + inertia[1][2] * rate[2] + h[1],
+                  inertia[2][0] * rate[0] + inertia[2][1] * rate[1] + inertia[2][2] * rate[2] + h[2])
+            g = _cross(rate, iw)
+            ff = (ff[0] + g[0], ff[1] + g[1], ff[2] + g[2])
+        return (rate[0] - w_r[0], rate[1] - w_r[1], rate[2] - w_r[2]), ff
 
     def _magnetic_pointing_torque(self, target: Quat, q: Quat):
         """``(τ_req, q_err)`` of the MAG_POINTING_LAW (before the projection ⟂ B)."""

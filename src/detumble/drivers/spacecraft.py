@@ -439,6 +439,12 @@ class SimulatedSpacecraft(ResetLine):
         plant = self.plant
         return plant.q_ON, plant.orbit.mean_motion, self.clock.now()
 
+    def ephemeris_sample(self):
+        """The plant's :meth:`~detumble.sim.plant.Plant.ephemeris` now (``control.targets.Ephemeris``): what an
+        on-board ephemeris or GPS knows (truth here)."""
+        self.sync()
+        return self.plant.ephemeris()
+
     # --- truth ----------------------------------------------------------------------------------
 
     def truth(self) -> TruthSample:

@@ -6,9 +6,15 @@ the downlinked ``ControlModeChanged`` events, and adds to ``summary.json``:
 
 * ``control_mode_transitions``: ``[{"t_s", "mode"}]`` as the ground received them;
 * ``pointing_error_deg``: ``{"median", "p95", "max", "samples"}`` of the true angle between the
-  body attitude and the controller's target, over the POINTING samples after the first 10 % of them,
-  and beside them what pooling runs needs (:mod:`detumble.analysis.pooled_stats`): ``sample_interval_s``,
-  ``window_s`` (samples × interval), ``time_above_s`` at 0.01, 0.05, 0.1, 1, 5, 15° and ``histogram_s``;
+  body attitude and the target's reference at the sample's time (a moving target's from the plant's own
+  ephemeris), over the **steady** POINTING samples — those after each acquisition
+  (:mod:`detumble.analysis.pointing_windows`: ``acquisition_s`` of the first interval and its
+  ``acquisition_threshold_deg`` are in the block, ``window`` says "steady") — and beside them what pooling runs
+  needs (:mod:`detumble.analysis.pooled_stats`): ``sample_interval_s``, ``window_s`` (samples × interval),
+  ``time_above_s`` at 0.01, 0.05, 0.1, 1, 5, 15° and ``histogram_s``;
+* ``pointing_intervals``: each POINTING interval (entry, target change, a station rising or setting) with its
+  active reference, threshold and ``acquisition_s``; ``pointing_error_by_target_deg``: the steady statistics
+  per active reference (INERTIAL, NADIR, GROUND_STATION, STATION_FALLBACK, SUN);
 * ``spin_axis_error_deg``: the same statistics of the angle between the total angular momentum
   (body + wheels) and body +Z over the SPIN_STABLE samples (after their first 10 %; ``time_above_s`` at
   1, 5, 15°);
@@ -26,7 +32,8 @@ the downlinked ``ControlModeChanged`` events, and adds to ``summary.json``:
 break in the present SPIN_STABLE interval (0 outside it).
 
 Plots: ``attitude_mode.png`` (mode vs time), ``pointing_error.png``, ``wheel_momentum.png``,
-``dipole.png``; the samples go to ``attitude.csv``. Time ``t_s`` is seconds since the run started.
+``dipole.png``; the samples go to ``attitude.csv`` (its ``target`` column: the active reference, as
+``pointing_error_by_target_deg`` names it). Time ``t_s`` is seconds since the run started.
 """
 
 from __future__ import annotations
@@ -40,9 +47,11 @@ import pathlib
 from fprime_lite.deploy.resources import topology_resource
 from fprime_lite.model.time import US_PER_S
 
-from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, SPIN_THRESHOLDS_DEG, error_statistics
+from detumble.analysis.pointing_windows import pointing_summary
+from detumble.analysis.pooled_stats import SPIN_THRESHOLDS_DEG, error_statistics
 from detumble.components.attitude_types import ControlMode
 from detumble.control.quaternion import quat_angle, quat_error
+from detumble.control.targets import LABELS, true_reference_q
 from detumble.drivers.spacecraft import SimulatedSpacecraft
 from detumble.reports.figures import save_figure
 
@@ -55,7 +64,7 @@ SPIN_AXIS_BAND_DEG = 5.0
 SPIN_RATE_BAND = 0.05
 _COLUMNS = ("t_s", "mode", "pointing_error_deg", "spin_axis_error_deg", "spin_rate_deg_s", "rate_deg_s",
             "h0_nms", "h1_nms", "h2_nms", "h3_nms", "mx_cmd_Am2", "my_cmd_Am2", "mz_cmd_Am2",
-            "mx_Am2", "my_Am2", "mz_Am2")
+            "mx_Am2", "my_Am2", "mz_Am2", "target")
 
 
 def settle_time(times: list[float], ok: list[bool], start: float) -> float | None:
@@ -93,7 +102,10 @@ class AttitudeRunReport:
         self.rows: list[tuple] = []
         self.transitions: list[dict] = []
         self._target_changes: list[tuple[float, float]] = []  # (t_s, angle deg) while POINTING
-        self._last_target = None
+        self._last_target = None  # the controller's reference attitude at the last sample
+        self._last_key: tuple | None = None  # (target commanded, active reference label) at the last sample
+        self._logged_target: tuple | None = None  # the true reference last handed to the spacecraft's truth log
+        self._row_meta: list[tuple] = []  # per row: (target key, POINTING on the wheels)
         self._spin_since: float | None = None  # start of the present in-band SPIN_STABLE streak, s
 
     # --- run hooks -------------------------------------------------------------------------------
@@ -116,11 +128,20 @@ class AttitudeRunReport:
         t = (time_us - self.start_us) / US_PER_S
         mode = c.mode
         q = p.q_BN
+        law = c.law
+        ref = law.reference
+        label = ref.label if ref is not None else None
+        key = (law.target_spec, label)  # a new target, or a station rising or setting: a target change
         target = c.target
-        if target != self._last_target:
-            if self._last_target is not None and mode == ControlMode.POINTING:
+        if key != self._last_key:
+            if self._last_target is not None and target is not None and mode == ControlMode.POINTING:
                 self._target_changes.append((t, math.degrees(quat_angle(quat_error(target, self._last_target)))))
-            self._last_target = target
+            self._last_key = key
+        self._last_target = target
+        # the true reference now, from the plant's own ephemeris (the controller's is a cycle old)
+        target = true_reference_q(law.target_spec, p.ephemeris, target)
+        if target != self._logged_target:
+            self._logged_target = target
             self.spacecraft.set_pointing_target(target)
         err = math.degrees(quat_angle(quat_error(target, q))) if target is not None else float("nan")
         h = p.angular_momentum_B()
@@ -132,8 +153,9 @@ class AttitudeRunReport:
         w = p.omega_BN_B
         momenta = list(p.wheel_momenta)[:4]
         momenta += [0.0] * (4 - len(momenta))
+        self._row_meta.append((key, law.pointing_on_wheels if mode == ControlMode.POINTING else False))
         self.rows.append((t, int(mode), err, spin_err, math.degrees(w[2]), p.rate_deg_s, *momenta,
-                          *c.dipole, *p.m_coils_B))
+                          *c.dipole, *p.m_coils_B, LABELS[label] if label is not None else ""))
         if mode == ControlMode.SPIN_STABLE and self._in_band(spin_err, math.degrees(w[2])):
             if self._spin_since is None:
                 self._spin_since = t
@@ -167,6 +189,12 @@ class AttitudeRunReport:
 
     def _column(self, k: int, mode: ControlMode) -> list[float]:
         return [r[k] for r in self.rows if r[1] == mode and math.isfinite(r[k])]
+
+    def pointing_samples(self) -> list[tuple]:
+        """``(t_s, true error deg, target key, reference label, on wheels)`` of the POINTING samples (the input of
+        :func:`detumble.analysis.pointing_windows.pointing_windows`)."""
+        return [(r[0], r[2], m[0], r[-1], m[1]) for r, m in zip(self.rows, self._row_meta, strict=True)
+                if r[1] == ControlMode.POINTING and math.isfinite(r[2])]
 
     def spin_settled_s(self) -> float | None:
         """Seconds from the first entry into SPIN_STABLE until momentum within 5° of +Z and the rate within
@@ -214,8 +242,7 @@ class AttitudeRunReport:
         dt = self.interval_us / US_PER_S  # every sample stands for one interval of time
         return {
             "control_mode_transitions": self.transitions,
-            "pointing_error_deg": error_statistics(self._column(2, ControlMode.POINTING), sample_interval_s=dt,
-                                                   thresholds_deg=POINTING_THRESHOLDS_DEG),
+            **pointing_summary(self.pointing_samples(), dt),
             "spin_axis_error_deg": error_statistics(self._column(3, ControlMode.SPIN_STABLE), sample_interval_s=dt,
                                                     thresholds_deg=SPIN_THRESHOLDS_DEG),
             "spin_settled_s": settled,

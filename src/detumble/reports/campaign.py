@@ -196,7 +196,8 @@ def _settling_time(output: RunOutput, _probe) -> float:
 
 
 def _pointing_statistic(key: str):
-    """The run summary's POINTING error statistic ``key`` (median, p95, max; after the first 10 % of POINTING)."""
+    """The run summary's POINTING error statistic ``key`` (median, p95, max; the steady samples after each
+    interval's acquisition, detumble.analysis.pointing_windows)."""
     def compute(output: RunOutput, _probe) -> float:
         stats = output.summary.get("pointing_error_deg")
         if not isinstance(stats, dict) or stats.get(key) is None:
@@ -301,11 +302,13 @@ METRICS = (
            lambda output, _probe: _pointing(output, lambda v: v.mean())),
     Metric("pointing_error_max_deg", "deg", "largest pointing error while a target is set (truth)",
            lambda output, _probe: _pointing(output, lambda v: v.max())),
-    Metric("pointing_median_deg", "deg", "median pointing error in POINTING after its first 10 % (run summary)",
+    Metric("pointing_median_deg", "deg", "median steady pointing error in POINTING, after each acquisition "
+           "(run summary)",
            _pointing_statistic("median")),
-    Metric("pointing_p95_deg", "deg", "95th percentile of the pointing error in POINTING after its first 10 % "
-           "(run summary)", _pointing_statistic("p95")),
-    Metric("pointing_max_deg", "deg", "largest pointing error in POINTING after its first 10 % (run summary)",
+    Metric("pointing_p95_deg", "deg", "95th percentile of the steady pointing error in POINTING, after each "
+           "acquisition (run summary)", _pointing_statistic("p95")),
+    Metric("pointing_max_deg", "deg", "largest steady pointing error in POINTING, after each acquisition "
+           "(run summary)",
            _pointing_statistic("max")),
     Metric("mode_transitions", "", "number of attitude-control mode changes the ground saw "
            "(summary.json control_mode_transitions)", _mode_transitions),

@@ -20,7 +20,8 @@ from typing import Mapping, Sequence, cast
 from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, error_statistics
 from detumble.control import attitude_defaults
 from detumble.control.magnetic import normalised_bdot_dipole
-from detumble.control.quaternion import is_unit_quaternion, quat_angle, quat_error
+from detumble.control.quaternion import quat_angle, quat_error
+from detumble.control.targets import Ephemeris, target_command, target_entry_error, true_reference_q
 from detumble.control.three_mode import MODES, REASONS, XYZ, ControllerIo, Quiet, ThreeModeLaw, checked_parameters
 
 __all__ = ["AdcsLaw", "PlantIo", "MODES", "COIL_FACES", "pointing_statistics"]
@@ -81,6 +82,9 @@ class PlantIo:
             self.plant.set_wheel_torque(i, torques[i])
         return tuple(float(u) for u in torques)
 
+    def ephemeris(self) -> Ephemeris:
+        return self.plant.ephemeris()
+
 
 class AdcsLaw(Quiet):
     """The three-mode controller in AUTO (or a forced mode), one :meth:`tick` per rate-group tick.
@@ -111,11 +115,11 @@ class AdcsLaw(Quiet):
             raise ValueError(f"force_mode {force_mode!r}: use DETUMBLE, SPIN_STABLE, POINTING or None (AUTO)")
         self.force_mode, self.force_at_us = force_mode, int(round(float(force_at_s) * 1e6))
         self.initial_target = None if target_q_bn is None else tuple(float(c) for c in target_q_bn)
-        self.target_changes = tuple((int(round(float(t) * 1e6)), tuple(float(c) for c in q)) for t, q in target_changes)
-        for t_us, q in self.target_changes:  # (t µs, q_TN)
-            if len(q) != 4 or not is_unit_quaternion(q):
-                raise ValueError(f"target change at {t_us / 1e6} s: {q!r} is not a unit quaternion (within 1e-3), "
-                                 "as SET_TARGET_QUATERNION requires")
+        self.target_changes = tuple((int(round(float(t) * 1e6)), _target_entry(q)) for t, q in target_changes)
+        for t_us, q in self.target_changes:  # (t µs, q_TN or a moving target's command)
+            why = target_entry_error(q)
+            if why is not None:
+                raise ValueError(f"target change at {t_us / 1e6} s: {why}")
         if list(self.target_changes) != sorted(self.target_changes, key=lambda c: c[0]):
             raise ValueError("target changes must be in time order")
         self.reset()
@@ -151,7 +155,7 @@ class AdcsLaw(Quiet):
     def _commands(self, now: int) -> None:
         law, changes = self.law, self.target_changes
         while self._next_change < len(changes) and changes[self._next_change][0] < now:
-            law.set_target_quaternion(changes[self._next_change][1])
+            target_command(law, changes[self._next_change][1])
             self._next_change += 1
         if self.force_mode is not None and self._force_pending and self.force_at_us < now:
             self._force_pending, self._command_us = False, self.force_at_us  # one command: not retried
@@ -182,12 +186,21 @@ class AdcsLaw(Quiet):
         m = normalised_bdot_dipole(prev[0], b, (stamp - prev[1]) / 1e6, self.provider_gain, size)
         return m if all(math.isfinite(x) for x in m) else None
 
-    def true_pointing_error_deg(self, q_BN) -> float:
-        """The angle between the attitude ``q_BN`` (the truth) and the target, deg (nan without one)."""
-        t = self.law.target
+    def true_pointing_error_deg(self, q_BN, ephemeris=None) -> float:
+        """The angle between the attitude ``q_BN`` (the truth) and the target, deg (nan without one): a moving
+        target's reference by ``ephemeris()`` (the plant's truth, called only for one), else the law's."""
+        law = self.law
+        t = true_reference_q(law.target_spec, ephemeris, law.target) if ephemeris is not None else law.target
         return math.nan if t is None else math.degrees(quat_angle(quat_error(t, q_BN)))
 
 
-#: ``{"median", "p95", "max", "samples"}`` (deg) of the true POINTING errors after their first tenth, with the pooling
-#: fields when given ``sample_interval_s``: the deployment's attitude report's statistics.
+def _target_entry(q) -> tuple:
+    """A target change as given: four numbers (floats), or a moving target's command (kept as given)."""
+    if q and isinstance(q[0], str):
+        return tuple(q)
+    return tuple(float(c) for c in q)
+
+
+#: ``{"median", "p95", "max", "samples"}`` (deg) of errors after their first tenth (the window before issue 27), with
+#: the pooling fields when given ``sample_interval_s`` (the summaries now use analysis.pointing_windows).
 pointing_statistics = functools.partial(error_statistics, thresholds_deg=POINTING_THRESHOLDS_DEG)

@@ -25,7 +25,10 @@ from detumble.sim.coils import CoilSet, TorqueRods
 from detumble.sim.field import DipoleField, FieldAlongOrbit, OrbitConstantField, WmmField
 from detumble.sim.laws import scale_to_limits
 from detumble.sim.orbit import CircularOrbit, TleOrbit
+from detumble.sim.epoch import julian_date
 from detumble.sim.scenario import Scenario
+from detumble.sim.sun import sun_direction_N
+from detumble.control.targets import Ephemeris
 from detumble.control.units import GAUSS_PER_TESLA
 from detumble.sim.sensors import Gyro, Magnetometer
 from detumble.sim.star_tracker import StarTracker
@@ -112,6 +115,7 @@ class Plant:
         st = sc.star_tracker
         self.star_tracker: StarTracker | None = StarTracker(st, _derive_seed(self.seed, 4)) if st is not None else None
         self._target: tuple[Quat, str] | None = None
+        self._ephemeris_epoch: tuple[float, float] | None = None  # (Earth angle rad, Julian date) at t = 0
         self.residual_dipole_B: Vec3 = sc.spacecraft.residual_dipole_am2
         self._gravity_gradient = sc.spacecraft.gravity_gradient
         self.magnetometer = Magnetometer(sc.magnetometer, _derive_seed(self.seed, 1))
@@ -510,6 +514,18 @@ class Plant:
         wo = rotate_n_to_b(self.q_BN, (-n * y_N[0], -n * y_N[1], -n * y_N[2]))
         w = self.omega_BN_B
         return (w[0] - wo[0], w[1] - wo[1], w[2] - wo[2])
+
+    def ephemeris(self) -> Ephemeris:
+        """Where the spacecraft is now (truth): position and velocity in N, the Earth rotation angle (the field
+        model's), the Sun's direction (``sim.sun``, from the scenario epoch) — what an on-board ephemeris knows."""
+        t = self.t
+        sc = self.scenario
+        if self._ephemeris_epoch is None:
+            self._ephemeris_epoch = (sc.earth_angle0_rad, julian_date(sc.epoch))
+        theta0, jd0 = self._ephemeris_epoch
+        r, v = self.orbit.position_velocity_N(t)
+        sun, _ = sun_direction_N(jd0 + t / 86400.0)
+        return Ephemeris(r, v, theta0 + sc.field.earth_rotation_rate_rad_s * t, sun)
 
     def set_pointing_target(self, q_target: Quat | None, frame: str = "inertial") -> None:
         """Hook for a controller: the attitude it is steering to (``q_TN``, or ``q_TO`` with

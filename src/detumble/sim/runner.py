@@ -25,11 +25,15 @@ import sys
 import tempfile
 import time
 from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, cast
 
 from detumble.errors import DetumbleError
 from detumble.sim import frames, plant_kernel
-from detumble.sim.adcs_law import AdcsLaw, PlantIo, pointing_statistics
+from detumble.analysis.pointing_windows import pointing_summary
+from detumble.analysis.pooled_stats import sorted_percentile
+from detumble.control.quaternion import quat_angle, quat_error
+from detumble.control.targets import LABELS
+from detumble.sim.adcs_law import AdcsLaw, PlantIo
 from detumble.sim.coursework_laws import REPORT_CROSS_PRODUCT_GAIN, BetaPdLaw, CrossProductLaw, WheelsPdLaw
 from detumble.sim.laws import BangBangLaw, BdotLaw, KoptLaw, NoLaw, clip_to_limits, kopt_gain
 from detumble.sim.plant import Plant
@@ -109,6 +113,28 @@ def _make_coursework_law(name: str, plant: Plant, gain: float | None, m_max):
                        dump_gain=w.dump_gain)
 
 
+#: s: the wheels campaign's steady window starts this long after the last target change (reports.pointing_metrics)
+STEADY_AFTER_SLEW_S = 60.0
+
+
+def _steady_after_slew(samples: list[tuple], slews) -> dict:
+    """``steady_after_slew_median_deg`` / ``_p95_deg``: the POINTING errors from STEADY_AFTER_SLEW_S after the last
+    slew to the end (the window of the deployment's ``pointing_steady_*`` campaign metrics); empty without a slew."""
+    if not slews:
+        return {}
+    start = slews[-1]["t_s"] + STEADY_AFTER_SLEW_S
+    kept = sorted(s[1] for s in samples if s[0] >= start and math.isfinite(s[1]))
+    if not kept:
+        return {}
+    return {"steady_after_slew_median_deg": sorted_percentile(kept, 0.5),
+            "steady_after_slew_p95_deg": sorted_percentile(kept, 0.95)}
+
+
+def _turn_deg(q, previous) -> float:
+    """The angle between two targets (0 without a previous one), deg."""
+    return 0.0 if q is None or previous is None else math.degrees(quat_angle(quat_error(q, previous)))
+
+
 def make_adcs_law(plant: Plant) -> AdcsLaw:
     """The three-mode controller of ``plant``'s scenario (``control.adcs``) on the plant's wheels (three or
     four; otherwise it points on the magnetorquers, as the component does without wheels)."""
@@ -178,7 +204,8 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
         io = PlantIo(plant)
         target_seen = None
         sample_every = max(1, int(round(0.5 / dt)))  # the attitude report's 0.5 s sampling
-        pointing_deg: list[float] = []
+        pointing_deg: list[tuple] = []  # (t_s, true error deg, target key, label, on wheels, turn deg) in POINTING
+        slew_prev = None  # the law's target at the last POINTING sample
     omega_final = (0.0, -plant.orbit.mean_motion, 0.0) if law_name in COURSEWORK_LAWS else (0.0, 0.0, 0.0)
     metrics = SettlingMetrics(plant, omega_final=omega_final, include_attitude=getattr(ctl, "wheel_law", False))
     threshold2 = math.radians(1.0) ** 2
@@ -216,7 +243,13 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
                     plant.apply_dipole_B(ctl.update(b_B, t_read))
         plant.step(dt)
         if ticked and (k + 1) % sample_every == 0 and ctl.mode == "POINTING":  # as the attitude report samples
-            pointing_deg.append(ctl.true_pointing_error_deg(plant.q_BN))
+            three_mode = cast(AdcsLaw, ctl).law
+            ref = three_mode.reference
+            label = LABELS[ref.label] if ref is not None else ""
+            pointing_deg.append((plant.t, cast(AdcsLaw, ctl).true_pointing_error_deg(plant.q_BN, plant.ephemeris),
+                                 (three_mode.target_spec, label), label, three_mode.pointing_on_wheels,
+                                 _turn_deg(three_mode.target, slew_prev)))
+            slew_prev = three_mode.target
         if (k + 1) % period == 0:
             metrics.update(plant)
         if t_below is None:
@@ -234,8 +267,9 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
     if ticked:
         extra = {"control_mode_transitions": [{"t_s": t, "mode": m, "reason": r} for t, m, r in ctl.transitions],
                  "final_mode": ctl.mode,
-                 "pointing_error_deg": pointing_statistics(pointing_deg, sample_interval_s=sample_every * dt),
+                 **pointing_summary(pointing_deg, sample_every * dt, slews=True),
                  "control_cycles": ctl.cycles}
+        extra.update(_steady_after_slew(pointing_deg, extra.get("slews")))
     summary = {
         "scenario": sc.name,
         "source": sc.source,

@@ -26,6 +26,7 @@ from detumble.errors import DetumbleError
 from detumble.control.attitude_defaults import BDOT_PROVIDER_GAIN
 from detumble.control.attitude_defaults import DEFAULTS as ADCS_DEFAULTS
 from detumble.control.attitude_defaults import ENUM_CHOICES as ADCS_ENUMS
+from detumble.control.targets import target_entry_error
 from detumble.control.quaternion import is_unit_quaternion
 from detumble.sim.coils import FACE_NAMES, CoilSpec, default_coil_layout
 from detumble.sim.epoch import gmst_rad, julian_date, parse_epoch
@@ -901,26 +902,31 @@ def _control(s: _Section, dt: float) -> ControlConfig:
 
 
 def _target_changes(a: _Section) -> tuple:
-    """``control.adcs.target_changes``: ``[[t_s, q0, q1, q2, q3], ...]``, times ≥ 0 in order, unit targets."""
+    """``control.adcs.target_changes``: ``[[t_s, q0, q1, q2, q3], ...]`` (SET_TARGET_QUATERNION) or a moving
+    target's command ``[t_s, NADIR, p, s]``, ``[t_s, SUN, p, s]``, ``[t_s, GROUND_STATION, lat, lon, alt, p, s]``
+    (axes by BodyAxis name); times ≥ 0 in order, each target as its command would accept it."""
     raw = a.raw("target_changes", None)
     if raw is None:
         return ()
     if not isinstance(raw, (list, tuple)):
-        a.fail("target_changes", f"expected a list of [t_s, q0, q1, q2, q3], got {raw!r}")
-    changes: list[tuple[float, tuple[float, float, float, float]]] = []
+        a.fail("target_changes", f"expected a list of [t_s, q0, q1, q2, q3] or [t_s, NADIR, p, s], got {raw!r}")
+    changes: list[tuple[float, tuple]] = []
     for i, entry in enumerate(raw):
-        if not isinstance(entry, (list, tuple)) or len(entry) != 5:
-            a.fail("target_changes", f"entry {i}: expected [t_s, q0, q1, q2, q3], got {entry!r}")
-        t, *q = (a.ctx.number(a.path + ("target_changes", i, j), x) for j, x in enumerate(entry))
+        moving = isinstance(entry, (list, tuple)) and len(entry) >= 2 and isinstance(entry[1], str)
+        if not isinstance(entry, (list, tuple)) or not moving and len(entry) != 5:
+            a.fail("target_changes", f"entry {i}: expected [t_s, q0, q1, q2, q3] or [t_s, NADIR, p, s], got {entry!r}")
+        t = a.ctx.number(a.path + ("target_changes", i, 0), entry[0])
+        q = tuple(entry[1:]) if moving else tuple(a.ctx.number(a.path + ("target_changes", i, j), x)
+                                                  for j, x in enumerate(entry) if j)
         if t < 0.0:
             a.fail("target_changes", f"entry {i}: the time {t!r} s is negative")
         if changes and t < changes[-1][0]:
             a.fail("target_changes", f"entry {i}: {t!r} s comes before the previous entry's {changes[-1][0]!r} s; "
                    "list the changes in time order")
-        if not is_unit_quaternion(q):
-            a.fail("target_changes", f"entry {i}: must be a unit quaternion (within 1e-3), as "
-                   "SET_TARGET_QUATERNION requires")
-        changes.append((t, (q[0], q[1], q[2], q[3])))
+        why = target_entry_error(q)
+        if why is not None:
+            a.fail("target_changes", f"entry {i}: {why}")
+        changes.append((t, q))
     return tuple(changes)
 
 

@@ -849,3 +849,74 @@ def test_a_fault_in_run_reaches_the_ground_and_makes_the_actuators_safe(fprime_h
     h.set_port_handler("angularVelocityGet", h.world.gyro)
     tick(h, 6)
     assert h.comp.handler_faults == 1 and any(t[-1] != 0.0 for t in h.world.torques)
+
+
+def _ephemeris_port(h, ok=True):
+    """Connect ephemerisGet to a fixed circular-orbit sample (or a failing one)."""
+    from detumble.components.attitude_types import Ephemeris
+
+    a = 6.798e6
+    v = math.sqrt(3.986004415e14 / a)
+    h.set_port_handler("ephemerisGet", lambda: Result(Ephemeris(a, 0.0, 0.0, 0.0, v, 0.0, 0.3, 0.0, 1.0, 0.0),
+                                                      Success.SUCCESS if ok else Success.FAILURE))
+
+
+def test_moving_target_commands_are_validated_and_reported(fprime_harness):
+    """ADCS-090: SET_TARGET_NADIR / _SUN / _GROUND_STATION: a parallel axis pair is refused (VALIDATION_ERROR,
+    TargetAxesInvalid), so is a station off the Earth (VALIDATION_ERROR, TargetStationInvalid) and a target without
+    an ephemeris (EXECUTION_ERROR, NoEphemeris); accepted ones answer OK with their event, and the cycle's telemetry
+    names the active reference (ActiveTarget) and its rate (ReferenceRate: the orbit rate for nadir)."""
+    from detumble.components.attitude_types import BodyAxis, PointingReference
+
+    h = make(fprime_harness)
+    _ephemeris_port(h, ok=False)
+    h.send_command("SET_TARGET_NADIR", BodyAxis.PLUS_Z, BodyAxis.PLUS_X)
+    h.assert_cmd_response(0, "SET_TARGET_NADIR", CmdResponse.EXECUTION_ERROR)
+    h.assert_event_count("NoEphemeris", 1)
+    _ephemeris_port(h)
+    h.send_command("SET_TARGET_NADIR", BodyAxis.PLUS_Z, BodyAxis.MINUS_Z)
+    h.assert_cmd_response(1, "SET_TARGET_NADIR", CmdResponse.VALIDATION_ERROR)
+    h.assert_event("TargetAxesInvalid", 0, BodyAxis.PLUS_Z, BodyAxis.MINUS_Z)
+    h.send_command("SET_TARGET_GROUND_STATION", 95.0, 10.0, 0.0, BodyAxis.PLUS_Z, BodyAxis.PLUS_X)
+    h.assert_cmd_response(2, "SET_TARGET_GROUND_STATION", CmdResponse.VALIDATION_ERROR)
+    h.assert_event("TargetStationInvalid", 0, 95.0, 10.0, 0.0)
+    h.send_command("SET_TARGET_SUN", BodyAxis.PLUS_X, BodyAxis.PLUS_Z)
+    h.assert_cmd_response(3, "SET_TARGET_SUN", CmdResponse.OK)
+    h.assert_event("TargetSunSet", 0, BodyAxis.PLUS_X, BodyAxis.PLUS_Z)
+    h.send_command("SET_TARGET_GROUND_STATION", 40.0, -105.0, 1600.0, BodyAxis.PLUS_Z, BodyAxis.PLUS_X)
+    h.assert_cmd_response(4, "SET_TARGET_GROUND_STATION", CmdResponse.OK)
+    h.send_command("SET_TARGET_NADIR", BodyAxis.PLUS_Z, BodyAxis.PLUS_X)
+    h.assert_cmd_response(5, "SET_TARGET_NADIR", CmdResponse.OK)
+    h.assert_event("TargetNadirSet", 0, BodyAxis.PLUS_Z, BodyAxis.PLUS_X)
+    tick(h, 5)
+    assert h.tlm_values("ActiveTarget")[-1] == PointingReference.NADIR
+    n = math.sqrt(3.986004415e14 / 6.798e6 ** 3)
+    assert h.tlm_values("ReferenceRate")[-1][1] == pytest.approx(-math.degrees(n), rel=1e-9)
+    assert h.comp.law.target_spec.kind == 1
+
+
+def test_a_moving_target_feeds_its_rate_forward_on_the_wheels(fprime_harness):
+    """ADCS-091: pointing on the wheels, on a nadir target's attitude but not turning: the D term acts on the rate
+    relative to the reference, so the wheels are asked |τ| = K_D n (2.3e-6 N·m, 0.1 %) along the orbit normal; an
+    inertial target at the same attitude asks nothing (below 1e-9 N·m)."""
+    from detumble.components.attitude_types import BodyAxis, RateSource
+    from detumble.control.targets import Ephemeris, NadirTarget
+
+    a = 6.798e6
+    v = math.sqrt(3.986004415e14 / a)
+    n = v / a
+    h = make(fprime_harness, params={"RATE_SOURCE": RateSource.GYRO, "K_I": 0.0, "K_DUMP": 0.0})
+    _ephemeris_port(h)
+    ref = NadirTarget().reference(Ephemeris((a, 0.0, 0.0), (0.0, v, 0.0), 0.3, (0.0, 1.0, 0.0)))
+    h.world.q = ref.q_RN
+    tick(h, 6)  # the attitude known
+    h.send_command("SET_TARGET_NADIR", BodyAxis.PLUS_Z, BodyAxis.PLUS_X)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    h.assert_cmd_response(1, "FORCE_MODE", CmdResponse.OK)
+    tick(h, 10)
+    tau = h.comp.law.torque_request
+    assert math.sqrt(sum(c * c for c in tau)) == pytest.approx(2.0e-3 * n, rel=1e-3)
+    assert tau[1] == pytest.approx(-2.0e-3 * n, rel=1e-3)  # ω_r = (0, −n, 0): τ = −K_D (0 − ω_r)
+    h.send_command("SET_TARGET_QUATERNION", *ref.q_RN)
+    tick(h, 5)
+    assert max(abs(c) for c in h.comp.law.torque_request) < 1e-9

@@ -91,3 +91,24 @@ def test_applied_torque_is_the_wheels_reaction_plus_the_coils_over_their_duty():
     assert applied_torque((1e-4, -2e-4, 0.0), axes, m, b, 0.8) == pytest.approx((-1e-4, 2e-4, 1.6e-6), abs=1e-18)
     assert applied_torque((1e-4, -2e-4, 0.0), axes, m, None, 0.8) == (-1e-4, 2e-4, 0.0)
     assert applied_torque((), axes, m, b, 1.0) == pytest.approx((0.0, 0.0, 2e-6), abs=1e-18)
+
+
+def test_an_inertia_error_leaves_a_rate_lag_of_delta_a_over_the_pull():
+    """RATE-006 (issue 27): with the true inertia 10 % above the model a constant torque makes the model predict
+    10 % too much acceleration; the estimate then runs ahead of the truth by the discrete loop's fixed point
+    ``e = (a_m − a) Δt (1 − k/2) / k`` (k = 1 − e^(−L Δt); ≈ (a_m − a)/L), to 1e-3 after 10/L s. The slew's pull
+    (``gain_per_s`` = RATE_BLEND_GAIN, 2/s) makes it 20× smaller than the hold's 0.1/s."""
+    tau, dt = 1e-3, 0.1
+    a_true, a_model = tau / (1.1 * MOMENTS[2]), tau / MOMENTS[2]
+    errors = {}
+    for gain in (0.1, 2.0):
+        obs = RateObserver(MOMENTS, 0.1)
+        obs.reset((0.0, 0.0, 0.0))
+        steps = int(round(10.0 / gain / dt))
+        for k in range(1, steps + 1):
+            est = obs.update((0.0, 0.0, a_true * (k - 0.5) * dt), (0.0, 0.0, tau), (0.0, 0.0, 0.0), dt,
+                             None if gain == 0.1 else gain)
+        errors[gain] = est[2] - a_true * steps * dt
+        pull = 1.0 - math.exp(-gain * dt)
+        assert errors[gain] == pytest.approx((a_model - a_true) * dt * (1 - pull / 2) / pull, rel=1e-3)
+    assert errors[0.1] / errors[2.0] == pytest.approx(20.0, rel=0.02)

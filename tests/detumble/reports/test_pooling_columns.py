@@ -212,8 +212,9 @@ def test_spin_report_prints_the_pooled_spin_axis_error(tmp_path, capsys):
 
 
 def test_the_attitude_report_summary_carries_the_pooling_fields():
-    """A report sampling every 0.25 s: POINTING's 40 samples keep 36 (the first 10 % dropped), 9 s; SPIN_STABLE's
-    20 keep 18, 4.5 s; the histogram holds the same time; median/p95/max are as before."""
+    """A report sampling every 0.25 s: POINTING's 40 samples on the magnetorquers keep the 36 after the acquisition
+    (below 30° from the fifth sample: acquisition_s 1.0), 9 s; SPIN_STABLE's 20 keep 18 (the first 10 % dropped),
+    4.5 s; the histogram holds the same time; median/p95/max are as before."""
     from types import SimpleNamespace
 
     from detumble.components.attitude_types import ControlMode
@@ -226,8 +227,13 @@ def test_the_attitude_report_summary_carries_the_pooling_fields():
     rep.rows = [(i * 0.25, int(ControlMode.SPIN_STABLE), float("nan"), 30.0 if i < 2 else 3.0 + (i % 3), 1.5, 0.0,
                  *pad) for i in range(20)]
     rep.rows += [(5 + i * 0.25, int(ControlMode.POINTING), 90.0 if i < 4 else 20.0 if i < 8 else 1.0, 0.0, 0.0, 0.0,
-                  *pad) for i in range(40)]
+                  *pad, "INERTIAL") for i in range(40)]
+    rep._row_meta = [(("target",), False)] * 60  # (target key, on the wheels): one interval on the magnetorquers
     s = rep.summary()
+    p = s["pointing_error_deg"]
+    assert p["acquisition_s"] == 1.0 and p["acquisition_threshold_deg"] == 30
+    assert s["pointing_intervals"] == [{"t_s": 5.0, "target": "INERTIAL", "threshold_deg": 30.0, "acquisition_s": 1.0,
+                                        "samples": 40, "steady_samples": 36}]
     p, sp = s["pointing_error_deg"], s["spin_axis_error_deg"]
     assert p["samples"] == 36 and p["window_s"] == 9.0 and p["sample_interval_s"] == 0.25
     assert p["time_above_s"] == {"0.01": 9.0, "0.05": 9.0, "0.1": 9.0, "1": 1.0, "5": 1.0, "15": 1.0}
