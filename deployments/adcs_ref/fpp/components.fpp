@@ -19,6 +19,15 @@ module Components {
     ROTATED_180_DEG = 3
   } default STANDARD
 
+  enum BodyAxis : I32 {
+    PLUS_X = 0
+    MINUS_X = 1
+    PLUS_Y = 2
+    MINUS_Y = 3
+    PLUS_Z = 4
+    MINUS_Z = 5
+  } default PLUS_X
+
   enum CoilShape : I32 {
     RECTANGULAR = 0
     CIRCULAR = 1
@@ -133,6 +142,14 @@ module Components {
     MAGNETORQUERS = 2
   } default ANY
 
+  enum PointingReference : I32 {
+    INERTIAL = 0
+    NADIR = 1
+    GROUND_STATION = 2
+    STATION_FALLBACK = 3
+    SUN = 4
+  } default INERTIAL
+
   struct Quaternion {
     q0: F64
     q1: F64
@@ -166,7 +183,19 @@ module Components {
     NORMAL = 2
   } default SAFE_MODE
 
+  enum TargetKind : I32 {
+    INERTIAL = 0
+    NADIR = 1
+    GROUND_STATION = 2
+    SUN = 3
+  } default INERTIAL
+
   array Vector3 = [3] F64 default [0.0, 0.0, 0.0]
+
+  enum WheelFeedForward : I32 {
+    REFERENCE = 0
+    REFERENCE_GYROSCOPIC = 1
+  } default REFERENCE
 
   array WheelValues = [4] F64 default [0.0, 0.0, 0.0, 0.0]
 
@@ -1050,10 +1079,14 @@ module Components {
     output port wheelTorqueSet: [4] Drv.WheelTorqueSet
     output port wheelStateGet: [4] Drv.WheelStateGet
     output port wheelEnableSet: [4] Drv.WheelEnableSet
+    output port ephemerisGet: Drv.EphemerisGet
     sync command FORCE_MODE(mode: Components.ControlMode) opcode 0x0
     sync command SET_AUTO opcode 0x1
     sync command SET_TARGET_QUATERNION(q0: F64, q1: F64, q2: F64, q3: F64) opcode 0x2
     sync command SET_TARGET_DIRECTION(x: F64, y: F64, z: F64) opcode 0x3
+    sync command SET_TARGET_NADIR(primary: Components.BodyAxis, secondary: Components.BodyAxis) opcode 0x4
+    sync command SET_TARGET_GROUND_STATION(latitude: F64, longitude: F64, altitude: F64, primary: Components.BodyAxis, secondary: Components.BodyAxis) opcode 0x5
+    sync command SET_TARGET_SUN(primary: Components.BodyAxis, secondary: Components.BodyAxis) opcode 0x6
     event ControlModeChanged(from_mode: Components.ControlMode, to_mode: Components.ControlMode, reason: Components.ModeChangeReason) severity activity high id 0x0 format "Attitude mode {} -> {} ({})"
     event AutonomyChanged(autonomy: Components.ControlAutonomy) severity activity high id 0x1 format "Attitude autonomy set to {}"
     event TargetSet(q0: F64, q1: F64, q2: F64, q3: F64) severity activity high id 0x2 format "Pointing target q_TN = ({.6f}, {.6f}, {.6f}, {.6f})"
@@ -1072,9 +1105,19 @@ module Components {
     event WheelLimitReached severity warning low id 0xF format "A wheel torque or momentum limit cut the requested torque" throttle 5
     event ResidualDipoleEstimated(x: F64, y: F64, z: F64) severity activity low id 0x10 format "Residual dipole estimate ready: ({}, {}, {}) A m^2"
     event ResidualDipoleEstimateRefused(x: F64, y: F64, z: F64) severity warning low id 0x11 format "Residual dipole estimate ({}, {}, {}) A m^2 beyond the coil limits or not finite: feed-forward uses MAG_RESIDUAL_DIPOLE_*" throttle 5
-    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x12 format "Handler {} raised {}" throttle 10
-    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x13 format "{} PRM_SET refused: {}"
-    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x14 format "{} parameter file value refused ({}); default loaded"
+    event TargetNadirSet(primary: Components.BodyAxis, secondary: Components.BodyAxis) severity activity high id 0x12 format "Pointing target: {} to nadir, {} along the velocity"
+    event TargetStationSet(latitude: F64, longitude: F64, altitude: F64, primary: Components.BodyAxis, secondary: Components.BodyAxis) severity activity high id 0x13 format "Pointing target: ground station at {.4f} deg, {.4f} deg, {.1f} m with {} ({} along the velocity)"
+    event TargetSunSet(primary: Components.BodyAxis, secondary: Components.BodyAxis) severity activity high id 0x14 format "Pointing target: {} to the Sun, {} toward the orbit normal"
+    event TargetAxesInvalid(primary: Components.BodyAxis, secondary: Components.BodyAxis) severity warning low id 0x15 format "Target axes {} and {} refused: give two perpendicular axes" throttle 5
+    event TargetStationInvalid(latitude: F64, longitude: F64, altitude: F64) severity warning low id 0x16 format "Ground station ({}, {}, {}) refused: latitude in [-90, 90] deg, longitude in [-180, 360] deg, altitude in [-500, 10000] m, all finite" throttle 5
+    event NoEphemeris severity warning low id 0x17 format "No ephemeris (ephemerisGet): nadir, ground-station and Sun targets are not available" throttle 5
+    event EphemerisRetrievalFailed severity warning low id 0x18 format "Failed to retrieve the ephemeris: holding the last reference attitude" throttle 5
+    event TargetReferenceUndefined(kind: Components.TargetKind) severity warning low id 0x19 format "The {} target's reference is undefined now (its two directions are parallel): holding the last reference attitude" throttle 5
+    event GroundStationInView severity activity low id 0x1A format "Ground station in view: tracking it"
+    event GroundStationOutOfView severity activity low id 0x1B format "Ground station out of view: pointing at nadir"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x1C format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x1D format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x1E format "{} parameter file value refused ({}); default loaded"
     telemetry Mode: Components.ControlMode id 0x0 update always
     telemetry Autonomy: Components.ControlAutonomy id 0x1 update always
     telemetry AngularRate: F64 id 0x2 update always format "{.3f}"
@@ -1092,117 +1135,126 @@ module Components {
     telemetry AttitudeSigma3: F64 id 0xE update always format "{.5f}"
     telemetry FieldLineRate: F64 id 0xF update always format "{.5f}"
     telemetry ResidualDipole: Components.Vector3 id 0x10 update always
-    telemetry HandlerFaults: U32 id 0x11 update on change
+    telemetry ActiveTarget: Components.PointingReference id 0x11 update always
+    telemetry ReferenceRate: Components.Vector3 id 0x12 update always
+    telemetry HandlerFaults: U32 id 0x13 update on change
     @ units: N·m
-    param K_P: F64 default 0.0011 id 0x0 set opcode 0x4 save opcode 0x5
+    param K_P: F64 default 0.0011 id 0x0 set opcode 0x7 save opcode 0x8
     @ units: N·m·s
-    param K_D: F64 default 0.002 id 0x1 set opcode 0x6 save opcode 0x7
+    param K_D: F64 default 0.002 id 0x1 set opcode 0x9 save opcode 0xA
     @ units: N·m/s
-    param K_I: F64 default 0.000055 id 0x2 set opcode 0x8 save opcode 0x9
+    param K_I: F64 default 0.000055 id 0x2 set opcode 0xB save opcode 0xC
     @ units: deg
-    param INTEGRAL_WINDOW: F64 default 1.0 id 0x3 set opcode 0xA save opcode 0xB
+    param INTEGRAL_WINDOW: F64 default 1.0 id 0x3 set opcode 0xD save opcode 0xE
     @ units: N·m
-    param K_P_MAG: F64 default 0.000004 id 0x4 set opcode 0xC save opcode 0xD
+    param K_P_MAG: F64 default 0.000004 id 0x4 set opcode 0xF save opcode 0x10
     @ units: N·m·s
-    param K_D_MAG: F64 default 0.0004 id 0x5 set opcode 0xE save opcode 0xF
+    param K_D_MAG: F64 default 0.0004 id 0x5 set opcode 0x11 save opcode 0x12
     @ units: N·m·s
-    param C_DAMP: F64 default 0.0001 id 0x6 set opcode 0x10 save opcode 0x11
+    param C_DAMP: F64 default 0.0001 id 0x6 set opcode 0x13 save opcode 0x14
     @ units: kg·m²
-    param I_D: F64 default 0.0002 id 0x7 set opcode 0x12 save opcode 0x13
+    param I_D: F64 default 0.0002 id 0x7 set opcode 0x15 save opcode 0x16
     @ units: A·m²·s/G
-    param K_BDOT: F64 default 3.0 id 0x8 set opcode 0x14 save opcode 0x15
-    param SPIN_LAW: Components.SpinLaw default Components.SpinLaw.RATE_REGULATOR id 0x9 set opcode 0x16 save opcode 0x17
+    param K_BDOT: F64 default 3.0 id 0x8 set opcode 0x17 save opcode 0x18
+    param SPIN_LAW: Components.SpinLaw default Components.SpinLaw.RATE_REGULATOR id 0x9 set opcode 0x19 save opcode 0x1A
     @ units: deg/s
-    param SPIN_RATE_TARGET: F64 default 1.5 id 0xA set opcode 0x18 save opcode 0x19
+    param SPIN_RATE_TARGET: F64 default 1.5 id 0xA set opcode 0x1B save opcode 0x1C
     @ units: N·m·s
-    param SPIN_K_TRANSVERSE: F64 default 0.0002 id 0xB set opcode 0x1A save opcode 0x1B
+    param SPIN_K_TRANSVERSE: F64 default 0.0002 id 0xB set opcode 0x1D save opcode 0x1E
     @ units: N·m·s
-    param SPIN_K_RATE: F64 default 0.0002 id 0xC set opcode 0x1C save opcode 0x1D
+    param SPIN_K_RATE: F64 default 0.0002 id 0xC set opcode 0x1F save opcode 0x20
     @ units: deg/s
-    param DETUMBLE_ENTER_RATE: F64 default 20.0 id 0xD set opcode 0x1E save opcode 0x1F
+    param DETUMBLE_ENTER_RATE: F64 default 20.0 id 0xD set opcode 0x21 save opcode 0x22
     @ units: deg/s
-    param DETUMBLE_EXIT_RATE: F64 default 1.0 id 0xE set opcode 0x20 save opcode 0x21
+    param DETUMBLE_EXIT_RATE: F64 default 1.0 id 0xE set opcode 0x23 save opcode 0x24
     @ units: s
-    param MODE_DWELL: F64 default 5.0 id 0xF set opcode 0x22 save opcode 0x23
+    param MODE_DWELL: F64 default 5.0 id 0xF set opcode 0x25 save opcode 0x26
     @ units: deg
-    param SPIN_AXIS_ENTER: F64 default 5.0 id 0x10 set opcode 0x24 save opcode 0x25
+    param SPIN_AXIS_ENTER: F64 default 5.0 id 0x10 set opcode 0x27 save opcode 0x28
     @ units: deg
-    param SPIN_AXIS_RESET: F64 default 8.0 id 0x11 set opcode 0x26 save opcode 0x27
+    param SPIN_AXIS_RESET: F64 default 8.0 id 0x11 set opcode 0x29 save opcode 0x2A
     @ units: 1
-    param SPIN_RATE_ENTER: F64 default 0.05 id 0x12 set opcode 0x28 save opcode 0x29
+    param SPIN_RATE_ENTER: F64 default 0.05 id 0x12 set opcode 0x2B save opcode 0x2C
     @ units: 1
-    param SPIN_RATE_RESET: F64 default 0.08 id 0x13 set opcode 0x2A save opcode 0x2B
+    param SPIN_RATE_RESET: F64 default 0.08 id 0x13 set opcode 0x2D save opcode 0x2E
     @ units: s
-    param SPIN_STABLE_DWELL: F64 default 60.0 id 0x14 set opcode 0x2C save opcode 0x2D
+    param SPIN_STABLE_DWELL: F64 default 60.0 id 0x14 set opcode 0x2F save opcode 0x30
     @ units: s
-    param ATTITUDE_TIMEOUT: F64 default 90.0 id 0x15 set opcode 0x2E save opcode 0x2F
+    param ATTITUDE_TIMEOUT: F64 default 90.0 id 0x15 set opcode 0x31 save opcode 0x32
     @ units: deg/s
-    param SLEW_RATE_LIMIT: F64 default 8.0 id 0x16 set opcode 0x30 save opcode 0x31
-    param POINTING_ACTUATOR: Components.PointingActuator default Components.PointingActuator.ANY id 0x17 set opcode 0x32 save opcode 0x33
+    param SLEW_RATE_LIMIT: F64 default 8.0 id 0x16 set opcode 0x33 save opcode 0x34
+    param POINTING_ACTUATOR: Components.PointingActuator default Components.PointingActuator.ANY id 0x17 set opcode 0x35 save opcode 0x36
     @ units: 1/s
-    param K_DUMP: F64 default 0.002 id 0x18 set opcode 0x34 save opcode 0x35
+    param K_DUMP: F64 default 0.002 id 0x18 set opcode 0x37 save opcode 0x38
     @ units: N·m
-    param WHEEL_MAX_TORQUE: F64 default 0.002 id 0x19 set opcode 0x36 save opcode 0x37
+    param WHEEL_MAX_TORQUE: F64 default 0.002 id 0x19 set opcode 0x39 save opcode 0x3A
     @ units: N·m·s
-    param WHEEL_MAX_MOMENTUM: F64 default 0.004 id 0x1A set opcode 0x38 save opcode 0x39
+    param WHEEL_MAX_MOMENTUM: F64 default 0.004 id 0x1A set opcode 0x3B save opcode 0x3C
     @ units: 1/s
-    param FILTER_KP: F64 default 0.5 id 0x1B set opcode 0x3A save opcode 0x3B
+    param FILTER_KP: F64 default 0.5 id 0x1B set opcode 0x3D save opcode 0x3E
     @ units: 1/s²
-    param FILTER_KI: F64 default 0.02 id 0x1C set opcode 0x3C save opcode 0x3D
+    param FILTER_KI: F64 default 0.02 id 0x1C set opcode 0x3F save opcode 0x40
     @ units: A·m²
-    param X_COIL_MAX_DIPOLE: F64 default 0.058120615384615375 id 0x1D set opcode 0x3E save opcode 0x3F
+    param X_COIL_MAX_DIPOLE: F64 default 0.058120615384615375 id 0x1D set opcode 0x41 save opcode 0x42
     @ units: A·m²
-    param Y_COIL_MAX_DIPOLE: F64 default 0.058120615384615375 id 0x1E set opcode 0x40 save opcode 0x41
+    param Y_COIL_MAX_DIPOLE: F64 default 0.058120615384615375 id 0x1E set opcode 0x43 save opcode 0x44
     @ units: A·m²
-    param Z_COIL_MAX_DIPOLE: F64 default 0.008715105638149638 id 0x1F set opcode 0x42 save opcode 0x43
+    param Z_COIL_MAX_DIPOLE: F64 default 0.008715105638149638 id 0x1F set opcode 0x45 save opcode 0x46
     @ units: ticks
-    param CYCLE_TICKS: U32 default 5 id 0x20 set opcode 0x44 save opcode 0x45
-    param ESTIMATOR: Components.AttitudeEstimator default Components.AttitudeEstimator.MEKF id 0x21 set opcode 0x46 save opcode 0x47
+    param CYCLE_TICKS: U32 default 5 id 0x20 set opcode 0x47 save opcode 0x48
+    param ESTIMATOR: Components.AttitudeEstimator default Components.AttitudeEstimator.MEKF id 0x21 set opcode 0x49 save opcode 0x4A
     @ units: deg/s
-    param GYRO_NOISE: F64 default 0.03404722210890829 id 0x22 set opcode 0x48 save opcode 0x49
+    param GYRO_NOISE: F64 default 0.03404722210890829 id 0x22 set opcode 0x4B save opcode 0x4C
     @ units: deg/s/√s
-    param GYRO_BIAS_WALK: F64 default 0.0001 id 0x23 set opcode 0x4A save opcode 0x4B
+    param GYRO_BIAS_WALK: F64 default 0.0001 id 0x23 set opcode 0x4D save opcode 0x4E
     @ units: deg/s
-    param GYRO_BIAS_SIGMA0: F64 default 1.0 id 0x24 set opcode 0x4C save opcode 0x4D
+    param GYRO_BIAS_SIGMA0: F64 default 1.0 id 0x24 set opcode 0x4F save opcode 0x50
     @ units: arcsec
-    param TRACKER_NOISE_CROSS: F64 default 10.0 id 0x25 set opcode 0x4E save opcode 0x4F
+    param TRACKER_NOISE_CROSS: F64 default 10.0 id 0x25 set opcode 0x51 save opcode 0x52
     @ units: arcsec
-    param TRACKER_NOISE_ABOUT: F64 default 70.0 id 0x26 set opcode 0x50 save opcode 0x51
-    param RATE_SOURCE: Components.RateSource default Components.RateSource.OBSERVER id 0x27 set opcode 0x52 save opcode 0x53
+    param TRACKER_NOISE_ABOUT: F64 default 70.0 id 0x26 set opcode 0x53 save opcode 0x54
+    param RATE_SOURCE: Components.RateSource default Components.RateSource.OBSERVER id 0x27 set opcode 0x55 save opcode 0x56
     @ units: 1/s
-    param RATE_OBSERVER_GAIN: F64 default 0.1 id 0x28 set opcode 0x54 save opcode 0x55
+    param RATE_OBSERVER_GAIN: F64 default 0.1 id 0x28 set opcode 0x57 save opcode 0x58
     @ units: kg·m², body frame
-    param INERTIA_XX: F64 default 0.0022 id 0x29 set opcode 0x56 save opcode 0x57
+    param INERTIA_XX: F64 default 0.0022 id 0x29 set opcode 0x59 save opcode 0x5A
     @ units: kg·m², body frame
-    param INERTIA_YY: F64 default 0.00215 id 0x2A set opcode 0x58 save opcode 0x59
+    param INERTIA_YY: F64 default 0.00215 id 0x2A set opcode 0x5B save opcode 0x5C
     @ units: kg·m², body frame
-    param INERTIA_ZZ: F64 default 0.00205 id 0x2B set opcode 0x5A save opcode 0x5B
+    param INERTIA_ZZ: F64 default 0.00205 id 0x2B set opcode 0x5D save opcode 0x5E
     @ units: kg·m², body frame
-    param INERTIA_XY: F64 default 0.00002 id 0x2C set opcode 0x5C save opcode 0x5D
+    param INERTIA_XY: F64 default 0.00002 id 0x2C set opcode 0x5F save opcode 0x60
     @ units: kg·m², body frame
-    param INERTIA_XZ: F64 default -0.000015 id 0x2D set opcode 0x5E save opcode 0x5F
+    param INERTIA_XZ: F64 default -0.000015 id 0x2D set opcode 0x61 save opcode 0x62
     @ units: kg·m², body frame
-    param INERTIA_YZ: F64 default 0.00001 id 0x2E set opcode 0x60 save opcode 0x61
-    param MAG_POINTING_LAW: Components.MagPointingLaw default Components.MagPointingLaw.FIELD_STEERING id 0x2F set opcode 0x62 save opcode 0x63
+    param INERTIA_YZ: F64 default 0.00001 id 0x2E set opcode 0x63 save opcode 0x64
+    param MAG_POINTING_LAW: Components.MagPointingLaw default Components.MagPointingLaw.FIELD_STEERING id 0x2F set opcode 0x65 save opcode 0x66
     @ units: 1
-    param MAG_STEER_RHO: F64 default 2.0 id 0x30 set opcode 0x64 save opcode 0x65
+    param MAG_STEER_RHO: F64 default 2.0 id 0x30 set opcode 0x67 save opcode 0x68
     @ units: 1
-    param MAG_STEER_ZETA: F64 default 1.0 id 0x31 set opcode 0x66 save opcode 0x67
+    param MAG_STEER_ZETA: F64 default 1.0 id 0x31 set opcode 0x69 save opcode 0x6A
     @ units: rad/s
-    param MAG_FIELD_RATE_BANDWIDTH: F64 default 0.05 id 0x32 set opcode 0x68 save opcode 0x69
+    param MAG_FIELD_RATE_BANDWIDTH: F64 default 0.05 id 0x32 set opcode 0x6B save opcode 0x6C
     @ units: 1/s
-    param MAG_FIELD_RATE_MIN: F64 default 0.0005 id 0x33 set opcode 0x6A save opcode 0x6B
+    param MAG_FIELD_RATE_MIN: F64 default 0.0005 id 0x33 set opcode 0x6D save opcode 0x6E
     @ units: s
-    param MAG_SETTLE_TIME: F64 default 30.0 id 0x34 set opcode 0x6C save opcode 0x6D
-    param MAG_RESIDUAL_MODE: Components.MagResidualMode default Components.MagResidualMode.ESTIMATE id 0x35 set opcode 0x6E save opcode 0x6F
+    param MAG_SETTLE_TIME: F64 default 30.0 id 0x34 set opcode 0x6F save opcode 0x70
+    param MAG_RESIDUAL_MODE: Components.MagResidualMode default Components.MagResidualMode.ESTIMATE id 0x35 set opcode 0x71 save opcode 0x72
     @ units: A·m², body frame
-    param MAG_RESIDUAL_DIPOLE_X: F64 default 0.0 id 0x36 set opcode 0x70 save opcode 0x71
+    param MAG_RESIDUAL_DIPOLE_X: F64 default 0.0 id 0x36 set opcode 0x73 save opcode 0x74
     @ units: A·m², body frame
-    param MAG_RESIDUAL_DIPOLE_Y: F64 default 0.0 id 0x37 set opcode 0x72 save opcode 0x73
+    param MAG_RESIDUAL_DIPOLE_Y: F64 default 0.0 id 0x37 set opcode 0x75 save opcode 0x76
     @ units: A·m², body frame
-    param MAG_RESIDUAL_DIPOLE_Z: F64 default 0.0 id 0x38 set opcode 0x74 save opcode 0x75
+    param MAG_RESIDUAL_DIPOLE_Z: F64 default 0.0 id 0x38 set opcode 0x77 save opcode 0x78
     @ units: s
-    param MAG_RESIDUAL_WINDOW: F64 default 60.0 id 0x39 set opcode 0x76 save opcode 0x77
+    param MAG_RESIDUAL_WINDOW: F64 default 60.0 id 0x39 set opcode 0x79 save opcode 0x7A
+    @ units: deg
+    param GS_MIN_ELEVATION: F64 default 10.0 id 0x3A set opcode 0x7B save opcode 0x7C
+    param WHEEL_FEED_FORWARD: Components.WheelFeedForward default Components.WheelFeedForward.REFERENCE id 0x3B set opcode 0x7D save opcode 0x7E
+    @ units: deg
+    param RATE_BLEND_ANGLE: F64 default 0.1 id 0x3C set opcode 0x7F save opcode 0x80
+    @ units: 1/s
+    param RATE_BLEND_GAIN: F64 default 2.0 id 0x3D set opcode 0x81 save opcode 0x82
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver
@@ -1264,6 +1316,18 @@ module Components {
     telemetry Attitude: Drv.AttitudeQuaternion id 0x0 update always
     telemetry Solutions: U32 id 0x1 update on change
     telemetry HandlerFaults: U32 id 0x2 update on change
+  }
+
+  @ fprime-lite: detumble.drivers.orbit_ephemeris.OrbitEphemeris
+  passive component OrbitEphemeris {
+    time get port timeCaller
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port orbitFrameGet: Drv.OrbitFrameGet
+    sync input port ephemerisGet: Drv.EphemerisGet
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x0 format "Handler {} raised {}" throttle 10
+    telemetry HandlerFaults: U32 id 0x0 update on change
   }
 
   @ fprime-lite: detumble.proves.tc_security_deframer.TcSecurityDeframer
@@ -1373,6 +1437,12 @@ module Drv {
 
   @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
   port DipoleMomentGet
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port EphemerisGet
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port OrbitFrameGet
 
   port PowerGet -> F64
 

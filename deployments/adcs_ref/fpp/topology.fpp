@@ -73,6 +73,7 @@ module AdcsDeployment {
     instance ReferenceDeployment.reactionWheel1
     instance ReferenceDeployment.reactionWheel2
     instance ReferenceDeployment.starTracker
+    instance ReferenceDeployment.orbitEphemeris
     instance ComCcsdsUart.tcSecurityDeframer
     connections Sequencer {
       ReferenceDeployment.cmdSeq.comCmdOut[0] -> CdhCore.cmdDisp.seqCmdBuff[0]
@@ -163,6 +164,7 @@ module AdcsDeployment {
       ReferenceDeployment.attitudeController.magneticFieldGet[0] -> ReferenceDeployment.imuManager.magneticFieldGet[0]
       ReferenceDeployment.attitudeController.attitudeGet[0] -> ReferenceDeployment.starTracker.attitudeGet[0]
       ReferenceDeployment.attitudeController.dipoleMomentGet[0] -> ReferenceDeployment.bdotDetumble.dipoleMomentGet[0]
+      ReferenceDeployment.attitudeController.ephemerisGet[0] -> ReferenceDeployment.orbitEphemeris.ephemerisGet[0]
       ReferenceDeployment.bdotDetumble.magneticFieldGet[0] -> ReferenceDeployment.imuManager.magneticFieldGet[0]
       ReferenceDeployment.attitudeController.xPlusStart[0] -> ReferenceDeployment.drv2605Face0Manager.start[0]
       ReferenceDeployment.attitudeController.xPlusStop[0] -> ReferenceDeployment.drv2605Face0Manager.stop[0]
@@ -465,6 +467,7 @@ module AdcsDeployment {
       ReferenceDeployment.reactionWheel1.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.reactionWheel2.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.starTracker.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.orbitEphemeris.logOut[0] -> CdhCore.events.LogRecv[0]
       ComCcsdsUart.tcSecurityDeframer.logOut[0] -> CdhCore.events.LogRecv[0]
     }
     connections Pattern_telemetry {
@@ -538,6 +541,7 @@ module AdcsDeployment {
       ReferenceDeployment.reactionWheel1.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.reactionWheel2.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.starTracker.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.orbitEphemeris.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ComCcsdsUart.tcSecurityDeframer.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
     }
     connections Pattern_param {
@@ -675,6 +679,7 @@ module AdcsDeployment {
       ReferenceDeployment.reactionWheel1.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.reactionWheel2.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.starTracker.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.orbitEphemeris.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ComCcsdsUart.tcSecurityDeframer.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
     }
   }
@@ -828,4 +833,6 @@ module ReferenceDeployment {
   instance reactionWheel2: Components.ReactionWheelDriver base id 0x1005F000
 
   instance starTracker: Components.StarTracker base id 0x10061000
+
+  instance orbitEphemeris: Components.OrbitEphemeris base id 0x10063000
 }

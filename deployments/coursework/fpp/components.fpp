@@ -143,6 +143,7 @@ module Components {
     text event port logTextOut
     telemetry port tlmOut
     sync input port orbitFrameGet: Drv.OrbitFrameGet
+    sync input port ephemerisGet: Drv.EphemerisGet
     event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x0 format "Handler {} raised {}" throttle 10
     telemetry HandlerFaults: U32 id 0x0 update on change
   }
@@ -313,6 +314,9 @@ module Drv {
   port AttitudeGet
 
   port DipoleMomentSet(dipole: Drv.DipoleMoment) -> Fw.Success
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port EphemerisGet
 
   @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
   port OrbitFrameGet
