@@ -149,5 +149,10 @@ def resolve_kind(name: str) -> RunKind:
 
 
 def metrics() -> dict[str, Metric]:
-    """The installed named metrics, by name."""
+    """The installed named metrics, by name (a copy: the caller may change it)."""
+    return dict(_metrics_by_name())
+
+
+@functools.lru_cache(maxsize=None)
+def _metrics_by_name() -> dict[str, Metric]:
     return {m.name: m for m in _entry_point_objects(METRICS_GROUP) if isinstance(m, Metric)}

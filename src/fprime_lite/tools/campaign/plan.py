@@ -65,13 +65,17 @@ def plan_runs(campaign, artifacts_dir: pathlib.Path, *, draw: bool = True) -> li
     every = campaign.keep.every
     tasks: list[dict] = []
     ids: dict[str, int] = {}
+    identity_json = canonical(identity)
+    base_dir, artifacts = str(campaign.base_dir), str(artifacts_dir)  # (resolved once, not per run)
     for index, point in enumerate(points):
+        point_json = canonical(point)
+        seq_json = canonical({}) if campaign.common_random_numbers else point_json
+        config = dict(campaign.run)
+        config.update({k: v for k, v in point.items() if k in fields})
         for s in range(campaign.seeds):
-            seq = run_seed_sequence(campaign.master_seed, {} if campaign.common_random_numbers else point, s)
+            seq = run_seed_sequence(campaign.master_seed, point, s, point_json=seq_json)
             seed = simulator_seed(seq)
-            config = dict(campaign.run)
-            config.update({k: v for k, v in point.items() if k in fields})
-            rid = run_id(identity, point, seed)
+            rid = run_id(identity, point, seed, run_json=identity_json, point_json=point_json)
             order = len(tasks)
             if rid in ids:  # two different points with one id: a hash collision or a bug — never fly either silently
                 raise CampaignError([f"{campaign.path}: grid points {ids[rid]} and {index} give the same run id {rid}"])
@@ -81,7 +85,7 @@ def plan_runs(campaign, artifacts_dir: pathlib.Path, *, draw: bool = True) -> li
                 "kind": campaign.kind, "config": config, "values": dict(point), "drawn": False,
                 "metrics": campaign.metrics, "timeout_s": campaign.timeout_s,
                 "keep": "all" if every and order % every == 0 else campaign.keep.worker_mode,
-                "artifacts_dir": str(artifacts_dir), "base_dir": str(campaign.base_dir),
+                "artifacts_dir": artifacts, "base_dir": base_dir,
             })
     if draw:
         for task in tasks:

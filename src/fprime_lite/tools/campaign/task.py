@@ -17,6 +17,7 @@ import shutil
 import tempfile
 import time
 import traceback
+import uuid
 
 from fprime_lite.tools.campaign.errors import MetricUnavailable
 from fprime_lite.tools.campaign.kinds import RunRequest, metrics, resolve_kind
@@ -208,7 +209,8 @@ def execute_run(task: dict) -> dict:
             pass  # fly_isolated tries again and records the failure
     t0 = time.perf_counter()
     cpu0 = time.process_time()
-    out_dir = pathlib.Path(tempfile.mkdtemp(prefix=f"campaign-{task['run_id']}-"))
+    # named, not made: a kind that writes files makes it (a run that writes none costs no mkdir/rmdir)
+    out_dir = pathlib.Path(tempfile.gettempdir()) / f"campaign-{task['run_id']}-{uuid.uuid4().hex[:12]}"
     if task.get("timeout_s"):
         from fprime_lite.tools.campaign.isolation import fly_isolated, killed_row
 

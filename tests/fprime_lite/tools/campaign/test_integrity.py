@@ -13,12 +13,13 @@ import textwrap
 import pytest
 
 from fprime_lite.tools.campaign import CampaignError, load_campaign, run_campaign
-from tests.fprime_lite.tools.campaign.conftest import REPO, TOPOLOGY
+from tests.fprime_lite.tools.campaign.conftest import TOPOLOGY
 
 pd = pytest.importorskip("pandas", reason="pandas, dask and pyarrow are dependencies: pip install -e .[test]")
 pytest.importorskip("distributed", reason="dask[distributed] is a dependency: pip install -e .[test]")
 
 PROBE = "tests.fprime_lite.tools.campaign.probe_kinds:PROBE_RUN"
+SRC = str(pathlib.Path(__import__("fprime_lite").__file__).resolve().parents[1])  # the code under test
 
 
 @pytest.fixture
@@ -266,7 +267,7 @@ def test_dispersions_are_bit_identical_whatever_blas_kernel_the_cpu_selects(tmp_
     script.write_text(SAMPLER)
     digests = set()
     for core in ("Prescott", "Haswell", "SkylakeX"):
-        env = dict(os.environ, OPENBLAS_CORETYPE=core, PYTHONPATH=str(REPO / "src"))
+        env = dict(os.environ, OPENBLAS_CORETYPE=core, PYTHONPATH=SRC)
         r = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env, timeout=120)
         assert r.returncode == 0, r.stderr
         digests.add(r.stdout.strip())

@@ -23,7 +23,8 @@ pd = pytest.importorskip("pandas", reason="pandas, dask and pyarrow are dependen
 pytest.importorskip("distributed", reason="dask[distributed] is a dependency: pip install -e .[test]")
 
 PROBE = "tests.fprime_lite.tools.campaign.probe_kinds:PROBE_RUN"
-ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [str(REPO), os.environ.get("PYTHONPATH")])))
+SRC = str(pathlib.Path(__import__("fprime_lite").__file__).resolve().parents[1])  # the code under test
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [SRC, str(REPO), os.environ.get("PYTHONPATH")])))
 
 
 def _probe_campaign(write_campaign, mode="ok", seeds=2, name="c.yaml", extra=""):
