@@ -8,8 +8,9 @@ Run: ``python benchmarks/bench_campaign_scale.py [--runs 20000] [--rows 100000] 
    own per-row cost alone (journal, pruner, progress) on synthetic rows. Goal ≥ 2,000 results/s.
 2. **Resume and report of a 100k-row campaign**: a journal of ``--rows`` finished rows is written (as
    a finished campaign leaves it), then ``run_campaign(..., resume=True)`` — plan, pre-flight, read
-   the journal, nothing to run, write results.parquet, print the summary — is timed (and the plots
-   separately). Goal ≤ 10 s.
+   the journal, nothing to run, write results.parquet, print the summary — is timed twice: without
+   the folder's plan cache, then with it (as a campaign leaves its folder); the plots separately.
+   Goal ≤ 10 s.
 3. **Broken files reaching a worker**: every file of tests/data/campaign_broken/ through
    ``run_campaign`` with the cluster replaced by a counter. Goal 0.
 4. **Bit-identity across CPUs**: dispersed values (vectors, rotations, inertias) drawn in
@@ -114,16 +115,19 @@ def resume_and_report(rows: int, folder: pathlib.Path) -> dict:
                                  "seed": t["seed"], "status": "ok", "error": None, "values": {"x": float(x)},
                                  "metrics": {"value": 2.0 * x}, "notes": "{}", "requested": json.dumps({"x": x}),
                                  "wall_s": 1e-4, "cpu_s": 1e-4, "worker": "w", "worker_address": None}) + "\n")
-    t0 = time.perf_counter()
-    df = run_campaign(path, workers=1, out=out, resume=True, plots=False, summary=True,
-                      console=Console(file=io.StringIO(), width=120))
-    resume_s = time.perf_counter() - t0
+    timings = []
+    for _ in range(2):  # the first without the folder's plan cache, the second with it (what a campaign leaves)
+        t0 = time.perf_counter()
+        df = run_campaign(path, workers=1, out=out, resume=True, plots=False, summary=True,
+                          console=Console(file=io.StringIO(), width=120))
+        timings.append(time.perf_counter() - t0)
     from fprime_lite.tools.campaign.plots import draw_plots
 
     t0 = time.perf_counter()
     draw_plots(df, c, out / "plots")
     plots_s = time.perf_counter() - t0
-    return {"rows": len(df), "plan_s": plan_s, "resume_and_report_s": resume_s, "plots_s": plots_s}
+    return {"rows": len(df), "plan_s": plan_s, "resume_and_report_s_without_plan_cache": timings[0],
+            "resume_and_report_s": timings[1], "plots_s": plots_s}
 
 
 def broken_files() -> dict:

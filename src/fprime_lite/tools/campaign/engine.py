@@ -16,6 +16,7 @@ import collections
 import datetime as _dt
 import math
 import pathlib
+import pickle
 import sys
 import tempfile
 import time
@@ -254,12 +255,16 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
     if (out / "rows.jsonl").exists() and not resume:
         raise CampaignError([f"--out {out}: holds results already — add --resume to continue that campaign, "
                              f"or choose another folder"])
-    tasks = plan_runs(campaign, out / "runs", draw=False)
+    from fprime_lite.tools.campaign.plan import PLAN_CACHE, write_plan_cache
+
+    cache = out / PLAN_CACHE
+    tasks = plan_runs(campaign, out / "runs", draw=False, cache=cache if resume else None)
     preflight(campaign, tasks)
     cannot_create = make_output_folder(out)
     if cannot_create is not None:
         raise CampaignError([f"--out {out}: {cannot_create}"])
     with campaign_folder_lock(out):
+        write_plan_cache(cache, campaign, tasks)
         wall, ran = _run_locked(campaign, tasks, out, dict(workers=workers, scheduler=scheduler, client=client,
                                                            security=security, wait_for_workers_s=wait_for_workers_s),
                                 retry_failed, progress, console, force, heartbeat_s)
@@ -328,8 +333,8 @@ class _Submitter:
         while self.queue and len(self.inflight) < window:
             chunk = [draw_values(self.queue.popleft(), self.campaign)
                      for _ in range(min(self.batch_size(), len(self.queue)))]
-            future = self.client.submit(execute_batch, chunk, key=f"campaign-{chunk[0]['run_id']}-{len(chunk)}",
-                                        pure=False)
+            future = self.client.submit(execute_batch, pickle.dumps(chunk, protocol=pickle.HIGHEST_PROTOCOL),
+                                        key=f"campaign-{chunk[0]['run_id']}-{len(chunk)}", pure=False)
             self.inflight[future.key] = chunk
             ac.add(future)
 

@@ -297,3 +297,34 @@ def test_dispersions_call_no_blas(monkeypatch):
     g = [float(x) for x in np.random.default_rng(9).standard_normal(3)]
     n = math.sqrt(math.fsum(x * x for x in g))
     assert v == [x / n for x in g] or v == [x / math.hypot(*g) for x in g]
+
+
+def test_the_plan_cache_gives_the_same_plan_and_follows_every_input(write_campaign, tmp_path):
+    """CAMP-142: the run ids and seeds a campaign folder caches (plan-cache.json, so a 100k-run resume does
+    not derive every seed sequence again) equal a fresh plan's; a changed master seed, grid or seed count
+    ignores the cache."""
+    from fprime_lite.tools.campaign.plan import plan_runs, write_plan_cache
+
+    text = f"""\
+        campaign: cache
+        master_seed: MS
+        run: {{kind: "{PROBE}"}}
+        grid:
+          x: [1.0, 2.0]
+        seeds: 3
+        metrics: [value]
+        """
+    path = write_campaign(text.replace("MS", "1"))
+    c = load_campaign(path)
+    cache = tmp_path / "plan-cache.json"
+    fresh = plan_runs(c, tmp_path, draw=False)
+    write_plan_cache(cache, c, fresh)
+    data = json.loads(cache.read_text())
+    data["runs"][0][1] += 1  # a seed the cache alone holds: visible when the cache is used
+    cache.write_text(json.dumps(data))
+    assert plan_runs(c, tmp_path, draw=False, cache=cache)[0]["seed"] == fresh[0]["seed"] + 1
+    for edit in (text.replace("MS", "2"), text.replace("MS", "1").replace("[1.0, 2.0]", "[1.0, 3.0]"),
+                 text.replace("MS", "1").replace("seeds: 3", "seeds: 2")):
+        changed = load_campaign(write_campaign(edit, "e.yaml"))
+        expected = [(t["run_id"], t["seed"]) for t in plan_runs(changed, tmp_path, draw=False)]
+        assert [(t["run_id"], t["seed"]) for t in plan_runs(changed, tmp_path, draw=False, cache=cache)] == expected
