@@ -42,6 +42,7 @@ def security_from(tls_ca_file=None, tls_cert=None, tls_key=None, dask_config=Non
     import dask.config
     from distributed import Security
 
+    loaded: dict = {}
     if dask_config is not None:
         import yaml
 
@@ -52,7 +53,6 @@ def security_from(tls_ca_file=None, tls_cert=None, tls_key=None, dask_config=Non
             raise CampaignError([f"--dask-config {dask_config}: cannot be read ({exc})"]) from None
         if not isinstance(loaded, dict):
             raise CampaignError([f"--dask-config {dask_config}: a Dask config file is a YAML mapping"])
-        dask.config.update(dask.config.config, loaded, priority="new")
     files = {"tls_ca_file": tls_ca_file, "tls_client_cert": tls_cert, "tls_client_key": tls_key}
     for flag, path in zip(("--tls-ca-file", "--tls-cert", "--tls-key"), files.values(), strict=True):
         if path is not None and not os.path.isfile(path):
@@ -60,7 +60,15 @@ def security_from(tls_ca_file=None, tls_cert=None, tls_key=None, dask_config=Non
     given = {k: v for k, v in files.items() if v is not None}
     if given and len(given) != 3:
         raise CampaignError(["TLS needs all three of --tls-ca-file, --tls-cert and --tls-key"])
-    return Security(require_encryption=True, **given) if given else Security()
+    # the file's settings are read into this Security object only: the process's Dask config (and so
+    # the embedded clusters of later campaigns in this process) is left as it was
+    def dotted(tree: dict, prefix: str = "") -> dict:
+        flat: dict = {}
+        for k, v in tree.items():
+            flat.update(dotted(v, f"{prefix}{k}.") if isinstance(v, dict) else {f"{prefix}{k}": v})
+        return flat
+    with dask.config.set(dotted(loaded)):
+        return Security(require_encryption=True, **given) if given else Security()
 
 
 def worker_info() -> dict:

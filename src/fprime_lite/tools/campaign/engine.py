@@ -401,6 +401,10 @@ def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, fo
                             pruner.update(row)
                             update(row)
                             ran += 1
+                try:  # a client the caller keeps (client=) should not warm this campaign's runs on later workers
+                    client.unregister_worker_plugin(WarmUp.name)
+                except Exception:  # noqa: BLE001 - best effort: the plug-in only builds a run
+                    pass
         status = "complete"
     finally:
         df = store.close()

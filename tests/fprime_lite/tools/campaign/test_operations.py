@@ -142,7 +142,7 @@ def _tls_files(folder: pathlib.Path) -> dict:
 def test_a_tls_scheduler_with_security_files(write_campaign, tmp_path):
     """CAMP-126: a `dask scheduler` and worker that require TLS: `--scheduler tls://…` with --tls-ca-file,
     --tls-cert and --tls-key runs the campaign; the same through a --dask-config file; without them the
-    message says what to give."""
+    message says what to give; the config file does not change the process's Dask config."""
     from fprime_lite.tools.cli import main
 
     tls = _tls_files(tmp_path)
@@ -165,6 +165,9 @@ def test_a_tls_scheduler_with_security_files(write_campaign, tmp_path):
             "ca-file": str(tls["ca"]), "client": {"cert": str(tls["cert"]), "key": str(tls["key"])}}}}}))
         assert main(["campaign", str(path), "--scheduler", address, "--dask-config", str(config), "--out",
                      str(tmp_path / "c"), "--no-plots"]) == 0
+        import dask.config
+
+        assert not dask.config.get("distributed.comm.require-encryption")  # the file's settings stayed local
     finally:
         _stop(procs)
         log.close()
