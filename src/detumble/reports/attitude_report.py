@@ -174,6 +174,9 @@ class AttitudeRunReport:
             name = to_mode.name if hasattr(to_mode, "name") else str(to_mode)
             self.transitions.append({"t_s": round(t, 6), "mode": name})
 
+    #: What :meth:`progress` may publish (``--stop-when`` / a campaign's ``stop_when`` keys are checked against it).
+    progress_keys = ("mode", "pointing_error_deg", "spin_settled_for_s")
+
     def progress(self) -> dict:
         c = self.controller
         if c is None:

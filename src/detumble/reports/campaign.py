@@ -74,6 +74,10 @@ def _prepare(req: RunRequest) -> Prepared:
 
         r = run(sc, law=law, gain=gain, duration_s=duration, plant=plant, should_stop=req.should_stop)
         result["summary"] = r.summary
+        if req.write_files:  # files that 'keep' may retain: what `python -m detumble.sim` writes
+            from detumble.sim.runner import write_outputs
+
+            write_outputs(r, str(req.out_dir))
         rows = np.array(r.rows, dtype=float)
         trace = {"t_s": rows[:, 0], "rate_deg_s": rows[:, 4]}
         if r.adcs_header:  # the ADCS columns (wheel momenta, pointing error) the metrics may use
@@ -81,7 +85,7 @@ def _prepare(req: RunRequest) -> Prepared:
                 if name.startswith("h") and name.endswith("_Nms") or name == "pointing_error_deg":
                     trace[name] = np.array([np.nan if row[j] in ("", None) else float(row[j])
                                             for row in r.adcs_rows or ()])
-        return RunOutput(summary=r.summary, trace=trace,
+        return RunOutput(summary=r.summary, trace=trace, out_dir=req.out_dir if req.write_files else None,
                          stopped_early=r.summary["sim_seconds"] < duration - 1e-9)
 
     def readback(key: str):

@@ -72,6 +72,9 @@ class CourseworkRunReport:
     def on_event(self, event) -> None:
         pass
 
+    #: What :meth:`progress` may publish (``--stop-when`` / a campaign's ``stop_when`` keys are checked against it).
+    progress_keys = ("rate_deg_s", "state")
+
     def progress(self) -> dict:
         return {"rate_deg_s": self.spacecraft.truth().rate_deg_s, "state": ""}
 

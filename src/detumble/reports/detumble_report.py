@@ -113,6 +113,9 @@ class DetumbleRunReport:
                 and self.detumble_complete_s is None:
             self.detumble_complete_s = t
 
+    #: What :meth:`progress` may publish (``--stop-when`` / a campaign's ``stop_when`` keys are checked against it).
+    progress_keys = ("rate_deg_s", "state")
+
     def progress(self) -> dict:
         """The body rate now, and how the time since the previous call was shared among the
         manager's states (the states taking 5 % or more, largest first: ``ACTUATING_BDOT 68%``)."""

@@ -123,6 +123,36 @@ def _base_value(p, pid: int, base_records: dict):
     return p.default
 
 
+def _stop_events(raw, topology) -> list[str]:
+    """``stop_on_events``: full event names of the topology (a misspelt one would never stop the run)."""
+    if raw is None:
+        return []
+    if not (isinstance(raw, list) and all(isinstance(n, str) for n in raw)):
+        raise RunSetupError("stop_on_events is a list of full event names, e.g. "
+                            "[ReferenceDeployment.detumbleManager.DetumbleCompleted]", "stop_on_events")
+    declared = [f"{i.qualified_name}.{e.name}" for i in topology.instances.values() for e in i.component.spec.events]
+    for name in raw:
+        if name not in declared:
+            hint = did_you_mean(name, declared, " (fprime-lite dict lists the events)", " — did you mean {}?")
+            raise RunSetupError(f"stop_on_events: the topology has no event {name}{hint}", "stop_on_events")
+    return list(raw)
+
+
+def _check_progress_keys(conditions, loaded) -> None:
+    """Each ``stop_when`` key must be one a report publishes (its ``progress_keys``); a key no report
+    publishes would never hold, and the run would fly its whole duration. Reports that do not declare
+    their keys leave the check out."""
+    reports = [r for name, r in loaded.resources.items() if hasattr(r, "progress")]
+    if not conditions or any(not hasattr(r, "progress_keys") for r in reports):
+        return
+    keys = sorted({k for r in reports for k in r.progress_keys})
+    for c in conditions:
+        if c.key not in keys:
+            hint = did_you_mean(c.key, keys, f" (the reports publish: {', '.join(keys) or 'nothing'})",
+                                " — did you mean '{}'?")
+            raise RunSetupError(f"stop_when: no report of this topology publishes '{c.key}'{hint}", "stop_when")
+
+
 def prepare(req: RunRequest) -> Prepared:
     from fprime_lite.deploy.topology import TopologyError
     from fprime_lite.deploy.topology_loader import load_topology
@@ -179,7 +209,7 @@ def prepare(req: RunRequest) -> Prepared:
     duration = run_duration(loaded, cfg.get("duration_s"))
     if not duration > 0:
         raise RunSetupError(f"duration_s must be positive, got {duration}", "duration_s")
-    stop_events = list(cfg.get("stop_on_events") or [])
+    stop_events = _stop_events(cfg.get("stop_on_events"), loaded.topology)
     raw_conditions = cfg.get("stop_when") or []
     if not isinstance(raw_conditions, list):
         raise RunSetupError("stop_when is a list of conditions, e.g. ['mode == POINTING']", "stop_when")
@@ -187,6 +217,7 @@ def prepare(req: RunRequest) -> Prepared:
         conditions = [parse_stop_condition(text) for text in raw_conditions]
     except StopConditionError as exc:
         raise RunSetupError(f"stop_when: {exc}", "stop_when") from None
+    _check_progress_keys(conditions, loaded)
 
     def execute() -> RunOutput:
         scheduler = loaded.scheduler

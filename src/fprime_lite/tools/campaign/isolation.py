@@ -71,7 +71,7 @@ def _read_frame(fd: int, deadline: float | None = None) -> bytes | None:
 class _RunProcess:
     """One run process and its two pipes."""
 
-    def __init__(self):
+    def __init__(self, warm_task: dict | None = None):
         task_r, self.task_w = os.pipe()
         self.row_r, row_w = os.pipe()
         self.proc = subprocess.Popen([sys.executable, "-m", "fprime_lite.tools.campaign.isolation",
@@ -80,7 +80,7 @@ class _RunProcess:
         os.close(task_r)
         os.close(row_w)
         try:
-            _write_frame(self.task_w, pickle.dumps(list(sys.path)))  # the same imports as this worker
+            _write_frame(self.task_w, pickle.dumps((list(sys.path), warm_task)))  # the same imports as this worker
             ready = _read_frame(self.row_r, time.monotonic() + _START_TIMEOUT_S)
         except OSError:  # TimeoutError included
             ready = None
@@ -111,11 +111,12 @@ class _RunProcess:
             return self.proc.returncode, 0.0
 
 
-def run_process() -> _RunProcess:
-    """This thread's run process, started (and waited for until ready) when it has none or it died."""
+def run_process(warm_task: dict | None = None) -> _RunProcess:
+    """This thread's run process, started (and waited for until ready, ``warm_task`` built in it so
+    its imports are done) when it has none or it died."""
     proc = getattr(_local, "proc", None)
     if proc is None or proc.proc.poll() is not None:
-        proc = _local.proc = _RunProcess()
+        proc = _local.proc = _RunProcess(warm_task)
     return proc
 
 
@@ -134,7 +135,7 @@ def killed_row(task: dict, status: str, error: str, note: str) -> dict:
 def fly_isolated(task: dict, out_dir) -> tuple[dict, float]:
     """Fly ``task`` in this thread's run process; return (row, the run's CPU seconds)."""
     timeout = float(task["timeout_s"])
-    proc = run_process()  # started (and ready) before the run's time starts
+    proc = run_process(task)  # started (and ready) before the run's time starts
     t0 = time.monotonic()
     try:
         row = proc.run(task, out_dir, t0 + timeout + grace_s(timeout))
@@ -174,11 +175,10 @@ def main(argv: list[str]) -> int:
     frame = _read_frame(task_r)
     if frame is None:
         return 0
-    sys.path[:] = pickle.loads(frame)
-    from fprime_lite.tools.campaign.kinds import metrics, run_kinds
-    from fprime_lite.tools.campaign.task import fly
+    sys.path[:], warm_task = pickle.loads(frame)
+    from fprime_lite.tools.campaign.task import fly, warm_up
 
-    run_kinds(), metrics()  # load the plug-ins now: not on the first run's clock
+    warm_up(warm_task)  # load the plug-ins and the kind's modules now: not on the first run's clock
     _write_frame(row_w, b"ready")
     while True:
         frame = _read_frame(task_r)

@@ -11,6 +11,10 @@ enforces it while a campaign runs.
   number: the last of the best, the first of the worst. Ties go to the lower grid point, then the
   lower seed index, so the kept set depends only on the rows, never on the order runs finished.
 - ``failed: true`` also keeps every failed or timed-out run.
+- ``every: N`` also keeps one run in N whatever its result (the runs whose place in the campaign's
+  order — grid point, then seed index — is a multiple of N): a sample of ordinary runs to look at.
+  Any one of ``best``, ``worst``, ``failed: true`` and ``every`` makes a policy; ``by`` is needed
+  with ``best`` / ``worst``.
 
 With a ranking the worker keeps every run's files under ``DIR/runs/RUN_ID/``; the engine, as each
 row arrives, deletes the folders of the runs that are not (or no longer) kept. On ``--resume`` it
@@ -29,7 +33,7 @@ from dataclasses import dataclass
 __all__ = ["KeepPolicy", "KEEP_MODES", "KEEP_FIELDS", "ArtifactPruner"]
 
 KEEP_MODES = ("none", "failed", "all")
-KEEP_FIELDS = {"best", "worst", "by", "order", "failed"}
+KEEP_FIELDS = {"best", "worst", "by", "order", "failed", "every"}
 
 
 @dataclass(frozen=True)
@@ -43,13 +47,16 @@ class KeepPolicy:
     by: str | None = None
     order: str = "min"
     failed: bool = False
+    every: int = 0
 
     @property
     def worker_mode(self) -> str:
         """What the worker does with a run's files: keep them (``all``: the engine prunes a
         ranking), keep them when the run is not ok (``failed``), or drop them (``none``)."""
         if self.mode == "ranked":
-            return "all"
+            if self.best or self.worst:
+                return "all"
+            return "failed" if self.failed else "none"  # (``every`` runs are marked per task)
         return self.mode
 
     def describe(self) -> str:
@@ -57,7 +64,9 @@ class KeepPolicy:
             return self.mode
         parts = [f"{w} {n}" for w, n in (("best", self.best), ("worst", self.worst)) if n]
         better = "smaller" if self.order == "min" else "larger"
-        return f"{' and '.join(parts)} by {self.by} ({better} is better){' and failed runs' if self.failed else ''}"
+        text = f"{' and '.join(parts)} by {self.by} ({better} is better)" if parts else ""
+        extra = (["failed runs"] if self.failed else []) + ([f"one run in {self.every}"] if self.every else [])
+        return " and ".join(([text] if text else []) + extra)
 
 
 def _goodness(row: dict, policy: KeepPolicy) -> tuple:
@@ -96,10 +105,12 @@ class ArtifactPruner:
     cluster without a shared file system).
     """
 
-    def __init__(self, artifacts_dir: pathlib.Path, policy: KeepPolicy, remote_remove=None):
+    def __init__(self, artifacts_dir: pathlib.Path, policy: KeepPolicy, remote_remove=None,
+                 always: frozenset = frozenset()):
         self.dir = pathlib.Path(artifacts_dir)
         self.policy = policy
         self.remote_remove = remote_remove
+        self.always = always  # run ids kept whatever their result (``every: N``)
         self._best: list[tuple] = []   # (goodness, run_id), best first
         self._worst: list[tuple] = []  # (badness, run_id), worst first
         self._failed: set[str] = set()
@@ -111,7 +122,8 @@ class ArtifactPruner:
 
     @property
     def kept(self) -> set[str]:
-        return {i for _, i in self._best} | {i for _, i in self._worst} | self._failed
+        ranked = {i for _, i in self._best} | {i for _, i in self._worst}
+        return ranked | self._failed | (self.always & self._rows.keys())
 
     def _admit(self, row: dict) -> None:
         run_id = row["run_id"]
@@ -133,7 +145,7 @@ class ArtifactPruner:
             return
         for row in rows:
             self._admit(row)
-        kept = self.kept
+        kept = self.kept | self.always
         if self.dir.is_dir():
             for folder in self.dir.iterdir():
                 if folder.is_dir() and folder.name not in kept:

@@ -36,7 +36,9 @@ class RunRequest:
     varied key (grid and dispersions) with the value requested; ``seed`` the simulator seed;
     ``base_dir`` the campaign file's folder (relative paths start there);
     ``out_dir`` a folder for the run's files; ``should_stop()`` turns true when the run's time
-    is up (kinds check it at least once per simulated second).
+    is up (kinds check it at least once per simulated second); ``write_files``: whether the run's
+    files may be kept (``keep``), so a kind that writes nothing it needs writes its trace and
+    summary only then.
     """
 
     config: dict
@@ -45,6 +47,7 @@ class RunRequest:
     out_dir: pathlib.Path
     base_dir: pathlib.Path = pathlib.Path(".")
     should_stop: Callable[[], bool] = lambda: False
+    write_files: bool = False
 
 
 @dataclass
@@ -146,5 +149,10 @@ def resolve_kind(name: str) -> RunKind:
 
 
 def metrics() -> dict[str, Metric]:
-    """The installed named metrics, by name."""
+    """The installed named metrics, by name (a copy: the caller may change it)."""
+    return dict(_metrics_by_name())
+
+
+@functools.lru_cache(maxsize=None)
+def _metrics_by_name() -> dict[str, Metric]:
     return {m.name: m for m in _entry_point_objects(METRICS_GROUP) if isinstance(m, Metric)}

@@ -1,24 +1,39 @@
-"""``manifest.json``: what produced a campaign folder (file, versions, commit, times, cluster)."""
+"""``manifest.json``: what produced a campaign folder.
+
+- the campaign file (text, SHA-256) and the SHA-256 of every input file it names (topology,
+  parameter file, sequence, scenario file: any run-section or grid value that is a file);
+- the software: the git commit of the installed fprime-lite source and whether its working tree
+  had uncommitted changes (``dirty``), and the package versions — on the client and on each worker;
+- the machines: host, CPU model and count, platform, of the client and of each worker;
+- ``history``: one entry per session (the first run and each ``--resume``): start, end, status,
+  cluster, workers, how many rows it started with and how many failed runs it retried. The top-level
+  ``started`` is the first session's, ``ended``, ``status`` and ``cluster`` the latest's.
+"""
 
 from __future__ import annotations
 
 import datetime as _dt
 import hashlib
 import json
+import os
 import pathlib
 import platform
+import socket
 import subprocess
+from typing import Any
 
 from fprime_lite.osal.atomic import atomic_write_text
 
-__all__ = ["write_manifest", "package_versions"]
+__all__ = ["ManifestWriter", "package_versions", "machine", "software", "input_files", "read_manifest", "now_utc"]
+
+PACKAGES = ("fprime-lite", "numpy", "dask", "distributed", "pandas", "pyarrow", "pyyaml", "matplotlib")
 
 
 def package_versions() -> dict[str, str]:
     from importlib.metadata import PackageNotFoundError, version
 
     out = {"python": platform.python_version()}
-    for name in ("fprime-lite", "numpy", "dask", "distributed", "pandas", "pyarrow"):
+    for name in PACKAGES:
         try:
             out[name] = version(name)
         except PackageNotFoundError:
@@ -26,45 +41,157 @@ def package_versions() -> dict[str, str]:
     return out
 
 
-def _git_commit(folder: pathlib.Path) -> str | None:
+def _cpu_model() -> str:
     try:
-        r = subprocess.run(["git", "-C", str(folder), "rev-parse", "HEAD"], capture_output=True, text=True,
-                           timeout=5)
+        with open("/proc/cpuinfo", encoding="utf-8") as fh:
+            for line in fh:
+                if line.lower().startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
+def machine() -> dict:
+    """This machine: host, CPU model, logical CPUs, platform."""
+    return {"host": socket.gethostname(), "cpu": _cpu_model(), "cpus": os.cpu_count(),
+            "platform": platform.platform()}
+
+
+def _git(folder: pathlib.Path, *args: str) -> str | None:
+    try:
+        r = subprocess.run(["git", "-C", str(folder), *args], capture_output=True, text=True, timeout=5)
     except (OSError, subprocess.TimeoutExpired):
         return None
-    if r.returncode != 0:
+    return r.stdout.strip() if r.returncode == 0 else None
+
+
+def git_state(folder: pathlib.Path) -> dict | None:
+    """``{"commit", "dirty"}`` of the git work tree holding ``folder``; None outside one."""
+    commit = _git(folder, "rev-parse", "HEAD")
+    if commit is None:
         return None
-    dirty = subprocess.run(["git", "-C", str(folder), "status", "--porcelain", "--untracked-files=no"],
-                           capture_output=True, text=True, timeout=5).stdout.strip()
-    return r.stdout.strip() + ("+dirty" if dirty else "")
+    status = _git(folder, "status", "--porcelain", "--untracked-files=no")
+    return {"commit": commit, "dirty": bool(status)}
+
+
+def software() -> dict:
+    """The fprime-lite that runs: its version, source folder and that folder's git commit and dirty flag
+    (``commit`` None for an installed release outside a git work tree)."""
+    import fprime_lite
+
+    source = pathlib.Path(fprime_lite.__file__).resolve().parent
+    state = git_state(source) or {"commit": None, "dirty": None}
+    return {"fprime_lite": package_versions()["fprime-lite"], "source": str(source), **state}
+
+
+def _sha256(path: pathlib.Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for chunk in iter(lambda: fh.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def input_files(campaign) -> dict[str, str]:
+    """SHA-256 of the campaign file and of every file its run section or grid names (relative paths
+    from the campaign file's folder)."""
+    found = {str(campaign.path): _sha256(campaign.path)}
+    candidates: list = []
+    for value in campaign.run.values():
+        candidates += value if isinstance(value, list) else [value]
+    for grid in campaign.grids:
+        for axis in grid.values():
+            candidates += axis
+    for value in candidates:
+        if not isinstance(value, str) or not value or "\n" in value or len(value) > 4096:
+            continue
+        p = pathlib.Path(value)
+        p = p if p.is_absolute() else campaign.base_dir / p
+        try:
+            if p.is_file():
+                found[str(p)] = _sha256(p)
+        except OSError:
+            continue
+    return found
 
 
 def now_utc() -> str:
     return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
 
 
-def write_manifest(out_dir: pathlib.Path, campaign, *, started: str, ended: str | None, status: str,
-                   cluster: dict | None, runs: int, counts: dict, resumed_from: int = 0, retried: int = 0) -> dict:
-    """Write ``out_dir/manifest.json`` atomically and return it."""
-    manifest = {
-        "campaign": campaign.name,
-        "description": campaign.description,
-        "campaign_file": str(campaign.path),
-        "campaign_sha256": hashlib.sha256(campaign.text.encode()).hexdigest(),
-        "campaign_text": campaign.text,
-        "kind": campaign.kind,
-        "master_seed": campaign.master_seed,
-        "runs": runs,
-        "resumed_with": resumed_from,
-        "retried": retried,
-        "keep": campaign.keep.describe(),
-        "counts": counts,
-        "status": status,
-        "started": started,
-        "ended": ended,
-        "cluster": cluster,
-        "git_commit": _git_commit(campaign.base_dir),
-        "versions": package_versions(),
-    }
-    atomic_write_text(pathlib.Path(out_dir) / "manifest.json", json.dumps(manifest, indent=2) + "\n")
-    return manifest
+def read_manifest(out_dir: pathlib.Path) -> dict | None:
+    try:
+        data = json.loads((pathlib.Path(out_dir) / "manifest.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    return data if isinstance(data, dict) else None
+
+
+class ManifestWriter:
+    """Writes ``out_dir/manifest.json`` atomically for one session, keeping the earlier sessions'
+    history."""
+
+    def __init__(self, out_dir: pathlib.Path, campaign, *, runs: int, resumed_with: int, retried: int,
+                 merged_points: list | None = None):
+        self.path = pathlib.Path(out_dir) / "manifest.json"
+        self.campaign = campaign
+        previous = read_manifest(out_dir) or {}
+        history = previous.get("history")
+        if history is None and previous.get("started"):  # a folder written before the history was kept
+            history = [{k: previous.get(k) for k in ("started", "ended", "status", "cluster", "resumed_with",
+                                                      "retried")}]
+        self.history: list[dict] = list(history or [])
+        self.runs = runs
+        self.merged_points = merged_points or []
+        self.session: dict[str, Any] = {
+            "started": now_utc(), "ended": None, "status": "running", "resumed_with": resumed_with,
+            "retried": retried, "ran": 0, "cluster": None, "client": machine(), "software": software(),
+                        "workers": None}
+        self.inputs = input_files(campaign)
+        self.versions = package_versions()
+
+    def write(self, *, status: str, counts: dict, cluster: dict | None = None, workers: list | None = None,
+              ran: int | None = None, ended: bool = False) -> dict:
+        s = self.session
+        s["status"] = status
+        if cluster is not None:
+            s["cluster"] = cluster
+        if workers is not None:
+            s["workers"] = workers
+        if ran is not None:
+            s["ran"] = ran
+        if ended:
+            s["ended"] = now_utc()
+        history = self.history + [dict(s)]
+        c = self.campaign
+        sw = s["software"]
+        manifest = {
+            "campaign": c.name,
+            "description": c.description,
+            "campaign_file": str(c.path),
+            "campaign_sha256": hashlib.sha256(c.text.encode()).hexdigest(),
+            "campaign_text": c.text,
+            "kind": c.kind,
+            "master_seed": c.master_seed,
+            "runs": self.runs,
+            "merged_points": self.merged_points,
+            "resumed_with": s["resumed_with"],
+            "retried": s["retried"],
+            "keep": c.keep.describe(),
+            "counts": counts,
+            "status": status,
+            "started": history[0]["started"],
+            "ended": s["ended"],
+            "cluster": s["cluster"],
+            "software": sw,
+            "git_commit": (sw["commit"] + ("+dirty" if sw["dirty"] else "")) if sw["commit"] else None,
+            "campaign_folder_git": git_state(c.base_dir),
+            "versions": self.versions,
+            "client": s["client"],
+            "workers": s["workers"],
+            "inputs": self.inputs,
+            "history": history,
+        }
+        atomic_write_text(self.path, json.dumps(manifest, indent=2) + "\n")
+        return manifest

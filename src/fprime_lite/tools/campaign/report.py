@@ -12,40 +12,66 @@ __all__ = ["progress_bar", "print_summary", "point_table", "percentile"]
 
 
 @contextlib.contextmanager
-def progress_bar(total: int, already: int, enabled: bool, console=None, log_every_s: float = 60.0):
+def progress_bar(total: int, already: int, enabled: bool, console=None, log_every_s: float = 60.0,
+                 running=lambda: 0):
     """A rich progress bar: done/total, failed, runs per hour and ETA. Yields ``update(row)``.
 
-    Disabled (no terminal), it prints a plain line to stderr at most every ``log_every_s`` instead.
+    Disabled (no terminal), it prints a plain line to stderr every ``log_every_s`` instead — a
+    heartbeat, printed even when no run has finished since the last one (``running()``: how many
+    runs are in flight), so a log shows the campaign is alive.
     """
+    import sys
+    import threading
+
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, \
         TimeRemainingColumn
 
     t0 = time.perf_counter()
-    failed = [0]
+    state = {"done": 0, "failed": 0, "last_row": t0}
+    lock = threading.Lock()
+
+    def line() -> str:
+        now = time.perf_counter()
+        wall = now - t0
+        done = state["done"]
+        rate = done / wall * 3600 if wall > 0 else 0.0
+        left = f"ETA {(total - already - done) * wall / done / 60:.1f} min" if done else "ETA —"
+        return (f"campaign: {already + done}/{total} done, {state['failed']} failed, {running()} running, "
+                f"{rate:,.0f} runs/h, last result {now - state['last_row']:.0f} s ago, {left}")
+
+    stop = threading.Event()
+
+    def heartbeat() -> None:
+        while not stop.wait(log_every_s):
+            with lock:
+                print(line(), file=sys.stderr, flush=True)
+
     with Progress(TextColumn("[bold]campaign"), BarColumn(), MofNCompleteColumn(),
                   TextColumn("failed {task.fields[failed]}"), TextColumn("{task.fields[rate]}"),
                   TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn(), console=console,
                   disable=not enabled, transient=False) as bar:
         task = bar.add_task("runs", total=total, completed=already, failed=0, rate="")
-        done = [0]
-
-        last_log = [t0]
+        beat = None
+        if not enabled:
+            beat = threading.Thread(target=heartbeat, name="campaign-heartbeat", daemon=True)
+            beat.start()
 
         def update(row: dict) -> None:
-            done[0] += 1
-            if row["status"] != "ok":
-                failed[0] += 1
-            now = time.perf_counter()
-            wall = now - t0
-            bar.update(task, advance=1, failed=failed[0], rate=f"{done[0] / wall * 3600:,.0f} runs/h")
-            if not enabled and now - last_log[0] >= log_every_s:
-                import sys
-
-                last_log[0] = now
-                left = (total - already - done[0]) * wall / done[0]
-                print(f"campaign: {already + done[0]}/{total} done, {failed[0]} failed, "
-                      f"{done[0] / wall * 3600:,.0f} runs/h, ETA {left / 60:.1f} min", file=sys.stderr, flush=True)
-        yield update
+            with lock:
+                state["done"] += 1
+                if row["status"] != "ok":
+                    state["failed"] += 1
+                now = time.perf_counter()
+                state["last_row"] = now
+            if enabled:
+                wall = now - t0
+                bar.update(task, advance=1, failed=state["failed"], rate=f"{state['done'] / wall * 3600:,.0f} runs/h")
+        try:
+            yield update
+        finally:
+            stop.set()
+            if beat is not None:
+                beat.join(timeout=5)
 
 
 def _stats(x: np.ndarray) -> list[str]:

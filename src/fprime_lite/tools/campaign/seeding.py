@@ -31,9 +31,12 @@ def _words(text: str, n: int) -> tuple[int, ...]:
     return tuple(int.from_bytes(digest[4 * i:4 * i + 4], "little") for i in range(n))
 
 
-def run_seed_sequence(master_seed: int, point: dict, seed_index: int) -> np.random.SeedSequence:
-    """The seed sequence of the run at grid ``point`` with seed index ``seed_index``."""
-    return np.random.SeedSequence(int(master_seed), spawn_key=_words(canonical([point, seed_index]), 4))
+def run_seed_sequence(master_seed: int, point: dict, seed_index: int, *,
+                      point_json: str | None = None) -> np.random.SeedSequence:
+    """The seed sequence of the run at grid ``point`` with seed index ``seed_index``
+    (``point_json``: ``canonical(point)`` when the caller has it already)."""
+    text = f"[{point_json if point_json is not None else canonical(point)},{int(seed_index)}]"
+    return np.random.SeedSequence(int(master_seed), spawn_key=_words(text, 4))
 
 
 def simulator_seed(seq: np.random.SeedSequence) -> int:
@@ -47,6 +50,11 @@ def key_generator(seq: np.random.SeedSequence, key: str) -> np.random.Generator:
     return np.random.default_rng(child)
 
 
-def run_id(run_section: dict, point: dict, seed: int) -> str:
-    """16 hex digits identifying a run by its parameters and seed."""
-    return hashlib.sha256(canonical({"run": run_section, "point": point, "seed": seed}).encode()).hexdigest()[:16]
+def run_id(run_section: dict, point: dict, seed: int, *, run_json: str | None = None,
+           point_json: str | None = None) -> str:
+    """16 hex digits identifying a run by its parameters and seed: a SHA-256 of the canonical JSON
+    ``{"point": …, "run": …, "seed": …}`` (``run_json`` / ``point_json``: the canonical JSON of
+    ``run_section`` / ``point`` when the caller has them already — the same text, built once)."""
+    text = (f'{{"point":{point_json if point_json is not None else canonical(point)},'
+            f'"run":{run_json if run_json is not None else canonical(run_section)},"seed":{int(seed)}}}')
+    return hashlib.sha256(text.encode()).hexdigest()[:16]

@@ -22,7 +22,7 @@ TOP_KEYS = {"campaign", "description", "run", "grid", "dispersions", "seeds", "m
             "timeout_s", "keep", "plots", "common_random_numbers"}
 PLOT_TYPES = {"line": {"x", "metric"}, "heatmap": {"x", "y", "metric"}, "histogram": {"metric"},
               "cdf": {"metric"}}
-PLOT_KEYS = {"type", "x", "y", "metric", "agg"}
+PLOT_KEYS = {"type", "x", "y", "metric", "agg", "percentiles"}
 
 
 @dataclass
@@ -97,27 +97,34 @@ def _keep_policy(c: _Checker, raw, key_line, metric_names: list[str]) -> KeepPol
     """``keep``: none / failed / all, or {best: N, worst: N, by: METRIC, order: min|max, failed: bool}."""
     from fprime_lite.deploy.topology_yaml.parse import YMap
 
-    usage = (f"'keep' (per-run files kept) is one of {', '.join(KEEP_MODES)}, or a ranking "
-             f"{{best: N, worst: N, by: METRIC, order: min|max, failed: true|false}}")
+    usage = (f"'keep' (per-run files kept) is one of {', '.join(KEEP_MODES)}, or a policy "
+             f"{{best: N, worst: N, by: METRIC, order: min|max, failed: true|false, every: N}}")
     if isinstance(raw, str) and raw in KEEP_MODES:
         return KeepPolicy(mode=raw)
     if not isinstance(raw, YMap):
-        c.problem(key_line, f"{usage}, got {raw!r}")
+        c.problem(key_line, f"{usage}, got {raw!r}" + did_you_mean(str(raw), KEEP_MODES, "", " — did you mean '{}'?"))
         return KeepPolicy()
     c.keys(raw, KEEP_FIELDS, "'keep'")
     at = lambda k: raw.key_lines.get(k, raw.line)  # noqa: E731
     counts = {}
-    for k in ("best", "worst"):
+    for k in ("best", "worst", "every"):
         v = raw.get(k, 0)
         if k in raw and (isinstance(v, bool) or not isinstance(v, int) or v < 1):
-            c.problem(at(k), f"'keep: {k}' is how many runs to keep, a whole number >= 1, got {v!r}")
+            what = "keep one run in N" if k == "every" else "how many runs to keep"
+            c.problem(at(k), f"'keep: {k}' is {what}, a whole number >= 1, got {v!r}")
             v = 0
         counts[k] = v
-    if not ({"best", "worst"} & set(raw)):
-        c.problem(raw.line, f"a ranking 'keep' needs 'best: N' and/or 'worst: N' — {usage}")
+    failed = raw.get("failed", False)
+    if not isinstance(failed, bool):
+        c.problem(at("failed"), f"'keep: failed' is true or false, got {failed!r}")
+        failed = False
+    if not ({"best", "worst", "every"} & set(raw)) and failed is not True:
+        c.problem(raw.line, f"a 'keep' policy needs 'best: N', 'worst: N', 'every: N' or 'failed: true' — {usage}")
     by = raw.get("by")
+    ranked = bool({"best", "worst"} & set(raw))
     if by is None:
-        c.problem(raw.line, "a ranking 'keep' needs 'by: METRIC' (one of the campaign's 'metrics')")
+        if ranked:
+            c.problem(raw.line, "a ranking 'keep' (best/worst) needs 'by: METRIC' (one of the campaign's 'metrics')")
     elif by not in metric_names:
         c.problem(at("by"), f"'keep: by' {by!r} is not in 'metrics'"
                   + did_you_mean(by, metric_names, f" ({', '.join(metric_names) or 'none given'})",
@@ -126,11 +133,74 @@ def _keep_policy(c: _Checker, raw, key_line, metric_names: list[str]) -> KeepPol
     if order not in ("min", "max"):
         c.problem(at("order"), f"'keep: order' is min (smaller is better) or max (larger is better), got {order!r}")
         order = "min"
-    failed = raw.get("failed", False)
-    if not isinstance(failed, bool):
-        c.problem(at("failed"), f"'keep: failed' is true or false, got {failed!r}")
-        failed = False
-    return KeepPolicy(mode="ranked", best=counts["best"], worst=counts["worst"], by=by, order=order, failed=failed)
+    return KeepPolicy(mode="ranked", best=counts["best"], worst=counts["worst"], by=by, order=order, failed=failed,
+                      every=counts["every"])
+
+
+def _numeric_axis(key: str, grids: list[dict[str, list]], dispersions: dict) -> str | None:
+    """None when ``key`` takes numbers only (a grid axis, or a scalar dispersion), else why not."""
+    values = [v for g in grids for v in g.get(key, [])]
+    if key in dispersions:
+        values = list(dispersions[key].nominals)
+    if not values:
+        return "is not a varied key of this campaign"
+    bad = next((v for v in values if isinstance(v, bool) or not isinstance(v, (int, float))), None)
+    if bad is not None:
+        return f"takes the value {bad!r}, not a number: a plot axis needs numbers (group by it in pandas instead)"
+    return None
+
+
+def _check_plot(c: _Checker, p, grids, dispersions, metric_names) -> None:
+    """One entry of 'plots': its type, axes (numeric varied keys; a heatmap's on the grid), metric,
+    ``agg`` (heatmap) and ``percentiles`` (line: the band, two numbers 0–100)."""
+    from fprime_lite.tools.campaign.plots import AGGREGATE_NAMES, aggregate
+
+    c.keys(p, PLOT_KEYS, "a plot")
+    at = lambda k: p.key_lines.get(k, p.line)  # noqa: E731
+    ptype = p.get("type")
+    if ptype not in PLOT_TYPES:
+        c.problem(at("type"), f"plot type {ptype!r}: use one of {', '.join(PLOT_TYPES)}"
+                  + did_you_mean(str(ptype), PLOT_TYPES, "", " — did you mean '{}'?"))
+        return
+    for k in sorted(PLOT_TYPES[ptype] - set(p)):
+        c.problem(p.line, f"a {ptype} plot needs '{k}'")
+    for k in ("x", "y"):
+        if k not in p:
+            continue
+        if k not in PLOT_TYPES[ptype]:
+            c.problem(at(k), f"a {ptype} plot has no '{k}' (it takes {', '.join(sorted(PLOT_TYPES[ptype]))})")
+            continue
+        varied = [key for g in grids for key in g] + list(dispersions)
+        if p[k] not in varied:
+            c.problem(at(k), f"plot {k} '{p[k]}' is not a varied key of this campaign"
+                      + did_you_mean(str(p[k]), varied, "", " — did you mean '{}'?"))
+            continue
+        if ptype == "heatmap" and p[k] in dispersions:
+            c.problem(at(k), f"heatmap {k} '{p[k]}' is dispersed: a heatmap's axes are grid keys")
+            continue
+        why = _numeric_axis(p[k], grids, dispersions)
+        if why:
+            c.problem(at(k), f"plot {k} '{p[k]}' {why}")
+    if ptype == "heatmap" and p.get("x") is not None and p.get("x") == p.get("y"):
+        c.problem(at("y"), "a heatmap's x and y must be two different keys")
+    if "metric" in p and p["metric"] not in metric_names:
+        c.problem(at("metric"), f"plot metric '{p['metric']}' is not in 'metrics'"
+                  + did_you_mean(str(p["metric"]), metric_names, f" ({', '.join(metric_names) or 'none given'})",
+                                 " — did you mean '{}'?"))
+    if "agg" in p:
+        if ptype != "heatmap":
+            c.problem(at("agg"), f"'agg' is a heatmap's (a {ptype} plot has none)")
+        elif aggregate(p["agg"]) is None:
+            c.problem(at("agg"), f"heatmap agg {p['agg']!r}: use one of {', '.join(AGGREGATE_NAMES)} or pNN "
+                                 "(a percentile, e.g. p90)"
+                      + did_you_mean(str(p["agg"]), AGGREGATE_NAMES, "", " — did you mean '{}'?"))
+    if "percentiles" in p:
+        q = p["percentiles"]
+        if ptype != "line":
+            c.problem(at("percentiles"), f"'percentiles' is a line plot's band (a {ptype} plot has none)")
+        elif not (isinstance(q, list) and len(q) == 2 and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                                for v in q) and 0 <= q[0] < q[1] <= 100):
+            c.problem(at("percentiles"), f"'percentiles' is [low, high] with 0 <= low < high <= 100, got {q!r}")
 
 
 def _expand_metric_groups(c: _Checker, names: list[str], at, named_metrics) -> tuple[list[str], dict[str, list[str]]]:
@@ -209,7 +279,10 @@ def load_campaign(path) -> Campaign:
             for req in sorted(kind.required - set(run)):
                 c.problem(run.line, f"the '{kind_name}' run section needs '{req}'")
 
-    where: dict[str, str] = {}
+    where: dict[str, str] = {"metrics": c.at(line("metrics", doc.line))}
+    if isinstance(run, YMap):
+        for key in run:  # a run-section field at fault (stop_on_events, topology…) is reported at its line
+            where[str(key)] = c.at(run.key_lines.get(key, run.line))
 
     def check_varied(key, key_line) -> bool:
         where[str(key)] = c.at(key_line)
@@ -296,23 +369,11 @@ def load_campaign(path) -> Campaign:
     if not isinstance(raw_plots, list):
         c.problem(line("plots"), "'plots' is a list of {type: line|heatmap|histogram|cdf, x:, y:, metric:}")
         raw_plots = []
-    varied = {k for g in grids for k in g} | set(dispersions)
     for p in raw_plots:
         if not isinstance(p, YMap):
             c.problem(getattr(p, "line", line("plots")), "a plot is a mapping {type: ..., metric: ...}")
             continue
-        c.keys(p, PLOT_KEYS, "a plot")
-        ptype = p.get("type")
-        if ptype not in PLOT_TYPES:
-            c.problem(p.key_lines.get("type", p.line), f"plot type {ptype!r}: use one of {', '.join(PLOT_TYPES)}")
-            continue
-        for k in sorted(PLOT_TYPES[ptype] - set(p)):
-            c.problem(p.line, f"a {ptype} plot needs '{k}'")
-        for k in ("x", "y"):
-            if k in p and p[k] not in varied:
-                c.problem(p.key_lines.get(k), f"plot {k} '{p[k]}' is not a varied key of this campaign")
-        if "metric" in p and p["metric"] not in metric_names:
-            c.problem(p.key_lines.get("metric"), f"plot metric '{p['metric']}' is not in 'metrics'")
+        _check_plot(c, p, grids, dispersions, metric_names)
         plots.append(_plain(p))
 
     if c.problems:

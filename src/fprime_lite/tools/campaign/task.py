@@ -17,12 +17,13 @@ import shutil
 import tempfile
 import time
 import traceback
+import uuid
 
 from fprime_lite.tools.campaign.errors import MetricUnavailable
 from fprime_lite.tools.campaign.kinds import RunRequest, metrics, resolve_kind
 from fprime_lite.tools.campaign.values import plain
 
-__all__ = ["execute_run", "fly", "worker_name", "worker_address"]
+__all__ = ["execute_run", "execute_batch", "fly", "worker_name", "worker_address", "warm_up", "WarmUp"]
 
 
 def worker_name() -> str:
@@ -85,8 +86,17 @@ def fly(task: dict, out_dir: pathlib.Path, t0: float | None = None) -> dict:
     notes: dict[str, str] = {}
     timeout = task.get("timeout_s")
     deadline = t0 + timeout if timeout else math.inf
+    should_stop = lambda: time.perf_counter() > deadline  # noqa: E731
+    probe = task.get("probe_checks")
+    if probe:  # a pre-flight probe: stop after a few checks, report the summary's keys
+        checks = [0]
+
+        def should_stop() -> bool:
+            checks[0] += 1
+            return checks[0] >= probe or time.perf_counter() > deadline
     req = RunRequest(config=task["config"], values=values, seed=task["seed"], out_dir=out_dir,
-                     base_dir=pathlib.Path(task["base_dir"]), should_stop=lambda: time.perf_counter() > deadline)
+                     base_dir=pathlib.Path(task["base_dir"]), should_stop=should_stop,
+                     write_files=task.get("keep", "none") != "none")
     readback = {k: None for k in values}
     metric_values = {m: None for m in task["metrics"]}
     try:
@@ -99,6 +109,9 @@ def fly(task: dict, out_dir: pathlib.Path, t0: float | None = None) -> dict:
             if m is not None and m.instrument is not None:
                 probes[name] = m.instrument(prepared.simulation)
         output = prepared.execute()
+        if probe:
+            row["summary_keys"] = sorted(output.summary)
+            return row
         timed_out = req.should_stop()
         for key in values:
             try:
@@ -131,7 +144,8 @@ def fly(task: dict, out_dir: pathlib.Path, t0: float | None = None) -> dict:
 def _dispose_files(task: dict, row: dict, out_dir: pathlib.Path) -> None:
     """Move the run's folder to ``artifacts_dir/RUN_ID`` when ``keep`` asks, else delete it."""
     keep = task.get("keep", "none")
-    if keep == "all" or (keep == "failed" and row["status"] != "ok"):
+    empty = not out_dir.is_dir() or not any(out_dir.iterdir())
+    if not empty and (keep == "all" or (keep == "failed" and row["status"] != "ok")):
         dest = pathlib.Path(task["artifacts_dir"]) / task["run_id"]
         shutil.rmtree(dest, ignore_errors=True)
         dest.parent.mkdir(parents=True, exist_ok=True)
@@ -140,15 +154,70 @@ def _dispose_files(task: dict, row: dict, out_dir: pathlib.Path) -> None:
         shutil.rmtree(out_dir, ignore_errors=True)
 
 
+def warm_up(task: dict | None) -> None:
+    """Load the plug-ins and build ``task`` (without flying it) in this process, so that the imports
+    a first run would pay for are not on its clock (``wall_s``). Errors are the run's to report."""
+    kinds_ = __import__("fprime_lite.tools.campaign.kinds", fromlist=["run_kinds"])
+    kinds_.run_kinds(), kinds_.metrics()
+    if task is None:
+        return
+    with tempfile.TemporaryDirectory(prefix="campaign-warm-up-") as tmp:
+        try:
+            resolve_kind(task["kind"]).prepare(RunRequest(config=task["config"], values=task["values"],
+                                                          seed=task["seed"], out_dir=pathlib.Path(tmp),
+                                                          base_dir=pathlib.Path(task["base_dir"])))
+        except Exception:  # noqa: BLE001 - the real run reports it
+            pass
+
+
+try:
+    from distributed.diagnostics.plugin import WorkerPlugin as _WorkerPlugin
+except ImportError:  # pragma: no cover - distributed is a dependency
+    _WorkerPlugin = object  # type: ignore[assignment,misc]
+
+
+class WarmUp(_WorkerPlugin):
+    """A Dask worker plug-in: :func:`warm_up` on every worker, including those that join later."""
+
+    name = "fprime-lite-campaign-warm-up"
+
+    def __init__(self, task: dict | None):
+        self.task = task
+
+    def setup(self, worker) -> None:
+        warm_up(self.task)  # (a run process, with timeout_s, warms itself: isolation.main)
+
+
+def execute_batch(tasks) -> list[dict]:
+    """Run several short runs in one Dask task (fewer round trips); the rows in the same order.
+    ``tasks``: the list, or its pickle (bytes: Dask then does not walk every nested value of every
+    task looking for dependencies, which costs the client more than the runs themselves when they
+    are short)."""
+    if isinstance(tasks, bytes):
+        import pickle
+
+        tasks = pickle.loads(tasks)
+    return [execute_run(t) for t in tasks]
+
+
 def execute_run(task: dict) -> dict:
     """Run ``task`` (made by the engine) and return its results row.
 
     With ``timeout_s`` the run flies in this worker's run process (:mod:`.isolation`), which is
     killed if the run is still going ``timeout_s`` plus a grace after it started; without, here.
+    ``wall_s`` starts once the run process is up: its start is not the run's time.
     """
+    if task.get("timeout_s"):
+        from fprime_lite.tools.campaign.isolation import run_process
+
+        try:
+            run_process(task)
+        except (OSError, RuntimeError):
+            pass  # fly_isolated tries again and records the failure
     t0 = time.perf_counter()
     cpu0 = time.process_time()
-    out_dir = pathlib.Path(tempfile.mkdtemp(prefix=f"campaign-{task['run_id']}-"))
+    # named, not made: a kind that writes files makes it (a run that writes none costs no mkdir/rmdir)
+    out_dir = pathlib.Path(tempfile.gettempdir()) / f"campaign-{task['run_id']}-{uuid.uuid4().hex[:12]}"
     if task.get("timeout_s"):
         from fprime_lite.tools.campaign.isolation import fly_isolated, killed_row
 

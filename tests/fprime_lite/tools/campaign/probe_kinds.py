@@ -4,8 +4,10 @@
 Its run section: ``mode`` — ``ok`` (summary ``value`` = 2·x), ``stuck`` (writes its pid to
 ``BASE/stuck-SEED.pid``, then busy-loops without ever polling ``should_stop``) or
 ``fail_if_marker`` (raises while ``BASE/marker`` exists, else as ``ok``) or ``exit`` (ends its
-process with status 3). Varied keys: ``x``,
-``mode``. Every run writes ``out.txt`` into its folder (a per-run file to keep or delete).
+process with status 3) or ``slow_import`` (as ``ok``, but its build imports a module that takes
+1.5 s to import: a first run's cost) or ``instant`` (as ``ok``, writing no file: the engine's own
+cost). Varied keys: ``x``, ``mode``. Every run but ``instant`` writes ``out.txt`` into its folder
+(a per-run file to keep or delete).
 """
 
 from __future__ import annotations
@@ -22,6 +24,11 @@ def _check_key(key: str) -> str | None:
 def _prepare(req: RunRequest) -> Prepared:
     mode = req.config.get("mode", "ok")
     x = float(req.values.get("x", 1.0))
+    if mode == "slow_import":
+        import tests.fprime_lite.tools.campaign.probe_slow_import  # noqa: F401
+    if mode == "instant":
+        return Prepared(simulation=None, readback=lambda key: {"x": x, "mode": mode}[key],
+                        execute=lambda: RunOutput(summary={"value": 2.0 * x, "sim_seconds": 1.0}))
 
     def execute() -> RunOutput:
         req.out_dir.mkdir(parents=True, exist_ok=True)

@@ -50,7 +50,7 @@ def test_bad_keep_is_refused_at_its_lines(write_campaign):
     assert f"{path}:7: 'keep: order' is min" in text
     assert f"{path}:8: unknown key 'top' in 'keep'" in text
     assert len(info.value.problems) == 4
-    for keep, message in (("{by: value}", "needs 'best: N' and/or 'worst: N'"),
+    for keep, message in (("{by: value}", "needs 'best: N', 'worst: N', 'every: N' or 'failed: true'"),
                           ("best", "is one of none, failed, all")):
         bad = write_campaign(f'campaign: k\nrun: {{kind: "{PROBE}"}}\nmetrics: [value]\nkeep: {keep}\n', "b.yaml")
         with pytest.raises(CampaignError, match=message):

@@ -39,9 +39,9 @@ def test_retry_failed_reruns_only_failed_rows_with_their_seeds(write_campaign, t
         r.update(status=status, error="RuntimeError: boom", metrics={"value": None})
     journal.write_text("\n".join([json.dumps(failed[0]), lines[1], lines[2], json.dumps(failed[1])]) + "\n")
     (path.parent / "marker").write_text("")
-    assert main(["campaign", str(path), "--workers", "1", "--out", str(out), "--resume", "--no-plots"]) == 0
+    assert main(["campaign", str(path), "--workers", "1", "--out", str(out), "--resume", "--no-plots"]) == 1
     assert sorted(read_results(out)["status"]) == ["failed", "ok", "ok", "timeout"]  # plain resume: nothing to run
-    assert main(["campaign", str(path), "--out", str(out), "--workers", "1", "--retry-failed", "--no-plots"]) == 0
+    assert main(["campaign", str(path), "--out", str(out), "--workers", "1", "--retry-failed", "--no-plots"]) == 1
     still = read_results(out)
     assert (still["status"] == "failed").sum() == 2 and "the marker file is there" in still["error"].dropna().iloc[0]
     (path.parent / "marker").unlink()
