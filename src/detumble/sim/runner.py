@@ -119,13 +119,12 @@ STEADY_AFTER_SLEW_S = 60.0
 
 def _steady_after_slew(samples: list[tuple], slews) -> dict:
     """``steady_after_slew_median_deg`` / ``_p95_deg``: the POINTING errors from STEADY_AFTER_SLEW_S after the last
-    slew to the end (the window of the deployment's ``pointing_steady_*`` campaign metrics); empty without a slew."""
-    if not slews:
-        return {}
-    start = slews[-1]["t_s"] + STEADY_AFTER_SLEW_S
+    slew to the end (the window of the deployment's ``pointing_steady_*`` campaign metrics); None without a slew or
+    without samples in that window (the keys are always there, so that a campaign can name them as metrics)."""
+    start = slews[-1]["t_s"] + STEADY_AFTER_SLEW_S if slews else math.inf
     kept = sorted(s[1] for s in samples if s[0] >= start and math.isfinite(s[1]))
     if not kept:
-        return {}
+        return {"steady_after_slew_median_deg": None, "steady_after_slew_p95_deg": None}
     return {"steady_after_slew_median_deg": sorted_percentile(kept, 0.5),
             "steady_after_slew_p95_deg": sorted_percentile(kept, 0.95)}
 

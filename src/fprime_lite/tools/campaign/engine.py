@@ -16,6 +16,7 @@ import collections
 import datetime as _dt
 import math
 import pathlib
+import re
 import pickle
 import sys
 import tempfile
@@ -130,6 +131,13 @@ def _summary_keys(campaign: Campaign, task: dict, values: dict) -> set[str] | No
     return set(row["summary_keys"])
 
 
+def _listing(names) -> str:
+    """``names`` for a message, the members of a numbered family (``x.histogram_s.0`` … ``.126``)
+    folded into one ``x.histogram_s.N``."""
+    folded = sorted({re.sub(r"\.\d+(\.\d+)?$", ".N", name) for name in names})
+    return ", ".join(folded)
+
+
 def preflight(campaign: Campaign, tasks: list[dict]) -> None:
     """Build (without flying) the runs of :func:`_check_values` in this process, then check the
     metrics that are not named metrics against a short flight's summary; a misspelt key or name, or a
@@ -164,8 +172,8 @@ def preflight(campaign: Campaign, tasks: list[dict]) -> None:
                 if m not in keys:
                     choices = sorted(keys | set(named))
                     problems.append(f"{where}: metric '{m}' is neither a named metric nor a key of the run summary"
-                                    + did_you_mean(m, choices, f" (named metrics: {', '.join(sorted(named))}; "
-                                                              f"summary keys: {', '.join(sorted(keys))})",
+                                    + did_you_mean(m, choices, f" (named metrics: {_listing(named)}; "
+                                                              f"summary keys: {_listing(keys)})",
                                                    " — did you mean '{}'?"))
     if problems:
         raise CampaignError(sorted(set(problems)))
