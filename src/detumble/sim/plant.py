@@ -22,6 +22,7 @@ import math
 from detumble.sim import frames, plant_kernel
 from detumble.sim.attitude import RigidBody, State
 from detumble.sim.coils import CoilSet, TorqueRods
+from detumble.sim.drive_integrals import DriveIntegrals
 from detumble.sim.field import DipoleField, FieldAlongOrbit, OrbitConstantField, WmmField
 from detumble.sim.laws import scale_to_limits
 from detumble.sim.orbit import CircularOrbit, TleOrbit
@@ -104,6 +105,8 @@ class Plant:
             self.actuators: CoilSet | TorqueRods = TorqueRods(sc.spacecraft.rods_max_dipole_am2)
         else:
             self.actuators = CoilSet(sc.spacecraft.coils)
+        #: exact time integrals of the levels and dipoles (interval means for the logs), kept at each change
+        self.drive_integrals = DriveIntegrals(self.actuators)
         self._scale_dipole = sc.spacecraft.actuator_saturation == "scale"
         self._m_commanded_B: Vec3 = _ZERO
         #: set_coil_level ran since ``_m_commanded_B`` was computed (or apply_dipole_B set it): the
@@ -347,6 +350,7 @@ class Plant:
             raise TypeError("this spacecraft has ideal torque rods, not face coils; use apply_dipole_B")
         coil = act.coils.get(face)
         if coil is None or type(level) is not int or level != coil.level:
+            self.drive_integrals.credit(self._t_ns)
             act.set_level(face, level)  # drivers re-command unchanged levels: nothing to set then
         self._commanded_stale = True  # m_commanded_B follows the levels from now on
 
@@ -370,6 +374,9 @@ class Plant:
         clipped, or the whole vector scaled), split over each axis's coils for coils."""
         self._m_commanded_B = (float(m_B[0]), float(m_B[1]), float(m_B[2]))
         self._commanded_stale = False
+        drive = self.drive_integrals
+        drive.credit(self._t_ns)
+        drive.set_commanded(self._m_commanded_B)
         if self._scale_dipole:
             m_B = scale_to_limits(m_B, self.actuators.max_dipole_per_axis())
         self.actuators.apply_dipole_B(m_B)
