@@ -255,8 +255,9 @@ class SimulatedSpacecraft(ResetLine):
         fails on the numbers it was given. The run then stops with one line saying why, instead of
         every flight component reading NaN and containing the same fault thousands of times."""
         plant = self.plant
-        state = plant._state
-        if all(math.isfinite(x) for x in state) and max(abs(w) for w in state[4:]) < _DIVERGED_RATE_RAD_S:
+        state = plant._state  # a NaN anywhere reaches the rate within a step; NaN < x is False
+        lim = _DIVERGED_RATE_RAD_S
+        if -lim < state[4] < lim and -lim < state[5] < lim and -lim < state[6] < lim:
             return
         sc = self.scenario
         w0 = sc.omega_BN_B0
