@@ -77,15 +77,20 @@ class DriveIntegrals:
                     self._level_ns[face] += level * dt
                     self._on_ns[face] += dt
             return
-        m = self.actuators.dipole_B
-        cmd = self._mcmd
-        for k in range(3):
-            self._m_ns[k] += m[k] * dt
-            self._mcmd_ns[k] += cmd[k] * dt
+        m = self.actuators.dipole_B  # written out: the coursework commands its rods every 10 ms
+        c = self._mcmd
+        mn = self._m_ns
+        cn = self._mcmd_ns
+        mn[0] += m[0] * dt
+        mn[1] += m[1] * dt
+        mn[2] += m[2] * dt
+        cn[0] += c[0] * dt
+        cn[1] += c[1] * dt
+        cn[2] += c[2] * dt
 
     def set_commanded(self, m_B: Vec3) -> None:
-        """The rods' commanded dipole from now on (call :meth:`credit` first)."""
-        self._mcmd = (float(m_B[0]), float(m_B[1]), float(m_B[2]))
+        """The rods' commanded dipole from now on, floats (call :meth:`credit` first)."""
+        self._mcmd = m_B
 
     def totals(self, t_ns: int) -> DriveTotals:
         """The integrals from plant t = 0 up to ``t_ns`` (the plant's present time)."""
