@@ -30,7 +30,7 @@ Vec3 = tuple[float, float, float]
 
 
 class DriveTotals(NamedTuple):
-    """The integrals from plant t = 0 to ``t_ns``."""
+    """The integrals from their start (:class:`DriveIntegrals`' ``t_ns`` at creation) to ``t_ns``."""
 
     t_ns: int
     level_ns: dict[int, int]          #: face -> ∫ level dt (level · ns, exact)
@@ -50,12 +50,13 @@ class IntervalMeans(NamedTuple):
 
 
 class DriveIntegrals:
-    """Running integrals of one plant's actuators (a :class:`CoilSet` or ideal rods)."""
+    """Running integrals of one plant's actuators (a :class:`CoilSet` or ideal rods), from ``t_ns`` on."""
 
-    def __init__(self, actuators) -> None:
+    def __init__(self, actuators, t_ns: int = 0) -> None:
         self.actuators = actuators
         self.coils = actuators.coils if isinstance(actuators, CoilSet) else None
-        self._t_ns = 0
+        #: plant time (ns) the integrals run to; they start at ``t_ns``
+        self.t_ns = t_ns
         self._level_ns = dict.fromkeys(self.coils or (), 0)
         self._on_ns = dict.fromkeys(self.coils or (), 0)
         self._m_ns = [0.0, 0.0, 0.0]
@@ -65,10 +66,10 @@ class DriveIntegrals:
     def credit(self, t_ns: int) -> None:
         """Add the present levels (or rod dipole) held since the last credit up to ``t_ns``: call it
         before a level or dipole changes."""
-        dt = t_ns - self._t_ns
+        dt = t_ns - self.t_ns
         if dt <= 0:
             return
-        self._t_ns = t_ns
+        self.t_ns = t_ns
         coils = self.coils
         if coils is not None:
             for face, c in coils.items():
@@ -78,22 +79,22 @@ class DriveIntegrals:
                     self._on_ns[face] += dt
             return
         m = self.actuators.dipole_B  # written out: the coursework commands its rods every 10 ms
-        c = self._mcmd
+        cmd = self._mcmd
         mn = self._m_ns
         cn = self._mcmd_ns
         mn[0] += m[0] * dt
         mn[1] += m[1] * dt
         mn[2] += m[2] * dt
-        cn[0] += c[0] * dt
-        cn[1] += c[1] * dt
-        cn[2] += c[2] * dt
+        cn[0] += cmd[0] * dt
+        cn[1] += cmd[1] * dt
+        cn[2] += cmd[2] * dt
 
     def set_commanded(self, m_B: Vec3) -> None:
         """The rods' commanded dipole from now on, floats (call :meth:`credit` first)."""
         self._mcmd = m_B
 
     def totals(self, t_ns: int) -> DriveTotals:
-        """The integrals from plant t = 0 up to ``t_ns`` (the plant's present time)."""
+        """The integrals from their start up to ``t_ns`` (the plant's present time)."""
         self.credit(t_ns)
         coils = self.coils or {}
         return DriveTotals(t_ns, dict(self._level_ns), dict(self._on_ns),
