@@ -4,7 +4,8 @@
 
 Flies ``deployments/proves_ref/topology.yaml`` for 3100 simulated seconds (the default scenario,
 30 deg/s to below the deadband) into a temporary folder and copies every plot the run drew
-(rate, drive levels, state, field, and dipole/attitude/wheels when the truth log has them) here.
+(rate, drive levels, state, field, dipole, attitude, power) here. :func:`regenerate` does it and
+returns the files written, for a script that regenerates every figure of the docs.
 """
 import pathlib
 import shutil
@@ -14,12 +15,23 @@ from fprime_lite.tools import run
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 HERE = pathlib.Path(__file__).resolve().parent
+DURATION_S = 3100.0
 
-with tempfile.TemporaryDirectory() as scratch:
-    result = run(ROOT / "deployments" / "proves_ref" / "topology.yaml", duration_s=3100,
-                 out=pathlib.Path(scratch) / "run", plots=True)
-    for png in sorted(result.out_dir.glob("*.png")):
-        target = HERE / f"reference_run_{png.name}"
-        shutil.copyfile(png, target)
-        print(f"wrote {target.relative_to(ROOT)}")
-    print(result)
+
+def regenerate(target: pathlib.Path = HERE, duration_s: float = DURATION_S) -> list[pathlib.Path]:
+    """Fly the reference deployment for ``duration_s`` and copy its plots to
+    ``target/reference_run_<name>.png``; return the paths written."""
+    written = []
+    with tempfile.TemporaryDirectory() as scratch:
+        result = run(ROOT / "deployments" / "proves_ref" / "topology.yaml", duration_s=duration_s,
+                     out=pathlib.Path(scratch) / "run", plots=True)
+        for png in sorted(result.out_dir.glob("*.png")):
+            path = pathlib.Path(target) / f"reference_run_{png.name}"
+            shutil.copyfile(png, path)
+            written.append(path)
+    return written
+
+
+if __name__ == "__main__":
+    for path in regenerate():
+        print(f"wrote {path.relative_to(ROOT)}")

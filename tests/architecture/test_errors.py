@@ -1,7 +1,8 @@
 """One root per package for the errors it raises (docs/architecture.md, "Errors").
 
 Every exception class defined in ``fprime_lite`` derives from ``FprimeLiteError`` (but osal's
-``PathRefused``, an OS error of the layer below the root); every one defined in ``detumble`` from
+``PathRefused``, an OS error of the layer below the root, and ``SimulationEnded``, the run's stop signal);
+every one defined in ``detumble`` from
 ``DetumbleError``, which the framework does not know. The classes are found by importing every
 module of both packages, so a new module's error class is checked without being listed here.
 """
@@ -17,10 +18,13 @@ import detumble
 import fprime_lite
 from detumble.errors import DetumbleError
 from fprime_lite.model.errors import FprimeLiteError, FwAssertionError
+from fprime_lite.deploy.resources import SimulationEnded
 from fprime_lite.osal.confine import PathRefused
 
-#: Below the root's layer (osal imports nothing of the model): an OSError by contract.
-OUTSIDE_THE_ROOT = {PathRefused}
+#: Below the root's layer (osal imports nothing of the model): an OSError by contract. And the run's stop
+#: signal when the simulated world cannot go on: a BaseException on purpose (the fault containment's
+#: ``except Exception`` must let it through, as it does KeyboardInterrupt), not an error.
+OUTSIDE_THE_ROOT = {PathRefused, SimulationEnded}
 
 
 def _exception_classes(package) -> list[type[BaseException]]:

@@ -48,7 +48,7 @@ import math
 from collections import deque
 from typing import Callable, NamedTuple, Sequence
 
-from fprime_lite.deploy.resources import ResetLine, topology_resource
+from fprime_lite.deploy.resources import ResetLine, RoleOptionError, SimulationEnded, topology_resource
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.model.time import SimulatedClock, Time
 
@@ -59,13 +59,20 @@ from detumble.sim.orbit import R_EARTH_EQ
 from detumble.sim.power import FACE_SWITCHES, ElectricalSystem, coil_supply_power_w
 from detumble.sim.plant import Plant
 from detumble.sim.thermal import ThermalModel
-from detumble.sim.scenario import Scenario, load_scenario
+from detumble.sim.scenario import Scenario, SettingError, load_scenario
 from detumble.control.units import GAUSS_PER_TESLA
 
 __all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us", "require_spacecraft",
            "make_spacecraft"]
 
 _UNIX_EPOCH = _dt.datetime(1970, 1, 1, tzinfo=_dt.timezone.utc)
+
+#: Errors a sensor model raises on a state that is no longer finite (``math.floor(nan)`` …).
+_NUMERIC_ERRORS = (ValueError, OverflowError, ZeroDivisionError)
+#: A body rate beyond this (rad/s, about 5.7e7 deg/s) counts as a diverged integration, as a NaN does.
+_DIVERGED_RATE_RAD_S = 1e6
+#: More rotation than this per dynamics step (rad) is past what the fixed-step integration resolves.
+_MAX_TURN_PER_STEP_RAD = 0.5
 
 #: The electrical system is integrated over this much plant time at once (100 ms, five 50 Hz
 #: dynamics steps); the coils' energy in between is summed exactly, step by step.
@@ -237,9 +244,33 @@ class SimulatedSpacecraft(ResetLine):
             if now != nxt:  # pragma: no cover - guards the ns rounding in Plant.step
                 raise AssertionError(f"plant stepped to {now} ns instead of {nxt} ns")
             if now == trace_next and self._trace is not None:
+                self.end_if_diverged()
                 self._trace(self.truth())
                 trace_next += self._trace_interval_ns
         self._trace_next_ns = trace_next
+
+    def end_if_diverged(self) -> None:
+        """Raise :class:`~fprime_lite.deploy.resources.SimulationEnded` when the plant's state is no
+        longer finite (the integration diverged: a rate far beyond what the dynamics step resolves).
+
+        Checked where it costs nothing per tick: at each truth-trace sample, and when a sensor read
+        fails on the numbers it was given. The run then stops with one line saying why, instead of
+        every flight component reading NaN and containing the same fault thousands of times."""
+        plant = self.plant
+        state = plant._state  # a NaN anywhere reaches the rate within a step; NaN < x is False
+        lim = _DIVERGED_RATE_RAD_S
+        if -lim < state[4] < lim and -lim < state[5] < lim and -lim < state[6] < lim:
+            return
+        sc = self.scenario
+        w0 = sc.omega_BN_B0
+        start_deg_s = math.degrees(math.sqrt(w0[0] ** 2 + w0[1] ** 2 + w0[2] ** 2))
+        turn = math.radians(start_deg_s) * sc.dynamics_step_s
+        why = (f"a start at {start_deg_s:,.6g} deg/s turns the body {turn:,.3g} rad per {sc.dynamics_step_s:g} s "
+               f"dynamics step, more than the integrator resolves — lower the rate or the scenario's "
+               f"dynamics_step_s" if turn > _MAX_TURN_PER_STEP_RAD else
+               "check the scenario's inertia, actuator limits and dynamics_step_s")
+        raise SimulationEnded("plant diverged", f"the simulated spacecraft diverged at t = {plant.t_ns * 1e-9:.3f} s "
+                                                f"of plant time (its body rate is no longer finite): {why}")
 
     @property
     def plant_time_us(self) -> int:
@@ -285,7 +316,11 @@ class SimulatedSpacecraft(ResetLine):
             b = plant.b_B
             g = GAUSS_PER_TESLA
             return (b[0] * g, b[1] * g, b[2] * g, self.time_of(plant.t_ns))
-        s = mag.sample_gauss
+        try:
+            s = mag.sample_gauss
+        except _NUMERIC_ERRORS:
+            self.end_if_diverged()
+            raise
         return (s[0], s[1], s[2], self.time_of(mag.sample_time_ns))
 
     def gyro_sample(self, stamped: bool = True) -> tuple:
@@ -298,7 +333,11 @@ class SimulatedSpacecraft(ResetLine):
         if gyro.spec.ideal:
             w = plant.omega_BN_B
             return (w[0], w[1], w[2], self.time_of(plant.t_ns)) if stamped else (w[0], w[1], w[2])
-        s = gyro.sample_rad_s
+        try:
+            s = gyro.sample_rad_s
+        except _NUMERIC_ERRORS:
+            self.end_if_diverged()
+            raise
         return (s[0], s[1], s[2], self.time_of(gyro.sample_time_ns)) if stamped else s
 
     def acceleration(self) -> tuple[float, float, float]:
@@ -309,8 +348,12 @@ class SimulatedSpacecraft(ResetLine):
         self.sync()
         slot = self.plant.t_ns // self._accel_period_ns
         if slot != self._accel_slot:
+            try:
+                self._accel_sample = self.accelerometer.measure(self.plant.omega_BN_B)
+            except _NUMERIC_ERRORS:
+                self.end_if_diverged()
+                raise
             self._accel_slot = slot
-            self._accel_sample = self.accelerometer.measure(self.plant.omega_BN_B)
         return self._accel_sample
 
     @property
@@ -388,7 +431,11 @@ class SimulatedSpacecraft(ResetLine):
         momentum with the configured reading noise)."""
         self.sync()
         plant = self.plant
-        speed, h, u, _ = plant.wheel_reading(i)
+        try:
+            speed, h, u, _ = plant.wheel_reading(i)
+        except _NUMERIC_ERRORS:
+            self.end_if_diverged()
+            raise
         return (speed, h, u, self.time_of(plant._t_ns))
 
     def wheel_limit_flags(self, i: int) -> tuple[bool, bool]:
@@ -409,7 +456,11 @@ class SimulatedSpacecraft(ResetLine):
         valid and when it was taken."""
         self.sync()
         plant = self.plant
-        q0, q1, q2, q3, valid, t = plant.star_tracker_reading()
+        try:
+            q0, q1, q2, q3, valid, t = plant.star_tracker_reading()
+        except _NUMERIC_ERRORS:
+            self.end_if_diverged()
+            raise
         return ((q0, q1, q2, q3), valid, self.time_of(int(round(t * 1e9))))
 
     def set_pointing_target(self, q_target, frame: str = "inertial") -> None:
@@ -547,6 +598,17 @@ class SimulatedSpacecraft(ResetLine):
             self._power_coil_j = 0.0
         self._power_pending_ns = pending
 
+    def energy_j(self) -> tuple[float, float]:
+        """``(coil_j, load_j)``: the energy the coils and the whole load drew from plant t = 0 to now, J,
+        exact to the last dynamics step (the part not yet handed to the electrical system included);
+        ``(0.0, 0.0)`` without a power model. Their differences over an interval give its mean powers."""
+        eps = self.power
+        if eps is None:
+            return (0.0, 0.0)
+        pending_coil = self._power_coil_j
+        pending_s = self._power_pending_ns * 1e-9
+        return (eps.coil_j + pending_coil, eps.load_j + pending_coil + eps.switched_load_w() * pending_s)
+
     def set_accelerometer_odr_hz(self, odr_hz: float) -> None:
         """Reconfigure the accelerometer's output data rate."""
         if not (isinstance(odr_hz, (int, float)) and math.isfinite(odr_hz) and odr_hz > 0):
@@ -667,7 +729,10 @@ def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler |
     if scheduler is None:
         raise ValueError("make_spacecraft needs the deployment's scheduler (args: {scheduler: $scheduler})")
     if isinstance(scenario, str):
-        scenario = load_scenario(scenario, settings=settings)
+        try:
+            scenario = load_scenario(scenario, settings=settings)
+        except SettingError as exc:  # the command line's --set, not the topology's args
+            raise RoleOptionError(str(exc)) from None
     elif settings:
         raise ValueError("settings apply to a scenario given by name or file, not to a loaded Scenario")
     clock = scheduler.clock

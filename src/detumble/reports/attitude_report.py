@@ -31,9 +31,11 @@ the downlinked ``ControlModeChanged`` events, and adds to ``summary.json``:
 ``pointing_error_deg`` and ``spin_settled_for_s``: how long the spin has been inside that band without a
 break in the present SPIN_STABLE interval (0 outside it).
 
-Plots: ``attitude_mode.png`` (mode vs time), ``pointing_error.png``, ``wheel_momentum.png``,
-``dipole.png``; the samples go to ``attitude.csv`` (its ``target`` column: the active reference, as
-``pointing_error_by_target_deg`` names it). Time ``t_s`` is seconds since the run started.
+Plots (:func:`plot_attitude_csv`, from ``attitude.csv`` alone, so ``fprime-lite plot`` draws them again):
+``attitude_mode.png`` (mode vs time), ``pointing_error.png``, ``wheel_momentum.png``,
+``dipole_commanded.png``; the samples go to ``attitude.csv``, the achieved dipole as its exact mean over
+each sample interval (``mx_mean_Am2``…), its ``target`` column the active reference, as
+``pointing_error_by_target_deg`` names it. Time ``t_s`` is seconds since the run started.
 """
 
 from __future__ import annotations
@@ -55,7 +57,7 @@ from detumble.control.targets import LABELS, true_reference_q
 from detumble.drivers.spacecraft import SimulatedSpacecraft
 from detumble.reports.figures import save_figure
 
-__all__ = ["AttitudeRunReport", "error_statistics", "settle_time"]
+__all__ = ["AttitudeRunReport", "error_statistics", "settle_time", "plot_attitude_csv", "read_attitude_csv"]
 
 ORBIT_S = 5578.0
 #: The issue's stable spin: total momentum within this angle of body +Z …
@@ -64,7 +66,7 @@ SPIN_AXIS_BAND_DEG = 5.0
 SPIN_RATE_BAND = 0.05
 _COLUMNS = ("t_s", "mode", "pointing_error_deg", "spin_axis_error_deg", "spin_rate_deg_s", "rate_deg_s",
             "h0_nms", "h1_nms", "h2_nms", "h3_nms", "mx_cmd_Am2", "my_cmd_Am2", "mz_cmd_Am2",
-            "mx_Am2", "my_Am2", "mz_Am2", "target")
+            "mx_mean_Am2", "my_mean_Am2", "mz_mean_Am2", "target")
 
 
 def settle_time(times: list[float], ok: list[bool], start: float) -> float | None:
@@ -115,6 +117,8 @@ class AttitudeRunReport:
         self.start_us = deployment.scheduler.now_us
         self._next_us = self.start_us + self.interval_us
         deployment.scheduler.add_time_listener(self._on_time)
+        plant = self.spacecraft.plant
+        self._drive_before = plant.drive_integrals.totals(plant.t_ns)
         self._sample(self.start_us)
 
     def _on_time(self, time_us: int) -> None:
@@ -154,8 +158,15 @@ class AttitudeRunReport:
         momenta = list(p.wheel_momenta)[:4]
         momenta += [0.0] * (4 - len(momenta))
         self._row_meta.append((key, law.pointing_on_wheels if mode == ControlMode.POINTING else False))
+        drive = p.drive_integrals
+        now = drive.totals(p.t_ns)
+        # the achieved dipole's exact mean since the previous sample: the coils switch within each
+        # 20 ms cycle, so the dipole at the sample instant is aliased (always off at a cycle's end)
+        m_mean = drive.interval_means(self._drive_before, now).m_B if now.t_ns > self._drive_before.t_ns \
+            else (math.nan, math.nan, math.nan)
+        self._drive_before = now
         self.rows.append((t, int(mode), err, spin_err, math.degrees(w[2]), p.rate_deg_s, *momenta,
-                          *c.dipole, *p.m_coils_B, LABELS[label] if label is not None else ""))
+                          *c.dipole, *m_mean, LABELS[label] if label is not None else ""))
         if mode == ControlMode.SPIN_STABLE and self._in_band(spin_err, math.degrees(w[2])):
             if self._spin_since is None:
                 self._spin_since = t
@@ -253,6 +264,8 @@ class AttitudeRunReport:
             "slews": self.slews(),
             "wheel_momentum_max_fraction": self.wheel_fraction(),
             "wheel_momentum_max_fraction_last_orbit": self.wheel_fraction(ORBIT_S),
+            "wheel_momentum_capacity_nms": [self.spacecraft.wheel_limits(i)[1]
+                                            for i in range(self.spacecraft.plant.wheel_count)],
             "final_mode": self.controller.mode.name if self.controller is not None else None,
         }
 
@@ -270,74 +283,94 @@ class AttitudeRunReport:
         os.replace(tmp, path)
         written = [path]
         if plots and self.rows:
-            written += self._plots(out_dir)
+            n = self.spacecraft.plant.wheel_count
+            written += plot_attitude_csv(path, out_dir, [self.spacecraft.wheel_limits(i)[1] for i in range(n)])
         return written
 
-    def _plots(self, out_dir: pathlib.Path) -> list[pathlib.Path]:
-        import matplotlib
 
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+def read_attitude_csv(path: pathlib.Path, max_rows: int = 6000) -> list[tuple]:
+    """The rows of ``attitude.csv`` as the report keeps them (the mode as its value), every k-th row
+    so at most about ``max_rows`` remain."""
+    with open(path, encoding="utf-8", newline="") as f:
+        reader = csv.reader(f)
+        header = next(reader)
+        # the mode by name, the target label as written (runs before issue 27 have none), numbers
+        text = {k for k, name in enumerate(header) if name == "target"}
+        rows = [tuple(ControlMode[v].value if k == 1 else v if k in text else float(v) if v else math.nan
+                      for k, v in enumerate(r)) for r in reader]
+    if tuple(header[:10]) != _COLUMNS[:10]:
+        raise ValueError(f"{path}: not an attitude.csv (columns {header[:10]})")
+    return rows[::max(1, len(rows) // max_rows)]
 
-        stride = max(1, len(self.rows) // 6000)
-        rows = self.rows[::stride]
-        t = [r[0] for r in rows]
-        unit, scale = ("min", 60.0) if t[-1] > 1800 else ("s", 1.0)
-        tt = [v / scale for v in t]
-        written = []
 
-        fig, ax = plt.subplots(figsize=(9, 3))
-        ax.step(tt, [r[1] for r in rows], where="post", color="tab:purple")
-        ax.set_yticks([m.value for m in ControlMode], [m.name for m in ControlMode])
-        ax.set_xlabel(f"time ({unit})")
-        ax.set_title("Attitude control mode")
-        ax.grid(alpha=0.3)
-        fig.tight_layout()
-        written.append(save_figure(fig, out_dir / "attitude_mode.png"))
-        plt.close(fig)
+def plot_attitude_csv(path: pathlib.Path, out_dir: pathlib.Path, wheel_capacity_nms: list[float]) -> list[pathlib.Path]:
+    """Draw the attitude report's plots from its ``attitude.csv`` (a run's, or ``fprime-lite plot``'s):
+    ``attitude_mode.png``, ``pointing_error.png``, ``wheel_momentum.png`` (one line per wheel of
+    ``wheel_capacity_nms``, N·m·s, with 50 % of the first wheel's capacity dashed) and
+    ``dipole_commanded.png``. Returns the files written."""
+    import matplotlib
 
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rows = read_attitude_csv(path)
+    if len(rows) < 2:
+        return []
+    t = [r[0] for r in rows]
+    unit, scale = ("min", 60.0) if t[-1] > 1800 else ("s", 1.0)
+    tt = [v / scale for v in t]
+    written = []
+
+    fig, ax = plt.subplots(figsize=(9, 3))
+    ax.step(tt, [r[1] for r in rows], where="post", color="tab:purple")
+    ax.set_yticks([m.value for m in ControlMode], [m.name for m in ControlMode])
+    ax.set_xlabel(f"time ({unit})")
+    ax.set_title("Attitude control mode")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    written.append(save_figure(fig, out_dir / "attitude_mode.png"))
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(9, 4))
+    pe = [(a, r[2]) for a, r in zip(tt, rows, strict=True) if r[1] == ControlMode.POINTING and r[2] > 0]
+    if pe:
+        ax.semilogy([p[0] for p in pe], [p[1] for p in pe], ".", ms=1.5, label="pointing error (POINTING)")
+    se = [(a, r[3]) for a, r in zip(tt, rows, strict=True) if r[1] == ControlMode.SPIN_STABLE and r[3] > 0]
+    if se:
+        ax.semilogy([p[0] for p in se], [p[1] for p in se], ".", ms=1.5, label="momentum to +Z (SPIN_STABLE)")
+    ax.axhline(0.1, color="tab:red", ls=":", lw=1, label="0.1°")
+    ax.set_ylabel("angle (deg)")
+    ax.set_xlabel(f"time ({unit})")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3, which="both")
+    ax.set_title("True pointing error and spin-axis error")
+    fig.tight_layout()
+    written.append(save_figure(fig, out_dir / "pointing_error.png"))
+    plt.close(fig)
+
+    if wheel_capacity_nms:
         fig, ax = plt.subplots(figsize=(9, 4))
-        pe = [(a, r[2]) for a, r in zip(tt, rows, strict=True) if r[1] == ControlMode.POINTING and r[2] > 0]
-        if pe:
-            ax.semilogy([p[0] for p in pe], [p[1] for p in pe], ".", ms=1.5, label="pointing error (POINTING)")
-        se = [(a, r[3]) for a, r in zip(tt, rows, strict=True) if r[1] == ControlMode.SPIN_STABLE and r[3] > 0]
-        if se:
-            ax.semilogy([p[0] for p in se], [p[1] for p in se], ".", ms=1.5, label="momentum to +Z (SPIN_STABLE)")
-        ax.axhline(0.1, color="tab:red", ls=":", lw=1, label="0.1°")
-        ax.set_ylabel("angle (deg)")
-        ax.set_xlabel(f"time ({unit})")
+        for i in range(len(wheel_capacity_nms)):
+            ax.plot(tt, [r[6 + i] * 1e3 for r in rows], lw=0.8, label=f"wheel {i}")
+        for s in (1, -1):
+            ax.axhline(s * 0.5 * wheel_capacity_nms[0] * 1e3, color="grey", ls="--", lw=0.8)
+        ax.set_ylabel("wheel momentum (mN·m·s)")
+        ax.set_xlabel(f"time ({unit}); dashed: 50 % of capacity")
         ax.legend(fontsize=8)
-        ax.grid(alpha=0.3, which="both")
-        ax.set_title("True pointing error and spin-axis error")
-        fig.tight_layout()
-        written.append(save_figure(fig, out_dir / "pointing_error.png"))
-        plt.close(fig)
-
-        n = self.spacecraft.plant.wheel_count
-        if n:
-            fig, ax = plt.subplots(figsize=(9, 4))
-            for i in range(n):
-                ax.plot(tt, [r[6 + i] * 1e3 for r in rows], lw=0.8, label=f"wheel {i}")
-            h_max = self.spacecraft.wheel_limits(0)[1]
-            for s in (1, -1):
-                ax.axhline(s * 0.5 * h_max * 1e3, color="grey", ls="--", lw=0.8)
-            ax.set_ylabel("wheel momentum (mN·m·s)")
-            ax.set_xlabel(f"time ({unit}); dashed: 50 % of capacity")
-            ax.legend(fontsize=8)
-            ax.grid(alpha=0.3)
-            fig.tight_layout()
-            written.append(save_figure(fig, out_dir / "wheel_momentum.png"))
-            plt.close(fig)
-
-        fig, ax = plt.subplots(figsize=(9, 4))
-        for k, name in enumerate("xyz"):
-            ax.plot(tt, [r[10 + k] for r in rows], lw=0.7, label=f"m_{name} commanded")
-        ax.set_ylabel("dipole (A·m²)")
-        ax.set_xlabel(f"time ({unit})")
-        ax.legend(fontsize=8, ncol=3)
         ax.grid(alpha=0.3)
-        ax.set_title("Commanded dipole (coils on 80 % of each control cycle)")
         fig.tight_layout()
-        written.append(save_figure(fig, out_dir / "dipole.png"))
+        written.append(save_figure(fig, out_dir / "wheel_momentum.png"))
         plt.close(fig)
-        return written
+
+    fig, ax = plt.subplots(figsize=(9, 4))
+    for k, name in enumerate("xyz"):
+        ax.plot(tt, [r[10 + k] for r in rows], lw=0.7, label=f"m_{name} commanded")
+    ax.set_ylabel("dipole (A·m²)")
+    ax.set_xlabel(f"time ({unit})")
+    ax.legend(fontsize=8, ncol=3)
+    ax.grid(alpha=0.3)
+    ax.set_title("Commanded dipole (coils on 80 % of each control cycle; dipole.png: what they gave)")
+    fig.tight_layout()
+    written.append(save_figure(fig, out_dir / "dipole_commanded.png"))
+    plt.close(fig)
+    return written

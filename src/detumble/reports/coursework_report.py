@@ -5,7 +5,8 @@ period (``metrics_interval_s``, default the coursework's 0.01 s) and feeds the s
 settling trackers the plant-only runner uses (:class:`detumble.sim.settling_metrics.SettlingMetrics`),
 so ``summary.json`` carries the same ``settling_time_2pct_s``, ``settling_time_2pct_axes_s`` and
 ``time_below_threshold_s`` as ``fprime-lite sim``; every ``truth_interval_s`` a row goes to
-``truth.csv`` (ω in deg/s and the ADCS columns of :mod:`detumble.sim.truth`).
+``truth.csv`` (ω in deg/s and the ADCS columns of :mod:`detumble.sim.truth`). When the run ends it
+draws seed 004's time histories from ``truth.csv`` (:mod:`detumble.reports.history_plots`).
 """
 from __future__ import annotations
 
@@ -23,6 +24,11 @@ from detumble.sim.truth import adcs_header, adcs_row
 from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthSample
 
 __all__ = ["CourseworkRunReport"]
+
+
+def _finite(x: float) -> float | None:
+    """``x``, or None when the plant diverged (summary.json is strict JSON)."""
+    return x if math.isfinite(x) else None
 
 
 
@@ -79,7 +85,8 @@ class CourseworkRunReport:
         return {"rate_deg_s": self.spacecraft.truth().rate_deg_s, "state": ""}
 
     def summary(self) -> dict:
-        out = {"initial_rate_deg_s": self.initial_rate_deg_s, "final_rate_deg_s": self.spacecraft.truth().rate_deg_s,
+        out = {"initial_rate_deg_s": self.initial_rate_deg_s,
+               "final_rate_deg_s": _finite(self.spacecraft.truth().rate_deg_s),
                "scenario": self.spacecraft.scenario.name, "physics_steps": self.spacecraft.steps_taken}
         if self.metrics is not None:
             out.update(self.metrics.summary())
@@ -94,4 +101,9 @@ class CourseworkRunReport:
         self._file.close()
         os.replace(self._path.with_name(".truth.csv.part"), self._path)
         self._file = None
-        return [self._path]
+        written = [self._path]
+        if plots:
+            from detumble.reports.history_plots import plot_time_histories
+
+            written += plot_time_histories(self._path, pathlib.Path(out_dir))
+        return written

@@ -25,7 +25,12 @@ from detumble.reports.power_budget import POWER_COLUMNS as _POWER_COLUMNS, Power
 from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthSample
 from detumble.components.types import DetumbleState
 
-__all__ = ["DetumbleRunReport"]
+__all__ = ["DetumbleRunReport", "MEAN_DIPOLE_COLUMNS"]
+
+#: ``truth.csv``'s column suffix of each coil face (``level_mean_xp``, ``on_zm`` …)
+_FACE_SUFFIX = {0: "xp", 1: "xm", 2: "yp", 3: "ym", 5: "zm"}
+#: the achieved coil dipole's mean over each sample interval, A·m² in B
+MEAN_DIPOLE_COLUMNS = _MEAN_DIPOLE_COLUMNS = ("m_mean_x_Am2", "m_mean_y_Am2", "m_mean_z_Am2")
 
 
 
@@ -35,11 +40,13 @@ class DetumbleRunReport:
 
     Args:
         spacecraft: the simulated spacecraft (``$spacecraft``).
-        manager: the qualified name of the DetumbleManager instance.
+        manager: the qualified name of the DetumbleManager instance, or None for a deployment whose
+            manager does not fly (``adcs_ref``): ``truth.csv`` then has no ``frac_*``/``strategy``
+            columns and no ``state.png`` is drawn.
         truth_interval_s: how often the truth trace is sampled (simulated seconds).
     """
 
-    def __init__(self, spacecraft: SimulatedSpacecraft, *, manager: str = "ReferenceDeployment.detumbleManager",
+    def __init__(self, spacecraft: SimulatedSpacecraft, *, manager: str | None = "ReferenceDeployment.detumbleManager",
                  truth_interval_s: float = 1.0):
         if not truth_interval_s > 0:
             raise ValueError(f"truth_interval_s must be positive, got {truth_interval_s}")
@@ -63,7 +70,8 @@ class DetumbleRunReport:
     # --- run hooks (called by ``fprime-lite run``) ------------------------------------------------
 
     def begin(self, deployment, out_dir: pathlib.Path) -> None:
-        self.manager = deployment.topology.instance(self.manager_name).component
+        self.manager = None if self.manager_name is None else deployment.topology.instance(self.manager_name).component
+        states = tuple(DetumbleState) if self.manager is not None else ()
         self.start_us = deployment.scheduler.now_us
         self._path = pathlib.Path(out_dir) / "truth.csv"
         clean_temporary_files(self._path.parent)  # what a killed run left (a live run's are kept)
@@ -71,13 +79,18 @@ class DetumbleRunReport:
         fh = self._file
         self._writer = csv.writer(fh, lineterminator="\n")
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
-                               "bz_uT", "level_xp", "level_xm", "level_yp", "level_ym", "level_zm",
-                               *(f"frac_{st.name.lower()}" for st in DetumbleState), "strategy",
-                               *adcs_header(self.spacecraft.plant, with_field=False), *_POWER_COLUMNS])
+                               "bz_uT", *(f"level_mean_{_FACE_SUFFIX[f]}" for f in COIL_FACES),
+                               *(f"on_{_FACE_SUFFIX[f]}" for f in COIL_FACES),
+                               *(f"frac_{st.name.lower()}" for st in states), *(["strategy"] if states else []),
+                               *adcs_header(self.spacecraft.plant, with_field=False), *_MEAN_DIPOLE_COLUMNS,
+                               *_POWER_COLUMNS])
+        plant = self.spacecraft.plant
+        self._drive_before = plant.drive_integrals.totals(plant.t_ns)
         self._state_us = {s: 0 for s in DetumbleState}
         self._progress_us = {s: 0 for s in DetumbleState}
         self._state_since = deployment.scheduler.now_us
-        deployment.scheduler.add_time_listener(self._on_time)
+        if self.manager is not None:
+            deployment.scheduler.add_time_listener(self._on_time)
         self.spacecraft.set_trace(self._sample, self.truth_interval_us)
 
     def _on_time(self, time_us: int) -> None:
@@ -94,15 +107,28 @@ class DetumbleRunReport:
         if self.time_below_1_deg_s is None and s.rate_deg_s < 1.0:
             self.time_below_1_deg_s = t
         w = s.omega_BN_B
-        levels = [s.coil_levels.get(f, 0) for f in COIL_FACES]
-        strategy = getattr(self.manager, "strategy", None)
-        total = sum(self._state_us.values())
-        fractions = [self._state_us[st] / total if total else 0.0 for st in DetumbleState]
-        self._state_us = {st: 0 for st in DetumbleState}
+        plant = self.spacecraft.plant
+        drive = plant.drive_integrals
+        now = drive.totals(plant.t_ns)
+        if now.t_ns > self._drive_before.t_ns:  # the means over the interval since the previous sample
+            means = drive.interval_means(self._drive_before, now)
+            switched = [*(f"{means.level.get(f, 0.0):.3f}" for f in COIL_FACES),
+                        *(f"{means.on.get(f, 0.0):.4f}" for f in COIL_FACES)]
+            dipole: list = list(means.m_B)
+        else:  # the first sample closes no interval
+            switched, dipole = [""] * (2 * len(COIL_FACES)), [""] * 3
+        self._drive_before = now
+        manager_columns: list = []
+        if self.manager is not None:
+            strategy = getattr(self.manager, "strategy", None)
+            total = sum(self._state_us.values())
+            manager_columns = [*(f"{self._state_us[st] / total if total else 0.0:.4f}" for st in DetumbleState),
+                               strategy.name if strategy is not None else ""]
+            self._state_us = {st: 0 for st in DetumbleState}
         self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
-                               s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *levels,
-                               *(f"{f:.4f}" for f in fractions), strategy.name if strategy is not None else "",
-                               *adcs_row(self.spacecraft.plant, with_field=False), *self.power.sample(t)])
+                               s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *switched,
+                               *manager_columns,
+                               *adcs_row(plant, with_field=False), *dipole, *self.power.sample(t)])
 
     def on_event(self, event) -> None:
         """A downlinked event (``fprime_lite.ground.downlink.DecodedEvent``)."""
@@ -136,7 +162,7 @@ class DetumbleRunReport:
     def _state_shares(self) -> str:
         shares = self.state_shares()
         if not shares:
-            return self.manager.state.name if self.manager is not None else "?"
+            return self.manager.state.name if self.manager is not None else ""
         ranked = sorted(((v, k) for k, v in shares.items() if v >= 0.05), reverse=True)
         return " ".join(f"{name} {share:.0%}" for share, name in ranked)
 
@@ -145,7 +171,7 @@ class DetumbleRunReport:
         power = self.power.summary(self.detumble_started_s, self.detumble_complete_s)
         return {
             "initial_rate_deg_s": self.initial_rate_deg_s,
-            "final_rate_deg_s": final.rate_deg_s,
+            "final_rate_deg_s": final.rate_deg_s if math.isfinite(final.rate_deg_s) else None,  # None: diverged
             "detumble_started_s": self.detumble_started_s,
             "detumble_complete_s": self.detumble_complete_s,
             "time_below_1_deg_s": self.time_below_1_deg_s,

@@ -16,8 +16,10 @@ from detumble.reports.figures import read_truth, save_figure
 
 __all__ = ["PowerBudget", "plot_power", "POWER_COLUMNS"]
 
-#: Columns the run report appends to ``truth.csv`` (``nan`` without an electrical system).
-POWER_COLUMNS = ("soc", "bus_v", "solar_w", "load_w", "coil_w", "coil_j", "eclipse")
+#: Columns the run report appends to ``truth.csv`` (``nan`` without an electrical system): the state at
+#: the sample (``load_w``/``coil_w``: the electrical system's last 100 ms step), then the exact mean
+#: load and coil power over the interval since the previous sample (the coils switch within it).
+POWER_COLUMNS = ("soc", "bus_v", "solar_w", "load_w", "coil_w", "coil_j", "eclipse", "load_w_mean", "coil_w_mean")
 
 
 class PowerBudget:
@@ -31,6 +33,8 @@ class PowerBudget:
         self.times: list[float] = []
         self.coil_j: list[float] = []
         self._eclipse_samples = 0
+        self._energy: tuple[float, float] | None = None  # (coil J, load J) at the previous sample
+        self._energy_t_s = 0.0
 
     def sample(self, t_s: float) -> tuple:
         """One row of the power columns at run time ``t_s``."""
@@ -41,8 +45,13 @@ class PowerBudget:
         self.coil_j.append(eps.coil_j)
         self.min_bus_v = min(self.min_bus_v, eps.bus_v)
         self._eclipse_samples += eps.eclipse
+        coil_j, load_j = energy = self.spacecraft.energy_j()
+        before, dt = self._energy, t_s - self._energy_t_s
+        means = ("", "") if before is None or dt <= 0.0 else \
+            (f"{(load_j - before[1]) / dt:.4f}", f"{(coil_j - before[0]) / dt:.4f}")  # none at the first sample
+        self._energy, self._energy_t_s = energy, t_s
         return (f"{eps.battery.soc:.6f}", f"{eps.bus_v:.4f}", f"{eps.solar_w:.4f}", f"{eps.load_w:.4f}",
-                f"{eps.coil_w:.4f}", f"{eps.coil_j:.3f}", int(eps.eclipse))
+                f"{eps.coil_w:.4f}", f"{eps.coil_j:.3f}", int(eps.eclipse), *means)
 
     def coil_energy_at(self, t_s: float) -> float:
         """Cumulative coil energy (J) at run time ``t_s`` (interpolated between samples)."""
@@ -88,7 +97,7 @@ def plot_power(truth_csv: pathlib.Path, out_dir: pathlib.Path, started_s=None, c
 
     data = read_truth(truth_csv)
     t = data["t_s"]
-    if not t or "soc" not in data or all(math.isnan(v) for v in data["soc"]):
+    if len(t) < 2 or "soc" not in data or all(math.isnan(v) for v in data["soc"]):
         return []
     unit, scale = ("min", 60.0) if t[-1] > 3 * 3600 / 10 else ("s", 1.0)
     tt = [v / scale for v in t]
@@ -102,8 +111,12 @@ def plot_power(truth_csv: pathlib.Path, out_dir: pathlib.Path, started_s=None, c
     ax1.legend(loc="upper left", fontsize=8)
     ax1b.legend(loc="upper right", fontsize=8)
     ax2.plot(tt, data["solar_w"], color="tab:orange", lw=0.8, label="solar array (W)")
-    ax2.plot(tt, data["load_w"], color="black", lw=0.8, label="total load (W)")
-    ax2.plot(tt, data["coil_w"], color="tab:red", lw=0.8, label="coils (W)")
+    if "coil_w_mean" in data:  # exact means over each sample interval (the coils switch within it)
+        ax2.plot(tt, data["load_w_mean"], color="black", lw=0.8, label="total load, interval mean (W)")
+        ax2.plot(tt, data["coil_w_mean"], color="tab:red", lw=0.8, label="coils, interval mean (W)")
+    else:  # an older run: the electrical system's 100 ms step before each sample
+        ax2.plot(tt, data["load_w"], color="black", lw=0.8, label="total load (W)")
+        ax2.plot(tt, data["coil_w"], color="tab:red", lw=0.8, label="coils (W)")
     for axis in (ax1, ax2):
         ecl = data["eclipse"]
         start = None

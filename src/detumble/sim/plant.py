@@ -22,6 +22,7 @@ import math
 from detumble.sim import frames, plant_kernel
 from detumble.sim.attitude import RigidBody, State
 from detumble.sim.coils import CoilSet, TorqueRods
+from detumble.sim.drive_integrals import DriveIntegrals
 from detumble.sim.field import DipoleField, FieldAlongOrbit, OrbitConstantField, WmmField
 from detumble.sim.laws import scale_to_limits
 from detumble.sim.orbit import CircularOrbit, TleOrbit
@@ -107,6 +108,10 @@ class Plant:
             self.actuators: CoilSet | TorqueRods = TorqueRods(sc.spacecraft.rods_max_dipole_am2)
         else:
             self.actuators = CoilSet(sc.spacecraft.coils)
+        #: exact time integrals of the levels and dipoles (interval means for the logs), kept at each change
+        #: once something asked for them (:attr:`drive_integrals`); None until then, so runs that log no
+        #: means (campaigns, benchmarks, plant-only runs) pay one attribute test per level change
+        self._drive: DriveIntegrals | None = None
         self._scale_dipole = sc.spacecraft.actuator_saturation == "scale"
         self._m_commanded_B: Vec3 = _ZERO
         #: set_coil_level ran since ``_m_commanded_B`` was computed (or apply_dipole_B set it): the
@@ -351,6 +356,9 @@ class Plant:
             raise TypeError("this spacecraft has ideal torque rods, not face coils; use apply_dipole_B")
         coil = act.coils.get(face)
         if coil is None or type(level) is not int or level != coil.level:
+            drive = self._drive
+            if drive is not None and drive.t_ns != self._t_ns:  # the coils switch together: credit once
+                drive.credit(self._t_ns)
             act.set_level(face, level)  # drivers re-command unchanged levels: nothing to set then
         self._commanded_stale = True  # m_commanded_B follows the levels from now on
 
@@ -364,6 +372,15 @@ class Plant:
             self._commanded_stale = False
         return self._m_commanded_B
 
+    @property
+    def drive_integrals(self) -> DriveIntegrals:
+        """The exact time integrals of the actuators' levels and dipoles from the first time this is
+        read (:mod:`detumble.sim.drive_integrals`); kept from then on, at each change."""
+        if self._drive is None:
+            self._drive = DriveIntegrals(self.actuators, self._t_ns)
+            self._drive.set_commanded(self.m_commanded_B)
+        return self._drive
+
     def coil_levels(self) -> dict[int, int]:
         if not isinstance(self.actuators, CoilSet):
             return {}
@@ -374,6 +391,10 @@ class Plant:
         clipped, or the whole vector scaled), split over each axis's coils for coils."""
         self._m_commanded_B = (float(m_B[0]), float(m_B[1]), float(m_B[2]))
         self._commanded_stale = False
+        drive = self._drive
+        if drive is not None:
+            drive.credit(self._t_ns)
+            drive.set_commanded(self._m_commanded_B)
         if self._scale_dipole:
             m_B = scale_to_limits(m_B, self.actuators.max_dipole_per_axis())
         self.actuators.apply_dipole_B(m_B)

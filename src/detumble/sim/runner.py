@@ -376,14 +376,17 @@ def build_parser(prog: str = "python -m detumble.sim") -> argparse.ArgumentParse
                         "$FPRIME_LITE_PLANT, else auto); both give the same floats")
     p.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE",
                    help="override one scenario value, e.g. sensors.magnetometer.noise_std_gauss=0 (repeatable)")
+    p.add_argument("--no-plots", action="store_true", help="write no plots (fprime-lite sim draws them by default)")
     return p
 
 
 def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim",
-         clean_out: Callable[[str], object] | None = None) -> int:
+         clean_out: Callable[[str], object] | None = None, draw_plots: Callable[[str], object] | None = None) -> int:
     """Entry point. Returns 0 on success, 2 on bad input (message on stderr). ``clean_out(folder)``,
     if given, is called on the output folder before anything is written there (``fprime-lite sim``
-    passes the framework's start-up clean-up of temporary files)."""
+    passes the framework's start-up clean-up of temporary files); ``draw_plots(folder)``, if given,
+    after the outputs are written, unless ``--no-plots`` (``fprime-lite sim`` passes the application's
+    run plotter: this layer draws nothing)."""
     parser = build_parser(prog)
     try:
         args = parser.parse_args(argv)
@@ -407,6 +410,8 @@ def main(argv: list[str] | None = None, prog: str = "python -m detumble.sim",
         if clean_out is not None:
             clean_out(args.out)
         write_outputs(result, args.out)
+        if draw_plots is not None and not args.no_plots:
+            draw_plots(args.out)
     except OutputFolderError as exc:
         print(f"error: --out {args.out}: {exc}", file=sys.stderr)
         return 2

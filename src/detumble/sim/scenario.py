@@ -48,7 +48,16 @@ FIELD_MODELS = ("dipole", "wmm2025", "none", "orbit_constant")
 
 
 class ScenarioError(DetumbleError, ValueError):
-    """A scenario file or dictionary is invalid; the message names file, line and key."""
+    """A scenario file or dictionary is invalid; the message names file, line and key.
+
+    ``key_path`` and ``detail``: the dotted key and what is wrong with it, when one key is at fault."""
+
+    key_path: str | None = None
+    detail: str | None = None
+
+
+class SettingError(ScenarioError):
+    """A ``--set KEY.PATH=VALUE`` override is wrong; the message starts with ``--set 'KEY.PATH=VALUE':``."""
 
 
 @dataclass(frozen=True)
@@ -225,7 +234,14 @@ def parse_scenario(text: str, source: str = "<string>", seed: int | None = None,
         data = {}
     for setting in settings:
         apply_setting(data, setting, source)
-    return scenario_from_dict(data, source=source, lines=lines, seed=seed)
+    try:
+        return scenario_from_dict(data, source=source, lines=lines, seed=seed)
+    except ScenarioError as exc:
+        for setting in settings:  # a value a --set gave is named by the --set, not the file's line
+            key = setting.partition("=")[0].strip()
+            if exc.key_path is not None and (exc.key_path == key or exc.key_path.startswith((key + ".", key + "["))):
+                raise SettingError(f"--set {setting!r}: {exc.key_path}: {exc.detail}") from None
+        raise
 
 
 def apply_setting(data: dict, setting: str, source: str = "<scenario>") -> None:
@@ -240,12 +256,12 @@ def apply_setting(data: dict, setting: str, source: str = "<scenario>") -> None:
     """
     path_text, sep, value_text = setting.partition("=")
     if not sep or not path_text.strip():
-        raise ScenarioError(f"--set {setting!r}: expected KEY.PATH=VALUE, e.g. "
+        raise SettingError(f"--set {setting!r}: expected KEY.PATH=VALUE, e.g. "
                             f"sensors.magnetometer.noise_std_gauss=0")
     try:
-        value = yaml.safe_load(value_text)
+        value = _numbers(yaml.safe_load(value_text), setting)
     except yaml.YAMLError as exc:
-        raise ScenarioError(f"--set {setting!r}: the value is not valid YAML: "
+        raise SettingError(f"--set {setting!r}: the value is not valid YAML: "
                             f"{getattr(exc, 'problem', exc)}") from None
     keys = path_text.strip().split(".")
     node = data
@@ -259,7 +275,7 @@ def apply_setting(data: dict, setting: str, source: str = "<scenario>") -> None:
                 if key not in known:
                     where = ".".join(walked) or "the top level"
                     addable = sorted(k for k in known if k not in node)
-                    raise ScenarioError(f"--set {setting!r}: {source} has no key {key!r} at {where} "
+                    raise SettingError(f"--set {setting!r}: {source} has no key {key!r} at {where} "
                                         f"(keys there: {', '.join(map(str, node)) or 'none'})"
                                         + (f"; keys that can be added there: {', '.join(addable)}" if addable else ""))
                 if not last:
@@ -275,15 +291,32 @@ def apply_setting(data: dict, setting: str, source: str = "<scenario>") -> None:
             schema = known.get(key)
         elif isinstance(node, list):
             if not (key.isdigit() and int(key) < len(node)):
-                raise ScenarioError(f"--set {setting!r}: {'.'.join(walked)} is a list of {len(node)}; "
+                raise SettingError(f"--set {setting!r}: {'.'.join(walked)} is a list of {len(node)}; "
                                     f"address an element by its index 0..{len(node) - 1}")
             if last:
                 node[int(key)] = value
             else:
                 node = node[int(key)]
         else:
-            raise ScenarioError(f"--set {setting!r}: {'.'.join(walked)} is a value, not a section")
+            raise SettingError(f"--set {setting!r}: {'.'.join(walked)} is a value, not a section")
         walked.append(key)
+
+
+def _numbers(value: Any, setting: str) -> Any:
+    """``value`` with the words a command line means as numbers made numbers: YAML 1.1 reads ``1e6``
+    (no dot, no sign) as text; ``nan`` and ``inf`` are refused, as every scenario number must be finite."""
+    if isinstance(value, list):
+        return [_numbers(v, setting) for v in value]
+    if isinstance(value, str):
+        try:
+            x = float(value)
+        except ValueError:
+            return value
+        if not math.isfinite(x):
+            raise SettingError(f"--set {setting!r}: {value} is not a finite number; scenario values must be "
+                               f"finite — give a number such as 1e6 or 2.5e-3")
+        return x
+    return value
 
 
 _LEAF = None
@@ -493,7 +526,9 @@ class _Ctx:
             p = p[:-1]
         dotted = ".".join(f"[{x}]" if isinstance(x, int) else x for x in path).replace(".[", "[")
         where = f"{self.source}:{line}" if line is not None else self.source
-        raise ScenarioError(f"{where}: {dotted or '(top level)'}: {msg}")
+        exc = ScenarioError(f"{where}: {dotted or '(top level)'}: {msg}")
+        exc.key_path, exc.detail = dotted, msg
+        raise exc
 
     def number(self, path: tuple, v: Any, *, positive: bool = False, nonneg: bool = False) -> float:
         if isinstance(v, str):

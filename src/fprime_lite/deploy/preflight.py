@@ -26,7 +26,8 @@ from fprime_lite.deploy.topology import Topology
 from fprime_lite.svc.prm_db import ParamFileError, decode_param_file
 from fprime_lite.wire.seqfile import Descriptor, SequenceEmpty, SequenceFileError, SequenceTextError, read_sequence
 
-__all__ = ["PreflightError", "check_parameter_file", "check_sequence", "check_run_files", "topology_file_problems"]
+__all__ = ["PreflightError", "check_parameter_file", "check_sequence", "check_run_files", "topology_file_problems",
+           "topology_warnings"]
 
 
 class PreflightError(FprimeLiteError):
@@ -155,3 +156,16 @@ def topology_file_problems(loaded) -> list[str]:
             problems.append(f"{getattr(line, 'file', loaded.path)}:{line if line is not None else '?'}: '{key}': "
                             f"{message}{fix}")
     return problems
+
+
+def topology_warnings(loaded) -> list[str]:
+    """What ``fprime-lite check`` warns about in a topology that loads (it still flies): a topology with
+    no ``patterns:``, whose components' commands, events, telemetry and time are then connected to no
+    service unless ``connections`` wires each by hand — a run records nothing on the ground."""
+    warnings = []
+    if not loaded.topology.patterns:
+        warnings.append(f"{loaded.path}: warning: no 'patterns:' — no component's commands, events, telemetry "
+                        f"or time reach a service, so the ground receives nothing; add e.g. patterns: "
+                        f"{{command: CdhCore.cmdDisp, event: CdhCore.events, telemetry: CdhCore.tlmSend, "
+                        f"time: <Module>.<clock>}} (docs/topology.md, Patterns)")
+    return warnings

@@ -27,7 +27,34 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from typing import Callable, TypeVar
 
-__all__ = ["topology_resource", "resource_role", "ROLES", "ResetLine"]
+from fprime_lite.model.errors import FprimeLiteError
+
+__all__ = ["topology_resource", "resource_role", "ROLES", "ResetLine", "RoleOptionError", "SimulationEnded"]
+
+
+class SimulationEnded(BaseException):
+    """Raised by a resource when the simulated world cannot go on (a plant whose state is no longer
+    finite). It is not a flight-software fault, so it derives from BaseException: the components' fault
+    containment (``except Exception``) lets it through, as it does KeyboardInterrupt. ``fprime-lite run``
+    ends the flight there, writes every output up to that instant with ``stopped_by`` = :attr:`kind` and
+    ``stop_reason`` = the message, and reports the message as the run's problem.
+
+    Args: ``kind``, a short name for ``stopped_by`` ("plant diverged"); ``message``, one line: what
+    happened and what to do."""
+
+    def __init__(self, kind: str, message: str) -> None:
+        super().__init__(message)
+        self.kind = kind
+        self.message = message
+
+    def __str__(self) -> str:
+        return self.message
+
+
+class RoleOptionError(FprimeLiteError):
+    """A command-line option passed to a resource through its role is wrong (``run --set KEY=VALUE``
+    naming no key, a value out of range …). The factory raises it with a complete one-line message
+    that names the option; the loader passes it on as it is instead of blaming the topology's args."""
 
 #: Roles a resource may hold, and what the tools pass to it.
 ROLES = {

@@ -66,11 +66,32 @@ def load(topology="topology.yaml", *, scenario: str | None = None, seed: int | N
     added = folder not in sys.path
     if added:
         sys.path.insert(0, folder)
+    _forget_modules_shadowed_by(folder)
     try:
         return load_topology(path, scheduler_factory=scheduler_factory, role_overrides=overrides)
     finally:
         if added and folder in sys.path:
             sys.path.remove(folder)
+
+
+def _forget_modules_shadowed_by(folder: str) -> None:
+    """Drop from ``sys.modules`` every module a file or package in ``folder`` names that was imported
+    from elsewhere, so this topology's ``counter.Counter`` is its own ``counter.py`` and not the one
+    beside another topology loaded earlier in this process (two deployments with a module of the same
+    name). What was built from the earlier module keeps it; only new imports look again."""
+    base = pathlib.Path(folder)
+    try:
+        entries = list(base.iterdir())
+    except OSError:
+        return
+    names = {p.stem for p in entries if p.suffix == ".py"} | \
+        {p.name for p in entries if (p / "__init__.py").is_file()}
+    for name in (names & set(sys.modules)) - sys.stdlib_module_names:
+        origin = getattr(sys.modules[name], "__file__", None)
+        if origin is None or pathlib.Path(origin).resolve().is_relative_to(base):
+            continue
+        for key in [k for k in sys.modules if k == name or k.startswith(name + ".")]:
+            del sys.modules[key]
 
 
 def claim_run_folder(out=None, runs_dir="runs") -> pathlib.Path:

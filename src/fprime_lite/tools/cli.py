@@ -146,6 +146,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--allow-warnings", action="store_true", help="exit 0 even when the flight had handler "
                      "faults, cycle slips or WARNING_HI/FATAL events (the summary still lists them)")
     run.add_argument("-v", "--verbose", action="store_true", help="log framework warnings to stderr")
+    run.add_argument("--force", action="store_true", help="fly a run longer than 6 h even when its outputs would "
+                     "not fit the disk or exceed 10 GB (estimated from a 60 s probe flight; docs/outputs.md)")
     run.add_argument("--realtime", action="store_true", help="pace the run to the wall clock (simulated time "
                      "never runs ahead of it); Ctrl-C stops the run and still writes the outputs")
     run.add_argument("--gds", nargs="?", const="127.0.0.1:50000", metavar="HOST:PORT",
@@ -243,7 +245,7 @@ def _load(path: str):
 
 
 def cmd_check(args) -> int:
-    from fprime_lite.deploy.preflight import topology_file_problems
+    from fprime_lite.deploy.preflight import topology_file_problems, topology_warnings
     from fprime_lite.deploy.topology import TopologyError
 
     topo, loaded = _load_model(args)
@@ -258,6 +260,8 @@ def cmd_check(args) -> int:
     problems = topology_file_problems(loaded)
     if problems:
         raise TopologyError(problems)
+    for warning in topology_warnings(loaded):
+        print(warning, file=sys.stderr)
     print(f"{args.topology}: OK — deployment {topo.deployment}: {len(topo.instances)} instances, "
           f"{len(topo.connections)} connections")
     return 0
@@ -426,6 +430,7 @@ def _float_text(setting: str, text: str, type_name: str):
 
 def cmd_run(args) -> int:
     from fprime_lite.deploy.preflight import check_run_files
+    from fprime_lite.tools import disk_estimate
     from fprime_lite.tools.api import claim_run_folder, load
     from fprime_lite.tools.runner import run_deployment, run_duration
     from fprime_lite.tools.stop_condition import StopConditionError, parse_stop_condition
@@ -458,6 +463,14 @@ def cmd_run(args) -> int:
     check_run_files(loaded, parameter_file=args.params, sequence=args.seq)
     args.duration = run_duration(loaded, args.duration)  # the topology's own run length when not given
     _check_file_root(args.file_root)
+    if args.duration > disk_estimate.CHECK_ABOVE_S and not args.force and not realtime:
+        def fly(folder: pathlib.Path, seconds: float) -> None:
+            probe = load(args.topology, scenario=args.scenario, seed=args.seed, settings=args.set,
+                         truth_interval_s=args.truth_interval)
+            run_deployment(probe, folder, duration_s=seconds, parameter_file=args.params, sequence=args.seq,
+                           plots=False, quiet=True)
+        disk_estimate.check_disk(disk_estimate.estimate_output_bytes(fly), args.duration,
+                                 pathlib.Path(args.out or "runs"))
     out = claim_run_folder(args.out)
     if not realtime:
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
@@ -471,6 +484,9 @@ def cmd_run(args) -> int:
         print(f"fprime-lite run: interrupted by {summary['signal']} at t = {summary['sim_seconds']:.3f} s; the "
               f"outputs up to then are in {out}/", file=sys.stderr)
         return 128 + signal.Signals[summary["signal"]].value  # 130 for SIGINT, 143 for SIGTERM, as a shell says
+    if summary.get("stop_reason"):  # the simulation itself ended the run (a diverged plant)
+        print(f"fprime-lite run: stopped: {summary['stop_reason']}", file=sys.stderr)
+        return EXIT_FAILED
     if not summary["ok"]:
         print(f"fprime-lite run: the flight reported problems: {'; '.join(summary['problems'])} "
               f"(--allow-warnings accepts them)", file=sys.stderr)

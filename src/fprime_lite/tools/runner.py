@@ -31,6 +31,7 @@ from typing import Mapping
 
 from fprime_lite.osal.atomic import atomic_write_text
 from fprime_lite.deploy.deployment import Deployment
+from fprime_lite.deploy.resources import SimulationEnded
 from fprime_lite.deploy.dictionary import write_dictionary
 from fprime_lite.ground.downlink import DecodedEvent, GroundRecorder
 from fprime_lite.svc.file_downlink import FileDownlink
@@ -129,11 +130,16 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
         _watch_conditions(deployment.scheduler, reports, conditions, stopped_by)
     end_us = start_us + round(duration_s * 1_000_000)
     signals: list[str] = []
+    ended: SimulationEnded | None = None
     with _stop_on_signals(deployment.scheduler, signals, enabled=interruptible):
-        if progress:
-            _run_with_progress(deployment, end_us, reports, console)
-        else:
-            deployment.scheduler.run(until_us=end_us)  # stop() (an early-stop event) ends it sooner
+        try:
+            if progress:
+                _run_with_progress(deployment, end_us, reports, console)
+            else:
+                deployment.scheduler.run(until_us=end_us)  # stop() (an early-stop event) ends it sooner
+        except SimulationEnded as exc:  # the simulated world cannot go on: keep what flew up to here
+            ended = exc
+            stopped_by.insert(0, exc.kind)
     wall = time.perf_counter() - wall0
     if signals:
         stopped_by.insert(0, "interrupted")
@@ -148,8 +154,11 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     summary["stopped_by"] = stopped_by[0] if stopped_by and sim_s < duration_s - 1e-9 else None
     if summary["stopped_by"] == "interrupted":
         summary["signal"] = signals[0]
-    summary["problems"] = flight_problems(summary, recorder.event_names_by_severity)
-    summary["ok"] = allow_warnings or not summary["problems"]
+    if ended is not None:
+        summary["stop_reason"] = ended.message
+    summary["problems"] = ([ended.message] if ended is not None else []) + \
+        flight_problems(summary, recorder.event_names_by_severity)
+    summary["ok"] = ended is None and (allow_warnings or not summary["problems"])
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2) + "\n")
     if not quiet:
         _print_summary(summary, console)

@@ -6,9 +6,12 @@ harness test) and ``<name>.md`` (a documentation stub); with ``--fpp``, ``<name>
 component in FPP), ``<name>.py`` (its handlers only) and ``test_<name>.py``. A deployment skeleton is a new folder
 ``NAME/`` holding a component skeleton (``--component``, default ``Counter``), ``topology.yaml``
 (CdhCore's command, event and telemetry services, a time source, and a 1 Hz rate group driving the
-component and the telemetry channelizer), ``test_deployment.py`` (flies the topology for a few
-simulated seconds through :func:`fprime_lite.tools.run`) and ``README.md``. ``python -m pytest``
-in the folder passes right away. Nothing existing is overwritten.
+component and the telemetry channelizer), ``test_<name>_deployment.py`` (flies the topology for a few
+simulated seconds through :func:`fprime_lite.tools.run`) and ``README.md``. In a deployment skeleton
+the component's files and both tests carry the deployment's name (``my_sat_counter.py``,
+``test_my_sat_counter.py``, ``test_my_sat_deployment.py``), so several skeletons live in one project and
+one ``python -m pytest`` runs them all. ``python -m pytest`` in the folder passes right away. Nothing
+existing is overwritten.
 """
 from __future__ import annotations
 
@@ -264,8 +267,8 @@ def _write_new(files: dict[pathlib.Path, str]) -> list[pathlib.Path]:
     return list(files)
 
 
-def _component_files(name: str, folder: pathlib.Path) -> dict[pathlib.Path, str]:
-    module = module_name(name)
+def _component_files(name: str, folder: pathlib.Path, module: str | None = None) -> dict[pathlib.Path, str]:
+    module = module or module_name(name)
     fields = {"name": name, "module": module, "instance": name[0].lower() + name[1:]}
     return {folder / f"{module}.py": _COMPONENT.format(**fields),
             folder / f"test_{module}.py": _COMPONENT_TEST.format(**fields),
@@ -298,12 +301,15 @@ def new_deployment(name: str, parent=".", component: str = "Counter") -> list[pa
     folder = parent / name
     if folder.exists():
         raise SkeletonError(f"{folder} already exists — choose another name; nothing was written")
-    module = module_name(component)
+    # every module and test file is named after the deployment too: two skeletons in one project
+    # must not share a test file name (pytest refuses two test_deployment.py) or a module name (the
+    # second `from counter import Counter` would get the first folder's)
+    module = f"{module_name(name)}_{module_name(component)}"
     fields = {"deployment": name, "component": component, "module": module,
               "instance": component[0].lower() + component[1:]}
-    files = _component_files(component, folder)
+    files = _component_files(component, folder, module)
     files[folder / "topology.yaml"] = _TOPOLOGY.format(**fields)
-    files[folder / "test_deployment.py"] = _DEPLOYMENT_TEST.format(**fields)
+    files[folder / f"test_{module_name(name)}_deployment.py"] = _DEPLOYMENT_TEST.format(**fields)
     files[folder / "README.md"] = _DEPLOYMENT_README.format(**fields)
     folder.mkdir()
     return _write_new(files)

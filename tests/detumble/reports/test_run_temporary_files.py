@@ -45,5 +45,6 @@ def test_fprime_lite_sim_writes_under_recognisable_names_and_cleans_its_folder(t
     monkeypatch.setattr(os, "replace", spy)
     assert _sim(["default", "--duration", "2", "--out", str(out)]) == 0
     assert not old.exists()
-    assert len(written) == 2 and all(is_temporary_name(n) for n in written)
-    assert hidden(out) == [] and {p.name for p in out.iterdir()} == {"summary.json", "rate.csv"}
+    plots = {"rates.png", "beta.png", "quaternion_orbit.png"}  # fprime-lite sim draws them (issue 28)
+    assert len(written) == 2 + len(plots) and all(is_temporary_name(n) for n in written)
+    assert hidden(out) == [] and {p.name for p in out.iterdir()} == {"summary.json", "rate.csv"} | plots

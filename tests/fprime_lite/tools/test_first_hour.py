@@ -279,7 +279,8 @@ def test_new_skeleton_passes_its_own_test(tmp_path, kind):
     folder = tmp_path if kind == "component" else tmp_path / "MyHeater"
     names = sorted(p.name for p in folder.iterdir())
     expected = ["my_heater.md", "my_heater.py", "test_my_heater.py"] if kind == "component" else \
-        ["README.md", "counter.md", "counter.py", "test_counter.py", "test_deployment.py", "topology.yaml"]
+        ["README.md", "my_heater_counter.md", "my_heater_counter.py", "test_my_heater_counter.py",
+         "test_my_heater_deployment.py", "topology.yaml"]
     assert names == expected
     done = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider"], cwd=folder,
                           capture_output=True, text=True, timeout=300)

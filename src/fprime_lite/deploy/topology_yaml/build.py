@@ -24,7 +24,7 @@ import pathlib
 import sys
 from typing import Any, Callable
 
-from fprime_lite.deploy.resources import ROLES, resource_role
+from fprime_lite.deploy.resources import ROLES, RoleOptionError, resource_role
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.deploy.topology import Topology
 from fprime_lite.deploy.topology_yaml.problems import Problems
@@ -176,6 +176,8 @@ def _build_resource(spec: ResourceConfig, file: pathlib.Path, resources: dict[st
         kwargs.update(role_overrides.get(role, {}))
     try:
         resources[spec.name] = factory(**kwargs)
+    except RoleOptionError:
+        raise  # the command line's option is wrong, not the topology: its message says which
     except Exception as exc:  # noqa: BLE001 - any construction failure is a user-facing problem
         given = role_overrides.get(role, {}) if role else {}
         options = f" with the {role} options {given}" if given else ""
