@@ -73,6 +73,30 @@ def analyse(folder: str) -> dict:
     }
 
 
+def rate_bands(r: dict, edges=(0.5, 1.0, 1.5, 2.0)) -> list[tuple[float, float, np.ndarray]]:
+    """``(low, high, settle times)`` of the runs whose initial rate (deg/s) is in each band (the last
+    band closed); bands without runs are left out."""
+    rate = r["df"]["scenario.initial.rate.magnitude_deg_s"].to_numpy(dtype=float)
+    out = []
+    for lo, hi in zip(edges[:-1], edges[1:], strict=True):
+        sel = (rate >= lo) & ((rate < hi) if hi < edges[-1] else (rate <= hi))
+        if sel.any():
+            out.append((lo, hi, r["settle"][sel]))
+    return out
+
+
+def paired(first: dict, second: dict) -> dict | None:
+    """Runs of two common-random-numbers campaigns paired by seed index: in how many pairs the second
+    settled sooner, and the median of (first − second) settle time, s (None: no pair settled in both)."""
+    a = dict(zip(first["df"]["seed_index"], first["settle"], strict=True))
+    b = dict(zip(second["df"]["seed_index"], second["settle"], strict=True))
+    common = [k for k in a if k in b and np.isfinite(a[k]) and np.isfinite(b[k])]
+    if not common:
+        return None
+    gains = np.array([a[k] - b[k] for k in common])
+    return {"pairs": len(common), "sooner": int((gains > 0).sum()), "median_gain_s": float(np.median(gains))}
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("folders", nargs="+", help="campaign output folders (results.parquet)")
@@ -97,14 +121,12 @@ def main(argv=None) -> int:
         if len(r["failures"]):
             print(f"\n{pathlib.Path(r['folder']).name}: runs not meeting the target")
             print(r["failures"].to_string(index=False))
-        d = r["df"]
-        rate = d["scenario.initial.rate.magnitude_deg_s"].to_numpy(dtype=float)
-        for lo, hi in ((0.5, 1.0), (1.0, 1.5), (1.5, 2.0)):
-            sel = (rate >= lo) & (rate < hi) if hi < 2.0 else (rate >= lo)
-            if sel.any():
-                s = r["settle"][sel]
-                print(f"{pathlib.Path(r['folder']).name}: initial rate {lo}-{hi} deg/s: {int(sel.sum())} runs, "
-                      f"settle p50 {_fmt(percentile(s, 50))} s, max {_fmt(float(np.max(s)))} s")
+        for lo, hi, s in rate_bands(r):
+            print(f"{pathlib.Path(r['folder']).name}: initial rate {lo}-{hi} deg/s: {len(s)} runs, "
+                  f"settle p50 {_fmt(percentile(s, 50))} s, max {_fmt(float(np.max(s)))} s")
+    if len(results) == 2 and (p := paired(*results)) is not None:
+        print(f"paired: the second campaign settles sooner in {p['sooner']} of {p['pairs']} pairs "
+              f"(median {p['median_gain_s']:.1f} s sooner)")
     if args.plot:
         _plot(results, pathlib.Path(args.plot))
     return 0

@@ -89,10 +89,10 @@ class CourseworkController(PassiveComponent):
     CROSS_PRODUCT_GAIN = Param(F64, default=146.0, units="A·m²/(rad/s·T)")  # k of M = k (ω × B), body frame
     BETA_KS = Param(F64, default=990.0, units="A·m²/(rad/s)")   # K_s, on the body-y rate error
     BETA_KD = Param(F64, default=0.06, units="A·m²/(rad/s)")    # K_d, on β̇
-    BETA_SWITCHED = Param(BOOL, default=False)       # eq. 23 or 24 (True) or both, as the listing (False)
+    BETA_SWITCHED = Param(BOOL, default=True)        # eq. 23 or 24, as the equations and figures (True); both (False)
     WHEEL_KP = Param(F64, default=5.0, units="1/s²")  # K_p (times I)
     WHEEL_KD = Param(F64, default=9.0, units="1/s")   # K_d (times I)
-    WHEEL_ERROR = Param(WheelError, default=WheelError.REPORT)
+    WHEEL_ERROR = Param(WheelError, default=WheelError.SHORTEST_PATH)  # REPORT: eq. 25 as written (the long way)
     INERTIA_XX = Param(F64, default=1.67e-3, units="kg·m², body frame")  # principal (products taken as zero)
     INERTIA_YY = Param(F64, default=1.67e-3, units="kg·m², body frame")
     INERTIA_ZZ = Param(F64, default=1.67e-3, units="kg·m², body frame")

@@ -97,12 +97,14 @@ class BetaPd:
         k_s: spin gain K_s, A·m² per rad/s.
         k_d: derivative gain K_d, A·m² per rad/s of β̇.
         n: orbit rate, rad/s (``ω_ref = −n``).
-        switched: ``True`` applies eq. 23 *or* eq. 24 by the larger of |B_z| and |B_x|, as the
-            report's equations say; ``False`` applies both at once, as its MATLAB listing does (the
-            two ``if`` lines are commented out there, and its figures come from that code).
+        switched: ``True`` (default) applies eq. 23 *or* eq. 24 by the larger of |B_z| and |B_x|, as
+            the report's equations say — and its figures: only this form gives Table 1's per-axis
+            pattern (ω_x before ω_z, ω_y in about 83 s; docs/studies/coursework_reproduction.md);
+            ``False`` applies both at once, as its MATLAB listing does (the two ``if`` lines are
+            commented out there).
     """
 
-    def __init__(self, k_s: float, k_d: float, n: float = REPORT_MEAN_MOTION, switched: bool = False):
+    def __init__(self, k_s: float, k_d: float, n: float = REPORT_MEAN_MOTION, switched: bool = True):
         self.k_s = float(k_s)
         self.k_d = float(k_d)
         self.n = float(n)
@@ -167,14 +169,16 @@ class WheelsPd:
     so this law keeps the quaternion it feeds eq. 25 continuous, flipping a reading whose dot product
     with the previous one is negative: what the report's integration amounts to.
 
-    ``shortest_path=True`` is the corrected law: the proportional term takes the sign of the
-    error's real part, so both representations are stable and the body turns the short way.
+    ``shortest_path=True`` (default) is the corrected law: the proportional term takes the sign of
+    the error's real part, so both representations are stable and the body turns the short way.
+    ``shortest_path=False`` is eq. 25 as the report writes it: from 1° off the target it turns the
+    body 179° away before settling (a full turn; docs/studies/coursework_reproduction.md).
     ``torque(q, ω, h)`` takes the report's scalar-last ``q`` (B relative to O), ω in B (rad/s) and
     the wheel momenta along x, y, z (N·m·s) and returns eq. 26's unlimited torque (N·m).
     """
 
     def __init__(self, k_p: float, k_d: float, inertia: Sequence[Sequence[float]], target: Sequence[float],
-                 n: float = REPORT_MEAN_MOTION, shortest_path: bool = False):
+                 n: float = REPORT_MEAN_MOTION, shortest_path: bool = True):
         self.k_p, self.k_d = float(k_p), float(k_d)
         self.inertia = inertia
         self.target = tuple(float(c) for c in target)

@@ -199,6 +199,27 @@ def _settling_time(output: RunOutput, _probe) -> float:
     return float(settled)
 
 
+def _settling_channel(index: int | None):
+    """The run summary's seed-004 settling time of one channel: body-rate axis ``index`` (0, 1, 2 =
+    x, y, z) or, for ``None``, the attitude's real part (the wheel law's)."""
+    def compute(output: RunOutput, _probe) -> float:
+        if index is None:
+            key = "settling_time_2pct_attitude_s"
+            value = output.summary.get(key)
+            present = key in output.summary
+        else:
+            key = "settling_time_2pct_axes_s"
+            axes = output.summary.get(key)
+            present = isinstance(axes, list) and len(axes) == 3
+            value = axes[index] if isinstance(axes, list) and present else None
+        if not present:
+            raise MetricUnavailable(f"summary.json has no {key} (only seed 004's laws measure it)")
+        if value is None:
+            raise MetricUnavailable(f"not settled within the run (summary.json {key} is null)")
+        return float(value)
+    return compute
+
+
 def _pointing_statistic(key: str):
     """The run summary's POINTING error statistic ``key`` (median, p95, max; the steady samples after each
     interval's acquisition, detumble.analysis.pointing_windows)."""
@@ -301,6 +322,11 @@ METRICS = (
     Metric("settling_time_2pct_s", "s", "the run summary's seed-004 settling time when it has one (each axis "
            "within 2 % of its step around the controllers' goal); else the time after which |w| stays within 2 % "
            "of its initial-to-final change around its final value", _settling_time),
+    *(Metric(f"settling_time_2pct_{axis}_s", "s", f"the run summary's seed-004 settling time of body rate "
+             f"axis {axis} alone (summary.json settling_time_2pct_axes_s)", _settling_channel(i))
+      for i, axis in enumerate("xyz")),
+    Metric("settling_time_2pct_attitude_s", "s", "the run summary's seed-004 settling time of the attitude's real "
+           "part (wheels_pd only; summary.json settling_time_2pct_attitude_s)", _settling_channel(None)),
     Metric("final_rate_deg_s", "deg/s", "|w| at the end of the run (truth)", _final_rate),
     Metric("pointing_error_mean_deg", "deg", "mean pointing error while a target is set (truth)",
            lambda output, _probe: _pointing(output, lambda v: v.mean())),

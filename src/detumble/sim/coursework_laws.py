@@ -50,7 +50,7 @@ class BetaPdLaw(_FullState):
 
     name = "beta_pd"
 
-    def __init__(self, k_s: float, k_d: float, n: float, m_max: Vec3, switched: bool = False):
+    def __init__(self, k_s: float, k_d: float, n: float, m_max: Vec3, switched: bool = True):
         super().__init__(m_max)
         self.law = cw.BetaPd(k_s, k_d, n=n, switched=switched)
         self.gain = (k_s, k_d)
@@ -65,14 +65,15 @@ class BetaPdLaw(_FullState):
 class WheelsPdLaw(_FullState):
     """``wheels``: eqs. 25–26 (:class:`detumble.control.coursework.WheelsPd`), the torques limited
     as the report does (``limits="report"``) or only by the wheels themselves (``limits="wheel"``,
-    the plant's exact saturation); ``error="shortest_path"`` for the corrected law; ``dump_gain``
+    the plant's exact saturation); ``error="shortest_path"`` (default) for the corrected law,
+    ``error="report"`` for eq. 25 as the report writes it (the long way round); ``dump_gain``
     > 0 adds magnetic momentum dumping with the rods (not in the report)."""
 
     name = "wheels_pd"
     wheel_law = True
 
     def __init__(self, k_p: float, k_d: float, inertia, n: float, target_q_BO, m_max: Vec3,
-                 limits: str = "report", error: str = "report", dump_gain: float = 0.0):
+                 limits: str = "report", error: str = "shortest_path", dump_gain: float = 0.0):
         super().__init__(m_max)
         self.dump_gain = float(dump_gain)
         self.law = cw.WheelsPd(k_p, k_d, inertia, cw.from_plant_quaternion(target_q_BO), n,

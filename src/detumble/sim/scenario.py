@@ -110,7 +110,8 @@ class BetaPdConfig:
 
     k_s: float = 990.0
     k_d: float = 0.06
-    switched: bool = False      # True: eq. 23 or 24 by |B_z| vs |B_x|; False: both, as its listing
+    switched: bool = True       # True: eq. 23 or 24 by |B_z| vs |B_x|, as its equations (and figures);
+    #                             False: both, as its listing
 
 
 @dataclass(frozen=True)
@@ -121,7 +122,7 @@ class WheelsPdConfig:
     k_d: float = 9.0
     target_q_bo: tuple[float, float, float, float] = (1.0, 0.0, 0.0, 0.0)
     limits: str = "report"      # report: its ±1 mN m / ±0.1 N m s checks; wheel: the wheels' own limits only
-    error: str = "report"       # report: eq. 25 as written (settles at q4 = -1); shortest_path: corrected
+    error: str = "shortest_path"  # corrected; "report": eq. 25 as written (settles at q4 = -1, the long way)
     dump_gain: float = 0.0      # 1/s: magnetic momentum dumping M = k (h x B)/|B|^2 (0: none, as the report)
 
 

@@ -65,16 +65,33 @@ def test_cross_product_commands_the_law_clipped_per_axis(h):
 
 
 def test_beta_pd_first_cycle_primes_then_follows_eqs_20_to_24(h):
-    """CWC-003: BETA_PD commands zero on its first cycle (no previous β), then the law's dipole."""
+    """CWC-003: BETA_PD commands zero on its first cycle (no previous β), then the law's dipole: by
+    default (BETA_SWITCHED = true) eq. 23 *or* 24, as the report's equations and figures — with
+    |B_x| > |B_z| here, eq. 24 alone, so no spin term on x."""
     h.send_command("SET_LAW", CourseworkLaw.BETA_PD)
     h.invoke("run", 0)
     h.invoke("run", 0)
     first, second = _dipoles(h)[-2:]
     assert first == (0.0, 0.0, 0.0)
-    law = cw.BetaPd(990.0, 0.06)
+    law = cw.BetaPd(990.0, 0.06, switched=True)
     b = tuple(c * 1e-4 for c in B_GAUSS)
     law.dipole(1.01, W, b)
     assert second == pytest.approx(cw.clip_dipole(law.dipole(1.02, W, b)))
+    assert second[0] == 0.0 and second[2] != 0.0
+
+
+def test_beta_switched_false_flies_the_listing_with_both_spin_terms(h):
+    """CWC-010: BETA_SWITCHED = false is the report's MATLAB listing (both spin terms at once)."""
+    h.send_command("BETA_SWITCHED_PRM_SET", False)
+    h.send_command("SET_LAW", CourseworkLaw.BETA_PD)
+    h.invoke("run", 0)
+    h.invoke("run", 0)
+    second = _dipoles(h)[-1]
+    law = cw.BetaPd(990.0, 0.06, switched=False)
+    b = tuple(c * 1e-4 for c in B_GAUSS)
+    law.dipole(1.01, W, b)
+    assert second == pytest.approx(cw.clip_dipole(law.dipole(1.02, W, b)))
+    assert second[0] != 0.0 and second[2] != 0.0
 
 
 def test_wheels_pd_commands_eq26_torques_within_the_limits(h):
@@ -84,7 +101,8 @@ def test_wheels_pd_commands_eq26_torques_within_the_limits(h):
     h.clear_history()
     h.invoke("run", 0)
     torques = [c.args[0] for c in h.from_port("wheelTorqueSet")]
-    law = cw.WheelsPd(5.0, 9.0, ((1.67e-3, 0, 0), (0, 1.67e-3, 0), (0, 0, 1.67e-3)), (0, 0, 0, 1), n=N)
+    law = cw.WheelsPd(5.0, 9.0, ((1.67e-3, 0, 0), (0, 1.67e-3, 0), (0, 0, 1.67e-3)), (0, 0, 0, 1), n=N,
+                      shortest_path=True)
     expected = cw.limit_wheel_torque(law.torque((0, 0, 0, 1), W, (0, 0, 0)), (0, 0, 0))
     assert torques == pytest.approx(list(expected), rel=1e-12)
     assert all(abs(u) <= 1e-3 for u in torques)
@@ -126,21 +144,24 @@ def test_a_fault_inside_the_cycle_is_an_event_not_silence(h):
     assert h.events_named("ControlFault")
 
 
-def test_wheel_error_parameter_selects_the_shortest_path_law(h):
-    """CWC-008: WHEEL_ERROR = SHORTEST_PATH flips the proportional term when the error's real part
-    is non-negative (eq. 25's report form is kept otherwise)."""
+def test_wheel_error_defaults_to_the_shortest_path_and_report_is_the_named_option(h):
+    """CWC-008: by default (WHEEL_ERROR = SHORTEST_PATH) the proportional term turns the body toward
+    the target the short way — the torque about x opposes a positive rotation about x; WHEEL_ERROR
+    = REPORT (eq. 25 as written) flips it, pushing away from the target (the long way round)."""
     h.set_port_return("angularVelocityGet", Result(AngularVelocity(0.0, 0.0, 0.0), Success.SUCCESS))
     h.set_port_return("attitudeGet", Result(AttitudeQuaternion(math.cos(0.1), math.sin(0.1), 0.0, 0.0, True, Time()),
                                             Success.SUCCESS))
     h.send_command("SET_LAW", CourseworkLaw.WHEELS_PD)
     h.clear_history()
     h.invoke("run", 0)
-    report = [c.args[0] for c in h.from_port("wheelTorqueSet")]
-    h.send_command("WHEEL_ERROR_PRM_SET", WheelError.SHORTEST_PATH)
+    shortest = [c.args[0] for c in h.from_port("wheelTorqueSet")]
+    h.send_command("WHEEL_ERROR_PRM_SET", WheelError.REPORT)
     h.clear_history()
     h.invoke("run", 0)
-    shortest = [c.args[0] for c in h.from_port("wheelTorqueSet")]
+    report = [c.args[0] for c in h.from_port("wheelTorqueSet")]
     assert report[0] == pytest.approx(-shortest[0]) and report[0] != 0.0
+    # T is the torque the wheels take from the body: the body feels −T, toward the target when T_x > 0
+    assert shortest[0] > 0.0
 
 
 def test_momentum_dumping_commands_the_rods_across_the_field(h):

@@ -84,7 +84,7 @@ def test_eqs20_to_24_beta_pd_as_the_listing_and_as_the_equations():
     """CW-006: the first call commands nothing (no previous β); the second gives M_y = K_d Δβ/Δt and
     the spin terms K_s (ω_y + n) sign(B_z) on x and −K_s (ω_y + n) sign(B_x) on z; the switched form
     keeps only the axis of eq. 23 or 24 chosen by |B_z| vs |B_x|."""
-    law = cw.BetaPd(k_s=990.0, k_d=0.06)
+    law = cw.BetaPd(k_s=990.0, k_d=0.06, switched=False)
     b1 = (1e-5, 2e-5, 3e-5)
     b2 = (-1.2e-5, 2.1e-5, 2.9e-5)
     w = (0.1, 0.2, 0.3)

@@ -137,3 +137,17 @@ def test_spin_metrics_come_from_the_attitude_report_s_summary():
             BY_NAME[name].compute(RunOutput({"final_rate_deg_s": 1.0}), None)
     with pytest.raises(MetricUnavailable, match="no SPIN_STABLE samples"):
         BY_NAME["spin_axis_error_max_deg"].compute(RunOutput({"spin_axis_error_deg": None}), None)
+
+
+def test_per_channel_settling_metrics_read_the_run_summary():
+    """CAMP-070: settling_time_2pct_x/y/z_s and _attitude_s are the run summary's channels; a channel
+    not settled, or a summary without them (not a seed-004 law), is a null with its reason."""
+    out = RunOutput({"settling_time_2pct_axes_s": [6339.92, 73.73, None], "settling_time_2pct_attitude_s": 7.95})
+    assert BY_NAME["settling_time_2pct_x_s"].compute(out, None) == 6339.92
+    assert BY_NAME["settling_time_2pct_y_s"].compute(out, None) == 73.73
+    assert BY_NAME["settling_time_2pct_attitude_s"].compute(out, None) == 7.95
+    with pytest.raises(MetricUnavailable, match="not settled"):
+        BY_NAME["settling_time_2pct_z_s"].compute(out, None)
+    for name in ("settling_time_2pct_x_s", "settling_time_2pct_attitude_s"):
+        with pytest.raises(MetricUnavailable, match="only seed 004's laws"):
+            BY_NAME[name].compute(RunOutput({"final_rate_deg_s": 1.0}), None)

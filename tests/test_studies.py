@@ -1,0 +1,90 @@
+"""tools/studies.py: the studies' documented numbers cannot go stale.
+
+STUDY-001: every generated block of docs/studies/ is what the committed campaign results give now (the
+tables are rendered by the same code that wrote them, and compared with the docs).
+STUDY-002: the committed campaign folders belong to their campaign files as they are now (hash, run ids),
+and re-flying the cheap probe runs (seed 004's wheel law) gives the committed metrics to the float: a
+change in the code that moves a documented number fails here.
+STUDY-003/004: the check is able to fail — a doc block edited by hand, and a committed metric the code no
+longer computes, are both reported.
+"""
+
+import dataclasses
+import importlib.util
+import pathlib
+import shutil
+import sys
+
+import pytest
+
+ROOT = pathlib.Path(__file__).parents[1]
+_spec = importlib.util.spec_from_file_location("studies_tool", ROOT / "tools" / "studies.py")
+assert _spec is not None and _spec.loader is not None
+studies = importlib.util.module_from_spec(_spec)
+sys.modules["studies_tool"] = studies  # dataclasses look their module up there
+_spec.loader.exec_module(studies)
+
+COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign")
+
+
+@pytest.mark.parametrize("name", COMMITTED)
+def test_documented_blocks_are_what_the_committed_results_give(name):
+    """STUDY-001."""
+    assert studies.check([name], fly_probes=False) == []
+
+
+def test_committed_convergence_results_are_what_the_code_computes_now():
+    """STUDY-002: the probe runs (the wheel law's rows at 0.02 and 0.01 s, 30 s each) fly again and match."""
+    campaign = studies.CAMPAIGNS["coursework_convergence"]
+    assert campaign.problems(fly_probes=True) == []
+
+
+def test_spin_campaign_folders_belong_to_their_campaign_files():
+    """STUDY-002 (no probe: a spin run is a deployment run of minutes)."""
+    for key in ("spin_minor_axis", "spin_major_axis"):
+        assert studies.CAMPAIGNS[key].problems(fly_probes=False) == []
+
+
+def test_a_hand_edited_number_in_a_block_is_reported(tmp_path, monkeypatch):
+    """STUDY-003: change one digit of the convergence table in a copy of the doc: --check reports it."""
+    study = studies.STUDIES["coursework_convergence"]
+    text = study.doc.read_text(encoding="utf-8")
+    body = studies.doc_blocks(text)["coursework_convergence"]
+    edited = body.replace("**", "**9", 1)
+    assert edited != body
+    copy = tmp_path / "doc.md"
+    copy.write_text(text.replace(body, edited), encoding="utf-8")
+    monkeypatch.setitem(studies.STUDIES, "coursework_convergence", dataclasses.replace(study, doc=copy, campaigns=()))
+    problems = studies.check(["coursework_convergence"], fly_probes=False)
+    assert len(problems) == 1 and "block 'coursework_convergence'" in problems[0]
+
+
+def test_a_committed_metric_the_code_no_longer_computes_is_reported(tmp_path, monkeypatch):
+    """STUDY-004: a committed wheel-law settling time nudged by 0.001 s: the re-flown probe disagrees."""
+    import pandas as pd
+
+    original = studies.CAMPAIGNS["coursework_convergence"]
+    folder = tmp_path / "docs" / "studies" / "cc"
+    shutil.copytree(original.path, folder)
+    df = pd.read_parquet(folder / "results.parquet")
+    row = df.index[(df["law"] == "wheels_pd") & (df["scenario.dynamics_step_s"] == 0.01)
+                   & (df["scenario.control.wheels_pd.error"] == "shortest_path")
+                   & df["scenario.control.wheels_pd.k_d"].isna()][0]
+    df.loc[row, "settling_time_2pct_s"] += 0.001
+    df.to_parquet(folder / "results.parquet")
+    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path / "docs" / "studies")
+    nudged = dataclasses.replace(original, folder="cc",
+                                 probe=lambda t: t["run_id"] == df.loc[row, "run_id"])
+    problems = nudged.problems(fly_probes=True)
+    assert len(problems) == 1 and "settling_time_2pct_s" in problems[0] and "no longer computes" in problems[0]
+
+
+def test_a_missing_block_marker_is_a_clear_error():
+    """Rewriting a block the document does not have says which and how to add it."""
+    with pytest.raises(studies.StudyError, match="no block nowhere"):
+        studies.replace_blocks("text\n", {"nowhere": "x"}, "doc.md")
+
+
+def test_unknown_study_names_a_close_one(capsys):
+    assert studies.main(["--only", "coursework_convergenc", "--check"]) == 2
+    assert "did you mean coursework_convergence" in capsys.readouterr().err

@@ -1,0 +1,738 @@
+#!/usr/bin/env python3
+"""Regenerate the tables and figures of docs/studies/ and the README's figures (docs/img/), in one command.
+
+    python tools/studies.py                    # every study, written into the docs (minutes to an hour)
+    python tools/studies.py --only NAME ...    # some studies (--list names them)
+    python tools/studies.py --quick            # every study's short version, into runs/studies-quick/
+    python tools/studies.py --check            # staleness: do the docs hold what the committed results give?
+
+A study's tables live in its markdown file between ``<!-- studies:BLOCK -->`` and
+``<!-- /studies:BLOCK -->``; this script rewrites what is between the two lines and nothing else, so a
+documented number in such a block is, by construction, what the code computes from the committed
+campaign results (``docs/studies/<campaign>/results.parquet`` + ``manifest.json``) or from the runs the
+study flies. Figures are drawn by the project's own plotters (a run's ``--plots``, the campaign's
+``draw_plots``, the study scripts under ``campaigns/``); nothing here draws a figure of its own.
+
+``--quick`` flies each study's short version (the runs a few hundred seconds long, the campaign tables
+from the committed results) and writes everything under ``--out`` (default ``runs/studies-quick``),
+never into the docs: it shows the whole chain works in minutes. ``--check`` writes nothing: it renders
+every block from the committed results and compares it with the docs, checks that each committed
+campaign folder belongs to its campaign file as it is now (same file hash, every run id still planned),
+and re-flies each campaign's cheap probe runs and compares their metrics with the committed rows.
+``tests/test_studies.py`` runs that check. Exit status: 0 done (or nothing stale), 1 stale, 2 usage.
+
+Campaign results are not re-run here (that is hours of CPU for some); each study names the command that
+produces them, and ``--rerun-campaigns`` runs those (one worker, resuming what is already there).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import hashlib
+import importlib.util
+import json
+import math
+import pathlib
+import re
+import shutil
+import sys
+import tempfile
+from typing import Callable
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+STUDIES_DIR = ROOT / "docs" / "studies"
+IMG_DIR = ROOT / "docs" / "img"
+
+_BLOCK = re.compile(r"(<!-- studies:(?P<name>[\w.-]+) -->\n)(?P<body>.*?)(<!-- /studies:(?P=name) -->)", re.S)
+
+
+class StudyError(Exception):
+    """A study cannot be regenerated or checked as asked (missing results, a marker not found)."""
+
+
+# --------------------------------------------------------------------------------------------- context
+
+
+@dataclasses.dataclass
+class Context:
+    """Where a study writes: into the repository (``out`` None) or under a scratch folder (quick)."""
+
+    quick: bool = False
+    out: pathlib.Path | None = None
+    reuse: bool = False
+    written: list[str] = dataclasses.field(default_factory=list)
+
+    @property
+    def runs(self) -> pathlib.Path:
+        """Where the studies' flights go (kept: ``--reuse-runs`` resumes from them)."""
+        return (self.out / "flights") if self.out is not None else ROOT / "runs" / "studies"
+
+    def path(self, repo_path: pathlib.Path) -> pathlib.Path:
+        """Where ``repo_path`` (a file of the repository) goes in this context."""
+        if self.out is None:
+            return repo_path
+        return self.out / repo_path.relative_to(ROOT)
+
+    def write_bytes(self, repo_path: pathlib.Path, data: bytes) -> None:
+        from fprime_lite.osal.atomic import atomic_write_bytes
+
+        target = self.path(repo_path)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        atomic_write_bytes(target, data)
+        self.written.append(str(target.relative_to(ROOT) if target.is_relative_to(ROOT) else target))
+
+    def copy(self, source: pathlib.Path, repo_path: pathlib.Path) -> None:
+        self.write_bytes(repo_path, source.read_bytes())
+
+    def set_blocks(self, doc: pathlib.Path, blocks: dict[str, str]) -> None:
+        """Rewrite the named blocks of ``doc`` (quick: into a copy of it under ``out``)."""
+        source = self.path(doc) if self.path(doc).exists() else doc
+        text = replace_blocks(source.read_text(encoding="utf-8"), blocks, doc)
+        self.write_bytes(doc, text.encode("utf-8"))
+
+
+def doc_blocks(text: str) -> dict[str, str]:
+    """The ``studies:`` blocks of a markdown text, by name."""
+    return {m.group("name"): m.group("body") for m in _BLOCK.finditer(text)}
+
+
+def replace_blocks(text: str, blocks: dict[str, str], where: pathlib.Path | str = "the document") -> str:
+    missing = sorted(set(blocks) - set(doc_blocks(text)))
+    if missing:
+        raise StudyError(f"{where}: no block {', '.join(missing)} (add '<!-- studies:NAME -->' and "
+                         f"'<!-- /studies:NAME -->' lines around the place it goes)")
+
+    def sub(m: re.Match) -> str:
+        name = m.group("name")
+        if name not in blocks:
+            return m.group(0)
+        body = blocks[name]
+        return m.group(1) + (body if body.endswith("\n") else body + "\n") + m.group(4)
+
+    return _BLOCK.sub(sub, text)
+
+
+def _load_script(relative: str):
+    """A study script under campaigns/ as a module (they are scripts, not a package)."""
+    path = ROOT / relative
+    name = "_studies_" + re.sub(r"\W", "_", relative)
+    if name in sys.modules:
+        return sys.modules[name]
+    spec = importlib.util.spec_from_file_location(name, path)
+    if spec is None or spec.loader is None:
+        raise StudyError(f"cannot load {relative}")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def _fmt(x, digits: int = 0, none: str = "—") -> str:
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return none
+    return f"{x:,.{digits}f}"
+
+
+def _float(x) -> float | None:
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        return None
+    return v if math.isfinite(v) else None
+
+
+# ------------------------------------------------------------------------------------ committed campaigns
+
+
+@dataclasses.dataclass(frozen=True)
+class CommittedCampaign:
+    """A campaign whose results folder is committed under docs/studies/."""
+
+    folder: str            # under docs/studies/
+    campaign_file: str     # repository-relative
+    # the runs re-flown by --check and compared with their committed rows (cheap ones): a predicate on a task
+    probe: Callable[[dict], bool] | None = None
+    probe_rel_tol: float = 0.0
+
+    @property
+    def path(self) -> pathlib.Path:
+        return STUDIES_DIR / self.folder
+
+    @property
+    def command(self) -> str:
+        """The command that makes (or resumes) the committed folder; into ``runs/`` while nothing is committed."""
+        out = f"docs/studies/{self.folder}" if self.path.exists() else f"runs/{pathlib.PurePath(self.folder).name}"
+        return f"nice -n 10 fprime-lite campaign {self.campaign_file} --workers 1 --out {out}"
+
+    def results(self):
+        from fprime_lite.tools.campaign import read_results
+
+        if not (self.path / "results.parquet").exists():
+            raise StudyError(f"docs/studies/{self.folder}/results.parquet is not committed: run `{self.command}`")
+        return read_results(self.path)
+
+    def campaign(self):
+        from fprime_lite.tools.campaign import load_campaign
+
+        return load_campaign(ROOT / self.campaign_file)
+
+    def problems(self, *, fly_probes: bool = True) -> list[str]:
+        """Why the committed folder may no longer be what its campaign file gives (empty: none found)."""
+        from fprime_lite.tools.campaign.plan import plan_runs
+
+        out: list[str] = []
+        if not (self.path / "results.parquet").exists():
+            return out  # not committed: the study's block says so, and the block is compared on its own
+        manifest = json.loads((self.path / "manifest.json").read_text(encoding="utf-8"))
+        text = (ROOT / self.campaign_file).read_bytes()
+        if hashlib.sha256(text).hexdigest() != manifest.get("campaign_sha256"):
+            out.append(f"docs/studies/{self.folder}: {self.campaign_file} changed since these results were made "
+                       f"(sha256 differs from manifest.json): run `{self.command}` again")
+        df = self.results()
+        with tempfile.TemporaryDirectory() as scratch:
+            tasks = plan_runs(self.campaign(), pathlib.Path(scratch))
+            by_id = {t["run_id"]: t for t in tasks}
+            missing = sorted(set(df["run_id"]) - set(by_id))
+            if missing:
+                out.append(f"docs/studies/{self.folder}: {len(missing)} committed run id(s) are no longer planned by "
+                           f"{self.campaign_file} (e.g. {missing[0]}): the results are of another campaign")
+            if fly_probes and self.probe is not None:
+                out += self._fly_probes(df, [t for t in tasks if t["run_id"] in set(df["run_id"]) and self.probe(t)],
+                                        pathlib.Path(scratch))
+        return out
+
+    def _fly_probes(self, df, tasks: list[dict], scratch: pathlib.Path) -> list[str]:
+        from fprime_lite.tools.campaign.task import fly
+
+        out = []
+        for task in tasks:
+            row = fly(task, scratch / task["run_id"])
+            committed = df[df["run_id"] == task["run_id"]].iloc[0]
+            if row["status"] != committed["status"]:
+                out.append(f"{self.folder} run {task['run_id']}: status {row['status']} now, "
+                           f"{committed['status']} committed ({row['error']})")
+                continue
+            for name, value in row["metrics"].items():
+                old = _float(committed.get(name))
+                new = _float(value)
+                if (old is None) != (new is None) or (
+                        old is not None and new is not None
+                        and abs(new - old) > self.probe_rel_tol * max(abs(old), abs(new))):
+                    out.append(f"{self.folder} run {task['run_id']} ({json.dumps(task['values'])}): {name} = "
+                               f"{new} now, {old} committed: the code no longer computes the documented number "
+                               f"(`{self.command}` then `python tools/studies.py`)")
+        return out
+
+    def redraw_plots(self, ctx: Context) -> None:
+        """The campaign's own plots, redrawn from the committed results (its ``plots`` or the automatic ones)."""
+        from fprime_lite.tools.campaign.plots import draw_plots
+
+        with tempfile.TemporaryDirectory() as scratch:
+            for png in draw_plots(self.results(), self.campaign(), pathlib.Path(scratch)):
+                ctx.copy(png, self.path / png.name)
+
+    def rerun(self) -> None:
+        from fprime_lite.tools.campaign import run_campaign
+
+        run_campaign(ROOT / self.campaign_file, workers=1, out=self.path, resume=True)
+
+
+def _wheels_cheap(task: dict) -> bool:
+    config, values = task["config"], task["values"]
+    return config.get("law") == "wheels_pd" and float(values.get("scenario.dynamics_step_s", 0.0)) >= 0.01
+
+
+CAMPAIGNS = {
+    "coursework_convergence": CommittedCampaign("coursework_convergence", "campaigns/coursework/convergence.yaml",
+                                                probe=_wheels_cheap),
+    "spin_minor_axis": CommittedCampaign("spin_stabilisation_campaign/spin_minor_axis",
+                                         "campaigns/adcs/spin_minor_axis.yaml"),
+    "spin_major_axis": CommittedCampaign("spin_stabilisation_campaign/spin_major_axis",
+                                         "campaigns/adcs/spin_major_axis.yaml"),
+    "attitude_knowledge": CommittedCampaign("attitude_knowledge", "campaigns/adcs/pointing_wheels.yaml"),
+    "flight_detumble_campaign": CommittedCampaign("flight_detumble_campaign", "campaigns/proves_flight_detumble.yaml"),
+    "flight_detumble_campaign_p95": CommittedCampaign("flight_detumble_campaign_p95",
+                                                      "campaigns/proves_flight_detumble_p95.yaml"),
+}
+
+
+# ------------------------------------------------------------------------------------------------- studies
+
+
+@dataclasses.dataclass(frozen=True)
+class Study:
+    name: str
+    summary: str
+    regenerate: Callable[[Context], None]
+    blocks: Callable[[], dict[str, str]] | None = None   # from committed results only (what --check compares)
+    doc: pathlib.Path | None = None
+    campaigns: tuple[str, ...] = ()
+
+
+# --- seed 004: convergence -------------------------------------------------------------------------------
+
+_CONVERGENCE_DOC = STUDIES_DIR / "coursework_reproduction.md"
+_RULE = 0.005  # spec/control.md: a figure is published where halving its step moves it by < 0.5 %
+
+
+def _convergence_series(df) -> list[tuple[str, list[tuple[float, float, dict]]]]:
+    """(label, [(step, period, metrics)]) per law variant, steps large to small; the runs that halve
+    step and period together only."""
+    series: dict[str, list] = {}
+    for _, row in df.iterrows():
+        # a run that failed read nothing back: its values are the requested ones
+        r = {**row.to_dict(), **json.loads(row["requested"])} if row["status"] != "ok" else row
+        law = r["law"]
+        step, period = float(r["scenario.dynamics_step_s"]), float(r["scenario.control.period_s"])
+        if law == "beta_pd":
+            label = "`beta_pd`, " + ("eq. 23 *or* 24 (default)" if bool(r["scenario.control.beta_pd.switched"])
+                                     else "both spin terms (listing)")
+        elif law == "wheels_pd":
+            kd = _float(r.get("scenario.control.wheels_pd.k_d"))  # NaN where the grid point does not set it
+            error = r["scenario.control.wheels_pd.error"]
+            label = f"`wheels_pd`, error `{error}`" + (f", K_d = {kd:g}" if kd is not None else "")
+        else:
+            label = "`cross_product`, k = 146"
+        series.setdefault(label, []).append((step, period, {
+            "status": r["status"], "error": r["error"],
+            "overall": _float(r["settling_time_2pct_s"]),
+            "axes": [_float(r[f"settling_time_2pct_{a}_s"]) for a in "xyz"],
+            "attitude": _float(r.get("settling_time_2pct_attitude_s")),
+        }))
+    return [(label, sorted(rows, key=lambda x: (-x[1], -x[0]))) for label, rows in sorted(series.items())]
+
+
+def _richardson(values: list[float]) -> tuple[float | None, float | None]:
+    """From the last three figures of a halving sequence: the observed order p and the extrapolated
+    limit V(h→0) = V(h/4) + (V(h/4) − V(h/2)) / (2^p − 1); None when the differences do not shrink."""
+    if len(values) < 3:
+        return None, None
+    a, b, c = values[-3:]
+    d1, d2 = b - a, c - b
+    if d1 == 0.0 or d2 == 0.0 or (d1 > 0) != (d2 > 0) or abs(d2) >= abs(d1):
+        return None, None
+    p = math.log2(d1 / d2)
+    return p, c + d2 / (2.0 ** p - 1.0)
+
+
+def convergence_blocks() -> dict[str, str]:
+    df = CAMPAIGNS["coursework_convergence"].results()
+    lines = ["| law (report's gains) | step = period (s) | settling time, 2 % bands (s): overall (ω_x / ω_y / ω_z) | "
+             "change on halving | converged (< 0.5 %)? |", "|---|---|---|---|---|"]
+    fixed_period = []
+    summary = []
+    for label, rows in _convergence_series(df):
+        together = [r for r in rows if r[0] == r[1]]
+        fixed_period += [(label, r) for r in rows if r[0] != r[1]]
+        previous = None
+        for step, _, m in together:
+            if m["status"] != "ok":
+                lines.append(f"| {label} | {step:g} | not measured: run {m['status']} ({m['error']}) | | |")
+                continue
+            digits = 3 if label.startswith("`wheels") else 0
+            axes = " / ".join(_fmt(a, digits) for a in m["axes"])
+            if m["attitude"] is not None:
+                axes += f"; attitude {_fmt(m['attitude'], digits)}"
+            overall = m["overall"]
+            change = ("" if previous is None or overall is None or previous is None
+                      else f"{100.0 * (overall - previous) / previous:+.2f} %")
+            converged = "" if not change else ("yes" if abs(overall - previous) < _RULE * abs(previous) else "**no**")
+            lines.append(f"| {label} | {step:g} | **{_fmt(overall, digits)}** ({axes}) | {change} | {converged} |")
+            previous = overall
+        overalls = [m["overall"] for _, _, m in together if m["overall"] is not None]
+        if together and not overalls and all(m["status"] == "ok" for _, _, m in together):
+            slowest = [max(a for a in m["axes"] if a is not None) for _, _, m in together]
+            summary.append(f"- {label}: overall — : the attitude does not settle within the run (this K_d over-damps "
+                           f"it); the rate axes are settled by {', '.join(_fmt(x, 3) for x in slowest)} s.")
+        p, limit = _richardson(overalls)
+        if p is not None and len(overalls) >= 3:
+            summary.append(f"- {label}: observed order {p:.2f} from the last three halvings; "
+                           f"extrapolated limit (step → 0) ≈ {_fmt(limit, 3 if label.startswith('`wheels') else 0)} s.")
+    for label, (step, period, m) in fixed_period:
+        summary.append(f"- {label}: control period held at {period:g} s, dynamics step {step:g} s: "
+                       f"{_fmt(m['overall'])} s ({' / '.join(_fmt(a) for a in m['axes'])}).")
+    source = ("Generated by `python tools/studies.py --only coursework_convergence` from "
+              "`docs/studies/coursework_convergence/` (made by `" + CAMPAIGNS["coursework_convergence"].command + "`).")
+    return {"coursework_convergence": "\n".join(lines) + "\n\n" + "\n".join(summary) + "\n\n" + source + "\n"}
+
+
+def regenerate_convergence(ctx: Context) -> None:
+    ctx.set_blocks(_CONVERGENCE_DOC, convergence_blocks())
+
+
+# --- seed 004: the report's model (SciPy) ----------------------------------------------------------------
+
+_REPLICA_CASES = (
+    # (label, arguments, quick arguments). magnetorquer1 (30,000 s under RK45, CPU-minutes) is not here yet.
+    ("`magnetorquer2`, eq. 23 *or* 24, ode45 defaults", ["beta_pd", "--t-max", "9000"], None),
+    ("`magnetorquer2`, both spin terms (listing), ode45 defaults", ["beta_pd", "--listing", "--t-max", "9000"], None),
+    ("`wheels`, K_p = 5, K_d = 9, ode45 defaults", ["wheels_pd", "--t-max", "30"], ["wheels_pd", "--t-max", "30"]),
+    ("`wheels`, K_p = 5, K_d = 9, RelTol 1e-8", ["wheels_pd", "--t-max", "30", "--rtol", "1e-8", "--atol", "1e-10"],
+     ["wheels_pd", "--t-max", "30", "--rtol", "1e-8", "--atol", "1e-10"]),
+    ("`wheels`, same, read off its accepted steps only (`--sample 0`)",
+     ["wheels_pd", "--t-max", "30", "--rtol", "1e-8", "--atol", "1e-10", "--sample", "0"],
+     ["wheels_pd", "--t-max", "30", "--rtol", "1e-8", "--atol", "1e-10", "--sample", "0"]),
+)
+
+
+def regenerate_replica(ctx: Context) -> None:
+    replica = _load_script("campaigns/coursework/report_replica.py")
+    lines = ["| case (`campaigns/coursework/report_replica.py ARGS`) | ARGS | settling, 2 % bands: overall "
+             "(x / y / z) | solver steps |", "|---|---|---|---|"]
+    for label, args, quick in _REPLICA_CASES:
+        if ctx.quick and quick is None:
+            continue
+        out = replica.run(replica.parse_args(quick if ctx.quick else args))
+        digits = 3 if args[0] == "wheels_pd" else 0
+        axes = " / ".join(_fmt(a, digits) for a in out["settling_axes_s"])
+        lines.append(f"| {label} | `{' '.join(args)}` | **{_fmt(out['settling_overall_s'], digits)}** ({axes}) "
+                     f"| {out['steps']} |")
+    lines += ["", "Generated by `python tools/studies.py --only coursework_replica` (SciPy "
+              "RK45, settling read off its dense output every 1 ms unless `--sample 0`)."]
+    ctx.set_blocks(_CONVERGENCE_DOC, {"coursework_replica": "\n".join(lines) + "\n"})
+
+
+# --- spin stabilisation campaign ---------------------------------------------------------------------------
+
+_SPIN_DOC = STUDIES_DIR / "spin_stabilisation_campaign.md"
+
+
+_SPIN_KEYS = ("spin_minor_axis", "spin_major_axis")
+
+
+def _spin_results(study) -> list[dict | None]:
+    """Each spin campaign's analysis from its committed folder (None: not committed)."""
+    return [study.analyse(str(CAMPAIGNS[key].path)) if (CAMPAIGNS[key].path / "results.parquet").exists() else None
+            for key in _SPIN_KEYS]
+
+
+def _campaign_state(key: str) -> str:
+    manifest = json.loads((CAMPAIGNS[key].path / "manifest.json").read_text(encoding="utf-8"))
+    status = manifest.get("status", "?")
+    return "" if status == "complete" else f" ({status}: {manifest.get('runs', '?')} planned)"
+
+
+def spin_campaign_blocks() -> dict[str, str]:
+    study = _load_script("campaigns/adcs/report_spin_study.py")
+    results = _spin_results(study)
+    if all(r is None for r in results):
+        raise StudyError("no spin campaign results are committed: run `" + CAMPAIGNS["spin_minor_axis"].command + "`")
+    labels = ("default, +Z minor (I_zz 2.05e-3)", "variant, +Z major (I_zz 2.40e-3)")
+    lines = ["| inertia | runs (ok) | spin settle time p50 / p95 / max (s) | settled ≤ 1 orbit | then stayed ≥ 240 s "
+             "(min) | transitions: SPIN_STABLE, POINTING and nothing else | **meets the target** | 95 % lower bound "
+             "(Wilson) | momentum to +Z over SPIN_STABLE, median of the runs' medians / p95 of their p95s (deg) | "
+             "CPU (s) |", "|---|---|---|---|---|---|---|---|---|---|"]
+    bands = []
+    for key, label, r in zip(_SPIN_KEYS, labels, results, strict=True):
+        if r is None:
+            lines.append(f"| {label} | not run yet: `{CAMPAIGNS[key].command}` | | | | | | | | |")
+            continue
+        n = r["n"]
+        dwell = r["df"]["spin_settled_dwell_s"].to_numpy(dtype=float)
+        lines.append(f"| {label} | {n} ({r['ok']}){_campaign_state(key)} | **{_fmt(r['p50'])} / {_fmt(r['p95'])} / "
+                     f"{_fmt(r['max'])}** | {r['settled']} / {n} | {r['dwelt']} / {n} ({_fmt(float(min(dwell)), 1)} s) "
+                     f"| {r['qualified']} / {n} | **{100 * r['meets'] / n:.0f} %** | {100 * r['lower95']:.1f} % | "
+                     f"{r['axis_median']:.2f} / {r['axis_p95_of_p95']:.2f} | {r['cpu_s']:.0f} |")
+        axis = "minor" if key == "spin_minor_axis" else "major"
+        parts = [f"{_fmt(study.percentile(s, 50))} / {_fmt(float(max(s)))} ({lo:g}–{hi:g} °/s, {len(s)} runs)"
+                 for lo, hi, s in study.rate_bands(r)]
+        bands.append(f"- {axis} axis, settle time p50 / max (s) by initial rate: " + ", ".join(parts) + ".")
+        flown = r["df"]["sim_seconds"].to_numpy(dtype=float)
+        bands.append(f"- {axis} axis: AUTO declared the spin stable (POINTING) in {r['qualified']} of {n} runs, at "
+                     f"{_fmt(study.percentile(flown, 50))} s median ({_fmt(float(max(flown)))} s at most) after "
+                     f"SPIN_STABLE began; with the early stop the mean run flew {float(flown.mean()):.0f} s.")
+    if all(r is not None for r in results) and (paired := study.paired(*results)) is not None:
+        bands.append(f"- paired (the same draws): the major-axis body settles sooner in {paired['sooner']} of "
+                     f"{paired['pairs']} pairs (median {paired['median_gain_s']:.1f} s sooner).")
+    made = " and ".join(f"`{CAMPAIGNS[key].command}`"
+                        for key, r in zip(_SPIN_KEYS, results, strict=True) if r is not None)
+    source = ("Generated by `python tools/studies.py --only spin_stabilisation_campaign` from "
+              f"`docs/studies/spin_stabilisation_campaign/` (made by {made}).")
+    return {"spin_campaign": "\n".join(lines) + "\n\n" + "\n".join(bands) + "\n\n" + source + "\n"}
+
+
+def regenerate_spin_campaign(ctx: Context) -> None:
+    study = _load_script("campaigns/adcs/report_spin_study.py")
+    ctx.set_blocks(_SPIN_DOC, spin_campaign_blocks())
+    results = [r for r in _spin_results(study) if r is not None]
+    with tempfile.TemporaryDirectory() as scratch:
+        study._plot(results, pathlib.Path(scratch))
+        ctx.copy(pathlib.Path(scratch) / "spin_settle.png", IMG_DIR / "spin_stabilisation" / "spin_settle.png")
+    for key in _SPIN_KEYS:
+        if (CAMPAIGNS[key].path / "results.parquet").exists():
+            CAMPAIGNS[key].redraw_plots(ctx)
+
+
+# --- campaign plots of the other committed campaigns ---------------------------------------------------------
+
+
+def regenerate_campaign_plots(ctx: Context) -> None:
+    for key in ("attitude_knowledge", "flight_detumble_campaign", "flight_detumble_campaign_p95"):
+        CAMPAIGNS[key].redraw_plots(ctx)
+
+
+# --- flights: the README's figures and the attitude-modes study ------------------------------------------------
+
+
+def _fly(ctx: Context, topology: pathlib.Path, duration_s: float, name: str, *, seq: str | None = None,
+         sets: dict | None = None):
+    """One deployment run with its plots (the project's own plotters), as ``fprime-lite run`` flies it,
+    into ``runs/studies/NAME`` (quick: under ``--out``). With ``--reuse-runs`` a finished run of the same
+    request there is used again (a long regeneration can then be resumed after an interruption)."""
+    from fprime_lite.tools import open_run, run
+
+    out = ctx.runs / name
+    request = {"topology": str(topology.relative_to(ROOT)), "duration_s": duration_s, "seq": seq, "sets": sets or {}}
+    stamp = ctx.runs / f"{name}.request.json"
+    if ctx.reuse and (out / "summary.json").exists() and stamp.exists() and json.loads(stamp.read_text()) == request:
+        return open_run(out)
+    shutil.rmtree(out, ignore_errors=True)
+    stamp.unlink(missing_ok=True)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    sequence = None
+    if seq is not None:
+        sequence = ctx.runs / f"{name}.seq"
+        sequence.write_text(seq, encoding="utf-8")
+    result = run(topology, duration_s=duration_s, out=out, plots=True, seq=sequence,
+                 settings=[f"{key}={value}" for key, value in (sets or {}).items()])
+    stamp.write_text(json.dumps(request), encoding="utf-8")
+    return result
+
+
+def regenerate_readme_figures(ctx: Context) -> None:
+    """docs/img/reference_run_<kind>.png: one full detumble of the reference deployment (3100 s)."""
+    result = _fly(ctx, ROOT / "deployments" / "proves_ref" / "topology.yaml", 300.0 if ctx.quick else 3100.0,
+                  "readme_reference_run")
+    for png in sorted(result.out_dir.glob("*.png")):
+        ctx.copy(png, IMG_DIR / f"reference_run_{png.name}")
+
+
+_ATTITUDE_DOC = STUDIES_DIR / "attitude_modes.md"
+_C = "ReferenceDeployment.attitudeController"
+_MAJOR = "[[2.05e-3,2.0e-5,-1.5e-5],[2.0e-5,2.15e-3,1.0e-5],[-1.5e-5,1.0e-5,2.40e-3]]"
+_SPIN_RUNS = (
+    # (law, inertia label, extra --set)
+    ("RATE_REGULATOR (default)", "default, ẑ minor", "RATE_REGULATOR", {}),
+    ("RATE_REGULATOR", "ẑ major (I_zz 2.40e-3)", "RATE_REGULATOR", {"spacecraft.inertia_kg_m2": _MAJOR}),
+    ("SEED_KANE_DAMPER (seed 003 as written)", "default", "SEED_KANE_DAMPER", {}),
+    ("VIRTUAL_DAMPER (classical 3-axis)", "default", "VIRTUAL_DAMPER", {}),
+)
+
+
+def _spin_row(summary: dict, csv_path: pathlib.Path) -> tuple[str, str, str]:
+    """(settled, at the end: momentum to +Z and rate about +Z, SPIN_STABLE spin-axis error median / p95),
+    from the run's ``summary.json`` and the last row of its ``attitude.csv``."""
+    import pandas as pd
+
+    settled = summary.get("spin_settled_s")
+    last = pd.read_csv(csv_path).iloc[-1]
+    axis, about_z, rate = (float(last[c]) for c in ("spin_axis_error_deg", "spin_rate_deg_s", "rate_deg_s"))
+    end = f"{axis:.2f}°, {about_z:.3f} °/s about +Z"
+    if abs(about_z) < 0.9 * rate:
+        end += f" (\\|ω\\| {rate:.2f} °/s)"
+    stats = summary.get("spin_axis_error_deg") or {}
+    return (_fmt(settled) + " s" if settled is not None else "never", end,
+            f"{_fmt(stats.get('median'), 2)}° / {_fmt(stats.get('p95'), 2)}°")
+
+
+_ADCS = ROOT / "deployments" / "adcs_ref" / "topology.yaml"
+
+
+def regenerate_attitude_modes_spin(ctx: Context) -> None:
+    """The spin table of docs/studies/attitude_modes.md: one orbit per law from a 1 °/s tumble."""
+    topology = _ADCS
+    orbit = 300.0 if ctx.quick else 5580.0
+    rows = ["| law | inertia | settled (5°, 5 %) | at the end of the orbit: momentum to +Z, rate | SPIN_STABLE "
+            "spin-axis error median / p95 |", "|---|---|---|---|---|"]
+    for i, (law, inertia, member, sets) in enumerate(_SPIN_RUNS):
+        seq = f"R00:00:00 {_C}.SPIN_LAW_PRM_SET {member}\nR00:00:00 {_C}.FORCE_MODE SPIN_STABLE\n"
+        result = _fly(ctx, topology, orbit, f"attitude_modes_spin{i}", seq=seq,
+                      sets={"initial.rate.magnitude_deg_s": "1.0", **sets})
+        summary = json.loads((result.out_dir / "summary.json").read_text(encoding="utf-8"))
+        settled, end, stats = _spin_row(summary, result.out_dir / "attitude.csv")
+        rows.append(f"| {law} | {inertia} | **{settled}** | {end} | {stats} |")
+    rows += ["", f"Generated by `python tools/studies.py --only attitude_modes_spin` ({orbit:g} s each): "
+             "`fprime-lite run deployments/adcs_ref/topology.yaml --duration 5580 --seq spin.seq --set "
+             "initial.rate.magnitude_deg_s=1.0` with spin.seq as above (and the --set of the major axis)."]
+    ctx.set_blocks(_ATTITUDE_DOC, {"attitude_modes_spin": "\n".join(rows) + "\n"})
+
+
+def regenerate_attitude_modes_pointing(ctx: Context) -> None:
+    """The shipped sequence's figures (detumble → spin → pointing, 6000 s) of docs/studies/attitude_modes.md,
+    drawn by the run's own plotters."""
+    duration = 300.0 if ctx.quick else 6000.0
+    shipped = _fly(ctx, _ADCS, duration, "attitude_modes_shipped")
+    summary = json.loads((shipped.out_dir / "summary.json").read_text(encoding="utf-8"))
+    modes = summary.get("control_mode_transitions") or []
+    entry = {m["mode"]: m["t_s"] for m in modes}
+    pointing = summary.get("pointing_error_deg") or {}
+    median, p95, worst = (_fmt(pointing.get(k), d) for k, d in (("median", 4), ("p95", 3), ("max", 3)))
+    wheels = 100 * (summary.get("wheel_momentum_max_fraction") or 0)
+    rows = ["| figure | value | target |", "|---|---|---|",
+            "| mode transitions seen on the ground | " + ", ".join(f"{m['mode']} {m['t_s']:.1f} s" for m in modes)
+            + "; no other | all three, in order, no chatter |",
+            "| DETUMBLE: 30 °/s → below 1 °/s (for 5 s), SPIN_STABLE entered at | "
+            f"{_fmt(entry.get('SPIN_STABLE'))} s | — |",
+            "| SPIN_STABLE: momentum within 5° of +Z and rate within 5 % of 1.5 °/s | "
+            f"{_fmt(summary.get('spin_settled_s'))} s after entry | ≤ 1 orbit (5578 s) |",
+            f"| POINTING error, median / p95 / max | **{median}° / {p95}° / {worst}°** ({pointing.get('samples', 0)} "
+            f"samples, {_fmt(pointing.get('window_s'))} s) | median ≤ 0.01°, p95 ≤ 0.05° |",
+            f"| wheel momentum, largest \\|h_i\\|/h_max | {wheels:.1f} % | < 50 % |",
+            "", f"Generated by `python tools/studies.py --only attitude_modes_pointing` (`fprime-lite run "
+            f"deployments/adcs_ref/topology.yaml --duration {duration:g}`; statistics of its `summary.json`)."]
+    ctx.set_blocks(_ATTITUDE_DOC, {"attitude_modes_shipped": "\n".join(rows) + "\n"})
+    for name in ("attitude_mode", "pointing_error", "wheel_momentum", "dipole"):
+        png = shipped.out_dir / f"{name}.png"
+        if png.exists():
+            ctx.copy(png, IMG_DIR / "attitude_modes" / f"{name}.png")
+
+
+def regenerate_attitude_modes_orbit(ctx: Context) -> None:
+    """The wheel-pointing orbit's figures of docs/studies/attitude_modes.md (5580 s, a 90° target change)."""
+    orbit = 300.0 if ctx.quick else 5580.0
+    seq = (f"R00:00:00 {_C}.SET_TARGET_QUATERNION 0.9238795325112867 0 0.3826834323650898 0\n"
+           f"R00:00:05 {_C}.FORCE_MODE POINTING\n"
+           f"R00:20:00 {_C}.SET_TARGET_QUATERNION 0.6532814824381883 0.6532814824381882 "
+           f"0.2705980500730985 -0.2705980500730985\n")
+    wheels = _fly(ctx, _ADCS, orbit, "attitude_modes_wheels", seq=seq, sets={"initial.rate.magnitude_deg_s": "0.5"})
+    for name in ("pointing_error", "wheel_momentum"):
+        png = wheels.out_dir / f"{name}.png"
+        if png.exists():
+            ctx.copy(png, IMG_DIR / "attitude_modes" / f"{name}_orbit.png")
+    summary = json.loads((wheels.out_dir / "summary.json").read_text(encoding="utf-8"))
+    slews = summary.get("slews") or []
+    settle = slews[0].get("settle_below_0p1_deg_s") if slews else None
+    pointing = summary.get("pointing_error_deg") or {}
+    events = (wheels.out_dir / "events.log").read_text(encoding="utf-8")
+    limits = sum(events.count(name) for name in ("WheelLimitReached", "TorqueSaturated", "MomentumSaturated"))
+    rows = ["| figure | value | target |", "|---|---|---|",
+            f"| 90° target change: settled below 0.1° (and stays) | **{_fmt(settle, 1)} s** | ≤ 30 s |",
+            "| error over the orbit (POINTING samples after the first 10 %; includes the 90° slew), median / p95 | "
+            f"**{_fmt(pointing.get('median'), 4)}° / {_fmt(pointing.get('p95'), 3)}°** | median ≤ 0.01°, p95 ≤ 0.05° |",
+            "| wheel momentum over the orbit, largest \\|h_i\\|/h_max | "
+            f"**{100 * (summary.get('wheel_momentum_max_fraction') or 0):.1f} %** (magnetic dumping) | < 50 % |",
+            "| wheel torque / momentum limits | " + ("never reached (no WheelLimitReached, TorqueSaturated or "
+                                                   "MomentumSaturated event)" if limits == 0 else
+                                                   f"{limits} limit event(s) in events.log") + " | never exceeded |",
+            "", f"Generated by `python tools/studies.py --only attitude_modes_orbit` (`fprime-lite run "
+            f"deployments/adcs_ref/topology.yaml --duration {orbit:g} --seq wheels.seq --set "
+            "initial.rate.magnitude_deg_s=0.5`, wheels.seq as above; its `summary.json` and `events.log`)."]
+    ctx.set_blocks(_ATTITUDE_DOC, {"attitude_modes_orbit": "\n".join(rows) + "\n"})
+
+
+STUDIES = {s.name: s for s in (
+    Study("coursework_convergence", "seed 004: every plant figure against the step (committed campaign)",
+          regenerate_convergence, convergence_blocks, _CONVERGENCE_DOC, ("coursework_convergence",)),
+    Study("coursework_replica", "seed 004: the report's own model under SciPy's RK45 (minutes; needs scipy)",
+          regenerate_replica, None, _CONVERGENCE_DOC),
+    Study("spin_stabilisation_campaign", "issue 13's spin target over 2 × 100 deployment runs (committed campaigns)",
+          regenerate_spin_campaign, spin_campaign_blocks, _SPIN_DOC, ("spin_minor_axis", "spin_major_axis")),
+    Study("campaign_plots", "the plots of the other committed campaigns, redrawn from their results",
+          regenerate_campaign_plots, None, None,
+          ("attitude_knowledge", "flight_detumble_campaign", "flight_detumble_campaign_p95")),
+    Study("attitude_modes_spin", "seed 003's spin stabilisation: one orbit per law (four deployment runs)",
+          regenerate_attitude_modes_spin, None, _ATTITUDE_DOC),
+    Study("attitude_modes_pointing", "seed 003's whole sequence as shipped: its table and figures (one 6000 s run)",
+          regenerate_attitude_modes_pointing, None, _ATTITUDE_DOC),
+    Study("attitude_modes_orbit", "seed 003's pointing on the wheels for one orbit: table and figures (one run)",
+          regenerate_attitude_modes_orbit, None, _ATTITUDE_DOC),
+    Study("readme_figures", "the README's figures: one detumble of the reference deployment (3100 s)",
+          regenerate_readme_figures, None, None),
+)}
+
+
+# ------------------------------------------------------------------------------------------------ commands
+
+
+def _shown(path: pathlib.Path) -> str:
+    return str(path.relative_to(ROOT)) if path.is_relative_to(ROOT) else str(path)
+
+
+def check(names: list[str], *, fly_probes: bool = True) -> list[str]:
+    """Every way the docs and the committed results of ``names`` may be stale (empty: none)."""
+    problems = []
+    for name in names:
+        study = STUDIES[name]
+        if study.blocks is not None and study.doc is not None:
+            try:
+                expected = study.blocks()
+            except StudyError as exc:
+                problems.append(f"{name}: {exc}")
+                continue
+            present = doc_blocks(study.doc.read_text(encoding="utf-8"))
+            for block, body in expected.items():
+                if block not in present:
+                    problems.append(f"{_shown(study.doc)}: no block '{block}'")
+                elif present[block].rstrip("\n") != body.rstrip("\n"):
+                    problems.append(f"{_shown(study.doc)}: block '{block}' is not what the committed "
+                                    f"results give: run `python tools/studies.py --only {name}`")
+        for key in study.campaigns:
+            try:
+                problems += CAMPAIGNS[key].problems(fly_probes=fly_probes)
+            except StudyError as exc:
+                problems.append(f"{name}: {exc}")
+    return problems
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--only", nargs="+", metavar="NAME", help="these studies only (--list names them)")
+    ap.add_argument("--quick", action="store_true", help="each study's short version, written under --out")
+    ap.add_argument("--out", type=pathlib.Path, help="where --quick writes (default runs/studies-quick)")
+    ap.add_argument("--check", action="store_true", help="write nothing; report what is stale (exit 1 if any)")
+    ap.add_argument("--no-probes", action="store_true", help="with --check: do not re-fly the probe runs")
+    ap.add_argument("--rerun-campaigns", action="store_true",
+                    help="run the studies' campaigns first (one worker, resuming the committed folders: hours)")
+    ap.add_argument("--reuse-runs", action="store_true",
+                    help="use again a finished flight of the same request in runs/studies/ (resume a long run)")
+    ap.add_argument("--list", action="store_true", help="name every study and stop")
+    args = ap.parse_args(argv)
+    if args.list:
+        for study in STUDIES.values():
+            print(f"{study.name:30s} {study.summary}")
+        return 0
+    names = args.only or list(STUDIES)
+    unknown = [n for n in names if n not in STUDIES]
+    if unknown:
+        import difflib
+
+        hints = [f"{n} (did you mean {', '.join(difflib.get_close_matches(n, STUDIES, 1)) or 'one of --list'}?)"
+                 for n in unknown]
+        print(f"studies: unknown study {'; '.join(hints)}; known: {', '.join(STUDIES)}", file=sys.stderr)
+        return 2
+    if args.check:
+        problems = check(names, fly_probes=not args.no_probes)
+        for p in problems:
+            print(f"STALE: {p}")
+        print("nothing stale" if not problems else f"{len(problems)} stale item(s)")
+        return 1 if problems else 0
+    if args.out is not None and not args.quick:
+        print("studies: --out is where --quick writes; without --quick the studies write into the docs",
+              file=sys.stderr)
+        return 2
+    ctx = Context(quick=args.quick, out=(args.out or ROOT / "runs" / "studies-quick") if args.quick else None,
+                  reuse=args.reuse_runs)
+    failed = []
+    for name in names:
+        study = STUDIES[name]
+        if args.rerun_campaigns:
+            for key in study.campaigns:
+                CAMPAIGNS[key].rerun()
+        print(f"{name}: {study.summary}", flush=True)
+        try:
+            before = len(ctx.written)
+            study.regenerate(ctx)
+            for path in ctx.written[before:]:
+                print(f"  wrote {path}")
+        except StudyError as exc:
+            failed.append(name)
+            print(f"  not regenerated: {exc}", file=sys.stderr)
+    if failed:
+        print(f"studies: {len(failed)} not regenerated: {', '.join(failed)}", file=sys.stderr)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
