@@ -67,13 +67,13 @@ def fpp_deployment(tmp_path, capsys):
     """A deployment skeleton whose component is the FPP one: `type: fpp:counter.fpp:...`."""
     assert main(["new", "deployment", "Dep", "--dir", str(tmp_path)]) == 0
     folder = tmp_path / "Dep"
-    for name in ("counter.py", "counter.md", "test_counter.py"):
+    for name in ("dep_counter.py", "dep_counter.md", "test_dep_counter.py"):  # the skeleton's own component
         (folder / name).unlink()
     assert main(["new", "component", "Counter", "--fpp", "--dir", str(folder)]) == 0
     topology = folder / "topology.yaml"
     text = topology.read_text()
-    assert "{type: counter.Counter," in text
-    topology.write_text(text.replace("{type: counter.Counter,", '{type: "fpp:counter.fpp:Components.Counter",'))
+    assert "{type: dep_counter.Counter," in text
+    topology.write_text(text.replace("{type: dep_counter.Counter,", '{type: "fpp:counter.fpp:Components.Counter",'))
     capsys.readouterr()
     return folder
 
