@@ -246,12 +246,12 @@ module Components {
     param BETA_KS: F64 default 990.0 id 0x2 set opcode 0x4 save opcode 0x5
     @ units: A·m²/(rad/s)
     param BETA_KD: F64 default 0.06 id 0x3 set opcode 0x6 save opcode 0x7
-    param BETA_SWITCHED: bool default false id 0x4 set opcode 0x8 save opcode 0x9
+    param BETA_SWITCHED: bool default true id 0x4 set opcode 0x8 save opcode 0x9
     @ units: 1/s²
     param WHEEL_KP: F64 default 5.0 id 0x5 set opcode 0xA save opcode 0xB
     @ units: 1/s
     param WHEEL_KD: F64 default 9.0 id 0x6 set opcode 0xC save opcode 0xD
-    param WHEEL_ERROR: Components.WheelError default Components.WheelError.REPORT id 0x7 set opcode 0xE save opcode 0xF
+    param WHEEL_ERROR: Components.WheelError default Components.WheelError.SHORTEST_PATH id 0x7 set opcode 0xE save opcode 0xF
     @ units: kg·m², body frame
     param INERTIA_XX: F64 default 0.00167 id 0x8 set opcode 0x10 save opcode 0x11
     @ units: kg·m², body frame
