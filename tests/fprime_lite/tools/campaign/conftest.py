@@ -2,13 +2,41 @@
 
 from __future__ import annotations
 
+import contextlib
+import os
 import pathlib
+import signal
+import socket
+import subprocess
+import sys
 import textwrap
 
 import pytest
 
 REPO = pathlib.Path(__file__).resolve().parents[4]
 TOPOLOGY = REPO / "deployments" / "proves_ref" / "topology.yaml"
+#: The venv's bin folder (dask scheduler / dask worker for the external-cluster tests).
+BIN = pathlib.Path(sys.executable).parent
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _stop(procs) -> None:
+    for p in procs:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(p.pid, signal.SIGTERM)
+    for p in procs:
+        try:
+            p.wait(timeout=15)
+        except subprocess.TimeoutExpired:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(p.pid, signal.SIGKILL)
+            p.wait(timeout=5)
+
 
 TINY_PLANT = """\
 campaign: tiny

@@ -8,7 +8,6 @@ import json
 import os
 import pathlib
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -16,32 +15,12 @@ import time
 import pytest
 
 from fprime_lite.tools.campaign import read_results, run_campaign
-from tests.fprime_lite.tools.campaign.conftest import TINY_PLANT, comparable
+from tests.fprime_lite.tools.campaign.conftest import BIN, TINY_PLANT, _free_port, _stop, comparable
 
 pd = pytest.importorskip("pandas", reason="pandas, dask and pyarrow are dependencies: pip install -e .[test]")
 pytest.importorskip("distributed", reason="dask[distributed] is a dependency: pip install -e .[test]")
 
-BIN = pathlib.Path(sys.executable).parent
 START_TIMEOUT_S = 90
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def _stop(procs) -> None:
-    for p in procs:
-        with contextlib.suppress(ProcessLookupError):
-            os.killpg(p.pid, signal.SIGTERM)
-    for p in procs:
-        try:
-            p.wait(timeout=15)
-        except subprocess.TimeoutExpired:
-            with contextlib.suppress(ProcessLookupError):
-                os.killpg(p.pid, signal.SIGKILL)
-            p.wait(timeout=5)
 
 
 @pytest.fixture

@@ -16,8 +16,7 @@ import time
 import pytest
 
 from fprime_lite.tools.campaign import CampaignError, run_campaign
-from tests.fprime_lite.tools.campaign.conftest import REPO
-from tests.fprime_lite.tools.campaign.test_cluster import BIN, _free_port, _stop
+from tests.fprime_lite.tools.campaign.conftest import BIN, REPO, _free_port, _stop
 
 pd = pytest.importorskip("pandas", reason="pandas, dask and pyarrow are dependencies: pip install -e .[test]")
 pytest.importorskip("distributed", reason="dask[distributed] is a dependency: pip install -e .[test]")
