@@ -126,6 +126,15 @@ def _params(collector: _TypeCollector, args) -> list[dict]:
     return [{"name": n, "type": collector.add(t), "ref": False} for n, t in args]
 
 
+def deployment_name(topology: Topology) -> str:
+    """The dictionary's ``deploymentName``: the qualified name of the deployment's FPP topology, as
+    ``fpp-to-dict`` writes it. A YAML deployment ``D`` is FPP topology ``D`` in module ``D`` (its
+    instances are ``D.name``), so ``D.D``; an FPP model gives its topology's qualified name. The
+    GDS takes the last segment."""
+    qualified = getattr(topology, "topology_name", None)
+    return str(qualified) if qualified else f"{topology.deployment}.{topology.deployment}"
+
+
 def build_dictionary(topology: Topology, *, project_version: str = __version__) -> dict:
     """The JSON dictionary (as Python data) of every instance in ``topology``."""
     types = _TypeCollector()
@@ -178,7 +187,7 @@ def build_dictionary(topology: Topology, *, project_version: str = __version__) 
             params.append(entry)
     return {
         "metadata": {
-            "deploymentName": topology.deployment,
+            "deploymentName": deployment_name(topology),
             "frameworkVersion": FRAMEWORK_VERSION,
             "projectVersion": project_version,
             "libraryVersions": [],

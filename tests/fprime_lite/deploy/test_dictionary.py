@@ -64,7 +64,7 @@ def test_top_level_keys_and_metadata(topology):
     d = build_dictionary(topology)
     assert list(d) == ["metadata", "typeDefinitions", "constants", "commands", "parameters", "events",
                        "telemetryChannels", "records", "containers", "telemetryPacketSets"]
-    assert d["metadata"]["deploymentName"] == "Demo"
+    assert d["metadata"]["deploymentName"] == "Demo.Demo"  # FPP topology Demo in module Demo, as fpp-to-dict
     assert d["metadata"]["dictionarySpecVersion"] == "1.0.0"
     assert {c["qualifiedName"]: c["value"] for c in d["constants"]} == {
         "ComCfg.SpacecraftId": 0x44, "ComCfg.TmFrameFixedSize": 1024,

@@ -25,8 +25,6 @@ pytestmark = pytest.mark.slow
 
 ROOT = pathlib.Path(__file__).resolve().parents[3]
 DEPLOYMENTS = ["proves_ref", "adcs_ref", "coursework"]
-DEPLOYMENT_NAMES = {"proves_ref": "ReferenceDeployment", "adcs_ref": "AdcsDeployment",
-                    "coursework": "CourseworkDeployment"}
 
 
 def _fpp_files(deployment: str) -> list[str]:
@@ -36,13 +34,12 @@ def _fpp_files(deployment: str) -> list[str]:
 
 def _known_differences(deployment: str) -> list[str]:
     """What fprime-lite's dictionary has that fpp-to-dict 3.0's has not (docs/fpp.md "Differences"):
-    the deployment named by its YAML name rather than the topology's qualified name, and what
-    fprime-gds 4.4.1 reads (ComCfg.Apid, whose fallback in the GDS numbers FW_PACKET_IDLE 5 where
-    F´ v4 says 6; the ComCfg constants; FwIdType and FwPrmIdType), which fpp-to-dict 3.0 lists only
-    when a command, event, channel or parameter uses them."""
-    name = DEPLOYMENT_NAMES[deployment]
-    return [f"metadata.deploymentName differs: ours {name!r} / fpp-to-dict '{name}.{name}'",
-            "constants ComCfg.SpacecraftId: only in ours",
+    the definitions /work/shared/spec/fprime_compat.md has every dictionary carry and fprime-gds
+    4.4.1 reads (ComCfg.Apid, whose GDS fallback numbers FW_PACKET_IDLE 5 where F´ v4 says 6; the
+    ComCfg constants; FwIdType, FwPrmIdType). F´'s own configuration marks them with FPP's
+    `dictionary` specifier, which fpp-python 3.4 takes and fpp-to-dict 3.0 does not parse; 3.0
+    lists a definition only when a command, event, channel or parameter uses it."""
+    return ["constants ComCfg.SpacecraftId: only in ours",
             "constants ComCfg.TmFrameFixedSize: only in ours",
             "typeDefinitions ComCfg.Apid: only in ours",
             "typeDefinitions FwIdType: only in ours",

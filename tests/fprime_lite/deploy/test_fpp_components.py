@@ -159,8 +159,7 @@ def test_a_handlers_only_topology_with_packets_against_fpp_to_dict(tmp_path, cap
     own = [f"events Dep.{i}.{e}: only in ours" for i in ("counter", "counter2")
            for e in ("HandlerFault", "ParamDefaulted", "ParamSetRefused")]
     own += [f"telemetryChannels Dep.{i}.HandlerFaults: only in ours" for i in ("counter", "counter2")]
-    ground = ["constants ComCfg.SpacecraftId: only in ours", "constants ComCfg.TmFrameFixedSize: only in ours",
-              "metadata.deploymentName differs: ours 'Dep' / fpp-to-dict 'Dep.Dep'"]
+    ground = ["constants ComCfg.SpacecraftId: only in ours", "constants ComCfg.TmFrameFixedSize: only in ours"]
     ground += [f"typeDefinitions {t}: only in ours"
                for t in ("ComCfg.Apid", "Fw.CmdResponse", "FwIdType", "FwPrmIdType", "TimeBase")]
     assert sorted(dictionary_differences(ours, theirs)) == sorted(own + ground)

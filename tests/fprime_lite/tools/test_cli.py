@@ -23,7 +23,7 @@ def test_dict_writes_a_dictionary_with_flight_names(tmp_path, capsys):
     commands = {c["name"]: c["opcode"] for c in d["commands"]}
     assert commands["ReferenceDeployment.detumbleManager.SET_MODE"] == 0x1005A000
     assert commands["CdhCore.cmdDisp.CMD_NO_OP"] == 0x01000100
-    assert d["metadata"]["deploymentName"] == "ReferenceDeployment"
+    assert d["metadata"]["deploymentName"] == "ReferenceDeployment.ReferenceDeployment"
 
 
 def test_graph_prints_dot_and_mermaid(capsys):

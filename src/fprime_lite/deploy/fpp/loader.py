@@ -99,6 +99,9 @@ class FppModel:
     :func:`~fprime_lite.deploy.dictionary.build_dictionary` reads of a topology."""
 
     deployment: str
+    #: the topology's qualified name (``ReferenceDeployment.ReferenceDeployment``), the dictionary's
+    #: deploymentName as fpp-to-dict writes it
+    topology_name: str = ""
     instances: dict[str, FppInstance] = field(default_factory=dict)
     connections: list[tuple[str, str, int, str, str, int]] = field(default_factory=list)
     #: FPP component name -> the class bound to it
@@ -239,18 +242,8 @@ def _check_component(fpp_name: str, comp: Any, cls: type, analysis: Any) -> list
     for name in py_commands.keys() - seen:
         refuse(comp.node, f"{cls.__qualname__} handles command {name}, which the FPP component does not declare",
                getattr(cls, name, None))
-    # events
-    py_events = {e.name: e for e in spec.events}
-    seen = set()
-    for event_id, event in comp.event_map.items():
+    for _, event, pe in _paired("event", comp.event_map, spec.events, cls, comp.node, refuse):
         name, node = event.name, event.node
-        seen.add(name)
-        pe = py_events.get(name)
-        if pe is None:
-            refuse(node, f"event {name} has no implementation: declare it in {cls.__qualname__}")
-            continue
-        if event_id != pe.local_id:
-            refuse(node, f"event {name} has id 0x{event_id:X} in FPP, 0x{pe.local_id:X} in Python")
         severity = _SEVERITY.get(str(node.severity).rsplit(".", 1)[-1])
         if severity is not pe.severity:
             refuse(node, f"event {name} is {node.severity} in FPP, {pe.severity.name} in Python")
@@ -262,44 +255,16 @@ def _check_component(fpp_name: str, comp: Any, cls: type, analysis: Any) -> list
         if [p.name for p in node.params] != [n for n, _ in pe.args]:
             refuse(node, f"event {name} takes ({', '.join(p.name for p in node.params)}) in FPP, "
                          f"({', '.join(n for n, _ in pe.args)}) in Python")
-    for name in py_events.keys() - seen - _FRAMEWORK_MEMBERS:
-        refuse(comp.node, f"{cls.__qualname__} declares event {name}, which the FPP component does not")
-    # channels
-    py_channels = {c.name: c for c in spec.channels}
-    seen = set()
-    for channel_id, channel in comp.tlm_channel_map.items():
-        name, node = channel.name, channel.node
-        seen.add(name)
-        pc = py_channels.get(name)
-        if pc is None:
-            refuse(node, f"channel {name} has no implementation: declare it in {cls.__qualname__}")
-            continue
-        if channel_id != pc.local_id:
-            refuse(node, f"channel {name} has id 0x{channel_id:X} in FPP, 0x{pc.local_id:X} in Python")
+    for _, channel, pc in _paired("channel", comp.tlm_channel_map, spec.channels, cls, comp.node, refuse):
         update = "on change" if "OnChange" in str(channel.update) else "always"
         if update != pc.update:
-            refuse(node, f"channel {name} updates {update} in FPP, {pc.update} in Python")
-    for name in py_channels.keys() - seen - _FRAMEWORK_MEMBERS:
-        refuse(comp.node, f"{cls.__qualname__} declares channel {name}, which the FPP component does not")
-    # parameters
-    py_params = {p.name: p for p in spec.params}
-    seen = set()
-    for param_id, param in comp.param_map.items():
-        name, node = param.name, param.node
-        seen.add(name)
-        pp = py_params.get(name)
-        if pp is None:
-            refuse(node, f"parameter {name} has no implementation: declare it in {cls.__qualname__}")
-            continue
-        if param_id != pp.local_id:
-            refuse(node, f"parameter {name} has id 0x{param_id:X} in FPP, 0x{pp.local_id:X} in Python")
+            refuse(channel.node, f"channel {channel.name} updates {update} in FPP, {pc.update} in Python")
+    for _, param, _ in _paired("parameter", comp.param_map, spec.params, cls, comp.node, refuse):
         for what, fpp_opcode in (("SET", param.set_opcode), ("SAVE", param.save_opcode)):
-            py_opcode = spec.command(f"{name.upper()}_PRM_{what}").opcode
+            py_opcode = spec.command(f"{param.name.upper()}_PRM_{what}").opcode
             if fpp_opcode != py_opcode:
-                refuse(node, f"parameter {name}'s {what.lower()} opcode is 0x{fpp_opcode:X} in FPP, "
-                             f"0x{py_opcode:X} in Python")
-    for name in py_params.keys() - seen:
-        refuse(comp.node, f"{cls.__qualname__} declares parameter {name}, which the FPP component does not")
+                refuse(param.node, f"parameter {param.name}'s {what.lower()} opcode is 0x{fpp_opcode:X} in FPP, "
+                                   f"0x{py_opcode:X} in Python")
     # general ports
     special = set(spec.special.values())
     py_ports = {n: ("input", d.kind, d.size, d.port_type.name) for n, d in spec.inputs.items() if n not in special}
@@ -333,6 +298,27 @@ def _check_component(fpp_name: str, comp: Any, cls: type, analysis: Any) -> list
     for name in py_ports.keys() - seen:
         refuse(comp.node, f"{cls.__qualname__} has port {name}, which the FPP component does not declare",
                getattr(cls, name, None))
+    return out
+
+
+def _paired(what: str, fpp_members: dict[int, Any], py_members: Iterable[Any], cls: type, comp_node: Any,
+            refuse: Any) -> list[tuple[int, Any, Any]]:
+    """(FPP id, FPP member, Python member) of each ``what`` (event, channel, parameter) both sides
+    declare with the same local id; a member of one side only, or with another id, is refused.
+    fprime-lite's own members (HandlerFault …) need not be in the FPP."""
+    by_name = {m.name: m for m in py_members}
+    out, seen = [], set()
+    for local_id, member in fpp_members.items():
+        seen.add(member.name)
+        py = by_name.get(member.name)
+        if py is None:
+            refuse(member.node, f"{what} {member.name} has no implementation: declare it in {cls.__qualname__}")
+            continue
+        if local_id != py.local_id:
+            refuse(member.node, f"{what} {member.name} has id 0x{local_id:X} in FPP, 0x{py.local_id:X} in Python")
+        out.append((local_id, member, py))
+    for name in sorted(by_name.keys() - seen - _FRAMEWORK_MEMBERS):
+        refuse(comp_node, f"{cls.__qualname__} declares {what} {name}, which the FPP component does not")
     return out
 
 
@@ -437,7 +423,7 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
                         f"check_components"])
     symbol, topology = topologies[0]
     qualified = analysis.get_qualified_name(symbol)
-    result = FppModel(qualified.rsplit(".", 1)[-1])
+    result = FppModel(qualified.rsplit(".", 1)[-1], qualified)
     explicit = dict(implementations or {})
     problems: list[str] = []
     checked: dict[str, type | None] = {}
