@@ -125,7 +125,10 @@ def build_parser() -> argparse.ArgumentParser:
                          "plots "
                          "(docs/outputs.md). Exits 1 when the flight had faults, cycle slips or WARNING_HI/FATAL "
                          "events (--allow-warnings accepts them), 2 for a mistake in the inputs.")
-    _topology_arg(run)
+    _model_arg(run)
+    run.add_argument("--run-file", metavar="FILE", help="FPP only: the constructor arguments, rate-group divisors "
+                     "and resources an FPP topology does not say (default: run.yaml beside the FPP files; "
+                     "docs/fpp.md)")
     run.add_argument("--duration", type=float, default=None, metavar="SECONDS",
                      help="simulated seconds to run (default: the topology's run.duration_s, else 600)")
     run.add_argument("--stop-when", action="append", default=[], metavar="'KEY OP VALUE'",
@@ -428,6 +431,31 @@ def _float_text(setting: str, text: str, type_name: str):
     return value
 
 
+def _run_topology(args) -> None:
+    """``args.topology`` as one topology YAML path: the given YAML, or the YAML written (into a
+    temporary folder removed at exit) that flies the given FPP topology with its run file."""
+    paths = list(args.topology)
+    if not any(p.endswith(".fpp") for p in paths) and not args.imports:
+        if args.run_file is not None:
+            raise UserError("--run-file applies to an FPP topology: give its .fpp files")
+        if len(paths) != 1:
+            raise UserError(f"{' '.join(paths)}: give one topology YAML (several files are FPP files only)")
+        args.topology = paths[0]
+        return
+    import atexit
+    import shutil
+    import tempfile
+
+    from fprime_lite.deploy.fpp.run import write_topology_yaml
+
+    if not all(p.endswith(".fpp") for p in paths):
+        raise UserError(f"{' '.join(paths)}: give either FPP files or one topology YAML, not both")
+    folder = pathlib.Path(tempfile.mkdtemp(prefix="fprime-lite-fpp-"))
+    atexit.register(shutil.rmtree, folder, ignore_errors=True)
+    args.topology = str(write_topology_yaml(paths, folder, imports=[p for p in args.imports.split(",") if p],
+                                            framework=not args.no_framework_fpp, run_file=args.run_file))
+
+
 def cmd_run(args) -> int:
     from fprime_lite.deploy.preflight import check_run_files
     from fprime_lite.tools import disk_estimate
@@ -436,6 +464,7 @@ def cmd_run(args) -> int:
     from fprime_lite.tools.stop_condition import StopConditionError, parse_stop_condition
 
     _checked_settings(args.set)
+    _run_topology(args)
     if args.duration is not None and not 0 < args.duration < math.inf:
         raise UserError(f"--duration must be a positive, finite number of seconds, got {args.duration}")
     try:

@@ -149,3 +149,54 @@ def test_the_verbs_take_fpp_files(tmp_path, capsys):
     assert main(["check", files[0]]) == 0  # the components alone: each bound to its class
     assert "Components.DetumbleManager → detumble.components.detumble_manager.DetumbleManager" in \
         capsys.readouterr().out
+
+
+def _run(argv: list[str], out: pathlib.Path) -> int:
+    return main(["run", *argv, "--duration", "10", "--out", str(out), "--no-plots", "--no-progress"])
+
+
+def test_run_flies_the_fpp_form_as_the_yaml_form(tmp_path):
+    """FPP-008: `fprime-lite run components.fpp topology.fpp` (the FPP's instances and connections,
+    the run file's constructor arguments, divisors and resources) flies as the YAML form: the same
+    events, dictionary and truth, the same channels but for the rate groups' wall-clock RgMaxTime."""
+    assert _run(_fpp_files("coursework"), tmp_path / "fpp") == 0
+    assert _run([str(ROOT / "deployments/coursework/topology.yaml")], tmp_path / "yaml") == 0
+    for name in ("events.log", "dictionary.json", "truth.csv"):
+        assert (tmp_path / "fpp" / name).read_bytes() == (tmp_path / "yaml" / name).read_bytes(), name
+
+    def channels(folder: str) -> list[str]:
+        return [line for line in (tmp_path / folder / "channels.csv").read_text().splitlines()
+                if "RgMaxTime" not in line]
+    assert len(channels("fpp")) > 100 and channels("fpp") == channels("yaml")
+    assert "CdhCore.cmdDisp.OpCodeDispatched" in (tmp_path / "fpp" / "events.log").read_text()
+
+
+def _coursework_copy(tmp_path: pathlib.Path, run_text: str | None) -> list[str]:
+    folder = ROOT / "deployments" / "coursework" / "fpp"
+    for name in ("components.fpp", "topology.fpp"):
+        (tmp_path / name).write_text((folder / name).read_text())
+    if run_text is not None:
+        (tmp_path / "run.yaml").write_text(run_text)
+    return [str(tmp_path / "components.fpp"), str(tmp_path / "topology.fpp")]
+
+
+@pytest.mark.parametrize("change, expected", [
+    (None, "run.yaml: no run file — an FPP topology does not say the constructor arguments"),
+    (("      divisor: 100\n", ""), "rate group CourseworkDeployment.rateGroup10Hz has no divisor"),
+    (("      wheelY:\n        args:\n          spacecraft: $spacecraft\n          wheel: 1\n", ""),
+     "instance CourseworkDeployment.wheelY (Components.ReactionWheelDriver, ReactionWheelDriver) needs constructor "
+     "argument(s) spacecraft, wheel — give them in modules.CourseworkDeployment.instances.wheelY.args"),
+    (("rate_groups:\n", "connections: {}\nrate_groups:\n"), "'connections' is the FPP topology's connections"),
+])
+def test_run_of_fpp_refuses_what_the_run_file_lacks(tmp_path, capsys, change, expected):
+    """FPP-009: what an FPP topology does not say and the run file does not give (no run file, a
+    divisor, a constructor argument) or gives twice is refused before anything flies, exit 2."""
+    run_text = None
+    if change is not None:
+        run_text = (ROOT / "deployments/coursework/fpp/run.yaml").read_text()
+        assert change[0] in run_text
+        run_text = run_text.replace(change[0], change[1], 1)
+    files = _coursework_copy(tmp_path, run_text)
+    assert _run(files, tmp_path / "out") == 2
+    assert expected in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()

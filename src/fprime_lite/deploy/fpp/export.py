@@ -402,7 +402,51 @@ def deployment_texts(topology_path: str | pathlib.Path) -> dict[str, str]:
     header = _HEADER.format(args=f" {source}", source=source)
     return {"components.fpp": header + export_components(own, skip=HAND_WRITTEN_NAMES | framework_types,
                                                            skip_ports=HAND_WRITTEN_PORTS | framework_ports),
-            "topology.fpp": header + export_topology(topology)}
+            "topology.fpp": header + export_topology(topology),
+            "run.yaml": run_file_text(topology_path)}
+
+
+def run_file_text(topology_path: str | pathlib.Path, out_dir: str | pathlib.Path | None = None) -> str:
+    """The run file (``deploy/fpp/run.py``) of the FPP form of a topology YAML: its resources,
+    constructor arguments, rate-group divisors, parameter file, start-up sequence and run settings,
+    paths relative to ``out_dir`` (default ``fpp/`` beside the topology)."""
+    import json
+    import os
+
+    import yaml
+
+    from fprime_lite.deploy.topology_yaml.files import read_document, resolve_path
+    from fprime_lite.deploy.topology_yaml.problems import Problems
+
+    path = pathlib.Path(topology_path)
+    folder = pathlib.Path(out_dir) if out_dir is not None else path.parent / "fpp"
+    problems = Problems()
+    doc = json.loads(json.dumps(read_document(path, problems)))  # plain data, extends merged
+    problems.raise_if_any()
+
+    def relative(value: str) -> str:
+        return os.path.relpath(resolve_path(value, path.parent), folder)
+
+    run: dict = {key: doc[key] for key in ("resources", "parameter_file", "startup", "time", "run") if key in doc}
+    if "parameter_file" in run:
+        run["parameter_file"] = relative(run["parameter_file"])
+    if isinstance(run.get("startup"), dict) and "sequence" in run["startup"]:
+        run["startup"]["sequence"] = relative(run["startup"]["sequence"])
+    modules = {}
+    for module, body in (doc.get("modules") or {}).items():
+        args = {name: {"args": entry["args"]} for name, entry in (body.get("instances") or {}).items()
+                if isinstance(entry, dict) and entry.get("args")}
+        if args:
+            modules[module] = {"instances": args}
+    if modules:
+        run["modules"] = modules
+    if "rate_groups" in doc:
+        groups = doc["rate_groups"]
+        run["rate_groups"] = {"base_rate_hz": groups["base_rate_hz"],
+                              "groups": {name: {"divisor": g["divisor"]} for name, g in groups["groups"].items()}}
+    header = (f"# What the FPP form of {path} does not say (docs/fpp.md \"Running an FPP topology\"): written by\n"
+              f"# python -m fprime_lite.deploy.fpp.export {path}\n")
+    return header + yaml.safe_dump(run, sort_keys=False, width=110)
 
 
 def _framework_names() -> tuple[frozenset[str], frozenset[str]]:

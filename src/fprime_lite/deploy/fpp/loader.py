@@ -40,6 +40,9 @@ __all__ = ["FppError", "FppModel", "FppInstance", "load_fpp", "check_components"
            "fpp_available", "component_class"]
 
 _REGISTRY: dict[str, type] = {}
+#: (FPP file, its mtime and size, component name) -> the class load_fpp bound it to, so that a
+#: ``type: fpp:FILE:M.Name`` of the topology YAML that flies an FPP topology (run.py) is not analysed again
+_BOUND: dict[tuple[str, int, int, str], type] = {}
 #: The events and channel fprime-lite gives every component (HandlerFault, HandlerFaults …): an FPP
 #: model need not declare them (fprime-lite's own FPP does, so that fpp-to-dict lists them too).
 _FRAMEWORK_MEMBERS = frozenset(FRAMEWORK_EVENTS) | frozenset(FRAMEWORK_CHANNELS)
@@ -108,6 +111,8 @@ class FppModel:
     bindings: dict[str, type] = field(default_factory=dict)
     #: the topology's telemetry packet sets, as the dictionary lists them
     telemetry_packet_sets: list[dict] = field(default_factory=list)
+    #: FPP component name -> the FPP file that defines it
+    component_files: dict[str, str] = field(default_factory=dict)
 
     def to_dot(self) -> str:
         """The connection graph in Graphviz DOT."""
@@ -438,6 +443,8 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
             checked[comp_name] = implementation
             if implementation is not None:
                 result.bindings[comp_name] = implementation
+                result.component_files[comp_name] = str(pathlib.Path(str(comp.node.location.uri)).resolve())
+                _BOUND[_bound_key(result.component_files[comp_name], comp_name)] = implementation
         bound: Any = checked[comp_name]
         if bound is None:
             continue
@@ -447,9 +454,29 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
         result.instances[name] = FppInstance(module, view, comp_name, inst.queue_size, inst.priority, _loc(inst.node))
     if problems:
         raise FppError(problems)
+    order = _declaration_order(topology, qualified.rpartition(".")[0])
+    result.instances = dict(sorted(result.instances.items(), key=lambda item: order.get(item[0], len(order))))
     result.connections.extend(_connections(topology))
     result.telemetry_packet_sets = _packet_sets(analysis, symbol, result)
     return result
+
+
+def _declaration_order(topology: Any, module: str) -> dict[str, int]:
+    """Qualified instance name -> its place among the topology's ``instance`` specifiers (the
+    analyser's instance map is sorted by name; the order of the file is the one the YAML form has
+    and the one fprime-lite's patterns number ports in)."""
+    def text(node: Any) -> str:
+        if hasattr(node, "data"):
+            return str(node.data).lstrip("$")
+        return f"{text(node.qualifier)}.{text(node.name)}"
+
+    order: dict[str, int] = {}
+    for member in topology.node.members:
+        if type(member).__name__ == "SpecInstance":
+            name = text(member.instance)
+            for candidate in (name, f"{module}.{name}" if module else name):
+                order.setdefault(candidate, len(order))
+    return order
 
 
 def _packet_sets(analysis: Any, symbol: Any, model: FppModel) -> list[dict]:
@@ -474,16 +501,39 @@ def _packet_sets(analysis: Any, symbol: Any, model: FppModel) -> list[dict]:
 
 
 def _connections(topology: Any) -> list[tuple[str, str, int, str, str, int]]:
-    """(source instance, port, index, target instance, port, index) of every connection."""
+    """(source instance, port, index, target instance, port, index) of every connection: the index
+    the FPP gives, else the one the analyser assigned (a pattern's, or an unnumbered connection's).
+    The analyser's connection objects compare by identity, so its number maps are read by endpoints."""
+    def ends(c: Any) -> tuple[str, str, str, str]:
+        source, target = c.from_.port, c.to.port
+        return (source.interface_instance.qualified_name, source.unqualified_name.rsplit(".", 1)[-1],
+                target.interface_instance.qualified_name, target.unqualified_name.rsplit(".", 1)[-1])
+
+    assigned: dict[str, dict[tuple[str, str, str, str], list[int]]] = {"from": {}, "to": {}}
+    for side, numbers in (("from", topology.from_port_number_map), ("to", topology.to_port_number_map)):
+        for c, assigned_number in numbers.items():
+            assigned[side].setdefault(ends(c), []).append(assigned_number)
+
+    def number(side: str, endpoint: Any, key: tuple[str, str, str, str]) -> int:
+        if endpoint.port_number is not None:
+            return int(endpoint.port_number)
+        left = assigned[side].get(key)
+        return left.pop(0) if left else 0
+
     out = []
-    from_numbers, to_numbers = topology.from_port_number_map, topology.to_port_number_map
     for connections in topology.output_connection_map.values():
         for c in connections:
-            source, target = c.from_.port, c.to.port
-            out.append((source.interface_instance.qualified_name, source.unqualified_name.rsplit(".", 1)[-1],
-                        from_numbers.get(c, 0), target.interface_instance.qualified_name,
-                        target.unqualified_name.rsplit(".", 1)[-1], to_numbers.get(c, 0)))
+            key = ends(c)
+            out.append((key[0], key[1], number("from", c.from_, key), key[2], key[3], number("to", c.to, key)))
     return out
+
+
+def _bound_key(path: str, name: str) -> tuple[str, int, int, str]:
+    try:
+        stat = pathlib.Path(path).stat()
+    except OSError:
+        return (path, -1, -1, name)
+    return (path, stat.st_mtime_ns, stat.st_size, name)
 
 
 def component_class(paths: str | pathlib.Path | Iterable[str | pathlib.Path], name: str | None = None, *,
@@ -493,6 +543,10 @@ def component_class(paths: str | pathlib.Path | Iterable[str | pathlib.Path], na
     itself, checked, or the one made from a handlers-only class): what a harness test takes.
     ``name`` (``Components.Counter``) chooses among several components."""
     files = [paths] if isinstance(paths, (str, pathlib.Path)) else list(paths)
+    if name is not None and len(files) == 1 and not imports and not implementations:
+        cached = _BOUND.get(_bound_key(str(pathlib.Path(files[0]).resolve()), name))
+        if cached is not None:
+            return cached
     bound = check_components(files, imports=imports, implementations=implementations)
     if name is None and len(bound) == 1:
         return next(iter(bound.values()))
