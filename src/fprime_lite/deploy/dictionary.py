@@ -101,6 +101,9 @@ class _TypeCollector:
             return t.json_ref()
         definition = t.json_definition()
         if definition is not None and t.name not in self.definitions:
+            annotation = getattr(t, "annotation", None)  # an FPP definition's `@` comment, as fpp-to-dict
+            if annotation:
+                definition["annotation"] = annotation
             self.definitions[t.name] = definition
             for dep in t.dependencies():
                 self.add(dep)

@@ -10,6 +10,7 @@ import pytest
 
 pytest.importorskip("fpp", reason="FPP models need fprime-fpp-python (the test extra installs it)")
 
+from fprime_lite import CmdResponse  # noqa: E402
 from fprime_lite.deploy.fpp.loader import FppError, component_class  # noqa: E402
 from fprime_lite.tools.cli import main  # noqa: E402
 
@@ -204,9 +205,117 @@ def test_fpp_connection_patterns_connect_the_special_ports(tmp_path, capsys, mon
 """)
     model = load_fpp([tmp_path / "counter.fpp", tmp_path / "top.fpp"])
     counter = {c for c in model.connections if "Dep.counter" in (c[0], c[3])}
-    assert counter == {("Dep.cmdDisp", "compCmdSend", 0, "Dep.counter", "cmdIn", 0),
-                       ("Dep.counter", "cmdRegOut", 0, "Dep.cmdDisp", "compCmdReg", 0),
+    # the analyser's numbers: the dispatcher's own commands at 0, the counter's at 1, registration and
+    # dispatch at one index (svc.fpp: match compCmdSend with compCmdReg)
+    assert counter == {("Dep.cmdDisp", "compCmdSend", 1, "Dep.counter", "cmdIn", 0),
+                       ("Dep.counter", "cmdRegOut", 0, "Dep.cmdDisp", "compCmdReg", 1),
                        ("Dep.counter", "cmdResponseOut", 0, "Dep.cmdDisp", "compCmdStat", 0),
                        ("Dep.counter", "logOut", 0, "Dep.events", "LogRecv", 0),
                        ("Dep.counter", "tlmOut", 0, "Dep.tlmSend", "TlmRecv", 0)}
     assert model.instances["Dep.cmdDisp"].queue_size == 10
+
+
+_SHAPES_FPP = """module Components {
+  @ Three numbers
+  array Vec = [3] F64 default [1.0, 2.0, 3.0]
+  @ A labelled point
+  struct Pt { x: U32, label: string size 8, v: Vec } default { x = 7 }
+
+  passive component Shapes {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+
+    sync input port run: Svc.Sched
+    sync command SET_POINT(p: Pt) opcode 0x0
+    event Moved(p: Pt) severity activity low id 0x0 format "moved to {}"
+    telemetry Where: Vec id 0x0
+    param START: Pt id 0x0 set opcode 0x1 save opcode 0x2
+  }
+}
+"""
+
+_SHAPES_PY = '''from fprime_lite import CmdResponse, PassiveComponent
+
+
+class Shapes(PassiveComponent):
+    def run(self, context: int) -> None:
+        self.Where.write(self.START.value.v)
+
+    def SET_POINT(self, p) -> CmdResponse:  # noqa: N802 - F´ command names are upper case
+        self.Moved(p)
+        return CmdResponse.OK
+'''
+
+_SHAPES_TOPOLOGY = """module Dep {
+  instance shapes: Components.Shapes base id 0x1000
+  topology Dep {
+    instance shapes
+  }
+}
+"""
+
+
+def test_a_handlers_only_class_takes_array_and_struct_types(tmp_path, monkeypatch, fprime_harness):
+    """FPPC-009: FPP arrays and structs (with the FPP's defaults, an array inside a struct) become
+    fprime-lite Array and Struct types of the same qualified names: a struct command argument, an
+    event carrying it, an array channel and a struct parameter with its default fly in the harness."""
+    (tmp_path / "shapes.fpp").write_text(_SHAPES_FPP)
+    (tmp_path / "shapes.py").write_text(_SHAPES_PY)
+    monkeypatch.syspath_prepend(str(tmp_path))
+    cls = component_class(tmp_path / "shapes.fpp")
+    spec = cls.__fprime_spec__
+    assert spec.channel("Where").type.name == "Components.Vec"
+    start = spec.param("START")
+    assert start.type.name == "Components.Pt"
+    assert (start.default.x, start.default.label, list(start.default.v)) == (7, "", [1.0, 2.0, 3.0])
+    h = fprime_harness(cls("shapes", base_id=0x1000))
+    h.load_parameters()
+    h.invoke("run", 0)
+    h.assert_tlm("Where", 0, [1.0, 2.0, 3.0])
+    point = start.type.cls(x=3, label="here", v=[4.0, 5.0, 6.0])
+    h.send_command("SET_POINT", point)
+    h.assert_cmd_response(0, "SET_POINT", CmdResponse.OK)
+    h.assert_event("Moved", 0, point)
+
+
+@pytest.mark.slow  # runs fpp-to-dict
+def test_array_and_struct_definitions_as_fpp_to_dict_lists_them(tmp_path, monkeypatch):
+    """FPPC-010: the dictionary's definitions of an FPP array and struct made for a handlers-only
+    class, and the struct parameter's default, are fpp-to-dict's."""
+    import json
+    import shutil
+
+    from fprime_lite.deploy.dictionary import build_dictionary
+    from fprime_lite.deploy.fpp import export
+    from fprime_lite.deploy.fpp.loader import load_fpp
+
+    tool = shutil.which("fpp-to-dict")
+    if tool is None:
+        pytest.skip("fpp-to-dict is not installed (pip install 'fprime-lite[fpp]' installs fprime-fpp-to-dict)")
+    (tmp_path / "shapes.fpp").write_text(_SHAPES_FPP)
+    (tmp_path / "shapes.py").write_text(_SHAPES_PY)
+    (tmp_path / "dep.fpp").write_text(_SHAPES_TOPOLOGY)
+    monkeypatch.syspath_prepend(str(tmp_path))
+    files = [tmp_path / "shapes.fpp", tmp_path / "dep.fpp"]
+    ours = build_dictionary(load_fpp(files))  # type: ignore[arg-type]
+    out = tmp_path / "out"
+    out.mkdir()
+    subprocess.run([tool, "-i", ",".join(str(p) for p in export.framework_files()), *map(str, files), "-d", str(out)],
+                   check=True, capture_output=True, timeout=120)
+    theirs = json.loads((out / "DepTopologyDictionary.json").read_text())
+
+    def pick(d: dict, section: str, key: str, names: tuple[str, ...]) -> list[dict]:
+        return [e for e in d[section] if e[key] in names]
+    for section, key, names in (("typeDefinitions", "qualifiedName", ("Components.Vec", "Components.Pt")),
+                                ("parameters", "name", ("Dep.shapes.START",)),
+                                ("telemetryChannels", "name", ("Dep.shapes.Where",)),
+                                ("events", "name", ("Dep.shapes.Moved",))):
+        mine = sorted(pick(ours, section, key, names), key=lambda e: e[key])
+        assert len(mine) == len(names) and mine == sorted(pick(theirs, section, key, names), key=lambda e: e[key])

@@ -285,6 +285,12 @@ def _spec_types(spec: ComponentSpec) -> list[FwType[Any]]:
     return types
 
 
+#: F´'s port matching (``match A with B``: the connections of A and B at one index go to one
+#: component): the dispatcher sends a command on the index its opcodes were registered at, Health
+#: pings on the index the answer comes back at. fprime-lite's patterns number them so too.
+PORT_MATCHES = {"Svc.CommandDispatcher": [("compCmdSend", "compCmdReg")], "Svc.Health": [("PingSend", "PingReturn")]}
+
+
 def export_components(classes: Iterable[type[Component]], *, skip: frozenset[str] = HAND_WRITTEN_NAMES,
                       skip_ports: frozenset[str] = HAND_WRITTEN_PORTS, also: Iterable[FwType[Any]] = ()) -> str:
     """FPP text defining ``classes``, the named types and port types they use and the types ``also``,
@@ -320,7 +326,7 @@ def export_components(classes: Iterable[type[Component]], *, skip: frozenset[str
             continue
         writer.add(name, _port_definition(port, name.rsplit(".", 1)[-1]))
     for name, (cls, spec) in components.items():
-        body = nested[name] + _component_body(spec)
+        body = nested[name] + _component_body(spec) + [f"match {a} with {b}" for a, b in PORT_MATCHES.get(name, ())]
         inner = "\n".join("  " + line if line else "" for block in body for line in block.splitlines())
         dotted = f"{cls.__module__}.{cls.__qualname__}"
         binding = "" if dotted in SVC_COMPONENT_NAMES else f"@ fprime-lite: {dotted}\n"  # loader.py's rule 2

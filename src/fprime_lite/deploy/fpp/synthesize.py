@@ -8,12 +8,16 @@ FPP declares (ports, commands with their opcodes, events, channels, parameters w
 defaults), checks each handler against its port or command, and returns it; the harness and the
 topology loaders take it as any component class.
 
-Types: the primitive types, strings, and the aliases and enums the FPP model defines; an array or
-struct member is refused with the reason (declare that component in Python instead).
+Types: the primitive types, strings, and the aliases, enums, arrays and structs the FPP model
+defines (each made once per model as an ``FwEnum``, ``Array`` or ``Struct`` of the same qualified
+name, with the FPP's defaults); a serial port or an abstract type is refused with the reason.
 """
 
 from __future__ import annotations
 
+import copy
+import dataclasses
+import functools
 import inspect
 import types as pytypes
 from typing import Any, Callable
@@ -26,7 +30,8 @@ from fprime_lite.model.events import Event, Severity
 from fprime_lite.model.params import Param
 from fprime_lite.model.ports import InputPortDecl, OutputPort, PortType, async_input, guarded_input, sync_input
 from fprime_lite.model.telemetry import Channel
-from fprime_lite.model.types import PRIMITIVE_TYPES, FwEnum, FwType, String, fw_type
+from fprime_lite.model.types import (PRIMITIVE_TYPES, Array, ArrayType, FwEnum, FwType, String, Struct, StructType,
+                                     fw_type)
 
 __all__ = ["synthesize", "declares_nothing", "UnsupportedTypeError"]
 
@@ -39,7 +44,7 @@ _FRAMEWORK_PORTS = {p.name: p for p in (getattr(fw_ports, n) for n in fw_ports._
 
 
 class UnsupportedTypeError(DeclarationError):
-    """An FPP type that a handlers-only class cannot take (arrays, structs, abstract types)."""
+    """An FPP type that a handlers-only class cannot take (abstract types, serial ports)."""
 
 
 def declares_nothing(cls: type) -> bool:
@@ -59,6 +64,7 @@ class _Types:
 
     def __init__(self, analysis: Any):
         self.analysis = analysis
+        #: the enums, arrays and structs made so far, by qualified name
         self.enums: dict[str, FwType[Any]] = {}
 
     def of(self, t: Any, where: str) -> FwType[Any]:
@@ -73,10 +79,49 @@ class _Types:
         if kind == "Enum":
             name = self.analysis.get_qualified_name(t.def_symbol)
             if name not in self.enums:
-                self.enums[name] = _enum(name, t)
+                self.enums[name] = _annotate(_enum(name, t), t.node)
+            return self.enums[name]
+        if kind in ("Array", "Struct"):
+            # the definition's own type: one reached through a command's argument may lack resolved sizes
+            t = self.analysis.type_map.get(t.def_node_id, t)
+            name = self.analysis.get_qualified_name(t.def_symbol)
+            if name not in self.enums:
+                made = self._array(name, t, where) if kind == "Array" else self._struct(name, t, where)
+                _annotate(made, t.node)  # the dictionary's `annotation` of the definition, as fpp-to-dict's
+                self.enums[name] = made
             return self.enums[name]
         raise UnsupportedTypeError(f"{where}: type {text} ({kind}) — a handlers-only class takes primitive, string, "
-                              f"alias and enum types; declare this component's members in Python instead")
+                                   f"alias, enum, array and struct types; declare this component's members in "
+                                   f"Python instead")
+
+    def _array(self, name: str, t: Any, where: str) -> FwType[Any]:
+        elem = self.of(t.anon_array.elt_type, f"{where}: element of {name}")
+        namespace, _, short = name.rpartition(".")
+        size = t.array_size if t.array_size is not None else t.anon_array.size
+        if size is None:
+            raise UnsupportedTypeError(f"{where}: array {name} has no size the analyser resolved")
+        cls = pytypes.new_class(short, (Array,), {"elem": elem, "size": int(size),
+                                                  "namespace": namespace or None})
+        array_type: FwType[Any] = fw_type(cls)
+        if t.default is not None and isinstance(array_type, ArrayType) and array_type._defaults is not None:
+            # the FPP's default elements (numbers, enums, strings): what the array's default is made of
+            array_type._defaults = tuple(_value(elem, e) for e in t.default.anon_array.elements)
+        return array_type
+
+    def _struct(self, name: str, t: Any, where: str) -> FwType[Any]:
+        members = [(member, self.of(mt, f"{where}: member {member} of {name}")) for member, mt in t.anon_struct.members]
+        defaults = t.default.anon_struct.members if t.default is not None else {}
+        namespace, _, short = name.rpartition(".")
+
+        def body(ns: dict[str, Any]) -> None:
+            ns["__annotations__"] = dict(members)
+            for member, mt in members:
+                if member in defaults:
+                    value = _value(mt, defaults[member])
+                    ns[member] = (dataclasses.field(default_factory=functools.partial(copy.deepcopy, value))
+                                  if isinstance(mt, (ArrayType, StructType)) else value)
+
+        return fw_type(pytypes.new_class(short, (Struct,), {"namespace": namespace or None}, body))
 
 
 def _enum(name: str, t: Any) -> FwType[Any]:
@@ -101,12 +146,12 @@ def _enum_namespace(short: str, constants: dict[str, int]) -> Any:
 
 def _copy(fn: Callable[..., Any], name: str) -> Any:
     """A copy of ``fn`` under ``name`` (so that decorating it leaves the user's class alone)."""
-    copy = pytypes.FunctionType(fn.__code__, fn.__globals__, name, fn.__defaults__, fn.__closure__)
-    copy.__kwdefaults__ = fn.__kwdefaults__
-    copy.__annotations__ = dict(getattr(fn, "__annotations__", {}))
-    copy.__qualname__ = getattr(fn, "__qualname__", name)
-    copy.__doc__ = fn.__doc__
-    return copy
+    clone = pytypes.FunctionType(fn.__code__, fn.__globals__, name, fn.__defaults__, fn.__closure__)
+    clone.__kwdefaults__ = fn.__kwdefaults__
+    clone.__annotations__ = dict(getattr(fn, "__annotations__", {}))
+    clone.__qualname__ = getattr(fn, "__qualname__", name)
+    clone.__doc__ = fn.__doc__
+    return clone
 
 
 def _port_type(port: Any, analysis: Any, types: _Types, where: str) -> PortType:
@@ -223,6 +268,12 @@ def _annotate(decl: Any, node: Any) -> Any:
 
 def _value(t: FwType[Any], value: Any) -> Any:
     """An FPP value as the Python value of ``t``."""
+    resolved = fw_type(t)
+    if isinstance(resolved, ArrayType):
+        return resolved.cls([_value(resolved.elem, e) for e in value.anon_array.elements])
+    if isinstance(resolved, StructType):
+        given = value.anon_struct.members
+        return resolved.cls(**{n: _value(mt, given[n]) for n, mt in resolved.members if n in given})
     raw = getattr(value, "value", value)
     if isinstance(fw_type(t), type(String(1))):
         return str(raw)

@@ -127,6 +127,7 @@ module Svc {
     telemetry CommandErrors: U32 id 0x1 update on change
     telemetry CommandsDropped: U32 id 0x2 update on change
     telemetry HandlerFaults: U32 id 0x3 update on change
+    match compCmdSend with compCmdReg
   }
 
   active component CmdSequencer {
@@ -395,6 +396,7 @@ module Svc {
     event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x8 format "Handler {} raised {}" throttle 10
     telemetry PingLateWarnings: U32 id 0x0 update always
     telemetry HandlerFaults: U32 id 0x1 update on change
+    match PingSend with PingReturn
   }
 
   active component PrmDb {
