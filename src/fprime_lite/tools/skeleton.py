@@ -170,14 +170,9 @@ group; the run writes `runs/<timestamp>/` (see fprime-lite's docs/outputs.md).
 '''
 
 
-_FPP_COMPONENT = """module Components {{
-
-  @ {name}: a passive component (skeleton written by fprime-lite new component --fpp).
-  @ Each rate-group tick adds STEP to a counter, writes Count and logs Counted; RESET zeroes it.
-  @ The behaviour is in {module}.py (handlers only); this file is its interface.
-  passive component {name} {{
-
-    time get port timeCaller
+#: the special ports of an FPP component with commands, events, telemetry and parameters (as F´'s
+#: components spell them), indented for a component body
+FPP_SPECIAL_PORTS = """    time get port timeCaller
     command recv port cmdIn
     command reg port cmdRegOut
     command resp port cmdResponseOut
@@ -186,7 +181,16 @@ _FPP_COMPONENT = """module Components {{
     telemetry port tlmOut
     param get port prmGetOut
     param set port prmSetOut
+"""
 
+_FPP_COMPONENT = """module Components {{
+
+  @ {name}: a passive component (skeleton written by fprime-lite new component --fpp).
+  @ Each rate-group tick adds STEP to a counter, writes Count and logs Counted; RESET zeroes it.
+  @ The behaviour is in {module}.py (handlers only); this file is its interface.
+  passive component {name} {{
+
+""" + FPP_SPECIAL_PORTS + """
     @ One rate-group tick
     sync input port run: Svc.Sched
 

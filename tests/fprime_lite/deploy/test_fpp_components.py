@@ -13,6 +13,7 @@ pytest.importorskip("fpp", reason="FPP models need fprime-fpp-python (the test e
 from fprime_lite import CmdResponse  # noqa: E402
 from fprime_lite.deploy.fpp.loader import FppError, component_class  # noqa: E402
 from fprime_lite.tools.cli import main  # noqa: E402
+from fprime_lite.tools.skeleton import FPP_SPECIAL_PORTS  # noqa: E402
 
 
 @pytest.fixture
@@ -222,16 +223,7 @@ _SHAPES_FPP = """module Components {
   struct Pt { x: U32, label: string size 8, v: Vec } default { x = 7 }
 
   passive component Shapes {
-    time get port timeCaller
-    command recv port cmdIn
-    command reg port cmdRegOut
-    command resp port cmdResponseOut
-    event port logOut
-    text event port logTextOut
-    telemetry port tlmOut
-    param get port prmGetOut
-    param set port prmSetOut
-
+""" + FPP_SPECIAL_PORTS + """
     sync input port run: Svc.Sched
     sync command SET_POINT(p: Pt) opcode 0x0
     event Moved(p: Pt) severity activity low id 0x0 format "moved to {}"
