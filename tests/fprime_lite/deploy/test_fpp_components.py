@@ -311,3 +311,22 @@ def test_array_and_struct_definitions_as_fpp_to_dict_lists_them(tmp_path, monkey
                                 ("events", "name", ("Dep.shapes.Moved",))):
         mine = sorted(pick(ours, section, key, names), key=lambda e: e[key])
         assert len(mine) == len(names) and mine == sorted(pick(theirs, section, key, names), key=lambda e: e[key])
+
+
+def test_a_state_machine_instance_is_refused_with_its_line(skeleton, monkeypatch):
+    """FPPC-011: fprime-lite does not fly FPP state machines: a component that instantiates one is
+    refused at the instance's FPP line (not bound with its state machine silently left out)."""
+    monkeypatch.syspath_prepend(str(skeleton))
+    fpp_file, module = skeleton / "my_heater.fpp", skeleton / "my_heater.py"
+    text = fpp_file.read_text().replace("module Components {\n", "module Components {\n\n  state machine Light {\n"
+                                        "    initial enter Off\n    state Off\n  }\n", 1)
+    text = text.replace("passive component MyHeater {", "active component MyHeater {")
+    text = text.replace("    sync input port run: Svc.Sched", "    state machine instance light: Light\n"
+                                                                 "    async input port run: Svc.Sched")
+    fpp_file.write_text(text)
+    module.write_text(module.read_text().replace("PassiveComponent", "ActiveComponent"))
+    with pytest.raises(FppError) as caught:
+        component_class(fpp_file)
+    (problem,) = caught.value.problems
+    assert "my_heater.fpp:24:5: Components.MyHeater: state machine instance light: fprime-lite does not fly FPP " \
+           "state machines" in problem, problem
