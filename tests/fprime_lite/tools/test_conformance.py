@@ -194,3 +194,17 @@ def test_run_refuses_board_root_with_file_root_and_no_startup_with_seq(tmp_path,
     assert fprime_lite(["run", topology, "--no-startup", "--seq", str(seq)]) == 2
     assert "--no-startup and --seq" in capsys.readouterr().err
     assert not (tmp_path / "runs").exists()
+
+
+def test_no_startup_flies_without_the_topologys_start_up_sequence(tmp_path, monkeypatch):
+    """run --no-startup (PROVES's suite: a board whose file system holds no start-up sequence): the
+    sequence that enables detumbling is not run, so the tumbling board's DetumbleManager stays DISABLED;
+    without the flag it runs and detumbling starts within the first second."""
+    monkeypatch.chdir(tmp_path)
+    topology = str(pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml")
+    for flag, expected in (([], True), (["--no-startup"], False)):
+        out = tmp_path / f"run{len(flag)}"
+        assert fprime_lite(["run", topology, "--duration", "1", "--out", str(out), "--no-plots", "--no-progress",
+                            "--allow-warnings", *flag]) == 0
+        events = (out / "events.log").read_text()
+        assert ("CS_SequenceComplete" in events, "DetumbleStarted" in events) == (expected, expected)
