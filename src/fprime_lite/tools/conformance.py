@@ -11,14 +11,17 @@ What a PROVES or F´ developer runs in CI instead of a board (docs/ground.md, "C
 3. starts the deployment paced to the wall clock and connected to it (``fprime-lite run --gds``),
    from the work folder, with a copy of its parameter file there (``PrmDb.dat``: the suites save
    parameters, the shipped file is never written) and its file services confined to
-   ``--file-root`` (default ``/tmp``, where F´'s suites put their files), and waits until the
-   deployment says its ground link is connected;
+   ``--file-root`` (default ``/tmp``, where F´'s suites put their files) — or, with
+   ``--board-root DIR``, DIR standing in for the board's ``/`` for the file services and the
+   sequencers (PROVES's suite names ``/seq/…``; the parameter copy then lies in DIR) — and waits
+   until the deployment says its ground link is connected;
 4. runs pytest on TESTS_DIR, with the interpreter ``--python`` names (the PROVES suite needs
    Python >= 3.12), with the options fprime-gds's pytest plugin (``fprime_test_api``) reads: the
    dictionary, the ZMQ sockets, the logs, the file store and ``--deployment-config`` (default:
    ``int_config.json`` beside the topology);
 5. ends the deployment (SIGTERM: its outputs are written) and the GDS, each with its whole process
-   group, also when the verb itself gets Ctrl-C or SIGTERM;
+   group, also when the verb itself gets Ctrl-C or SIGTERM; killed by SIGKILL, its watchdog
+   (``ProcessGroups(watchdog=True)``) ends them;
 6. prints a table of passed / failed / errors / skipped per test file (read from pytest's JUnit
    XML) and exits with pytest's status (2 for a mistake in the verb's own options or a ground
    system or deployment that did not come up).
