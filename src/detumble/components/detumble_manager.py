@@ -15,7 +15,7 @@ One state's actions run per ``run`` call; a transition takes effect on the next 
     SENSING_ANGULAR_VELOCITY ──BDOT──▶ SENSING_MAGNETIC_FIELD ──(5 samples)──▶ ACTUATING_BDOT
     SENSING_ANGULAR_VELOCITY ──HYSTERESIS──▶ ACTUATING_HYSTERESIS ──▶ COOLDOWN
     ACTUATING_BDOT ──(≥ TORQUE_DURATION, or sampling-period failure)──▶ COOLDOWN
-    any state ──(mode DISABLED)──▶ COOLDOWN, coils stopped, timers and window cleared
+    any state ──(mode DISABLED)──▶ COOLDOWN, coils stopped once, timers and window cleared
 
 Actuator health (an addition to the PROVES design): a coil that was switched on and whose stop
 answers FAILURE may still be on; it is reported (CoilStopFailed, WARNING_HI) and isolated — no start
@@ -323,6 +323,7 @@ class DetumbleManager(PassiveComponent):
         self._start_ports = [self.output_port(c.start_port) for c in _COILS]  # X+, X−, Y+, Y−, Z−
         self._stop_ports = [self.output_port(c.stop_port) for c in _COILS]
         self.coils_driven = False
+        self._safed = False  # the coils were stopped and the cycle reset since the mode became DISABLED
         self._isolated = [False] * len(_COILS)  # per coil (X+, X−, Y+, Y−, Z−): never driven while True
         self._stop_failures = [0] * len(_COILS)
         self._may_be_on = [False] * len(_COILS)  # a start switched it on; no good stop since
@@ -436,9 +437,12 @@ class DetumbleManager(PassiveComponent):
         self.Mode.write(self.mode)
         self.State.write(self.state)
         if self.mode == DetumbleMode.DISABLED:
-            self._stop_coils()
-            self._reset_cycle()
+            if not self._safed:  # once per DISABLED spell, in any state; a ground START stays on (as flown)
+                self._stop_coils()
+                self._reset_cycle()
+                self._safed = True
             return
+        self._safed = False
         state = self.state
         if state == DetumbleState.COOLDOWN:
             self._cooldown()

@@ -81,6 +81,9 @@ class Deployment:
         self.restarts = 0
         self._start_args: dict = {}
         self._startup_call: ScheduledCall | None = None
+        #: Calls that set up components after construction (the runner's file roots); a software restart
+        #: re-initialises the components, then makes these calls again before starting up.
+        self.component_setup: list = []
 
     def service(self, pattern: str):
         """The component serving a pattern (``command``, ``param``, …), or None."""
@@ -176,6 +179,8 @@ class Deployment:
             src.calls[c.source_index] = dst.entries[c.target_index]
             src.targets[c.source_index] = (dst, c.target_index)
             src.version += 1
+        for setup in self.component_setup:
+            setup()
         self.restarts += 1
         self.started = False
         self.start(**self._start_args)

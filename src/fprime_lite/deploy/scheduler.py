@@ -211,7 +211,10 @@ class PacedScheduler(Scheduler):
         long in simulated time: the messages queued for it meanwhile (a health ping) wait until then,
         as they wait for an F´ active component's thread. In a simulated (unpaced) run a handler
         takes no simulated time; paced to the wall clock, a file operation of seconds makes the
-        component late to answer its pings (F´'s Health integration test relies on it).
+        component late to answer its pings (F´'s Health integration test relies on it). A handler
+        that models how long its operation takes on the flight hardware (it adds simulated
+        microseconds to the component's ``modelled_busy_us``, e.g. FileManager's storage rate) keeps
+        the component busy that long instead of its wall time, whatever the host's speed.
         """
         busy = self._busy
         held = self._held
@@ -225,7 +228,13 @@ class PacedScheduler(Scheduler):
                 start = self._monotonic()
                 component.dispatch_all(1, contain_faults=True)
                 held_us = round((self._monotonic() - start) * 1e6 * self.speed)
-                if held_us >= HOLD_THRESHOLD_S * 1e6:
+                modelled = getattr(component, "modelled_busy_us", 0)
+                if modelled:  # the flight hardware's time, not the host's
+                    component.modelled_busy_us = 0
+                    held_us = int(modelled)
+                elif held_us < HOLD_THRESHOLD_S * 1e6:
+                    held_us = 0
+                if held_us > 0:
                     held[component] = now + held_us
                     self.call_at(now + held_us, functools.partial(self._release, component))
                     break

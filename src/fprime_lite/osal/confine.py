@@ -8,6 +8,11 @@ must stay inside it. A path is refused when, after resolution:
 - a symbolic link on the way (or at the end, for operations that open the file's contents) points
   outside the root.
 
+A board root (``board=True``) makes the root stand in for a flight computer's own ``/``: an absolute
+path ``/seq/a.bin`` names ``ROOT/seq/a.bin`` and a relative one resolves against the root (a board
+has no other working directory), so a suite written for a board's file system runs unchanged while
+nothing outside the root is reachable (``/..`` still leaves it and is refused).
+
 The check resolves the path the way the OS will (``os.path.realpath``) and the service then works
 on the *resolved* path, so what was checked is what is used. A symbolic link swapped in between
 the check and the use (by someone with write access inside the root) is not guarded against.
@@ -43,9 +48,11 @@ class Confinement:
         base: the directory relative paths are resolved against (default: ``root``); it must lie
             inside ``root`` (created if missing). A conformance run confines a service to ``/tmp``
             while its relative paths still name files in the run's folder.
+        board: the root stands in for the board's ``/``: absolute paths are taken inside it (``base``
+            must then be the root itself).
     """
 
-    def __init__(self, root: str | os.PathLike, base: str | os.PathLike | None = None):
+    def __init__(self, root: str | os.PathLike, base: str | os.PathLike | None = None, board: bool = False):
         os.makedirs(os.fspath(root), exist_ok=True)
         self.root = os.path.realpath(os.fspath(root))
         if base is None:
@@ -55,24 +62,33 @@ class Confinement:
             self.base = os.path.realpath(os.fspath(base))
             if self.base != self.root and not self.base.startswith(self.root.rstrip(os.sep) + os.sep):
                 raise ValueError(f"the base folder {self.base} is not inside the root {self.root}")
+        if board and self.base != self.root:
+            raise ValueError(f"a board root resolves relative paths against itself, not {self.base}")
+        self.board = board
 
     def contents(self, path: str) -> str:
         """The real path of what ``path`` names, for reading or writing its contents (symbolic links
         followed all the way). Raises :class:`PathRefused`."""
         self._check_text(path)
-        return self._inside(path, os.path.realpath(os.path.join(self.base, path)))
+        return self._inside(path, os.path.realpath(self._join(path)))
 
     def entry(self, path: str) -> str:
         """The path of the directory entry ``path`` names, for removing, renaming or creating it:
         the folder is resolved, the last name is not (a link is the link itself). Raises
         :class:`PathRefused`."""
         self._check_text(path)
-        lexical = os.path.normpath(os.path.join(self.base, path))
+        lexical = os.path.normpath(self._join(path))
         folder, name = os.path.split(lexical)
         real = os.path.join(os.path.realpath(folder), name)
         if real == self.root:
             raise PathRefused(path, "is the root itself")
         return self._inside(path, real)
+
+    def _join(self, path: str) -> str:
+        """``path`` joined to the base; on a board root an absolute path is taken inside the root."""
+        if self.board and os.path.isabs(path):
+            return os.path.join(self.root, path.lstrip(os.sep))
+        return os.path.join(self.base, path)
 
     def _inside(self, path: str, real: str) -> str:
         if real != self.root and not real.startswith(self.root.rstrip(os.sep) + os.sep):

@@ -42,6 +42,7 @@ from fprime_lite.wire.seqfile import (Descriptor, FileReadStage, Record, Sequenc
                        check_time, read_sequence)
 from fprime_lite.model.telemetry import Channel
 from fprime_lite.model.types import I32, U8, U16, U32, FwEnum, String, fit_utf8
+from fprime_lite.osal.confine import Confinement
 
 __all__ = ["CmdSequencer", "BlockState", "SeqMode", "FileReadStage", "FILE_NAME_STRING_SIZE",
            "DEFAULT_BUFFER_SIZE"]
@@ -178,6 +179,9 @@ class CmdSequencer(ActiveComponent):
         self.timeout_s = timeout_s
         self.buffer_size = buffer_size
         self.base_dir = Path(base_dir) if base_dir is not None else None
+        #: ``fprime-lite run --board-root``: file names are the board's, this folder its ``/``
+        #: (absolute names are taken inside it, nothing outside it is read).
+        self.board_root: Confinement | None = None
         self._run_mode = _RunMode.STOPPED
         self._step_mode = SeqMode.AUTO
         self._sequence: Sequence | None = None
@@ -395,6 +399,8 @@ class CmdSequencer(ActiveComponent):
         self.CS_Errors.write(self._error_count)
 
     def _resolve(self, file_name: str) -> Path:
+        if self.board_root is not None:
+            return Path(self.board_root.contents(file_name))  # PathRefused is an OSError: CS_FileReadError
         path = Path(file_name)
         if self.base_dir is not None and not path.is_absolute():
             path = self.base_dir / path

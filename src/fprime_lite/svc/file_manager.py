@@ -41,6 +41,17 @@ confined. Events show the paths as commanded. Status numbers are F´'s enums, gi
 :class:`FileSystemStatus`, :class:`FileStatus` and :class:`DirectoryStatus`; the Python log line of
 each failure names the status and the OS error.
 
+**Modelled storage time** (``storage_bytes_per_s``, not in F´, off by default). On a board,
+AppendFile and CalculateCrc keep the component busy while the storage moves the bytes; on a host's
+page cache they take milliseconds. With a rate given, each successful AppendFile counts the
+source's bytes twice (read, then written at the end of the target, as F´ appends) and each
+CalculateCrc the file's bytes once, and sets ``modelled_busy_us`` to that many bytes at the rate:
+a paced scheduler keeps the component busy that long in simulated time, so the messages queued for
+it meanwhile (a Health ping) wait as they would for the board's FileManager thread, whatever the
+host's disk (:meth:`~fprime_lite.deploy.scheduler.PacedScheduler.drain`; an unpaced run treats
+every handler as instantaneous). The reference deployment gives PROVES's SD card on SPI at 24 MHz,
+3,000,000 bytes/s (docs/ground.md).
+
 Differences from F´:
 
 - **ShellCommand is disabled by default.** Unless built with ``allow_shell=True`` it runs nothing:
@@ -258,8 +269,18 @@ class FileManager(FileRoot, ActiveComponent):
     def __init__(self, name: str = "fileManager", *, root: str | os.PathLike | None = None,
                  base_id: int = 0, queue_size: int = 10, allow_shell: bool = False,
                  shell_timeout_s: float | None = DEFAULT_SHELL_TIMEOUT_S,
-                 files_per_tick: int = FILES_PER_RATE_TICK, overwrite: bool = False):
+                 files_per_tick: int = FILES_PER_RATE_TICK, overwrite: bool = False,
+                 storage_bytes_per_s: float | None = None):
         super().__init__(name, base_id=base_id, queue_size=queue_size)
+        if storage_bytes_per_s is not None and (isinstance(storage_bytes_per_s, bool)
+                                                or not isinstance(storage_bytes_per_s, (int, float))
+                                                or not storage_bytes_per_s > 0):
+            raise ValueError(f"{name}: storage_bytes_per_s must be a positive number of bytes per second or None "
+                             f"(not modelled), got {storage_bytes_per_s!r}")
+        #: Bytes per second the modelled storage moves (None: its time is not modelled).
+        self.storage_bytes_per_s = storage_bytes_per_s
+        #: Simulated µs the last operation keeps the component busy (read and cleared by a paced scheduler).
+        self.modelled_busy_us = 0
         if shell_timeout_s is not None and (isinstance(shell_timeout_s, bool)
                                             or not isinstance(shell_timeout_s, (int, float))
                                             or not shell_timeout_s > 0):
@@ -416,7 +437,14 @@ class FileManager(FileRoot, ActiveComponent):
         """Append ``source`` to ``target`` atomically (``target`` is created if missing)."""
         src, dst = fit_utf8(source, CMD_STRING_SIZE), fit_utf8(target, CMD_STRING_SIZE)
         self.AppendFileStarted(src, dst)
-        status, cause = self._fs("AppendFile", lambda: self._append(self.resolve(source), self.resolve(target)))
+        appended = 0
+
+        def append():
+            nonlocal appended
+            appended = self._append(self.resolve(source), self.resolve(target))
+
+        status, cause = self._fs("AppendFile", append)
+        self._storage_time(2 * appended)  # F´ reads the source and writes it at the target's end
         if status:
             self._log_failure("AppendFile", f"{source} -> {target}", status, cause)
             self.AppendFileFailed(src, dst, status)
@@ -473,7 +501,9 @@ class FileManager(FileRoot, ActiveComponent):
         name = fit_utf8(filename, FILE_NAME_STRING_SIZE)
         self.CalculateCrcStarted(name)
         try:
-            crc = file_crc(self.resolve(filename))
+            path = self.resolve(filename)
+            crc = file_crc(path)
+            self._storage_time(os.path.getsize(path))
         except Exception as exc:  # noqa: BLE001 - every failure is reported, none escapes
             status = file_status(exc)
             if not isinstance(exc, (OSError, ValueError)):  # not the file system's answer: a fault
@@ -553,10 +583,17 @@ class FileManager(FileRoot, ActiveComponent):
             self._write_replacing(dst, [source], _stat.S_IMODE(info.st_mode))
         os.remove(src)
 
-    def _append(self, src: str, dst: str) -> None:
+    def _storage_time(self, nbytes: int) -> None:
+        """The modelled storage's time for ``nbytes`` (nothing when no rate is given)."""
+        if self.storage_bytes_per_s is not None and nbytes > 0:
+            self.modelled_busy_us = round(nbytes / self.storage_bytes_per_s * 1e6)
+
+    def _append(self, src: str, dst: str) -> int:
+        """Append; the number of bytes appended (the source's size)."""
         if os.path.islink(dst):
             dst = os.path.realpath(dst)
         with _open_regular(src) as source:
+            appended = os.fstat(source.fileno()).st_size
             try:
                 current = _open_regular(dst)
             except FileNotFoundError:
@@ -572,6 +609,7 @@ class FileManager(FileRoot, ActiveComponent):
             finally:
                 if current is not None:
                     current.close()
+        return appended
 
     def _write_replacing(self, dst: str, sources, mode: int) -> None:
         """Write the ``sources`` (open binary files) one after the other to a temporary file in

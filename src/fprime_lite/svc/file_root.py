@@ -40,12 +40,16 @@ class FileRoot:
         """The directory every path must lie in (symbolic links resolved)."""
         return self._confinement.root
 
-    def set_default_root(self, folder, confine_to=None) -> None:
+    def set_default_root(self, folder, confine_to=None, board: bool = False) -> None:
         """Use ``folder`` as the root unless one was given at construction (the runner passes the
         run's folder). ``confine_to``: a wider folder holding ``folder`` that paths may reach
-        (``run --file-root``); relative paths still resolve against ``folder``."""
+        (``run --file-root``); relative paths still resolve against ``folder``. ``board``: ``folder``
+        stands in for the board's ``/`` (``run --board-root``): absolute paths are taken inside it."""
         if not self._root_given:
-            self._confinement = Confinement(confine_to if confine_to is not None else folder, base=folder)
+            if board:
+                self._confinement = Confinement(folder, board=True)
+            else:
+                self._confinement = Confinement(confine_to if confine_to is not None else folder, base=folder)
 
     def clean_temporary_files(self) -> list[str]:
         """Start-up: remove the temporary files that a killed process left under the root (the

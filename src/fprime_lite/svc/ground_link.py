@@ -18,7 +18,11 @@ framer/deframer + ``Svc.FprimeRouter``) in a deployment that runs on one thread:
   takes it, so when :attr:`GroundLink.max_file_backlog` packets are waiting the socket task stops
   reading and lets TCP flow control hold the GDS back: no file packet is ever dropped for lack
   of room (the backlog can exceed the limit by what one socket read brings, at most 64 KiB). With
-  ``fileOut`` unconnected, file packets are dropped as an unknown descriptor.
+  ``fileOut`` unconnected, file packets are dropped as an unknown descriptor. The stream's order
+  between the two holds as on a board, where the serial line keeps a command's frame ahead of the
+  file frames sent after it: a file packet that arrived behind a command handed out in this tick
+  (or still waiting) waits for a later tick, so the command's handlers (a ``CreateDirectory`` the
+  file is uplinked into) have run first.
 - **Downlink.** ``comIn`` (connected to the ``PktSend`` of the event manager and of the telemetry
   channelizer) and ``fileIn`` (from ``fileDownlink.bufferSendOut``, file packets with their
   descriptor) only append the packet to the downlink queue and wake the socket task, which
@@ -218,8 +222,9 @@ class GroundLink(PassiveComponent):
         # Shared with the socket task. deque append/popleft are atomic; the counts below are each
         # written by one thread only and read by the other (ints: no torn reads in CPython).
         self._downlink: collections.deque[bytes] = collections.deque()
-        self._uplink: collections.deque[bytes] = collections.deque()
-        self._file_uplink: collections.deque[bytes] = collections.deque()
+        self._uplink: collections.deque[tuple[int, bytes]] = collections.deque()
+        self._file_uplink: collections.deque[tuple[int, bytes]] = collections.deque()
+        self._arrivals = 0  # uplinked items received (socket task): their order in the stream
         self._notices: collections.deque[tuple] = collections.deque(maxlen=64)
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
@@ -275,8 +280,9 @@ class GroundLink(PassiveComponent):
         while notices:
             self._report(notices.popleft())
         uplink = self._uplink
+        barrier = uplink[0][0] if uplink else None  # arrival number of the first command of this tick
         for _ in range(min(len(uplink), self.max_commands_per_tick)):
-            packet = uplink.popleft()
+            packet = uplink.popleft()[1]
             if self.is_connected("commandOut", 0):
                 self.commandOut[0](packet, self.commands_forwarded & _U32_MAX)
                 self.commands_forwarded += 1
@@ -284,7 +290,9 @@ class GroundLink(PassiveComponent):
         if files:
             backed_up = len(files) >= self.max_file_backlog
             for _ in range(min(len(files), self.max_file_packets_per_tick)):
-                self.fileOut[0](files.popleft()[2:])
+                if barrier is not None and files[0][0] > barrier:
+                    break  # behind a command in the stream: after that command's handlers
+                self.fileOut[0](files.popleft()[1][2:])
                 self.file_packets_forwarded += 1
             if backed_up:
                 self._wake()  # the socket task may read again
@@ -460,11 +468,12 @@ class GroundLink(PassiveComponent):
     def _deliver(self, items) -> None:
         uplink = self._uplink
         for item in items:
+            self._arrivals += 1
             if isinstance(item, Dropped):
                 self._notices.append(("dropped", item))
             elif item[1] == Apid.FW_PACKET_FILE and item[0] == 0:
                 if self.is_connected("fileOut", 0):
-                    self._file_uplink.append(item)  # bounded by not reading (see _serve)
+                    self._file_uplink.append((self._arrivals, item))  # bounded by not reading (see _serve)
                 else:
                     self.uplink_unroutable += 1
                     self._notices.append(("dropped", Dropped(DropReason.UNKNOWN_DESCRIPTOR, len(item),
@@ -472,7 +481,7 @@ class GroundLink(PassiveComponent):
             elif len(uplink) >= self.max_uplink_packets:
                 self.uplink_overflow += 1
             else:
-                uplink.append(item)
+                uplink.append((self._arrivals, item))
 
     # --- reporting (deployment thread) ---------------------------------------------------------
 

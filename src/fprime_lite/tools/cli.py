@@ -163,6 +163,13 @@ def build_parser() -> argparse.ArgumentParser:
                      "fileManager) to DIR instead of the output folder, with relative paths resolved against the "
                      "working directory (which must be inside DIR) and uplinked or moved files replacing existing "
                      "ones, as F´'s do; F´'s own integration tests use /tmp and 'conformance' passes --file-root /tmp")
+    run.add_argument("--board-root", metavar="DIR", help="DIR stands in for the board's / for the file services "
+                     "and the command sequencers: an absolute path such as /seq/a.bin names DIR/seq/a.bin, relative "
+                     "paths resolve against DIR, nothing outside DIR is reachable, and uplinked or moved files replace "
+                     "existing ones (PROVES's suite uplinks to /seq; 'conformance --board-root' passes it); not with "
+                     "--file-root")
+    run.add_argument("--no-startup", action="store_true", help="fly without the topology's start-up sequence, as "
+                     "a board whose file system holds none (PROVES's CI formats it before its suite); not with --seq")
 
     dic = sub.add_parser("dict", help="write the F´ JSON dictionary")
     _model_arg(dic)
@@ -492,6 +499,15 @@ def cmd_run(args) -> int:
     check_run_files(loaded, parameter_file=args.params, sequence=args.seq)
     args.duration = run_duration(loaded, args.duration)  # the topology's own run length when not given
     _check_file_root(args.file_root)
+    if args.board_root is not None:
+        if args.file_root is not None:
+            raise UserError("--board-root and --file-root: give one (a board root is the file services' whole root)")
+        if not pathlib.Path(args.board_root).is_dir():
+            raise UserError(f"--board-root {args.board_root}: not an existing folder")
+    if args.no_startup:
+        if args.seq is not None:
+            raise UserError("--no-startup and --seq: give one")
+        loaded.startup_sequence = None
     if args.duration > disk_estimate.CHECK_ABOVE_S and not args.force and not realtime:
         def fly(folder: pathlib.Path, seconds: float) -> None:
             probe = load(args.topology, scenario=args.scenario, seed=args.seed, settings=args.set,
@@ -505,7 +521,8 @@ def cmd_run(args) -> int:
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
                                  plots=not args.no_plots, allow_warnings=args.allow_warnings,
-                                 stop_when=args.stop_when, interruptible=True, file_root=args.file_root)
+                                 stop_when=args.stop_when, interruptible=True, file_root=args.file_root,
+                                 board_root=args.board_root)
     else:
         summary = _run_realtime(loaded, out, args, address)
     print(f"outputs in {out}/")
@@ -577,7 +594,7 @@ def _run_realtime(loaded, out: pathlib.Path, args, address) -> dict:
         summary = run_deployment(loaded, out, duration_s=args.duration, parameter_file=args.params,
                                  sequence=args.seq, progress=False, plots=not args.no_plots,
                                  allow_warnings=args.allow_warnings, stop_when=args.stop_when, interruptible=True,
-                                 file_root=args.file_root)
+                                 file_root=args.file_root, board_root=args.board_root)
     finally:
         if link is not None:
             link.close()

@@ -11,14 +11,17 @@ What a PROVES or F´ developer runs in CI instead of a board (docs/ground.md, "C
 3. starts the deployment paced to the wall clock and connected to it (``fprime-lite run --gds``),
    from the work folder, with a copy of its parameter file there (``PrmDb.dat``: the suites save
    parameters, the shipped file is never written) and its file services confined to
-   ``--file-root`` (default ``/tmp``, where F´'s suites put their files), and waits until the
-   deployment says its ground link is connected;
+   ``--file-root`` (default ``/tmp``, where F´'s suites put their files) — or, with
+   ``--board-root DIR``, DIR standing in for the board's ``/`` for the file services and the
+   sequencers (PROVES's suite names ``/seq/…``; the parameter copy then lies in DIR) — and waits
+   until the deployment says its ground link is connected;
 4. runs pytest on TESTS_DIR, with the interpreter ``--python`` names (the PROVES suite needs
    Python >= 3.12), with the options fprime-gds's pytest plugin (``fprime_test_api``) reads: the
    dictionary, the ZMQ sockets, the logs, the file store and ``--deployment-config`` (default:
    ``int_config.json`` beside the topology);
 5. ends the deployment (SIGTERM: its outputs are written) and the GDS, each with its whole process
-   group, also when the verb itself gets Ctrl-C or SIGTERM;
+   group, also when the verb itself gets Ctrl-C or SIGTERM; killed by SIGKILL, its watchdog
+   (``ProcessGroups(watchdog=True)``) ends them;
 6. prints a table of passed / failed / errors / skipped per test file (read from pytest's JUnit
    XML) and exits with pytest's status (2 for a mistake in the verb's own options or a ground
    system or deployment that did not come up).
@@ -117,6 +120,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--file-root", default="/tmp", metavar="DIR",
                    help="the folder the deployment's file services may reach; it holds the work folder "
                         "(default: /tmp, where F´'s suites write)")
+    p.add_argument("--board-root", metavar="DIR",
+                   help="a folder standing in for the board's / (run --board-root): absolute paths the suite names "
+                        "(/seq/a.bin) are taken inside it, nothing outside it is reachable, and the deployment's "
+                        "parameter file is copied there as PrmDb.dat; put in it beforehand the files the suite expects "
+                        "on the board. For suites written for a board (PROVES's); F´'s FileHandling suite needs the "
+                        "host's /tmp shared instead (the default, --file-root)")
     p.add_argument("--out", metavar="DIR", help="the work folder, kept with every log (absent or empty; inside "
                    "--file-root; default: a new fprime-lite-conformance-* folder in --file-root)")
     p.add_argument("--run-arg", action="append", default=[], metavar="ARG",
@@ -192,14 +201,17 @@ def _check_inputs(args) -> tuple[pathlib.Path, pathlib.Path, pathlib.Path | None
     root = pathlib.Path(args.file_root)
     if not root.is_dir():
         raise ConformanceError(f"--file-root {args.file_root}: not an existing folder")
+    if args.board_root is not None and not pathlib.Path(args.board_root).is_dir():
+        raise ConformanceError(f"--board-root {args.board_root}: not an existing folder — create it (with the files "
+                               f"the suite expects on the board)")
     return tests.resolve(), topology.resolve(), config.resolve() if config else None, python, root.resolve()
 
 
-def _work_folder(out: str | None, root: pathlib.Path) -> pathlib.Path:
+def _work_folder(out: str | None, root: pathlib.Path, board: bool) -> pathlib.Path:
     if out is None:
         return pathlib.Path(tempfile.mkdtemp(prefix="fprime-lite-conformance-", dir=root))
     work = pathlib.Path(out).resolve()
-    if not work.is_relative_to(root):
+    if not board and not work.is_relative_to(root):
         raise ConformanceError(f"--out {out}: not inside --file-root {root} — the deployment runs from it")
     if work.exists() and (not work.is_dir() or any(work.iterdir())):
         raise ConformanceError(f"--out {out}: exists and is not an empty folder — choose another or remove it")
@@ -207,8 +219,9 @@ def _work_folder(out: str | None, root: pathlib.Path) -> pathlib.Path:
     return work
 
 
-def _write_dictionary(topology: pathlib.Path, work: pathlib.Path) -> pathlib.Path | None:
-    """The GDS dictionary into ``work``; the deployment's parameter file, if any, as ``work/PrmDb.dat``."""
+def _write_dictionary(topology: pathlib.Path, work: pathlib.Path, files: pathlib.Path) -> pathlib.Path | None:
+    """The GDS dictionary into ``work``; the deployment's parameter file, if any, as ``files/PrmDb.dat``
+    (``files``: where the deployment's relative paths resolve: the work folder, or the board root)."""
     from fprime_lite.deploy.com_stack import add_ground_link
     from fprime_lite.deploy.dictionary import write_dictionary
     from fprime_lite.tools.api import load
@@ -221,8 +234,8 @@ def _write_dictionary(topology: pathlib.Path, work: pathlib.Path) -> pathlib.Pat
         raise ConformanceError(f"--topology {topology}: {exc}") from None
     params = loaded.parameter_file
     if params is not None and pathlib.Path(params).is_file():
-        shutil.copyfile(params, work / "PrmDb.dat")
-        return work / "PrmDb.dat"
+        shutil.copyfile(params, files / "PrmDb.dat")
+        return files / "PrmDb.dat"
     return None
 
 
@@ -279,14 +292,15 @@ def run(args, pytest_args: list[str]) -> int:
 
     tests, topology, config, python, root = _check_inputs(args)
     gds = _gds_program()
-    work = _work_folder(args.out, root)
+    board = pathlib.Path(args.board_root).resolve() if args.board_root is not None else None
+    work = _work_folder(args.out, root, board is not None)
     sockets = pathlib.Path(tempfile.mkdtemp(prefix="fl-cf-"))  # ZMQ ipc paths must stay short
     zmq = [f"ipc://{sockets}/in", f"ipc://{sockets}/out"]
-    groups = ProcessGroups(work)
+    groups = ProcessGroups(work, watchdog=True)  # SIGKILL of the verb: the watchdog ends what it started
     previous = {sig: signal.signal(sig, _raise_stop) for sig in (signal.SIGTERM, signal.SIGINT)}
     started = time.monotonic()
     try:
-        params = _write_dictionary(topology, work)
+        params = _write_dictionary(topology, work, board if board is not None else work)
         dictionary = work / "dictionary.json"
         files = work / "gds-files"
         port = free_port()
@@ -298,7 +312,8 @@ def run(args, pytest_args: list[str]) -> int:
                              "--file-storage-directory", str(files)], cwd=work)
         deployment = [sys.executable, "-m", "fprime_lite.tools.cli", "run", str(topology), "--gds",
                       f"127.0.0.1:{port}", "--framing", args.framing, "--duration", str(30 * 86400.0), "--out",
-                      str(work / "run"), "--no-plots", "--allow-warnings", "--file-root", str(root)]
+                      str(work / "run"), "--no-plots", "--allow-warnings"]
+        deployment += ["--board-root", str(board)] if board is not None else ["--file-root", str(root)]
         if params is not None:
             deployment += ["--params", str(params)]
         deployment_env = dict(os.environ)
@@ -331,6 +346,7 @@ def run(args, pytest_args: list[str]) -> int:
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not cut the clean-up short
         signal.signal(signal.SIGTERM, signal.SIG_IGN)
         _stop(groups)
+        groups.close()
         shutil.rmtree(sockets, ignore_errors=True)
         for sig, handler in previous.items():
             signal.signal(sig, handler)

@@ -30,10 +30,12 @@ import time
 from typing import Mapping
 
 from fprime_lite.osal.atomic import atomic_write_text
+from fprime_lite.osal.confine import Confinement
 from fprime_lite.deploy.deployment import Deployment
 from fprime_lite.deploy.resources import SimulationEnded
 from fprime_lite.deploy.dictionary import write_dictionary
 from fprime_lite.ground.downlink import DecodedEvent, GroundRecorder
+from fprime_lite.svc.cmd_sequencer import CmdSequencer
 from fprime_lite.svc.file_downlink import FileDownlink
 from fprime_lite.svc.file_manager import FileManager
 from fprime_lite.svc.file_uplink import FileUplink
@@ -67,7 +69,7 @@ def _reports(loaded: LoadedDeployment) -> list:
 def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
                    progress: bool = False, plots: bool = True, console=None, allow_warnings: bool = False,
                    stop_on_events=(), stop_when=(), quiet: bool = False, interruptible: bool = False,
-                   file_root=None) -> dict:
+                   file_root=None, board_root=None) -> dict:
     """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary.
 
     The summary's ``ok`` is False when the flight had handler faults, rate-group member faults,
@@ -84,22 +86,36 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     services without a root of their own are confined to this folder instead of ``out_dir`` and
     resolve relative paths against the working directory, which must lie inside it, and an uplinked
     or moved file replaces an existing one (an uplinked one in place), as F´'s services do (the F´
-    integration tests need it: ``fprime-lite conformance``).
+    integration tests need it: ``fprime-lite conformance``). ``board_root``: instead, this folder stands
+    in for the board's ``/`` for the file services and the command sequencers: an absolute path such as
+    ``/seq/a.bin`` names ``board_root/seq/a.bin``, a relative one resolves against it, nothing outside it
+    is reachable, and files are replaced as with ``file_root`` (PROVES's suite uplinks to ``/seq``).
     """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     deployment = Deployment(loaded)
     topo = deployment.topology
-    for component in topo.components():  # file services without a root of their own use the run's folder
-        if hasattr(component, "set_default_root"):
-            if file_root is None:
-                component.set_default_root(out)
-            else:
-                component.set_default_root(os.getcwd(), confine_to=file_root)
+    cwd = os.getcwd()  # relative paths of a --file-root run, also after a restart
+
+    def set_up_file_services() -> None:  # again after each software restart (it re-initialises them)
+        for component in topo.components():  # file services without a root of their own use the run's folder
+            if board_root is not None and isinstance(component, CmdSequencer):
+                component.board_root = Confinement(board_root, board=True)
+            if hasattr(component, "set_default_root"):
+                if file_root is None and board_root is None:
+                    component.set_default_root(out)
+                    continue
+                if board_root is not None:
+                    component.set_default_root(board_root, board=True)
+                else:
+                    component.set_default_root(cwd, confine_to=file_root)
                 if isinstance(component, (FileUplink, FileManager)):
                     component.overwrite = True  # F´'s services replace an existing file …
                 if isinstance(component, FileUplink):
                     component.in_place = True  # … and FileUplink writes into it
+
+    set_up_file_services()
+    deployment.component_setup.append(set_up_file_services)
     reports = _reports(loaded)
     stop_names = frozenset(stop_on_events)
     conditions = [c if isinstance(c, StopCondition) else parse_stop_condition(c) for c in stop_when]

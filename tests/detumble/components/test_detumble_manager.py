@@ -276,12 +276,20 @@ def test_safe_disable_mid_sampling_empties_the_window(h):
     assert h.component.bdot.sample_count == 0
 
 
-def test_disabled_stops_coils_on_every_run_even_in_cooldown(h):
-    """Safe Disable / DEVIATION: while DISABLED every run stops all coils, also in COOLDOWN (the
-    flight code only stopped when the state was not COOLDOWN)."""
+def test_disabled_stops_coils_once_even_in_cooldown(h):
+    """Safe Disable / DEVIATION: the first run in DISABLED stops all coils, also in COOLDOWN (the
+    flight code only stopped when the state was not COOLDOWN); later DISABLED runs send the coils
+    nothing, as flown, so a coil the ground starts through its driver stays on (PROVES's
+    drv2605_test.py). Each new DISABLED spell stops them once again."""
+    assert stop_ports(calls_of_one_tick(h)) == STOPS  # starts DISABLED, in COOLDOWN
     for _ in range(3):
-        assert stop_ports(calls_of_one_tick(h)) == STOPS
+        assert stop_ports(calls_of_one_tick(h)) == []
     h.assert_from_port_size("angularVelocityMagnitudeGet", 0)
+    enable(h)
+    calls_of_one_tick(h)
+    h.send_command("SET_MODE", DetumbleMode.DISABLED)
+    assert stop_ports(calls_of_one_tick(h)) == STOPS
+    assert stop_ports(calls_of_one_tick(h)) == []
 
 
 # --- cooldown timing --------------------------------------------------------------------------
@@ -814,7 +822,8 @@ def test_isolate_coil_command_stops_once_then_leaves_it_alone(h):
 
 def test_stop_failure_when_disabled_mid_actuation_isolates_too(h):
     """Actuator Health: coils on in ACTUATING_BDOT, then SET_MODE DISABLED with the Y− stop answering
-    FAILURE: Y− is isolated at that run, and later DISABLED runs send it nothing."""
+    FAILURE: Y− is isolated at that run; the next DISABLED spell stops the other coils and sends Y−
+    nothing."""
     enable(h)
     run_until(h, DetumbleState.ACTUATING_BDOT)
     tick(h, 3)  # coils on
@@ -823,8 +832,13 @@ def test_stop_failure_when_disabled_mid_actuation_isolates_too(h):
     tick(h)
     h.assert_event("CoilStopFailed", 0, MagnetorquerFace.Y_MINUS)
     since = len(h.port_calls)
-    tick(h, 5)
-    assert calls_to(h, "yMinusStop", since) == [] and len(calls_to(h, "yPlusStop", since)) == 5
+    tick(h, 5)  # stopped once already: nothing more while DISABLED
+    assert calls_to(h, "yMinusStop", since) == [] and calls_to(h, "yPlusStop", since) == []
+    enable(h)
+    tick(h)
+    h.send_command("SET_MODE", DetumbleMode.DISABLED)
+    tick(h, 3)
+    assert calls_to(h, "yMinusStop", since) == [] and len(calls_to(h, "yPlusStop", since)) == 1
 
 
 def test_a_failing_stop_of_a_coil_that_was_never_on_isolates_nothing(h):

@@ -293,3 +293,30 @@ def test_run_when_idle_must_be_a_bool():
 
     with pytest.raises(DeclarationError, match="run_when_idle must be True or False, got 'yes'"):
         async_input(Item, run_when_idle="yes")
+
+
+class Modelled(Slow):
+    """``item`` takes no wall time but models ``cost[value]`` seconds of its hardware's time."""
+
+    @async_input(Item)
+    def item(self, value):
+        self.log.append((value, self.clock.current_us))
+        self.modelled_busy_us = round(self.cost.get(value, 0.0) * 1e6)
+
+
+def test_paced_scheduler_holds_a_component_for_its_modelled_time_whatever_the_host():
+    """A handler that models 2.5 s of its hardware's time (FileManager's storage rate) keeps its queue
+    waiting 2.5 simulated seconds although it took no wall time; a modelled 10 ms (below the wall
+    threshold) holds it 10 ms, not zero."""
+    wall = [0.0]
+    s = PacedScheduler(sleep=lambda dt: wall.__setitem__(0, wall[0] + dt), monotonic=lambda: wall[0])
+    log = []
+    comp = Modelled("modelled", log, wall, {0: 2.5, 2: 0.01}, s.clock)
+    s.drain_after_each_event(comp)
+    port = comp.input_port("item").entries[0]
+    s.call_at(0, lambda: port(0))
+    s.call_at(1_000_000, lambda: port(1))  # waits for the modelled 2.5 s
+    s.call_at(3_000_000, lambda: port(2))
+    s.call_at(3_005_000, lambda: port(3))  # 5 ms later: waits until 3.010 s
+    s.run(until_us=4_000_000)
+    assert log == [(0, 0), (1, 2_500_000), (2, 3_000_000), (3, 3_010_000)]

@@ -70,3 +70,26 @@ def test_a_base_inside_a_wider_root_takes_relative_paths(tmp_path):
         c.contents(str(tmp_path / "elsewhere.txt"))
     with pytest.raises(ValueError, match="not inside the root"):
         Confinement(base, base=tmp_path)
+
+
+def test_a_board_root_stands_in_for_the_boards_slash(tree):
+    """CONFINE-6: on a board root (run --board-root) an absolute path names a file inside the root,
+    a relative one resolves against it; ``/..``, links pointing outside and NUL bytes are refused as
+    anywhere else; a board root resolves relative paths against itself only."""
+    tmp, root, _ = tree
+    c = Confinement(root, board=True)
+    real = str(root.resolve())
+    assert c.contents("/seq/no_op.bin") == real + "/seq/no_op.bin"
+    assert c.entry("/seq") == real + "/seq"
+    assert c.contents("seq/no_op.bin") == real + "/seq/no_op.bin"
+    assert c.contents("/") == real
+    for leaving in ("/../secret", "/sub/../../secret", "/out_link/secret", "/file_link"):
+        with pytest.raises(PathRefused, match="outside the root"):
+            c.contents(leaving)
+    with pytest.raises(PathRefused):
+        c.entry("/")
+    assert Confinement(root).contents(str(root / "x")) == real + "/x"  # not a board: absolute stays absolute
+    with pytest.raises(PathRefused):
+        Confinement(root).contents("/seq/no_op.bin")
+    with pytest.raises(ValueError, match="board root"):
+        Confinement(root, base=root / "sub", board=True)

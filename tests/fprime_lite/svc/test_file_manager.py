@@ -868,3 +868,25 @@ def test_fprime_gds_encodes_commands_and_decodes_events(fprime_harness, tmp_path
     ]
     assert [r.response for r in h.cmd_responses] == [CmdResponse.OK, CmdResponse.OK, CmdResponse.OK,
                                                       CmdResponse.EXECUTION_ERROR]
+
+
+def test_storage_rate_models_the_time_of_append_and_crc(fprime_harness, tmp_path):
+    """Modelled storage: AppendFile counts the source's bytes twice (read, then written), CalculateCrc
+    the file's once, at ``storage_bytes_per_s``; without a rate nothing is modelled; a bad rate is
+    refused at construction."""
+    (tmp_path / "src").write_bytes(b"x" * 3000)
+    h = fprime_harness(FileManager("fileManager", root=tmp_path, storage_bytes_per_s=3_000_000))
+    run(h, "AppendFile", "src", "dst")
+    assert h.component.modelled_busy_us == 2_000  # 6,000 bytes at 3 MB/s
+    h.component.modelled_busy_us = 0
+    run(h, "CalculateCrc", "dst")
+    assert h.component.modelled_busy_us == 1_000
+    h.component.modelled_busy_us = 0
+    run(h, "AppendFile", "missing", "dst")  # a failed append moves nothing
+    assert h.component.modelled_busy_us == 0
+    plain = make(fprime_harness, tmp_path)
+    run(plain, "AppendFile", "src", "dst")
+    assert plain.component.modelled_busy_us == 0
+    for bad in (0, -1.0, True, "fast"):
+        with pytest.raises(ValueError, match="storage_bytes_per_s"):
+            FileManager("fileManager", root=tmp_path, storage_bytes_per_s=bad)

@@ -325,6 +325,23 @@ def test_file_packets_go_to_file_out_without_their_descriptor_bounded_per_tick(f
     assert h.tlm_values("FilePacketsForwarded")[-1] == 7
 
 
+def test_file_packets_behind_a_command_wait_for_the_next_tick(fprime_harness, links):
+    """Stream order as on a board: files, a command (PROVES's CreateDirectory /seq), files received in
+    one read: the files ahead of the command and the command go this tick, the files behind it the
+    next, so the command's handlers run before the file it makes room for arrives."""
+    link = links("comDriver", base_id=0x1000, max_file_packets_per_tick=10)
+    h = fprime_harness(link)
+    packets, _ = _file_packets(link, 4)
+    frame = link.framing.frame_uplink
+    link._received(frame(packets[0]) + frame(packets[1]) + frame(encode_command(NO_OP)) + frame(packets[2])
+                   + frame(packets[3]))
+    h.invoke("schedIn", 0)
+    assert len(h.from_port("commandOut")) == 1
+    assert [c.args[0] for c in h.from_port("fileOut")] == [p[2:] for p in packets[:2]]
+    h.invoke("schedIn", 0)
+    assert [c.args[0] for c in h.from_port("fileOut")] == [p[2:] for p in packets]
+
+
 def test_file_packets_without_a_file_uplink_are_dropped_as_unknown(fprime_harness, links):
     link = links("comDriver", base_id=0x1000)
     h = fprime_harness(link, unconnected=("fileOut",))

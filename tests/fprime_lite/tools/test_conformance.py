@@ -133,3 +133,78 @@ def test_run_refuses_a_file_root_that_does_not_hold_the_working_directory(tmp_pa
     assert fprime_lite(["run", topology, "--file-root", str(tmp_path / "elsewhere")]) == 2
     assert "is not inside it" in capsys.readouterr().err
     assert not (tmp_path / "runs").exists()  # refused before a run folder was made
+
+
+def test_a_run_with_a_board_root_maps_the_boards_paths_into_it(tmp_path, monkeypatch):
+    """run --board-root (what conformance --board-root passes; PROVES's rtc_test uplinks to /seq): the
+    file services and both sequencers take /seq/x.bin as BOARD/seq/x.bin, a CS_RUN of a board path
+    reads the file there, nothing outside the board is reachable, and files are replaced as F´ does."""
+    from fprime_lite.svc.cmd_sequencer import CmdSequencer
+    from fprime_lite.tools.api import load
+    from fprime_lite.tools.runner import run_deployment
+
+    topology = pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml"
+    board = tmp_path / "board"
+    (board / "seq").mkdir(parents=True)
+    monkeypatch.chdir(tmp_path)
+    loaded = load(str(topology))
+    run_deployment(loaded, tmp_path / "run", duration_s=0.1, plots=False, quiet=True, board_root=board)
+    topo = loaded.topology
+    manager = topo.instance("FileHandling.fileManager").component
+    uplink = topo.instance("FileHandling.fileUplink").component
+    assert manager.resolve("/seq/no_op.bin") == str(board.resolve() / "seq" / "no_op.bin")
+    assert (manager.overwrite, uplink.overwrite, uplink.in_place) == (True, True, True)
+    sequencers = [i.component for i in topo.instances.values() if isinstance(i.component, CmdSequencer)]
+    assert {s.name for s in sequencers} >= {"cmdSeq", "payloadSeq"}
+    for sequencer in sequencers:
+        assert sequencer._resolve("/seq/no_op.bin") == board.resolve() / "seq" / "no_op.bin"
+        with pytest.raises(PermissionError):
+            sequencer._resolve("/../outside.bin")
+    # CS_RUN of a board path: the file is looked for on the board (found: loaded; absent: not found)
+    cmd_seq = topo.instance("ReferenceDeployment.cmdSeq").component
+    (board / "seq" / "bad.bin").write_bytes(b"\0")
+    events = []
+    cmd_seq.CS_FileNotFound = lambda name: events.append(("not found", name))
+    cmd_seq.CS_FileInvalid = lambda name, stage, error: events.append(("invalid", name))
+    cmd_seq._load("/seq/missing.bin")
+    cmd_seq._load("/seq/bad.bin")
+    assert events == [("not found", "/seq/missing.bin"), ("invalid", "/seq/bad.bin")]
+    # a software restart (PROVES's reset tests) re-initialises each component, then runs the deployment's
+    # component_setup again: the board root comes back
+    deployment = loaded.resources["spacecraft"].reset_handler.__self__
+    for name in ("FileHandling.fileManager", "ReferenceDeployment.payloadSeq"):
+        instance = topo.instance(name)
+        type(instance.component).__init__(instance.component, instance.component.name, **instance.init_kwargs)
+    with pytest.raises(PermissionError):
+        manager.resolve("/seq/no_op.bin")
+    for setup in deployment.component_setup:
+        setup()
+    assert manager.resolve("/seq/no_op.bin") == str(board.resolve() / "seq" / "no_op.bin")
+    assert manager.overwrite and topo.instance("ReferenceDeployment.payloadSeq").component.board_root is not None
+
+
+def test_run_refuses_board_root_with_file_root_and_no_startup_with_seq(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    topology = str(pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml")
+    assert fprime_lite(["run", topology, "--board-root", str(tmp_path / "nope")]) == 2
+    assert "--board-root" in capsys.readouterr().err
+    assert fprime_lite(["run", topology, "--board-root", str(tmp_path), "--file-root", str(tmp_path)]) == 2
+    assert "give one" in capsys.readouterr().err
+    seq = pathlib.Path(topology).parent / "startup.seq"
+    assert fprime_lite(["run", topology, "--no-startup", "--seq", str(seq)]) == 2
+    assert "--no-startup and --seq" in capsys.readouterr().err
+    assert not (tmp_path / "runs").exists()
+
+
+def test_no_startup_flies_without_the_topologys_start_up_sequence(tmp_path, monkeypatch):
+    """run --no-startup (PROVES's suite: a board whose file system holds no start-up sequence): the
+    sequence that enables detumbling is not run, so the tumbling board's DetumbleManager stays DISABLED;
+    without the flag it runs and detumbling starts within the first second."""
+    monkeypatch.chdir(tmp_path)
+    topology = str(pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml")
+    for flag, expected in (([], True), (["--no-startup"], False)):
+        out = tmp_path / f"run{len(flag)}"
+        assert fprime_lite(["run", topology, "--duration", "1", "--out", str(out), "--no-plots", "--no-progress",
+                            "--allow-warnings", *flag]) == 0
+        events = (out / "events.log").read_text()
+        assert ("CS_SequenceComplete" in events, "DetumbleStarted" in events) == (expected, expected)
