@@ -25,13 +25,23 @@ from typing import NamedTuple, Sequence
 
 from detumble.control.mat3 import inv3
 
-__all__ = ["SunVectorEstimate", "estimate_sun_vector", "CUBE_NORMALS_B", "propagate_body_vector"]
+__all__ = ["SunVectorEstimate", "estimate_sun_vector", "CUBE_NORMALS_B", "propagate_body_vector", "SUN_LIT_FRACTION",
+           "SUN_MAGNITUDE_TOLERANCE"]
 
 Vec3 = tuple[float, float, float]
 
 #: Outward normals of the six faces of a cube in B: X+, X−, Y+, Y−, Z+, Z− (the PROVES face order).
 CUBE_NORMALS_B: tuple[Vec3, ...] = ((1.0, 0.0, 0.0), (-1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, -1.0, 0.0),
                                     (0.0, 0.0, 1.0), (0.0, 0.0, -1.0))
+
+#: A face is lit above this fraction of the full-Sun reading: 4σ of the sensors' 0.5 % noise, so a dark face is
+#: taken as lit in 3e-5 of its readings; a Sun component below it (1.15°) is read as 0. At 5 % (10σ) that dead
+#: zone was 2.9° and sat exactly where Sun pointing holds the Sun (the faces beside the pointed one see grazing
+#: light): median error 2.8° there (docs/studies/sun_safe.md).
+SUN_LIT_FRACTION = 0.02
+#: |s| may differ from 1 by this much and the estimate is still valid: the Earth–Sun distance (±3.4 %) and the
+#: sensors' gain spread (2 % 1σ) stay inside; a dark sky or a half-lit one does not.
+SUN_MAGNITUDE_TOLERANCE = 0.25
 
 _RANK_TOL = 1e-6  # an eigen-direction of Σ n nᵀ weaker than this is not seen by any lit face
 
@@ -46,8 +56,8 @@ class SunVectorEstimate(NamedTuple):
     magnitude: float
 
 
-def estimate_sun_vector(readings: Sequence[float], full_scale: float, *, lit_fraction: float = 0.05,
-                        magnitude_tolerance: float = 0.25,
+def estimate_sun_vector(readings: Sequence[float], full_scale: float, *, lit_fraction: float = SUN_LIT_FRACTION,
+                        magnitude_tolerance: float = SUN_MAGNITUDE_TOLERANCE,
                         normals: Sequence[Vec3] = CUBE_NORMALS_B) -> SunVectorEstimate:
     """Least-squares Sun direction from ``readings`` (one per normal, the sensor's unit, e.g. lux) with
     ``full_scale`` the full-Sun reading in that unit. Readings that are not finite count as unlit.
