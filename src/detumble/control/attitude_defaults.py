@@ -53,6 +53,8 @@ RATE_BLEND_GAIN = 2.0  # 1/s: the observer's pull toward the gyro during a slew
 SUN_SAFE_AXIS = "PLUS_Z"  # the body axis SUN_SAFE turns to the Sun (BodyAxis: +Z, or the solar array's face)
 SUN_SAFE_K_P = 2.0e-4  # N·m/rad: spring on the Sun-pointing angle (ω_n 0.3 rad/s for 2.2e-3 kg·m²)
 SUN_SAFE_K_D = 1.2e-3  # N·m·s: damping on the body rate (ζ ≈ 0.9)
+SUN_SAFE_K_P_MAG = 4.0e-6  # N·m/rad: the same on the magnetorquers alone (projected ⟂ B)
+SUN_SAFE_K_D_MAG = 4.0e-4  # N·m·s
 SUN_VECTOR_TIMEOUT = 10.0  # s: a Sun vector older than this (eclipse, failed sensors) is no Sun vector
 SUN_SAFE_EXIT_DWELL = 10.0  # s of attitude knowledge before SUN_SAFE (entered on its loss) hands back to POINTING
 
@@ -185,6 +187,8 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "SUN_SAFE_AXIS": ("", None, None, False),
     "SUN_SAFE_K_P": ("N·m/rad", 0.0, 1.0e-2, True),
     "SUN_SAFE_K_D": ("N·m·s", 0.0, 1.0e-1, True),
+    "SUN_SAFE_K_P_MAG": ("N·m/rad", 0.0, 1.0e-3, True),
+    "SUN_SAFE_K_D_MAG": ("N·m·s", 0.0, 1.0e-2, True),
     "SUN_VECTOR_TIMEOUT": ("s", 0.1, 3600.0, True),
     "SUN_SAFE_EXIT_DWELL": ("s", 0.0, 3600.0, True),
 }

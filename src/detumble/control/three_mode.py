@@ -293,6 +293,8 @@ class ThreeModeLaw:
     SUN_SAFE_AXIS: int
     SUN_SAFE_K_P: float
     SUN_SAFE_K_D: float
+    SUN_SAFE_K_P_MAG: float
+    SUN_SAFE_K_D_MAG: float
     SUN_VECTOR_TIMEOUT: float
     SUN_SAFE_EXIT_DWELL: float
 
@@ -879,13 +881,12 @@ class ThreeModeLaw:
         elif self.sun_B is not None and w is not None:
             self.sun_B = propagate_body_vector(self.sun_B, w, dt)
 
-    def _sun_safe_torque(self) -> Vec3:
+    def _sun_safe_torque(self, kp: float, kd: float) -> Vec3:
         """SUN_SAFE's torque request (N·m, B): turn SUN_SAFE_AXIS to the Sun at a rate ``K_P/K_D θ`` capped at
         SLEW_RATE_LIMIT about ``â × ŝ`` and damp every other rate, ``τ = K_D (ω_c − ω)``; without a Sun vector
-        (eclipse) only the damping ``−K_D ω``."""
+        (eclipse) only the damping ``−K_D ω``. Gains: the wheels' SUN_SAFE_K_P/K_D or the coils' *_MAG."""
         w = self.omega
         assert w is not None  # SUN_SAFE actuates only with a rate estimate
-        kd = self.SUN_SAFE_K_D
         s = self.sun_B
         if s is None:
             self.sun_error_deg = math.nan
@@ -897,7 +898,7 @@ class ThreeModeLaw:
         self.sun_error_deg = math.degrees(theta)
         if sin_t < 1e-9:  # on the axis, or exactly opposite: turn about any axis ⟂ â
             e, sin_t = ((a[1], a[2], a[0]), 1.0) if theta > 1.0 else (_ZERO, 1.0)
-        rate = min(self.SUN_SAFE_K_P / kd * theta if kd > 0.0 else 0.0, self.SLEW_RATE_LIMIT * _DEG)
+        rate = min(kp / kd * theta if kd > 0.0 else 0.0, self.SLEW_RATE_LIMIT * _DEG)
         k = rate / sin_t
         return (kd * (k * e[0] - w[0]), kd * (k * e[1] - w[1]), kd * (k * e[2] - w[2]))
 
@@ -921,11 +922,13 @@ class ThreeModeLaw:
             if self.b_tesla is not None:
                 dipole, _ = project_dipole_weighted(tau, self.b_tesla, self.coil_limits())
         elif mode == SUN_SAFE and self.omega is not None:
-            tau = self._sun_safe_torque()
             if self._pointing_uses_wheels():
+                tau = self._sun_safe_torque(self.SUN_SAFE_K_P, self.SUN_SAFE_K_D)
                 wheel_u = self._allocate(tau)
-            elif self.b_tesla is not None:
-                dipole, _ = project_dipole_weighted(tau, self.b_tesla, self.coil_limits())
+            else:
+                tau = self._sun_safe_torque(self.SUN_SAFE_K_P_MAG, self.SUN_SAFE_K_D_MAG)
+                if self.b_tesla is not None:
+                    dipole, _ = project_dipole_weighted(tau, self.b_tesla, self.coil_limits())
         elif mode == POINTING and self.omega is not None and self.attitude_valid:
             q = self.filter.q
             assert q is not None  # attitude_valid

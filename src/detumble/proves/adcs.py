@@ -68,7 +68,14 @@ class ADCS(PassiveComponent):
 
     @sync_input(Sched)
     def run(self, context: int) -> None:
-        """Read every connected light sensor, estimate the Sun vector, tell the ground."""
+        """Read every connected light sensor, estimate the Sun vector, tell the ground. A fault is reported
+        (HandlerFault, HandlerFaults) and the rate group goes on."""
+        try:
+            self._sense()
+        except Exception as exc:  # noqa: BLE001 - the rate group must keep running
+            self.report_fault("run", exc)
+
+    def _sense(self) -> None:
         readings = []
         for i in range(NUM_LIGHT_SENSORS):
             value = _NAN

@@ -54,23 +54,31 @@ class SunSafeResult:
     vector_invalid_sunlit: int = 0
     transitions: list = field(default_factory=list)
 
-    def first_sunlit_part(self) -> tuple[float, float] | None:
-        """``(start, end)`` s of the first sunlit stretch of the run (None: never sunlit)."""
-        start = None
+    def sunlit_parts(self) -> list[tuple[float, float]]:
+        """``(start, end)`` s of each sunlit stretch of the run, in order."""
+        parts, start = [], None
         for t, e in zip(self.times, self.eclipse, strict=True):
             if not e and start is None:
                 start = t
             elif e and start is not None:
-                return (start, t)
-        return None if start is None else (start, self.times[-1])
+                parts.append((start, t))
+                start = None
+        if start is not None:
+            parts.append((start, self.times[-1]))
+        return parts
 
-    def acquisition_s(self, threshold_deg: float = POINTING_THRESHOLD_DEG) -> float | None:
-        """Seconds from the start of the first sunlit part until the error stays at or below ``threshold_deg``
-        for the rest of that part (None: it never does)."""
-        part = self.first_sunlit_part()
-        if part is None:
+    def first_sunlit_part(self) -> tuple[float, float] | None:
+        """``(start, end)`` s of the first sunlit stretch of the run (None: never sunlit)."""
+        parts = self.sunlit_parts()
+        return parts[0] if parts else None
+
+    def acquisition_s(self, threshold_deg: float = POINTING_THRESHOLD_DEG, part_index: int = 0) -> float | None:
+        """Seconds from the start of sunlit part ``part_index`` (0: the first) until the error stays at or below
+        ``threshold_deg`` for the rest of that part (None: it never does, or there is no such part)."""
+        parts = self.sunlit_parts()
+        if part_index >= len(parts):
             return None
-        start, end = part
+        start, end = parts[part_index]
         last_above = None
         for t, err in zip(self.times, self.pointing_deg, strict=True):
             if start <= t < end and not err <= threshold_deg:
@@ -82,18 +90,18 @@ class SunSafeResult:
         return last_above + 1.0 - start
 
     def steady_sunlit(self) -> list:
-        """The pointing errors at sunlit samples after acquisition in the first sunlit part, and in every later
-        sunlit sample (eclipses excluded: the law only damps then)."""
+        """The pointing errors in the first sunlit part after its acquisition (empty: never acquired)."""
         acq = self.acquisition_s()
         part = self.first_sunlit_part()
         if acq is None or part is None:
             return []
-        t0 = part[0] + acq
-        return [err for t, err, e in zip(self.times, self.pointing_deg, self.eclipse, strict=True) if t >= t0 and not e]
+        t0, end = part[0] + acq, part[1]
+        return [err for t, err in zip(self.times, self.pointing_deg, strict=True) if t0 <= t < end]
 
 
 def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, actuator: str = "ANY",
-        axis: str = "PLUS_Z", scenario: str = "adcs", settings: tuple[str, ...] = ()) -> SunSafeResult:
+        axis: str = "PLUS_Z", scenario: str = "adcs", settings: tuple[str, ...] = (),
+        params: dict | None = None) -> SunSafeResult:
     """Fly SUN_SAFE from a ``rate_deg_s`` tumble about an axis drawn from ``seed`` (the attitude drawn too), the
     star tracker off, POINTING_ACTUATOR = ``actuator``, SUN_SAFE_AXIS = ``axis``."""
     if axis not in _AXES:
@@ -110,7 +118,8 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
     sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, seed=seed)
     io = PlantIo(plant, sensors)
     io.has_tracker = False
-    law = AdcsLaw(params={"POINTING_ACTUATOR": actuator, "SUN_SAFE_AXIS": axis}, force_mode="SUN_SAFE")
+    law = AdcsLaw(params={"POINTING_ACTUATOR": actuator, "SUN_SAFE_AXIS": axis, **(params or {})},
+                  force_mode="SUN_SAFE")
     a = _AXES[axis]
     dt = sc.dynamics_step_s
     tick_every = int(round(law.tick_s / dt))
@@ -152,9 +161,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--duration", type=float, default=5580.0, help="s (default one orbit)")
     ap.add_argument("--rate", type=float, default=2.0, help="initial tumble, deg/s")
     args = ap.parse_args(argv)
-    print("| seed | first sunlit part (s) | acquisition ≤ 10° (s) | steady sunlit median / p95 / max (deg) | "
-          "Sun vector median / p95 / max (deg) | sunlit readings ≤ 5° | invalid sunlit readings |")
-    print("|---|---|---|---|---|---|---|")
+    print("| seed | first sunlit part (s) | acquisition ≤ 10° (s) | after it: median / p95 / max (deg) | "
+          "after the eclipse: reacquisition (s) | Sun vector median / p95 / max (deg) | sunlit readings ≤ 5° | "
+          "invalid sunlit readings |")
+    print("|---|---|---|---|---|---|---|---|")
     vec_all: list[float] = []
     for seed in range(1, args.seeds + 1):
         r = fly(seed, rate_deg_s=args.rate, duration_s=args.duration, actuator=args.actuator, axis=args.axis)
@@ -169,7 +179,11 @@ def main(argv: list[str] | None = None) -> int:
         st = (f"{statistics.median(steady):.2f} / {_percentile(steady, 95):.2f} / {max(steady):.2f}" if steady
               else "—")
         vs = (f"{statistics.median(vec):.2f} / {_percentile(vec, 95):.2f} / {max(vec):.2f}" if vec else "—")
-        print(f"| {seed} | {part_s} | {acq_s} | {st} | {vs} | {100 * within:.1f} % | {r.vector_invalid_sunlit} |")
+        parts = r.sunlit_parts()
+        re_acq = r.acquisition_s(part_index=1) if len(parts) > 1 else None
+        re_s = "—" if len(parts) < 2 else ("never" if re_acq is None else f"{re_acq:.0f}")
+        print(f"| {seed} | {part_s} | {acq_s} | {st} | {re_s} | {vs} | {100 * within:.1f} % | "
+              f"{r.vector_invalid_sunlit} |")
     if vec_all:
         print(f"\nall seeds: Sun vector p95 {_percentile(vec_all, 95):.2f} deg, max {max(vec_all):.2f} deg over "
               f"{len(vec_all)} sunlit readings")
