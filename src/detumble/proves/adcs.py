@@ -9,7 +9,7 @@ and adds what issue 27 asks of it (none of it in the flight's dictionary; every 
   index ``i`` being face ``i`` (X+, X−, Y+, Y−, Z+, Z−: the project's ``veml6031Face{i}Manager``; the flight wires
   index 4 to its Face5 manager and 5 to Face6);
 * ``sunVectorGet`` (sync input, ``Components.SunVectorGet``): the latest estimate for the attitude controller's
-  SUN_SAFE mode, FAILURE before the first ``run``;
+  SUN_SAFE mode (before the first ``run``: not valid, no face lit — nothing has been seen yet, which is no failure);
 * telemetry SunVector (unit, B), SunVectorValid (1/0), LitFaces; events SunVectorAcquired and SunVectorLost when
   the validity changes (entering and leaving eclipse), LightSensorReadFailed(sensor) when a sensor does not
   answer (throttled; its face then counts as dark);
@@ -102,7 +102,7 @@ class ADCS(PassiveComponent):
 
     @sync_input(SunVectorGet)
     def sunVectorGet(self) -> Result:
-        """The latest Sun vector (``Components.SunVector``); FAILURE before the first ``run``."""
+        """The latest Sun vector (``Components.SunVector``); before the first ``run`` one that is not valid."""
         if self._last is None:
-            return Result(None, Success.FAILURE)
+            return Result(SunVector(0.0, 0.0, 0.0, False, 0, self.get_time()), _SUCCESS)
         return Result(self._last, _SUCCESS)
