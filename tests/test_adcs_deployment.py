@@ -198,3 +198,7 @@ def test_sun_safe_by_ground_command_on_the_deployment(tmp_path):
     last = adcs.sunVectorGet().value
     assert last.valid
     assert math.degrees(math.acos(max(-1.0, min(1.0, last.x * sun[0] + last.y * sun[1] + last.z * sun[2])))) <= 5.0
+    # every sunlit SunVector the ground saw, against the truth log (the study's --from-run measure)
+    from detumble.sim.sun_safe_check import vector_errors_from_run
+    errors, invalid = vector_errors_from_run(tmp_path / "out")
+    assert len(errors) >= 85 and max(errors) <= 5.0 and invalid == 0

@@ -27,7 +27,7 @@ from detumble.sim.plant import Plant
 from detumble.sim.scenario import load_scenario
 from detumble.sim.sun_sensors import SunSensorModel
 
-__all__ = ["SunSafeResult", "fly", "main", "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
+__all__ = ["SunSafeResult", "fly", "main", "vector_errors_from_run", "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
 
 #: The targets (issue 27): Sun-pointing error within this after acquisition, light-sensor vector within that.
 POINTING_THRESHOLD_DEG = 10.0
@@ -146,6 +146,57 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
     return out
 
 
+def vector_errors_from_run(run_dir, scenario: str = "adcs") -> tuple[list, int]:
+    """The ADCS component's Sun vector in a ``fprime-lite run`` of ``deployments/adcs_ref`` against the truth:
+    ``([error deg at each valid sunlit reading], invalid sunlit readings)``. Reads ``channels.csv`` (SunVector,
+    SunVectorValid at 1 Hz) and ``truth.csv`` (``q_BN`` and the power model's eclipse flag at 1 s); the Sun from
+    ``sim.sun`` at the scenario's epoch; a reading within 1 s of an eclipse boundary is left out (the flag is the
+    power model's over 100 ms steps)."""
+    import csv
+    import json
+    import pathlib
+
+    from detumble.sim.sun import sun_direction_N
+    from detumble.sim.vec import rotate_n_to_b
+
+    run = pathlib.Path(run_dir)
+    jd0 = julian_date(load_scenario(scenario).epoch)
+    truth = {}
+    with open(run / "truth.csv", newline="") as f:
+        for row in csv.DictReader(f):
+            t = float(row["t_s"])
+            if t == int(t):
+                truth[int(t)] = ((float(row["q0"]), float(row["q1"]), float(row["q2"]), float(row["q3"])),
+                                 row["eclipse"] == "1")
+    vectors, valid = {}, {}
+    t0 = None
+    with open(run / "channels.csv", newline="") as f:
+        for row in csv.DictReader(f):
+            name = row["channel"]
+            if not name.endswith(".adcs.SunVector") and not name.endswith(".adcs.SunVectorValid"):
+                continue
+            stamp = float(row["time"])
+            t0 = stamp if t0 is None else t0
+            k = int(round(stamp - t0))
+            if name.endswith("SunVector"):
+                vectors[k] = json.loads(row["value"])
+            else:
+                valid[k] = row["value"] == "1"
+    errors, invalid = [], 0
+    for k, v in sorted(vectors.items()):
+        near = [truth.get(k + d) for d in (-1, 0, 1)]
+        here = near[1]
+        if here is None or any(n is None or n[1] for n in near):
+            continue
+        q = here[0]
+        s_B = rotate_n_to_b(q, sun_direction_N(jd0 + k / 86400.0)[0])
+        if valid.get(k):
+            errors.append(_angle_deg(v, s_B))
+        else:
+            invalid += 1
+    return errors, invalid
+
+
 def _percentile(values, p: float) -> float:
     if not values:
         return math.nan
@@ -160,7 +211,19 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--axis", default="PLUS_Z", choices=tuple(_AXES))
     ap.add_argument("--duration", type=float, default=5580.0, help="s (default one orbit)")
     ap.add_argument("--rate", type=float, default=2.0, help="initial tumble, deg/s")
+    ap.add_argument("--from-run", metavar="DIR", help="instead: the ADCS Sun vector of a fprime-lite run of adcs_ref "
+                    "against its truth")
     args = ap.parse_args(argv)
+    if args.from_run:
+        errs, invalid = vector_errors_from_run(args.from_run)
+        if not errs:
+            print(f"{args.from_run}: no sunlit ADCS SunVector readings found")
+            return 1
+        within = sum(e <= VECTOR_THRESHOLD_DEG for e in errs) / len(errs)
+        print(f"ADCS SunVector vs truth, sunlit: {len(errs)} readings, median {statistics.median(errs):.2f}, p95 "
+              f"{_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; {100 * within:.1f} % within "
+              f"{VECTOR_THRESHOLD_DEG:g} deg; {invalid} invalid")
+        return 0
     print("| seed | first sunlit part (s) | acquisition ≤ 10° (s) | after it: median / p95 / max (deg) | "
           "after the eclipse: reacquisition (s) | Sun vector median / p95 / max (deg) | sunlit readings ≤ 5° | "
           "invalid sunlit readings |")
