@@ -232,6 +232,17 @@ def _attitude_controller_run_safing(rig):
     return Expect(h, ["run", "run: safing"], safe=_wheels_zero(h, ac))
 
 
+# the ADCS light sensors
+
+
+@recipe("ADCS", "run")
+def _adcs_run(rig):
+    h, adcs = rig.harness("ADCS")
+    rig.patch(adcs, "_sense")
+    h.invoke("run", 0)
+    return Expect(h, ["run"], no_actuator="it reads the light sensors and makes the Sun vector")
+
+
 # detumble manager
 
 

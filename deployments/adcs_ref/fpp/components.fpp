@@ -43,6 +43,7 @@ module Components {
     DETUMBLE = 1
     SPIN_STABLE = 2
     POINTING = 3
+    SUN_SAFE = 4
   } default IDLE
 
   enum DeployResult : I32 {
@@ -122,6 +123,8 @@ module Components {
     RATE_LOW = 3
     SPIN_STABLE_REACHED = 4
     ATTITUDE_LOST = 5
+    SYSTEM_SAFE_MODE = 6
+    KNOWLEDGE_RESTORED = 7
   } default COMMAND
 
   enum PacketAuthenticatorStatus : I32 {
@@ -219,6 +222,9 @@ module Components {
   port SamplingPeriodGet
 
   port SetDetumbleMode(mode: Components.DetumbleMode)
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port SunVectorGet
 
   port SystemModeChanged(mode: Components.SystemMode)
 
@@ -1080,6 +1086,8 @@ module Components {
     output port wheelStateGet: [4] Drv.WheelStateGet
     output port wheelEnableSet: [4] Drv.WheelEnableSet
     output port ephemerisGet: Drv.EphemerisGet
+    output port sunVectorGet: Components.SunVectorGet
+    output port getSystemMode: Components.GetSystemMode
     sync command FORCE_MODE(mode: Components.ControlMode) opcode 0x0
     sync command SET_AUTO opcode 0x1
     sync command SET_TARGET_QUATERNION(q0: F64, q1: F64, q2: F64, q3: F64) opcode 0x2
@@ -1094,7 +1102,7 @@ module Components {
     event TargetDirectionInvalid(x: F64, y: F64, z: F64) severity warning low id 0x4 format "Target direction ({}, {}, {}) refused: not a non-zero finite vector" throttle 5
     event NoAttitudeKnowledge severity warning low id 0x5 format "No attitude knowledge (star tracker): pointing not available" throttle 5
     event ModeUnavailableNoWheels(mode: Components.ControlMode) severity warning low id 0x6 format "Mode {} needs reaction wheels and none answer" throttle 5
-    event AttitudeKnowledgeLost severity warning high id 0x7 format "Attitude knowledge lost while pointing: back to SPIN_STABLE" throttle 5
+    event AttitudeKnowledgeLost severity warning high id 0x7 format "Attitude knowledge lost while pointing: to SUN_SAFE (with light sensors) or SPIN_STABLE" throttle 5
     event GyroRetrievalFailed severity warning low id 0x8 format "Failed to retrieve angular velocity." throttle 5
     event MagneticFieldRetrievalFailed severity warning low id 0x9 format "Failed to retrieve magnetic field." throttle 5
     event DipoleMomentRetrievalFailed severity warning low id 0xA format "Failed to retrieve the B-dot dipole moment." throttle 5
@@ -1115,9 +1123,13 @@ module Components {
     event TargetReferenceUndefined(kind: Components.TargetKind) severity warning low id 0x19 format "The {} target's reference is undefined now (its two directions are parallel): holding the last reference attitude" throttle 5
     event GroundStationInView severity activity low id 0x1A format "Ground station in view: tracking it"
     event GroundStationOutOfView severity activity low id 0x1B format "Ground station out of view: pointing at nadir"
-    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x1C format "Handler {} raised {}" throttle 10
-    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x1D format "{} PRM_SET refused: {}"
-    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x1E format "{} parameter file value refused ({}); default loaded"
+    event SunSafeEntered(reason: Components.ModeChangeReason) severity warning high id 0x1C format "Entering SUN_SAFE ({}): turning SUN_SAFE_AXIS to the light sensors' Sun vector"
+    event SunSafeExited(to_mode: Components.ControlMode, reason: Components.ModeChangeReason) severity activity high id 0x1D format "Leaving SUN_SAFE for {} ({})"
+    event SunSensorsUnavailable severity warning low id 0x1E format "SUN_SAFE refused: no Sun vector source (sunVectorGet) is connected" throttle 5
+    event SunVectorRetrievalFailed severity warning low id 0x1F format "Failed to retrieve the Sun vector: carrying the last one on the gyro" throttle 5
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x20 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x21 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x22 format "{} parameter file value refused ({}); default loaded"
     telemetry Mode: Components.ControlMode id 0x0 update always
     telemetry Autonomy: Components.ControlAutonomy id 0x1 update always
     telemetry AngularRate: F64 id 0x2 update always format "{.3f}"
@@ -1137,7 +1149,9 @@ module Components {
     telemetry ResidualDipole: Components.Vector3 id 0x10 update always
     telemetry ActiveTarget: Components.PointingReference id 0x11 update always
     telemetry ReferenceRate: Components.Vector3 id 0x12 update always
-    telemetry HandlerFaults: U32 id 0x13 update on change
+    telemetry SunVectorEstimate: Components.Vector3 id 0x13 update always
+    telemetry SunPointingError: F64 id 0x14 update always format "{.3f}"
+    telemetry HandlerFaults: U32 id 0x15 update on change
     @ units: N·m
     param K_P: F64 default 0.0011 id 0x0 set opcode 0x7 save opcode 0x8
     @ units: N·m·s
@@ -1255,6 +1269,19 @@ module Components {
     param RATE_BLEND_ANGLE: F64 default 0.1 id 0x3C set opcode 0x7F save opcode 0x80
     @ units: 1/s
     param RATE_BLEND_GAIN: F64 default 2.0 id 0x3D set opcode 0x81 save opcode 0x82
+    param SUN_SAFE_AXIS: Components.BodyAxis default Components.BodyAxis.PLUS_Z id 0x3E set opcode 0x83 save opcode 0x84
+    @ units: N·m/rad
+    param SUN_SAFE_K_P: F64 default 0.0002 id 0x3F set opcode 0x85 save opcode 0x86
+    @ units: N·m·s
+    param SUN_SAFE_K_D: F64 default 0.0012 id 0x40 set opcode 0x87 save opcode 0x88
+    @ units: N·m/rad
+    param SUN_SAFE_K_P_MAG: F64 default 0.000004 id 0x41 set opcode 0x89 save opcode 0x8A
+    @ units: N·m·s
+    param SUN_SAFE_K_D_MAG: F64 default 0.0004 id 0x42 set opcode 0x8B save opcode 0x8C
+    @ units: s
+    param SUN_VECTOR_TIMEOUT: F64 default 10.0 id 0x43 set opcode 0x8D save opcode 0x8E
+    @ units: s
+    param SUN_SAFE_EXIT_DWELL: F64 default 10.0 id 0x44 set opcode 0x8F save opcode 0x90
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver
@@ -1328,6 +1355,34 @@ module Components {
     sync input port ephemerisGet: Drv.EphemerisGet
     event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x0 format "Handler {} raised {}" throttle 10
     telemetry HandlerFaults: U32 id 0x0 update on change
+  }
+
+  @ fprime-lite: detumble.proves.adcs.ADCS
+  passive component ADCS {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port run: Svc.Sched
+    sync input port sunVectorGet: Components.SunVectorGet
+    output port visibleLightGet: [6] Drv.lightGet
+    event SunVectorAcquired(x: F64, y: F64, z: F64, lit: U32) severity activity low id 0x0 format "Sun vector valid: ({.3f}, {.3f}, {.3f}) in B, {} faces lit"
+    event SunVectorLost(lit: U32, magnitude: F64) severity activity low id 0x1 format "Sun vector lost: {} faces lit, magnitude {.3f} of full Sun (eclipse, or no usable reading)"
+    event LightSensorReadFailed(sensor: U32) severity warning low id 0x2 format "Light sensor {} did not answer: its face counts as dark" throttle 5
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x3 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x4 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x5 format "{} parameter file value refused ({}); default loaded"
+    telemetry SunVector: Components.Vector3 id 0x0 update always
+    telemetry SunVectorValid: U32 id 0x1 update always
+    telemetry LitFaces: U32 id 0x2 update always
+    telemetry HandlerFaults: U32 id 0x3 update on change
+    @ units: lux
+    param SUN_FULL_SCALE_LUX: F64 default 133000.0 id 0x0 set opcode 0x0 save opcode 0x1
   }
 
   @ fprime-lite: detumble.proves.tc_security_deframer.TcSecurityDeframer

@@ -74,6 +74,7 @@ module AdcsDeployment {
     instance ReferenceDeployment.reactionWheel2
     instance ReferenceDeployment.starTracker
     instance ReferenceDeployment.orbitEphemeris
+    instance ReferenceDeployment.adcs
     instance ComCcsdsUart.tcSecurityDeframer
     connections Sequencer {
       ReferenceDeployment.cmdSeq.comCmdOut[0] -> CdhCore.cmdDisp.seqCmdBuff[0]
@@ -159,12 +160,22 @@ module AdcsDeployment {
       ReferenceDeployment.powerMonitor.solCurrentGet[0] -> ReferenceDeployment.ina219SolManager.currentGet[0]
       ReferenceDeployment.powerMonitor.solPowerGet[0] -> ReferenceDeployment.ina219SolManager.powerGet[0]
     }
+    connections adcs {
+      ReferenceDeployment.adcs.visibleLightGet[0] -> ReferenceDeployment.veml6031Face0Manager.visibleLightGet[0]
+      ReferenceDeployment.adcs.visibleLightGet[1] -> ReferenceDeployment.veml6031Face1Manager.visibleLightGet[0]
+      ReferenceDeployment.adcs.visibleLightGet[2] -> ReferenceDeployment.veml6031Face2Manager.visibleLightGet[0]
+      ReferenceDeployment.adcs.visibleLightGet[3] -> ReferenceDeployment.veml6031Face3Manager.visibleLightGet[0]
+      ReferenceDeployment.adcs.visibleLightGet[4] -> ReferenceDeployment.veml6031Face4Manager.visibleLightGet[0]
+      ReferenceDeployment.adcs.visibleLightGet[5] -> ReferenceDeployment.veml6031Face5Manager.visibleLightGet[0]
+    }
     connections Attitude {
       ReferenceDeployment.attitudeController.angularVelocityGet[0] -> ReferenceDeployment.imuManager.angularVelocityGet[0]
       ReferenceDeployment.attitudeController.magneticFieldGet[0] -> ReferenceDeployment.imuManager.magneticFieldGet[0]
       ReferenceDeployment.attitudeController.attitudeGet[0] -> ReferenceDeployment.starTracker.attitudeGet[0]
       ReferenceDeployment.attitudeController.dipoleMomentGet[0] -> ReferenceDeployment.bdotDetumble.dipoleMomentGet[0]
       ReferenceDeployment.attitudeController.ephemerisGet[0] -> ReferenceDeployment.orbitEphemeris.ephemerisGet[0]
+      ReferenceDeployment.attitudeController.sunVectorGet[0] -> ReferenceDeployment.adcs.sunVectorGet[0]
+      ReferenceDeployment.attitudeController.getSystemMode[0] -> ReferenceDeployment.modeManager.getMode[0]
       ReferenceDeployment.bdotDetumble.magneticFieldGet[0] -> ReferenceDeployment.imuManager.magneticFieldGet[0]
       ReferenceDeployment.attitudeController.xPlusStart[0] -> ReferenceDeployment.drv2605Face0Manager.start[0]
       ReferenceDeployment.attitudeController.xPlusStop[0] -> ReferenceDeployment.drv2605Face0Manager.stop[0]
@@ -201,9 +212,10 @@ module AdcsDeployment {
       ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[2] -> ReferenceDeployment.startupManager.run[0]
       ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[3] -> ReferenceDeployment.powerMonitor.run[0]
       ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[4] -> ReferenceDeployment.modeManager.run[0]
-      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[5] -> CdhCore.tlmSend.Run[0]
-      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[6] -> CdhCore.$health.Run[0]
-      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[7] -> FileHandling.fileDownlink.Run[0]
+      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[5] -> ReferenceDeployment.adcs.run[0]
+      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[6] -> CdhCore.tlmSend.Run[0]
+      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[7] -> CdhCore.$health.Run[0]
+      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[8] -> FileHandling.fileDownlink.Run[0]
     }
     connections Pattern_command {
       CdhCore.cmdDisp.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[0]
@@ -392,8 +404,11 @@ module AdcsDeployment {
       ReferenceDeployment.starTracker.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[61]
       CdhCore.cmdDisp.compCmdSend[61] -> ReferenceDeployment.starTracker.cmdIn[0]
       ReferenceDeployment.starTracker.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
-      ComCcsdsUart.tcSecurityDeframer.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[62]
-      CdhCore.cmdDisp.compCmdSend[62] -> ComCcsdsUart.tcSecurityDeframer.cmdIn[0]
+      ReferenceDeployment.adcs.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[62]
+      CdhCore.cmdDisp.compCmdSend[62] -> ReferenceDeployment.adcs.cmdIn[0]
+      ReferenceDeployment.adcs.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
+      ComCcsdsUart.tcSecurityDeframer.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[63]
+      CdhCore.cmdDisp.compCmdSend[63] -> ComCcsdsUart.tcSecurityDeframer.cmdIn[0]
       ComCcsdsUart.tcSecurityDeframer.cmdResponseOut[0] -> CdhCore.cmdDisp.compCmdStat[0]
     }
     connections Pattern_event {
@@ -468,6 +483,7 @@ module AdcsDeployment {
       ReferenceDeployment.reactionWheel2.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.starTracker.logOut[0] -> CdhCore.events.LogRecv[0]
       ReferenceDeployment.orbitEphemeris.logOut[0] -> CdhCore.events.LogRecv[0]
+      ReferenceDeployment.adcs.logOut[0] -> CdhCore.events.LogRecv[0]
       ComCcsdsUart.tcSecurityDeframer.logOut[0] -> CdhCore.events.LogRecv[0]
     }
     connections Pattern_telemetry {
@@ -542,6 +558,7 @@ module AdcsDeployment {
       ReferenceDeployment.reactionWheel2.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.starTracker.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ReferenceDeployment.orbitEphemeris.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
+      ReferenceDeployment.adcs.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
       ComCcsdsUart.tcSecurityDeframer.tlmOut[0] -> CdhCore.tlmSend.TlmRecv[0]
     }
     connections Pattern_param {
@@ -579,6 +596,8 @@ module AdcsDeployment {
       ReferenceDeployment.bdotDetumble.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
       ReferenceDeployment.attitudeController.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
       ReferenceDeployment.attitudeController.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
+      ReferenceDeployment.adcs.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
+      ReferenceDeployment.adcs.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
       ComCcsdsUart.tcSecurityDeframer.prmGetOut[0] -> FileHandling.prmDb.getPrm[0]
       ComCcsdsUart.tcSecurityDeframer.prmSetOut[0] -> FileHandling.prmDb.setPrm[0]
     }
@@ -680,6 +699,7 @@ module AdcsDeployment {
       ReferenceDeployment.reactionWheel2.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.starTracker.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ReferenceDeployment.orbitEphemeris.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
+      ReferenceDeployment.adcs.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
       ComCcsdsUart.tcSecurityDeframer.timeCaller[0] -> ReferenceDeployment.chronoTime.timeGetPort[0]
     }
   }
@@ -835,4 +855,6 @@ module ReferenceDeployment {
   instance starTracker: Components.StarTracker base id 0x10061000
 
   instance orbitEphemeris: Components.OrbitEphemeris base id 0x10063000
+
+  instance adcs: Components.ADCS base id 0x1004C000
 }

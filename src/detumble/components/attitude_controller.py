@@ -18,15 +18,16 @@ from fprime_lite import (F64, U32, Channel, CmdResponse, Event, OutputPort, Para
 from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, AttitudeEstimator, BodyAxis,
                                                 ControlAutonomy, ControlMode, EphemerisGet, MagPointingLaw,
                                                 MagResidualMode, ModeChangeReason, PointingActuator,
-                                                PointingReference, Quaternion, RateSource, SpinLaw, TargetKind,
-                                                Vector3, WheelFeedForward, WheelValues)
-from detumble.components.types import (AttitudeGet, DipoleMomentGet, MagneticFieldGet, StartMagnetorquer,
-                                       StopMagnetorquer, Success, WheelEnableSet, WheelStateGet, WheelTorqueSet)
+                                                PointingReference, Quaternion, RateSource, SpinLaw, SunVectorGet,
+                                                TargetKind, Vector3, WheelFeedForward, WheelValues)
+from detumble.components.types import (AttitudeGet, DipoleMomentGet, GetSystemMode, MagneticFieldGet,
+                                       StartMagnetorquer, StopMagnetorquer, Success, SystemMode, WheelEnableSet,
+                                       WheelStateGet, WheelTorqueSet)
 from detumble.control import attitude_defaults as _defaults
 from detumble.control.mekf import Mekf
 from detumble.control.spin import spin_axis_error_deg
 from detumble.control.targets import Ephemeris
-from detumble.control.three_mode import POINTING, XYZ, ThreeModeLaw
+from detumble.control.three_mode import POINTING, SUN_SAFE, XYZ, ThreeModeLaw
 
 __all__ = ["AttitudeController", "BORESIGHT_B"]
 
@@ -36,7 +37,7 @@ _SUCCESS = Success.SUCCESS
 _MODES, _AUTONOMIES = tuple(ControlMode), tuple(ControlAutonomy)
 _ENUMS = {"SPIN_LAW": SpinLaw, "POINTING_ACTUATOR": PointingActuator, "ESTIMATOR": AttitudeEstimator,
           "RATE_SOURCE": RateSource, "MAG_POINTING_LAW": MagPointingLaw, "MAG_RESIDUAL_MODE": MagResidualMode,
-          "WHEEL_FEED_FORWARD": WheelFeedForward}
+          "WHEEL_FEED_FORWARD": WheelFeedForward, "SUN_SAFE_AXIS": BodyAxis}
 _COILS = ("xPlus", "xMinus", "yPlus", "yMinus", "zMinus")
 _isfinite = math.isfinite
 
@@ -80,7 +81,8 @@ class AttitudeController(PassiveComponent):
 
     @sync_command()
     def FORCE_MODE(self, mode: ControlMode):
-        """Switch to ``mode`` and stay there (MANUAL); POINTING refused without attitude or needed wheels."""
+        """Switch to ``mode`` and stay there (MANUAL); POINTING refused without attitude or needed wheels, SUN_SAFE
+        without the light sensors' Sun vector (sunVectorGet)."""
         return CmdResponse[self.law.force_mode(int(mode))]
 
     @sync_command()
@@ -138,6 +140,10 @@ class AttitudeController(PassiveComponent):
     wheelEnableSet = OutputPort(WheelEnableSet, size=MAX_WHEELS)
     #: Optional: the ephemeris (orbit, Earth angle, Sun) the moving targets need.
     ephemerisGet = OutputPort(EphemerisGet)
+    #: Optional: the light sensors' Sun vector (the ADCS component); SUN_SAFE needs it.
+    sunVectorGet = OutputPort(SunVectorGet)
+    #: Optional: the spacecraft mode (ModeManager.getMode); its SAFE_MODE puts the controller in SUN_SAFE.
+    getSystemMode = OutputPort(GetSystemMode)
 
     # --- events --------------------------------------------------------------------------------
 
@@ -155,8 +161,8 @@ class AttitudeController(PassiveComponent):
                                 throttle=5)
     ModeUnavailableNoWheels = Event(Severity.WARNING_LO, "Mode {} needs reaction wheels and none answer",
                                     mode=ControlMode, throttle=5)
-    AttitudeKnowledgeLost = Event(Severity.WARNING_HI, "Attitude knowledge lost while pointing: back to SPIN_STABLE",
-                                  throttle=5)
+    AttitudeKnowledgeLost = Event(Severity.WARNING_HI, "Attitude knowledge lost while pointing: to SUN_SAFE (with "
+                                  "light sensors) or SPIN_STABLE", throttle=5)
     GyroRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve angular velocity.", throttle=5)
     MagneticFieldRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve magnetic field.", throttle=5)
     DipoleMomentRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve the B-dot dipole moment.",
@@ -197,6 +203,14 @@ class AttitudeController(PassiveComponent):
                                      kind=TargetKind, throttle=5)
     GroundStationInView = Event(Severity.ACTIVITY_LO, "Ground station in view: tracking it")
     GroundStationOutOfView = Event(Severity.ACTIVITY_LO, "Ground station out of view: pointing at nadir")
+    SunSafeEntered = Event(Severity.WARNING_HI, "Entering SUN_SAFE ({}): turning SUN_SAFE_AXIS to the light sensors' "
+                           "Sun vector", reason=ModeChangeReason)
+    SunSafeExited = Event(Severity.ACTIVITY_HI, "Leaving SUN_SAFE for {} ({})", to_mode=ControlMode,
+                          reason=ModeChangeReason)
+    SunSensorsUnavailable = Event(Severity.WARNING_LO, "SUN_SAFE refused: no Sun vector source (sunVectorGet) is "
+                                  "connected", throttle=5)
+    SunVectorRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve the Sun vector: carrying the last one on "
+                                     "the gyro", throttle=5)
 
     # --- telemetry -----------------------------------------------------------------------------
 
@@ -219,6 +233,8 @@ class AttitudeController(PassiveComponent):
     ResidualDipole = Channel(Vector3)  # A·m², B: the residual-dipole feed-forward in use (MAG_RESIDUAL_MODE)
     ActiveTarget = Channel(PointingReference)  # the reference POINTING follows
     ReferenceRate = Channel(Vector3)  # deg/s, in the target frame: the reference's rate relative to N
+    SunVectorEstimate = Channel(Vector3)  # unit, B: the Sun vector SUN_SAFE uses (carried on the gyro)
+    SunPointingError = Channel(F64, format="{.3f}")  # deg, SUN_SAFE_AXIS to the Sun vector, in SUN_SAFE
 
     # --- construction and the law's plant I/O --------------------------------------------------
 
@@ -238,6 +254,8 @@ class AttitudeController(PassiveComponent):
         self._state_ports = self.output_port("wheelStateGet")
         self._enable_ports = self.output_port("wheelEnableSet")
         self._ephemeris_port = self.output_port("ephemerisGet")
+        self._sun_port = self.output_port("sunVectorGet")
+        self._system_mode_port = self.output_port("getSystemMode")
         self._wheels_enabled = False
         self.law = ThreeModeLaw(self, self, self, wheel_axes, {n: b.value for n, b in self.params.items()})
 
@@ -343,6 +361,24 @@ class AttitudeController(PassiveComponent):
             return None
         return Ephemeris((e.rx, e.ry, e.rz), (e.vx, e.vy, e.vz), e.earthAngle, (e.sunX, e.sunY, e.sunZ))
 
+    def has_sun_sensor(self) -> bool:
+        return self._sun_port.targets[0] is not None
+
+    def sun_vector(self):
+        s = _read(self._sun_port)
+        if s is None:
+            return None
+        try:
+            valid = bool(s.valid) and _isfinite(s.x) and _isfinite(s.y) and _isfinite(s.z)
+            return (float(s.x), float(s.y), float(s.z)), valid, s.timestamp.total_us
+        except (TypeError, AttributeError):
+            return None
+
+    def system_safe_mode(self):
+        if self._system_mode_port.targets[0] is None:
+            return None
+        return self._system_mode_port.calls[0]() == SystemMode.SAFE_MODE
+
     def drive_coils(self, levels, dipole_B) -> None:
         for port, level in zip(self._start_ports, levels, strict=True):
             if port.targets[0] is not None:
@@ -398,6 +434,10 @@ class AttitudeController(PassiveComponent):
             d = law.bdot_hat_B
             self.FieldLineRate.write(math.degrees(math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])))
         self.ResidualDipole.write(Vector3(law.residual_ff))
+        if law.sun_B is not None:
+            self.SunVectorEstimate.write(Vector3(list(law.sun_B)))
+        if law.mode == SUN_SAFE and _isfinite(law.sun_error_deg):
+            self.SunPointingError.write(law.sun_error_deg)
         ref = law.reference
         if ref is not None:
             self.ActiveTarget.write(PointingReference(ref.label))

@@ -7,14 +7,14 @@ dipole A·m². ``ref condition`` ports return a :class:`~detumble.components.typ
 
 from __future__ import annotations
 
-from fprime_lite import F64, Array, FwEnum, PortType, Struct
+from fprime_lite import BOOL, F64, U8, Array, FwEnum, PortType, Struct, Time
 
 from detumble.components.types import Result
 
 __all__ = ["ControlMode", "ControlAutonomy", "SpinLaw", "PointingActuator", "MagPointingLaw", "MagResidualMode",
            "ModeChangeReason",
            "AttitudeEstimator", "RateSource", "WheelFeedForward", "BodyAxis", "PointingReference", "TargetKind",
-           "Ephemeris", "EphemerisGet",
+           "Ephemeris", "EphemerisGet", "SunVector", "SunVectorGet",
            "Vector3", "Quaternion", "WheelValues", "AngularVelocity", "AngularVelocityGet", "MAX_WHEELS"]
 
 #: Wheel channels carry this many values (unused wheels read 0).
@@ -22,12 +22,14 @@ MAX_WHEELS = 4
 
 
 class ControlMode(FwEnum, namespace="Components"):
-    """What the attitude controller does: IDLE (actuators off) or one of seed 003's three modes."""
+    """What the attitude controller does: IDLE (actuators off), one of seed 003's three modes, or SUN_SAFE (a face
+    to the Sun on the light sensors' Sun vector, no attitude needed)."""
 
     IDLE = 0
     DETUMBLE = 1
     SPIN_STABLE = 2
     POINTING = 3
+    SUN_SAFE = 4
 
 
 class ControlAutonomy(FwEnum, namespace="Components"):
@@ -137,6 +139,8 @@ class ModeChangeReason(FwEnum, namespace="Components"):
     RATE_LOW = 3
     SPIN_STABLE_REACHED = 4
     ATTITUDE_LOST = 5
+    SYSTEM_SAFE_MODE = 6
+    KNOWLEDGE_RESTORED = 7
 
 
 class Vector3(Array, namespace="Components", elem=F64, size=3):
@@ -186,4 +190,21 @@ class Ephemeris(Struct, namespace="Drv"):
 
 #: The ephemeris now; returns ``Result(Ephemeris, Success)`` (an on-board orbit propagator or GPS).
 EphemerisGet = PortType("Drv.EphemerisGet", returns=Result)
+
+
+class SunVector(Struct, namespace="Components"):
+    """The Sun's direction from the face light sensors: unit vector ``x, y, z`` in B, ``valid`` (false: eclipse or
+    no usable reading; the vector is then the last valid one or zero), ``litFaces`` (sensors above the lit
+    threshold) and ``timestamp`` (when the sensors were read)."""
+
+    x: F64
+    y: F64
+    z: F64
+    valid: BOOL
+    litFaces: U8
+    timestamp: Time
+
+
+#: The latest Sun vector; returns ``Result(SunVector, Success)`` (the ADCS light-sensor component).
+SunVectorGet = PortType("Components.SunVectorGet", returns=Result)
 

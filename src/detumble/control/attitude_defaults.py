@@ -49,6 +49,15 @@ WHEEL_FEED_FORWARD = "REFERENCE"  # REFERENCE: I (α_r − ω × ω_r); REFERENC
 RATE_BLEND_ANGLE = 0.1  # deg: above this pointing error (a slew) the rate observer pulls at RATE_BLEND_GAIN
 RATE_BLEND_GAIN = 2.0  # 1/s: the observer's pull toward the gyro during a slew
 
+# --- Sun-safe mode (control.sun_vector; the ADCS light sensors) --------------------------------
+SUN_SAFE_AXIS = "PLUS_Z"  # the body axis SUN_SAFE turns to the Sun (BodyAxis: +Z, or the solar array's face)
+SUN_SAFE_K_P = 2.0e-4  # N·m/rad: spring on the Sun-pointing angle (ω_n 0.3 rad/s for 2.2e-3 kg·m²)
+SUN_SAFE_K_D = 1.2e-3  # N·m·s: damping on the body rate (ζ ≈ 0.9)
+SUN_SAFE_K_P_MAG = 4.0e-6  # N·m/rad: the same on the magnetorquers alone (projected ⟂ B)
+SUN_SAFE_K_D_MAG = 4.0e-4  # N·m·s
+SUN_VECTOR_TIMEOUT = 10.0  # s: a Sun vector older than this (eclipse, failed sensors) is no Sun vector
+SUN_SAFE_EXIT_DWELL = 10.0  # s of attitude knowledge before SUN_SAFE (entered on its loss) hands back to POINTING
+
 # --- detumble and spin -------------------------------------------------------------------------
 K_BDOT = 3.0  # A·m²·s/G: the internal M = −k Ḃ when no dipole provider is connected
 C_DAMP = 1.0e-4  # N·m·s: damper coefficient (seed c_damp)
@@ -175,6 +184,13 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "WHEEL_FEED_FORWARD": ("", None, None, False),
     "RATE_BLEND_ANGLE": ("deg", 0.0, 180.0, False),
     "RATE_BLEND_GAIN": ("1/s", 1e-4, 1000.0, True),
+    "SUN_SAFE_AXIS": ("", None, None, False),
+    "SUN_SAFE_K_P": ("N·m/rad", 0.0, 1.0e-2, True),
+    "SUN_SAFE_K_D": ("N·m·s", 0.0, 1.0e-1, True),
+    "SUN_SAFE_K_P_MAG": ("N·m/rad", 0.0, 1.0e-3, True),
+    "SUN_SAFE_K_D_MAG": ("N·m·s", 0.0, 1.0e-2, True),
+    "SUN_VECTOR_TIMEOUT": ("s", 0.1, 3600.0, True),
+    "SUN_SAFE_EXIT_DWELL": ("s", 0.0, 3600.0, True),
 }
 #: Each parameter's units (the first column of :data:`PARAMETERS`).
 UNITS: dict[str, str] = {name: row[0] for name, row in PARAMETERS.items()}
@@ -188,4 +204,5 @@ ENUM_CHOICES: dict[str, tuple[str, ...]] = {
     "MAG_POINTING_LAW": ("SEED_PD", "FIELD_STEERING"),
     "MAG_RESIDUAL_MODE": ("OFF", "PARAMETER", "ESTIMATE"),
     "WHEEL_FEED_FORWARD": ("REFERENCE", "REFERENCE_GYROSCOPIC"),
+    "SUN_SAFE_AXIS": ("PLUS_X", "MINUS_X", "PLUS_Y", "MINUS_Y", "PLUS_Z", "MINUS_Z"),
 }

@@ -47,20 +47,24 @@ from detumble.control.quaternion import (Quat, Vec3, is_unit_quaternion, quat_an
                                          quat_shortest, rotate_n_to_b, target_pointing_axis)
 from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
-from detumble.control.targets import (GROUND_STATION, STATION_FALLBACK, Ephemeris, InertialTarget, NadirTarget,
-                                      Reference, StationTarget, SunTarget, Target, axes_error, station_error)
+from detumble.control.sun_vector import propagate_body_vector
+from detumble.control.targets import (BODY_AXES, GROUND_STATION, STATION_FALLBACK, Ephemeris, InertialTarget,
+                                      NadirTarget, Reference, StationTarget, SunTarget, Target, axes_error,
+                                      station_error)
 from detumble.control.units import TESLA_PER_GAUSS
 from detumble.control.wheel_allocation import WheelAllocator
 
 __all__ = ["ThreeModeLaw", "checked_parameters", "ControllerIo", "DipoleProvider", "Notify", "Quiet", "MODES",
-           "REASONS", "IDLE", "DETUMBLE", "SPIN_STABLE", "POINTING", "MANUAL", "AUTO", "XYZ"]
+           "REASONS", "IDLE", "DETUMBLE", "SPIN_STABLE", "POINTING", "SUN_SAFE", "MANUAL", "AUTO", "XYZ"]
 
 #: The modes (ControlMode), by value.
-MODES = ("IDLE", "DETUMBLE", "SPIN_STABLE", "POINTING")
-IDLE, DETUMBLE, SPIN_STABLE, POINTING = range(4)
+MODES = ("IDLE", "DETUMBLE", "SPIN_STABLE", "POINTING", "SUN_SAFE")
+IDLE, DETUMBLE, SPIN_STABLE, POINTING, SUN_SAFE = range(5)
 #: Why a mode changed (ModeChangeReason), by value.
-REASONS = ("COMMAND", "AUTO_START", "RATE_HIGH", "RATE_LOW", "SPIN_STABLE_REACHED", "ATTITUDE_LOST")
-_COMMAND, _AUTO_START, _RATE_HIGH, _RATE_LOW, _SPIN_STABLE_REACHED, _ATTITUDE_LOST = range(6)
+REASONS = ("COMMAND", "AUTO_START", "RATE_HIGH", "RATE_LOW", "SPIN_STABLE_REACHED", "ATTITUDE_LOST",
+           "SYSTEM_SAFE_MODE", "KNOWLEDGE_RESTORED")
+(_COMMAND, _AUTO_START, _RATE_HIGH, _RATE_LOW, _SPIN_STABLE_REACHED, _ATTITUDE_LOST, _SYSTEM_SAFE_MODE,
+ _KNOWLEDGE_RESTORED) = range(8)
 #: ControlAutonomy: MANUAL (the mode stays where it was put) or AUTO (the triggers choose it).
 MANUAL, AUTO = 0, 1
 #: Three orthogonal wheels on x, y, z (the default wheel axes).
@@ -117,6 +121,15 @@ class ControllerIo(Protocol):
 
     def ephemeris(self) -> Ephemeris | None:
         """Where the spacecraft is now (orbit, Earth angle, Sun: ``control.targets.Ephemeris``); None without."""
+
+    def has_sun_sensor(self) -> bool:
+        """Whether a Sun vector source (the ADCS light sensors) is connected: SUN_SAFE needs one."""
+
+    def sun_vector(self) -> tuple[Vec3, bool, int] | None:
+        """The light sensors' latest Sun vector ``(unit vector in B, valid, time µs)``; None when the read fails."""
+
+    def system_safe_mode(self) -> bool | None:
+        """True while the spacecraft's mode manager is in safe mode; None when it is not connected."""
 
 
 class DipoleProvider(Protocol):
@@ -277,6 +290,13 @@ class ThreeModeLaw:
     WHEEL_FEED_FORWARD: int
     RATE_BLEND_ANGLE: float
     RATE_BLEND_GAIN: float
+    SUN_SAFE_AXIS: int
+    SUN_SAFE_K_P: float
+    SUN_SAFE_K_D: float
+    SUN_SAFE_K_P_MAG: float
+    SUN_SAFE_K_D_MAG: float
+    SUN_VECTOR_TIMEOUT: float
+    SUN_SAFE_EXIT_DWELL: float
 
     def __init__(self, io: ControllerIo, notify: Notify, provider: DipoleProvider,
                  wheel_axes: Sequence[Sequence[float]] = XYZ, params: Mapping[str, object] | None = None) -> None:
@@ -323,6 +343,15 @@ class ThreeModeLaw:
         self._gyro_sum: Vec3 = _ZERO  # rad/s, summed over the ticks since the last cycle
         self._gyro_count = 0
         self._last_fix_us: int | None = None  # time stamp of the last star-tracker solution used
+        # SUN_SAFE: the Sun vector (unit, B) carried on the gyro between light-sensor readings, its age (s) and the
+        # time stamp of the reading last taken; why SUN_SAFE was entered; how long the attitude has been known in it
+        self.sun_B: Vec3 | None = None
+        self.sun_age_s = math.inf
+        self._sun_stamp_us: int | None = None
+        self.sun_error_deg = math.nan  # angle between SUN_SAFE_AXIS and the Sun vector, deg (SUN_SAFE only)
+        self.system_safe = False  # the mode manager's safe mode, as last read
+        self._sun_safe_reason: int | None = None
+        self._known_in_sun_safe_s = 0.0
         # Σ h_i g_i needs only the axes (limits 1, 1); the limited allocator is rebuilt when the axes or
         # WHEEL_MAX_TORQUE / WHEEL_MAX_MOMENTUM differ from the ones it was built for.
         self._momentum_alloc: tuple = (None, None)  # (axes, WheelAllocator)
@@ -348,8 +377,12 @@ class ThreeModeLaw:
 
     def force_mode(self, mode: int) -> str:
         """FORCE_MODE: switch to ``mode`` and stay there (MANUAL). POINTING is refused without attitude
-        knowledge or, with POINTING_ACTUATOR = WHEELS, without wheels (the wheels are read afresh)."""
+        knowledge or, with POINTING_ACTUATOR = WHEELS, without wheels (the wheels are read afresh); SUN_SAFE without
+        a Sun vector source (SunSensorsUnavailable)."""
         if mode == POINTING and not self._pointing_available(report=True, fresh=True):
+            return "EXECUTION_ERROR"
+        if mode == SUN_SAFE and not self.io.has_sun_sensor():
+            self.notify.event("SunSensorsUnavailable")
             return "EXECUTION_ERROR"
         self._set_autonomy(MANUAL)
         self._change_mode(mode, _COMMAND)
@@ -559,7 +592,13 @@ class ThreeModeLaw:
             self._command_wheels((0.0,) * len(self.wheel_axes))
         if mode == IDLE:
             self._stop_coils()
+        self._known_in_sun_safe_s = 0.0
+        self._sun_safe_reason = reason if mode == SUN_SAFE else None
         self.notify.mode_changed(old, mode, reason)
+        if mode == SUN_SAFE:
+            self.notify.event("SunSafeEntered", reason)
+        elif old == SUN_SAFE:
+            self.notify.event("SunSafeExited", mode, reason)
 
     # --- the tick -------------------------------------------------------------------------------
 
@@ -594,8 +633,8 @@ class ThreeModeLaw:
         if self.autonomy == AUTO:
             self._auto_mode(dt)
         elif self.mode == POINTING and not self.attitude_valid:
-            self.notify.event("AttitudeKnowledgeLost")
-            self._change_mode(SPIN_STABLE, _ATTITUDE_LOST)
+            self._attitude_lost()
+        self._sun_safe_transitions(dt)
         self._actuate(dt)
         self.notify.cycle_done()
 
@@ -672,6 +711,7 @@ class ThreeModeLaw:
             notify.event("MagneticFieldRetrievalFailed")
             self.b_tesla = None
         self._track_field_line(dt)
+        self._track_sun(dt, now_us)
         self.wheel_momenta = io.wheel_momenta() if io.wheel_count() else None
         # the last cycle's body torque (self.dipole: what it drove, zero when off), for both users below
         torque = (applied_torque(self.wheel_torques, self.wheel_axes, self.dipole, self.b_tesla, self.duty)
@@ -780,8 +820,87 @@ class ThreeModeLaw:
                 if self._pointing_available(report=True):
                     self._change_mode(POINTING, _SPIN_STABLE_REACHED)
         elif self.mode == POINTING and not self.attitude_valid:
-            self.notify.event("AttitudeKnowledgeLost")
-            self._change_mode(SPIN_STABLE, _ATTITUDE_LOST)
+            self._attitude_lost()
+
+    # --- SUN_SAFE -------------------------------------------------------------------------------
+
+    def _attitude_lost(self) -> None:
+        """POINTING without attitude knowledge: SUN_SAFE where a Sun vector source is connected, SPIN_STABLE
+        otherwise (both in AUTO and MANUAL)."""
+        self.notify.event("AttitudeKnowledgeLost")
+        self._change_mode(SUN_SAFE if self.io.has_sun_sensor() else SPIN_STABLE, _ATTITUDE_LOST)
+
+    def _sun_safe_transitions(self, dt: float) -> None:
+        """The mode manager's safe mode puts SPIN_STABLE and POINTING into SUN_SAFE (in either autonomy) and holds
+        it there; SUN_SAFE entered on a loss of attitude or on the safe mode hands back to POINTING once the attitude
+        has been known for SUN_SAFE_EXIT_DWELL outside safe mode (KNOWLEDGE_RESTORED). One commanded stays."""
+        io = self.io
+        safe = io.system_safe_mode() is True
+        self.system_safe = safe
+        mode = self.mode
+        if safe and mode in (SPIN_STABLE, POINTING) and io.has_sun_sensor():
+            self._change_mode(SUN_SAFE, _SYSTEM_SAFE_MODE)
+            return
+        if mode != SUN_SAFE:
+            return
+        if self._sun_safe_reason == _SYSTEM_SAFE_MODE and not safe:
+            self._sun_safe_reason = _ATTITUDE_LOST  # out of safe mode: wait for the attitude as after a loss
+        if self._sun_safe_reason != _ATTITUDE_LOST or not self.attitude_valid:
+            self._known_in_sun_safe_s = 0.0
+            return
+        self._known_in_sun_safe_s += dt
+        if self._known_in_sun_safe_s >= self.SUN_SAFE_EXIT_DWELL and self._pointing_available(report=False):
+            self._change_mode(POINTING, _KNOWLEDGE_RESTORED)
+
+    def _track_sun(self, dt: float, now_us: int) -> None:
+        """The Sun vector in B: a new valid light-sensor reading is taken (carried from its time to now on the
+        gyro); between readings the last one is carried on the gyro (``v̇ = −ω × v``). Older than
+        SUN_VECTOR_TIMEOUT (eclipse, failed sensors) it is dropped."""
+        io = self.io
+        if not io.has_sun_sensor():
+            self.sun_B, self.sun_age_s = None, math.inf
+            return
+        w = self.omega
+        reading = io.sun_vector()
+        if reading is not None:
+            self.notify.clear_event("SunVectorRetrievalFailed")
+            s, valid, stamp = reading
+            if valid and stamp != self._sun_stamp_us and stamp <= now_us and _finite(*s) and _norm(s) > 0.5:
+                self._sun_stamp_us = stamp
+                age = (now_us - stamp) / 1e6
+                n = _norm(s)
+                s = (s[0] / n, s[1] / n, s[2] / n)
+                self.sun_B = propagate_body_vector(s, w, age) if w is not None else s
+                self.sun_age_s = age
+                return
+        else:
+            self.notify.event("SunVectorRetrievalFailed")
+        self.sun_age_s += dt
+        if self.sun_B is not None and self.sun_age_s > self.SUN_VECTOR_TIMEOUT:
+            self.sun_B = None
+        elif self.sun_B is not None and w is not None:
+            self.sun_B = propagate_body_vector(self.sun_B, w, dt)
+
+    def _sun_safe_torque(self, kp: float, kd: float) -> Vec3:
+        """SUN_SAFE's torque request (N·m, B): turn SUN_SAFE_AXIS to the Sun at a rate ``K_P/K_D θ`` capped at
+        SLEW_RATE_LIMIT about ``â × ŝ`` and damp every other rate, ``τ = K_D (ω_c − ω)``; without a Sun vector
+        (eclipse) only the damping ``−K_D ω``. Gains: the wheels' SUN_SAFE_K_P/K_D or the coils' *_MAG."""
+        w = self.omega
+        assert w is not None  # SUN_SAFE actuates only with a rate estimate
+        s = self.sun_B
+        if s is None:
+            self.sun_error_deg = math.nan
+            return (-kd * w[0], -kd * w[1], -kd * w[2])
+        a = BODY_AXES[self.SUN_SAFE_AXIS][1]
+        e = _cross(a, s)
+        sin_t = _norm(e)
+        theta = math.atan2(sin_t, a[0] * s[0] + a[1] * s[1] + a[2] * s[2])
+        self.sun_error_deg = math.degrees(theta)
+        if sin_t < 1e-9:  # on the axis, or exactly opposite: turn about any axis ⟂ â
+            e, sin_t = ((a[1], a[2], a[0]), 1.0) if theta > 1.0 else (_ZERO, 1.0)
+        rate = min(kp / kd * theta if kd > 0.0 else 0.0, self.SLEW_RATE_LIMIT * _DEG)
+        k = rate / sin_t
+        return (kd * (k * e[0] - w[0]), kd * (k * e[1] - w[1]), kd * (k * e[2] - w[2]))
 
     # --- actuation ------------------------------------------------------------------------------
 
@@ -793,6 +912,7 @@ class ThreeModeLaw:
         wheel_u = None  # None: wheels at zero torque
         levels = None  # (dipole, _coil_levels(dipole)) when already worked out for the dipole driven below
         self.pointing_error_deg = float("nan")
+        self.sun_error_deg = float("nan")
         if mode == DETUMBLE:
             dipole = self._detumble_dipole()
             if dipole is not None:  # B-dot: each axis saturates on its own, as the flight coils do
@@ -801,6 +921,14 @@ class ThreeModeLaw:
             tau = self._spin_torque(dt)
             if self.b_tesla is not None:
                 dipole, _ = project_dipole_weighted(tau, self.b_tesla, self.coil_limits())
+        elif mode == SUN_SAFE and self.omega is not None:
+            if self._pointing_uses_wheels():
+                tau = self._sun_safe_torque(self.SUN_SAFE_K_P, self.SUN_SAFE_K_D)
+                wheel_u = self._allocate(tau)
+            else:
+                tau = self._sun_safe_torque(self.SUN_SAFE_K_P_MAG, self.SUN_SAFE_K_D_MAG)
+                if self.b_tesla is not None:
+                    dipole, _ = project_dipole_weighted(tau, self.b_tesla, self.coil_limits())
         elif mode == POINTING and self.omega is not None and self.attitude_valid:
             q = self.filter.q
             assert q is not None  # attitude_valid

@@ -59,6 +59,7 @@ from detumble.sim.orbit import R_EARTH_EQ
 from detumble.sim.power import FACE_SWITCHES, ElectricalSystem, coil_supply_power_w
 from detumble.sim.plant import Plant
 from detumble.sim.thermal import ThermalModel
+from detumble.sim.sun_sensors import SunSensorModel
 from detumble.sim.scenario import Scenario, SettingError, load_scenario
 from detumble.control.units import GAUSS_PER_TESLA
 
@@ -553,6 +554,8 @@ class SimulatedSpacecraft(ResetLine):
         #: face and interior temperatures (with the power model: the loads heat the interior)
         self.thermal = ThermalModel() if self.power is not None else None
         self.accelerometer = Accelerometer(sc.accelerometer, (sc.seed if seed is None else seed) * 7919 + 3)
+        #: the six face light sensors (cosine response, eclipse, the stated noise: ``sim.sun_sensors``)
+        self.sun_sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, seed=sc.seed if seed is None else seed)
         act = self.plant.actuators
         self._coils_lagged = isinstance(act, CoilSet) and act._lagged  # currents change between commands
         self._coil_w = None
@@ -653,6 +656,13 @@ class SimulatedSpacecraft(ResetLine):
         eclipse or without a power model)."""
         self.sync()
         return 0.0 if self.power is None else self.power.face_flux_w_m2[face]
+
+    def light_sensor_lux(self, face: int) -> float:
+        """What the light sensor on face ``face`` (0 X+ … 5 Z−) reads now, lux: the cosine response to the Sun,
+        0 in eclipse, with the sensor's gain error and noise (``sim.sun_sensors``; independent of the power model)."""
+        self.sync()
+        p = self.plant
+        return self.sun_sensors.read(p.t_ns * 1e-9, p.q_BN, p.r_N)[face]
 
     @property
     def burnwire_on(self) -> bool:

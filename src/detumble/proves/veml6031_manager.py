@@ -1,11 +1,11 @@
 """Veml6031Manager as flown: a VEML6031 ambient-light sensor on a face board.
 
-The reading is the sunlight on the sensor's face (``SimulatedSpacecraft.face_sunlight_w_m2``: the
-Sun's flux times the cosine of its angle to the face normal, 0 on faces turned away and in eclipse)
-times the luminous efficacy of sunlight above the atmosphere, ``LUX_PER_W_M2`` (about 98 lm/W:
-133 klx at 1361 W/m²). Earth albedo is not modelled, nor is the sensor's saturation at its gain and
-integration time (the parameters are kept and checked, not applied). The sensor is powered through
-its face's load switch: while it is open GetVisibleLight logs DeviceNotReady (throttled) and answers
+The reading is the face's light sensor as ``SimulatedSpacecraft.light_sensor_lux`` gives it
+(``detumble.sim.sun_sensors``): the Sun's illuminance (133 klx at 1 AU, ``LUX_PER_W_M2`` ≈ 98 lm/W times the
+flux) times the cosine of its angle to the face normal, 0 on faces turned away and in eclipse, with a fixed
+gain error (2 % 1σ) and white noise (0.5 % of full Sun 1σ). Earth albedo is not modelled, nor is the sensor's
+saturation at its gain and integration time (the parameters are kept and checked, not applied). The sensor is
+powered through its face's load switch: while it is open GetVisibleLight logs DeviceNotReady (throttled) and answers
 EXECUTION_ERROR, ``visibleLightGet`` returns FAILURE.
 
 Ground interface (flight ``Drv.Veml6031Manager``; base ids 0x1004D000 face0 … 0x10052000 face5):
@@ -24,11 +24,10 @@ from detumble.drivers.ports import LightGet, LoadSwitchStateChanged
 from detumble.drivers.spacecraft import SimulatedSpacecraft, require_spacecraft
 from detumble.proves.zephyr_sensor_events import ZephyrSensorEvents
 from detumble.sim.power import FACE_SWITCHES
+from detumble.sim.sun_sensors import LUX_PER_W_M2
 
 __all__ = ["Veml6031Manager", "GAIN", "IT", "DIV4", "LUX_PER_W_M2"]
 
-#: Luminous efficacy of extraterrestrial sunlight, lm/W (133 000 lux / 1361 W/m²).
-LUX_PER_W_M2 = 133_000.0 / 1361.0
 
 
 class GAIN(FwEnum, namespace="Drv", rep=U8):
@@ -79,7 +78,7 @@ class Veml6031Manager(ZephyrSensorEvents, PassiveComponent):
             self.DeviceNotReady()
             return Result(0.0, Success.FAILURE)
         self.DeviceNotReady.clear_throttle()
-        lux = self.spacecraft.face_sunlight_w_m2(self.face) * LUX_PER_W_M2
+        lux = self.spacecraft.light_sensor_lux(self.face)
         self.VisibleLight_tlm.write(lux)
         return Result(lux, Success.SUCCESS)
 

@@ -21,7 +21,9 @@ from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, error_statis
 from detumble.control import attitude_defaults
 from detumble.control.magnetic import normalised_bdot_dipole
 from detumble.control.quaternion import quat_angle, quat_error
+from detumble.control.sun_vector import SUN_LIT_FRACTION, SUN_MAGNITUDE_TOLERANCE, estimate_sun_vector
 from detumble.control.targets import Ephemeris, target_command, target_entry_error, true_reference_q
+from detumble.sim.sun_sensors import FULL_SUN_LUX
 from detumble.control.three_mode import MODES, REASONS, XYZ, ControllerIo, Quiet, ThreeModeLaw, checked_parameters
 
 __all__ = ["AdcsLaw", "PlantIo", "MODES", "COIL_FACES", "pointing_statistics"]
@@ -31,10 +33,18 @@ COIL_FACES = (0, 1, 2, 3, 5)
 
 
 class PlantIo:
-    """The law's ``ControllerIo`` on a plant: three or four wheels (else none), face coils or torque rods."""
+    """The law's ``ControllerIo`` on a plant: three or four wheels (else none), face coils or torque rods; with
+    ``sun_sensors`` (a ``sim.sun_sensors.SunSensorModel``) the six face light sensors, read and turned into a Sun
+    vector every ``sun_period_s`` as the ADCS component does (``detumble.proves.adcs``); ``system_safe`` stands
+    for the mode manager (None: not connected; True: safe mode)."""
 
-    def __init__(self, plant) -> None:
+    def __init__(self, plant, sun_sensors=None, sun_period_s: float = 1.0) -> None:
         self.plant = plant
+        self.sun_sensors = sun_sensors
+        self._sun_period_us = max(1, int(round(sun_period_s * 1e6)))
+        self._sun_slot: int | None = None
+        self._sun: tuple | None = None
+        self.system_safe: bool | None = None
         coils = getattr(plant.actuators, "coils", None)
         self.face_coils = coils is not None and all(f in coils for f in COIL_FACES)
         self.has_tracker = plant.star_tracker is not None
@@ -85,6 +95,27 @@ class PlantIo:
     def ephemeris(self) -> Ephemeris:
         return self.plant.ephemeris()
 
+    def has_sun_sensor(self) -> bool:
+        return self.sun_sensors is not None
+
+    def sun_vector(self):
+        """The Sun vector of the light sensors' latest reading (taken on the ``sun_period_s`` grid)."""
+        model = self.sun_sensors
+        if model is None:
+            return None
+        p = self.plant
+        t_us = p.t_ns // 1000
+        slot = t_us // self._sun_period_us
+        if slot != self._sun_slot:
+            self._sun_slot = slot
+            est = estimate_sun_vector(model.read(p.t_ns * 1e-9, p.q_BN, p.r_N), FULL_SUN_LUX,
+                                      lit_fraction=SUN_LIT_FRACTION, magnitude_tolerance=SUN_MAGNITUDE_TOLERANCE)
+            self._sun = (est.direction, est.valid, t_us)
+        return self._sun
+
+    def system_safe_mode(self) -> bool | None:
+        return self.system_safe
+
 
 class AdcsLaw(Quiet):
     """The three-mode controller in AUTO (or a forced mode), one :meth:`tick` per rate-group tick.
@@ -111,8 +142,8 @@ class AdcsLaw(Quiet):
         self.axes, self.wheels = wheel_axes, bool(wheels)
         self.bdot_provider, self.provider_gain = bool(bdot_provider), float(provider_gain)
         self.auto_start_us = int(round(float(auto_start_s) * 1e6))
-        if force_mode not in (None, "DETUMBLE", "SPIN_STABLE", "POINTING"):
-            raise ValueError(f"force_mode {force_mode!r}: use DETUMBLE, SPIN_STABLE, POINTING or None (AUTO)")
+        if force_mode not in (None, "DETUMBLE", "SPIN_STABLE", "POINTING", "SUN_SAFE"):
+            raise ValueError(f"force_mode {force_mode!r}: use DETUMBLE, SPIN_STABLE, POINTING, SUN_SAFE or None (AUTO)")
         self.force_mode, self.force_at_us = force_mode, int(round(float(force_at_s) * 1e6))
         self.initial_target = None if target_q_bn is None else tuple(float(c) for c in target_q_bn)
         self.target_changes = tuple((int(round(float(t) * 1e6)), _target_entry(q)) for t, q in target_changes)

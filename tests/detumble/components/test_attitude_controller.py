@@ -13,8 +13,8 @@ import pytest
 from detumble.components.attitude_controller import AttitudeController
 from detumble.components.attitude_types import (ControlAutonomy, ControlMode, MagPointingLaw, MagResidualMode,
                                                 ModeChangeReason, PointingActuator, SpinLaw)
-from detumble.components.types import (AttitudeQuaternion, DipoleMoment, MagneticField, Result, Success, WheelMode,
-                                       WheelState)
+from detumble.components.types import (AttitudeQuaternion, DipoleMoment, MagneticField, Result, Success, SystemMode,
+                                       WheelMode, WheelState)
 from detumble.control.magnetic import project_dipole_weighted
 from detumble.control.magnetic_pointing import field_steering_torque
 from detumble.control.pointing import pd_torque
@@ -46,6 +46,16 @@ class World:
         self.enabled = [[], [], []]
         self.dipole = None  # Result of dipoleMomentGet
         self._t_us = None
+        self.sun = (0.0, 0.0, 1.0)  # the Sun vector in B the light sensors report
+        self.sun_valid = True
+        self.sun_stamp = None  # Time of the reading (None: now)
+        self.system_mode = SystemMode.NORMAL
+
+    def sun_vector(self):
+        from detumble.components.attitude_types import SunVector
+        x, y, z = self.sun
+        stamp = self.sun_stamp if self.sun_stamp is not None else self.h.test_time
+        return Result(SunVector(x, y, z, self.sun_valid, 1, stamp), Success.SUCCESS)
 
     def gyro(self):
         from detumble.components.attitude_types import AngularVelocity
@@ -88,7 +98,7 @@ class World:
         return enable
 
 
-def make(fprime_harness, *, wheels=True, bdot_provider=False, params=None):
+def make(fprime_harness, *, wheels=True, bdot_provider=False, params=None, sun=False, system_mode=False):
     comp = AttitudeController("attitudeController", base_id=BASE)
     h = fprime_harness(comp, test_time=START)
     world = World(h)
@@ -97,6 +107,14 @@ def make(fprime_harness, *, wheels=True, bdot_provider=False, params=None):
     h.set_port_handler("angularVelocityGet", world.gyro)
     h.set_port_handler("attitudeGet", world.tracker)
     h.set_port_handler("magneticFieldGet", world.field)
+    if sun:  # the ADCS light sensors' Sun vector: World.sun (B), its validity and read time
+        h.set_port_handler("sunVectorGet", world.sun_vector)
+    else:
+        comp.output_port("sunVectorGet").disconnect(0)
+    if system_mode:  # the ModeManager's mode: World.system_mode
+        h.set_port_handler("getSystemMode", lambda: world.system_mode)
+    else:
+        comp.output_port("getSystemMode").disconnect(0)
     if bdot_provider:
         h.set_port_handler("dipoleMomentGet", lambda: world.dipole)
     else:
@@ -323,20 +341,27 @@ def test_no_attitude_knowledge_keeps_spin_stable_with_a_throttled_event(fprime_h
     assert h.tlm_values("AttitudeValid")[-1] == 0
 
 
+def pointing_then_tracker_lost(fprime_harness, autonomy, **kw):
+    """POINTING (forced, then ``autonomy`` if given) for 1 s, then no star-tracker solution for 90.2 s: it is
+    still POINTING at 89.9 s (ATTITUDE_TIMEOUT 90 s)."""
+    h = make(fprime_harness, **kw)
+    tick(h)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    if autonomy:
+        h.send_command(autonomy)
+    seconds(h, 1)
+    h.world.tracker_valid = False
+    seconds(h, 89.9)
+    assert h.comp.mode == ControlMode.POINTING
+    seconds(h, 0.3)
+    return h
+
+
 def test_attitude_loss_while_pointing_falls_back_to_spin_stable(fprime_harness):
     """ADCS-027: in POINTING, no new star-tracker solution for ATTITUDE_TIMEOUT (90 s on the gyro alone) logs
     AttitudeKnowledgeLost (WARNING_HI) and returns to SPIN_STABLE (ATTITUDE_LOST), in AUTO and in MANUAL."""
     for autonomy in ("SET_AUTO", None):
-        h = make(fprime_harness)
-        tick(h)
-        h.send_command("FORCE_MODE", ControlMode.POINTING)
-        if autonomy:
-            h.send_command(autonomy)
-        seconds(h, 1)
-        h.world.tracker_valid = False
-        seconds(h, 89.9)
-        assert h.comp.mode == ControlMode.POINTING
-        seconds(h, 0.3)
+        h = pointing_then_tracker_lost(fprime_harness, autonomy)
         assert h.comp.mode == ControlMode.SPIN_STABLE
         h.assert_event_count("AttitudeKnowledgeLost", 1)
         assert modes(h)[-1][2] == ModeChangeReason.ATTITUDE_LOST
@@ -348,7 +373,7 @@ def test_attitude_loss_while_pointing_falls_back_to_spin_stable(fprime_harness):
 def test_force_mode_sets_manual_and_holds(fprime_harness, mode):
     """ADCS-028: FORCE_MODE puts any mode (POINTING when attitude is known) and MANUAL autonomy, answers OK,
     logs ControlModeChanged(COMMAND) when the mode changes, and the triggers no longer act (35 °/s stays)."""
-    h = make(fprime_harness)
+    h = make(fprime_harness, sun=True)
     tick(h)
     h.send_command("SET_AUTO")
     h.send_command("FORCE_MODE", mode)
@@ -920,3 +945,108 @@ def test_a_moving_target_feeds_its_rate_forward_on_the_wheels(fprime_harness):
     h.send_command("SET_TARGET_QUATERNION", *ref.q_RN)
     tick(h, 5)
     assert max(abs(c) for c in h.comp.law.torque_request) < 1e-9
+
+
+# --- SUN_SAFE (issue 27: the light sensors' Sun vector) ---------------------------------------------
+
+def test_sun_safe_by_command_needs_the_light_sensors_and_turns_the_axis_to_the_sun(fprime_harness):
+    """ADCS-100: FORCE_MODE SUN_SAFE without a Sun vector source is refused (EXECUTION_ERROR, SunSensorsUnavailable,
+    mode unchanged); with one it is entered (SunSafeEntered(COMMAND), MANUAL) and, the Sun along +X and the body
+    at rest, the wheels are asked for a torque about +Z × +X = +Y at the capped turn rate, τ = K_D·ω_c ŷ; the
+    ground sees SunVectorEstimate and SunPointingError (90°). SUN_SAFE_AXIS = MINUS_Z turns the other way."""
+    h = make(fprime_harness)
+    tick(h)
+    h.send_command("FORCE_MODE", ControlMode.SUN_SAFE)
+    h.assert_cmd_response(0, "FORCE_MODE", CmdResponse.EXECUTION_ERROR)
+    h.assert_event_count("SunSensorsUnavailable", 1)
+    assert h.comp.mode == ControlMode.IDLE
+    for axis, sign in (("PLUS_Z", 1.0), ("MINUS_Z", -1.0)):
+        h = make(fprime_harness, sun=True, params={"SUN_SAFE_AXIS": axis})
+        h.world.sun = (1.0, 0.0, 0.0)
+        tick(h)
+        h.send_command("FORCE_MODE", ControlMode.SUN_SAFE)
+        h.assert_cmd_response(0, "FORCE_MODE", CmdResponse.OK)
+        h.assert_event_count("SunSafeEntered", 1)
+        assert h.events_named("SunSafeEntered")[0][0] == ModeChangeReason.COMMAND
+        tick(h, 5)
+        kd = h.comp.SUN_SAFE_K_D.value
+        rate = min(h.comp.SUN_SAFE_K_P.value / kd * math.pi / 2, h.comp.SLEW_RATE_LIMIT.value * DEG)
+        tau = h.tlm_values("RequestedTorque")[-1]
+        assert tau[0] == pytest.approx(0.0, abs=1e-12) and tau[2] == pytest.approx(0.0, abs=1e-12)
+        assert tau[1] == pytest.approx(sign * kd * rate, rel=1e-9)
+        assert h.world.torques[1][-1] == pytest.approx(-tau[1], rel=1e-9)  # the y wheel: its reaction is τ
+        assert h.tlm_values("SunPointingError")[-1] == pytest.approx(90.0)
+        assert list(h.tlm_values("SunVectorEstimate")[-1]) == pytest.approx([1.0, 0.0, 0.0])
+
+
+def test_attitude_loss_goes_to_sun_safe_and_knowledge_brings_pointing_back(fprime_harness):
+    """ADCS-101: with the light sensors connected, POINTING without a star-tracker fix for ATTITUDE_TIMEOUT goes to
+    SUN_SAFE (ATTITUDE_LOST; AttitudeKnowledgeLost and SunSafeEntered), in AUTO and MANUAL; fixes again for
+    SUN_SAFE_EXIT_DWELL (10 s) hand back to POINTING (KNOWLEDGE_RESTORED; SunSafeExited). One entered by command
+    stays in SUN_SAFE with the attitude known."""
+    for autonomy in ("SET_AUTO", None):
+        h = pointing_then_tracker_lost(fprime_harness, autonomy, sun=True)
+        assert h.comp.mode == ControlMode.SUN_SAFE
+        assert modes(h)[-1] == (ControlMode.POINTING, ControlMode.SUN_SAFE, ModeChangeReason.ATTITUDE_LOST)
+        h.assert_event_count("AttitudeKnowledgeLost", 1)
+        h.assert_event_count("SunSafeEntered", 1)
+        h.world.tracker_valid = True
+        seconds(h, 9.8)
+        assert h.comp.mode == ControlMode.SUN_SAFE
+        seconds(h, 0.4)
+        assert h.comp.mode == ControlMode.POINTING
+        assert modes(h)[-1] == (ControlMode.SUN_SAFE, ControlMode.POINTING, ModeChangeReason.KNOWLEDGE_RESTORED)
+        exited = h.events_named("SunSafeExited")
+        assert len(exited) == 1 and exited[0][0] == ControlMode.POINTING
+    h = make(fprime_harness, sun=True)
+    tick(h)
+    h.send_command("FORCE_MODE", ControlMode.SUN_SAFE)
+    seconds(h, 30)
+    assert h.comp.mode == ControlMode.SUN_SAFE and h.tlm_values("AttitudeValid")[-1] == 1
+
+
+def test_the_mode_managers_safe_mode_holds_sun_safe(fprime_harness):
+    """ADCS-102: the ModeManager's SAFE_MODE (getSystemMode) takes SPIN_STABLE or POINTING to SUN_SAFE
+    (SYSTEM_SAFE_MODE) in MANUAL and AUTO and holds it with the attitude known; back in NORMAL, the attitude known
+    for SUN_SAFE_EXIT_DWELL returns it to POINTING (KNOWLEDGE_RESTORED). IDLE stays IDLE."""
+    for start in (ControlMode.POINTING, ControlMode.SPIN_STABLE):
+        h = make(fprime_harness, sun=True, system_mode=True)
+        tick(h)
+        h.send_command("FORCE_MODE", start)
+        seconds(h, 1)
+        h.world.system_mode = SystemMode.SAFE_MODE
+        seconds(h, 0.2)
+        assert modes(h)[-1] == (start, ControlMode.SUN_SAFE, ModeChangeReason.SYSTEM_SAFE_MODE)
+        seconds(h, 60)
+        assert h.comp.mode == ControlMode.SUN_SAFE
+        h.world.system_mode = SystemMode.NORMAL
+        seconds(h, 10.2)
+        assert modes(h)[-1] == (ControlMode.SUN_SAFE, ControlMode.POINTING, ModeChangeReason.KNOWLEDGE_RESTORED)
+    h = make(fprime_harness, sun=True, system_mode=True)
+    h.world.system_mode = SystemMode.SAFE_MODE
+    seconds(h, 2)
+    assert h.comp.mode == ControlMode.IDLE
+
+
+def test_sun_safe_damps_in_eclipse_and_carries_the_sun_on_the_gyro(fprime_harness):
+    """ADCS-103: between readings the Sun vector is carried on the gyro (1 s at 0.05 rad/s about +Z turns the
+    inertial +X to (cos, −sin, 0) in B); with no valid reading for SUN_VECTOR_TIMEOUT (eclipse) it is dropped and
+    SUN_SAFE only damps, τ = −K_D ω."""
+    h = make(fprime_harness, sun=True, params={"SUN_VECTOR_TIMEOUT": 5.0})
+    h.world.sun = (1.0, 0.0, 0.0)
+    h.world.sun_stamp = h.world.h.test_time  # one reading, held: the sensors stop updating
+    tick(h)
+    h.send_command("FORCE_MODE", ControlMode.SUN_SAFE)
+    h.world.omega = (0.0, 0.0, 0.05)
+    tick(h, 5)
+    s0 = h.tlm_values("SunVectorEstimate")[-1]
+    seconds(h, 1)
+    s1 = h.tlm_values("SunVectorEstimate")[-1]
+    turn = math.atan2(s0[0] * s1[1] - s0[1] * s1[0], s0[0] * s1[0] + s0[1] * s1[1])
+    assert turn == pytest.approx(-0.05, rel=1e-6)
+    h.world.sun_valid = False
+    seconds(h, 6)
+    kd = h.comp.SUN_SAFE_K_D.value
+    tau = h.tlm_values("RequestedTorque")[-1]
+    assert list(tau) == pytest.approx([0.0, 0.0, -kd * 0.05], abs=1e-15)
+    assert h.comp.mode == ControlMode.SUN_SAFE

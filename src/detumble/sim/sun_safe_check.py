@@ -1,0 +1,257 @@
+"""Plant-only check of SUN_SAFE: from a tumble with no star tracker, does the light-sensor Sun-safe mode turn the
+chosen face to the Sun, and how good is the light sensors' Sun vector? (issue 27's targets; no framework)
+
+:func:`fly` flies :class:`detumble.control.three_mode.ThreeModeLaw` (the AttitudeController's law) through
+:class:`detumble.sim.adcs_law.AdcsLaw` on the ``adcs`` scenario's plant, with the six face light sensors
+(:class:`detumble.sim.sun_sensors.SunSensorModel`, the stated noise) read at 1 Hz and turned into a Sun vector as
+the ADCS component does, the star tracker switched off, and FORCE_MODE SUN_SAFE sent at the start (acting on the
+second control cycle, 0.1 s). It samples, once a second: the true angle between SUN_SAFE_AXIS and the Sun, whether
+the spacecraft is in eclipse, and the Sun vector estimate's error against the truth at its reading's instant.
+
+``python -m detumble.sim.sun_safe_check [--seeds N] [--actuator ANY|MAGNETORQUERS] [--duration S] [--rate DEG_S]``
+prints the table of ``docs/studies/sun_safe.md``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import random
+import statistics
+from dataclasses import dataclass, field
+
+from detumble.sim.adcs_law import AdcsLaw, PlantIo
+from detumble.sim.epoch import julian_date
+from detumble.sim.orbit import R_EARTH_EQ
+from detumble.sim.plant import Plant
+from detumble.sim.scenario import load_scenario
+from detumble.sim.sun_sensors import SunSensorModel
+
+__all__ = ["SunSafeResult", "fly", "main", "vector_errors_from_run", "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
+
+#: The targets (issue 27): Sun-pointing error within this after acquisition, light-sensor vector within that.
+POINTING_THRESHOLD_DEG = 10.0
+VECTOR_THRESHOLD_DEG = 5.0
+
+_AXES = {"PLUS_X": (1.0, 0.0, 0.0), "MINUS_X": (-1.0, 0.0, 0.0), "PLUS_Y": (0.0, 1.0, 0.0),
+         "MINUS_Y": (0.0, -1.0, 0.0), "PLUS_Z": (0.0, 0.0, 1.0), "MINUS_Z": (0.0, 0.0, -1.0)}
+
+
+def _angle_deg(a, b) -> float:
+    d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    return math.degrees(math.acos(max(-1.0, min(1.0, d))))
+
+
+@dataclass
+class SunSafeResult:
+    """One flight's samples (1 Hz): time (s), true Sun-pointing error (deg), eclipse; the Sun vector's errors
+    (deg) at its sunlit readings; the mode transitions ``(t s, mode, reason)``."""
+
+    times: list = field(default_factory=list)
+    pointing_deg: list = field(default_factory=list)
+    eclipse: list = field(default_factory=list)
+    vector_deg: list = field(default_factory=list)
+    vector_invalid_sunlit: int = 0
+    transitions: list = field(default_factory=list)
+
+    def sunlit_parts(self) -> list[tuple[float, float]]:
+        """``(start, end)`` s of each sunlit stretch of the run, in order."""
+        parts, start = [], None
+        for t, e in zip(self.times, self.eclipse, strict=True):
+            if not e and start is None:
+                start = t
+            elif e and start is not None:
+                parts.append((start, t))
+                start = None
+        if start is not None:
+            parts.append((start, self.times[-1]))
+        return parts
+
+    def first_sunlit_part(self) -> tuple[float, float] | None:
+        """``(start, end)`` s of the first sunlit stretch of the run (None: never sunlit)."""
+        parts = self.sunlit_parts()
+        return parts[0] if parts else None
+
+    def acquisition_s(self, threshold_deg: float = POINTING_THRESHOLD_DEG, part_index: int = 0) -> float | None:
+        """Seconds from the start of sunlit part ``part_index`` (0: the first) until the error stays at or below
+        ``threshold_deg`` for the rest of that part (None: it never does, or there is no such part)."""
+        parts = self.sunlit_parts()
+        if part_index >= len(parts):
+            return None
+        start, end = parts[part_index]
+        last_above = None
+        for t, err in zip(self.times, self.pointing_deg, strict=True):
+            if start <= t < end and not err <= threshold_deg:
+                last_above = t
+        if last_above is None:
+            return 0.0
+        if last_above >= end - 1.0:
+            return None
+        return last_above + 1.0 - start
+
+    def steady_sunlit(self) -> list:
+        """The pointing errors in the first sunlit part after its acquisition (empty: never acquired)."""
+        acq = self.acquisition_s()
+        part = self.first_sunlit_part()
+        if acq is None or part is None:
+            return []
+        t0, end = part[0] + acq, part[1]
+        return [err for t, err in zip(self.times, self.pointing_deg, strict=True) if t0 <= t < end]
+
+
+def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, actuator: str = "ANY",
+        axis: str = "PLUS_Z", scenario: str = "adcs", settings: tuple[str, ...] = (),
+        params: dict | None = None) -> SunSafeResult:
+    """Fly SUN_SAFE from a ``rate_deg_s`` tumble about an axis drawn from ``seed`` (the attitude drawn too), the
+    star tracker off, POINTING_ACTUATOR = ``actuator``, SUN_SAFE_AXIS = ``axis``."""
+    if axis not in _AXES:
+        raise ValueError(f"axis must be one of {', '.join(_AXES)}, got {axis!r}")
+    rng = random.Random(seed)
+    w_axis = [rng.gauss(0.0, 1.0) for _ in range(3)]
+    q = [rng.gauss(0.0, 1.0) for _ in range(4)]
+    n = math.sqrt(sum(c * c for c in q))
+    q = [c / n for c in q]
+    base = [f"initial.rate.magnitude_deg_s={rate_deg_s}", "initial.rate.axis=[{},{},{}]".format(*w_axis),
+            "initial.attitude.quaternion=[{},{},{},{}]".format(*q)]
+    sc = load_scenario(scenario, seed=seed, settings=base + list(settings))
+    plant = Plant(sc, seed)
+    sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, seed=seed)
+    io = PlantIo(plant, sensors)
+    io.has_tracker = False
+    law = AdcsLaw(params={"POINTING_ACTUATOR": actuator, "SUN_SAFE_AXIS": axis, **(params or {})},
+                  force_mode="SUN_SAFE")
+    a = _AXES[axis]
+    dt = sc.dynamics_step_s
+    tick_every = int(round(law.tick_s / dt))
+    sample_every = int(round(1.0 / dt))
+    out = SunSafeResult()
+    for k in range(int(round(duration_s / dt))):
+        if k % sample_every == 0:
+            t = plant.t
+            reading = io.sun_vector()  # the 1 Hz reading of this second (the law sees the same one)
+            assert reading is not None
+            s_true = sensors.true_sun_B(t, plant.q_BN)
+            out.times.append(t)
+            out.eclipse.append(sensors.eclipse)
+            out.pointing_deg.append(_angle_deg(a, s_true))
+            if not sensors.eclipse:
+                if reading[1]:
+                    out.vector_deg.append(_angle_deg(reading[0], s_true))
+                else:
+                    out.vector_invalid_sunlit += 1
+        if k % tick_every == 0:
+            law.tick(io)
+        plant.step(dt)
+    out.transitions = list(law.transitions)
+    return out
+
+
+def vector_errors_from_run(run_dir, scenario: str = "adcs") -> tuple[list, int]:
+    """The ADCS component's Sun vector in a ``fprime-lite run`` of ``deployments/adcs_ref`` against the truth:
+    ``([error deg at each valid sunlit reading], invalid sunlit readings)``. Reads ``channels.csv`` (SunVector,
+    SunVectorValid at 1 Hz) and ``truth.csv`` (``q_BN`` and the power model's eclipse flag at 1 s); the Sun from
+    ``sim.sun`` at the scenario's epoch; a reading within 1 s of an eclipse boundary is left out (the flag is the
+    power model's over 100 ms steps)."""
+    import csv
+    import json
+    import pathlib
+
+    from detumble.sim.sun import sun_direction_N
+    from detumble.sim.vec import rotate_n_to_b
+
+    run = pathlib.Path(run_dir)
+    jd0 = julian_date(load_scenario(scenario).epoch)
+    truth = {}
+    with open(run / "truth.csv", newline="") as f:
+        for row in csv.DictReader(f):
+            t = float(row["t_s"])
+            if t == int(t):
+                truth[int(t)] = ((float(row["q0"]), float(row["q1"]), float(row["q2"]), float(row["q3"])),
+                                 row["eclipse"] == "1")
+    vectors, valid = {}, {}
+    t0 = None
+    with open(run / "channels.csv", newline="") as f:
+        for row in csv.DictReader(f):
+            name = row["channel"]
+            if not name.endswith(".adcs.SunVector") and not name.endswith(".adcs.SunVectorValid"):
+                continue
+            stamp = float(row["time"])
+            t0 = stamp if t0 is None else t0
+            k = int(round(stamp - t0))
+            if name.endswith("SunVector"):
+                vectors[k] = json.loads(row["value"])
+            else:
+                valid[k] = row["value"] == "1"
+    errors, invalid = [], 0
+    for k, v in sorted(vectors.items()):
+        near = [truth.get(k + d) for d in (-1, 0, 1)]
+        here = near[1]
+        if here is None or any(n is None or n[1] for n in near):
+            continue
+        q = here[0]
+        s_B = rotate_n_to_b(q, sun_direction_N(jd0 + k / 86400.0)[0])
+        if valid.get(k):
+            errors.append(_angle_deg(v, s_B))
+        else:
+            invalid += 1
+    return errors, invalid
+
+
+def _percentile(values, p: float) -> float:
+    if not values:
+        return math.nan
+    s = sorted(values)
+    return s[min(len(s) - 1, int(math.ceil(p / 100.0 * len(s))) - 1)]
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m detumble.sim.sun_safe_check", description=__doc__.split("\n")[0])
+    ap.add_argument("--seeds", type=int, default=5, help="fly seeds 1..N (tumble axis, attitude, sensor noise)")
+    ap.add_argument("--actuator", default="ANY", choices=("ANY", "WHEELS", "MAGNETORQUERS"))
+    ap.add_argument("--axis", default="PLUS_Z", choices=tuple(_AXES))
+    ap.add_argument("--duration", type=float, default=5580.0, help="s (default one orbit)")
+    ap.add_argument("--rate", type=float, default=2.0, help="initial tumble, deg/s")
+    ap.add_argument("--from-run", metavar="DIR", help="instead: the ADCS Sun vector of a fprime-lite run of adcs_ref "
+                    "against its truth")
+    args = ap.parse_args(argv)
+    if args.from_run:
+        errs, invalid = vector_errors_from_run(args.from_run)
+        if not errs:
+            print(f"{args.from_run}: no sunlit ADCS SunVector readings found")
+            return 1
+        within = sum(e <= VECTOR_THRESHOLD_DEG for e in errs) / len(errs)
+        print(f"ADCS SunVector vs truth, sunlit: {len(errs)} readings, median {statistics.median(errs):.2f}, p95 "
+              f"{_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; {100 * within:.1f} % within "
+              f"{VECTOR_THRESHOLD_DEG:g} deg; {invalid} invalid")
+        return 0
+    print("| seed | first sunlit part (s) | acquisition ≤ 10° (s) | after it: median / p95 / max (deg) | "
+          "after the eclipse: reacquisition (s) | Sun vector median / p95 / max (deg) | sunlit readings ≤ 5° | "
+          "invalid sunlit readings |")
+    print("|---|---|---|---|---|---|---|---|")
+    vec_all: list[float] = []
+    for seed in range(1, args.seeds + 1):
+        r = fly(seed, rate_deg_s=args.rate, duration_s=args.duration, actuator=args.actuator, axis=args.axis)
+        part = r.first_sunlit_part()
+        acq = r.acquisition_s()
+        steady = r.steady_sunlit()
+        vec = r.vector_deg
+        vec_all += vec
+        within = sum(v <= VECTOR_THRESHOLD_DEG for v in vec) / len(vec) if vec else math.nan
+        part_s = "none" if part is None else f"{part[0]:.0f}–{part[1]:.0f}"
+        acq_s = "never" if acq is None else f"{acq:.0f}"
+        st = (f"{statistics.median(steady):.2f} / {_percentile(steady, 95):.2f} / {max(steady):.2f}" if steady
+              else "—")
+        vs = (f"{statistics.median(vec):.2f} / {_percentile(vec, 95):.2f} / {max(vec):.2f}" if vec else "—")
+        parts = r.sunlit_parts()
+        re_acq = r.acquisition_s(part_index=1) if len(parts) > 1 else None
+        re_s = "—" if len(parts) < 2 else ("never" if re_acq is None else f"{re_acq:.0f}")
+        print(f"| {seed} | {part_s} | {acq_s} | {st} | {re_s} | {vs} | {100 * within:.1f} % | "
+              f"{r.vector_invalid_sunlit} |")
+    if vec_all:
+        print(f"\nall seeds: Sun vector p95 {_percentile(vec_all, 95):.2f} deg, max {max(vec_all):.2f} deg over "
+              f"{len(vec_all)} sunlit readings")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
