@@ -1,5 +1,5 @@
 """Running a campaign: check it, plan its runs, skip those already done, submit the rest to Dask,
-journal each row as it arrives, then plot and summarise.
+record each row as it arrives (parquet parts, :mod:`.results`), then plot and summarise.
 
 :func:`run_campaign` is the Python entry point (it returns the results as a pandas DataFrame);
 ``fprime-lite campaign`` calls it.
@@ -209,7 +209,7 @@ def _remote_remover(client, artifacts_dir: pathlib.Path):
 def _check_same_campaign(out: pathlib.Path, campaign: Campaign, store: ResultStore, planned: set[str],
                          force: bool) -> None:
     """A ``--resume`` into a folder that holds another campaign is refused (without ``force``):
-    another name in its manifest, or not one of its journaled runs in this campaign's plan."""
+    another name in its manifest, or not one of its recorded runs in this campaign's plan."""
     if force:
         return
     previous = read_manifest(out) or {}
@@ -425,9 +425,9 @@ def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, fo
 
 def rerun(campaign, run_id: str, out, *, console=None):
     """Fly the run ``run_id`` of ``campaign`` again in this process, with its seed and dispersed
-    values, keeping its files in ``out/runs/RUN_ID/``; the journal is not touched. Returns
-    ``(row, differences)``: the metrics and read-back values that differ from the journaled row
-    (empty when it reproduced bit for bit, or when the run was never journaled)."""
+    values, keeping its files in ``out/runs/RUN_ID/``; the recorded rows are not touched. Returns
+    ``(row, differences)``: the metrics and read-back values that differ from the recorded row
+    (empty when it reproduced bit for bit, or when the run was never recorded)."""
     import json
     import shutil
 

@@ -220,7 +220,8 @@ class ResultStore:
         self._new: dict[str, dict] = {}  # this session's records, by run id (a retried run: its latest)
         self._pending: list[dict] = []  # records not yet in a part
         self._oldest_pending = 0.0
-        self._lock = threading.Lock()
+        self._lock = threading.Lock()  # the pending rows and this session's records
+        self._flushing = threading.Lock()  # a part being written
         self._wake = threading.Event()
         self._closed = False
         self._flusher: threading.Thread | None = None
@@ -361,14 +362,14 @@ class ResultStore:
         """Write the pending rows as a new part (atomically); nothing when none is pending."""
         from fprime_lite.osal.atomic import atomic_write_bytes
 
-        with self._lock:
-            if not self._pending:
-                return
-            batch, self._pending = self._pending, []
-            number = self._next_part
-            self._next_part += 1
-            table = self._part_table(batch)
-            atomic_write_bytes(self.parts_dir / f"part-{number:08d}.parquet", _parquet_bytes(table))
+        with self._flushing:  # one flush at a time, in order; add() only waits for the hand-over below
+            with self._lock:
+                if not self._pending:
+                    return
+                batch, self._pending = self._pending, []
+                number = self._next_part
+                self._next_part += 1
+            atomic_write_bytes(self.parts_dir / f"part-{number:08d}.parquet", _parquet_bytes(self._part_table(batch)))
             self._part_numbers.append(number)
 
     def _part_table(self, records: list[dict]):
