@@ -180,7 +180,7 @@ def read_results(out_dir):
             return pd.read_parquet(table_path)
     if not parts and not (out_dir / LEGACY_JOURNAL).exists():
         return pd.read_parquet(table_path)  # (its FileNotFoundError names the file)
-    store = ResultStore(out_dir, None, None)
+    store = ResultStore(out_dir, None, None, reader=True)
     return store.frame()
 
 
@@ -189,11 +189,12 @@ class ResultStore:
     ``close`` flushes, compacts the parts and writes ``results.parquet``.
 
     ``varied``/``metric_names``: the table's columns (None: those the parts have, for a reader
-    without the campaign file).
+    without the campaign file). ``reader``: only reading (:func:`read_results`, perhaps on another
+    host than the writer's): the temporary files of parts being written are left alone.
     """
 
     def __init__(self, out_dir: pathlib.Path, varied: list[str] | None, metric_names: list[str] | None, *,
-                 flush_s: float = 0.5, batch_rows: int = 20_000):
+                 flush_s: float = 0.5, batch_rows: int = 20_000, reader: bool = False):
         from fprime_lite.osal.atomic import clean_temporary_files
 
         self.out_dir = pathlib.Path(out_dir)
@@ -201,7 +202,8 @@ class ResultStore:
         self.parquet = self.out_dir / "results.parquet"
         self.flush_s = flush_s
         self.batch_rows = batch_rows
-        clean_temporary_files(self.parts_dir)  # a part a kill interrupted before its rename
+        if not reader:  # (a writer holds the folder's lock: no other process is writing a part)
+            clean_temporary_files(self.parts_dir)  # a part a kill interrupted before its rename
         legacy = _read_legacy_journal(self.out_dir / LEGACY_JOURNAL)
         files = _part_files(self.parts_dir)
         tables = [_read_part(p) for _, p in files]

@@ -92,7 +92,8 @@ def _kill_when(proc: subprocess.Popen, ready, after_s: float = 0.0) -> None:
 
 def test_a_kill_while_a_part_is_written_loses_only_that_batch(tmp_path):
     """CAMP-140: SIGKILL while the third part is half written: the two committed parts (20 rows) read back
-    whole, the torn temporary file is removed, and a resume records the rest: 40 rows, each once."""
+    whole, the torn temporary file is removed by the next writer (not by a reader, who may be on another
+    host than a live writer), and a resume records the rest: 40 rows, each once."""
     out = tmp_path / "o"
     proc = _child(tmp_path, out, 40, "hang_in_third_part")
 
@@ -102,6 +103,7 @@ def test_a_kill_while_a_part_is_written_loses_only_that_batch(tmp_path):
     parts = out / "results.parts"
     leftovers = [p.name for p in parts.iterdir() if not p.name.startswith("part-")]
     assert len(leftovers) == 1  # the torn part, never renamed
+    assert len(read_results(out)) == 20 and (parts / leftovers[0]).exists()  # a reader removes nothing
     store = ResultStore(out, ["x"], ["m"])
     assert sorted(store.done_ids()) == [f"r{i:05d}" for i in range(20)]
     assert sorted(p.name for p in parts.iterdir()) == ["part-00000000.parquet", "part-00000001.parquet"]
