@@ -4,11 +4,14 @@ Run: ``python benchmarks/bench_campaign_scale.py [--runs 20000] [--rows 100000] 
 
 1. **Client throughput**: a campaign of ``--runs`` runs of the test probe kind's ``instant`` mode (a
    run that does nothing: what is left is the engine) on an embedded cluster of 2 workers, timed
-   from ``run_campaign`` call to DataFrame with the cluster already up (``client=``); and the client's
-   own per-row cost alone (journal, pruner, progress) on synthetic rows. Goal ≥ 2,000 results/s.
-2. **Resume and report of a 100k-row campaign**: a journal of ``--rows`` finished rows is written (as
-   a finished campaign leaves it), then ``run_campaign(..., resume=True)`` — plan, pre-flight, read
-   the journal, nothing to run, write results.parquet, print the summary — is timed twice: without
+   from ``run_campaign`` call to DataFrame with the cluster already up (``client=``); and where the
+   time goes: the plan of a fresh campaign (one SeedSequence per run), a worker's own cost per run
+   (``execute_batch`` in this process), and the client's own per-row cost (the row recorded in a
+   parquet part per batch, pruner, progress) on synthetic rows. Goal ≥ 2,000 results/s.
+2. **Resume and report of a 100k-row campaign**: ``--rows`` finished rows are recorded (as a
+   finished campaign leaves them: one compacted part of ``results.parts/``), then
+   ``run_campaign(..., resume=True)`` — plan, pre-flight, read the parts, nothing to run, write
+   results.parquet, print the summary — is timed twice: without
    the folder's plan cache, then with it (as a campaign leaves its folder); the plots separately.
    Goal ≤ 10 s.
 3. **Broken files reaching a worker**: every file of tests/data/campaign_broken/ through
@@ -67,8 +70,40 @@ def throughput(runs: int, folder: pathlib.Path) -> dict:
     return {"runs": len(df), "wall_s": wall, "results_per_s": len(df) / wall, "ok": int((df["status"] == "ok").sum())}
 
 
+def plan_cost(runs: int, folder: pathlib.Path) -> dict:
+    """The client's plan of a fresh campaign (run ids and seeds: one SeedSequence per run)."""
+    from fprime_lite.tools.campaign import load_campaign
+    from fprime_lite.tools.campaign.plan import plan_runs
+
+    c = load_campaign(_campaign(folder, runs, "plan"))
+    t0 = time.perf_counter()
+    tasks = plan_runs(c, folder / "plan-runs", draw=False)
+    wall = time.perf_counter() - t0
+    return {"runs": len(tasks), "wall_s": wall, "us_per_run": wall / len(tasks) * 1e6}
+
+
+def worker_side_cost(runs: int, folder: pathlib.Path) -> dict:
+    """A worker's own work per instant run (build, read back, metrics, row), in this process, in
+    batches of 500 as the engine sends them (pickled)."""
+    import pickle
+
+    from fprime_lite.tools.campaign import load_campaign
+    from fprime_lite.tools.campaign.plan import plan_runs
+    from fprime_lite.tools.campaign.task import execute_batch
+
+    tasks = plan_runs(load_campaign(_campaign(folder, runs, "worker")), folder / "worker-runs")
+    blobs = [pickle.dumps(tasks[i:i + 500], protocol=pickle.HIGHEST_PROTOCOL) for i in range(0, len(tasks), 500)]
+    execute_batch(blobs[0])  # imports and plug-ins are not the per-run cost
+    t0 = time.perf_counter()
+    rows = [r for b in blobs for r in execute_batch(b)]
+    wall = time.perf_counter() - t0
+    return {"runs": len(rows), "wall_s": wall, "us_per_run": wall / len(rows) * 1e6,
+            "row_pickle_bytes": len(pickle.dumps(rows[:500])) / 500}
+
+
 def client_side_cost(rows: int, folder: pathlib.Path) -> dict:
-    """The client's own work per result: journal write (fsync batched), pruner, progress update."""
+    """The client's own work per result: the row recorded (a parquet part per batch), pruner,
+    progress update, and the table written at the end."""
     from fprime_lite.tools.campaign.keep import ArtifactPruner, KeepPolicy
     from fprime_lite.tools.campaign.report import progress_bar
     from fprime_lite.tools.campaign.results import ResultStore
@@ -108,13 +143,16 @@ def resume_and_report(rows: int, folder: pathlib.Path) -> dict:
     t0 = time.perf_counter()
     tasks = plan_runs(c, out / "runs", draw=False)
     plan_s = time.perf_counter() - t0
-    with open(out / "rows.jsonl", "w") as fh:
-        for t in tasks:
-            x = t["values"]["x"]
-            fh.write(json.dumps({"run_id": t["run_id"], "point": t["point"], "seed_index": t["seed_index"],
-                                 "seed": t["seed"], "status": "ok", "error": None, "values": {"x": float(x)},
-                                 "metrics": {"value": 2.0 * x}, "notes": "{}", "requested": json.dumps({"x": x}),
-                                 "wall_s": 1e-4, "cpu_s": 1e-4, "worker": "w", "worker_address": None}) + "\n")
+    from fprime_lite.tools.campaign.results import ResultStore
+
+    store = ResultStore(out, ["x"], ["value"])  # the parts a finished campaign leaves (compacted into one)
+    for t in tasks:
+        x = t["values"]["x"]
+        store.add({"run_id": t["run_id"], "point": t["point"], "seed_index": t["seed_index"],
+                   "seed": t["seed"], "status": "ok", "error": None, "values": {"x": float(x)},
+                   "metrics": {"value": 2.0 * x}, "notes": "{}", "requested": json.dumps({"x": x}),
+                   "wall_s": 1e-4, "cpu_s": 1e-4, "worker": "w", "worker_address": None})
+    store.close()
     timings = []
     for _ in range(2):  # the first without the folder's plan cache, the second with it (what a campaign leaves)
         t0 = time.perf_counter()
@@ -213,20 +251,24 @@ def main(argv=None) -> int:
     ap.add_argument("--runs", type=int, default=20_000)
     ap.add_argument("--rows", type=int, default=100_000)
     ap.add_argument("--json", metavar="FILE")
+    ap.add_argument("--only", choices=["throughput", "resume"], help="measure only this (and the costs behind it)")
     args = ap.parse_args(argv)
     report = {"load_before": os.getloadavg(), "cpus": os.cpu_count()}
+    steps = [("broken_files", "broken files", broken_files),
+             ("cpu_identity", "bit-identity across BLAS kernels", cpu_identity),
+             ("plan", "plan (client, fresh campaign)", lambda folder: plan_cost(args.runs, folder)),
+             ("worker_side", "worker-side cost", lambda folder: worker_side_cost(args.runs, folder)),
+             ("client_side", "client-side cost", lambda folder: client_side_cost(args.runs, folder)),
+             ("throughput", "throughput", lambda folder: throughput(args.runs, folder)),
+             ("resume_and_report", "100k resume and report", lambda folder: resume_and_report(args.rows, folder))]
+    chosen = {None: [s[0] for s in steps], "throughput": ["plan", "worker_side", "client_side", "throughput"],
+              "resume": ["resume_and_report"]}[args.only]
     with tempfile.TemporaryDirectory(prefix="bench-campaign-scale-") as tmp:
         folder = pathlib.Path(tmp)
-        report["broken_files"] = broken_files()
-        print("broken files:", report["broken_files"], flush=True)
-        report["cpu_identity"] = cpu_identity(folder)
-        print("bit-identity across BLAS kernels:", report["cpu_identity"], flush=True)
-        report["client_side"] = client_side_cost(args.runs, folder)
-        print("client-side cost:", report["client_side"], flush=True)
-        report["throughput"] = throughput(args.runs, folder)
-        print("throughput:", report["throughput"], flush=True)
-        report["resume_and_report"] = resume_and_report(args.rows, folder)
-        print("100k resume and report:", report["resume_and_report"], flush=True)
+        for key, label, step in steps:
+            if key in chosen:
+                report[key] = step() if step is broken_files else step(folder)
+                print(f"{label}:", report[key], flush=True)
     report["load_after"] = os.getloadavg()
     print("load average before/after:", report["load_before"], report["load_after"])
     if args.json:

@@ -1,5 +1,5 @@
 """Running a campaign: check it, plan its runs, skip those already done, submit the rest to Dask,
-journal each row as it arrives, then plot and summarise.
+record each row as it arrives (parquet parts, :mod:`.results`), then plot and summarise.
 
 :func:`run_campaign` is the Python entry point (it returns the results as a pandas DataFrame);
 ``fprime-lite campaign`` calls it.
@@ -29,7 +29,7 @@ from fprime_lite.tools.campaign.folder_lock import campaign_folder_lock
 from fprime_lite.tools.campaign.kinds import RunRequest, metrics, resolve_kind
 from fprime_lite.tools.campaign.manifest import ManifestWriter, read_manifest
 from fprime_lite.tools.campaign.plan import draw_values, plan_runs, unique_points
-from fprime_lite.tools.campaign.results import ResultStore
+from fprime_lite.tools.campaign.results import ResultStore, has_results
 from fprime_lite.tools.campaign.spec import Campaign, load_campaign
 
 __all__ = ["run_campaign", "preflight", "default_out_dir", "rerun"]
@@ -209,20 +209,20 @@ def _remote_remover(client, artifacts_dir: pathlib.Path):
 def _check_same_campaign(out: pathlib.Path, campaign: Campaign, store: ResultStore, planned: set[str],
                          force: bool) -> None:
     """A ``--resume`` into a folder that holds another campaign is refused (without ``force``):
-    another name in its manifest, or not one of its journaled runs in this campaign's plan."""
+    another name in its manifest, or not one of its recorded runs in this campaign's plan."""
     if force:
         return
     previous = read_manifest(out) or {}
     reasons = []
     if previous.get("campaign") not in (None, campaign.name):
         reasons.append(f"it holds campaign '{previous['campaign']}', not '{campaign.name}'")
-    rows = store.rows
-    if rows and not any(r["run_id"] in planned for r in rows):
-        reasons.append(f"none of its {len(rows)} runs is a run of this campaign (a changed 'run' section, "
+    recorded = store.done_ids()
+    if recorded and recorded.isdisjoint(planned):
+        reasons.append(f"none of its {len(recorded)} runs is a run of this campaign (a changed 'run' section, "
                        f"dispersions, metrics or master_seed changes every run id)")
     if reasons:
         raise CampaignError([f"--out {out}: {'; '.join(reasons)} — choose another folder, or add --force to "
-                             f"resume there anyway (the other runs' rows stay in rows.jsonl but leave the table)"])
+                             f"resume there anyway (the other runs' rows stay in results.parts/ but leave the table)"])
 
 
 def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None = None, out=None,
@@ -260,7 +260,7 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
     in_the_way = file_in_the_way(out)
     if in_the_way is not None:
         raise CampaignError([f"--out {out}: {in_the_way}"])
-    if (out / "rows.jsonl").exists() and not resume:
+    if has_results(out) and not resume:
         raise CampaignError([f"--out {out}: holds results already — add --resume to continue that campaign, "
                              f"or choose another folder"])
     from fprime_lite.tools.campaign.plan import PLAN_CACHE, write_plan_cache
@@ -354,16 +354,17 @@ def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, fo
     store = ResultStore(out, campaign.varied_keys, campaign.metrics)
     plan = {t["run_id"]: t for t in tasks}
     _check_same_campaign(out, campaign, store, set(plan), force)
-    store.rows = [r for r in store.rows if r["run_id"] in plan]  # rows of an edited campaign's old runs drop out
+    store.restrict(set(plan))  # rows of an edited campaign's old runs drop out
     store.renumber(plan)  # an edited grid renumbers its points: the old rows follow their run ids
-    done = {r["run_id"] for r in store.rows if not retry_failed or r["status"] == "ok"}
-    retried = sum(1 for r in store.rows if r["run_id"] not in done)
+    done = store.done_ids(ok_only=retry_failed)
+    retried = len(store) - len(done)
     from fprime_lite.tools.campaign.keep import ArtifactPruner
 
     every = campaign.keep.every
     always = frozenset(t["run_id"] for t in tasks if every and t["order"] % every == 0)
     pruner = ArtifactPruner(out / "runs", campaign.keep, always=always)
-    pruner.start(store.rows)
+    if pruner.active:
+        pruner.start(store.rows)
     # seed-major order: a campaign stopped early has the same draws done for every grid point
     todo = sorted((t for t in tasks if t["run_id"] not in done), key=lambda t: (t["seed_index"], t["point"]))
     _, merged = unique_points(campaign.grids)
@@ -424,9 +425,9 @@ def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, fo
 
 def rerun(campaign, run_id: str, out, *, console=None):
     """Fly the run ``run_id`` of ``campaign`` again in this process, with its seed and dispersed
-    values, keeping its files in ``out/runs/RUN_ID/``; the journal is not touched. Returns
-    ``(row, differences)``: the metrics and read-back values that differ from the journaled row
-    (empty when it reproduced bit for bit, or when the run was never journaled)."""
+    values, keeping its files in ``out/runs/RUN_ID/``; the recorded rows are not touched. Returns
+    ``(row, differences)``: the metrics and read-back values that differ from the recorded row
+    (empty when it reproduced bit for bit, or when the run was never recorded)."""
     import json
     import shutil
 
@@ -451,7 +452,7 @@ def rerun(campaign, run_id: str, out, *, console=None):
     with campaign_folder_lock(out):
         shutil.rmtree(out / "runs" / run_id, ignore_errors=True)
         row = execute_run(task)
-    old = ResultStore(out, campaign.varied_keys, campaign.metrics)._by_id.get(run_id)
+    old = ResultStore(out, campaign.varied_keys, campaign.metrics).row(run_id)
     differences = {}
     if old is not None:
         for section in ("metrics", "values"):

@@ -1,6 +1,6 @@
 """One writer per campaign folder: an advisory lock held while a campaign process writes its rows.
 
-Two processes appending to the same ``rows.jsonl`` (a second ``--resume`` started while the first is
+Two processes writing results parts into the same folder (a second ``--resume`` started while the first is
 still running) would run the same runs twice and race on ``results.parquet`` and the manifest. The
 lock is ``flock`` on ``OUT/.campaign.lock``, which records the holder's pid and host; the kernel drops
 it when the holder exits, however it exits, so a killed campaign never leaves a stale lock behind.

@@ -18,8 +18,8 @@ enforces it while a campaign runs.
 
 With a ranking the worker keeps every run's files under ``DIR/runs/RUN_ID/``; the engine, as each
 row arrives, deletes the folders of the runs that are not (or no longer) kept. On ``--resume`` it
-first removes every folder that the journal's rows do not keep (displaced runs whose deletion a
-kill interrupted, and runs that finished without their row reaching the journal).
+first removes every folder that the recorded rows do not keep (displaced runs whose deletion a
+kill interrupted, and runs that finished without their row reaching a results part).
 """
 
 from __future__ import annotations
@@ -140,7 +140,7 @@ class ArtifactPruner:
                 del entries[n:]
 
     def start(self, rows: list[dict]) -> None:
-        """On (re)start: keep what the journal's rows keep; remove every other run folder."""
+        """On (re)start: keep what the recorded rows keep; remove every other run folder."""
         if not self.active:
             return
         for row in rows:

@@ -10,8 +10,10 @@ does not stop by itself (stuck where it never polls) is killed with its run proc
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
+import os
 import pathlib
 import shutil
 import tempfile
@@ -143,8 +145,10 @@ def fly(task: dict, out_dir: pathlib.Path, t0: float | None = None) -> dict:
 
 def _dispose_files(task: dict, row: dict, out_dir: pathlib.Path) -> None:
     """Move the run's folder to ``artifacts_dir/RUN_ID`` when ``keep`` asks, else delete it."""
+    if not os.path.isdir(out_dir):  # (most runs write nothing: one stat, no rmtree)
+        return
     keep = task.get("keep", "none")
-    empty = not out_dir.is_dir() or not any(out_dir.iterdir())
+    empty = not any(out_dir.iterdir())
     if not empty and (keep == "all" or (keep == "failed" and row["status"] != "ok")):
         dest = pathlib.Path(task["artifacts_dir"]) / task["run_id"]
         shutil.rmtree(dest, ignore_errors=True)
@@ -197,15 +201,32 @@ def execute_batch(tasks) -> list[dict]:
         import pickle
 
         tasks = pickle.loads(tasks)
-    return [execute_run(t) for t in tasks]
+    where = (worker_name(), worker_address())  # once per task, not per run
+    return [execute_run(t, where) for t in tasks]
 
 
-def execute_run(task: dict) -> dict:
+_run_folders = itertools.count()
+
+
+def _run_folder(run_id: str) -> pathlib.Path:
+    """A fresh folder name for a run's files (not made: a kind that writes files makes it)."""
+    global _TMP
+    if _TMP is None:
+        _TMP = tempfile.gettempdir()
+    return pathlib.Path(f"{_TMP}/campaign-{run_id}-{_TOKEN}-{next(_run_folders)}")
+
+
+_TMP: str | None = None
+_TOKEN = uuid.uuid4().hex[:12]  # this process's: no two processes (nor a pid reused) share a folder name
+
+
+def execute_run(task: dict, where: tuple[str, str | None] | None = None) -> dict:
     """Run ``task`` (made by the engine) and return its results row.
 
     With ``timeout_s`` the run flies in this worker's run process (:mod:`.isolation`), which is
     killed if the run is still going ``timeout_s`` plus a grace after it started; without, here.
-    ``wall_s`` starts once the run process is up: its start is not the run's time.
+    ``wall_s`` starts once the run process is up: its start is not the run's time. ``where``: the
+    worker's name and address, when the caller has them.
     """
     if task.get("timeout_s"):
         from fprime_lite.tools.campaign.isolation import run_process
@@ -217,7 +238,7 @@ def execute_run(task: dict) -> dict:
     t0 = time.perf_counter()
     cpu0 = time.process_time()
     # named, not made: a kind that writes files makes it (a run that writes none costs no mkdir/rmdir)
-    out_dir = pathlib.Path(tempfile.gettempdir()) / f"campaign-{task['run_id']}-{uuid.uuid4().hex[:12]}"
+    out_dir = _run_folder(task["run_id"])
     if task.get("timeout_s"):
         from fprime_lite.tools.campaign.isolation import fly_isolated, killed_row
 
@@ -233,6 +254,5 @@ def execute_run(task: dict) -> dict:
     _dispose_files(task, row, out_dir)
     row["wall_s"] = time.perf_counter() - t0
     row["cpu_s"] = cpu_s
-    row["worker"] = worker_name()
-    row["worker_address"] = worker_address()
+    row["worker"], row["worker_address"] = where if where is not None else (worker_name(), worker_address())
     return row

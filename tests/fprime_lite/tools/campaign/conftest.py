@@ -61,6 +61,12 @@ def write_campaign(tmp_path):
     return write
 
 
+def recorded(out: pathlib.Path) -> dict[str, bytes]:
+    """The bytes of every results part of the campaign folder ``out``, by file name."""
+    parts = out / "results.parts"
+    return {p.name: p.read_bytes() for p in sorted(parts.iterdir())} if parts.is_dir() else {}
+
+
 def comparable(df):
     """The results table without what depends on where and how fast a run went."""
     return df.drop(columns=["wall_s", "cpu_s", "worker"]).reset_index(drop=True)

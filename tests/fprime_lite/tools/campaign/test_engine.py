@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from fprime_lite.tools.campaign import CampaignError, read_results, run_campaign
-from tests.fprime_lite.tools.campaign.conftest import TINY_PLANT, comparable
+from tests.fprime_lite.tools.campaign.conftest import TINY_PLANT, comparable, recorded
 
 pd = pytest.importorskip("pandas", reason="pandas, dask and pyarrow are dependencies: pip install -e .[test]")
 pytest.importorskip("distributed", reason="dask[distributed] is a dependency: pip install -e .[test]")
@@ -137,7 +137,8 @@ def test_one_process_writes_a_campaign_folder_at_a_time(two_worker_result, tmp_p
 
     path, folder, _ = two_worker_result
     out = folder / "out2"
-    before = (out / "rows.jsonl").read_bytes()
+    before = recorded(out)
+    assert before
     holder = subprocess.Popen([sys.executable, "-c", textwrap.dedent(f"""
         import pathlib, sys, time
         from fprime_lite.tools.campaign.folder_lock import campaign_folder_lock
@@ -149,7 +150,7 @@ def test_one_process_writes_a_campaign_folder_at_a_time(two_worker_result, tmp_p
         assert holder.stdout.readline().strip() == "held"
         with pytest.raises(CampaignError, match=rf"already writing into this folder \(pid {holder.pid} on .*--resume"):
             run_campaign(path, workers=1, out=out, resume=True, plots=False, summary=False)
-        assert (out / "rows.jsonl").read_bytes() == before
+        assert recorded(out) == before
     finally:
         holder.communicate("")
     df = run_campaign(path, workers=1, out=out, resume=True, plots=False, summary=False)

@@ -192,23 +192,44 @@ def test_short_runs_travel_several_per_task():
     assert s.batch_size() == 1
 
 
-def test_the_journal_is_fsynced_in_batches_but_written_per_row(tmp_path, monkeypatch):
-    """CAMP-128: 200 rows in quick succession cost one fsync (plus one at close), not 200; each row is in
-    the file (the kernel's) as soon as it is added, so a kill of the process loses none."""
-    from fprime_lite.tools.campaign.results import ResultStore
+def _row(i: int) -> dict:
+    return {"run_id": f"r{i:04d}", "point": i, "seed_index": 0, "seed": 1, "status": "ok", "values": {"x": float(i)},
+            "metrics": {"m": 2.0 * i}}
 
-    calls = []
-    real = os.fsync
-    monkeypatch.setattr(os, "fsync", lambda fd: (calls.append(fd), real(fd)))
-    store = ResultStore(tmp_path, ["x"], ["m"], snapshot_s=3600, fsync_s=3600)
-    for i in range(200):
-        store.add({"run_id": f"r{i}", "point": i, "seed_index": 0, "seed": 1, "status": "ok", "values": {"x": i},
-                   "metrics": {"m": float(i)}})
-        assert (tmp_path / "rows.jsonl").read_bytes().count(b"\n") == i + 1
-    journal_fd = store._fh.fileno()
-    assert calls.count(journal_fd) == 0
+
+def test_rows_are_written_in_batches_as_parts_never_rewritten(tmp_path):
+    """CAMP-128: 250 rows in quick succession with batches of 100 make two parts (not 250 writes, and
+    no rewrite of what is written: the first part's bytes never change); close writes the rest, compacts
+    the parts into one, and writes results.parquet with all 250 rows."""
+    from fprime_lite.tools.campaign.results import ResultStore, read_results
+
+    store = ResultStore(tmp_path, ["x"], ["m"], flush_s=3600, batch_rows=100)
+    parts = tmp_path / "results.parts"
+    first = None
+    for i in range(250):
+        store.add(_row(i))
+        names = sorted(p.name for p in parts.iterdir()) if parts.is_dir() else []
+        assert len(names) == (i + 1) // 100
+        if names:
+            first = first or (parts / names[0]).read_bytes()
+            assert (parts / names[0]).read_bytes() == first
+    assert len(read_results(tmp_path)) == 200  # a reader meanwhile: every flushed row
+    df = store.close()
+    assert len(list(parts.iterdir())) == 1 and len(df) == 250 and list(df["m"]) == [2.0 * i for i in range(250)]
+    assert read_results(tmp_path).equals(df)
+
+
+def test_a_lone_row_is_flushed_without_waiting_for_another(tmp_path):
+    """CAMP-128: a row that no other row follows (a long run next) is in a part within flush_s."""
+    from fprime_lite.tools.campaign.results import ResultStore, read_results
+
+    store = ResultStore(tmp_path, ["x"], ["m"], flush_s=0.2)
+    store.add(_row(1))
+    deadline = time.monotonic() + 10
+    while time.monotonic() < deadline and not list(tmp_path.glob("results.parts/part-*.parquet")):
+        time.sleep(0.05)
+    assert list(read_results(tmp_path)["run_id"]) == ["r0001"]
     store.close()
-    assert calls.count(journal_fd) == 1  # at close
 
 
 def test_a_heartbeat_line_comes_when_no_run_finishes(capsys):
@@ -233,7 +254,7 @@ def test_a_campaign_killed_while_waiting_leaves_no_worker_behind(write_campaign,
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     try:
         deadline = time.monotonic() + 120
-        while time.monotonic() < deadline and not (tmp_path / "o" / "rows.jsonl").exists():
+        while time.monotonic() < deadline and not (tmp_path / "o" / "results.parts").exists():
             time.sleep(0.2)
         children = subprocess.run(["pgrep", "-g", str(proc.pid)], capture_output=True, text=True).stdout.split()
         assert len(children) >= 2  # the campaign and its worker's processes

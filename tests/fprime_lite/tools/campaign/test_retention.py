@@ -11,6 +11,7 @@ import pytest
 
 from fprime_lite.tools.campaign import run_campaign
 from fprime_lite.tools.cli import main
+from tests.fprime_lite.tools.campaign.conftest import recorded
 
 pd = pytest.importorskip("pandas", reason="pandas, dask and pyarrow are dependencies: pip install -e .[test]")
 pytest.importorskip("distributed", reason="dask[distributed] is a dependency: pip install -e .[test]")
@@ -55,12 +56,13 @@ def test_rerun_flies_one_run_again_with_its_files(write_campaign, tmp_path, caps
     out = tmp_path / "o"
     assert main(["campaign", str(path), "--workers", "1", "--out", str(out), "--no-plots"]) == 0
     run_id = pd.read_parquet(out / "results.parquet")["run_id"][2]
-    journal = (out / "rows.jsonl").read_bytes()
+    journal = recorded(out)
+    assert journal
     capsys.readouterr()
     assert main(["campaign", str(path), "--out", str(out), "--rerun", run_id]) == 0
     said = capsys.readouterr().out
     assert f"run {run_id}: ok" in said and "every metric and read-back value as journaled" in said
-    assert (out / "runs" / run_id / "rate.csv").is_file() and (out / "rows.jsonl").read_bytes() == journal
+    assert (out / "runs" / run_id / "rate.csv").is_file() and recorded(out) == journal
     assert main(["campaign", str(path), "--out", str(out), "--rerun", run_id[:-1] + "x"]) == 2
     assert f"did you mean {run_id}?" in capsys.readouterr().err
 

@@ -6,6 +6,7 @@ import json
 
 import pytest
 
+from fprime_lite.tools.campaign.results import ResultStore
 from fprime_lite.tools.cli import main
 
 pd = pytest.importorskip("pandas", reason="pandas, dask and pyarrow are dependencies: pip install -e .[test]")
@@ -32,12 +33,13 @@ def test_retry_failed_reruns_only_failed_rows_with_their_seeds(write_campaign, t
     assert main(["campaign", str(path), "--workers", "1", "--out", str(out), "--no-plots"]) == 0
     first = read_results(out)
     assert set(first["status"]) == {"ok"}
-    journal = out / "rows.jsonl"
-    lines = journal.read_text().splitlines()
-    failed = [json.loads(lines[0]), json.loads(lines[3])]
+    store = ResultStore(out, ["x"], ["value"])
+    rows = store.rows
+    failed = [rows[0], rows[3]]
     for r, status in zip(failed, ("failed", "timeout"), strict=True):  # as a crashed / overlong run would be
         r.update(status=status, error="RuntimeError: boom", metrics={"value": None})
-    journal.write_text("\n".join([json.dumps(failed[0]), lines[1], lines[2], json.dumps(failed[1])]) + "\n")
+        store.add(r)  # recorded again: the last record of a run id counts
+    store.close()
     (path.parent / "marker").write_text("")
     assert main(["campaign", str(path), "--workers", "1", "--out", str(out), "--resume", "--no-plots"]) == 1
     assert sorted(read_results(out)["status"]) == ["failed", "ok", "ok", "timeout"]  # plain resume: nothing to run
