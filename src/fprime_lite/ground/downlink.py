@@ -115,9 +115,10 @@ class GroundDecoder:
             out.append(DecodedChannel(time, name, value, channel_text(value, template)))
         return out
 
-    def layout(self, packet: bytes) -> TelemetryLayout | None:
+    def layout(self, packet: bytes, cells_of=None) -> TelemetryLayout | None:
         """The :class:`~fprime_lite.ground.packet_layout.TelemetryLayout` of telemetry ``packet``, or
-        None when it has none (a string value, an unknown id, a malformed packet)."""
+        None when it has none (a string value, an unknown id, a malformed packet); ``cells_of`` as
+        the layout takes it."""
         def value_end(channel_id, data, offset):
             known = self.channels.get(channel_id)
             if known is None:
@@ -126,7 +127,10 @@ class GroundDecoder:
 
         try:
             records = decode_telemetry(packet, value_end)
-            return TelemetryLayout([(cid, *self.channels[cid]) for cid, _, _ in records], channel_text)
+            channels = [(cid, *self.channels[cid]) for cid, _, _ in records]
+            if cells_of is None:
+                return TelemetryLayout(channels, channel_text)
+            return TelemetryLayout(channels, channel_text, cells_of)
         except (SerializationError, ValueError):
             return None
 
@@ -194,9 +198,9 @@ class GroundRecorder:
         #: Downlinked files, written under ``downlink/`` (the directory appears with the first file).
         self.files = FileReceiver(out_dir / "downlink")
         self._layouts = LayoutCache()
-        #: layout → (wide-table column, unpacked field) of its plain numbers and (value index, the
-        #: wide table's columns) of its other values
-        self._wide_plans: dict[TelemetryLayout, tuple[list[tuple[int, int]], list[tuple[int, list]]]] = {}
+        #: layout → (wide-table column, number cell) of its plain numbers and (value index, the wide
+        #: table's columns) of its other values
+        self._wide_plans: dict[TelemetryLayout, tuple[list[tuple[int, int]], list[tuple[int, list[int]]]]] = {}
 
     def attach(self, topology: Topology, event_manager: str | None, telemetry: str | None) -> None:
         """Tap ``PktSend`` of the named event manager and telemetry instances.
@@ -257,28 +261,31 @@ class GroundRecorder:
             if decoded is not None:
                 break
         else:
-            learned = self.decoder.layout(packet)
+            learned = self.decoder.layout(packet, self._wide_cells)
             decoded = learned.decode(packet) if learned is not None else None
             if learned is None or decoded is None:
                 return False
             layout = learned
             self._layouts.add(packet, layout)
             self._wide_plans[layout] = (
-                [(index, field) for name, fields in layout.simple
-                 for (index, _), field in zip(self._wide.slots(name), fields, strict=True)],
-                [(j, self._wide.slots(name)) for _, j, name, _, _ in layout.complex])
-        fields, values, texts = decoded
-        self._channels.file.write(layout.lines(fields, texts))
+                [(index, cell) for name, cells in layout.simple
+                 for (index, _), cell in zip(self._wide.slots(name), cells, strict=True)],
+                [(j, [index for index, _ in self._wide.slots(name)]) for name, j in layout.complex])
+        lines, cells, wide = decoded
+        self._channels.file.write(lines)
         self.channel_updates += layout.records
         row = self._wide.at(self._clock.now())
         simple, complex_ = self._wide_plans[layout]
-        for index, field in simple:
-            row[index] = str(fields[field])
-        for j, slots in complex_:
-            value = values[j]
-            for index, get in slots:
-                row[index] = csv_cell(get(value))
+        for index, cell in simple:
+            row[index] = cells[cell]
+        for j, indices in complex_:
+            for index, text in zip(indices, wide[j], strict=True):
+                row[index] = text
         return True
+
+    def _wide_cells(self, name: str, value) -> list[str]:
+        """The wide table's cells of a decoded value of channel ``name``."""
+        return [csv_cell(get(value)) for _, get in self._wide.slots(name)]
 
     def _event(self, e: DecodedEvent) -> None:
         self.events_by_severity[e.severity.name] += 1

@@ -20,6 +20,7 @@ function, then quoted as the ``csv`` module quotes a field.
 from __future__ import annotations
 
 import json
+import re
 import struct
 from operator import itemgetter
 from typing import Any, Callable
@@ -64,19 +65,26 @@ class TelemetryLayout:
     """How to decode and write one telemetry packet layout (see the module docstring).
 
     ``channels``: ``(id, name, F´ type, format template or None)`` of each record in packet order;
-    ``text_of(value, template)``: the general decoder's text of a decoded value.
+    ``text_of(value, template)``: the general decoder's text of a decoded value; ``cells_of(name,
+    value)``: the wide table's cells of a decoded value of channel ``name`` (remembered with it).
     """
 
+    #: raw values remembered per other value of a layout
+    SEEN_MAX = 256
+
     def __init__(self, channels: list[tuple[int, str, Any, str | None]],
-                 text_of: Callable[[Any, str | None], str]):
+                 text_of: Callable[[Any, str | None], str],
+                 cells_of: Callable[[str, Any], list[str]] = lambda _name, _value: []):
         fmt = [">H"]
         template: list[str] = []
         id_index: list[int] = []
         usec_index: list[int] = []
-        #: (tuple index of the raw bytes, text argument index, name, F´ type, template) of the other values
-        complex_: list[tuple[int, int, str, Any, str | None]] = []
-        #: (name, tuple indices) of the plain numbers (a struct's members in order), for the wide table
+        #: (tuple index of the raw bytes, name, F´ type, template) of the other values
+        complex_: list[tuple[int, str, Any, str | None]] = []
+        #: (name, positions in the number cells) of the plain numbers (a struct's members in order)
         simple: list[tuple[str, list[int]]] = []
+        #: tuple index of each plain number, in cell order
+        numbers: list[int] = []
         #: tuple indices of the floats written as JSON (they must be finite: json.dumps writes NaN)
         json_floats: list[int] = []
         index = 1
@@ -91,80 +99,81 @@ class TelemetryLayout:
             line_head = f"{{{index + 3}}}.{{{index + 4}:06d}},{name.replace('{', '{{').replace('}', '}}')},"
             if fmt_template is None and isinstance(base, (IntType, FloatType)):
                 fmt.append(_RECORD_HEAD + base._struct.format[1:])
-                value = f"{{{value_index}!r}}" if isinstance(base, FloatType) else f"{{{value_index}}}"
-                simple.append((name, [value_index]))
+                value = f"{{#{len(numbers)}}}"
+                simple.append((name, [len(numbers)]))
+                numbers.append(value_index)
+                index = value_index + 1
             elif fmt_template is None and isinstance(base, StructType) and base._fixed is not None and base.members:
                 # numbers only: unpacked in place, written as json.dumps writes the struct (finite floats)
                 fmt.append(_RECORD_HEAD + base._fixed.format[1:])
                 members = []
                 for k, (member, mtype) in enumerate(base.members):
-                    is_float = isinstance(_resolved(mtype), FloatType)
-                    members.append(f"{json.dumps(member)}: {{{value_index + k}{'!r' if is_float else ''}}}")
-                    if is_float:
+                    members.append(f"{json.dumps(member)}: {{#{len(numbers) + k}}}")
+                    if isinstance(_resolved(mtype), FloatType):
                         json_floats.append(value_index + k)
                 json_text = "{{" + ", ".join(members) + "}}"
                 value = '"' + json_text.replace('"', '""') + '"'  # quoted as csv quotes it (it has '"')
-                simple.append((name, list(range(value_index, value_index + len(base.members)))))
-                index = value_index + len(base.members) - 1  # the record's last field
+                simple.append((name, list(range(len(numbers), len(numbers) + len(base.members)))))
+                numbers.extend(range(value_index, value_index + len(base.members)))
+                index = value_index + len(base.members)
             else:
                 fmt.append(_RECORD_HEAD + f"{size}s")
-                value = f"{{@{len(complex_)}}}"  # renumbered below, after the unpacked fields
-                complex_.append((value_index, len(complex_), name, ftype, fmt_template))
+                value = f"{{@{len(complex_)}}}"
+                complex_.append((value_index, name, ftype, fmt_template))
+                index = value_index + 1
             template.append(line_head + value + "\n")
-            index = max(index, value_index) + 1
+        # format arguments: the unpacked fields, the other values' fields, then the numbers' cells
+        self.template = re.sub(r"\{([#@])(\d+)\}",
+                               lambda m: f"{{{index + int(m[2]) + (len(complex_) if m[1] == '#' else 0)}}}",
+                               "".join(template))
         self.struct = struct.Struct("".join(fmt))
         self.size = self.struct.size
         self.ids = tuple(cid for cid, *_ in channels)
-        self._ids_of = itemgetter(*id_index) if len(id_index) > 1 else (lambda v, i=id_index[0]: (v[i],))
-        self._usecs_of = itemgetter(*usec_index) if len(usec_index) > 1 else (lambda v, i=usec_index[0]: (v[i],))
-        text = "".join(template)
-        for j in range(len(complex_)):
-            text = text.replace(f"{{@{j}}}", f"{{{index + j}}}")
-        self.template = text
-        # with the descriptor (field 0, = 1) the getter gives a tuple also for one float
+        self._ids_of = itemgetter(*id_index, 0)  # the descriptor (field 0, = 1) makes it a tuple also for one
+        self._usecs_of = itemgetter(*usec_index, 0)
+        self._numbers_of = itemgetter(*numbers, 0) if numbers else None  # the descriptor's cell is left unused
+        # with the descriptor the getter gives a tuple also for one float
         self._json_floats = itemgetter(*json_floats, 0) if json_floats else None
         self.simple = simple
-        self.complex = complex_
+        #: (name, index of its value) of the other values
+        self.complex = [(name, j) for j, (_, name, _, _) in enumerate(complex_)]
         self.records = len(channels)
         self._text_of = text_of
-        #: per other value: its raw bytes → (value, CSV field) for the values seen (enums, flags and
-        #: modes repeat; decoded once each, at most SEEN_MAX kept)
-        self._decoders: list[tuple[int, Any, str | None, dict[bytes, tuple[Any, str]]]] = [
-            (value_index, ftype, fmt_template, {}) for value_index, _, _, ftype, fmt_template in complex_]
+        self._cells_of = cells_of
+        #: per other value: its raw bytes → (value, CSV field, wide cells) for the values seen (enums,
+        #: flags and modes repeat; decoded once each, at most SEEN_MAX kept)
+        self._decoders: list[tuple[int, str, Any, str | None, dict[bytes, tuple[Any, str, list[str]]]]] = [
+            (value_index, name, ftype, fmt_template, {}) for value_index, name, ftype, fmt_template in complex_]
 
-    #: raw values remembered per other value of a layout
-    SEEN_MAX = 256
+    def decode(self, packet: bytes) -> tuple[str, list[str], list[list[str]]] | None:
+        """``(the packet's channels.csv lines, the number cells, each other value's wide cells)``, or
+        None when the packet does not have this layout (or has a time stamp the general decoder must
+        judge). Raises :class:`~fprime_lite.model.errors.SerializationError` for a value its type rejects.
 
-    def decode(self, packet: bytes) -> tuple[tuple, list[Any], list[str]] | None:
-        """``(unpacked fields, decoded other values, their CSV fields)`` of ``packet``, or None when
-        the packet does not have this layout (or has a time stamp the general decoder must judge).
-        Raises :class:`~fprime_lite.model.errors.SerializationError` for a value its type rejects."""
+        Each number is formatted once (``str``: ``repr`` for a float), for both files."""
         if len(packet) != self.size:
             return None
         fields = self.struct.unpack(packet)
-        if self._ids_of(fields) != self.ids or max(self._usecs_of(fields)) >= US_PER_S:
+        if self._ids_of(fields)[:-1] != self.ids or max(self._usecs_of(fields)) >= US_PER_S:
             return None
         if self._json_floats is not None:
             total = sum(self._json_floats(fields))  # NaN or ±inf when one is (or when they overflow)
             if total - total != 0.0:
                 return None
-        values: list[Any] = []
+        cells = list(map(str, self._numbers_of(fields))) if self._numbers_of is not None else []
         texts: list[str] = []
-        for value_index, ftype, fmt_template, seen in self._decoders:
+        wide: list[list[str]] = []
+        for value_index, name, ftype, fmt_template, seen in self._decoders:
             raw = fields[value_index]
             known = seen.get(raw)
             if known is None:
                 value = ftype.deserialize(raw)[0]
-                known = (value, csv_field(self._text_of(value, fmt_template)))
+                known = (value, csv_field(self._text_of(value, fmt_template)), self._cells_of(name, value))
                 if len(seen) < self.SEEN_MAX:
                     seen[raw] = known
-            values.append(known[0])
             texts.append(known[1])
-        return fields, values, texts
-
-    def lines(self, fields: tuple, texts: list[str]) -> str:
-        """The packet's ``channels.csv`` lines."""
-        return self.template.format(*fields, *texts)
+            wide.append(known[2])
+        return self.template.format(*fields, *texts, *cells), cells, wide
 
 
 class LayoutCache:
