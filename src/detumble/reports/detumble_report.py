@@ -105,6 +105,13 @@ class DetumbleRunReport:
             self._state = state
         self._last_us = time_us
 
+    def take_state_us(self) -> dict[DetumbleState, int]:
+        """Microseconds spent in each state since the previous call (up to the last event); resets the count."""
+        self._settle()
+        state_us = self._state_us
+        self._state_us = dict.fromkeys(_STATES, 0)
+        return state_us
+
     def _settle(self) -> None:
         """Credit the span not yet credited (up to the last event) to its state."""
         state = self._state
@@ -133,13 +140,11 @@ class DetumbleRunReport:
         self._drive_before = now
         manager_columns: list = []
         if self.manager is not None:
-            self._settle()
             strategy = getattr(self.manager, "strategy", None)
-            state_us = self._state_us
+            state_us = self.take_state_us()
             total = sum(state_us.values())
             manager_columns = [*(f"{state_us[st] / total if total else 0.0:.4f}" for st in _STATES),
                                strategy.name if strategy is not None else ""]
-            self._state_us = dict.fromkeys(_STATES, 0)
         self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
                                s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *switched,
                                *manager_columns,
