@@ -31,6 +31,7 @@ __all__ = ["DetumbleRunReport", "MEAN_DIPOLE_COLUMNS"]
 _FACE_SUFFIX = {0: "xp", 1: "xm", 2: "yp", 3: "ym", 5: "zm"}
 #: the achieved coil dipole's mean over each sample interval, A·m² in B
 MEAN_DIPOLE_COLUMNS = _MEAN_DIPOLE_COLUMNS = ("m_mean_x_Am2", "m_mean_y_Am2", "m_mean_z_Am2")
+_STATES = tuple(DetumbleState)
 
 
 
@@ -88,17 +89,36 @@ class DetumbleRunReport:
         self._drive_before = plant.drive_integrals.totals(plant.t_ns)
         self._state_us = {s: 0 for s in DetumbleState}
         self._progress_us = {s: 0 for s in DetumbleState}
-        self._state_since = deployment.scheduler.now_us
+        self._state_since = self._last_us = deployment.scheduler.now_us
+        self._state: DetumbleState | None = None  # the manager's state at the last event
         if self.manager is not None:
             deployment.scheduler.add_time_listener(self._on_time)
         self.spacecraft.set_trace(self._sample, self.truth_interval_us)
 
     def _on_time(self, time_us: int) -> None:
-        """Credit the time since the last event to the state the manager was in (exact fractions)."""
+        """The time since the last event was spent in the state the manager is in now (exact
+        fractions); credited when the state changes or the shares are read (:meth:`_settle`), so an
+        event that finds the state unchanged only moves the end of the span."""
         state = self.manager.state
-        self._state_us[state] += time_us - self._state_since
-        self._progress_us[state] += time_us - self._state_since
-        self._state_since = time_us
+        if state is not self._state:
+            self._settle()
+            self._state = state
+        self._last_us = time_us
+
+    def take_state_us(self) -> dict[DetumbleState, int]:
+        """Microseconds spent in each state since the previous call (up to the last event); resets the count."""
+        self._settle()
+        state_us = self._state_us
+        self._state_us = dict.fromkeys(_STATES, 0)
+        return state_us
+
+    def _settle(self) -> None:
+        """Credit the span not yet credited (up to the last event) to its state."""
+        state = self._state
+        if state is not None:
+            self._state_us[state] += self._last_us - self._state_since
+            self._progress_us[state] += self._last_us - self._state_since
+        self._state_since = self._last_us
 
     def _sample(self, s: TruthSample) -> None:
         self.last = s
@@ -121,10 +141,10 @@ class DetumbleRunReport:
         manager_columns: list = []
         if self.manager is not None:
             strategy = getattr(self.manager, "strategy", None)
-            total = sum(self._state_us.values())
-            manager_columns = [*(f"{self._state_us[st] / total if total else 0.0:.4f}" for st in DetumbleState),
+            state_us = self.take_state_us()
+            total = sum(state_us.values())
+            manager_columns = [*(f"{state_us[st] / total if total else 0.0:.4f}" for st in _STATES),
                                strategy.name if strategy is not None else ""]
-            self._state_us = {st: 0 for st in DetumbleState}
         self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
                                s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *switched,
                                *manager_columns,
@@ -154,9 +174,11 @@ class DetumbleRunReport:
         shares = getattr(self, "_progress_us", None)
         if not shares:
             return {}
+        if self.manager is not None:
+            self._settle()
         total = sum(shares.values())
         out = {st.name: us / total for st, us in shares.items()} if total else {}
-        self._progress_us = {st: 0 for st in DetumbleState}
+        self._progress_us = dict.fromkeys(_STATES, 0)
         return out
 
     def _state_shares(self) -> str:

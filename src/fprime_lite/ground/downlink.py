@@ -27,13 +27,14 @@ from fprime_lite.model.errors import SerializationError
 from fprime_lite.osal.atomic import clean_temporary_files, open_temporary
 from fprime_lite.model.events import Severity, translate_format
 from fprime_lite.ground.files import FileReceiver
-from fprime_lite.ground.wide_table import WideTelemetryTable
+from fprime_lite.ground.packet_layout import LayoutCache, TelemetryLayout
+from fprime_lite.ground.wide_table import WideTelemetryTable, csv_cell
 from fprime_lite.wire.packets import Apid, decode_event, decode_telemetry
 from fprime_lite.model.time import Time, TimeBase
 from fprime_lite.deploy.topology import Topology
 from fprime_lite.model.types import deserialize_values
 
-__all__ = ["GroundDecoder", "GroundRecorder", "DecodedEvent", "DecodedChannel", "format_time"]
+__all__ = ["GroundDecoder", "GroundRecorder", "DecodedEvent", "DecodedChannel", "format_time", "channel_text"]
 
 
 @dataclass(frozen=True)
@@ -111,16 +112,39 @@ class GroundDecoder:
         for channel_id, time, raw in decode_telemetry(packet, value_end):
             name, ftype, template = self.channels[channel_id]
             value = ftype.deserialize(raw)[0]
-            if template is not None:
-                text = template.format(value)
-            elif isinstance(value, enum.Enum):
-                text = value.name
-            elif isinstance(value, (int, float, str, bool)):
-                text = repr(value) if isinstance(value, float) else str(value)
-            else:
-                text = json.dumps(_plain(value))
-            out.append(DecodedChannel(time, name, value, text))
+            out.append(DecodedChannel(time, name, value, channel_text(value, template)))
         return out
+
+    def layout(self, packet: bytes, cells_of=None) -> TelemetryLayout | None:
+        """The :class:`~fprime_lite.ground.packet_layout.TelemetryLayout` of telemetry ``packet``, or
+        None when it has none (a string value, an unknown id, a malformed packet); ``cells_of`` as
+        the layout takes it."""
+        def value_end(channel_id, data, offset):
+            known = self.channels.get(channel_id)
+            if known is None:
+                raise SerializationError(f"channel id 0x{channel_id:X} is not in the dictionary")
+            return known[1].deserialize(data, offset)[1]
+
+        try:
+            records = decode_telemetry(packet, value_end)
+            channels = [(cid, *self.channels[cid]) for cid, _, _ in records]
+            if cells_of is None:
+                return TelemetryLayout(channels, channel_text)
+            return TelemetryLayout(channels, channel_text, cells_of)
+        except (SerializationError, ValueError):
+            return None
+
+
+def channel_text(value, template: str | None) -> str:
+    """A decoded channel value as ``channels.csv`` shows it: through the channel's format string when it
+    has one, an enum by its constant's name, a float as ``repr``, a struct or array as JSON."""
+    if template is not None:
+        return template.format(value)
+    if isinstance(value, enum.Enum):
+        return value.name
+    if isinstance(value, (int, float, str, bool)):
+        return repr(value) if isinstance(value, float) else str(value)
+    return json.dumps(_plain(value))
 
 
 class _StreamedFile:
@@ -173,6 +197,10 @@ class GroundRecorder:
         self.undecodable = 0
         #: Downlinked files, written under ``downlink/`` (the directory appears with the first file).
         self.files = FileReceiver(out_dir / "downlink")
+        self._layouts = LayoutCache()
+        #: layout → (wide-table column, number cell) of its plain numbers and (value index, the wide
+        #: table's columns) of its other values
+        self._wide_plans: dict[TelemetryLayout, tuple[list[tuple[int, int]], list[tuple[int, list[int]]]]] = {}
 
     def attach(self, topology: Topology, event_manager: str | None, telemetry: str | None) -> None:
         """Tap ``PktSend`` of the named event manager and telemetry instances.
@@ -215,14 +243,49 @@ class GroundRecorder:
             if descriptor == Apid.FW_PACKET_LOG:
                 self._event(self.decoder.decode_event(data))
             elif descriptor == Apid.FW_PACKET_TELEM:
-                for channel in self.decoder.decode_telemetry(data):
-                    self._channel(channel)
+                if self.on_channel is not None or self._clock is None or not self._telemetry(data):
+                    for channel in self.decoder.decode_telemetry(data):
+                        self._channel(channel)
             elif descriptor == Apid.FW_PACKET_FILE:
                 self.files.receive(data)
             else:
                 self.undecodable += 1
         except SerializationError:
             self.undecodable += 1
+
+    def _telemetry(self, packet: bytes) -> bool:
+        """Record telemetry ``packet`` through its compiled layout; False when it has none (the caller
+        then decodes it channel by channel)."""
+        for layout in self._layouts.candidates(packet):
+            decoded = layout.decode(packet)
+            if decoded is not None:
+                break
+        else:
+            learned = self.decoder.layout(packet, self._wide_cells)
+            decoded = learned.decode(packet) if learned is not None else None
+            if learned is None or decoded is None:
+                return False
+            layout = learned
+            self._layouts.add(packet, layout)
+            self._wide_plans[layout] = (
+                [(index, cell) for name, cells in layout.simple
+                 for (index, _), cell in zip(self._wide.slots(name), cells, strict=True)],
+                [(j, [index for index, _ in self._wide.slots(name)]) for name, j in layout.complex])
+        lines, cells, wide = decoded
+        self._channels.file.write(lines)
+        self.channel_updates += layout.records
+        row = self._wide.at(self._clock.now())
+        simple, complex_ = self._wide_plans[layout]
+        for index, cell in simple:
+            row[index] = cells[cell]
+        for j, indices in complex_:
+            for index, text in zip(indices, wide[j], strict=True):
+                row[index] = text
+        return True
+
+    def _wide_cells(self, name: str, value) -> list[str]:
+        """The wide table's cells of a decoded value of channel ``name``."""
+        return [csv_cell(get(value)) for _, get in self._wide.slots(name)]
 
     def _event(self, e: DecodedEvent) -> None:
         self.events_by_severity[e.severity.name] += 1

@@ -20,11 +20,12 @@ from __future__ import annotations
 
 import csv
 import enum
+import io
 from typing import Any, Callable
 
 from fprime_lite.model.time import Time
 
-__all__ = ["WideTelemetryTable", "scalar_columns"]
+__all__ = ["WideTelemetryTable", "scalar_columns", "csv_field", "csv_cell"]
 
 
 def scalar_columns(ftype) -> list[tuple[str, Callable[[Any], Any], bool]]:
@@ -70,6 +71,28 @@ def _leaf(v):
     return v
 
 
+_SPECIAL = frozenset(',"\r\n')
+_field_buffer = io.StringIO()
+_field_writer = csv.writer(_field_buffer, lineterminator="\n")
+
+
+def csv_field(text: str) -> str:
+    """``text`` as the ``csv`` module writes it as one field (not the only one) of a row."""
+    if _SPECIAL.isdisjoint(text):
+        return text
+    _field_buffer.seek(0)
+    _field_buffer.truncate()
+    _field_writer.writerow([text, ""])
+    return _field_buffer.getvalue()[:-2]  # the row without its trailing ",\n"
+
+
+def csv_cell(value) -> str:
+    """A column value (what :func:`scalar_columns`' extractors give) as ``csv`` writes it in a row."""
+    if type(value) is str:
+        return csv_field(value)
+    return str(value)  # floats as repr, ints as str: what csv writes for them
+
+
 class WideTelemetryTable:
     """Streams decoded channels into a wide CSV (see the module docstring).
 
@@ -88,27 +111,41 @@ class WideTelemetryTable:
                 slots.append((len(header) - 1, get))
             self._columns[name] = slots
         self._csv.writerow(header)
-        self._row: list = [""] * len(header)
+        self._file = file
+        #: the row being filled, each cell already as its CSV text (a value is formatted once per
+        #: update, not once per row it stays in)
+        self._row: list[str] = [""] * len(header)
         self._time_us: int | None = None
         self._first_us: int | None = start.total_us if start is not None else None
 
     def add(self, time: Time, name: str, value: Any) -> None:
         """One channel update received at ``time`` (reception times do not go backwards)."""
+        row = self.at(time)
+        for index, get in self._columns.get(name, ()):
+            row[index] = csv_cell(get(value))
+
+    def slots(self, name: str) -> list[tuple[int, Callable]]:
+        """``(column index, extract)`` of each column of channel ``name`` (none for an unknown one)."""
+        return self._columns.get(name, [])
+
+    def at(self, time: Time) -> list[str]:
+        """The row of updates received at ``time`` (after :meth:`add`'s rules), to set columns in
+        through :meth:`slots` (each as :func:`csv_cell` text): what :meth:`add` does for many updates
+        of one reception at once."""
         us = time.total_us
         if self._time_us is not None and us != self._time_us:
             self._flush()
         if self._first_us is None:
             self._first_us = us
         self._time_us = us
-        for index, get in self._columns.get(name, ()):
-            self._row[index] = get(value)
+        return self._row
 
     def _flush(self) -> None:
         row, time_us, first_us = self._row, self._time_us, self._first_us
         assert time_us is not None and first_us is not None  # a row is flushed after a sample set them
         row[0] = f"{(time_us - first_us) / 1e6:.6f}"
         row[1] = f"{time_us / 1e6:.6f}"
-        self._csv.writerow(row)
+        self._file.write(",".join(row) + "\n")
 
     def close(self) -> None:
         if self._time_us is not None:

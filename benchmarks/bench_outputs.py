@@ -1,0 +1,90 @@
+#!/usr/bin/env python3
+"""What a ``fprime-lite run``'s outputs cost: the same flight with and without them, like for like.
+
+    python benchmarks/bench_outputs.py [TOPOLOGY] [--duration S] [--rounds N]
+
+Each round flies two kinds, each in a fresh child process that has already imported what both need:
+
+- ``deployment``: load the topology, ``Deployment(...).start()``, ``run_for(duration)``: no output;
+- ``run``: load the topology, ``run_deployment(..., plots=False)`` into a temporary folder: every
+  output ``fprime-lite run --no-plots`` writes (events.log, channels.csv, channels_wide.csv,
+  truth.csv, summary.json, dictionary.json).
+
+Both are timed from the same point (after the imports, before the load) to the last file written,
+on the wall clock and in CPU seconds of the child (``time.process_time``: steadier on a shared
+machine). The outputs' share of a run is ``1 − deployment / run`` of the fastest rounds (issue 32's
+goal: ≤ 10 %). ``benchmarks/bench_vs_basilisk.py``'s kinds ``fprime_lite_run_50hz`` and
+``fprime_lite_deployment_50hz`` differ also by the imports and the topology's load, which only the
+first one times (it times ``run`` as users run it, for the comparison with Basilisk).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import pathlib
+import subprocess
+import sys
+
+REPO = pathlib.Path(__file__).resolve().parents[1]
+
+_CHILD = """
+import json, sys, tempfile, time
+from fprime_lite.deploy.deployment import Deployment
+from fprime_lite.deploy.topology_loader import load_topology
+from fprime_lite.tools.runner import run_deployment
+kind, topology, duration = sys.argv[1], sys.argv[2], float(sys.argv[3])
+wall0, cpu0 = time.perf_counter(), time.process_time()
+loaded = load_topology(topology)
+if kind == "deployment":
+    deployment = Deployment(loaded)
+    deployment.start()
+    deployment.run_for(duration)
+else:
+    with tempfile.TemporaryDirectory() as out:
+        run_deployment(loaded, out, duration_s=duration, plots=False, quiet=True, allow_warnings=True)
+print(json.dumps({"wall_s": time.perf_counter() - wall0, "cpu_s": time.process_time() - cpu0}))
+"""
+
+KINDS = ("deployment", "run")
+
+
+def fly(kind: str, topology: str, duration_s: float) -> dict:
+    """One child's ``{"wall_s", "cpu_s"}``."""
+    out = subprocess.run([sys.executable, "-c", _CHILD, kind, topology, str(duration_s)], capture_output=True,
+                         text=True, check=True, cwd=REPO)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def measure(topology: str, duration_s: float, rounds: int) -> dict:
+    """Each kind's fastest wall and CPU seconds over ``rounds`` alternating rounds, and the outputs' share."""
+    runs: dict[str, list[dict]] = {k: [] for k in KINDS}
+    for _ in range(rounds):
+        for kind in KINDS:
+            runs[kind].append(fly(kind, topology, duration_s))
+    best = {k: {m: min(r[m] for r in runs[k]) for m in ("wall_s", "cpu_s")} for k in KINDS}
+    share = {m: 1.0 - best["deployment"][m] / best["run"][m] for m in ("wall_s", "cpu_s")}
+    return {"topology": topology, "duration_s": duration_s, "rounds": rounds, "best": best, "runs": runs,
+            "outputs_share_wall": share["wall_s"], "outputs_share_cpu": share["cpu_s"]}
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("topology", nargs="?", default="deployments/proves_ref/topology.yaml")
+    parser.add_argument("--duration", type=float, default=5578.0, help="simulated seconds a flight (one orbit)")
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--json", help="also write the figures to this file")
+    args = parser.parse_args(argv)
+    result = measure(args.topology, args.duration, args.rounds)
+    for kind in KINDS:
+        b = result["best"][kind]
+        print(f"{kind:10s} wall {b['wall_s']:8.3f} s   cpu {b['cpu_s']:8.3f} s")
+    print(f"outputs' share of a run: wall {result['outputs_share_wall']:.1%}, cpu {result['outputs_share_cpu']:.1%} "
+          f"(goal <= 10 %)")
+    if args.json:
+        pathlib.Path(args.json).write_text(json.dumps(result, indent=2) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
