@@ -206,19 +206,24 @@ class ElectricalSystem:
             self.face_flux_w_m2 = (0.0,) * 6
             return 0.0
         self.eclipse = False
-        s = rotate_n_to_b(q_BN, s_N)
+        sx, sy, sz = rotate_n_to_b(q_BN, s_N)
         flux = SOLAR_CONSTANT_W_M2 / (d_au * d_au)
-        self.face_flux_w_m2 = (flux * max(0.0, s[0]), flux * max(0.0, -s[0]), flux * max(0.0, s[1]),
-                               flux * max(0.0, -s[1]), flux * max(0.0, s[2]), flux * max(0.0, -s[2]))
+        # each face's sunlit cosine (X+, X-, Y+, Y-, Z+, Z-): the lit face of each axis gets its
+        # cosine, the other 0.0 (what max(0.0, ±s) gives, a zero cosine included)
+        c0, c1 = (sx, 0.0) if sx > 0.0 else (0.0, -sx if sx < 0.0 else 0.0)
+        c2, c3 = (sy, 0.0) if sy > 0.0 else (0.0, -sy if sy < 0.0 else 0.0)
+        c4, c5 = (sz, 0.0) if sz > 0.0 else (0.0, -sz if sz < 0.0 else 0.0)
+        self.face_flux_w_m2 = (flux * c0, flux * c1, flux * c2, flux * c3, flux * c4, flux * c5)
         a = self._areas
-        lit = (a[0] * max(0.0, s[0]) + a[1] * max(0.0, -s[0]) + a[2] * max(0.0, s[1]) + a[3] * max(0.0, -s[1])
-               + a[4] * max(0.0, s[2]) + a[5] * max(0.0, -s[2]))
+        lit = a[0] * c0 + a[1] * c1 + a[2] * c2 + a[3] * c3 + a[4] * c4 + a[5] * c5
         return flux * self.cfg.solar.efficiency * lit
 
     def switched_load_w(self) -> float:
         loads = self.cfg.loads
         sw = self.switches
-        p = loads.avionics_w + loads.face_board_w * sum(sw[name] for name in FACE_SWITCHES)
+        # the closed face switches counted (an int, as sum() gives it)
+        p = loads.avionics_w + loads.face_board_w * (sw["face0"] + sw["face1"] + sw["face2"] + sw["face3"]
+                                                     + sw["face4"] + sw["face5"])
         if sw["payloadPower"]:
             p += loads.payload_power_w
         if sw["payloadBattery"]:

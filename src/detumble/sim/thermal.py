@@ -69,13 +69,13 @@ class ThermalModel:
         a, g = cfg.face_area_m2, cfg.face_interior_w_k
         absorbed = [cfg.absorptivity * a * q for q in face_flux_w_m2]
         rad = cfg.emissivity * STEFAN_BOLTZMANN * a
+        c_face, c_interior = cfg.face_capacity_j_k, cfg.interior_capacity_j_k
+        faces = self.face_k
         for _ in range(n):
             ti = self.interior_k
             to_interior = 0.0
-            faces = self.face_k
-            for f in range(6):
-                tf = faces[f]
+            for f, tf in enumerate(faces):  # the list is only written at the index just read
                 cond = g * (tf - ti)
                 to_interior += cond
-                faces[f] = tf + h * (absorbed[f] - rad * tf ** 4 - cond) / cfg.face_capacity_j_k
-            self.interior_k = ti + h * (load_w + to_interior) / cfg.interior_capacity_j_k
+                faces[f] = tf + h * (absorbed[f] - rad * tf ** 4 - cond) / c_face
+            self.interior_k = ti + h * (load_w + to_interior) / c_interior

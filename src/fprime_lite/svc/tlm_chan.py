@@ -150,19 +150,21 @@ class TlmChan(ActiveComponent):
     def _pack(self, records: list[bytes]) -> list[bytes]:
         packets = []
         parts = [_HEADER]
-        size = len(_HEADER)
+        size = header = len(_HEADER)
+        packet_max = self.packet_max
         for record in records:
-            if size + len(record) > self.packet_max and len(parts) > 1:
+            n = len(record)
+            if size + n > packet_max and size > header:  # size > header: the packet holds a record
                 packets.append(b"".join(parts))
                 parts = [_HEADER]
-                size = len(_HEADER)
-            if len(_HEADER) + len(record) > self.packet_max:
+                size = header
+            if header + n > packet_max:
                 self.oversize_records += 1
                 log.warning("%s: a record of %d bytes does not fit a %d-byte packet; sending it alone",
-                            self.name, len(record), self.packet_max)
+                            self.name, n, packet_max)
             parts.append(record)
-            size += len(record)
-        if len(parts) > 1:
+            size += n
+        if size > header:
             packets.append(b"".join(parts))
         return packets
 

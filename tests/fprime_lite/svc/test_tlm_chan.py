@@ -81,6 +81,17 @@ def test_oversize_record_sent_alone(h):
     assert h.component.oversize_records == 1
 
 
+def test_an_oversize_record_first_in_a_tick_makes_no_empty_packet(h):
+    """The first record of a tick too big for a packet goes alone into the first packet: no packet of a
+    descriptor without records before it."""
+    h.invoke("TlmRecv", 2, T1, bytes(600))
+    h.invoke("TlmRecv", 3, T1, b"\x03")
+    h.invoke("Run", 0)
+    h.dispatch_all()
+    assert [len(c.args[0]) for c in h.from_port("PktSend")] == [2 + 15 + 600, 2 + 16]
+    assert h.component.oversize_records == 1
+
+
 def test_tlm_get(h):
     assert h.invoke("TlmGet", 0x10) == (TlmValid.INVALID, None, None)
     h.invoke("TlmRecv", 0x10, T1, b"\x07")
