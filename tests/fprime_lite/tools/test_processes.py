@@ -19,8 +19,8 @@ OWNER = textwrap.dedent("""
     leader = groups.start("sleeper", [sys.executable, "-c", "import subprocess, time; "
         "c = subprocess.Popen(['sleep', '600']); print(c.pid, flush=True); time.sleep(600)"])
     time.sleep(0.5)
-    print(leader.pid, flush=True)
     {after}
+    print(leader.pid, flush=True)  # only once ``after`` has run: the test kills the owner when it reads this
     time.sleep(600)
 """)
 
