@@ -951,8 +951,8 @@ def test_gyroscopic_and_gravity_gradient_feed_forward_on_the_wheels(fprime_harne
     r_B = rotate_n_to_b(law.filter.q, (6.798e6, 0.0, 0.0))
     gg = gravity_gradient_torque(inertia, r_B, 3.986004415e14)
     gyro = gyroscopic_torque(inertia, law.omega, (1.0e-3, -5.0e-4, 2.0e-4))
-    diff = [a - b for a, b in zip(full.comp.law.torque_request, base.comp.law.torque_request)]
-    expected = [g - t for g, t in zip(gyro, gg)]
+    diff = [a - b for a, b in zip(full.comp.law.torque_request, base.comp.law.torque_request, strict=True)]
+    expected = [g - t for g, t in zip(gyro, gg, strict=True)]
     assert max(abs(gg[i]) for i in range(3)) > 1e-10  # the attitude is chosen so that the term is not zero
     for i in range(3):
         assert diff[i] == pytest.approx(expected[i], rel=1e-9, abs=1e-18)
