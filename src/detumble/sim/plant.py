@@ -26,7 +26,8 @@ from detumble.sim.drive_integrals import DriveIntegrals
 from detumble.sim.field import DipoleField, FieldAlongOrbit, OrbitConstantField, WmmField
 from detumble.sim.laws import scale_to_limits
 from detumble.sim.orbit import CircularOrbit, TleOrbit
-from detumble.sim.epoch import julian_date
+from detumble.sim.epoch import decimal_year, julian_date
+from detumble.sim.igrf import IgrfField
 from detumble.sim.scenario import Scenario
 from detumble.sim.sun import in_umbra, sun_direction_N
 from detumble.sim.torques import SOLAR_PRESSURE_N_M2, BoxSurfaces, atmosphere_density
@@ -47,8 +48,6 @@ def _derive_seed(seed: int, stream: int) -> int:
 def build_orbit(sc: Scenario):
     o = sc.orbit
     if o.type == "tle":
-        from detumble.sim.epoch import julian_date
-
         assert o.tle is not None  # the scenario loader requires the TLE lines for type tle
         return TleOrbit(o.tle[0], o.tle[1], julian_date(sc.epoch), o.table_step_s, o.mu_m3_s2)
     return CircularOrbit(
@@ -66,6 +65,9 @@ def build_field(sc: Scenario, orbit) -> FieldAlongOrbit | None:
     if f.model == "wmm2025":
         return FieldAlongOrbit(WmmField(sc.epoch, f.earth_rotation_rate_rad_s, sc.earth_angle0_rad), orbit,
                                f.table_step_s)
+    if f.model == "igrf14":
+        igrf = IgrfField(decimal_year(sc.epoch), 13, f.earth_rotation_rate_rad_s, sc.earth_angle0_rad)
+        return FieldAlongOrbit(igrf, orbit, f.table_step_s)
     model = DipoleField(f.g10_nt, f.g11_nt, f.h11_nt, f.reference_radius_m, f.earth_rotation_rate_rad_s,
                         sc.earth_angle0_rad)
     return FieldAlongOrbit(model, orbit, None)

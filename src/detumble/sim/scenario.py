@@ -44,7 +44,7 @@ from detumble.sim.vec import Mat3, Quat, Vec3, mrp_to_quat, quat_normalize, unit
 
 LAWS = ("none", "kopt", "bdot", "bangbang", "cross_product", "beta_pd", "wheels_pd", "adcs")
 SATURATION = ("clip", "scale")
-FIELD_MODELS = ("dipole", "wmm2025", "none", "orbit_constant")
+FIELD_MODELS = ("dipole", "igrf14", "wmm2025", "none", "orbit_constant")
 
 
 class ScenarioError(DetumbleError, ValueError):
@@ -825,8 +825,8 @@ def _field(s: _Section) -> FieldConfig:
     rate = s.number("earth_rotation_rate_rad_s", EARTH_ROTATION_RATE)
     angle = s.number("earth_rotation_angle_deg", None, allow_none=True)
     step = s.number("table_step_s", 1.0, positive=True)
-    if model == "wmm2025" and step > 1.0:
-        s.fail("table_step_s", f"{step} s: evaluate the WMM at <= 1 Hz (table_step_s <= 1)")
+    if model in ("wmm2025", "igrf14") and step > 1.0:
+        s.fail("table_step_s", f"{step} s: evaluate the {model} model at <= 1 Hz (table_step_s <= 1)")
     s.finish()
     return FieldConfig(model=model, g10_nt=g10, g11_nt=g11, h11_nt=h11, reference_radius_m=rr,
                        earth_rotation_rate_rad_s=rate, earth_rotation_angle_deg=angle, table_step_s=step,
