@@ -921,7 +921,8 @@ class ThreeModeLaw:
         if key != wanted:  # first use, or a limit parameter changed: the allocator's limits follow
             alloc = WheelAllocator(*wanted)
             self._limit_alloc = (wanted, alloc)
-        u, limited = alloc.allocate(tau, self.wheel_momenta)
+        # more than three wheels: their null-space momentum is managed at K_DUMP (no body torque)
+        u, limited = alloc.allocate(tau, self.wheel_momenta, self.K_DUMP)
         if limited:
             self.notify.event("WheelLimitReached")
         else:
