@@ -93,7 +93,7 @@ def _bad(text: str):
         ("sensors:\n  gyro:\n    noise_density_dps_rthz: -1.0\n",
          r"sensors\.gyro\.noise_density_dps_rthz: must not be negative, got -1\.0"),
         ("sensors:\n  gyro:\n    odr: 104\n", r"sensors\.gyro\.odr: unknown key 'odr'; allowed here: .*odr_hz"),
-        ("field:\n  model: igrf13\n", r"field\.model: unknown value 'igrf13'; expected one of: dipole, wmm2025, none"),
+        ("field:\n  model: igrf13\n", r"field\.model: unknown value 'igrf13'; expected one of: dipole, igrf14, wmm2025, none"),
         ("field:\n  model: wmm2025\n  table_step_s: 10\n",
          r"field\.table_step_s: 10\.0 s: evaluate the WMM at <= 1 Hz"),
         ("control:\n  law: pid\n", r"control\.law: unknown value 'pid'; expected one of: none, kopt, bdot"),
