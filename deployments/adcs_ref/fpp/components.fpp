@@ -198,6 +198,7 @@ module Components {
   enum WheelFeedForward : I32 {
     REFERENCE = 0
     REFERENCE_GYROSCOPIC = 1
+    REFERENCE_GYROSCOPIC_GRAVITY = 2
   } default REFERENCE
 
   array WheelValues = [4] F64 default [0.0, 0.0, 0.0, 0.0]

@@ -92,11 +92,14 @@ class MagResidualMode(FwEnum, namespace="Components"):
 
 
 class WheelFeedForward(FwEnum, namespace="Components"):
-    """What a moving target's wheel law feeds forward: the reference's own torque ``I (α_r − ω × ω_r)``
-    (REFERENCE), or that plus the gyroscopic ``ω × (I ω + h_w)`` (REFERENCE_GYROSCOPIC)."""
+    """What the wheel law feeds forward: a moving target's own torque ``I (α_r − ω × ω_r)`` (REFERENCE), that
+    plus the gyroscopic ``ω × (I ω + h_w)`` (REFERENCE_GYROSCOPIC), or both plus minus the modelled
+    gravity-gradient torque ``3 μ/r³ r̂ × (I r̂)`` (REFERENCE_GYROSCOPIC_GRAVITY; the last two also for an
+    inertial target)."""
 
     REFERENCE = 0
     REFERENCE_GYROSCOPIC = 1
+    REFERENCE_GYROSCOPIC_GRAVITY = 2
 
 
 class BodyAxis(FwEnum, namespace="Components"):

@@ -45,7 +45,8 @@ MAG_RESIDUAL_WINDOW = 60.0  # s: the estimator's momentum-balance window
 
 # --- moving targets (control.targets) ----------------------------------------------------------
 GS_MIN_ELEVATION = 10.0  # deg: a ground station is tracked while it sees the spacecraft this high or higher
-WHEEL_FEED_FORWARD = "REFERENCE"  # REFERENCE: I (α_r − ω × ω_r); REFERENCE_GYROSCOPIC: + ω × (I ω + h_w)
+WHEEL_FEED_FORWARD = "REFERENCE"  # REFERENCE: I (α_r − ω × ω_r); REFERENCE_GYROSCOPIC: + ω × (I ω + h_w);
+# REFERENCE_GYROSCOPIC_GRAVITY: + the modelled gravity-gradient torque cancelled (also on an inertial target)
 RATE_BLEND_ANGLE = 0.1  # deg: above this pointing error (a slew) the rate observer pulls at RATE_BLEND_GAIN
 RATE_BLEND_GAIN = 2.0  # 1/s: the observer's pull toward the gyro during a slew
 
@@ -203,6 +204,6 @@ ENUM_CHOICES: dict[str, tuple[str, ...]] = {
     "RATE_SOURCE": ("GYRO", "OBSERVER"),
     "MAG_POINTING_LAW": ("SEED_PD", "FIELD_STEERING"),
     "MAG_RESIDUAL_MODE": ("OFF", "PARAMETER", "ESTIMATE"),
-    "WHEEL_FEED_FORWARD": ("REFERENCE", "REFERENCE_GYROSCOPIC"),
+    "WHEEL_FEED_FORWARD": ("REFERENCE", "REFERENCE_GYROSCOPIC", "REFERENCE_GYROSCOPIC_GRAVITY"),
     "SUN_SAFE_AXIS": ("PLUS_X", "MINUS_X", "PLUS_Y", "MINUS_Y", "PLUS_Z", "MINUS_Z"),
 }

@@ -12,7 +12,7 @@ import math
 
 from detumble.control.quaternion import Quat, Vec3, quat_error
 
-__all__ = ["pd_torque", "pd_gains", "ErrorIntegrator"]
+__all__ = ["pd_torque", "pd_gains", "ErrorIntegrator", "gyroscopic_torque", "gravity_gradient_torque"]
 
 
 def pd_torque(q_target: Quat, q_BN: Quat, omega_B: Vec3, kp: float, kd: float,
@@ -38,6 +38,32 @@ def pd_gains(inertia: float, natural_frequency_rad_s: float, damping_ratio: floa
     """``(K_p, K_d)`` giving ``ω_n`` and ``ζ`` about an axis of inertia ``inertia`` (kg·m²)."""
     wn = natural_frequency_rad_s
     return 2.0 * inertia * wn * wn, 2.0 * damping_ratio * inertia * wn
+
+
+def gyroscopic_torque(inertia, omega_B: Vec3, h_w_B: Vec3) -> Vec3:
+    """``ω × (I ω + h_w)`` (N·m, B): the torque the wheels must add so that Euler's equation
+    ``I ω̇ = τ − ω × (I ω + h_w)`` sees the PD's ``τ`` alone. ``inertia`` 3×3 kg·m², ``ω`` rad/s, ``h_w`` N·m·s."""
+    w0, w1, w2 = omega_B
+    h = (inertia[0][0] * w0 + inertia[0][1] * w1 + inertia[0][2] * w2 + h_w_B[0],
+         inertia[1][0] * w0 + inertia[1][1] * w1 + inertia[1][2] * w2 + h_w_B[1],
+         inertia[2][0] * w0 + inertia[2][1] * w1 + inertia[2][2] * w2 + h_w_B[2])
+    return (w1 * h[2] - w2 * h[1], w2 * h[0] - w0 * h[2], w0 * h[1] - w1 * h[0])
+
+
+def gravity_gradient_torque(inertia, r_B: Vec3, mu: float) -> Vec3:
+    """The gravity-gradient torque ``3 μ/|r|³ r̂ × (I r̂)`` (N·m, B) at the position ``r_B`` (m, from the Earth's
+    centre, in B) for the inertia model ``inertia`` (kg·m²) and ``μ`` (m³/s²). On a circular orbit
+    ``3 μ/|r|³ = 3 n²``; with +Z to nadir and a diagonal inertia it vanishes, and a products-of-inertia term
+    ``I_yz`` gives ``3 n² (−I_yz, I_xz, 0)`` (the closed form the tests check)."""
+    x, y, z = r_B
+    r2 = x * x + y * y + z * z
+    r = math.sqrt(r2)
+    k = 3.0 * mu / (r2 * r)
+    x, y, z = x / r, y / r, z / r
+    s = (inertia[0][0] * x + inertia[0][1] * y + inertia[0][2] * z,
+         inertia[1][0] * x + inertia[1][1] * y + inertia[1][2] * z,
+         inertia[2][0] * x + inertia[2][1] * y + inertia[2][2] * z)
+    return (k * (y * s[2] - z * s[1]), k * (z * s[0] - x * s[2]), k * (x * s[1] - y * s[0]))
 
 
 class ErrorIntegrator:

@@ -42,15 +42,15 @@ from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipol
 from detumble.control.magnetorquer import face_coil_levels
 from detumble.control.mat3 import cross as _cross
 from detumble.control.mekf import Mekf
-from detumble.control.pointing import ErrorIntegrator, pd_torque
+from detumble.control.pointing import ErrorIntegrator, gravity_gradient_torque, gyroscopic_torque, pd_torque
 from detumble.control.quaternion import (Quat, Vec3, is_unit_quaternion, quat_angle, quat_error, quat_normalize,
                                          quat_shortest, rotate_n_to_b, target_pointing_axis)
 from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
 from detumble.control.sun_vector import propagate_body_vector
-from detumble.control.targets import (BODY_AXES, GROUND_STATION, STATION_FALLBACK, Ephemeris, InertialTarget,
-                                      NadirTarget, Reference, StationTarget, SunTarget, Target, axes_error,
-                                      station_error)
+from detumble.control.targets import (BODY_AXES, GROUND_STATION, MU_EARTH_M3_S2, STATION_FALLBACK, Ephemeris,
+                                      InertialTarget, NadirTarget, Reference, StationTarget, SunTarget, Target,
+                                      axes_error, station_error)
 from detumble.control.units import TESLA_PER_GAUSS
 from detumble.control.wheel_allocation import WheelAllocator
 
@@ -81,7 +81,9 @@ _MEKF = _member("ESTIMATOR", "MEKF")
 _OBSERVER = _member("RATE_SOURCE", "OBSERVER")
 _SEED_PD = _member("MAG_POINTING_LAW", "SEED_PD")
 _OFF, _ESTIMATE = _member("MAG_RESIDUAL_MODE", "OFF"), _member("MAG_RESIDUAL_MODE", "ESTIMATE")
+_FF_REFERENCE = _member("WHEEL_FEED_FORWARD", "REFERENCE")
 _FF_GYROSCOPIC = _member("WHEEL_FEED_FORWARD", "REFERENCE_GYROSCOPIC")
+_FF_GRAVITY = _member("WHEEL_FEED_FORWARD", "REFERENCE_GYROSCOPIC_GRAVITY")
 
 _DEG = math.pi / 180.0
 _ARCSEC = _DEG / 3600.0
@@ -944,6 +946,8 @@ class ThreeModeLaw:
                     # a moving reference: the PD acts on the rate relative to it, and the torque its motion needs
                     # is fed forward (an inertial target skips this, so its floats are those of the plain PD)
                     rate, ff = self._reference_feed_forward(ref, quat_error(target, q), rate)
+                elif self.WHEEL_FEED_FORWARD == _FF_GRAVITY:
+                    ff = self._body_feed_forward(q, rate)
                 tau, qe = pd_torque(target, q, rate, self.K_P, self.K_D, self.SLEW_RATE_LIMIT * _DEG)
                 if ff is not None:
                     tau = (tau[0] + ff[0], tau[1] + ff[1], tau[2] + ff[2])
@@ -989,8 +993,9 @@ class ThreeModeLaw:
     def _reference_feed_forward(self, ref: Reference, q_err: Quat, rate: Vec3) -> tuple[Vec3, Vec3]:
         """``(ω − ω_r, τ_ff)`` in B for the reference ``ref`` seen from the attitude ``q_err`` (= q_BR): the
         reference rate ``ω_r = [BR] ω_R`` and acceleration ``α_r = [BR] α_R``; ``τ_ff = I (α_r − ω × ω_r)`` (the
-        torque that keeps a body on the reference turning with it), plus ``ω × (I ω + h_w)`` with
-        WHEEL_FEED_FORWARD = REFERENCE_GYROSCOPIC. ``I``: the INERTIA_* model; ``ω``: the D term's rate."""
+        torque that keeps a body on the reference turning with it), plus :meth:`_body_feed_forward` with
+        WHEEL_FEED_FORWARD = REFERENCE_GYROSCOPIC or REFERENCE_GYROSCOPIC_GRAVITY. ``I``: the INERTIA_* model;
+        ``ω``: the D term's rate."""
         w_r = rotate_n_to_b(q_err, ref.omega_R)
         a_r = rotate_n_to_b(q_err, ref.alpha_R)
         inertia = self.rate_observer.inertia
@@ -999,14 +1004,24 @@ class ThreeModeLaw:
         ff = (inertia[0][0] * d[0] + inertia[0][1] * d[1] + inertia[0][2] * d[2],
               inertia[1][0] * d[0] + inertia[1][1] * d[1] + inertia[1][2] * d[2],
               inertia[2][0] * d[0] + inertia[2][1] * d[1] + inertia[2][2] * d[2])
-        if self.WHEEL_FEED_FORWARD == _FF_GYROSCOPIC:
-            h = self._body_momentum(self.wheel_momenta) if self.wheel_momenta is not None else _ZERO
-            iw = (inertia[0][0] * rate[0] + inertia[0][1] * rate[1] + inertia[0][2] * rate[2] + h[0],
-                  inertia[1][0] * rate[0] + inertia[1][1] * rate[1] + inertia[1][2] * rate[2] + h[1],
-                  inertia[2][0] * rate[0] + inertia[2][1] * rate[1] + inertia[2][2] * rate[2] + h[2])
-            g = _cross(rate, iw)
+        if self.WHEEL_FEED_FORWARD != _FF_REFERENCE:  # the gyroscopic term (and gravity gradient)
+            g = self._body_feed_forward(self.filter.q, rate)
             ff = (ff[0] + g[0], ff[1] + g[1], ff[2] + g[2])
         return (rate[0] - w_r[0], rate[1] - w_r[1], rate[2] - w_r[2]), ff
+
+    def _body_feed_forward(self, q: Quat | None, rate: Vec3) -> Vec3:
+        """The wheels' share of Euler's equation beyond the PD (N·m, B): the gyroscopic ``ω × (I ω + h_w)`` and,
+        with REFERENCE_GYROSCOPIC_GRAVITY and an ephemeris, minus the gravity-gradient torque ``3 μ/r³ r̂ × (I r̂)``
+        the model expects at the estimated attitude ``q`` (I: INERTIA_*; the controller's μ)."""
+        inertia = self.rate_observer.inertia
+        h = self._body_momentum(self.wheel_momenta) if self.wheel_momenta is not None else _ZERO
+        ff = gyroscopic_torque(inertia, rate, h)
+        if self.WHEEL_FEED_FORWARD == _FF_GRAVITY and q is not None:
+            eph = self.io.ephemeris()
+            if eph is not None:
+                gg = gravity_gradient_torque(inertia, rotate_n_to_b(q, eph.r_N), MU_EARTH_M3_S2)
+                ff = (ff[0] - gg[0], ff[1] - gg[1], ff[2] - gg[2])
+        return ff
 
     def _magnetic_pointing_torque(self, target: Quat, q: Quat):
         """``(τ_req, q_err)`` of the MAG_POINTING_LAW (before the projection ⟂ B)."""
@@ -1033,7 +1048,8 @@ class ThreeModeLaw:
         if key != wanted:  # first use, or a limit parameter changed: the allocator's limits follow
             alloc = WheelAllocator(*wanted)
             self._limit_alloc = (wanted, alloc)
-        u, limited = alloc.allocate(tau, self.wheel_momenta)
+        # more than three wheels: their null-space momentum is managed at K_DUMP (no body torque)
+        u, limited = alloc.allocate(tau, self.wheel_momenta, self.K_DUMP)
         if limited:
             self.notify.event("WheelLimitReached")
         else:

@@ -4,6 +4,12 @@ A wheel ``i`` with unit spin axis ``g_i`` (body frame) and motor torque ``u_i`` 
 spins the wheel up along ``g_i``) puts ``−u_i g_i`` on the body, and its momentum obeys
 ``ḣ_i = u_i`` (``/work/shared/spec/control.md``). So a requested body torque ``τ`` needs
 ``G u = −τ`` with ``G = [g_1 … g_N]``; the minimum-norm solution is ``u = −Gᵀ (G Gᵀ)⁻¹ τ``.
+
+With more than three wheels the torques ``u`` in the null space of ``G`` (``G u = 0``) move momentum between the
+wheels without touching the body: ``P = I − Gᵀ (G Gᵀ)⁻¹ G`` projects onto it, and ``u_n = −k P h`` drives the
+wheels' null-space momentum ``P h`` to zero at the rate ``k`` (``d(P h)/dt = −k P h``: ``P`` is idempotent) —
+momentum management that spreads the wheels' momentum evenly (the minimum-norm set of momenta for the body
+momentum they hold) and keeps them away from their limits, with no attitude disturbance.
 """
 
 from __future__ import annotations
@@ -52,15 +58,35 @@ class WheelAllocator:
         inv = _inv3(ggt)
         #: rows of −Gᵀ (G Gᵀ)⁻¹, one per wheel
         self._rows = [tuple(-sum(a[k] * inv[k][c] for k in range(3)) for c in range(3)) for a in g]
+        #: the null-space projector P = I − Gᵀ (G Gᵀ)⁻¹ G (None with three wheels: G is square, P = 0)
+        self.null_projector: tuple[tuple[float, ...], ...] | None = None
+        if len(g) > 3:
+            self.null_projector = tuple(
+                tuple((1.0 if i == j else 0.0) + sum(self._rows[i][c] * g[j][c] for c in range(3))
+                      for j in range(len(g))) for i in range(len(g)))
 
-    def allocate(self, tau_B: Vec3, momenta: Sequence[float] | None = None) -> tuple[tuple[float, ...], bool]:
+    def null_space_torques(self, momenta: Sequence[float], gain: float) -> tuple[float, ...]:
+        """``u_n = −gain · P h`` (N·m per wheel; ``gain`` 1/s, ``momenta`` N·m·s): zero body torque; all zeros
+        with three wheels."""
+        p = self.null_projector
+        if p is None or gain == 0.0:
+            return (0.0,) * len(self.axes)
+        return tuple(-gain * sum(row[j] * momenta[j] for j in range(len(row))) for row in p)
+
+    def allocate(self, tau_B: Vec3, momenta: Sequence[float] | None = None,
+                 null_gain: float = 0.0) -> tuple[tuple[float, ...], bool]:
         """``(u per wheel N·m, limited)`` for the body torque ``tau_B``.
 
-        The whole vector is scaled down when a wheel would exceed ``max_torque`` (the torque keeps
-        its direction); a wheel whose momentum is near ``max_momentum`` and would be pushed further
-        gets zero. ``limited`` says whether either limit acted.
+        With more than three wheels, ``momenta`` given and ``null_gain`` (1/s) > 0, the null-space
+        torques :meth:`null_space_torques` are added (no body torque). The whole vector is scaled down
+        when a wheel would exceed ``max_torque`` (the body torque keeps its direction); a wheel whose
+        momentum is near ``max_momentum`` and would be pushed further gets zero. ``limited`` says whether
+        either limit acted.
         """
         u = [r[0] * tau_B[0] + r[1] * tau_B[1] + r[2] * tau_B[2] for r in self._rows]
+        if null_gain > 0.0 and momenta is not None and self.null_projector is not None:
+            un = self.null_space_torques(momenta, null_gain)
+            u = [a + b for a, b in zip(u, un, strict=True)]
         limited = False
         peak = max(abs(x) for x in u)
         if peak > self.max_torque:

@@ -26,9 +26,11 @@ from detumble.sim.drive_integrals import DriveIntegrals
 from detumble.sim.field import DipoleField, FieldAlongOrbit, OrbitConstantField, WmmField
 from detumble.sim.laws import scale_to_limits
 from detumble.sim.orbit import CircularOrbit, TleOrbit
-from detumble.sim.epoch import julian_date
+from detumble.sim.epoch import decimal_year, julian_date
+from detumble.sim.igrf import IgrfField
 from detumble.sim.scenario import Scenario
-from detumble.sim.sun import sun_direction_N
+from detumble.sim.sun import in_umbra, sun_direction_N
+from detumble.sim.torques import SOLAR_PRESSURE_N_M2, BoxSurfaces, atmosphere_density
 from detumble.control.targets import Ephemeris
 from detumble.control.units import GAUSS_PER_TESLA
 from detumble.sim.sensors import Gyro, Magnetometer
@@ -46,8 +48,6 @@ def _derive_seed(seed: int, stream: int) -> int:
 def build_orbit(sc: Scenario):
     o = sc.orbit
     if o.type == "tle":
-        from detumble.sim.epoch import julian_date
-
         assert o.tle is not None  # the scenario loader requires the TLE lines for type tle
         return TleOrbit(o.tle[0], o.tle[1], julian_date(sc.epoch), o.table_step_s, o.mu_m3_s2)
     return CircularOrbit(
@@ -65,6 +65,9 @@ def build_field(sc: Scenario, orbit) -> FieldAlongOrbit | None:
     if f.model == "wmm2025":
         return FieldAlongOrbit(WmmField(sc.epoch, f.earth_rotation_rate_rad_s, sc.earth_angle0_rad), orbit,
                                f.table_step_s)
+    if f.model == "igrf14":
+        igrf = IgrfField(decimal_year(sc.epoch), 13, f.earth_rotation_rate_rad_s, sc.earth_angle0_rad)
+        return FieldAlongOrbit(igrf, orbit, f.table_step_s)
     model = DipoleField(f.g10_nt, f.g11_nt, f.h11_nt, f.reference_radius_m, f.earth_rotation_rate_rad_s,
                         sc.earth_angle0_rad)
     return FieldAlongOrbit(model, orbit, None)
@@ -123,6 +126,15 @@ class Plant:
         self._ephemeris_epoch: tuple[float, float] | None = None  # (Earth angle rad, Julian date) at t = 0
         self.residual_dipole_B: Vec3 = sc.spacecraft.residual_dipole_am2
         self._gravity_gradient = sc.spacecraft.gravity_gradient
+        surf = sc.spacecraft.surfaces
+        #: drag and solar-pressure surfaces (None when both torques are off: the steps then pass no torque)
+        self._surfaces: BoxSurfaces | None = None
+        self._drag, self._solar_pressure = surf.drag, surf.solar_pressure
+        if surf.drag or surf.solar_pressure:
+            self._surfaces = BoxSurfaces(surf.size_m, surf.cp_offset_m, surf.drag_coefficient,
+                                         surf.specular_reflectivity)
+        #: the drag and solar-pressure torque of the last step (N m, B)
+        self.surface_torque_B: Vec3 = _ZERO
         self.magnetometer = Magnetometer(sc.magnetometer, _derive_seed(self.seed, 1))
         self.gyro = Gyro(sc.gyro, _derive_seed(self.seed, 2))
         self._mag_samples = not self.magnetometer.spec.ideal  # an ideal sensor never latches
@@ -194,18 +206,20 @@ class Plant:
         kernel_step = self._kernel_step
         kernel_step_wheels = self._kernel_step_wheels
         wheels = self.wheels
+        # drag and solar pressure: evaluated at the step's start and held over it (an extra torque argument)
+        ext: tuple = () if self._surfaces is None else (self._surface_torque(t0 / 1e9, s0),)
         if kernel_step is not None and self.substeps == 1:
             # the compiled kernel: step_env, then the environment at t1 (_update_environment's floats;
             # the gravity-gradient coefficient is constant on a circular orbit)
             s1, self._r_N, self._r_hat_N, self._b_N = kernel_step(s0, dt, m_tot, b0_N, self._gg, self._r_hat_N,
-                                                                  t1 / 1e9)
+                                                                  t1 / 1e9, *ext)
             self._state = s1
             self._t_ns = t1
         elif kernel_step_wheels is not None and wheels is not None and self.substeps == 1:
             # the same with the wheels: their limited torques (Python), the coupled RK4 step, the environment
             u = wheels.motor_torques(dt, s0[4:7])
             s1, wheels.h, self._r_N, self._r_hat_N, self._b_N = kernel_step_wheels(
-                s0, wheels.h, u, dt, m_tot, b0_N, self._gg, self._r_hat_N, t1 / 1e9)
+                s0, wheels.h, u, dt, m_tot, b0_N, self._gg, self._r_hat_N, t1 / 1e9, *ext)
             self._state = s1
             self._t_ns = t1
         else:
@@ -213,11 +227,11 @@ class Plant:
             if wheels is None:
                 step_env = self._step_env  # RigidBody.step_env, or the kernel's (the same floats)
                 if n_sub == 1:
-                    s1 = step_env(s0, dt, m_tot, b0_N, self._gg, self._r_hat_N)
+                    s1 = step_env(s0, dt, m_tot, b0_N, self._gg, self._r_hat_N, *ext)
                 else:
                     s1, h = s0, dt / n_sub
                     for _ in range(n_sub):
-                        s1 = step_env(s1, h, m_tot, b0_N, self._gg, self._r_hat_N)
+                        s1 = step_env(s1, h, m_tot, b0_N, self._gg, self._r_hat_N, *ext)
             else:
                 u = wheels.motor_torques(dt, s0[4:7])
                 s1, hw, h = s0, wheels.h, dt / n_sub
@@ -225,9 +239,9 @@ class Plant:
                 for _ in range(n_sub):
                     if step_wheels is None:
                         s1, hw = step_with_wheels(self.body, s1, hw, u, wheels, h, m_tot, b0_N, self._gg,
-                                                  self._r_hat_N)
+                                                  self._r_hat_N, *ext)
                     else:
-                        s1, hw = step_wheels(s1, hw, u, h, m_tot, b0_N, self._gg, self._r_hat_N)
+                        s1, hw = step_wheels(s1, hw, u, h, m_tot, b0_N, self._gg, self._r_hat_N, *ext)
                 wheels.h = hw
             self._state = s1
             self._t_ns = t1
@@ -248,6 +262,34 @@ class Plant:
         st = self.star_tracker
         if st is not None and not st.spec.ideal and st.latest_instant(t0, t1) is not None:
             st.latch(t0, t1, s0, s1)
+
+    def _surface_torque(self, t: float, state: State) -> Vec3:
+        """Drag + solar-pressure torque (N m, B) at ``t`` s for ``state``: the air co-rotating with the Earth
+        (``v_rel = v − ω_E ẑ × r``) at the density of :func:`.torques.atmosphere_density` over the orbit's
+        reference sphere; the Sun from :func:`.sun.sun_direction_N`, its pressure scaled by 1/d² and zero in the
+        Earth's cylindrical shadow (:func:`.sun.in_umbra`)."""
+        surf = self._surfaces
+        assert surf is not None  # called only with surfaces
+        sc = self.scenario
+        q = (state[0], state[1], state[2], state[3])
+        r = self._r_N
+        tx = ty = tz = 0.0
+        if self._drag:
+            v = self.orbit.velocity_N(t)
+            we = sc.field.earth_rotation_rate_rad_s
+            v_rel = (v[0] + we * r[1], v[1] - we * r[0], v[2])
+            rn = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
+            rho = atmosphere_density(rn - sc.orbit.earth_radius_m)
+            tx, ty, tz = surf.drag_torque(rotate_n_to_b(q, v_rel), rho)
+        if self._solar_pressure:
+            if self._ephemeris_epoch is None:
+                self._ephemeris_epoch = (sc.earth_angle0_rad, julian_date(sc.epoch))
+            s_hat, d_au = sun_direction_N(self._ephemeris_epoch[1] + t / 86400.0)
+            if not in_umbra(r, s_hat, sc.orbit.earth_radius_m):
+                a, b, c = surf.solar_torque(rotate_n_to_b(q, s_hat), SOLAR_PRESSURE_N_M2 / (d_au * d_au))
+                tx, ty, tz = tx + a, ty + b, tz + c
+        self.surface_torque_B = (tx, ty, tz)
+        return self.surface_torque_B
 
     def advance_to(self, t: float) -> None:
         """Step (in dynamics steps, the last one partial) until the clock reads ``t`` seconds."""

@@ -253,11 +253,12 @@ static void fl_rotate_n_to_b(const double *q, const double *v, double *out)
     out[2] = (q00 - q11 - q22 + q33) * z + 2.0 * ((q13 + q02) * x + (q23 - q01) * y);
 }
 
-/* wheels.step_with_wheels: one RK4 step of body + wheel momenta with the motor torques u held.
+/* wheels.step_with_wheels: one RK4 step of body + wheel momenta with the motor torques u held and, when tau
+ * is not NULL, the external body torque tau (N m, B; step_with_wheels' torque_B) held too.
  * st[7], h[n] in; out[7] (state), h_out[n] (N m s) out. */
 static void fl_step_wheels(const fl_body *bd, const fl_wheels *wh, const double *st, const double *h,
                            const double *u, double dt, const double *m_B, const double *b_N, double g,
-                           const double *r_hat_N, double *out, double *h_out)
+                           const double *r_hat_N, const double *tau, double *out, double *h_out)
 {
     const int n = wh->n;
     double x0[13], k[4][13];
@@ -281,7 +282,12 @@ static void fl_step_wheels(const fl_body *bd, const fl_wheels *wh, const double 
         }
         const double hw[4][3] = {{hx, hy, hz}, {hx + a * ux, hy + a * uy, hz + a * uz},
                                  {hx + a * ux, hy + a * uy, hz + a * uz}, {hx + dt * ux, hy + dt * uy, hz + dt * uz}};
-        const double t[3] = {-ux, -uy, -uz};
+        double t[3] = {-ux, -uy, -uz};
+        if (tau != NULL) {
+            t[0] = tau[0] - ux;
+            t[1] = tau[1] - uy;
+            t[2] = tau[2] - uz;
+        }
         fl_rk4_stages(bd, x0, dt, hw, t, m_B, g, k);
         for (int i = 0; i < n; i++)
             h_out[i] = h[i] + u[i] * dt;
@@ -291,6 +297,11 @@ static void fl_step_wheels(const fl_body *bd, const fl_wheels *wh, const double 
         const double c = dt / 6.0;
         double xa[13], e[6], hs[FL_MAX_WHEELS], l[4][FL_MAX_WHEELS];
         fl_wheel_terms(bd, wh, x0, h, u, e, l[0]);
+        if (tau != NULL) {
+            e[3] = e[3] + tau[0];
+            e[4] = e[4] + tau[1];
+            e[5] = e[5] + tau[2];
+        }
         fl_stage_deriv(bd, x0, e[0], e[1], e[2], e[3], e[4], e[5], m_B, g, k[0]);
         for (int s = 1; s < 4; s++) {
             for (int j = 0; j < 13; j++)
@@ -298,6 +309,11 @@ static void fl_step_wheels(const fl_body *bd, const fl_wheels *wh, const double 
             for (int i = 0; i < n; i++)
                 hs[i] = h[i] + step[s] * l[s - 1][i];
             fl_wheel_terms(bd, wh, xa, hs, u, e, l[s]);
+            if (tau != NULL) {
+                e[3] = e[3] + tau[0];
+                e[4] = e[4] + tau[1];
+                e[5] = e[5] + tau[2];
+            }
             fl_stage_deriv(bd, xa, e[0], e[1], e[2], e[3], e[4], e[5], m_B, g, k[s]);
         }
         for (int i = 0; i < n; i++)
@@ -506,16 +522,17 @@ static PyObject *Kernel_environment(KernelObject *self, PyObject *const *args, P
     return env_tuples(e);
 }
 
-/* step(state, dt, m_B, b_N, gg, r_hat_N, t1) -> (state1, r_N, r_hat_N, b_N): step_env, then the
+/* step(state, dt, m_B, b_N, gg, r_hat_N, t1[, torque_B]) -> (state1, r_N, r_hat_N, b_N): step_env, then the
  * environment at the step's end t1 (what Plant.step_ns does with the two). */
 static PyObject *Kernel_step(KernelObject *self, PyObject *const *args, Py_ssize_t nargs)
 {
-    static const double tau[3] = {0.0, 0.0, 0.0};
+    double tau[3] = {0.0, 0.0, 0.0};
     double st[7], m[3], b[3], r[3], out[7], e[9], dt, g, t1;
-    if (check_nargs(nargs, 7, 7, "step") || need_env(self)
+    if (check_nargs(nargs, 7, 8, "step") || need_env(self)
         || read_floats(args[0], st, 7, "state") || read_float(args[1], &dt)
         || read_floats(args[2], m, 3, "m_B") || read_floats(args[3], b, 3, "b_N") || read_float(args[4], &g)
-        || read_floats(args[5], r, 3, "r_hat_N") || read_float(args[6], &t1))
+        || read_floats(args[5], r, 3, "r_hat_N") || read_float(args[6], &t1)
+        || (nargs == 8 && read_floats(args[7], tau, 3, "torque_B")))
         return NULL;
     fl_step_env(&self->body, st, dt, m, b, g, r, tau, out);
     fl_environment(&self->env, t1, e);
@@ -551,14 +568,15 @@ static int read_wheel_args(KernelObject *self, PyObject *const *args, double *st
         || read_floats(args[7], r, 3, "r_hat_N") ? -1 : 0;
 }
 
-/* step_wheels(state, h, u, dt, m_B, b_N, gg, r_hat_N) -> (state1, h1): wheels.step_with_wheels */
+/* step_wheels(state, h, u, dt, m_B, b_N, gg, r_hat_N[, torque_B]) -> (state1, h1): wheels.step_with_wheels */
 static PyObject *Kernel_step_wheels(KernelObject *self, PyObject *const *args, Py_ssize_t nargs)
 {
-    double st[7], h[FL_MAX_WHEELS], u[FL_MAX_WHEELS], m[3], b[3], r[3], out[7], h1[FL_MAX_WHEELS], dt, g;
-    if (check_nargs(nargs, 8, 8, "step_wheels") || need_wheels(self)
-        || read_wheel_args(self, args, st, h, u, &dt, m, b, &g, r))
+    double st[7], h[FL_MAX_WHEELS], u[FL_MAX_WHEELS], m[3], b[3], r[3], out[7], h1[FL_MAX_WHEELS], dt, g, tau[3];
+    if (check_nargs(nargs, 8, 9, "step_wheels") || need_wheels(self)
+        || read_wheel_args(self, args, st, h, u, &dt, m, b, &g, r)
+        || (nargs == 9 && read_floats(args[8], tau, 3, "torque_B")))
         return NULL;
-    fl_step_wheels(&self->body, &self->wheels, st, h, u, dt, m, b, g, r, out, h1);
+    fl_step_wheels(&self->body, &self->wheels, st, h, u, dt, m, b, g, r, nargs == 9 ? tau : NULL, out, h1);
     PyObject *s = float_tuple(out, 7);
     PyObject *hh = s ? float_tuple(h1, self->wheels.n) : NULL;
     PyObject *res = hh ? PyTuple_Pack(2, s, hh) : NULL;
@@ -567,16 +585,17 @@ static PyObject *Kernel_step_wheels(KernelObject *self, PyObject *const *args, P
     return res;
 }
 
-/* step_wheels_env(state, h, u, dt, m_B, b_N, gg, r_hat_N, t1) -> (state1, h1, r_N, r_hat_N, b_N):
+/* step_wheels_env(state, h, u, dt, m_B, b_N, gg, r_hat_N, t1[, torque_B]) -> (state1, h1, r_N, r_hat_N, b_N):
  * step_wheels, then the environment at the step's end t1 (Plant.step_ns with wheels). */
 static PyObject *Kernel_step_wheels_env(KernelObject *self, PyObject *const *args, Py_ssize_t nargs)
 {
     double st[7], h[FL_MAX_WHEELS], u[FL_MAX_WHEELS], m[3], b[3], r[3], out[7], h1[FL_MAX_WHEELS], e[9];
-    double dt, g, t1;
-    if (check_nargs(nargs, 9, 9, "step_wheels_env") || need_wheels(self) || need_env(self)
-        || read_wheel_args(self, args, st, h, u, &dt, m, b, &g, r) || read_float(args[8], &t1))
+    double dt, g, t1, tau[3];
+    if (check_nargs(nargs, 9, 10, "step_wheels_env") || need_wheels(self) || need_env(self)
+        || read_wheel_args(self, args, st, h, u, &dt, m, b, &g, r) || read_float(args[8], &t1)
+        || (nargs == 10 && read_floats(args[9], tau, 3, "torque_B")))
         return NULL;
-    fl_step_wheels(&self->body, &self->wheels, st, h, u, dt, m, b, g, r, out, h1);
+    fl_step_wheels(&self->body, &self->wheels, st, h, u, dt, m, b, g, r, nargs == 10 ? tau : NULL, out, h1);
     fl_environment(&self->env, t1, e);
     PyObject *s = float_tuple(out, 7);
     PyObject *hh = s ? float_tuple(h1, self->wheels.n) : NULL;
@@ -598,11 +617,11 @@ static PyMethodDef Kernel_methods[] = {
     {"environment", (PyCFunction)(void (*)(void))Kernel_environment, METH_FASTCALL,
      "environment(t) -> (r_N, r_hat_N, b_N): the circular orbit and its field at t seconds"},
     {"step", (PyCFunction)(void (*)(void))Kernel_step, METH_FASTCALL,
-     "step(state, dt, m_B, b_N, gg, r_hat_N, t1) -> (state1, r_N, r_hat_N, b_N)"},
+     "step(state, dt, m_B, b_N, gg, r_hat_N, t1[, torque_B]) -> (state1, r_N, r_hat_N, b_N)"},
     {"step_wheels", (PyCFunction)(void (*)(void))Kernel_step_wheels, METH_FASTCALL,
-     "step_wheels(state, h, u, dt, m_B, b_N, gg, r_hat_N) -> (state1, h1): wheels.step_with_wheels"},
+     "step_wheels(state, h, u, dt, m_B, b_N, gg, r_hat_N[, torque_B]) -> (state1, h1): wheels.step_with_wheels"},
     {"step_wheels_env", (PyCFunction)(void (*)(void))Kernel_step_wheels_env, METH_FASTCALL,
-     "step_wheels_env(state, h, u, dt, m_B, b_N, gg, r_hat_N, t1) -> (state1, h1, r_N, r_hat_N, b_N)"},
+     "step_wheels_env(state, h, u, dt, m_B, b_N, gg, r_hat_N, t1[, torque_B]) -> (state1, h1, r_N, r_hat_N, b_N)"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -203,11 +203,17 @@ def mismatch(module: ModuleType) -> str | None:
         got_env = kernel.environment(t)
         if got_env != want_env:
             return f"environment at t = {t} s: {got_env} != {want_env}"
-        args = (0.05, (0.02, -0.05, 0.01), want_env[2], 3.8e-6, want_env[1])
+        args: tuple = (0.05, (0.02, -0.05, 0.01), want_env[2], 3.8e-6, want_env[1])
+        if k % 2:  # an external torque (drag, solar pressure) on every other step
+            args = (*args, (3e-7 * k, -2e-7, 1e-7))
         want = body.step_env(s, *args)
         got = kernel.step_env(s, *args)
         if got != want:
             return f"step {k}: {got} != {want}"
+        got_fused = kernel.step(s, *args[:5], t + 0.05, *args[5:])
+        want_fused = (want, *_reference_environment(orbit, field, t + 0.05))
+        if got_fused != want_fused:
+            return f"fused step {k}: {got_fused} != {want_fused}"
         s = want
     orbit_constant = OrbitConstantField((2.0e-5, -1.0e-5, 3.0e-5), orbit)
     kernel = module.Kernel(body._j, body._jinv, body.wheel_momentum_B, environment_parameters(orbit, orbit_constant))
@@ -265,11 +271,12 @@ def _wheel_mismatch(module: ModuleType, body, orbit, field) -> str | None:
             _, r_hat, b_N = _reference_environment(orbit, field, t)
             u = wheels.motor_torques(0.05, st[4:7])
             args = (u, 0.05, m_B, b_N, 3.8e-6, r_hat)
-            want = step_with_wheels(body, st, h, u, wheels, *args[1:])
-            got = kernel.step_wheels(st, h, *args)
+            ext = ((2e-7, -1e-6 * k_u, 4e-7),) if k % 3 == 1 else ()  # an external torque on every third step
+            want = step_with_wheels(body, st, h, u, wheels, *args[1:], *ext)
+            got = kernel.step_wheels(st, h, *args, *ext)
             if got != want:
                 return f"wheel step {k} (friction {friction}, rate {w0}): {got} != {want}"
-            got_env = kernel.step_wheels_env(st, h, *args, t + 0.05)
+            got_env = kernel.step_wheels_env(st, h, *args, t + 0.05, *ext)
             want_env = (*want, *kernel.environment(t + 0.05))
             if got_env != want_env:
                 return (f"wheel step {k} with its environment (friction {friction}, rate {w0}): "

@@ -44,7 +44,7 @@ from detumble.sim.vec import Mat3, Quat, Vec3, mrp_to_quat, quat_normalize, unit
 
 LAWS = ("none", "kopt", "bdot", "bangbang", "cross_product", "beta_pd", "wheels_pd", "adcs")
 SATURATION = ("clip", "scale")
-FIELD_MODELS = ("dipole", "wmm2025", "none", "orbit_constant")
+FIELD_MODELS = ("dipole", "igrf14", "wmm2025", "none", "orbit_constant")
 
 
 class ScenarioError(DetumbleError, ValueError):
@@ -89,6 +89,23 @@ class FieldConfig:
 
 
 @dataclass(frozen=True)
+class SurfacesConfig:
+    """Drag and solar-radiation-pressure torques (``spacecraft.surfaces``; :class:`~.torques.BoxSurfaces`).
+
+    Both off by default (the shipped deployments' outputs do not change). ``size_m`` the box's edges (m, B:
+    a 1U is 0.1 x 0.1 x 0.1135); ``cp_offset_m`` its geometric centre minus the centre of mass (m, B);
+    ``drag_coefficient`` C_D (2.2, a flat plate in free-molecular flow); ``specular_reflectivity`` ε (0: all
+    absorbed)."""
+
+    drag: bool = False
+    solar_pressure: bool = False
+    size_m: Vec3 = (0.1, 0.1, 0.1135)
+    cp_offset_m: Vec3 = (0.0, 0.0, 0.0)
+    drag_coefficient: float = 2.2
+    specular_reflectivity: float = 0.0
+
+
+@dataclass(frozen=True)
 class SpacecraftConfig:
     mass_kg: float = 1.3
     inertia_kg_m2: Mat3 = ((2.2e-3, 0.0, 0.0), (0.0, 2.2e-3, 0.0), (0.0, 0.0, 2.2e-3))
@@ -102,6 +119,8 @@ class SpacecraftConfig:
     actuator_saturation: str = "clip"
     #: reaction wheels (empty: none; the plant then runs the wheel-free integrator)
     reaction_wheels: tuple[WheelSpec, ...] = ()
+    #: drag and solar-pressure surfaces (both torques off by default)
+    surfaces: SurfacesConfig = SurfacesConfig()
 
 
 @dataclass(frozen=True)
@@ -331,6 +350,8 @@ SCHEMA: dict = {
     "spacecraft": {
         "mass_kg": _LEAF, "inertia_kg_m2": _LEAF, "residual_dipole_am2": _VEC, "wheel_momentum_nms": _VEC,
         "gravity_gradient": _LEAF,
+        "surfaces": {k: _LEAF for k in ("drag", "solar_pressure", "size_m", "cp_offset_m", "drag_coefficient",
+                                        "specular_reflectivity")},
         "actuators": {"type": _LEAF, "max_dipole_am2": _VEC, "saturation": _LEAF,
                       "x_plus": _COIL, "x_minus": _COIL, "y_plus": _COIL, "y_minus": _COIL, "z_minus": _COIL},
         "reaction_wheels": {"model": _LEAF, "axes": _LEAF, "inertia_kg_m2": _LEAF, "max_torque_nm": _LEAF,
@@ -668,10 +689,30 @@ def _spacecraft(s: _Section) -> SpacecraftConfig:
     if s.raw("reaction_wheels") is not None:
         wheels = _reaction_wheels(s.section("reaction_wheels"), inertia)
     s.allow("reaction_wheels")
+    surfaces = SurfacesConfig()
+    if s.raw("surfaces") is not None:
+        surfaces = _surfaces(s.section("surfaces"))
+    s.allow("surfaces")
     s.finish()
     return SpacecraftConfig(mass_kg=mass, inertia_kg_m2=inertia, residual_dipole_am2=res, wheel_momentum_nms=wheel,
                             gravity_gradient=gg, actuator_type=kind, coils=coils, rods_max_dipole_am2=rods,
-                            actuator_saturation=saturation, reaction_wheels=wheels)
+                            actuator_saturation=saturation, reaction_wheels=wheels, surfaces=surfaces)
+
+
+def _surfaces(s: _Section) -> SurfacesConfig:
+    d = SurfacesConfig()
+    size = s.vec3("size_m", d.size_m, nonneg=True)
+    if min(size) <= 0.0:
+        s.fail("size_m", f"every edge must be positive (m), got {list(size)}")
+    eps = s.number("specular_reflectivity", d.specular_reflectivity, nonneg=True)
+    if eps > 1.0:
+        s.fail("specular_reflectivity", f"must be between 0 and 1, got {eps}")
+    out = SurfacesConfig(drag=s.boolean("drag", d.drag), solar_pressure=s.boolean("solar_pressure", d.solar_pressure),
+                         size_m=size, cp_offset_m=s.vec3("cp_offset_m", d.cp_offset_m),
+                         drag_coefficient=s.number("drag_coefficient", d.drag_coefficient, nonneg=True),
+                         specular_reflectivity=eps)
+    s.finish()
+    return out
 
 
 _WHEEL_NUMBERS = (  # key, default, check
@@ -786,6 +827,8 @@ def _field(s: _Section) -> FieldConfig:
     step = s.number("table_step_s", 1.0, positive=True)
     if model == "wmm2025" and step > 1.0:
         s.fail("table_step_s", f"{step} s: evaluate the WMM at <= 1 Hz (table_step_s <= 1)")
+    if model == "igrf14" and step > 10.0:  # a 10 s table is within 3.4 nT of direct evaluation (SIM-IGRF-006)
+        s.fail("table_step_s", f"{step} s: evaluate IGRF-14 at least every 10 s (table_step_s <= 10)")
     s.finish()
     return FieldConfig(model=model, g10_nt=g10, g11_nt=g11, h11_nt=h11, reference_radius_m=rr,
                        earth_rotation_rate_rad_s=rate, earth_rotation_angle_deg=angle, table_step_s=step,

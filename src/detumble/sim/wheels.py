@@ -210,11 +210,12 @@ def _friction(spec: WheelSpec, omega_rel: float) -> float:
 
 
 def step_with_wheels(body, state, h, u, wheels: WheelAssembly, dt: float, m_B: Vec3, b_N: Vec3,
-                     gg_coeff: float, r_hat_N: Vec3):
+                     gg_coeff: float, r_hat_N: Vec3, torque_B: Vec3 | None = None):
     """One RK4 step of body + wheel momenta; returns ``(state, h)``.
 
     Same environment treatment as :meth:`RigidBody.step_env` (``b_N`` and ``r_hat_N`` held in N,
-    carried in B as stage states); ``u`` the motor torques held over the step (N m).
+    carried in B as stage states); ``u`` the motor torques held over the step (N m); ``torque_B`` an
+    external body torque held over the step (N m, B; drag and solar pressure), None for none.
     """
     j11, j12, j13, j21, j22, j23, j31, j32, j33 = body._j
     i11, i12, i13, i21, i22, i23, i31, i32, i33 = body._jinv
@@ -273,13 +274,17 @@ def step_with_wheels(body, state, h, u, wheels: WheelAssembly, dt: float, m_B: V
             ux += u[i] * gx
             uy += u[i] * gy
             uz += u[i] * gz
-        k1 = f(x0, hx, hy, hz, -ux, -uy, -uz)
+        if torque_B is None:
+            tx, ty, tz = -ux, -uy, -uz
+        else:
+            tx, ty, tz = torque_B[0] - ux, torque_B[1] - uy, torque_B[2] - uz
+        k1 = f(x0, hx, hy, hz, tx, ty, tz)
         xa = [x + a * k for x, k in zip(x0, k1, strict=True)]
-        k2 = f(xa, hx + a * ux, hy + a * uy, hz + a * uz, -ux, -uy, -uz)
+        k2 = f(xa, hx + a * ux, hy + a * uy, hz + a * uz, tx, ty, tz)
         xa = [x + a * k for x, k in zip(x0, k2, strict=True)]
-        k3 = f(xa, hx + a * ux, hy + a * uy, hz + a * uz, -ux, -uy, -uz)
+        k3 = f(xa, hx + a * ux, hy + a * uy, hz + a * uz, tx, ty, tz)
         xa = [x + dt * k for x, k in zip(x0, k3, strict=True)]
-        k4 = f(xa, hx + dt * ux, hy + dt * uy, hz + dt * uz, -ux, -uy, -uz)
+        k4 = f(xa, hx + dt * ux, hy + dt * uy, hz + dt * uz, tx, ty, tz)
         new_h = tuple(h[i] + u[i] * dt for i in rng_n)
     else:
         def wheel_terms(x, hs):
@@ -298,6 +303,8 @@ def step_with_wheels(body, state, h, u, wheels: WheelAssembly, dt: float, m_B: V
                 tx -= d * gx
                 ty -= d * gy
                 tz -= d * gz
+            if torque_B is not None:
+                tx, ty, tz = tx + torque_B[0], ty + torque_B[1], tz + torque_B[2]
             return (hx, hy, hz, tx, ty, tz), hdot
 
         e, l1 = wheel_terms(x0, h)

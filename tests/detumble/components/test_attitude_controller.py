@@ -1050,3 +1050,43 @@ def test_sun_safe_damps_in_eclipse_and_carries_the_sun_on_the_gyro(fprime_harnes
     tau = h.tlm_values("RequestedTorque")[-1]
     assert list(tau) == pytest.approx([0.0, 0.0, -kd * 0.05], abs=1e-15)
     assert h.comp.mode == ControlMode.SUN_SAFE
+
+
+def test_gyroscopic_and_gravity_gradient_feed_forward_on_the_wheels(fprime_harness):
+    """ADCS-096: with WHEEL_FEED_FORWARD = REFERENCE_GYROSCOPIC_GRAVITY the wheel law on an inertial target adds
+    ``ω × (I ω + h_w) − 3 μ/r³ r̂ × (I r̂)`` (the INERTIA_* model, the ephemeris' position at the estimated
+    attitude) to the requested torque of the same cycle under the default REFERENCE; the gravity-gradient part is the
+    plant's formula (``sim.torques``) at the true attitude to 1 %."""
+    from detumble.components.attitude_types import RateSource, WheelFeedForward
+    from detumble.control.pointing import gravity_gradient_torque, gyroscopic_torque
+    from detumble.sim import torques
+
+    q = quat_from_axis_angle((0.3, -0.8, 0.5), 0.7)
+    runs = {}
+    for ff in (WheelFeedForward.REFERENCE, WheelFeedForward.REFERENCE_GYROSCOPIC_GRAVITY):
+        h = make(fprime_harness, params={"RATE_SOURCE": RateSource.GYRO, "K_I": 0.0, "K_DUMP": 0.0,
+                                         "WHEEL_FEED_FORWARD": ff})
+        _ephemeris_port(h)
+        h.world.q = q
+        h.world.omega = (0.004, -0.002, 0.003)
+        h.world.momenta = [1.0e-3, -5.0e-4, 2.0e-4]
+        tick(h, 5)
+        h.send_command("SET_TARGET_QUATERNION", *q)
+        h.send_command("FORCE_MODE", ControlMode.POINTING)
+        tick(h, 10)
+        runs[ff] = h
+    base, full = runs[WheelFeedForward.REFERENCE], runs[WheelFeedForward.REFERENCE_GYROSCOPIC_GRAVITY]
+    law = full.comp.law
+    inertia = law.rate_observer.inertia
+    r_B = rotate_n_to_b(law.filter.q, (6.798e6, 0.0, 0.0))
+    gg = gravity_gradient_torque(inertia, r_B, 3.986004415e14)
+    gyro = gyroscopic_torque(inertia, law.omega, (1.0e-3, -5.0e-4, 2.0e-4))
+    diff = [a - b for a, b in zip(full.comp.law.torque_request, base.comp.law.torque_request, strict=True)]
+    expected = [g - t for g, t in zip(gyro, gg, strict=True)]
+    assert max(abs(gg[i]) for i in range(3)) > 1e-10  # the attitude is chosen so that the term is not zero
+    for i in range(3):
+        assert diff[i] == pytest.approx(expected[i], rel=1e-9, abs=1e-18)
+    # the plant's formula at the true attitude (the estimate trails the turning stub by ~0.1°)
+    plant = torques.gravity_gradient_torque(3.986004415e14, rotate_n_to_b(full.world.q, (6.798e6, 0.0, 0.0)), inertia)
+    for i in range(3):
+        assert gg[i] == pytest.approx(plant[i], rel=1e-2)

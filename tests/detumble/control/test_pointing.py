@@ -115,3 +115,23 @@ def test_integrator_windup_guards():
     assert tau[0] == pytest.approx(-1e-6)
     integ.reset()
     assert integ.state == (0.0, 0.0, 0.0)
+
+
+def test_gravity_gradient_feed_forward_closed_form():
+    """ADCS-097: the controller's gravity-gradient model ``3 μ/r³ r̂ × (I r̂)``: zero for a principal axis to nadir;
+    with +Z to nadir the products of inertia give ``3 n² (−I_yz, I_xz, 0)``; tilted by a small angle θ about x from
+    nadir a diagonal body feels ``3 n² (I_zz − I_yy) θ`` about x (the librational restoring torque's sign and size)."""
+    from detumble.control.pointing import gravity_gradient_torque, gyroscopic_torque
+
+    mu, r = 3.986004415e14, 6.798e6
+    n2 = mu / r ** 3
+    diag = ((2.2e-3, 0.0, 0.0), (0.0, 2.15e-3, 0.0), (0.0, 0.0, 2.05e-3))
+    assert gravity_gradient_torque(diag, (0.0, 0.0, -r), mu) == (0.0, 0.0, 0.0)
+    full = ((2.2e-3, 2e-5, -1.5e-5), (2e-5, 2.15e-3, 1e-5), (-1.5e-5, 1e-5, 2.05e-3))
+    t = gravity_gradient_torque(full, (0.0, 0.0, -r), mu)
+    assert t == pytest.approx((3 * n2 * -1e-5, 3 * n2 * -1.5e-5, 0.0), rel=1e-12, abs=1e-20)
+    th = 1e-4
+    t = gravity_gradient_torque(diag, (0.0, r * math.sin(th), -r * math.cos(th)), mu)
+    assert t[0] == pytest.approx(3 * n2 * (2.05e-3 - 2.15e-3) * th, rel=1e-6)
+    assert gyroscopic_torque(diag, (0.0, 0.0, 0.0), (1e-3, 2e-3, 3e-3)) == (0.0, 0.0, 0.0)
+    assert gyroscopic_torque(diag, (0.0, 0.0, 0.1), (1e-3, 0.0, 0.0)) == pytest.approx((0.0, 1e-4, 0.0), abs=1e-18)

@@ -58,3 +58,40 @@ def test_bad_axes_are_refused():
         WheelAllocator(((2.0, 0, 0), (0, 1.0, 0), (0, 0, 1.0)), 1e-3, 1e-3)
     with pytest.raises(ValueError, match="span"):
         WheelAllocator(((1.0, 0, 0), (0, 1.0, 0), (1 / math.sqrt(2), 1 / math.sqrt(2), 0)), 1e-3, 1e-3)
+
+
+def test_a_fourth_wheel_s_null_space_manages_momentum_without_body_torque():
+    """ADCS-098: four wheels in a pyramid: the null-space torques ``−k P h`` put no torque on the body (G u = 0
+    to 1e-18 N·m), P is the idempotent projector, and integrating ``ḣ = u_n`` keeps the wheels' body momentum
+    ``G h`` while their null-space momentum decays as ``e^(−k t)``; with three wheels there is no null space and
+    the allocation is the plain one; the body torque of ``allocate`` is unchanged by the null-space term."""
+    import math
+
+    from detumble.control.wheel_allocation import WheelAllocator
+
+    c, s = math.sqrt(2.0 / 3.0), math.sqrt(1.0 / 3.0)
+    axes = ((c, 0.0, s), (0.0, c, s), (-c, 0.0, s), (0.0, -c, s))
+    alloc = WheelAllocator(axes, 2e-3, 4e-3)
+    p = alloc.null_projector
+    assert p is not None
+    for i in range(4):
+        for j in range(4):
+            assert sum(p[i][k] * p[k][j] for k in range(4)) == pytest.approx(p[i][j], abs=1e-15)
+    h = [2.0e-3, -1.0e-3, 5.0e-4, 1.5e-3]
+    body0 = alloc.body_momentum(h)
+    null0 = math.sqrt(sum(x * x for x in (sum(p[i][j] * h[j] for j in range(4)) for i in range(4))))
+    assert null0 > 5e-4
+    k, dt = 2e-3, 0.1
+    for _ in range(5000):  # 500 s
+        un = alloc.null_space_torques(h, k)
+        assert max(abs(x) for x in alloc.body_momentum(un)) < 1e-18
+        h = [hi + ui * dt for hi, ui in zip(h, un, strict=True)]
+    assert alloc.body_momentum(h) == pytest.approx(body0, abs=1e-15)
+    null1 = math.sqrt(sum(x * x for x in (sum(p[i][j] * h[j] for j in range(4)) for i in range(4))))
+    assert null1 / null0 == pytest.approx((1.0 - k * dt) ** 5000, rel=1e-9)
+    tau = (1e-4, -2e-4, 5e-5)
+    u, _ = alloc.allocate(tau, h, null_gain=k)
+    assert alloc.body_momentum(u) == pytest.approx(tuple(-x for x in tau), abs=1e-15)
+    three = WheelAllocator(((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)), 2e-3, 4e-3)
+    assert three.null_projector is None and three.null_space_torques([1e-3, 0.0, 0.0], k) == (0.0, 0.0, 0.0)
+    assert three.allocate(tau, [1e-3, 0.0, 0.0], null_gain=k) == three.allocate(tau, [1e-3, 0.0, 0.0])

@@ -511,8 +511,8 @@ def test_a_kernel_whose_wheel_step_or_field_is_off_by_one_ulp_is_refused(fresh_k
                     return (bump(s, 4), h) if where.endswith("state") else (s, bump(h, 2))
             return s, h
 
-        def step_wheels_env(self, *args):
-            s, h = self.step_wheels(*args[:8])
+        def step_wheels_env(self, *args):  # (…, t1[, torque_B]): the step's arguments without t1
+            s, h = self.step_wheels(*args[:8], *args[9:])
             return (s, h, *self.environment(args[8]))
 
     fake = type("FakeModule", (), {"Kernel": OneUlpOff, "SOURCE_KEY": real.SOURCE_KEY})
@@ -582,3 +582,63 @@ def test_wheel_step_and_orbit_constant_field_equal_the_reference_on_random_input
             r = orbit.position_N(t)
             rn = math.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
             assert kernel.environment(t) == (r, (r[0] / rn, r[1] / rn, r[2] / rn), field.b_N(t, r))
+
+
+_SURFACES = ["spacecraft.surfaces.drag=true", "spacecraft.surfaces.solar_pressure=true",
+             "spacecraft.surfaces.cp_offset_m=[0.004, -0.003, 0.012]", "spacecraft.surfaces.specular_reflectivity=0.2"]
+
+
+@pytest.mark.parametrize("friction,settings", [
+    (False, []), (True, []), (True, ["integrator_substeps=3"]), (False, ["field.model=none"]),
+], ids=["wheels", "friction", "substeps", "python-environment"])
+def test_drag_and_solar_pressure_are_bit_identical_with_wheels(friction, settings):
+    """SIM-KRN-023: drag and solar-pressure torques on (``spacecraft.surfaces``): a commanded wheel plant for 3000
+    steps gives equal floats in both implementations on every path (fused kernel step, sub-steps, the environment
+    in Python); and the torque acts (the flight differs from the same one with both off)."""
+    _kernel_or_skip()
+    sc = _wheel_scenario(friction, [*settings, *_SURFACES])
+    on = _wheel_flight(sc, "python", 3000)
+    assert on == ("python", _wheel_flight(sc, "compiled", 3000)[1])
+    assert on[1] != _wheel_flight(_wheel_scenario(friction, settings), "python", 3000)[1]
+
+
+@pytest.mark.parametrize("settings", [[], ["integrator_substeps=2"]], ids=["fused", "substeps"])
+def test_drag_and_solar_pressure_are_bit_identical_without_wheels(settings):
+    """SIM-KRN-024: the same without wheels (the kernel's ``step`` and ``step_env`` with their torque argument)."""
+    _kernel_or_skip()
+    sc = load_scenario("default", settings=[*settings, *_SURFACES])
+
+    def fly(implementation):
+        p = Plant(sc, seed=3, implementation=implementation)
+        rows = []
+        for k in range(3000):
+            if k % 100 == 0:
+                p.set_coil_level(0, (k // 100) * 37 % 255 - 127)
+            p.step_ns(20_000_000)
+            rows.append((p.state, p.surface_torque_B, p.gyro_reading()))
+        return p.implementation, rows
+
+    a, b = fly("python"), fly("compiled")
+    assert (a[0], b[0]) == ("python", "compiled") and a[1] == b[1]
+    assert max(abs(c) for row in a[1] for c in row[1]) > 1e-9  # the surfaces' torque is there
+
+
+@pytest.mark.parametrize("which", ["step_env", "step", "step_wheels", "step_wheels_env"])
+def test_a_kernel_that_drops_the_external_torque_is_refused(which):
+    """SIM-KRN-027: the load-time check passes the drag/solar-pressure torque argument to every step function: a
+    kernel whose one function ignores it is refused."""
+    _kernel_or_skip()
+    real = plant_kernel.load().module
+    n_without = {"step_env": 6, "step": 7, "step_wheels": 8, "step_wheels_env": 9}[which]
+
+    class DropsTorque:
+        def __init__(self, *args):
+            self._k = real.Kernel(*args)
+            for name in ("has_environment", "has_wheels", "wheel_friction", "wheel_count", "environment",
+                         "step_env", "step", "step_wheels", "step_wheels_env"):
+                setattr(self, name, getattr(self._k, name))
+            fn = getattr(self._k, which)
+            setattr(self, which, lambda *a: fn(*a[:n_without]))
+
+    fake = type("FakeModule", (), {"Kernel": DropsTorque, "SOURCE_KEY": real.SOURCE_KEY})
+    assert plant_kernel.mismatch(fake) is not None
