@@ -24,7 +24,7 @@ studies = importlib.util.module_from_spec(_spec)
 sys.modules["studies_tool"] = studies  # dataclasses look their module up there
 _spec.loader.exec_module(studies)
 
-COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign")
+COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursework_grids")
 
 
 @pytest.mark.parametrize("name", COMMITTED)
@@ -37,6 +37,31 @@ def test_committed_convergence_results_are_what_the_code_computes_now():
     """STUDY-002: the probe runs (the wheel law's rows at 0.02 and 0.01 s, 30 s each) fly again and match."""
     campaign = studies.CAMPAIGNS["coursework_convergence"]
     assert campaign.problems(fly_probes=True) == []
+
+
+@pytest.mark.parametrize("key", ("coursework_wheels_pd_grid", "coursework_noise"))
+def test_committed_seed004_sweeps_are_what_the_code_computes_now(key):
+    """STUDY-005: the seed-004 sweeps' cheap probes (the wheel grid's report gains, the noise study's wheel runs of
+    its first seed: 120 s plant runs) fly again and match their committed rows; the other folders (hours of CPU)
+    are checked for belonging to their campaign files."""
+    campaign = studies.CAMPAIGNS[key]
+    if not (campaign.path / "results.parquet").exists():
+        pytest.skip(f"docs/studies/{campaign.folder} not committed")
+    assert campaign.problems(fly_probes=True) == []
+
+
+def test_a_hand_edited_sweep_table_is_reported(tmp_path, monkeypatch):
+    """STUDY-006: the wheel grid's table with one settling time changed by hand: --check reports that block."""
+    study = studies.STUDIES["coursework_grids"]
+    text = study.doc.read_text(encoding="utf-8")
+    body = studies.doc_blocks(text)["coursework_wheels_pd"]
+    edited = body.replace("10.05", "10.04", 1)
+    assert edited != body
+    copy = tmp_path / "doc.md"
+    copy.write_text(text.replace(body, edited), encoding="utf-8")
+    monkeypatch.setitem(studies.STUDIES, "coursework_grids", dataclasses.replace(study, doc=copy, campaigns=()))
+    problems = studies.check(["coursework_grids"], fly_probes=False)
+    assert len(problems) == 1 and "block 'coursework_wheels_pd'" in problems[0]
 
 
 def test_spin_campaign_folders_belong_to_their_campaign_files():
