@@ -177,6 +177,15 @@ class CommittedCampaign:
 
         return load_campaign(ROOT / self.campaign_file)
 
+    def campaign_file_changed(self) -> bool:
+        """Whether the campaign file differs from the one the committed folder was made by (comments and
+        layout aside: the manifest keeps the text, and equal YAML plans the same runs)."""
+        manifest = json.loads((self.path / "manifest.json").read_text(encoding="utf-8"))
+        text = (ROOT / self.campaign_file).read_bytes()
+        if hashlib.sha256(text).hexdigest() == manifest.get("campaign_sha256"):
+            return False
+        return not _same_yaml(text.decode("utf-8"), manifest.get("campaign_text"))
+
     def problems(self, *, fly_probes: bool = True) -> list[str]:
         """Why the committed folder may no longer be what its campaign file gives (empty: none found)."""
         from fprime_lite.tools.campaign.plan import plan_runs
@@ -184,11 +193,9 @@ class CommittedCampaign:
         out: list[str] = []
         if not (self.path / "results.parquet").exists():
             return out  # not committed: the study's block says so, and the block is compared on its own
-        manifest = json.loads((self.path / "manifest.json").read_text(encoding="utf-8"))
-        text = (ROOT / self.campaign_file).read_bytes()
-        if hashlib.sha256(text).hexdigest() != manifest.get("campaign_sha256"):
+        if self.campaign_file_changed():
             out.append(f"docs/studies/{self.folder}: {self.campaign_file} changed since these results were made "
-                       f"(sha256 differs from manifest.json): run `{self.command}` again")
+                       f"(it says something else than the text in manifest.json): run `{self.command}` again")
         df = self.results()
         with tempfile.TemporaryDirectory() as scratch:
             tasks = plan_runs(self.campaign(), pathlib.Path(scratch))
@@ -236,6 +243,18 @@ class CommittedCampaign:
         from fprime_lite.tools.campaign import run_campaign
 
         run_campaign(ROOT / self.campaign_file, workers=1, out=self.path, resume=True)
+
+
+def _same_yaml(now: str, then: str | None) -> bool:
+    """Whether two campaign texts say the same thing (they may differ in comments and layout only)."""
+    import yaml
+
+    if then is None:
+        return False
+    try:
+        return yaml.safe_load(now) == yaml.safe_load(then)
+    except yaml.YAMLError:
+        return False
 
 
 def _wheels_cheap(task: dict) -> bool:
@@ -492,7 +511,8 @@ def wheels_pd_block() -> str:
     campaign, df = _committed("coursework_wheels_pd_grid")
     if df is None:
         return _not_committed(campaign)
-    kd_key, kp_key, err = "scenario.control.wheels_pd.k_d", "scenario.control.wheels_pd.k_p", "scenario.control.wheels_pd.error"
+    kd_key, kp_key = "scenario.control.wheels_pd.k_d", "scenario.control.wheels_pd.k_p"
+    err = "scenario.control.wheels_pd.error"
     f = df.assign(**{kd_key: df[kd_key].astype(float), kp_key: df[kp_key].astype(float)})
     kds, kps = sorted(f[kd_key].unique()), sorted(f[kp_key].unique())
     lines = ["| K_d \\ K_p | " + " | ".join(f"{k:g}" for k in kps) + " |", "|---|" + "---|" * len(kps)]
@@ -578,6 +598,10 @@ def regenerate_grids(ctx: Context) -> None:
 _REPLICA_CASES = (
     # (label, arguments, quick arguments)
     ("`magnetorquer1`, k = 146, ode45 defaults", ["cross_product", "--gain", "146", "--t-max", "30000"], None),
+    ("`magnetorquer1`, k = 146, RelTol 1e-8", ["cross_product", "--gain", "146", "--t-max", "30000", "--rtol", "1e-8",
+                                              "--atol", "1e-10"], None),
+    ("`magnetorquer1`, k = 146, ode45 defaults, DCM from the un-normalised quaternion",
+     ["cross_product", "--gain", "146", "--t-max", "30000", "--no-normalize"], None),
     ("`magnetorquer2`, eq. 23 *or* 24, ode45 defaults", ["beta_pd", "--t-max", "9000"], None),
     ("`magnetorquer2`, both spin terms (listing), ode45 defaults", ["beta_pd", "--listing", "--t-max", "9000"], None),
     ("`wheels`, K_p = 5, K_d = 9, ode45 defaults", ["wheels_pd", "--t-max", "30"], ["wheels_pd", "--t-max", "30"]),
@@ -597,7 +621,7 @@ def regenerate_replica(ctx: Context) -> None:
         if ctx.quick and quick is None:
             continue
         out = replica.run(replica.parse_args(quick if ctx.quick else args))
-        digits = 3 if args[0] == "wheels_pd" else 0
+        digits = 3 if args[0] == "wheels_pd" else (1 if args[0] == "cross_product" else 0)
         axes = " / ".join(_fmt(a, digits) for a in out["settling_axes_s"])
         lines.append(f"| {label} | `{' '.join(args)}` | **{_fmt(out['settling_overall_s'], digits)}** ({axes}) "
                      f"| {out['steps']} |")
@@ -680,8 +704,83 @@ def regenerate_spin_campaign(ctx: Context) -> None:
 # --- campaign plots of the other committed campaigns ---------------------------------------------------------
 
 
-def regenerate_campaign_plots(ctx: Context) -> None:
-    for key in ("attitude_knowledge", "flight_detumble_campaign", "flight_detumble_campaign_p95"):
+
+
+# --- campaign tables of attitude_knowledge.md and flight_detumble_campaign.md -------------------------------------
+
+_KNOWLEDGE_DOC = STUDIES_DIR / "attitude_knowledge.md"
+_FLIGHT_DOC = STUDIES_DIR / "flight_detumble_campaign.md"
+# (metric, label, digits, scale, unit, target text, test of one run's value)
+_KNOWLEDGE_ROWS = (
+    ("slew_settle_s", "90° slew settled below 0.1° (s)", 1, 1.0, "", "≤ 30 s", lambda v: v <= 30.0),
+    ("pointing_steady_median_deg", "steady median (°)", 4, 1.0, "", "≤ 0.01°", lambda v: v <= 0.01),
+    ("pointing_steady_p95_deg", "steady p95 (°)", 4, 1.0, "", "≤ 0.05°", lambda v: v <= 0.05),
+    ("wheel_momentum_max_fraction", "largest \\|h_i\\|/h_max", 1, 100.0, " %", "< 50 %", lambda v: v < 0.5),
+    ("wheel_limit_events", "wheel limit events", 0, 1.0, "", "never", lambda v: v == 0),
+)
+
+
+def knowledge_blocks() -> dict[str, str]:
+    """The 100-run pointing campaign's table (docs/studies/attitude_knowledge/), per-run metrics' spread."""
+    import numpy as np
+
+    campaign, df = _committed("attitude_knowledge")
+    if df is None:
+        return {"attitude_knowledge_campaign": _not_committed(campaign)}
+    ok = _ok(df)
+    lines = ["| metric (per run) | min | median | p95 | max | target | runs meeting it |",
+             "|---|---|---|---|---|---|---|"]
+    for metric, label, digits, scale, unit, target, meets in _KNOWLEDGE_ROWS:
+        values = ok[metric].dropna().to_numpy(dtype=float)
+        if not len(values):
+            lines.append(f"| {label} | — | — | — | — | {target} | 0 / {len(df)} |")
+            continue
+        stats = [float(np.min(values)), float(np.percentile(values, 50)), float(np.percentile(values, 95)),
+                 float(np.max(values))]
+        cells = [f"{_fmt(scale * s, digits)}{unit}" for s in stats]
+        meeting = sum(1 for v in values if meets(v))
+        lines.append(f"| {label} | " + " | ".join(cells) + f" | {target} | **{meeting} / {len(df)}** |")
+    cpu = float(df["cpu_s"].sum()) if "cpu_s" in df else math.nan
+    lines += ["", f"{len(ok)} of {len(df)} runs ok; {cpu:,.0f} CPU-s in the runs. Statistics over the runs' own "
+              "figures (numpy's linear percentile)."]
+    return {"attitude_knowledge_campaign": "\n".join(lines) + "\n\n" + _source("attitude_knowledge", campaign) + "\n"}
+
+
+def regenerate_knowledge(ctx: Context) -> None:
+    ctx.set_blocks(_KNOWLEDGE_DOC, knowledge_blocks())
+    CAMPAIGNS["attitude_knowledge"].redraw_plots(ctx)
+
+
+def _flight_table(key: str) -> str:
+    """``campaigns/report_flight_study.py``'s tables of one committed campaign folder (its stdout)."""
+    import contextlib
+    import io
+
+    campaign, df = _committed(key)
+    if df is None:
+        return _not_committed(campaign)
+    report = _load_script("campaigns/report_flight_study.py")
+    buffer = io.StringIO()
+    with contextlib.redirect_stdout(buffer):
+        report.main([str(campaign.path)])
+    lines = buffer.getvalue().rstrip("\n").split("\n")
+    first = next(i for i, line in enumerate(lines) if line.startswith("|"))
+    last = max(i for i, line in enumerate(lines) if line.startswith("|"))
+    after = [line for line in lines[last + 1:] if line.strip()]
+    text = ("; ".join(lines[:first]) + ".\n\n" + "\n".join(lines[first:last + 1]) + "\n\n"
+            + "\n".join(f"- {line}" for line in after if not line.startswith(" ")))
+    return (text + "\n\n" + _source("flight_detumble_campaign", campaign)
+            + f" The table is `python campaigns/report_flight_study.py docs/studies/{campaign.folder}`.\n")
+
+
+def flight_blocks() -> dict[str, str]:
+    return {"flight_detumble_p95": _flight_table("flight_detumble_campaign_p95"),
+            "flight_detumble_orbit": _flight_table("flight_detumble_campaign")}
+
+
+def regenerate_flight(ctx: Context) -> None:
+    ctx.set_blocks(_FLIGHT_DOC, flight_blocks())
+    for key in ("flight_detumble_campaign", "flight_detumble_campaign_p95"):
         CAMPAIGNS[key].redraw_plots(ctx)
 
 
@@ -846,9 +945,10 @@ STUDIES = {s.name: s for s in (
           regenerate_replica, None, _CONVERGENCE_DOC),
     Study("spin_stabilisation_campaign", "issue 13's spin target over 2 × 100 deployment runs (committed campaigns)",
           regenerate_spin_campaign, spin_campaign_blocks, _SPIN_DOC, ("spin_minor_axis", "spin_major_axis")),
-    Study("campaign_plots", "the plots of the other committed campaigns, redrawn from their results",
-          regenerate_campaign_plots, None, None,
-          ("attitude_knowledge", "flight_detumble_campaign", "flight_detumble_campaign_p95")),
+    Study("attitude_knowledge", "issue 13's pointing on the wheels over 100 deployment runs (committed campaign)",
+          regenerate_knowledge, knowledge_blocks, _KNOWLEDGE_DOC, ("attitude_knowledge",)),
+    Study("flight_detumble_campaign", "the PROVES flight detumble configurations (two committed campaigns)",
+          regenerate_flight, flight_blocks, _FLIGHT_DOC, ("flight_detumble_campaign", "flight_detumble_campaign_p95")),
     Study("attitude_modes_spin", "seed 003's spin stabilisation: one orbit per law (four deployment runs)",
           regenerate_attitude_modes_spin, None, _ATTITUDE_DOC),
     Study("attitude_modes_pointing", "seed 003's whole sequence as shipped: its table and figures (one 6000 s run)",
