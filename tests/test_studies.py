@@ -11,6 +11,7 @@ longer computes, are both reported.
 
 import dataclasses
 import importlib.util
+import json
 import pathlib
 import shutil
 import sys
@@ -24,7 +25,8 @@ studies = importlib.util.module_from_spec(_spec)
 sys.modules["studies_tool"] = studies  # dataclasses look their module up there
 _spec.loader.exec_module(studies)
 
-COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursework_grids")
+COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursework_grids",
+             "coursework_replica_magnetorquer1")
 # their committed folders are older than their campaign files (attitude_knowledge: metrics added since, so the run ids
 # moved): their blocks are checked against the committed results, the folders' belonging is reported by --check
 BLOCKS_ONLY = ("attitude_knowledge", "flight_detumble_campaign")
@@ -127,6 +129,19 @@ def test_a_committed_metric_the_code_no_longer_computes_is_reported(tmp_path, mo
                                  probe=lambda t: t["run_id"] == df.loc[row, "run_id"])
     problems = nudged.problems(fly_probes=True)
     assert len(problems) == 1 and "settling_time_2pct_s" in problems[0] and "no longer computes" in problems[0]
+
+
+def test_the_replica_table_refuses_a_figure_read_off_solver_steps(tmp_path, monkeypatch):
+    """STUDY-008: magnetorquer1's replica figures are of the dense output; a committed run made with --sample 0
+    (read off the accepted steps, the artefact issue 28 names) is refused, not tabulated."""
+    folder = tmp_path / "coursework_replica"
+    shutil.copytree(studies._MT1_DIR, folder)
+    path = folder / "magnetorquer1_ode45.json"
+    run = json.loads(path.read_text(encoding="utf-8"))
+    path.write_text(json.dumps({**run, "sample_s": 0.0}), encoding="utf-8")
+    monkeypatch.setattr(studies, "_MT1_DIR", folder)
+    with pytest.raises(studies.StudyError, match="read off the solver's steps"):
+        studies.magnetorquer1_blocks()
 
 
 def test_a_missing_block_marker_is_a_clear_error():
