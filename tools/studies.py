@@ -410,9 +410,9 @@ def _state_note(campaign: CommittedCampaign) -> str:
     manifest = json.loads((campaign.path / "manifest.json").read_text(encoding="utf-8"))
     if manifest.get("status") == "complete":
         return ""
-    done = sum(int(v) for v in (manifest.get("counts") or {}).values())
-    return (f"; **{manifest.get('status')}: {done} of {manifest.get('runs')} runs flown**, the rest by the same "
-            f"command with `--resume`")
+    done = len(campaign.results())
+    return (f"; **stopped after {done} of {manifest.get('runs')} runs** (a reduced run of the campaign, seed-major: "
+            f"every grid point has the same seeds done), the rest by the same command with `--resume`")
 
 
 def _committed(key: str):
