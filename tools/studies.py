@@ -646,8 +646,9 @@ def magnetorquer1_blocks() -> dict[str, str]:
         path = _MT1_DIR / name
         command = (f"`python campaigns/coursework/report_replica.py {' '.join(args)} "
                    f"> docs/studies/coursework_replica/{name}`")
-        if not path.exists():
-            lines.append(f"| {label} | not committed yet | | | {command} |")
+        if not path.exists():  # the command without the file it would write (the docs name existing paths only)
+            lines.append(f"| {label} | not committed yet | | | `python campaigns/coursework/report_replica.py "
+                         f"{' '.join(args)}` |")
             continue
         out = json.loads(path.read_text(encoding="utf-8"))
         if out.get("sample_s", 0) <= 0:
