@@ -411,8 +411,8 @@ def _state_note(campaign: CommittedCampaign) -> str:
     if manifest.get("status") == "complete":
         return ""
     done = len(campaign.results())
-    return (f"; **stopped after {done} of {manifest.get('runs')} runs** (a reduced run of the campaign, seed-major: "
-            f"every grid point has the same seeds done), the rest by the same command with `--resume`")
+    return (f"; **stopped after {done} of {manifest.get('runs')} runs** (a reduced run of the campaign, in its "
+            f"planned order, seed-major), the rest by the same command with `--resume`")
 
 
 def _committed(key: str):
@@ -500,8 +500,9 @@ def beta_pd_block() -> str:
             cells.append(f"**{c}**" if (ks, kd) == (990.0, 0.06) else c)
         lines.append(f"| {ks:g} | " + " | ".join(cells) + " |")
     others = [float(v) for v in grids[1][ks_key]]
-    lines += ["", "At K_d = 0.06: " + ", ".join(f"K_s = {ks:g} → {_cell(f, 0, **{ks_key: ks, kd_key: 0.06})} s"
-                                                 for ks in others) + ".",
+    at = [(ks, _cell(f, 0, **{ks_key: ks, kd_key: 0.06})) for ks in others]
+    lines += ["", "At K_d = 0.06: " + ", ".join(f"K_s = {ks:g} → {c}" + ("" if c == "not flown" else " s")
+                                                 for ks, c in at) + ".",
               "(— : not within the run; `not flown`: the campaign was stopped before this point.) "
               "Equations' form (`switched: true`, the default), 0.01 s."]
     return "\n".join(lines) + "\n\n" + _source("coursework_grids", campaign) + "\n"
