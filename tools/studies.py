@@ -177,6 +177,15 @@ class CommittedCampaign:
 
         return load_campaign(ROOT / self.campaign_file)
 
+    def campaign_file_changed(self) -> bool:
+        """Whether the campaign file differs from the one the committed folder was made by (comments and
+        layout aside: the manifest keeps the text, and equal YAML plans the same runs)."""
+        manifest = json.loads((self.path / "manifest.json").read_text(encoding="utf-8"))
+        text = (ROOT / self.campaign_file).read_bytes()
+        if hashlib.sha256(text).hexdigest() == manifest.get("campaign_sha256"):
+            return False
+        return not _same_yaml(text.decode("utf-8"), manifest.get("campaign_text"))
+
     def problems(self, *, fly_probes: bool = True) -> list[str]:
         """Why the committed folder may no longer be what its campaign file gives (empty: none found)."""
         from fprime_lite.tools.campaign.plan import plan_runs
@@ -184,11 +193,9 @@ class CommittedCampaign:
         out: list[str] = []
         if not (self.path / "results.parquet").exists():
             return out  # not committed: the study's block says so, and the block is compared on its own
-        manifest = json.loads((self.path / "manifest.json").read_text(encoding="utf-8"))
-        text = (ROOT / self.campaign_file).read_bytes()
-        if hashlib.sha256(text).hexdigest() != manifest.get("campaign_sha256"):
+        if self.campaign_file_changed():
             out.append(f"docs/studies/{self.folder}: {self.campaign_file} changed since these results were made "
-                       f"(sha256 differs from manifest.json): run `{self.command}` again")
+                       f"(it says something else than the text in manifest.json): run `{self.command}` again")
         df = self.results()
         with tempfile.TemporaryDirectory() as scratch:
             tasks = plan_runs(self.campaign(), pathlib.Path(scratch))
@@ -238,6 +245,18 @@ class CommittedCampaign:
         run_campaign(ROOT / self.campaign_file, workers=1, out=self.path, resume=True)
 
 
+def _same_yaml(now: str, then: str | None) -> bool:
+    """Whether two campaign texts say the same thing (they may differ in comments and layout only)."""
+    import yaml
+
+    if then is None:
+        return False
+    try:
+        return yaml.safe_load(now) == yaml.safe_load(then)
+    except yaml.YAMLError:
+        return False
+
+
 def _wheels_cheap(task: dict) -> bool:
     config, values = task["config"], task["values"]
     return config.get("law") == "wheels_pd" and float(values.get("scenario.dynamics_step_s", 0.0)) >= 0.01
@@ -250,6 +269,18 @@ CAMPAIGNS = {
                                          "campaigns/adcs/spin_minor_axis.yaml"),
     "spin_major_axis": CommittedCampaign("spin_stabilisation_campaign/spin_major_axis",
                                          "campaigns/adcs/spin_major_axis.yaml"),
+    "coursework_convergence_listing": CommittedCampaign("coursework_convergence_listing",
+                                                        "campaigns/coursework/convergence_listing.yaml"),
+    "coursework_cross_product_sweep": CommittedCampaign("coursework_cross_product_sweep",
+                                                        "campaigns/coursework/cross_product_sweep.yaml"),
+    "coursework_beta_pd_grid": CommittedCampaign("coursework_beta_pd_grid", "campaigns/coursework/beta_pd_grid.yaml"),
+    "coursework_wheels_pd_grid": CommittedCampaign("coursework_wheels_pd_grid",
+                                                   "campaigns/coursework/wheels_pd_grid.yaml",
+                                                   probe=lambda t: t["values"].get("scenario.control.wheels_pd.k_d")
+                                                   == 9 and t["values"].get("scenario.control.wheels_pd.k_p") == 5),
+    "coursework_noise": CommittedCampaign("coursework_noise", "campaigns/coursework/noise.yaml",
+                                          probe=lambda t: t["config"].get("law") == "wheels_pd"
+                                          and t["seed_index"] == 0),
     "attitude_knowledge": CommittedCampaign("attitude_knowledge", "campaigns/adcs/pointing_wheels.yaml"),
     "flight_detumble_campaign": CommittedCampaign("flight_detumble_campaign", "campaigns/proves_flight_detumble.yaml"),
     "flight_detumble_campaign_p95": CommittedCampaign("flight_detumble_campaign_p95",
@@ -316,8 +347,18 @@ def _richardson(values: list[float]) -> tuple[float | None, float | None]:
     return p, c + d2 / (2.0 ** p - 1.0)
 
 
+def _convergence_results():
+    """The convergence campaign's committed rows, with the listing form's continuation where committed."""
+    import pandas as pd
+
+    frames = [CAMPAIGNS["coursework_convergence"].results()]
+    if (CAMPAIGNS["coursework_convergence_listing"].path / "results.parquet").exists():
+        frames.append(CAMPAIGNS["coursework_convergence_listing"].results())
+    return pd.concat(frames, ignore_index=True)
+
+
 def convergence_blocks() -> dict[str, str]:
-    df = CAMPAIGNS["coursework_convergence"].results()
+    df = _convergence_results()
     lines = ["| law (report's gains) | step = period (s) | settling time, 2 % bands (s): overall (ω_x / ω_y / ω_z) | "
              "change on halving | converged (< 0.5 %)? |", "|---|---|---|---|---|"]
     fixed_period = []
@@ -352,8 +393,11 @@ def convergence_blocks() -> dict[str, str]:
     for label, (step, period, m) in fixed_period:
         summary.append(f"- {label}: control period held at {period:g} s, dynamics step {step:g} s: "
                        f"{_fmt(m['overall'])} s ({' / '.join(_fmt(a) for a in m['axes'])}).")
+    made = [CAMPAIGNS["coursework_convergence"]]
+    if (CAMPAIGNS["coursework_convergence_listing"].path / "results.parquet").exists():
+        made.append(CAMPAIGNS["coursework_convergence_listing"])
     source = ("Generated by `python tools/studies.py --only coursework_convergence` from "
-              "`docs/studies/coursework_convergence/` (made by `" + CAMPAIGNS["coursework_convergence"].command + "`).")
+              + " and ".join(f"`docs/studies/{c.folder}/` (made by `{c.command}`{_state_note(c)})" for c in made) + ".")
     return {"coursework_convergence": "\n".join(lines) + "\n\n" + "\n".join(summary) + "\n\n" + source + "\n"}
 
 
@@ -361,10 +405,199 @@ def regenerate_convergence(ctx: Context) -> None:
     ctx.set_blocks(_CONVERGENCE_DOC, convergence_blocks())
 
 
+def _state_note(campaign: CommittedCampaign) -> str:
+    """'' for a complete committed campaign; else how far it got (a stopped campaign is committed as it is)."""
+    manifest = json.loads((campaign.path / "manifest.json").read_text(encoding="utf-8"))
+    if manifest.get("status") == "complete":
+        return ""
+    done = len(campaign.results())
+    return (f"; **stopped after {done} of {manifest.get('runs')} runs** (a reduced run of the campaign, in its "
+            f"planned order, seed-major), the rest by the same command with `--resume`")
+
+
+def _committed(key: str):
+    """(campaign, its results) or (campaign, None) when its folder is not committed."""
+    campaign = CAMPAIGNS[key]
+    if not (campaign.path / "results.parquet").exists():
+        return campaign, None
+    return campaign, campaign.results()
+
+
+def _not_committed(campaign: CommittedCampaign) -> str:
+    return f"Not committed yet: `{campaign.command}`.\n"
+
+
+def _source(study: str, campaign: CommittedCampaign) -> str:
+    return (f"Generated by `python tools/studies.py --only {study}` from `docs/studies/{campaign.folder}/` "
+            f"(made by `{campaign.command}`{_state_note(campaign)}).")
+
+
+def _ok(df):
+    return df[df["status"] == "ok"]
+
+
+def _cell(df, digits: int, **where) -> str:
+    """The settling time of the one row matching ``where`` (— never settled, blank: not flown)."""
+    rows = df
+    for key, value in where.items():
+        rows = rows[rows[key] == value]
+    if len(rows) == 0:
+        return "not flown"
+    row = rows.iloc[0]
+    if row["status"] != "ok":
+        return f"{row['status']}"
+    return _fmt(_float(row["settling_time_2pct_s"]), digits)
+
+
+def cross_product_block() -> str:
+    campaign, df = _committed("coursework_cross_product_sweep")
+    if df is None:
+        return _not_committed(campaign)
+    gains = [float(g) for g in campaign.campaign().grids[0]["gain"]]
+    head = "| k (A·m²/(rad/s·T)) | " + " | ".join(f"**{g:g}**" if g == 146 else f"{g:g}" for g in gains) + " |"
+    lines = [head, "|---|" + "---|" * len(gains)]
+    for label, metric, digits in (("settling, 2 % bands (s)", "settling_time_2pct_s", 0),
+                                  ("\\|ω − ω_final\\| < 1 °/s (s)", "time_below_threshold_s", 0),
+                                  ("\\|ω\\| at the end of the run (°/s)", "final_rate_deg_s", None)):
+        cells = []
+        for g in gains:
+            rows = df[df["gain"].astype(float) == g]
+            if len(rows) == 0:
+                cells.append("not flown")
+            elif rows.iloc[0]["status"] != "ok":
+                cells.append(str(rows.iloc[0]["status"]))
+            else:
+                v = _float(rows.iloc[0][metric])
+                cells.append("—" if v is None else (f"{v:.2g}" if digits is None else _fmt(v, digits)))
+        lines.append(f"| {label} | " + " | ".join(cells) + " |")
+    ok = _ok(df)
+    settled = ok.dropna(subset=["settling_time_2pct_s"])
+    notes = ["", "(— : not within the run; `not flown`: the campaign was stopped before this gain.)"]
+    if len(settled):
+        best = settled.loc[settled["settling_time_2pct_s"].astype(float).idxmin()]
+        ref = settled[settled["gain"].astype(float) == 146]
+        line = (f"- fastest gain flown: k = {float(best['gain']):g}, {_fmt(float(best['settling_time_2pct_s']))} s")
+        if len(ref):
+            line += (f" ({float(ref.iloc[0]['settling_time_2pct_s']) / float(best['settling_time_2pct_s']):.1f}× "
+                     f"faster than k = 146's {_fmt(float(ref.iloc[0]['settling_time_2pct_s']))} s)")
+        notes.append(line + ".")
+    return "\n".join(lines + notes) + "\n\n" + _source("coursework_grids", campaign) + "\n"
+
+
+def beta_pd_block() -> str:
+    campaign, df = _committed("coursework_beta_pd_grid")
+    if df is None:
+        return _not_committed(campaign)
+    ks_key, kd_key = "scenario.control.beta_pd.k_s", "scenario.control.beta_pd.k_d"
+    grids = campaign.campaign().grids
+    kss, kds = [float(v) for v in grids[0][ks_key]], [float(v) for v in grids[0][kd_key]]
+    lines = ["| K_s \\ K_d | " + " | ".join(f"{k:g}" for k in kds) + " |", "|---|" + "---|" * len(kds)]
+    f = df.assign(**{ks_key: df[ks_key].astype(float), kd_key: df[kd_key].astype(float)})
+    for ks in kss:
+        cells = []
+        for kd in kds:
+            c = _cell(f, 0, **{ks_key: ks, kd_key: kd})
+            cells.append(f"**{c}**" if (ks, kd) == (990.0, 0.06) else c)
+        lines.append(f"| {ks:g} | " + " | ".join(cells) + " |")
+    others = [float(v) for v in grids[1][ks_key]]
+    at = [(ks, _cell(f, 0, **{ks_key: ks, kd_key: 0.06})) for ks in others]
+    lines += ["", "At K_d = 0.06: " + ", ".join(f"K_s = {ks:g} → {c}" + ("" if c == "not flown" else " s")
+                                                 for ks, c in at) + ".",
+              "(— : not within the run; `not flown`: the campaign was stopped before this point.) "
+              "Equations' form (`switched: true`, the default), 0.01 s."]
+    return "\n".join(lines) + "\n\n" + _source("coursework_grids", campaign) + "\n"
+
+
+def wheels_pd_block() -> str:
+    campaign, df = _committed("coursework_wheels_pd_grid")
+    if df is None:
+        return _not_committed(campaign)
+    kd_key, kp_key = "scenario.control.wheels_pd.k_d", "scenario.control.wheels_pd.k_p"
+    err = "scenario.control.wheels_pd.error"
+    f = df.assign(**{kd_key: df[kd_key].astype(float), kp_key: df[kp_key].astype(float)})
+    kds, kps = sorted(f[kd_key].unique()), sorted(f[kp_key].unique())
+    lines = ["| K_d \\ K_p | " + " | ".join(f"{k:g}" for k in kps) + " |", "|---|" + "---|" * len(kps)]
+    for kd in kds:
+        cells = [_cell(f, 2, **{kd_key: kd, kp_key: kp, err: "report"}) for kp in kps]
+        if kd == 9:
+            cells[kps.index(5.0)] = f"**{cells[kps.index(5.0)]}**"
+        lines.append(f"| {kd:g} | " + " | ".join(cells) + " |")
+    ok = _ok(f)
+    pivot = ok.pivot_table(index=[kd_key, kp_key], columns=err, values="settling_time_2pct_s")
+    notes = [""]
+    if {"report", "shortest_path"} <= set(pivot.columns):
+        diff = float((pivot["report"] - pivot["shortest_path"]).abs().max())
+        notes.append(f"- `error: shortest_path` against `error: report` (the table), largest difference over the "
+                     f"{len(pivot)} points: {diff:.3f} s.")
+    rep = ok[ok[err] == "report"]
+    if len(rep):
+        best = rep.loc[rep["settling_time_2pct_s"].astype(float).idxmin()]
+        notes.append(f"- fastest point of the grid: K_d = {best[kd_key]:g}, K_p = {best[kp_key]:g}: "
+                     f"{float(best['settling_time_2pct_s']):.2f} s.")
+    notes.append(f"- {len(ok)} of {len(f)} runs ok; 120 s each, 0.01 s.")
+    return "\n".join(lines + notes) + "\n\n" + _source("coursework_grids", campaign) + "\n"
+
+
+def noise_block() -> str:
+    campaign, df = _committed("coursework_noise")
+    if df is None:
+        return _not_committed(campaign)
+    conv = CAMPAIGNS["coursework_convergence"].results()
+    at = conv[conv["scenario.dynamics_step_s"].astype(float) == 0.01]
+    ideal_cross = at[at["law"] == "cross_product"]["settling_time_2pct_s"]
+    ideal_wheels = at[(at["law"] == "wheels_pd") & (at["scenario.control.wheels_pd.error"] == "report")
+                      & at["scenario.control.wheels_pd.k_d"].isna()]["settling_time_2pct_s"]
+    momentum = "scenario.spacecraft.reaction_wheels.momentum_noise_std_nms"
+    cases = [("`magnetorquer1`, k = 146, 40 nT (4e-4 G) Gaussian noise on the field it reads",
+              df[df["law"] == "cross_product"], 2, ideal_cross)]
+    wheels = df[df["law"] == "wheels_pd"]
+    for level in sorted(wheels[momentum].dropna().astype(float).unique()):
+        cases.append((f"`wheels` (error `report`), momentum-reading noise {level:g} N·m·s (1σ)",
+                      wheels[wheels[momentum].astype(float) == level], 3, ideal_wheels))
+    lines = ["| case | runs ok / flown | settling (2 % bands), min–max over the seeds (s) | ideal sensors (s) |",
+             "|---|---|---|---|"]
+    for label, rows, digits, ideal in cases:
+        ok = _ok(rows)["settling_time_2pct_s"].dropna().astype(float)
+        spread = "—" if not len(ok) else (f"{_fmt(ok.min(), digits)}–{_fmt(ok.max(), digits)}"
+                                          if ok.min() != ok.max() else f"{_fmt(ok.min(), digits)} (all {len(ok)})")
+        ideal_text = _fmt(float(ideal.iloc[0]), digits) if len(ideal) else "—"
+        lines.append(f"| {label} | {len(_ok(rows))} / {len(rows)} | {spread} | {ideal_text} |")
+    lines += ["", "(Ideal sensors: the convergence campaign's 0.01 s rows, `docs/studies/coursework_convergence/`.)"]
+    return "\n".join(lines) + "\n\n" + _source("coursework_grids", campaign) + "\n"
+
+
+_GRID_BLOCKS = {"coursework_cross_product": cross_product_block, "coursework_beta_pd": beta_pd_block,
+                "coursework_wheels_pd": wheels_pd_block, "coursework_noise": noise_block}
+_GRID_FIGURES = {"coursework_cross_product_sweep": "cross_product_settling.png",
+                 "coursework_beta_pd_grid": "beta_pd_heatmap_settling.png",
+                 "coursework_wheels_pd_grid": "wheels_pd_heatmap_settling.png"}
+
+
+def grid_blocks() -> dict[str, str]:
+    return {name: make() for name, make in _GRID_BLOCKS.items()}
+
+
+def regenerate_grids(ctx: Context) -> None:
+    """The seed-004 sweep tables (cross product, β-PD, wheels, noise) and figures, from committed results:
+    each figure is the campaign's own first plot (the settling time), redrawn by ``draw_plots``."""
+    from fprime_lite.tools.campaign.plots import draw_plots
+
+    ctx.set_blocks(_CONVERGENCE_DOC, grid_blocks())
+    for key, figure in _GRID_FIGURES.items():
+        campaign, df = _committed(key)
+        if df is None:
+            continue
+        with tempfile.TemporaryDirectory() as scratch:
+            pngs = draw_plots(df, campaign.campaign(), pathlib.Path(scratch))
+            settling = [p for p in pngs if p.name.endswith("_settling_time_2pct_s.png")]
+            if settling:
+                ctx.copy(settling[0], IMG_DIR / "coursework" / figure)
+
+
 # --- seed 004: the report's model (SciPy) ----------------------------------------------------------------
 
 _REPLICA_CASES = (
-    # (label, arguments, quick arguments). magnetorquer1 (30,000 s under RK45, CPU-minutes) is not here yet.
+    # (label, arguments, quick arguments)
     ("`magnetorquer2`, eq. 23 *or* 24, ode45 defaults", ["beta_pd", "--t-max", "9000"], None),
     ("`magnetorquer2`, both spin terms (listing), ode45 defaults", ["beta_pd", "--listing", "--t-max", "9000"], None),
     ("`wheels`, K_p = 5, K_d = 9, ode45 defaults", ["wheels_pd", "--t-max", "30"], ["wheels_pd", "--t-max", "30"]),
@@ -391,6 +624,58 @@ def regenerate_replica(ctx: Context) -> None:
     lines += ["", "Generated by `python tools/studies.py --only coursework_replica` (SciPy "
               "RK45, settling read off its dense output every 1 ms unless `--sample 0`)."]
     ctx.set_blocks(_CONVERGENCE_DOC, {"coursework_replica": "\n".join(lines) + "\n"})
+
+
+_MT1_DIR = STUDIES_DIR / "coursework_replica"
+_MT1_CASES = (
+    # (file under docs/studies/coursework_replica/, label, report_replica.py arguments)
+    ("magnetorquer1_ode45.json", "ode45 defaults (RelTol 1e-3, AbsTol 1e-6)",
+     ["cross_product", "--gain", "146", "--t-max", "30000"]),
+    ("magnetorquer1_tight.json", "RelTol 1e-8, AbsTol 1e-10",
+     ["cross_product", "--gain", "146", "--t-max", "30000", "--rtol", "1e-8", "--atol", "1e-10"]),
+    ("magnetorquer1_ode45_unnormalized.json", "ode45 defaults, eq. 11's DCM from the un-normalised quaternion",
+     ["cross_product", "--gain", "146", "--t-max", "30000", "--no-normalize"]),
+)
+
+
+def magnetorquer1_blocks() -> dict[str, str]:
+    """The report's model of ``magnetorquer1`` (30,000 s under RK45), read off the dense output every 1 ms,
+    from the committed JSON lines of ``report_replica.py`` (docs/studies/coursework_replica/)."""
+    lines = ["| `magnetorquer1`, k = 146, RK45 | settling, 2 % bands: overall (x / y / z) (s) | solver steps | "
+             "‖q‖ at the end | command |", "|---|---|---|---|---|"]
+    for name, label, args in _MT1_CASES:
+        path = _MT1_DIR / name
+        command = (f"`python campaigns/coursework/report_replica.py {' '.join(args)} "
+                   f"> docs/studies/coursework_replica/{name}`")
+        if not path.exists():  # the command without the file it would write (the docs name existing paths only)
+            lines.append(f"| {label} | not committed yet | | | `python campaigns/coursework/report_replica.py "
+                         f"{' '.join(args)}` |")
+            continue
+        out = json.loads(path.read_text(encoding="utf-8"))
+        if out.get("sample_s", 0) <= 0:
+            raise StudyError(f"{_shown(path)}: read off the solver's steps (--sample 0); the table is of "
+                             f"the dense output")
+        axes = " / ".join(_fmt(a, 1) for a in out["settling_axes_s"])
+        lines.append(f"| {label} | **{_fmt(out['settling_overall_s'], 1)}** ({axes}) | {out['steps']} | "
+                     f"{out['final_norm_q']:.3f} | {command} |")
+    lines += ["", "Generated by `python tools/studies.py --only coursework_replica_magnetorquer1` from "
+              "`docs/studies/coursework_replica/*.json` (each the JSON line of its command: SciPy RK45, settling "
+              "read off the dense output every 1 ms; `--rerun-campaigns` flies them again)."]
+    return {"coursework_replica_magnetorquer1": "\n".join(lines) + "\n"}
+
+
+def regenerate_magnetorquer1(ctx: Context) -> None:
+    ctx.set_blocks(_CONVERGENCE_DOC, magnetorquer1_blocks())
+
+
+def fly_magnetorquer1() -> None:
+    """Fly the three replica runs again into docs/studies/coursework_replica/ (CPU-minutes; needs scipy)."""
+    from fprime_lite.osal.atomic import atomic_write_bytes
+
+    replica = _load_script("campaigns/coursework/report_replica.py")
+    for name, _, args in _MT1_CASES:
+        _MT1_DIR.mkdir(parents=True, exist_ok=True)
+        atomic_write_bytes(_MT1_DIR / name, (json.dumps(replica.run(replica.parse_args(args))) + "\n").encode())
 
 
 # --- spin stabilisation campaign ---------------------------------------------------------------------------
@@ -467,8 +752,83 @@ def regenerate_spin_campaign(ctx: Context) -> None:
 # --- campaign plots of the other committed campaigns ---------------------------------------------------------
 
 
-def regenerate_campaign_plots(ctx: Context) -> None:
-    for key in ("attitude_knowledge", "flight_detumble_campaign", "flight_detumble_campaign_p95"):
+
+
+# --- campaign tables of attitude_knowledge.md and flight_detumble_campaign.md -------------------------------------
+
+_KNOWLEDGE_DOC = STUDIES_DIR / "attitude_knowledge.md"
+_FLIGHT_DOC = STUDIES_DIR / "flight_detumble_campaign.md"
+# (metric, label, digits, scale, unit, target text, test of one run's value)
+_KNOWLEDGE_ROWS = (
+    ("slew_settle_s", "90° slew settled below 0.1° (s)", 1, 1.0, "", "≤ 30 s", lambda v: v <= 30.0),
+    ("pointing_steady_median_deg", "steady median (°)", 4, 1.0, "", "≤ 0.01°", lambda v: v <= 0.01),
+    ("pointing_steady_p95_deg", "steady p95 (°)", 4, 1.0, "", "≤ 0.05°", lambda v: v <= 0.05),
+    ("wheel_momentum_max_fraction", "largest \\|h_i\\|/h_max", 1, 100.0, " %", "< 50 %", lambda v: v < 0.5),
+    ("wheel_limit_events", "wheel limit events", 0, 1.0, "", "never", lambda v: v == 0),
+)
+
+
+def knowledge_blocks() -> dict[str, str]:
+    """The 100-run pointing campaign's table (docs/studies/attitude_knowledge/), per-run metrics' spread."""
+    import numpy as np
+
+    campaign, df = _committed("attitude_knowledge")
+    if df is None:
+        return {"attitude_knowledge_campaign": _not_committed(campaign)}
+    ok = _ok(df)
+    lines = ["| metric (per run) | min | median | p95 | max | target | runs meeting it |",
+             "|---|---|---|---|---|---|---|"]
+    for metric, label, digits, scale, unit, target, meets in _KNOWLEDGE_ROWS:
+        values = ok[metric].dropna().to_numpy(dtype=float)
+        if not len(values):
+            lines.append(f"| {label} | — | — | — | — | {target} | 0 / {len(df)} |")
+            continue
+        stats = [float(np.min(values)), float(np.percentile(values, 50)), float(np.percentile(values, 95)),
+                 float(np.max(values))]
+        cells = [f"{_fmt(scale * s, digits)}{unit}" for s in stats]
+        meeting = sum(1 for v in values if meets(v))
+        lines.append(f"| {label} | " + " | ".join(cells) + f" | {target} | **{meeting} / {len(df)}** |")
+    cpu = float(df["cpu_s"].sum()) if "cpu_s" in df else math.nan
+    lines += ["", f"{len(ok)} of {len(df)} runs ok; {cpu:,.0f} CPU-s in the runs. Statistics over the runs' own "
+              "figures (numpy's linear percentile)."]
+    return {"attitude_knowledge_campaign": "\n".join(lines) + "\n\n" + _source("attitude_knowledge", campaign) + "\n"}
+
+
+def regenerate_knowledge(ctx: Context) -> None:
+    ctx.set_blocks(_KNOWLEDGE_DOC, knowledge_blocks())
+    CAMPAIGNS["attitude_knowledge"].redraw_plots(ctx)
+
+
+def _flight_table(key: str) -> str:
+    """``campaigns/report_flight_study.py``'s tables of one committed campaign folder (its stdout)."""
+    import contextlib
+    import io
+
+    campaign, df = _committed(key)
+    if df is None:
+        return _not_committed(campaign)
+    report = _load_script("campaigns/report_flight_study.py")
+    buffer = io.StringIO()
+    with contextlib.redirect_stdout(buffer):
+        report.main([str(campaign.path)])
+    lines = buffer.getvalue().rstrip("\n").split("\n")
+    first = next(i for i, line in enumerate(lines) if line.startswith("|"))
+    last = max(i for i, line in enumerate(lines) if line.startswith("|"))
+    after = [line for line in lines[last + 1:] if line.strip()]
+    text = ("; ".join(lines[:first]) + ".\n\n" + "\n".join(lines[first:last + 1]) + "\n\n"
+            + "\n".join(f"- {line}" for line in after if not line.startswith(" ")))
+    return (text + "\n\n" + _source("flight_detumble_campaign", campaign)
+            + f" The table is `python campaigns/report_flight_study.py docs/studies/{campaign.folder}`.\n")
+
+
+def flight_blocks() -> dict[str, str]:
+    return {"flight_detumble_p95": _flight_table("flight_detumble_campaign_p95"),
+            "flight_detumble_orbit": _flight_table("flight_detumble_campaign")}
+
+
+def regenerate_flight(ctx: Context) -> None:
+    ctx.set_blocks(_FLIGHT_DOC, flight_blocks())
+    for key in ("flight_detumble_campaign", "flight_detumble_campaign_p95"):
         CAMPAIGNS[key].redraw_plots(ctx)
 
 
@@ -623,14 +983,22 @@ def regenerate_attitude_modes_orbit(ctx: Context) -> None:
 
 STUDIES = {s.name: s for s in (
     Study("coursework_convergence", "seed 004: every plant figure against the step (committed campaign)",
-          regenerate_convergence, convergence_blocks, _CONVERGENCE_DOC, ("coursework_convergence",)),
+          regenerate_convergence, convergence_blocks, _CONVERGENCE_DOC,
+          ("coursework_convergence", "coursework_convergence_listing")),
+    Study("coursework_grids", "seed 004: the gain sweeps and the noise study (committed campaigns)",
+          regenerate_grids, grid_blocks, _CONVERGENCE_DOC,
+          ("coursework_cross_product_sweep", "coursework_beta_pd_grid", "coursework_wheels_pd_grid",
+           "coursework_noise")),
+    Study("coursework_replica_magnetorquer1", "seed 004: magnetorquer1 in the report's own model (committed RK45 runs)",
+          regenerate_magnetorquer1, magnetorquer1_blocks, _CONVERGENCE_DOC),
     Study("coursework_replica", "seed 004: the report's own model under SciPy's RK45 (minutes; needs scipy)",
           regenerate_replica, None, _CONVERGENCE_DOC),
     Study("spin_stabilisation_campaign", "issue 13's spin target over 2 × 100 deployment runs (committed campaigns)",
           regenerate_spin_campaign, spin_campaign_blocks, _SPIN_DOC, ("spin_minor_axis", "spin_major_axis")),
-    Study("campaign_plots", "the plots of the other committed campaigns, redrawn from their results",
-          regenerate_campaign_plots, None, None,
-          ("attitude_knowledge", "flight_detumble_campaign", "flight_detumble_campaign_p95")),
+    Study("attitude_knowledge", "issue 13's pointing on the wheels over 100 deployment runs (committed campaign)",
+          regenerate_knowledge, knowledge_blocks, _KNOWLEDGE_DOC, ("attitude_knowledge",)),
+    Study("flight_detumble_campaign", "the PROVES flight detumble configurations (two committed campaigns)",
+          regenerate_flight, flight_blocks, _FLIGHT_DOC, ("flight_detumble_campaign", "flight_detumble_campaign_p95")),
     Study("attitude_modes_spin", "seed 003's spin stabilisation: one orbit per law (four deployment runs)",
           regenerate_attitude_modes_spin, None, _ATTITUDE_DOC),
     Study("attitude_modes_pointing", "seed 003's whole sequence as shipped: its table and figures (one 6000 s run)",
@@ -720,6 +1088,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.rerun_campaigns:
             for key in study.campaigns:
                 CAMPAIGNS[key].rerun()
+            if name == "coursework_replica_magnetorquer1":
+                fly_magnetorquer1()
         print(f"{name}: {study.summary}", flush=True)
         try:
             before = len(ctx.written)

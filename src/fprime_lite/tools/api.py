@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import json
+import math
 import pathlib
 import sys
 from typing import Sequence
@@ -130,27 +131,42 @@ def claim_run_folder(out=None, runs_dir="runs") -> pathlib.Path:
 def run(topology="topology.yaml", *, duration_s: float | None = None, out=None, scenario: str | None = None,
         seed: int | None = None, settings: Sequence[str] = (), params=None, seq=None,
         truth_interval_s: float | None = None, plots: bool = False, progress: bool = False,
-        quiet: bool = True) -> "RunResult":
+        quiet: bool = True, force: bool = False) -> "RunResult":
     """Fly ``topology`` for ``duration_s`` simulated seconds (default: the topology's ``run.duration_s``,
     else 600); return its :class:`RunResult`.
 
     Outputs go to ``out`` (absent or empty) or a new ``runs/<timestamp>``. ``plots`` draws the PNGs
     as the run ends (``result.plot()`` does it later); ``progress`` shows the progress bar;
     ``quiet=False`` prints the summary table.
+
+    A run longer than :data:`~fprime_lite.tools.disk_estimate.CHECK_ABOVE_S` is first estimated (a
+    60 s probe flight scaled to ``duration_s``) and refused with :class:`RunSetupError` when its
+    outputs would not fit the disk or exceed 10 GB, as ``fprime-lite run`` does; ``force=True`` flies
+    it anyway.
     """
     from fprime_lite.deploy.preflight import check_run_files
+    from fprime_lite.tools import disk_estimate
     from fprime_lite.tools.runner import run_deployment, run_duration
 
-    if duration_s is not None and not (isinstance(duration_s, (int, float)) and duration_s > 0):
-        raise RunSetupError(f"duration must be a positive number of seconds, got {duration_s!r}")
+    if duration_s is not None and not (isinstance(duration_s, (int, float)) and not isinstance(duration_s, bool)
+                                       and 0 < duration_s < math.inf):
+        raise RunSetupError(f"duration_s must be a positive, finite number of seconds, got {duration_s!r}")
     for what, value in (("parameter file", params), ("sequence", seq)):
         if value is not None and not pathlib.Path(value).is_file():
             kind = "is a folder" if pathlib.Path(value).is_dir() else "no such file"
             raise RunSetupError(f"{what} {value}: {kind}")
     loaded = load(topology, scenario=scenario, seed=seed, settings=settings, truth_interval_s=truth_interval_s)
     check_run_files(loaded, parameter_file=params, sequence=seq)
+    duration_s = run_duration(loaded, duration_s)
+    if duration_s > disk_estimate.CHECK_ABOVE_S and not force:
+        def fly(probe_folder: pathlib.Path, seconds: float) -> None:
+            probe = load(topology, scenario=scenario, seed=seed, settings=settings, truth_interval_s=truth_interval_s)
+            run_deployment(probe, probe_folder, duration_s=seconds, parameter_file=params, sequence=seq,
+                           plots=False, quiet=True)
+        disk_estimate.check_disk(disk_estimate.estimate_output_bytes(fly), duration_s,
+                                 pathlib.Path(out if out is not None else "runs"), spelling="api")
     folder = claim_run_folder(out)
-    run_deployment(loaded, folder, duration_s=run_duration(loaded, duration_s), parameter_file=params, sequence=seq,
+    run_deployment(loaded, folder, duration_s=duration_s, parameter_file=params, sequence=seq,
                    progress=progress, plots=plots, quiet=quiet)
     return RunResult(folder)
 

@@ -75,10 +75,19 @@ def _size(n: float) -> str:
     return f"{n:,.0f} B"
 
 
-def check_disk(estimate: OutputEstimate, duration_s: float, out: pathlib.Path) -> None:
+#: How the remedies are spelt: the command line's options, or the Python API's arguments (``run()``).
+_SPELLING = {
+    "cli": {"duration": "--duration", "force": "pass --force", "truth": "--truth-interval"},
+    "api": {"duration": "duration_s", "force": "pass force=True", "truth": "truth_interval_s="},
+}
+
+
+def check_disk(estimate: OutputEstimate, duration_s: float, out: pathlib.Path, *, spelling: str = "cli") -> None:
     """Raise :class:`RunSetupError` (one line: the estimate, the room, what to do) when the outputs of a
     ``duration_s`` run would not fit in :data:`FREE_SHARE` of the free space under ``out`` or exceed
-    :data:`ASK_ABOVE_BYTES`."""
+    :data:`ASK_ABOVE_BYTES`. ``spelling`` names the remedies as the caller offers them (``"cli"``:
+    ``--duration``/``--force``; ``"api"``: ``duration_s``/``force=True``)."""
+    words = _SPELLING[spelling]
     need = estimate.bytes_for(duration_s)
     free = shutil.disk_usage(_existing(out)).free
     budget = min(FREE_SHARE * free, ASK_ABOVE_BYTES)
@@ -86,8 +95,9 @@ def check_disk(estimate: OutputEstimate, duration_s: float, out: pathlib.Path) -
         return
     rate = f"{_size(estimate.bytes_per_s * 3600)} per simulated hour, measured over a {PROBE_S:.0f} s probe flight"
     longest = estimate.duration_for(budget)
+    force = words["force"].split(" ", 1)[1]
     room = (f"{_size(free)} free there" if FREE_SHARE * free < ASK_ABOVE_BYTES
-            else f"more than {_size(ASK_ABOVE_BYTES)} asks for --force")
-    raise RunSetupError(f"--duration {duration_s:g} s would write about {_size(need)} of outputs ({rate}); "
-                        f"{room} — shorten --duration (at most about {longest:,.0f} s here), write fewer "
-                        f"truth rows (--truth-interval), or pass --force to fly it anyway")
+            else f"more than {_size(ASK_ABOVE_BYTES)} asks for {force}")
+    raise RunSetupError(f"{words['duration']} {duration_s:g} s would write about {_size(need)} of outputs ({rate}); "
+                        f"{room} — shorten {words['duration']} (at most about {longest:,.0f} s here), write fewer "
+                        f"truth rows ({words['truth']}), or {words['force']} to fly it anyway")

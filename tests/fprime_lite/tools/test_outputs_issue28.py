@@ -200,3 +200,24 @@ def test_the_disk_estimate_is_held_to_the_free_space(tmp_path, monkeypatch):
     with pytest.raises(RunSetupError, match=r"would write about 50.0 MB .*; 50.0 MB free there — shorten --duration "
                                             r"\(at most about 44,999 s here\)"):
         disk_estimate.check_disk(estimate, 50_000.0, tmp_path)
+
+
+def test_the_python_api_run_is_held_to_the_disk_cap_too(tmp_path):
+    """O28-011: `fprime_lite.tools.run(duration_s=a year)` is refused as `fprime-lite run` is, before it
+    flies, with the estimate and the API's own remedies (duration_s, force=True); nothing is created.
+    A non-finite duration is refused with a clear error, not a traceback deep in the scheduler."""
+    from fprime_lite.tools import run
+    from fprime_lite.tools.errors import RunSetupError
+
+    out = tmp_path / "year"
+    with pytest.raises(RunSetupError) as info:
+        run(PROVES, duration_s=31_536_000.0, out=out)
+    text = str(info.value)
+    assert text.startswith("duration_s 3.1536e+07 s would write about ")
+    gb = float(text.split("would write about ")[1].split(" GB")[0].replace(",", ""))
+    assert 80 < gb < 250
+    assert "pass force=True" in text and "--" not in text.replace(" — ", " ")
+    assert not out.exists()
+    for bad in (float("inf"), float("nan"), True):
+        with pytest.raises(RunSetupError, match="duration_s must be a positive, finite number of seconds"):
+            run(PROVES, duration_s=bad, out=tmp_path / "bad")
