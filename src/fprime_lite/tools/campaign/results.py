@@ -178,8 +178,9 @@ def read_results(out_dir):
         last = int(meta.get(b"fprime_lite_last_part", b"-1"))
         if not parts or parts[-1][0] <= last:
             return pd.read_parquet(table_path)
-    if not parts and not (out_dir / LEGACY_JOURNAL).exists():
+    if not parts and not (out_dir / PARTS).is_dir() and not (out_dir / LEGACY_JOURNAL).exists():
         return pd.read_parquet(table_path)  # (its FileNotFoundError names the file)
+    # a parts folder with no part yet: a campaign whose first batch is not flushed (an empty table)
     store = ResultStore(out_dir, None, None, reader=True)
     return store.frame()
 

@@ -188,3 +188,12 @@ def test_a_damaged_part_is_named_not_skipped(tmp_path):
     with pytest.raises(CampaignError, match=rf"{part.name}: this results part cannot be read .* --resume"):
         ResultStore(tmp_path, ["x"], ["m"])
     assert os.path.exists(part)
+
+
+def test_a_running_campaign_with_no_part_yet_reads_as_an_empty_table(tmp_path):
+    """CAMP-145: between the parts folder's creation and the first flush a reader (a user polling, or
+    CAMP-051's kill loop) gets an empty table with the result columns, not a FileNotFoundError for a
+    results.parquet that only a finished session writes."""
+    (tmp_path / "results.parts").mkdir()
+    table = read_results(tmp_path)
+    assert len(table) == 0 and "run_id" in table.columns and "status" in table.columns
