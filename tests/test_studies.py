@@ -77,17 +77,23 @@ def test_committed_seed004_sweeps_are_what_the_code_computes_now(key):
     assert campaign.problems(fly_probes=True) == []
 
 
-def test_a_hand_edited_sweep_table_is_reported(tmp_path, monkeypatch):
-    """STUDY-006: the wheel grid's table with one settling time changed by hand: --check reports that block."""
-    study = studies.STUDIES["coursework_grids"]
+def _check_with_a_hand_edit(tmp_path, monkeypatch, name: str, block: str, old: str, new: str) -> list[str]:
+    """``--check``'s problems for study ``name`` when a copy of its doc has ``old`` -> ``new`` once in ``block``."""
+    study = studies.STUDIES[name]
     text = study.doc.read_text(encoding="utf-8")
-    body = studies.doc_blocks(text)["coursework_wheels_pd"]
-    edited = body.replace("10.05", "10.04", 1)
+    body = studies.doc_blocks(text)[block]
+    edited = body.replace(old, new, 1)
     assert edited != body
     copy = tmp_path / "doc.md"
     copy.write_text(text.replace(body, edited), encoding="utf-8")
-    monkeypatch.setitem(studies.STUDIES, "coursework_grids", dataclasses.replace(study, doc=copy, campaigns=()))
-    problems = studies.check(["coursework_grids"], fly_probes=False)
+    monkeypatch.setitem(studies.STUDIES, name, dataclasses.replace(study, doc=copy, campaigns=()))
+    return studies.check([name], fly_probes=False)
+
+
+def test_a_hand_edited_sweep_table_is_reported(tmp_path, monkeypatch):
+    """STUDY-006: the wheel grid's table with one settling time changed by hand: --check reports that block."""
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_grids", "coursework_wheels_pd",
+                                       "10.05", "10.04")
     assert len(problems) == 1 and "block 'coursework_wheels_pd'" in problems[0]
 
 
@@ -99,15 +105,8 @@ def test_spin_campaign_folders_belong_to_their_campaign_files():
 
 def test_a_hand_edited_number_in_a_block_is_reported(tmp_path, monkeypatch):
     """STUDY-003: change one digit of the convergence table in a copy of the doc: --check reports it."""
-    study = studies.STUDIES["coursework_convergence"]
-    text = study.doc.read_text(encoding="utf-8")
-    body = studies.doc_blocks(text)["coursework_convergence"]
-    edited = body.replace("**", "**9", 1)
-    assert edited != body
-    copy = tmp_path / "doc.md"
-    copy.write_text(text.replace(body, edited), encoding="utf-8")
-    monkeypatch.setitem(studies.STUDIES, "coursework_convergence", dataclasses.replace(study, doc=copy, campaigns=()))
-    problems = studies.check(["coursework_convergence"], fly_probes=False)
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_convergence", "coursework_convergence",
+                                       "**", "**9")
     assert len(problems) == 1 and "block 'coursework_convergence'" in problems[0]
 
 
