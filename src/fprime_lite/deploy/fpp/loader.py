@@ -214,10 +214,12 @@ def _check_component(fpp_name: str, comp: Any, cls: type, analysis: Any) -> list
     def refuse(node: Any, what: str, member: Any = None) -> None:
         out.append(f"{_loc(node)}: {fpp_name}: {what} — {_python_loc(cls, member)}")
 
+    flown = getattr(cls, "__fprime_state_machines__", ())
     for name, instance in comp.state_machine_instance_map.items():
-        refuse(instance.node, f"state machine instance {name}: fprime-lite does not fly FPP state machines (it has "
-                              f"no generated signal dispatch) — write the states in {cls.__qualname__}'s handlers "
-                              f"and remove the instance")
+        if name not in flown:
+            refuse(instance.node, f"state machine instance {name}: {cls.__qualname__} declares its members, and "
+                                  f"fprime-lite runs an FPP state machine only in a class that supplies handlers "
+                                  f"only (its actions and guards as methods, docs/fpp.md) — drop its declarations")
     kind = str(comp.node.kind).rsplit(".", 1)[-1].lower()
     if kind != spec.kind:
         refuse(comp.node, f"FPP declares a {kind} component, {cls.__qualname__} is {spec.kind}")

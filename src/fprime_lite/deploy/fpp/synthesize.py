@@ -251,10 +251,31 @@ def synthesize(fpp_name: str, comp: Any, cls: type, analysis: Any, where: Callab
         if param.default is not None:
             kwargs["default"] = _value(ptype, param.default)
         body[param.name] = _annotate(Param(ptype, **kwargs), param.node)
+    body.update(_state_machines(comp, cls, analysis, where))
     try:
         return type(cls)(cls.__name__, (cls,), body)
     except DeclarationError as exc:
         raise DeclarationError(f"{where(comp.node)}: {exc}") from None
+
+
+def _state_machines(comp: Any, cls: type, analysis: Any, where: Callable[[Any], str]) -> dict[str, Any]:
+    """The members that run the component's FPP state machine instances (:mod:`.state_machine`)."""
+    if not comp.state_machine_instance_map:
+        return {}
+    from fprime_lite.deploy.fpp.state_machine import compile_state_machine, state_machine_members
+
+    compiled: dict[str, Any] = {}  # (F´'s analyser refuses an instance in a passive component)
+    instances = []
+    for name, instance in comp.state_machine_instance_map.items():
+        sm = analysis.state_machine_map[instance.symbol]
+        qualified = analysis.get_qualified_name(instance.symbol)
+        if qualified not in compiled:
+            compiled[qualified] = compile_state_machine(sm, analysis, where)
+        queue_full = str(instance.queue_full or "Assert").rsplit(".", 1)[-1].lower()
+        instances.append((name, compiled[qualified], int(instance.priority or 0), queue_full, where(instance.node)))
+    members = state_machine_members(cls, instances, lambda n: n)
+    members["__fprime_state_machines__"] = tuple(name for name, *_ in instances)
+    return members
 
 
 def _annotate(decl: Any, node: Any) -> Any:
