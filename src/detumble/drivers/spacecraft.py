@@ -46,7 +46,7 @@ from __future__ import annotations
 import datetime as _dt
 import math
 from collections import deque
-from typing import Callable, NamedTuple, Sequence
+from typing import TYPE_CHECKING, Callable, NamedTuple, Sequence
 
 from fprime_lite.deploy.resources import ResetLine, RoleOptionError, SimulationEnded, topology_resource
 from fprime_lite.deploy.scheduler import Scheduler
@@ -57,11 +57,13 @@ from detumble.sim.coils import CoilSet, MAX_LEVEL
 from detumble.sim.epoch import julian_date
 from detumble.sim.orbit import R_EARTH_EQ
 from detumble.sim.power import FACE_SWITCHES, ElectricalSystem, coil_supply_power_w
-from detumble.sim.plant import Plant
 from detumble.sim.thermal import ThermalModel
 from detumble.sim.sun_sensors import SunSensorModel
-from detumble.sim.scenario import Scenario, SettingError, load_scenario
 from detumble.control.units import GAUSS_PER_TESLA
+
+if TYPE_CHECKING:  # the plant and the scenario schema are imported when a spacecraft is made: a
+    # module that only names SimulatedSpacecraft (each PROVES driver) stays light to import (issue 30)
+    from detumble.sim.scenario import Scenario
 
 __all__ = ["SimulatedSpacecraft", "TruthSample", "TruthRecorder", "scenario_epoch_us", "require_spacecraft",
            "make_spacecraft"]
@@ -162,6 +164,9 @@ class SimulatedSpacecraft(ResetLine):
 
     def __init__(self, scenario: Scenario | str, *, clock: SimulatedClock | None = None,
                  seed: int | None = None, origin_us: int | None = None) -> None:
+        from detumble.sim.plant import Plant
+        from detumble.sim.scenario import load_scenario
+
         if isinstance(scenario, str):
             scenario = load_scenario(scenario)
         self.scenario = scenario
@@ -738,6 +743,8 @@ def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler |
     """
     if scheduler is None:
         raise ValueError("make_spacecraft needs the deployment's scheduler (args: {scheduler: $scheduler})")
+    from detumble.sim.scenario import SettingError, load_scenario
+
     if isinstance(scenario, str):
         try:
             scenario = load_scenario(scenario, settings=settings)

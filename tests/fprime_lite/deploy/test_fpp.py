@@ -8,6 +8,7 @@ import json
 import pathlib
 import shutil
 import subprocess
+import sys
 
 import pytest
 
@@ -200,3 +201,16 @@ def test_run_of_fpp_refuses_what_the_run_file_lacks(tmp_path, capsys, change, ex
     assert _run(files, tmp_path / "out") == 2
     assert expected in capsys.readouterr().err
     assert not (tmp_path / "out").exists()
+
+
+def test_load_and_bind_of_proves_ref_leaves_the_plant_and_the_scenario_schema_unimported():
+    """FPP-030: binding proves_ref's FPP imports each component's module, and those need only the
+    spacecraft's name: the plant and the scenario schema (the bulk of the cold load, docs/fpp.md)
+    are imported when a spacecraft is made, not by load + bind."""
+    folder = ROOT / "deployments" / "proves_ref" / "fpp"
+    code = ("import sys; from fprime_lite.deploy.fpp.loader import load_fpp; "
+            f"m = load_fpp([{str(folder / 'components.fpp')!r}, {str(folder / 'topology.fpp')!r}]); "
+            "print(len(m.instances), sorted(n for n in ('detumble.sim.plant', 'detumble.sim.scenario') "
+            "if n in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True, timeout=120)
+    assert out.stdout.split() == ["65", "[]"], out.stdout
