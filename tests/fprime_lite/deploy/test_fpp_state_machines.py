@@ -174,3 +174,28 @@ def test_an_external_state_machine_is_refused_with_the_reason(lamp):
     with pytest.raises(FppError) as caught:
         _make(lamp)
     assert any("state machine Components.Plain is external" in p for p in caught.value.problems), caught.value.problems
+
+
+def test_a_deployment_flies_the_state_machine_on_its_rate_group(tmp_path, monkeypatch):
+    """FPSM-013: the FPP topology run as `fprime-lite run` runs it: a 1 Hz rate group calls the lamp
+    switch, whose `run` queues a toggle; the scheduler dispatches it. Ticks at 0, 1, 2 and 3 s give
+    four toggles: OFF -> ON_DIM -> OFF -> ON_DIM -> OFF."""
+    from fprime_lite.deploy.deployment import Deployment
+    from fprime_lite.deploy.fpp.run import write_topology_yaml
+    from fprime_lite.deploy.topology_loader import load_topology
+
+    folder = tmp_path / "lamp"
+    folder.mkdir()
+    for name in ("lamp_switch.fpp", "lamp_switch.py"):
+        shutil.copy(DATA / name, folder / name)
+    text = (folder / "lamp_switch.fpp").read_text()
+    (folder / "lamp_switch.fpp").write_text(text[:text.index("module Demo {")])  # the components only
+    monkeypatch.syspath_prepend(str(folder))
+    files = [folder / "lamp_switch.fpp", DATA / "deployment" / "topology.fpp"]
+    yaml_path = write_topology_yaml(files, tmp_path, run_file=DATA / "deployment" / "run.yaml")
+    deployment = Deployment(load_topology(yaml_path))
+    deployment.start()
+    deployment.run_for(3.5)
+    lamp = deployment.topology.instance("Demo.lampSwitch").component
+    assert [c for c in lamp.calls if c[0] == "log"] == [("log", INIT)] + [("log", "toggle")] * 4
+    assert lamp.lamp_getState().name == "OFF"
