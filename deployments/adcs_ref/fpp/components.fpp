@@ -399,8 +399,8 @@ module Components {
     sync command ENABLE_COIL(face: Components.MagnetorquerFace) opcode 0x45
     sync command ISOLATE_COIL(face: Components.MagnetorquerFace) opcode 0x46
     event EnableFailedSafeMode severity warning low id 0x0 format "Failed to enable detumbling because system is in SAFE_MODE." throttle 5
-    event DetumbleStarted(angular_velocity_magnitude_deg_sec: F64) severity activity low id 0x1 format "Detumble started. Angular velocity magnitude: {.2f} deg/s" throttle 1
-    event DetumbleCompleted(angular_velocity_magnitude_deg_sec: F64) severity activity low id 0x2 format "Detumble complete. Angular velocity magnitude: {.2f} deg/s" throttle 1
+    event DetumbleStarted(angular_velocity_magnitude_deg_sec: F64) severity activity low id 0x1 format "Detumble started. Angular velocity magnitude: {} deg/s" throttle 1
+    event DetumbleCompleted(angular_velocity_magnitude_deg_sec: F64) severity activity low id 0x2 format "Detumble complete. Angular velocity magnitude: {} deg/s" throttle 1
     event MagneticFieldRetrievalFailed severity warning low id 0x3 format "Failed to retrieve magnetic field." throttle 5
     event MagneticFieldSamplingPeriodRetrievalFailed severity warning low id 0x4 format "Failed to retrieve magnetic field sampling frequency." throttle 5
     event AngularVelocityRetrievalFailed severity warning low id 0x5 format "Failed to retrieve angular velocity." throttle 5
@@ -419,27 +419,27 @@ module Components {
     event YTurnsParamSet(value: F64) severity activity high id 0x22 format "Y_TURNS parameter set to {}."
     event ZTurnsParamSet(value: F64) severity activity high id 0x27 format "Z_TURNS parameter set to {}."
     event XPlusVoltageParamSet(value: F64) severity activity high id 0x15 format "X_PLUS_VOLTAGE parameter set to {} V."
-    event XPlusResistanceParamSet(value: F64) severity activity high id 0x13 format "X_PLUS_RESISTANCE parameter set to {} ohm."
+    event XPlusResistanceParamSet(value: F64) severity activity high id 0x13 format "X_PLUS_RESISTANCE parameter set to {} Ω."
     event XPlusLengthParamSet(value: F64) severity activity high id 0x12 format "X_PLUS_LENGTH parameter set to {} m."
     event XPlusWidthParamSet(value: F64) severity activity high id 0x16 format "X_PLUS_WIDTH parameter set to {} m."
     event XPlusShapeParamSet(value: Components.CoilShape) severity activity high id 0x14 format "X_PLUS_SHAPE parameter set to {}."
     event XMinusVoltageParamSet(value: F64) severity activity high id 0x10 format "X_MINUS_VOLTAGE parameter set to {} V."
-    event XMinusResistanceParamSet(value: F64) severity activity high id 0xE format "X_MINUS_RESISTANCE parameter set to {} ohm."
+    event XMinusResistanceParamSet(value: F64) severity activity high id 0xE format "X_MINUS_RESISTANCE parameter set to {} Ω."
     event XMinusLengthParamSet(value: F64) severity activity high id 0xD format "X_MINUS_LENGTH parameter set to {} m."
     event XMinusWidthParamSet(value: F64) severity activity high id 0x11 format "X_MINUS_WIDTH parameter set to {} m."
     event XMinusShapeParamSet(value: Components.CoilShape) severity activity high id 0xF format "X_MINUS_SHAPE parameter set to {}."
     event YPlusVoltageParamSet(value: F64) severity activity high id 0x20 format "Y_PLUS_VOLTAGE parameter set to {} V."
-    event YPlusResistanceParamSet(value: F64) severity activity high id 0x1E format "Y_PLUS_RESISTANCE parameter set to {} ohm."
+    event YPlusResistanceParamSet(value: F64) severity activity high id 0x1E format "Y_PLUS_RESISTANCE parameter set to {} Ω."
     event YPlusLengthParamSet(value: F64) severity activity high id 0x1D format "Y_PLUS_LENGTH parameter set to {} m."
     event YPlusWidthParamSet(value: F64) severity activity high id 0x21 format "Y_PLUS_WIDTH parameter set to {} m."
     event YPlusShapeParamSet(value: Components.CoilShape) severity activity high id 0x1F format "Y_PLUS_SHAPE parameter set to {}."
     event YMinusVoltageParamSet(value: F64) severity activity high id 0x1B format "Y_MINUS_VOLTAGE parameter set to {} V."
-    event YMinusResistanceParamSet(value: F64) severity activity high id 0x19 format "Y_MINUS_RESISTANCE parameter set to {} ohm."
+    event YMinusResistanceParamSet(value: F64) severity activity high id 0x19 format "Y_MINUS_RESISTANCE parameter set to {} Ω."
     event YMinusLengthParamSet(value: F64) severity activity high id 0x18 format "Y_MINUS_LENGTH parameter set to {} m."
     event YMinusWidthParamSet(value: F64) severity activity high id 0x1C format "Y_MINUS_WIDTH parameter set to {} m."
     event YMinusShapeParamSet(value: Components.CoilShape) severity activity high id 0x1A format "Y_MINUS_SHAPE parameter set to {}."
     event ZMinusVoltageParamSet(value: F64) severity activity high id 0x26 format "Z_MINUS_VOLTAGE parameter set to {} V."
-    event ZMinusResistanceParamSet(value: F64) severity activity high id 0x24 format "Z_MINUS_RESISTANCE parameter set to {} ohm."
+    event ZMinusResistanceParamSet(value: F64) severity activity high id 0x24 format "Z_MINUS_RESISTANCE parameter set to {} Ω."
     event ZMinusDiameterParamSet(value: F64) severity activity high id 0x23 format "Z_MINUS_DIAMETER parameter set to {} m."
     event ZMinusShapeParamSet(value: Components.CoilShape) severity activity high id 0x25 format "Z_MINUS_SHAPE parameter set to {}."
     event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x2C format "Handler {} raised {}" throttle 10

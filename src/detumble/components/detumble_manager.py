@@ -172,7 +172,7 @@ class DetumbleManager(PassiveComponent):
     X_PLUS_VOLTAGE = Param(F64, units="V", default=_XY.voltage_v, id=9, low=0.1, high=50.0,
                            echo=ParamEcho(event_id=21, channel_id=13, unit="V"))
     X_PLUS_RESISTANCE = Param(F64, units="Ω", default=_XY.resistance_ohm, id=10, low=0.1, high=10000.0,
-                              echo=ParamEcho(event_id=19, channel_id=14, unit="ohm"))
+                              echo=ParamEcho(event_id=19, channel_id=14, unit="Ω"))
     X_PLUS_LENGTH = Param(F64, units="m", default=_XY.length_m, id=12, low=0.001, high=1.0,
                           echo=ParamEcho(event_id=18, channel_id=16, unit="m"))
     X_PLUS_WIDTH = Param(F64, units="m", default=_XY.width_m, id=13, low=0.001, high=1.0,
@@ -181,7 +181,7 @@ class DetumbleManager(PassiveComponent):
     X_MINUS_VOLTAGE = Param(F64, units="V", default=_XY.voltage_v, id=14, low=0.1, high=50.0,
                             echo=ParamEcho(event_id=16, channel_id=19, unit="V"))
     X_MINUS_RESISTANCE = Param(F64, units="Ω", default=_XY.resistance_ohm, id=15, low=0.1, high=10000.0,
-                               echo=ParamEcho(event_id=14, channel_id=20, unit="ohm"))
+                               echo=ParamEcho(event_id=14, channel_id=20, unit="Ω"))
     X_MINUS_LENGTH = Param(F64, units="m", default=_XY.length_m, id=17, low=0.001, high=1.0,
                            echo=ParamEcho(event_id=13, channel_id=22, unit="m"))
     X_MINUS_WIDTH = Param(F64, units="m", default=_XY.width_m, id=18, low=0.001, high=1.0,
@@ -190,7 +190,7 @@ class DetumbleManager(PassiveComponent):
     Y_PLUS_VOLTAGE = Param(F64, units="V", default=_XY.voltage_v, id=19, low=0.1, high=50.0,
                            echo=ParamEcho(event_id=32, channel_id=26, unit="V"))
     Y_PLUS_RESISTANCE = Param(F64, units="Ω", default=_XY.resistance_ohm, id=20, low=0.1, high=10000.0,
-                              echo=ParamEcho(event_id=30, channel_id=27, unit="ohm"))
+                              echo=ParamEcho(event_id=30, channel_id=27, unit="Ω"))
     Y_PLUS_LENGTH = Param(F64, units="m", default=_XY.length_m, id=22, low=0.001, high=1.0,
                           echo=ParamEcho(event_id=29, channel_id=29, unit="m"))
     Y_PLUS_WIDTH = Param(F64, units="m", default=_XY.width_m, id=23, low=0.001, high=1.0,
@@ -199,7 +199,7 @@ class DetumbleManager(PassiveComponent):
     Y_MINUS_VOLTAGE = Param(F64, units="V", default=_XY.voltage_v, id=24, low=0.1, high=50.0,
                             echo=ParamEcho(event_id=27, channel_id=32, unit="V"))
     Y_MINUS_RESISTANCE = Param(F64, units="Ω", default=_XY.resistance_ohm, id=25, low=0.1, high=10000.0,
-                               echo=ParamEcho(event_id=25, channel_id=33, unit="ohm"))
+                               echo=ParamEcho(event_id=25, channel_id=33, unit="Ω"))
     Y_MINUS_LENGTH = Param(F64, units="m", default=_XY.length_m, id=27, low=0.001, high=1.0,
                            echo=ParamEcho(event_id=24, channel_id=35, unit="m"))
     Y_MINUS_WIDTH = Param(F64, units="m", default=_XY.width_m, id=28, low=0.001, high=1.0,
@@ -208,7 +208,7 @@ class DetumbleManager(PassiveComponent):
     Z_MINUS_VOLTAGE = Param(F64, units="V", default=_Z.voltage_v, id=29, low=0.1, high=50.0,
                             echo=ParamEcho(event_id=38, channel_id=39, unit="V"))
     Z_MINUS_RESISTANCE = Param(F64, units="Ω", default=_Z.resistance_ohm, id=30, low=0.1, high=10000.0,
-                               echo=ParamEcho(event_id=36, channel_id=40, unit="ohm"))
+                               echo=ParamEcho(event_id=36, channel_id=40, unit="Ω"))
     Z_MINUS_DIAMETER = Param(F64, units="m", default=_Z.diameter_m, id=32, low=0.001, high=1.0,
                              echo=ParamEcho(event_id=35, channel_id=42, unit="m"))
     Z_MINUS_SHAPE = Param(CoilShape, default=CoilShape(_Z.shape), id=37, echo=ParamEcho(event_id=37, channel_id=43))
@@ -237,9 +237,9 @@ class DetumbleManager(PassiveComponent):
 
     EnableFailedSafeMode = Event(Severity.WARNING_LO,
                                  "Failed to enable detumbling because system is in SAFE_MODE.", throttle=5)
-    DetumbleStarted = Event(Severity.ACTIVITY_LO, "Detumble started. Angular velocity magnitude: {.2f} deg/s",
+    DetumbleStarted = Event(Severity.ACTIVITY_LO, "Detumble started. Angular velocity magnitude: {} deg/s",
                             angular_velocity_magnitude_deg_sec=F64, throttle=1)
-    DetumbleCompleted = Event(Severity.ACTIVITY_LO, "Detumble complete. Angular velocity magnitude: {.2f} deg/s",
+    DetumbleCompleted = Event(Severity.ACTIVITY_LO, "Detumble complete. Angular velocity magnitude: {} deg/s",
                               angular_velocity_magnitude_deg_sec=F64, throttle=1)
     MagneticFieldRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve magnetic field.", throttle=5)
     MagneticFieldSamplingPeriodRetrievalFailed = Event(

@@ -82,6 +82,14 @@ _MAX_TURN_PER_STEP_RAD = 0.5
 POWER_STEP_NS = 100_000_000
 
 
+def load_scenario(name: str, **kwargs) -> Scenario:
+    """:func:`detumble.sim.scenario.load_scenario`, its module imported on the first call (a module
+    name, so that a test can replace it here)."""
+    from detumble.sim.scenario import load_scenario as load
+
+    return load(name, **kwargs)
+
+
 def scenario_epoch_us(scenario: Scenario) -> int:
     """The scenario's UTC epoch as microseconds since 1970-01-01 (a clock ``epoch_us``)."""
     delta = scenario.epoch - _UNIX_EPOCH
@@ -165,7 +173,6 @@ class SimulatedSpacecraft(ResetLine):
     def __init__(self, scenario: Scenario | str, *, clock: SimulatedClock | None = None,
                  seed: int | None = None, origin_us: int | None = None) -> None:
         from detumble.sim.plant import Plant
-        from detumble.sim.scenario import load_scenario
 
         if isinstance(scenario, str):
             scenario = load_scenario(scenario)
@@ -743,7 +750,7 @@ def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler |
     """
     if scheduler is None:
         raise ValueError("make_spacecraft needs the deployment's scheduler (args: {scheduler: $scheduler})")
-    from detumble.sim.scenario import SettingError, load_scenario
+    from detumble.sim.scenario import SettingError
 
     if isinstance(scenario, str):
         try:
