@@ -199,3 +199,21 @@ def test_a_deployment_flies_the_state_machine_on_its_rate_group(tmp_path, monkey
     lamp = deployment.topology.instance("Demo.lampSwitch").component
     assert [c for c in lamp.calls if c[0] == "log"] == [("log", INIT)] + [("log", "toggle")] * 4
     assert lamp.lamp_getState().name == "OFF"
+
+
+def test_a_faulting_action_is_reported_by_instance_and_signal_and_the_queue_goes_on(lamp):
+    """FPSM-014: an action that raises, dispatched as a deployment's scheduler dispatches (faults
+    contained), is a HandlerFault naming `lamp.toggle`; the signals behind it still run."""
+    module = lamp / "lamp_switch.py"
+    module.write_text(module.read_text().replace('        self.calls.append(("log", signal.name))',
+                                                 '        self.calls.append(("log", signal.name))\n'
+                                                 '        if getattr(self, "fail", False):\n'
+                                                 '            raise ZeroDivisionError("log")'))
+    c = _make(lamp)
+    faults = []
+    c.report_fault = lambda where, exc: faults.append((where, type(exc).__name__))
+    c.fail = True
+    c.lamp_sendSignal_toggle()
+    c.lamp_sendSignal_level(200)
+    assert c.dispatch_all(contain_faults=True) == 2
+    assert faults == [("lamp.toggle", "ZeroDivisionError")]

@@ -279,10 +279,15 @@ def _send_signal(instance: str, signal: str, typed: bool, priority: int, queue_f
     def put(self: Any, value: Any) -> None:
         runner = self._state_machines[instance]
 
+        def handle(value: Any) -> None:  # named so that a faulting action is reported by signal
+            runner.signal(signal, value)
+
+        handle.__name__ = port
+
         def overflow(*_: Any) -> None:
             self.stateMachineOverflowHook(sm_id, runner.definition.signal_enum[signal], value)
 
-        self._queue.put(priority, runner.signal, (signal, value), queue_full=queue_full,
+        self._queue.put(priority, handle, (value,), queue_full=queue_full,
                         port=f"{self.name}.{port}", overflow=overflow, run_inline=self.dispatch,
                         threaded=self._thread is not None)
 
