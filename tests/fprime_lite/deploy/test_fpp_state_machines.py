@@ -217,3 +217,22 @@ def test_a_faulting_action_is_reported_by_instance_and_signal_and_the_queue_goes
     c.lamp_sendSignal_level(200)
     assert c.dispatch_all(contain_faults=True) == 2
     assert faults == [("lamp.toggle", "ZeroDivisionError")]
+
+
+def test_a_class_declaring_its_members_is_refused_a_state_machine_instance(lamp):
+    """FPSM-015: the state machine is flown for a handlers-only class; a class that declares its
+    own members (checked against the FPP, not made from it) is refused at the instance's line."""
+    from fprime_lite.model import fw_ports
+    from fprime_lite.model.component import QueuedComponent
+    from fprime_lite.model.ports import async_input
+
+    class Declared(QueuedComponent):
+        @async_input(fw_ports.Sched)
+        def run(self, context):
+            pass
+
+    with pytest.raises(FppError) as caught:
+        component_class(lamp / "lamp_switch.fpp", "Components.LampSwitch",
+                        implementations={"Components.LampSwitch": Declared})
+    assert any("lamp_switch.fpp:42:5: Components.LampSwitch: state machine instance lamp: " in p
+               and "Declared declares its members" in p for p in caught.value.problems), caught.value.problems
