@@ -178,7 +178,7 @@ def test_proves_ref_packetized_decoded_by_stock_gds():
     assert packet_set["name"] == "ReferenceDeploymentPackets"
     health = next(p for p in packet_set["members"] if p["name"] == "Health")
     assert health["id"] == 2 and "CdhCore.cmdDisp.CommandsDispatched" in health["members"]
-    assert "CdhCore.cmdDisp.CommandErrors" in packet_set["omitted"]
+    assert "CdhCore.version.FrameworkVersion" in packet_set["omitted"]
     dicts = Dictionaries()
     import tempfile
 
@@ -193,7 +193,10 @@ def test_proves_ref_packetized_decoded_by_stock_gds():
     deployment = Deployment(loaded)
     deployment.start()
     deployment.run_for(2.0)
-    assert {struct.unpack(">H", p[2:4])[0] for p in packets} == {1, 2}  # Beacon, Health: groups <= 1
+    group_1 = {p["id"] for p in packet_set["members"] if p["group"] <= 1}
+    assert group_1 == {1, 2, 3}  # Beacon, Health, HealthWarnings
+    sent_ids = {struct.unpack(">H", p[2:4])[0] for p in packets}
+    assert {1, 2} <= sent_ids <= group_1  # HealthWarnings only once one of its channels is written
     decoded = {}
     for packet in packets:
         assert struct.unpack(">H", packet[:2])[0] == 4
@@ -201,7 +204,7 @@ def test_proves_ref_packetized_decoded_by_stock_gds():
             decoded[channel.template.get_full_name()] = bytes(channel.get_val_obj().serialize())
     channels = {f"{i.qualified_name}.{c.name}": i.component.base_id + c.local_id
                 for i in loaded.topology.instances.values() for c in i.component.spec.channels}
-    assert set(decoded) == {n for p in packet_set["members"] if p["id"] in (1, 2) for n in p["members"]}
+    assert set(decoded) == {n for p in packet_set["members"] if p["id"] in sent_ids for n in p["members"]}
     assert int.from_bytes(decoded["ReferenceDeployment.startupManager.BootCount"], "big") == 1
     for name, value in decoded.items():  # the GDS's value, serialized again, is what the slot holds
         valid, _, raw = tlm_send.TlmGet(channels[name])
