@@ -6,8 +6,9 @@ seen from the project root (never copied into the project); the tests that run t
 so, where that folder is absent.
 
 - F´'s reusable suites (``fprime_int``: PrmDb, EventManager, Health, CdhCore, FileHandling) on
-  the reference deployment, with both framings: must pass (one racy test may fail, listed with its
-  reason in ``upstream/fprime_int_expected_failures.txt``). All but FileHandling run on board roots
+  the reference deployment flying ``Svc.TlmPacketizer`` as F´'s Ref does
+  (``deployments/proves_ref/topology_packetized.yaml``), with both framings: every test must pass
+  (``upstream/fprime_int_expected_failures.txt`` lists none now). All but FileHandling run on board roots
   of the run's own (``--board-root``), Health alone on one made with the ``/tmp/1MiB.txt`` it appends
   (F´'s CI makes it), so two runs at once share no file; FileHandling then runs alone with the host's
   ``/tmp`` shared, as it requires.
@@ -38,6 +39,8 @@ from fprime_lite.tools.conformance import read_junit
 ROOT = pathlib.Path(__file__).parents[2]
 UPSTREAM = ROOT.parent / "shared" / "upstream"
 TOPOLOGY = ROOT / "deployments" / "proves_ref" / "topology.yaml"
+#: proves_ref with Svc.TlmPacketizer, as F´'s Ref (the home of F´'s suites) flies (docs/ground.md)
+PACKETIZED = ROOT / "deployments" / "proves_ref" / "topology_packetized.yaml"
 LISTS = pathlib.Path(__file__).parent / "upstream"
 PROVES_PYTHON = os.environ.get("FPRIME_LITE_TEST_PYTHON") or str(ROOT / ".venv-upstream" / "bin" / "python")
 
@@ -46,10 +49,11 @@ needs_upstream = pytest.mark.skipif(not UPSTREAM.is_dir(), reason=f"{UPSTREAM} i
                                     f"kept in shared/upstream beside the project (see its README), not in the project")
 
 
-def conformance(suite: pathlib.Path, out: pathlib.Path, *args: str, timeout: float = 1800) -> tuple[int, str]:
+def conformance(suite: pathlib.Path, out: pathlib.Path, *args: str, timeout: float = 1800,
+                topology: pathlib.Path = TOPOLOGY) -> tuple[int, str]:
     """Run the verb in a subprocess; its exit status and output."""
     result = subprocess.run([sys.executable, "-m", "fprime_lite.tools.cli", "conformance", str(suite), "--topology",
-                             str(TOPOLOGY), "--out", str(out), *args], capture_output=True, text=True, timeout=timeout,
+                             str(topology), "--out", str(out), *args], capture_output=True, text=True, timeout=timeout,
                             stdin=subprocess.DEVNULL)
     return result.returncode, result.stdout + result.stderr
 
@@ -85,24 +89,25 @@ def test_fprime_reusable_suites_pass(framing, tmp_path):
     (tmp_path / "board" / "tmp").mkdir(parents=True)  # F´'s Ref runs on Linux: PrmDb moves its file to /tmp
     status, output = conformance(suite, tmp_path / "work", "--framing", framing, "--expected-failures",
                                  str(LISTS / "fprime_int_expected_failures.txt"), "--board-root",
-                                 str(tmp_path / "board"), "--", *deselect)
+                                 str(tmp_path / "board"), "--", *deselect, topology=PACKETIZED)
     counts = outcomes(tmp_path / "work")
     print(f"\nfprime_int on a board root, {framing} framing: {counts}")
     assert status == 0, output[-8000:]
-    # the listed test (fprime_int_expected_failures.txt) may fail: CdhCore's telemetry race
-    assert counts["passed"] + counts["xfailed"] == 6 and counts["xfailed"] <= 1, output[-4000:]
+    # CdhCore's test_telemetry_update included: the packetizer's Health packet comes down every tick
+    assert counts["passed"] == 6 and counts["xfailed"] == 0, output[-4000:]
 
     board = board_with_health_files(tmp_path / "health-board")
     try:
         status, output = conformance(suite / "Health", tmp_path / "work-health", "--framing", framing,
-                                     "--board-root", str(board))
+                                     "--board-root", str(board), topology=PACKETIZED)
     finally:
         (board / "tmp" / "2MiB.txt").unlink(missing_ok=True)  # up to 256 MiB
     counts = outcomes(tmp_path / "work-health")
     print(f"fprime_int/Health, {framing} framing: {counts}")
     assert status == 0 and counts["passed"] == 1, output[-8000:]
 
-    status, output = conformance(suite / "FileHandling", tmp_path / "work-files", "--framing", framing)
+    status, output = conformance(suite / "FileHandling", tmp_path / "work-files", "--framing", framing,
+                                 topology=PACKETIZED)
     counts = outcomes(tmp_path / "work-files")
     print(f"fprime_int/FileHandling, {framing} framing: {counts}")
     assert status == 0 and counts["passed"] == 2, output[-8000:]

@@ -7,8 +7,11 @@ EXECUTION_ERROR. As on the board, components that keep state in memory go on wit
 reset, when they find an empty flash (a first boot).
 
 Ground interface (flight ``Components.FsFormat``, base id 0x10078000): command FORMAT (0); events
-FileSystemFormatted (ACTIVITY_HI), FileSystemFormatFailed (WARNING_HI). Deviation: the folder the
-file services use (the run folder: uplinked files, sequences) is not the simulated flash and is kept.
+FileSystemFormatted (ACTIVITY_HI), FileSystemFormatFailed (WARNING_HI). With ``run --board-root DIR``
+(what ``conformance --board-root`` passes) DIR is both the board's ``/`` for the file services and the
+simulated flash, so FORMAT also erases uplinked files such as ``/seq/*.bin``, as on the board.
+Deviation: without a board root, the folder the file services use (the run folder) is not the
+simulated flash and is kept.
 """
 
 from __future__ import annotations

@@ -101,6 +101,8 @@ class Topology:
     instances: dict[str, Instance] = field(default_factory=dict)
     connections: list[Connection] = field(default_factory=list)
     patterns: dict[str, str] = field(default_factory=dict)
+    #: telemetry packet sets in the JSON dictionary's shape (``telemetry_packets`` of a YAML topology)
+    telemetry_packet_sets: list[dict] = field(default_factory=list)
 
     def add(self, module: str, component: Component, where: str = "") -> Instance:
         """Place ``component`` in ``module``; its qualified name must be unique."""

@@ -23,6 +23,7 @@ from typing import Any, Callable
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.deploy.topology import Topology, TopologyError
 from fprime_lite.deploy.topology_yaml.build import build_instances, build_resources, make_scheduler
+from fprime_lite.deploy.topology_yaml.packets import configure_packets
 from fprime_lite.deploy.topology_yaml.files import is_file, path_problem, read_document, resolve_path
 from fprime_lite.deploy.topology_yaml.problems import Problems
 from fprime_lite.deploy.topology_yaml.schema import TopologyConfig, read_config
@@ -103,6 +104,8 @@ def load_topology(path, overrides: dict | None = None, *, scheduler_factory: Cal
     wire_connections(config, topology, problems)
     timer = wire_rate_groups(config, topology, scheduler, problems)
     wire_patterns(config, topology, problems)
+    if not len(problems):  # the channels are known only once every instance is built
+        configure_packets(config, topology, problems)
     if not len(problems):  # collisions and unconnected ports only mean something in a complete build
         problems.extend(topology.problems())
     check_startup(config, topology, problems)

@@ -166,7 +166,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--board-root", metavar="DIR", help="DIR stands in for the board's / for the file services "
                      "and the command sequencers: an absolute path such as /seq/a.bin names DIR/seq/a.bin, relative "
                      "paths resolve against DIR, nothing outside DIR is reachable, and uplinked or moved files replace "
-                     "existing ones (PROVES's suite uplinks to /seq; 'conformance --board-root' passes it); not with "
+                     "existing ones (PROVES's suite uplinks to /seq; 'conformance --board-root' passes it); DIR is "
+                     "also the simulated flash, so fsFormat's FORMAT erases it all, as on the board; not with "
                      "--file-root")
     run.add_argument("--no-startup", action="store_true", help="fly without the topology's start-up sequence, as "
                      "a board whose file system holds none (PROVES's CI formats it before its suite); not with --seq")
@@ -504,6 +505,7 @@ def cmd_run(args) -> int:
             raise UserError("--board-root and --file-root: give one (a board root is the file services' whole root)")
         if not pathlib.Path(args.board_root).is_dir():
             raise UserError(f"--board-root {args.board_root}: not an existing folder")
+        use_board_as_flash(loaded, args.board_root)
     if args.no_startup:
         if args.seq is not None:
             raise UserError("--no-startup and --seq: give one")
@@ -538,6 +540,15 @@ def cmd_run(args) -> int:
               f"(--allow-warnings accepts them)", file=sys.stderr)
         return EXIT_FAILED
     return 0
+
+
+def use_board_as_flash(loaded, board_root) -> None:
+    """Make ``board_root`` the simulated spacecraft's flash too (every resource with ``use_flash_dir``):
+    on the board the flash is the one file system, so FsFormat's FORMAT erases the uplinked ``/seq``
+    files with the flight state, and the state files lie at the board's ``/``."""
+    for resource in loaded.resources.values():
+        if callable(getattr(resource, "use_flash_dir", None)):
+            resource.use_flash_dir(os.fspath(board_root))
 
 
 def _check_file_root(file_root: str | None) -> None:

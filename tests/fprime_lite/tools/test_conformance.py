@@ -208,3 +208,34 @@ def test_no_startup_flies_without_the_topologys_start_up_sequence(tmp_path, monk
                             "--allow-warnings", *flag]) == 0
         events = (out / "events.log").read_text()
         assert ("CS_SequenceComplete" in events, "DetumbleStarted" in events) == (expected, expected)
+
+
+def test_the_board_root_is_the_simulated_flash(tmp_path, monkeypatch):
+    """CONF-FLASH-001: run --board-root makes the board root the spacecraft's flash as well (one file
+    system, as on the board): the boot count lands at the board's /boot_count.bin, and fsFormat's FORMAT
+    erases the uplinked /seq files with it."""
+    from fprime_lite.tools.api import load
+    from fprime_lite.tools.cli import use_board_as_flash
+    from fprime_lite.tools.runner import run_deployment
+
+    topology = pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml"
+    monkeypatch.chdir(tmp_path)
+    board = tmp_path / "board"
+    board.mkdir()
+    assert fprime_lite(["run", str(topology), "--board-root", str(board), "--duration", "0.1", "--no-plots",
+                        "--no-startup", "--out", str(tmp_path / "cli-run")]) == 0
+    assert (board / "boot_count.bin").is_file()
+
+    board = tmp_path / "board2"
+    (board / "seq").mkdir(parents=True)
+    (board / "seq" / "uplinked.bin").write_bytes(b"\0" * 8)
+    loaded = load(str(topology))
+    use_board_as_flash(loaded, board)
+    run_deployment(loaded, tmp_path / "run", duration_s=0.1, plots=False, quiet=True, board_root=board)
+    assert loaded.resources["spacecraft"].flash_dir == str(board)
+    assert (board / "boot_count.bin").is_file()
+    fs_format = loaded.topology.instance("ReferenceDeployment.fsFormat").component
+    formatted = []
+    fs_format.FileSystemFormatted = lambda: formatted.append(True)
+    fs_format.FORMAT()
+    assert formatted and list(board.iterdir()) == []

@@ -20,7 +20,7 @@ from fprime_lite.deploy.topology_yaml.problems import Problems
 __all__ = ["path_problem", "resolve_path", "is_file", "read_document", "TOP_KEYS"]
 
 TOP_KEYS = {"deployment", "extends", "resources", "modules", "patterns", "connections", "rate_groups",
-            "parameter_file", "startup", "time", "run"}
+            "parameter_file", "startup", "time", "run", "telemetry_packets"}
 
 #: Longest path and path component accepted (Linux's PATH_MAX and NAME_MAX).
 MAX_PATH = 4096

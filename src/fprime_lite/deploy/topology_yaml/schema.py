@@ -206,6 +206,9 @@ class TopologyConfig:
     parameter_file_line: int | None = None
     startup: StartupConfig | None = None
     run: RunConfig = field(default_factory=RunConfig)
+    #: the ``telemetry_packets`` section as written (checked when the instances exist: packets.py)
+    telemetry_packets: Any = None
+    telemetry_packets_line: int | None = None
 
     @property
     def instances(self) -> list[InstanceConfig]:
@@ -313,6 +316,8 @@ class _Reader:
             config.connections[:0] = self.connections(self.path, top, doc.key_lines.get("connections"))
         config.rate_groups = self.rate_groups(doc)
         config.patterns, config.patterns_line = self.patterns(doc)
+        config.telemetry_packets = doc.get("telemetry_packets")
+        config.telemetry_packets_line = doc.key_lines.get("telemetry_packets")
         self.files(doc, config)
         return config
 
