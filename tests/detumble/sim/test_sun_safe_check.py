@@ -11,8 +11,9 @@ from detumble.sim.sun_safe_check import POINTING_THRESHOLD_DEG, VECTOR_THRESHOLD
 def test_sun_safe_on_the_wheels_turns_plus_z_to_the_sun_from_a_tumble():
     """SUNSAFE-001: 300 s in sunlight (the adcs scenario's epoch starts sunlit): FORCE_MODE SUN_SAFE brings +Z within
     10° of the Sun within 60 s and keeps it there; every sunlit light-sensor Sun vector within 5° of the truth and
-    none invalid. The last 100 s have a median error ≤ 1.8° and falling (0.6° by 500 s): the gyro bias across the Sun line is estimated from the
-    Sun vector (control.sun_safe.SunRateBias); left out, it holds an offset K_D b⊥ / K_P = 2.2° (closed form)."""
+    none invalid. The last 100 s have a median error ≤ 1.8° and falling (0.6° by 500 s): the gyro bias across the
+    Sun line is estimated from the Sun vector (control.sun_safe.SunRateBias); left out, it holds an offset
+    K_D b⊥ / K_P = 2.2° (closed form)."""
     r = fly(1, duration_s=300.0)
     assert r.transitions[0][1:] == ("SUN_SAFE", "COMMAND")
     assert not any(r.eclipse)
