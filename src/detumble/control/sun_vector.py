@@ -11,7 +11,8 @@ directions are set to 0 (the minimum-norm solution: the unlit faces say the Sun'
 threshold). On the cube faces (``CUBE_NORMALS_B``) ``s`` is the difference of opposite faces' readings: the least
 squares solution when one face of a pair is lit, and kept when both are (light from two sides, e.g. Earth albedo
 on the face opposite the Sun; least squares would halve the difference and the magnitude test reject it).
-The direction is ``ŝ = s/|s|``; it is **valid** when at least one face is lit and ``|s|`` lies within ``magnitude_tolerance`` of 1
+The direction is ``ŝ = s/|s|``; it is **valid** when at least one face is lit and ``|s|`` lies within
+``magnitude_tolerance`` of 1
 (a reading scaled by ``E`` that is not near unit length is no Sun seen by cosine detectors: eclipse, Earth
 albedo, a failed sensor). ``E`` is the full-Sun reading at the present Earth–Sun distance (±3.4 % over a year;
 the direction does not depend on it).
