@@ -8,8 +8,11 @@ detector; ``E`` the full-Sun reading). :func:`estimate_sun_vector` takes the fac
 
 Where the lit normals do not span three dimensions (the Sun along a face normal: one face lit) the unseen
 directions are set to 0 (the minimum-norm solution: the unlit faces say the Sun's component there is below the
-threshold), so on the cube faces ``s`` is the difference of opposite faces' readings. The direction is
-``ŝ = s/|s|``; it is **valid** when at least one face is lit and ``|s|`` lies within ``magnitude_tolerance`` of 1
+threshold). On the cube faces (``CUBE_NORMALS_B``) ``s`` is the difference of opposite faces' readings: the least
+squares solution when one face of a pair is lit, and kept when both are (light from two sides, e.g. Earth albedo
+on the face opposite the Sun; least squares would halve the difference and the magnitude test reject it).
+The direction is ``ŝ = s/|s|``; it is **valid** when at least one face is lit and ``|s|`` lies within
+``magnitude_tolerance`` of 1
 (a reading scaled by ``E`` that is not near unit length is no Sun seen by cosine detectors: eclipse, Earth
 albedo, a failed sensor). ``E`` is the full-Sun reading at the present Earth–Sun distance (±3.4 % over a year;
 the direction does not depend on it).
@@ -83,6 +86,11 @@ def estimate_sun_vector(readings: Sequence[float], full_scale: float, *, lit_fra
                 a[i][j] += n[i] * n[j]
     if lit == 0:
         return SunVectorEstimate((0.0, 0.0, 0.0), False, 0, 0.0)
+    if normals is CUBE_NORMALS_B:
+        # the cube: each axis is the difference of its opposite faces' readings. With one face of a pair lit this is
+        # the least-squares solution below, float for float; with both lit (light from two sides: Earth albedo on the
+        # face opposite the Sun) the least squares would halve the difference, this keeps it
+        return _direction(b[0], b[1], b[2], lit, magnitude_tolerance)
     # directions no lit face sees get a unit diagonal and a zero right-hand side: their component is 0
     # (exact for normals along the axes; the cube's case, and the minimum-norm solution there)
     for i in range(3):
@@ -93,12 +101,16 @@ def estimate_sun_vector(readings: Sequence[float], full_scale: float, *, lit_fra
         inv = inv3(a, 1e-12)
     except ValueError:
         return SunVectorEstimate((0.0, 0.0, 0.0), False, lit, 0.0)
-    s = tuple(inv[i][0] * b[0] + inv[i][1] * b[1] + inv[i][2] * b[2] for i in range(3))
-    m = math.sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
+    return _direction(inv[0][0] * b[0] + inv[0][1] * b[1] + inv[0][2] * b[2],
+                      inv[1][0] * b[0] + inv[1][1] * b[1] + inv[1][2] * b[2],
+                      inv[2][0] * b[0] + inv[2][1] * b[1] + inv[2][2] * b[2], lit, magnitude_tolerance)
+
+
+def _direction(x: float, y: float, z: float, lit: int, tolerance: float) -> SunVectorEstimate:
+    m = math.sqrt(x * x + y * y + z * z)
     if m == 0.0:
         return SunVectorEstimate((0.0, 0.0, 0.0), False, lit, 0.0)
-    direction = (s[0] / m, s[1] / m, s[2] / m)
-    return SunVectorEstimate(direction, abs(m - 1.0) <= magnitude_tolerance, lit, m)
+    return SunVectorEstimate((x / m, y / m, z / m), abs(m - 1.0) <= tolerance, lit, m)
 
 
 def propagate_body_vector(v: Vec3, omega: Vec3, dt: float) -> Vec3:

@@ -47,6 +47,7 @@ from detumble.control.quaternion import (Quat, Vec3, is_unit_quaternion, quat_an
                                          quat_shortest, rotate_n_to_b, target_pointing_axis)
 from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
+from detumble.control.sun_safe import SUN_SPIN_RATE_DEG_S, SunRateBias, sun_spin_torque
 from detumble.control.sun_vector import propagate_body_vector
 from detumble.control.targets import (BODY_AXES, GROUND_STATION, MU_EARTH_M3_S2, STATION_FALLBACK, Ephemeris,
                                       InertialTarget, NadirTarget, Reference, StationTarget, SunTarget, Target,
@@ -354,6 +355,7 @@ class ThreeModeLaw:
         self.system_safe = False  # the mode manager's safe mode, as last read
         self._sun_safe_reason: int | None = None
         self._known_in_sun_safe_s = 0.0
+        self.sun_bias = SunRateBias()  # SUN_SAFE: the gyro bias across the Sun line, from the Sun vector (rad/s, B)
         # Σ h_i g_i needs only the axes (limits 1, 1); the limited allocator is rebuilt when the axes or
         # WHEEL_MAX_TORQUE / WHEEL_MAX_MOMENTUM differ from the ones it was built for.
         self._momentum_alloc: tuple = (None, None)  # (axes, WheelAllocator)
@@ -596,6 +598,7 @@ class ThreeModeLaw:
             self._stop_coils()
         self._known_in_sun_safe_s = 0.0
         self._sun_safe_reason = reason if mode == SUN_SAFE else None
+        self.sun_bias.reset()
         self.notify.mode_changed(old, mode, reason)
         if mode == SUN_SAFE:
             self.notify.event("SunSafeEntered", reason)
@@ -854,25 +857,37 @@ class ThreeModeLaw:
         if self._known_in_sun_safe_s >= self.SUN_SAFE_EXIT_DWELL and self._pointing_available(report=False):
             self._change_mode(POINTING, _KNOWLEDGE_RESTORED)
 
+    def _sun_rate(self) -> Vec3 | None:
+        """The rate SUN_SAFE uses (rad/s, B): ω̂ less the Sun-vector bias estimate (zero outside SUN_SAFE)."""
+        w = self.omega
+        if w is None:
+            return None
+        b = self.sun_bias.bias
+        return (w[0] - b[0], w[1] - b[1], w[2] - b[2])
+
     def _track_sun(self, dt: float, now_us: int) -> None:
         """The Sun vector in B: a new valid light-sensor reading is taken (carried from its time to now on the
         gyro); between readings the last one is carried on the gyro (``v̇ = −ω × v``). Older than
-        SUN_VECTOR_TIMEOUT (eclipse, failed sensors) it is dropped."""
+        SUN_VECTOR_TIMEOUT (eclipse, failed sensors) it is dropped. In SUN_SAFE a new reading against the last one
+        carried to now also feeds the gyro-bias observer (``control.sun_safe.SunRateBias``)."""
         io = self.io
         if not io.has_sun_sensor():
             self.sun_B, self.sun_age_s = None, math.inf
             return
-        w = self.omega
+        w = self._sun_rate()
         reading = io.sun_vector()
         if reading is not None:
             self.notify.clear_event("SunVectorRetrievalFailed")
             s, valid, stamp = reading
             if valid and stamp != self._sun_stamp_us and stamp <= now_us and _finite(*s) and _norm(s) > 0.5:
-                self._sun_stamp_us = stamp
+                prev_stamp, self._sun_stamp_us = self._sun_stamp_us, stamp
                 age = (now_us - stamp) / 1e6
                 n = _norm(s)
                 s = (s[0] / n, s[1] / n, s[2] / n)
-                self.sun_B = propagate_body_vector(s, w, age) if w is not None else s
+                s = propagate_body_vector(s, w, age) if w is not None else s
+                if self.mode == SUN_SAFE and self.sun_B is not None and w is not None and prev_stamp is not None:
+                    self.sun_bias.update(s, propagate_body_vector(self.sun_B, w, dt), (stamp - prev_stamp) / 1e6)
+                self.sun_B = s
                 self.sun_age_s = age
                 return
         else:
@@ -887,7 +902,7 @@ class ThreeModeLaw:
         """SUN_SAFE's torque request (N·m, B): turn SUN_SAFE_AXIS to the Sun at a rate ``K_P/K_D θ`` capped at
         SLEW_RATE_LIMIT about ``â × ŝ`` and damp every other rate, ``τ = K_D (ω_c − ω)``; without a Sun vector
         (eclipse) only the damping ``−K_D ω``. Gains: the wheels' SUN_SAFE_K_P/K_D or the coils' *_MAG."""
-        w = self.omega
+        w = self._sun_rate()
         assert w is not None  # SUN_SAFE actuates only with a rate estimate
         s = self.sun_B
         if s is None:
@@ -903,6 +918,19 @@ class ThreeModeLaw:
         rate = min(kp / kd * theta if kd > 0.0 else 0.0, self.SLEW_RATE_LIMIT * _DEG)
         k = rate / sin_t
         return (kd * (k * e[0] - w[0]), kd * (k * e[1] - w[1]), kd * (k * e[2] - w[2]))
+
+    def _sun_spin_torque(self) -> Vec3:
+        """SUN_SAFE on the magnetorquers (``control.sun_safe.sun_spin_torque``): spin SUN_SAFE_AXIS at
+        SUN_SPIN_RATE_DEG_S and tip it to the Sun at ``SUN_SAFE_K_P_MAG/SUN_SAFE_K_D_MAG θ`` (capped at
+        SLEW_RATE_LIMIT); the transverse rate damped at SUN_SAFE_K_D_MAG, the spin held at SPIN_K_RATE."""
+        w = self._sun_rate()
+        assert w is not None  # SUN_SAFE actuates only with a rate estimate
+        kd = self.SUN_SAFE_K_D_MAG
+        tau, theta = sun_spin_torque(w, self.sun_B, BODY_AXES[self.SUN_SAFE_AXIS][1], self.rate_observer.inertia,
+                                     SUN_SPIN_RATE_DEG_S * _DEG, kd, self.SPIN_K_RATE,
+                                     self.SUN_SAFE_K_P_MAG / kd if kd > 0.0 else 0.0, self.SLEW_RATE_LIMIT * _DEG)
+        self.sun_error_deg = theta
+        return tau
 
     # --- actuation ------------------------------------------------------------------------------
 
@@ -928,7 +956,7 @@ class ThreeModeLaw:
                 tau = self._sun_safe_torque(self.SUN_SAFE_K_P, self.SUN_SAFE_K_D)
                 wheel_u = self._allocate(tau)
             else:
-                tau = self._sun_safe_torque(self.SUN_SAFE_K_P_MAG, self.SUN_SAFE_K_D_MAG)
+                tau = self._sun_spin_torque()
                 if self.b_tesla is not None:
                     dipole, _ = project_dipole_weighted(tau, self.b_tesla, self.coil_limits())
         elif mode == POINTING and self.omega is not None and self.attitude_valid:

@@ -154,7 +154,7 @@ class Plant:
             self.gyro.sample_rad_s = self.gyro.measure(self.omega_BN_B)
             self.gyro.sample_time_ns = 0
         if self.star_tracker is not None and st is not None and not st.ideal:
-            q, valid = self.star_tracker.measure(self.q_BN, self.omega_BN_B)
+            q, valid = self.star_tracker.measure(self.q_BN, self.omega_BN_B, self._tracker_sun_N())
             self.star_tracker.sample_q, self.star_tracker.sample_valid = q, valid
             self.star_tracker.sample_time_ns = 0
 
@@ -261,7 +261,19 @@ class Plant:
                 gyro.defer(t0, t1, tk, s0, s1)
         st = self.star_tracker
         if st is not None and not st.spec.ideal and st.latest_instant(t0, t1) is not None:
-            st.latch(t0, t1, s0, s1)
+            st.latch(t0, t1, s0, s1, self._tracker_sun_N() if st.needs_sun else None)
+
+    def _tracker_sun_N(self) -> Vec3 | None:
+        """The unit Sun direction (N) now, for the star tracker's exclusion angle; None in the Earth's shadow
+        (:func:`.sun.in_umbra`) or when the tracker has no exclusion angle."""
+        st = self.star_tracker
+        if st is None or not st.needs_sun:
+            return None
+        sc = self.scenario
+        if self._ephemeris_epoch is None:
+            self._ephemeris_epoch = (sc.earth_angle0_rad, julian_date(sc.epoch))
+        s_hat, _ = sun_direction_N(self._ephemeris_epoch[1] + self.t / 86400.0)
+        return None if in_umbra(self._r_N, s_hat, sc.orbit.earth_radius_m) else s_hat
 
     def _surface_torque(self, t: float, state: State) -> Vec3:
         """Drag + solar-pressure torque (N m, B) at ``t`` s for ``state``: the air co-rotating with the Earth

@@ -372,7 +372,7 @@ SCHEMA: dict = {
                                     "resolution_dps")},
         "star_tracker": {k: _LEAF for k in ("ideal", "rate_hz", "noise_cross_boresight_arcsec",
                                             "noise_about_boresight_arcsec", "boresight_B", "bias_arcsec",
-                                            "dropout_probability", "max_rate_deg_s")},
+                                            "dropout_probability", "max_rate_deg_s", "sun_exclusion_deg")},
         "accelerometer": ACCELEROMETER_SCHEMA,
     },
     "initial": {
@@ -880,7 +880,11 @@ def _star_tracker(s: _Section) -> StarTrackerSpec:
         bias_arcsec=s.vec3("bias_arcsec", d.bias_arcsec),
         dropout_probability=s.number("dropout_probability", d.dropout_probability, nonneg=True),
         max_rate_deg_s=s.number("max_rate_deg_s", d.max_rate_deg_s, nonneg=True),
+        sun_exclusion_deg=s.number("sun_exclusion_deg", d.sun_exclusion_deg, nonneg=True),
     )
+    if spec.sun_exclusion_deg >= 180.0:
+        s.fail("sun_exclusion_deg",
+               f"{spec.sun_exclusion_deg} deg would blind the tracker everywhere: give 0 (off) ... < 180")
     if spec.dropout_probability > 1.0:
         s.fail("dropout_probability", f"{spec.dropout_probability} is a probability: give 0...1")
     s.finish()

@@ -16,7 +16,9 @@ measured body frame B' is B turned by ``delta_theta_B``. An optional constant mi
 Samples are taken at ``k / rate_hz`` on the plant's integer-nanosecond grid and held. A sample
 is *invalid* (no solution: the held attitude is kept, ``valid`` false) with probability
 ``dropout_probability``, and always when the body rate exceeds ``max_rate_deg_s`` (star smear;
-0 disables that limit). ``ideal: true`` returns the true attitude at the read time, always valid.
+0 disables that limit), and always when the Sun is within ``sun_exclusion_deg`` of the boresight
+and not eclipsed (stray light blinds the tracker; typical baffles give 25-45 deg; 0, the default,
+disables it). ``ideal: true`` returns the true attitude at the read time, always valid.
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ import math
 import random
 from dataclasses import dataclass
 
-from detumble.sim.vec import Quat, Vec3, cross, unit
+from detumble.sim.vec import Quat, Vec3, cross, rotate_n_to_b, unit
 
 ARCSEC = math.pi / (180.0 * 3600.0)  #: radians per arcsecond
 
@@ -40,6 +42,7 @@ class StarTrackerSpec:
     bias_arcsec: Vec3 = (0.0, 0.0, 0.0)
     dropout_probability: float = 0.0
     max_rate_deg_s: float = 2.0
+    sun_exclusion_deg: float = 0.0
 
 
 def cross_axes(boresight: Vec3) -> tuple[Vec3, Vec3]:
@@ -66,11 +69,13 @@ class StarTracker:
         self._sb = spec.noise_about_boresight_arcsec * ARCSEC
         self._bias = tuple(b * ARCSEC for b in spec.bias_arcsec)
         self._max_rate2 = math.radians(spec.max_rate_deg_s) ** 2 if spec.max_rate_deg_s > 0 else math.inf
+        self._sun_cos = math.cos(math.radians(spec.sun_exclusion_deg)) if spec.sun_exclusion_deg > 0 else None
         self.sample_q: Quat = (1.0, 0.0, 0.0, 0.0)
         self.sample_valid = False
         self.sample_time_ns = -1
         self.samples = 0
         self.dropouts = 0
+        self.blinded = 0  # samples lost to the Sun in the exclusion cone (counted in dropouts too)
 
     def latest_instant(self, t0_ns: int, t1_ns: int) -> int | None:
         k = t1_ns // self.period_ns
@@ -87,10 +92,29 @@ class StarTracker:
                 sc * n1 * e1[1] + sc * n2 * e2[1] + sb * n3 * eb[1] + bias[1],
                 sc * n1 * e1[2] + sc * n2 * e2[2] + sb * n3 * eb[2] + bias[2])
 
-    def measure(self, q_BN: Quat, omega_B: Vec3) -> tuple[Quat, bool]:
-        """One sample: ``(q_meas, valid)``; an invalid sample keeps the held attitude."""
+    @property
+    def needs_sun(self) -> bool:
+        """Whether :meth:`measure` uses the Sun's direction (a Sun exclusion angle is set)."""
+        return self._sun_cos is not None
+
+    def sun_blinds(self, q_BN: Quat, sun_N: Vec3 | None) -> bool:
+        """True when the unit Sun direction ``sun_N`` (N; None: eclipsed) is within the exclusion angle of the
+        boresight at the attitude ``q_BN``."""
+        if self._sun_cos is None or sun_N is None:
+            return False
+        s_B = rotate_n_to_b(q_BN, sun_N)
+        b = self.bore
+        return s_B[0] * b[0] + s_B[1] * b[1] + s_B[2] * b[2] > self._sun_cos
+
+    def measure(self, q_BN: Quat, omega_B: Vec3, sun_N: Vec3 | None = None) -> tuple[Quat, bool]:
+        """One sample: ``(q_meas, valid)``; an invalid sample keeps the held attitude. ``sun_N``: the unit Sun
+        direction (N) when it is not eclipsed, for the exclusion angle."""
         self.samples += 1
         s = self.spec
+        if self.sun_blinds(q_BN, sun_N):
+            self.blinded += 1
+            self.dropouts += 1
+            return self.sample_q, False
         w2 = omega_B[0] ** 2 + omega_B[1] ** 2 + omega_B[2] ** 2
         if w2 > self._max_rate2 or (s.dropout_probability > 0.0 and self.rng.random() < s.dropout_probability):
             self.dropouts += 1
@@ -106,8 +130,8 @@ class StarTracker:
         n = 1.0 / math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
         return (q[0] * n, q[1] * n, q[2] * n, q[3] * n), True
 
-    def latch(self, t0_ns: int, t1_ns: int, s0, s1) -> None:
-        """Take the sample due in (t0, t1] from the plant states at the step's ends."""
+    def latch(self, t0_ns: int, t1_ns: int, s0, s1, sun_N: Vec3 | None = None) -> None:
+        """Take the sample due in (t0, t1] from the plant states at the step's ends (``sun_N``: as :meth:`measure`)."""
         tk = self.latest_instant(t0_ns, t1_ns)
         if tk is None:
             return
@@ -117,5 +141,5 @@ class StarTracker:
         q = tuple(s0[i] + f * (s1[i] - s0[i]) for i in range(4))
         n = 1.0 / math.sqrt(sum(x * x for x in q))
         w = tuple(s0[4 + i] + f * (s1[4 + i] - s0[4 + i]) for i in range(3))
-        q_meas, valid = self.measure((q[0] * n, q[1] * n, q[2] * n, q[3] * n), w)
+        q_meas, valid = self.measure((q[0] * n, q[1] * n, q[2] * n, q[3] * n), w, sun_N)
         self.sample_q, self.sample_valid, self.sample_time_ns = q_meas, valid, tk

@@ -6,6 +6,10 @@
 * :func:`in_umbra` — the cylindrical shadow model: the spacecraft is in eclipse when it is behind the
   Earth (``r·s < 0``) and within one Earth radius of the Earth–Sun line. Penumbra is ignored (it
   lasts ~8 s per pass in LEO).
+* :func:`sunlit_fraction` — the conical (umbra/penumbra) shadow model of Montenbruck & Gill (*Satellite
+  Orbits*, 3.4.2): the fraction of the Sun's disc not hidden by the Earth's, both as discs of their
+  apparent radii, overlapping as plane circles. Used where a penumbra is asked for; ``in_umbra`` stays
+  the power model's.
 * :func:`eclipse_fraction_circular` — the closed form of the eclipse fraction of a circular orbit
   under that shadow model, for tests and mission planning.
 
@@ -17,12 +21,16 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["sun_direction_N", "in_umbra", "eclipse_fraction_circular", "SOLAR_CONSTANT_W_M2"]
+__all__ = ["sun_direction_N", "in_umbra", "sunlit_fraction", "eclipse_fraction_circular", "SOLAR_CONSTANT_W_M2",
+           "SUN_RADIUS_M", "AU_M"]
 
 #: Total solar irradiance at 1 AU, W/m² (TSIS-1 mean).
 SOLAR_CONSTANT_W_M2 = 1361.0
 
 _J2000_JD = 2451545.0
+#: The Sun's radius, m (IAU 2015 nominal), and the astronomical unit, m.
+SUN_RADIUS_M = 6.957e8
+AU_M = 1.495978707e11
 
 
 def sun_direction_N(jd: float) -> tuple[tuple[float, float, float], float]:
@@ -46,6 +54,34 @@ def in_umbra(r_N: tuple[float, float, float], s_hat_N: tuple[float, float, float
     py = r_N[1] - along * s_hat_N[1]
     pz = r_N[2] - along * s_hat_N[2]
     return px * px + py * py + pz * pz < earth_radius_m * earth_radius_m
+
+
+def sunlit_fraction(r_N: tuple[float, float, float], s_hat_N: tuple[float, float, float], distance_au: float,
+                    earth_radius_m: float) -> float:
+    """The fraction (0…1) of the Sun's disc seen from position ``r_N`` (m, from the Earth's centre) with the Sun
+    along ``s_hat_N`` at ``distance_au``: apparent radii ``a = asin(R_sun / |R_s − r|)``, ``b = asin(R_E / |r|)``,
+    separation ``c`` between the Earth's centre and the Sun as seen from ``r``; 1 for ``c ≥ a + b``, 0 for
+    ``c ≤ b − a`` (umbra), else ``1 − A / (π a²)`` with ``A`` the overlap of two plane circles (M&G eq. 3.85–3.87)."""
+    d = distance_au * AU_M
+    sx, sy, sz = s_hat_N[0] * d - r_N[0], s_hat_N[1] * d - r_N[1], s_hat_N[2] * d - r_N[2]  # spacecraft → Sun
+    ds = math.sqrt(sx * sx + sy * sy + sz * sz)
+    rn = math.sqrt(r_N[0] * r_N[0] + r_N[1] * r_N[1] + r_N[2] * r_N[2])
+    if rn <= earth_radius_m:
+        raise ValueError(f"position {rn} m from the Earth's centre is inside the Earth ({earth_radius_m} m)")
+    a = math.asin(min(1.0, SUN_RADIUS_M / ds))
+    b = math.asin(earth_radius_m / rn)
+    cos_c = -(r_N[0] * sx + r_N[1] * sy + r_N[2] * sz) / (rn * ds)
+    c = math.acos(max(-1.0, min(1.0, cos_c)))
+    if c >= a + b:
+        return 1.0
+    if c <= b - a:
+        return 0.0
+    if c <= a - b:  # the Earth inside the Sun's disc (not reached in Earth orbit)
+        return 1.0 - (b * b) / (a * a)
+    x = (c * c + a * a - b * b) / (2.0 * c)
+    y = math.sqrt(max(0.0, a * a - x * x))
+    area = a * a * math.acos(max(-1.0, min(1.0, x / a))) + b * b * math.acos(max(-1.0, min(1.0, (c - x) / b))) - c * y
+    return max(0.0, min(1.0, 1.0 - area / (math.pi * a * a)))
 
 
 def eclipse_fraction_circular(radius_m: float, beta_rad: float, earth_radius_m: float) -> float:

@@ -8,7 +8,8 @@ the ADCS component does, the star tracker switched off, and FORCE_MODE SUN_SAFE 
 second control cycle, 0.1 s). It samples, once a second: the true angle between SUN_SAFE_AXIS and the Sun, whether
 the spacecraft is in eclipse, and the Sun vector estimate's error against the truth at its reading's instant.
 
-``python -m detumble.sim.sun_safe_check [--seeds N] [--actuator ANY|MAGNETORQUERS] [--duration S] [--rate DEG_S]``
+``python -m detumble.sim.sun_safe_check [--seeds N] [--actuator ANY|MAGNETORQUERS] [--duration S] [--rate DEG_S]
+[--albedo A] [--penumbra]``
 prints the table of ``docs/studies/sun_safe.md``.
 """
 
@@ -25,7 +26,7 @@ from detumble.sim.epoch import julian_date
 from detumble.sim.orbit import R_EARTH_EQ
 from detumble.sim.plant import Plant
 from detumble.sim.scenario import load_scenario
-from detumble.sim.sun_sensors import SunSensorModel
+from detumble.sim.sun_sensors import SunSensorModel, SunSensorSpec
 
 __all__ = ["SunSafeResult", "fly", "main", "vector_errors_from_run", "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
 
@@ -101,9 +102,10 @@ class SunSafeResult:
 
 def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, actuator: str = "ANY",
         axis: str = "PLUS_Z", scenario: str = "adcs", settings: tuple[str, ...] = (),
-        params: dict | None = None) -> SunSafeResult:
+        params: dict | None = None, sensor_spec: SunSensorSpec | None = None) -> SunSafeResult:
     """Fly SUN_SAFE from a ``rate_deg_s`` tumble about an axis drawn from ``seed`` (the attitude drawn too), the
-    star tracker off, POINTING_ACTUATOR = ``actuator``, SUN_SAFE_AXIS = ``axis``."""
+    star tracker off, POINTING_ACTUATOR = ``actuator``, SUN_SAFE_AXIS = ``axis``; the light sensors as
+    ``sensor_spec`` (default: the stated noise, no albedo, cylindrical shadow)."""
     if axis not in _AXES:
         raise ValueError(f"axis must be one of {', '.join(_AXES)}, got {axis!r}")
     rng = random.Random(seed)
@@ -115,7 +117,7 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
             "initial.attitude.quaternion=[{},{},{},{}]".format(*q)]
     sc = load_scenario(scenario, seed=seed, settings=base + list(settings))
     plant = Plant(sc, seed)
-    sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, seed=seed)
+    sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, sensor_spec or SunSensorSpec(), seed=seed)
     io = PlantIo(plant, sensors)
     io.has_tracker = False
     law = AdcsLaw(params={"POINTING_ACTUATOR": actuator, "SUN_SAFE_AXIS": axis, **(params or {})},
@@ -211,9 +213,16 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--axis", default="PLUS_Z", choices=tuple(_AXES))
     ap.add_argument("--duration", type=float, default=5580.0, help="s (default one orbit)")
     ap.add_argument("--rate", type=float, default=2.0, help="initial tumble, deg/s")
+    ap.add_argument("--albedo", type=float, default=0.0, help="Earth's Bond albedo on the light sensors (0.30: "
+                    "the Earth's mean; default 0, none)")
+    ap.add_argument("--penumbra", action="store_true", help="the conical shadow (penumbra) instead of the cylinder")
     ap.add_argument("--from-run", metavar="DIR", help="instead: the ADCS Sun vector of a fprime-lite run of adcs_ref "
                     "against its truth")
     args = ap.parse_args(argv)
+    try:
+        spec = SunSensorSpec(albedo=args.albedo, penumbra=args.penumbra)
+    except ValueError as exc:
+        ap.error(str(exc))
     if args.from_run:
         errs, invalid = vector_errors_from_run(args.from_run)
         if not errs:
@@ -230,7 +239,8 @@ def main(argv: list[str] | None = None) -> int:
     print("|---|---|---|---|---|---|---|---|")
     vec_all: list[float] = []
     for seed in range(1, args.seeds + 1):
-        r = fly(seed, rate_deg_s=args.rate, duration_s=args.duration, actuator=args.actuator, axis=args.axis)
+        r = fly(seed, rate_deg_s=args.rate, duration_s=args.duration, actuator=args.actuator, axis=args.axis,
+                sensor_spec=spec)
         part = r.first_sunlit_part()
         acq = r.acquisition_s()
         steady = r.steady_sunlit()

@@ -7,13 +7,20 @@ normal. What each reads, in lux:
   efficacy of extraterrestrial sunlight times the solar constant: 133 klx) and ``d`` the Earth–Sun distance
   (AU). A face turned away reads 0 (the sensor cannot go negative).
 * **eclipse**: 0 on every face in the Earth's cylindrical shadow (``sim.sun.in_umbra``: orbit position and the
-  Sun ephemeris ``sim.sun.sun_direction_N`` at the reading's time). Penumbra (~8 s a pass) is ignored.
+  Sun ephemeris ``sim.sun.sun_direction_N`` at the reading's time); with ``penumbra`` the conical model instead
+  (``sim.sun.sunlit_fraction``): the direct light scaled by the visible fraction of the Sun's disc (~8 s a pass).
+* **Earth albedo** (``albedo`` > 0; the stated model): the Earth's reflected light as from a point source at its
+  centre, of illuminance ``E_1AU / d² · a · (R_E / r)² · max(0, r̂·ŝ)`` (``a`` the Bond albedo, 0.30 for the
+  Earth's mean; ``(R_E/r)²`` the Lambertian sphere's view factor to nadir; ``r̂·ŝ`` the Sun's elevation at the
+  sub-satellite point standing in for the lit share of the visible disc), with the same cosine response toward
+  nadir on each face. At 500 km with the Sun overhead it is 26 % of full Sun on the nadir face. It ignores the
+  disc's extent (faces up to 20° beyond the horizon see none of it here), clouds, and the terminator's shape.
 * **noise** (the stated model, albedo-free, as issue 27 asks): each sensor's gain is off by a fixed factor
   ``1 + g_i`` drawn once from N(0, ``gain_sigma``) (default 2 %: part-to-part spread and the window's
   transmission); each reading adds white noise N(0, ``noise_sigma`` × E_1AU) (default 0.5 % of full Sun: the
   VEML6031's count noise and ADC quantisation at the flight's gain, integration time and photodiode size,
-  rounded up), then is clipped at 0. Earth albedo, the sensor's non-cosine roll-off near grazing incidence and
-  saturation are not modelled.
+  rounded up), then is clipped at 0. The sensor's non-cosine roll-off near grazing incidence and saturation are
+  not modelled.
 
 :class:`SunSensorModel` is framework-free; the simulated spacecraft (``drivers.spacecraft``) reads it for the
 Veml6031Manager drivers, the plant-only Sun-safe check (``sim.sun_safe_check``) directly. Units: lux, AU, metres,
@@ -27,7 +34,7 @@ import random
 from dataclasses import dataclass
 
 from detumble.sim.vec import rotate_n_to_b
-from detumble.sim.sun import SOLAR_CONSTANT_W_M2, in_umbra, sun_direction_N
+from detumble.sim.sun import SOLAR_CONSTANT_W_M2, in_umbra, sun_direction_N, sunlit_fraction
 
 __all__ = ["FACE_NORMALS_B", "FULL_SUN_LUX", "LUX_PER_W_M2", "SunSensorSpec", "SunSensorModel", "ideal_illuminance"]
 
@@ -43,16 +50,25 @@ LUX_PER_W_M2 = FULL_SUN_LUX / SOLAR_CONSTANT_W_M2
 @dataclass(frozen=True)
 class SunSensorSpec:
     """The noise model's figures (fractions, 1σ): ``gain_sigma`` of each sensor's fixed gain error,
-    ``noise_sigma`` of each reading's white noise as a fraction of :data:`FULL_SUN_LUX`."""
+    ``noise_sigma`` of each reading's white noise as a fraction of :data:`FULL_SUN_LUX`; the environment:
+    ``albedo`` the Earth's Bond albedo (0: none, the default, as the deployments fly), ``penumbra`` the conical
+    shadow instead of the cylinder."""
 
     gain_sigma: float = 0.02
     noise_sigma: float = 0.005
+    albedo: float = 0.0
+    penumbra: bool = False
 
     def __post_init__(self) -> None:
         for name in ("gain_sigma", "noise_sigma"):
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and 0.0 <= value < 0.5):
                 raise ValueError(f"SunSensorSpec.{name} must be a fraction in [0, 0.5), got {value!r}")
+        a = self.albedo
+        if not (isinstance(a, (int, float)) and math.isfinite(a) and 0.0 <= a < 1.0):
+            raise ValueError(f"SunSensorSpec.albedo must be a fraction in [0, 1) (Earth's mean: 0.30), got {a!r}")
+        if not isinstance(self.penumbra, bool):
+            raise ValueError(f"SunSensorSpec.penumbra must be true or false, got {self.penumbra!r}")
 
 
 def ideal_illuminance(s_B, distance_au: float, eclipse: bool) -> tuple[float, ...]:
@@ -97,13 +113,36 @@ class SunSensorModel:
         if t_s == self._t_s:
             return self._readings
         s_N, d_au = self.sun(t_s)
-        self.eclipse = in_umbra(r_N, s_N, self.earth_radius_m)
+        spec = self.spec
+        lit = 1.0
+        if spec.penumbra:
+            lit = sunlit_fraction(r_N, s_N, d_au, self.earth_radius_m)
+            self.eclipse = lit <= 0.0
+        else:
+            self.eclipse = in_umbra(r_N, s_N, self.earth_radius_m)
         ideal = ideal_illuminance(rotate_n_to_b(q_BN, s_N), d_au, self.eclipse)
+        if lit < 1.0:
+            ideal = tuple(e * lit for e in ideal)
+        if spec.albedo > 0.0:
+            ideal = self._add_albedo(ideal, q_BN, r_N, s_N, d_au)
         sigma = self.spec.noise_sigma * FULL_SUN_LUX
         gauss = self._rng.gauss
         self._readings = tuple(max(0.0, e * g + gauss(0.0, sigma)) for e, g in zip(ideal, self.gains, strict=True))
         self._t_s = t_s
         return self._readings
+
+    def _add_albedo(self, ideal, q_BN, r_N, s_N, d_au: float) -> tuple[float, ...]:
+        """``ideal`` plus the Earth's reflected light (the stated point-source model, module docstring)."""
+        rn = math.sqrt(r_N[0] * r_N[0] + r_N[1] * r_N[1] + r_N[2] * r_N[2])
+        up = (r_N[0] / rn, r_N[1] / rn, r_N[2] / rn)
+        elevation = up[0] * s_N[0] + up[1] * s_N[1] + up[2] * s_N[2]
+        if elevation <= 0.0:
+            return ideal
+        ratio = self.earth_radius_m / rn
+        e = FULL_SUN_LUX / (d_au * d_au) * self.spec.albedo * ratio * ratio * elevation
+        x, y, z = rotate_n_to_b(q_BN, (-up[0], -up[1], -up[2]))
+        cosines = (max(0.0, x), max(0.0, -x), max(0.0, y), max(0.0, -y), max(0.0, z), max(0.0, -z))
+        return tuple(i + e * c for i, c in zip(ideal, cosines, strict=True))
 
     def true_sun_B(self, t_s: float, q_BN) -> tuple[float, float, float]:
         """The true Sun direction in B at ``t_s`` (for studies and tests)."""

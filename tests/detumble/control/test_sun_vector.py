@@ -88,3 +88,22 @@ def test_propagation_is_the_exact_rotation():
     # about an axis along the vector nothing moves
     assert propagate_body_vector((0.6, 0.0, 0.8), (0.06, 0.0, 0.08), 3.0) == pytest.approx((0.6, 0.0, 0.8))
     assert propagate_body_vector((0.0, 1.0, 0.0), (0.0, 0.0, 0.0), 1.0) == (0.0, 1.0, 0.0)
+
+
+def test_cube_difference_equals_least_squares_with_one_face_a_pair_and_keeps_both_lit():
+    """SUNVEC-010: on the cube, with at most one face of each opposite pair lit, the difference form gives the same
+    floats as the general least squares (the normals passed as an equal tuple that is not CUBE_NORMALS_B); with both
+    faces of a pair lit (the Sun on +Z, albedo 0.2 on −Z) it keeps the difference, 0.8, where least squares gives
+    half of it (0.4: |s| then reads as no Sun)."""
+    rng = random.Random(7)
+    general = tuple(tuple(n) for n in CUBE_NORMALS_B)
+    assert general is not CUBE_NORMALS_B
+    for _ in range(200):
+        r = [0.0] * 6
+        for axis in range(3):
+            r[2 * axis + rng.randrange(2)] = rng.uniform(0.0, 1.0)
+        assert estimate_sun_vector(r, 1.0) == estimate_sun_vector(r, 1.0, normals=general)
+    both = [0.0, 0.0, 0.0, 0.0, 1.0, 0.2]
+    est = estimate_sun_vector(both, 1.0)
+    assert est.magnitude == pytest.approx(0.8) and est.valid and est.direction == pytest.approx((0.0, 0.0, 1.0))
+    assert estimate_sun_vector(both, 1.0, normals=general).magnitude == pytest.approx(0.4)

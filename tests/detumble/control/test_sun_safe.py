@@ -1,0 +1,74 @@
+"""SUNSAFE-010…013: the magnetorquer Sun-safe law and the Sun-vector gyro-bias observer (control.sun_safe), open
+loop against closed forms."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from detumble.control.sun_safe import SunRateBias, sun_spin_torque
+from detumble.control.sun_vector import propagate_body_vector
+
+DEG = math.pi / 180.0
+I_DIAG = ((2.2e-3, 0.0, 0.0), (0.0, 2.15e-3, 0.0), (0.0, 0.0, 2.05e-3))
+Z = (0.0, 0.0, 1.0)
+
+
+def test_bias_observer_recovers_the_bias_across_the_sun_line():
+    """SUNSAFE-010: a body at rest, the Sun fixed in B, exact readings at 1 Hz; the gyro reads the bias
+    b = (0.3, −0.2, 0.1) °/s. Carrying each reading on ``gyro − b̂`` and folding in the next, b̂ converges to the
+    part of b across ŝ (time constant 100 s: after 1500 s within 1e-4 °/s) and leaves the part along ŝ at zero."""
+    b = (0.3 * DEG, -0.2 * DEG, 0.1 * DEG)
+    s = (0.6, 0.0, 0.8)
+    obs = SunRateBias(time_s=100.0)
+    for _ in range(1500):
+        est = obs.bias
+        w = (b[0] - est[0], b[1] - est[1], b[2] - est[2])  # the gyro (true rate 0 + b) less the estimate
+        obs.update(s, propagate_body_vector(s, w, 1.0), 1.0)
+    along = sum(b[i] * s[i] for i in range(3))
+    want = [b[i] - along * s[i] for i in range(3)]
+    assert [c / DEG for c in obs.bias] == pytest.approx([c / DEG for c in want], abs=1e-4)
+    assert sum(obs.bias[i] * s[i] for i in range(3)) == pytest.approx(0.0, abs=1e-9)
+    assert obs.updates == 1500
+
+
+def test_bias_observer_skips_gaps_and_jumps():
+    """SUNSAFE-011: a reading more than max_gap_s after the last, or one that moved more than max_turn_rad from its
+    prediction (a gross error, not a bias), changes nothing; a non-positive time constant is refused by name."""
+    obs = SunRateBias(max_gap_s=3.0, max_turn_rad=0.1)
+    obs.update((0.0, 0.0, 1.0), (0.01, 0.0, 1.0), 5.0)
+    obs.update((0.0, 0.0, 1.0), (0.5, 0.0, 0.866), 1.0)
+    assert obs.bias == (0.0, 0.0, 0.0) and obs.updates == 0
+    with pytest.raises(ValueError, match="time constant"):
+        SunRateBias(time_s=0.0)
+
+
+def test_spin_law_closed_forms():
+    """SUNSAFE-012: spinning at ω_s about â = +Z with the Sun on it (principal axes): no torque. The Sun along +X,
+    the body spinning: the tip torque ``h_s Ω ŝ⊥`` with ``h_s = I_zz ω_s``, Ω capped; a transverse rate is damped,
+    ``−k_t ω⊥``, plus the gyroscopic ``ω × I ω``; a spin error ``k_s (ω_s − ω_z)`` along â; no Sun (eclipse): the same
+    without the tip term and θ NaN."""
+    ws, kt, ks, kp, cap = 3.0 * DEG, 4e-4, 2e-4, 0.01, 8.0 * DEG
+    tau, theta = sun_spin_torque((0.0, 0.0, ws), Z, Z, I_DIAG, ws, kt, ks, kp, cap)
+    assert tau == pytest.approx((0.0, 0.0, 0.0), abs=1e-18) and theta == pytest.approx(0.0)
+    tau, theta = sun_spin_torque((0.0, 0.0, ws), (1.0, 0.0, 0.0), Z, I_DIAG, ws, kt, ks, kp, cap)
+    assert theta == pytest.approx(90.0)
+    assert tau == pytest.approx((2.05e-3 * ws * kp * math.pi / 2, 0.0, 0.0), rel=1e-12, abs=1e-18)
+    tau, _ = sun_spin_torque((0.0, 0.0, ws), (1.0, 0.0, 0.0), Z, I_DIAG, ws, kt, ks, 1.0, cap)
+    assert tau[0] == pytest.approx(2.05e-3 * ws * cap, rel=1e-12)
+    w = (0.01, -0.02, 0.8 * ws)
+    tau, theta = sun_spin_torque(w, None, Z, I_DIAG, ws, kt, ks, kp, cap)
+    iw = (2.2e-3 * w[0], 2.15e-3 * w[1], 2.05e-3 * w[2])
+    gyro = (w[1] * iw[2] - w[2] * iw[1], w[2] * iw[0] - w[0] * iw[2], w[0] * iw[1] - w[1] * iw[0])
+    want = (-kt * w[0] + gyro[0], -kt * w[1] + gyro[1], ks * 0.2 * ws + gyro[2])
+    assert tau == pytest.approx(want, rel=1e-12) and math.isnan(theta)
+
+
+def test_spin_law_tips_away_from_the_anti_sun():
+    """SUNSAFE-013: the Sun exactly opposite â (θ = 180°, no defined ŝ⊥): the law still tips the axis (a torque
+    across â of the capped size), it does not stall."""
+    ws = 3.0 * DEG
+    tau, theta = sun_spin_torque((0.0, 0.0, ws), (0.0, 0.0, -1.0), Z, I_DIAG, ws, 4e-4, 2e-4, 0.01, 8.0 * DEG)
+    assert theta == pytest.approx(180.0)
+    assert math.hypot(tau[0], tau[1]) == pytest.approx(2.05e-3 * ws * 0.01 * math.pi, rel=1e-12)
