@@ -68,8 +68,10 @@ def compare(deployment, plant_only, *, time_tol_s, rate_tol_deg_s, pointing_tol_
 
 @pytest.fixture(scope="module")
 def short_pair(tmp_path_factory):
-    """A 1.2 °/s tumble: DETUMBLE → SPIN_STABLE at 51 s → POINTING at 334 s, 500 s in all."""
-    settings = ("initial.rate.magnitude_deg_s=1.2",)
+    """A 1.2 °/s tumble about (0, 0.6, 0.8) in adcs_ref's IGRF-14: DETUMBLE → SPIN_STABLE at 96.5 s → POINTING at
+    310.1 s, 500 s in all. (About the scenario's own axis the IGRF-14 flight reaches POINTING only at 851 s, the
+    dipole's at 334 s; over six starts neither field is the slower one: docs/studies/environment_torques.md.)"""
+    settings = ("initial.rate.magnitude_deg_s=1.2", "initial.rate.axis=[0, 0.6, 0.8]")
     return (fly_deployment(tmp_path_factory.mktemp("adcs_short_dep"), 500.0, settings),
             fly_plant_only(500.0, settings))
 
