@@ -75,9 +75,8 @@ def plant_surrey_wheels(n: int, implementation: str) -> None:
         step()
 
 
-def plant_adcs(n: int, implementation: str, settings: tuple[str, ...] = ()) -> None:
-    """The adcs_ref spacecraft: three wheels commanded every tick, magnetometer, gyro and star tracker read."""
-    p = Plant(load_scenario("adcs", settings=list(settings)), implementation=implementation)
+def adcs_ticks(p: Plant, n: int) -> None:
+    """``n`` of adcs_ref's plant ticks: three wheel torques commanded, magnetometer, gyro and star tracker read."""
     step, torques, star, mag, gyro = p.step, p.set_wheel_torques, p.star_tracker_reading, p.magnetometer_reading, \
         p.gyro_reading
     u = (1e-4, -2e-4, 5e-5)
@@ -87,6 +86,11 @@ def plant_adcs(n: int, implementation: str, settings: tuple[str, ...] = ()) -> N
         gyro()
         star()
         step()
+
+
+def plant_adcs(n: int, implementation: str, settings: tuple[str, ...] = ()) -> None:
+    """The adcs_ref spacecraft (:func:`adcs_ticks`)."""
+    adcs_ticks(Plant(load_scenario("adcs", settings=list(settings)), implementation=implementation), n)
 
 
 ADCS_FIELDS = (("dipole", ("field.model=dipole",)),
