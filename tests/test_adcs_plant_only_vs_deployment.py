@@ -68,8 +68,10 @@ def compare(deployment, plant_only, *, time_tol_s, rate_tol_deg_s, pointing_tol_
 
 @pytest.fixture(scope="module")
 def short_pair(tmp_path_factory):
-    """A 1.2 °/s tumble: DETUMBLE → SPIN_STABLE at 51 s → POINTING at 334 s, 500 s in all."""
-    settings = ("initial.rate.magnitude_deg_s=1.2",)
+    """A 1.2 °/s tumble about (0, 0.6, 0.8) in adcs_ref's IGRF-14: DETUMBLE → SPIN_STABLE at 96.5 s → POINTING at
+    310.1 s, 500 s in all. (About the scenario's own axis the IGRF-14 flight reaches POINTING only at 851 s, the
+    dipole's at 334 s; over six starts neither field is the slower one: docs/studies/environment_torques.md.)"""
+    settings = ("initial.rate.magnitude_deg_s=1.2", "initial.rate.axis=[0, 0.6, 0.8]")
     return (fly_deployment(tmp_path_factory.mktemp("adcs_short_dep"), 500.0, settings),
             fly_plant_only(500.0, settings))
 
@@ -86,7 +88,8 @@ def test_short_flight_plant_only_matches_the_deployment(short_pair):
 
 @pytest.fixture(scope="module")
 def full_flights(tmp_path_factory):
-    """The adcs_ref mission from the 30 °/s tumble to 580 s after POINTING (entered near 3420 s)."""
+    """The adcs_ref mission from the 30 °/s tumble to about 580 s after POINTING (entered near 3435 s in IGRF-14,
+    3420 s in the dipole)."""
     duration = 4000.0
     deployment = fly_deployment(tmp_path_factory.mktemp("adcs_full_dep"), duration)
     modelled = fly_plant_only(duration)
@@ -110,15 +113,17 @@ def test_full_flight_plant_only_matches_the_deployment(full_flights, tmp_path):
 @pytest.mark.slow
 def test_full_flight_without_the_start_up_latency(full_flights):
     """ADCS-075: AUTO from the first cycle (no sequencing latency) shifts the mission by one cycle: the same modes,
-    DETUMBLE left within 30 s of the deployment (measured: 10.8 s earlier; the B-dot runs start 0.1 s apart in a
-    noisy field and drift apart by about 1e-2 °/s), POINTING within 300 s (measured: 117 s later; the 60 s
-    stable-spin dwell restarts on any 8° or 8 % excursion, so the spin-up's nutation decides it) and a POINTING
-    median inside the ≤ 0.01° target."""
+    DETUMBLE left within 120 s of the deployment, POINTING within 300 s and a POINTING median inside the ≤ 0.01°
+    target. The B-dot runs start 0.1 s apart in a noisy field and drift apart; DETUMBLE ends where the rate crosses
+    1 °/s, falling there at about 1e-3 °/s², so the exit moves by the drift over that slope. Measured in adcs_ref's
+    IGRF-14: the rates 0.10 °/s apart at 2900 s, DETUMBLE left 70.6 s earlier, POINTING 257.9 s earlier (in the
+    tilted dipole, where the bound was 30 s: about 1e-2 °/s apart, 10.8 s earlier, POINTING 117 s later; the 60 s
+    stable-spin dwell restarts on any 8° or 8 % excursion, so the spin-up's nutation decides POINTING)."""
     (deployment, dep_rates), _, (immediate, _) = full_flights
     dep, po = dict(transition_times(deployment)), dict(transition_times(immediate))
     assert list(po) == MODES
     assert abs(po["DETUMBLE"] - dep["DETUMBLE"]) == pytest.approx(CYCLE_S, abs=1e-5)
-    assert abs(po["SPIN_STABLE"] - dep["SPIN_STABLE"]) <= 30.0
+    assert abs(po["SPIN_STABLE"] - dep["SPIN_STABLE"]) <= 120.0
     assert abs(po["POINTING"] - dep["POINTING"]) <= 300.0
     assert immediate["pointing_error_deg"]["median"] <= 0.01
     assert math.isfinite(immediate["final_rate_deg_s"])
@@ -161,13 +166,14 @@ def test_forced_magnetorquer_hold_plant_only_matches_the_deployment(tmp_path):
 
 
 def test_side_by_side_pointing_case_plant_only_matches_the_deployment(tmp_path):
-    """ADCS-078: issue 19's pointing case (basilisk.side_by_side: the target at 0 s, FORCE_MODE POINTING at
-    5 s, the 90° change of target at 300 s, all from the start-up sequence) against `force_mode`, `force_at_s`
-    and `target_changes` on the plant-only law (side_by_side.plant_only_settings, what the benchmark flies): the
-    same flight to the last bit over 400 s — the body rate at every second (both slews included), the
-    transition, the POINTING error statistics. Both sides fly one law (detumble.control.three_mode), so this
-    checks its two adapters: the component's ports, the sequencer's timing and the drivers against PlantIo and
-    the plant-only commands. (Before the plant-only commands acted from the first cycle after their time, the
+    """ADCS-078: issue 19's pointing case (basilisk.side_by_side: the target at 0 s, FORCE_MODE POINTING at 5 s, the
+    90° change of target at 300 s, all from the start-up sequence; in the centred dipole Basilisk flies, where
+    adcs_ref's default is IGRF-14, in which the same comparison also gives 401 of 401 equal rates) against
+    `force_mode`, `force_at_s` and `target_changes` on the plant-only law (side_by_side.plant_only_settings, what
+    the benchmark flies): the same flight to the last bit over 400 s — the body rate at every second (both slews
+    included), the transition, the POINTING error statistics. Both sides fly one law (detumble.control.three_mode),
+    so this checks its two adapters: the component's ports, the sequencer's timing and the drivers against PlantIo
+    and the plant-only commands. (Before the plant-only commands acted from the first cycle after their time, the
     law slewed one 10 Hz cycle early: 0.3 °/s apart at 6 s and at 301 s.)"""
     from basilisk import side_by_side as case
 

@@ -5,7 +5,9 @@ same manoeuvre.
 **adcs_ref pointing** (``deployments/adcs_ref``; Basilisk: :mod:`basilisk.adcs`):
 
 * spacecraft, orbit, field, wheels and sensors: scenario ``adcs`` (``deployments/adcs_ref``) with
-  :data:`SETTINGS` (a 0.5 °/s start, as ``docs/studies/attitude_modes.md``'s "pointing on the wheels");
+  :data:`SETTINGS` (a 0.5 °/s start, as ``docs/studies/attitude_modes.md``'s "pointing on the wheels"; and the
+  centred tilted dipole of the scenario's degree-1 coefficients, the field Basilisk's side flies, where
+  adcs_ref's own default is IGRF-14);
 * the commands, at simulated times: :data:`FIRST_TARGET` (``q_TN``, scalar first: 45° about N's y
   axis, the deployment's own start-up target) at 0 s, POINTING forced at :data:`POINTING_AT_S`, and
   the study's 90° change of target, :data:`SECOND_TARGET`, at :data:`SECOND_TARGET_AT_S`.
@@ -34,7 +36,8 @@ __all__ = ["SCENARIO", "SETTINGS", "FIRST_TARGET", "SECOND_TARGET", "POINTING_AT
            "COURSEWORK_SCENARIO", "COURSEWORK_SETTLED_DEG", "coursework_plausibility"]
 
 SCENARIO = "adcs"
-SETTINGS = ("initial.rate.magnitude_deg_s=0.5",)
+#: the 0.5 °/s start; the centred tilted dipole Basilisk flies (magneticFieldCenteredDipole), not adcs_ref's IGRF-14
+SETTINGS = ("initial.rate.magnitude_deg_s=0.5", "field.model=dipole")
 FIRST_TARGET = (0.9238795325112867, 0.0, 0.3826834323650898, 0.0)
 SECOND_TARGET = (0.6532814824381883, 0.6532814824381882, 0.2705980500730985, -0.2705980500730985)
 POINTING_AT_S = 5.0

@@ -1,6 +1,7 @@
 /* Compiled plant kernel: the RK4 steps of RigidBody.step_env and wheels.step_with_wheels, and the circular-
- * orbit environment of Plant._update_environment (with the centred dipole or the orbit-constant field), as a
- * CPython extension module (detumble.sim._plant_kernel).
+ * orbit environment of Plant._update_environment (with the centred dipole, the orbit-constant field, or a field
+ * tabulated along the orbit whose nodes Python computes: IGRF-14, the WMM), as a CPython extension module
+ * (detumble.sim._plant_kernel).
  *
  * The pure-Python code in attitude.py, wheels.py, orbit.py, field.py, frames.py and control/quaternion.py
  * (rotate_n_to_b) is the reference. Every expression below is the reference's, operand for operand and in
@@ -17,6 +18,7 @@
 #include <Python.h>
 #include <structmember.h>
 #include <math.h>
+#include <string.h>
 
 #ifndef FL_SOURCE_KEY
 #define FL_SOURCE_KEY "unknown"
@@ -28,13 +30,20 @@ typedef struct {
     double j[9], ji[9], h[3];          /* inertia, its inverse (row major, kg m^2), constant wheel momentum N m s */
 } fl_body;
 
-enum { FL_FIELD_DIPOLE = 1, FL_FIELD_ORBIT_CONSTANT = 2 };
+enum { FL_FIELD_DIPOLE = 1, FL_FIELD_ORBIT_CONSTANT = 2, FL_FIELD_TABLE = 3 };
 
 typedef struct {
-    int field;                                        /* FL_FIELD_DIPOLE or FL_FIELD_ORBIT_CONSTANT */
+    int field;                                        /* FL_FIELD_DIPOLE, _ORBIT_CONSTANT or _TABLE */
     double a, u0, u_rate, raan0, raan_rate, ci, si;   /* CircularOrbit */
     double theta0, earth_rate, dx, dy, dz;            /* DipoleField (dipole vector in T m^3) */
     double b_O[3];                                    /* OrbitConstantField (tesla, orbit frame O) */
+    /* FieldAlongOrbit with a table step: the step (s), the Python callable node(k) -> b_N at k * step
+     * (FieldAlongOrbit._node: the model at the orbit's position then), and the two nodes last used */
+    double table_step;
+    PyObject *node_fn;
+    long long k_lo, k_hi;
+    double b_lo[3], b_hi[3];
+    int nodes_held;                                   /* 0: none, 1: k_lo and k_hi hold */
 } fl_env;
 
 /* At most this many reaction wheels (a spacecraft has 3 or 4; the Python plant takes any number, and a
@@ -54,7 +63,9 @@ typedef struct {
 /* CircularOrbit.position_N(t), the unit vector Plant._update_environment derives from it, and the field
  * at that position: DipoleField.b_N(t, r_N), or OrbitConstantField.b_N(t, r_N) (which needs
  * CircularOrbit.velocity_N(t) and frames.orbit_axes_N). out = r_N[3], r_hat_N[3], b_N[3]. */
-static void fl_environment(const fl_env *e, double t, double *out)
+static int fl_table_field(fl_env *e, double t, double *b);
+
+static int fl_environment(fl_env *e, double t, double *out)
 {
     const double u = e->u0 + e->u_rate * t;
     const double raan = e->raan0 + e->raan_rate * t;
@@ -84,8 +95,10 @@ static void fl_environment(const fl_env *e, double t, double *out)
         out[6] = (k * x - dx) * inv_r3;
         out[7] = (k * y - dy) * inv_r3;
         out[8] = (k * z - dz) * inv_r3;
-        return;
+        return 0;
     }
+    if (e->field == FL_FIELD_TABLE)
+        return fl_table_field(e, t, out + 6);
     /* CircularOrbit.velocity_N (the same u and raan, so the same cosines and sines) */
     const double du = e->u_rate, dr = e->raan_rate, ci = e->ci;
     const double v0 = a * (du * (-co * su - so * cu * ci) + dr * (-so * cu - co * su * ci));
@@ -104,6 +117,55 @@ static void fl_environment(const fl_env *e, double t, double *out)
     out[6] = ba * x0 + bb * y0 + bc * z0;
     out[7] = ba * x1 + bb * y1 + bc * z1;
     out[8] = ba * x2 + bb * y2 + bc * z2;
+    return 0;
+}
+
+/* One node of the table from Python: b_N (T) at k * table_step. -1 with a Python error set. */
+static int fl_table_node(fl_env *e, long long k, double *b)
+{
+    PyObject *res = PyObject_CallFunction(e->node_fn, "L", k);
+    if (res == NULL)
+        return -1;
+    int bad = !PyTuple_Check(res) || PyTuple_GET_SIZE(res) != 3;
+    for (Py_ssize_t i = 0; !bad && i < 3; i++) {
+        b[i] = PyFloat_AsDouble(PyTuple_GET_ITEM(res, i));
+        bad = b[i] == -1.0 && PyErr_Occurred();
+    }
+    Py_DECREF(res);
+    if (bad && !PyErr_Occurred())
+        PyErr_SetString(PyExc_TypeError, "a field table node must be a tuple of 3 floats");
+    return bad ? -1 : 0;
+}
+
+/* FieldAlongOrbit.b_N(t) with a table step: nodes k = floor(t / step) and k + 1, linearly interpolated with
+ * s = t / step - k (the same expressions; node k + 1 of one step is node k of the next, so Python is called
+ * once per node). */
+static int fl_table_field(fl_env *e, double t, double *b)
+{
+    const double h = e->table_step;
+    const double kf = floor(t / h);
+    const double s = t / h - kf;
+    const long long k = (long long)kf;
+    if (!e->nodes_held || e->k_lo != k) {
+        if (e->nodes_held && e->k_hi == k) {
+            memcpy(e->b_lo, e->b_hi, sizeof e->b_lo);
+        } else {
+            e->nodes_held = 0;
+            if (fl_table_node(e, k, e->b_lo))
+                return -1;
+        }
+        e->nodes_held = 0;
+        if (fl_table_node(e, k + 1, e->b_hi))
+            return -1;
+        e->k_lo = k;
+        e->k_hi = k + 1;
+        e->nodes_held = 1;
+    }
+    const double *a = e->b_lo, *c = e->b_hi;
+    b[0] = a[0] + s * (c[0] - a[0]);
+    b[1] = a[1] + s * (c[1] - a[1]);
+    b[2] = a[2] + s * (c[2] - a[2]);
+    return 0;
 }
 
 /* --- the RK4 step: RigidBody.step_env and wheels.step_with_wheels ------------------------------------ */
@@ -387,6 +449,12 @@ typedef struct {
     fl_wheels wheels;
 } KernelObject;
 
+static void Kernel_dealloc(KernelObject *self)
+{
+    Py_CLEAR(self->env.node_fn);
+    Py_TYPE(self)->tp_free((PyObject *)self);
+}
+
 static PyMemberDef Kernel_members[] = {
     {"has_environment", T_BOOL, offsetof(KernelObject, has_env), READONLY,
      "whether environment(), step() and step_wheels_env() are available (made with the environment constants)"},
@@ -398,22 +466,42 @@ static PyMemberDef Kernel_members[] = {
     {NULL, 0, 0, 0, NULL},
 };
 
-/* environment: the 7 CircularOrbit constants, then the field's: 5 for the dipole (12 in all) or the 3
- * components of b_O for the orbit-constant field (10 in all); plant_kernel.environment_parameters. */
+/* environment: the 7 CircularOrbit constants, then the field's: 5 for the dipole (12 in all), the 3
+ * components of b_O for the orbit-constant field (10 in all), or the table step and the node callable
+ * (9 in all); plant_kernel.environment_parameters. */
 static int read_env(PyObject *env, fl_env *e)
 {
     double p[12];
     Py_ssize_t n = PyTuple_Check(env) ? PyTuple_GET_SIZE(env) : -1;
-    if (n != 12 && n != 10) {
-        PyErr_SetString(PyExc_TypeError, "environment must be a tuple of 12 floats (circular orbit + dipole) "
-                                         "or 10 (circular orbit + orbit-constant field)");
+    if (n != 12 && n != 10 && n != 9) {
+        PyErr_SetString(PyExc_TypeError, "environment must be a tuple of 12 floats (circular orbit + dipole), "
+                                         "10 (circular orbit + orbit-constant field) or 8 floats and a callable "
+                                         "(circular orbit + tabulated field)");
         return -1;
     }
-    if (read_floats(env, p, n, "environment"))
+    if (n == 9) {
+        PyObject *fn = PyTuple_GET_ITEM(env, 8);
+        PyObject *head = PyTuple_GetSlice(env, 0, 8);
+        int bad = head == NULL || read_floats(head, p, 8, "environment (orbit and table step)");
+        Py_XDECREF(head);
+        if (bad)
+            return -1;
+        if (!PyCallable_Check(fn) || !(p[7] > 0.0)) {
+            PyErr_SetString(PyExc_TypeError, "a tabulated field needs a table step > 0 and a callable node(k)");
+            return -1;
+        }
+        Py_INCREF(fn);
+        Py_XSETREF(e->node_fn, fn);
+        e->field = FL_FIELD_TABLE;
+        e->table_step = p[7];
+        e->nodes_held = 0;
+    } else if (read_floats(env, p, n, "environment"))
         return -1;
     e->a = p[0]; e->u0 = p[1]; e->u_rate = p[2]; e->raan0 = p[3]; e->raan_rate = p[4]; e->ci = p[5];
     e->si = p[6];
-    if (n == 12) {
+    if (n == 9) {
+        /* set above */
+    } else if (n == 12) {
         e->field = FL_FIELD_DIPOLE;
         e->theta0 = p[7]; e->earth_rate = p[8]; e->dx = p[9]; e->dy = p[10]; e->dz = p[11];
     } else {
@@ -492,8 +580,8 @@ static PyObject *Kernel_step_env(KernelObject *self, PyObject *const *args, Py_s
 static int need_env(KernelObject *self)
 {
     if (!self->has_env) {
-        PyErr_SetString(PyExc_ValueError, "this kernel was made without an environment (a circular orbit with the dipole or "
-                                         "the orbit-constant field)");
+        PyErr_SetString(PyExc_ValueError, "this kernel was made without an environment (a circular orbit with the dipole, "
+                                         "the orbit-constant field or a tabulated field)");
         return -1;
     }
     return 0;
@@ -518,7 +606,8 @@ static PyObject *Kernel_environment(KernelObject *self, PyObject *const *args, P
     double t, e[9];
     if (check_nargs(nargs, 1, 1, "environment") || need_env(self) || read_float(args[0], &t))
         return NULL;
-    fl_environment(&self->env, t, e);
+    if (fl_environment(&self->env, t, e))
+        return NULL;
     return env_tuples(e);
 }
 
@@ -535,7 +624,8 @@ static PyObject *Kernel_step(KernelObject *self, PyObject *const *args, Py_ssize
         || (nargs == 8 && read_floats(args[7], tau, 3, "torque_B")))
         return NULL;
     fl_step_env(&self->body, st, dt, m, b, g, r, tau, out);
-    fl_environment(&self->env, t1, e);
+    if (fl_environment(&self->env, t1, e))
+        return NULL;
     PyObject *s = float_tuple(out, 7);
     PyObject *rn = s ? float_tuple(e, 3) : NULL;
     PyObject *rh = rn ? float_tuple(e + 3, 3) : NULL;
@@ -596,7 +686,8 @@ static PyObject *Kernel_step_wheels_env(KernelObject *self, PyObject *const *arg
         || (nargs == 10 && read_floats(args[9], tau, 3, "torque_B")))
         return NULL;
     fl_step_wheels(&self->body, &self->wheels, st, h, u, dt, m, b, g, r, nargs == 10 ? tau : NULL, out, h1);
-    fl_environment(&self->env, t1, e);
+    if (fl_environment(&self->env, t1, e))
+        return NULL;
     PyObject *s = float_tuple(out, 7);
     PyObject *hh = s ? float_tuple(h1, self->wheels.n) : NULL;
     PyObject *rn = hh ? float_tuple(e, 3) : NULL;
@@ -635,6 +726,7 @@ static PyTypeObject KernelType = {
     .tp_methods = Kernel_methods,
     .tp_members = Kernel_members,
     .tp_init = (initproc)Kernel_init,
+    .tp_dealloc = (destructor)Kernel_dealloc,
     .tp_new = PyType_GenericNew,
 };
 

@@ -185,7 +185,7 @@ def mismatch(module: ModuleType) -> str | None:
 
     A full inertia tensor with products of inertia, a wheel momentum, gravity gradient, a J2 orbit
     and a turned Earth: every term of both functions contributes. Then the wheel step
-    (:func:`_wheel_mismatch`) and the orbit-constant field.
+    (:func:`_wheel_mismatch`), the orbit-constant field and a tabulated field.
     """
     from detumble.sim.attitude import RigidBody
     from detumble.sim.field import DipoleField, OrbitConstantField
@@ -225,7 +225,27 @@ def mismatch(module: ModuleType) -> str | None:
         got_env = kernel.environment(t)
         if got_env != want_env:
             return f"orbit-constant environment at t = {t} s: {got_env} != {want_env}"
-    return _wheel_mismatch(module, body, orbit, field)
+    problem = _table_mismatch(module, body, orbit, field)
+    return problem if problem is not None else _wheel_mismatch(module, body, orbit, field)
+
+
+def _table_mismatch(module: ModuleType, body, orbit, model) -> str | None:
+    """A field tabulated along the orbit (:class:`~.field.FieldAlongOrbit` with a table step, as IGRF-14 and the
+    WMM fly): the environment at times inside a node interval, on nodes, stepping forward node by node, jumping
+    ahead and going back (the kernel re-asks Python for the nodes it does not hold), against the Python table's."""
+    from detumble.sim.field import FieldAlongOrbit
+
+    step = 0.7
+    table, reference = FieldAlongOrbit(model, orbit, step), FieldAlongOrbit(model, orbit, step)
+    kernel = module.Kernel(body._j, body._jinv, body.wheel_momentum_B, environment_parameters(orbit, table))
+    times = [0.05 * k + 10.0 for k in range(60)] + [2.1, 2.8, 3.5, 1000.3, 1000.0, 1.4, 0.0]
+    for t in times:
+        r, r_hat, _ = _reference_environment(orbit, model, t)
+        want_env = (r, r_hat, reference.b_N(t, r))
+        got_env = kernel.environment(t)
+        if got_env != want_env:
+            return f"tabulated-field environment at t = {t} s: {got_env} != {want_env}"
+    return None
 
 
 def _wheel_mismatch(module: ModuleType, body, orbit, field) -> str | None:
@@ -322,14 +342,20 @@ def _load() -> KernelStatus:
     return KernelStatus(module, "", path, built)
 
 
-def environment_parameters(orbit, field_model) -> tuple[float, ...]:
+def environment_parameters(orbit, field_model) -> tuple:
     """The kernel's environment constants for a :class:`~.orbit.CircularOrbit` and a
-    :class:`~.field.DipoleField` (12 floats) or an :class:`~.field.OrbitConstantField` on that
-    orbit (10 floats), in the order ``plant_kernel.c`` reads them."""
-    from detumble.sim.field import OrbitConstantField
+    :class:`~.field.DipoleField` (12 floats), an :class:`~.field.OrbitConstantField` on that
+    orbit (10 floats) or a :class:`~.field.FieldAlongOrbit` with a table step (the step and its node
+    function: 8 floats and a callable; the kernel interpolates, Python computes each node once), in
+    the order ``plant_kernel.c`` reads them."""
+    from detumble.sim.field import FieldAlongOrbit, OrbitConstantField
 
     o, f = orbit, field_model
     orbit_part = (o.radius_m, o.arg_latitude0_rad, o.arg_latitude_rate, o.raan0_rad, o.raan_rate, o._ci, o._si)
+    if type(f) is FieldAlongOrbit:
+        if f.table_step_s is None or f.orbit is not orbit:
+            raise ValueError("a tabulated field needs a table step and the plant's own orbit")
+        return (*orbit_part, float(f.table_step_s), f._node)
     if type(f) is OrbitConstantField:
         if f.orbit is not orbit:
             raise ValueError("the orbit-constant field must be defined on the plant's own orbit")
@@ -351,8 +377,8 @@ MAX_WHEELS = 16
 def kernel_for(body, orbit, field, implementation: str | None = None, wheels=None):
     """A compiled kernel for one plant's body (with its reaction wheels when ``wheels``, its
     :class:`~.wheels.WheelAssembly`, is given; and its environment when the orbit is circular and the
-    field the centred dipole or the orbit-constant field, evaluated at every step), or None for the
-    pure-Python plant.
+    field the centred dipole or the orbit-constant field, evaluated at every step, or any model on a
+    table, interpolated in the kernel between nodes Python computes), or None for the pure-Python plant.
 
     ``field`` is the plant's :class:`~.field.FieldAlongOrbit` (or None). Raises
     :class:`KernelUnavailableError` when ``compiled`` was asked for and the kernel cannot be had.
@@ -380,6 +406,9 @@ def kernel_for(body, orbit, field, implementation: str | None = None, wheels=Non
             and (type(field.model) is DipoleField
                  or (type(field.model) is OrbitConstantField and field.model.orbit is orbit))):
         env = environment_parameters(orbit, field.model)
+    elif type(orbit) is CircularOrbit and type(field) is FieldAlongOrbit and field.orbit is orbit \
+            and field.table_step_s is not None:
+        env = environment_parameters(orbit, field)  # IGRF-14 or the WMM on their table: nodes from Python
     wheel_part = None if wheels is None else wheel_parameters(wheels)
     return status.module.Kernel(body._j, body._jinv, body.wheel_momentum_B, env, wheel_part)
 

@@ -217,7 +217,7 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
 
     def record() -> None:
         w = plant.omega_BN_B
-        rows.append((plant.t, deg(w[0]), deg(w[1]), deg(w[2]), deg(math.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2))))
+        rows.append((plant.t, deg(w[0]), deg(w[1]), deg(w[2]), deg(math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]))))
         adcs.append(adcs_row(plant))
 
     record()

@@ -109,3 +109,20 @@ def test_each_law_takes_its_own_default_gain_not_the_scenario_s(tmp_path, capsys
     err = capsys.readouterr().err
     assert "--gain does not apply to none, which has no gain; laws with one gain: kopt, bdot, cross_product" in err
     assert not (tmp_path / "n").exists()
+
+
+def test_the_rate_column_is_the_deployment_truth_s_expression():
+    """SIM-RATE-001 (issue 27): the plant-only rate is |ω| computed as the deployment's truth and Plant.rate_deg_s
+    compute it (``w * w``, not ``w ** 2``: libm pow and a product differ in the last bit for about one input in
+    a thousand, which made ADCS-078 differ by one ulp in one of 401 rates once the field changed). 0.09105 °/s on
+    the adcs axis is such an input: ``** 2`` gives 0.09105000000000002, the product 0.09105."""
+    import math
+
+    from detumble.sim.plant import Plant
+    from detumble.sim.runner import run
+    from detumble.sim.scenario import load_scenario
+
+    scenario = load_scenario("adcs", settings=["initial.rate.magnitude_deg_s=0.09105"])
+    w = Plant(scenario).omega_BN_B
+    assert math.degrees(math.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)) != Plant(scenario).rate_deg_s  # the case
+    assert run(scenario, law="bdot", duration_s=0.02).rows[0][4] == Plant(scenario).rate_deg_s
