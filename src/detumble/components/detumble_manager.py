@@ -134,7 +134,10 @@ _FAILURE = Success.FAILURE
 
 def _finite(*values: float) -> bool:
     try:
-        return all(math.isfinite(v) for v in values)
+        for v in values:  # all(...) without its generator: a check on every sensing tick
+            if not math.isfinite(v):
+                return False
+        return True
     except TypeError:
         return False
 
