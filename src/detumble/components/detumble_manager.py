@@ -120,9 +120,24 @@ def _duration(min_us: int, max_us: int):
 _DETUMBLE_STRATEGY = {Strategy(v.value): v for v in T.DetumbleStrategy}
 
 
+# The modes and states the 50 Hz run compares against, read once: an enum class attribute costs a
+# metaclass lookup (~0.1-0.5 µs), and run makes up to five of them a tick.
+_DISABLED = DetumbleMode.DISABLED
+_COOLDOWN = DetumbleState.COOLDOWN
+_SENSING_ANGULAR_VELOCITY = DetumbleState.SENSING_ANGULAR_VELOCITY
+_SENSING_MAGNETIC_FIELD = DetumbleState.SENSING_MAGNETIC_FIELD
+_ACTUATING_BDOT = DetumbleState.ACTUATING_BDOT
+_ACTUATING_HYSTERESIS = DetumbleState.ACTUATING_HYSTERESIS
+_SUCCESS = Success.SUCCESS
+_FAILURE = Success.FAILURE
+
+
 def _finite(*values: float) -> bool:
     try:
-        return all(math.isfinite(v) for v in values)
+        for v in values:  # all(...) without its generator: a check on every sensing tick
+            if not math.isfinite(v):
+                return False
+        return True
     except TypeError:
         return False
 
@@ -434,25 +449,27 @@ class DetumbleManager(PassiveComponent):
             self._reset_cycle()
 
     def _run(self) -> None:
-        self.Mode.write(self.mode)
-        self.State.write(self.state)
-        if self.mode == DetumbleMode.DISABLED:
+        mode = self.mode
+        state = self.state
+        self.Mode.write(mode)
+        self.State.write(state)
+        if mode == _DISABLED:
             if not self._safed:  # once per DISABLED spell, in any state; a ground START stays on (as flown)
                 self._stop_coils()
                 self._reset_cycle()
                 self._safed = True
             return
         self._safed = False
-        state = self.state
-        if state == DetumbleState.COOLDOWN:
-            self._cooldown()
-        elif state == DetumbleState.SENSING_ANGULAR_VELOCITY:
-            self._sense_angular_velocity()
-        elif state == DetumbleState.SENSING_MAGNETIC_FIELD:
-            self._sense_magnetic_field()
-        elif state == DetumbleState.ACTUATING_BDOT:
+        # the states in the order a B-dot cycle spends its ticks in them (most, then fewer)
+        if state == _ACTUATING_BDOT:
             self._actuate_bdot()
-        elif state == DetumbleState.ACTUATING_HYSTERESIS:
+        elif state == _SENSING_MAGNETIC_FIELD:
+            self._sense_magnetic_field()
+        elif state == _COOLDOWN:
+            self._cooldown()
+        elif state == _SENSING_ANGULAR_VELOCITY:
+            self._sense_angular_velocity()
+        elif state == _ACTUATING_HYSTERESIS:
             self._actuate_hysteresis()
 
     def _reset_cycle(self) -> None:
@@ -544,9 +561,11 @@ class DetumbleManager(PassiveComponent):
         self._start_coils(levels)
         start = self.torque_start_time
         assert start is not None  # set by _enter_actuating_bdot above
-        if now.total_us < start.total_us:
+        now_us, start_us = now.total_us, start.total_us
+        if now_us < start_us:
             self.torque_start_time = start = now  # the clock went backwards: measure from here
-        elapsed = self._elapsed_us(start, now)
+            start_us = now_us
+        elapsed = now_us - start_us  # _elapsed_us(start, now), written out: every tick of a torque period
         if elapsed >= self.TORQUE_DURATION.value.total_us:
             self._bdot_levels = None
             self.bdot.empty_sample_set()
@@ -596,14 +615,19 @@ class DetumbleManager(PassiveComponent):
         if not self.is_connected(port):
             return False, None
         value, condition = getattr(self, port)[0](*args)
-        return condition == Success.SUCCESS, value
+        return condition == _SUCCESS, value
 
     def _start_coils(self, levels) -> None:
         """Drive X+, X−, Y+, Y−, Z− at ``levels`` (each −127…127); unconnected coils are skipped."""
-        isolated, may_be_on = self._isolated, self._may_be_on
-        for index, (port, level) in enumerate(zip(self._start_ports, levels, strict=True)):
+        isolated, may_be_on, ports = self._isolated, self._may_be_on, self._start_ports
+        if len(levels) != len(ports):
+            raise ValueError(f"{len(levels)} drive levels for {len(ports)} coils")
+        # indexed rather than enumerate(zip(...)): this runs every 50 Hz tick of a torque period
+        for index in range(len(ports)):
+            port = ports[index]
             if port.targets[0] is not None and not isolated[index]:  # unconnected coils are skipped
-                if port.calls[0](level) == Success.SUCCESS:
+                level = levels[index]
+                if port.calls[0](level) == _SUCCESS:
                     may_be_on[index] = level != 0
         self.coils_driven = True
 
@@ -619,7 +643,7 @@ class DetumbleManager(PassiveComponent):
         isolated, may_be_on = self._isolated, self._may_be_on
         for index, port in enumerate(self._stop_ports):
             if port.targets[0] is not None and not isolated[index]:
-                if port.calls[0]() == Success.FAILURE:
+                if port.calls[0]() == _FAILURE:
                     if may_be_on[index]:
                         self._isolate_failed_coil(index)
                 else:

@@ -54,7 +54,8 @@ class BDot:
         """
         if len(self._fields) >= WINDOW_SIZE:
             return False
-        bx, by, bz = (float(v) for v in magnetic_field_gauss)
+        bx, by, bz = magnetic_field_gauss  # unpacked, then converted: no generator (a read every sensing tick)
+        bx, by, bz = float(bx), float(by), float(bz)
         if not (math.isfinite(bx) and math.isfinite(by) and math.isfinite(bz)):
             return False
         self._fields.append((bx, by, bz))

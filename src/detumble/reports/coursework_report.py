@@ -72,7 +72,7 @@ class CourseworkRunReport:
             w = s.omega_BN_B
             t = s.t_s - self.start_us / US_PER_S
             self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
-                                   s.rate_deg_s, *adcs_row(self.spacecraft.plant, with_field=True)])
+                                   s.rate_deg_s, *adcs_row(self.spacecraft.plant, with_field=True, sample=s)])
         self._count += 1
 
     def on_event(self, event) -> None:

@@ -148,7 +148,7 @@ class DetumbleRunReport:
         self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
                                s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *switched,
                                *manager_columns,
-                               *adcs_row(plant, with_field=False), *dipole, *self.power.sample(t)])
+                               *adcs_row(plant, with_field=False, sample=s), *dipole, *self.power.sample(t)])
 
     def on_event(self, event) -> None:
         """A downlinked event (``fprime_lite.ground.downlink.DecodedEvent``)."""

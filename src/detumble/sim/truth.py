@@ -40,11 +40,21 @@ def adcs_header(plant, with_field: bool = True) -> list[str]:
     return cols
 
 
-def adcs_row(plant, with_field: bool = True) -> list:
+def adcs_row(plant, with_field: bool = True, sample=None) -> list:
+    """The columns' values now. ``sample``: the ``TruthSample`` just taken of this plant's present
+    state (``SimulatedSpacecraft.truth``, a truth trace's callback argument), whose attitude relative
+    to the orbit frame, rate relative to it and pointing error are then taken as computed there (the
+    same floats: the same plant state, the same functions) instead of a second time; a sample of
+    another instant is ignored."""
     q = plant.q_BN
-    qo = plant.q_BO
-    wo = plant.omega_BO_B
-    err = plant.pointing_error_rad()
+    if sample is not None and sample.t_s == plant.t_ns * 1e-9:
+        qo = sample.q_BO
+        wo = sample.omega_BO_B
+        err = sample.pointing_error_rad
+    else:
+        qo = plant.q_BO
+        wo = plant.omega_BO_B
+        err = plant.pointing_error_rad()
     row: list = [*q, *qo, *(math.degrees(w) for w in wo), "" if err is None else math.degrees(err)]
     b = plant.b_B
     if with_field:

@@ -51,3 +51,23 @@ def test_torque_and_wheel_columns():
     assert row["h1_Nms"] == pytest.approx(-1e-3 * 0.01, rel=1e-12)
     assert "h3_Nms" not in row
     assert not any(k.startswith("h0") for k in adcs_header(Plant(load_scenario("default"))))
+
+
+def test_a_fresh_truth_sample_gives_the_same_row_and_a_stale_one_is_ignored():
+    """TR-004: adcs_row takes the orbit-frame attitude, rate and pointing error from a TruthSample of
+    the plant's present state (the reports' 1 Hz rows: computed once, not twice) — the same row to
+    the bit as computed afresh; a sample of an earlier instant is not used."""
+    from detumble.drivers.spacecraft import SimulatedSpacecraft
+
+    craft = SimulatedSpacecraft(load_scenario("surrey"))
+    plant = craft.plant
+    plant.set_pointing_target((1.0, 0.0, 0.0, 0.0), frame="orbit")
+    craft.clock.set_us(craft.clock.current_us + 30_000_000)
+    craft.sync()
+    sample = craft.truth()
+    assert sample.pointing_error_rad is not None
+    assert repr(adcs_row(plant, sample=sample)) == repr(adcs_row(plant))
+    craft.clock.set_us(craft.clock.current_us + 1_000_000)
+    craft.sync()
+    assert repr(adcs_row(plant, sample=sample)) == repr(adcs_row(plant))
+    assert adcs_row(plant, sample=sample)[4:8] != list(sample.q_BO)
