@@ -158,3 +158,26 @@ def test_gen_003_a_store_tlm_value_replaced_on_the_instance_sees_every_write():
     for value in (0.25, 0.5, 0.75):
         rate.write(value)
     assert calls == [(rate.id, 0.25), (rate.id, 0.5), (rate.id, 0.75)]
+
+
+def test_gen_004_a_driver_subclass_is_asked_when_its_next_output_fires():
+    """GEN-004: the timer reads a plain RateGroupDriver's firing table itself; a subclass's own
+    ``ticks_to_next_output`` is still called for every wake-up it plans, and followed."""
+    from fprime_lite.deploy.scheduler import Scheduler
+    from fprime_lite.svc.rate_group_driver import Divider, RateGroupDriver, RateGroupTimer
+
+    class EveryThirdTick(RateGroupDriver):
+        asked = 0
+
+        def ticks_to_next_output(self):
+            self.asked += 1
+            return (-self.tick) % 3  # fires on ticks 0, 3, 6... whatever the table says
+
+    scheduler, fired = Scheduler(), []
+    driver = EveryThirdTick("driver", dividers=[Divider(1)])
+    driver.output_port("CycleOut").connect_callable(0, lambda t: fired.append(t.total_us), "sink")
+    timer = RateGroupTimer(scheduler, driver, 1000)
+    timer.start()
+    scheduler.run(until_us=9_000)
+    assert fired == [0, 3_000, 6_000, 9_000]
+    assert driver.asked == 5  # the start, then after each of the four cycles
