@@ -141,10 +141,10 @@ def _channel_case(old: str, new: str, repeat: int, pick):
     loaded = _proves_ref()
     channels = [ch for i in loaded.topology.instances.values() for ch in i.component._channels.values()]
     channel, value = pick(channels)
-    folded = _refold(BoundChannel.write, old, new, {})
+    folded = _refold(BoundChannel._write_general, old, new, {})
     channel.write(value)
     assert channel._store is not None, "the channel is not connected to TlmChan (deferred store)"
-    return _best(lambda: channel.write(value), lambda: folded(channel, value), 5000, repeat)
+    return _best(lambda: channel._write_general(value), lambda: folded(channel, value), 5000, repeat)
 
 
 def _f64_channel(channels):

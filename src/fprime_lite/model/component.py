@@ -471,7 +471,11 @@ class Component(metaclass=ComponentMeta):
 
     def is_connected(self, port: str, index: int = 0) -> bool:
         """Whether output ``port[index]`` is connected (F´'s ``isConnected_<port>_OutputPort``)."""
-        return self.output_port(port).targets[index] is not None  # raises the KeyError that names the ports
+        try:
+            targets = self._outputs[port].targets
+        except KeyError:
+            targets = self.output_port(port).targets  # raises the KeyError that names the ports
+        return targets[index] is not None
 
     @property
     def input_ports(self) -> dict[str, InputPortArray]:

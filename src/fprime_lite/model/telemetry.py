@@ -19,14 +19,23 @@ as a tuple of their member values taken at the write (struct and array values ar
 objects). Other arrays, structs with struct or array members, and
 every write to any other receiver (a test harness, a tap, a custom component) are packed at write,
 so what such a receiver sees is F´'s ``Fw.Tlm`` call with the value's bytes.
+
+Generated writers (F´ autocodes each component's ``tlmWrite_<channel>``): once a write has found
+``tlmOut[0]`` connected to such a store, ``channel.write`` is a function generated for the channel's
+kind (its value check, on change or always, snapshot or not) and closed over its bindings, which
+assigns the stored entry to the store's table itself instead of calling ``store_tlm_value``. It
+checks on every write that the ``tlmOut`` and time-port slots still hold what it was made for and
+that the clock has made this instant's Time, and otherwise hands the write to the general path
+(``BoundChannel._write_general``), which sees the change and makes a new writer.
 """
 
 from __future__ import annotations
 
 import builtins
+import functools
 import operator
 
-from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
+from typing import TYPE_CHECKING, Any, Generic, Protocol, TypeVar, overload
 
 from fprime_lite.model.errors import DeclarationError, check_member_name, check_units
 from fprime_lite.model.events import translate_format
@@ -118,12 +127,26 @@ class Channel(Generic[V]):
         return f"Channel {self.name} ({t.name if t is not None else self._raw_type})"
 
 
+V_contra = TypeVar("V_contra", contravariant=True)
+
+
+class _Write(Protocol[V_contra]):
+    """What ``channel.write`` is: ``write(value, time=None)``."""
+
+    def __call__(self, value: V_contra, time: Time | None = None) -> None: ...
+
+
 class BoundChannel(Generic[V]):
     """A channel of one component instance."""
 
     __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
                  "_valid_type", "_tlm_targets", "_tlm_calls", "_time_calls", "_deferrable",
-                 "_bound_call", "_store", "_members_of", "_min", "_max", "_clock", "_clock_now")
+                 "_bound_call", "_store", "_members_of", "_min", "_max", "_clock", "_clock_now", "_table_owner",
+                 "write")
+
+    #: Record ``value`` and send it (time-stamped now, unless ``time`` is given): an instance slot
+    #: holding the writer generated for this channel, or :meth:`_write_general`.
+    write: _Write[V]
 
     def __init__(self, component: Any, decl: Channel[V], channel_id: int) -> None:
         self.component = component
@@ -158,9 +181,14 @@ class BoundChannel(Generic[V]):
         self._store = None  # the target's deferred store, or None: send packed bytes
         #: For a mutable value made of immutable parts: what is stored and packed (a tuple of them).
         self._members_of: Any = None
+        self._table_owner: Any = None  # the store whose table the generated writer assigns to
+        #: What ``channel.write(value, time=None)`` calls: this general path until a write has found
+        #: a store with a table, then the writer generated for this channel (see _specialise).
+        self.write = self._write_general
 
-    def write(self, value: V, time: Time | None = None) -> None:
-        """Record ``value`` and send it (time-stamped now, unless ``time`` is given)."""
+    def _write_general(self, value: V, time: Time | None = None) -> None:
+        """Record ``value`` and send it (time-stamped now, unless ``time`` is given): every case,
+        and what the generated writer hands over to whenever its bindings no longer hold."""
         valid_type = self._valid_type
         if (type(value) is not valid_type
                 or (valid_type is int and not self._min <= value <= self._max)):  # type: ignore[operator]
@@ -197,7 +225,9 @@ class BoundChannel(Generic[V]):
         while the port's slot holds that same callable."""
         component = self.component
         time = component._port_time(time_call)
-        self._clock_now, self._clock = component._clock_now, component._clock
+        if (self._clock_now, self._clock) != (component._clock_now, component._clock):
+            self._clock_now, self._clock = component._clock_now, component._clock
+            self._specialise()
         return time
 
     def _bind(self, call: object) -> None:
@@ -211,6 +241,76 @@ class BoundChannel(Generic[V]):
             # Only the store's own input: a slot whose callable was replaced (a tap) gets bytes.
             if getattr(component, "deferred_tlm_input", None) == port.name and call is port.entries[index]:
                 self._store = component.store_tlm_value
+        self._specialise()
+
+    def _specialise(self) -> None:
+        """Point ``write`` at a writer generated for this channel's bindings as they are now, or back
+        at :meth:`_write_general` when there is nothing to specialise on.
+
+        The writer (:func:`_writer_factory`) is the general path with every choice made: the value
+        check for this type, the on-change test only for an on-change channel, the member snapshot
+        only for a snapshot channel, and the store's table assignment written in place of the
+        ``store_tlm_value`` call (only for a store that names a ``deferred_tlm_table``: an attribute
+        whose dict ``store_tlm_value`` does nothing but assign ``(time, value, pack)`` to; TlmChan
+        names none when a subclass overrides ``store_tlm_value``). It holds the ``tlmOut`` slot and
+        the time-port slot it was made for, and hands the write to the general path when either slot
+        now holds another callable or the clock has not made this instant's Time, so that every
+        (dis)connection and every other clock is seen, and the general path makes a new writer.
+        """
+        owner = getattr(self._store, "__self__", None)
+        table = getattr(owner, "deferred_tlm_table", None)
+        if (not isinstance(table, str) or not table.isidentifier()
+                or getattr(self._store, "__func__", None) is not getattr(type(owner), "store_tlm_value", None)):
+            self.write = self._write_general
+            self._table_owner = None
+            return
+        self._table_owner = owner
+        valid = self._valid_type
+        check_kind = "int" if valid is int else "none" if valid is None else "type"
+        make = _writer_factory(check_kind, self._on_change, self._members_of is not None, table)
+        self.write = make(self, self._write_general, owner, self.id, self._serialize, self._check, valid,
+                          self._min, self._max, self._members_of, self._tlm_calls, self._bound_call,
+                          self._time_calls, self._clock_now, self._clock)
+
+
+_WRITER_TEMPLATE = """
+def make(channel, general, owner, cid, pack, check, valid, lo, hi, members_of, tlm_calls, bound_call,
+         time_calls, clock_now, clock):
+    def write(value, time=None):
+        if tlm_calls[0] is not bound_call:
+            return general(value, time)
+        if time is None:
+            if time_calls[0] is not clock_now or clock._now_at != clock.current_us:
+                return general(value, time)
+            time = clock._now
+{check}{on_change}        channel.last = value
+        channel.written = True
+        owner.{table}[cid] = (time, {stored}, pack)
+    return write
+"""
+
+_CHECKS = {
+    "type": "        if type(value) is not valid:\n            value = check(value)\n",
+    "int": "        if type(value) is not int or not lo <= value <= hi:\n            value = check(value)\n",
+    "none": "        value = check(value)\n",
+}
+
+
+@functools.lru_cache(maxsize=None)
+def _writer_factory(check_kind: str, on_change: bool, snapshot: bool, table: str) -> Any:
+    """The factory of channel writers of one kind (F´ autocodes a component's ``tlmWrite_<channel>``;
+    this is its Python counterpart, generated once per kind and closed over each channel's bindings):
+    ``check_kind`` is ``"type"`` (one exact Python type is valid as it is), ``"int"`` (an int within
+    the type's range is) or ``"none"`` (the type's check always runs), as in
+    :meth:`BoundChannel._write_general`; ``table`` is the store's ``deferred_tlm_table``."""
+    source = _WRITER_TEMPLATE.format(
+        check=_CHECKS[check_kind],
+        on_change=("        if channel.written and value == channel.last:\n            return\n" if on_change else ""),
+        stored="members_of(value)" if snapshot else "value", table=table)
+    namespace: dict[str, Any] = {}
+    exec(compile(source, f"<channel writer {check_kind}{' on-change' if on_change else ''}"
+                         f"{' snapshot' if snapshot else ''}>", "exec"), namespace)
+    return namespace["make"]
 
 
 #: Member types whose checked values are immutable: a struct made only of these can be snapshotted.

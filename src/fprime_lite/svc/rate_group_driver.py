@@ -142,7 +142,12 @@ class RateGroupTimer:
             self._call = None
 
     def _schedule(self, base_tick_time_us: int) -> None:
-        wait = self.driver.ticks_to_next_output()
+        driver = self.driver
+        waits = driver._waits
+        # ticks_to_next_output's table lookup, read here while the table is that of the dividers as they are
+        wait = (waits[driver.tick % driver._period]
+                if waits is not None and driver._table_of is driver.dividers and type(driver) is RateGroupDriver
+                else driver.ticks_to_next_output())
         self._idle_ticks = wait
         due = base_tick_time_us + wait * self.base_period_us
         if self._call is None:

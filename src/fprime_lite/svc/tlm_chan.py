@@ -82,6 +82,13 @@ class TlmChan(ActiveComponent):
     #: The input port whose writers may hand over values instead of bytes (see store_tlm_value).
     deferred_tlm_input = "TlmRecv"
 
+    @property
+    def deferred_tlm_table(self) -> str | None:
+        """The attribute naming the dict :meth:`store_tlm_value` assigns ``(time, value, pack)`` to,
+        which a channel's generated writer assigns to itself (``fprime_lite.model.telemetry``); None
+        when a subclass overrides ``store_tlm_value``, whose every call must then happen."""
+        return "_latest" if type(self).store_tlm_value is TlmChan.store_tlm_value else None
+
     @sync_input(Tlm)
     def TlmRecv(self, chan_id: int, time, value: bytes) -> None:
         """Store the latest ``value`` (F´ bytes) and ``time`` of channel ``chan_id`` (never raises).
