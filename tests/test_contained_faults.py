@@ -592,6 +592,26 @@ def _tlm_run(rig):
     return Expect(h, ["Run: channel 0x77"])
 
 
+@recipe("TlmPacketizer", "Run")
+def _tlm_packetizer_run(rig):
+    """A packet whose time stamp cannot be serialized is reported and skipped; the others still go."""
+    from fprime_lite.svc.tlm_packetizer import PacketSpec
+    h, tp = rig.harness("TlmPacketizer")
+    tp.set_packet_list([PacketSpec("A", 5, 0, ((0x10, 1),))], omitted=[], start_level=0)
+    h.invoke("TlmRecv", 0x10, Time(), b"\x01")
+    h.dispatch_all()
+
+    class Stamp:  # the time stamp's serialization fails
+        size = 11
+        serialize = staticmethod(_raise)
+
+    rig.patch(sys.modules[type(tp).__module__], "TIME", Stamp())
+    h.invoke("Run", 0)
+    h.dispatch_all()
+    assert not h.from_port("PktSend") and tp.packets_sent == 0
+    return Expect(h, ["Run"], no_actuator="it downlinks telemetry packets")
+
+
 # the framework's own containment (model/component.py, rate groups)
 
 
