@@ -232,6 +232,42 @@ def _pointing_statistic(key: str):
     return compute
 
 
+def _pointing_acquisition(output: RunOutput, _probe) -> float:
+    """s from entering POINTING until the true error stays below the acquisition threshold (30° on the coils,
+    0.1° on the wheels): the run summary's ``pointing_error_deg.acquisition_s``."""
+    stats = output.summary.get("pointing_error_deg")
+    if not isinstance(stats, dict) or stats.get("acquisition_s") is None:
+        raise MetricUnavailable("no acquisition in the run summary (the controller never pointed, the error never "
+                                "stayed below the acquisition threshold, or the deployment has no attitude report)")
+    return float(stats["acquisition_s"])
+
+
+def _acquisition_below(threshold_deg: float):
+    """s from entering POINTING until the true error stays below ``threshold_deg`` (deg) to the end of the first
+    POINTING interval: the summary's acquisition rule (detumble.analysis.pointing_windows) at another angle, on
+    the run's recorded true error (the plant run's trace or a deployment's truth.csv)."""
+    def compute(output: RunOutput, _probe) -> float:
+        from detumble.analysis.pointing_windows import acquisition_time
+
+        intervals = output.summary.get("pointing_intervals")
+        if not intervals:
+            raise MetricUnavailable("no POINTING interval in the run summary (pointing_intervals)")
+        t0 = float(intervals[0]["t_s"])
+        t1 = float(intervals[1]["t_s"]) if len(intervals) > 1 else math.inf
+        cols = _columns(output, lambda n: n in ("t_s", "pointing_error_deg"))
+        if "pointing_error_deg" not in cols or "t_s" not in cols:
+            raise MetricUnavailable("no true pointing error in the run's trace")
+        kept = [(float(t), float(e)) for t, e in zip(cols["t_s"], cols["pointing_error_deg"], strict=True)
+                if t0 <= t < t1 and math.isfinite(e)]
+        if not kept:
+            raise MetricUnavailable("no pointing error recorded in the first POINTING interval")
+        acq = acquisition_time([t for t, _ in kept], [e for _, e in kept], threshold_deg)
+        if acq is None:
+            raise MetricUnavailable(f"the error was still above {threshold_deg:g} deg at the interval's end")
+        return acq + (kept[0][0] - t0)
+    return compute
+
+
 def _final_rate(output: RunOutput, _probe) -> float:
     return float(output.summary["final_rate_deg_s"])
 
@@ -340,6 +376,11 @@ METRICS = (
     Metric("pointing_max_deg", "deg", "largest steady pointing error in POINTING, after each acquisition "
            "(run summary)",
            _pointing_statistic("max")),
+    Metric("pointing_acquisition_s", "s", "time from entering POINTING until the true error stays below the "
+           "acquisition threshold (30 deg on the coils, 0.1 deg on the wheels; run summary)", _pointing_acquisition),
+    Metric("pointing_acquisition_15deg_s", "s", "time from entering POINTING until the true error stays below "
+           "15 deg (the coils' p95 goal) to the end of the first POINTING interval (true error trace)",
+           _acquisition_below(15.0)),
     Metric("mode_transitions", "", "number of attitude-control mode changes the ground saw "
            "(summary.json control_mode_transitions)", _mode_transitions),
     *(Metric(f"spin_axis_error_{stat}_deg", "deg", f"{stat} angle between the total angular momentum and body "
