@@ -130,6 +130,7 @@ def test_pooling_columns_flow_into_results_parquet(tmp_path):
 
 @pytest.mark.parametrize("name, columns", [("hold_magnetorquers.yaml", POINTING),
                                            ("pointing_magnetorquers.yaml", POINTING),
+                                           ("pointing_magnetorquers_plant.yaml", POINTING),
                                            ("pointing_wheels.yaml", STEADY),
                                            ("spin_minor_axis.yaml", SPIN), ("spin_major_axis.yaml", SPIN)])
 def test_adcs_campaigns_record_every_pooling_column(name, columns):
