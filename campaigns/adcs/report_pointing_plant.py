@@ -1,7 +1,9 @@
 """Issue 27's magnetorquer-only hold goal, plant-only campaign (docs/studies/magnetorquer_hold_after_acquisition.md).
 
-Run: ``python campaigns/adcs/report_pointing_plant.py RUN_DIR`` on the output folder of
-``fprime-lite campaign campaigns/adcs/pointing_magnetorquers_plant.yaml --out RUN_DIR`` (prints the page's tables).
+Run: ``python campaigns/adcs/report_pointing_plant.py RUN_DIR [TWO_ORBIT_DIR]`` on the output folder of
+``fprime-lite campaign campaigns/adcs/pointing_magnetorquers_plant.yaml --out RUN_DIR`` (prints the page's tables);
+with the folder of ``pointing_magnetorquers_plant_2orbits.yaml`` (its first 20 draws flown for two orbits) also the
+paired comparison of the two window lengths.
 
 The window is the run summary's ``pointing_error_deg``: POINTING after its acquisition, i.e. from the time the true
 error stays below 30° (``pointing_acquisition_s``, s after entering POINTING) to the end of the run. Per run the
@@ -59,6 +61,7 @@ def per_run(df: pd.DataFrame) -> pd.DataFrame:
     out = pd.DataFrame({
         "run_id": ok["run_id"].to_numpy(),
         "seed_index": ok["seed_index"].to_numpy(),
+        "seed": ok["seed"].to_numpy() if "seed" in ok else ok["seed_index"].to_numpy(),
         "rate_deg_s": [float(np.linalg.norm(np.asarray(w, dtype=float)))
                        for w in ok["scenario.initial.rate.omega_deg_s"]],
         "offset_deg": [offset_deg(q) for q in ok["scenario.initial.attitude.quaternion"]],
@@ -241,21 +244,51 @@ def markdown(a: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+def paired(one: pd.DataFrame, two: pd.DataFrame) -> dict:
+    """The same draws flown for one orbit (``one``) and for two (``two``), paired by seed: the runs meeting p95 ≤
+    15° in each, the share of the window above 15° (median of the runs) in each, and in how many pairs the
+    acquisition, the tail and the time above 15° are the same (the second orbit added no time above 15°)."""
+    m = per_run(one).merge(per_run(two), on="seed", suffixes=("_1", "_2"))
+    same = lambda c: int((m[f"{c}_1"] == m[f"{c}_2"]).sum())  # noqa: E731
+    return {"pairs": len(m), "p95_ok_1": int(m["p95_ok_1"].sum()), "p95_ok_2": int(m["p95_ok_2"].sum()),
+            "median_ok_2": int(m["median_ok_2"].sum()),
+            "share_1": float(np.median(m["share_above15_1"])), "share_2": float(np.median(m["share_above15_2"])),
+            "p95_1": float(np.median(m["p95_1"])), "p95_2": float(np.median(m["p95_2"])),
+            "same_acquisition": same("acquisition_s"), "same_tail": same("tail_s"), "same_above": same("above15_s"),
+            "window_2": float(np.median(m["window_s_2"]))}
+
+
+def paired_markdown(p: dict) -> str:
+    """The one-orbit / two-orbit comparison (markdown) from :func:`paired`."""
+    n = p["pairs"]
+    return ("| the same draws, window after acquisition to the end of | runs | p95 ≤ 15° | run p95, median (deg) | "
+            "above 15°, share of the window: median |\n|---|---|---|---|---|\n"
+            f"| one orbit (5580 s) | {n} | {p['p95_ok_1']}/{n} | {p['p95_1']:.1f} | {100 * p['share_1']:.1f} % |\n"
+            f"| two orbits (11160 s) | {n} | **{p['p95_ok_2']}/{n}** | {p['p95_2']:.1f} | {100 * p['share_2']:.1f} % |"
+            f"\n\nIn {p['same_acquisition']}/{n} pairs the acquisition is the same, in {p['same_tail']}/{n} the tail, "
+            f"in {p['same_above']}/{n} the time above 15° (the second orbit added none); median ≤ 5° in "
+            f"{p['median_ok_2']}/{n} two-orbit runs.\n")
+
+
 def main(argv: list[str]) -> int:
-    if len(argv) != 1:
+    if len(argv) not in (1, 2):
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
         return 2
-    folder = pathlib.Path(argv[0])
     from fprime_lite.tools.campaign import read_results
 
+    frames = []
+    for folder in map(pathlib.Path, argv):
+        try:
+            frames.append(read_results(folder))
+        except (FileNotFoundError, OSError) as exc:
+            print(f"report_pointing_plant: no campaign results in {folder} ({exc}): give the --out folder of "
+                  "`fprime-lite campaign campaigns/adcs/pointing_magnetorquers_plant.yaml` (and, second, of "
+                  "pointing_magnetorquers_plant_2orbits.yaml)", file=sys.stderr)
+            return 2
     try:
-        df = read_results(folder)
-    except (FileNotFoundError, OSError) as exc:
-        print(f"report_pointing_plant: no campaign results in {folder} ({exc}): give the --out folder of "
-              "`fprime-lite campaign campaigns/adcs/pointing_magnetorquers_plant.yaml`", file=sys.stderr)
-        return 2
-    try:
-        print(markdown(analyse(df)), end="")
+        print(markdown(analyse(frames[0])), end="")
+        if len(frames) == 2:
+            print("\n" + paired_markdown(paired(*frames)), end="")
     except KeyError as exc:
         print(f"report_pointing_plant: the results have no {exc.args[0]} column: the campaign was run before its "
               "file listed pointing_acquisition_s, pointing_acquisition_15deg_s and pointing_error_deg.*; run it "

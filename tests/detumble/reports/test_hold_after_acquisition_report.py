@@ -7,6 +7,7 @@ MAGPT-041: the acquisition metrics: ``pointing_acquisition_15deg_s`` is the summ
 says why when the error never settles.
 MAGPT-042: the closed form of the slow pair's fall from 30° to 15° against an integration of the pair.
 MAGPT-043: the report refuses a folder without results, and results without the acquisition columns, by name.
+MAGPT-044: the one-orbit / two-orbit comparison pairs the runs by seed: a longer steady hold dilutes the tail.
 """
 
 import importlib.util
@@ -56,15 +57,17 @@ RUNS = [
 ]
 
 
-def _results() -> "pd.DataFrame":
-    """The results table the campaign would write for RUNS: every metric its file lists, computed by the
-    installed named metrics on each run's output."""
+def _results(extra_samples: int = 0, order=None) -> "pd.DataFrame":
+    """The results table the campaign would write for RUNS (each followed by ``extra_samples`` more at 1°, rows in
+    ``order``): every metric its file lists, computed by the installed named metrics on each run's output."""
     report = _report()
     named = metrics()
     recs = []
-    for i, (errors, omega, q) in enumerate(RUNS):
-        out = _output(errors)
-        rec = {"run_id": f"r{i}", "seed_index": i, "status": "ok", "scenario.initial.rate.omega_deg_s": omega,
+    for i in order or range(len(RUNS)):
+        errors, omega, q = RUNS[i]
+        out = _output(errors + [1.0] * extra_samples)
+        rec = {"run_id": f"r{i}", "seed_index": i, "seed": 1000 + i, "status": "ok",
+               "scenario.initial.rate.omega_deg_s": omega,
                "scenario.initial.attitude.quaternion": q or list(report.TARGET_Q)}
         for name in load_campaign(CAMPAIGN).metrics:
             if name == "final_rate_deg_s":
@@ -161,3 +164,15 @@ def test_report_refuses_a_folder_without_results(tmp_path, capsys):
     _results().drop(columns=["pointing_acquisition_15deg_s"]).to_parquet(tmp_path / "results.parquet")
     assert report.main([str(tmp_path)]) == 2
     assert "no pointing_acquisition_15deg_s column" in capsys.readouterr().err
+
+
+def test_two_orbit_comparison_pairs_runs_by_seed():
+    """MAGPT-044: the same runs with 300 s more hold at 1° (rows in another order): run 0's 20 s above 15° go from
+    11.8 % of its window (170 s) to 4.3 % (470 s), run 3's from 5.3 % to 2.0 %: p95 ≤ 15° in 2/4 runs, then 4/4;
+    the acquisition, the tail and the time above 15° are the same in every pair."""
+    report = _report()
+    p = report.paired(_results(), _results(extra_samples=600, order=[3, 1, 0, 2]))
+    assert (p["pairs"], p["p95_ok_1"], p["p95_ok_2"]) == (4, 2, 4)
+    assert (p["same_acquisition"], p["same_tail"], p["same_above"]) == (4, 4, 4)
+    assert p["share_2"] == pytest.approx(np.median([20 / 470, 0.0, 5 / 495, 10 / 490]), rel=1e-12)
+    assert "| two orbits (11160 s) | 4 | **4/4** |" in report.paired_markdown(p)
