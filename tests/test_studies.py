@@ -26,7 +26,7 @@ sys.modules["studies_tool"] = studies  # dataclasses look their module up there
 _spec.loader.exec_module(studies)
 
 COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursework_grids",
-             "coursework_replica_magnetorquer1")
+             "coursework_replica_magnetorquer1", "magnetorquer_hold_after_acquisition")
 # their committed folders are older than their campaign files (attitude_knowledge: metrics added since, so the run ids
 # moved): their blocks are checked against the committed results, the folders' belonging is reported by --check
 BLOCKS_ONLY = ("attitude_knowledge", "flight_detumble_campaign")

@@ -285,6 +285,12 @@ CAMPAIGNS = {
     "flight_detumble_campaign": CommittedCampaign("flight_detumble_campaign", "campaigns/proves_flight_detumble.yaml"),
     "flight_detumble_campaign_p95": CommittedCampaign("flight_detumble_campaign_p95",
                                                       "campaigns/proves_flight_detumble_p95.yaml"),
+    # one plant run of an orbit (~10 CPU-s) re-flown by --check
+    "magnetorquer_hold_after_acquisition": CommittedCampaign("magnetorquer_hold_after_acquisition/campaign",
+                                                             "campaigns/adcs/pointing_magnetorquers_plant.yaml",
+                                                             probe=lambda t: t["seed_index"] == 0),
+    "magnetorquer_hold_two_orbits": CommittedCampaign("magnetorquer_hold_after_acquisition/two_orbits",
+                                                      "campaigns/adcs/pointing_magnetorquers_plant_2orbits.yaml"),
 }
 
 
@@ -832,6 +838,35 @@ def regenerate_flight(ctx: Context) -> None:
         CAMPAIGNS[key].redraw_plots(ctx)
 
 
+# --- issue 27's magnetorquer-only hold after acquisition (plant-only campaign) -------------------------------------
+
+_HOLD_DOC = STUDIES_DIR / "magnetorquer_hold_after_acquisition.md"
+
+
+def hold_after_acquisition_blocks() -> dict[str, str]:
+    """The 100-run table of docs/studies/magnetorquer_hold_after_acquisition.md: campaigns/adcs/report_pointing_plant.py
+    on the committed results."""
+    campaign, df = _committed("magnetorquer_hold_after_acquisition")
+    if df is None:
+        return {"magnetorquer_hold_campaign": _not_committed(campaign)}
+    report = _load_script("campaigns/adcs/report_pointing_plant.py")
+    body = report.markdown(report.analyse(df))
+    blocks = {"magnetorquer_hold_campaign": body + "\n" + _source("magnetorquer_hold_after_acquisition", campaign)
+              + "\n"}
+    two, df_two = _committed("magnetorquer_hold_two_orbits")
+    blocks["magnetorquer_hold_two_orbits"] = _not_committed(two) if df_two is None else (
+        report.paired_markdown(report.paired(df, df_two)) + "\n"
+        + _source("magnetorquer_hold_after_acquisition", two) + "\n")
+    return blocks
+
+
+def regenerate_hold_after_acquisition(ctx: Context) -> None:
+    ctx.set_blocks(_HOLD_DOC, hold_after_acquisition_blocks())
+    for key in ("magnetorquer_hold_after_acquisition", "magnetorquer_hold_two_orbits"):
+        if (CAMPAIGNS[key].path / "results.parquet").exists():
+            CAMPAIGNS[key].redraw_plots(ctx)
+
+
 # --- flights: the README's figures and the attitude-modes study ------------------------------------------------
 
 
@@ -999,6 +1034,9 @@ STUDIES = {s.name: s for s in (
           regenerate_knowledge, knowledge_blocks, _KNOWLEDGE_DOC, ("attitude_knowledge",)),
     Study("flight_detumble_campaign", "the PROVES flight detumble configurations (two committed campaigns)",
           regenerate_flight, flight_blocks, _FLIGHT_DOC, ("flight_detumble_campaign", "flight_detumble_campaign_p95")),
+    Study("magnetorquer_hold_after_acquisition", "issue 27's coil-only hold after acquisition over 100 plant runs "
+          "(committed campaign)", regenerate_hold_after_acquisition, hold_after_acquisition_blocks, _HOLD_DOC,
+          ("magnetorquer_hold_after_acquisition", "magnetorquer_hold_two_orbits")),
     Study("attitude_modes_spin", "seed 003's spin stabilisation: one orbit per law (four deployment runs)",
           regenerate_attitude_modes_spin, None, _ATTITUDE_DOC),
     Study("attitude_modes_pointing", "seed 003's whole sequence as shipped: its table and figures (one 6000 s run)",

@@ -213,6 +213,7 @@ def markdown(a: dict) -> str:
         lines.append(f"| {r['lo']:g}–{r['hi']:g} | {r['n']} | {r['median_ok']} | {r['p95_ok']} | "
                      f"{_f(r['p95_median'], 1)} / {_f(r['p95_max'], 1)} | {_f(r['acq_median'], 0)} |")
     p50, p95, band = a["pooled_p50"], a["pooled_p95"], a["band_s"]
+    rest = "" if a["share_rule_agrees"] == n else ", the rest within a sample"
     lines += ["", f"Pooled over all {n} windows ({a['pooled_s']:,.0f} s, time-weighted): p50 "
               f"**{p50.estimate_deg:.2f}°** (bracket {p50.lower_deg:.2f}–{p50.upper_deg:.2f}°), p95 "
               f"**{p95.estimate_deg:.1f}°** (bracket {p95.lower_deg:.1f}–{p95.upper_deg:.1f}°); time above 5°: "
@@ -221,7 +222,7 @@ def markdown(a: dict) -> str:
               "", f"Spearman rank correlation of the run p95 with the initial rate {a['rho_rate']:+.2f}, with the "
               f"initial angle {a['rho_angle']:+.2f}, with the acquisition time {a['rho_acq']:+.2f}.",
               "", "Why runs miss p95 ≤ 15° (a run's p95 ≤ 15° ⇔ at most 5 % of its window above 15°: the two agree "
-              f"in {a['share_rule_agrees']}/{n} runs, the rest within a sample). The tail: from the window's start "
+              f"in {a['share_rule_agrees']}/{n} runs{rest}). The tail: from the window's start "
               "(the error below 30° for good) until the error stays below 15°; every second above 15° in the window "
               f"lies in it. Closed form for the slow along-field pair (critically damped, rate σ = "
               f"{FLOQUET_SLOW_RATE_PER_S:.2e} /s, Floquet): its fall from 30° to 15° lasts {band[0]:.0f}–"
