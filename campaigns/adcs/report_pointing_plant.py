@@ -256,7 +256,9 @@ def paired(one: pd.DataFrame, two: pd.DataFrame) -> dict:
             "share_1": float(np.median(m["share_above15_1"])), "share_2": float(np.median(m["share_above15_2"])),
             "p95_1": float(np.median(m["p95_1"])), "p95_2": float(np.median(m["p95_2"])),
             "same_acquisition": same("acquisition_s"), "same_tail": same("tail_s"), "same_above": same("above15_s"),
-            "window_2": float(np.median(m["window_s_2"]))}
+            "window_2": float(np.median(m["window_s_2"])),
+            "still_missing": [(float(r["tail_s_2"]), P95_ALLOWANCE * float(r["window_s_2"]))
+                              for _, r in m[~m["p95_ok_2"]].iterrows()]}
 
 
 def paired_markdown(p: dict) -> str:
@@ -268,7 +270,11 @@ def paired_markdown(p: dict) -> str:
             f"| two orbits (11160 s) | {n} | **{p['p95_ok_2']}/{n}** | {p['p95_2']:.1f} | {100 * p['share_2']:.1f} % |"
             f"\n\nIn {p['same_acquisition']}/{n} pairs the acquisition is the same, in {p['same_tail']}/{n} the tail, "
             f"in {p['same_above']}/{n} the time above 15° (the second orbit added none); median ≤ 5° in "
-            f"{p['median_ok_2']}/{n} two-orbit runs.\n")
+            f"{p['median_ok_2']}/{n} two-orbit runs."
+            + ("" if not p["still_missing"] else
+               f" The {len(p['still_missing'])} that still miss have tails of "
+               + ", ".join(f"{t:.0f} s" for t, _ in p["still_missing"]) + " against 5 % of their two-orbit window ("
+               + ", ".join(f"{w:.0f} s" for _, w in p["still_missing"]) + ").") + "\n")
 
 
 def main(argv: list[str]) -> int:

@@ -176,3 +176,8 @@ def test_two_orbit_comparison_pairs_runs_by_seed():
     assert (p["same_acquisition"], p["same_tail"], p["same_above"]) == (4, 4, 4)
     assert p["share_2"] == pytest.approx(np.median([20 / 470, 0.0, 5 / 495, 10 / 490]), rel=1e-12)
     assert "| two orbits (11160 s) | 4 | **4/4** |" in report.paired_markdown(p)
+    assert p["still_missing"] == []
+    shorter = report.paired(_results(), _results(extra_samples=100))   # 50 s more: run 0 still misses (20 s > 11 s)
+    assert shorter["still_missing"] == [(20.0, pytest.approx(0.05 * 220.0))]
+    assert "The 1 that still miss have tails of 20 s against 5 % of their two-orbit window (11 s)" in \
+        report.paired_markdown(shorter)
