@@ -505,6 +505,8 @@ def cmd_run(args) -> int:
             raise UserError("--board-root and --file-root: give one (a board root is the file services' whole root)")
         if not pathlib.Path(args.board_root).is_dir():
             raise UserError(f"--board-root {args.board_root}: not an existing folder")
+        from fprime_lite.tools.runner import use_board_as_flash
+
         use_board_as_flash(loaded, args.board_root)
     if args.no_startup:
         if args.seq is not None:
@@ -540,15 +542,6 @@ def cmd_run(args) -> int:
               f"(--allow-warnings accepts them)", file=sys.stderr)
         return EXIT_FAILED
     return 0
-
-
-def use_board_as_flash(loaded, board_root) -> None:
-    """Make ``board_root`` the simulated spacecraft's flash too (every resource with ``use_flash_dir``):
-    on the board the flash is the one file system, so FsFormat's FORMAT erases the uplinked ``/seq``
-    files with the flight state, and the state files lie at the board's ``/``."""
-    for resource in loaded.resources.values():
-        if callable(getattr(resource, "use_flash_dir", None)):
-            resource.use_flash_dir(os.fspath(board_root))
 
 
 def _check_file_root(file_root: str | None) -> None:

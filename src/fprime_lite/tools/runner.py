@@ -43,8 +43,8 @@ from fprime_lite.svc.rate_groups import RateGroupBase
 from fprime_lite.deploy.topology_loader import LoadedDeployment
 from fprime_lite.tools.stop_condition import CHECK_INTERVAL_S, StopCondition, holds_all, parse_stop_condition
 
-__all__ = ["run_deployment", "run_duration", "DEFAULT_DURATION_S", "flight_problems", "PROGRESS_STEP_S",
-           "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
+__all__ = ["run_deployment", "use_board_as_flash", "run_duration", "DEFAULT_DURATION_S", "flight_problems",
+           "PROGRESS_STEP_S", "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
 
 #: Simulated seconds between progress updates (and between chunks of the run).
 PROGRESS_STEP_S = 10.0
@@ -64,6 +64,15 @@ def run_duration(loaded: LoadedDeployment, requested: float | None) -> float:
 def _reports(loaded: LoadedDeployment) -> list:
     return [r for name, r in loaded.resources.items()
             if name not in ("clock", "scheduler", "topology_dir") and hasattr(r, "summary")]
+
+
+def use_board_as_flash(loaded: LoadedDeployment, board_root) -> None:
+    """Make ``board_root`` the simulated spacecraft's flash too (every resource with ``use_flash_dir``):
+    on the board the flash is the one file system, so FsFormat's FORMAT erases the uplinked ``/seq``
+    files with the flight state, and the state files lie at the board's ``/``."""
+    for resource in loaded.resources.values():
+        if callable(getattr(resource, "use_flash_dir", None)):
+            resource.use_flash_dir(os.fspath(board_root))
 
 
 def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
