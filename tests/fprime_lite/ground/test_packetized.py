@@ -69,6 +69,14 @@ def test_a_packet_that_does_not_fit_its_layout_is_refused():
         decoder.decode(bad_time + good[4 + TIME.size:])
 
 
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
 def _channels(path: pathlib.Path) -> dict[str, list[tuple[str, str]]]:
     out: dict[str, list[tuple[str, str]]] = {}
     with path.open(newline="") as f:
@@ -119,3 +127,15 @@ def test_the_packetized_proves_ref_records_the_tlmchan_deployments_channels(tmp_
     for name, got in zeroed.items():
         lead = len(got) - len(expected.get(name, []))
         assert lead >= 1 and got[lead:] == expected.get(name, []) and {float(v) for v in got[:lead]} == {0.0}
+    # channels_wide.csv holds each channel's latest value: at the end, the last one channels.csv has
+    with (tmp_path / "packetized" / "channels_wide.csv").open(newline="") as f:
+        header, *rows = list(csv.reader(f))
+    unformatted = {f"{i.qualified_name}.{c.name}" for i in packetized.topology.instances.values()
+                   for c in i.component.spec.channels if c.format is None}
+    checked = 0
+    for name in same:
+        columns = [k for k, h in enumerate(header) if h == name or h.startswith(name + " [")]
+        if name in values and name in unformatted and len(columns) == 1 and _is_number(values[name][-1]):
+            assert rows[-1][columns[0]] == values[name][-1], name
+            checked += 1
+    assert checked >= 5
