@@ -233,3 +233,35 @@ def test_the_exporter_writes_the_packet_set_as_fpp_and_it_reads_back(tmp_path, m
     assert "telemetry packets ReferenceDeploymentPackets {" in text and "} omit {" in text
     back = load_fpp([tmp_path / "components.fpp", tmp_path / "topology.fpp"]).telemetry_packet_sets
     assert back == load_topology(YAML).topology.telemetry_packet_sets
+
+
+def test_fpp_to_dict_lists_the_same_packet_set(tmp_path):
+    """FPPK-007: F´'s fpp-to-dict 3.0, run on fpp_packetized/ (spelled `topology`, which it parses,
+    where fpp-python needs `deployment topology`), lists the packet set fprime-lite's dictionary has:
+    the same packets (ids, groups, channels in order) and omitted channels. Its packets and omitted
+    channels come in another order (neither order means anything: the GDS finds a packet by id);
+    the rest differs only by the definitions docs/fpp.md "Differences from fpp-to-dict" names."""
+    import shutil
+    import subprocess
+
+    tool = shutil.which("fpp-to-dict")
+    if tool is None:
+        pytest.skip("fpp-to-dict is not installed (pip install 'fprime-lite[fpp]' installs fprime-fpp-to-dict)")
+    topology = tmp_path / "topology.fpp"
+    text = pathlib.Path(FILES[1]).read_text()
+    assert "deployment topology ReferenceDeployment {" in text
+    topology.write_text(text.replace("deployment topology ReferenceDeployment {", "topology ReferenceDeployment {"))
+    imports = ",".join(str(p) for p in export.framework_files())
+    subprocess.run([tool, "-i", imports, FILES[0], str(topology), "-d", str(tmp_path)], check=True,
+                   capture_output=True, timeout=120)
+    (theirs_path,) = tmp_path.glob("*Dictionary.json")
+    theirs = json.loads(theirs_path.read_text())
+    ours = build_dictionary(load_topology(YAML).topology)
+    (their_set,), (our_set,) = theirs["telemetryPacketSets"], ours["telemetryPacketSets"]
+    assert sorted(their_set["members"], key=lambda p: p["id"]) == our_set["members"]
+    assert sorted(their_set["omitted"]) == sorted(our_set["omitted"]) and their_set["name"] == our_set["name"]
+    theirs["telemetryPacketSets"] = ours["telemetryPacketSets"]  # compared above
+    assert dictionary_differences(ours, theirs) == [
+        "constants ComCfg.SpacecraftId: only in ours", "constants ComCfg.TmFrameFixedSize: only in ours",
+        "typeDefinitions ComCfg.Apid: only in ours", "typeDefinitions FwIdType: only in ours",
+        "typeDefinitions FwPrmIdType: only in ours"]
