@@ -144,10 +144,13 @@ def _line_of(path: str, text: str) -> int:
     ("        startupManager.BootCount\n", "        startupManager.BootCounts\n", "startupManager.BootCounts",
      "BootCounts is not a telemetry channel of component StartupManager"),
     ("packet Imu id 7 group 2", "packet Imu id 1 group 2", "packet Imu id 1", "duplicate identifier value"),
+    ("        startupManager.BootCount\n", "        startupManager.BootCount\n        startupManager.BootCount\n",
+     "packet Beacon id", "packet Beacon lists ReferenceDeployment.startupManager.BootCount more than once"),
 ])
 def test_a_packet_set_that_cannot_fly_is_refused_with_its_fpp_line(tmp_path, capsys, old, new, marker, expected):
-    """FPPK-003: an unknown channel and a packet id used twice are refused with the FPP file:line
-    (F´'s analyser finds them), exit 2, before anything flies."""
+    """FPPK-003: an unknown channel and a packet id used twice (F´'s analyser finds them), and a
+    channel listed twice in one packet (which the analyser takes and a packetizer cannot lay out),
+    are refused with the FPP file:line, exit 2, before anything flies."""
     files = _mutated(tmp_path, old, new)
     out = tmp_path / "out"
     assert main(["run", *files, "--duration", "1", "--out", str(out), "--no-plots", "--no-progress"]) == 2

@@ -111,7 +111,8 @@ class FppModel:
     bindings: dict[str, type] = field(default_factory=dict)
     #: the topology's telemetry packet sets, as the dictionary lists them
     telemetry_packet_sets: list[dict] = field(default_factory=list)
-    #: packet set name -> where the FPP declares it (``file:line:column``)
+    #: packet set name, and ``set.packet`` for each of its packets -> where the FPP declares it
+    #: (``file:line:column``)
     packet_set_locations: dict[str, str] = field(default_factory=dict)
     #: FPP component name -> the FPP file that defines it
     component_files: dict[str, str] = field(default_factory=dict)
@@ -507,6 +508,7 @@ def _packet_sets(analysis: Any, symbol: Any, model: FppModel) -> tuple[list[dict
         out.append({"name": name, "members": members,
                     "omitted": [names.get(i, str(i)) for i in sorted(packet_set.omitted_id_set)]})
         where[name] = _loc(packet_set.node)
+        where.update({f"{name}.{p.name}": _loc(p.node) for p in packet_set.packet_map.values()})
     return out, where
 
 

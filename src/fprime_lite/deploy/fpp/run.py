@@ -175,6 +175,12 @@ def _telemetry_packets(path: pathlib.Path, doc: dict, model: FppModel) -> tuple[
         problems.append(f"{path}: telemetry_packets.start_level must be a non-negative integer (a group), "
                         f"got {level!r}")
     packet_set = sets[name]
+    for packet in packet_set["members"]:
+        twice = sorted({c for c in packet["members"] if packet["members"].count(c) > 1})
+        if twice:
+            at = model.packet_set_locations.get(f"{name}.{packet['name']}", where)
+            problems.append(f"{at}: packet {packet['name']} lists {', '.join(twice)} more than once — a channel "
+                            f"has one slot in a packet: list it once")
     section = {"name": name, "instance": instance, "start_level": level,
                "packets": {p["name"]: {"id": p["id"], "group": p["group"], "channels": list(p["members"])}
                            for p in packet_set["members"]},
