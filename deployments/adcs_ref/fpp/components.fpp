@@ -1283,6 +1283,10 @@ module Components {
     param SUN_VECTOR_TIMEOUT: F64 default 10.0 id 0x43 set opcode 0x8D save opcode 0x8E
     @ units: s
     param SUN_SAFE_EXIT_DWELL: F64 default 10.0 id 0x44 set opcode 0x8F save opcode 0x90
+    @ units: deg/s
+    param SUN_SPIN_RATE: F64 default 3.0 id 0x45 set opcode 0x91 save opcode 0x92
+    @ units: s
+    param SUN_BIAS_TIME: F64 default 100.0 id 0x46 set opcode 0x93 save opcode 0x94
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver

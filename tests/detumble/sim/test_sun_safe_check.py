@@ -35,7 +35,7 @@ def test_sun_safe_turns_the_commanded_face():
 def test_sun_safe_on_the_magnetorquers_alone_acquires_by_spinning():
     """SUNSAFE-003: POINTING_ACTUATOR = MAGNETORQUERS, seed 1: the spinning Sun-safe law (control.sun_safe) brings +Z
     within 10° of the Sun in under 350 s of a 450 s sunlit flight from a 2 °/s tumble and keeps it there, spinning
-    at about SUN_SPIN_RATE_DEG_S (the PD projected ⟂ B it replaced never acquired in an orbit)."""
+    at about SUN_SPIN_RATE (the PD projected ⟂ B it replaced never acquired in an orbit)."""
     r = fly(1, duration_s=450.0, actuator="MAGNETORQUERS")
     acq = r.acquisition_s()
     assert acq is not None and acq <= 350.0
