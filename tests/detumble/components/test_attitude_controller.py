@@ -621,6 +621,11 @@ def test_residual_dipole_estimator_runs_only_while_the_coils_point(fprime_harnes
 def test_residual_dipole_parameters_have_ranges(fprime_harness, bad):
     """ADCS-062: MAG_RESIDUAL_DIPOLE_* outside ±0.05 A·m² and MAG_RESIDUAL_WINDOW outside 5…600 s are refused by
     PRM_SET (VALIDATION_ERROR) and the value in use is kept."""
+    assert_refused_and_kept(fprime_harness, bad)
+
+
+def assert_refused_and_kept(fprime_harness, bad: dict) -> None:
+    """``{name: value}``'s PRM_SET is refused with VALIDATION_ERROR and the value in use is kept."""
     h = make(fprime_harness)
     ((name, value),) = bad.items()
     before = getattr(h.comp, name).value
@@ -1097,12 +1102,7 @@ def test_gyroscopic_and_gravity_gradient_feed_forward_on_the_wheels(fprime_harne
 def test_sun_safe_ground_parameters_have_ranges(fprime_harness, bad):
     """ADCS-106: SUN_SPIN_RATE outside 0.1…10 °/s and SUN_BIAS_TIME outside 1…3600 s (or not finite) are refused by
     PRM_SET (VALIDATION_ERROR) and the value in use is kept."""
-    h = make(fprime_harness)
-    ((name, value),) = bad.items()
-    before = getattr(h.comp, name).value
-    h.send_command(f"{name}_PRM_SET", value)
-    h.assert_cmd_response(0, f"{name}_PRM_SET", CmdResponse.VALIDATION_ERROR)
-    assert getattr(h.comp, name).value == before
+    assert_refused_and_kept(fprime_harness, bad)
 
 
 def test_sun_safe_spin_rate_and_bias_time_act_from_the_ground(fprime_harness):
