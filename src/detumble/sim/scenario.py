@@ -372,7 +372,8 @@ SCHEMA: dict = {
                                     "resolution_dps")},
         "star_tracker": {k: _LEAF for k in ("ideal", "rate_hz", "noise_cross_boresight_arcsec",
                                             "noise_about_boresight_arcsec", "boresight_B", "bias_arcsec",
-                                            "dropout_probability", "max_rate_deg_s", "sun_exclusion_deg")},
+                                            "dropout_probability", "max_rate_deg_s", "sun_exclusion_deg",
+                                            "outage_s")},
         "accelerometer": ACCELEROMETER_SCHEMA,
     },
     "initial": {
@@ -908,6 +909,7 @@ def _star_tracker(s: _Section) -> StarTrackerSpec:
         dropout_probability=s.number("dropout_probability", d.dropout_probability, nonneg=True),
         max_rate_deg_s=s.number("max_rate_deg_s", d.max_rate_deg_s, nonneg=True),
         sun_exclusion_deg=s.number("sun_exclusion_deg", d.sun_exclusion_deg, nonneg=True),
+        outage_s=_outage(s),
     )
     if spec.sun_exclusion_deg >= 180.0:
         s.fail("sun_exclusion_deg",
@@ -916,6 +918,20 @@ def _star_tracker(s: _Section) -> StarTrackerSpec:
         s.fail("dropout_probability", f"{spec.dropout_probability} is a probability: give 0...1")
     s.finish()
     return spec
+
+
+def _outage(s: _Section) -> tuple[float, float] | None:
+    """``sensors.star_tracker.outage_s``: ``[start, end]`` s of plant time with no solution (absent: none)."""
+    v = s.raw("outage_s", None)
+    if v is None:
+        return None
+    p = s.path + ("outage_s",)
+    if not isinstance(v, (list, tuple)) or len(v) != 2:
+        s.ctx.fail(p, f"expected [start, end] in seconds, got {v!r}")
+    start, end = s.ctx.number(p + (0,), v[0], nonneg=True), s.ctx.number(p + (1,), v[1], nonneg=True)
+    if not end > start:
+        s.ctx.fail(p, f"the outage must end after it starts: got [{start}, {end}] s")
+    return (start, end)
 
 
 def _initial(s: _Section, seed: int) -> tuple[Quat, str, Vec3]:

@@ -249,8 +249,8 @@ def main(argv: list[str] | None = None) -> int:
                     help="take the Earth's albedo out of the Sun vector with this Bond albedo (control.albedo: TRIAD "
                     "on the Sun vector and the magnetometer); default 0, no correction")
     ap.add_argument("--penumbra", action="store_true", help="the conical shadow (penumbra) instead of the cylinder")
-    ap.add_argument("--from-run", metavar="DIR", help="instead: the ADCS Sun vector of a fprime-lite run of adcs_ref "
-                    "against its truth")
+    ap.add_argument("--from-run", metavar="DIR", help="instead: a fprime-lite run of adcs_ref against its truth: "
+                    "--axis to the Sun (acquisition, steady statistics) and the ADCS Sun vector")
     args = ap.parse_args(argv)
     try:
         spec = SunSensorSpec(albedo=args.albedo, penumbra=args.penumbra)
@@ -263,6 +263,23 @@ def main(argv: list[str] | None = None) -> int:
         if not errs:
             print(f"{args.from_run}: no sunlit ADCS SunVector readings found")
             return 1
+        import json
+        import pathlib
+
+        summary = pathlib.Path(args.from_run) / "summary.json"
+        if summary.exists():
+            modes = json.loads(summary.read_text()).get("control_mode_transitions") or []
+            print("modes: " + (", ".join(f"{m['mode']} at {m['t_s']:.1f} s" for m in modes) or "none"))
+        run = pointing_from_run(args.from_run, args.axis)
+        part, acq, steady = run.first_sunlit_part(), run.acquisition_s(), run.steady_sunlit()
+        parts = run.sunlit_parts()
+        re_acq = run.acquisition_s(part_index=1) if len(parts) > 1 else None
+        print(f"{args.axis} to the true Sun: first sunlit part {part[0]:.0f}–{part[1]:.0f} s, acquisition ≤ "
+              f"{POINTING_THRESHOLD_DEG:g}° " + ("never" if acq is None else f"{acq:.0f} s") +
+              (f", after it median {statistics.median(steady):.2f}, p95 {_percentile(steady, 95):.2f}, max "
+               f"{max(steady):.2f} deg" if steady else "") +
+              ("" if len(parts) < 2 else ", after the eclipse: reacquisition " +
+               ("never" if re_acq is None else f"{re_acq:.0f} s")) if part else f"{args.axis}: never sunlit")
         within = sum(e <= VECTOR_THRESHOLD_DEG for e in errs) / len(errs)
         print(f"ADCS SunVector vs truth, sunlit: {len(errs)} readings, median {statistics.median(errs):.2f}, p95 "
               f"{_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; {100 * within:.1f} % within "
