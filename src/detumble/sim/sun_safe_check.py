@@ -259,12 +259,17 @@ def main(argv: list[str] | None = None) -> int:
     if not (math.isfinite(args.albedo_model) and 0.0 <= args.albedo_model < 1.0):
         ap.error(f"--albedo-model must be a Bond albedo in [0, 1) (the Earth's mean: 0.30), got {args.albedo_model}")
     if args.from_run:
+        import pathlib
+
+        missing = [n for n in ("truth.csv", "channels.csv") if not (pathlib.Path(args.from_run) / n).is_file()]
+        if missing:
+            ap.error(f"--from-run {args.from_run}: no {' or '.join(missing)} there; give the output folder of a "
+                     "finished `fprime-lite run deployments/adcs_ref/topology.yaml --out DIR`")
         errs, invalid = vector_errors_from_run(args.from_run)
         if not errs:
             print(f"{args.from_run}: no sunlit ADCS SunVector readings found")
             return 1
         import json
-        import pathlib
 
         summary = pathlib.Path(args.from_run) / "summary.json"
         if summary.exists():

@@ -67,3 +67,17 @@ def test_albedo_model_option_refuses_a_bad_figure(capsys):
         main(["--albedo-model", "1.5"])
     assert exc.value.code == 2
     assert "Bond albedo in [0, 1)" in capsys.readouterr().err
+
+
+def test_from_run_refuses_a_folder_without_a_run(tmp_path, capsys):
+    """SUNSAFE-006: ``--from-run`` on a folder with no finished run is refused (exit 2), naming the missing files
+    and what to give, no traceback."""
+    import pytest
+
+    from detumble.sim.sun_safe_check import main
+
+    with pytest.raises(SystemExit) as exc:
+        main(["--from-run", str(tmp_path)])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert "no truth.csv or channels.csv there" in err and "fprime-lite run" in err
