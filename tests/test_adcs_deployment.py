@@ -231,16 +231,19 @@ def test_coil_sun_safe_by_ground_command_on_the_deployment(tmp_path):
 
 
 def _tracker_loss_flight(out, spin_rate_deg_s):
+    """campaigns/adcs/sun_safe_tracker_loss.seq shortened: SUN_SPIN_RATE set at the start, the tracker back at 400 s."""
     out.mkdir()
     seq = out / "loss.seq"
-    seq.write_text((ROOT / "campaigns" / "adcs" / "sun_safe_tracker_loss.seq").read_text().replace(
-        "SUN_SPIN_RATE_PRM_SET 1.5", f"SUN_SPIN_RATE_PRM_SET {spin_rate_deg_s}"))
+    seq.write_text(f"R00:00:00 {CTRL}.POINTING_ACTUATOR_PRM_SET MAGNETORQUERS\n"
+                   f"R00:00:00 {CTRL}.SUN_SPIN_RATE_PRM_SET {spin_rate_deg_s}\n"
+                   f"R00:00:00 {CTRL}.SET_TARGET_QUATERNION 0.9238795325112867 0 0.3826834323650898 0\n"
+                   f"R00:00:01 {CTRL}.FORCE_MODE POINTING\n")
     summary, _ = fly(out, 430.0, sequence=seq, settings=SUN_SAFE_SEED_1 + ("sensors.star_tracker.outage_s=[20,400]",))
     return [(round(t["t_s"], 1), t["mode"]) for t in summary["control_mode_transitions"]]
 
 
 def test_coil_sun_safe_on_star_tracker_loss_and_back_on_knowledge(tmp_path):
-    """ADCS-109: adcs_ref in POINTING on the coils (campaigns/adcs/sun_safe_tracker_loss.seq) from a 2 °/s tumble;
+    """ADCS-109: adcs_ref in POINTING on the coils from a 2 °/s tumble (sun_safe_tracker_loss.seq, shortened);
     the tracker gives nothing from 20 s to 400 s (sensors.star_tracker.outage_s): SUN_SAFE at 20 s +
     ATTITUDE_TIMEOUT (ATTITUDE_LOST), and with SUN_SPIN_RATE 1.5 °/s back to POINTING (KNOWLEDGE_RESTORED) within
     SUN_SAFE_EXIT_DWELL + 1 s of the tracker's return. At the default 3 °/s the spin is above the tracker's 2 °/s
