@@ -1388,6 +1388,10 @@ module Components {
     telemetry HandlerFaults: U32 id 0x3 update on change
     @ units: lux
     param SUN_FULL_SCALE_LUX: F64 default 133000.0 id 0x0 set opcode 0x0 save opcode 0x1
+    @ units: 1
+    param SUN_LIT_FRACTION: F64 default 0.02 id 0x1 set opcode 0x2 save opcode 0x3
+    @ units: 1
+    param SUN_MAGNITUDE_TOLERANCE: F64 default 0.25 id 0x2 set opcode 0x4 save opcode 0x5
   }
 
   @ fprime-lite: detumble.proves.tc_security_deframer.TcSecurityDeframer
