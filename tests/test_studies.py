@@ -26,7 +26,7 @@ sys.modules["studies_tool"] = studies  # dataclasses look their module up there
 _spec.loader.exec_module(studies)
 
 COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursework_grids",
-             "coursework_replica_magnetorquer1", "gain_sweep", "flight_bdot_noise")
+             "coursework_replica_magnetorquer1", "gain_sweep", "flight_bdot_noise", "magnetic_pointing_hold")
 # their committed folders are older than their campaign files (attitude_knowledge: metrics added since, so the run ids
 # moved): their blocks are checked against the committed results, the folders' belonging is reported by --check
 BLOCKS_ONLY = ("attitude_knowledge", "flight_detumble_campaign")
@@ -120,11 +120,12 @@ def test_the_bdot_noise_study_is_what_the_code_computes_now(tmp_path, monkeypatc
 
 
 @pytest.mark.parametrize("name, block, old, new", [
+    ("magnetic_pointing_hold", "magnetic_pointing_hold", "16.27°", "16.26°"),
     ("flight_bdot_noise", "flight_bdot_noise", "**1,411 s**", "**1,399 s**"),
 ])
 def test_a_hand_edited_figure_of_the_new_study_blocks_is_reported(tmp_path, monkeypatch, name, block, old, new):
-    """STUDY-010: flight_bdot_noise.md's table with one figure changed by hand (back to the figure the page
-    quoted before its campaign): --check reports that block."""
+    """STUDY-010: magnetic_pointing.md's hold table and flight_bdot_noise.md's table with one figure changed by
+    hand (the noise one back to the figure the page quoted before its campaign): --check reports that block."""
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, name, block, old, new)
     assert len(problems) == 1 and f"block '{block}'" in problems[0]
 
