@@ -27,7 +27,6 @@ import logging
 import math
 import os
 import pathlib
-import signal
 import sys
 import threading
 
@@ -468,6 +467,7 @@ def cmd_run(args) -> int:
     from fprime_lite.deploy.preflight import check_run_files
     from fprime_lite.tools import disk_estimate
     from fprime_lite.tools.api import claim_run_folder, load
+    from fprime_lite.tools.interrupt import exit_status
     from fprime_lite.tools.runner import run_deployment, run_duration
     from fprime_lite.tools.stop_condition import StopConditionError, parse_stop_condition
 
@@ -533,7 +533,7 @@ def cmd_run(args) -> int:
     if summary.get("stopped_by") == "interrupted" and not realtime:
         print(f"fprime-lite run: interrupted by {summary['signal']} at t = {summary['sim_seconds']:.3f} s; the "
               f"outputs up to then are in {out}/", file=sys.stderr)
-        return 128 + signal.Signals[summary["signal"]].value  # 130 for SIGINT, 143 for SIGTERM, as a shell says
+        return exit_status(summary["signal"])  # 130 for SIGINT, 143 for SIGTERM, as a shell says
     if summary.get("stop_reason"):  # the simulation itself ended the run (a diverged plant)
         print(f"fprime-lite run: stopped: {summary['stop_reason']}", file=sys.stderr)
         return EXIT_FAILED
