@@ -26,7 +26,8 @@ sys.modules["studies_tool"] = studies  # dataclasses look their module up there
 _spec.loader.exec_module(studies)
 
 COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursework_grids",
-             "coursework_replica_magnetorquer1", "magnetorquer_hold_after_acquisition")
+             "coursework_replica_magnetorquer1", "gain_sweep", "flight_bdot_noise", "magnetic_pointing_hold",
+             "magnetorquer_hold_after_acquisition")
 # their committed folders are older than their campaign files (attitude_knowledge: metrics added since, so the run ids
 # moved): their blocks are checked against the committed results, the folders' belonging is reported by --check
 BLOCKS_ONLY = ("attitude_knowledge", "flight_detumble_campaign")
@@ -95,6 +96,39 @@ def test_a_hand_edited_sweep_table_is_reported(tmp_path, monkeypatch):
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_grids", "coursework_wheels_pd",
                                        "10.05", "10.04")
     assert len(problems) == 1 and "block 'coursework_wheels_pd'" in problems[0]
+
+
+def test_the_bdot_noise_study_is_what_the_code_computes_now(tmp_path, monkeypatch):
+    """STUDY-009: the B-dot noise campaign's probe (BDotDetumble with an ideal magnetometer, first seed: one
+    deployment run of ≈ 570 simulated s) flies again and gives its committed row; the same probe against a
+    copy whose committed time is nudged by 0.5 s is reported."""
+    import pandas as pd
+
+    campaign = studies.CAMPAIGNS["flight_bdot_noise"]
+    assert campaign.problems(fly_probes=True) == []
+    folder = tmp_path / "docs" / "studies" / "noise"
+    shutil.copytree(campaign.path, folder)
+    df = pd.read_parquet(folder / "results.parquet")
+    probed = [i for i, row in df.iterrows() if row["seed_index"] == 0 and row["topology"].endswith("detumble.yaml")
+              and row["scenario.sensors.magnetometer.noise_std_gauss"] == 0
+              and row["scenario.sensors.magnetometer.resolution_gauss"] == 0]
+    assert len(probed) == 1
+    df.loc[probed[0], "detumble_complete_s"] += 0.5
+    df.to_parquet(folder / "results.parquet")
+    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path / "docs" / "studies")
+    problems = dataclasses.replace(campaign, folder="noise").problems(fly_probes=True)
+    assert len(problems) == 1 and "detumble_complete_s" in problems[0] and "no longer computes" in problems[0]
+
+
+@pytest.mark.parametrize("name, block, old, new", [
+    ("magnetic_pointing_hold", "magnetic_pointing_hold", "16.27°", "16.26°"),
+    ("flight_bdot_noise", "flight_bdot_noise", "**1,411 s**", "**1,399 s**"),
+])
+def test_a_hand_edited_figure_of_the_new_study_blocks_is_reported(tmp_path, monkeypatch, name, block, old, new):
+    """STUDY-010: magnetic_pointing.md's hold table and flight_bdot_noise.md's table with one figure changed by
+    hand (the noise one back to the figure the page quoted before its campaign): --check reports that block."""
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, name, block, old, new)
+    assert len(problems) == 1 and f"block '{block}'" in problems[0]
 
 
 def test_spin_campaign_folders_belong_to_their_campaign_files():

@@ -262,6 +262,14 @@ def _wheels_cheap(task: dict) -> bool:
     return config.get("law") == "wheels_pd" and float(values.get("scenario.dynamics_step_s", 0.0)) >= 0.01
 
 
+def _ideal_variant_first_seed(task: dict) -> bool:
+    """BDotDetumble with an ideal magnetometer, first seed: ≈ 570 simulated s, a couple of CPU-seconds."""
+    values = task["values"]
+    return (task["seed_index"] == 0 and str(values.get("topology", "")).endswith("topology_bdot_detumble.yaml")
+            and values.get("scenario.sensors.magnetometer.noise_std_gauss") == 0
+            and values.get("scenario.sensors.magnetometer.resolution_gauss") == 0)
+
+
 CAMPAIGNS = {
     "coursework_convergence": CommittedCampaign("coursework_convergence", "campaigns/coursework/convergence.yaml",
                                                 probe=_wheels_cheap),
@@ -285,6 +293,9 @@ CAMPAIGNS = {
     "flight_detumble_campaign": CommittedCampaign("flight_detumble_campaign", "campaigns/proves_flight_detumble.yaml"),
     "flight_detumble_campaign_p95": CommittedCampaign("flight_detumble_campaign_p95",
                                                       "campaigns/proves_flight_detumble_p95.yaml"),
+    "gain_sweep": CommittedCampaign("gain_sweep", "campaigns/proves_gain_sweep.yaml"),
+    "flight_bdot_noise": CommittedCampaign("flight_bdot_noise", "campaigns/proves_bdot_noise.yaml",
+                                           probe=lambda t: _ideal_variant_first_seed(t)),
     # one plant run of an orbit (~10 CPU-s) re-flown by --check
     "magnetorquer_hold_after_acquisition": CommittedCampaign("magnetorquer_hold_after_acquisition/campaign",
                                                              "campaigns/adcs/pointing_magnetorquers_plant.yaml",
@@ -838,6 +849,166 @@ def regenerate_flight(ctx: Context) -> None:
         CAMPAIGNS[key].redraw_plots(ctx)
 
 
+# --- the flight B-dot against BDotDetumble: gain_sweep.md and flight_bdot_noise.md ------------------------------
+
+_GAIN_DOC = STUDIES_DIR / "gain_sweep.md"
+_NOISE_DOC = STUDIES_DIR / "flight_bdot_noise.md"
+_FLIGHT_GAIN = "params.ReferenceDeployment.detumbleManager.GAIN"
+_VARIANT_GAIN = "params.ReferenceDeployment.bdotDetumble.Gain"
+_COMPLETE = "detumble_complete_s"
+
+
+def _completion(rows) -> list[float | None]:
+    """``detumble_complete_s`` of ``rows`` in seed order (None: not reached within the run, or not ok)."""
+    rows = rows.sort_values("seed_index")
+    return [_float(r[_COMPLETE]) if r["status"] == "ok" else None for _, r in rows.iterrows()]
+
+
+def _seconds(values: list[float | None]) -> str:
+    return " / ".join(_fmt(v, none="never") for v in values) + " s"
+
+
+def gain_sweep_blocks() -> dict[str, str]:
+    """The gain table of docs/studies/gain_sweep.md: time to DetumbleCompleted per gain and noise seed."""
+    from fractions import Fraction
+
+    import numpy as np
+
+    campaign, df = _committed("gain_sweep")
+    if df is None:
+        return {"gain_sweep": _not_committed(campaign)}
+    flight = df[df[_FLIGHT_GAIN].notna()]
+    variant = df[df[_VARIANT_GAIN].notna()]
+    gains = sorted(float(g) for g in flight[_FLIGHT_GAIN].unique())
+    variant_gains = sorted(float(g) for g in variant[_VARIANT_GAIN].unique())
+    if len(gains) != len(variant_gains):
+        raise StudyError(f"{campaign.campaign_file}: the two sub-grids should scale the gains by the same factors")
+    seeds = int(df["seed_index"].nunique())
+    lines = [f"| × default | flight `GAIN` | flight: complete at (seed {' / '.join(str(i) for i in range(seeds))}) "
+             f"| median | BDotDetumble `Gain` | BDotDetumble: complete at | median |", "|---|---|---|---|---|---|---|"]
+
+    def median(values: list[float | None]) -> str:
+        return "never" if not values or None in values else f"{_fmt(float(np.median(values)))} s"
+
+    for g, v in zip(gains, variant_gains, strict=True):
+        factor = Fraction(g / 3.0).limit_denominator(12)
+        f_values = _completion(flight[flight[_FLIGHT_GAIN] == g])
+        v_values = _completion(variant[variant[_VARIANT_GAIN] == v])
+        cells = [str(factor), f"{g:g}", _seconds(f_values), median(f_values), f"{v:.3g}", _seconds(v_values),
+                 median(v_values)]
+        if factor == 1:
+            cells = [f"**{c}**" for c in cells]
+        lines.append("| " + " | ".join(cells) + " |")
+
+    def spread(rows) -> str:
+        values = [x for x in _completion(rows) if x is not None]
+        return f"{_fmt(min(values))}–{_fmt(max(values))} s" if values else "never"
+
+    at_default = _completion(flight[flight[_FLIGHT_GAIN] == 3.0])
+    gap = (max(at_default) - min(at_default)) if at_default and None not in at_default else None
+    upper = spread(variant[variant[_VARIANT_GAIN] >= 1.0])
+    lines += ["", f"Flight B-dot over every gain and seed: {spread(flight)} (at the default gain the seeds differ by "
+              f"{_fmt(gap)} s); BDotDetumble: {spread(variant)}, of which {upper} at its default gain and above. "
+              f"{len(_ok(df))} of {len(df)} runs ok."]
+    return {"gain_sweep": "\n".join(lines) + "\n\n" + _source("gain_sweep", campaign) + "\n"}
+
+
+_NOISE_ROWS = (  # (noise σ G, quantisation step G, label)
+    (0.003, 0.0015, "as in the scenario (σ 3 mG, 1.5 mG steps)"),
+    (0.0, 0.0015, "no noise (`noise_std_gauss=0`)"),
+    (0.003, 0.0, "no quantisation (`resolution_gauss=0`)"),
+    (0.0, 0.0, "neither"),
+)
+
+
+def noise_blocks() -> dict[str, str]:
+    """The magnetometer table of docs/studies/flight_bdot_noise.md: median (range) over the noise seeds."""
+    import numpy as np
+
+    campaign, df = _committed("flight_bdot_noise")
+    if df is None:
+        return {"flight_bdot_noise": _not_committed(campaign)}
+    noise, step = "scenario.sensors.magnetometer.noise_std_gauss", "scenario.sensors.magnetometer.resolution_gauss"
+    seeds = int(df["seed_index"].nunique())
+    lines = ["| magnetometer | flight B-dot (`topology.yaml`) | BDotDetumble (`topology_bdot_detumble.yaml`) |",
+             "|---|---|---|"]
+    for sigma, q, label in _NOISE_ROWS:
+        cells = []
+        for topology in ("topology.yaml", "topology_bdot_detumble.yaml"):
+            rows = df[df["topology"].str.endswith("/" + topology) & (df[noise] == sigma) & (df[step] == q)]
+            values = _completion(rows)
+            if not values:
+                cells.append("not flown")
+                continue
+            reached = [x for x in values if x is not None]
+            if len(reached) < len(values):
+                cells.append(_seconds(values))
+                continue
+            cells.append(f"**{_fmt(float(np.median(reached)))} s** ({_fmt(min(reached))}–{_fmt(max(reached))})")
+        lines.append(f"| {label} | " + " | ".join(cells) + " |")
+    lines += ["", f"Median (min–max) over {seeds} magnetometer noise seeds, the same seeds in every cell; "
+              f"{len(_ok(df))} of {len(df)} runs ok."]
+    return {"flight_bdot_noise": "\n".join(lines) + "\n\n" + _source("flight_bdot_noise", campaign) + "\n"}
+
+
+# No campaign plots for these two: their grids mix two topologies, each with its own keys, and the automatic
+# heatmap would pool them (the tables are the result).
+def regenerate_gain_sweep(ctx: Context) -> None:
+    ctx.set_blocks(_GAIN_DOC, gain_sweep_blocks())
+
+
+def regenerate_noise(ctx: Context) -> None:
+    ctx.set_blocks(_NOISE_DOC, noise_blocks())
+
+
+# --- magnetic_pointing.md: the 100-run magnetorquer hold campaign, from its committed per-run figures -------------
+
+_MAG_DOC = STUDIES_DIR / "magnetic_pointing.md"
+_MAG_RUNS = STUDIES_DIR / "magnetic_pointing_hold" / "runs_2026-12-02.csv"
+_MAG_TARGETS = (("pointing_median_deg", 5.0), ("pointing_p95_deg", 15.0))
+
+
+def magnetic_hold_blocks() -> dict[str, str]:
+    """The hold campaign's per-run spread, the runs meeting issue 13's targets (95 % Wilson lower bound) and
+    the time above 5° and 15° pooled over the runs, from ``magnetic_pointing_hold/runs_2026-12-02.csv`` (one
+    row per run of ``campaigns/adcs/hold_magnetorquers.yaml``; its results folder is not committed)."""
+    import numpy as np
+    import pandas as pd
+
+    from detumble.analysis.pooled_stats import per_run_share
+
+    if not _MAG_RUNS.exists():
+        raise StudyError(f"{_shown(_MAG_RUNS)} is not committed")
+    df = pd.read_csv(_MAG_RUNS)
+    ok = df[df["status"] == "ok"]
+    lines = ["| per-run statistic (after the first 10 % of POINTING) | min | median | p95 | max |",
+             "|---|---|---|---|---|"]
+    for column, label in (("pointing_median_deg", "pointing error median"), ("pointing_p95_deg", "pointing error p95"),
+                          ("pointing_max_deg", "pointing error max")):
+        v = ok[column].to_numpy(dtype=float)
+        cells = [np.min(v), np.median(v), np.percentile(v, 95), np.max(v)]
+        lines.append(f"| {label} | " + " | ".join(f"{_fmt(float(c), 2)}°" for c in cells) + " |")
+    lines.append("")
+    hits = [ok[column] <= bound for column, bound in _MAG_TARGETS]
+    for (column, bound), flags in zip(_MAG_TARGETS + (("both", None),), hits + [hits[0] & hits[1]], strict=True):
+        share = per_run_share(flags)
+        what = "median ≤ 5° and p95 ≤ 15°" if bound is None else f"{column.split('_')[1]} ≤ {bound:g}°"
+        lines.append(f"- runs with {what}: **{share.successes} / {share.n}** (95 % Wilson lower bound "
+                     f"{100 * share.lower95:.1f} %)")
+    window = float(ok["pointing_error_deg.window_s"].sum())
+    above = {x: float(ok[f"pointing_error_deg.time_above_s.{x}"].sum()) for x in (5, 15)}
+    lines.append(f"- pooled over the runs' {window:,.0f} s of POINTING: time above 5° {100 * above[5] / window:.2f} %, "
+                 f"above 15° **{100 * above[15] / window:.2f} %** (exact, from each run's time above)")
+    lines.append(f"- {len(ok)} of {len(df)} runs ok; {float(df['cpu_s'].sum()) / 60:,.0f} CPU-minutes in the runs")
+    lines += ["", f"Generated by `python tools/studies.py --only magnetic_pointing_hold` from "
+              f"`{_MAG_RUNS.relative_to(STUDIES_DIR)}` (numpy's linear percentile over the runs)."]
+    return {"magnetic_pointing_hold": "\n".join(lines) + "\n"}
+
+
+def regenerate_magnetic_hold(ctx: Context) -> None:
+    ctx.set_blocks(_MAG_DOC, magnetic_hold_blocks())
+
+
 # --- issue 27's magnetorquer-only hold after acquisition (plant-only campaign) -------------------------------------
 
 _HOLD_DOC = STUDIES_DIR / "magnetorquer_hold_after_acquisition.md"
@@ -1034,6 +1205,12 @@ STUDIES = {s.name: s for s in (
           regenerate_knowledge, knowledge_blocks, _KNOWLEDGE_DOC, ("attitude_knowledge",)),
     Study("flight_detumble_campaign", "the PROVES flight detumble configurations (two committed campaigns)",
           regenerate_flight, flight_blocks, _FLIGHT_DOC, ("flight_detumble_campaign", "flight_detumble_campaign_p95")),
+    Study("gain_sweep", "the flight B-dot and BDotDetumble against their gains (committed campaign)",
+          regenerate_gain_sweep, gain_sweep_blocks, _GAIN_DOC, ("gain_sweep",)),
+    Study("flight_bdot_noise", "the flight B-dot and BDotDetumble against magnetometer noise (committed campaign)",
+          regenerate_noise, noise_blocks, _NOISE_DOC, ("flight_bdot_noise",)),
+    Study("magnetic_pointing_hold", "magnetorquer-only hold over 100 deployment runs (committed per-run table)",
+          regenerate_magnetic_hold, magnetic_hold_blocks, _MAG_DOC),
     Study("magnetorquer_hold_after_acquisition", "issue 27's coil-only hold after acquisition over 100 plant runs "
           "(committed campaign)", regenerate_hold_after_acquisition, hold_after_acquisition_blocks, _HOLD_DOC,
           ("magnetorquer_hold_after_acquisition", "magnetorquer_hold_two_orbits")),

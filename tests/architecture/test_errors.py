@@ -20,11 +20,13 @@ from detumble.errors import DetumbleError
 from fprime_lite.model.errors import FprimeLiteError, FwAssertionError
 from fprime_lite.deploy.resources import SimulationEnded
 from fprime_lite.osal.confine import PathRefused
+from fprime_lite.tools.campaign.errors import CampaignInterrupted
 
 #: Below the root's layer (osal imports nothing of the model): an OSError by contract. And the run's stop
 #: signal when the simulated world cannot go on: a BaseException on purpose (the fault containment's
-#: ``except Exception`` must let it through, as it does KeyboardInterrupt), not an error.
-OUTSIDE_THE_ROOT = {PathRefused, SimulationEnded}
+#: ``except Exception`` must let it through, as it does KeyboardInterrupt), not an error; and a campaign's
+#: stop on SIGINT/SIGTERM, a KeyboardInterrupt on purpose (what a Python caller's Ctrl-C handling expects).
+OUTSIDE_THE_ROOT = {PathRefused, SimulationEnded, CampaignInterrupted}
 
 
 def _exception_classes(package) -> list[type[BaseException]]:

@@ -1283,6 +1283,10 @@ module Components {
     param SUN_VECTOR_TIMEOUT: F64 default 10.0 id 0x43 set opcode 0x8D save opcode 0x8E
     @ units: s
     param SUN_SAFE_EXIT_DWELL: F64 default 10.0 id 0x44 set opcode 0x8F save opcode 0x90
+    @ units: deg/s
+    param SUN_SPIN_RATE: F64 default 3.0 id 0x45 set opcode 0x91 save opcode 0x92
+    @ units: s
+    param SUN_BIAS_TIME: F64 default 100.0 id 0x46 set opcode 0x93 save opcode 0x94
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver
@@ -1384,6 +1388,10 @@ module Components {
     telemetry HandlerFaults: U32 id 0x3 update on change
     @ units: lux
     param SUN_FULL_SCALE_LUX: F64 default 133000.0 id 0x0 set opcode 0x0 save opcode 0x1
+    @ units: 1
+    param SUN_LIT_FRACTION: F64 default 0.02 id 0x1 set opcode 0x2 save opcode 0x3
+    @ units: 1
+    param SUN_MAGNITUDE_TOLERANCE: F64 default 0.25 id 0x2 set opcode 0x4 save opcode 0x5
   }
 
   @ fprime-lite: detumble.proves.tc_security_deframer.TcSecurityDeframer

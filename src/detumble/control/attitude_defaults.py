@@ -58,6 +58,8 @@ SUN_SAFE_K_P_MAG = 4.0e-6  # N·m/rad: the same on the magnetorquers alone (proj
 SUN_SAFE_K_D_MAG = 4.0e-4  # N·m·s
 SUN_VECTOR_TIMEOUT = 10.0  # s: a Sun vector older than this (eclipse, failed sensors) is no Sun vector
 SUN_SAFE_EXIT_DWELL = 10.0  # s of attitude knowledge before SUN_SAFE (entered on its loss) hands back to POINTING
+SUN_SPIN_RATE = 3.0  # deg/s: the coils' Sun-safe spin about SUN_SAFE_AXIS (control.sun_safe.sun_spin_torque)
+SUN_BIAS_TIME = 100.0  # s: time constant of SUN_SAFE's gyro-bias estimate from the Sun vector (SunRateBias)
 
 # --- detumble and spin -------------------------------------------------------------------------
 K_BDOT = 3.0  # A·m²·s/G: the internal M = −k Ḃ when no dipole provider is connected
@@ -192,6 +194,8 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "SUN_SAFE_K_D_MAG": ("N·m·s", 0.0, 1.0e-2, True),
     "SUN_VECTOR_TIMEOUT": ("s", 0.1, 3600.0, True),
     "SUN_SAFE_EXIT_DWELL": ("s", 0.0, 3600.0, True),
+    "SUN_SPIN_RATE": ("deg/s", 0.1, 10.0, True),
+    "SUN_BIAS_TIME": ("s", 1.0, 3600.0, True),
 }
 #: Each parameter's units (the first column of :data:`PARAMETERS`).
 UNITS: dict[str, str] = {name: row[0] for name, row in PARAMETERS.items()}

@@ -31,12 +31,14 @@ from collections.abc import Sequence
 Vec3 = tuple[float, float, float]
 Mat3 = Sequence[Sequence[float]]
 
-__all__ = ["SunRateBias", "sun_spin_torque", "SUN_SPIN_RATE_DEG_S", "SUN_BIAS_TIME_S"]
+__all__ = ["SunRateBias", "sun_spin_torque", "SUN_BIAS_TIME_S"]
 
-#: deg/s: the magnetorquer Sun-safe spin about the Sun-safe axis. With the LSM6DSO's bias ⟂ +Z (0.36 °/s) left
-#: unestimated the axis would cone by atan(0.36 / 3) = 6.8°; estimated from the Sun vector (to ~0.05 °/s) by 1°.
-SUN_SPIN_RATE_DEG_S = 3.0
-#: s: time constant of the Sun-vector gyro-bias observer (noise ~0.6 °/s per 1 s reading → ~0.04 °/s 1σ).
+# The spin rate is the ground parameter SUN_SPIN_RATE (control.attitude_defaults: 3 °/s; with the LSM6DSO's bias
+# ⟂ +Z, 0.36 °/s, left unestimated the axis would cone by atan(0.36 / 3) = 6.8°; estimated from the Sun vector, to
+# ~0.05 °/s, by 1°). Above the star tracker's rate limit (2 °/s in the adcs scenario) the tracker gives no fix
+# while the coils spin, so knowledge cannot come back in SUN_SAFE: docs/studies/sun_safe.md.
+#: s: default time constant of the Sun-vector gyro-bias observer (noise ~0.6 °/s per 1 s reading → ~0.04 °/s
+#: 1σ); the AttitudeController sets it from SUN_BIAS_TIME.
 SUN_BIAS_TIME_S = 100.0
 
 

@@ -47,7 +47,7 @@ from detumble.control.quaternion import (Quat, Vec3, is_unit_quaternion, quat_an
                                          quat_shortest, rotate_n_to_b, target_pointing_axis)
 from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
-from detumble.control.sun_safe import SUN_SPIN_RATE_DEG_S, SunRateBias, sun_spin_torque
+from detumble.control.sun_safe import SunRateBias, sun_spin_torque
 from detumble.control.sun_vector import propagate_body_vector
 from detumble.control.targets import (BODY_AXES, GROUND_STATION, MU_EARTH_M3_S2, STATION_FALLBACK, Ephemeris,
                                       InertialTarget, NadirTarget, Reference, StationTarget, SunTarget, Target,
@@ -300,6 +300,8 @@ class ThreeModeLaw:
     SUN_SAFE_K_D_MAG: float
     SUN_VECTOR_TIMEOUT: float
     SUN_SAFE_EXIT_DWELL: float
+    SUN_SPIN_RATE: float
+    SUN_BIAS_TIME: float
 
     def __init__(self, io: ControllerIo, notify: Notify, provider: DipoleProvider,
                  wheel_axes: Sequence[Sequence[float]] = XYZ, params: Mapping[str, object] | None = None) -> None:
@@ -886,6 +888,7 @@ class ThreeModeLaw:
                 s = (s[0] / n, s[1] / n, s[2] / n)
                 s = propagate_body_vector(s, w, age) if w is not None else s
                 if self.mode == SUN_SAFE and self.sun_B is not None and w is not None and prev_stamp is not None:
+                    self.sun_bias.time_s = self.SUN_BIAS_TIME
                     self.sun_bias.update(s, propagate_body_vector(self.sun_B, w, dt), (stamp - prev_stamp) / 1e6)
                 self.sun_B = s
                 self.sun_age_s = age
@@ -921,13 +924,13 @@ class ThreeModeLaw:
 
     def _sun_spin_torque(self) -> Vec3:
         """SUN_SAFE on the magnetorquers (``control.sun_safe.sun_spin_torque``): spin SUN_SAFE_AXIS at
-        SUN_SPIN_RATE_DEG_S and tip it to the Sun at ``SUN_SAFE_K_P_MAG/SUN_SAFE_K_D_MAG θ`` (capped at
+        SUN_SPIN_RATE and tip it to the Sun at ``SUN_SAFE_K_P_MAG/SUN_SAFE_K_D_MAG θ`` (capped at
         SLEW_RATE_LIMIT); the transverse rate damped at SUN_SAFE_K_D_MAG, the spin held at SPIN_K_RATE."""
         w = self._sun_rate()
         assert w is not None  # SUN_SAFE actuates only with a rate estimate
         kd = self.SUN_SAFE_K_D_MAG
         tau, theta = sun_spin_torque(w, self.sun_B, BODY_AXES[self.SUN_SAFE_AXIS][1], self.rate_observer.inertia,
-                                     SUN_SPIN_RATE_DEG_S * _DEG, kd, self.SPIN_K_RATE,
+                                     self.SUN_SPIN_RATE * _DEG, kd, self.SPIN_K_RATE,
                                      self.SUN_SAFE_K_P_MAG / kd if kd > 0.0 else 0.0, self.SLEW_RATE_LIMIT * _DEG)
         self.sun_error_deg = theta
         return tau

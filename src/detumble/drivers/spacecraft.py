@@ -567,7 +567,8 @@ class SimulatedSpacecraft(ResetLine):
         self.thermal = ThermalModel() if self.power is not None else None
         self.accelerometer = Accelerometer(sc.accelerometer, (sc.seed if seed is None else seed) * 7919 + 3)
         #: the six face light sensors (cosine response, eclipse, the stated noise: ``sim.sun_sensors``)
-        self.sun_sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, seed=sc.seed if seed is None else seed)
+        self.sun_sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, sc.sun_sensors,
+                                          seed=sc.seed if seed is None else seed)
         act = self.plant.actuators
         self._coils_lagged = isinstance(act, CoilSet) and act._lagged  # currents change between commands
         self._coil_w = None

@@ -13,9 +13,10 @@ and adds what issue 27 asks of it (none of it in the flight's dictionary; every 
 * telemetry SunVector (unit, B), SunVectorValid (1/0), LitFaces; events SunVectorAcquired and SunVectorLost when
   the validity changes (entering and leaving eclipse), LightSensorReadFailed(sensor) when a sensor does not
   answer (throttled; its face then counts as dark);
-* parameter SUN_FULL_SCALE_LUX: the full-Sun reading at normal incidence (133 klx at 1 AU: the sensors' ground
-  calibration); the lit threshold (2 % of it) and the magnitude tolerance (±25 %) are
-  ``control.sun_vector``'s.
+* parameters SUN_FULL_SCALE_LUX: the full-Sun reading at normal incidence (133 klx at 1 AU: the sensors' ground
+  calibration); SUN_LIT_FRACTION: a face is lit above this fraction of it (default 0.02, 4σ of the stated noise;
+  ``control.sun_vector.SUN_LIT_FRACTION``); SUN_MAGNITUDE_TOLERANCE: the estimate is valid while |s| is within this
+  of 1 (default 0.25; ``control.sun_vector.SUN_MAGNITUDE_TOLERANCE``). Both act from the next ``run``.
 
 Units: lux at the ports, the Sun vector a unit vector in the body frame B.
 """
@@ -29,7 +30,7 @@ from fprime_lite.model.fw_types import Success
 
 from detumble.components.attitude_types import SunVector, SunVectorGet, Vector3
 from detumble.components.types import Result
-from detumble.control.sun_vector import estimate_sun_vector
+from detumble.control.sun_vector import SUN_LIT_FRACTION, SUN_MAGNITUDE_TOLERANCE, estimate_sun_vector
 from detumble.drivers.ports import LightGet
 from detumble.sim.sun_sensors import FULL_SUN_LUX
 
@@ -47,6 +48,11 @@ class ADCS(PassiveComponent):
     visibleLightGet = OutputPort(LightGet, size=NUM_LIGHT_SENSORS)
 
     SUN_FULL_SCALE_LUX = Param(F64, default=FULL_SUN_LUX, low=1.0, high=1.0e6, finite=True, units="lux")
+    # fraction of SUN_FULL_SCALE_LUX above which a face is lit: below ~3σ of the noise dark faces read as lit, above
+    # ~0.05 a dead zone of asin(fraction) opens where Sun pointing holds the Sun (docs/studies/sun_safe.md)
+    SUN_LIT_FRACTION = Param(F64, default=SUN_LIT_FRACTION, low=0.001, high=0.5, finite=True, units="1")
+    # |s| may differ from 1 by this much and the Sun vector is valid (Earth–Sun distance ±3.4 %, gain spread 2 %)
+    SUN_MAGNITUDE_TOLERANCE = Param(F64, default=SUN_MAGNITUDE_TOLERANCE, low=0.01, high=0.9, finite=True, units="1")
 
     SunVector_tlm = Channel(Vector3, name="SunVector")  # unit, B (the last valid one while not valid)
     SunVectorValid = Channel(U32)  # 1 while the light sensors see the Sun as cosine detectors do
@@ -86,7 +92,8 @@ class ADCS(PassiveComponent):
                 else:
                     self.LightSensorReadFailed(i)
             readings.append(value)
-        est = estimate_sun_vector(readings, self.SUN_FULL_SCALE_LUX.value)
+        est = estimate_sun_vector(readings, self.SUN_FULL_SCALE_LUX.value, lit_fraction=self.SUN_LIT_FRACTION.value,
+                                  magnitude_tolerance=self.SUN_MAGNITUDE_TOLERANCE.value)
         if est.valid:
             self._direction = est.direction
             if not self._valid:

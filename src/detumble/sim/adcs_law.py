@@ -19,6 +19,7 @@ from typing import Mapping, Sequence, cast
 
 from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, error_statistics
 from detumble.control import attitude_defaults
+from detumble.control.albedo import AlbedoCorrector
 from detumble.control.magnetic import normalised_bdot_dipole
 from detumble.control.quaternion import quat_angle, quat_error
 from detumble.control.sun_vector import SUN_LIT_FRACTION, SUN_MAGNITUDE_TOLERANCE, estimate_sun_vector
@@ -35,11 +36,15 @@ COIL_FACES = (0, 1, 2, 3, 5)
 class PlantIo:
     """The law's ``ControllerIo`` on a plant: three or four wheels (else none), face coils or torque rods; with
     ``sun_sensors`` (a ``sim.sun_sensors.SunSensorModel``) the six face light sensors, read and turned into a Sun
-    vector every ``sun_period_s`` as the ADCS component does (``detumble.proves.adcs``); ``system_safe`` stands
+    vector every ``sun_period_s`` as the ADCS component does (``detumble.proves.adcs``); with ``albedo_model`` > 0
+    the Earth's albedo (that Bond albedo) taken out of it (``control.albedo``: TRIAD on the Sun vector and the
+    magnetometer against the ephemeris and the plant's field model as the on-board one); ``system_safe`` stands
     for the mode manager (None: not connected; True: safe mode)."""
 
-    def __init__(self, plant, sun_sensors=None, sun_period_s: float = 1.0) -> None:
+    def __init__(self, plant, sun_sensors=None, sun_period_s: float = 1.0, albedo_model: float = 0.0) -> None:
         self.plant = plant
+        self.albedo = (AlbedoCorrector(albedo_model, sun_sensors.earth_radius_m)
+                       if albedo_model > 0.0 and sun_sensors is not None and plant.field is not None else None)
         self.sun_sensors = sun_sensors
         self._sun_period_us = max(1, int(round(sun_period_s * 1e6)))
         self._sun_slot: int | None = None
@@ -108,8 +113,15 @@ class PlantIo:
         slot = t_us // self._sun_period_us
         if slot != self._sun_slot:
             self._sun_slot = slot
-            est = estimate_sun_vector(model.read(p.t_ns * 1e-9, p.q_BN, p.r_N), FULL_SUN_LUX,
-                                      lit_fraction=SUN_LIT_FRACTION, magnitude_tolerance=SUN_MAGNITUDE_TOLERANCE)
+            t = p.t_ns * 1e-9
+            readings = model.read(t, p.q_BN, p.r_N)
+            if self.albedo is not None:
+                r_N, sun_N = p.r_N, model.sun(t)[0]
+                est = self.albedo.estimate(readings, FULL_SUN_LUX, t, r_N=r_N, sun_N=sun_N, field_B=self.field()[0],
+                                           field_N=p.field.b_N(t, r_N), omega_B=self.gyro())
+            else:
+                est = estimate_sun_vector(readings, FULL_SUN_LUX, lit_fraction=SUN_LIT_FRACTION,
+                                          magnitude_tolerance=SUN_MAGNITUDE_TOLERANCE)
             self._sun = (est.direction, est.valid, t_us)
         return self._sun
 

@@ -154,7 +154,7 @@ class Plant:
             self.gyro.sample_rad_s = self.gyro.measure(self.omega_BN_B)
             self.gyro.sample_time_ns = 0
         if self.star_tracker is not None and st is not None and not st.ideal:
-            q, valid = self.star_tracker.measure(self.q_BN, self.omega_BN_B, self._tracker_sun_N())
+            q, valid = self.star_tracker.measure(self.q_BN, self.omega_BN_B, self._tracker_sun_N(), 0)
             self.star_tracker.sample_q, self.star_tracker.sample_valid = q, valid
             self.star_tracker.sample_time_ns = 0
 

@@ -33,6 +33,7 @@ from detumble.sim.epoch import gmst_rad, julian_date, parse_epoch
 from detumble.sim.field import (EARTH_ROTATION_RATE, IGRF2025_G10_NT, IGRF2025_G11_NT, IGRF2025_H11_NT,
                     IGRF_REFERENCE_RADIUS_M)
 from detumble.sim.orbit import J2_EARTH, MU_EARTH, R_EARTH_EQ
+from detumble.sim.sun_sensors import SunSensorSpec
 from detumble.sim.sensors import GyroSpec, MagnetometerSpec
 from detumble.sim.accelerometer import AccelerometerSpec
 from detumble.sim.power import PowerConfig
@@ -191,6 +192,8 @@ class Scenario:
     magnetometer: MagnetometerSpec = _dc_field(default_factory=MagnetometerSpec)
     gyro: GyroSpec = _dc_field(default_factory=GyroSpec)
     star_tracker: StarTrackerSpec | None = None
+    #: the six face light sensors (``sim.sun_sensors``): noise figures, Earth albedo, penumbra
+    sun_sensors: SunSensorSpec = _dc_field(default_factory=SunSensorSpec)
     #: RK4 sub-steps per dynamics step (environment held over the whole step)
     integrator_substeps: int = 1
     #: the frame ``q_BN0`` is given relative to: "inertial" (it is q_BN) or "orbit" (it is q_BO)
@@ -372,8 +375,10 @@ SCHEMA: dict = {
                                     "resolution_dps")},
         "star_tracker": {k: _LEAF for k in ("ideal", "rate_hz", "noise_cross_boresight_arcsec",
                                             "noise_about_boresight_arcsec", "boresight_B", "bias_arcsec",
-                                            "dropout_probability", "max_rate_deg_s", "sun_exclusion_deg")},
+                                            "dropout_probability", "max_rate_deg_s", "sun_exclusion_deg",
+                                            "outage_s")},
         "accelerometer": ACCELEROMETER_SCHEMA,
+        "sun_sensors": {k: _LEAF for k in ("gain_sigma", "noise_sigma", "albedo", "penumbra")},
     },
     "initial": {
         "attitude": {"quaternion": _LEAF, "mrp": _LEAF, "frame": _LEAF},
@@ -606,6 +611,7 @@ def scenario_from_dict(data: Any, source: str = "<dict>", lines: dict[tuple, int
     gyro = _gyro(sens.section("gyro"))
     accelerometer = parse_accelerometer(sens.section("accelerometer"))
     star = _star_tracker(sens.section("star_tracker")) if sens.has("star_tracker") else None
+    sun_sensors = _sun_sensors(sens.section("sun_sensors"))
     sens.allow("star_tracker")
     sens.finish()
     use_seed = file_seed if seed is None else seed
@@ -616,7 +622,8 @@ def scenario_from_dict(data: Any, source: str = "<dict>", lines: dict[tuple, int
     top.finish()
     return Scenario(name=name, description=description, source=source, epoch=epoch, duration_s=duration,
                     dynamics_step_s=dt, record_interval_s=record, seed=use_seed, spacecraft=sc, orbit=orbit,
-                    field=fld, magnetometer=mag, gyro=gyro, star_tracker=star, integrator_substeps=substeps,
+                    field=fld, magnetometer=mag, gyro=gyro, star_tracker=star, sun_sensors=sun_sensors,
+                    integrator_substeps=substeps,
                     attitude_frame=frame, q_BN0=q0, omega_BN_B0=w0, control=control,
                     accelerometer=accelerometer, power=power)
 
@@ -908,6 +915,7 @@ def _star_tracker(s: _Section) -> StarTrackerSpec:
         dropout_probability=s.number("dropout_probability", d.dropout_probability, nonneg=True),
         max_rate_deg_s=s.number("max_rate_deg_s", d.max_rate_deg_s, nonneg=True),
         sun_exclusion_deg=s.number("sun_exclusion_deg", d.sun_exclusion_deg, nonneg=True),
+        outage_s=_outage(s),
     )
     if spec.sun_exclusion_deg >= 180.0:
         s.fail("sun_exclusion_deg",
@@ -916,6 +924,36 @@ def _star_tracker(s: _Section) -> StarTrackerSpec:
         s.fail("dropout_probability", f"{spec.dropout_probability} is a probability: give 0...1")
     s.finish()
     return spec
+
+
+def _sun_sensors(s: _Section) -> SunSensorSpec:
+    """``sensors.sun_sensors``: the light sensors' noise figures, the Earth's albedo and the penumbra (absent: the
+    ``SunSensorSpec`` defaults, as the deployments fly)."""
+    d = SunSensorSpec()
+    gain = s.number("gain_sigma", d.gain_sigma, nonneg=True)
+    noise = s.number("noise_sigma", d.noise_sigma, nonneg=True)
+    albedo = s.number("albedo", d.albedo, nonneg=True)
+    penumbra = s.boolean("penumbra", d.penumbra)
+    s.finish()
+    try:
+        return SunSensorSpec(gain_sigma=gain, noise_sigma=noise, albedo=albedo, penumbra=penumbra)
+    except ValueError as exc:
+        key = next((k for k in ("gain_sigma", "noise_sigma") if f"SunSensorSpec.{k} " in str(exc)), "albedo")
+        s.fail(key, str(exc).replace("SunSensorSpec.", ""))
+
+
+def _outage(s: _Section) -> tuple[float, float] | None:
+    """``sensors.star_tracker.outage_s``: ``[start, end]`` s of plant time with no solution (absent: none)."""
+    v = s.raw("outage_s", None)
+    if v is None:
+        return None
+    p = s.path + ("outage_s",)
+    if not isinstance(v, (list, tuple)) or len(v) != 2:
+        s.ctx.fail(p, f"expected [start, end] in seconds, got {v!r}")
+    start, end = s.ctx.number(p + (0,), v[0], nonneg=True), s.ctx.number(p + (1,), v[1], nonneg=True)
+    if not end > start:
+        s.ctx.fail(p, f"the outage must end after it starts: got [{start}, {end}] s")
+    return (start, end)
 
 
 def _initial(s: _Section, seed: int) -> tuple[Quat, str, Vec3]:

@@ -18,7 +18,9 @@ is *invalid* (no solution: the held attitude is kept, ``valid`` false) with prob
 ``dropout_probability``, and always when the body rate exceeds ``max_rate_deg_s`` (star smear;
 0 disables that limit), and always when the Sun is within ``sun_exclusion_deg`` of the boresight
 and not eclipsed (stray light blinds the tracker; typical baffles give 25-45 deg; 0, the default,
-disables it). ``ideal: true`` returns the true attitude at the read time, always valid.
+disables it), and always at an instant inside ``outage_s`` (``(start, end)`` s of plant time, end excluded: a
+tracker lost and recovered, e.g. for the Sun-safe entry on star-tracker loss; None, the default, none).
+``ideal: true`` returns the true attitude at the read time, always valid (no outage).
 """
 
 from __future__ import annotations
@@ -43,6 +45,7 @@ class StarTrackerSpec:
     dropout_probability: float = 0.0
     max_rate_deg_s: float = 2.0
     sun_exclusion_deg: float = 0.0
+    outage_s: tuple[float, float] | None = None
 
 
 def cross_axes(boresight: Vec3) -> tuple[Vec3, Vec3]:
@@ -70,6 +73,8 @@ class StarTracker:
         self._bias = tuple(b * ARCSEC for b in spec.bias_arcsec)
         self._max_rate2 = math.radians(spec.max_rate_deg_s) ** 2 if spec.max_rate_deg_s > 0 else math.inf
         self._sun_cos = math.cos(math.radians(spec.sun_exclusion_deg)) if spec.sun_exclusion_deg > 0 else None
+        self._outage_ns = (None if spec.outage_s is None
+                           else (int(round(spec.outage_s[0] * 1e9)), int(round(spec.outage_s[1] * 1e9))))
         self.sample_q: Quat = (1.0, 0.0, 0.0, 0.0)
         self.sample_valid = False
         self.sample_time_ns = -1
@@ -106,11 +111,17 @@ class StarTracker:
         b = self.bore
         return s_B[0] * b[0] + s_B[1] * b[1] + s_B[2] * b[2] > self._sun_cos
 
-    def measure(self, q_BN: Quat, omega_B: Vec3, sun_N: Vec3 | None = None) -> tuple[Quat, bool]:
+    def measure(self, q_BN: Quat, omega_B: Vec3, sun_N: Vec3 | None = None,
+                t_ns: int | None = None) -> tuple[Quat, bool]:
         """One sample: ``(q_meas, valid)``; an invalid sample keeps the held attitude. ``sun_N``: the unit Sun
-        direction (N) when it is not eclipsed, for the exclusion angle."""
+        direction (N) when it is not eclipsed, for the exclusion angle; ``t_ns``: the sample's plant time, for the
+        outage window."""
         self.samples += 1
         s = self.spec
+        out = self._outage_ns
+        if out is not None and t_ns is not None and out[0] <= t_ns < out[1]:
+            self.dropouts += 1
+            return self.sample_q, False
         if self.sun_blinds(q_BN, sun_N):
             self.blinded += 1
             self.dropouts += 1
@@ -141,5 +152,5 @@ class StarTracker:
         q = tuple(s0[i] + f * (s1[i] - s0[i]) for i in range(4))
         n = 1.0 / math.sqrt(sum(x * x for x in q))
         w = tuple(s0[4 + i] + f * (s1[4 + i] - s0[4 + i]) for i in range(3))
-        q_meas, valid = self.measure((q[0] * n, q[1] * n, q[2] * n, q[3] * n), w, sun_N)
+        q_meas, valid = self.measure((q[0] * n, q[1] * n, q[2] * n, q[3] * n), w, sun_N, tk)
         self.sample_q, self.sample_valid, self.sample_time_ns = q_meas, valid, tk

@@ -28,7 +28,8 @@ from detumble.sim.plant import Plant
 from detumble.sim.scenario import load_scenario
 from detumble.sim.sun_sensors import SunSensorModel, SunSensorSpec
 
-__all__ = ["SunSafeResult", "fly", "main", "vector_errors_from_run", "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
+__all__ = ["SunSafeResult", "fly", "main", "pointing_from_run", "vector_errors_from_run",
+           "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
 
 #: The targets (issue 27): Sun-pointing error within this after acquisition, light-sensor vector within that.
 POINTING_THRESHOLD_DEG = 10.0
@@ -102,10 +103,12 @@ class SunSafeResult:
 
 def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, actuator: str = "ANY",
         axis: str = "PLUS_Z", scenario: str = "adcs", settings: tuple[str, ...] = (),
-        params: dict | None = None, sensor_spec: SunSensorSpec | None = None) -> SunSafeResult:
+        params: dict | None = None, sensor_spec: SunSensorSpec | None = None,
+        albedo_model: float = 0.0) -> SunSafeResult:
     """Fly SUN_SAFE from a ``rate_deg_s`` tumble about an axis drawn from ``seed`` (the attitude drawn too), the
     star tracker off, POINTING_ACTUATOR = ``actuator``, SUN_SAFE_AXIS = ``axis``; the light sensors as
-    ``sensor_spec`` (default: the stated noise, no albedo, cylindrical shadow)."""
+    ``sensor_spec`` (default: the stated noise, no albedo, cylindrical shadow); with ``albedo_model`` > 0 the Sun
+    vector has that Bond albedo taken out (``control.albedo``; the law flies on it too)."""
     if axis not in _AXES:
         raise ValueError(f"axis must be one of {', '.join(_AXES)}, got {axis!r}")
     rng = random.Random(seed)
@@ -118,7 +121,7 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
     sc = load_scenario(scenario, seed=seed, settings=base + list(settings))
     plant = Plant(sc, seed)
     sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, sensor_spec or SunSensorSpec(), seed=seed)
-    io = PlantIo(plant, sensors)
+    io = PlantIo(plant, sensors, albedo_model=albedo_model)
     io.has_tracker = False
     law = AdcsLaw(params={"POINTING_ACTUATOR": actuator, "SUN_SAFE_AXIS": axis, **(params or {})},
                   force_mode="SUN_SAFE")
@@ -199,6 +202,33 @@ def vector_errors_from_run(run_dir, scenario: str = "adcs") -> tuple[list, int]:
     return errors, invalid
 
 
+def pointing_from_run(run_dir, axis: str = "PLUS_Z", scenario: str = "adcs") -> SunSafeResult:
+    """The true angle between ``axis`` and the Sun, once a second, over a ``fprime-lite run`` of
+    ``deployments/adcs_ref`` (``truth.csv``: ``q_BN`` and the power model's eclipse flag), as a
+    :class:`SunSafeResult` (no Sun-vector samples) so its acquisition and steady statistics read the same."""
+    import csv
+    import pathlib
+
+    from detumble.sim.sun import sun_direction_N
+    from detumble.sim.vec import rotate_n_to_b
+
+    if axis not in _AXES:
+        raise ValueError(f"axis must be one of {', '.join(_AXES)}, got {axis!r}")
+    a = _AXES[axis]
+    jd0 = julian_date(load_scenario(scenario).epoch)
+    out = SunSafeResult()
+    with open(pathlib.Path(run_dir) / "truth.csv", newline="") as f:
+        for row in csv.DictReader(f):
+            t = float(row["t_s"])
+            if t != int(t):
+                continue
+            q = (float(row["q0"]), float(row["q1"]), float(row["q2"]), float(row["q3"]))
+            out.times.append(t)
+            out.eclipse.append(row["eclipse"] == "1")
+            out.pointing_deg.append(_angle_deg(a, rotate_n_to_b(q, sun_direction_N(jd0 + t / 86400.0)[0])))
+    return out
+
+
 def _percentile(values, p: float) -> float:
     if not values:
         return math.nan
@@ -215,19 +245,46 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--rate", type=float, default=2.0, help="initial tumble, deg/s")
     ap.add_argument("--albedo", type=float, default=0.0, help="Earth's Bond albedo on the light sensors (0.30: "
                     "the Earth's mean; default 0, none)")
+    ap.add_argument("--albedo-model", type=float, default=0.0, metavar="A",
+                    help="take the Earth's albedo out of the Sun vector with this Bond albedo (control.albedo: TRIAD "
+                    "on the Sun vector and the magnetometer); default 0, no correction")
     ap.add_argument("--penumbra", action="store_true", help="the conical shadow (penumbra) instead of the cylinder")
-    ap.add_argument("--from-run", metavar="DIR", help="instead: the ADCS Sun vector of a fprime-lite run of adcs_ref "
-                    "against its truth")
+    ap.add_argument("--from-run", metavar="DIR", help="instead: a fprime-lite run of adcs_ref against its truth: "
+                    "--axis to the Sun (acquisition, steady statistics) and the ADCS Sun vector")
     args = ap.parse_args(argv)
     try:
         spec = SunSensorSpec(albedo=args.albedo, penumbra=args.penumbra)
     except ValueError as exc:
         ap.error(str(exc))
+    if not (math.isfinite(args.albedo_model) and 0.0 <= args.albedo_model < 1.0):
+        ap.error(f"--albedo-model must be a Bond albedo in [0, 1) (the Earth's mean: 0.30), got {args.albedo_model}")
     if args.from_run:
+        import pathlib
+
+        missing = [n for n in ("truth.csv", "channels.csv") if not (pathlib.Path(args.from_run) / n).is_file()]
+        if missing:
+            ap.error(f"--from-run {args.from_run}: no {' or '.join(missing)} there; give the output folder of a "
+                     "finished `fprime-lite run deployments/adcs_ref/topology.yaml --out DIR`")
         errs, invalid = vector_errors_from_run(args.from_run)
         if not errs:
             print(f"{args.from_run}: no sunlit ADCS SunVector readings found")
             return 1
+        import json
+
+        summary = pathlib.Path(args.from_run) / "summary.json"
+        if summary.exists():
+            modes = json.loads(summary.read_text()).get("control_mode_transitions") or []
+            print("modes: " + (", ".join(f"{m['mode']} at {m['t_s']:.1f} s" for m in modes) or "none"))
+        run = pointing_from_run(args.from_run, args.axis)
+        part, acq, steady = run.first_sunlit_part(), run.acquisition_s(), run.steady_sunlit()
+        parts = run.sunlit_parts()
+        re_acq = run.acquisition_s(part_index=1) if len(parts) > 1 else None
+        print(f"{args.axis} to the true Sun: first sunlit part {part[0]:.0f}–{part[1]:.0f} s, acquisition ≤ "
+              f"{POINTING_THRESHOLD_DEG:g}° " + ("never" if acq is None else f"{acq:.0f} s") +
+              (f", after it median {statistics.median(steady):.2f}, p95 {_percentile(steady, 95):.2f}, max "
+               f"{max(steady):.2f} deg" if steady else "") +
+              ("" if len(parts) < 2 else ", after the eclipse: reacquisition " +
+               ("never" if re_acq is None else f"{re_acq:.0f} s")) if part else f"{args.axis}: never sunlit")
         within = sum(e <= VECTOR_THRESHOLD_DEG for e in errs) / len(errs)
         print(f"ADCS SunVector vs truth, sunlit: {len(errs)} readings, median {statistics.median(errs):.2f}, p95 "
               f"{_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; {100 * within:.1f} % within "
@@ -240,7 +297,7 @@ def main(argv: list[str] | None = None) -> int:
     vec_all: list[float] = []
     for seed in range(1, args.seeds + 1):
         r = fly(seed, rate_deg_s=args.rate, duration_s=args.duration, actuator=args.actuator, axis=args.axis,
-                sensor_spec=spec)
+                sensor_spec=spec, albedo_model=args.albedo_model)
         part = r.first_sunlit_part()
         acq = r.acquisition_s()
         steady = r.steady_sunlit()

@@ -2,7 +2,8 @@
 
 :class:`GroundDecoder` turns event and telemetry packets back into named, typed values using the
 topology's own declarations (what fprime-gds does with the dictionary). :class:`GroundRecorder`
-listens to the deployment's downlink (EventManager's and TlmChan's ``PktSend``) and writes
+listens to the deployment's downlink (EventManager's and TlmChan's or TlmPacketizer's ``PktSend``;
+a packetizer's packets through :mod:`fprime_lite.ground.packetized`) and writes
 ``events.log`` (one line per event: time, name, severity, text, as the GDS logs them) and
 ``channels.csv`` (time, channel, value) as packets arrive, and ``channels_wide.csv`` (one column per
 channel, see :mod:`fprime_lite.ground.wide_table`), so memory stays flat however long the run.
@@ -28,7 +29,8 @@ from fprime_lite.osal.atomic import clean_temporary_files, open_temporary
 from fprime_lite.model.events import Severity, translate_format
 from fprime_lite.ground.files import FileReceiver
 from fprime_lite.ground.packet_layout import LayoutCache, TelemetryLayout
-from fprime_lite.ground.wide_table import WideTelemetryTable, csv_cell
+from fprime_lite.ground.packetized import PacketizedDecoder
+from fprime_lite.ground.wide_table import WideTelemetryTable, csv_cell, csv_field
 from fprime_lite.wire.packets import Apid, decode_event, decode_telemetry
 from fprime_lite.model.time import Time, TimeBase
 from fprime_lite.deploy.topology import Topology
@@ -83,6 +85,8 @@ class GroundDecoder:
         self.channels: dict[int, tuple[str, Any, str | None]] = {}
         #: channel name → (F´ type, units or None), in declaration order
         self.channel_types: dict[str, tuple[Any, str | None]] = {}
+        #: channel name → its update policy ("always" or "on change"), the dictionary's telemetryUpdate
+        self.update_policies: dict[str, str] = {}
         for instance in topology.instances.values():
             comp = instance.component
             for e in comp.spec.events:
@@ -91,6 +95,12 @@ class GroundDecoder:
                 template = translate_format(c.format, [c.type], c.name) if c.format else None
                 self.channels[comp.base_id + c.local_id] = (f"{instance.qualified_name}.{c.name}", c.type, template)
                 self.channel_types[f"{instance.qualified_name}.{c.name}"] = (c.type, getattr(c, "units", None))
+                self.update_policies[f"{instance.qualified_name}.{c.name}"] = c.update
+        packet_sets = list(getattr(topology, "telemetry_packet_sets", None) or [])
+        #: the compiled layouts of the packet set the topology's TlmPacketizer flies (None without one)
+        self.packetized: PacketizedDecoder | None = (
+            PacketizedDecoder(packet_sets[0], self.channels, self.update_policies, channel_text)
+            if packet_sets else None)
 
     def decode_event(self, packet: bytes) -> DecodedEvent:
         event_id, time, args = decode_event(packet)
@@ -246,6 +256,8 @@ class GroundRecorder:
                 if self.on_channel is not None or self._clock is None or not self._telemetry(data):
                     for channel in self.decoder.decode_telemetry(data):
                         self._channel(channel)
+            elif descriptor == Apid.FW_PACKET_PACKETIZED_TLM and self.decoder.packetized is not None:
+                self._packetized(data)
             elif descriptor == Apid.FW_PACKET_FILE:
                 self.files.receive(data)
             else:
@@ -282,6 +294,24 @@ class GroundRecorder:
             for index, text in zip(indices, wide[j], strict=True):
                 row[index] = text
         return True
+
+    def _packetized(self, packet: bytes) -> None:
+        """Record a TlmPacketizer packet: the updates its compiled layout gives, stamped with the
+        packet's time (:mod:`fprime_lite.ground.packetized`)."""
+        assert self.decoder.packetized is not None  # receive() checked
+        time, updates = self.decoder.packetized.decode(packet)
+        if not updates:
+            return
+        stamp = f"{time.seconds}.{time.useconds:06d},"
+        self._channels.file.write("".join(f"{stamp}{name},{csv_field(text)}\n" for name, _, text in updates))
+        self.channel_updates += len(updates)
+        row = self._wide.at(self._clock.now() if self._clock is not None else time)
+        slots = self._wide.slots
+        for name, value, text in updates:
+            for index, get in slots(name):
+                row[index] = csv_cell(get(value))
+            if self.on_channel is not None:
+                self.on_channel(DecodedChannel(time, name, value, text))
 
     def _wide_cells(self, name: str, value) -> list[str]:
         """The wide table's cells of a decoded value of channel ``name``."""

@@ -131,7 +131,7 @@ def claim_run_folder(out=None, runs_dir="runs") -> pathlib.Path:
 def run(topology="topology.yaml", *, duration_s: float | None = None, out=None, scenario: str | None = None,
         seed: int | None = None, settings: Sequence[str] = (), params=None, seq=None,
         truth_interval_s: float | None = None, plots: bool = False, progress: bool = False,
-        quiet: bool = True, force: bool = False) -> "RunResult":
+        quiet: bool = True, force: bool = False, board_root=None) -> "RunResult":
     """Fly ``topology`` for ``duration_s`` simulated seconds (default: the topology's ``run.duration_s``,
     else 600); return its :class:`RunResult`.
 
@@ -143,10 +143,15 @@ def run(topology="topology.yaml", *, duration_s: float | None = None, out=None, 
     60 s probe flight scaled to ``duration_s``) and refused with :class:`RunSetupError` when its
     outputs would not fit the disk or exceed 10 GB, as ``fprime-lite run`` does; ``force=True`` flies
     it anyway.
+
+    ``board_root`` (an existing folder; ``fprime-lite run --board-root``) stands in for the board's
+    ``/`` for the file services and the command sequencers (``/seq/a.bin`` is ``board_root/seq/a.bin``,
+    nothing outside it is reachable, files are replaced as F´'s services replace them) and is the
+    simulated spacecraft's flash too.
     """
     from fprime_lite.deploy.preflight import check_run_files
     from fprime_lite.tools import disk_estimate
-    from fprime_lite.tools.runner import run_deployment, run_duration
+    from fprime_lite.tools.runner import run_deployment, run_duration, use_board_as_flash
 
     if duration_s is not None and not (isinstance(duration_s, (int, float)) and not isinstance(duration_s, bool)
                                        and 0 < duration_s < math.inf):
@@ -155,6 +160,9 @@ def run(topology="topology.yaml", *, duration_s: float | None = None, out=None, 
         if value is not None and not pathlib.Path(value).is_file():
             kind = "is a folder" if pathlib.Path(value).is_dir() else "no such file"
             raise RunSetupError(f"{what} {value}: {kind}")
+    if board_root is not None and not pathlib.Path(board_root).is_dir():
+        raise RunSetupError(f"board_root {board_root}: not an existing folder — create it (it stands in for the "
+                            f"board's /)")
     loaded = load(topology, scenario=scenario, seed=seed, settings=settings, truth_interval_s=truth_interval_s)
     check_run_files(loaded, parameter_file=params, sequence=seq)
     duration_s = run_duration(loaded, duration_s)
@@ -165,9 +173,11 @@ def run(topology="topology.yaml", *, duration_s: float | None = None, out=None, 
                            plots=False, quiet=True)
         disk_estimate.check_disk(disk_estimate.estimate_output_bytes(fly), duration_s,
                                  pathlib.Path(out if out is not None else "runs"), spelling="api")
+    if board_root is not None:
+        use_board_as_flash(loaded, board_root)
     folder = claim_run_folder(out)
     run_deployment(loaded, folder, duration_s=duration_s, parameter_file=params, sequence=seq,
-                   progress=progress, plots=plots, quiet=quiet)
+                   progress=progress, plots=plots, quiet=quiet, board_root=board_root)
     return RunResult(folder)
 
 

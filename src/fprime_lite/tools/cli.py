@@ -27,7 +27,6 @@ import logging
 import math
 import os
 import pathlib
-import signal
 import sys
 import threading
 
@@ -468,6 +467,7 @@ def cmd_run(args) -> int:
     from fprime_lite.deploy.preflight import check_run_files
     from fprime_lite.tools import disk_estimate
     from fprime_lite.tools.api import claim_run_folder, load
+    from fprime_lite.tools.interrupt import exit_status
     from fprime_lite.tools.runner import run_deployment, run_duration
     from fprime_lite.tools.stop_condition import StopConditionError, parse_stop_condition
 
@@ -505,6 +505,8 @@ def cmd_run(args) -> int:
             raise UserError("--board-root and --file-root: give one (a board root is the file services' whole root)")
         if not pathlib.Path(args.board_root).is_dir():
             raise UserError(f"--board-root {args.board_root}: not an existing folder")
+        from fprime_lite.tools.runner import use_board_as_flash
+
         use_board_as_flash(loaded, args.board_root)
     if args.no_startup:
         if args.seq is not None:
@@ -531,7 +533,7 @@ def cmd_run(args) -> int:
     if summary.get("stopped_by") == "interrupted" and not realtime:
         print(f"fprime-lite run: interrupted by {summary['signal']} at t = {summary['sim_seconds']:.3f} s; the "
               f"outputs up to then are in {out}/", file=sys.stderr)
-        return 128 + signal.Signals[summary["signal"]].value  # 130 for SIGINT, 143 for SIGTERM, as a shell says
+        return exit_status(summary["signal"])  # 130 for SIGINT, 143 for SIGTERM, as a shell says
     if summary.get("stop_reason"):  # the simulation itself ended the run (a diverged plant)
         print(f"fprime-lite run: stopped: {summary['stop_reason']}", file=sys.stderr)
         return EXIT_FAILED
@@ -540,15 +542,6 @@ def cmd_run(args) -> int:
               f"(--allow-warnings accepts them)", file=sys.stderr)
         return EXIT_FAILED
     return 0
-
-
-def use_board_as_flash(loaded, board_root) -> None:
-    """Make ``board_root`` the simulated spacecraft's flash too (every resource with ``use_flash_dir``):
-    on the board the flash is the one file system, so FsFormat's FORMAT erases the uplinked ``/seq``
-    files with the flight state, and the state files lie at the board's ``/``."""
-    for resource in loaded.resources.values():
-        if callable(getattr(resource, "use_flash_dir", None)):
-            resource.use_flash_dir(os.fspath(board_root))
 
 
 def _check_file_root(file_root: str | None) -> None:

@@ -20,12 +20,9 @@ A report resource is any resource with some of these methods: ``begin(deployment
 
 from __future__ import annotations
 
-import contextlib
 import json
 import os
 import pathlib
-import signal
-import threading
 import time
 from typing import Mapping
 
@@ -41,10 +38,11 @@ from fprime_lite.svc.file_manager import FileManager
 from fprime_lite.svc.file_uplink import FileUplink
 from fprime_lite.svc.rate_groups import RateGroupBase
 from fprime_lite.deploy.topology_loader import LoadedDeployment
+from fprime_lite.tools.interrupt import stop_on_signals
 from fprime_lite.tools.stop_condition import CHECK_INTERVAL_S, StopCondition, holds_all, parse_stop_condition
 
-__all__ = ["run_deployment", "run_duration", "DEFAULT_DURATION_S", "flight_problems", "PROGRESS_STEP_S",
-           "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
+__all__ = ["run_deployment", "use_board_as_flash", "run_duration", "DEFAULT_DURATION_S", "flight_problems",
+           "PROGRESS_STEP_S", "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
 
 #: Simulated seconds between progress updates (and between chunks of the run).
 PROGRESS_STEP_S = 10.0
@@ -64,6 +62,15 @@ def run_duration(loaded: LoadedDeployment, requested: float | None) -> float:
 def _reports(loaded: LoadedDeployment) -> list:
     return [r for name, r in loaded.resources.items()
             if name not in ("clock", "scheduler", "topology_dir") and hasattr(r, "summary")]
+
+
+def use_board_as_flash(loaded: LoadedDeployment, board_root) -> None:
+    """Make ``board_root`` the simulated spacecraft's flash too (every resource with ``use_flash_dir``):
+    on the board the flash is the one file system, so FsFormat's FORMAT erases the uplinked ``/seq``
+    files with the flight state, and the state files lie at the board's ``/``."""
+    for resource in loaded.resources.values():
+        if callable(getattr(resource, "use_flash_dir", None)):
+            resource.use_flash_dir(os.fspath(board_root))
 
 
 def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
@@ -147,7 +154,7 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     end_us = start_us + round(duration_s * 1_000_000)
     signals: list[str] = []
     ended: SimulationEnded | None = None
-    with _stop_on_signals(deployment.scheduler, signals, enabled=interruptible):
+    with stop_on_signals(deployment.scheduler.stop, signals, enabled=interruptible):
         try:
             if progress:
                 _run_with_progress(deployment, end_us, reports, console)
@@ -248,27 +255,6 @@ def _summary(deployment: Deployment, recorder: GroundRecorder, reports, sim_s: f
     for r in reports:
         summary.update(r.summary())
     return summary
-
-
-@contextlib.contextmanager
-def _stop_on_signals(scheduler, received: list[str], *, enabled: bool):
-    """While the flight runs: SIGINT and SIGTERM stop ``scheduler`` (the signal's name is appended to
-    ``received``) instead of raising in the middle of a tick; the previous handlers come back after it,
-    so a second Ctrl-C while the outputs are written acts as usual."""
-    if not enabled or threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def stop(signum, _frame) -> None:
-        received.append(signal.Signals(signum).name)
-        scheduler.stop()
-
-    previous = {sig: signal.signal(sig, stop) for sig in (signal.SIGINT, signal.SIGTERM)}
-    try:
-        yield
-    finally:
-        for sig, handler in previous.items():
-            signal.signal(sig, handler)
 
 
 def _watch_conditions(scheduler, reports, conditions, stopped_by: list) -> None:

@@ -621,6 +621,11 @@ def test_residual_dipole_estimator_runs_only_while_the_coils_point(fprime_harnes
 def test_residual_dipole_parameters_have_ranges(fprime_harness, bad):
     """ADCS-062: MAG_RESIDUAL_DIPOLE_* outside ±0.05 A·m² and MAG_RESIDUAL_WINDOW outside 5…600 s are refused by
     PRM_SET (VALIDATION_ERROR) and the value in use is kept."""
+    assert_refused_and_kept(fprime_harness, bad)
+
+
+def assert_refused_and_kept(fprime_harness, bad: dict) -> None:
+    """``{name: value}``'s PRM_SET is refused with VALIDATION_ERROR and the value in use is kept."""
     h = make(fprime_harness)
     ((name, value),) = bad.items()
     before = getattr(h.comp, name).value
@@ -1090,3 +1095,32 @@ def test_gyroscopic_and_gravity_gradient_feed_forward_on_the_wheels(fprime_harne
     plant = torques.gravity_gradient_torque(3.986004415e14, rotate_n_to_b(full.world.q, (6.798e6, 0.0, 0.0)), inertia)
     for i in range(3):
         assert gg[i] == pytest.approx(plant[i], rel=1e-2)
+
+
+@pytest.mark.parametrize("bad", [{"SUN_SPIN_RATE": 0.0}, {"SUN_SPIN_RATE": 12.0}, {"SUN_SPIN_RATE": math.nan},
+                                 {"SUN_BIAS_TIME": 0.5}, {"SUN_BIAS_TIME": 4000.0}])
+def test_sun_safe_ground_parameters_have_ranges(fprime_harness, bad):
+    """ADCS-106: SUN_SPIN_RATE outside 0.1…10 °/s and SUN_BIAS_TIME outside 1…3600 s (or not finite) are refused by
+    PRM_SET (VALIDATION_ERROR) and the value in use is kept."""
+    assert_refused_and_kept(fprime_harness, bad)
+
+
+def test_sun_safe_spin_rate_and_bias_time_act_from_the_ground(fprime_harness):
+    """ADCS-107: on the coils, SUN_SAFE with the Sun on +Z and the body at rest asks only for the spin about +Z,
+    τ_z = SPIN_K_RATE · SUN_SPIN_RATE (rad/s): 3 °/s by default, 1.5 °/s after SUN_SPIN_RATE_PRM_SET 1.5 (OK, from
+    the next cycle); SUN_BIAS_TIME_PRM_SET 40 becomes the Sun-vector bias observer's time constant."""
+    h = make(fprime_harness, sun=True, params={"POINTING_ACTUATOR": "MAGNETORQUERS"})
+    h.world.sun = (0.0, 0.0, 1.0)
+    tick(h)
+    h.send_command("FORCE_MODE", ControlMode.SUN_SAFE)
+    h.assert_cmd_response(0, "FORCE_MODE", CmdResponse.OK)
+    seconds(h, 2)
+    k = h.comp.SPIN_K_RATE.value
+    assert h.comp.law.torque_request[2] == pytest.approx(k * 3.0 * DEG, rel=1e-6)
+    h.send_command("SUN_SPIN_RATE_PRM_SET", 1.5)
+    h.assert_cmd_response(1, "SUN_SPIN_RATE_PRM_SET", CmdResponse.OK)
+    h.send_command("SUN_BIAS_TIME_PRM_SET", 40.0)
+    h.assert_cmd_response(2, "SUN_BIAS_TIME_PRM_SET", CmdResponse.OK)
+    seconds(h, 2)
+    assert h.comp.law.torque_request[2] == pytest.approx(k * 1.5 * DEG, rel=1e-6)
+    assert h.comp.law.sun_bias.time_s == 40.0

@@ -8,7 +8,7 @@ import pytest
 
 from detumble.components.types import Result
 from detumble.proves.adcs import ADCS
-from fprime_lite import Time, TimeBase
+from fprime_lite import CmdResponse, Time, TimeBase
 from fprime_lite.model.fw_types import Success
 
 START = Time(TimeBase.TB_WORKSTATION_TIME, 0, 1000, 0)
@@ -93,3 +93,29 @@ def test_a_failed_sensor_is_reported_and_counts_as_dark(fprime_harness):
     h.invoke("run", 0)
     assert h.tlm_values("SunVectorValid")[-1] == 0 and h.tlm_values("LitFaces")[-1] == 1
     assert list(h.tlm_values("SunVector")[-1]) == pytest.approx([1.0, 0.0, 0.0])
+
+
+def test_lit_threshold_and_magnitude_tolerance_are_ground_parameters(fprime_harness):
+    """ADCSLS-005: SUN_LIT_FRACTION and SUN_MAGNITUDE_TOLERANCE act from the next run: the Sun 2.3° from +Z (the
+    side face at 4 % of full Sun) is read exactly at the default 2 % and as +Z (the dead zone) at 5 %; a Sun of 0.8
+    full is valid at ±25 % and not at ±10 % (SunVectorLost); values out of range are refused (VALIDATION_ERROR)."""
+    tilt = math.radians(2.3)
+    h = make(fprime_harness, [E * math.sin(tilt), 0.0, 0.0, 0.0, E * math.cos(tilt), 0.0])
+    h.invoke("run", 0)
+    assert list(h.tlm_values("SunVector")[-1]) == pytest.approx([math.sin(tilt), 0.0, math.cos(tilt)], abs=1e-12)
+    h.send_command("SUN_LIT_FRACTION_PRM_SET", 0.05)
+    h.assert_cmd_response(0, "SUN_LIT_FRACTION_PRM_SET", CmdResponse.OK)
+    h.invoke("run", 0)
+    assert list(h.tlm_values("SunVector")[-1]) == pytest.approx([0.0, 0.0, 1.0], abs=1e-12)
+    h = make(fprime_harness, [0.0, 0.0, 0.0, 0.0, 0.8 * E, 0.0])
+    h.invoke("run", 0)
+    assert h.tlm_values("SunVectorValid")[-1] == 1
+    h.send_command("SUN_MAGNITUDE_TOLERANCE_PRM_SET", 0.1)
+    h.invoke("run", 0)
+    assert h.tlm_values("SunVectorValid")[-1] == 0
+    h.assert_event_count("SunVectorLost", 1)
+    for k, (name, bad) in enumerate((("SUN_LIT_FRACTION", 0.0), ("SUN_LIT_FRACTION", 0.6),
+                                     ("SUN_MAGNITUDE_TOLERANCE", 1.0), ("SUN_MAGNITUDE_TOLERANCE", math.nan))):
+        h.send_command(f"{name}_PRM_SET", bad)
+        h.assert_cmd_response(1 + k, f"{name}_PRM_SET", CmdResponse.VALIDATION_ERROR)
+    assert h.component.SUN_MAGNITUDE_TOLERANCE.value == 0.1 and h.component.SUN_LIT_FRACTION.value == 0.02

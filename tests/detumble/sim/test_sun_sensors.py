@@ -82,3 +82,22 @@ def test_bad_noise_figures_are_refused():
         SunSensorSpec(noise_sigma=-0.1)
     with pytest.raises(ValueError, match="gain_sigma"):
         SunSensorSpec(gain_sigma=float("nan"))
+
+
+def test_the_scenario_sets_the_light_sensors():
+    """SUN-005: ``sensors.sun_sensors`` reaches the deployment's sensors (albedo, penumbra, noise figures); absent,
+    the defaults (no albedo: the deployments' outputs unchanged); a bad figure refused by name with the range."""
+    import pytest
+
+    from detumble.sim.scenario import ScenarioError, load_scenario
+    from detumble.sim.sun_sensors import SunSensorSpec
+
+    assert load_scenario("adcs").sun_sensors == SunSensorSpec()
+    sc = load_scenario("adcs", settings=["sensors.sun_sensors.albedo=0.3", "sensors.sun_sensors.penumbra=true",
+                                         "sensors.sun_sensors.noise_sigma=0.01"])
+    assert sc.sun_sensors == SunSensorSpec(albedo=0.3, penumbra=True, noise_sigma=0.01)
+    from detumble.drivers.spacecraft import SimulatedSpacecraft
+
+    assert SimulatedSpacecraft(sc).sun_sensors.spec.albedo == 0.3
+    with pytest.raises(ScenarioError, match=r"sensors\.sun_sensors\.albedo: .*\[0, 1\)"):
+        load_scenario("adcs", settings=["sensors.sun_sensors.albedo=1.3"])

@@ -215,7 +215,7 @@ def test_the_board_root_is_the_simulated_flash(tmp_path, monkeypatch):
     system, as on the board): the boot count lands at the board's /boot_count.bin, and fsFormat's FORMAT
     erases the uplinked /seq files with it."""
     from fprime_lite.tools.api import load
-    from fprime_lite.tools.cli import use_board_as_flash
+    from fprime_lite.tools.runner import use_board_as_flash
     from fprime_lite.tools.runner import run_deployment
 
     topology = pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml"
@@ -239,3 +239,22 @@ def test_the_board_root_is_the_simulated_flash(tmp_path, monkeypatch):
     fs_format.FileSystemFormatted = lambda: formatted.append(True)
     fs_format.FORMAT()
     assert formatted and list(board.iterdir()) == []
+
+
+def test_the_python_api_takes_a_board_root(tmp_path, monkeypatch):
+    """CONF-API-001: ``fprime_lite.tools.run(..., board_root=DIR)`` is ``run --board-root DIR``: the
+    board root is the file services' / and the spacecraft's flash (the boot count lands at its
+    /boot_count.bin, not in the run folder); a folder that does not exist is refused before a run
+    folder is made."""
+    from fprime_lite.tools.api import RunSetupError, run
+
+    topology = pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml"
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(RunSetupError, match="board_root .*nope: not an existing folder"):
+        run(str(topology), duration_s=0.1, out=tmp_path / "refused", board_root=tmp_path / "nope")
+    assert not (tmp_path / "refused").exists()
+    board = tmp_path / "board"
+    board.mkdir()
+    result = run(str(topology), duration_s=0.1, out=tmp_path / "run", board_root=board)
+    assert (board / "boot_count.bin").is_file()
+    assert not list(result.out_dir.rglob("boot_count.bin"))

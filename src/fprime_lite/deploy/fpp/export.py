@@ -28,7 +28,7 @@ from fprime_lite.model.types import (AliasType, ArrayType, BoolType, EnumType, F
                                      StringType, StructType, fw_type)
 
 __all__ = ["FRAMEWORK_DIR", "SVC_COMPONENT_NAMES", "HAND_WRITTEN_NAMES", "HAND_WRITTEN_PORTS", "fpp_name_of",
-           "export_components", "export_topology", "fpp_type_name", "fpp_value", "framework_files"]
+           "export_components", "export_topology", "default_out_dir", "fpp_type_name", "fpp_value", "framework_files"]
 
 #: Where the framework's FPP (config.fpp, ports.fpp, svc.fpp) is installed with the package.
 FRAMEWORK_DIR = pathlib.Path(__file__).with_name("framework")
@@ -48,6 +48,7 @@ SVC_COMPONENT_NAMES = {
     "fprime_lite.svc.text_logger.TextLogger": "Svc.PassiveTextLogger",
     "fprime_lite.svc.time_source.TimeSource": "Svc.PosixTime",
     "fprime_lite.svc.tlm_chan.TlmChan": "Svc.TlmChan",
+    "fprime_lite.svc.tlm_packetizer.TlmPacketizer": "Svc.TlmPacketizer",
     "fprime_lite.svc.version.Version": "Svc.Version",
 }
 
@@ -363,9 +364,33 @@ def export_topology(topology: Any, *, name: str | None = None) -> str:
         lines.append(f"connections {_ident(group)} {{")
         lines += ["  " + c for c in conns]
         lines.append("}")
+    packet_sets = list(getattr(topology, "telemetry_packet_sets", []) or [])
+    for packet_set in packet_sets:
+        lines += _packet_set_lines(packet_set, ref)
     body = "\n".join("  " + line for line in lines)
-    writer.add(f"{deployment}.{deployment}", f"topology {_ident(deployment)} {{\n{body}\n}}")
+    # fpp-python 3.4 takes telemetry packets only in a deployment topology (docs/fpp.md)
+    keyword = "deployment topology" if packet_sets else "topology"
+    writer.add(f"{deployment}.{deployment}", f"{keyword} {_ident(deployment)} {{\n{body}\n}}")
     return writer.text()
+
+
+def _packet_set_lines(packet_set: dict, ref: Any) -> list[str]:
+    """FPP's ``telemetry packets NAME { packet P id N group G { inst.Chan … } … } omit { … }`` of one
+    dictionary-shaped packet set (``deploy/topology_yaml/packets.py``), channels named as ``ref``
+    names their instances."""
+    def channel(name: str) -> str:
+        instance, _, chan = name.rpartition(".")
+        return f"{ref(instance)}.{_ident(chan)}"
+
+    lines = [f"telemetry packets {_ident(packet_set['name'])} {{"]
+    for packet in packet_set["members"]:
+        lines.append(f"  packet {_ident(packet['name'])} id {packet['id']} group {packet['group']} {{")
+        lines += [f"    {channel(name)}" for name in packet["members"]]
+        lines.append("  }")
+    lines.append("} omit {")
+    lines += [f"  {channel(name)}" for name in packet_set["omitted"]]
+    lines.append("}")
+    return lines
 
 
 _HEADER = ("# Written by fprime-lite (python -m fprime_lite.deploy.fpp.export{args}) from {source}.\n"
@@ -389,9 +414,20 @@ def framework_svc_text() -> str:
             + export_components(classes, also=fw))
 
 
-def deployment_texts(topology_path: str | pathlib.Path) -> dict[str, str]:
+def default_out_dir(topology_path: str | pathlib.Path) -> pathlib.Path:
+    """Where the FPP form of a topology YAML goes: ``fpp/`` beside ``topology.yaml``, ``fpp_NAME/``
+    beside a variant ``topology_NAME.yaml`` (``deployments/proves_ref/fpp_packetized/``)."""
+    path = pathlib.Path(topology_path)
+    stem = path.stem
+    return path.parent / ("fpp" if stem == "topology" else f"fpp_{stem.removeprefix('topology_')}")
+
+
+def deployment_texts(topology_path: str | pathlib.Path,
+                     out_dir: str | pathlib.Path | None = None) -> dict[str, str]:
     """The FPP files of the deployment a topology YAML describes: ``components.fpp`` (its own
-    components, types and ports: everything not in the framework's FPP) and ``topology.fpp``."""
+    components, types and ports: everything not in the framework's FPP), ``topology.fpp`` (with its
+    telemetry packet set, if it has one) and ``run.yaml`` (its paths relative to ``out_dir``, default
+    :func:`default_out_dir`)."""
     from fprime_lite.deploy.topology_loader import load_topology
 
     loaded = load_topology(topology_path)
@@ -409,13 +445,14 @@ def deployment_texts(topology_path: str | pathlib.Path) -> dict[str, str]:
     return {"components.fpp": header + export_components(own, skip=HAND_WRITTEN_NAMES | framework_types,
                                                            skip_ports=HAND_WRITTEN_PORTS | framework_ports),
             "topology.fpp": header + export_topology(topology),
-            "run.yaml": run_file_text(topology_path)}
+            "run.yaml": run_file_text(topology_path, out_dir)}
 
 
 def run_file_text(topology_path: str | pathlib.Path, out_dir: str | pathlib.Path | None = None) -> str:
     """The run file (``deploy/fpp/run.py``) of the FPP form of a topology YAML: its resources,
     constructor arguments, rate-group divisors, parameter file, start-up sequence and run settings,
-    paths relative to ``out_dir`` (default ``fpp/`` beside the topology)."""
+    paths relative to ``out_dir`` (default :func:`default_out_dir`), and which TlmPacketizer instance
+    flies its packet set from which send level."""
     import json
     import os
 
@@ -425,7 +462,7 @@ def run_file_text(topology_path: str | pathlib.Path, out_dir: str | pathlib.Path
     from fprime_lite.deploy.topology_yaml.problems import Problems
 
     path = pathlib.Path(topology_path)
-    folder = pathlib.Path(out_dir) if out_dir is not None else path.parent / "fpp"
+    folder = pathlib.Path(out_dir) if out_dir is not None else default_out_dir(path)
     problems = Problems()
     doc = json.loads(json.dumps(read_document(path, problems)))  # plain data, extends merged
     problems.raise_if_any()
@@ -450,6 +487,9 @@ def run_file_text(topology_path: str | pathlib.Path, out_dir: str | pathlib.Path
         groups = doc["rate_groups"]
         run["rate_groups"] = {"base_rate_hz": groups["base_rate_hz"],
                               "groups": {name: {"divisor": g["divisor"]} for name, g in groups["groups"].items()}}
+    packets = doc.get("telemetry_packets")
+    if isinstance(packets, dict):  # the packets themselves are in topology.fpp
+        run["telemetry_packets"] = {key: packets[key] for key in ("name", "instance", "start_level") if key in packets}
     header = (f"# What the FPP form of {path} does not say (docs/fpp.md \"Running an FPP topology\"): written by\n"
               f"# python -m fprime_lite.deploy.fpp.export {path}\n")
     return header + yaml.safe_dump(run, sort_keys=False, width=110)
@@ -478,15 +518,16 @@ def main(argv: list[str] | None = None) -> int:
                                                  "from the Python.")
     parser.add_argument("topology", nargs="?", help="a topology YAML: write its components.fpp and topology.fpp")
     parser.add_argument("--framework", action="store_true", help="write framework/svc.fpp")
-    parser.add_argument("-o", "--out", help="output folder (default: fpp/ beside the topology)")
+    parser.add_argument("-o", "--out", help="output folder (default: fpp/ beside topology.yaml, fpp_NAME/ beside "
+                                            "topology_NAME.yaml)")
     args = parser.parse_args(argv)
     if args.framework:
         (FRAMEWORK_DIR / "svc.fpp").write_text(framework_svc_text())
         print(f"wrote {FRAMEWORK_DIR / 'svc.fpp'}")
     if args.topology:
-        out = pathlib.Path(args.out) if args.out else pathlib.Path(args.topology).parent / "fpp"
+        out = pathlib.Path(args.out) if args.out else default_out_dir(args.topology)
         out.mkdir(parents=True, exist_ok=True)
-        for name, text in deployment_texts(args.topology).items():
+        for name, text in deployment_texts(args.topology, out).items():
             (out / name).write_text(text)
             print(f"wrote {out / name}")
     if not args.framework and not args.topology:

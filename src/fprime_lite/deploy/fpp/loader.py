@@ -111,6 +111,9 @@ class FppModel:
     bindings: dict[str, type] = field(default_factory=dict)
     #: the topology's telemetry packet sets, as the dictionary lists them
     telemetry_packet_sets: list[dict] = field(default_factory=list)
+    #: packet set name, and ``set.packet`` for each of its packets -> where the FPP declares it
+    #: (``file:line:column``)
+    packet_set_locations: dict[str, str] = field(default_factory=dict)
     #: FPP component name -> the FPP file that defines it
     component_files: dict[str, str] = field(default_factory=dict)
 
@@ -463,7 +466,7 @@ def load_fpp(paths: Iterable[str | pathlib.Path], *, imports: Iterable[str | pat
     order = _declaration_order(topology, qualified.rpartition(".")[0])
     result.instances = dict(sorted(result.instances.items(), key=lambda item: order.get(item[0], len(order))))
     result.connections.extend(_connections(topology))
-    result.telemetry_packet_sets = _packet_sets(analysis, symbol, result)
+    result.telemetry_packet_sets, result.packet_set_locations = _packet_sets(analysis, symbol, result)
     return result
 
 
@@ -485,25 +488,28 @@ def _declaration_order(topology: Any, module: str) -> dict[str, int]:
     return order
 
 
-def _packet_sets(analysis: Any, symbol: Any, model: FppModel) -> list[dict]:
-    """The topology's telemetry packet sets: packets (id, group, channels by name) and the omitted
-    channels, in the dictionary's shape."""
+def _packet_sets(analysis: Any, symbol: Any, model: FppModel) -> tuple[list[dict], dict[str, str]]:
+    """The topology's telemetry packet sets, in the dictionary's shape: packets (id, group, channels
+    by name, in the FPP's order) by id and the omitted channels by id, as the YAML's
+    ``telemetry_packets`` gives them; and where each set is declared."""
     dictionary = analysis.dictionary_map.get(symbol)
     if dictionary is None:
-        return []
+        return [], {}
     names = {}
     for instance in model.instances.values():
         component = instance.component
         for channel in component.spec.channels:
             names[component.base_id + channel.local_id] = f"{instance.qualified_name}.{channel.name}"
-    out = []
+    out, where = [], {}
     for name, packet_set in dictionary.tlm_packet_set_map.items():
         members = [{"name": p.name, "id": packet_id, "group": p.group,
                     "members": [names.get(i, str(i)) for i in p.member_id_list]}
                    for packet_id, p in sorted(packet_set.packet_map.items())]
         out.append({"name": name, "members": members,
-                    "omitted": [names.get(i, str(i)) for i in packet_set.omitted_id_set]})
-    return out
+                    "omitted": [names.get(i, str(i)) for i in sorted(packet_set.omitted_id_set)]})
+        where[name] = _loc(packet_set.node)
+        where.update({f"{name}.{p.name}": _loc(p.node) for p in packet_set.packet_map.values()})
+    return out, where
 
 
 def _connections(topology: Any) -> list[tuple[str, str, int, str, str, int]]:

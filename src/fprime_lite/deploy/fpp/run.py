@@ -10,7 +10,13 @@ hold only:
 - ``modules: {M: {instances: {name: {args: {...}}}}}``: constructor arguments of FPP instances;
 - ``rate_groups: {base_rate_hz: N, groups: {M.rateGroup: {divisor: N}}}``: the divisors. The driver,
   the groups' order and their members are the FPP's connections (``CycleOut[i] -> group.CycleIn``,
-  ``group.RateGroupMemberOut[j] -> member``).
+  ``group.RateGroupMemberOut[j] -> member``);
+- ``telemetry_packets: {name: SET, instance: M.inst, start_level: N}``: which of the FPP's
+  ``telemetry packets`` sets flies (needed when it has several), on which ``Svc.TlmPacketizer``
+  instance (needed when there are several) and from which send level (default 0), what F´'s C++
+  topology passes to ``setPacketList``. The packets are the FPP's, handed over as the YAML's
+  ``telemetry_packets`` section (``deploy/topology_yaml/packets.py``) so both forms configure the
+  packetizer alike.
 
 It writes the topology YAML of the FPP's instances (``type: fpp:FILE.fpp:M.Name``, bound once by
 :func:`~fprime_lite.deploy.fpp.loader.load_fpp`, in the FPP's order), connections (those of the
@@ -38,7 +44,9 @@ __all__ = ["RUN_FILE", "topology_yaml", "write_topology_yaml"]
 
 #: the run file looked for beside the FPP files when none is named
 RUN_FILE = "run.yaml"
-_ALLOWED = {"resources", "modules", "rate_groups", "parameter_file", "startup", "time", "run"}
+_ALLOWED = {"resources", "modules", "rate_groups", "parameter_file", "startup", "time", "run", "telemetry_packets"}
+#: what a run file's ``telemetry_packets`` may say (the packets themselves are the FPP's)
+_PACKET_CHOICES = {"name", "instance", "start_level"}
 _FROM_FPP = {"deployment": "the FPP topology's name", "connections": "the FPP topology's connections",
              "patterns": "the FPP topology's pattern connections", "extends": "the FPP files"}
 
@@ -126,6 +134,60 @@ def _rate_groups(path: pathlib.Path, doc: dict, model: FppModel,
     return section, made, problems
 
 
+def _telemetry_packets(path: pathlib.Path, doc: dict, model: FppModel) -> tuple[dict | None, list[str]]:
+    """(the topology YAML's ``telemetry_packets`` section for the FPP's packet set, problems)."""
+    given = doc.get("telemetry_packets")
+    sets = {s["name"]: s for s in model.telemetry_packet_sets}
+    if given is not None and not isinstance(given, dict):
+        return None, [f"{path}: telemetry_packets must be a map {{name: SET, instance: Module.inst, start_level: N}}"]
+    given = given or {}
+    problems = [f"{path}: telemetry_packets.{key}: unknown key — give {', '.join(sorted(_PACKET_CHOICES))} (the "
+                f"packets are the FPP's)" for key in given if key not in _PACKET_CHOICES]
+    if not sets:
+        if given:
+            problems.append(f"{path}: telemetry_packets given, but the FPP topology declares no telemetry packets — "
+                            f"remove it or declare 'telemetry packets' in the topology")
+        return None, problems
+    name = given.get("name")
+    if name is None and len(sets) > 1:
+        return None, problems + [f"{path}: the FPP topology declares {len(sets)} telemetry packet sets "
+                                 f"({', '.join(sets)}) — say which flies: telemetry_packets.name"]
+    name = name if name is not None else next(iter(sets))
+    if name not in sets:
+        return None, problems + [f"{path}: telemetry_packets.name: no packet set {name!r} in the FPP topology "
+                                 f"(it declares {', '.join(sets)})"]
+    where = model.packet_set_locations.get(name, str(path))
+    packetizers = [q for q, inst in model.instances.items()
+                   if callable(getattr(inst.component.cls, "set_packet_list", None))]
+    instance = given.get("instance")
+    if not packetizers:
+        return None, problems + [f"{where}: telemetry packet set {name} has no Svc.TlmPacketizer instance to fly "
+                                 f"it — add one to the topology (F´'s tlmSend) in place of the Svc.TlmChan"]
+    if instance is None and len(packetizers) > 1:
+        return None, problems + [f"{path}: the FPP topology has {len(packetizers)} TlmPacketizer instances "
+                                 f"({', '.join(packetizers)}) — say which flies {name}: telemetry_packets.instance"]
+    instance = instance if instance is not None else packetizers[0]
+    if instance not in packetizers:
+        return None, problems + [f"{path}: telemetry_packets.instance: {instance!r} is not a TlmPacketizer instance "
+                                 f"of the FPP topology (it has {', '.join(packetizers)})"]
+    level = given.get("start_level", 0)
+    if not isinstance(level, int) or isinstance(level, bool) or level < 0:
+        problems.append(f"{path}: telemetry_packets.start_level must be a non-negative integer (a group), "
+                        f"got {level!r}")
+    packet_set = sets[name]
+    for packet in packet_set["members"]:
+        twice = sorted({c for c in packet["members"] if packet["members"].count(c) > 1})
+        if twice:
+            at = model.packet_set_locations.get(f"{name}.{packet['name']}", where)
+            problems.append(f"{at}: packet {packet['name']} lists {', '.join(twice)} more than once — a channel "
+                            f"has one slot in a packet: list it once")
+    section = {"name": name, "instance": instance, "start_level": level,
+               "packets": {p["name"]: {"id": p["id"], "group": p["group"], "channels": list(p["members"])}
+                           for p in packet_set["members"]},
+               "omit": list(packet_set["omitted"])}
+    return section, problems
+
+
 def _patterns(connections: list[tuple[str, str, int, str, str, int]]) -> tuple[dict[str, str], set]:
     """({pattern kind: the instance serving it}, the service ports): each service is the one
     instance whose pattern port (``CdhCore.cmdDisp.compCmdReg`` …) the FPP's connections reach.
@@ -160,6 +222,8 @@ def topology_yaml(model: FppModel, run_file: pathlib.Path) -> dict:
     problems = _check_run_file(run_file, doc, model)
     rate_groups, made, found = _rate_groups(run_file, doc, model, model.connections)
     problems += found
+    packets, found = _telemetry_packets(run_file, doc, model)
+    problems += found
     if problems:
         raise FppError(problems)
     given = {f"{module}.{name}": entry.get("args") or {}
@@ -193,6 +257,8 @@ def topology_yaml(model: FppModel, run_file: pathlib.Path) -> dict:
     out.update({"modules": modules, "connections": {"FPP": connections}, "patterns": patterns})
     if rate_groups is not None:
         out["rate_groups"] = rate_groups
+    if packets is not None:
+        out["telemetry_packets"] = packets
     # the run file's own paths, absolute and normalised (so that messages name them plainly)
     if isinstance(doc.get("parameter_file"), str):
         out["parameter_file"] = _absolute(doc["parameter_file"], run_file.parent)

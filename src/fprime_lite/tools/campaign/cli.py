@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import argparse
+import shlex
 import sys
 
 __all__ = ["main", "build_parser"]
@@ -55,11 +56,26 @@ def _rerun(args) -> int:
     return 0 if row["status"] == "ok" and not differences else 1
 
 
+def resume_command(argv: list[str], out) -> str:
+    """The command that continues an interrupted campaign: the same one, with ``--out`` the folder it
+    wrote into and ``--resume`` (unless it had them, or ``--retry-failed``, already)."""
+    args = list(argv)
+    if not any(a == "--out" or a.startswith("--out=") for a in args):
+        args += ["--out", str(out)]
+    if not any(a in ("--resume", "--retry-failed") for a in args):
+        args.append("--resume")
+    return shlex.join(["fprime-lite", "campaign", *args])
+
+
 def main(argv: list[str] | None = None) -> int:
     from fprime_lite.model.errors import FprimeLiteError, FwAssertionError
     from fprime_lite.tools.campaign.cluster import security_from
     from fprime_lite.tools.campaign.engine import default_out_dir, run_campaign
+    from fprime_lite.tools.campaign.errors import CampaignInterrupted
     from fprime_lite.tools.campaign.spec import load_campaign
+    from fprime_lite.tools.interrupt import exit_status
+
+    argv = sys.argv[1:] if argv is None else list(argv)
 
     parser = build_parser()
     try:
@@ -77,15 +93,20 @@ def main(argv: list[str] | None = None) -> int:
         df = run_campaign(campaign, workers=args.workers, scheduler=args.scheduler, out=out, resume=resume,
                           retry_failed=args.retry_failed, force=args.force, security=security,
                           wait_for_workers_s=args.wait_for_workers,
-                          progress=not args.no_progress and sys.stderr.isatty(), plots=not args.no_plots)
+                          progress=not args.no_progress and sys.stderr.isatty(), plots=not args.no_plots,
+                          interruptible=True)
     except FwAssertionError:
         raise  # a broken framework invariant is a bug: its traceback is what to report
     except FprimeLiteError as exc:
         print(f"fprime-lite campaign: {exc}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        print(f"fprime-lite campaign: interrupted — the finished runs are in {out}; continue with "
-              f"--out {out} --resume", file=sys.stderr)
+    except CampaignInterrupted as stop:
+        print(f"fprime-lite campaign: interrupted by {stop.signal} after {stop.done} of {stop.planned} runs (kept "
+              f"in {stop.out}); continue with: {resume_command(argv, stop.out)}", file=sys.stderr)
+        return exit_status(stop.signal)
+    except KeyboardInterrupt:  # before the runs started (the checks, the probe flight)
+        print("fprime-lite campaign: interrupted before any run was submitted"
+              + (f"; continue with: {resume_command(argv, out)}" if out is not None else ""), file=sys.stderr)
         return 130
     print(f"results in {out}/results.parquet ({len(df)} runs)")
     bad = int((df["status"] != "ok").sum()) if len(df) else 0

@@ -24,13 +24,14 @@ import time
 
 from fprime_lite.model.errors import did_you_mean
 from fprime_lite.osal.folders import file_in_the_way, make_output_folder
-from fprime_lite.tools.campaign.errors import CampaignError, RunSetupError
+from fprime_lite.tools.campaign.errors import CampaignError, CampaignInterrupted, RunSetupError
 from fprime_lite.tools.campaign.folder_lock import campaign_folder_lock
 from fprime_lite.tools.campaign.kinds import RunRequest, metrics, resolve_kind
 from fprime_lite.tools.campaign.manifest import ManifestWriter, read_manifest
 from fprime_lite.tools.campaign.plan import draw_values, plan_runs, unique_points
 from fprime_lite.tools.campaign.results import ResultStore, has_results
 from fprime_lite.tools.campaign.spec import Campaign, load_campaign
+from fprime_lite.tools.interrupt import stop_on_signals
 
 __all__ = ["run_campaign", "preflight", "default_out_dir", "rerun"]
 
@@ -228,7 +229,7 @@ def _check_same_campaign(out: pathlib.Path, campaign: Campaign, store: ResultSto
 def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None = None, out=None,
                  resume: bool = False, retry_failed: bool = False, progress: bool = False, plots: bool = True,
                  console=None, summary: bool = True, client=None, security=None, force: bool = False,
-                 wait_for_workers_s: float = 60.0, heartbeat_s: float = 60.0):
+                 wait_for_workers_s: float = 60.0, heartbeat_s: float = 60.0, interruptible: bool = False):
     """Run a campaign (a file path or a loaded :class:`Campaign`); return its results DataFrame.
 
     ``workers``: size of the embedded cluster (default: one per core); ``scheduler``: the address of
@@ -241,6 +242,12 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
     old (same run ids, same seeds). One process at a time writes into a folder
     (:mod:`~fprime_lite.tools.campaign.folder_lock`). A script may call this at its top level: the
     embedded cluster's workers are subprocesses that do not re-run it.
+
+    ``interruptible``: SIGINT (Ctrl-C) and SIGTERM stop the campaign cleanly — nothing more is
+    submitted, every row that came back is kept (runs still in flight fly again on ``resume``), the
+    manifest says ``status: "interrupted"`` with the rows done and planned, the cluster is shut down —
+    and then :class:`~.errors.CampaignInterrupted` is raised (no plots, no summary). Only the main
+    thread takes signals; elsewhere the flag does nothing.
     """
     if not isinstance(campaign, Campaign):
         campaign = load_campaign(campaign)
@@ -273,12 +280,17 @@ def run_campaign(campaign, *, workers: int | None = None, scheduler: str | None 
         raise CampaignError([f"--out {out}: {cannot_create}"])
     with campaign_folder_lock(out):
         write_plan_cache(cache, campaign, tasks)
-        wall, ran = _run_locked(campaign, tasks, out, dict(workers=workers, scheduler=scheduler, client=client,
-                                                           security=security, wait_for_workers_s=wait_for_workers_s),
-                                retry_failed, progress, console, force, heartbeat_s)
+        received: list[str] = []
+        with stop_on_signals(lambda: None, received, enabled=interruptible):
+            wall, ran = _run_locked(campaign, tasks, out, dict(workers=workers, scheduler=scheduler, client=client,
+                                                               security=security,
+                                                               wait_for_workers_s=wait_for_workers_s),
+                                    retry_failed, progress, console, force, heartbeat_s, received)
     from fprime_lite.tools.campaign.results import read_results
 
     df = read_results(out)  # the table as written: the Python API and results.parquet agree exactly
+    if received:
+        raise CampaignInterrupted(received[0], len(df), len(tasks), out)
     if plots and len(df):
         from fprime_lite.tools.campaign.plots import draw_plots
 
@@ -347,8 +359,19 @@ class _Submitter:
             ac.add(future)
 
 
-def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, force, heartbeat_s):
-    """The runs still to do, into ``out`` (held by this process); ``(wall s, whether any ran)``."""
+def _until_signalled(ac, received: list[str]):
+    """The futures of ``ac`` as they complete, until ``ac`` is empty or a signal's name is in ``received``
+    (checked every 10 ms while nothing is ready: a refill waits at most that long)."""
+    while not received and not ac.is_empty():
+        if ac.has_ready():
+            yield next(ac)
+        else:
+            time.sleep(0.01)
+
+
+def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, force, heartbeat_s, received):
+    """The runs still to do, into ``out`` (held by this process); ``(wall s, whether any ran)``. A
+    signal's name appearing in ``received`` stops the submissions; the rows that came back are kept."""
     from distributed import as_completed
 
     store = ResultStore(out, campaign.varied_keys, campaign.metrics)
@@ -391,20 +414,23 @@ def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, fo
                 workers_info = _collapse_workers(client.run(worker_info))
                 manifest.write(status="running", counts={}, cluster=info, workers=workers_info)
                 pruner.remote_remove = _remote_remover(client, out / "runs")
-                submitter = _Submitter(client, campaign, todo)
+                submitter = _Submitter(client, campaign, [] if received else todo)
                 ac = as_completed()
                 submitter.fill(ac)
                 with progress_bar(len(tasks), len(done), progress, console, log_every_s=heartbeat_s,
                                   running=lambda: sum(map(len, submitter.inflight.values()))) as update:
-                    for future in ac:
+                    for future in _until_signalled(ac, received):
                         chunk = submitter.inflight.pop(future.key)
                         try:
                             rows = future.result()
                         except Exception as exc:  # noqa: BLE001 - a lost worker fails its runs, not the campaign
+                            if received:  # a worker ended by the same Ctrl-C: its runs fly again on --resume
+                                break
                             rows = [_lost_row(t, exc) for t in chunk]
                         future.release()
                         submitter.observe(rows)
-                        submitter.fill(ac)
+                        if not received:
+                            submitter.fill(ac)
                         for row in rows:
                             store.add(row)
                             pruner.update(row)
@@ -414,12 +440,13 @@ def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, fo
                     client.unregister_worker_plugin(WarmUp.name)
                 except Exception:  # noqa: BLE001 - best effort: the plug-in only builds a run
                     pass
-        status = "complete"
+        status = "interrupted" if received else "complete"
     finally:
         df = store.close()
         counts = df["status"].value_counts().to_dict() if len(df) else {}
+        stopped = {"signal": received[0], "done": len(df), "planned": len(tasks)} if received else None
         manifest.write(status=status, counts={str(k): int(v) for k, v in counts.items()}, cluster=info,
-                       workers=workers_info, ran=ran, ended=True)
+                       workers=workers_info, ran=ran, ended=True, interrupted=stopped)
     return time.perf_counter() - t0, bool(todo)
 
 

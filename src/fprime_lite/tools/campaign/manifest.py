@@ -8,6 +8,8 @@
 - ``history``: one entry per session (the first run and each ``--resume``): start, end, status,
   cluster, workers, how many rows it started with and how many failed runs it retried. The top-level
   ``started`` is the first session's, ``ended``, ``status`` and ``cluster`` the latest's.
+- a session ended by SIGINT/SIGTERM: ``status: "interrupted"`` and ``interrupted``: the signal, the
+  rows recorded (``done``) and the runs planned (``planned``).
 """
 
 from __future__ import annotations
@@ -152,9 +154,11 @@ class ManifestWriter:
         self.versions = package_versions()
 
     def write(self, *, status: str, counts: dict, cluster: dict | None = None, workers: list | None = None,
-              ran: int | None = None, ended: bool = False) -> dict:
+              ran: int | None = None, ended: bool = False, interrupted: dict | None = None) -> dict:
         s = self.session
         s["status"] = status
+        if interrupted is not None:
+            s["interrupted"] = interrupted
         if cluster is not None:
             s["cluster"] = cluster
         if workers is not None:
@@ -181,6 +185,7 @@ class ManifestWriter:
             "keep": c.keep.describe(),
             "counts": counts,
             "status": status,
+            **({"interrupted": interrupted} if interrupted is not None else {}),
             "started": history[0]["started"],
             "ended": s["ended"],
             "cluster": s["cluster"],

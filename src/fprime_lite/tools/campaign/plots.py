@@ -100,6 +100,12 @@ def _line(ax, df, x: str, metric: str, others: list[str], percentiles=(5, 95)) -
     ax.legend(fontsize=7)
 
 
+def _cell(v: float) -> str:
+    """A heatmap cell's value: three significant digits, but whole numbers from 1,000 up (2,989 s, not
+    2.99e+03)."""
+    return f"{v:,.0f}" if abs(v) >= 1000 else f"{v:.3g}"
+
+
 def _heatmap(fig, ax, df, x: str, y: str, metric: str, agg: str) -> None:
     """``agg`` of the metric per (x, y) cell; a null counts as never (it ranks last), a cell whose
     aggregate is never is drawn hatched and labelled "never"; with no value at all, no colour bar."""
@@ -125,11 +131,12 @@ def _heatmap(fig, ax, df, x: str, y: str, metric: str, agg: str) -> None:
             if finite[i, j]:
                 r, gr, b, _ = cmap(im.norm(grid[i, j]))
                 dark = 0.299 * r + 0.587 * gr + 0.114 * b < 0.5
-                ax.text(j, i, f"{grid[i, j]:.3g}", ha="center", va="center", fontsize=7, color="w" if dark else "k")
+                ax.text(j, i, _cell(grid[i, j]), ha="center", va="center", fontsize=7, color="w" if dark else "k")
             elif has_runs[i, j]:
                 ax.add_patch(Rectangle((j - 0.5, i - 0.5), 1, 1, facecolor="0.85", edgecolor="0.45", hatch="//",
                                        linewidth=0.5))
-                ax.text(j, i, "never", ha="center", va="center", fontsize=7, color="k", fontweight="bold")
+                ax.text(j, i, "never", ha="center", va="center", fontsize=7, color="k", fontweight="bold",
+                        bbox={"facecolor": "w", "edgecolor": "none", "pad": 1.5})  # not crossed by the hatching
     ax.set_xlim(-0.5, len(xs) - 0.5)
     ax.set_ylim(-0.5, len(ys) - 0.5)
     ax.set_xticks(range(len(xs)), [f"{v:.3g}" for v in xs], rotation=45)

@@ -67,10 +67,10 @@ def test_rerun_flies_one_run_again_with_its_files(write_campaign, tmp_path, caps
     assert f"did you mean {run_id}?" in capsys.readouterr().err
 
 
-def _frame(values):
+def _frame(values, metric="m"):
     rows = []
     for (x, y), v in values.items():
-        rows += [{"x": x, "y": y, "m": v, "status": "ok", "point": 0, "seed_index": s} for s in range(3)]
+        rows += [{"x": x, "y": y, metric: v, "status": "ok", "point": 0, "seed_index": s} for s in range(3)]
     return pd.DataFrame(rows)
 
 
@@ -96,6 +96,32 @@ def test_heatmap_cells_that_never_settled_are_drawn_and_an_all_null_metric_has_n
     _heatmap(fig, ax, _frame({(1, 1): np.nan, (2, 1): np.nan}), "x", "y", "m", "p95")
     assert len(fig.axes) == 1 and "no value in any cell" in ax.get_title()
     assert [t.get_text() for t in ax.texts] == ["never", "never"]
+    plt.close(fig)
+
+
+def test_heatmap_titles_name_metric_and_aggregate_and_labels_stay_legible():
+    """CAMP-151: the title names the aggregate and the metric, with values and with none; a "never" label
+    sits on its own white box (the hatching does not cross it); a value from 1,000 up is written whole
+    (before: "2.99e+03" for 2,989 s)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from fprime_lite.tools.campaign.plots import _heatmap
+
+    fig, ax = plt.subplots()
+    _heatmap(fig, ax, _frame({(1, 1): 2989.4, (1, 2): np.nan, (2, 1): 5.25, (2, 2): 612.0}, "detumble_complete_s"),
+             "x", "y", "detumble_complete_s", "p95")
+    assert ax.get_title().startswith("p95 of detumble_complete_s")
+    labels = {t.get_text(): t for t in ax.texts}
+    assert set(labels) == {"2,989", "never", "5.25", "612"}
+    box = labels["never"].get_bbox_patch()
+    assert box is not None and box.get_facecolor()[:3] == (1.0, 1.0, 1.0)
+    plt.close(fig)
+    fig, ax = plt.subplots()
+    _heatmap(fig, ax, _frame({(1, 1): np.nan, (2, 1): np.nan}, "coil_energy_j"), "x", "y", "coil_energy_j", "median")
+    assert ax.get_title().startswith("median of coil_energy_j: no value")
     plt.close(fig)
 
 

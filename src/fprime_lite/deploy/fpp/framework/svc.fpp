@@ -544,6 +544,32 @@ module Svc {
     telemetry HandlerFaults: U32 id 0x0 update on change
   }
 
+  active component TlmPacketizer {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port TlmRecv: Fw.Tlm
+    guarded input port TlmGet: Fw.TlmGet
+    async input port Run: Svc.Sched priority 0 assert
+    async input port pingIn: Svc.Ping priority 0 assert
+    output port PktSend: Fw.Com
+    output port pingOut: Svc.Ping
+    async command SET_LEVEL(level: U32) opcode 0x0 priority 0 assert
+    async command SEND_PKT($id: U32) opcode 0x1 priority 0 assert
+    event NoChan(Id: U32) severity warning low id 0x0 format "Telemetry ID 0x{x} not packetized"
+    event LevelSet($id: U32) severity activity high id 0x1 format "Telemetry send level to {}"
+    event MaxLevelExceed(level: U32, max: U32) severity warning low id 0x2 format "Requested send level {} higher than max packet level of {}"
+    event PacketSent($id: U32) severity activity low id 0x3 format "Sent packet ID {}"
+    event PacketNotFound($id: U32) severity warning low id 0x4 format "Could not find packet ID {}"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x5 format "Handler {} raised {}" throttle 10
+    telemetry SendLevel: U32 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+  }
+
   passive component Version {
     time get port timeCaller
     command recv port cmdIn

@@ -1,0 +1,1122 @@
+# Written by fprime-lite (python -m fprime_lite.deploy.fpp.export deployments/proves_ref/topology_packetized.yaml) from deployments/proves_ref/topology_packetized.yaml.
+# Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp.py checks it is current.
+
+module Components {
+  enum AngularUnit : I32 {
+    RAD_PER_SEC = 0
+    DEG_PER_SEC = 1
+  } default RAD_PER_SEC
+
+  enum AxisOrientation : I32 {
+    STANDARD = 0
+    ROTATED_90_DEG_CW = 1
+    ROTATED_90_DEG_CCW = 2
+    ROTATED_180_DEG = 3
+  } default STANDARD
+
+  enum CoilShape : I32 {
+    RECTANGULAR = 0
+    CIRCULAR = 1
+  } default RECTANGULAR
+
+  enum DeployResult : I32 {
+    DEPLOY_RESULT_SUCCESS = 0
+    DEPLOY_RESULT_ABORT = 1
+    DEPLOY_RESULT_FAILED = 2
+  } default DEPLOY_RESULT_SUCCESS
+
+  enum DetumbleMode : I32 {
+    DISABLED = 0
+    AUTO = 1
+  } default DISABLED
+
+  enum DetumbleState : I32 {
+    COOLDOWN = 0
+    SENSING_ANGULAR_VELOCITY = 1
+    SENSING_MAGNETIC_FIELD = 2
+    ACTUATING_BDOT = 3
+    ACTUATING_HYSTERESIS = 4
+  } default COOLDOWN
+
+  enum DetumbleStrategy : I32 {
+    IDLE = 0
+    BDOT = 1
+    HYSTERESIS = 2
+  } default IDLE
+
+  enum HysteresisAxis : I32 {
+    X_AXIS = 0
+    Y_AXIS = 1
+    Z_AXIS = 2
+  } default X_AXIS
+
+  enum Lis2mdlSamplingFrequency : I32 {
+    SF_10Hz = 0
+    SF_20Hz = 1
+    SF_50Hz = 2
+    SF_100Hz = 3
+  } default SF_10Hz
+
+  enum Lsm6dsoSamplingFrequency : I32 {
+    SF_12_5Hz = 0
+    SF_26Hz = 1
+    SF_52Hz = 2
+    SF_104Hz = 3
+    SF_208Hz = 4
+    SF_416Hz = 5
+    SF_833Hz = 6
+    SF_1_66kHz = 7
+    SF_3_33kHz = 8
+    SF_6_66kHz = 9
+  } default SF_12_5Hz
+
+  enum MagnetorquerFace : I32 {
+    X_PLUS = 0
+    X_MINUS = 1
+    Y_PLUS = 2
+    Y_MINUS = 3
+    Z_MINUS = 5
+  } default X_PLUS
+
+  enum PacketAuthenticatorStatus : I32 {
+    Authenticated = 0
+    VerifyError = 1
+  } default Authenticated
+
+  enum PacketParserStatus : I32 {
+    Ok = 0
+    SpiParseError = 1
+    SequenceNumberParseError = 2
+    MacParseError = 3
+  } default Ok
+
+  enum SafeModeReason : I32 {
+    NONE = 0
+    LOW_BATTERY = 1
+    SYSTEM_FAULT = 2
+    GROUND_COMMAND = 3
+    EXTERNAL_REQUEST = 4
+    LORA = 5
+    COMMAND_LOSS = 6
+  } default NONE
+
+  enum SystemMode : I32 {
+    SAFE_MODE = 1
+    NORMAL = 2
+  } default SAFE_MODE
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port AccelerationGet
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port AngularVelocityGet
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port AngularVelocityMagnitudeGet(unit: Components.AngularUnit)
+
+  port ForceSafeModeWithReason(reason: Components.SafeModeReason)
+
+  port GetSystemMode -> Components.SystemMode
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port MagneticFieldGet
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port SamplingPeriodGet
+
+  port SetDetumbleMode(mode: Components.DetumbleMode)
+
+  port SystemModeChanged(mode: Components.SystemMode)
+
+  port loadSwitchStateChanged($state: Fw.On) -> Fw.Success
+
+  @ fprime-lite: detumble.proves.mode_manager.ModeManager
+  passive component ModeManager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port run: Svc.Sched
+    sync input port completeSequence: Fw.CmdResponse
+    sync input port forceSafeMode: Components.ForceSafeModeWithReason
+    sync input port getMode: Components.GetSystemMode
+    sync input port prepareForReboot: Fw.Signal
+    sync input port packetRouted: Fw.Signal
+    output port modeChanged: Components.SystemModeChanged
+    output port runSequence: Svc.CmdSeqIn
+    output port loadSwitchTurnOn: [8] Fw.Signal
+    output port loadSwitchTurnOff: [8] Fw.Signal
+    output port voltageGet: Drv.VoltageGet
+    output port stopWatchdog: Fw.Signal
+    sync command FORCE_SAFE_MODE opcode 0x0
+    sync command EXIT_SAFE_MODE opcode 0x1
+    sync command GET_CURRENT_MODE opcode 0x2
+    sync command GET_SAFE_MODE_REASON opcode 0x3
+    event EnteringSafeMode(reason: string size 100) severity warning high id 0x0 format "ENTERING SAFE MODE: {}"
+    event ExitingSafeMode severity activity high id 0x1 format "Exiting safe mode"
+    event ManualSafeModeEntry severity activity high id 0x2 format "Safe mode entry commanded manually"
+    event ExternalFaultDetected severity warning high id 0x3 format "External fault detected - external component forced safe mode"
+    event StatePersistenceFailure(operation: string size 20, status: I32) severity warning low id 0x4 format "State persistence {} failed with status {}"
+    event AutoSafeModeEntry(reason: Components.SafeModeReason, voltage: F32) severity warning high id 0x5 format "AUTO SAFE MODE ENTRY: reason={} voltage={}V"
+    event AutoSafeModeExit(voltage: F32) severity activity high id 0x6 format "AUTO SAFE MODE EXIT: Voltage recovered to {}V"
+    event UnintendedRebootDetected severity warning high id 0x7 format "UNINTENDED REBOOT DETECTED: Entering safe mode"
+    event PreparingForReboot severity activity high id 0x8 format "Preparing for intentional reboot - setting clean shutdown flag"
+    event SafeModeSequenceCompleted severity activity high id 0x9 format "Safe Mode Radio Sequence Completed"
+    event SafeModeSequenceFailed(response: Fw.CmdResponse) severity warning low id 0xA format "Safe Mode Radio Sequence Failed: {}"
+    event SafeModeRequestIgnored severity warning low id 0xB format "SafeMode Request Ignored: Already in Safe Mode"
+    event CurrentModeReading(mode: Components.SystemMode) severity activity low id 0xC format "Current mode: {}"
+    event CurrentSafeModeReasonReading(reason: Components.SafeModeReason) severity activity low id 0xD format "Current safe mode reason: {}"
+    event CommandLossDetected(duration: U32) severity warning high id 0xE format "Command loss detected after {} seconds without contact - entering safe mode"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0xF format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x10 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x11 format "{} parameter file value refused ({}); default loaded"
+    telemetry CurrentMode: U8 id 0x0 update always
+    telemetry SafeModeEntryCount: U32 id 0x1 update always
+    telemetry CurrentSafeModeReason: Components.SafeModeReason id 0x2 update always
+    telemetry HandlerFaults: U32 id 0x3 update on change
+    @ units: V
+    param SafeModeEntryVoltage: F32 default 6.7 id 0x0 set opcode 0x4 save opcode 0x5
+    @ units: V
+    param SafeModeRecoveryVoltage: F32 default 8.0 id 0x1 set opcode 0x6 save opcode 0x7
+    @ units: s
+    param SafeModeDebounceSeconds: U32 default 10 id 0x2 set opcode 0x8 save opcode 0x9
+    param SAFEMODE_SEQUENCE_FILE: string size 200 default "/seq/enter_safe.bin" id 0x3 set opcode 0xA save opcode 0xB
+    @ units: s, µs
+    param COMM_LOSS_TIME: Fw.TimeIntervalValue default { seconds = 259200, useconds = 0 } id 0x4 set opcode 0xC save opcode 0xD
+  }
+
+  @ fprime-lite: detumble.proves.imu_manager.ImuManager
+  passive component ImuManager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port run: Svc.Sched
+    sync input port accelerationGet: Components.AccelerationGet
+    sync input port angularVelocityGet: Components.AngularVelocityGet
+    sync input port angularVelocityMagnitudeGet: Components.AngularVelocityMagnitudeGet
+    sync input port magneticFieldGet: Components.MagneticFieldGet
+    sync input port magneticFieldSamplingPeriodGet: Components.SamplingPeriodGet
+    sync command GET_ACCELERATION opcode 0x8
+    sync command GET_ANGULAR_VELOCITY opcode 0x9
+    sync command GET_MAGNETIC_FIELD opcode 0xA
+    sync command SIM_SET_READ_FAULT(sensor: Sim.SimImuSensor, fault: Sim.SimReadFault) opcode 0xB
+    event Lis2mdlDeviceNotReady severity warning high id 0x0 format "LIS2MDL device not ready" throttle 5
+    event Lsm6dsoDeviceNotReady severity warning high id 0x1 format "LSM6DSO device not ready" throttle 5
+    event AccelerometerSamplingFrequencyNotConfigured severity warning high id 0x2 format "LSM6DSO accelerometer sampling frequency not configured" throttle 5
+    event GyroscopeSamplingFrequencyNotConfigured severity warning high id 0x3 format "LSM6DSO gyroscope sampling frequency not configured" throttle 5
+    event MagnetometerSamplingFrequencyNotConfigured severity warning high id 0x4 format "LIS2MDL magnetomiter sampling frequency not configured" throttle 5
+    event MagnetometerSamplingFrequencyGetFailed severity warning low id 0x5 format "Failed to retrieve LIS2MDL magnetometer sampling frequency" throttle 5
+    event MagnetometerSamplingFrequencyZeroHz severity warning low id 0x6 format "LIS2MDL magnetometer sampling frequency is set to 0 Hz" throttle 5
+    event AccelerationData(x: F64, y: F64, z: F64) severity activity low id 0x7 format "Acceleration: x={} m/s^2, y={} m/s^2, z={} m/s^2"
+    event AngularVelocityData(x: F64, y: F64, z: F64) severity activity low id 0x8 format "Angular Velocity: x={} rad/s, y={} rad/s, z={} rad/s"
+    event MagneticFieldData(x: F64, y: F64, z: F64) severity activity low id 0x9 format "Magnetic Field: x={} gauss, y={} gauss, z={} gauss"
+    event InvalidAngularUnit(unit: I32) severity warning low id 0x80 format "Invalid angular unit {d}; use RAD_PER_SEC or DEG_PER_SEC" throttle 5
+    event SimReadFaultSet(sensor: Sim.SimImuSensor, fault: Sim.SimReadFault) severity activity high id 0x81 format "SIM: {} read fault set to {}"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x82 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x83 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x84 format "{} parameter file value refused ({}); default loaded"
+    telemetry AxisOrientation: Components.AxisOrientation id 0x0 update always
+    telemetry Acceleration: Drv.Acceleration id 0x1 update always
+    telemetry AngularVelocity: Drv.AngularVelocity id 0x2 update always
+    telemetry MagneticField: Drv.MagneticField id 0x3 update always
+    telemetry AccelerometerSamplingFrequency: Components.Lsm6dsoSamplingFrequency id 0x4 update on change
+    telemetry GyroscopeSamplingFrequency: Components.Lsm6dsoSamplingFrequency id 0x5 update on change
+    telemetry MagnetometerSamplingFrequency: Components.Lis2mdlSamplingFrequency id 0x6 update on change
+    telemetry HandlerFaults: U32 id 0x7 update on change
+    param ACCELEROMETER_SAMPLING_FREQUENCY: Components.Lsm6dsoSamplingFrequency default Components.Lsm6dsoSamplingFrequency.SF_12_5Hz id 0x0 set opcode 0x0 save opcode 0x1
+    param GYROSCOPE_SAMPLING_FREQUENCY: Components.Lsm6dsoSamplingFrequency default Components.Lsm6dsoSamplingFrequency.SF_104Hz id 0x1 set opcode 0x2 save opcode 0x3
+    param MAGNETOMETER_SAMPLING_FREQUENCY: Components.Lis2mdlSamplingFrequency default Components.Lis2mdlSamplingFrequency.SF_100Hz id 0x2 set opcode 0x4 save opcode 0x5
+    param AXIS_ORIENTATION: Components.AxisOrientation default Components.AxisOrientation.STANDARD id 0x3 set opcode 0x6 save opcode 0x7
+  }
+
+  @ fprime-lite: detumble.drivers.magnetorquer_driver.MagnetorquerDriver
+  passive component MagnetorquerDriver {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port start: Drv.StartMagnetorquer
+    sync input port stop: Drv.StopMagnetorquer
+    sync input port loadSwitchStateChanged: Components.loadSwitchStateChanged
+    sync command START(val: I8) opcode 0x0
+    sync command STOP opcode 0x1
+    sync command SIM_SET_FAULT(fault: Sim.SimDriverFault) opcode 0x2
+    event DeviceNotReady severity warning low id 0x0 format "Device not ready" throttle 5
+    event DeviceInitialized severity activity low id 0x8 format "DRV2605 device initialized."
+    event InvalidDriveLevel(val: I32) severity warning low id 0x80 format "Invalid drive level {d}; levels are -127..127" throttle 5
+    event SimFaultSet(fault: Sim.SimDriverFault) severity activity high id 0x81 format "SIM: driver fault set to {}"
+    event DriveReadbackMismatch(actual: I32, commanded: I32) severity warning high id 0x82 format "Coil drive read back {} after writing {}" throttle 5
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x83 format "Handler {} raised {}" throttle 10
+    telemetry DriveLevel: I8 id 0x0 update on change
+    telemetry HandlerFaults: U32 id 0x1 update on change
+  }
+
+  @ fprime-lite: detumble.components.detumble_manager.DetumbleManager
+  passive component DetumbleManager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port setMode: Components.SetDetumbleMode
+    sync input port systemModeChanged: Components.SystemModeChanged
+    sync input port run: Svc.Sched
+    output port angularVelocityMagnitudeGet: Components.AngularVelocityMagnitudeGet
+    output port magneticFieldGet: Components.MagneticFieldGet
+    output port magneticFieldSamplingPeriodGet: Components.SamplingPeriodGet
+    output port getSystemMode: Components.GetSystemMode
+    output port xPlusStart: Drv.StartMagnetorquer
+    output port xPlusStop: Drv.StopMagnetorquer
+    output port xMinusStart: Drv.StartMagnetorquer
+    output port xMinusStop: Drv.StopMagnetorquer
+    output port yPlusStart: Drv.StartMagnetorquer
+    output port yPlusStop: Drv.StopMagnetorquer
+    output port yMinusStart: Drv.StartMagnetorquer
+    output port yMinusStop: Drv.StopMagnetorquer
+    output port zMinusStart: Drv.StartMagnetorquer
+    output port zMinusStop: Drv.StopMagnetorquer
+    output port dipoleMomentGet: Drv.DipoleMomentGet
+    sync command SET_MODE(mode: Components.DetumbleMode) opcode 0x0
+    sync command ENABLE_COIL(face: Components.MagnetorquerFace) opcode 0x45
+    sync command ISOLATE_COIL(face: Components.MagnetorquerFace) opcode 0x46
+    event EnableFailedSafeMode severity warning low id 0x0 format "Failed to enable detumbling because system is in SAFE_MODE." throttle 5
+    event DetumbleStarted(angular_velocity_magnitude_deg_sec: F64) severity activity low id 0x1 format "Detumble started. Angular velocity magnitude: {} deg/s" throttle 1
+    event DetumbleCompleted(angular_velocity_magnitude_deg_sec: F64) severity activity low id 0x2 format "Detumble complete. Angular velocity magnitude: {} deg/s" throttle 1
+    event MagneticFieldRetrievalFailed severity warning low id 0x3 format "Failed to retrieve magnetic field." throttle 5
+    event MagneticFieldSamplingPeriodRetrievalFailed severity warning low id 0x4 format "Failed to retrieve magnetic field sampling frequency." throttle 5
+    event AngularVelocityRetrievalFailed severity warning low id 0x5 format "Failed to retrieve angular velocity." throttle 5
+    event DipoleMomentRetrievalFailed severity warning low id 0x28 format "Failed to retrieve dipole moment." throttle 5
+    event CoilStopFailed(face: Components.MagnetorquerFace) severity warning high id 0x29 format "Magnetorquer {} did not stop (stop answered FAILURE): coil isolated until ENABLE_COIL" throttle 10
+    event CoilEnabled(face: Components.MagnetorquerFace) severity activity high id 0x2A format "Magnetorquer {} enabled by command"
+    event CoilIsolatedByCommand(face: Components.MagnetorquerFace) severity activity high id 0x2B format "Magnetorquer {} isolated by command"
+    event BdotMaxThresholdParamSet(value: F64) severity activity high id 0x6 format "BDOT_MAX_THRESHOLD parameter set to {} deg/s."
+    event DeadbandUpperThresholdParamSet(value: F64) severity activity high id 0x8 format "DEADBAND_UPPER_THRESHOLD parameter set to {} deg/s."
+    event DeadbandLowerThresholdParamSet(value: F64) severity activity high id 0x9 format "DEADBAND_LOWER_THRESHOLD parameter set to {} deg/s."
+    event CooldownDurationParamSet(value: Fw.TimeIntervalValue) severity activity high id 0x7 format "COOLDOWN_DURATION parameter set to {}."
+    event TorqueDurationParamSet(value: Fw.TimeIntervalValue) severity activity high id 0xC format "TORQUE_DURATION parameter set to {}."
+    event GainParamSet(value: F64) severity activity high id 0xA format "GAIN parameter set to {}."
+    event HysteresisAxisParamSet(value: Components.HysteresisAxis) severity activity high id 0xB format "HYSTERESIS_AXIS parameter set to {}."
+    event XTurnsParamSet(value: F64) severity activity high id 0x17 format "X_TURNS parameter set to {}."
+    event YTurnsParamSet(value: F64) severity activity high id 0x22 format "Y_TURNS parameter set to {}."
+    event ZTurnsParamSet(value: F64) severity activity high id 0x27 format "Z_TURNS parameter set to {}."
+    event XPlusVoltageParamSet(value: F64) severity activity high id 0x15 format "X_PLUS_VOLTAGE parameter set to {} V."
+    event XPlusResistanceParamSet(value: F64) severity activity high id 0x13 format "X_PLUS_RESISTANCE parameter set to {} Ω."
+    event XPlusLengthParamSet(value: F64) severity activity high id 0x12 format "X_PLUS_LENGTH parameter set to {} m."
+    event XPlusWidthParamSet(value: F64) severity activity high id 0x16 format "X_PLUS_WIDTH parameter set to {} m."
+    event XPlusShapeParamSet(value: Components.CoilShape) severity activity high id 0x14 format "X_PLUS_SHAPE parameter set to {}."
+    event XMinusVoltageParamSet(value: F64) severity activity high id 0x10 format "X_MINUS_VOLTAGE parameter set to {} V."
+    event XMinusResistanceParamSet(value: F64) severity activity high id 0xE format "X_MINUS_RESISTANCE parameter set to {} Ω."
+    event XMinusLengthParamSet(value: F64) severity activity high id 0xD format "X_MINUS_LENGTH parameter set to {} m."
+    event XMinusWidthParamSet(value: F64) severity activity high id 0x11 format "X_MINUS_WIDTH parameter set to {} m."
+    event XMinusShapeParamSet(value: Components.CoilShape) severity activity high id 0xF format "X_MINUS_SHAPE parameter set to {}."
+    event YPlusVoltageParamSet(value: F64) severity activity high id 0x20 format "Y_PLUS_VOLTAGE parameter set to {} V."
+    event YPlusResistanceParamSet(value: F64) severity activity high id 0x1E format "Y_PLUS_RESISTANCE parameter set to {} Ω."
+    event YPlusLengthParamSet(value: F64) severity activity high id 0x1D format "Y_PLUS_LENGTH parameter set to {} m."
+    event YPlusWidthParamSet(value: F64) severity activity high id 0x21 format "Y_PLUS_WIDTH parameter set to {} m."
+    event YPlusShapeParamSet(value: Components.CoilShape) severity activity high id 0x1F format "Y_PLUS_SHAPE parameter set to {}."
+    event YMinusVoltageParamSet(value: F64) severity activity high id 0x1B format "Y_MINUS_VOLTAGE parameter set to {} V."
+    event YMinusResistanceParamSet(value: F64) severity activity high id 0x19 format "Y_MINUS_RESISTANCE parameter set to {} Ω."
+    event YMinusLengthParamSet(value: F64) severity activity high id 0x18 format "Y_MINUS_LENGTH parameter set to {} m."
+    event YMinusWidthParamSet(value: F64) severity activity high id 0x1C format "Y_MINUS_WIDTH parameter set to {} m."
+    event YMinusShapeParamSet(value: Components.CoilShape) severity activity high id 0x1A format "Y_MINUS_SHAPE parameter set to {}."
+    event ZMinusVoltageParamSet(value: F64) severity activity high id 0x26 format "Z_MINUS_VOLTAGE parameter set to {} V."
+    event ZMinusResistanceParamSet(value: F64) severity activity high id 0x24 format "Z_MINUS_RESISTANCE parameter set to {} Ω."
+    event ZMinusDiameterParamSet(value: F64) severity activity high id 0x23 format "Z_MINUS_DIAMETER parameter set to {} m."
+    event ZMinusShapeParamSet(value: Components.CoilShape) severity activity high id 0x25 format "Z_MINUS_SHAPE parameter set to {}."
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x2C format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x2D format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x2E format "{} parameter file value refused ({}); default loaded"
+    telemetry Mode: Components.DetumbleMode id 0x0 update always
+    telemetry State: Components.DetumbleState id 0x1 update always
+    telemetry DetumbleStrategy: Components.DetumbleStrategy id 0x2 update always
+    telemetry AngularVelocityMagnitude: F64 id 0x3 update always format "{.3f}"
+    telemetry TorqueDuration: Fw.TimeIntervalValue id 0xB update always
+    telemetry TimeBetweenMagneticFieldReadings: Fw.TimeIntervalValue id 0xC update always
+    telemetry XPlusTurnsParam: F64 id 0xF update always
+    telemetry XMinusTurnsParam: F64 id 0x15 update always
+    telemetry YPlusTurnsParam: F64 id 0x1C update always
+    telemetry YMinusTurnsParam: F64 id 0x22 update always
+    telemetry ZMinusTurnsParam: F64 id 0x29 update always
+    telemetry IsolatedCoils: U8 id 0x2D update on change
+    telemetry CoilStopFailures: U32 id 0x2E update on change
+    telemetry BdotMaxThresholdParam: F64 id 0x4 update always
+    telemetry DeadbandUpperThresholdParam: F64 id 0x5 update always
+    telemetry DeadbandLowerThresholdParam: F64 id 0x6 update always
+    telemetry CooldownDurationParam: Fw.TimeIntervalValue id 0x9 update always
+    telemetry TorqueDurationParam: Fw.TimeIntervalValue id 0xA update always
+    telemetry GainParam: F64 id 0x7 update always
+    telemetry HysteresisAxisParam: Components.HysteresisAxis id 0x8 update always
+    telemetry XTurnsParam: F64 id 0x19 update always
+    telemetry YTurnsParam: F64 id 0x26 update always
+    telemetry ZTurnsParam: F64 id 0x2C update always
+    telemetry XPlusVoltageParam: F64 id 0xD update always
+    telemetry XPlusResistanceParam: F64 id 0xE update always
+    telemetry XPlusLengthParam: F64 id 0x10 update always
+    telemetry XPlusWidthParam: F64 id 0x11 update always
+    telemetry XPlusShapeParam: Components.CoilShape id 0x12 update always
+    telemetry XMinusVoltageParam: F64 id 0x13 update always
+    telemetry XMinusResistanceParam: F64 id 0x14 update always
+    telemetry XMinusLengthParam: F64 id 0x16 update always
+    telemetry XMinusWidthParam: F64 id 0x17 update always
+    telemetry XMinusShapeParam: Components.CoilShape id 0x18 update always
+    telemetry YPlusVoltageParam: F64 id 0x1A update always
+    telemetry YPlusResistanceParam: F64 id 0x1B update always
+    telemetry YPlusLengthParam: F64 id 0x1D update always
+    telemetry YPlusWidthParam: F64 id 0x1E update always
+    telemetry YPlusShapeParam: Components.CoilShape id 0x1F update always
+    telemetry YMinusVoltageParam: F64 id 0x20 update always
+    telemetry YMinusResistanceParam: F64 id 0x21 update always
+    telemetry YMinusLengthParam: F64 id 0x23 update always
+    telemetry YMinusWidthParam: F64 id 0x24 update always
+    telemetry YMinusShapeParam: Components.CoilShape id 0x25 update always
+    telemetry ZMinusVoltageParam: F64 id 0x27 update always
+    telemetry ZMinusResistanceParam: F64 id 0x28 update always
+    telemetry ZMinusDiameterParam: F64 id 0x2A update always
+    telemetry ZMinusShapeParam: Components.CoilShape id 0x2B update always
+    telemetry HandlerFaults: U32 id 0x2F update on change
+    @ units: deg/s
+    param BDOT_MAX_THRESHOLD: F64 default 720.0 id 0x28 set opcode 0x1 save opcode 0x2
+    @ units: deg/s
+    param DEADBAND_UPPER_THRESHOLD: F64 default 8.0 id 0x29 set opcode 0x3 save opcode 0x4
+    @ units: deg/s
+    param DEADBAND_LOWER_THRESHOLD: F64 default 5.0 id 0x1 set opcode 0x5 save opcode 0x6
+    @ units: s, µs
+    param COOLDOWN_DURATION: Fw.TimeIntervalValue default { seconds = 0, useconds = 20000 } id 0x3 set opcode 0x7 save opcode 0x8
+    @ units: s, µs
+    param TORQUE_DURATION: Fw.TimeIntervalValue default { seconds = 0, useconds = 320000 } id 0x26 set opcode 0x9 save opcode 0xA
+    @ units: A·m²·s/G
+    param GAIN: F64 default 3.0 id 0x27 set opcode 0xB save opcode 0xC
+    param HYSTERESIS_AXIS: Components.HysteresisAxis default Components.HysteresisAxis.X_AXIS id 0x2A set opcode 0xD save opcode 0xE
+    @ units: turns
+    param X_TURNS: F64 default 96.0 id 0xB set opcode 0xF save opcode 0x10
+    @ units: turns
+    param Y_TURNS: F64 default 96.0 id 0x15 set opcode 0x11 save opcode 0x12
+    @ units: turns
+    param Z_TURNS: F64 default 153.0 id 0x1F set opcode 0x13 save opcode 0x14
+    @ units: V
+    param X_PLUS_VOLTAGE: F64 default 3.3 id 0x9 set opcode 0x15 save opcode 0x16
+    @ units: Ω
+    param X_PLUS_RESISTANCE: F64 default 13.0 id 0xA set opcode 0x17 save opcode 0x18
+    @ units: m
+    param X_PLUS_LENGTH: F64 default 0.053 id 0xC set opcode 0x19 save opcode 0x1A
+    @ units: m
+    param X_PLUS_WIDTH: F64 default 0.045 id 0xD set opcode 0x1B save opcode 0x1C
+    param X_PLUS_SHAPE: Components.CoilShape default Components.CoilShape.RECTANGULAR id 0x21 set opcode 0x1D save opcode 0x1E
+    @ units: V
+    param X_MINUS_VOLTAGE: F64 default 3.3 id 0xE set opcode 0x1F save opcode 0x20
+    @ units: Ω
+    param X_MINUS_RESISTANCE: F64 default 13.0 id 0xF set opcode 0x21 save opcode 0x22
+    @ units: m
+    param X_MINUS_LENGTH: F64 default 0.053 id 0x11 set opcode 0x23 save opcode 0x24
+    @ units: m
+    param X_MINUS_WIDTH: F64 default 0.045 id 0x12 set opcode 0x25 save opcode 0x26
+    param X_MINUS_SHAPE: Components.CoilShape default Components.CoilShape.RECTANGULAR id 0x22 set opcode 0x27 save opcode 0x28
+    @ units: V
+    param Y_PLUS_VOLTAGE: F64 default 3.3 id 0x13 set opcode 0x29 save opcode 0x2A
+    @ units: Ω
+    param Y_PLUS_RESISTANCE: F64 default 13.0 id 0x14 set opcode 0x2B save opcode 0x2C
+    @ units: m
+    param Y_PLUS_LENGTH: F64 default 0.053 id 0x16 set opcode 0x2D save opcode 0x2E
+    @ units: m
+    param Y_PLUS_WIDTH: F64 default 0.045 id 0x17 set opcode 0x2F save opcode 0x30
+    param Y_PLUS_SHAPE: Components.CoilShape default Components.CoilShape.RECTANGULAR id 0x23 set opcode 0x31 save opcode 0x32
+    @ units: V
+    param Y_MINUS_VOLTAGE: F64 default 3.3 id 0x18 set opcode 0x33 save opcode 0x34
+    @ units: Ω
+    param Y_MINUS_RESISTANCE: F64 default 13.0 id 0x19 set opcode 0x35 save opcode 0x36
+    @ units: m
+    param Y_MINUS_LENGTH: F64 default 0.053 id 0x1B set opcode 0x37 save opcode 0x38
+    @ units: m
+    param Y_MINUS_WIDTH: F64 default 0.045 id 0x1C set opcode 0x39 save opcode 0x3A
+    param Y_MINUS_SHAPE: Components.CoilShape default Components.CoilShape.RECTANGULAR id 0x24 set opcode 0x3B save opcode 0x3C
+    @ units: V
+    param Z_MINUS_VOLTAGE: F64 default 3.3 id 0x1D set opcode 0x3D save opcode 0x3E
+    @ units: Ω
+    param Z_MINUS_RESISTANCE: F64 default 150.7 id 0x1E set opcode 0x3F save opcode 0x40
+    @ units: m
+    param Z_MINUS_DIAMETER: F64 default 0.05755 id 0x20 set opcode 0x41 save opcode 0x42
+    param Z_MINUS_SHAPE: Components.CoilShape default Components.CoilShape.CIRCULAR id 0x25 set opcode 0x43 save opcode 0x44
+  }
+
+  @ fprime-lite: detumble.proves.load_switch.LoadSwitch
+  passive component LoadSwitch {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port turnOn: Fw.Signal
+    sync input port turnOff: Fw.Signal
+    output port loadSwitchStateChanged: [3] Components.loadSwitchStateChanged
+    sync command TURN_ON opcode 0x0
+    sync command TURN_OFF opcode 0x1
+    sync command GET_IS_ON opcode 0x2
+    event StatusChanged($state: Fw.On) severity activity high id 0x1 format "Load switch state changed to {}"
+    event IsOn($state: Fw.On) severity activity low id 0x2 format "Current load switch state: {}"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x3 format "Handler {} raised {}" throttle 10
+    telemetry IsOn: Fw.On id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+  }
+
+  @ fprime-lite: detumble.proves.watchdog.Watchdog
+  passive component Watchdog {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port run: Svc.Sched
+    sync input port start: Fw.Signal
+    sync input port stop: Fw.Signal
+    output port prepareForReboot: Fw.Signal
+    sync command START_WATCHDOG opcode 0x0
+    sync command STOP_WATCHDOG opcode 0x1
+    event WatchdogStart severity activity high id 0x0 format "Watchdog started"
+    event WatchdogStop severity activity high id 0x1 format "Watchdog stopped"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x2 format "Handler {} raised {}" throttle 10
+    telemetry WatchdogTransitions: U32 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+  }
+
+  @ fprime-lite: detumble.proves.rtc_manager.RtcManager
+  passive component RtcManager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port timeGetPort: Fw.Time
+    output port cancelSequences: [3] Svc.CmdSeqCancel
+    output port alarmTriggered: Drv.AlarmTriggered
+    sync command TIME_SET(t: Drv.TimeData) opcode 0x0
+    sync command ALARM_SET(t: Drv.TimeData) opcode 0x1
+    sync command ALARM_CANCEL(ID: U16) opcode 0x2
+    sync command ALARM_LIST opcode 0x3
+    event DeviceNotReady severity warning high id 0x0 format "RTC not ready" throttle 1
+    event TimeSet(seconds: U32, useconds: U32) severity activity high id 0x3 format "Time set on RTC, previous time: {}.{}"
+    event TimeNotSet(rc: I32) severity warning high id 0x4 format "Time not set on RTC: {}"
+    event YearValidationFailed(year: U32) severity warning high id 0x5 format "Provided year is invalid should be >= 1900: {}"
+    event MonthValidationFailed(month: U32) severity warning high id 0x6 format "Provided month is invalid should be in [1, 12]: {}"
+    event DayValidationFailed(day: U32) severity warning high id 0x7 format "Provided day is invalid should be in [1, 31]: {}"
+    event HourValidationFailed(hour: U32) severity warning high id 0x8 format "Provided hour is invalid should be in [0, 23]: {}"
+    event MinuteValidationFailed(minute: U32) severity warning high id 0x9 format "Provided minute is invalid should be in [0, 59]: {}"
+    event SecondValidationFailed(second: U32) severity warning high id 0xA format "Provided second is invalid should be in [0, 59]: {}"
+    event AlarmSet(ID: U16, t: Drv.TimeData) severity activity high id 0xB format "Alarm set on RTC with ID {}, time: {}"
+    event AlarmNotSet(t: Drv.TimeData, rc: I32) severity warning high id 0xC format "Alarm not set on RTC for time: {}, return code: {}"
+    event AlarmTriggered(ID: U16) severity activity high id 0xD format "Alarm with ID {} triggered"
+    event AlarmCanceled(ID: U16) severity activity high id 0xE format "Alarm with ID {} canceled"
+    event AlarmNotCanceled(ID: U16, rc: I32) severity warning high id 0xF format "Alarm with ID {} not canceled, return code: {}"
+    event AlarmHardwareError(ID: U16, rc: I32) severity warning high id 0x10 format "Alarm with ID {} had a hardware error, return code: {}"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x11 format "Handler {} raised {}" throttle 10
+    telemetry HandlerFaults: U32 id 0x0 update on change
+  }
+
+  @ fprime-lite: detumble.proves.reset_manager.ResetManager
+  passive component ResetManager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port coldReset: Fw.Signal
+    sync input port warmReset: Fw.Signal
+    output port prepareForReboot: Fw.Signal
+    sync command COLD_RESET opcode 0x0
+    sync command WARM_RESET opcode 0x1
+    event INITIATE_COLD_RESET severity activity high id 0x0 format "Initiating cold reset"
+    event INITIATE_WARM_RESET severity activity high id 0x1 format "Initiating warm reset"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x2 format "Handler {} raised {}" throttle 10
+    telemetry HandlerFaults: U32 id 0x0 update on change
+  }
+
+  @ fprime-lite: detumble.proves.startup_manager.StartupManager
+  passive component StartupManager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port run: Svc.Sched
+    sync input port completeSequence: Fw.CmdResponse
+    sync input port sequenceStarted: Svc.CmdSeqIn
+    output port runSequence: Svc.CmdSeqIn
+    sync command WAIT_FOR_QUIESCENCE opcode 0x0
+    sync command GET_BOOT_COUNT opcode 0x1
+    event CurrentBootCount(i: I64) severity activity low id 0x0 format "Current boot count: {}"
+    event BootCountUpdateFailure severity warning low id 0x1 format "Failed to update boot count file"
+    event QuiescenceFileInitFailure severity warning low id 0x2 format "Failed to initialize quiescence start time file"
+    event StartupSequenceFinished severity activity low id 0x3 format "Start-up sequence finished successfully"
+    event StartupSequenceFailed(response: Fw.CmdResponse) severity warning low id 0x4 format "Start-up sequence failed with response code {}"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x5 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x6 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x7 format "{} parameter file value refused ({}); default loaded"
+    telemetry BootCount: U64 id 0x0 update always
+    telemetry QuiescenceEndTime: Fw.TimeValue id 0x1 update on change
+    telemetry HandlerFaults: U32 id 0x2 update on change
+    param ARMED: bool default true id 0x0 set opcode 0x2 save opcode 0x3
+    @ units: s, µs
+    param QUIESCENCE_TIME: Fw.TimeIntervalValue default { seconds = 2700, useconds = 0 } id 0x1 set opcode 0x4 save opcode 0x5
+    param QUIESCENCE_START_FILE: string size 200 default "/quiescence_start.bin" id 0x2 set opcode 0x6 save opcode 0x7
+    param STARTUP_SEQUENCE_FILE: string size 200 default "/seq/startup.bin" id 0x3 set opcode 0x8 save opcode 0x9
+    param BOOT_COUNT_FILE: string size 200 default "/boot_count.bin" id 0x4 set opcode 0xA save opcode 0xB
+  }
+
+  @ fprime-lite: detumble.proves.power_monitor.PowerMonitor
+  passive component PowerMonitor {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port run: Svc.Sched
+    output port sysVoltageGet: Drv.VoltageGet
+    output port sysCurrentGet: Drv.CurrentGet
+    output port sysPowerGet: Drv.PowerGet
+    output port solVoltageGet: Drv.VoltageGet
+    output port solCurrentGet: Drv.CurrentGet
+    output port solPowerGet: Drv.PowerGet
+    sync command RESET_TOTAL_POWER opcode 0x0
+    sync command RESET_TOTAL_GENERATION opcode 0x1
+    sync command GET_TOTAL_POWER opcode 0x2
+    event TotalPowerReset severity activity low id 0x0 format "Total power consumption reset to 0 mWh"
+    event TotalGenerationReset severity activity low id 0x1 format "Total power generation reset to 0 mWh"
+    event TotalPowerConsumptionReading(power: F32) severity activity low id 0x2 format "Total power consumption: {} mWh"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x3 format "Handler {} raised {}" throttle 10
+    telemetry TotalPowerConsumption: F32 id 0x0 update always
+    telemetry TotalPowerGenerated: F32 id 0x1 update always
+    telemetry HandlerFaults: U32 id 0x2 update on change
+  }
+
+  @ fprime-lite: detumble.proves.ina219_manager.Ina219Manager
+  passive component Ina219Manager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port voltageGet: Drv.VoltageGet
+    sync input port currentGet: Drv.CurrentGet
+    sync input port powerGet: Drv.PowerGet
+    sync command GetVoltage opcode 0x0
+    sync command GetCurrent opcode 0x1
+    sync command GetPower opcode 0x2
+    sync command SIM_SET_NOT_READY(not_ready: bool) opcode 0x3
+    event DeviceNotReady severity warning high id 0x0 format "INA219 device not ready" throttle 5
+    event VoltageReading(voltage: F64) severity activity low id 0x1 format "Voltage: {} V"
+    event CurrentReading(current: F64) severity activity low id 0x2 format "Current: {} A"
+    event PowerReading(power: F64) severity activity low id 0x3 format "Power: {} W"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x4 format "Handler {} raised {}" throttle 10
+    telemetry Voltage: F64 id 0x0 update always
+    telemetry Current: F64 id 0x1 update always
+    telemetry Power: F64 id 0x2 update always
+    telemetry HandlerFaults: U32 id 0x3 update on change
+  }
+
+  @ fprime-lite: detumble.proves.burnwire.Burnwire
+  passive component Burnwire {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port burnStart: Fw.Signal
+    sync input port burnStop: Fw.Signal
+    sync input port schedIn: Svc.Sched
+    sync command START_BURNWIRE opcode 0x0
+    sync command STOP_BURNWIRE opcode 0x1
+    event SetBurnwireState(burnwire_state: Fw.On) severity activity high id 0x0 format "Burnwire State: {}"
+    event SafetyTimerStatus(burnwire_state: Fw.On) severity activity high id 0x1 format "Safety Timer State: {} "
+    event SafetyTimerState(burnwire_status: U32) severity activity high id 0x2 format "Safety Timer Will Burn For: {} Seconds"
+    event BurnwireEndCount(end_count: U32) severity activity low id 0x3 format "Burnwire Burned for {} Seconds"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x4 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x5 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x6 format "{} parameter file value refused ({}); default loaded"
+    telemetry HandlerFaults: U32 id 0x0 update on change
+    @ units: s
+    param SAFETY_TIMER: U32 default 10 id 0x0 set opcode 0x2 save opcode 0x3
+  }
+
+  @ fprime-lite: detumble.proves.antenna_deployer.AntennaDeployer
+  passive component AntennaDeployer {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port schedIn: Svc.Sched
+    output port burnStart: Fw.Signal
+    output port burnStop: Fw.Signal
+    sync command DEPLOY opcode 0x0
+    sync command DEPLOY_STOP opcode 0x1
+    sync command RESET_DEPLOYMENT_STATE opcode 0x2
+    sync command SET_DEPLOYMENT_STATE(deployed: bool) opcode 0x3
+    event DeployAttempt(attempt: U32) severity activity high id 0x0 format "Antenna deployment attempt {} started"
+    event DeploySuccess(attempt: U32) severity activity high id 0x1 format "Antenna deployment succeeded on attempt {}"
+    event DeployFinish(result: Components.DeployResult, attempts: U32) severity activity high id 0x2 format "Antenna deployment finished with result {} after {} attempts"
+    event AntennaBurnSignalCount(ticks: U32) severity activity low id 0x3 format "Burn signal active for {} scheduler ticks"
+    event DeploymentAlreadyComplete severity activity high id 0x4 format "Antenna deployment skipped - antenna already deployed"
+    event FileOperationError(filePath: string size 200, operation: string size 40) severity warning high id 0x5 format "File operation failed: {} on file {}"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x6 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x7 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x8 format "{} parameter file value refused ({}); default loaded"
+    telemetry DeployAttemptCount: U32 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+    @ units: s
+    param RETRY_DELAY_SEC: U32 default 30 id 0x0 set opcode 0x4 save opcode 0x5
+    param MAX_DEPLOY_ATTEMPTS: U32 default 3 id 0x1 set opcode 0x6 save opcode 0x7
+    @ units: s
+    param BURN_DURATION_SEC: U32 default 8 id 0x2 set opcode 0x8 save opcode 0x9
+  }
+
+  @ fprime-lite: detumble.proves.com_delay.ComDelay
+  passive component ComDelay {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port run: Svc.Sched
+    sync input port comStatusIn: Fw.SuccessCondition
+    output port comStatusOut: Fw.SuccessCondition
+    event DividerSet(divider: U16) severity activity high id 0x0 format "Set divider to: {}"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x1 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x2 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x3 format "{} parameter file value refused ({}); default loaded"
+    telemetry HandlerFaults: U32 id 0x0 update on change
+    @ units: ticks
+    param DIVIDER: U16 default 299 id 0x0 set opcode 0x0 save opcode 0x1
+  }
+
+  @ fprime-lite: detumble.proves.lora.LoRa
+  passive component LoRa {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port enableTransmit: Fw.Signal
+    sync input port disableTransmit: Fw.Signal
+    sync input port comStatusIn: Fw.SuccessCondition
+    output port comStatusOut: Fw.SuccessCondition
+    sync command CONTINUOUS_WAVE(seconds: U16) opcode 0x8
+    sync command TRANSMIT(enabled: Zephyr.TransmitState) opcode 0x9
+    event ConfigurationFailed(mode: Zephyr.LoRaMode) severity warning high id 0x0 format "Failed to configure LoRa into mode: {}" throttle 2
+    event SendFailed(status: I32) severity warning high id 0x1 format "Failed to send LoRa message: {}" throttle 2
+    event AllocationFailed(allocation_size: U64) severity warning high id 0x2 format "Failed to allocate buffer of: {} bytes" throttle 2
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x3 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x4 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x5 format "{} parameter file value refused ({}); default loaded"
+    telemetry BytesReceived: U64 id 0x0 update on change
+    telemetry BytesSent: U64 id 0x1 update on change
+    telemetry LastRssi: I16 id 0x2 update on change
+    telemetry LastSnr: I8 id 0x3 update on change
+    telemetry HandlerFaults: U32 id 0x4 update on change
+    param CODING_RATE: Zephyr.LoRaCodingRate default Zephyr.LoRaCodingRate.CR_4_5 id 0x0 set opcode 0x0 save opcode 0x1
+    param DATA_RATE: Zephyr.LoRaDataRate default Zephyr.LoRaDataRate.SF_8 id 0x1 set opcode 0x2 save opcode 0x3
+    param BANDWIDTH_TX: Zephyr.LoRaBandwidth default Zephyr.LoRaBandwidth.BW_125_KHZ id 0x2 set opcode 0x4 save opcode 0x5
+    param BANDWIDTH_RX: Zephyr.LoRaBandwidth default Zephyr.LoRaBandwidth.BW_125_KHZ id 0x3 set opcode 0x6 save opcode 0x7
+  }
+
+  @ fprime-lite: detumble.proves.fs_format.FsFormat
+  passive component FsFormat {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync command FORMAT opcode 0x0
+    event FileSystemFormatted severity activity high id 0x0 format "File System formatted successfully"
+    event FileSystemFormatFailed severity warning high id 0x1 format "File System format failed"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x2 format "Handler {} raised {}" throttle 10
+    telemetry HandlerFaults: U32 id 0x0 update on change
+  }
+
+  @ fprime-lite: detumble.proves.pico_temp_manager.PicoTempManager
+  passive component PicoTempManager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port picoTemperatureGet: Drv.picoTemperatureGet
+    sync command GetPicoTemperature opcode 0x0
+    event DeviceNotReady severity warning low id 0x0 format "Device not ready" throttle 5
+    event SensorSampleFetchFailed(ret: I32) severity warning low id 0x1 format "Sensor fetch failed with return code: {}" throttle 5
+    event SensorChannelGetFailed(ret: I32) severity warning low id 0x2 format "Sensor channel get failed with return code: {}" throttle 5
+    event PicoTemperature(temperature: F64) severity activity high id 0x3 format "Pico Temperature: {}°C"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x4 format "Handler {} raised {}" throttle 10
+    telemetry PicoTemperature: F64 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+  }
+
+  @ fprime-lite: detumble.proves.tmp112_manager.Tmp112Manager
+  passive component Tmp112Manager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port temperatureGet: Drv.temperatureGet
+    sync input port loadSwitchStateChanged: Components.loadSwitchStateChanged
+    sync command GetTemperature opcode 0x0
+    event DeviceNotReady severity warning low id 0x0 format "Device not ready" throttle 5
+    event DeviceInitFailed(ret: I32) severity warning low id 0x1 format "Initialization failed with return code: {}" throttle 5
+    event DeviceNil severity warning low id 0x2 format "Device is nil" throttle 5
+    event DeviceStateNil severity warning low id 0x3 format "Device state is nil" throttle 5
+    event TcaUnhealthy severity warning low id 0x4 format "TCA device is unhealthy" throttle 5
+    event MuxUnhealthy severity warning low id 0x5 format "MUX device is unhealthy" throttle 5
+    event SensorSampleFetchFailed(ret: I32) severity warning low id 0x6 format "Sensor fetch failed with return code: {}" throttle 5
+    event SensorChannelGetFailed(ret: I32) severity warning low id 0x7 format "Sensor channel get failed with return code: {}" throttle 5
+    event Temperature(temperature: F64) severity activity high id 0x8 format "Temperature: {}°C"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x9 format "Handler {} raised {}" throttle 10
+    telemetry Temperature: F64 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+  }
+
+  @ fprime-lite: detumble.proves.veml6031_manager.Veml6031Manager
+  passive component Veml6031Manager {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port visibleLightGet: Drv.lightGet
+    sync input port loadSwitchStateChanged: Components.loadSwitchStateChanged
+    sync command GetVisibleLight opcode 0x6
+    event DeviceNotReady severity warning low id 0x0 format "Device not ready" throttle 5
+    event DeviceInitFailed(ret: I32) severity warning low id 0x1 format "Initialization failed with return code: {}" throttle 5
+    event DeviceNil severity warning low id 0x2 format "Device is nil" throttle 5
+    event DeviceStateNil severity warning low id 0x3 format "Device state is nil" throttle 5
+    event TcaUnhealthy severity warning low id 0x4 format "TCA device is unhealthy" throttle 5
+    event MuxUnhealthy severity warning low id 0x5 format "MUX device is unhealthy" throttle 5
+    event SensorSampleFetchFailed(ret: I32) severity warning low id 0x6 format "Sensor fetch failed with return code: {}" throttle 5
+    event SensorChannelGetFailed(ret: I32) severity warning low id 0x7 format "Sensor channel get failed with return code: {}" throttle 5
+    event InvalidGainParam(gain: U8) severity warning low id 0x8 format "Invalid gain parameter: {}" throttle 5
+    event InvalidIntegrationTimeParam(it: U8) severity warning low id 0x9 format "Invalid integration time parameter: {}" throttle 5
+    event InvalidDiv4Param(div4: U8) severity warning low id 0xA format "Invalid effective photodiode size parameter: {}" throttle 5
+    event SensorAttrSetFailed(attr: string size 40, val: U8, ret: I32) severity warning low id 0xB format "Sensor attribute {}={} set failed with return code: {}" throttle 5
+    event VisibleLight(lux: F32) severity activity high id 0xC format "Visible light: {} lux"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0xD format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0xE format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0xF format "{} parameter file value refused ({}); default loaded"
+    telemetry VisibleLight: F32 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+    param GAIN: Drv.GAIN default Drv.GAIN.VEML6031_GAIN_0_5 id 0x0 set opcode 0x0 save opcode 0x1
+    param INTEGRATION_TIME: Drv.IT default Drv.IT.VEML6031_IT_25 id 0x1 set opcode 0x2 save opcode 0x3
+    param EFFECTIVE_PHOTODIODE_SIZE: Drv.DIV4 default Drv.DIV4.VEML6031_SIZE_1_4 id 0x2 set opcode 0x4 save opcode 0x5
+  }
+
+  @ fprime-lite: detumble.proves.camera_handler.CameraHandler
+  passive component CameraHandler {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    sync input port schedIn: Svc.Sched
+    sync command TAKE_IMAGE opcode 0x0
+    sync command PING opcode 0x1
+    sync command SEND_COMMAND(cmd: string size 40) opcode 0x2
+    event CommandError(cmd: string size 40) severity warning high id 0x0 format "Failed to send {} command"
+    event CommandSuccess(cmd: string size 40) severity activity high id 0x1 format "Command {} sent successfully"
+    event ImageTransferStarted($size: U32) severity activity high id 0x2 format "Image transfer started, expecting {} bytes"
+    event ImageTransferProgress(percent: U8, received: U32, expected: U32) severity activity high id 0x3 format "Image transfer {}% complete ({}/{} bytes)"
+    event ImageTransferComplete(path: string size 100, $size: U32) severity activity high id 0x4 format "Image saved: {} ({} bytes)"
+    event FailedCommandCurrentlyReceiving severity warning low id 0x5 format "Cannot send command while image is receiving!"
+    event PongReceived severity activity high id 0x6 format "Ping Received"
+    event BadPongReceived severity warning high id 0x7 format "Ping Received when we did not expect it!"
+    event FileWriteError severity warning high id 0x8 format "File write error occurred during image transfer"
+    event FileReadError severity warning high id 0x9 format "File read error occurred during image transfer"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0xA format "Handler {} raised {}" throttle 10
+    telemetry BytesReceived: U32 id 0x0 update always
+    telemetry ExpectedSize: U32 id 0x1 update always
+    telemetry IsReceiving: bool id 0x2 update always
+    telemetry FileOpen: bool id 0x3 update always
+    telemetry FileErrorCount: U32 id 0x4 update always
+    telemetry ImagesSaved: U32 id 0x5 update always
+    telemetry HandlerFaults: U32 id 0x6 update on change
+  }
+
+  @ fprime-lite: detumble.proves.thermal_manager.ThermalManager
+  passive component ThermalManager {
+    enum TempSensorType : I32 {
+      FACE = 0
+      BATTERY = 1
+    } default FACE
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync input port run: Svc.Sched
+    output port faceTempGet: [5] Drv.temperatureGet
+    output port battCellTempGet: [4] Drv.temperatureGet
+    output port picoTempGet: Drv.picoTemperatureGet
+    event TemperatureBelowThreshold(sensorType: Components.ThermalManager.TempSensorType, sensorId: U32, temperature: F64) severity warning low id 0x0 format "{} temperature below threshold: Sensor {} at {} °C" throttle 5
+    event TemperatureAboveThreshold(sensorType: Components.ThermalManager.TempSensorType, sensorId: U32, temperature: F64) severity warning low id 0x1 format "{} temperature above threshold: Sensor {} at {} °C" throttle 5
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x2 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x3 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x4 format "{} parameter file value refused ({}); default loaded"
+    telemetry HandlerFaults: U32 id 0x0 update on change
+    @ units: C
+    param FACE_TEMP_LOWER_THRESHOLD: F64 default -40.0 id 0x0 set opcode 0x0 save opcode 0x1
+    @ units: C
+    param FACE_TEMP_UPPER_THRESHOLD: F64 default 60.0 id 0x1 set opcode 0x2 save opcode 0x3
+    @ units: C
+    param BATT_CELL_TEMP_LOWER_THRESHOLD: F64 default 5.0 id 0x2 set opcode 0x4 save opcode 0x5
+    @ units: C
+    param BATT_CELL_TEMP_UPPER_THRESHOLD: F64 default 60.0 id 0x3 set opcode 0x6 save opcode 0x7
+  }
+
+  @ fprime-lite: detumble.proves.tc_security_deframer.TcSecurityDeframer
+  passive component TcSecurityDeframer {
+    time get port timeCaller
+    command recv port cmdIn
+    command reg port cmdRegOut
+    command resp port cmdResponseOut
+    event port logOut
+    text event port logTextOut
+    telemetry port tlmOut
+    param get port prmGetOut
+    param set port prmSetOut
+    sync command GET_SEQ_NUM opcode 0x0
+    sync command SET_SEQ_NUM(seq_num: U32) opcode 0x1
+    event AuthenticationFailed(auth_status: Components.PacketAuthenticatorStatus, rc: I32) severity warning high id 0x1 format "Authentication failed: Status={}, PSA Return Code={}" throttle 2
+    event SequenceNumberInvalid(packet_seq_num: U32, seq_num: U32, window: U32) severity warning high id 0x2 format "Sequence number less than last accepted or out of window: Received={}, LastAccepted={}, Window={}" throttle 2
+    event ParsingFailed(parse_status: Components.PacketParserStatus) severity warning high id 0x3 format "Parsing failed: {}" throttle 2
+    event SpiInvalid(packet_spi: U32) severity warning high id 0x4 format "SPI invalid: Received={}" throttle 2
+    event SequenceNumberGet(seq_num: U32) severity activity high id 0x6 format "Sequence number is {}"
+    event SequenceNumberSet(seq_num: U32) severity activity high id 0x7 format "Sequence number set to {}"
+    event SequenceNumberWriteFailed(status: Os.FileStatus) severity warning high id 0x8 format "Failed to write sequence number, error: {}" throttle 2
+    event SequenceNumberReadFailed(status: Os.FileStatus) severity warning high id 0xE format "Failed to read sequence number, error: {}" throttle 2
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0xF format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x10 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x11 format "{} parameter file value refused ({}); default loaded"
+    telemetry CurrentSequenceNumber: U32 id 0x0 update always
+    telemetry HandlerFaults: U32 id 0x1 update on change
+    param SEQ_NUM_WINDOW: U32 default 50000 id 0x0 set opcode 0x2 save opcode 0x3
+    param SEQ_NUM_FILE_PATH: string size 200 default "//sequence_number.txt" id 0x1 set opcode 0x4 save opcode 0x5
+  }
+}
+
+module Drv {
+  struct Acceleration {
+    x: F64
+    y: F64
+    z: F64
+  } default { x = 0.0, y = 0.0, z = 0.0 }
+
+  struct AngularVelocity {
+    x: F64
+    y: F64
+    z: F64
+  } default { x = 0.0, y = 0.0, z = 0.0 }
+
+  enum DIV4 : U8 {
+    VEML6031_SIZE_4_4 = 0
+    VEML6031_SIZE_1_4 = 1
+  } default VEML6031_SIZE_4_4
+
+  enum GAIN : U8 {
+    VEML6031_GAIN_1 = 0
+    VEML6031_GAIN_2 = 1
+    VEML6031_GAIN_0_66 = 2
+    VEML6031_GAIN_0_5 = 3
+  } default VEML6031_GAIN_1
+
+  enum IT : U8 {
+    VEML6031_IT_3_125 = 0
+    VEML6031_IT_6_25 = 1
+    VEML6031_IT_12_5 = 2
+    VEML6031_IT_25 = 3
+    VEML6031_IT_50 = 4
+    VEML6031_IT_100 = 5
+    VEML6031_IT_200 = 6
+    VEML6031_IT_400 = 7
+  } default VEML6031_IT_3_125
+
+  struct MagneticField {
+    x: F64
+    y: F64
+    z: F64
+    timestamp: Fw.TimeValue
+  } default { x = 0.0, y = 0.0, z = 0.0, timestamp = { timeBase = TimeBase.TB_NONE, timeContext = 0, seconds = 0, useconds = 0 } }
+
+  struct TimeData {
+    Year: U32
+    Month: U32
+    Day: U32
+    Hour: U32
+    Minute: U32
+    Second: U32
+  } default { Year = 0, Month = 0, Day = 0, Hour = 0, Minute = 0, Second = 0 }
+
+  port AlarmTriggered
+
+  port CurrentGet -> F64
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port DipoleMomentGet
+
+  port PowerGet -> F64
+
+  port StartMagnetorquer(val: I8) -> Fw.Success
+
+  port StopMagnetorquer -> Fw.Success
+
+  port VoltageGet -> F64
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port lightGet
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port picoTemperatureGet
+
+  @ fprime-lite: not F´ types in Python, left out here: the return value (Result)
+  port temperatureGet
+}
+
+module Fw {
+  port SuccessCondition(condition: Fw.Success)
+}
+
+module Os {
+  enum FileStatus : I32 {
+    OP_OK = 0
+    DOESNT_EXIST = 1
+    NO_SPACE = 2
+    NO_PERMISSION = 3
+    BAD_SIZE = 4
+    NOT_OPENED = 5
+    FILE_EXISTS = 6
+    NOT_SUPPORTED = 7
+    INVALID_MODE = 8
+    INVALID_ARGUMENT = 9
+    NO_MORE_RESOURCES = 10
+    OTHER_ERROR = 11
+  } default OP_OK
+}
+
+module Sim {
+  enum SimDriverFault : U8 {
+    NONE = 0
+    NOT_READY = 1
+    STUCK = 2
+    STOP_FAILS = 3
+    LATCHED = 4
+  } default NONE
+
+  enum SimImuSensor : U8 {
+    ALL = 0
+    MAGNETOMETER = 1
+    GYROSCOPE = 2
+    ACCELEROMETER = 3
+    MAGNETOMETER_PERIOD = 4
+  } default ALL
+
+  enum SimReadFault : U8 {
+    NONE = 0
+    FAIL = 1
+    NAN = 2
+    INF = 3
+  } default NONE
+}
+
+module Zephyr {
+  enum LoRaBandwidth : U16 {
+    BW_125_KHZ = 125
+    BW_250_KHZ = 250
+    BW_500_KHZ = 500
+  } default BW_125_KHZ
+
+  enum LoRaCodingRate : U8 {
+    CR_4_5 = 1
+    CR_4_6 = 2
+    CR_4_7 = 3
+    CR_4_8 = 4
+  } default CR_4_5
+
+  enum LoRaDataRate : U8 {
+    SF_7 = 7
+    SF_8 = 8
+    SF_9 = 9
+    SF_10 = 10
+  } default SF_7
+
+  enum LoRaMode : U8 {
+    Transmit = 0
+    Receive = 1
+  } default Transmit
+
+  enum TransmitState : U8 {
+    ENABLED = 0
+    DISABLED = 1
+    DISABLING = 2
+  } default ENABLED
+}
