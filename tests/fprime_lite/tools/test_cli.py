@@ -132,7 +132,7 @@ def test_set_changes_the_topology_s_scenario_and_a_bad_key_is_one_problem(tmp_pa
     # the --set's own mistake, in one line: not "1 problem in the topology … check its args" (issue 28)
     assert err.strip() == ("fprime-lite run: --set 'sensors.magnetometr.noise_std_gauss=0': default.yaml has no "
                            "key 'magnetometr' at sensors (keys there: magnetometer, gyro, accelerometer); "
-                           "keys that can be added there: star_tracker")
+                           "keys that can be added there: star_tracker, sun_sensors")
 
 
 def test_bad_yaml_is_reported_with_its_line(tmp_path, capsys):
