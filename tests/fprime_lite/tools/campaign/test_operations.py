@@ -92,7 +92,12 @@ def test_a_scheduler_without_workers_is_reported_not_waited_on_forever(lone_sche
     err = capsys.readouterr().err
     assert f"the scheduler {lone_scheduler} has no workers; waiting up to 3 s" in err
     assert f"--scheduler {lone_scheduler} has no workers after 3 s — join some with 'dask worker" in err
-    assert json.loads((tmp_path / "o" / "manifest.json").read_text())["status"] == "interrupted"
+    manifest = json.loads((tmp_path / "o" / "manifest.json").read_text())
+    # an error is a failure, with its message; "interrupted" is for SIGINT/SIGTERM only (before: interrupted)
+    assert (manifest["status"], manifest["history"][-1]["status"]) == ("failed", "failed")
+    assert "interrupted" not in manifest
+    assert f"--scheduler {lone_scheduler} has no workers after 3 s" in manifest["error"]
+    assert manifest["history"][-1]["error"] == manifest["error"]
 
 
 def test_a_workers_first_run_does_not_pay_for_its_imports(write_campaign, tmp_path):
