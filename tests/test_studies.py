@@ -166,7 +166,8 @@ def test_the_sun_safe_tables_are_what_the_code_flies_now():
 
     table = next(t for t in studies.SUN_SAFE_TABLES if t.block == "sun_safe_wheels")
     committed = json.loads(table.path.read_text(encoding="utf-8"))
-    assert committed["argv"] == ["--seeds", "5", "--json", "docs/studies/sun_safe/wheels.json"]
+    assert committed["options"] == {"seeds": 5, "actuator": "ANY", "axis": "PLUS_Z", "duration": 5580.0, "rate": 2.0,
+                                    "albedo": 0.0, "albedo_model": 0.0, "penumbra": False}
     again = sun_safe_check.table(1, rate_deg_s=2.0, duration_s=5580.0, actuator="ANY", axis="PLUS_Z",
                                  sensor_spec=SunSensorSpec(), albedo_model=0.0)
     assert json.loads(json.dumps(again["rows"][0])) == committed["rows"][0]

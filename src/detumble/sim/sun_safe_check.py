@@ -20,7 +20,6 @@ import argparse
 import math
 import random
 import statistics
-import sys
 from dataclasses import dataclass, field
 
 from detumble.sim.adcs_law import AdcsLaw, PlantIo
@@ -301,9 +300,9 @@ def main(argv: list[str] | None = None) -> int:
 
         from detumble.sim.runner import write_atomic
 
+        options = {k: v for k, v in vars(args).items() if k not in ("json", "from_run")}
         pathlib.Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        write_atomic(args.json, json.dumps(dict(figures, argv=list(sys.argv[1:] if argv is None else argv)),
-                                                indent=1) + "\n")
+        write_atomic(args.json, json.dumps(dict(figures, options=options), indent=1) + "\n")
     print(markdown(figures), end="")
     return 0
 
