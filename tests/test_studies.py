@@ -27,7 +27,8 @@ _spec.loader.exec_module(studies)
 
 COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursework_grids",
              "coursework_replica_magnetorquer1", "gain_sweep", "flight_bdot_noise", "magnetic_pointing_hold",
-             "magnetorquer_hold_after_acquisition")
+             "magnetorquer_hold_after_acquisition", "performance_detumble", "robust_rates",
+             "pointing_targets", "environment_torques", "sun_safe")
 # their committed folders are older than their campaign files (attitude_knowledge: metrics added since, so the run ids
 # moved): their blocks are checked against the committed results, the folders' belonging is reported by --check
 BLOCKS_ONLY = ("attitude_knowledge", "flight_detumble_campaign")
@@ -123,12 +124,67 @@ def test_the_bdot_noise_study_is_what_the_code_computes_now(tmp_path, monkeypatc
 @pytest.mark.parametrize("name, block, old, new", [
     ("magnetic_pointing_hold", "magnetic_pointing_hold", "16.27°", "16.26°"),
     ("flight_bdot_noise", "flight_bdot_noise", "**1,411 s**", "**1,399 s**"),
+    ("robust_rates", "robust_rates_single_runs", "19.0 / 0.0064 / 0.0145", "19.0 / 0.0063 / 0.0138"),
+    ("pointing_targets", "pointing_targets", "| 0.0099 | 0.0269 |", "| 0.0095 | 0.0239 |"),
+    ("environment_torques", "environment_torques_field_auto", "| 333.9 | 851.2 |", "| 334 | 851 |"),
+    ("sun_safe", "sun_safe_albedo_wheels", "| 0–2813 | 15 |", "| 0–2813 | 16 |"),
 ])
 def test_a_hand_edited_figure_of_the_new_study_blocks_is_reported(tmp_path, monkeypatch, name, block, old, new):
-    """STUDY-010: magnetic_pointing.md's hold table and flight_bdot_noise.md's table with one figure changed by
-    hand (the noise one back to the figure the page quoted before its campaign): --check reports that block."""
+    """STUDY-010: magnetic_pointing.md's hold table, flight_bdot_noise.md's, robust_rates.md's,
+    pointing_targets.md's, environment_torques.md's and sun_safe.md's with one figure changed by hand (back to the
+    figure the page quoted before it was generated): --check reports that block."""
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, name, block, old, new)
     assert len(problems) == 1 and f"block '{block}'" in problems[0]
+
+
+def test_the_robust_rates_table_is_what_the_code_flies_now():
+    """STUDY-011: robust_rates.md's table is rendered from a committed JSON file (12 flights, too long for the
+    check); its first cell (the exact inertia, the default rate source: one 400 s plant-only flight) flies again
+    and gives the committed figures to the float."""
+    table = studies.SCRIPT_TABLES["robust_rates"]
+    script = studies._load_script(table.script)
+    committed = json.loads(table.path.read_text(encoding="utf-8"))["plants"]["exact"]["default (blend)"]
+    settle, median, p95 = script.fly(script.PLANTS["exact"], script.SOURCES["default (blend)"])
+    assert {"settle_s": settle, "median_deg": median, "p95_deg": p95} == committed
+
+
+def test_the_field_auto_table_is_what_the_code_flies_now():
+    """STUDY-013: environment_torques.md's AUTO table is rendered from a committed JSON file (12 flights); its first
+    flight (1.2 deg/s about the scenario's axis, dipole: one 3000 s plant-only flight) flies again and gives the
+    committed record to the float."""
+    table = studies.SCRIPT_TABLES["environment_torques"]
+    script = studies._load_script(table.script)
+    committed = json.loads(table.path.read_text(encoding="utf-8"))["flights"][0]
+    assert next(script.flights()) == committed
+
+
+def test_the_sun_safe_tables_are_what_the_code_flies_now():
+    """STUDY-014: sun_safe.md's plant-only tables are rendered from committed JSON files (20 seed flights); the
+    wheels table's seed 1 (one 5580 s plant-only flight) flies again and gives its committed row to the float."""
+    from detumble.sim import sun_safe_check
+    from detumble.sim.sun_sensors import SunSensorSpec
+
+    table = next(t for t in studies.SUN_SAFE_TABLES if t.block == "sun_safe_wheels")
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    assert committed["options"] == {"seeds": 5, "actuator": "ANY", "axis": "PLUS_Z", "duration": 5580.0, "rate": 2.0,
+                                    "albedo": 0.0, "albedo_model": 0.0, "penumbra": False}
+    again = sun_safe_check.table(1, rate_deg_s=2.0, duration_s=5580.0, actuator="ANY", axis="PLUS_Z",
+                                 sensor_spec=SunSensorSpec(), albedo_model=0.0)
+    assert json.loads(json.dumps(again["rows"][0])) == committed["rows"][0]
+
+
+def test_a_script_table_of_a_quick_run_is_refused(tmp_path, monkeypatch):
+    """STUDY-012: a JSON file written by a script's --quick (300 s flights) cannot stand for the page's table."""
+    table = studies.SCRIPT_TABLES["robust_rates"]
+    data = json.loads(table.path.read_text(encoding="utf-8"))
+    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path)
+    (tmp_path / "robust_rates").mkdir()
+    (tmp_path / table.results).write_text(json.dumps(dict(data, quick=True)), encoding="utf-8")
+    with pytest.raises(studies.StudyError, match="--quick"):
+        table.blocks()
+    (tmp_path / table.results).unlink()
+    with pytest.raises(studies.StudyError, match="is not committed: make it with `python campaigns/adcs/robust"):
+        table.blocks()
 
 
 def test_spin_campaign_folders_belong_to_their_campaign_files():

@@ -1,11 +1,14 @@
 """The single-run table of docs/studies/robust_rates.md: a ~90° slew on the wheels with the plant's inertia off the
 controller's model (INERTIA_* stay at the adcs scenario's matrix), plant-only.
 
-    python campaigns/adcs/robust_rates_table.py
+    python campaigns/adcs/robust_rates_table.py                                      # the table, printed
+    python campaigns/adcs/robust_rates_table.py --json docs/studies/robust_rates/table.json   # and its figures kept
+
+``tools/studies.py --only robust_rates`` renders the page's table from that JSON file (``markdown``).
 
 Geometry (seed 1): from 90° about (1, 1, 1)/√3 and a 0.05 °/s tumble, FORCE_MODE POINTING at 30 s holding the
 attitude of entry, the identity commanded at 60 s, 400 s. Rows: the plant's inertia exact, ×1.10, ×0.90 and skewed
-(moments +10 / −10 / +5 %, the x–y product 1.5e-4 kg·m², 7 % of a moment); columns per rate source: the default
+(moments +10 / −10 / +5 %, the x–y product 1.7e-4 kg·m², 8 % of a moment); columns per rate source: the default
 (observer, blended to the gyro during slews), the observer without the blend (RATE_BLEND_ANGLE = 180, the law before
 issue 27) and the bias-corrected gyro (RATE_SOURCE = GYRO). Figures: the slew's settle time below 0.1° (summary
 ``slews``), and median / p95 of the true error from 120 s to the end (60 s after the slew began).
@@ -13,6 +16,9 @@ issue 27) and the bias-corrected gyro (RATE_SOURCE = GYRO). Figures: the slew's 
 
 from __future__ import annotations
 
+import argparse
+import json
+import pathlib
 import sys
 
 from detumble.sim.runner import run
@@ -25,7 +31,10 @@ PLANTS = {
     "x0.90": tuple(tuple(v * (0.9 if i == j else 1.0) for j, v in enumerate(r)) for i, r in enumerate(NOMINAL)),
     "skewed": ((2.42e-3, 1.7e-4, -1.5e-5), (1.7e-4, 1.935e-3, 1.0e-5), (-1.5e-5, 1.0e-5, 2.1525e-3)),
 }
-SOURCES = {"default (blend)": [], "observer, no blend": ["control.adcs.RATE_BLEND_ANGLE=180"],
+#: How the page names each plant.
+LABELS = {"exact": "exact", "x1.10": "×1.10", "x0.90": "×0.90",
+          "skewed": "skewed (moments +10/−10/+5 %, x–y product 1.7e-4 kg·m²)"}
+SOURCES = {"default (blend)": [], "observer, no blend (before)": ["control.adcs.RATE_BLEND_ANGLE=180"],
            "gyro": ["control.adcs.RATE_SOURCE=GYRO"]}
 BASE = ["initial.rate.magnitude_deg_s=0.05",
         "initial.attitude.quaternion=[0.7071067811865476,0.4082482904638631,0.4082482904638631,0.4082482904638631]",
@@ -44,15 +53,39 @@ def fly(inertia, extra: list[str]) -> tuple[float | None, float, float]:
     return r.summary["slews"][0]["settle_below_0p1_deg_s"], p(0.5), p(0.95)
 
 
-def main() -> int:
-    print("| plant inertia | " + " | ".join(f"{s}: settle s / median / p95 deg" for s in SOURCES) + " |")
-    print("|---|" + "---|" * len(SOURCES))
+def results() -> dict:
+    """Every cell: ``{"plants": {plant: {source: {"settle_s", "median_deg", "p95_deg"}}}}`` (seconds, degrees)."""
+    plants = {}
     for name, inertia in PLANTS.items():
-        cells = []
-        for extra in SOURCES.values():
+        plants[name] = {}
+        for source, extra in SOURCES.items():
             settle, med, p95 = fly(inertia, extra)
-            cells.append(f"{settle} / {med:.4f} / {p95:.4f}")
-        print(f"| {name} | " + " | ".join(cells) + " |")
+            plants[name][source] = {"settle_s": settle, "median_deg": med, "p95_deg": p95}
+    return {"script": "campaigns/adcs/robust_rates_table.py", "duration_s": 400.0, "plants": plants}
+
+
+def markdown(table: dict) -> str:
+    """The page's table from :func:`results` (settle to 0.5 s as the summary gives it; errors to 1e-4 deg)."""
+    lines = ["| plant inertia | " + " | ".join(f"{s}: settle s / median / p95 deg" for s in SOURCES) + " |",
+             "|---|" + "---|" * len(SOURCES)]
+    for name, cells in table["plants"].items():
+        text = [f"{c['settle_s'] if c['settle_s'] is not None else 'never'} / {c['median_deg']:.4f} / "
+                f"{c['p95_deg']:.4f}" for c in (cells[s] for s in SOURCES)]
+        lines.append(f"| {LABELS[name]} | " + " | ".join(text) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--json", type=pathlib.Path, metavar="FILE", help="also write the figures to FILE (JSON)")
+    args = parser.parse_args(argv)
+    table = results()
+    if args.json is not None:
+        from fprime_lite.osal.atomic import atomic_write_text
+
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        atomic_write_text(args.json, json.dumps(table, indent=1) + "\n")
+    print(markdown(table), end="")
     return 0
 
 

@@ -9,8 +9,9 @@ second control cycle, 0.1 s). It samples, once a second: the true angle between 
 the spacecraft is in eclipse, and the Sun vector estimate's error against the truth at its reading's instant.
 
 ``python -m detumble.sim.sun_safe_check [--seeds N] [--actuator ANY|MAGNETORQUERS] [--duration S] [--rate DEG_S]
-[--albedo A] [--penumbra]``
-prints the table of ``docs/studies/sun_safe.md``.
+[--albedo A] [--penumbra] [--json FILE]``
+prints a table of ``docs/studies/sun_safe.md`` (:func:`markdown`); ``--json`` also keeps its figures
+(:func:`table`), from which ``tools/studies.py --only sun_safe`` renders the page's tables.
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from detumble.sim.plant import Plant
 from detumble.sim.scenario import load_scenario
 from detumble.sim.sun_sensors import SunSensorModel, SunSensorSpec
 
-__all__ = ["SunSafeResult", "fly", "main", "pointing_from_run", "vector_errors_from_run",
+__all__ = ["SunSafeResult", "fly", "main", "markdown", "pointing_from_run", "table", "vector_errors_from_run",
            "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
 
 #: The targets (issue 27): Sun-pointing error within this after acquisition, light-sensor vector within that.
@@ -249,6 +250,7 @@ def main(argv: list[str] | None = None) -> int:
                     help="take the Earth's albedo out of the Sun vector with this Bond albedo (control.albedo: TRIAD "
                     "on the Sun vector and the magnetometer); default 0, no correction")
     ap.add_argument("--penumbra", action="store_true", help="the conical shadow (penumbra) instead of the cylinder")
+    ap.add_argument("--json", metavar="FILE", help="also keep the table's figures in FILE (JSON)")
     ap.add_argument("--from-run", metavar="DIR", help="instead: a fprime-lite run of adcs_ref against its truth: "
                     "--axis to the Sun (acquisition, steady statistics) and the ADCS Sun vector")
     args = ap.parse_args(argv)
@@ -290,34 +292,71 @@ def main(argv: list[str] | None = None) -> int:
               f"{_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; {100 * within:.1f} % within "
               f"{VECTOR_THRESHOLD_DEG:g} deg; {invalid} invalid")
         return 0
-    print("| seed | first sunlit part (s) | acquisition ≤ 10° (s) | after it: median / p95 / max (deg) | "
-          "after the eclipse: reacquisition (s) | Sun vector median / p95 / max (deg) | sunlit readings ≤ 5° | "
-          "invalid sunlit readings |")
-    print("|---|---|---|---|---|---|---|---|")
-    vec_all: list[float] = []
-    for seed in range(1, args.seeds + 1):
-        r = fly(seed, rate_deg_s=args.rate, duration_s=args.duration, actuator=args.actuator, axis=args.axis,
-                sensor_spec=spec, albedo_model=args.albedo_model)
-        part = r.first_sunlit_part()
-        acq = r.acquisition_s()
-        steady = r.steady_sunlit()
-        vec = r.vector_deg
-        vec_all += vec
-        within = sum(v <= VECTOR_THRESHOLD_DEG for v in vec) / len(vec) if vec else math.nan
-        part_s = "none" if part is None else f"{part[0]:.0f}–{part[1]:.0f}"
-        acq_s = "never" if acq is None else f"{acq:.0f}"
-        st = (f"{statistics.median(steady):.2f} / {_percentile(steady, 95):.2f} / {max(steady):.2f}" if steady
-              else "—")
-        vs = (f"{statistics.median(vec):.2f} / {_percentile(vec, 95):.2f} / {max(vec):.2f}" if vec else "—")
-        parts = r.sunlit_parts()
-        re_acq = r.acquisition_s(part_index=1) if len(parts) > 1 else None
-        re_s = "—" if len(parts) < 2 else ("never" if re_acq is None else f"{re_acq:.0f}")
-        print(f"| {seed} | {part_s} | {acq_s} | {st} | {re_s} | {vs} | {100 * within:.1f} % | "
-              f"{r.vector_invalid_sunlit} |")
-    if vec_all:
-        print(f"\nall seeds: Sun vector p95 {_percentile(vec_all, 95):.2f} deg, max {max(vec_all):.2f} deg over "
-              f"{len(vec_all)} sunlit readings")
+    figures = table(args.seeds, rate_deg_s=args.rate, duration_s=args.duration, actuator=args.actuator,
+                    axis=args.axis, sensor_spec=spec, albedo_model=args.albedo_model)
+    if args.json is not None:
+        import json
+        import pathlib
+
+        from detumble.sim.runner import write_atomic
+
+        options = {k: v for k, v in vars(args).items() if k not in ("json", "from_run")}
+        pathlib.Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+        write_atomic(args.json, json.dumps(dict(figures, options=options), indent=1) + "\n")
+    print(markdown(figures), end="")
     return 0
+
+
+def _stats(values: list[float]) -> dict | None:
+    """median / p95 / max of ``values`` (deg), None for none."""
+    if not values:
+        return None
+    return {"median": statistics.median(values), "p95": _percentile(values, 95), "max": max(values)}
+
+
+def table(seeds: int, **fly_args) -> dict:
+    """Seeds 1..``seeds`` flown by :func:`fly` (``fly_args``): per seed the first sunlit part (s), the acquisition
+    and reacquisition (s from the part's start; None: never; reacquisition absent with one sunlit part), the steady
+    pointing error and the Sun vector's error (deg, :func:`_stats`), the share of sunlit readings within
+    VECTOR_THRESHOLD_DEG and the invalid sunlit readings; and the pooled Sun vector statistics."""
+    rows, pooled = [], []
+    for seed in range(1, seeds + 1):
+        r = fly(seed, **fly_args)
+        parts = r.sunlit_parts()
+        vec = r.vector_deg
+        pooled += vec
+        rows.append({"seed": seed, "first_sunlit_part_s": r.first_sunlit_part(), "acquisition_s": r.acquisition_s(),
+                     "steady_deg": _stats(r.steady_sunlit()),
+                     "reacquisition_s": r.acquisition_s(part_index=1) if len(parts) > 1 else None,
+                     "sunlit_parts": len(parts), "vector_deg": _stats(vec),
+                     "vector_within": sum(v <= VECTOR_THRESHOLD_DEG for v in vec) / len(vec) if vec else None,
+                     "vector_invalid_sunlit": r.vector_invalid_sunlit})
+    return {"rows": rows, "pooled_vector_deg": _stats(pooled), "pooled_readings": len(pooled),
+            "fly": {k: v for k, v in fly_args.items() if k != "sensor_spec"}}
+
+
+def markdown(figures: dict) -> str:
+    """The table :func:`table` measured, as the page prints it."""
+    def three(st) -> str:
+        return "—" if st is None else f"{st['median']:.2f} / {st['p95']:.2f} / {st['max']:.2f}"
+
+    lines = ["| seed | first sunlit part (s) | acquisition ≤ 10° (s) | after it: median / p95 / max (deg) | "
+             "after the eclipse: reacquisition (s) | Sun vector median / p95 / max (deg) | sunlit readings ≤ 5° | "
+             "invalid sunlit readings |", "|---|---|---|---|---|---|---|---|"]
+    for r in figures["rows"]:
+        part = r["first_sunlit_part_s"]
+        part_s = "none" if part is None else f"{part[0]:.0f}–{part[1]:.0f}"
+        acq_s = "never" if r["acquisition_s"] is None else f"{r['acquisition_s']:.0f}"
+        re_s = "—" if r["sunlit_parts"] < 2 else (
+            "never" if r["reacquisition_s"] is None else f"{r['reacquisition_s']:.0f}")
+        within = "—" if r["vector_within"] is None else f"{100 * r['vector_within']:.1f} %"
+        lines.append(f"| {r['seed']} | {part_s} | {acq_s} | {three(r['steady_deg'])} | {re_s} | "
+                     f"{three(r['vector_deg'])} | {within} | {r['vector_invalid_sunlit']} |")
+    pooled = figures["pooled_vector_deg"]
+    if pooled is not None:
+        lines += ["", f"all seeds: Sun vector p95 {pooled['p95']:.2f} deg, max {pooled['max']:.2f} deg over "
+                  f"{figures['pooled_readings']} sunlit readings"]
+    return "\n".join(lines) + "\n"
 
 
 if __name__ == "__main__":

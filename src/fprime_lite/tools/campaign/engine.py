@@ -369,6 +369,15 @@ def _until_signalled(ac, received: list[str]):
             time.sleep(0.01)
 
 
+def _error_message(exc: Exception) -> str:
+    """What the manifest of a session that ``exc`` ended says: a campaign error's problems, else the
+    exception's type and message."""
+    if isinstance(exc, CampaignError):
+        return "; ".join(exc.problems)
+    text = str(exc)
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+
+
 def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, force, heartbeat_s, received):
     """The runs still to do, into ``out`` (held by this process); ``(wall s, whether any ran)``. A
     signal's name appearing in ``received`` stops the submissions; the rows that came back are kept."""
@@ -396,7 +405,9 @@ def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, fo
     if merged:
         print(f"campaign: {len(merged)} grid point(s) listed more than once (e.g. listed point {merged[0][0]} = "
               f"point {merged[0][1]}): each distinct point flies once", file=sys.stderr)
-    status = "interrupted"
+    status = "failed"  # until the session ends otherwise: an error is a failure, not an interruption
+    error: str | None = None
+    signalled = received  # the signal names this session was stopped by
     info = workers_info = None
     ran = 0
     t0 = time.perf_counter()
@@ -441,12 +452,18 @@ def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, fo
                 except Exception:  # noqa: BLE001 - best effort: the plug-in only builds a run
                     pass
         status = "interrupted" if received else "complete"
+    except KeyboardInterrupt:  # Ctrl-C when the caller did not ask for interruptible: still a signal
+        status, signalled = "interrupted", received or ["SIGINT"]
+        raise
+    except Exception as exc:
+        error = _error_message(exc)
+        raise
     finally:
         df = store.close()
         counts = df["status"].value_counts().to_dict() if len(df) else {}
-        stopped = {"signal": received[0], "done": len(df), "planned": len(tasks)} if received else None
+        stopped = {"signal": signalled[0], "done": len(df), "planned": len(tasks)} if status == "interrupted" else None
         manifest.write(status=status, counts={str(k): int(v) for k, v in counts.items()}, cluster=info,
-                       workers=workers_info, ran=ran, ended=True, interrupted=stopped)
+                       workers=workers_info, ran=ran, ended=True, interrupted=stopped, error=error)
     return time.perf_counter() - t0, bool(todo)
 
 

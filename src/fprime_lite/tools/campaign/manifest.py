@@ -9,7 +9,9 @@
   cluster, workers, how many rows it started with and how many failed runs it retried. The top-level
   ``started`` is the first session's, ``ended``, ``status`` and ``cluster`` the latest's.
 - a session ended by SIGINT/SIGTERM: ``status: "interrupted"`` and ``interrupted``: the signal, the
-  rows recorded (``done``) and the runs planned (``planned``).
+  rows recorded (``done``) and the runs planned (``planned``);
+- a session ended by an error (a scheduler with no workers, a broken cluster): ``status: "failed"``
+  and ``error``: its message.
 """
 
 from __future__ import annotations
@@ -154,11 +156,14 @@ class ManifestWriter:
         self.versions = package_versions()
 
     def write(self, *, status: str, counts: dict, cluster: dict | None = None, workers: list | None = None,
-              ran: int | None = None, ended: bool = False, interrupted: dict | None = None) -> dict:
+              ran: int | None = None, ended: bool = False, interrupted: dict | None = None,
+              error: str | None = None) -> dict:
         s = self.session
         s["status"] = status
         if interrupted is not None:
             s["interrupted"] = interrupted
+        if error is not None:
+            s["error"] = error
         if cluster is not None:
             s["cluster"] = cluster
         if workers is not None:
@@ -186,6 +191,7 @@ class ManifestWriter:
             "counts": counts,
             "status": status,
             **({"interrupted": interrupted} if interrupted is not None else {}),
+            **({"error": error} if error is not None else {}),
             "started": history[0]["started"],
             "ended": s["ended"],
             "cluster": s["cluster"],

@@ -92,7 +92,37 @@ def test_a_scheduler_without_workers_is_reported_not_waited_on_forever(lone_sche
     err = capsys.readouterr().err
     assert f"the scheduler {lone_scheduler} has no workers; waiting up to 3 s" in err
     assert f"--scheduler {lone_scheduler} has no workers after 3 s — join some with 'dask worker" in err
-    assert json.loads((tmp_path / "o" / "manifest.json").read_text())["status"] == "interrupted"
+    manifest = json.loads((tmp_path / "o" / "manifest.json").read_text())
+    # an error is a failure, with its message; "interrupted" is for SIGINT/SIGTERM only (before: interrupted)
+    assert (manifest["status"], manifest["history"][-1]["status"]) == ("failed", "failed")
+    assert "interrupted" not in manifest
+    assert f"--scheduler {lone_scheduler} has no workers after 3 s" in manifest["error"]
+    assert manifest["history"][-1]["error"] == manifest["error"]
+
+
+@pytest.mark.parametrize("raised, status, recorded", [
+    (RuntimeError("the cluster fell over"), "failed", {"error": "RuntimeError: the cluster fell over"}),
+    (KeyboardInterrupt(), "interrupted", {"interrupted": {"signal": "SIGINT", "done": 0, "planned": 4}}),
+])
+def test_a_session_ended_by_an_error_is_failed_and_only_ctrl_c_is_interrupted(write_campaign, tmp_path, monkeypatch,
+                                                                               raised, status, recorded):
+    """CAMP-123: the cluster raising while the session runs leaves the manifest "failed" with the error's message
+    (before: "interrupted", the default of any session that did not complete); a Ctrl-C that reaches the campaign
+    as KeyboardInterrupt (run_campaign without interruptible=True) is still "interrupted", by SIGINT."""
+    from fprime_lite.tools.campaign import cluster
+
+    @contextlib.contextmanager
+    def broken_cluster(*args, **kwargs):
+        raise raised
+        yield  # pragma: no cover - a generator for contextmanager
+
+    monkeypatch.setattr(cluster, "dask_client", broken_cluster)
+    with pytest.raises(type(raised)):
+        run_campaign(_probe_campaign(write_campaign), workers=1, out=tmp_path / "o", plots=False, summary=False)
+    manifest = json.loads((tmp_path / "o" / "manifest.json").read_text())
+    assert manifest["status"] == manifest["history"][-1]["status"] == status
+    assert {k: manifest.get(k) for k in recorded} == recorded
+    assert not ({"error", "interrupted"} - set(recorded)) & set(manifest)  # the other one is absent
 
 
 def test_a_workers_first_run_does_not_pay_for_its_imports(write_campaign, tmp_path):
