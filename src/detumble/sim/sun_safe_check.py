@@ -46,8 +46,9 @@ def _angle_deg(a, b) -> float:
 
 @dataclass
 class SunSafeResult:
-    """One flight's samples (1 Hz): time (s), true Sun-pointing error (deg), eclipse; the Sun vector's errors
-    (deg) at its sunlit readings; the mode transitions ``(t s, mode, reason)``."""
+    """One flight's samples (1 Hz): time (s), true Sun-pointing error (deg), eclipse, true body rate |ω| (deg/s); the
+    Sun vector's errors (deg) at its sunlit readings; the mode transitions ``(t s, mode, reason)``; the time the
+    coils' SUN_SAFE lowered its spin to SUN_HOLD_SPIN_RATE (s; None: it did not)."""
 
     times: list = field(default_factory=list)
     pointing_deg: list = field(default_factory=list)
@@ -55,6 +56,8 @@ class SunSafeResult:
     vector_deg: list = field(default_factory=list)
     vector_invalid_sunlit: int = 0
     transitions: list = field(default_factory=list)
+    rate_deg_s: list = field(default_factory=list)
+    spin_lowered_s: float | None = None
 
     def sunlit_parts(self) -> list[tuple[float, float]]:
         """``(start, end)`` s of each sunlit stretch of the run, in order."""
@@ -90,6 +93,15 @@ class SunSafeResult:
         if last_above >= end - 1.0:
             return None
         return last_above + 1.0 - start
+
+    def after_spin_down(self) -> tuple[list, list]:
+        """``(pointing errors, body rates)`` (deg, deg/s) sampled in the first sunlit part from the spin-down to its
+        end (both empty when the spin was not lowered in that part)."""
+        part, t0 = self.first_sunlit_part(), self.spin_lowered_s
+        if part is None or t0 is None or not t0 < part[1]:
+            return [], []
+        keep = [i for i, t in enumerate(self.times) if t0 <= t < part[1]]
+        return [self.pointing_deg[i] for i in keep], [self.rate_deg_s[i] for i in keep]
 
     def steady_sunlit(self) -> list:
         """The pointing errors in the first sunlit part after its acquisition (empty: never acquired)."""
@@ -139,6 +151,10 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
             out.times.append(t)
             out.eclipse.append(sensors.eclipse)
             out.pointing_deg.append(_angle_deg(a, s_true))
+            w = plant.omega_BN_B
+            out.rate_deg_s.append(math.degrees(math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])))
+            if out.spin_lowered_s is None and law.law.sun_hold.lowered:
+                out.spin_lowered_s = t
             if not sensors.eclipse:
                 if reading[1]:
                     out.vector_deg.append(_angle_deg(reading[0], s_true))
@@ -226,7 +242,24 @@ def pointing_from_run(run_dir, axis: str = "PLUS_Z", scenario: str = "adcs") -> 
             out.times.append(t)
             out.eclipse.append(row["eclipse"] == "1")
             out.pointing_deg.append(_angle_deg(a, rotate_n_to_b(q, sun_direction_N(jd0 + t / 86400.0)[0])))
+            out.rate_deg_s.append(float(row["rate_deg_s"]))
+    out.spin_lowered_s = _spin_lowered_from_events(pathlib.Path(run_dir) / "events.log", load_scenario(scenario).epoch)
     return out
+
+
+def _spin_lowered_from_events(path, epoch) -> float | None:
+    """Seconds from ``epoch`` (a UTC datetime) of the first SunSpinLowered in a run's ``events.log`` (None: none,
+    or no log)."""
+    import datetime
+
+    if not path.is_file():
+        return None
+    for line in path.read_text().splitlines():
+        stamp, _, rest = line.partition(" ")
+        if rest.split(" ", 1)[0].endswith(".SunSpinLowered"):
+            when = datetime.datetime.fromisoformat(stamp.replace("Z", "+00:00"))
+            return (when - epoch).total_seconds()
+    return None
 
 
 def _percentile(values, p: float) -> float:
@@ -249,6 +282,9 @@ def main(argv: list[str] | None = None) -> int:
                     help="take the Earth's albedo out of the Sun vector with this Bond albedo (control.albedo: TRIAD "
                     "on the Sun vector and the magnetometer); default 0, no correction")
     ap.add_argument("--penumbra", action="store_true", help="the conical shadow (penumbra) instead of the cylinder")
+    ap.add_argument("--spin-down", action="store_true", help="instead: the coils' automatic spin-down (SUN_HOLD_*): "
+                    "acquisition, when the spin was lowered, and the pointing and body rate from then to the end of "
+                    "the first sunlit part (sets --actuator MAGNETORQUERS)")
     ap.add_argument("--from-run", metavar="DIR", help="instead: a fprime-lite run of adcs_ref against its truth: "
                     "--axis to the Sun (acquisition, steady statistics) and the ADCS Sun vector")
     args = ap.parse_args(argv)
@@ -285,11 +321,20 @@ def main(argv: list[str] | None = None) -> int:
                f"{max(steady):.2f} deg" if steady else "") +
               ("" if len(parts) < 2 else ", after the eclipse: reacquisition " +
                ("never" if re_acq is None else f"{re_acq:.0f} s")) if part else f"{args.axis}: never sunlit")
+        if run.spin_lowered_s is not None:
+            err, rate = run.after_spin_down()
+            print(f"spin lowered (SunSpinLowered) at {run.spin_lowered_s:.1f} s" + (
+                f"; from then to the first sunlit part's end: error median {statistics.median(err):.2f}, max "
+                f"{max(err):.2f} deg, {100 * sum(e <= POINTING_THRESHOLD_DEG for e in err) / len(err):.1f} % within "
+                f"{POINTING_THRESHOLD_DEG:g}°, |ω| below 2 °/s from {_slow_from(run.spin_lowered_s, rate)} s"
+                if err else ""))
         within = sum(e <= VECTOR_THRESHOLD_DEG for e in errs) / len(errs)
         print(f"ADCS SunVector vs truth, sunlit: {len(errs)} readings, median {statistics.median(errs):.2f}, p95 "
               f"{_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; {100 * within:.1f} % within "
               f"{VECTOR_THRESHOLD_DEG:g} deg; {invalid} invalid")
         return 0
+    if args.spin_down:
+        return _spin_down_table(args, spec)
     print("| seed | first sunlit part (s) | acquisition ≤ 10° (s) | after it: median / p95 / max (deg) | "
           "after the eclipse: reacquisition (s) | Sun vector median / p95 / max (deg) | sunlit readings ≤ 5° | "
           "invalid sunlit readings |")
@@ -317,6 +362,43 @@ def main(argv: list[str] | None = None) -> int:
     if vec_all:
         print(f"\nall seeds: Sun vector p95 {_percentile(vec_all, 95):.2f} deg, max {max(vec_all):.2f} deg over "
               f"{len(vec_all)} sunlit readings")
+    return 0
+
+
+def _slow_from(t0: float, rate: list, limit: float = 2.0) -> str:
+    """When the 1 Hz body rates ``rate`` (deg/s, from ``t0`` s) go below ``limit`` for good: "t s" or "never"."""
+    last_fast = max((i for i, w in enumerate(rate) if not w < limit), default=None)
+    return "never" if last_fast == len(rate) - 1 else f"{t0 + (0 if last_fast is None else last_fast + 1):.0f}"
+
+
+def _spin_down_table(args, spec) -> int:
+    """The ``--spin-down`` table: each seed on the coils, the spin lowered by SUN_HOLD_* (defaults)."""
+    from detumble.control.attitude_defaults import DEFAULTS
+
+    limit = 2.0  # deg/s: the adcs scenario's star tracker smears above this (sim.star_tracker max_rate_deg_s)
+    print(f"SUN_HOLD_ANGLE {DEFAULTS['SUN_HOLD_ANGLE']} deg, SUN_HOLD_DWELL {DEFAULTS['SUN_HOLD_DWELL']} s, "
+          f"SUN_HOLD_SPIN_RATE {DEFAULTS['SUN_HOLD_SPIN_RATE']} deg/s (from SUN_SPIN_RATE {DEFAULTS['SUN_SPIN_RATE']})")
+    print("| seed | first sunlit part (s) | acquisition ≤ 10° (s) | spin lowered at (s) | after it to the part's end: "
+          "error median / p95 / max (deg) | within 10° | |ω| < 2 °/s from (s) | after the eclipse: reacquisition (s) |")
+    print("|---|---|---|---|---|---|---|---|")
+    for seed in range(1, args.seeds + 1):
+        r = fly(seed, rate_deg_s=args.rate, duration_s=args.duration, actuator="MAGNETORQUERS", axis=args.axis,
+                sensor_spec=spec, albedo_model=args.albedo_model)
+        part, acq = r.first_sunlit_part(), r.acquisition_s()
+        err, rate = r.after_spin_down()
+        part_s = "none" if part is None else f"{part[0]:.0f}–{part[1]:.0f}"
+        low = "never" if r.spin_lowered_s is None else f"{r.spin_lowered_s:.0f}"
+        if err and r.spin_lowered_s is not None:
+            st = f"{statistics.median(err):.2f} / {_percentile(err, 95):.2f} / {max(err):.2f}"
+            within = f"{100 * sum(e <= POINTING_THRESHOLD_DEG for e in err) / len(err):.1f} %"
+            slow = _slow_from(r.spin_lowered_s, rate, limit)
+        else:
+            st = within = slow = "—"
+        parts = r.sunlit_parts()
+        re_acq = r.acquisition_s(part_index=1) if len(parts) > 1 else None
+        re_s = "—" if len(parts) < 2 else ("never" if re_acq is None else f"{re_acq:.0f}")
+        print(f"| {seed} | {part_s} | {'never' if acq is None else f'{acq:.0f}'} | {low} | {st} | {within} | {slow} | "
+              f"{re_s} |")
     return 0
 
 
