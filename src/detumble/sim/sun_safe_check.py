@@ -21,6 +21,8 @@ import random
 import statistics
 from dataclasses import dataclass, field
 
+from detumble.control.attitude_defaults import PARAMETERS
+from detumble.control.three_mode import checked_parameters
 from detumble.sim.adcs_law import AdcsLaw, PlantIo
 from detumble.sim.epoch import julian_date
 from detumble.sim.orbit import R_EARTH_EQ
@@ -282,6 +284,9 @@ def main(argv: list[str] | None = None) -> int:
                     help="take the Earth's albedo out of the Sun vector with this Bond albedo (control.albedo: TRIAD "
                     "on the Sun vector and the magnetometer); default 0, no correction")
     ap.add_argument("--penumbra", action="store_true", help="the conical shadow (penumbra) instead of the cylinder")
+    ap.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                    help="an attitude-controller parameter by its flight name (e.g. SUN_HOLD_ANGLE=0: no spin-down); "
+                    "repeatable")
     ap.add_argument("--spin-down", action="store_true", help="instead: the coils' automatic spin-down (SUN_HOLD_*): "
                     "acquisition, when the spin was lowered, and the pointing and body rate from then to the end of "
                     "the first sunlit part (sets --actuator MAGNETORQUERS)")
@@ -333,6 +338,28 @@ def main(argv: list[str] | None = None) -> int:
               f"{_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; {100 * within:.1f} % within "
               f"{VECTOR_THRESHOLD_DEG:g} deg; {invalid} invalid")
         return 0
+    params: dict[str, object] = {}
+    for item in args.param:
+        name, eq, value = item.partition("=")
+        if not eq:
+            ap.error(f"--param {item!r}: give NAME=VALUE, e.g. --param SUN_HOLD_ANGLE=0")
+        try:
+            number = float(value)
+        except ValueError:
+            params[name] = value  # an enumerated parameter by its member name
+            continue
+        row = PARAMETERS.get(name)
+        if row is not None:
+            units, low, high, finite = row
+            if (finite and not math.isfinite(number)) or (low is not None and not number >= low) or (
+                    high is not None and not number <= high):
+                ap.error(f"--param {name}={value}: outside its range {low}…{high} {units}")
+        params[name] = number
+    try:
+        checked_parameters(params)
+    except ValueError as exc:
+        ap.error(f"--param: {exc}")
+    args.params = params
     if args.spin_down:
         return _spin_down_table(args, spec)
     print("| seed | first sunlit part (s) | acquisition ≤ 10° (s) | after it: median / p95 / max (deg) | "
@@ -342,7 +369,7 @@ def main(argv: list[str] | None = None) -> int:
     vec_all: list[float] = []
     for seed in range(1, args.seeds + 1):
         r = fly(seed, rate_deg_s=args.rate, duration_s=args.duration, actuator=args.actuator, axis=args.axis,
-                sensor_spec=spec, albedo_model=args.albedo_model)
+                sensor_spec=spec, albedo_model=args.albedo_model, params=args.params)
         part = r.first_sunlit_part()
         acq = r.acquisition_s()
         steady = r.steady_sunlit()
@@ -375,15 +402,17 @@ def _spin_down_table(args, spec) -> int:
     """The ``--spin-down`` table: each seed on the coils, the spin lowered by SUN_HOLD_* (defaults)."""
     from detumble.control.attitude_defaults import DEFAULTS
 
+    values = {**DEFAULTS, **args.params}
     limit = 2.0  # deg/s: the adcs scenario's star tracker smears above this (sim.star_tracker max_rate_deg_s)
-    print(f"SUN_HOLD_ANGLE {DEFAULTS['SUN_HOLD_ANGLE']} deg, SUN_HOLD_DWELL {DEFAULTS['SUN_HOLD_DWELL']} s, "
-          f"SUN_HOLD_SPIN_RATE {DEFAULTS['SUN_HOLD_SPIN_RATE']} deg/s (from SUN_SPIN_RATE {DEFAULTS['SUN_SPIN_RATE']})")
+    print(f"SUN_HOLD_ANGLE {values['SUN_HOLD_ANGLE']} deg, SUN_HOLD_DWELL {values['SUN_HOLD_DWELL']} s, "
+          f"SUN_HOLD_SPIN_RATE {values['SUN_HOLD_SPIN_RATE']} deg/s (from SUN_SPIN_RATE {values['SUN_SPIN_RATE']}), "
+          f"SUN_HOLD_RAMP {values['SUN_HOLD_RAMP']} deg/s²")
     print("| seed | first sunlit part (s) | acquisition ≤ 10° (s) | spin lowered at (s) | after it to the part's end: "
           "error median / p95 / max (deg) | within 10° | |ω| < 2 °/s from (s) | after the eclipse: reacquisition (s) |")
     print("|---|---|---|---|---|---|---|---|")
     for seed in range(1, args.seeds + 1):
         r = fly(seed, rate_deg_s=args.rate, duration_s=args.duration, actuator="MAGNETORQUERS", axis=args.axis,
-                sensor_spec=spec, albedo_model=args.albedo_model)
+                sensor_spec=spec, albedo_model=args.albedo_model, params=args.params)
         part, acq = r.first_sunlit_part(), r.acquisition_s()
         err, rate = r.after_spin_down()
         part_s = "none" if part is None else f"{part[0]:.0f}–{part[1]:.0f}"

@@ -97,3 +97,19 @@ def test_coil_sun_safe_lowers_its_spin_below_the_tracker_limit_and_keeps_the_sun
     assert max(rate[-20:]) < 2.0
     held = fly(1, duration_s=900.0, actuator="MAGNETORQUERS", params={"SUN_HOLD_ANGLE": 0.0})
     assert held.spin_lowered_s is None and min(held.rate_deg_s[-20:]) > 2.5
+
+
+def test_param_option_refuses_a_bad_parameter(capsys):
+    """SUNSAFE-008: ``--param`` without ``=``, with an unknown name, or outside the parameter's range (SUN_HOLD_ANGLE
+    0…90°) is refused (exit 2), saying what to give, no traceback."""
+    import pytest
+
+    from detumble.sim.sun_safe_check import main
+
+    for bad, says in ((["--param", "SUN_HOLD_ANGLE"], "give NAME=VALUE"),
+                      (["--param", "SUN_HOLD=1"], "unknown attitude-controller parameter 'SUN_HOLD'"),
+                      (["--param", "SUN_HOLD_ANGLE=200"], "outside its range 0.0…90.0 deg")):
+        with pytest.raises(SystemExit) as exc:
+            main(bad)
+        assert exc.value.code == 2
+        assert says in capsys.readouterr().err
