@@ -9,8 +9,9 @@ second control cycle, 0.1 s). It samples, once a second: the true angle between 
 the spacecraft is in eclipse, and the Sun vector estimate's error against the truth at its reading's instant.
 
 ``python -m detumble.sim.sun_safe_check [--seeds N] [--actuator ANY|MAGNETORQUERS] [--duration S] [--rate DEG_S]
-[--albedo A] [--penumbra]``
-prints the table of ``docs/studies/sun_safe.md``.
+[--albedo A] [--penumbra] [--param NAME=VALUE ...] [--spin-down]``
+prints the table of ``docs/studies/sun_safe.md``; ``--spin-down`` the coils' automatic spin-down table (when the
+spin was lowered, the true error and body rate from then on); ``--from-run DIR`` reads a deployment's flight.
 """
 
 from __future__ import annotations
