@@ -265,17 +265,20 @@ def test_coil_sun_safe_hands_back_to_pointing_with_no_operator(tmp_path):
     out from 20 s to 3000 s: SUN_SAFE (ATTITUDE_LOST) after ATTITUDE_TIMEOUT, SunSpinLowered once +Z has held the Sun
     (measured 1986 s: acquisition 1676 s + SUN_HOLD_DWELL), +Z within 10° of the true Sun from then to the end of
     the sunlit part (2809 s; max 4.7° measured), the body rate below the tracker's 2 °/s when it returns, and POINTING
-    (KNOWLEDGE_RESTORED) within SUN_SAFE_EXIT_DWELL + 1 s of it. ~3100 s of flight (docs/studies/sun_safe.md)."""
+    (KNOWLEDGE_RESTORED) within SUN_SAFE_EXIT_DWELL + 1 s of it; if POINTING's slew loses the tracker again (seed 1:
+    SUN_SAFE at 3127.5 s) the re-entry keeps the lowered spin and the flight ends in POINTING (3160 s). ~3200 s of
+    flight (docs/studies/sun_safe.md)."""
     from detumble.sim.sun_safe_check import pointing_from_run
 
     seq = ROOT / "campaigns" / "adcs" / "sun_safe_hand_back.seq"
     commands = [line for line in seq.read_text().splitlines() if line.strip() and not line.startswith(";")]
     assert len(commands) == 3 and not any("SUN_SPIN_RATE" in c or "SUN_HOLD" in c for c in commands)
-    summary, _ = fly(tmp_path, 3100.0, sequence=seq,
+    summary, _ = fly(tmp_path, 3200.0, sequence=seq,
                      settings=SUN_SAFE_SEED_1 + ("sensors.star_tracker.outage_s=[20,3000]",))
     modes = [(round(t["t_s"], 1), t["mode"]) for t in summary["control_mode_transitions"]]
     assert [m for _, m in modes][:3] == ["POINTING", "SUN_SAFE", "POINTING"]
     assert 3000.0 + 10.0 <= modes[2][0] <= 3000.0 + 11.0
+    assert modes[-1][1] == "POINTING"  # a bounce back to SUN_SAFE (if any) hands back again
     events = (tmp_path / "events.log").read_text()
     assert "Entering SUN_SAFE (ATTITUDE_LOST)" in events and "SunSpinLowered" in events
     assert "Leaving SUN_SAFE for POINTING (KNOWLEDGE_RESTORED)" in events
