@@ -257,3 +257,34 @@ def test_coil_sun_safe_on_star_tracker_loss_and_back_on_knowledge(tmp_path):
     assert "Leaving SUN_SAFE for POINTING (KNOWLEDGE_RESTORED)" in events
     modes = _tracker_loss_flight(tmp_path / "default_spin", 3.0)
     assert [m for _, m in modes] == ["POINTING", "SUN_SAFE"]
+
+
+@pytest.mark.slow
+def test_coil_sun_safe_hands_back_to_pointing_with_no_operator(tmp_path):
+    """ADCS-110: campaigns/adcs/sun_safe_hand_back.seq (no ground step after 1 s), seed 1's 2 °/s tumble, the tracker
+    out from 20 s to 3000 s: SUN_SAFE (ATTITUDE_LOST) after ATTITUDE_TIMEOUT, SunSpinLowered once +Z has held the Sun
+    (measured 1986 s: acquisition 1676 s + SUN_HOLD_DWELL), +Z within 10° of the true Sun from then to the end of
+    the sunlit part (2809 s; max 4.7° measured), the body rate below the tracker's 2 °/s when it returns, and POINTING
+    (KNOWLEDGE_RESTORED) within SUN_SAFE_EXIT_DWELL + 1 s of it; if POINTING's slew loses the tracker again (seed 1:
+    SUN_SAFE at 3127.5 s) the re-entry keeps the lowered spin and the flight ends in POINTING (3160 s). ~3200 s of
+    flight (docs/studies/sun_safe.md)."""
+    from detumble.sim.sun_safe_check import pointing_from_run
+
+    seq = ROOT / "campaigns" / "adcs" / "sun_safe_hand_back.seq"
+    commands = [line for line in seq.read_text().splitlines() if line.strip() and not line.startswith(";")]
+    assert len(commands) == 3 and not any("SUN_SPIN_RATE" in c or "SUN_HOLD" in c for c in commands)
+    summary, _ = fly(tmp_path, 3200.0, sequence=seq,
+                     settings=SUN_SAFE_SEED_1 + ("sensors.star_tracker.outage_s=[20,3000]",))
+    modes = [(round(t["t_s"], 1), t["mode"]) for t in summary["control_mode_transitions"]]
+    assert [m for _, m in modes][:3] == ["POINTING", "SUN_SAFE", "POINTING"]
+    assert 3000.0 + 10.0 <= modes[2][0] <= 3000.0 + 11.0
+    assert modes[-1][1] == "POINTING"  # a bounce back to SUN_SAFE (if any) hands back again
+    events = (tmp_path / "events.log").read_text()
+    assert "Entering SUN_SAFE (ATTITUDE_LOST)" in events and "SunSpinLowered" in events
+    assert "Leaving SUN_SAFE for POINTING (KNOWLEDGE_RESTORED)" in events
+    run = pointing_from_run(tmp_path)
+    assert run.spin_lowered_s is not None and run.spin_lowered_s < 2700.0
+    err, rate = run.after_spin_down()
+    assert len(err) >= 100 and max(err) <= 10.0
+    at_return = [w for t, w in zip(run.times, run.rate_deg_s, strict=True) if 2990.0 <= t <= 3010.0]
+    assert at_return and max(at_return) < 2.0

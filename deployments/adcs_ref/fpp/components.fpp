@@ -1128,9 +1128,10 @@ module Components {
     event SunSafeExited(to_mode: Components.ControlMode, reason: Components.ModeChangeReason) severity activity high id 0x1D format "Leaving SUN_SAFE for {} ({})"
     event SunSensorsUnavailable severity warning low id 0x1E format "SUN_SAFE refused: no Sun vector source (sunVectorGet) is connected" throttle 5
     event SunVectorRetrievalFailed severity warning low id 0x1F format "Failed to retrieve the Sun vector: carrying the last one on the gyro" throttle 5
-    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x20 format "Handler {} raised {}" throttle 10
-    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x21 format "{} PRM_SET refused: {}"
-    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x22 format "{} parameter file value refused ({}); default loaded"
+    event SunSpinLowered(spin_rate: F64) severity activity high id 0x20 format "Sun held for SUN_HOLD_DWELL: lowering the SUN_SAFE spin to {} deg/s (below the star tracker's rate limit)"
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x21 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x22 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x23 format "{} parameter file value refused ({}); default loaded"
     telemetry Mode: Components.ControlMode id 0x0 update always
     telemetry Autonomy: Components.ControlAutonomy id 0x1 update always
     telemetry AngularRate: F64 id 0x2 update always format "{.3f}"
@@ -1287,6 +1288,14 @@ module Components {
     param SUN_SPIN_RATE: F64 default 3.0 id 0x45 set opcode 0x91 save opcode 0x92
     @ units: s
     param SUN_BIAS_TIME: F64 default 100.0 id 0x46 set opcode 0x93 save opcode 0x94
+    @ units: deg
+    param SUN_HOLD_ANGLE: F64 default 10.0 id 0x47 set opcode 0x95 save opcode 0x96
+    @ units: s
+    param SUN_HOLD_DWELL: F64 default 300.0 id 0x48 set opcode 0x97 save opcode 0x98
+    @ units: deg/s
+    param SUN_HOLD_SPIN_RATE: F64 default 1.5 id 0x49 set opcode 0x99 save opcode 0x9A
+    @ units: deg/s²
+    param SUN_HOLD_RAMP: F64 default 0.005 id 0x4A set opcode 0x9B save opcode 0x9C
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver

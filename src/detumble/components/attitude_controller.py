@@ -211,6 +211,8 @@ class AttitudeController(PassiveComponent):
                                   "connected", throttle=5)
     SunVectorRetrievalFailed = Event(Severity.WARNING_LO, "Failed to retrieve the Sun vector: carrying the last one on "
                                      "the gyro", throttle=5)
+    SunSpinLowered = Event(Severity.ACTIVITY_HI, "Sun held for SUN_HOLD_DWELL: lowering the SUN_SAFE spin to {} deg/s "
+                           "(below the star tracker's rate limit)", spin_rate=F64)
 
     # --- telemetry -----------------------------------------------------------------------------
 

@@ -60,6 +60,12 @@ SUN_VECTOR_TIMEOUT = 10.0  # s: a Sun vector older than this (eclipse, failed se
 SUN_SAFE_EXIT_DWELL = 10.0  # s of attitude knowledge before SUN_SAFE (entered on its loss) hands back to POINTING
 SUN_SPIN_RATE = 3.0  # deg/s: the coils' Sun-safe spin about SUN_SAFE_AXIS (control.sun_safe.sun_spin_torque)
 SUN_BIAS_TIME = 100.0  # s: time constant of SUN_SAFE's gyro-bias estimate from the Sun vector (SunRateBias)
+# the coils' automatic spin-down: once the Sun-safe axis has been within SUN_HOLD_ANGLE of the Sun for SUN_HOLD_DWELL,
+# SUN_SAFE ramps its spin to SUN_HOLD_SPIN_RATE (below the star tracker's 2 deg/s) until it is left (sun_safe.SunHold)
+SUN_HOLD_ANGLE = 10.0  # deg: the Sun "held" within this of SUN_SAFE_AXIS (0: never lower the spin)
+SUN_HOLD_DWELL = 300.0  # s the Sun must stay held, unbroken, before the spin is lowered
+SUN_HOLD_SPIN_RATE = 1.5  # deg/s: the spin after it (the star tracker's limit is 2 deg/s in the adcs scenario)
+SUN_HOLD_RAMP = 0.005  # deg/s²: how fast the spin command goes there (a step tips the axis: control.sun_safe.SunHold)
 
 # --- detumble and spin -------------------------------------------------------------------------
 K_BDOT = 3.0  # A·m²·s/G: the internal M = −k Ḃ when no dipole provider is connected
@@ -196,6 +202,10 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "SUN_SAFE_EXIT_DWELL": ("s", 0.0, 3600.0, True),
     "SUN_SPIN_RATE": ("deg/s", 0.1, 10.0, True),
     "SUN_BIAS_TIME": ("s", 1.0, 3600.0, True),
+    "SUN_HOLD_ANGLE": ("deg", 0.0, 90.0, True),
+    "SUN_HOLD_DWELL": ("s", 0.0, 36000.0, True),
+    "SUN_HOLD_SPIN_RATE": ("deg/s", 0.1, 10.0, True),
+    "SUN_HOLD_RAMP": ("deg/s²", 1.0e-4, 1.0, True),
 }
 #: Each parameter's units (the first column of :data:`PARAMETERS`).
 UNITS: dict[str, str] = {name: row[0] for name, row in PARAMETERS.items()}

@@ -21,6 +21,11 @@ The limit that stays: â moves toward ŝ only by a rotation about ``ê = â × �
 held; when B̂ lies near ê that rate cannot be made (it is momentum along B), and the approach waits for B̂ to turn.
 That is why acquisition takes 4–30 min rather than the ~2 time constants of the loop
 (``docs/studies/sun_safe.md``).
+
+:class:`SunHold` decides when the acquisition spin may be lowered: a spin fast enough to acquire (3 °/s) is above
+the star tracker's rate limit (2 °/s), so knowledge could never come back in SUN_SAFE; once the Sun has been held
+the spin is lowered to a hold spin below that limit, which keeps the axis by the same coning argument with half the
+stiffness (``atan(|δh⊥| / h_s)`` doubles at half ``h_s``).
 """
 
 from __future__ import annotations
@@ -31,7 +36,7 @@ from collections.abc import Sequence
 Vec3 = tuple[float, float, float]
 Mat3 = Sequence[Sequence[float]]
 
-__all__ = ["SunRateBias", "sun_spin_torque", "SUN_BIAS_TIME_S"]
+__all__ = ["SunHold", "SunRateBias", "sun_spin_torque", "SPIN_DOWN_FIELD_ANGLE_DEG", "SUN_BIAS_TIME_S"]
 
 # The spin rate is the ground parameter SUN_SPIN_RATE (control.attitude_defaults: 3 °/s; with the LSM6DSO's bias
 # ⟂ +Z, 0.36 °/s, left unestimated the axis would cone by atan(0.36 / 3) = 6.8°; estimated from the Sun vector, to
@@ -118,3 +123,55 @@ class SunRateBias:
         b = self.bias
         self.bias = (b[0] + g * c[0], b[1] + g * c[1], b[2] + g * c[2])
         self.updates += 1
+
+
+#: The spin command moves only while the field is at least this far from the spin axis (deg): a spin change
+#: ``ΔH â`` made ⟂ B comes with ``ΔH cot(∠(â, B))`` across â, which tips the axis (:class:`SunHold`).
+SPIN_DOWN_FIELD_ANGLE_DEG = 80.0
+
+
+class SunHold:
+    """When and how SUN_SAFE on the coils lowers its spin. Once the angle θ between the Sun-safe axis and the Sun
+    vector (deg, from the light sensors, as the law sees it) has stayed at or below ``angle_deg`` for ``dwell_s`` s
+    without a break, the spin command leaves the acquisition spin and ramps at ``ramp_deg_s2`` to the hold spin; it
+    stays there until :meth:`reset` (the mode left or entered again). A missing Sun vector (eclipse: θ is NaN) breaks
+    the hold like an angle above it. ``angle_deg`` ≤ 0 never lowers.
+
+    Why a ramp, and only while the field is across the axis: the coils make only torque ⟂ B, so the momentum
+    change ``ΔH â`` of a spin change comes with at least ``ΔH cot(∠(â, B))`` across â, which tips the spin axis
+    by about that over the spin left, ``h_s``. A step from 3 to 1.5 °/s swung +Z 54° off the Sun, a plain ramp
+    (0.005 °/s²) 39°, gated at 70° 18° (docs/studies/sun_safe.md); the ramp therefore advances only while
+    ∠(â, B) ≥ :data:`SPIN_DOWN_FIELD_ANGLE_DEG` (``cot`` ≤ 0.18) and waits otherwise for the field to turn (twice an
+    orbit). The price: the spin comes down only in those windows, over 400–2000 s."""
+
+    def __init__(self) -> None:
+        self.held_s = 0.0
+        self.lowered = False
+        self.command_deg_s: float | None = None  # the spin command once lowering began (deg/s); None: not lowered
+
+    def reset(self) -> None:
+        self.held_s = 0.0
+        self.lowered = False
+        self.command_deg_s = None
+
+    def spin(self, theta_deg: float, dt: float, acquire_deg_s: float, hold_deg_s: float, angle_deg: float,
+             dwell_s: float, ramp_deg_s2: float, field_axis_cos: float | None) -> float:
+        """Fold in one control cycle of ``dt`` s at ``theta_deg`` and give the spin to command now (deg/s):
+        ``acquire_deg_s`` until the Sun has been held, then ramping at ``ramp_deg_s2`` to ``hold_deg_s`` while
+        ``|field_axis_cos|`` (the cosine between the field and the Sun-safe axis; None: no field reading) is small
+        enough. :attr:`lowered` turns True on the cycle the ramp begins."""
+        if self.command_deg_s is None:
+            if angle_deg > 0.0 and theta_deg <= angle_deg:  # NaN (no Sun vector) is not held
+                self.held_s += dt
+            else:
+                self.held_s = 0.0
+            if angle_deg <= 0.0 or self.held_s < dwell_s:
+                return acquire_deg_s
+            self.lowered = True
+            self.command_deg_s = acquire_deg_s
+        c = self.command_deg_s
+        if field_axis_cos is not None and abs(field_axis_cos) <= math.cos(math.radians(SPIN_DOWN_FIELD_ANGLE_DEG)):
+            step = ramp_deg_s2 * dt
+            c = max(c - step, hold_deg_s) if c > hold_deg_s else min(c + step, hold_deg_s)
+            self.command_deg_s = c
+        return c

@@ -47,7 +47,7 @@ from detumble.control.quaternion import (Quat, Vec3, is_unit_quaternion, quat_an
                                          quat_shortest, rotate_n_to_b, target_pointing_axis)
 from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
-from detumble.control.sun_safe import SunRateBias, sun_spin_torque
+from detumble.control.sun_safe import SunHold, SunRateBias, sun_spin_torque
 from detumble.control.sun_vector import propagate_body_vector
 from detumble.control.targets import (BODY_AXES, GROUND_STATION, MU_EARTH_M3_S2, STATION_FALLBACK, Ephemeris,
                                       InertialTarget, NadirTarget, Reference, StationTarget, SunTarget, Target,
@@ -302,6 +302,10 @@ class ThreeModeLaw:
     SUN_SAFE_EXIT_DWELL: float
     SUN_SPIN_RATE: float
     SUN_BIAS_TIME: float
+    SUN_HOLD_ANGLE: float
+    SUN_HOLD_DWELL: float
+    SUN_HOLD_SPIN_RATE: float
+    SUN_HOLD_RAMP: float
 
     def __init__(self, io: ControllerIo, notify: Notify, provider: DipoleProvider,
                  wheel_axes: Sequence[Sequence[float]] = XYZ, params: Mapping[str, object] | None = None) -> None:
@@ -358,6 +362,9 @@ class ThreeModeLaw:
         self._sun_safe_reason: int | None = None
         self._known_in_sun_safe_s = 0.0
         self.sun_bias = SunRateBias()  # SUN_SAFE: the gyro bias across the Sun line, from the Sun vector (rad/s, B)
+        self.sun_hold = SunHold()  # SUN_SAFE on the coils: has the Sun been held long enough to lower the spin?
+        self.sun_error_deg_last = math.nan  # deg: the coils' Sun-safe angle of the previous cycle (SunHold's input)
+        self._sun_left_us: int | None = None  # µs: when SUN_SAFE was last left (the spin-down's memory)
         # Σ h_i g_i needs only the axes (limits 1, 1); the limited allocator is rebuilt when the axes or
         # WHEEL_MAX_TORQUE / WHEEL_MAX_MOMENTUM differ from the ones it was built for.
         self._momentum_alloc: tuple = (None, None)  # (axes, WheelAllocator)
@@ -601,6 +608,7 @@ class ThreeModeLaw:
         self._known_in_sun_safe_s = 0.0
         self._sun_safe_reason = reason if mode == SUN_SAFE else None
         self.sun_bias.reset()
+        self._sun_hold_on_change(old, mode)
         self.notify.mode_changed(old, mode, reason)
         if mode == SUN_SAFE:
             self.notify.event("SunSafeEntered", reason)
@@ -859,6 +867,22 @@ class ThreeModeLaw:
         if self._known_in_sun_safe_s >= self.SUN_SAFE_EXIT_DWELL and self._pointing_available(report=False):
             self._change_mode(POINTING, _KNOWLEDGE_RESTORED)
 
+    def _sun_hold_on_change(self, old: int, mode: int) -> None:
+        """The coils' spin-down (SunHold) across mode changes: kept when SUN_SAFE is entered again within
+        SUN_HOLD_DWELL of leaving it with the spin lowered (the Sun was held moments ago; POINTING on the coils
+        starting from the spin can lose the tracker again, and the acquisition spin would smear it for good in an
+        eclipse); otherwise started afresh on entering SUN_SAFE."""
+        now = self.last_cycle_us
+        if old == SUN_SAFE:
+            self._sun_left_us = now
+        if mode != SUN_SAFE:
+            return
+        left = self._sun_left_us
+        recent = left is not None and now is not None and (now - left) / 1e6 <= self.SUN_HOLD_DWELL
+        if not (recent and self.sun_hold.lowered):
+            self.sun_hold.reset()
+        self.sun_error_deg_last = math.nan
+
     def _sun_rate(self) -> Vec3 | None:
         """The rate SUN_SAFE uses (rad/s, B): ω̂ less the Sun-vector bias estimate (zero outside SUN_SAFE)."""
         w = self.omega
@@ -922,17 +946,28 @@ class ThreeModeLaw:
         k = rate / sin_t
         return (kd * (k * e[0] - w[0]), kd * (k * e[1] - w[1]), kd * (k * e[2] - w[2]))
 
-    def _sun_spin_torque(self) -> Vec3:
+    def _sun_spin_torque(self, dt: float) -> Vec3:
         """SUN_SAFE on the magnetorquers (``control.sun_safe.sun_spin_torque``): spin SUN_SAFE_AXIS at
         SUN_SPIN_RATE and tip it to the Sun at ``SUN_SAFE_K_P_MAG/SUN_SAFE_K_D_MAG θ`` (capped at
-        SLEW_RATE_LIMIT); the transverse rate damped at SUN_SAFE_K_D_MAG, the spin held at SPIN_K_RATE."""
+        SLEW_RATE_LIMIT); the transverse rate damped at SUN_SAFE_K_D_MAG, the spin held at SPIN_K_RATE. Once the Sun
+        has been within SUN_HOLD_ANGLE for SUN_HOLD_DWELL (``control.sun_safe.SunHold``) the spin is
+        SUN_HOLD_SPIN_RATE instead (SunSpinLowered), below the star tracker's rate limit, so its fixes can return."""
         w = self._sun_rate()
         assert w is not None  # SUN_SAFE actuates only with a rate estimate
         kd = self.SUN_SAFE_K_D_MAG
-        tau, theta = sun_spin_torque(w, self.sun_B, BODY_AXES[self.SUN_SAFE_AXIS][1], self.rate_observer.inertia,
-                                     self.SUN_SPIN_RATE * _DEG, kd, self.SPIN_K_RATE,
+        axis = BODY_AXES[self.SUN_SAFE_AXIS][1]
+        b = self.b_tesla
+        b_n = _norm(b) if b is not None else 0.0
+        cos_b = (b[0] * axis[0] + b[1] * axis[1] + b[2] * axis[2]) / b_n if b is not None and b_n > 0.0 else None
+        hold, lowered = self.sun_hold, self.sun_hold.lowered
+        spin = hold.spin(self.sun_error_deg_last, dt, self.SUN_SPIN_RATE, self.SUN_HOLD_SPIN_RATE, self.SUN_HOLD_ANGLE,
+                         self.SUN_HOLD_DWELL, self.SUN_HOLD_RAMP, cos_b)
+        if hold.lowered and not lowered:
+            self.notify.event("SunSpinLowered", self.SUN_HOLD_SPIN_RATE)
+        tau, theta = sun_spin_torque(w, self.sun_B, axis, self.rate_observer.inertia,
+                                     spin * _DEG, kd, self.SPIN_K_RATE,
                                      self.SUN_SAFE_K_P_MAG / kd if kd > 0.0 else 0.0, self.SLEW_RATE_LIMIT * _DEG)
-        self.sun_error_deg = theta
+        self.sun_error_deg = self.sun_error_deg_last = theta
         return tau
 
     # --- actuation ------------------------------------------------------------------------------
@@ -959,7 +994,7 @@ class ThreeModeLaw:
                 tau = self._sun_safe_torque(self.SUN_SAFE_K_P, self.SUN_SAFE_K_D)
                 wheel_u = self._allocate(tau)
             else:
-                tau = self._sun_spin_torque()
+                tau = self._sun_spin_torque(dt)
                 if self.b_tesla is not None:
                     dipole, _ = project_dipole_weighted(tau, self.b_tesla, self.coil_limits())
         elif mode == POINTING and self.omega is not None and self.attitude_valid:

@@ -9,9 +9,11 @@ second control cycle, 0.1 s). It samples, once a second: the true angle between 
 the spacecraft is in eclipse, and the Sun vector estimate's error against the truth at its reading's instant.
 
 ``python -m detumble.sim.sun_safe_check [--seeds N] [--actuator ANY|MAGNETORQUERS] [--duration S] [--rate DEG_S]
-[--albedo A] [--penumbra] [--json FILE]``
+[--albedo A] [--penumbra] [--param NAME=VALUE ...] [--spin-down] [--json FILE]``
 prints a table of ``docs/studies/sun_safe.md`` (:func:`markdown`); ``--json`` also keeps its figures
-(:func:`table`), from which ``tools/studies.py --only sun_safe`` renders the page's tables.
+(:func:`table`), from which ``tools/studies.py --only sun_safe`` renders the page's tables; ``--spin-down`` prints
+the coils' automatic spin-down table instead (when the spin was lowered, the true error and body rate from then on);
+``--from-run DIR`` reads a deployment's flight.
 """
 
 from __future__ import annotations
@@ -22,6 +24,8 @@ import random
 import statistics
 from dataclasses import dataclass, field
 
+from detumble.control.attitude_defaults import PARAMETERS
+from detumble.control.three_mode import checked_parameters
 from detumble.sim.adcs_law import AdcsLaw, PlantIo
 from detumble.sim.epoch import julian_date
 from detumble.sim.orbit import R_EARTH_EQ
@@ -47,8 +51,9 @@ def _angle_deg(a, b) -> float:
 
 @dataclass
 class SunSafeResult:
-    """One flight's samples (1 Hz): time (s), true Sun-pointing error (deg), eclipse; the Sun vector's errors
-    (deg) at its sunlit readings; the mode transitions ``(t s, mode, reason)``."""
+    """One flight's samples (1 Hz): time (s), true Sun-pointing error (deg), eclipse, true body rate |ω| (deg/s); the
+    Sun vector's errors (deg) at its sunlit readings; the mode transitions ``(t s, mode, reason)``; the time the
+    coils' SUN_SAFE lowered its spin to SUN_HOLD_SPIN_RATE (s; None: it did not)."""
 
     times: list = field(default_factory=list)
     pointing_deg: list = field(default_factory=list)
@@ -56,6 +61,8 @@ class SunSafeResult:
     vector_deg: list = field(default_factory=list)
     vector_invalid_sunlit: int = 0
     transitions: list = field(default_factory=list)
+    rate_deg_s: list = field(default_factory=list)
+    spin_lowered_s: float | None = None
 
     def sunlit_parts(self) -> list[tuple[float, float]]:
         """``(start, end)`` s of each sunlit stretch of the run, in order."""
@@ -91,6 +98,15 @@ class SunSafeResult:
         if last_above >= end - 1.0:
             return None
         return last_above + 1.0 - start
+
+    def after_spin_down(self) -> tuple[list, list]:
+        """``(pointing errors, body rates)`` (deg, deg/s) sampled in the first sunlit part from the spin-down to its
+        end (both empty when the spin was not lowered in that part)."""
+        part, t0 = self.first_sunlit_part(), self.spin_lowered_s
+        if part is None or t0 is None or not t0 < part[1]:
+            return [], []
+        keep = [i for i, t in enumerate(self.times) if t0 <= t < part[1]]
+        return [self.pointing_deg[i] for i in keep], [self.rate_deg_s[i] for i in keep]
 
     def steady_sunlit(self) -> list:
         """The pointing errors in the first sunlit part after its acquisition (empty: never acquired)."""
@@ -140,6 +156,10 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
             out.times.append(t)
             out.eclipse.append(sensors.eclipse)
             out.pointing_deg.append(_angle_deg(a, s_true))
+            w = plant.omega_BN_B
+            out.rate_deg_s.append(math.degrees(math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])))
+            if out.spin_lowered_s is None and law.law.sun_hold.lowered:
+                out.spin_lowered_s = t
             if not sensors.eclipse:
                 if reading[1]:
                     out.vector_deg.append(_angle_deg(reading[0], s_true))
@@ -227,7 +247,24 @@ def pointing_from_run(run_dir, axis: str = "PLUS_Z", scenario: str = "adcs") -> 
             out.times.append(t)
             out.eclipse.append(row["eclipse"] == "1")
             out.pointing_deg.append(_angle_deg(a, rotate_n_to_b(q, sun_direction_N(jd0 + t / 86400.0)[0])))
+            out.rate_deg_s.append(float(row["rate_deg_s"]))
+    out.spin_lowered_s = _spin_lowered_from_events(pathlib.Path(run_dir) / "events.log", load_scenario(scenario).epoch)
     return out
+
+
+def _spin_lowered_from_events(path, epoch) -> float | None:
+    """Seconds from ``epoch`` (a UTC datetime) of the first SunSpinLowered in a run's ``events.log`` (None: none,
+    or no log)."""
+    import datetime
+
+    if not path.is_file():
+        return None
+    for line in path.read_text().splitlines():
+        stamp, _, rest = line.partition(" ")
+        if rest.split(" ", 1)[0].endswith(".SunSpinLowered"):
+            when = datetime.datetime.fromisoformat(stamp.replace("Z", "+00:00"))
+            return (when - epoch).total_seconds()
+    return None
 
 
 def _percentile(values, p: float) -> float:
@@ -250,6 +287,12 @@ def main(argv: list[str] | None = None) -> int:
                     help="take the Earth's albedo out of the Sun vector with this Bond albedo (control.albedo: TRIAD "
                     "on the Sun vector and the magnetometer); default 0, no correction")
     ap.add_argument("--penumbra", action="store_true", help="the conical shadow (penumbra) instead of the cylinder")
+    ap.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                    help="an attitude-controller parameter by its flight name (e.g. SUN_HOLD_ANGLE=0: no spin-down); "
+                    "repeatable")
+    ap.add_argument("--spin-down", action="store_true", help="instead: the coils' automatic spin-down (SUN_HOLD_*): "
+                    "acquisition, when the spin was lowered, and the pointing and body rate from then to the end of "
+                    "the first sunlit part (sets --actuator MAGNETORQUERS)")
     ap.add_argument("--json", metavar="FILE", help="also keep the table's figures in FILE (JSON)")
     ap.add_argument("--from-run", metavar="DIR", help="instead: a fprime-lite run of adcs_ref against its truth: "
                     "--axis to the Sun (acquisition, steady statistics) and the ADCS Sun vector")
@@ -287,20 +330,53 @@ def main(argv: list[str] | None = None) -> int:
                f"{max(steady):.2f} deg" if steady else "") +
               ("" if len(parts) < 2 else ", after the eclipse: reacquisition " +
                ("never" if re_acq is None else f"{re_acq:.0f} s")) if part else f"{args.axis}: never sunlit")
+        if run.spin_lowered_s is not None:
+            err, rate = run.after_spin_down()
+            print(f"spin lowered (SunSpinLowered) at {run.spin_lowered_s:.1f} s" + (
+                f"; from then to the first sunlit part's end: error median {statistics.median(err):.2f}, max "
+                f"{max(err):.2f} deg, {100 * sum(e <= POINTING_THRESHOLD_DEG for e in err) / len(err):.1f} % within "
+                f"{POINTING_THRESHOLD_DEG:g}°, |ω| below 2 °/s from {_slow_from(run.spin_lowered_s, rate)} s"
+                if err else ""))
         within = sum(e <= VECTOR_THRESHOLD_DEG for e in errs) / len(errs)
         print(f"ADCS SunVector vs truth, sunlit: {len(errs)} readings, median {statistics.median(errs):.2f}, p95 "
               f"{_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; {100 * within:.1f} % within "
               f"{VECTOR_THRESHOLD_DEG:g} deg; {invalid} invalid")
         return 0
+    params: dict[str, object] = {}
+    for item in args.param:
+        name, eq, value = item.partition("=")
+        if not eq:
+            ap.error(f"--param {item!r}: give NAME=VALUE, e.g. --param SUN_HOLD_ANGLE=0")
+        try:
+            number = float(value)
+        except ValueError:
+            params[name] = value  # an enumerated parameter by its member name
+            continue
+        row = PARAMETERS.get(name)
+        if row is not None:
+            units, low, high, finite = row
+            if (finite and not math.isfinite(number)) or (low is not None and not number >= low) or (
+                    high is not None and not number <= high):
+                ap.error(f"--param {name}={value}: outside its range {low}…{high} {units}")
+        params[name] = number
+    try:
+        checked_parameters(params)
+    except ValueError as exc:
+        ap.error(f"--param: {exc}")
+    args.params = params
+    if args.spin_down:
+        return _spin_down_table(args, spec)
     figures = table(args.seeds, rate_deg_s=args.rate, duration_s=args.duration, actuator=args.actuator,
-                    axis=args.axis, sensor_spec=spec, albedo_model=args.albedo_model)
+                    axis=args.axis, sensor_spec=spec, albedo_model=args.albedo_model, params=args.params)
     if args.json is not None:
         import json
         import pathlib
 
         from detumble.sim.runner import write_atomic
 
-        options = {k: v for k, v in vars(args).items() if k not in ("json", "from_run")}
+        options = {k: v for k, v in vars(args).items() if k not in ("json", "from_run", "param", "params", "spin_down")}
+        if args.params:
+            options["params"] = args.params
         pathlib.Path(args.json).parent.mkdir(parents=True, exist_ok=True)
         write_atomic(args.json, json.dumps(dict(figures, options=options), indent=1) + "\n")
     print(markdown(figures), end="")
@@ -332,7 +408,7 @@ def table(seeds: int, **fly_args) -> dict:
                      "vector_within": sum(v <= VECTOR_THRESHOLD_DEG for v in vec) / len(vec) if vec else None,
                      "vector_invalid_sunlit": r.vector_invalid_sunlit})
     return {"rows": rows, "pooled_vector_deg": _stats(pooled), "pooled_readings": len(pooled),
-            "fly": {k: v for k, v in fly_args.items() if k != "sensor_spec"}}
+            "fly": {k: v for k, v in fly_args.items() if k != "sensor_spec" and not (k == "params" and not v)}}
 
 
 def markdown(figures: dict) -> str:
@@ -357,6 +433,45 @@ def markdown(figures: dict) -> str:
         lines += ["", f"all seeds: Sun vector p95 {pooled['p95']:.2f} deg, max {pooled['max']:.2f} deg over "
                   f"{figures['pooled_readings']} sunlit readings"]
     return "\n".join(lines) + "\n"
+
+
+def _slow_from(t0: float, rate: list, limit: float = 2.0) -> str:
+    """When the 1 Hz body rates ``rate`` (deg/s, from ``t0`` s) go below ``limit`` for good: "t s" or "never"."""
+    last_fast = max((i for i, w in enumerate(rate) if not w < limit), default=None)
+    return "never" if last_fast == len(rate) - 1 else f"{t0 + (0 if last_fast is None else last_fast + 1):.0f}"
+
+
+def _spin_down_table(args, spec) -> int:
+    """The ``--spin-down`` table: each seed on the coils, the spin lowered by SUN_HOLD_* (defaults)."""
+    from detumble.control.attitude_defaults import DEFAULTS
+
+    values = {**DEFAULTS, **args.params}
+    limit = 2.0  # deg/s: the adcs scenario's star tracker smears above this (sim.star_tracker max_rate_deg_s)
+    print(f"SUN_HOLD_ANGLE {values['SUN_HOLD_ANGLE']} deg, SUN_HOLD_DWELL {values['SUN_HOLD_DWELL']} s, "
+          f"SUN_HOLD_SPIN_RATE {values['SUN_HOLD_SPIN_RATE']} deg/s (from SUN_SPIN_RATE {values['SUN_SPIN_RATE']}), "
+          f"SUN_HOLD_RAMP {values['SUN_HOLD_RAMP']} deg/s²")
+    print("| seed | first sunlit part (s) | acquisition ≤ 10° (s) | spin lowered at (s) | after it to the part's end: "
+          "error median / p95 / max (deg) | within 10° | |ω| < 2 °/s from (s) | after the eclipse: reacquisition (s) |")
+    print("|---|---|---|---|---|---|---|---|")
+    for seed in range(1, args.seeds + 1):
+        r = fly(seed, rate_deg_s=args.rate, duration_s=args.duration, actuator="MAGNETORQUERS", axis=args.axis,
+                sensor_spec=spec, albedo_model=args.albedo_model, params=args.params)
+        part, acq = r.first_sunlit_part(), r.acquisition_s()
+        err, rate = r.after_spin_down()
+        part_s = "none" if part is None else f"{part[0]:.0f}–{part[1]:.0f}"
+        low = "never" if r.spin_lowered_s is None else f"{r.spin_lowered_s:.0f}"
+        if err and r.spin_lowered_s is not None:
+            st = f"{statistics.median(err):.2f} / {_percentile(err, 95):.2f} / {max(err):.2f}"
+            within = f"{100 * sum(e <= POINTING_THRESHOLD_DEG for e in err) / len(err):.1f} %"
+            slow = _slow_from(r.spin_lowered_s, rate, limit)
+        else:
+            st = within = slow = "—"
+        parts = r.sunlit_parts()
+        re_acq = r.acquisition_s(part_index=1) if len(parts) > 1 else None
+        re_s = "—" if len(parts) < 2 else ("never" if re_acq is None else f"{re_acq:.0f}")
+        print(f"| {seed} | {part_s} | {'never' if acq is None else f'{acq:.0f}'} | {low} | {st} | {within} | {slow} | "
+              f"{re_s} |")
+    return 0
 
 
 if __name__ == "__main__":

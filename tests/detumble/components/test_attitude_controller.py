@@ -1098,10 +1098,14 @@ def test_gyroscopic_and_gravity_gradient_feed_forward_on_the_wheels(fprime_harne
 
 
 @pytest.mark.parametrize("bad", [{"SUN_SPIN_RATE": 0.0}, {"SUN_SPIN_RATE": 12.0}, {"SUN_SPIN_RATE": math.nan},
-                                 {"SUN_BIAS_TIME": 0.5}, {"SUN_BIAS_TIME": 4000.0}])
+                                 {"SUN_BIAS_TIME": 0.5}, {"SUN_BIAS_TIME": 4000.0},
+                                 {"SUN_HOLD_ANGLE": -1.0}, {"SUN_HOLD_ANGLE": 91.0}, {"SUN_HOLD_DWELL": -1.0},
+                                 {"SUN_HOLD_DWELL": math.inf}, {"SUN_HOLD_SPIN_RATE": 0.0},
+                                 {"SUN_HOLD_SPIN_RATE": 11.0}, {"SUN_HOLD_RAMP": 0.0}, {"SUN_HOLD_RAMP": math.nan}])
 def test_sun_safe_ground_parameters_have_ranges(fprime_harness, bad):
-    """ADCS-106: SUN_SPIN_RATE outside 0.1…10 °/s and SUN_BIAS_TIME outside 1…3600 s (or not finite) are refused by
-    PRM_SET (VALIDATION_ERROR) and the value in use is kept."""
+    """ADCS-106: SUN_SPIN_RATE outside 0.1…10 °/s, SUN_BIAS_TIME outside 1…3600 s, SUN_HOLD_ANGLE outside 0…90°,
+    SUN_HOLD_DWELL outside 0…36000 s, SUN_HOLD_SPIN_RATE outside 0.1…10 °/s, SUN_HOLD_RAMP outside 1e-4…1 °/s² (or
+    any of them not finite) are refused by PRM_SET (VALIDATION_ERROR) and the value in use is kept."""
     assert_refused_and_kept(fprime_harness, bad)
 
 

@@ -1,4 +1,4 @@
-"""SUNSAFE-010…013: the magnetorquer Sun-safe law and the Sun-vector gyro-bias observer (control.sun_safe), open
+"""SUNSAFE-010…014: the magnetorquer Sun-safe law and the Sun-vector gyro-bias observer (control.sun_safe), open
 loop against closed forms."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from detumble.control.sun_safe import SunRateBias, sun_spin_torque
+from detumble.control.sun_safe import SPIN_DOWN_FIELD_ANGLE_DEG, SunHold, SunRateBias, sun_spin_torque
 from detumble.control.sun_vector import propagate_body_vector
 
 DEG = math.pi / 180.0
@@ -72,3 +72,32 @@ def test_spin_law_tips_away_from_the_anti_sun():
     tau, theta = sun_spin_torque((0.0, 0.0, ws), (0.0, 0.0, -1.0), Z, I_DIAG, ws, 4e-4, 2e-4, 0.01, 8.0 * DEG)
     assert theta == pytest.approx(180.0)
     assert math.hypot(tau[0], tau[1]) == pytest.approx(2.05e-3 * ws * 0.01 * math.pi, rel=1e-12)
+
+
+def test_spin_down_waits_for_the_sun_held_then_ramps_while_the_field_is_across():
+    """SUNSAFE-014: SunHold at 8 Hz (angle 10°, dwell 300 s, 3 → 1.5 °/s at 0.005 °/s²): the acquisition spin until
+    θ has stayed ≤ 10° for 300 s, the count restarted by one reading above it or one with no Sun vector (NaN); then
+    the command ramps by 0.000625 °/s a cycle only while the field is ≥ SPIN_DOWN_FIELD_ANGLE_DEG from the axis, to
+    1.5 °/s and no lower; SUN_HOLD_ANGLE 0 never lowers; reset() starts again."""
+    dt, across, along = 0.125, 0.0, math.cos(math.radians(SPIN_DOWN_FIELD_ANGLE_DEG - 1.0))
+    h = SunHold()
+
+    def run(seconds, theta, cos_b=across, angle=10.0):
+        out = 3.0
+        for _ in range(int(round(seconds / dt))):
+            out = h.spin(theta, dt, 3.0, 1.5, angle, 300.0, 0.005, cos_b)
+        return out
+
+    assert run(299.0, 9.9) == 3.0 and not h.lowered
+    assert run(1.0, 10.5) == 3.0 and h.held_s == 0.0  # broken: the count restarts
+    assert run(200.0, 5.0) == 3.0 and run(0.1, math.nan) == 3.0 and h.held_s == 0.0  # eclipse breaks it too
+    assert run(299.875, 5.0) == 3.0 and not h.lowered
+    step = 0.005 * dt
+    assert run(dt, 5.0) == pytest.approx(3.0 - step) and h.lowered  # the 300th second: lowering begins
+    assert run(10.0, 5.0, cos_b=along) == pytest.approx(3.0 - step)  # field near the axis: the ramp waits
+    assert run(10.0, 5.0, cos_b=None) == pytest.approx(3.0 - step)  # no field reading: it waits
+    assert run(10.0, 40.0, cos_b=-across) == pytest.approx(3.0 - step - 0.05)  # latched: θ no longer matters
+    assert run(1000.0, 5.0) == 1.5 and h.command_deg_s == 1.5
+    h.reset()
+    assert not h.lowered and h.command_deg_s is None and h.held_s == 0.0
+    assert run(1000.0, 0.0, angle=0.0) == 3.0 and not h.lowered
