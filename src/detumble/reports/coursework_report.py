@@ -67,7 +67,7 @@ class CourseworkRunReport:
 
     def _sample(self, s: TruthSample) -> None:
         assert self.metrics is not None and self._writer is not None
-        self.metrics.update(self.spacecraft.plant)
+        self.metrics.update(self.spacecraft.plant, s.q_BO)  # s: the plant's state now (its q_BO taken once)
         if self._count % self.rows_every == 0:
             w = s.omega_BN_B
             t = s.t_s - self.start_us / US_PER_S
