@@ -516,6 +516,7 @@ class SimulatedSpacecraft(ResetLine):
         p = self.plant
         t_ns = p.t_ns
         w = p.omega_BN_B
+        q_bo, w_bo = p.orbit_relative()  # the orbit's position and O's axes once for both
         return TruthSample(
             time_us=self.clock.epoch_us + self.origin_us + t_ns // 1000,
             t_s=t_ns * 1e-9,
@@ -525,8 +526,8 @@ class SimulatedSpacecraft(ResetLine):
             b_B=tuple(p.b_B),
             m_coils_B=tuple(p.m_coils_B),
             coil_levels=p.coil_levels(),
-            q_BO=tuple(p.q_BO),
-            omega_BO_B=tuple(p.omega_BO_B),
+            q_BO=q_bo,
+            omega_BO_B=w_bo,
             m_commanded_B=tuple(p.m_commanded_B),
             pointing_error_rad=p.pointing_error_rad(),
             wheel_momenta=tuple(p.wheel_momenta),

@@ -55,6 +55,7 @@ from detumble.components.attitude_types import ControlMode
 from detumble.control.quaternion import quat_angle, quat_error
 from detumble.control.targets import LABELS, true_reference_q
 from detumble.drivers.spacecraft import SimulatedSpacecraft
+from detumble.reports.csv_rows import FastCsvWriter
 from detumble.reports.figures import save_figure
 
 __all__ = ["AttitudeRunReport", "error_statistics", "settle_time", "plot_attitude_csv", "read_attitude_csv"]
@@ -274,7 +275,7 @@ class AttitudeRunReport:
         path = out_dir / "attitude.csv"
         tmp = path.with_name(".attitude.csv.part")
         with open(tmp, "w", encoding="utf-8", newline="") as f:
-            w = csv.writer(f, lineterminator="\n")
+            w = FastCsvWriter(f)  # the bytes csv.writer writes
             w.writerow(_COLUMNS)
             for r in self.rows:
                 w.writerow([ControlMode(r[1]).name if i == 1 else r[i] for i in range(len(r))])

@@ -10,8 +10,7 @@ draws seed 004's time histories from ``truth.csv`` (:mod:`detumble.reports.histo
 """
 from __future__ import annotations
 
-import csv
-from typing import Any, TextIO
+from typing import TextIO
 import math
 import os
 import pathlib
@@ -21,6 +20,7 @@ from fprime_lite.model.time import US_PER_S
 
 from detumble.sim.settling_metrics import SettlingMetrics
 from detumble.sim.truth import adcs_header, adcs_row
+from detumble.reports.csv_rows import FastCsvWriter
 from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthSample
 
 __all__ = ["CourseworkRunReport"]
@@ -51,7 +51,7 @@ class CourseworkRunReport:
         self._count = 0
         self._path: pathlib.Path | None = None
         self._file: TextIO | None = None
-        self._writer: Any = None  # a csv writer (its class is private to _csv)
+        self._writer: FastCsvWriter | None = None
 
     def begin(self, deployment, out_dir: pathlib.Path) -> None:
         plant = self.spacecraft.plant
@@ -60,14 +60,14 @@ class CourseworkRunReport:
                                        include_attitude=self.wheel_law)
         self._path = pathlib.Path(out_dir) / "truth.csv"
         self._file = fh = open(self._path.with_name(".truth.csv.part"), "w", encoding="utf-8", newline="")
-        self._writer = csv.writer(fh, lineterminator="\n")
+        self._writer = FastCsvWriter(fh)
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s",
                                *adcs_header(plant, with_field=True)])
         self.spacecraft.set_trace(self._sample, self.metrics_us)
 
     def _sample(self, s: TruthSample) -> None:
         assert self.metrics is not None and self._writer is not None
-        self.metrics.update(self.spacecraft.plant)
+        self.metrics.update(self.spacecraft.plant, s.q_BO)  # s: the plant's state now (its q_BO taken once)
         if self._count % self.rows_every == 0:
             w = s.omega_BN_B
             t = s.t_s - self.start_us / US_PER_S

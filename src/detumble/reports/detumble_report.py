@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from typing import Any, TextIO
 
-import csv
 import math
 import os
 import pathlib
@@ -21,6 +20,7 @@ from fprime_lite.osal.atomic import clean_temporary_files, open_temporary
 
 from detumble.control.coil_layout import COIL_FACES
 from detumble.sim.truth import adcs_header, adcs_row
+from detumble.reports.csv_rows import FastCsvWriter
 from detumble.reports.power_budget import POWER_COLUMNS as _POWER_COLUMNS, PowerBudget, plot_power
 from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthSample
 from detumble.components.types import DetumbleState
@@ -63,7 +63,7 @@ class DetumbleRunReport:
         self.time_below_1_deg_s: float | None = None
         self.samples = 0
         self._file: TextIO | None = None
-        self._writer: Any = None  # a csv writer (its class is private to _csv)
+        self._writer: FastCsvWriter | None = None
         self._path: pathlib.Path | None = None
         self._tmp: pathlib.Path | None = None  # where truth.csv is streamed until finish()
         self.power = PowerBudget(spacecraft)
@@ -78,7 +78,7 @@ class DetumbleRunReport:
         clean_temporary_files(self._path.parent)  # what a killed run left (a live run's are kept)
         self._file, self._tmp = open_temporary(self._path, "w", encoding="utf-8", newline="")
         fh = self._file
-        self._writer = csv.writer(fh, lineterminator="\n")
+        self._writer = FastCsvWriter(fh)
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
                                "bz_uT", *(f"level_mean_{_FACE_SUFFIX[f]}" for f in COIL_FACES),
                                *(f"on_{_FACE_SUFFIX[f]}" for f in COIL_FACES),
@@ -121,6 +121,8 @@ class DetumbleRunReport:
         self._state_since = self._last_us
 
     def _sample(self, s: TruthSample) -> None:
+        writer = self._writer
+        assert writer is not None  # begin() made it
         self.last = s
         self.samples += 1
         t = s.t_s - self.start_us / US_PER_S
@@ -132,8 +134,8 @@ class DetumbleRunReport:
         now = drive.totals(plant.t_ns)
         if now.t_ns > self._drive_before.t_ns:  # the means over the interval since the previous sample
             means = drive.interval_means(self._drive_before, now)
-            switched = [*(f"{means.level.get(f, 0.0):.3f}" for f in COIL_FACES),
-                        *(f"{means.on.get(f, 0.0):.4f}" for f in COIL_FACES)]
+            level, on = means.level, means.on
+            switched = [f"{level.get(f, 0.0):.3f}" for f in COIL_FACES] + [f"{on.get(f, 0.0):.4f}" for f in COIL_FACES]
             dipole: list = list(means.m_B)
         else:  # the first sample closes no interval
             switched, dipole = [""] * (2 * len(COIL_FACES)), [""] * 3
@@ -143,9 +145,9 @@ class DetumbleRunReport:
             strategy = getattr(self.manager, "strategy", None)
             state_us = self.take_state_us()
             total = sum(state_us.values())
-            manager_columns = [*(f"{state_us[st] / total if total else 0.0:.4f}" for st in _STATES),
-                               strategy.name if strategy is not None else ""]
-        self._writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
+            manager_columns = [f"{state_us[st] / total if total else 0.0:.4f}" for st in _STATES]
+            manager_columns.append(strategy.name if strategy is not None else "")
+        writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
                                s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *switched,
                                *manager_columns,
                                *adcs_row(plant, with_field=False, sample=s), *dipole, *self.power.sample(t)])

@@ -590,6 +590,20 @@ class Plant:
         w = self.omega_BN_B
         return (w[0] - wo[0], w[1] - wo[1], w[2] - wo[2])
 
+    def orbit_relative(self) -> tuple[Quat, Vec3]:
+        """``(q_BO, omega_BO_B)`` together, the orbit's position, velocity and O's axes computed once:
+        the same floats as the two properties (the same functions of the same state and time)."""
+        t = self._t_ns / 1e9
+        r, v = self.orbit.position_velocity_N(t)
+        axes = frames.orbit_axes_N(r, v)
+        q_bn = self._state[0:4]
+        q_bo = frames.q_BO(q_bn, frames.dcm_to_quat(axes))
+        n = frames.orbit_rate(r, v)
+        y_N = axes[1]
+        wo = rotate_n_to_b(q_bn, (-n * y_N[0], -n * y_N[1], -n * y_N[2]))
+        s = self._state
+        return q_bo, (s[4] - wo[0], s[5] - wo[1], s[6] - wo[2])
+
     def ephemeris(self) -> Ephemeris:
         """Where the spacecraft is now (truth): position and velocity in N, the Earth rotation angle (the field
         model's), the Sun's direction (``sim.sun``, from the scenario epoch) — what an on-board ephemeris knows."""

@@ -33,14 +33,18 @@ class SettlingMetrics:
         self.below = BelowTracker(math.radians(threshold_deg_s))
         self.update(plant)
 
-    def update(self, plant) -> None:
+    def update(self, plant, q_BO=None) -> None:
+        """Feed the plant's present state; ``q_BO``: its attitude relative to the orbit frame when
+        already computed for this instant (a ``TruthSample``'s), else read from the plant."""
         t = plant.t
         w = plant.omega_BN_B
         f = self.omega_final
-        for i in range(3):
-            self.axes[i].update(t, w[i])
+        axes = self.axes
+        axes[0].update(t, w[0])
+        axes[1].update(t, w[1])
+        axes[2].update(t, w[2])
         if self.attitude is not None:
-            self.attitude.update(t, plant.q_BO[0])
+            self.attitude.update(t, (plant.q_BO if q_BO is None else q_BO)[0])
         dx, dy, dz = w[0] - f[0], w[1] - f[1], w[2] - f[2]
         self.below.update(t, math.sqrt(dx * dx + dy * dy + dz * dz))
 

@@ -42,28 +42,35 @@ def adcs_header(plant, with_field: bool = True) -> list[str]:
 
 def adcs_row(plant, with_field: bool = True, sample=None) -> list:
     """The columns' values now. ``sample``: the ``TruthSample`` just taken of this plant's present
-    state (``SimulatedSpacecraft.truth``, a truth trace's callback argument), whose attitude relative
-    to the orbit frame, rate relative to it and pointing error are then taken as computed there (the
-    same floats: the same plant state, the same functions) instead of a second time; a sample of
-    another instant is ignored."""
-    q = plant.q_BN
+    state (``SimulatedSpacecraft.truth``, a truth trace's callback argument), whose attitude, the
+    attitude relative to the orbit frame, rate relative to it, pointing error, field in B and the
+    commanded and achieved dipoles are then taken as computed there (the same floats: the same plant
+    state, the same functions) instead of a second time; a sample of another instant is ignored."""
     if sample is not None and sample.t_s == plant.t_ns * 1e-9:
+        q = sample.q_BN
         qo = sample.q_BO
         wo = sample.omega_BO_B
         err = sample.pointing_error_rad
+        b = sample.b_B
+        m = sample.m_coils_B
+        mcmd = sample.m_commanded_B
     else:
+        q = plant.q_BN
         qo = plant.q_BO
         wo = plant.omega_BO_B
         err = plant.pointing_error_rad()
-    row: list = [*q, *qo, *(math.degrees(w) for w in wo), "" if err is None else math.degrees(err)]
-    b = plant.b_B
+        b = plant.b_B
+        m = plant.m_coils_B
+        mcmd = plant.m_commanded_B
+    degrees = math.degrees
+    row: list = [q[0], q[1], q[2], q[3], qo[0], qo[1], qo[2], qo[3], degrees(wo[0]), degrees(wo[1]),
+                 degrees(wo[2]), "" if err is None else degrees(err)]
     if with_field:
-        row += [x * 1e6 for x in b]
-    m = plant.m_coils_B
+        row += (b[0] * 1e6, b[1] * 1e6, b[2] * 1e6)
     res = plant.residual_dipole_B
     t_mag = cross((m[0] + res[0], m[1] + res[1], m[2] + res[2]), b)
-    row += [*plant.m_commanded_B, *m, *t_mag, *plant.gravity_gradient_torque_B(), *plant.wheel_torque_on_body_B()]
+    row += (*mcmd, *m, *t_mag, *plant.gravity_gradient_torque_B(), *plant.wheel_torque_on_body_B())
     if plant.wheel_count:
         for h, w, u in zip(plant.wheel_momenta, plant.wheel_speeds_rad_s, plant.wheel_torques_nm, strict=True):
-            row += [h, w, u]
+            row += (h, w, u)
     return row

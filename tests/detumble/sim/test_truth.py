@@ -71,3 +71,22 @@ def test_a_fresh_truth_sample_gives_the_same_row_and_a_stale_one_is_ignored():
     craft.sync()
     assert repr(adcs_row(plant, sample=sample)) == repr(adcs_row(plant))
     assert adcs_row(plant, sample=sample)[4:8] != list(sample.q_BO)
+
+
+@pytest.mark.parametrize("scenario", ["default", "adcs", "surrey"])
+def test_orbit_relative_is_the_two_properties_to_the_bit(scenario):
+    """TR-005: Plant.orbit_relative() (what a TruthSample takes: the orbit's position and O's axes
+    computed once) gives q_BO and omega_BO_B as the two properties do, bit for bit, along a flight;
+    and a TruthSample carries those values."""
+    from detumble.drivers.spacecraft import SimulatedSpacecraft
+
+    craft = SimulatedSpacecraft(load_scenario(scenario))
+    plant = craft.plant
+    for _ in range(12):
+        craft.clock.set_us(craft.clock.current_us + 7_130_000)
+        craft.sync()
+        q_bo, w_bo = plant.orbit_relative()
+        assert repr(q_bo) == repr(plant.q_BO)
+        assert repr(w_bo) == repr(plant.omega_BO_B)
+        sample = craft.truth()
+        assert repr((sample.q_BO, sample.omega_BO_B)) == repr((plant.q_BO, plant.omega_BO_B))

@@ -1,0 +1,60 @@
+"""Count the instructions of a ``fprime-lite run`` (or of its truth row) under callgrind.
+
+    PYTHONHASHSEED=0 valgrind --tool=callgrind --collect-atstart=no --toggle-collect=starmap_next \\
+        python benchmarks/count_run_instructions.py TOPOLOGY DURATION_S MODE OUT_DIR
+
+Only what runs inside ``itertools.starmap`` is counted. MODE ``run``: ``run_deployment`` after the
+topology's load (every output written, plots off: what ``fprime-lite run --no-plots`` does after the
+load). MODE ``row``: the flight runs uncounted except ``SimulatedSpacecraft.truth`` and the
+truth-trace callbacks (the run reports' sampled rows). The total is callgrind's ``summary`` line
+(``callgrind_annotate`` breaks it down by C function). Instruction counts do not depend on the
+machine's load (docs/performance.md, "Issue 32: the 1 Hz truth/report row").
+"""
+
+from __future__ import annotations
+
+import itertools
+import sys
+
+from fprime_lite.deploy.topology_loader import load_topology
+from fprime_lite.tools.runner import run_deployment
+
+
+def _count_row_only() -> None:
+    from detumble.drivers.spacecraft import SimulatedSpacecraft
+
+    truth, set_trace = SimulatedSpacecraft.truth, SimulatedSpacecraft.set_trace
+
+    def counted_truth(self):
+        return next(itertools.starmap(truth, ((self,),)))
+
+    def counted_set_trace(self, callback, interval_us=1_000_000):
+        if callback is None:
+            return set_trace(self, None)
+        return set_trace(self, lambda s: next(itertools.starmap(callback, ((s,),))), interval_us)
+
+    SimulatedSpacecraft.truth = counted_truth  # type: ignore[method-assign]
+    SimulatedSpacecraft.set_trace = counted_set_trace  # type: ignore[method-assign]
+
+
+def main(argv: list[str]) -> int:
+    if len(argv) != 4 or argv[2] not in ("run", "row"):
+        print(__doc__)
+        return 2
+    topology, duration_s, mode, out = argv[0], float(argv[1]), argv[2], argv[3]
+    if mode == "row":
+        _count_row_only()
+    loaded = load_topology(topology)
+
+    def fly() -> None:
+        run_deployment(loaded, out, duration_s=duration_s, plots=False, quiet=True)
+
+    if mode == "run":
+        next(itertools.starmap(fly, ((),)))
+    else:
+        fly()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
