@@ -42,7 +42,8 @@ def _numeric_axes(df, campaign) -> list[str]:
     axes = []
     for k in campaign.grid_keys:
         col = df[k].dropna()
-        if col.nunique() > 1 and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in col):
+        # a list-valued key (a vector setting) is not an axis, and cannot be hashed for nunique: test it first
+        if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in col) and col.nunique() > 1:
             axes.append(k)
     return axes
 
