@@ -99,7 +99,9 @@ def test_hard_timeouts_and_kept_best_runs_on_external_workers(external_cluster, 
     assert {p.name for p in (out / "runs").iterdir()} == best
 
 
-RESUMABLE = TINY_PLANT.replace("duration_s: 20", "duration_s: 400").replace("seeds: 2", "seeds: 4")  # killable mid-way
+# killable mid-way: each run ~1.3 s on a quiet machine, longer than the 0.5 s batch window of the results parts
+# (at 400 s a quiet machine finished all 8 runs inside the first part, so nothing was left to kill)
+RESUMABLE = TINY_PLANT.replace("duration_s: 20", "duration_s: 4000").replace("seeds: 2", "seeds: 4")
 
 
 def test_a_killed_campaign_resumes_to_the_same_table(write_campaign, tmp_path):
