@@ -3,9 +3,11 @@
 from types import SimpleNamespace
 
 import numpy as np
-import pandas as pd
+import pytest
 
-from fprime_lite.tools.campaign.plots import auto_plots
+pd = pytest.importorskip("pandas", reason="pandas, dask and pyarrow are dependencies: pip install -e .[test]")
+
+from fprime_lite.tools.campaign.plots import auto_plots  # noqa: E402 - after the dependency check, as its siblings
 
 
 def test_a_list_valued_grid_key_is_not_an_axis_and_does_not_stop_the_plots():
