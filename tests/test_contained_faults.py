@@ -577,37 +577,37 @@ def _tlm_recv(rig):
     return Expect(h, ["TlmRecv"])
 
 
+class _UnserializableStamp:
+    """A stand-in for the module's TIME whose serialization fails."""
+
+    size = 11
+    serialize = staticmethod(_raise)
+
+
+def _run_with_unserializable_time(rig, h, component) -> None:
+    """One ``Run`` tick of ``component`` (a telemetry store) with its time stamps failing to serialize."""
+    rig.patch(sys.modules[type(component).__module__], "TIME", _UnserializableStamp())
+    h.invoke("Run", 0)
+    h.dispatch_all()
+
+
 @recipe("TlmChan", "Run")
 def _tlm_run(rig):
     h, tc = rig.harness("TlmChan")
     h.invoke("TlmRecv", 0x77, Time(), b"\x00")
-
-    class Stamp:  # the time stamp's serialization fails
-        size = 11
-        serialize = staticmethod(_raise)
-
-    rig.patch(sys.modules[type(tc).__module__], "TIME", Stamp())
-    h.invoke("Run", 0)
-    h.dispatch_all()
+    _run_with_unserializable_time(rig, h, tc)
     return Expect(h, ["Run: channel 0x77"])
 
 
 @recipe("TlmPacketizer", "Run")
 def _tlm_packetizer_run(rig):
-    """A packet whose time stamp cannot be serialized is reported and skipped; the others still go."""
+    """A packet whose time stamp cannot be serialized is reported and not sent."""
     from fprime_lite.svc.tlm_packetizer import PacketSpec
     h, tp = rig.harness("TlmPacketizer")
     tp.set_packet_list([PacketSpec("A", 5, 0, ((0x10, 1),))], omitted=[], start_level=0)
     h.invoke("TlmRecv", 0x10, Time(), b"\x01")
     h.dispatch_all()
-
-    class Stamp:  # the time stamp's serialization fails
-        size = 11
-        serialize = staticmethod(_raise)
-
-    rig.patch(sys.modules[type(tp).__module__], "TIME", Stamp())
-    h.invoke("Run", 0)
-    h.dispatch_all()
+    _run_with_unserializable_time(rig, h, tp)
     assert not h.from_port("PktSend") and tp.packets_sent == 0
     return Expect(h, ["Run"], no_actuator="it downlinks telemetry packets")
 
