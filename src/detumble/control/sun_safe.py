@@ -128,6 +128,7 @@ class SunRateBias:
 #: The spin command moves only while the field is at least this far from the spin axis (deg): a spin change
 #: ``ΔH â`` made ⟂ B comes with ``ΔH cot(∠(â, B))`` across â, which tips the axis (:class:`SunHold`).
 SPIN_DOWN_FIELD_ANGLE_DEG = 80.0
+_SPIN_DOWN_FIELD_COS = math.cos(math.radians(SPIN_DOWN_FIELD_ANGLE_DEG))
 
 
 class SunHold:
@@ -170,7 +171,7 @@ class SunHold:
             self.lowered = True
             self.command_deg_s = acquire_deg_s
         c = self.command_deg_s
-        if field_axis_cos is not None and abs(field_axis_cos) <= math.cos(math.radians(SPIN_DOWN_FIELD_ANGLE_DEG)):
+        if field_axis_cos is not None and abs(field_axis_cos) <= _SPIN_DOWN_FIELD_COS:
             step = ramp_deg_s2 * dt
             c = max(c - step, hold_deg_s) if c > hold_deg_s else min(c + step, hold_deg_s)
             self.command_deg_s = c
