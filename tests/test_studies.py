@@ -193,6 +193,56 @@ def test_spin_campaign_folders_belong_to_their_campaign_files():
         assert studies.CAMPAIGNS[key].problems(fly_probes=False) == []
 
 
+def test_a_folder_flown_under_another_default_field_model_is_stale(tmp_path, monkeypatch):
+    """STUDY-015: a committed spin folder whose manifest records what adcs_ref's default scenario resolved to with the
+    tilted dipole (as before merge cb777e1, the campaign file and run ids unchanged) is stale now that the scenario
+    flies IGRF-14, with a message naming the change and the re-fly command; the same manifest recording today's
+    resolution is not stale; one recording nothing is not stale either, but reported as unknown."""
+    import re
+    import tempfile
+
+    from detumble.sim import scenario as scenario_module
+    from fprime_lite.tools.campaign.manifest import resolved_configuration
+    from fprime_lite.tools.campaign.plan import plan_runs
+
+    original = studies.CAMPAIGNS["spin_minor_axis"]
+    folder = tmp_path / "docs" / "studies" / "spin"
+    folder.mkdir(parents=True)
+    shutil.copy(original.path / "results.parquet", folder)
+    manifest = json.loads((original.path / "manifest.json").read_text(encoding="utf-8"))
+    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path / "docs" / "studies")
+    moved = dataclasses.replace(original, folder="spin")
+    with tempfile.TemporaryDirectory() as scratch:
+        tasks = plan_runs(moved.campaign(), pathlib.Path(scratch))
+    real = scenario_module.resolve_scenario
+
+    def dipole(name):
+        label, text = real(name)
+        return label, re.sub(r"\n  model: igrf14[^\n]*\n  table_step_s:[^\n]*\n", "\n  model: dipole\n", text)
+
+    with monkeypatch.context() as m:
+        m.setattr(scenario_module, "resolve_scenario", dipole)
+        then = resolved_configuration(tasks)
+    now = resolved_configuration(tasks)
+    assert [v["field_model"] for v in then.values()] == ["dipole"] and [v["field_model"] for v in now.values()] == [
+        "igrf14"]
+
+    def problems_with(resolved):
+        recorded = {k: v for k, v in manifest.items() if k != "resolved"}
+        if resolved is not None:
+            recorded["resolved"] = resolved
+        (folder / "manifest.json").write_text(json.dumps(recorded), encoding="utf-8")
+        return moved.problems(fly_probes=False)
+
+    stale = problems_with(then)
+    assert len(stale) == 1, stale
+    assert "field model dipole → igrf14" in stale[0] and "sections changed: field" in stale[0]
+    assert ("`nice -n 10 fprime-lite campaign campaigns/adcs/spin_minor_axis.yaml --workers 1 --out docs/studies/spin`"
+            in stale[0])
+    assert problems_with(now) == [] and moved.resolution_unknown() is None
+    assert problems_with(None) == [] and "records no resolved configuration" in moved.resolution_unknown()
+
+
 def test_a_hand_edited_number_in_a_block_is_reported(tmp_path, monkeypatch):
     """STUDY-003: change one digit of the convergence table in a copy of the doc: --check reports it."""
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_convergence", "coursework_convergence",

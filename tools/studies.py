@@ -17,8 +17,10 @@ study flies. Figures are drawn by the project's own plotters (a run's ``--plots`
 from the committed results) and writes everything under ``--out`` (default ``runs/studies-quick``),
 never into the docs: it shows the whole chain works in minutes. ``--check`` writes nothing: it renders
 every block from the committed results and compares it with the docs, checks that each committed
-campaign folder belongs to its campaign file as it is now (same file hash, every run id still planned),
-and re-flies each campaign's cheap probe runs and compares their metrics with the committed rows.
+campaign folder belongs to its campaign file as it is now (same file hash, every run id still planned,
+the same resolved configuration: the manifest's ``resolved``, a topology's default scenario and field
+model; a manifest recording none is reported UNKNOWN, not stale), and re-flies each campaign's cheap
+probe runs and compares their metrics with the committed rows.
 ``tests/test_studies.py`` runs that check. Exit status: 0 done (or nothing stale), 1 stale, 2 usage.
 
 Campaign results are not re-run here (that is hours of CPU for some); each study names the command that
@@ -205,10 +207,43 @@ class CommittedCampaign:
             if missing:
                 out.append(f"docs/studies/{self.folder}: {len(missing)} committed run id(s) are no longer planned by "
                            f"{self.campaign_file} (e.g. {missing[0]}): the results are of another campaign")
+            out += self.resolution_problems(tasks)
             if fly_probes and self.probe is not None:
                 out += self._fly_probes(df, [t for t in tasks if t["run_id"] in set(df["run_id"]) and self.probe(t)],
                                         pathlib.Path(scratch))
         return out
+
+    def _recorded_resolution(self) -> dict | None:
+        """The manifest's ``resolved`` (what the runs resolved their configuration from), None if it
+        records none (a folder made before manifests did)."""
+        manifest = json.loads((self.path / "manifest.json").read_text(encoding="utf-8"))
+        return manifest.get("resolved")
+
+    def resolution_problems(self, tasks: list[dict]) -> list[str]:
+        """Whether what the planned runs resolve to now (a topology's default scenario, its field model)
+        differs from what the committed folder's manifest records; a manifest recording nothing is
+        :meth:`resolution_unknown`'s business, not a problem."""
+        from fprime_lite.tools.campaign.manifest import resolved_configuration
+
+        then = self._recorded_resolution()
+        if then is None:
+            return []
+        now = resolved_configuration(tasks)
+        changes = [_resolution_change(key, then.get(key), now.get(key)) for key in sorted(set(then) | set(now))]
+        changes = [c for c in changes if c]
+        if not changes:
+            return []
+        return [f"docs/studies/{self.folder}: what {self.campaign_file} resolves to changed since these results "
+                f"were made ({'; '.join(changes)}): re-fly it, `git rm -r -q docs/studies/{self.folder}` then "
+                f"`nice -n 10 fprime-lite campaign {self.campaign_file} --workers 1 --out docs/studies/{self.folder}`"]
+
+    def resolution_unknown(self) -> str | None:
+        """A note (not a staleness) when the committed manifest records no resolved configuration."""
+        if not (self.path / "manifest.json").exists() or self._recorded_resolution() is not None:
+            return None
+        return (f"docs/studies/{self.folder}: manifest.json records no resolved configuration (made before "
+                f"manifests did): whether a topology default it flew (scenario, field model) changed since is "
+                f"unknown; re-flying it records one")
 
     def _fly_probes(self, df, tasks: list[dict], scratch: pathlib.Path) -> list[str]:
         from fprime_lite.tools.campaign.task import fly
@@ -256,6 +291,26 @@ def _same_yaml(now: str, then: str | None) -> bool:
         return yaml.safe_load(now) == yaml.safe_load(then)
     except yaml.YAMLError:
         return False
+
+
+def _resolution_change(key: str, then: dict | None, now: dict | None) -> str | None:
+    """One line saying how what ``key`` resolves to changed (None: it did not)."""
+    if then == now:
+        return None
+    if then is None or now is None:
+        return f"{key} {'is resolved now, not then' if then is None else 'is no longer resolved'}"
+    if "error" in now:
+        return f"{key} cannot be resolved now: {now['error']}"
+    if then.get("sha256") == now.get("sha256"):
+        return None
+    parts = []
+    if then.get("field_model") != now.get("field_model"):
+        parts.append(f"field model {then.get('field_model')} → {now.get('field_model')}")
+    before, after = then.get("sections") or {}, now.get("sections") or {}
+    sections = sorted(k for k in set(before) | set(after) if before.get(k) != after.get(k))
+    if sections:
+        parts.append(f"scenario sections changed: {', '.join(sections)}")
+    return f"{key} ({now.get('source', '?')}): {'; '.join(parts) or 'resolved values changed'}"
 
 
 def _wheels_cheap(task: dict) -> bool:
@@ -1385,6 +1440,13 @@ def check(names: list[str], *, fly_probes: bool = True) -> list[str]:
     return problems
 
 
+def unknown_resolutions(names: list[str]) -> list[str]:
+    """Notes for the committed campaign folders of ``names`` whose manifests record no resolved
+    configuration (reported by ``--check``, not counted stale)."""
+    keys = dict.fromkeys(key for name in names for key in STUDIES[name].campaigns)
+    return [note for key in keys if (note := CAMPAIGNS[key].resolution_unknown()) is not None]
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -1414,6 +1476,8 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     if args.check:
         problems = check(names, fly_probes=not args.no_probes)
+        for note in unknown_resolutions(names):
+            print(f"UNKNOWN: {note}")
         for p in problems:
             print(f"STALE: {p}")
         print("nothing stale" if not problems else f"{len(problems)} stale item(s)")
