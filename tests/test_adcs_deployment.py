@@ -259,6 +259,22 @@ def test_coil_sun_safe_on_star_tracker_loss_and_back_on_knowledge(tmp_path):
     assert [m for _, m in modes] == ["POINTING", "SUN_SAFE"]
 
 
+@pytest.mark.parametrize("seed", [1, 2, 3, 4, 5])
+def test_the_hand_back_flights_enter_pointing_on_every_seed(tmp_path, seed):
+    """ADCS-111: the premise of the hand-back table of docs/studies/sun_safe.md (POINTING, then the tracker lost): from
+    seed N's HAND_BACK_RATE_DEG_S tumble (below the tracker's 2 °/s smear limit), with the run's seed N, the
+    sequence's FORCE_MODE POINTING at 1 s is accepted on every seed 1–5. At 2 °/s seed 5's was refused
+    (NoAttitudeKnowledge, CS_CommandError): |ω| sat on the limit and rose, so no fix came before 1 s."""
+    from detumble.sim.sun_safe_check import HAND_BACK_RATE_DEG_S, seed_settings
+
+    settings = seed_settings(seed, HAND_BACK_RATE_DEG_S) + ["sensors.star_tracker.outage_s=[20,3000]"]
+    loaded = load_topology(TOPOLOGY, {"spacecraft": {"settings": settings, "seed": seed}})
+    summary = run_deployment(loaded, tmp_path, duration_s=1.5, plots=False,
+                             sequence=ROOT / "campaigns" / "adcs" / "sun_safe_hand_back.seq")
+    assert [(t["mode"], round(t["t_s"], 1)) for t in summary["control_mode_transitions"]] == [("POINTING", 1.0)]
+    assert "NoAttitudeKnowledge" not in (tmp_path / "events.log").read_text()
+
+
 @pytest.mark.slow
 def test_coil_sun_safe_hands_back_to_pointing_with_no_operator(tmp_path):
     """ADCS-110: campaigns/adcs/sun_safe_hand_back.seq (no ground step after 1 s), seed 1's 2 °/s tumble, the tracker

@@ -33,8 +33,8 @@ from detumble.sim.plant import Plant
 from detumble.sim.scenario import load_scenario
 from detumble.sim.sun_sensors import SunSensorModel, SunSensorSpec
 
-__all__ = ["SunSafeResult", "fly", "main", "markdown", "pointing_from_run", "table", "vector_errors_from_run",
-           "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
+__all__ = ["SunSafeResult", "fly", "seed_settings", "main", "markdown", "pointing_from_run", "table",
+           "vector_errors_from_run", "HAND_BACK_RATE_DEG_S", "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
 
 #: The targets (issue 27): Sun-pointing error within this after acquisition, light-sensor vector within that.
 POINTING_THRESHOLD_DEG = 10.0
@@ -118,6 +118,26 @@ class SunSafeResult:
         return [err for t, err in zip(self.times, self.pointing_deg, strict=True) if t0 <= t < end]
 
 
+#: The tumble of the deployment's hand-back flights (°/s; ``campaigns/adcs/sun_safe_hand_back.seq``): below the star
+#: tracker's 2 °/s smear limit, so POINTING (forced at 1 s) has fixes on every seed. At exactly 2 °/s the first
+#: sample sits on the limit and whether any fix comes before 1 s is decided by the last bit of |ω| and by the drawn
+#: axis (torque-free motion moves |ω| up or down by ~1e-4 °/s per second): seed 5 got none and its POINTING was
+#: refused (NoAttitudeKnowledge), seed 2 entered on its one fix at t = 0.
+HAND_BACK_RATE_DEG_S = 1.9
+
+
+def seed_settings(seed: int, rate_deg_s: float = 2.0) -> list[str]:
+    """The scenario settings of seed ``seed``'s flight: a ``rate_deg_s`` tumble about an axis and an attitude drawn
+    from the seed (the ``--set`` lines of a deployment flight, the same draws :func:`fly` flies)."""
+    rng = random.Random(seed)
+    w_axis = [rng.gauss(0.0, 1.0) for _ in range(3)]
+    q = [rng.gauss(0.0, 1.0) for _ in range(4)]
+    n = math.sqrt(sum(c * c for c in q))
+    q = [c / n for c in q]
+    return [f"initial.rate.magnitude_deg_s={rate_deg_s}", "initial.rate.axis=[{},{},{}]".format(*w_axis),
+            "initial.attitude.quaternion=[{},{},{},{}]".format(*q)]
+
+
 def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, actuator: str = "ANY",
         axis: str = "PLUS_Z", scenario: str = "adcs", settings: tuple[str, ...] = (),
         params: dict | None = None, sensor_spec: SunSensorSpec | None = None,
@@ -128,14 +148,7 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
     vector has that Bond albedo taken out (``control.albedo``; the law flies on it too)."""
     if axis not in _AXES:
         raise ValueError(f"axis must be one of {', '.join(_AXES)}, got {axis!r}")
-    rng = random.Random(seed)
-    w_axis = [rng.gauss(0.0, 1.0) for _ in range(3)]
-    q = [rng.gauss(0.0, 1.0) for _ in range(4)]
-    n = math.sqrt(sum(c * c for c in q))
-    q = [c / n for c in q]
-    base = [f"initial.rate.magnitude_deg_s={rate_deg_s}", "initial.rate.axis=[{},{},{}]".format(*w_axis),
-            "initial.attitude.quaternion=[{},{},{},{}]".format(*q)]
-    sc = load_scenario(scenario, seed=seed, settings=base + list(settings))
+    sc = load_scenario(scenario, seed=seed, settings=seed_settings(seed, rate_deg_s) + list(settings))
     plant = Plant(sc, seed)
     sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, sensor_spec or SunSensorSpec(), seed=seed)
     io = PlantIo(plant, sensors, albedo_model=albedo_model)
