@@ -142,6 +142,12 @@ class AlbedoCorrector:
         self._t_s = 0.0
         self._carried_s = 0.0
         self.carried = 0  #: readings corrected on the carried attitude
+        self.applied = False  #: whether the last estimate had the albedo taken out (TRIAD or the carried attitude)
+
+    def reset(self) -> None:
+        """Forget the attitude carried on the gyro (the gyro missing: it cannot be carried)."""
+        self._c_bn = None
+        self._carried_s = 0.0
 
     def estimate(self, readings: Sequence[float], full_scale: float, t_s: float, *, r_N: Sequence[float],
                  sun_N: Sequence[float], field_B: Sequence[float], field_N: Sequence[float],
@@ -149,6 +155,7 @@ class AlbedoCorrector:
         """The Sun vector of ``readings`` at time ``t_s`` (s), ``omega_B`` the body rate (rad/s, B) that carries
         the attitude from the previous reading."""
         share = albedo_share(r_N, sun_N, self.albedo, self.earth_radius_m)
+        self.applied = False
         if self._c_bn is not None:  # carry C_BN's columns (N's axes seen in B) on the gyro to now
             dt = t_s - self._t_s
             cols = [propagate_body_vector((self._c_bn[0][j], self._c_bn[1][j], self._c_bn[2][j]),
@@ -160,6 +167,7 @@ class AlbedoCorrector:
                                            field_N=field_N)
         if c is not None:
             self._c_bn, self._carried_s = c, 0.0
+            self.applied = True
             return est
         if share <= 0.0 or est.lit == 0 or self._c_bn is None or self._carried_s > MAX_CARRY_S:
             return est
@@ -174,6 +182,7 @@ class AlbedoCorrector:
             best = nxt
         self._c_bn = c_bn
         self.carried += 1
+        self.applied = True
         return best
 
 
