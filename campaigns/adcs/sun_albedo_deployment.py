@@ -24,7 +24,7 @@ import subprocess
 import sys
 import tempfile
 
-from detumble.sim.sun_safe_check import VECTOR_THRESHOLD_DEG, vector_errors_from_run
+from detumble.sim.sun_safe_check import VECTOR_THRESHOLD_DEG, _percentile, vector_errors_from_run
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 TOPOLOGY = ROOT / "deployments" / "adcs_ref" / "topology.yaml"
@@ -43,15 +43,10 @@ def fly(albedo: float, duration_s: float, out: pathlib.Path) -> None:
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, cwd=ROOT)
 
 
-def _percentile(values: list[float], p: float) -> float:
-    ordered = sorted(values)
-    return ordered[min(len(ordered) - 1, int(round(p / 100.0 * (len(ordered) - 1))))]
-
-
 def _stats(errors: list[float], invalid: int) -> dict:
-    return {"readings": len(errors), "median": round(statistics.median(errors), 3),
-            "p95": round(_percentile(errors, 95), 3), "max": round(max(errors), 3),
-            "within": round(100.0 * sum(e <= VECTOR_THRESHOLD_DEG for e in errors) / len(errors), 1),
+    """deg, and the share within VECTOR_THRESHOLD_DEG in %, as ``sun_safe_check --from-run`` prints them."""
+    return {"readings": len(errors), "median": statistics.median(errors), "p95": _percentile(errors, 95),
+            "max": max(errors), "within": 100.0 * sum(e <= VECTOR_THRESHOLD_DEG for e in errors) / len(errors),
             "invalid": invalid}
 
 
