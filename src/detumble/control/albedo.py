@@ -151,9 +151,11 @@ class AlbedoCorrector:
 
     def estimate(self, readings: Sequence[float], full_scale: float, t_s: float, *, r_N: Sequence[float],
                  sun_N: Sequence[float], field_B: Sequence[float], field_N: Sequence[float],
-                 omega_B: Sequence[float]) -> SunVectorEstimate:
+                 omega_B: Sequence[float], lit_fraction: float = SUN_LIT_FRACTION,
+                 magnitude_tolerance: float = SUN_MAGNITUDE_TOLERANCE) -> SunVectorEstimate:
         """The Sun vector of ``readings`` at time ``t_s`` (s), ``omega_B`` the body rate (rad/s, B) that carries
-        the attitude from the previous reading."""
+        the attitude from the previous reading; ``lit_fraction`` and ``magnitude_tolerance`` as
+        ``control.sun_vector.estimate_sun_vector`` takes them."""
         share = albedo_share(r_N, sun_N, self.albedo, self.earth_radius_m)
         self.applied = False
         if self._c_bn is not None:  # carry C_BN's columns (N's axes seen in B) on the gyro to now
@@ -164,7 +166,8 @@ class AlbedoCorrector:
             self._carried_s += dt
         self._t_s = t_s
         est, c = sun_vector_without_albedo(readings, full_scale, share=share, r_N=r_N, sun_N=sun_N, field_B=field_B,
-                                           field_N=field_N)
+                                           field_N=field_N, lit_fraction=lit_fraction,
+                                           magnitude_tolerance=magnitude_tolerance)
         if c is not None:
             self._c_bn, self._carried_s = c, 0.0
             self.applied = True
@@ -176,7 +179,7 @@ class AlbedoCorrector:
         best = est
         for _ in range(3):  # the carried attitude turned (least rotation) to put the Sun where the light sensors see it
             c_bn = _align(self._c_bn, sun_N, best.direction)
-            nxt = _without(readings, full_scale, share, c_bn, down_N, SUN_LIT_FRACTION, SUN_MAGNITUDE_TOLERANCE)
+            nxt = _without(readings, full_scale, share, c_bn, down_N, lit_fraction, magnitude_tolerance)
             if nxt.lit == 0:
                 return est
             best = nxt

@@ -206,7 +206,9 @@ class ADCS(PassiveComponent):
         sun_N = (float(e.sunX), float(e.sunY), float(e.sunZ))
         est = corrector.estimate(readings, self.SUN_FULL_SCALE_LUX.value, now_us / 1e6, r_N=r_N, sun_N=sun_N,
                                  field_B=(float(b.x), float(b.y), float(b.z)),
-                                 field_N=dipole_field_N(r_N, float(e.earthAngle)), omega_B=w)
+                                 field_N=dipole_field_N(r_N, float(e.earthAngle)), omega_B=w,
+                                 lit_fraction=self.SUN_LIT_FRACTION.value,
+                                 magnitude_tolerance=self.SUN_MAGNITUDE_TOLERANCE.value)
         if not corrector.applied:
             dark = corrector.albedo <= 0.0 or (r_N[0] * sun_N[0] + r_N[1] * sun_N[1] + r_N[2] * sun_N[2]) <= 0.0
             self.AlbedoCorrectionUnavailable(AlbedoUnavailableReason.EARTH_DARK if dark

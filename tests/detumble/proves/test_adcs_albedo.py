@@ -9,8 +9,9 @@ import pytest
 
 from detumble.components.attitude_types import AlbedoUnavailableReason, AngularVelocity, Ephemeris
 from detumble.components.types import MagneticField, Result
+from detumble.control.albedo import AlbedoCorrector
 from detumble.control.geomagnetic import dipole_field_N
-from detumble.proves.adcs import ADCS
+from detumble.proves.adcs import ADCS, EARTH_RADIUS_M
 from fprime_lite import CmdResponse, Time, TimeBase
 from fprime_lite.model.fw_types import Success
 from fprime_lite.svc.health import FwEnabled
@@ -156,9 +157,9 @@ def test_the_event_is_rearmed_and_a_port_fault_never_leaves_the_rate_group(fprim
 
 def test_the_albedo_model_is_a_ground_parameter(fprime_harness):
     """ADCSLS-009: SUN_ALBEDO_MODEL acts from the next run (a model of 0.4 against a 0.3 Earth leaves the vector
-    off by more than 0.3°, back at 0.3 within 0.01°); outside [0, 0.95] or not finite
-    it is refused. (A scene where a face sees both the Sun and the Earth: elsewhere too much albedo taken out only
-    darkens faces that see the Earth alone.)"""
+    off by more than 0.3°, back at 0.3 within 0.01°); outside [0, 0.95] or not finite it is refused. (A scene where
+    a face sees both the Sun and the Earth: elsewhere too much albedo taken out only darkens faces that see the
+    Earth alone.) The correction reads the faces with the component's SUN_LIT_FRACTION, as the raw vector does."""
     scene = _scene()
     s_B = scene[3]
     h, _ = make(fprime_harness, scene)
@@ -173,3 +174,15 @@ def test_the_albedo_model_is_a_ground_parameter(fprime_harness):
         h.send_command("SUN_ALBEDO_MODEL_PRM_SET", bad)
         h.assert_cmd_response(3 + k, "SUN_ALBEDO_MODEL_PRM_SET", CmdResponse.VALIDATION_ERROR)
     assert h.component.SUN_ALBEDO_MODEL.value == 0.3
+    # the correction reads the faces with the component's SUN_LIT_FRACTION, as the raw vector does
+    sun_N, r_N, field_B, _, lux = scene
+    h.send_command("SUN_LIT_FRACTION_PRM_SET", 0.3)
+    h.invoke("run", 0)
+    want = AlbedoCorrector(0.3, EARTH_RADIUS_M).estimate(
+        lux, E, 0.0, r_N=r_N, sun_N=sun_N, field_B=field_B, field_N=dipole_field_N(r_N, EARTH_ANGLE),
+        omega_B=(0.0, 0.0, 0.0), lit_fraction=0.3)
+    default = AlbedoCorrector(0.3, EARTH_RADIUS_M).estimate(
+        lux, E, 0.0, r_N=r_N, sun_N=sun_N, field_B=field_B, field_N=dipole_field_N(r_N, EARTH_ANGLE),
+        omega_B=(0.0, 0.0, 0.0))
+    assert _angle_deg(want.direction, default.direction) > 1.0
+    assert list(h.tlm_values("SunVector")[-1]) == pytest.approx(list(want.direction), abs=1e-9)
