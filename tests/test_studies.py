@@ -173,6 +173,39 @@ def test_the_sun_safe_tables_are_what_the_code_flies_now():
     assert json.loads(json.dumps(again["rows"][0])) == committed["rows"][0]
 
 
+def test_the_deployment_albedo_table_is_what_the_deployment_flies_now(tmp_path):
+    """STUDY-015: sun_safe.md's deployment albedo table is rendered from a committed JSON file (3 adcs_ref flights of
+    5580 s); the albedo-0.3 flight's first 120 s (one deployment run of seconds) flies again and its corrected
+    sunlit readings' errors are the committed probe's to 1e-9 deg."""
+    table = next(t for t in studies.SUN_SAFE_TABLES if t.block == "sun_safe_albedo_deployment")
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    assert committed["duration"] == 5580.0 and committed["rows"][0]["albedo"] == 0.3
+    script = studies._load_script(table.script)
+    script.fly(0.3, 120.0, tmp_path / "run")
+    again = script.figures(tmp_path / "run")["corrected_errors"]
+    probe = committed["probe"]
+    assert len(probe) == script.PROBE_READINGS and len(again) >= len(probe)
+    assert [round(e, 9) for e in again[:len(probe)]] == probe
+
+
+def test_the_albedo_mismatch_table_refuses_a_file_of_other_options(tmp_path, monkeypatch):
+    """STUDY-016: the mismatch table's rows come from files made with their own albedo and model 0.3: a file made
+    with another albedo in the sensors is refused, a missing one names its command."""
+    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path)
+    (tmp_path / "sun_safe").mkdir()
+    for _, results, _ in studies.SUN_SAFE_MISMATCH:
+        shutil.copy(ROOT / "docs" / "studies" / results, tmp_path / results)
+    assert "| 0.4 |" in studies.sun_safe_mismatch_block()["sun_safe_albedo_mismatch"]
+    wrong = tmp_path / "sun_safe" / "albedo_model_truth_04.json"
+    data = json.loads(wrong.read_text(encoding="utf-8"))
+    wrong.write_text(json.dumps(dict(data, options=dict(data["options"], albedo=0.3))), encoding="utf-8")
+    with pytest.raises(studies.StudyError, match="was not made by .*--albedo 0.4"):
+        studies.sun_safe_mismatch_block()
+    wrong.unlink()
+    with pytest.raises(studies.StudyError, match="is not committed: make it with .*--albedo 0.4"):
+        studies.sun_safe_mismatch_block()
+
+
 def test_a_script_table_of_a_quick_run_is_refused(tmp_path, monkeypatch):
     """STUDY-012: a JSON file written by a script's --quick (300 s flights) cannot stand for the page's table."""
     table = studies.SCRIPT_TABLES["robust_rates"]

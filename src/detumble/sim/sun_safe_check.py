@@ -185,10 +185,11 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
     return out
 
 
-def vector_errors_from_run(run_dir, scenario: str = "adcs") -> tuple[list, int]:
+def vector_errors_from_run(run_dir, scenario: str = "adcs", channel: str = "SunVector") -> tuple[list, int]:
     """The ADCS component's Sun vector in a ``fprime-lite run`` of ``deployments/adcs_ref`` against the truth:
-    ``([error deg at each valid sunlit reading], invalid sunlit readings)``. Reads ``channels.csv`` (SunVector,
-    SunVectorValid at 1 Hz) and ``truth.csv`` (``q_BN`` and the power model's eclipse flag at 1 s); the Sun from
+    ``([error deg at each valid sunlit reading], invalid sunlit readings)``. Reads ``channels.csv`` (``channel``:
+    SunVector, the published one, or SunVectorRaw, the one before the albedo correction; SunVectorValid; 1 Hz)
+    and ``truth.csv`` (``q_BN`` and the power model's eclipse flag at 1 s); the Sun from
     ``sim.sun`` at the scenario's epoch; a reading within 1 s of an eclipse boundary is left out (the flag is the
     power model's over 100 ms steps)."""
     import csv
@@ -212,12 +213,12 @@ def vector_errors_from_run(run_dir, scenario: str = "adcs") -> tuple[list, int]:
     with open(run / "channels.csv", newline="") as f:
         for row in csv.DictReader(f):
             name = row["channel"]
-            if not name.endswith(".adcs.SunVector") and not name.endswith(".adcs.SunVectorValid"):
+            if not name.endswith(".adcs." + channel) and not name.endswith(".adcs.SunVectorValid"):
                 continue
             stamp = float(row["time"])
             t0 = stamp if t0 is None else t0
             k = int(round(stamp - t0))
-            if name.endswith("SunVector"):
+            if name.endswith(channel):
                 vectors[k] = json.loads(row["value"])
             else:
                 valid[k] = row["value"] == "1"
@@ -309,6 +310,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--json", metavar="FILE", help="also keep the table's figures in FILE (JSON)")
     ap.add_argument("--from-run", metavar="DIR", help="instead: a fprime-lite run of adcs_ref against its truth: "
                     "--axis to the Sun (acquisition, steady statistics) and the ADCS Sun vector")
+    ap.add_argument("--vector-channel", default="SunVector", choices=("SunVector", "SunVectorRaw"),
+                    help="with --from-run: the ADCS channel read (SunVectorRaw: before the albedo correction)")
     args = ap.parse_args(argv)
     try:
         spec = SunSensorSpec(albedo=args.albedo, penumbra=args.penumbra)
@@ -323,7 +326,7 @@ def main(argv: list[str] | None = None) -> int:
         if missing:
             ap.error(f"--from-run {args.from_run}: no {' or '.join(missing)} there; give the output folder of a "
                      "finished `fprime-lite run deployments/adcs_ref/topology.yaml --out DIR`")
-        errs, invalid = vector_errors_from_run(args.from_run)
+        errs, invalid = vector_errors_from_run(args.from_run, channel=args.vector_channel)
         if not errs:
             print(f"{args.from_run}: no sunlit ADCS SunVector readings found")
             return 1
@@ -351,9 +354,9 @@ def main(argv: list[str] | None = None) -> int:
                 f"{POINTING_THRESHOLD_DEG:g}°, |ω| below 2 °/s from {_slow_from(run.spin_lowered_s, rate)} s"
                 if err else ""))
         within = sum(e <= VECTOR_THRESHOLD_DEG for e in errs) / len(errs)
-        print(f"ADCS SunVector vs truth, sunlit: {len(errs)} readings, median {statistics.median(errs):.2f}, p95 "
-              f"{_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; {100 * within:.1f} % within "
-              f"{VECTOR_THRESHOLD_DEG:g} deg; {invalid} invalid")
+        print(f"ADCS {args.vector_channel} vs truth, sunlit: {len(errs)} readings, median "
+              f"{statistics.median(errs):.2f}, p95 {_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; "
+              f"{100 * within:.1f} % within {VECTOR_THRESHOLD_DEG:g} deg; {invalid} invalid")
         return 0
     params: dict[str, object] = {}
     for item in args.param:
