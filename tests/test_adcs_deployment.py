@@ -307,7 +307,7 @@ def test_coil_sun_safe_hands_back_to_pointing_with_no_operator(tmp_path):
 
 
 def test_sun_safe_flies_on_the_albedo_corrected_sun_vector(tmp_path):
-    """ADCS-111: adcs_ref with the Earth's albedo (0.3) on the light sensors, SUN_ALBEDO_CORRECTION ENABLED and
+    """ADCS-112: adcs_ref with the Earth's albedo (0.3) on the light sensors, SUN_ALBEDO_CORRECTION ENABLED and
     FORCE_MODE SUN_SAFE from a 2 °/s tumble, 200 s: every sunlit reading the ADCS component published (SunVector)
     is within 5° of the truth (median below 2°) while its uncorrected SunVectorRaw is off by more than 5° at the
     median; AlbedoCorrected 1 at every reading after the sequence's PRM_SET; the controller's SunVectorEstimate is

@@ -227,7 +227,7 @@ def test_spin_campaign_folders_belong_to_their_campaign_files():
 
 
 def test_a_folder_flown_under_another_default_field_model_is_stale(tmp_path, monkeypatch):
-    """STUDY-015: a committed spin folder whose manifest records what adcs_ref's default scenario resolved to with the
+    """STUDY-017: a committed spin folder whose manifest records what adcs_ref's default scenario resolved to with the
     tilted dipole (as before merge cb777e1, the campaign file and run ids unchanged) is stale now that the scenario
     flies IGRF-14, with a message naming the change and the re-fly command; the same manifest recording today's
     resolution is not stale; one recording nothing is not stale either, but reported as unknown."""
