@@ -5,8 +5,13 @@
 
 Only what runs inside ``itertools.starmap`` is counted. MODE ``run``: ``run_deployment`` after the
 topology's load (every output written, plots off: what ``fprime-lite run --no-plots`` does after the
-load). MODE ``row``: the flight runs uncounted except ``SimulatedSpacecraft.truth`` and the
-truth-trace callbacks (the run reports' sampled rows). The total is callgrind's ``summary`` line
+load). MODE ``deploy``: the same flight without any output (``Deployment(loaded)``, ``start()`` and
+``run_for(DURATION_S)``: the benchmark's ``fprime_lite_deployment_50hz`` kind, its start included),
+so that ``run`` - ``deploy`` is what the outputs, the reports and the dictionary cost. MODE ``row``:
+the flight runs uncounted except ``SimulatedSpacecraft.truth`` and the truth-trace callbacks (the
+run reports' sampled rows). MODE ``recorder``: uncounted except the ground recorder's handling of
+each downlinked packet (``GroundRecorder.receive``: decoding, ``events.log``, ``channels.csv``, the
+wide table, the reports' event callbacks). The total is callgrind's ``summary`` line
 (``callgrind_annotate`` breaks it down by C function). Instruction counts do not depend on the
 machine's load (docs/performance.md, "Issue 32: the 1 Hz truth/report row").
 """
@@ -37,19 +42,41 @@ def _count_row_only() -> None:
     SimulatedSpacecraft.set_trace = counted_set_trace  # type: ignore[method-assign]
 
 
+def _count_recorder_only() -> None:
+    from fprime_lite.ground.downlink import GroundRecorder
+
+    receive = GroundRecorder.receive
+
+    def counted_receive(self, data, context=0):
+        return next(itertools.starmap(receive, ((self, data, context),)))
+
+    GroundRecorder.receive = counted_receive  # type: ignore[method-assign]
+
+
 def main(argv: list[str]) -> int:
-    if len(argv) != 4 or argv[2] not in ("run", "row"):
+    if len(argv) != 4 or argv[2] not in ("run", "row", "deploy", "recorder"):
         print(__doc__)
         return 2
     topology, duration_s, mode, out = argv[0], float(argv[1]), argv[2], argv[3]
     if mode == "row":
         _count_row_only()
+    elif mode == "recorder":
+        _count_recorder_only()
     loaded = load_topology(topology)
 
     def fly() -> None:
         run_deployment(loaded, out, duration_s=duration_s, plots=False, quiet=True)
 
-    if mode == "run":
+    def fly_without_outputs() -> None:
+        from fprime_lite.deploy.deployment import Deployment
+
+        deployment = Deployment(loaded)
+        deployment.start()
+        deployment.run_for(duration_s)
+
+    if mode == "deploy":
+        next(itertools.starmap(fly_without_outputs, ((),)))
+    elif mode == "run":
         next(itertools.starmap(fly, ((),)))
     else:
         fly()

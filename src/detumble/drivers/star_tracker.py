@@ -73,7 +73,9 @@ class StarTracker(PassiveComponent):
             return Result(AttitudeQuaternion(_NAN, _NAN, _NAN, _NAN, True, stamp), _SUCCESS)
         value = AttitudeQuaternion(q[0], q[1], q[2], q[3], valid, stamp)
         if not valid:
-            self.NoSolution()
+            no_solution = self.NoSolution
+            if no_solution.count < _NO_SOLUTION_THROTTLE:  # throttled, the call would do nothing
+                no_solution()
             return Result(value, _FAILURE)
         if self.NoSolution.count:  # clear_throttle, where there is something to clear
             self.NoSolution.clear_throttle()
@@ -133,3 +135,8 @@ class StarTracker(PassiveComponent):
             q, valid, stamp = self.spacecraft.star_tracker_sample()
             self._frozen = AttitudeQuaternion(*q, True, stamp)
         self.SimFaultSet(self.fault)
+
+
+#: NoSolution's throttle: while the tracker finds no solution (up to 20 reads a second in adcs_ref), a
+#: read past the throttle skips the event's call, which would return at its throttle test
+_NO_SOLUTION_THROTTLE: int = StarTracker.NoSolution.throttle  # type: ignore[assignment]
