@@ -301,6 +301,9 @@ CAMPAIGNS = {
     "magnetorquer_hold_after_acquisition": CommittedCampaign("magnetorquer_hold_after_acquisition/campaign",
                                                              "campaigns/adcs/pointing_magnetorquers_plant.yaml",
                                                              probe=lambda t: t["seed_index"] == 0),
+    # plant runs of 330 s (~1 CPU-s each): the first seed re-flown by --check
+    "robust_rates_campaign": CommittedCampaign("robust_rates/campaign", "campaigns/adcs/robust_rates_plant.yaml",
+                                               probe=lambda t: t["seed_index"] == 0),
     "magnetorquer_hold_two_orbits": CommittedCampaign("magnetorquer_hold_after_acquisition/two_orbits",
                                                       "campaigns/adcs/pointing_magnetorquers_plant_2orbits.yaml"),
 }
@@ -1059,6 +1062,18 @@ SCRIPT_TABLES = {t.name: t for t in (
     ScriptTable("environment_torques", "when AUTO reaches POINTING in the dipole and IGRF-14: 12 plant-only runs "
                 "(committed JSON)", "environment_torques_field_auto", "campaigns/adcs/field_auto_study.py",
                 "environment_torques/field_auto.json", STUDIES_DIR / "environment_torques.md"),
+    ScriptTable("environment_feed_forward", "the wheel law's gyroscopic and gravity-gradient feed-forward, and drag "
+                "and solar pressure, in a nadir hold: 5 plant-only runs (committed JSON)",
+                "environment_torques_feed_forward", "campaigns/adcs/wheel_runs_study.py",
+                "environment_torques/feed_forward.json", STUDIES_DIR / "environment_torques.md",
+                ("--part", "feed_forward")),
+    ScriptTable("environment_four_wheels", "a fourth wheel's null-space momentum management: 2 plant-only runs "
+                "(committed JSON)", "environment_torques_four_wheels", "campaigns/adcs/wheel_runs_study.py",
+                "environment_torques/four_wheels.json", STUDIES_DIR / "environment_torques.md",
+                ("--part", "four_wheels")),
+    ScriptTable("pointing_gyroscopic", "the gyroscopic feed-forward over a ground-station pass: 2 plant-only runs "
+                "(committed JSON)", "pointing_targets_gyroscopic", "campaigns/adcs/wheel_runs_study.py",
+                "pointing_targets/gyroscopic.json", STUDIES_DIR / "pointing_targets.md", ("--part", "gyroscopic")),
 )}
 
 
@@ -1159,6 +1174,64 @@ def regenerate_hold_after_acquisition(ctx: Context) -> None:
     for key in ("magnetorquer_hold_after_acquisition", "magnetorquer_hold_two_orbits"):
         if (CAMPAIGNS[key].path / "results.parquet").exists():
             CAMPAIGNS[key].redraw_plots(ctx)
+
+
+# --- robust_rates.md: the 100-run campaign with the plant's inertia dispersed around the model ------------------
+
+_ROBUST_DOC = STUDIES_DIR / "robust_rates.md"
+#: (metric, what the page calls it, unit, digits, goal: at most this)
+_ROBUST_METRICS = (("slew_settle_s", "slew settle below 0.1°", "s", 1, 30.0),
+                   ("pointing_median_deg", "steady median (after each acquisition below 0.1°)", "deg", 4, 0.01),
+                   ("pointing_p95_deg", "steady p95 (after each acquisition below 0.1°)", "deg", 4, 0.05),
+                   ("steady_after_slew_median_deg", "steady median (from 60 s after the slew)", "deg", 4, 0.01),
+                   ("steady_after_slew_p95_deg", "steady p95 (from 60 s after the slew)", "deg", 4, 0.05))
+
+
+def _largest_moment_deviation(requested: dict, nominal) -> float:
+    """The largest relative deviation of a run's drawn principal moments from the nominal's, each drawn moment
+    paired with the nominal principal axis its own axis is nearest (the draw turns the axes by at most 20°)."""
+    import numpy as np
+
+    moments, axes = np.linalg.eigh(np.asarray(nominal, dtype=float))
+    drawn, drawn_axes = np.linalg.eigh(np.asarray(requested["scenario.spacecraft.inertia_kg_m2"], dtype=float))
+    pairing = np.abs(axes.T @ drawn_axes).argmax(axis=1)
+    if len(set(pairing.tolist())) != 3:
+        raise StudyError("a drawn inertia's principal axes do not pair with the nominal's")
+    return float(np.max(np.abs(drawn[pairing] / moments - 1.0)))
+
+
+def robust_rates_campaign_blocks() -> dict[str, str]:
+    """robust_rates.md's campaign table: the per-run figures' spread over the runs and the goals met."""
+    import numpy as np
+
+    campaign, df = _committed("robust_rates_campaign")
+    if df is None:
+        return {"robust_rates_campaign": _not_committed(campaign)}
+    ok = _ok(df)
+    import yaml
+
+    manifest = json.loads((campaign.path / "manifest.json").read_text(encoding="utf-8"))
+    nominal = yaml.safe_load(manifest["campaign_text"])["dispersions"]["scenario.spacecraft.inertia_kg_m2"]["nominal"]
+    deviation = 100.0 * np.array([_largest_moment_deviation(json.loads(r), nominal) for r in ok["requested"]])
+    lines = [f"{len(df)} runs, {len(ok)} `ok`. The largest principal-moment deviation of a run's drawn inertia from "
+             f"the model's: median {np.median(deviation):.1f} %, max {deviation.max():.1f} %, "
+             f"{int((deviation > 10.0).sum())} runs beyond 10 %. Per-run figures, then their spread over the `ok` "
+             "runs (p95: linear interpolation between order statistics):", "",
+             "| per run | min | median | p95 | max | goal met |", "|---|---|---|---|---|---|"]
+    for metric, label, unit, digits, goal in _ROBUST_METRICS:
+        values = ok[metric].astype(float).dropna().to_numpy()
+        met = int((values <= goal).sum())
+        mark = "**" if met == len(ok) else ""
+        lines.append(f"| {label} ({unit}) | {values.min():.{digits}f} | {np.median(values):.{digits}f} | "
+                     f"{np.percentile(values, 95):.{digits}f} | {values.max():.{digits}f} | "
+                     f"≤ {goal:g}{' s' if unit == 's' else '°'}: {mark}{met}/{len(ok)}{mark} |")
+    return {"robust_rates_campaign": "\n".join(lines) + "\n\n" + _source("robust_rates_campaign", campaign) + "\n"}
+
+
+def regenerate_robust_rates_campaign(ctx: Context) -> None:
+    ctx.set_blocks(_ROBUST_DOC, robust_rates_campaign_blocks())
+    if (CAMPAIGNS["robust_rates_campaign"].path / "results.parquet").exists():
+        CAMPAIGNS["robust_rates_campaign"].redraw_plots(ctx)
 
 
 # --- flights: the README's figures and the attitude-modes study ------------------------------------------------
@@ -1336,6 +1409,9 @@ STUDIES = {s.name: s for s in (
           "campaigns)", regenerate_performance_detumble, performance_detumble_blocks, _PERF_DOC),
     *(t.study() for t in SCRIPT_TABLES.values()),
     Study("sun_safe", _SUN_SAFE_SUMMARY, regenerate_sun_safe, sun_safe_blocks, _SUN_SAFE_DOC),
+    Study("robust_rates_campaign", "issue 27's slew with the plant's inertia dispersed: 100 plant runs (committed "
+          "campaign)", regenerate_robust_rates_campaign, robust_rates_campaign_blocks, _ROBUST_DOC,
+          ("robust_rates_campaign",)),
     Study("magnetic_pointing_hold", "magnetorquer-only hold over 100 deployment runs (committed per-run table)",
           regenerate_magnetic_hold, magnetic_hold_blocks, _MAG_DOC),
     Study("magnetorquer_hold_after_acquisition", "issue 27's coil-only hold after acquisition over 100 plant runs "
