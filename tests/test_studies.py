@@ -189,6 +189,17 @@ def test_the_largest_moment_deviation_pairs_moments_by_their_axes():
     assert deviation == pytest.approx(0.08, rel=1e-9)
 
 
+def test_the_published_convergence_figure_is_the_first_halving_under_the_rule():
+    """STUDY-018: the convergence table's published figure (spec/control.md: < 0.5 % on halving) is the figure of the
+    first halving from which every halving flown moves it by less, at that step; a halving under the rule followed by
+    one over it publishes nothing (the listing form's 0.00125 s figure, +0.32 %, then +0.85 % at 0.000625 s)."""
+    figures = [(0.01, 6000.0), (0.005, 6200.0), (0.0025, 6240.0), (0.00125, 6260.0), (0.000625, 6266.26)]
+    assert studies._first_converged(figures) == (0.00125, 6260.0)
+    assert studies._first_converged(figures[:3]) is None
+    assert studies._first_converged([(0.01, 6612.0), (0.005, 6811.0), (0.0025, 6860.0), (0.00125, 6882.0),
+                                     (0.000625, 6940.0)]) is None
+
+
 def test_the_four_wheel_table_is_what_the_code_flies_now():
     """STUDY-017: environment_torques.md's four-wheel table is rendered from a committed JSON file; its first flight
     (K_DUMP default: one 1200 s plant-only flight) flies again and gives the committed record (the null-space

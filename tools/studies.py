@@ -368,6 +368,21 @@ def _richardson(values: list[float]) -> tuple[float | None, float | None]:
     return p, c + d2 / (2.0 ** p - 1.0)
 
 
+def _first_converged(figures: list[tuple[float, float | None]]) -> tuple[float, float] | None:
+    """The published figure of a halving sequence ``[(step, figure)]`` (steps large to small), or None: the figure
+    of the first halving from which that halving and every later one move it by less than the rule
+    (spec/control.md: < 0.5 %), at that halving's step. A halving under the rule followed by one over it is not
+    convergence: the sequence then has no published figure until a further halving meets the rule again."""
+    changes = [None if a is None or b is None else abs(b - a) < _RULE * abs(a)
+               for (_, a), (_, b) in zip(figures, figures[1:], strict=False)]
+    for i, ok in enumerate(changes):
+        if ok and all(changes[i:]):
+            step, value = figures[i + 1]
+            assert value is not None
+            return step, value
+    return None
+
+
 def _convergence_results():
     """The convergence campaign's committed rows, with the listing form's continuation where committed."""
     import pandas as pd
@@ -407,6 +422,19 @@ def convergence_blocks() -> dict[str, str]:
             slowest = [max(a for a in m["axes"] if a is not None) for _, _, m in together]
             summary.append(f"- {label}: overall — : the attitude does not settle within the run (this K_d over-damps "
                            f"it); the rate axes are settled by {', '.join(_fmt(x, 3) for x in slowest)} s.")
+        # the β-PD's figures only: the wheel law's are read on the control period's grid (the page takes them at
+        # 0.005 s for that reason) and the cross-product law has two steps
+        flown = [(step, m["overall"]) for step, _, m in together if m["status"] == "ok"]
+        if label.startswith("`beta_pd") and len(flown) >= 2:
+            published = _first_converged(flown)
+            (h_prev, v_prev), (h_last, v_last) = flown[-2], flown[-1]
+            if published is not None:
+                summary.append(f"- {label}: converged (< 0.5 % on every halving from {published[0]:g} s on): "
+                               f"published figure **{_fmt(published[1])} s** at {published[0]:g} s.")
+            elif v_prev is not None and v_last is not None:
+                summary.append(f"- {label}: **not converged** over the steps flown: the last halving ({h_prev:g} → "
+                               f"{h_last:g} s) moves it {100.0 * (v_last - v_prev) / v_prev:+.2f} %; the figure at "
+                               f"the smallest step, {_fmt(v_last)} s, is given with its step.")
         p, limit = _richardson(overalls)
         if p is not None and len(overalls) >= 3:
             summary.append(f"- {label}: observed order {p:.2f} from the last three halvings; "
