@@ -429,8 +429,13 @@ def convergence_blocks() -> dict[str, str]:
             published = _first_converged(flown)
             (h_prev, v_prev), (h_last, v_last) = flown[-2], flown[-1]
             if published is not None:
-                summary.append(f"- {label}: converged (< 0.5 % on every halving from {published[0]:g} s on): "
-                               f"published figure **{_fmt(published[1])} s** at {published[0]:g} s.")
+                steps = [h for h, _ in flown]
+                i = steps.index(published[0])
+                moved = 100.0 * (published[1] - flown[i - 1][1]) / flown[i - 1][1]
+                after = "" if i == len(steps) - 1 else ", and every halving after it by less than 0.5 %"
+                summary.append(f"- {label}: converged by the rule: the halving to {published[0]:g} s moves it "
+                               f"{moved:+.2f} %{after}; published figure **{_fmt(published[1])} s** at "
+                               f"{published[0]:g} s.")
             elif v_prev is not None and v_last is not None:
                 summary.append(f"- {label}: **not converged** over the steps flown: the last halving ({h_prev:g} → "
                                f"{h_last:g} s) moves it {100.0 * (v_last - v_prev) / v_prev:+.2f} %; the figure at "
