@@ -165,14 +165,14 @@ def test_the_field_auto_table_is_what_the_code_flies_now():
 
 
 def test_the_robust_rates_campaign_is_what_the_code_flies_now():
-    """STUDY-015: robust_rates.md's 100-run campaign table is rendered from its committed folder, which belongs to
+    """STUDY-031: robust_rates.md's 100-run campaign table is rendered from its committed folder, which belongs to
     campaigns/adcs/robust_rates_plant.yaml; its first seed (one 330 s plant-only run) flies again and gives its
     committed row to the float."""
     assert studies.CAMPAIGNS["robust_rates_campaign"].problems(fly_probes=True) == []
 
 
 def test_the_largest_moment_deviation_pairs_moments_by_their_axes():
-    """STUDY-016: the campaign table's largest principal-moment deviation pairs each drawn moment with the nominal
+    """STUDY-032: the campaign table's largest principal-moment deviation pairs each drawn moment with the nominal
     axis nearest its own, so a draw that reorders the moments (2.05e-3 × 1.08 > 2.15e-3 × 0.95) still reads 8 %."""
     import numpy as np
 
@@ -190,7 +190,7 @@ def test_the_largest_moment_deviation_pairs_moments_by_their_axes():
 
 
 def test_the_published_convergence_figure_is_the_first_halving_under_the_rule():
-    """STUDY-018: the convergence table's published figure (spec/control.md: < 0.5 % on halving) is the figure of the
+    """STUDY-034: the convergence table's published figure (spec/control.md: < 0.5 % on halving) is the figure of the
     first halving from which every halving flown moves it by less, at that step; a halving under the rule followed by
     one over it publishes nothing (the listing form's 0.00125 s figure, +0.32 %, then +0.85 % at 0.000625 s)."""
     figures = [(0.01, 6000.0), (0.005, 6200.0), (0.0025, 6240.0), (0.00125, 6260.0), (0.000625, 6266.26)]
@@ -201,7 +201,7 @@ def test_the_published_convergence_figure_is_the_first_halving_under_the_rule():
 
 
 def test_the_four_wheel_table_is_what_the_code_flies_now():
-    """STUDY-017: environment_torques.md's four-wheel table is rendered from a committed JSON file; its first flight
+    """STUDY-033: environment_torques.md's four-wheel table is rendered from a committed JSON file; its first flight
     (K_DUMP default: one 1200 s plant-only flight) flies again and gives the committed record (the null-space
     momentum included) to the float."""
     table = studies.SCRIPT_TABLES["environment_four_wheels"]
