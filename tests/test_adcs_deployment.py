@@ -259,6 +259,22 @@ def test_coil_sun_safe_on_star_tracker_loss_and_back_on_knowledge(tmp_path):
     assert [m for _, m in modes] == ["POINTING", "SUN_SAFE"]
 
 
+@pytest.mark.parametrize("seed", [1, 2, 3, 4, 5])
+def test_the_hand_back_flights_enter_pointing_on_every_seed(tmp_path, seed):
+    """ADCS-111: the premise of the hand-back table of docs/studies/sun_safe.md (POINTING, then the tracker lost): from
+    seed N's HAND_BACK_RATE_DEG_S tumble (below the tracker's 2 °/s smear limit), with the run's seed N, the
+    sequence's FORCE_MODE POINTING at 1 s is accepted on every seed 1–5. At 2 °/s seed 5's was refused
+    (NoAttitudeKnowledge, CS_CommandError): |ω| sat on the limit and rose, so no fix came before 1 s."""
+    from detumble.sim.sun_safe_check import HAND_BACK_RATE_DEG_S, seed_settings
+
+    settings = seed_settings(seed, HAND_BACK_RATE_DEG_S) + ["sensors.star_tracker.outage_s=[20,3000]"]
+    loaded = load_topology(TOPOLOGY, {"spacecraft": {"settings": settings, "seed": seed}})
+    summary = run_deployment(loaded, tmp_path, duration_s=1.5, plots=False,
+                             sequence=ROOT / "campaigns" / "adcs" / "sun_safe_hand_back.seq")
+    assert [(t["mode"], round(t["t_s"], 1)) for t in summary["control_mode_transitions"]] == [("POINTING", 1.0)]
+    assert "NoAttitudeKnowledge" not in (tmp_path / "events.log").read_text()
+
+
 @pytest.mark.slow
 def test_coil_sun_safe_hands_back_to_pointing_with_no_operator(tmp_path):
     """ADCS-110: campaigns/adcs/sun_safe_hand_back.seq (no ground step after 1 s), seed 1's 2 °/s tumble, the tracker
@@ -288,3 +304,39 @@ def test_coil_sun_safe_hands_back_to_pointing_with_no_operator(tmp_path):
     assert len(err) >= 100 and max(err) <= 10.0
     at_return = [w for t, w in zip(run.times, run.rate_deg_s, strict=True) if 2990.0 <= t <= 3010.0]
     assert at_return and max(at_return) < 2.0
+
+
+def test_sun_safe_flies_on_the_albedo_corrected_sun_vector(tmp_path):
+    """ADCS-112: adcs_ref with the Earth's albedo (0.3) on the light sensors, SUN_ALBEDO_CORRECTION ENABLED and
+    FORCE_MODE SUN_SAFE from a 2 °/s tumble, 200 s: every sunlit reading the ADCS component published (SunVector)
+    is within 5° of the truth (median below 2°) while its uncorrected SunVectorRaw is off by more than 5° at the
+    median; AlbedoCorrected 1 at every reading after the sequence's PRM_SET; the controller's SunVectorEstimate is
+    the corrected vector (its last value within 2° of the last SunVector); no AlbedoCorrectionUnavailable."""
+    import math
+    import statistics
+
+    from detumble.sim.sun_safe_check import vector_errors_from_run
+
+    adcs = "ReferenceDeployment.adcs"
+    seq = tmp_path / "sun.seq"
+    seq.write_text(f"R00:00:00 {adcs}.SUN_ALBEDO_CORRECTION_PRM_SET ENABLED\nR00:00:00 {CTRL}.FORCE_MODE SUN_SAFE\n")
+    out = tmp_path / "out"
+    loaded = load_topology(TOPOLOGY, {"spacecraft": {"settings": ["initial.rate.magnitude_deg_s=2.0",
+                                                                  "initial.rate.axis=[0.6,-0.48,0.64]",
+                                                                  "sensors.sun_sensors.albedo=0.3"]}})
+    summary = run_deployment(loaded, out, duration_s=200.0, sequence=seq, plots=False, quiet=True)
+    assert [t["mode"] for t in summary["control_mode_transitions"]] == ["SUN_SAFE"]
+    corrected, invalid = vector_errors_from_run(out)
+    raw, _ = vector_errors_from_run(out, channel="SunVectorRaw")
+    assert len(corrected) >= 190 and invalid == 0
+    assert max(corrected) <= 5.0 and statistics.median(corrected) < 2.0
+    assert statistics.median(raw) > 5.0
+    last = {}
+    with open(out / "channels.csv", newline="") as f:
+        for row in csv.DictReader(f):
+            last.setdefault(row["channel"], []).append(row["value"])
+    assert set(last[f"{adcs}.AlbedoCorrected"][1:]) == {"1"}  # the 1 Hz group's first run is before the PRM_SET
+    estimate, published = (json.loads(last[name][-1]) for name in (f"{CTRL}.SunVectorEstimate", f"{adcs}.SunVector"))
+    dot = sum(a * b for a, b in zip(estimate, published, strict=True))
+    assert math.degrees(math.acos(max(-1.0, min(1.0, dot)))) < 2.0
+    assert "AlbedoCorrectionUnavailable" not in (out / "events.log").read_text()

@@ -243,6 +243,24 @@ def _adcs_run(rig):
     return Expect(h, ["run"], no_actuator="it reads the light sensors and makes the Sun vector")
 
 
+@recipe("ADCS", "_sense")
+def _adcs_albedo_correction(rig):
+    """The albedo correction raises: reported, and the uncorrected Sun vector published all the same."""
+    from detumble.components.types import Result, Success
+    from fprime_lite.svc.health import FwEnabled
+
+    h, adcs = rig.harness("ADCS")
+    for i in range(6):
+        h.set_port_handler("visibleLightGet", (lambda i=i: Result(133_000.0 if i == 4 else 0.0, Success.SUCCESS)),
+                           index=i)
+    h.send_command("SUN_ALBEDO_CORRECTION_PRM_SET", FwEnabled.ENABLED)
+    h.clear_history()
+    rig.patch(adcs, "_without_albedo")
+    h.invoke("run", 0)
+    assert [list(v) for v in h.tlm_values("SunVector")] == [[0.0, 0.0, 1.0]]
+    return Expect(h, ["albedo correction"], no_actuator="it reads the light sensors and makes the Sun vector")
+
+
 # detumble manager
 
 

@@ -28,11 +28,11 @@ _spec.loader.exec_module(studies)
 COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursework_grids",
              "coursework_replica_magnetorquer1", "gain_sweep", "flight_bdot_noise", "magnetic_pointing_hold",
              "magnetorquer_hold_after_acquisition", "performance_detumble", "robust_rates",
-             "pointing_targets", "environment_torques", "sun_safe", "robust_rates_campaign", "environment_feed_forward",
-             "environment_four_wheels", "pointing_gyroscopic")
-# their committed folders are older than their campaign files (attitude_knowledge: metrics added since, so the run ids
-# moved): their blocks are checked against the committed results, the folders' belonging is reported by --check
-BLOCKS_ONLY = ("attitude_knowledge", "flight_detumble_campaign")
+             "pointing_targets", "environment_torques", "sun_safe", "attitude_knowledge", "robust_rates_campaign",
+             "environment_feed_forward", "environment_four_wheels", "pointing_gyroscopic")
+# its committed folder is older than its campaign file: its blocks are checked against the committed results, the
+# folder's belonging is reported by --check
+BLOCKS_ONLY = ("flight_detumble_campaign",)
 
 
 @pytest.mark.parametrize("name", COMMITTED)
@@ -225,6 +225,39 @@ def test_the_sun_safe_tables_are_what_the_code_flies_now():
     assert json.loads(json.dumps(again["rows"][0])) == committed["rows"][0]
 
 
+def test_the_deployment_albedo_table_is_what_the_deployment_flies_now(tmp_path):
+    """STUDY-015: sun_safe.md's deployment albedo table is rendered from a committed JSON file (3 adcs_ref flights of
+    5580 s); the albedo-0.3 flight's first 120 s (one deployment run of seconds) flies again and its corrected
+    sunlit readings' errors are the committed probe's to 1e-9 deg."""
+    table = next(t for t in studies.SUN_SAFE_TABLES if t.block == "sun_safe_albedo_deployment")
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    assert committed["duration"] == 5580.0 and committed["rows"][0]["albedo"] == 0.3
+    script = studies._load_script(table.script)
+    script.fly(0.3, 120.0, tmp_path / "run")
+    again = script.figures(tmp_path / "run")["corrected_errors"]
+    probe = committed["probe"]
+    assert len(probe) == script.PROBE_READINGS and len(again) >= len(probe)
+    assert [round(e, 9) for e in again[:len(probe)]] == probe
+
+
+def test_the_albedo_mismatch_table_refuses_a_file_of_other_options(tmp_path, monkeypatch):
+    """STUDY-016: the mismatch table's rows come from files made with their own albedo and model 0.3: a file made
+    with another albedo in the sensors is refused, a missing one names its command."""
+    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path)
+    (tmp_path / "sun_safe").mkdir()
+    for _, results, _ in studies.SUN_SAFE_MISMATCH:
+        shutil.copy(ROOT / "docs" / "studies" / results, tmp_path / results)
+    assert "| 0.4 |" in studies.sun_safe_mismatch_block()["sun_safe_albedo_mismatch"]
+    wrong = tmp_path / "sun_safe" / "albedo_model_truth_04.json"
+    data = json.loads(wrong.read_text(encoding="utf-8"))
+    wrong.write_text(json.dumps(dict(data, options=dict(data["options"], albedo=0.3))), encoding="utf-8")
+    with pytest.raises(studies.StudyError, match="was not made by .*--albedo 0.4"):
+        studies.sun_safe_mismatch_block()
+    wrong.unlink()
+    with pytest.raises(studies.StudyError, match="is not committed: make it with .*--albedo 0.4"):
+        studies.sun_safe_mismatch_block()
+
+
 def test_a_script_table_of_a_quick_run_is_refused(tmp_path, monkeypatch):
     """STUDY-012: a JSON file written by a script's --quick (300 s flights) cannot stand for the page's table."""
     table = studies.SCRIPT_TABLES["robust_rates"]
@@ -243,6 +276,56 @@ def test_spin_campaign_folders_belong_to_their_campaign_files():
     """STUDY-002 (no probe: a spin run is a deployment run of minutes)."""
     for key in ("spin_minor_axis", "spin_major_axis"):
         assert studies.CAMPAIGNS[key].problems(fly_probes=False) == []
+
+
+def test_a_folder_flown_under_another_default_field_model_is_stale(tmp_path, monkeypatch):
+    """STUDY-017: a committed spin folder whose manifest records what adcs_ref's default scenario resolved to with the
+    tilted dipole (as before merge cb777e1, the campaign file and run ids unchanged) is stale now that the scenario
+    flies IGRF-14, with a message naming the change and the re-fly command; the same manifest recording today's
+    resolution is not stale; one recording nothing is not stale either, but reported as unknown."""
+    import re
+    import tempfile
+
+    from detumble.sim import scenario as scenario_module
+    from fprime_lite.tools.campaign.manifest import resolved_configuration
+    from fprime_lite.tools.campaign.plan import plan_runs
+
+    original = studies.CAMPAIGNS["spin_minor_axis"]
+    folder = tmp_path / "docs" / "studies" / "spin"
+    folder.mkdir(parents=True)
+    shutil.copy(original.path / "results.parquet", folder)
+    manifest = json.loads((original.path / "manifest.json").read_text(encoding="utf-8"))
+    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path / "docs" / "studies")
+    moved = dataclasses.replace(original, folder="spin")
+    with tempfile.TemporaryDirectory() as scratch:
+        tasks = plan_runs(moved.campaign(), pathlib.Path(scratch))
+    real = scenario_module.resolve_scenario
+
+    def dipole(name):
+        label, text = real(name)
+        return label, re.sub(r"\n  model: igrf14[^\n]*\n  table_step_s:[^\n]*\n", "\n  model: dipole\n", text)
+
+    with monkeypatch.context() as m:
+        m.setattr(scenario_module, "resolve_scenario", dipole)
+        then = resolved_configuration(tasks)
+    now = resolved_configuration(tasks)
+    assert [v["field_model"] for v in then.values()] == ["dipole"] and [v["field_model"] for v in now.values()] == [
+        "igrf14"]
+
+    def problems_with(resolved):
+        recorded = {k: v for k, v in manifest.items() if k != "resolved"}
+        if resolved is not None:
+            recorded["resolved"] = resolved
+        (folder / "manifest.json").write_text(json.dumps(recorded), encoding="utf-8")
+        return moved.problems(fly_probes=False)
+
+    stale = problems_with(then)
+    assert len(stale) == 1, stale
+    assert "field model dipole → igrf14" in stale[0] and "sections changed: field" in stale[0]
+    assert ("`nice -n 10 fprime-lite campaign campaigns/adcs/spin_minor_axis.yaml --workers 1 --out docs/studies/spin`"
+            in stale[0])
+    assert problems_with(now) == [] and moved.resolution_unknown() is None
+    assert problems_with(None) == [] and "records no resolved configuration" in moved.resolution_unknown()
 
 
 def test_a_hand_edited_number_in_a_block_is_reported(tmp_path, monkeypatch):

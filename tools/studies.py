@@ -17,8 +17,10 @@ study flies. Figures are drawn by the project's own plotters (a run's ``--plots`
 from the committed results) and writes everything under ``--out`` (default ``runs/studies-quick``),
 never into the docs: it shows the whole chain works in minutes. ``--check`` writes nothing: it renders
 every block from the committed results and compares it with the docs, checks that each committed
-campaign folder belongs to its campaign file as it is now (same file hash, every run id still planned),
-and re-flies each campaign's cheap probe runs and compares their metrics with the committed rows.
+campaign folder belongs to its campaign file as it is now (same file hash, every run id still planned,
+the same resolved configuration: the manifest's ``resolved``, a topology's default scenario and field
+model; a manifest recording none is reported UNKNOWN, not stale), and re-flies each campaign's cheap
+probe runs and compares their metrics with the committed rows.
 ``tests/test_studies.py`` runs that check. Exit status: 0 done (or nothing stale), 1 stale, 2 usage.
 
 Campaign results are not re-run here (that is hours of CPU for some); each study names the command that
@@ -205,10 +207,43 @@ class CommittedCampaign:
             if missing:
                 out.append(f"docs/studies/{self.folder}: {len(missing)} committed run id(s) are no longer planned by "
                            f"{self.campaign_file} (e.g. {missing[0]}): the results are of another campaign")
+            out += self.resolution_problems(tasks)
             if fly_probes and self.probe is not None:
                 out += self._fly_probes(df, [t for t in tasks if t["run_id"] in set(df["run_id"]) and self.probe(t)],
                                         pathlib.Path(scratch))
         return out
+
+    def _recorded_resolution(self) -> dict | None:
+        """The manifest's ``resolved`` (what the runs resolved their configuration from), None if it
+        records none (a folder made before manifests did)."""
+        manifest = json.loads((self.path / "manifest.json").read_text(encoding="utf-8"))
+        return manifest.get("resolved")
+
+    def resolution_problems(self, tasks: list[dict]) -> list[str]:
+        """Whether what the planned runs resolve to now (a topology's default scenario, its field model)
+        differs from what the committed folder's manifest records; a manifest recording nothing is
+        :meth:`resolution_unknown`'s business, not a problem."""
+        from fprime_lite.tools.campaign.manifest import resolved_configuration
+
+        then = self._recorded_resolution()
+        if then is None:
+            return []
+        now = resolved_configuration(tasks)
+        changes = [_resolution_change(key, then.get(key), now.get(key)) for key in sorted(set(then) | set(now))]
+        changes = [c for c in changes if c]
+        if not changes:
+            return []
+        return [f"docs/studies/{self.folder}: what {self.campaign_file} resolves to changed since these results "
+                f"were made ({'; '.join(changes)}): re-fly it, `git rm -r -q docs/studies/{self.folder}` then "
+                f"`nice -n 10 fprime-lite campaign {self.campaign_file} --workers 1 --out docs/studies/{self.folder}`"]
+
+    def resolution_unknown(self) -> str | None:
+        """A note (not a staleness) when the committed manifest records no resolved configuration."""
+        if not (self.path / "manifest.json").exists() or self._recorded_resolution() is not None:
+            return None
+        return (f"docs/studies/{self.folder}: manifest.json records no resolved configuration (made before "
+                f"manifests did): whether a topology default it flew (scenario, field model) changed since is "
+                f"unknown; re-flying it records one")
 
     def _fly_probes(self, df, tasks: list[dict], scratch: pathlib.Path) -> list[str]:
         from fprime_lite.tools.campaign.task import fly
@@ -256,6 +291,26 @@ def _same_yaml(now: str, then: str | None) -> bool:
         return yaml.safe_load(now) == yaml.safe_load(then)
     except yaml.YAMLError:
         return False
+
+
+def _resolution_change(key: str, then: dict | None, now: dict | None) -> str | None:
+    """One line saying how what ``key`` resolves to changed (None: it did not)."""
+    if then == now:
+        return None
+    if then is None or now is None:
+        return f"{key} {'is resolved now, not then' if then is None else 'is no longer resolved'}"
+    if "error" in now:
+        return f"{key} cannot be resolved now: {now['error']}"
+    if then.get("sha256") == now.get("sha256"):
+        return None
+    parts = []
+    if then.get("field_model") != now.get("field_model"):
+        parts.append(f"field model {then.get('field_model')} → {now.get('field_model')}")
+    before, after = then.get("sections") or {}, now.get("sections") or {}
+    sections = sorted(k for k in set(before) | set(after) if before.get(k) != after.get(k))
+    if sections:
+        parts.append(f"scenario sections changed: {', '.join(sections)}")
+    return f"{key} ({now.get('source', '?')}): {'; '.join(parts) or 'resolved values changed'}"
 
 
 def _wheels_cheap(task: dict) -> bool:
@@ -1111,7 +1166,8 @@ SCRIPT_TABLES = {t.name: t for t in (
 
 
 _SUN_SAFE_DOC = STUDIES_DIR / "sun_safe.md"
-_SUN_SAFE_SUMMARY = "issue 27's Sun-safe on the light sensors: 20 plant-only seed flights (committed JSON)"
+_SUN_SAFE_SUMMARY = ("issue 27's Sun-safe on the light sensors: 29 plant-only seed flights and 3 adcs_ref flights "
+                     "(committed JSON)")
 #: sun_safe.md's plant-only tables: (block and JSON file name, the module's arguments)
 SUN_SAFE_TABLES = tuple(
     ScriptTable("sun_safe", _SUN_SAFE_SUMMARY, f"sun_safe_{key}", "detumble.sim.sun_safe_check", f"sun_safe/{key}.json",
@@ -1121,11 +1177,60 @@ SUN_SAFE_TABLES = tuple(
                       ("albedo_magnetorquers", "--seeds 3 --albedo 0.3 --penumbra --actuator MAGNETORQUERS"),
                       ("albedo_model_wheels", "--seeds 3 --albedo 0.3 --penumbra --albedo-model 0.3"),
                       ("albedo_model_magnetorquers",
-                       "--seeds 3 --albedo 0.3 --penumbra --albedo-model 0.3 --actuator MAGNETORQUERS")))
+                       "--seeds 3 --albedo 0.3 --penumbra --albedo-model 0.3 --actuator MAGNETORQUERS"))) + (
+    # the F´ side: the ADCS component's raw and corrected vector over adcs_ref's AUTO flight (3 deployment runs)
+    ScriptTable("sun_safe", _SUN_SAFE_SUMMARY, "sun_safe_albedo_deployment", "campaigns/adcs/sun_albedo_deployment.py",
+                "sun_safe/albedo_deployment.json", _SUN_SAFE_DOC),)
+#: sun_safe.md's albedo-mismatch table (wheels, model a = 0.3): (albedo in the sensors, its JSON file under
+#: docs/studies/, what the row is called); the 0.3 row is the albedo_model_wheels table's file
+SUN_SAFE_MISMATCH = ((0.0, "sun_safe/albedo_model_truth_00.json", "0 (the model subtracts light that is not there)"),
+                     (0.2, "sun_safe/albedo_model_truth_02.json", "0.2"),
+                     (0.3, "sun_safe/albedo_model_wheels.json", "0.3 (the model's)"),
+                     (0.4, "sun_safe/albedo_model_truth_04.json", "0.4"))
+
+
+def _mismatch_command(albedo: float, results: str) -> str:
+    return (f"python -m detumble.sim.sun_safe_check --seeds 3 --albedo {albedo:g} --penumbra --albedo-model 0.3 "
+            f"--json docs/studies/{results}")
+
+
+def sun_safe_mismatch_block() -> dict[str, str]:
+    """The model against a different Earth: one row per albedo in the sensors, from each file's per-seed Sun vector
+    figures (its options checked: 3 seeds, wheels, penumbra, model 0.3, that albedo)."""
+    lines = ["| albedo in the sensors | Sun vector median (deg, per seed) | p95 (deg, per seed) | max (deg, all) | "
+             "sunlit readings ≤ 5° |", "|---|---|---|---|---|"]
+    for albedo, results, label in SUN_SAFE_MISMATCH:
+        path = STUDIES_DIR / results
+        if not path.exists():
+            raise StudyError(f"{_shown(path)} is not committed: make it with `{_mismatch_command(albedo, results)}`")
+        data = json.loads(path.read_text(encoding="utf-8"))
+        opts = data.get("options", {})
+        wanted = {"seeds": 3, "actuator": "ANY", "albedo": albedo, "albedo_model": 0.3, "penumbra": True}
+        if any(opts.get(k) != v for k, v in wanted.items()):
+            raise StudyError(f"{_shown(path)} was not made by `{_mismatch_command(albedo, results)}`")
+        medians = " / ".join(f"{r['vector_deg']['median']:.2f}" for r in data["rows"])
+        p95s = " / ".join(f"{r['vector_deg']['p95']:.2f}" for r in data["rows"])
+        within = " / ".join(f"{100 * r['vector_within']:.1f}" for r in data["rows"])
+        lines.append(f"| {label} | {medians} | {p95s} | {data['pooled_vector_deg']['max']:.2f} | {within} % |")
+    made = "; ".join(f"`{_mismatch_command(a, r)}`" for a, r, _ in SUN_SAFE_MISMATCH)
+    return {"sun_safe_albedo_mismatch": "\n".join(lines) + f"\n\nGenerated by `python tools/studies.py --only "
+            f"sun_safe` from the files made by {made}.\n"}
+
+
+def fly_sun_safe_mismatch() -> None:
+    """Fly the mismatch table's files again (the 0.3 row is albedo_model_wheels, flown with SUN_SAFE_TABLES)."""
+    from detumble.sim import sun_safe_check
+
+    for albedo, results, _ in SUN_SAFE_MISMATCH:
+        if results != "sun_safe/albedo_model_wheels.json" and sun_safe_check.main(
+                _mismatch_command(albedo, results).split()[3:-1] + [str(STUDIES_DIR / results)]) != 0:
+            raise StudyError(f"`{_mismatch_command(albedo, results)}` failed")
 
 
 def sun_safe_blocks() -> dict[str, str]:
-    return {block: body for t in SUN_SAFE_TABLES for block, body in t.blocks().items()}
+    blocks = {block: body for t in SUN_SAFE_TABLES for block, body in t.blocks().items()}
+    blocks.update(sun_safe_mismatch_block())
+    return blocks
 
 
 def regenerate_sun_safe(ctx: Context) -> None:
@@ -1494,6 +1599,13 @@ def check(names: list[str], *, fly_probes: bool = True) -> list[str]:
     return problems
 
 
+def unknown_resolutions(names: list[str]) -> list[str]:
+    """Notes for the committed campaign folders of ``names`` whose manifests record no resolved
+    configuration (reported by ``--check``, not counted stale)."""
+    keys = dict.fromkeys(key for name in names for key in STUDIES[name].campaigns)
+    return [note for key in keys if (note := CAMPAIGNS[key].resolution_unknown()) is not None]
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -1523,6 +1635,8 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     if args.check:
         problems = check(names, fly_probes=not args.no_probes)
+        for note in unknown_resolutions(names):
+            print(f"UNKNOWN: {note}")
         for p in problems:
             print(f"STALE: {p}")
         print("nothing stale" if not problems else f"{len(problems)} stale item(s)")
@@ -1541,6 +1655,8 @@ def main(argv: list[str] | None = None) -> int:
                 CAMPAIGNS[key].rerun()
             if name == "coursework_replica_magnetorquer1":
                 fly_magnetorquer1()
+            if name == "sun_safe":
+                fly_sun_safe_mismatch()
             for table in (*SUN_SAFE_TABLES, *SCRIPT_TABLES.values()):
                 if table.name == name:
                     table.fly()

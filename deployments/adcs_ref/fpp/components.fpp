@@ -2,6 +2,14 @@
 # Regenerate it rather than edit it; tests/fprime_lite/deploy/test_fpp.py checks it is current.
 
 module Components {
+  enum AlbedoUnavailableReason : I32 {
+    NO_EPHEMERIS = 0
+    NO_MAGNETOMETER = 1
+    MAGNETOMETER_STALE = 2
+    EARTH_DARK = 3
+    FIELD_ALONG_SUN = 4
+  } default NO_EPHEMERIS
+
   enum AngularUnit : I32 {
     RAD_PER_SEC = 0
     DEG_PER_SEC = 1
@@ -1385,22 +1393,33 @@ module Components {
     sync input port run: Svc.Sched
     sync input port sunVectorGet: Components.SunVectorGet
     output port visibleLightGet: [6] Drv.lightGet
+    output port ephemerisGet: Drv.EphemerisGet
+    output port magneticFieldGet: Components.MagneticFieldGet
+    output port angularVelocityGet: Components.AngularVelocityGet
     event SunVectorAcquired(x: F64, y: F64, z: F64, lit: U32) severity activity low id 0x0 format "Sun vector valid: ({.3f}, {.3f}, {.3f}) in B, {} faces lit"
     event SunVectorLost(lit: U32, magnitude: F64) severity activity low id 0x1 format "Sun vector lost: {} faces lit, magnitude {.3f} of full Sun (eclipse, or no usable reading)"
     event LightSensorReadFailed(sensor: U32) severity warning low id 0x2 format "Light sensor {} did not answer: its face counts as dark" throttle 5
-    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x3 format "Handler {} raised {}" throttle 10
-    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x4 format "{} PRM_SET refused: {}"
-    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x5 format "{} parameter file value refused ({}); default loaded"
+    event AlbedoCorrectionUnavailable(reason: Components.AlbedoUnavailableReason) severity warning low id 0x3 format "Albedo correction unavailable ({}): the Sun vector is the uncorrected one" throttle 5
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x4 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x5 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x6 format "{} parameter file value refused ({}); default loaded"
     telemetry SunVector: Components.Vector3 id 0x0 update always
     telemetry SunVectorValid: U32 id 0x1 update always
     telemetry LitFaces: U32 id 0x2 update always
-    telemetry HandlerFaults: U32 id 0x3 update on change
+    telemetry SunVectorRaw: Components.Vector3 id 0x3 update always
+    telemetry AlbedoCorrected: U32 id 0x4 update always
+    telemetry HandlerFaults: U32 id 0x5 update on change
     @ units: lux
     param SUN_FULL_SCALE_LUX: F64 default 133000.0 id 0x0 set opcode 0x0 save opcode 0x1
     @ units: 1
     param SUN_LIT_FRACTION: F64 default 0.02 id 0x1 set opcode 0x2 save opcode 0x3
     @ units: 1
     param SUN_MAGNITUDE_TOLERANCE: F64 default 0.25 id 0x2 set opcode 0x4 save opcode 0x5
+    param SUN_ALBEDO_CORRECTION: Fw.FwEnabled default Fw.FwEnabled.DISABLED id 0x3 set opcode 0x6 save opcode 0x7
+    @ units: 1
+    param SUN_ALBEDO_MODEL: F64 default 0.3 id 0x4 set opcode 0x8 save opcode 0x9
+    @ units: s
+    param SUN_FIELD_MAX_AGE: F64 default 2.0 id 0x5 set opcode 0xA save opcode 0xB
   }
 
   @ fprime-lite: detumble.proves.tc_security_deframer.TcSecurityDeframer

@@ -167,6 +167,9 @@ module AdcsDeployment {
       ReferenceDeployment.adcs.visibleLightGet[3] -> ReferenceDeployment.veml6031Face3Manager.visibleLightGet[0]
       ReferenceDeployment.adcs.visibleLightGet[4] -> ReferenceDeployment.veml6031Face4Manager.visibleLightGet[0]
       ReferenceDeployment.adcs.visibleLightGet[5] -> ReferenceDeployment.veml6031Face5Manager.visibleLightGet[0]
+      ReferenceDeployment.adcs.ephemerisGet[0] -> ReferenceDeployment.orbitEphemeris.ephemerisGet[0]
+      ReferenceDeployment.adcs.magneticFieldGet[0] -> ReferenceDeployment.imuManager.magneticFieldGet[0]
+      ReferenceDeployment.adcs.angularVelocityGet[0] -> ReferenceDeployment.imuManager.angularVelocityGet[0]
     }
     connections Attitude {
       ReferenceDeployment.attitudeController.angularVelocityGet[0] -> ReferenceDeployment.imuManager.angularVelocityGet[0]

@@ -12,7 +12,7 @@ from fprime_lite import BOOL, F64, U8, Array, FwEnum, PortType, Struct, Time
 from detumble.components.types import Result
 
 __all__ = ["ControlMode", "ControlAutonomy", "SpinLaw", "PointingActuator", "MagPointingLaw", "MagResidualMode",
-           "ModeChangeReason",
+           "ModeChangeReason", "AlbedoUnavailableReason",
            "AttitudeEstimator", "RateSource", "WheelFeedForward", "BodyAxis", "PointingReference", "TargetKind",
            "Ephemeris", "EphemerisGet", "SunVector", "SunVectorGet",
            "Vector3", "Quaternion", "WheelValues", "AngularVelocity", "AngularVelocityGet", "MAX_WHEELS"]
@@ -144,6 +144,19 @@ class ModeChangeReason(FwEnum, namespace="Components"):
     ATTITUDE_LOST = 5
     SYSTEM_SAFE_MODE = 6
     KNOWLEDGE_RESTORED = 7
+
+
+class AlbedoUnavailableReason(FwEnum, namespace="Components"):
+    """Why the ADCS component published the uncorrected Sun vector (argument of AlbedoCorrectionUnavailable): no
+    ephemeris (the Sun, the position and the field model's Earth angle), no magnetometer reading, a magnetometer
+    sample older than SUN_FIELD_MAX_AGE, the sub-satellite point dark (eclipse: no albedo to take out), or the
+    field within 10° of the Sun line with no attitude to carry on the gyro (TRIAD undefined)."""
+
+    NO_EPHEMERIS = 0
+    NO_MAGNETOMETER = 1
+    MAGNETOMETER_STALE = 2
+    EARTH_DARK = 3
+    FIELD_ALONG_SUN = 4
 
 
 class Vector3(Array, namespace="Components", elem=F64, size=3):

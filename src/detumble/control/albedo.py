@@ -142,13 +142,22 @@ class AlbedoCorrector:
         self._t_s = 0.0
         self._carried_s = 0.0
         self.carried = 0  #: readings corrected on the carried attitude
+        self.applied = False  #: whether the last estimate had the albedo taken out (TRIAD or the carried attitude)
+
+    def reset(self) -> None:
+        """Forget the attitude carried on the gyro (the gyro missing: it cannot be carried)."""
+        self._c_bn = None
+        self._carried_s = 0.0
 
     def estimate(self, readings: Sequence[float], full_scale: float, t_s: float, *, r_N: Sequence[float],
                  sun_N: Sequence[float], field_B: Sequence[float], field_N: Sequence[float],
-                 omega_B: Sequence[float]) -> SunVectorEstimate:
+                 omega_B: Sequence[float], lit_fraction: float = SUN_LIT_FRACTION,
+                 magnitude_tolerance: float = SUN_MAGNITUDE_TOLERANCE) -> SunVectorEstimate:
         """The Sun vector of ``readings`` at time ``t_s`` (s), ``omega_B`` the body rate (rad/s, B) that carries
-        the attitude from the previous reading."""
+        the attitude from the previous reading; ``lit_fraction`` and ``magnitude_tolerance`` as
+        ``control.sun_vector.estimate_sun_vector`` takes them."""
         share = albedo_share(r_N, sun_N, self.albedo, self.earth_radius_m)
+        self.applied = False
         if self._c_bn is not None:  # carry C_BN's columns (N's axes seen in B) on the gyro to now
             dt = t_s - self._t_s
             cols = [propagate_body_vector((self._c_bn[0][j], self._c_bn[1][j], self._c_bn[2][j]),
@@ -157,9 +166,11 @@ class AlbedoCorrector:
             self._carried_s += dt
         self._t_s = t_s
         est, c = sun_vector_without_albedo(readings, full_scale, share=share, r_N=r_N, sun_N=sun_N, field_B=field_B,
-                                           field_N=field_N)
+                                           field_N=field_N, lit_fraction=lit_fraction,
+                                           magnitude_tolerance=magnitude_tolerance)
         if c is not None:
             self._c_bn, self._carried_s = c, 0.0
+            self.applied = True
             return est
         if share <= 0.0 or est.lit == 0 or self._c_bn is None or self._carried_s > MAX_CARRY_S:
             return est
@@ -168,12 +179,13 @@ class AlbedoCorrector:
         best = est
         for _ in range(3):  # the carried attitude turned (least rotation) to put the Sun where the light sensors see it
             c_bn = _align(self._c_bn, sun_N, best.direction)
-            nxt = _without(readings, full_scale, share, c_bn, down_N, SUN_LIT_FRACTION, SUN_MAGNITUDE_TOLERANCE)
+            nxt = _without(readings, full_scale, share, c_bn, down_N, lit_fraction, magnitude_tolerance)
             if nxt.lit == 0:
                 return est
             best = nxt
         self._c_bn = c_bn
         self.carried += 1
+        self.applied = True
         return best
 
 

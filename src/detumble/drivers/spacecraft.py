@@ -742,7 +742,16 @@ class SimulatedSpacecraft(ResetLine):
                 f"|w|={self.plant.rate_deg_s:.3f} deg/s>")
 
 
-@topology_resource(role="simulation")
+def _spacecraft_fingerprint(args: dict) -> dict:
+    """The scenario a spacecraft made with topology ``args`` resolves to
+    (:func:`detumble.sim.scenario.scenario_fingerprint`); a Scenario object given directly has none."""
+    from detumble.sim.scenario import scenario_fingerprint
+
+    scenario = args.get("scenario", "default")
+    return scenario_fingerprint(scenario) if isinstance(scenario, str) else {}
+
+
+@topology_resource(role="simulation", fingerprint=_spacecraft_fingerprint)
 def make_spacecraft(scenario: Scenario | str = "default", scheduler: Scheduler | None = None, *,
                     seed: int | None = None, settings: Sequence[str] = ()) -> SimulatedSpacecraft:
     """The simulated spacecraft of ``scenario`` stepping on ``scheduler``'s clock from now.

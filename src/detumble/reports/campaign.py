@@ -105,9 +105,20 @@ def _prepare(req: RunRequest) -> Prepared:
     return Prepared(simulation=plant, readback=readback, execute=execute)
 
 
+def _fingerprint(config: dict, base_dir: pathlib.Path) -> dict:
+    """The scenario a plant run of ``config`` loads, resolved as :func:`_prepare` resolves it."""
+    from detumble.sim.scenario import scenario_fingerprint
+
+    name = str(config["scenario"])
+    if (base_dir / name).is_file():
+        name = str(base_dir / name)
+    return {f"scenario {config['scenario']}": scenario_fingerprint(name)}
+
+
 PLANT_RUN = RunKind(name="plant", fields=frozenset({"scenario", "law", "gain", "duration_s"}),
                     required=frozenset({"scenario"}), check_key=_check_key, prepare=_prepare,
-                    description="a plant-only scenario flown with a reference law (no flight software)")
+                    description="a plant-only scenario flown with a reference law (no flight software)",
+                    fingerprint=_fingerprint)
 
 
 # --- metrics --------------------------------------------------------------------------------------

@@ -244,6 +244,32 @@ def load_scenario(name_or_path: str, seed: int | None = None, settings: Sequence
     return parse_scenario(text, source=source, seed=seed, settings=settings)
 
 
+#: Fields of a :class:`Scenario` that describe it without changing a run (prose, where it was read from).
+_UNFLOWN_FIELDS = ("description", "source")
+
+
+def scenario_fingerprint(name_or_path: str) -> dict:
+    """What a run of ``name_or_path`` (a packaged name or a file) resolves to, for a campaign manifest.
+
+    ``sha256``: a digest of the loaded scenario's values, defaults filled in (its description and
+    source path left out), so a changed packaged file or a changed schema default both show;
+    ``sections``: one digest per top-level section, naming what changed; ``field_model``: the
+    geomagnetic field model the plant flies (``dipole``, ``igrf14`` …); ``source``: the file label.
+    """
+    import dataclasses
+    import hashlib
+    import json
+
+    scenario = load_scenario(name_or_path)
+    values = {k: v for k, v in dataclasses.asdict(scenario).items() if k not in _UNFLOWN_FIELDS}
+
+    def digest(value: Any) -> str:
+        return hashlib.sha256(json.dumps(value, sort_keys=True, default=str).encode()).hexdigest()
+
+    return {"source": os.path.basename(scenario.source), "field_model": scenario.field.model,
+            "sha256": digest(values), "sections": {k: digest(v)[:16] for k, v in values.items()}}
+
+
 def parse_scenario(text: str, source: str = "<string>", seed: int | None = None,
                    settings: Sequence[str] = ()) -> Scenario:
     """Validate scenario YAML text. Safe loader only (libyaml's when PyYAML has it)."""

@@ -33,8 +33,8 @@ from detumble.sim.plant import Plant
 from detumble.sim.scenario import load_scenario
 from detumble.sim.sun_sensors import SunSensorModel, SunSensorSpec
 
-__all__ = ["SunSafeResult", "fly", "main", "markdown", "pointing_from_run", "table", "vector_errors_from_run",
-           "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
+__all__ = ["SunSafeResult", "fly", "seed_settings", "main", "markdown", "pointing_from_run", "table",
+           "vector_errors_from_run", "HAND_BACK_RATE_DEG_S", "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
 
 #: The targets (issue 27): Sun-pointing error within this after acquisition, light-sensor vector within that.
 POINTING_THRESHOLD_DEG = 10.0
@@ -118,6 +118,26 @@ class SunSafeResult:
         return [err for t, err in zip(self.times, self.pointing_deg, strict=True) if t0 <= t < end]
 
 
+#: The tumble of the deployment's hand-back flights (°/s; ``campaigns/adcs/sun_safe_hand_back.seq``): below the star
+#: tracker's 2 °/s smear limit, so POINTING (forced at 1 s) has fixes on every seed. At exactly 2 °/s the first
+#: sample sits on the limit and whether any fix comes before 1 s is decided by the last bit of |ω| and by the drawn
+#: axis (torque-free motion moves |ω| up or down by ~1e-4 °/s per second): seed 5 got none and its POINTING was
+#: refused (NoAttitudeKnowledge), seed 2 entered on its one fix at t = 0.
+HAND_BACK_RATE_DEG_S = 1.9
+
+
+def seed_settings(seed: int, rate_deg_s: float = 2.0) -> list[str]:
+    """The scenario settings of seed ``seed``'s flight: a ``rate_deg_s`` tumble about an axis and an attitude drawn
+    from the seed (the ``--set`` lines of a deployment flight, the same draws :func:`fly` flies)."""
+    rng = random.Random(seed)
+    w_axis = [rng.gauss(0.0, 1.0) for _ in range(3)]
+    q = [rng.gauss(0.0, 1.0) for _ in range(4)]
+    n = math.sqrt(sum(c * c for c in q))
+    q = [c / n for c in q]
+    return [f"initial.rate.magnitude_deg_s={rate_deg_s}", "initial.rate.axis=[{},{},{}]".format(*w_axis),
+            "initial.attitude.quaternion=[{},{},{},{}]".format(*q)]
+
+
 def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, actuator: str = "ANY",
         axis: str = "PLUS_Z", scenario: str = "adcs", settings: tuple[str, ...] = (),
         params: dict | None = None, sensor_spec: SunSensorSpec | None = None,
@@ -128,14 +148,7 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
     vector has that Bond albedo taken out (``control.albedo``; the law flies on it too)."""
     if axis not in _AXES:
         raise ValueError(f"axis must be one of {', '.join(_AXES)}, got {axis!r}")
-    rng = random.Random(seed)
-    w_axis = [rng.gauss(0.0, 1.0) for _ in range(3)]
-    q = [rng.gauss(0.0, 1.0) for _ in range(4)]
-    n = math.sqrt(sum(c * c for c in q))
-    q = [c / n for c in q]
-    base = [f"initial.rate.magnitude_deg_s={rate_deg_s}", "initial.rate.axis=[{},{},{}]".format(*w_axis),
-            "initial.attitude.quaternion=[{},{},{},{}]".format(*q)]
-    sc = load_scenario(scenario, seed=seed, settings=base + list(settings))
+    sc = load_scenario(scenario, seed=seed, settings=seed_settings(seed, rate_deg_s) + list(settings))
     plant = Plant(sc, seed)
     sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, sensor_spec or SunSensorSpec(), seed=seed)
     io = PlantIo(plant, sensors, albedo_model=albedo_model)
@@ -172,10 +185,11 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
     return out
 
 
-def vector_errors_from_run(run_dir, scenario: str = "adcs") -> tuple[list, int]:
+def vector_errors_from_run(run_dir, scenario: str = "adcs", channel: str = "SunVector") -> tuple[list, int]:
     """The ADCS component's Sun vector in a ``fprime-lite run`` of ``deployments/adcs_ref`` against the truth:
-    ``([error deg at each valid sunlit reading], invalid sunlit readings)``. Reads ``channels.csv`` (SunVector,
-    SunVectorValid at 1 Hz) and ``truth.csv`` (``q_BN`` and the power model's eclipse flag at 1 s); the Sun from
+    ``([error deg at each valid sunlit reading], invalid sunlit readings)``. Reads ``channels.csv`` (``channel``:
+    SunVector, the published one, or SunVectorRaw, the one before the albedo correction; SunVectorValid; 1 Hz)
+    and ``truth.csv`` (``q_BN`` and the power model's eclipse flag at 1 s); the Sun from
     ``sim.sun`` at the scenario's epoch; a reading within 1 s of an eclipse boundary is left out (the flag is the
     power model's over 100 ms steps)."""
     import csv
@@ -199,12 +213,12 @@ def vector_errors_from_run(run_dir, scenario: str = "adcs") -> tuple[list, int]:
     with open(run / "channels.csv", newline="") as f:
         for row in csv.DictReader(f):
             name = row["channel"]
-            if not name.endswith(".adcs.SunVector") and not name.endswith(".adcs.SunVectorValid"):
+            if not name.endswith(".adcs." + channel) and not name.endswith(".adcs.SunVectorValid"):
                 continue
             stamp = float(row["time"])
             t0 = stamp if t0 is None else t0
             k = int(round(stamp - t0))
-            if name.endswith("SunVector"):
+            if name.endswith(channel):
                 vectors[k] = json.loads(row["value"])
             else:
                 valid[k] = row["value"] == "1"
@@ -296,6 +310,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--json", metavar="FILE", help="also keep the table's figures in FILE (JSON)")
     ap.add_argument("--from-run", metavar="DIR", help="instead: a fprime-lite run of adcs_ref against its truth: "
                     "--axis to the Sun (acquisition, steady statistics) and the ADCS Sun vector")
+    ap.add_argument("--vector-channel", default="SunVector", choices=("SunVector", "SunVectorRaw"),
+                    help="with --from-run: the ADCS channel read (SunVectorRaw: before the albedo correction)")
     args = ap.parse_args(argv)
     try:
         spec = SunSensorSpec(albedo=args.albedo, penumbra=args.penumbra)
@@ -310,7 +326,7 @@ def main(argv: list[str] | None = None) -> int:
         if missing:
             ap.error(f"--from-run {args.from_run}: no {' or '.join(missing)} there; give the output folder of a "
                      "finished `fprime-lite run deployments/adcs_ref/topology.yaml --out DIR`")
-        errs, invalid = vector_errors_from_run(args.from_run)
+        errs, invalid = vector_errors_from_run(args.from_run, channel=args.vector_channel)
         if not errs:
             print(f"{args.from_run}: no sunlit ADCS SunVector readings found")
             return 1
@@ -338,9 +354,9 @@ def main(argv: list[str] | None = None) -> int:
                 f"{POINTING_THRESHOLD_DEG:g}°, |ω| below 2 °/s from {_slow_from(run.spin_lowered_s, rate)} s"
                 if err else ""))
         within = sum(e <= VECTOR_THRESHOLD_DEG for e in errs) / len(errs)
-        print(f"ADCS SunVector vs truth, sunlit: {len(errs)} readings, median {statistics.median(errs):.2f}, p95 "
-              f"{_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; {100 * within:.1f} % within "
-              f"{VECTOR_THRESHOLD_DEG:g} deg; {invalid} invalid")
+        print(f"ADCS {args.vector_channel} vs truth, sunlit: {len(errs)} readings, median "
+              f"{statistics.median(errs):.2f}, p95 {_percentile(errs, 95):.2f}, max {max(errs):.2f} deg; "
+              f"{100 * within:.1f} % within {VECTOR_THRESHOLD_DEG:g} deg; {invalid} invalid")
         return 0
     params: dict[str, object] = {}
     for item in args.param:

@@ -29,7 +29,8 @@ from typing import Callable, TypeVar
 
 from fprime_lite.model.errors import FprimeLiteError
 
-__all__ = ["topology_resource", "resource_role", "ROLES", "ResetLine", "RoleOptionError", "SimulationEnded"]
+__all__ = ["topology_resource", "resource_role", "resource_fingerprint", "ROLES", "ResetLine", "RoleOptionError",
+           "SimulationEnded"]
 
 
 class SimulationEnded(BaseException):
@@ -65,18 +66,26 @@ ROLES = {
 F = TypeVar("F", bound=Callable)
 
 _ROLE_ATTRIBUTE = "__fprime_lite_resource_role__"
+_FINGERPRINT_ATTRIBUTE = "__fprime_lite_resource_fingerprint__"
 
 
-def topology_resource(factory: F | None = None, *, role: str | None = None):
+def topology_resource(factory: F | None = None, *, role: str | None = None,
+                      fingerprint: Callable[[dict], dict] | None = None):
     """Mark ``factory`` (a class or a function) as a topology resource holding ``role``.
 
     Usable bare (``@topology_resource``) or with a role (``@topology_resource(role="simulation")``).
+    ``fingerprint(args)`` (optional) says what the resource would resolve its configuration from,
+    given its topology ``args``, without building it: a JSON-able dict (a simulation's scenario
+    source, a digest of the values it resolves to) that a campaign manifest records, so a change of
+    what a topology's defaults resolve to is seen (:func:`resource_fingerprint`).
     """
     if role is not None and role not in ROLES:
         raise ValueError(f"unknown resource role {role!r}; roles: {', '.join(ROLES)}")
 
     def mark(f: F) -> F:
         setattr(f, _ROLE_ATTRIBUTE, role or "")
+        if fingerprint is not None:
+            setattr(f, _FINGERPRINT_ATTRIBUTE, fingerprint)
         return f
 
     return mark(factory) if factory is not None else mark
@@ -86,6 +95,13 @@ def resource_role(factory: object) -> str | None:
     """The role ``factory`` declared with :func:`topology_resource` ('' for none); None if it never
     declared itself a resource."""
     return getattr(factory, _ROLE_ATTRIBUTE, None)
+
+
+def resource_fingerprint(factory: object, args: dict) -> dict | None:
+    """What ``factory`` would resolve its configuration from with topology ``args`` (its
+    ``fingerprint`` hook, see :func:`topology_resource`); None when it declared no hook."""
+    hook = getattr(factory, _FINGERPRINT_ATTRIBUTE, None)
+    return None if hook is None else hook(dict(args))
 
 
 class ResetLine(ABC):

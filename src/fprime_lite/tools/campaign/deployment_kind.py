@@ -252,5 +252,24 @@ def prepare(req: RunRequest) -> Prepared:
     return Prepared(simulation=loaded, readback=readback, execute=execute)
 
 
+def fingerprint(config: dict, base_dir: pathlib.Path) -> dict:
+    """What the topology's resources resolve from (each resource's ``fingerprint`` hook, e.g. the
+    simulated spacecraft's default scenario), keyed ``topology:RESOURCE``; reads the topology
+    (``extends`` merged) and imports the resource factories, builds nothing."""
+    import importlib
+
+    from fprime_lite.deploy.resources import resource_fingerprint
+    from fprime_lite.deploy.topology_loader import read_topology
+
+    out: dict = {}
+    for resource in read_topology(_resolve(base_dir, config["topology"])).resources:
+        module, _, attr = resource.type_path.rpartition(".")
+        found = resource_fingerprint(getattr(importlib.import_module(module), attr), resource.args)
+        if found:
+            out[f"{config['topology']}:{resource.name}"] = found
+    return out
+
+
 DEPLOYMENT_RUN = RunKind(name="deployment", fields=FIELDS, required=REQUIRED, check_key=check_key,
-                         prepare=prepare, description="a whole F´ deployment (topology) flown for duration_s")
+                         prepare=prepare, description="a whole F´ deployment (topology) flown for duration_s",
+                         fingerprint=fingerprint)

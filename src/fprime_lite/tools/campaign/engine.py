@@ -27,7 +27,7 @@ from fprime_lite.osal.folders import file_in_the_way, make_output_folder
 from fprime_lite.tools.campaign.errors import CampaignError, CampaignInterrupted, RunSetupError
 from fprime_lite.tools.campaign.folder_lock import campaign_folder_lock
 from fprime_lite.tools.campaign.kinds import RunRequest, metrics, resolve_kind
-from fprime_lite.tools.campaign.manifest import ManifestWriter, read_manifest
+from fprime_lite.tools.campaign.manifest import ManifestWriter, read_manifest, resolved_configuration
 from fprime_lite.tools.campaign.plan import draw_values, plan_runs, unique_points
 from fprime_lite.tools.campaign.results import ResultStore, has_results
 from fprime_lite.tools.campaign.spec import Campaign, load_campaign
@@ -401,7 +401,8 @@ def _run_locked(campaign, tasks, out, where, retry_failed, progress, console, fo
     todo = sorted((t for t in tasks if t["run_id"] not in done), key=lambda t: (t["seed_index"], t["point"]))
     _, merged = unique_points(campaign.grids)
     manifest = ManifestWriter(out, campaign, runs=len(tasks), resumed_with=len(done), retried=retried,
-                              merged_points=[{"listed": a, "point": b} for a, b in merged])
+                              merged_points=[{"listed": a, "point": b} for a, b in merged],
+                              resolved=resolved_configuration(tasks))
     if merged:
         print(f"campaign: {len(merged)} grid point(s) listed more than once (e.g. listed point {merged[0][0]} = "
               f"point {merged[0][1]}): each distinct point flies once", file=sys.stderr)

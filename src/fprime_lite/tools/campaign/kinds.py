@@ -75,7 +75,11 @@ class Prepared:
 class RunKind:
     """A kind of run. ``fields``: the keys of its ``run`` section (``required`` among them);
     ``check_key(key)``: None when ``key`` may be varied, else what is wrong with it;
-    ``prepare(request)`` builds the run (raise :class:`~.errors.RunSetupError` for bad input)."""
+    ``prepare(request)`` builds the run (raise :class:`~.errors.RunSetupError` for bad input);
+    ``fingerprint(config, base_dir)`` (optional) says, without building the run, what a run of the
+    run-section ``config`` resolves its configuration from beyond the files the campaign names (a
+    topology's default scenario and the field model it flies): a JSON-able dict, keyed by what
+    resolves, that the manifest records (``resolved``) and ``tools/studies.py --check`` compares."""
 
     name: str
     fields: frozenset
@@ -83,6 +87,7 @@ class RunKind:
     check_key: Callable[[str], str | None]
     prepare: Callable[[RunRequest], Prepared]
     description: str = ""
+    fingerprint: Callable[[dict, pathlib.Path], dict] | None = None
 
 
 @dataclass(frozen=True)

@@ -5,6 +5,9 @@
 - the software: the git commit of the installed fprime-lite source and whether its working tree
   had uncommitted changes (``dirty``), and the package versions — on the client and on each worker;
 - the machines: host, CPU model and count, platform, of the client and of each worker;
+- ``resolved``: what the runs resolve their configuration from beyond the named files (the run
+  kind's ``fingerprint``: a topology's default scenario, a digest of its values and its field model),
+  one entry per distinct thing resolved (:func:`resolved_configuration`);
 - ``history``: one entry per session (the first run and each ``--resume``): start, end, status,
   cluster, workers, how many rows it started with and how many failed runs it retried. The top-level
   ``started`` is the first session's, ``ended``, ``status`` and ``cluster`` the latest's.
@@ -26,9 +29,11 @@ import socket
 import subprocess
 from typing import Any
 
+from fprime_lite.model.errors import FprimeLiteError
 from fprime_lite.osal.atomic import atomic_write_text
 
-__all__ = ["ManifestWriter", "package_versions", "machine", "software", "input_files", "read_manifest", "now_utc"]
+__all__ = ["ManifestWriter", "package_versions", "machine", "software", "input_files", "read_manifest", "now_utc",
+           "resolved_configuration"]
 
 PACKAGES = ("fprime-lite", "numpy", "dask", "distributed", "pandas", "pyarrow", "pyyaml", "matplotlib")
 
@@ -120,6 +125,29 @@ def input_files(campaign) -> dict[str, str]:
     return found
 
 
+def resolved_configuration(tasks: list[dict]) -> dict:
+    """What the planned ``tasks`` resolve their configuration from, by their run kind's
+    ``fingerprint`` hook, once per distinct run section (a per-run value is the run id's business);
+    a fingerprint that cannot be made is recorded as ``{"error": message}``."""
+    from fprime_lite.tools.campaign.kinds import resolve_kind
+
+    found: dict = {}
+    seen: set[str] = set()
+    for task in tasks:
+        key = json.dumps([task["kind"], task["config"], str(task.get("base_dir"))], sort_keys=True, default=str)
+        if key in seen:
+            continue
+        seen.add(key)
+        try:
+            hook = resolve_kind(task["kind"]).fingerprint
+            if hook is not None:
+                found.update(hook(task["config"], pathlib.Path(task.get("base_dir") or ".")))
+        except (FprimeLiteError, LookupError, OSError, ImportError, ValueError) as exc:  # a topology or scenario
+            # that cannot be read (a ScenarioError is a ValueError): recorded, and the manifest still written
+            found[f"{task['kind']} {json.dumps(task['config'], default=str)}"] = {"error": str(exc)}
+    return found
+
+
 def now_utc() -> str:
     return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
 
@@ -137,7 +165,7 @@ class ManifestWriter:
     history."""
 
     def __init__(self, out_dir: pathlib.Path, campaign, *, runs: int, resumed_with: int, retried: int,
-                 merged_points: list | None = None):
+                 merged_points: list | None = None, resolved: dict | None = None):
         self.path = pathlib.Path(out_dir) / "manifest.json"
         self.campaign = campaign
         previous = read_manifest(out_dir) or {}
@@ -153,6 +181,7 @@ class ManifestWriter:
             "retried": retried, "ran": 0, "cluster": None, "client": machine(), "software": software(),
                         "workers": None}
         self.inputs = input_files(campaign)
+        self.resolved = resolved
         self.versions = package_versions()
 
     def write(self, *, status: str, counts: dict, cluster: dict | None = None, workers: list | None = None,
@@ -202,6 +231,7 @@ class ManifestWriter:
             "client": s["client"],
             "workers": s["workers"],
             "inputs": self.inputs,
+            **({"resolved": self.resolved} if self.resolved is not None else {}),
             "history": history,
         }
         atomic_write_text(self.path, json.dumps(manifest, indent=2) + "\n")

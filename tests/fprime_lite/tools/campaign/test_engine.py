@@ -38,6 +38,17 @@ def test_local_cluster_of_two_runs_every_run(two_worker_result):
     assert (folder / "out2" / "plots").is_dir() and list((folder / "out2" / "plots").glob("*.png"))
 
 
+def test_the_manifest_records_what_the_runs_resolve_to(two_worker_result):
+    """CAMP-094: manifest.json's ``resolved`` names the scenario the plant runs load (``default``, packaged: no
+    file the campaign names) with its field model and the digest of its values, defaults filled in."""
+    from detumble.sim.scenario import scenario_fingerprint
+
+    _, folder, _ = two_worker_result
+    manifest = json.loads((folder / "out2" / "manifest.json").read_text())
+    assert manifest["resolved"] == {"scenario default": scenario_fingerprint("default")}
+    assert manifest["resolved"]["scenario default"]["field_model"] == "dipole"
+
+
 def test_dispersions_are_read_back_from_the_built_simulation(two_worker_result):
     """CAMP-031: the recorded initial rate is the plant's own |w(0)| and equals the summary's
     initial_rate_deg_s; the bias read from the plant's magnetometer equals the one requested."""
