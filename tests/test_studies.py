@@ -28,7 +28,8 @@ _spec.loader.exec_module(studies)
 COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursework_grids",
              "coursework_replica_magnetorquer1", "gain_sweep", "flight_bdot_noise", "magnetic_pointing_hold",
              "magnetorquer_hold_after_acquisition", "performance_detumble", "robust_rates",
-             "pointing_targets", "environment_torques", "sun_safe", "attitude_knowledge")
+             "pointing_targets", "environment_torques", "sun_safe", "attitude_knowledge", "robust_rates_campaign",
+             "environment_feed_forward", "environment_four_wheels", "pointing_gyroscopic")
 # its committed folder is older than its campaign file: its blocks are checked against the committed results, the
 # folder's belonging is reported by --check
 BLOCKS_ONLY = ("flight_detumble_campaign",)
@@ -128,6 +129,11 @@ def test_the_bdot_noise_study_is_what_the_code_computes_now(tmp_path, monkeypatc
     ("pointing_targets", "pointing_targets", "| 0.0099 | 0.0269 |", "| 0.0095 | 0.0239 |"),
     ("environment_torques", "environment_torques_field_auto", "| 333.9 | 851.2 |", "| 334 | 851 |"),
     ("sun_safe", "sun_safe_albedo_wheels", "| 0–2813 | 15 |", "| 0–2813 | 16 |"),
+    ("robust_rates_campaign", "robust_rates_campaign", "| 0.0118 | 0.0154 | 0.0184 | 0.0237 |",
+     "| 0.0118 | 0.0154 | 0.0184 | 0.0238 |"),
+    ("environment_feed_forward", "environment_torques_feed_forward", "| 0.02601 |", "| 0.01980 |"),
+    ("environment_four_wheels", "environment_torques_four_wheels", "| 0.0257 |", "| 0.0224 |"),
+    ("pointing_gyroscopic", "pointing_targets_gyroscopic", "| 0.0082 | 0.0226 |", "| 0.0082 | 0.0209 |"),
 ])
 def test_a_hand_edited_figure_of_the_new_study_blocks_is_reported(tmp_path, monkeypatch, name, block, old, new):
     """STUDY-010: magnetic_pointing.md's hold table, flight_bdot_noise.md's, robust_rates.md's,
@@ -156,6 +162,52 @@ def test_the_field_auto_table_is_what_the_code_flies_now():
     script = studies._load_script(table.script)
     committed = json.loads(table.path.read_text(encoding="utf-8"))["flights"][0]
     assert next(script.flights()) == committed
+
+
+def test_the_robust_rates_campaign_is_what_the_code_flies_now():
+    """STUDY-031: robust_rates.md's 100-run campaign table is rendered from its committed folder, which belongs to
+    campaigns/adcs/robust_rates_plant.yaml; its first seed (one 330 s plant-only run) flies again and gives its
+    committed row to the float."""
+    assert studies.CAMPAIGNS["robust_rates_campaign"].problems(fly_probes=True) == []
+
+
+def test_the_largest_moment_deviation_pairs_moments_by_their_axes():
+    """STUDY-032: the campaign table's largest principal-moment deviation pairs each drawn moment with the nominal
+    axis nearest its own, so a draw that reorders the moments (2.05e-3 × 1.08 > 2.15e-3 × 0.95) still reads 8 %."""
+    import numpy as np
+
+    nominal = [[2.20e-3, 2.0e-5, -1.5e-5], [2.0e-5, 2.15e-3, 1.0e-5], [-1.5e-5, 1.0e-5, 2.05e-3]]
+    moments, axes = np.linalg.eigh(np.asarray(nominal))  # ascending: 2.05e-3's axis first
+    scale = np.array([1.08, 0.95, 1.0])
+    a = np.radians(15.0)
+    k = np.array([1.0, 2.0, -1.0]) / np.sqrt(6.0)
+    kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    turn = np.eye(3) + np.sin(a) * kx + (1 - np.cos(a)) * kx @ kx
+    v = turn @ axes
+    drawn = v @ np.diag(moments * scale) @ v.T
+    deviation = studies._largest_moment_deviation({"scenario.spacecraft.inertia_kg_m2": drawn.tolist()}, nominal)
+    assert deviation == pytest.approx(0.08, rel=1e-9)
+
+
+def test_the_published_convergence_figure_is_the_first_halving_under_the_rule():
+    """STUDY-034: the convergence table's published figure (spec/control.md: < 0.5 % on halving) is the figure of the
+    first halving from which every halving flown moves it by less, at that step; a halving under the rule followed by
+    one over it publishes nothing (the listing form's 0.00125 s figure, +0.32 %, then +0.85 % at 0.000625 s)."""
+    figures = [(0.01, 6000.0), (0.005, 6200.0), (0.0025, 6240.0), (0.00125, 6260.0), (0.000625, 6266.26)]
+    assert studies._first_converged(figures) == (0.00125, 6260.0)
+    assert studies._first_converged(figures[:3]) is None
+    assert studies._first_converged([(0.01, 6612.0), (0.005, 6811.0), (0.0025, 6860.0), (0.00125, 6882.0),
+                                     (0.000625, 6940.0)]) is None
+
+
+def test_the_four_wheel_table_is_what_the_code_flies_now():
+    """STUDY-033: environment_torques.md's four-wheel table is rendered from a committed JSON file; its first flight
+    (K_DUMP default: one 1200 s plant-only flight) flies again and gives the committed record (the null-space
+    momentum included) to the float."""
+    table = studies.SCRIPT_TABLES["environment_four_wheels"]
+    script = studies._load_script(table.script)
+    committed = json.loads(table.path.read_text(encoding="utf-8"))["flights"][0]
+    assert json.loads(json.dumps(next(script.flights("four_wheels")))) == committed
 
 
 def test_the_sun_safe_tables_are_what_the_code_flies_now():

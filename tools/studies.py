@@ -356,6 +356,9 @@ CAMPAIGNS = {
     "magnetorquer_hold_after_acquisition": CommittedCampaign("magnetorquer_hold_after_acquisition/campaign",
                                                              "campaigns/adcs/pointing_magnetorquers_plant.yaml",
                                                              probe=lambda t: t["seed_index"] == 0),
+    # plant runs of 330 s (~1 CPU-s each): the first seed re-flown by --check
+    "robust_rates_campaign": CommittedCampaign("robust_rates/campaign", "campaigns/adcs/robust_rates_plant.yaml",
+                                               probe=lambda t: t["seed_index"] == 0),
     "magnetorquer_hold_two_orbits": CommittedCampaign("magnetorquer_hold_after_acquisition/two_orbits",
                                                       "campaigns/adcs/pointing_magnetorquers_plant_2orbits.yaml"),
 }
@@ -420,6 +423,21 @@ def _richardson(values: list[float]) -> tuple[float | None, float | None]:
     return p, c + d2 / (2.0 ** p - 1.0)
 
 
+def _first_converged(figures: list[tuple[float, float | None]]) -> tuple[float, float] | None:
+    """The published figure of a halving sequence ``[(step, figure)]`` (steps large to small), or None: the figure
+    of the first halving from which that halving and every later one move it by less than the rule
+    (spec/control.md: < 0.5 %), at that halving's step. A halving under the rule followed by one over it is not
+    convergence: the sequence then has no published figure until a further halving meets the rule again."""
+    changes = [None if a is None or b is None else abs(b - a) < _RULE * abs(a)
+               for (_, a), (_, b) in zip(figures, figures[1:], strict=False)]
+    for i, ok in enumerate(changes):
+        if ok and all(changes[i:]):
+            step, value = figures[i + 1]
+            assert value is not None
+            return step, value
+    return None
+
+
 def _convergence_results():
     """The convergence campaign's committed rows, with the listing form's continuation where committed."""
     import pandas as pd
@@ -459,6 +477,24 @@ def convergence_blocks() -> dict[str, str]:
             slowest = [max(a for a in m["axes"] if a is not None) for _, _, m in together]
             summary.append(f"- {label}: overall — : the attitude does not settle within the run (this K_d over-damps "
                            f"it); the rate axes are settled by {', '.join(_fmt(x, 3) for x in slowest)} s.")
+        # the β-PD's figures only: the wheel law's are read on the control period's grid (the page takes them at
+        # 0.005 s for that reason) and the cross-product law has two steps
+        flown = [(step, m["overall"]) for step, _, m in together if m["status"] == "ok"]
+        if label.startswith("`beta_pd") and len(flown) >= 2:
+            published = _first_converged(flown)
+            (h_prev, v_prev), (h_last, v_last) = flown[-2], flown[-1]
+            if published is not None:
+                steps = [h for h, _ in flown]
+                i = steps.index(published[0])
+                moved = 100.0 * (published[1] - flown[i - 1][1]) / flown[i - 1][1]
+                after = "" if i == len(steps) - 1 else ", and every halving after it by less than 0.5 %"
+                summary.append(f"- {label}: converged by the rule: the halving to {published[0]:g} s moves it "
+                               f"{moved:+.2f} %{after}; published figure **{_fmt(published[1])} s** at "
+                               f"{published[0]:g} s.")
+            elif v_prev is not None and v_last is not None:
+                summary.append(f"- {label}: **not converged** over the steps flown: the last halving ({h_prev:g} → "
+                               f"{h_last:g} s) moves it {100.0 * (v_last - v_prev) / v_prev:+.2f} %; the figure at "
+                               f"the smallest step, {_fmt(v_last)} s, is given with its step.")
         p, limit = _richardson(overalls)
         if p is not None and len(overalls) >= 3:
             summary.append(f"- {label}: observed order {p:.2f} from the last three halvings; "
@@ -1114,6 +1150,18 @@ SCRIPT_TABLES = {t.name: t for t in (
     ScriptTable("environment_torques", "when AUTO reaches POINTING in the dipole and IGRF-14: 12 plant-only runs "
                 "(committed JSON)", "environment_torques_field_auto", "campaigns/adcs/field_auto_study.py",
                 "environment_torques/field_auto.json", STUDIES_DIR / "environment_torques.md"),
+    ScriptTable("environment_feed_forward", "the wheel law's gyroscopic and gravity-gradient feed-forward, and drag "
+                "and solar pressure, in a nadir hold: 5 plant-only runs (committed JSON)",
+                "environment_torques_feed_forward", "campaigns/adcs/wheel_runs_study.py",
+                "environment_torques/feed_forward.json", STUDIES_DIR / "environment_torques.md",
+                ("--part", "feed_forward")),
+    ScriptTable("environment_four_wheels", "a fourth wheel's null-space momentum management: 2 plant-only runs "
+                "(committed JSON)", "environment_torques_four_wheels", "campaigns/adcs/wheel_runs_study.py",
+                "environment_torques/four_wheels.json", STUDIES_DIR / "environment_torques.md",
+                ("--part", "four_wheels")),
+    ScriptTable("pointing_gyroscopic", "the gyroscopic feed-forward over a ground-station pass: 2 plant-only runs "
+                "(committed JSON)", "pointing_targets_gyroscopic", "campaigns/adcs/wheel_runs_study.py",
+                "pointing_targets/gyroscopic.json", STUDIES_DIR / "pointing_targets.md", ("--part", "gyroscopic")),
 )}
 
 
@@ -1264,6 +1312,64 @@ def regenerate_hold_after_acquisition(ctx: Context) -> None:
     for key in ("magnetorquer_hold_after_acquisition", "magnetorquer_hold_two_orbits"):
         if (CAMPAIGNS[key].path / "results.parquet").exists():
             CAMPAIGNS[key].redraw_plots(ctx)
+
+
+# --- robust_rates.md: the 100-run campaign with the plant's inertia dispersed around the model ------------------
+
+_ROBUST_DOC = STUDIES_DIR / "robust_rates.md"
+#: (metric, what the page calls it, unit, digits, goal: at most this)
+_ROBUST_METRICS = (("slew_settle_s", "slew settle below 0.1°", "s", 1, 30.0),
+                   ("pointing_median_deg", "steady median (after each acquisition below 0.1°)", "deg", 4, 0.01),
+                   ("pointing_p95_deg", "steady p95 (after each acquisition below 0.1°)", "deg", 4, 0.05),
+                   ("steady_after_slew_median_deg", "steady median (from 60 s after the slew)", "deg", 4, 0.01),
+                   ("steady_after_slew_p95_deg", "steady p95 (from 60 s after the slew)", "deg", 4, 0.05))
+
+
+def _largest_moment_deviation(requested: dict, nominal) -> float:
+    """The largest relative deviation of a run's drawn principal moments from the nominal's, each drawn moment
+    paired with the nominal principal axis its own axis is nearest (the draw turns the axes by at most 20°)."""
+    import numpy as np
+
+    moments, axes = np.linalg.eigh(np.asarray(nominal, dtype=float))
+    drawn, drawn_axes = np.linalg.eigh(np.asarray(requested["scenario.spacecraft.inertia_kg_m2"], dtype=float))
+    pairing = np.abs(axes.T @ drawn_axes).argmax(axis=1)
+    if len(set(pairing.tolist())) != 3:
+        raise StudyError("a drawn inertia's principal axes do not pair with the nominal's")
+    return float(np.max(np.abs(drawn[pairing] / moments - 1.0)))
+
+
+def robust_rates_campaign_blocks() -> dict[str, str]:
+    """robust_rates.md's campaign table: the per-run figures' spread over the runs and the goals met."""
+    import numpy as np
+
+    campaign, df = _committed("robust_rates_campaign")
+    if df is None:
+        return {"robust_rates_campaign": _not_committed(campaign)}
+    ok = _ok(df)
+    import yaml
+
+    manifest = json.loads((campaign.path / "manifest.json").read_text(encoding="utf-8"))
+    nominal = yaml.safe_load(manifest["campaign_text"])["dispersions"]["scenario.spacecraft.inertia_kg_m2"]["nominal"]
+    deviation = 100.0 * np.array([_largest_moment_deviation(json.loads(r), nominal) for r in ok["requested"]])
+    lines = [f"{len(df)} runs, {len(ok)} `ok`. The largest principal-moment deviation of a run's drawn inertia from "
+             f"the model's: median {np.median(deviation):.1f} %, max {deviation.max():.1f} %, "
+             f"{int((deviation > 10.0).sum())} runs beyond 10 %. Per-run figures, then their spread over the `ok` "
+             "runs (p95: linear interpolation between order statistics):", "",
+             "| per run | min | median | p95 | max | goal met |", "|---|---|---|---|---|---|"]
+    for metric, label, unit, digits, goal in _ROBUST_METRICS:
+        values = ok[metric].astype(float).dropna().to_numpy()
+        met = int((values <= goal).sum())
+        mark = "**" if met == len(ok) else ""
+        lines.append(f"| {label} ({unit}) | {values.min():.{digits}f} | {np.median(values):.{digits}f} | "
+                     f"{np.percentile(values, 95):.{digits}f} | {values.max():.{digits}f} | "
+                     f"≤ {goal:g}{' s' if unit == 's' else '°'}: {mark}{met}/{len(ok)}{mark} |")
+    return {"robust_rates_campaign": "\n".join(lines) + "\n\n" + _source("robust_rates_campaign", campaign) + "\n"}
+
+
+def regenerate_robust_rates_campaign(ctx: Context) -> None:
+    ctx.set_blocks(_ROBUST_DOC, robust_rates_campaign_blocks())
+    if (CAMPAIGNS["robust_rates_campaign"].path / "results.parquet").exists():
+        CAMPAIGNS["robust_rates_campaign"].redraw_plots(ctx)
 
 
 # --- flights: the README's figures and the attitude-modes study ------------------------------------------------
@@ -1441,6 +1547,9 @@ STUDIES = {s.name: s for s in (
           "campaigns)", regenerate_performance_detumble, performance_detumble_blocks, _PERF_DOC),
     *(t.study() for t in SCRIPT_TABLES.values()),
     Study("sun_safe", _SUN_SAFE_SUMMARY, regenerate_sun_safe, sun_safe_blocks, _SUN_SAFE_DOC),
+    Study("robust_rates_campaign", "issue 27's slew with the plant's inertia dispersed: 100 plant runs (committed "
+          "campaign)", regenerate_robust_rates_campaign, robust_rates_campaign_blocks, _ROBUST_DOC,
+          ("robust_rates_campaign",)),
     Study("magnetic_pointing_hold", "magnetorquer-only hold over 100 deployment runs (committed per-run table)",
           regenerate_magnetic_hold, magnetic_hold_blocks, _MAG_DOC),
     Study("magnetorquer_hold_after_acquisition", "issue 27's coil-only hold after acquisition over 100 plant runs "
