@@ -17,7 +17,6 @@ issue 27) and the bias-corrected gyro (RATE_SOURCE = GYRO). Figures: the slew's 
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import sys
 
@@ -81,10 +80,9 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     table = results()
     if args.json is not None:
-        from fprime_lite.osal.atomic import atomic_write_text
+        from fprime_lite.osal.atomic import atomic_write_json
 
-        args.json.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_text(args.json, json.dumps(table, indent=1) + "\n")
+        atomic_write_json(args.json, table)
     print(markdown(table), end="")
     return 0
 
