@@ -25,8 +25,6 @@ Medians over runs are the upper middle of the sorted values (``sorted(v)[n // 2]
 
 from __future__ import annotations
 
-import argparse
-import pathlib
 import sys
 
 TARGET = (0.9238795325112867, 0.0, 0.3826834323650898, 0.0)
@@ -171,19 +169,17 @@ def markdown(table: dict) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("table", choices=("floquet", "corner", "checks"))
-    ap.add_argument("--field", choices=list(FIELDS), default="dipole", help="corner: the field (default dipole)")
-    ap.add_argument("--json", type=pathlib.Path, metavar="FILE", help="also write the figures to FILE (JSON)")
-    args = ap.parse_args(argv)
-    table = {"floquet": floquet, "checks": checks}.get(args.table, lambda: corner(args.field))()
-    table["script"] = "campaigns/adcs/magnetic_pointing_tables.py"
-    if args.json is not None:
-        from fprime_lite.osal.atomic import atomic_write_json
+    from detumble.reports.study_table import table_script_main
 
-        atomic_write_json(args.json, table)
-    print(markdown(table), end="")
-    return 0
+    def options(parser) -> None:
+        parser.add_argument("table", choices=("floquet", "corner", "checks"))
+        parser.add_argument("--field", choices=list(FIELDS), default="dipole", help="corner: field (default dipole)")
+
+    def results(args) -> dict:
+        table = {"floquet": floquet, "checks": checks}.get(args.table, lambda: corner(args.field))()
+        return dict(table, script="campaigns/adcs/magnetic_pointing_tables.py")
+
+    return table_script_main(argv, __doc__.split("\n\n")[0], results, markdown, options)
 
 
 if __name__ == "__main__":
