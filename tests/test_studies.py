@@ -29,7 +29,7 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "coursework_replica_magnetorquer1", "gain_sweep", "flight_bdot_noise", "magnetic_pointing_hold",
              "magnetorquer_hold_after_acquisition", "performance_detumble", "robust_rates",
              "pointing_targets", "environment_torques", "sun_safe", "magnetic_pointing", "magnetic_pointing_runs",
-             "attitude_modes_magnetorquers")
+             "attitude_modes_magnetorquers", "attitude_modes_sensors", "magnetic_pointing_hold_worst")
 # their committed folders are older than their campaign files (attitude_knowledge: metrics added since, so the run ids
 # moved): their blocks are checked against the committed results, the folders' belonging is reported by --check
 BLOCKS_ONLY = ("attitude_knowledge", "flight_detumble_campaign")
@@ -133,6 +133,8 @@ def test_the_bdot_noise_study_is_what_the_code_computes_now(tmp_path, monkeypatc
     ("magnetic_pointing", "magnetic_pointing_corner_dipole", "2.39° / 12.4°", "2.39° / 12.5°"),
     ("magnetic_pointing_runs", "magnetic_pointing_tumble_runs", "118.8°", "119°"),
     ("attitude_modes_magnetorquers", "attitude_modes_magnetorquers", "99/100", "84/100"),
+    ("attitude_modes_sensors", "attitude_modes_sensors", "| as in the scenario | 0.0063°",
+     "| as in the scenario | 0.045°"),
 ])
 def test_a_hand_edited_figure_of_the_new_study_blocks_is_reported(tmp_path, monkeypatch, name, block, old, new):
     """STUDY-010: magnetic_pointing.md's hold table, flight_bdot_noise.md's, robust_rates.md's,
@@ -218,6 +220,16 @@ def test_the_magnetic_pointing_hold_run_is_what_the_deployment_flies_now(tmp_pat
     figures to the float."""
     script, committed = _mag_table("magnetic_pointing_hold_runs")
     assert script.fly("hold", tmp_path) == committed["runs"]["hold"]
+
+
+def test_the_wheels_sensor_table_is_what_the_deployment_flies_now(tmp_path):
+    """STUDY-018: attitude_modes.md's sensor table is rendered from a committed JSON file (four 300 s adcs_ref runs);
+    its first row (the scenario's sensors: one 300 s deployment run, a few CPU-s) flies again and gives the committed
+    figures to the float."""
+    table = studies.SCRIPT_TABLES["attitude_modes_sensors"]
+    script = studies._load_script(table.script)
+    committed = json.loads(table.path.read_text(encoding="utf-8"))["rows"]["as in the scenario"]
+    assert script.fly("as in the scenario", tmp_path) == committed
 
 
 def test_a_script_table_of_a_quick_run_is_refused(tmp_path, monkeypatch):

@@ -298,6 +298,8 @@ CAMPAIGNS = {
     "flight_bdot_noise": CommittedCampaign("flight_bdot_noise", "campaigns/proves_bdot_noise.yaml",
                                            probe=lambda t: _ideal_variant_first_seed(t)),
     # one plant run of an orbit (~10 CPU-s) re-flown by --check
+    "magnetic_pointing_hold_worst": CommittedCampaign("magnetic_pointing_hold_worst",
+                                                      "campaigns/adcs/hold_magnetorquers_worst.yaml"),
     "magnetorquer_hold_after_acquisition": CommittedCampaign("magnetorquer_hold_after_acquisition/campaign",
                                                              "campaigns/adcs/pointing_magnetorquers_plant.yaml",
                                                              probe=lambda t: t["seed_index"] == 0),
@@ -1060,6 +1062,9 @@ SCRIPT_TABLES = {t.name: t for t in (
     ScriptTable("environment_torques", "when AUTO reaches POINTING in the dipole and IGRF-14: 12 plant-only runs "
                 "(committed JSON)", "environment_torques_field_auto", "campaigns/adcs/field_auto_study.py",
                 "environment_torques/field_auto.json", STUDIES_DIR / "environment_torques.md"),
+    ScriptTable("attitude_modes_sensors", "seed 003's pointing on the wheels with noiseless sensors: four 300 s "
+                "adcs_ref runs (committed JSON)", "attitude_modes_sensors", "campaigns/adcs/wheels_sensor_table.py",
+                "attitude_modes/sensors.json", STUDIES_DIR / "attitude_modes.md"),
 )}
 
 
@@ -1077,7 +1082,7 @@ SUN_SAFE_TABLES = tuple(
                        "--seeds 3 --albedo 0.3 --penumbra --albedo-model 0.3 --actuator MAGNETORQUERS")))
 
 
-_MAG_PLANT_SUMMARY = "magnetorquer pointing: Floquet maps and plant-only checks (committed JSON, ~7 CPU-minutes)"
+_MAG_PLANT_SUMMARY = "magnetorquer pointing: Floquet maps and plant-only checks (committed JSON, ~6 CPU-minutes)"
 _MAG_RUNS_SUMMARY = "magnetorquer pointing: ten one-orbit adcs_ref runs (committed JSON, ~4 CPU-minutes)"
 #: magnetic_pointing.md's plant-only tables (campaigns/adcs/magnetic_pointing_tables.py) and single deployment runs
 #: (campaigns/adcs/magnetic_pointing_runs.py: one JSON file, two tables)
@@ -1167,6 +1172,32 @@ def magnetic_hold_blocks() -> dict[str, str]:
 
 def regenerate_magnetic_hold(ctx: Context) -> None:
     ctx.set_blocks(_MAG_DOC, magnetic_hold_blocks())
+
+
+def magnetic_hold_worst_blocks() -> dict[str, str]:
+    """The deployment's worst corner of the hold (campaigns/adcs/hold_magnetorquers_worst.yaml: 10 runs 20° off at
+    0.05 °/s), run by run, from its committed results folder."""
+    campaign, df = _committed("magnetic_pointing_hold_worst")
+    if df is None:
+        return {"magnetic_pointing_hold_worst": _not_committed(campaign)}
+    from detumble.analysis.pooled_stats import per_run_share
+
+    ok = _ok(df).sort_values("seed") if "seed" in df else _ok(df)
+    lines = ["| run | median | p95 | max | final rate (°/s) |", "|---|---|---|---|---|"]
+    for i, (_, row) in enumerate(ok.iterrows()):
+        lines.append(f"| {i} | {_fmt(_float(row['pointing_median_deg']), 2)}° | "
+                     f"{_fmt(_float(row['pointing_p95_deg']), 2)}° | {_fmt(_float(row['pointing_max_deg']), 2)}° | "
+                     f"{_fmt(_float(row['final_rate_deg_s']), 4)} |")
+    both = (ok["pointing_median_deg"] <= 5.0) & (ok["pointing_p95_deg"] <= 15.0)
+    share = per_run_share(both)
+    lines += ["", f"- runs with median ≤ 5° and p95 ≤ 15°: **{share.successes} / {share.n}** (95 % Wilson lower bound "
+              f"{100 * share.lower95:.1f} %); {len(ok)} of {len(df)} runs ok",
+              "", _source("magnetic_pointing_hold_worst", campaign)]
+    return {"magnetic_pointing_hold_worst": "\n".join(lines) + "\n"}
+
+
+def regenerate_magnetic_hold_worst(ctx: Context) -> None:
+    ctx.set_blocks(_MAG_DOC, magnetic_hold_worst_blocks())
 
 
 # --- issue 27's magnetorquer-only hold after acquisition (plant-only campaign) -------------------------------------
@@ -1418,6 +1449,9 @@ STUDIES = {s.name: s for s in (
           STUDIES_DIR / "magnetic_pointing.md"),
     Study("magnetic_pointing_runs", _MAG_RUNS_SUMMARY, regenerate_magnetic_pointing_runs,
           magnetic_pointing_runs_blocks, STUDIES_DIR / "magnetic_pointing.md"),
+    Study("magnetic_pointing_hold_worst", "magnetorquer-only hold at its worst corner: 10 deployment runs "
+          "(committed campaign)", regenerate_magnetic_hold_worst, magnetic_hold_worst_blocks, _MAG_DOC,
+          ("magnetic_pointing_hold_worst",)),
     Study("magnetic_pointing_hold", "magnetorquer-only hold over 100 deployment runs (committed per-run table)",
           regenerate_magnetic_hold, magnetic_hold_blocks, _MAG_DOC),
     Study("magnetorquer_hold_after_acquisition", "issue 27's coil-only hold after acquisition over 100 plant runs "
