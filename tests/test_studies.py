@@ -29,7 +29,8 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "coursework_replica_magnetorquer1", "gain_sweep", "flight_bdot_noise", "magnetic_pointing_hold",
              "magnetorquer_hold_after_acquisition", "performance_detumble", "robust_rates",
              "pointing_targets", "environment_torques", "sun_safe", "magnetic_pointing", "magnetic_pointing_runs",
-             "attitude_modes_magnetorquers", "attitude_modes_sensors", "magnetic_pointing_hold_worst")
+             "attitude_modes_magnetorquers", "attitude_modes_sensors", "magnetic_pointing_hold_worst",
+             "magnetic_pointing_tumble")
 # their committed folders are older than their campaign files (attitude_knowledge: metrics added since, so the run ids
 # moved): their blocks are checked against the committed results, the folders' belonging is reported by --check
 BLOCKS_ONLY = ("attitude_knowledge", "flight_detumble_campaign")
