@@ -29,7 +29,9 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "coursework_replica_magnetorquer1", "gain_sweep", "flight_bdot_noise", "magnetic_pointing_hold",
              "magnetorquer_hold_after_acquisition", "performance_detumble", "robust_rates",
              "pointing_targets", "environment_torques", "sun_safe", "attitude_knowledge", "robust_rates_campaign",
-             "environment_feed_forward", "environment_four_wheels", "pointing_gyroscopic")
+             "environment_feed_forward", "environment_four_wheels", "pointing_gyroscopic", "magnetic_pointing",
+             "magnetic_pointing_runs", "attitude_modes_magnetorquers", "attitude_modes_sensors",
+             "magnetic_pointing_hold_worst", "magnetic_pointing_tumble")
 # its committed folder is older than its campaign file: its blocks are checked against the committed results, the
 # folder's belonging is reported by --check
 BLOCKS_ONLY = ("flight_detumble_campaign",)
@@ -134,10 +136,17 @@ def test_the_bdot_noise_study_is_what_the_code_computes_now(tmp_path, monkeypatc
     ("environment_feed_forward", "environment_torques_feed_forward", "| 0.02601 |", "| 0.01980 |"),
     ("environment_four_wheels", "environment_torques_four_wheels", "| 0.0257 |", "| 0.0224 |"),
     ("pointing_gyroscopic", "pointing_targets_gyroscopic", "| 0.0082 | 0.0226 |", "| 0.0082 | 0.0209 |"),
+    ("magnetic_pointing", "magnetic_pointing_floquet", "−3.16e-3", "−3.17e-3"),
+    ("magnetic_pointing", "magnetic_pointing_corner_dipole", "2.39° / 12.4°", "2.39° / 12.5°"),
+    ("magnetic_pointing_runs", "magnetic_pointing_tumble_runs", "118.8°", "119°"),
+    ("attitude_modes_magnetorquers", "attitude_modes_magnetorquers", "99/100", "84/100"),
+    ("attitude_modes_sensors", "attitude_modes_sensors", "| as in the scenario | 0.0063°",
+     "| as in the scenario | 0.045°"),
 ])
 def test_a_hand_edited_figure_of_the_new_study_blocks_is_reported(tmp_path, monkeypatch, name, block, old, new):
     """STUDY-010: magnetic_pointing.md's hold table, flight_bdot_noise.md's, robust_rates.md's,
-    pointing_targets.md's, environment_torques.md's and sun_safe.md's with one figure changed by hand (back to the
+    pointing_targets.md's, environment_torques.md's, sun_safe.md's, magnetic_pointing.md's Floquet, worst-corner and
+    tumble tables and attitude_modes.md's magnetorquer table with one figure changed by hand (for most, back to the
     figure the page quoted before it was generated): --check reports that block."""
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, name, block, old, new)
     assert len(problems) == 1 and f"block '{block}'" in problems[0]
@@ -256,6 +265,55 @@ def test_the_albedo_mismatch_table_refuses_a_file_of_other_options(tmp_path, mon
     wrong.unlink()
     with pytest.raises(studies.StudyError, match="is not committed: make it with .*--albedo 0.4"):
         studies.sun_safe_mismatch_block()
+def _mag_table(block: str):
+    table = next(t for t in studies.MAG_POINTING_TABLES if t.block == block)
+    return studies._load_script(table.script), json.loads(table.path.read_text(encoding="utf-8"))
+
+
+def test_the_magnetic_pointing_floquet_table_is_what_the_code_computes_now():
+    """STUDY-035: magnetic_pointing.md's gain table (Floquet rates) is rendered from a committed JSON file; its chosen
+    row (K_P 4e-6, K_D 4e-4, ρ 2, ζ 1) is computed again in both fields and at the three biases (≈ 0.1 CPU-s) and
+    gives the committed rates to the float."""
+    script, committed = _mag_table("magnetic_pointing_floquet")
+    row = next(r for r in committed["rows"] if r["note"] == "chosen")
+    assert {f: script.floquet_row(f, row["k_p"], row["k_d"], row["rho"], row["zeta"]) for f in script.FIELDS} \
+        == row["rates"]
+
+
+def test_the_magnetic_pointing_plant_tables_are_what_the_code_flies_now():
+    """STUDY-036: magnetic_pointing.md's plant checks are rendered from committed JSON files (≈ 400 one-orbit plant
+    flights); the worst corner's chosen row, draw 1, in both fields, and seed 003's PD in the dipole (four plant
+    flights, a few CPU-s) fly again and give the committed figures to the float."""
+    script, corner = _mag_table("magnetic_pointing_corner_dipole")
+    _, corner_igrf = _mag_table("magnetic_pointing_corner_igrf14")
+    for table in (corner, corner_igrf):
+        row = table["rows"][6]
+        assert row["params"] == [4e-6, 4e-4, 2.0, 1.0, 30.0, 0.8, 0.8]  # the chosen gains, the 30 s settle
+        assert list(script.corner_run(table["field"], tuple(row["params"]), 1)) == row["runs"][0]
+    _, checks = _mag_table("magnetic_pointing_checks")
+    from detumble.sim.magnetic_pointing_check import fly
+
+    again = fly("seed_pd", 2.0e-6, 4.0e-4, seed=1, dt_s=0.1, settings=script.FIELDS["dipole"]).stats()
+    assert list(again) == checks["seed_pd"]["dipole"]
+
+
+@pytest.mark.slow
+def test_the_magnetic_pointing_hold_run_is_what_the_deployment_flies_now(tmp_path):
+    """STUDY-037 (`slow`: one orbit of adcs_ref, about a CPU-minute): the attitude-hold run of the committed
+    magnetic_pointing/deployment.json (present defaults, at rest on the target) flies again and gives its committed
+    figures to the float."""
+    script, committed = _mag_table("magnetic_pointing_hold_runs")
+    assert script.fly("hold", tmp_path) == committed["runs"]["hold"]
+
+
+def test_the_wheels_sensor_table_is_what_the_deployment_flies_now(tmp_path):
+    """STUDY-038: attitude_modes.md's sensor table is rendered from a committed JSON file (four 300 s adcs_ref runs);
+    its first row (the scenario's sensors: one 300 s deployment run, a few CPU-s) flies again and gives the committed
+    figures to the float."""
+    table = studies.SCRIPT_TABLES["attitude_modes_sensors"]
+    script = studies._load_script(table.script)
+    committed = json.loads(table.path.read_text(encoding="utf-8"))["rows"]["as in the scenario"]
+    assert script.fly("as in the scenario", tmp_path) == committed
 
 
 def test_a_script_table_of_a_quick_run_is_refused(tmp_path, monkeypatch):

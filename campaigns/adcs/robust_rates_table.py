@@ -16,9 +16,6 @@ issue 27) and the bias-corrected gyro (RATE_SOURCE = GYRO). Figures: the slew's 
 
 from __future__ import annotations
 
-import argparse
-import json
-import pathlib
 import sys
 
 from detumble.sim.runner import run
@@ -76,17 +73,9 @@ def markdown(table: dict) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--json", type=pathlib.Path, metavar="FILE", help="also write the figures to FILE (JSON)")
-    args = parser.parse_args(argv)
-    table = results()
-    if args.json is not None:
-        from fprime_lite.osal.atomic import atomic_write_text
+    from detumble.reports.study_table import table_script_main
 
-        args.json.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_text(args.json, json.dumps(table, indent=1) + "\n")
-    print(markdown(table), end="")
-    return 0
+    return table_script_main(argv, __doc__.split("\n\n")[0], lambda args: results(), markdown)
 
 
 if __name__ == "__main__":

@@ -16,9 +16,6 @@ interval, steady median / p95 / max per active reference (``detumble.analysis.po
 
 from __future__ import annotations
 
-import argparse
-import json
-import pathlib
 import sys
 
 from detumble.control import three_mode
@@ -84,18 +81,12 @@ def markdown(table: dict) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--quick", action="store_true", help="300 s per run (a smoke test, not the page's figures)")
-    parser.add_argument("--json", type=pathlib.Path, metavar="FILE", help="also write the figures to FILE (JSON)")
-    args = parser.parse_args(argv)
-    table = results(args.quick)
-    if args.json is not None:
-        from fprime_lite.osal.atomic import atomic_write_text
+    from detumble.reports.study_table import table_script_main
 
-        args.json.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write_text(args.json, json.dumps(table, indent=1) + "\n")
-    print(markdown(table), end="")
-    return 0
+    def quick(parser) -> None:
+        parser.add_argument("--quick", action="store_true", help="300 s per run (a smoke test, not the page's figures)")
+
+    return table_script_main(argv, __doc__.split("\n\n")[0], lambda args: results(args.quick), markdown, quick)
 
 
 if __name__ == "__main__":

@@ -18,7 +18,8 @@ import pathlib
 import re
 import tempfile
 
-__all__ = ["atomic_write_bytes", "atomic_write_text", "file_mode_for", "fsync_directory", "temporary_file",
+__all__ = ["atomic_write_bytes", "atomic_write_json", "atomic_write_text", "file_mode_for", "fsync_directory",
+           "temporary_file",
            "open_temporary", "is_temporary_name", "clean_temporary_files", "TEMP_PREFIX", "TEMP_SUFFIX"]
 
 #: How every temporary file of an atomic write starts and ends.
@@ -138,6 +139,14 @@ def atomic_write_bytes(path, data: bytes) -> None:
 def atomic_write_text(path, text: str) -> None:
     """Replace ``path`` with ``text`` (UTF-8) atomically."""
     atomic_write_bytes(path, text.encode("utf-8"))
+
+
+def atomic_write_json(path, obj, *, indent: int = 1) -> None:
+    """Replace ``path`` with ``obj`` as indented JSON (UTF-8, a final newline) atomically, creating parent folders
+    (the study scripts' ``--json`` files)."""
+    import json
+
+    atomic_write_text(path, json.dumps(obj, indent=indent) + "\n")
 
 
 def file_mode_for(path) -> int:

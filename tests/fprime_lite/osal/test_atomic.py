@@ -5,7 +5,7 @@ import stat
 
 import pytest
 
-from fprime_lite.osal.atomic import atomic_write_bytes, atomic_write_text
+from fprime_lite.osal.atomic import atomic_write_bytes, atomic_write_json, atomic_write_text
 
 
 def test_new_file_gets_the_umask_mode_and_the_content(tmp_path):
@@ -42,3 +42,14 @@ def test_a_failed_write_leaves_the_old_file_and_no_temporary(tmp_path, monkeypat
     monkeypatch.undo()
     assert path.read_text() == "old"
     assert [p.name for p in tmp_path.iterdir()] == ["keep.txt"]
+
+
+def test_json_goes_into_a_new_folder_indented_with_a_final_newline(tmp_path):
+    """atomic_write_json (the study scripts' --json files): the folder is made, the text is the object indented by one
+    space and ends with a newline, and it reads back as the same object."""
+    import json
+
+    target = tmp_path / "new" / "table.json"
+    atomic_write_json(target, {"rows": [1.5, None]})
+    assert target.read_text(encoding="utf-8") == '{\n "rows": [\n  1.5,\n  null\n ]\n}\n'
+    assert json.loads(target.read_text(encoding="utf-8")) == {"rows": [1.5, None]}

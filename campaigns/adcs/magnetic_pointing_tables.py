@@ -1,0 +1,186 @@
+"""The plant-only tables of docs/studies/magnetic_pointing.md: Floquet maps and plant checks (no flight software).
+
+    python campaigns/adcs/magnetic_pointing_tables.py floquet --json docs/studies/magnetic_pointing/floquet.json
+    python campaigns/adcs/magnetic_pointing_tables.py corner --field dipole \
+        --json docs/studies/magnetic_pointing/corner_dipole.json
+    python campaigns/adcs/magnetic_pointing_tables.py corner --field igrf14 \
+        --json docs/studies/magnetic_pointing/corner_igrf14.json
+    python campaigns/adcs/magnetic_pointing_tables.py checks --json docs/studies/magnetic_pointing/checks.json
+
+``floquet`` (≈ 1 CPU-s): section 4's gain table — the slowest mode's Floquet rate (1/s, negative decays) of the
+steering law linearised about the adcs_ref start-up target over one orbit (200 samples, RK4 with 4 substeps), the
+body's inertia × 1.25 (the coils' 80 % duty), with the law seeing the field without bias, through the scenario's
+LIS2MDL bias (0.012, −0.008, 0.005) G (constant in B ≈ T while holding) and through twice it; in the tilted dipole
+(where the gains were chosen, 2026-12-01) and in IGRF-14 (the adcs scenario's field since 2026-12-04).
+``corner`` (≈ 3 CPU-minutes): the hold campaign's worst corner on the plant (``detumble.sim.magnetic_pointing_check``):
+20 draws of the axes (seeds 1–20), 20° off and 0.05 °/s, coils off for the settle time, the LIS2MDL bias in the
+field the law sees (its ḃ from the flight estimator), 0.2 s steps, one orbit (5580 s), per gain row.
+``checks`` (≈ 1 CPU-minute): sections 1 and 3's plant flights from a 0.5 °/s tumble at the identity (45° from
+the target), ideal knowledge: seed 003's PD with its old gains (seed 1, 0.1 s steps), and the steering law over ten
+tumble axes (seeds 1–10, 0.2 s steps) with the first-pass and the present gains; in both fields.
+
+``tools/studies.py --only magnetic_pointing`` renders the page's tables from the JSON files (:func:`markdown`).
+Medians over runs are the upper middle of the sorted values (``sorted(v)[n // 2]``), as the check's CLI prints them.
+"""
+
+from __future__ import annotations
+
+import sys
+
+TARGET = (0.9238795325112867, 0.0, 0.3826834323650898, 0.0)
+BIAS_G = (0.012, -0.008, 0.005)
+FIELDS = {"dipole": ("field.model=dipole",), "igrf14": ("field.model=igrf14", "field.table_step_s=10")}
+FIELD_NAMES = {"dipole": "tilted dipole", "igrf14": "IGRF-14"}
+#: section 4's Floquet rows: (K_P_MAG N·m, K_D_MAG N·m·s, ρ, ζ, note)
+FLOQUET_ROWS = ((1e-6, 1e-4, 2.0, 0.7, "previous"), (1e-6, 1e-4, 3.0, 1.0, ""), (1e-6, 1e-4, 4.0, 0.7, ""),
+                (2e-6, 2e-4, 2.0, 1.0, ""), (3e-6, 3e-4, 2.0, 1.0, ""), (4e-6, 4e-4, 2.0, 1.0, "chosen"),
+                (4e-6, 4e-4, 2.5, 1.0, ""), (4e-6, 1e-4, 3.0, 0.7, ""), (6e-6, 6e-4, 2.0, 1.0, ""))
+#: the worst corner's rows: (K_P, K_D, ρ, ζ, settle s, duty, share of the plant's residual dipole fed forward)
+CORNER_ROWS = ((1e-6, 1e-4, 2.0, 0.7, 120.0, 1.0, 0.0), (1e-6, 1e-4, 2.0, 0.7, 120.0, 1.0, 1.0),
+               (1e-6, 1e-4, 2.0, 1.0, 120.0, 1.0, 0.0), (2e-6, 2e-4, 2.0, 1.0, 120.0, 1.0, 0.0),
+               (4e-6, 4e-4, 2.0, 1.0, 120.0, 1.0, 0.0), (4e-6, 4e-4, 2.0, 1.0, 120.0, 0.8, 0.8),
+               (4e-6, 4e-4, 2.0, 1.0, 30.0, 0.8, 0.8), (3e-6, 3e-4, 2.0, 1.0, 30.0, 0.8, 0.8),
+               (2e-6, 2e-4, 2.0, 1.0, 30.0, 0.8, 0.8))
+CORNER_SEEDS = range(1, 21)
+SPREAD_SEEDS = range(1, 11)
+GAINS = {"first pass": (1e-6, 1e-4, 2.0, 0.7), "present": (4e-6, 4e-4, 2.0, 1.0)}
+
+
+def floquet_row(field: str, k_p: float, k_d: float, rho: float, zeta: float) -> list[float]:
+    """The slowest mode's rate (1/s) at bias × 0, 1, 2 in ``field``."""
+    import numpy as np
+
+    from detumble.analysis.magnetic_floquet import field_line_along_orbit, floquet_rate
+    from detumble.sim.plant import Plant
+    from detumble.sim.scenario import load_scenario
+
+    plant = Plant(load_scenario("adcs", settings=list(FIELDS[field])))
+    period, b, bd = field_line_along_orbit(plant, TARGET, samples=200)
+    inertia = 1.25 * np.array(plant.scenario.spacecraft.inertia_kg_m2)
+    rates = []
+    for k in (0.0, 1.0, 2.0):
+        _, bl, bdl = field_line_along_orbit(plant, TARGET, samples=200, bias_t=[k * 1e-4 * c for c in BIAS_G])
+        rates.append(floquet_rate("field_steering", period, b, bd, inertia, k_p, k_d, substeps=4, rho=rho, zeta=zeta,
+                                  b_law=bl, bdot_law=bdl))
+    return rates
+
+
+def floquet() -> dict:
+    return {"table": "floquet", "rows": [
+        {"k_p": kp, "k_d": kd, "rho": rho, "zeta": zeta, "note": note,
+         "rates": {f: floquet_row(f, kp, kd, rho, zeta) for f in FIELDS}} for kp, kd, rho, zeta, note in FLOQUET_ROWS]}
+
+
+def _residual(field: str) -> tuple[float, float, float]:
+    from detumble.sim.scenario import load_scenario
+
+    return load_scenario("adcs", settings=list(FIELDS[field])).spacecraft.residual_dipole_am2
+
+
+def corner_run(field: str, row: tuple, seed: int) -> tuple[float, float, float]:
+    """(median, p95, max) in degrees of one draw of the worst corner (``row`` of :data:`CORNER_ROWS`)."""
+    from detumble.sim.magnetic_pointing_check import fly
+
+    kp, kd, rho, zeta, settle, duty, share = row
+    ff = tuple(share * c for c in _residual(field))
+    return fly("field_steering", kp, kd, rho=rho, zeta=zeta, seed=seed, rate_deg_s=0.05, offset_deg=20.0,
+               settle_s=settle, mag_bias_t=tuple(1e-4 * c for c in BIAS_G), dt_s=0.2, duty=duty,
+               residual_ff_am2=ff, settings=FIELDS[field]).stats()
+
+
+def corner(field: str) -> dict:
+    return {"table": "corner", "field": field, "seeds": list(CORNER_SEEDS), "rows": [
+        {"params": list(row), "runs": [list(corner_run(field, row, s)) for s in CORNER_SEEDS]} for row in CORNER_ROWS]}
+
+
+def checks() -> dict:
+    from detumble.sim.magnetic_pointing_check import fly
+
+    out: dict = {"table": "checks", "seed_pd": {}, "spread": {}}
+    for field, sets in FIELDS.items():
+        out["seed_pd"][field] = list(fly("seed_pd", 2.0e-6, 4.0e-4, seed=1, dt_s=0.1, settings=sets).stats())
+        out["spread"][field] = {
+            name: [list(fly("field_steering", kp, kd, rho=rho, zeta=zeta, seed=s, dt_s=0.2, settings=sets).stats())
+                   for s in SPREAD_SEEDS] for name, (kp, kd, rho, zeta) in GAINS.items()}
+    return out
+
+
+def _mid(values) -> float:
+    v = sorted(values)
+    return v[len(v) // 2]
+
+
+def _rate(x: float) -> str:
+    """A Floquet rate as the page prints it: decays as −3.16e-3, growth in bold."""
+    return f"−{_short(-x, 2)}" if x < 0 else f"**+{_short(x, 1)}**"
+
+
+def _short(x: float, digits: int = 0) -> str:
+    """``x`` in e-notation without the exponent's leading zero (4e-6, 3.16e-3)."""
+    mantissa, exponent = f"{x:.{digits}e}".split("e")
+    return f"{mantissa}e{int(exponent)}"
+
+
+def floquet_markdown(table: dict) -> str:
+    head = " | ".join(f"{FIELD_NAMES[f]}: {b}" for f in FIELDS for b in ("no bias", "scenario bias", "2 × bias"))
+    lines = [f"| K_P_MAG (N·m) | K_D_MAG (N·m·s) | ρ | ζ | {head} |", "|---|---|---|---|" + "---|" * 6]
+    for r in table["rows"]:
+        note = f" ({r['note']})" if r["note"] else ""
+        cells = " | ".join(_rate(x) for f in FIELDS for x in r["rates"][f])
+        lines.append(f"| {_short(r['k_p'])} | {_short(r['k_d'])} | {r['rho']:g} | {r['zeta']:g}{note} | {cells} |")
+    return "\n".join(lines) + "\n"
+
+
+def corner_markdown(table: dict) -> str:
+    lines = ["| gains (K_P, K_D, ρ, ζ), settle | duty, compensation | runs with p95 ≤ 15° | p95: median / worst "
+             "| median: worst |", "|---|---|---|---|---|"]
+    for r in table["rows"]:
+        kp, kd, rho, zeta, settle, duty, share = r["params"]
+        comp = "none" if share == 0 else ("exact" if share == 1 else f"{100 * share:.0f} % of it")
+        p95s = [x[1] for x in r["runs"]]
+        ok = sum(1 for p in p95s if p <= 15.0)
+        gains = f"{_short(kp)}, {_short(kd)}, {rho:g}, {zeta:g}, {settle:g} s"
+        lines.append(f"| {gains} | {duty:g}, {comp} | {ok}/{len(p95s)} | "
+                     f"{_mid(p95s):.2f}° / {max(p95s):.1f}° | {max(x[0] for x in r['runs']):.2f}° |")
+    return "\n".join(lines) + "\n"
+
+
+def checks_markdown(table: dict) -> str:
+    lines = ["| plant flight, 0.5 °/s from the identity, ideal knowledge | field | median | p95 | met both |",
+             "|---|---|---|---|---|"]
+    for f in FIELDS:
+        med, p95, _ = table["seed_pd"][f]
+        lines.append(f"| SEED_PD, K_P 2e-6, K_D 4e-4, seed 1, 0.1 s steps | {FIELD_NAMES[f]} | {med:.1f}° | "
+                     f"{p95:.1f}° | {'yes' if med <= 5 and p95 <= 15 else 'no'} |")
+    for name, (kp, kd, rho, zeta) in GAINS.items():
+        for f in FIELDS:
+            runs = table["spread"][f][name]
+            meds, p95s = [x[0] for x in runs], [x[1] for x in runs]
+            ok = sum(1 for m, p in zip(meds, p95s, strict=True) if m <= 5 and p <= 15)
+            gains = f"{_short(kp)}, {_short(kd)}, ρ {rho:g}, ζ {zeta:g}"
+            lines.append(f"| FIELD_STEERING, {name} gains ({gains}), seeds 1–10 (tumble axes), 0.2 s steps | "
+                         f"{FIELD_NAMES[f]} | {min(meds):.1f}–{max(meds):.1f}° | "
+                         f"{min(p95s):.1f}–{max(p95s):.1f}° (middle {_mid(p95s):.1f}°) | {ok}/{len(runs)} |")
+    return "\n".join(lines) + "\n"
+
+
+def markdown(table: dict) -> str:
+    return {"floquet": floquet_markdown, "corner": corner_markdown, "checks": checks_markdown}[table["table"]](table)
+
+
+def main(argv: list[str] | None = None) -> int:
+    from detumble.reports.study_table import table_script_main
+
+    def options(parser) -> None:
+        parser.add_argument("table", choices=("floquet", "corner", "checks"))
+        parser.add_argument("--field", choices=list(FIELDS), default="dipole", help="corner: field (default dipole)")
+
+    def results(args) -> dict:
+        table = {"floquet": floquet, "checks": checks}.get(args.table, lambda: corner(args.field))()
+        return dict(table, script="campaigns/adcs/magnetic_pointing_tables.py")
+
+    return table_script_main(argv, __doc__.split("\n\n")[0], results, markdown, options)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
