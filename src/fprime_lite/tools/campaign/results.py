@@ -157,9 +157,38 @@ def _read_legacy_journal(path: pathlib.Path) -> list[dict]:
 
 
 def has_results(out_dir) -> bool:
-    """Whether the campaign folder ``out_dir`` holds results (parts, or an older version's journal)."""
+    """Whether the campaign folder ``out_dir`` holds results (parts, an older version's journal, or only
+    ``results.parquet``: a folder committed or copied without its parts)."""
     out_dir = pathlib.Path(out_dir)
-    return (out_dir / LEGACY_JOURNAL).exists() or bool(_part_files(out_dir / PARTS))
+    return ((out_dir / LEGACY_JOURNAL).exists() or bool(_part_files(out_dir / PARTS))
+            or (out_dir / "results.parquet").is_file())
+
+
+def _table_as_first_part(out_dir: pathlib.Path, varied: list[str] | None) -> None:
+    """A folder holding ``results.parquet`` but no parts (the parts are not committed with a campaign's results,
+    nor copied by whoever moved the folder): the table becomes part 0, so a resumed campaign counts its runs as
+    done and its table keeps them. Without this a ``--resume`` flew every run again and, stopped early, wrote a
+    table of only the new rows over the old one."""
+    import pyarrow.parquet as pq
+
+    from fprime_lite.osal.atomic import atomic_write_bytes, fsync_directory
+
+    table_path = out_dir / "results.parquet"
+    try:
+        table = pq.read_table(table_path)
+    except (OSError, ValueError) as exc:
+        raise CampaignError([f"{table_path}: this results table cannot be read ({exc}); it is left as it is — "
+                             f"move it out of {out_dir} to fly the campaign afresh there"]) from None
+    if "run_id" not in table.schema.names:
+        raise CampaignError([f"{table_path}: not a campaign's results table (no run_id column); it is left as it "
+                             f"is — move it out of {out_dir} or choose another --out"])
+    names = [n for n in table.schema.names if n not in FIXED_COLUMNS + TAIL_COLUMNS + PART_ONLY]
+    split = len([n for n in names if n in varied]) if varied is not None else len(names)
+    table = table.replace_schema_metadata({b"fprime_lite_varied": str(split).encode()})
+    parts_dir = out_dir / PARTS
+    parts_dir.mkdir(exist_ok=True)
+    atomic_write_bytes(parts_dir / "part-00000000.parquet", _parquet_bytes(table))
+    fsync_directory(parts_dir)
 
 
 def read_results(out_dir):
@@ -207,6 +236,9 @@ class ResultStore:
             clean_temporary_files(self.parts_dir)  # a part a kill interrupted before its rename
         legacy = _read_legacy_journal(self.out_dir / LEGACY_JOURNAL)
         files = _part_files(self.parts_dir)
+        if not reader and not files and not legacy and self.parquet.is_file():
+            _table_as_first_part(self.out_dir, varied)
+            files = _part_files(self.parts_dir)
         tables = [_read_part(p) for _, p in files]
         if varied is None or metric_names is None:
             varied, metric_names = self._columns_of(tables, legacy)

@@ -197,3 +197,42 @@ def test_a_running_campaign_with_no_part_yet_reads_as_an_empty_table(tmp_path):
     (tmp_path / "results.parts").mkdir()
     table = read_results(tmp_path)
     assert len(table) == 0 and "run_id" in table.columns and "status" in table.columns
+
+
+def test_a_folder_without_its_parts_resumes_from_its_table(tmp_path):
+    """CAMP-153: a folder holding only results.parquet (committed or copied without results.parts/) resumes from
+    that table: its runs count as done, and a session stopped early keeps them in the table it writes (it used
+    to fly every run again and write a table of only the new rows over the old one)."""
+    import shutil
+
+    from fprime_lite.tools.campaign.results import has_results
+
+    store = ResultStore(tmp_path, ["x"], ["m"])
+    for i in range(6):
+        store.add(_row(i, "failed" if i == 4 else "ok"))
+    store.close()
+    shutil.rmtree(tmp_path / "results.parts")
+    assert has_results(tmp_path)  # a campaign without --resume is refused this folder
+    store = ResultStore(tmp_path, ["x"], ["m"])
+    assert store.done_ids() == {f"r{i:05d}" for i in range(6)}
+    assert store.done_ids(ok_only=True) == {f"r{i:05d}" for i in range(6) if i != 4}
+    store.add(_row(6))
+    df = store.close()
+    assert len(df) == 7 and df["run_id"].is_unique
+    _valid(df[df["status"] == "ok"])
+    assert (df.set_index("run_id").loc["r00004", "status"]) == "failed"
+    assert read_results(tmp_path).equals(df)
+    again = ResultStore(tmp_path, ["x"], ["m"])  # the columns' split (varied | metrics) survived the round trip
+    assert again.varied == ["x"] and again.metric_names == ["m"] and len(again) == 7
+
+
+def test_a_table_that_is_not_a_campaigns_is_refused_and_left(tmp_path):
+    """CAMP-154: a results.parquet without a run_id column (not a campaign's table) is refused with its path
+    and left as it was."""
+    import pandas as pd
+
+    pd.DataFrame({"a": [1.0]}).to_parquet(tmp_path / "results.parquet")
+    before = (tmp_path / "results.parquet").read_bytes()
+    with pytest.raises(CampaignError, match=r"results.parquet: not a campaign's results table"):
+        ResultStore(tmp_path, ["x"], ["m"])
+    assert (tmp_path / "results.parquet").read_bytes() == before
