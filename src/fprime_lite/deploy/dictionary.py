@@ -25,6 +25,7 @@ from fprime_lite.wire.packets import Apid
 from fprime_lite.model.time import TIME, TimeBase
 from fprime_lite.deploy.topology import Topology
 from fprime_lite.model.types import U8, U16, U32, U64, Alias, FwEnum, FwType, fw_type
+from fprime_lite.model.errors import FprimeLiteError
 
 __all__ = ["build_dictionary", "write_dictionary", "param_annotation", "dumps_indented", "FRAMEWORK_VERSION"]
 
@@ -218,8 +219,9 @@ def write_dictionary(topology: Topology, path, **kwargs) -> dict:
     return dictionary
 
 
-class _NotPlainError(Exception):
-    """A value :func:`dumps_indented` leaves to ``json.dumps``."""
+class _NotPlainError(FprimeLiteError):
+    """A value :func:`dumps_indented` leaves to ``json.dumps`` (never escapes it: the package's error root, as every
+    fprime_lite error class derives from)."""
 
 
 def dumps_indented(obj) -> str:
