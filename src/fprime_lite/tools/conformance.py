@@ -331,7 +331,8 @@ def run(args, pytest_args: list[str]) -> int:
                    "-p", "no:cacheprovider", "-rfEs", "-o", "junit_family=xunit1", "--junitxml",
                    str(work / "junit.xml"),
                    "--dictionary", str(dictionary), "--zmq-transport", *zmq, "--logs", str(work / "api-logs"),
-                   "--log-directly", "--file-storage-directory", str(files)]
+                   "--log-directly", "--file-storage-directory", str(files),
+                   "-p", "fprime_lite.testing.link_settle"]  # the API's first packets must not be dropped
         if config is not None:
             command += ["--deployment-config", str(config)]
         if args.expected_failures:

@@ -258,3 +258,40 @@ def test_the_python_api_takes_a_board_root(tmp_path, monkeypatch):
     result = run(str(topology), duration_s=0.1, out=tmp_path / "run", board_root=board)
     assert (board / "boot_count.bin").is_file()
     assert not list(result.out_dir.rglob("boot_count.bin"))
+
+
+def test_the_first_test_waits_for_the_api_link_to_settle(tmp_path):
+    """CONF-LINK-001: conformance's link_settle plugin waits, once, between the test API's creation and the
+    first test (fprime-gds's PUB socket drops what is sent before the ground system's subscription reaches
+    it: F´'s FileHandling suite lost its first uplink packets so); a second test does not wait again."""
+    (tmp_path / "conftest.py").write_text(textwrap.dedent("""
+        import time, pytest
+        @pytest.fixture(scope="session")
+        def fprime_test_api_session():
+            with open("times.txt", "a") as fh:
+                fh.write(f"api {time.monotonic()}\\n")
+            return object()
+        @pytest.fixture
+        def fprime_test_api(fprime_test_api_session):
+            return fprime_test_api_session
+    """))
+    (tmp_path / "test_suite.py").write_text(textwrap.dedent("""
+        import time
+        def test_first(fprime_test_api):
+            with open("times.txt", "a") as fh:
+                fh.write(f"test {time.monotonic()}\\n")
+        def test_second(fprime_test_api):
+            with open("times.txt", "a") as fh:
+                fh.write(f"test {time.monotonic()}\\n")
+    """))
+    (tmp_path / "pytest.ini").write_text("[pytest]\n")
+    argv = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-p", "fprime_lite.testing.link_settle",
+            "--fprime-lite-link-settle", "0.6", str(tmp_path / "test_suite.py"), "--rootdir", str(tmp_path),
+            "-c", str(tmp_path / "pytest.ini")]
+    result = subprocess.run(argv, capture_output=True, text=True, cwd=tmp_path)
+    assert result.returncode == 0, result.stdout + result.stderr
+    times = [line.split() for line in (tmp_path / "times.txt").read_text().splitlines()]
+    assert [name for name, _ in times] == ["api", "test", "test"]
+    api, first, second = (float(t) for _, t in times)
+    assert first - api >= 0.6
+    assert second - first < 0.6
