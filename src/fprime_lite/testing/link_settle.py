@@ -29,7 +29,7 @@ def pytest_addoption(parser):
 def _fprime_lite_link_settled(request):
     """Once a session: build the API (fprime-gds's session fixture), then give its PUB socket time to
     learn the ground system's subscription."""
-    if "fprime_test_api_session" not in request.fixturenames and not _suite_uses_the_api(request):
+    if not _suite_uses_the_api(request):
         return
     request.getfixturevalue("fprime_test_api_session")
     time.sleep(max(0.0, request.config.getoption(OPTION)))
