@@ -131,7 +131,7 @@ def claim_run_folder(out=None, runs_dir="runs") -> pathlib.Path:
 def run(topology="topology.yaml", *, duration_s: float | None = None, out=None, scenario: str | None = None,
         seed: int | None = None, settings: Sequence[str] = (), params=None, seq=None,
         truth_interval_s: float | None = None, plots: bool = False, progress: bool = False,
-        quiet: bool = True, force: bool = False, board_root=None) -> "RunResult":
+        quiet: bool = True, force: bool = False, board_root=None, file_root=None) -> "RunResult":
     """Fly ``topology`` for ``duration_s`` simulated seconds (default: the topology's ``run.duration_s``,
     else 600); return its :class:`RunResult`.
 
@@ -148,10 +148,15 @@ def run(topology="topology.yaml", *, duration_s: float | None = None, out=None, 
     ``/`` for the file services and the command sequencers (``/seq/a.bin`` is ``board_root/seq/a.bin``,
     nothing outside it is reachable, files are replaced as F´'s services replace them) and is the
     simulated spacecraft's flash too.
+
+    ``file_root`` (``fprime-lite run --file-root``; an existing folder holding the working directory)
+    gives the file services without a root of their own F´'s behaviour: confined to ``file_root``,
+    relative paths from the working directory, existing files replaced, uploads written in place.
+    Give ``board_root`` or ``file_root``, not both.
     """
     from fprime_lite.deploy.preflight import check_run_files
     from fprime_lite.tools import disk_estimate
-    from fprime_lite.tools.runner import run_deployment, run_duration, use_board_as_flash
+    from fprime_lite.tools.runner import file_root_problem, run_deployment, run_duration, use_board_as_flash
 
     if duration_s is not None and not (isinstance(duration_s, (int, float)) and not isinstance(duration_s, bool)
                                        and 0 < duration_s < math.inf):
@@ -163,6 +168,11 @@ def run(topology="topology.yaml", *, duration_s: float | None = None, out=None, 
     if board_root is not None and not pathlib.Path(board_root).is_dir():
         raise RunSetupError(f"board_root {board_root}: not an existing folder — create it (it stands in for the "
                             f"board's /)")
+    if board_root is not None and file_root is not None:
+        raise RunSetupError("board_root and file_root: give one (a board root is the file services' whole root)")
+    problem = file_root_problem(file_root)
+    if problem is not None:
+        raise RunSetupError(f"file_root {file_root}: {problem}")
     loaded = load(topology, scenario=scenario, seed=seed, settings=settings, truth_interval_s=truth_interval_s)
     check_run_files(loaded, parameter_file=params, sequence=seq)
     duration_s = run_duration(loaded, duration_s)
@@ -177,7 +187,8 @@ def run(topology="topology.yaml", *, duration_s: float | None = None, out=None, 
         use_board_as_flash(loaded, board_root)
     folder = claim_run_folder(out)
     run_deployment(loaded, folder, duration_s=duration_s, parameter_file=params, sequence=seq,
-                   progress=progress, plots=plots, quiet=quiet, board_root=board_root)
+                   progress=progress, plots=plots, quiet=quiet, board_root=board_root,
+                   file_root=file_root)
     return RunResult(folder)
 
 

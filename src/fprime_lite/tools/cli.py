@@ -546,14 +546,11 @@ def cmd_run(args) -> int:
 
 def _check_file_root(file_root: str | None) -> None:
     """``--file-root DIR``: an existing folder that holds the working directory."""
-    if file_root is None:
-        return
-    root = pathlib.Path(file_root)
-    if not root.is_dir():
-        raise UserError(f"--file-root {file_root}: not an existing folder")
-    if not pathlib.Path.cwd().resolve().is_relative_to(root.resolve()):
-        raise UserError(f"--file-root {file_root}: the working directory {pathlib.Path.cwd()} is not inside it — "
-                        f"run from a folder inside {file_root} (relative paths resolve against it)")
+    from fprime_lite.tools.runner import file_root_problem
+
+    problem = file_root_problem(file_root)
+    if problem is not None:
+        raise UserError(f"--file-root {file_root}: {problem}")
 
 
 def _output_file(path: str, option: str) -> pathlib.Path:

@@ -41,14 +41,29 @@ from fprime_lite.deploy.topology_loader import LoadedDeployment
 from fprime_lite.tools.interrupt import stop_on_signals
 from fprime_lite.tools.stop_condition import CHECK_INTERVAL_S, StopCondition, holds_all, parse_stop_condition
 
-__all__ = ["run_deployment", "use_board_as_flash", "run_duration", "DEFAULT_DURATION_S", "flight_problems",
-           "PROGRESS_STEP_S", "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
+__all__ = ["run_deployment", "use_board_as_flash", "run_duration", "file_root_problem", "DEFAULT_DURATION_S",
+           "flight_problems", "PROGRESS_STEP_S", "WALL_CLOCK_SUMMARY_KEYS", "wall_clock_channels"]
 
 #: Simulated seconds between progress updates (and between chunks of the run).
 PROGRESS_STEP_S = 10.0
 
 #: Simulated seconds of a run when neither the caller nor the topology's ``run.duration_s`` says.
 DEFAULT_DURATION_S = 600.0
+
+
+def file_root_problem(file_root) -> str | None:
+    """What is wrong with ``file_root`` as a run's file-service root, or None: it must be an existing
+    folder holding the working directory (relative paths given to the file services resolve against the
+    working directory, as on F´'s ground; ``fprime-lite run --file-root``, ``run(file_root=...)``)."""
+    if file_root is None:
+        return None
+    root = pathlib.Path(file_root)
+    if not root.is_dir():
+        return "not an existing folder"
+    if not pathlib.Path.cwd().resolve().is_relative_to(root.resolve()):
+        return (f"the working directory {pathlib.Path.cwd()} is not inside it — run from a folder inside "
+                f"{file_root} (relative paths resolve against it)")
+    return None
 
 
 def run_duration(loaded: LoadedDeployment, requested: float | None) -> float:

@@ -260,6 +260,40 @@ def test_the_python_api_takes_a_board_root(tmp_path, monkeypatch):
     assert not list(result.out_dir.rglob("boot_count.bin"))
 
 
+def test_the_python_api_takes_a_file_root(tmp_path, monkeypatch):
+    """CONF-API-002: ``fprime_lite.tools.run(..., file_root=DIR)`` is ``run --file-root DIR``: the file
+    services without a root of their own are confined to DIR, take relative paths from the working
+    directory and replace files; a root that does not hold the working directory, or one given with a
+    board root, is refused before a run folder is made."""
+    from fprime_lite.tools.api import RunSetupError, run
+
+    topology = pathlib.Path(__file__).parents[3] / "deployments" / "proves_ref" / "topology.yaml"
+    work = tmp_path / "work"
+    work.mkdir()
+    (tmp_path / "elsewhere").mkdir()
+    monkeypatch.chdir(work)
+    with pytest.raises(RunSetupError, match="file_root .*elsewhere: the working directory .* is not inside it"):
+        run(str(topology), duration_s=0.1, out=tmp_path / "refused", file_root=tmp_path / "elsewhere")
+    with pytest.raises(RunSetupError, match="board_root and file_root: give one"):
+        run(str(topology), duration_s=0.1, out=tmp_path / "refused", file_root=tmp_path, board_root=tmp_path)
+    assert not (tmp_path / "refused").exists()
+
+    seen = {}
+    from fprime_lite.tools import runner
+
+    real = runner.run_deployment
+
+    def spy(loaded, out_dir, **kwargs):
+        summary = real(loaded, out_dir, **kwargs)
+        manager = loaded.topology.instance("FileHandling.fileManager").component
+        seen.update(root=manager.root_path, confined=manager.confinement_root, overwrite=manager.overwrite)
+        return summary
+
+    monkeypatch.setattr(runner, "run_deployment", spy)
+    run(str(topology), duration_s=0.1, out=tmp_path / "run", file_root=tmp_path)
+    assert seen == {"root": str(work.resolve()), "confined": str(tmp_path.resolve()), "overwrite": True}
+
+
 def test_the_first_test_waits_for_the_api_link_to_settle(tmp_path):
     """CONF-LINK-001: conformance's link_settle plugin waits, once, between the test API's creation and the
     first test (fprime-gds's PUB socket drops what is sent before the ground system's subscription reaches
