@@ -31,7 +31,8 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "pointing_targets", "environment_torques", "sun_safe", "attitude_knowledge", "robust_rates_campaign",
              "environment_feed_forward", "environment_four_wheels", "pointing_gyroscopic", "magnetic_pointing",
              "magnetic_pointing_runs", "attitude_modes_magnetorquers", "attitude_modes_sensors",
-             "magnetic_pointing_hold_worst", "magnetic_pointing_tumble")
+             "magnetic_pointing_hold_worst", "magnetic_pointing_tumble", "robust_rates_tail",
+             "robust_rates_window_campaign")
 # its committed folder is older than its campaign file: its blocks are checked against the committed results, the
 # folder's belonging is reported by --check
 BLOCKS_ONLY = ("flight_detumble_campaign",)
@@ -435,3 +436,40 @@ def test_a_missing_block_marker_is_a_clear_error():
 def test_unknown_study_names_a_close_one(capsys):
     assert studies.main(["--only", "coursework_convergenc", "--check"]) == 2
     assert "did you mean coursework_convergence" in capsys.readouterr().err
+
+
+def test_the_robust_rates_tail_table_is_what_the_code_flies_now():
+    """STUDY-070: robust_rates.md's tail table is rendered from a committed JSON file (400 flights); the first draw's
+    default variant (one 330 s plant-only flight) flies again and gives the committed figures to the float."""
+    pd = pytest.importorskip("pandas")
+
+    table = studies.SCRIPT_TABLES["robust_rates_tail"]
+    script = studies._load_script(table.script)
+    committed = json.loads(table.path.read_text(encoding="utf-8"))["runs"][0]
+    row = pd.read_parquet(script.CAMPAIGN).set_index("seed_index").loc[committed["seed_index"]]
+    flown = script.fly(json.loads(row["requested"]), int(row["seed"]), script.VARIANTS[script.DEFAULT])
+    assert flown == committed["variants"][script.DEFAULT]
+
+
+def test_the_window_campaign_comparison_is_checked_and_needs_the_same_draws(tmp_path, monkeypatch):
+    """STUDY-071: robust_rates.md's INTEGRAL_WINDOW 0.1° campaign block: its run-by-run comparison with the default
+    campaign edited by hand is reported by --check; a default campaign with another run's seed is refused (the
+    comparison pairs the same draws)."""
+    pytest.importorskip("pandas")
+    block = studies.doc_blocks(studies._ROBUST_DOC.read_text(encoding="utf-8"))["robust_rates_window_campaign"]
+    count = block.split("p95 ≤ 0.05° in ")[1].split(" of ")[0]  # "45 → 97"
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "robust_rates_window_campaign",
+                                       "robust_rates_window_campaign", count, count.replace("→", "->"))
+    assert len(problems) == 1 and "block 'robust_rates_window_campaign'" in problems[0]
+    base = studies.CAMPAIGNS["robust_rates_campaign"]
+    df = base.results().copy()
+    df.loc[df.index[0], "seed"] = int(df["seed"].max()) + 1
+    folder = tmp_path / "docs" / "studies" / base.folder
+    folder.mkdir(parents=True)
+    df.to_parquet(folder / "results.parquet")
+    window = studies.CAMPAIGNS["robust_rates_window_campaign"]
+    shutil.copytree(window.path, tmp_path / "docs" / "studies" / window.folder)
+    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path / "docs" / "studies")
+    with pytest.raises(studies.StudyError, match="draws"):
+        studies.robust_rates_window_campaign_blocks()
+
