@@ -322,8 +322,10 @@ class SimulatedSpacecraft(ResetLine):
         sample includes the coils' coupling ``K · m_coils`` when the coils were on at that instant.
         An ``ideal`` magnetometer returns the true field now, stamped now.
         """
-        self.sync()
         plant = self.plant
+        clock = self.clock  # sync(), written out: these are the reads and commands of every tick
+        if (clock.current_us - self.origin_us) * 1000 != plant._t_ns:
+            self.advance_to_us(clock.current_us)
         mag = plant.magnetometer
         if mag.spec.ideal:
             b = plant.b_B
@@ -340,8 +342,10 @@ class SimulatedSpacecraft(ResetLine):
         """``(wx, wy, wz, t_sample)``: the held LSM6DSO sample in rad/s (body axes) and its time;
         ``(wx, wy, wz)`` without the time when ``stamped`` is False (the IMU manager's reads, whose
         ``AngularVelocity`` carries no time stamp)."""
-        self.sync()
         plant = self.plant
+        clock = self.clock  # sync(), written out: these are the reads and commands of every tick
+        if (clock.current_us - self.origin_us) * 1000 != plant._t_ns:
+            self.advance_to_us(clock.current_us)
         gyro = plant.gyro
         if gyro.spec.ideal:
             w = plant.omega_BN_B
@@ -401,8 +405,10 @@ class SimulatedSpacecraft(ResetLine):
     def set_coil_level(self, face: int, level: int) -> None:
         """Drive the coil on ``face`` at ``level`` (-127..127) from now on (plant sign conventions:
         a positive level gives a dipole along the face's outward normal, so X- +level is -X)."""
-        self.sync()
         plant = self.plant
+        clock = self.clock  # sync(), written out: these are the reads and commands of every tick
+        if (clock.current_us - self.origin_us) * 1000 != plant._t_ns:
+            self.advance_to_us(clock.current_us)
         if level and self.power is not None and not self.power.face_powered(face):
             raise RuntimeError(f"face {face} is unpowered (its load switch is off); its coil cannot be driven")
         plant.set_coil_level(face, level)
@@ -426,8 +432,10 @@ class SimulatedSpacecraft(ResetLine):
 
     def set_wheel_torque(self, i: int, torque_nm: float) -> None:
         """Motor torque on wheel ``i`` (N·m along its axis) from now on (clipped by the plant)."""
-        self.sync()
         plant = self.plant
+        clock = self.clock  # sync(), written out: these are the reads and commands of every tick
+        if (clock.current_us - self.origin_us) * 1000 != plant._t_ns:
+            self.advance_to_us(clock.current_us)
         plant.set_wheel_torque(i, torque_nm)
 
     def set_wheel_speed(self, i: int, speed_rad_s: float) -> None:
@@ -442,8 +450,10 @@ class SimulatedSpacecraft(ResetLine):
     def wheel_sample(self, i: int) -> tuple[float, float, float, Time]:
         """``(speed_rad_s, momentum_nms, torque_nm, t)`` as wheel ``i`` reports them now (the
         momentum with the configured reading noise)."""
-        self.sync()
         plant = self.plant
+        clock = self.clock  # sync(), written out: these are the reads and commands of every tick
+        if (clock.current_us - self.origin_us) * 1000 != plant._t_ns:
+            self.advance_to_us(clock.current_us)
         try:
             speed, h, u, _ = plant.wheel_reading(i)
         except _NUMERIC_ERRORS:
@@ -467,8 +477,10 @@ class SimulatedSpacecraft(ResetLine):
     def star_tracker_sample(self) -> tuple[tuple[float, float, float, float], bool, Time]:
         """``(q_BN, valid, t_sample)``: the held star-tracker solution (scalar first), whether it is
         valid and when it was taken."""
-        self.sync()
         plant = self.plant
+        clock = self.clock  # sync(), written out: these are the reads and commands of every tick
+        if (clock.current_us - self.origin_us) * 1000 != plant._t_ns:
+            self.advance_to_us(clock.current_us)
         try:
             q0, q1, q2, q3, valid, t = plant.star_tracker_reading()
         except _NUMERIC_ERRORS:

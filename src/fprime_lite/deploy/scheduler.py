@@ -159,19 +159,68 @@ class Scheduler:
         """
         self._stopped = False
         n = 0
+        cls = type(self)
         # The plain scheduler's hook does nothing: its call is left out of the loop (a subclass's runs).
-        before_event = None if type(self)._before_event is Scheduler._before_event else self._before_event
-        while not self._stopped and (max_events is None or n < max_events):
-            t = self.next_time_us()
-            if t is None or (until_us is not None and t > until_us):
-                break
-            if before_event is not None:
-                before_event(t)
-            self._run_next(t)
-            n += 1
+        before_event = None if cls._before_event is Scheduler._before_event else self._before_event
+        if (cls.next_time_us is not Scheduler.next_time_us or cls._run_next is not Scheduler._run_next
+                or cls._advance_to is not Scheduler._advance_to):
+            while not self._stopped and (max_events is None or n < max_events):
+                t = self.next_time_us()
+                if t is None or (until_us is not None and t > until_us):
+                    break
+                if before_event is not None:
+                    before_event(t)
+                self._run_next(t)
+                n += 1
+        else:
+            n = self._run_plain(until_us, max_events, before_event)
         if until_us is not None and not self._stopped and until_us > self.clock.current_us:
             self._before_event(until_us)
             self._advance_to(until_us)
+        return n
+
+    def _run_plain(self, until_us: int | None, max_events: int | None,
+                   before_event: Callable[[int], None] | None) -> int:
+        """:meth:`run`'s loop with :meth:`next_time_us`, :meth:`_run_next` and :meth:`_advance_to`
+        written out (the scheduler's own, not overridden): every event of a deployment passes here,
+        one a tick of the fastest rate group. The same steps in the same order: cancelled calls
+        dropped from the top of the heap, the clock set (through ``set_us`` unless it is a plain
+        :class:`SimulatedClock` moving forward) and the time listeners told, a periodic call put
+        back before it runs, the events counted, the busy queues drained."""
+        heap = self._heap
+        clock = self.clock
+        listeners = self._listeners
+        busy = self._busy
+        seq = self._seq
+        heappop, heappush = heapq.heappop, heapq.heappush
+        plain_clock = type(clock).set_us is SimulatedClock.set_us
+        n = 0
+        while not self._stopped and (max_events is None or n < max_events):
+            while heap and heap[0][2].cancelled:
+                heappop(heap)
+            if not heap:
+                break
+            t = heap[0][0]
+            if until_us is not None and t > until_us:
+                break
+            if before_event is not None:
+                before_event(t)
+            _, _, call = heappop(heap)
+            current = clock.current_us
+            if t != current:
+                if plain_clock and t > current:
+                    clock.current_us = t
+                else:
+                    clock.set_us(t)
+                for listener in listeners:
+                    listener(t)
+            if call.period_us is not None:
+                heappush(heap, (t + call.period_us, next(seq), call))
+            call.fn()
+            self.events_run += 1
+            if busy:
+                self.drain()
+            n += 1
         return n
 
     def _before_event(self, t: int) -> None:

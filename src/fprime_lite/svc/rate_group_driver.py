@@ -158,12 +158,20 @@ class RateGroupTimer:
     def _fire(self) -> None:
         driver = self.driver
         driver.tick += self._idle_ticks  # the skipped ticks on which nothing fired
-        clock = self.scheduler.clock
+        scheduler = self.scheduler
+        clock = scheduler.clock
         now = clock.current_us
         self.cycles += 1
         self.cycle_in(clock.now())
+        # _schedule(now + base period), written out for a plain driver whose firing table is that of
+        # its dividers and a timer still running (once a base tick that fires)
+        waits = driver._waits
         call = self._call
-        if call is None:  # stopped by the cycle it ran
+        if (waits is None or call is None or driver._table_of is not driver.dividers
+                or type(driver) is not RateGroupDriver):
             self._schedule(now + self.base_period_us)
             return
-        self._schedule(now + self.base_period_us)
+        period_us = self.base_period_us
+        wait = waits[driver.tick % driver._period]
+        self._idle_ticks = wait
+        scheduler.reschedule(call, now + period_us + wait * period_us)

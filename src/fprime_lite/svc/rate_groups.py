@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import logging
 import time as _wall
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from fprime_lite.model.component import ActiveComponent, PassiveComponent
 from fprime_lite.model.events import Event, Severity
@@ -51,6 +51,10 @@ class RateGroupBase:
         def output_port(self, name: str) -> OutputPortArray: ...
 
         def get_time(self) -> Time: ...
+
+        timeCaller: Any
+        _clock: Any
+        _clock_now: Any
 
     def _setup(self, contexts, period_us: int | None) -> None:
         contexts = list(contexts)
@@ -89,8 +93,13 @@ class RateGroupBase:
         elapsed_us = int((_wall.perf_counter() - wall0) * 1e6)
         if elapsed_us > self.max_time_us:
             self.max_time_us = elapsed_us
-        # One time read stamps RgMaxTime and ends the cycle: both are this instant.
-        now = self.get_time()
+        # One time read stamps RgMaxTime and ends the cycle: both are this instant. get_time's
+        # shortcut written out (the clock's Time of this instant, when the time port is its clock).
+        clock = self._clock
+        if self.timeCaller[0] is self._clock_now and clock._now_at == clock.current_us:
+            now = clock._now
+        else:
+            now = self.get_time()
         self.RgMaxTime.write(self.max_time_us, now)
         # As F´'s ActiveRateGroup: the cycle's time is measured from the driver's cycle start.
         overran = (self.period_us is not None and cycle_start.time_base == now.time_base

@@ -75,14 +75,20 @@ class Sink(ActiveComponent):
             self.forward.input_port("item").entries[0](value + 1)
 
 
-def test_queues_are_drained_after_each_event_until_quiet():
-    s = Scheduler()
-    log = []
+def _ping_pong(s, log):
+    """Two active components drained by ``s`` that pass an item back and forth up to 3; the first."""
     b = Sink("b", log)
     a = Sink("a", log, forward=b)
     b.forward = a
     s.drain_after_each_event(a)
     s.drain_after_each_event(b)
+    return a
+
+
+def test_queues_are_drained_after_each_event_until_quiet():
+    s = Scheduler()
+    log = []
+    a = _ping_pong(s, log)
     s.call_at(10, lambda: a.input_port("item").entries[0](0))
     s.call_at(20, lambda: log.append(("event at", s.now_us)))
     s.run()
@@ -320,3 +326,58 @@ def test_paced_scheduler_holds_a_component_for_its_modelled_time_whatever_the_ho
     s.call_at(3_005_000, lambda: port(3))  # 5 ms later: waits until 3.010 s
     s.run(until_us=4_000_000)
     assert log == [(0, 0), (1, 2_500_000), (2, 3_000_000), (3, 3_010_000)]
+
+
+class _GeneralLoop(Scheduler):
+    """A scheduler whose ``_run_next`` is its own (the same steps): ``run`` takes the general loop."""
+
+    def _run_next(self, t):
+        super()._run_next(t)
+
+
+def _busy_flight(scheduler_class):
+    """A seeded mix of one-shot, periodic, cancelled, re-entrant and queue-draining events; what they saw."""
+    import random
+
+    rng = random.Random(7)
+    s = scheduler_class()
+    log = []
+    a = _ping_pong(s, log)
+    s.add_time_listener(lambda t: log.append(("listener", t)))
+    calls = []
+    for k in range(40):
+        at = rng.randrange(0, 5000)
+        if k % 5 == 0:
+            calls.append(s.call_every(rng.randrange(50, 400), lambda k=k: log.append(("every", k, s.now_us)),
+                                      start_us=at))
+        elif k % 7 == 0:
+            calls.append(s.call_at(at, lambda: a.input_port("item").entries[0](0)))
+        else:
+            calls.append(s.call_at(at, lambda k=k: log.append(("once", k, s.now_us, s.clock.now().total_us))))
+    for call in calls[3::4]:
+        call.cancel()
+    s.call_at(2500, lambda: calls[0].cancel())
+    runs = [s.run(until_us=1200), s.run(max_events=17), s.run(until_us=4000), s.run(until_us=6000)]
+    return log, runs, s.events_run, s.now_us
+
+
+def test_the_plain_loop_runs_what_the_general_loop_runs():
+    """FSWTICK-001: ``Scheduler.run``'s written-out loop (``_run_plain``) and the general loop (a subclass's
+    ``_run_next``) run the same events at the same times, tell the listeners, drain the queues, skip
+    cancelled calls, count the events and stop where the general loop stops."""
+    plain = _busy_flight(Scheduler)
+    assert plain == _busy_flight(_GeneralLoop)
+    log, runs, events_run, now_us = plain
+    assert sum(runs) == events_run > 60 and now_us == 6000
+    assert ("a", 0) in log and ("b", 3) in log and any(e[0] == "every" for e in log)
+
+
+def test_the_plain_loop_still_refuses_to_run_the_clock_backwards():
+    """FSWTICK-002: a periodic call first due before the clock's present time (``call_every``'s start is not
+    checked) reaches ``SimulatedClock.set_us``, which refuses it, in the written-out loop as in the general one."""
+    for scheduler_class in (Scheduler, _GeneralLoop):
+        s = scheduler_class()
+        s.run(until_us=100)
+        s.call_every(10, lambda: None, start_us=50)
+        with pytest.raises(ValueError, match="backwards"):
+            s.run(until_us=200)
