@@ -125,10 +125,10 @@ class SunRateBias:
         self.updates += 1
 
 
-#: The spin command moves only while the field is at least this far from the spin axis (deg): a spin change
-#: ``ΔH â`` made ⟂ B comes with ``ΔH cot(∠(â, B))`` across â, which tips the axis (:class:`SunHold`).
+#: The default of SUN_HOLD_FIELD_ANGLE (deg): the spin command moves only while the field is at least this far from
+#: the spin axis; a spin change ``ΔH â`` made ⟂ B comes with ``ΔH cot(∠(â, B))`` across â, which tips the axis
+#: (:class:`SunHold`).
 SPIN_DOWN_FIELD_ANGLE_DEG = 80.0
-_SPIN_DOWN_FIELD_COS = math.cos(math.radians(SPIN_DOWN_FIELD_ANGLE_DEG))
 
 
 class SunHold:
@@ -142,8 +142,12 @@ class SunHold:
     change ``ΔH â`` of a spin change comes with at least ``ΔH cot(∠(â, B))`` across â, which tips the spin axis
     by about that over the spin left, ``h_s``. A step from 3 to 1.5 °/s swung +Z 54° off the Sun, a plain ramp
     (0.005 °/s²) 39°, gated at 70° 18° (docs/studies/sun_safe.md); the ramp therefore advances only while
-    ∠(â, B) ≥ :data:`SPIN_DOWN_FIELD_ANGLE_DEG` (``cot`` ≤ 0.18) and waits otherwise for the field to turn (twice an
-    orbit). The price: the spin comes down only in those windows, over 400–2000 s."""
+    ∠(â, B) ≥ ``field_angle_deg`` (SUN_HOLD_FIELD_ANGLE, default :data:`SPIN_DOWN_FIELD_ANGLE_DEG`: ``cot`` ≤ 0.18)
+    and waits otherwise for the field to turn. The price: the spin comes down only in those windows. With the Sun-safe
+    axis on the Sun (inertially fixed) they are set by the orbit, the field and the epoch alone
+    (``detumble.sim.spin_down_geometry``): in the adcs scenario, two a sunlit part at 80°, 216–387 s and
+    2157–2390 s, so a spin-down that begins after 387 s reaches the tracker's 2 °/s at ~2357 s whenever it began.
+    The pointing term cannot take the tip out meanwhile: it tips â only about ``â × B̂``, ⟂ the tip ``B̂⊥â``."""
 
     def __init__(self) -> None:
         self.held_s = 0.0
@@ -156,11 +160,13 @@ class SunHold:
         self.command_deg_s = None
 
     def spin(self, theta_deg: float, dt: float, acquire_deg_s: float, hold_deg_s: float, angle_deg: float,
-             dwell_s: float, ramp_deg_s2: float, field_axis_cos: float | None) -> float:
+             dwell_s: float, ramp_deg_s2: float, field_axis_cos: float | None,
+             field_angle_deg: float = SPIN_DOWN_FIELD_ANGLE_DEG) -> float:
         """Fold in one control cycle of ``dt`` s at ``theta_deg`` and give the spin to command now (deg/s):
         ``acquire_deg_s`` until the Sun has been held, then ramping at ``ramp_deg_s2`` to ``hold_deg_s`` while
         ``|field_axis_cos|`` (the cosine between the field and the Sun-safe axis; None: no field reading) is small
-        enough. :attr:`lowered` turns True on the cycle the ramp begins."""
+        enough: at most ``cos(field_angle_deg)`` (deg; the field at least that far from the axis). :attr:`lowered`
+        turns True on the cycle the ramp begins."""
         if self.command_deg_s is None:
             if angle_deg > 0.0 and theta_deg <= angle_deg:  # NaN (no Sun vector) is not held
                 self.held_s += dt
@@ -171,7 +177,7 @@ class SunHold:
             self.lowered = True
             self.command_deg_s = acquire_deg_s
         c = self.command_deg_s
-        if field_axis_cos is not None and abs(field_axis_cos) <= _SPIN_DOWN_FIELD_COS:
+        if field_axis_cos is not None and abs(field_axis_cos) <= math.cos(math.radians(field_angle_deg)):
             step = ramp_deg_s2 * dt
             c = max(c - step, hold_deg_s) if c > hold_deg_s else min(c + step, hold_deg_s)
             self.command_deg_s = c

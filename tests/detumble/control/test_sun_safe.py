@@ -101,3 +101,22 @@ def test_spin_down_waits_for_the_sun_held_then_ramps_while_the_field_is_across()
     h.reset()
     assert not h.lowered and h.command_deg_s is None and h.held_s == 0.0
     assert run(1000.0, 0.0, angle=0.0) == 3.0 and not h.lowered
+
+
+def test_spin_down_field_gate_is_the_given_angle():
+    """SUNSAFE-030: SunHold's ramp opens at ``field_angle_deg`` (SUN_HOLD_FIELD_ANGLE), not at a fixed 80°: once
+    lowering has begun, a field 1° closer to the axis than the gate holds the command, 1° farther lets it ramp; the
+    default argument is SPIN_DOWN_FIELD_ANGLE_DEG (80°)."""
+    dt = 0.125
+    for gate in (60.0, 80.0, 85.0):
+        h = SunHold()
+        across, near = (math.cos(math.radians(gate + d)) for d in (1.0, -1.0))  # 1° past the gate, 1° short
+        for _ in range(int(round(1.0 / dt))):
+            h.spin(5.0, dt, 3.0, 1.5, 10.0, 1.0, 0.005, across, gate)
+        assert h.lowered and h.command_deg_s == pytest.approx(3.0 - 0.005 * dt)
+        assert h.spin(5.0, dt, 3.0, 1.5, 10.0, 1.0, 0.005, near, gate) == pytest.approx(3.0 - 0.005 * dt)
+        assert h.spin(5.0, dt, 3.0, 1.5, 10.0, 1.0, 0.005, -across, gate) == pytest.approx(3.0 - 2 * 0.005 * dt)
+    h = SunHold()
+    h.spin(5.0, dt, 3.0, 1.5, 10.0, 0.0, 0.005, math.cos(math.radians(79.0)))
+    assert h.lowered and h.command_deg_s == 3.0  # the default gate: 79° waits
+    assert SPIN_DOWN_FIELD_ANGLE_DEG == 80.0
