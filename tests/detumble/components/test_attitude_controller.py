@@ -1103,11 +1103,12 @@ def test_gyroscopic_and_gravity_gradient_feed_forward_on_the_wheels(fprime_harne
                                  {"SUN_HOLD_DWELL": math.inf}, {"SUN_HOLD_SPIN_RATE": 0.0},
                                  {"SUN_HOLD_SPIN_RATE": 11.0}, {"SUN_HOLD_RAMP": 0.0}, {"SUN_HOLD_RAMP": math.nan},
                                  {"SUN_HOLD_FIELD_ANGLE": -1.0}, {"SUN_HOLD_FIELD_ANGLE": 89.5},
-                                 {"SUN_HOLD_FIELD_ANGLE": math.inf}])
+                                 {"SUN_HOLD_FIELD_ANGLE": math.inf}, {"SUN_HOLD_TIP_ANGLE": -0.1},
+                                 {"SUN_HOLD_TIP_ANGLE": 11.0}, {"SUN_HOLD_TIP_ANGLE": math.nan}])
 def test_sun_safe_ground_parameters_have_ranges(fprime_harness, bad):
     """ADCS-106: SUN_SPIN_RATE outside 0.1…10 °/s, SUN_BIAS_TIME outside 1…3600 s, SUN_HOLD_ANGLE outside 0…90°,
     SUN_HOLD_DWELL outside 0…36000 s, SUN_HOLD_SPIN_RATE outside 0.1…10 °/s, SUN_HOLD_RAMP outside 1e-4…1 °/s²,
-    SUN_HOLD_FIELD_ANGLE outside 0…89° (or
+    SUN_HOLD_FIELD_ANGLE outside 0…89°, SUN_HOLD_TIP_ANGLE outside 0…10° (or
     any of them not finite) are refused by PRM_SET (VALIDATION_ERROR) and the value in use is kept."""
     assert_refused_and_kept(fprime_harness, bad)
 
