@@ -250,6 +250,36 @@ def test_the_deployment_albedo_table_is_what_the_deployment_flies_now(tmp_path):
     assert [round(e, 9) for e in again[:len(probe)]] == probe
 
 
+@pytest.mark.parametrize("kind", ["command", "operator", "hand_back"])
+def test_the_coil_tables_through_adcs_ref_are_what_the_deployment_flies_now(tmp_path, kind):
+    """STUDY-060: sun_safe.md's coil tables through adcs_ref (by ground command at 2 °/s, the operator procedure and
+    the automatic hand-back at 1.9 °/s) are rendered from committed JSON files of whole-orbit adcs_ref flights; seed
+    1's first 120 s of each kind (one deployment run of seconds) flies again and its true Sun-pointing error, once a
+    second, is the committed probe's to 1e-9 deg."""
+    table = next(t for t in studies.SUN_SAFE_TABLES if t.block == f"sun_safe_coil_{kind}")
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    script = studies._load_script(table.script)
+    seq, rate, extra, seeds = script.KINDS[kind]
+    assert committed["duration"] == 5580.0 and committed["kind"] == kind and committed["sequence"] == seq
+    assert committed["rate_deg_s"] == rate and committed["settings"] == list(extra)
+    assert [r["seed"] for r in committed["rows"]] == list(range(1, seeds + 1))
+    script.fly(kind, 1, 120.0, tmp_path / "run")
+    again = script.figures(tmp_path / "run")["probe"]
+    assert len(committed["probe"]) == script.PROBE_S and again == committed["probe"]
+
+
+def test_the_spin_down_geometry_table_is_what_the_orbit_gives_now():
+    """STUDY-061: sun_safe.md's field-geometry table (where along the orbit the field is across the Sun line) is the
+    committed JSON, and that file is what one pass over the adcs scenario's orbit gives now (~1 s)."""
+    from detumble.sim import spin_down_geometry as geo
+
+    table = next(t for t in studies.SUN_SAFE_TABLES if t.block == "sun_safe_spin_down_geometry")
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    again = geo.table(geo.geometry("adcs"), [60.0, 70.0, 75.0, 80.0, 85.0], [520.0, 570.0, 1958.0, 2124.0, 2714.0],
+                      "adcs")
+    assert json.loads(json.dumps(again)) == committed
+
+
 def test_the_albedo_mismatch_table_refuses_a_file_of_other_options(tmp_path, monkeypatch):
     """STUDY-016: the mismatch table's rows come from files made with their own albedo and model 0.3: a file made
     with another albedo in the sensors is refused, a missing one names its command."""

@@ -1180,7 +1180,7 @@ SCRIPT_TABLES = {t.name: t for t in (
 
 
 _SUN_SAFE_DOC = STUDIES_DIR / "sun_safe.md"
-_SUN_SAFE_SUMMARY = ("issue 27's Sun-safe on the light sensors: 29 plant-only seed flights and 3 adcs_ref flights "
+_SUN_SAFE_SUMMARY = ("issue 27's Sun-safe on the light sensors: 29 plant-only seed flights and 14 adcs_ref flights "
                      "(committed JSON)")
 #: sun_safe.md's plant-only tables: (block and JSON file name, the module's arguments)
 SUN_SAFE_TABLES = tuple(
@@ -1194,7 +1194,14 @@ SUN_SAFE_TABLES = tuple(
                        "--seeds 3 --albedo 0.3 --penumbra --albedo-model 0.3 --actuator MAGNETORQUERS"))) + (
     # the F´ side: the ADCS component's raw and corrected vector over adcs_ref's AUTO flight (3 deployment runs)
     ScriptTable("sun_safe", _SUN_SAFE_SUMMARY, "sun_safe_albedo_deployment", "campaigns/adcs/sun_albedo_deployment.py",
-                "sun_safe/albedo_deployment.json", _SUN_SAFE_DOC),)
+                "sun_safe/albedo_deployment.json", _SUN_SAFE_DOC),
+    # the coils through adcs_ref (11 deployment runs): by ground command, the operator procedure, the hand-back
+    *(ScriptTable("sun_safe", _SUN_SAFE_SUMMARY, f"sun_safe_coil_{kind}", "campaigns/adcs/sun_safe_coil_runs.py",
+                  f"sun_safe/coil_{kind}.json", _SUN_SAFE_DOC, (kind,))
+      for kind in ("command", "operator", "hand_back")),
+    # where along the orbit the field lets the coils lower the spin (no flight: one pass over the orbit, ~1 s)
+    ScriptTable("sun_safe", _SUN_SAFE_SUMMARY, "sun_safe_spin_down_geometry", "detumble.sim.spin_down_geometry",
+                "sun_safe/spin_down_geometry.json", _SUN_SAFE_DOC, module=True),)
 #: sun_safe.md's albedo-mismatch table (wheels, model a = 0.3): (albedo in the sensors, its JSON file under
 #: docs/studies/, what the row is called); the 0.3 row is the albedo_model_wheels table's file
 SUN_SAFE_MISMATCH = ((0.0, "sun_safe/albedo_model_truth_00.json", "0 (the model subtracts light that is not there)"),

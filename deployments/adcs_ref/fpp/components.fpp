@@ -1304,6 +1304,10 @@ module Components {
     param SUN_HOLD_SPIN_RATE: F64 default 1.5 id 0x49 set opcode 0x99 save opcode 0x9A
     @ units: deg/s²
     param SUN_HOLD_RAMP: F64 default 0.005 id 0x4A set opcode 0x9B save opcode 0x9C
+    @ units: deg
+    param SUN_HOLD_FIELD_ANGLE: F64 default 80.0 id 0x4B set opcode 0x9D save opcode 0x9E
+    @ units: deg
+    param SUN_HOLD_TIP_ANGLE: F64 default 0.0 id 0x4C set opcode 0x9F save opcode 0xA0
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver

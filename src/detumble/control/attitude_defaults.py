@@ -66,6 +66,9 @@ SUN_HOLD_ANGLE = 10.0  # deg: the Sun "held" within this of SUN_SAFE_AXIS (0: ne
 SUN_HOLD_DWELL = 300.0  # s the Sun must stay held, unbroken, before the spin is lowered
 SUN_HOLD_SPIN_RATE = 1.5  # deg/s: the spin after it (the star tracker's limit is 2 deg/s in the adcs scenario)
 SUN_HOLD_RAMP = 0.005  # deg/s²: how fast the spin command goes there (a step tips the axis: control.sun_safe.SunHold)
+SUN_HOLD_FIELD_ANGLE = 80.0  # deg: the ramp advances only while the field is at least this far from SUN_SAFE_AXIS
+SUN_HOLD_TIP_ANGLE = 0.0  # deg: >0: the ramp also advances outside that gate while its tip turns the axis toward the
+# Sun and the Sun is at least this far ahead along it (sun_safe.SunHold; 0: only in the gate)
 
 # --- detumble and spin -------------------------------------------------------------------------
 K_BDOT = 3.0  # A·m²·s/G: the internal M = −k Ḃ when no dipole provider is connected
@@ -206,6 +209,8 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "SUN_HOLD_DWELL": ("s", 0.0, 36000.0, True),
     "SUN_HOLD_SPIN_RATE": ("deg/s", 0.1, 10.0, True),
     "SUN_HOLD_RAMP": ("deg/s²", 1.0e-4, 1.0, True),
+    "SUN_HOLD_FIELD_ANGLE": ("deg", 0.0, 89.0, True),
+    "SUN_HOLD_TIP_ANGLE": ("deg", 0.0, 10.0, True),
 }
 #: Each parameter's units (the first column of :data:`PARAMETERS`).
 UNITS: dict[str, str] = {name: row[0] for name, row in PARAMETERS.items()}

@@ -36,7 +36,8 @@ from collections.abc import Sequence
 Vec3 = tuple[float, float, float]
 Mat3 = Sequence[Sequence[float]]
 
-__all__ = ["SunHold", "SunRateBias", "sun_spin_torque", "SPIN_DOWN_FIELD_ANGLE_DEG", "SUN_BIAS_TIME_S"]
+__all__ = ["SunHold", "SunRateBias", "spin_down_tip", "sun_spin_torque", "SPIN_DOWN_FIELD_ANGLE_DEG",
+           "SUN_BIAS_TIME_S"]
 
 # The spin rate is the ground parameter SUN_SPIN_RATE (control.attitude_defaults: 3 °/s; with the LSM6DSO's bias
 # ⟂ +Z, 0.36 °/s, left unestimated the axis would cone by atan(0.36 / 3) = 6.8°; estimated from the Sun vector, to
@@ -125,10 +126,32 @@ class SunRateBias:
         self.updates += 1
 
 
-#: The spin command moves only while the field is at least this far from the spin axis (deg): a spin change
-#: ``ΔH â`` made ⟂ B comes with ``ΔH cot(∠(â, B))`` across â, which tips the axis (:class:`SunHold`).
+#: The default of SUN_HOLD_FIELD_ANGLE (deg): the spin command moves only while the field is at least this far from
+#: the spin axis; a spin change ``ΔH â`` made ⟂ B comes with ``ΔH cot(∠(â, B))`` across â, which tips the axis
+#: (:class:`SunHold`).
 SPIN_DOWN_FIELD_ANGLE_DEG = 80.0
-_SPIN_DOWN_FIELD_COS = math.cos(math.radians(SPIN_DOWN_FIELD_ANGLE_DEG))
+
+
+def spin_down_tip(axis: Vec3, field: Vec3, sun: Vec3) -> tuple[float, float] | None:
+    """Where lowering the spin on the coils tips the axis, against the Sun: ``(sin σ, tan β)`` with β = ∠(â, B) and
+    σ the Sun's angle ahead of â along the tip (positive: lowering the spin turns â toward the Sun). None when the
+    field is along or across â exactly (no tip, or no direction).
+
+    The spin torque ``τ_a â`` (τ_a < 0 lowers it) projected ⟂ B is ``τ_a (â − cos β B̂)``; its part across â,
+    ``−τ_a cos β B̂⊥â`` (``B̂⊥â = B̂ − cos β â``), is ``|τ_a| cos β B̂⊥â`` when lowering: the angular momentum, and the
+    spin axis with it, moves along ``cos β B̂⊥â``, by ``cot β`` per unit of spin change. All vectors in B; ``axis``
+    and ``sun`` unit, ``field`` any length."""
+    n = math.sqrt(field[0] * field[0] + field[1] * field[1] + field[2] * field[2])
+    if not n > 0.0:
+        return None
+    b = (field[0] / n, field[1] / n, field[2] / n)
+    c = b[0] * axis[0] + b[1] * axis[1] + b[2] * axis[2]
+    t = tuple(c * (b[i] - c * axis[i]) for i in range(3))  # cos β B̂⊥â: |t| = |cos β| sin β
+    t_n = math.sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2])
+    if not t_n > 1e-12:
+        return None
+    sin_b = math.sqrt(max(0.0, 1.0 - c * c))
+    return (sun[0] * t[0] + sun[1] * t[1] + sun[2] * t[2]) / t_n, sin_b / abs(c)
 
 
 class SunHold:
@@ -142,8 +165,12 @@ class SunHold:
     change ``ΔH â`` of a spin change comes with at least ``ΔH cot(∠(â, B))`` across â, which tips the spin axis
     by about that over the spin left, ``h_s``. A step from 3 to 1.5 °/s swung +Z 54° off the Sun, a plain ramp
     (0.005 °/s²) 39°, gated at 70° 18° (docs/studies/sun_safe.md); the ramp therefore advances only while
-    ∠(â, B) ≥ :data:`SPIN_DOWN_FIELD_ANGLE_DEG` (``cot`` ≤ 0.18) and waits otherwise for the field to turn (twice an
-    orbit). The price: the spin comes down only in those windows, over 400–2000 s."""
+    ∠(â, B) ≥ ``field_angle_deg`` (SUN_HOLD_FIELD_ANGLE, default :data:`SPIN_DOWN_FIELD_ANGLE_DEG`: ``cot`` ≤ 0.18)
+    and waits otherwise for the field to turn. The price: the spin comes down only in those windows. With the Sun-safe
+    axis on the Sun (inertially fixed) they are set by the orbit, the field and the epoch alone
+    (``detumble.sim.spin_down_geometry``): in the adcs scenario, two a sunlit part at 80°, 216–387 s and
+    2157–2390 s, so a spin-down that begins after 387 s reaches the tracker's 2 °/s at ~2357 s whenever it began.
+    The pointing term cannot take the tip out meanwhile: it tips â only about ``â × B̂``, ⟂ the tip ``B̂⊥â``."""
 
     def __init__(self) -> None:
         self.held_s = 0.0
@@ -156,11 +183,21 @@ class SunHold:
         self.command_deg_s = None
 
     def spin(self, theta_deg: float, dt: float, acquire_deg_s: float, hold_deg_s: float, angle_deg: float,
-             dwell_s: float, ramp_deg_s2: float, field_axis_cos: float | None) -> float:
+             dwell_s: float, ramp_deg_s2: float, field_axis_cos: float | None,
+             field_angle_deg: float = SPIN_DOWN_FIELD_ANGLE_DEG, tip: tuple[float, float] | None = None,
+             tip_angle_deg: float = 0.0) -> float:
         """Fold in one control cycle of ``dt`` s at ``theta_deg`` and give the spin to command now (deg/s):
         ``acquire_deg_s`` until the Sun has been held, then ramping at ``ramp_deg_s2`` to ``hold_deg_s`` while
         ``|field_axis_cos|`` (the cosine between the field and the Sun-safe axis; None: no field reading) is small
-        enough. :attr:`lowered` turns True on the cycle the ramp begins."""
+        enough: at most ``cos(field_angle_deg)`` (deg; the field at least that far from the axis). :attr:`lowered`
+        turns True on the cycle the ramp begins.
+
+        With ``tip_angle_deg`` > 0 (SUN_HOLD_TIP_ANGLE) the ramp also moves outside the field gate while the tip it
+        makes turns the axis toward the Sun: ``tip`` = :func:`spin_down_tip`'s ``(sin σ, tan β)``, and the command
+        moves when the Sun is at least ``tip_angle_deg`` ahead along the tip (``sin σ ≥ sin tip_angle_deg`` when
+        lowering, ``−sin σ`` when raising), at ``ramp × min(1, tan β)`` so the tip rate stays at most the ramp's
+        (``cot β`` per unit). Past the Sun the sign flips and the command waits: the tip is spent on the pointing
+        error instead of added to it."""
         if self.command_deg_s is None:
             if angle_deg > 0.0 and theta_deg <= angle_deg:  # NaN (no Sun vector) is not held
                 self.held_s += dt
@@ -171,8 +208,14 @@ class SunHold:
             self.lowered = True
             self.command_deg_s = acquire_deg_s
         c = self.command_deg_s
-        if field_axis_cos is not None and abs(field_axis_cos) <= _SPIN_DOWN_FIELD_COS:
+        step = 0.0
+        if field_axis_cos is not None and abs(field_axis_cos) <= math.cos(math.radians(field_angle_deg)):
             step = ramp_deg_s2 * dt
+        elif tip_angle_deg > 0.0 and tip is not None and c != hold_deg_s:
+            ahead = tip[0] if c > hold_deg_s else -tip[0]
+            if ahead >= math.sin(math.radians(tip_angle_deg)):
+                step = ramp_deg_s2 * dt * min(1.0, tip[1])
+        if step > 0.0:
             c = max(c - step, hold_deg_s) if c > hold_deg_s else min(c + step, hold_deg_s)
             self.command_deg_s = c
         return c

@@ -47,7 +47,7 @@ from detumble.control.quaternion import (Quat, Vec3, is_unit_quaternion, quat_an
                                          quat_shortest, rotate_n_to_b, target_pointing_axis)
 from detumble.control.rate_observer import RateObserver, applied_torque
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
-from detumble.control.sun_safe import SunHold, SunRateBias, sun_spin_torque
+from detumble.control.sun_safe import SunHold, SunRateBias, spin_down_tip, sun_spin_torque
 from detumble.control.sun_vector import propagate_body_vector
 from detumble.control.targets import (BODY_AXES, GROUND_STATION, MU_EARTH_M3_S2, STATION_FALLBACK, Ephemeris,
                                       InertialTarget, NadirTarget, Reference, StationTarget, SunTarget, Target,
@@ -306,6 +306,8 @@ class ThreeModeLaw:
     SUN_HOLD_DWELL: float
     SUN_HOLD_SPIN_RATE: float
     SUN_HOLD_RAMP: float
+    SUN_HOLD_FIELD_ANGLE: float
+    SUN_HOLD_TIP_ANGLE: float
 
     def __init__(self, io: ControllerIo, notify: Notify, provider: DipoleProvider,
                  wheel_axes: Sequence[Sequence[float]] = XYZ, params: Mapping[str, object] | None = None) -> None:
@@ -951,7 +953,8 @@ class ThreeModeLaw:
         SUN_SPIN_RATE and tip it to the Sun at ``SUN_SAFE_K_P_MAG/SUN_SAFE_K_D_MAG θ`` (capped at
         SLEW_RATE_LIMIT); the transverse rate damped at SUN_SAFE_K_D_MAG, the spin held at SPIN_K_RATE. Once the Sun
         has been within SUN_HOLD_ANGLE for SUN_HOLD_DWELL (``control.sun_safe.SunHold``) the spin is
-        SUN_HOLD_SPIN_RATE instead (SunSpinLowered), below the star tracker's rate limit, so its fixes can return."""
+        SUN_HOLD_SPIN_RATE instead (SunSpinLowered), below the star tracker's rate limit, so its fixes can return;
+        the ramp there advances only while the field is at least SUN_HOLD_FIELD_ANGLE from the axis."""
         w = self._sun_rate()
         assert w is not None  # SUN_SAFE actuates only with a rate estimate
         kd = self.SUN_SAFE_K_D_MAG
@@ -960,8 +963,12 @@ class ThreeModeLaw:
         b_n = _norm(b) if b is not None else 0.0
         cos_b = (b[0] * axis[0] + b[1] * axis[1] + b[2] * axis[2]) / b_n if b is not None and b_n > 0.0 else None
         hold, lowered = self.sun_hold, self.sun_hold.lowered
+        tip = None
+        if self.SUN_HOLD_TIP_ANGLE > 0.0 and b is not None and self.sun_B is not None:
+            tip = spin_down_tip(axis, b, self.sun_B)
         spin = hold.spin(self.sun_error_deg_last, dt, self.SUN_SPIN_RATE, self.SUN_HOLD_SPIN_RATE, self.SUN_HOLD_ANGLE,
-                         self.SUN_HOLD_DWELL, self.SUN_HOLD_RAMP, cos_b)
+                         self.SUN_HOLD_DWELL, self.SUN_HOLD_RAMP, cos_b, self.SUN_HOLD_FIELD_ANGLE, tip,
+                         self.SUN_HOLD_TIP_ANGLE)
         if hold.lowered and not lowered:
             self.notify.event("SunSpinLowered", self.SUN_HOLD_SPIN_RATE)
         tau, theta = sun_spin_torque(w, self.sun_B, axis, self.rate_observer.inertia,

@@ -1101,10 +1101,14 @@ def test_gyroscopic_and_gravity_gradient_feed_forward_on_the_wheels(fprime_harne
                                  {"SUN_BIAS_TIME": 0.5}, {"SUN_BIAS_TIME": 4000.0},
                                  {"SUN_HOLD_ANGLE": -1.0}, {"SUN_HOLD_ANGLE": 91.0}, {"SUN_HOLD_DWELL": -1.0},
                                  {"SUN_HOLD_DWELL": math.inf}, {"SUN_HOLD_SPIN_RATE": 0.0},
-                                 {"SUN_HOLD_SPIN_RATE": 11.0}, {"SUN_HOLD_RAMP": 0.0}, {"SUN_HOLD_RAMP": math.nan}])
+                                 {"SUN_HOLD_SPIN_RATE": 11.0}, {"SUN_HOLD_RAMP": 0.0}, {"SUN_HOLD_RAMP": math.nan},
+                                 {"SUN_HOLD_FIELD_ANGLE": -1.0}, {"SUN_HOLD_FIELD_ANGLE": 89.5},
+                                 {"SUN_HOLD_FIELD_ANGLE": math.inf}, {"SUN_HOLD_TIP_ANGLE": -0.1},
+                                 {"SUN_HOLD_TIP_ANGLE": 11.0}, {"SUN_HOLD_TIP_ANGLE": math.nan}])
 def test_sun_safe_ground_parameters_have_ranges(fprime_harness, bad):
     """ADCS-106: SUN_SPIN_RATE outside 0.1…10 °/s, SUN_BIAS_TIME outside 1…3600 s, SUN_HOLD_ANGLE outside 0…90°,
-    SUN_HOLD_DWELL outside 0…36000 s, SUN_HOLD_SPIN_RATE outside 0.1…10 °/s, SUN_HOLD_RAMP outside 1e-4…1 °/s² (or
+    SUN_HOLD_DWELL outside 0…36000 s, SUN_HOLD_SPIN_RATE outside 0.1…10 °/s, SUN_HOLD_RAMP outside 1e-4…1 °/s²,
+    SUN_HOLD_FIELD_ANGLE outside 0…89°, SUN_HOLD_TIP_ANGLE outside 0…10° (or
     any of them not finite) are refused by PRM_SET (VALIDATION_ERROR) and the value in use is kept."""
     assert_refused_and_kept(fprime_harness, bad)
 
@@ -1128,3 +1132,31 @@ def test_sun_safe_spin_rate_and_bias_time_act_from_the_ground(fprime_harness):
     seconds(h, 2)
     assert h.comp.law.torque_request[2] == pytest.approx(k * 1.5 * DEG, rel=1e-6)
     assert h.comp.law.sun_bias.time_s == 40.0
+
+
+def test_sun_hold_field_angle_acts_from_the_ground(fprime_harness):
+    """ADCS-120: the coils' spin-down ramp waits while the field is closer to SUN_SAFE_AXIS than
+    SUN_HOLD_FIELD_ANGLE. The Sun on +Z, held for SUN_HOLD_DWELL (set to 1 s), the field 70° from +Z: at the default
+    80° the spin command stays at SUN_SPIN_RATE (τ_z = SPIN_K_RATE · 3 °/s); after SUN_HOLD_FIELD_ANGLE_PRM_SET 60
+    (OK) it ramps at SUN_HOLD_RAMP (set to 0.1 °/s²) down to SUN_HOLD_SPIN_RATE (1.5 °/s)."""
+    h = make(fprime_harness, sun=True, params={"POINTING_ACTUATOR": "MAGNETORQUERS", "SUN_HOLD_DWELL": 1.0,
+                                               "SUN_HOLD_RAMP": 0.1})
+    h.world.sun = (0.0, 0.0, 1.0)
+    c, s = math.cos(math.radians(70.0)), math.sin(math.radians(70.0))
+    h.world.b = (0.3 * s, 0.0, 0.3 * c)  # gauss, 70° from +Z
+    tick(h)
+    h.send_command("FORCE_MODE", ControlMode.SUN_SAFE)
+    h.assert_cmd_response(0, "FORCE_MODE", CmdResponse.OK)
+    seconds(h, 20)
+    k = h.comp.SPIN_K_RATE.value
+    assert h.comp.law.sun_hold.lowered  # the Sun held: lowering began, but the field is too near the axis
+    assert h.comp.law.sun_hold.command_deg_s == 3.0
+    assert h.comp.law.torque_request[2] == pytest.approx(k * 3.0 * DEG, rel=1e-6)
+    assert h.comp.SUN_HOLD_FIELD_ANGLE.value == 80.0
+    h.send_command("SUN_HOLD_FIELD_ANGLE_PRM_SET", 60.0)
+    h.assert_cmd_response(1, "SUN_HOLD_FIELD_ANGLE_PRM_SET", CmdResponse.OK)
+    seconds(h, 5)
+    assert 2.4 <= h.comp.law.sun_hold.command_deg_s <= 2.6  # 5 s at 0.1 °/s²
+    seconds(h, 20)
+    assert h.comp.law.sun_hold.command_deg_s == 1.5
+    assert h.comp.law.torque_request[2] == pytest.approx(k * 1.5 * DEG, rel=1e-6)

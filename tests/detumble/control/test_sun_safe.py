@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from detumble.control.sun_safe import SPIN_DOWN_FIELD_ANGLE_DEG, SunHold, SunRateBias, sun_spin_torque
+from detumble.control.sun_safe import SPIN_DOWN_FIELD_ANGLE_DEG, SunHold, SunRateBias, spin_down_tip, sun_spin_torque
 from detumble.control.sun_vector import propagate_body_vector
 
 DEG = math.pi / 180.0
@@ -101,3 +101,62 @@ def test_spin_down_waits_for_the_sun_held_then_ramps_while_the_field_is_across()
     h.reset()
     assert not h.lowered and h.command_deg_s is None and h.held_s == 0.0
     assert run(1000.0, 0.0, angle=0.0) == 3.0 and not h.lowered
+
+
+def test_spin_down_field_gate_is_the_given_angle():
+    """SUNSAFE-030: SunHold's ramp opens at ``field_angle_deg`` (SUN_HOLD_FIELD_ANGLE), not at a fixed 80°: once
+    lowering has begun, a field 1° closer to the axis than the gate holds the command, 1° farther lets it ramp; the
+    default argument is SPIN_DOWN_FIELD_ANGLE_DEG (80°)."""
+    dt = 0.125
+    for gate in (60.0, 80.0, 85.0):
+        h = SunHold()
+        across, near = (math.cos(math.radians(gate + d)) for d in (1.0, -1.0))  # 1° past the gate, 1° short
+        for _ in range(int(round(1.0 / dt))):
+            h.spin(5.0, dt, 3.0, 1.5, 10.0, 1.0, 0.005, across, gate)
+        assert h.lowered and h.command_deg_s == pytest.approx(3.0 - 0.005 * dt)
+        assert h.spin(5.0, dt, 3.0, 1.5, 10.0, 1.0, 0.005, near, gate) == pytest.approx(3.0 - 0.005 * dt)
+        assert h.spin(5.0, dt, 3.0, 1.5, 10.0, 1.0, 0.005, -across, gate) == pytest.approx(3.0 - 2 * 0.005 * dt)
+    h = SunHold()
+    h.spin(5.0, dt, 3.0, 1.5, 10.0, 0.0, 0.005, math.cos(math.radians(79.0)))
+    assert h.lowered and h.command_deg_s == 3.0  # the default gate: 79° waits
+    assert SPIN_DOWN_FIELD_ANGLE_DEG == 80.0
+
+
+def test_the_spin_down_tip_is_the_projected_spin_torque_across_the_axis():
+    """SUNSAFE-033: ``spin_down_tip`` against the closed form: the spin torque −â projected ⟂ B, ``−(â − cos β B̂)``,
+    has its part across â along ``cos β B̂⊥â``; with B 30° from +Z in the x–z plane that is +x, so a Sun 5° toward
+    +x is ahead (sin σ = sin 5°) and one toward −x behind; tan β = tan 30°; B along or across â gives None."""
+    c, s = math.cos(math.radians(30.0)), math.sin(math.radians(30.0))
+    b = (2e-5 * s, 0.0, 2e-5 * c)
+    tau = [-(Z[i] - c * b[i] / 2e-5) for i in range(3)]  # −â projected ⟂ B̂
+    assert tau[0] > 0.0 and tau[1] == 0.0  # across â: along +x
+    sun_ahead = (math.sin(math.radians(5.0)), 0.0, math.cos(math.radians(5.0)))
+    ahead, tan_b = spin_down_tip(Z, b, sun_ahead)
+    assert ahead == pytest.approx(math.sin(math.radians(5.0)), rel=1e-12)
+    assert tan_b == pytest.approx(math.tan(math.radians(30.0)), rel=1e-12)
+    assert spin_down_tip(Z, b, (-sun_ahead[0], 0.0, sun_ahead[2]))[0] == pytest.approx(-math.sin(math.radians(5.0)))
+    b_down = (-b[0], 0.0, -b[2])  # the field reversed: the same tip (it is quadratic in B̂)
+    assert spin_down_tip(Z, b_down, sun_ahead)[0] == pytest.approx(ahead, rel=1e-12)
+    assert spin_down_tip(Z, (0.0, 0.0, 3e-5), sun_ahead) is None
+    assert spin_down_tip(Z, (3e-5, 0.0, 0.0), sun_ahead) is None
+
+
+def test_the_spin_down_ramps_outside_the_gate_only_toward_the_sun():
+    """SUNSAFE-034: with SUN_HOLD_TIP_ANGLE 1° and the field 30° from the axis (gate closed), once lowering has begun
+    the command ramps at ``ramp × tan 30°`` while the Sun is ≥ 1° ahead along the tip, waits when it is 0.5° ahead
+    or behind, and with SUN_HOLD_TIP_ANGLE 0 waits whatever the Sun does."""
+    dt, ramp = 0.125, 0.005
+    cos_b = math.cos(math.radians(30.0))
+    tan_b = math.tan(math.radians(30.0))
+    h = SunHold()
+    for _ in range(8):
+        h.spin(5.0, dt, 3.0, 1.5, 10.0, 1.0, ramp, math.cos(math.radians(85.0)))
+    start = h.command_deg_s
+    assert h.lowered and start == pytest.approx(3.0 - ramp * dt)
+    ahead = (math.sin(math.radians(2.0)), tan_b)
+    assert h.spin(5.0, dt, 3.0, 1.5, 10.0, 1.0, ramp, cos_b, 80.0, ahead, 1.0) == pytest.approx(
+        start - ramp * dt * tan_b, rel=1e-12)
+    now = h.command_deg_s
+    for tip in ((math.sin(math.radians(0.5)), tan_b), (-math.sin(math.radians(2.0)), tan_b), None):
+        assert h.spin(5.0, dt, 3.0, 1.5, 10.0, 1.0, ramp, cos_b, 80.0, tip, 1.0) == now
+    assert h.spin(5.0, dt, 3.0, 1.5, 10.0, 1.0, ramp, cos_b, 80.0, ahead, 0.0) == now
