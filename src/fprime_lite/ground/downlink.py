@@ -15,7 +15,6 @@ the deployment downlinks (``fileDownlink.SendFile``) are reassembled under ``dow
 from __future__ import annotations
 
 import csv
-import datetime as _dt
 import enum
 import json
 import os
@@ -30,9 +29,10 @@ from fprime_lite.model.events import Severity, translate_format
 from fprime_lite.ground.files import FileReceiver
 from fprime_lite.ground.packet_layout import LayoutCache, TelemetryLayout
 from fprime_lite.ground.packetized import PacketizedDecoder
+from fprime_lite.ground.time_text import time_text
 from fprime_lite.ground.wide_table import WideTelemetryTable, csv_cell, csv_field
 from fprime_lite.wire.packets import Apid, decode_event, decode_telemetry
-from fprime_lite.model.time import Time, TimeBase
+from fprime_lite.model.time import US_PER_S, Time
 from fprime_lite.deploy.topology import Topology
 from fprime_lite.model.types import deserialize_values
 
@@ -57,11 +57,10 @@ class DecodedChannel:
 
 
 def format_time(t: Time) -> str:
-    """UTC ISO 8601 for workstation (Unix) time; ``seconds.useconds`` for any other base."""
-    if t.time_base == TimeBase.TB_WORKSTATION_TIME:
-        stamp = _dt.datetime.fromtimestamp(t.seconds, _dt.timezone.utc).replace(microsecond=t.useconds)
-        return stamp.strftime("%Y-%m-%dT%H:%M:%S.%fZ")
-    return f"{t.seconds}.{t.useconds:06d}"
+    """UTC ISO 8601 for workstation (Unix) time; ``seconds.useconds`` for any other base
+    (:func:`~fprime_lite.ground.time_text.time_text`)."""
+    us = t.total_us
+    return time_text(t.time_base, us // US_PER_S, us % US_PER_S)
 
 
 def _plain(value):
