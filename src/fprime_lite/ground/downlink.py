@@ -20,6 +20,7 @@ import json
 import os
 import pathlib
 from collections import Counter
+from itertools import chain
 from dataclasses import dataclass
 from typing import Any, Callable
 
@@ -207,9 +208,9 @@ class GroundRecorder:
         #: Downlinked files, written under ``downlink/`` (the directory appears with the first file).
         self.files = FileReceiver(out_dir / "downlink")
         self._layouts = LayoutCache()
-        #: layout → (wide-table column, number cell) of its plain numbers and (value index, the wide
-        #: table's columns) of its other values
-        self._wide_plans: dict[TelemetryLayout, tuple[list[tuple[int, int]], list[tuple[int, list[int]]]]] = {}
+        #: layout → (wide-table column, number cell) of its plain numbers, and the wide table's columns
+        #: of its other values' cells (those values in the layout's order, each one's cells in order)
+        self._wide_plans: dict[TelemetryLayout, tuple[list[tuple[int, int]], list[int]]] = {}
 
     def attach(self, topology: Topology, event_manager: str | None, telemetry: str | None) -> None:
         """Tap ``PktSend`` of the named event manager and telemetry instances.
@@ -281,7 +282,8 @@ class GroundRecorder:
             self._wide_plans[layout] = (
                 [(index, cell) for name, cells in layout.simple
                  for (index, _), cell in zip(self._wide.slots(name), cells, strict=True)],
-                [(j, [index for index, _ in self._wide.slots(name)]) for name, j in layout.complex])
+                # the other values' columns, in layout.complex's order, each value's in its slots' order
+                [index for name, _ in layout.complex for index, _ in self._wide.slots(name)])
         lines, cells, wide = decoded
         self._channels.file.write(lines)
         self.channel_updates += layout.records
@@ -289,9 +291,8 @@ class GroundRecorder:
         simple, complex_ = self._wide_plans[layout]
         for index, cell in simple:
             row[index] = cells[cell]
-        for j, indices in complex_:
-            for index, text in zip(indices, wide[j], strict=True):
-                row[index] = text
+        for index, text in zip(complex_, chain.from_iterable(wide), strict=True):
+            row[index] = text
         return True
 
     def _packetized(self, packet: bytes) -> None:
