@@ -15,9 +15,10 @@ Time stamps with ``useconds`` ≥ 10⁶ are left to the general decoder, which r
 The text is the general decoder's to the byte (:class:`~fprime_lite.ground.downlink.GroundDecoder`):
 integers as ``str``, floats as ``repr`` (each kind through a cache of the texts of the values met:
 telemetry repeats, and a lookup costs far less than ``repr``'s digit search); a struct of numbers and
-time stamps (``Drv.MagneticField``) is unpacked in place and written as ``json.dumps`` writes it, a
-time stamp as :func:`~fprime_lite.ground.time_text.time_text`; any other value (enums, bools, other
-structs, arrays, channels with a format string) is deserialized by its type and converted by the
+time stamps (``Drv.MagneticField``) and an array of numbers (``Components.Vector3``) are unpacked in
+place and written as ``json.dumps`` writes them, a time stamp as
+:func:`~fprime_lite.ground.time_text.time_text`; any other value (enums, bools, other structs and
+arrays, channels with a format string) is deserialized by its type and converted by the
 general decoder's own function the first time its raw bytes are met, then quoted as the ``csv``
 module quotes a field.
 """
@@ -192,6 +193,23 @@ class TelemetryLayout:
                 numbers.append(value_index)
                 is_float.append(isinstance(base, FloatType))
                 index = value_index + 1
+            elif fmt_template is None and isinstance(base, ArrayType) and base._fixed is not None and base.size:
+                # an array of numbers: unpacked in place, written as json.dumps writes its list (finite
+                # floats), quoted when it has a comma (two elements or more)
+                fmt.append(_RECORD_HEAD + base._fixed.format[1:])
+                quote = '"' if base.size > 1 else ""
+                line_format.append(quote + "[" + ", ".join(["%s"] * base.size) + "]" + quote + "\n")
+                element_is_float = isinstance(_resolved(base.elem), FloatType)
+                element_cells: list[tuple[str, int]] = []
+                for k in range(base.size):
+                    refs.append(("#", len(numbers)))
+                    element_cells.append(("#", len(numbers)))
+                    numbers.append(value_index + k)
+                    is_float.append(element_is_float)
+                    if element_is_float:
+                        json_floats.append(value_index + k)
+                simple_refs.append((name, element_cells))
+                index = value_index + base.size
             elif fmt_template is None and _plain_struct(base):
                 # numbers and time stamps only: unpacked in place, written as json.dumps writes the
                 # struct (finite floats; a time stamp as its text)

@@ -5,7 +5,8 @@ A recorder with a clock and no ``on_channel`` callback records telemetry through
 channel. Both get the same packets, with the values that differ between the two ways of writing if
 anything does (NaN and infinities in plain floats and in structs written as JSON, -0.0, tiny and
 huge numbers, enums, bools, strings with commas and quotes, formatted channels, arrays, a bad enum
-value, a time stamp with useconds ≥ 10⁶, a struct with a time stamp member in three time bases), and
+value, a time stamp with useconds ≥ 10⁶, a struct with a time stamp member in three time bases, arrays
+of one and three numbers), and
 must leave identical files and counts (LAYOUT-001). The layouts' caches of number texts keep ints apart
 from floats and 0.0 apart from -0.0 (LAYOUT-002).
 """
@@ -52,6 +53,10 @@ class Triple(Array, namespace="T", elem=F64, size=3):
     pass
 
 
+class Single(Array, namespace="T", elem=I16, size=1):
+    pass
+
+
 class Thing(PassiveComponent):
     Count = Channel(U32)
     Big = Channel(U64)
@@ -64,6 +69,7 @@ class Thing(PassiveComponent):
     Axis = Channel(Triple)
     Temp = Channel(F64, format="{.2f}")
     Stamp = Channel(Stamped)
+    One = Channel(Single)
     Label = Channel(String(20))
 
 
@@ -98,7 +104,7 @@ def _record(thing, name, t, value):
 _TYPES = {"Count": U32, "Big": U64, "Rate": F64, "Small": F32, "Stage": Mode.__fprime_type__,
           "Armed": BOOL, "Field": Vec.__fprime_type__, "State": Status.__fprime_type__,
           "Axis": Triple.__fprime_type__, "Temp": F64,
-          "Stamp": Stamped.__fprime_type__, "Label": String(20)}
+          "Stamp": Stamped.__fprime_type__, "One": Single.__fprime_type__, "Label": String(20)}
 
 _FLOATS = [0.1, 0.0, -0.0, 2.0, 1e-300, 1.7976931348623157e308, math.nan, math.inf, -math.inf, 2.5e-7, 123456789.125]
 
@@ -113,9 +119,12 @@ def _packets(thing):
                  ("Field", Vec(x=f, y=1.5, n=-k)), ("State", Status(mode=Mode.ON, flag=k % 2 == 0, level=f)),
                  ("Axis", Triple([f, 1.0, -2.0])), ("Temp", 20.0 + k / 7),
                  ("Stamp", Stamped(x=f, at=Time((TimeBase.TB_WORKSTATION_TIME, TimeBase.TB_PROC_TIME,
-                                                 TimeBase.TB_NONE)[k % 3], 0, 86_399 * k, 999_999 - k), n=k))]
+                                                 TimeBase.TB_NONE)[k % 3], 0, 86_399 * k, 999_999 - k), n=k)),
+                 ("One", Single([-k]))]
         packets.append(encode_telemetry([_record(thing, n, t, v) for n, v in fixed]))
         packets.append(encode_telemetry([_record(thing, n, t, v) for n, v in fixed[:4]]))
+        packets.append(encode_telemetry([_record(thing, "Count", t, k),  # the array the only JSON of its packet
+                                         _record(thing, "Axis", t, Triple([1.0, f, 2.0]))]))
         if k % 4 == 0:  # a string value: no fixed layout
             packets.append(encode_telemetry([_record(thing, "Label", t, f'a "b", c {k}'),
                                              _record(thing, "Rate", t, f)]))
@@ -156,6 +165,7 @@ def test_compiled_layouts_write_what_the_general_decoder_writes(tmp_path):
     assert "1002.999999,Demo.thing.Field,\"{\"\"x\"\": -0.0, \"\"y\"\": 1.5, \"\"n\"\": -2}\"" in lines
     assert "1006.000000,Demo.thing.Field,\"{\"\"x\"\": NaN, \"\"y\"\": 1.5, \"\"n\"\": -6}\"" in lines
     assert "1006.000000,Demo.thing.Rate,nan" in lines
+    assert "1003.000000,Demo.thing.Axis,\"[2.0, 1.0, -2.0]\"" in lines and "1003.000000,Demo.thing.One,[-3]" in lines
     assert ("1003.000000,Demo.thing.Stamp,\"{\"\"x\"\": 2.0, \"\"at\"\": \"\"1970-01-03T23:59:57.999996Z\"\", "
             "\"\"n\"\": 3}\"") in lines
     assert ("1004.999999,Demo.thing.Stamp,\"{\"\"x\"\": 1e-300, \"\"at\"\": \"\"345596.999995\"\", "
