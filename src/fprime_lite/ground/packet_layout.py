@@ -26,12 +26,14 @@ module quotes a field.
 from __future__ import annotations
 
 import json
+import re
+import string
 import struct
 from operator import itemgetter
 from typing import Any, Callable
 
 from fprime_lite.ground.time_text import time_text
-from fprime_lite.ground.wide_table import csv_field
+from fprime_lite.ground.wide_table import _SPECIAL, csv_field  # _SPECIAL: what csv_field quotes for
 from fprime_lite.model.time import TIME, US_PER_S
 from fprime_lite.model.types import AliasType, ArrayType, BoolType, EnumType, FloatType, IntType, StructType
 
@@ -123,6 +125,32 @@ class _Seen(dict):
         return known
 
 
+def _percent_template(template: str, ftype) -> str | None:
+    """``template`` (a channel's ``str.format`` template, one field) as a %-format giving the same text
+    for every value of number type ``ftype``, without CSV quoting: ``{}`` of an int is ``%d``, ``{:.Nf}``
+    of a float is ``%.Nf`` (both format through the same C conversion, NaN, infinities and -0.0
+    included); None for any other template or a literal text with a character CSV quotes."""
+    try:
+        parts = list(string.Formatter().parse(template))
+    except ValueError:
+        return None
+    fields = [(name, spec, conversion) for _, name, spec, conversion in parts if name is not None]
+    literal = "".join(text for text, *_ in parts)
+    if len(fields) != 1 or not _SPECIAL.isdisjoint(literal):
+        return None
+    name, spec, conversion = fields[0]
+    if name not in ("", "0") or conversion is not None:
+        return None
+    if isinstance(ftype, IntType) and spec == "":
+        conversion_text = "%d"
+    elif isinstance(ftype, FloatType) and spec is not None and re.fullmatch(r"\.[0-9]{1,2}f", spec):
+        conversion_text = "%" + spec
+    else:
+        return None
+    return "".join(text.replace("%", "%%") + (conversion_text if name is not None else "")
+                   for text, name, _, _ in parts)
+
+
 def _is_time(ftype) -> bool:
     return ftype is TIME or getattr(ftype, "kind", None) == "time"
 
@@ -185,7 +213,19 @@ class TelemetryLayout:
             value_index = index + _HEAD_FIELDS
             line_format.append(f"%d.%06d,{name.replace('%', '%%')},")
             refs += [("f", index + 3), ("f", index + 4)]
-            if fmt_template is None and isinstance(base, (IntType, FloatType)):
+            percent = (_percent_template(fmt_template, base)
+                       if fmt_template is not None and isinstance(base, (IntType, FloatType)) else None)
+            if percent is not None:
+                # a number with a simple format string: its text a %-conversion of the unpacked value,
+                # its wide cell the number's
+                fmt.append(_RECORD_HEAD + base._struct.format[1:])
+                line_format.append(percent + "\n")
+                refs.append(("f", value_index))
+                simple_refs.append((name, [("#", len(numbers))]))
+                numbers.append(value_index)
+                is_float.append(isinstance(base, FloatType))
+                index = value_index + 1
+            elif fmt_template is None and isinstance(base, (IntType, FloatType)):
                 fmt.append(_RECORD_HEAD + base._struct.format[1:])
                 line_format.append("%s\n")
                 refs.append(("#", len(numbers)))

@@ -6,7 +6,8 @@ channel. Both get the same packets, with the values that differ between the two 
 anything does (NaN and infinities in plain floats and in structs written as JSON, -0.0, tiny and
 huge numbers, enums, bools, strings with commas and quotes, formatted channels, arrays, a bad enum
 value, a time stamp with useconds ≥ 10⁶, a struct with a time stamp member in three time bases, arrays
-of one and three numbers), and
+of one and three numbers, formatted numbers written with a %-conversion and one left to its template),
+and
 must leave identical files and counts (LAYOUT-001). The layouts' caches of number texts keep ints apart
 from floats and 0.0 apart from -0.0 (LAYOUT-002).
 """
@@ -70,6 +71,9 @@ class Thing(PassiveComponent):
     Temp = Channel(F64, format="{.2f}")
     Stamp = Channel(Stamped)
     One = Channel(Single)
+    Volts = Channel(F64, format="{.1f} V")
+    Ticks = Channel(U32, format="{} us")
+    Hex = Channel(U32, format="{x}")
     Label = Channel(String(20))
 
 
@@ -104,7 +108,8 @@ def _record(thing, name, t, value):
 _TYPES = {"Count": U32, "Big": U64, "Rate": F64, "Small": F32, "Stage": Mode.__fprime_type__,
           "Armed": BOOL, "Field": Vec.__fprime_type__, "State": Status.__fprime_type__,
           "Axis": Triple.__fprime_type__, "Temp": F64,
-          "Stamp": Stamped.__fprime_type__, "One": Single.__fprime_type__, "Label": String(20)}
+          "Stamp": Stamped.__fprime_type__, "One": Single.__fprime_type__,
+          "Volts": F64, "Ticks": U32, "Hex": U32, "Label": String(20)}
 
 _FLOATS = [0.1, 0.0, -0.0, 2.0, 1e-300, 1.7976931348623157e308, math.nan, math.inf, -math.inf, 2.5e-7, 123456789.125]
 
@@ -120,7 +125,7 @@ def _packets(thing):
                  ("Axis", Triple([f, 1.0, -2.0])), ("Temp", 20.0 + k / 7),
                  ("Stamp", Stamped(x=f, at=Time((TimeBase.TB_WORKSTATION_TIME, TimeBase.TB_PROC_TIME,
                                                  TimeBase.TB_NONE)[k % 3], 0, 86_399 * k, 999_999 - k), n=k)),
-                 ("One", Single([-k]))]
+                 ("One", Single([-k])), ("Volts", f), ("Ticks", 1000 * k), ("Hex", 255 + k)]
         packets.append(encode_telemetry([_record(thing, n, t, v) for n, v in fixed]))
         packets.append(encode_telemetry([_record(thing, n, t, v) for n, v in fixed[:4]]))
         packets.append(encode_telemetry([_record(thing, "Count", t, k),  # the array the only JSON of its packet
@@ -165,6 +170,10 @@ def test_compiled_layouts_write_what_the_general_decoder_writes(tmp_path):
     assert "1002.999999,Demo.thing.Field,\"{\"\"x\"\": -0.0, \"\"y\"\": 1.5, \"\"n\"\": -2}\"" in lines
     assert "1006.000000,Demo.thing.Field,\"{\"\"x\"\": NaN, \"\"y\"\": 1.5, \"\"n\"\": -6}\"" in lines
     assert "1006.000000,Demo.thing.Rate,nan" in lines
+    compiled = {name for layouts in fast._layouts._layouts.values() for layout in layouts for name, _ in layout.simple}
+    assert {"Demo.thing.Volts", "Demo.thing.Ticks"} <= compiled and "Demo.thing.Hex" not in compiled
+    assert "1003.000000,Demo.thing.Volts,2.0 V" in lines and "1006.000000,Demo.thing.Volts,nan V" in lines
+    assert "1003.000000,Demo.thing.Ticks,3000 us" in lines and "1003.000000,Demo.thing.Hex,102" in lines
     assert "1003.000000,Demo.thing.Axis,\"[2.0, 1.0, -2.0]\"" in lines and "1003.000000,Demo.thing.One,[-3]" in lines
     assert ("1003.000000,Demo.thing.Stamp,\"{\"\"x\"\": 2.0, \"\"at\"\": \"\"1970-01-03T23:59:57.999996Z\"\", "
             "\"\"n\"\": 3}\"") in lines
