@@ -15,12 +15,12 @@ the deployment downlinks (``fileDownlink.SendFile``) are reassembled under ``dow
 from __future__ import annotations
 
 import csv
-import datetime as _dt
 import enum
 import json
 import os
 import pathlib
 from collections import Counter
+from itertools import chain
 from dataclasses import dataclass
 from typing import Any, Callable
 
@@ -30,9 +30,10 @@ from fprime_lite.model.events import Severity, translate_format
 from fprime_lite.ground.files import FileReceiver
 from fprime_lite.ground.packet_layout import LayoutCache, TelemetryLayout
 from fprime_lite.ground.packetized import PacketizedDecoder
+from fprime_lite.ground.time_text import time_text
 from fprime_lite.ground.wide_table import WideTelemetryTable, csv_cell, csv_field
 from fprime_lite.wire.packets import Apid, decode_event, decode_telemetry
-from fprime_lite.model.time import Time, TimeBase
+from fprime_lite.model.time import US_PER_S, Time
 from fprime_lite.deploy.topology import Topology
 from fprime_lite.model.types import deserialize_values
 
@@ -57,11 +58,10 @@ class DecodedChannel:
 
 
 def format_time(t: Time) -> str:
-    """UTC ISO 8601 for workstation (Unix) time; ``seconds.useconds`` for any other base."""
-    if t.time_base == TimeBase.TB_WORKSTATION_TIME:
-        stamp = _dt.datetime.fromtimestamp(t.seconds, _dt.timezone.utc).replace(microsecond=t.useconds)
-        return stamp.strftime("%Y-%m-%dT%H:%M:%S.%fZ")
-    return f"{t.seconds}.{t.useconds:06d}"
+    """UTC ISO 8601 for workstation (Unix) time; ``seconds.useconds`` for any other base
+    (:func:`~fprime_lite.ground.time_text.time_text`)."""
+    us = t.total_us
+    return time_text(t.time_base, us // US_PER_S, us % US_PER_S)
 
 
 def _plain(value):
@@ -208,9 +208,9 @@ class GroundRecorder:
         #: Downlinked files, written under ``downlink/`` (the directory appears with the first file).
         self.files = FileReceiver(out_dir / "downlink")
         self._layouts = LayoutCache()
-        #: layout → (wide-table column, number cell) of its plain numbers and (value index, the wide
-        #: table's columns) of its other values
-        self._wide_plans: dict[TelemetryLayout, tuple[list[tuple[int, int]], list[tuple[int, list[int]]]]] = {}
+        #: layout → (wide-table column, number cell) of its plain numbers, and the wide table's columns
+        #: of its other values' cells (those values in the layout's order, each one's cells in order)
+        self._wide_plans: dict[TelemetryLayout, tuple[list[tuple[int, int]], list[int]]] = {}
 
     def attach(self, topology: Topology, event_manager: str | None, telemetry: str | None) -> None:
         """Tap ``PktSend`` of the named event manager and telemetry instances.
@@ -282,7 +282,8 @@ class GroundRecorder:
             self._wide_plans[layout] = (
                 [(index, cell) for name, cells in layout.simple
                  for (index, _), cell in zip(self._wide.slots(name), cells, strict=True)],
-                [(j, [index for index, _ in self._wide.slots(name)]) for name, j in layout.complex])
+                # the other values' columns, in layout.complex's order, each value's in its slots' order
+                [index for name, _ in layout.complex for index, _ in self._wide.slots(name)])
         lines, cells, wide = decoded
         self._channels.file.write(lines)
         self.channel_updates += layout.records
@@ -290,9 +291,8 @@ class GroundRecorder:
         simple, complex_ = self._wide_plans[layout]
         for index, cell in simple:
             row[index] = cells[cell]
-        for j, indices in complex_:
-            for index, text in zip(indices, wide[j], strict=True):
-                row[index] = text
+        for index, text in zip(complex_, chain.from_iterable(wide), strict=True):
+            row[index] = text
         return True
 
     def _packetized(self, packet: bytes) -> None:

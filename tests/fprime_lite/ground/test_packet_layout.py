@@ -5,7 +5,11 @@ A recorder with a clock and no ``on_channel`` callback records telemetry through
 channel. Both get the same packets, with the values that differ between the two ways of writing if
 anything does (NaN and infinities in plain floats and in structs written as JSON, -0.0, tiny and
 huge numbers, enums, bools, strings with commas and quotes, formatted channels, arrays, a bad enum
-value, a time stamp with useconds ≥ 10⁶), and must leave identical files and counts.
+value, a time stamp with useconds ≥ 10⁶, a struct with a time stamp member in three time bases, arrays
+of one and three numbers, formatted numbers written with a %-conversion and one left to its template),
+and
+must leave identical files and counts (LAYOUT-001). The layouts' caches of number texts keep ints apart
+from floats and 0.0 apart from -0.0 (LAYOUT-002).
 """
 
 import math
@@ -40,7 +44,17 @@ class Status(Struct, namespace="T"):
     level: F64
 
 
+class Stamped(Struct, namespace="T"):
+    x: F64
+    at: Time
+    n: U32
+
+
 class Triple(Array, namespace="T", elem=F64, size=3):
+    pass
+
+
+class Single(Array, namespace="T", elem=I16, size=1):
     pass
 
 
@@ -55,6 +69,11 @@ class Thing(PassiveComponent):
     State = Channel(Status)
     Axis = Channel(Triple)
     Temp = Channel(F64, format="{.2f}")
+    Stamp = Channel(Stamped)
+    One = Channel(Single)
+    Volts = Channel(F64, format="{.1f} V")
+    Ticks = Channel(U32, format="{} us")
+    Hex = Channel(U32, format="{x}")
     Label = Channel(String(20))
 
 
@@ -88,9 +107,11 @@ def _record(thing, name, t, value):
 
 _TYPES = {"Count": U32, "Big": U64, "Rate": F64, "Small": F32, "Stage": Mode.__fprime_type__,
           "Armed": BOOL, "Field": Vec.__fprime_type__, "State": Status.__fprime_type__,
-          "Axis": Triple.__fprime_type__, "Temp": F64, "Label": String(20)}
+          "Axis": Triple.__fprime_type__, "Temp": F64,
+          "Stamp": Stamped.__fprime_type__, "One": Single.__fprime_type__,
+          "Volts": F64, "Ticks": U32, "Hex": U32, "Label": String(20)}
 
-_FLOATS = [0.1, -0.0, 1e-300, 1.7976931348623157e308, math.nan, math.inf, -math.inf, 2.5e-7, 123456789.125]
+_FLOATS = [0.1, 0.0, -0.0, 2.0, 1e-300, 1.7976931348623157e308, math.nan, math.inf, -math.inf, 2.5e-7, 123456789.125]
 
 
 def _packets(thing):
@@ -101,9 +122,14 @@ def _packets(thing):
         fixed = [("Count", k), ("Big", 2**64 - 1 - k), ("Rate", f), ("Small", 0.1 * k),
                  ("Stage", Mode(k % 2)), ("Armed", bool(k % 2)),
                  ("Field", Vec(x=f, y=1.5, n=-k)), ("State", Status(mode=Mode.ON, flag=k % 2 == 0, level=f)),
-                 ("Axis", Triple([f, 1.0, -2.0])), ("Temp", 20.0 + k / 7)]
+                 ("Axis", Triple([f, 1.0, -2.0])), ("Temp", 20.0 + k / 7),
+                 ("Stamp", Stamped(x=f, at=Time((TimeBase.TB_WORKSTATION_TIME, TimeBase.TB_PROC_TIME,
+                                                 TimeBase.TB_NONE)[k % 3], 0, 86_399 * k, 999_999 - k), n=k)),
+                 ("One", Single([-k])), ("Volts", f), ("Ticks", 1000 * k), ("Hex", 255 + k)]
         packets.append(encode_telemetry([_record(thing, n, t, v) for n, v in fixed]))
         packets.append(encode_telemetry([_record(thing, n, t, v) for n, v in fixed[:4]]))
+        packets.append(encode_telemetry([_record(thing, "Count", t, k),  # the array the only JSON of its packet
+                                         _record(thing, "Axis", t, Triple([1.0, f, 2.0]))]))
         if k % 4 == 0:  # a string value: no fixed layout
             packets.append(encode_telemetry([_record(thing, "Label", t, f'a "b", c {k}'),
                                              _record(thing, "Rate", t, f)]))
@@ -112,6 +138,8 @@ def _packets(thing):
     packets.append(first[:stage_at] + bytes([7]) + first[stage_at + 1:])  # Stage = 7: no such constant
     usec_at = 2 + 4 + 7
     packets.append(first[:usec_at] + U32.serialize(1_000_000) + first[usec_at + 4:])  # useconds ≥ 10⁶
+    stamp_at = first.index(U32.serialize(thing.channel_id("Stamp"))) + 4 + 11 + 8 + 7
+    packets.append(first[:stamp_at] + U32.serialize(1_000_000) + first[stamp_at + 4:])  # a member's useconds
     packets.append(packets[1])  # the layout again after the bad ones
     return packets
 
@@ -128,6 +156,7 @@ def _fly(folder, slow: bool):
 
 
 def test_compiled_layouts_write_what_the_general_decoder_writes(tmp_path):
+    """LAYOUT-001."""
     fast = _fly(tmp_path / "fast", slow=False)
     slow = _fly(tmp_path / "slow", slow=True)
     assert fast._layouts._layouts, "the compiled layouts were not used"
@@ -135,12 +164,36 @@ def test_compiled_layouts_write_what_the_general_decoder_writes(tmp_path):
     for name in ("channels.csv", "channels_wide.csv"):
         assert (tmp_path / "fast" / name).read_bytes() == (tmp_path / "slow" / name).read_bytes(), name
     assert (fast.channel_updates, fast.undecodable) == (slow.channel_updates, slow.undecodable)
-    assert slow.undecodable == 2
+    assert slow.undecodable == 3
     lines = (tmp_path / "fast" / "channels.csv").read_text().splitlines()
     assert "1000.000000,Demo.thing.Field,\"{\"\"x\"\": 0.1, \"\"y\"\": 1.5, \"\"n\"\": 0}\"" in lines
-    assert "1001.999999,Demo.thing.Field,\"{\"\"x\"\": -0.0, \"\"y\"\": 1.5, \"\"n\"\": -1}\"" in lines
-    assert "1004.999999,Demo.thing.Field,\"{\"\"x\"\": NaN, \"\"y\"\": 1.5, \"\"n\"\": -4}\"" in lines
-    assert "1004.999999,Demo.thing.Rate,nan" in lines
+    assert "1002.999999,Demo.thing.Field,\"{\"\"x\"\": -0.0, \"\"y\"\": 1.5, \"\"n\"\": -2}\"" in lines
+    assert "1006.000000,Demo.thing.Field,\"{\"\"x\"\": NaN, \"\"y\"\": 1.5, \"\"n\"\": -6}\"" in lines
+    assert "1006.000000,Demo.thing.Rate,nan" in lines
+    compiled = {name for layouts in fast._layouts._layouts.values() for layout in layouts for name, _ in layout.simple}
+    assert {"Demo.thing.Volts", "Demo.thing.Ticks"} <= compiled and "Demo.thing.Hex" not in compiled
+    assert "1003.000000,Demo.thing.Volts,2.0 V" in lines and "1006.000000,Demo.thing.Volts,nan V" in lines
+    assert "1003.000000,Demo.thing.Ticks,3000 us" in lines and "1003.000000,Demo.thing.Hex,102" in lines
+    assert "1003.000000,Demo.thing.Axis,\"[2.0, 1.0, -2.0]\"" in lines and "1003.000000,Demo.thing.One,[-3]" in lines
+    assert ("1003.000000,Demo.thing.Stamp,\"{\"\"x\"\": 2.0, \"\"at\"\": \"\"1970-01-03T23:59:57.999996Z\"\", "
+            "\"\"n\"\": 3}\"") in lines
+    assert ("1004.999999,Demo.thing.Stamp,\"{\"\"x\"\": 1e-300, \"\"at\"\": \"\"345596.999995\"\", "
+            "\"\"n\"\": 4}\"") in lines
+
+
+def test_number_texts_keep_ints_floats_and_zeros_apart():
+    """LAYOUT-002: one layout meets 2 as an int and 2.0 as a float, 0.0 and then -0.0 in one slot."""
+    thing = Thing("thing", base_id=0x100)
+    t = Time(TimeBase.TB_WORKSTATION_TIME, 0, 5, 0)
+    channels = [(thing.channel_id("Count"), "Count", U32, None), (thing.channel_id("Rate"), "Rate", F64, None)]
+    layout = TelemetryLayout(channels, lambda v, _t: str(v))
+    texts = []
+    for count, rate in [(2, 0.0), (2, 2.0), (7, -0.0), (0, 0.0), (3, -0.0), (2, 7.0)]:
+        decoded = layout.decode(encode_telemetry([_record(thing, "Count", t, count), _record(thing, "Rate", t, rate)]))
+        assert decoded is not None
+        texts.append(decoded[0].replace("5.000000,", "").splitlines())
+    assert texts == [["Count,2", "Rate,0.0"], ["Count,2", "Rate,2.0"], ["Count,7", "Rate,-0.0"],
+                     ["Count,0", "Rate,0.0"], ["Count,3", "Rate,-0.0"], ["Count,2", "Rate,7.0"]]
 
 
 def test_a_layout_refuses_a_packet_of_other_channels():
