@@ -416,6 +416,11 @@ def _convergence_series(df) -> list[tuple[str, list[tuple[float, float, dict]]]]
     return [(label, sorted(rows, key=lambda x: (-x[1], -x[0]))) for label, rows in sorted(series.items())]
 
 
+#: Below this observed order the last three halvings' differences barely shrink: no limit is extrapolated from them
+#: (a Richardson step divides by 2^p − 1, which goes to 0 with p).
+_MIN_ORDER = 0.5
+
+
 def _richardson(values: list[float]) -> tuple[float | None, float | None]:
     """From the last three figures of a halving sequence: the observed order p and the extrapolated
     limit V(h→0) = V(h/4) + (V(h/4) − V(h/2)) / (2^p − 1); None when the differences do not shrink."""
@@ -528,7 +533,10 @@ def convergence_blocks() -> dict[str, str]:
                                f"{h_last:g} s) moves it {100.0 * (v_last - v_prev) / v_prev:+.2f} %; the figure at "
                                f"the smallest step, {_fmt(v_last)} s, is given with its step.")
         p, limit = _richardson(overalls)
-        if p is not None and len(overalls) >= 3:
+        if p is not None and len(overalls) >= 3 and p < _MIN_ORDER:
+            summary.append(f"- {label}: observed order {p:.2f} from the last three halvings: the differences barely "
+                           f"shrink, too little for an extrapolated limit.")
+        elif p is not None and len(overalls) >= 3:
             summary.append(f"- {label}: observed order {p:.2f} from the last three halvings; "
                            f"extrapolated limit (step → 0) ≈ {_fmt(limit, 3 if label.startswith('`wheels') else 0)} s.")
     for label, (step, period, m) in fixed_period:
@@ -818,63 +826,77 @@ def fly_magnetorquer1() -> None:
 
 
 _RIPPLE_DIR = STUDIES_DIR / "coursework_settling_ripple"
-#: The listing β-PD's halvings flown by campaigns/coursework/settling_ripple.py (step = control period, s).
-_RIPPLE_STEPS = (0.01, 0.005, 0.0025, 0.00125, 0.000625)
+#: The β-PD's halvings flown by campaigns/coursework/settling_ripple.py (step = control period, s), per form: the
+#: listing's (file listing_STEP.json) and the equations' (switched_STEP.json, ``--switched``).
+_RIPPLE_STEPS = {"listing": (0.01, 0.005, 0.0025, 0.00125, 0.000625), "switched": (0.0025, 0.00125, 0.000625)}
+_RIPPLE_FORMS = {"listing": "both spin terms (listing)", "switched": "eq. 23 *or* 24 (default)"}
 
 
-def _ripple_command(step: float) -> str:
-    return f"python campaigns/coursework/settling_ripple.py --step {step:g}"
+def _ripple_command(step: float, form: str = "listing") -> str:
+    return f"python campaigns/coursework/settling_ripple.py --step {step:g}" + (
+        " --switched" if form == "switched" else "")
+
+
+def _ripple_file(form: str, step: float) -> pathlib.Path:
+    return _RIPPLE_DIR / f"{form}_{step:g}.json"
+
+
+def _slow_axis(out: dict) -> str:
+    """The axis whose 2 % settling time is the run's overall figure."""
+    return max("xyz", key=lambda a: out["axes"][a]["settling_s"] or -math.inf)
 
 
 def ripple_blocks() -> dict[str, str]:
-    """The listing β-PD's ω_x around its 2 % settling instant at each step: the ripple peaks either side of the
-    band, their spacing, the body's turn, and the settling time read off the signal and off the peaks' envelope;
-    from the committed JSON lines of ``settling_ripple.py`` (docs/studies/coursework_settling_ripple/)."""
-    lines = ["| step = period (s) | 2 % settling, ω_x (s) | last peak above the band: t (s), height / band | "
-             "next peak: t (s), height / band | peak spacing (s) | turn, 2π/\\|ω − ω_final\\| (s) | "
-             "envelope settling, ω_x (s) | overall: 2 % / envelope (s) |", "|---|---|---|---|---|---|---|---|"]
-    flown = []
-    for step in _RIPPLE_STEPS:
-        name = f"listing_{step:g}.json"
-        path = _RIPPLE_DIR / name
-        if not path.exists():
-            lines.append(f"| {step:g} | not committed yet: `{_ripple_command(step)} > "
-                         f"docs/studies/coursework_settling_ripple/{name}` | | | | | | |")
-            continue
-        out = json.loads(path.read_text(encoding="utf-8"))
-        if out["switched"] or out["step_s"] != step:
-            raise StudyError(f"{_shown(path)} is not the listing's form at {step:g} s")
-        x = out["axes"]["x"]
-        last, after = x["peaks"][-2], x["peaks"][-1]
-        if not (last["height_over_band"] > 1.0 >= after["height_over_band"]):
-            raise StudyError(f"{_shown(path)}: its last two peaks do not straddle the band")
-        lines.append(f"| {step:g} | **{_fmt(x['settling_s'], 1)}** | {_fmt(last['t_s'], 1)}, "
-                     f"{last['height_over_band']:.4f} | {_fmt(after['t_s'], 1)}, {after['height_over_band']:.4f} | "
-                     f"{x['ripple_period_s']:.1f} | {x['rotation_period_s']:.1f} | "
-                     f"**{_fmt(x['envelope_settling_s'], 1)}** | {_fmt(out['settling_s'])} / "
-                     f"{_fmt(out['envelope_settling_s'])} |")
-        flown.append((step, out["settling_s"], out["envelope_settling_s"], x["settling_s"] - last["t_s"]))
+    """The β-PD's slow axis around its 2 % settling instant at each step: the ripple peaks either side of the band,
+    their spacing, the body's turn, and the settling time read off the signal and off the peaks' envelope; from the
+    committed JSON lines of ``settling_ripple.py`` (docs/studies/coursework_settling_ripple/)."""
+    lines = ["| β-PD form, slow axis | step = period (s) | 2 % settling (s) | last peak above the band: t (s), "
+             "height / band | next peak: t (s), height / band | peak spacing (s) | turn, 2π/\\|ω − ω_final\\| (s) | "
+             "envelope settling (s) |", "|---|---|---|---|---|---|---|---|"]
     summary = []
-    if len(flown) >= 2:
+    for form, steps in _RIPPLE_STEPS.items():
+        flown = []
+        for step in steps:
+            path = _ripple_file(form, step)
+            if not path.exists():
+                lines.append(f"| {_RIPPLE_FORMS[form]} | {step:g} | not committed yet: `{_ripple_command(step, form)} "
+                             f"> docs/studies/coursework_settling_ripple/{path.name}` | | | | | |")
+                continue
+            out = json.loads(path.read_text(encoding="utf-8"))
+            if out["switched"] != (form == "switched") or out["step_s"] != step:
+                raise StudyError(f"{_shown(path)} is not the {form} form at {step:g} s")
+            axis = _slow_axis(out)
+            a = out["axes"][axis]
+            last, after = a["peaks"][-2], a["peaks"][-1]
+            if not (last["height_over_band"] > 1.0 >= after["height_over_band"]):
+                raise StudyError(f"{_shown(path)}: its last two peaks do not straddle the band")
+            lines.append(f"| {_RIPPLE_FORMS[form]}, ω_{axis} | {step:g} | **{_fmt(a['settling_s'], 1)}** | "
+                         f"{_fmt(last['t_s'], 1)}, {last['height_over_band']:.4f} | {_fmt(after['t_s'], 1)}, "
+                         f"{after['height_over_band']:.4f} | {a['ripple_period_s']:.1f} | "
+                         f"{a['rotation_period_s']:.1f} | **{_fmt(a['envelope_settling_s'], 1)}** |")
+            flown.append((step, a["settling_s"], a["envelope_settling_s"], a["settling_s"] - last["t_s"]))
+        if len(flown) < 2:
+            continue
+        name = _RIPPLE_FORMS[form]
         for i, what in ((1, "2 % settling time"), (2, "envelope settling time")):
-            moves = ", ".join(f"{100.0 * (b[i] - a[i]) / a[i]:+.2f} %" for a, b in zip(flown, flown[1:], strict=False))
             diffs = [b[i] - a[i] for a, b in zip(flown, flown[1:], strict=False)]
+            moves = ", ".join(f"{100.0 * d / a[i]:+.2f} %" for d, a in zip(diffs, flown, strict=False))
             shrinking = all(abs(d2) < abs(d1) for d1, d2 in zip(diffs, diffs[1:], strict=False))
             same_sign = all(d > 0 for d in diffs) or all(d < 0 for d in diffs)
             shape = ("monotone, each halving moving it less than the one before" if same_sign and shrinking else
                      "monotone" if same_sign else "not monotone")
-            summary.append(f"- overall {what}, halving by halving: {moves} ({shape}).")
+            summary.append(f"- {name}: {what}, halving by halving: {moves} ({shape}).")
         published = _first_converged([(h, v) for h, _, v, _ in flown])
         p, limit = _richardson([v for _, _, v, _ in flown])
-        summary.append("- envelope figure by the rule (< 0.5 % on halving): " + (
+        summary.append(f"- {name}: envelope figure by the rule (< 0.5 % on halving): " + (
             f"{_fmt(published[1])} s at {published[0]:g} s" if published is not None else "not met over these steps")
-            + (f"; observed order {p:.2f} from the last three, extrapolated limit ≈ {_fmt(limit)} s" if p else "")
-            + ".")
-        summary.append("- time from the last peak above the band to the 2 % settling instant: "
+            + (f"; observed order {p:.2f} from the last three, extrapolated limit ≈ {_fmt(limit)} s"
+               if p is not None and p >= _MIN_ORDER else "") + ".")
+        summary.append(f"- {name}: time from the last peak above the band to the 2 % settling instant: "
                        + ", ".join(f"{d:.1f} s" for *_, d in flown) + " (the peak's height over the band sets it).")
     source = ("Generated by `python tools/studies.py --only coursework_settling_ripple` from "
-              "`docs/studies/coursework_settling_ripple/listing_STEP.json` (each the JSON line of "
-              "`nice -n 10 python campaigns/coursework/settling_ripple.py --step STEP`: the listing's form, 9000 s, "
+              "`docs/studies/coursework_settling_ripple/{listing,switched}_STEP.json` (each the JSON line of "
+              "`nice -n 10 python campaigns/coursework/settling_ripple.py --step STEP [--switched]`: 9000 s, "
               "the trace kept every 0.5 s, peaks refined by a parabola through three samples; the 2 % figures are the "
               "run's own, measured at every control period).")
     return {"coursework_settling_ripple": "\n".join(lines) + "\n\n" + "\n".join(summary) + "\n\n" + source + "\n"}
@@ -882,6 +904,24 @@ def ripple_blocks() -> dict[str, str]:
 
 def regenerate_ripple(ctx: Context) -> None:
     ctx.set_blocks(_CONVERGENCE_DOC, ripple_blocks())
+
+
+def fly_ripple() -> None:
+    """Fly the ripple runs again into docs/studies/coursework_settling_ripple/ (9000 s each: CPU-minutes)."""
+    import contextlib
+    import io
+
+    from fprime_lite.osal.atomic import atomic_write_bytes
+
+    script = _load_script("campaigns/coursework/settling_ripple.py")
+    _RIPPLE_DIR.mkdir(parents=True, exist_ok=True)
+    for form, steps in _RIPPLE_STEPS.items():
+        for step in steps:
+            out = io.StringIO()
+            with contextlib.redirect_stdout(out):
+                if script.main(["--step", f"{step:g}", *(["--switched"] if form == "switched" else [])]) != 0:
+                    raise StudyError(f"`{_ripple_command(step, form)}` failed")
+            atomic_write_bytes(_ripple_file(form, step), out.getvalue().encode())
 
 
 # --- spin stabilisation campaign ---------------------------------------------------------------------------
@@ -1896,6 +1936,8 @@ def main(argv: list[str] | None = None) -> int:
                 CAMPAIGNS[key].rerun()
             if name == "coursework_replica_magnetorquer1":
                 fly_magnetorquer1()
+            if name == "coursework_settling_ripple":
+                fly_ripple()
             if name == "sun_safe":
                 fly_sun_safe_mismatch()
             flown = set()
