@@ -32,7 +32,7 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "environment_feed_forward", "environment_four_wheels", "pointing_gyroscopic", "magnetic_pointing",
              "magnetic_pointing_runs", "attitude_modes_magnetorquers", "attitude_modes_sensors",
              "magnetic_pointing_hold_worst", "magnetic_pointing_tumble", "robust_rates_tail",
-             "robust_rates_window_campaign")
+             "robust_rates_window_campaign", "coursework_settling_ripple")
 # its committed folder is older than its campaign file: its blocks are checked against the committed results, the
 # folder's belonging is reported by --check
 BLOCKS_ONLY = ("flight_detumble_campaign",)
@@ -455,6 +455,31 @@ def test_the_replica_table_refuses_a_figure_read_off_solver_steps(tmp_path, monk
     monkeypatch.setattr(studies, "_MT1_DIR", folder)
     with pytest.raises(studies.StudyError, match="read off the solver's steps"):
         studies.magnetorquer1_blocks()
+
+
+def test_the_beta_pd_settling_time_is_the_falling_edge_of_its_last_ripple_peak():
+    """STUDY-054: in every committed settling_ripple run (docs/studies/coursework_settling_ripple/) the β-PD's 2 %
+    settling time is the convergence campaigns' figure for that form at that step (the same flight), its slow axis's
+    lies on the falling edge of its last ripple peak above the band (after it, before the next peak, which is under
+    the band), and the envelope figure is where the line through those two peaks crosses the band."""
+    pytest.importorskip("pandas")
+    df = studies._convergence_results()
+    beta = df[df["law"] == "beta_pd"]
+    files = sorted(studies._RIPPLE_DIR.glob("*.json"))
+    assert files
+    for path in files:
+        out = json.loads(path.read_text(encoding="utf-8"))
+        assert path.name.startswith("switched_" if out["switched"] else "listing_")
+        a = out["axes"][studies._slow_axis(out)]
+        assert a["settling_s"] == out["settling_s"]
+        (ta, ha), (tb, hb) = [(p["t_s"], p["height_over_band"]) for p in a["peaks"][-2:]]
+        assert ha > 1.0 >= hb, path.name
+        assert ta < a["settling_s"] < tb, path.name
+        assert a["envelope_settling_s"] == pytest.approx(ta + (ha - 1.0) / (ha - hb) * (tb - ta), abs=1e-6)
+        rows = beta[(beta["scenario.control.beta_pd.switched"].astype(bool) == out["switched"])
+                    & (beta["scenario.dynamics_step_s"] == out["step_s"])]
+        assert len(rows) >= 1 and all(v == pytest.approx(out["settling_s"], abs=1e-9)
+                                      for v in rows["settling_time_2pct_s"]), path.name
 
 
 def test_a_missing_block_marker_is_a_clear_error():

@@ -335,6 +335,8 @@ CAMPAIGNS = {
                                          "campaigns/adcs/spin_major_axis.yaml"),
     "coursework_convergence_listing": CommittedCampaign("coursework_convergence_listing",
                                                         "campaigns/coursework/convergence_listing.yaml"),
+    "coursework_convergence_switched": CommittedCampaign("coursework_convergence_switched",
+                                                         "campaigns/coursework/convergence_switched.yaml"),
     "coursework_cross_product_sweep": CommittedCampaign("coursework_cross_product_sweep",
                                                         "campaigns/coursework/cross_product_sweep.yaml"),
     "coursework_beta_pd_grid": CommittedCampaign("coursework_beta_pd_grid", "campaigns/coursework/beta_pd_grid.yaml"),
@@ -417,6 +419,11 @@ def _convergence_series(df) -> list[tuple[str, list[tuple[float, float, dict]]]]
     return [(label, sorted(rows, key=lambda x: (-x[1], -x[0]))) for label, rows in sorted(series.items())]
 
 
+#: Below this observed order the last three halvings' differences barely shrink: no limit is extrapolated from them
+#: (a Richardson step divides by 2^p − 1, which goes to 0 with p).
+_MIN_ORDER = 0.5
+
+
 def _richardson(values: list[float]) -> tuple[float | None, float | None]:
     """From the last three figures of a halving sequence: the observed order p and the extrapolated
     limit V(h→0) = V(h/4) + (V(h/4) − V(h/2)) / (2^p − 1); None when the differences do not shrink."""
@@ -445,14 +452,38 @@ def _first_converged(figures: list[tuple[float, float | None]]) -> tuple[float, 
     return None
 
 
+#: The campaigns that continue the convergence campaign's β-PD halvings (the listing's form, the equations').
+_CONVERGENCE_CONTINUED = ("coursework_convergence_listing", "coursework_convergence_switched")
+
+
+def _convergence_made() -> list[CommittedCampaign]:
+    """The convergence campaign and those of its continuations whose results are committed."""
+    return [CAMPAIGNS["coursework_convergence"]] + [
+        CAMPAIGNS[k] for k in _CONVERGENCE_CONTINUED if (CAMPAIGNS[k].path / "results.parquet").exists()]
+
+
 def _convergence_results():
-    """The convergence campaign's committed rows, with the listing form's continuation where committed."""
+    """The convergence campaign's committed rows, with the β-PD's continuations where committed."""
     import pandas as pd
 
-    frames = [CAMPAIGNS["coursework_convergence"].results()]
-    if (CAMPAIGNS["coursework_convergence_listing"].path / "results.parquet").exists():
-        frames.append(CAMPAIGNS["coursework_convergence_listing"].results())
-    return pd.concat(frames, ignore_index=True)
+    return pd.concat([c.results() for c in _convergence_made()], ignore_index=True)
+
+
+def _repeated_runs(rows: list) -> tuple[list, list[str]]:
+    """``rows`` (step, period, metrics) with a point flown in two campaigns kept once, and one line per repeat:
+    whether the second flight gave the same figures (a continuation re-flies its starting point)."""
+    kept: dict[tuple[float, float], tuple] = {}
+    notes = []
+    for step, period, m in rows:
+        first = kept.get((step, period))
+        if first is None:
+            kept[(step, period)] = (step, period, m)
+            continue
+        same = first[2]["overall"] == m["overall"] and first[2]["axes"] == m["axes"]
+        notes.append(f"{step:g} s flown twice: " + ("the same figures both times" if same else
+                     f"**different figures** ({_fmt(first[2]['overall'])} and {_fmt(m['overall'])} s); the "
+                     f"first is shown"))
+    return list(kept.values()), notes
 
 
 def convergence_blocks() -> dict[str, str]:
@@ -462,6 +493,8 @@ def convergence_blocks() -> dict[str, str]:
     fixed_period = []
     summary = []
     for label, rows in _convergence_series(df):
+        rows, repeats = _repeated_runs(rows)
+        summary += [f"- {label}: {note}." for note in repeats]
         together = [r for r in rows if r[0] == r[1]]
         fixed_period += [(label, r) for r in rows if r[0] != r[1]]
         previous = None
@@ -503,17 +536,18 @@ def convergence_blocks() -> dict[str, str]:
                                f"{h_last:g} s) moves it {100.0 * (v_last - v_prev) / v_prev:+.2f} %; the figure at "
                                f"the smallest step, {_fmt(v_last)} s, is given with its step.")
         p, limit = _richardson(overalls)
-        if p is not None and len(overalls) >= 3:
+        if p is not None and len(overalls) >= 3 and p < _MIN_ORDER:
+            summary.append(f"- {label}: observed order {p:.2f} from the last three halvings: the differences barely "
+                           f"shrink, too little for an extrapolated limit.")
+        elif p is not None and len(overalls) >= 3:
             summary.append(f"- {label}: observed order {p:.2f} from the last three halvings; "
                            f"extrapolated limit (step → 0) ≈ {_fmt(limit, 3 if label.startswith('`wheels') else 0)} s.")
     for label, (step, period, m) in fixed_period:
         summary.append(f"- {label}: control period held at {period:g} s, dynamics step {step:g} s: "
                        f"{_fmt(m['overall'])} s ({' / '.join(_fmt(a) for a in m['axes'])}).")
-    made = [CAMPAIGNS["coursework_convergence"]]
-    if (CAMPAIGNS["coursework_convergence_listing"].path / "results.parquet").exists():
-        made.append(CAMPAIGNS["coursework_convergence_listing"])
+    made = _convergence_made()
     source = ("Generated by `python tools/studies.py --only coursework_convergence` from "
-              + " and ".join(f"`docs/studies/{c.folder}/` (made by `{c.command}`{_state_note(c)})" for c in made) + ".")
+              + ", ".join(f"`docs/studies/{c.folder}/` (made by `{c.command}`{_state_note(c)})" for c in made) + ".")
     return {"coursework_convergence": "\n".join(lines) + "\n\n" + "\n".join(summary) + "\n\n" + source + "\n"}
 
 
@@ -792,6 +826,105 @@ def fly_magnetorquer1() -> None:
     for name, _, args in _MT1_CASES:
         _MT1_DIR.mkdir(parents=True, exist_ok=True)
         atomic_write_bytes(_MT1_DIR / name, (json.dumps(replica.run(replica.parse_args(args))) + "\n").encode())
+
+
+_RIPPLE_DIR = STUDIES_DIR / "coursework_settling_ripple"
+#: The β-PD's halvings flown by campaigns/coursework/settling_ripple.py (step = control period, s), per form: the
+#: listing's (file listing_STEP.json) and the equations' (switched_STEP.json, ``--switched``).
+_RIPPLE_STEPS = {"listing": (0.01, 0.005, 0.0025, 0.00125, 0.000625), "switched": (0.0025, 0.00125, 0.000625)}
+_RIPPLE_FORMS = {"listing": "both spin terms (listing)", "switched": "eq. 23 *or* 24 (default)"}
+
+
+def _ripple_command(step: float, form: str = "listing") -> str:
+    return f"python campaigns/coursework/settling_ripple.py --step {step:g}" + (
+        " --switched" if form == "switched" else "")
+
+
+def _ripple_file(form: str, step: float) -> pathlib.Path:
+    return _RIPPLE_DIR / f"{form}_{step:g}.json"
+
+
+def _slow_axis(out: dict) -> str:
+    """The axis whose 2 % settling time is the run's overall figure."""
+    return max("xyz", key=lambda a: out["axes"][a]["settling_s"] or -math.inf)
+
+
+def ripple_blocks() -> dict[str, str]:
+    """The β-PD's slow axis around its 2 % settling instant at each step: the ripple peaks either side of the band,
+    their spacing, the body's turn, and the settling time read off the signal and off the peaks' envelope; from the
+    committed JSON lines of ``settling_ripple.py`` (docs/studies/coursework_settling_ripple/)."""
+    lines = ["| β-PD form, slow axis | step = period (s) | 2 % settling (s) | last peak above the band: t (s), "
+             "height / band | next peak: t (s), height / band | peak spacing (s) | turn, 2π/\\|ω − ω_final\\| (s) | "
+             "envelope settling (s) |", "|---|---|---|---|---|---|---|---|"]
+    summary = []
+    for form, steps in _RIPPLE_STEPS.items():
+        flown = []
+        for step in steps:
+            path = _ripple_file(form, step)
+            if not path.exists():
+                lines.append(f"| {_RIPPLE_FORMS[form]} | {step:g} | not committed yet: `{_ripple_command(step, form)} "
+                             f"> docs/studies/coursework_settling_ripple/{path.name}` | | | | | |")
+                continue
+            out = json.loads(path.read_text(encoding="utf-8"))
+            if out["switched"] != (form == "switched") or out["step_s"] != step:
+                raise StudyError(f"{_shown(path)} is not the {form} form at {step:g} s")
+            axis = _slow_axis(out)
+            a = out["axes"][axis]
+            last, after = a["peaks"][-2], a["peaks"][-1]
+            if not (last["height_over_band"] > 1.0 >= after["height_over_band"]):
+                raise StudyError(f"{_shown(path)}: its last two peaks do not straddle the band")
+            lines.append(f"| {_RIPPLE_FORMS[form]}, ω_{axis} | {step:g} | **{_fmt(a['settling_s'], 1)}** | "
+                         f"{_fmt(last['t_s'], 1)}, {last['height_over_band']:.4f} | {_fmt(after['t_s'], 1)}, "
+                         f"{after['height_over_band']:.4f} | {a['ripple_period_s']:.1f} | "
+                         f"{a['rotation_period_s']:.1f} | **{_fmt(a['envelope_settling_s'], 1)}** |")
+            flown.append((step, a["settling_s"], a["envelope_settling_s"], a["settling_s"] - last["t_s"]))
+        if len(flown) < 2:
+            continue
+        name = _RIPPLE_FORMS[form]
+        for i, what in ((1, "2 % settling time"), (2, "envelope settling time")):
+            diffs = [b[i] - a[i] for a, b in zip(flown, flown[1:], strict=False)]
+            moves = ", ".join(f"{100.0 * d / a[i]:+.2f} %" for d, a in zip(diffs, flown, strict=False))
+            shrinking = all(abs(d2) < abs(d1) for d1, d2 in zip(diffs, diffs[1:], strict=False))
+            same_sign = all(d > 0 for d in diffs) or all(d < 0 for d in diffs)
+            shape = ("monotone, each halving moving it less than the one before" if same_sign and shrinking else
+                     "monotone" if same_sign else "not monotone")
+            summary.append(f"- {name}: {what}, halving by halving: {moves} ({shape}).")
+        published = _first_converged([(h, v) for h, _, v, _ in flown])
+        p, limit = _richardson([v for _, _, v, _ in flown])
+        summary.append(f"- {name}: envelope figure by the rule (< 0.5 % on halving): " + (
+            f"{_fmt(published[1])} s at {published[0]:g} s" if published is not None else "not met over these steps")
+            + (f"; observed order {p:.2f} from the last three, extrapolated limit ≈ {_fmt(limit)} s"
+               if p is not None and p >= _MIN_ORDER else "") + ".")
+        summary.append(f"- {name}: time from the last peak above the band to the 2 % settling instant: "
+                       + ", ".join(f"{d:.1f} s" for *_, d in flown) + " (the peak's height over the band sets it).")
+    source = ("Generated by `python tools/studies.py --only coursework_settling_ripple` from "
+              "`docs/studies/coursework_settling_ripple/{listing,switched}_STEP.json` (each the JSON line of "
+              "`nice -n 10 python campaigns/coursework/settling_ripple.py --step STEP [--switched]`: 9000 s, "
+              "the trace kept every 0.5 s, peaks refined by a parabola through three samples; the 2 % figures are the "
+              "run's own, measured at every control period).")
+    return {"coursework_settling_ripple": "\n".join(lines) + "\n\n" + "\n".join(summary) + "\n\n" + source + "\n"}
+
+
+def regenerate_ripple(ctx: Context) -> None:
+    ctx.set_blocks(_CONVERGENCE_DOC, ripple_blocks())
+
+
+def fly_ripple() -> None:
+    """Fly the ripple runs again into docs/studies/coursework_settling_ripple/ (9000 s each: CPU-minutes)."""
+    import contextlib
+    import io
+
+    from fprime_lite.osal.atomic import atomic_write_bytes
+
+    script = _load_script("campaigns/coursework/settling_ripple.py")
+    _RIPPLE_DIR.mkdir(parents=True, exist_ok=True)
+    for form, steps in _RIPPLE_STEPS.items():
+        for step in steps:
+            out = io.StringIO()
+            with contextlib.redirect_stdout(out):
+                if script.main(["--step", f"{step:g}", *(["--switched"] if form == "switched" else [])]) != 0:
+                    raise StudyError(f"`{_ripple_command(step, form)}` failed")
+            atomic_write_bytes(_ripple_file(form, step), out.getvalue().encode())
 
 
 # --- spin stabilisation campaign ---------------------------------------------------------------------------
@@ -1710,7 +1843,9 @@ def regenerate_attitude_modes_orbit(ctx: Context) -> None:
 STUDIES = {s.name: s for s in (
     Study("coursework_convergence", "seed 004: every plant figure against the step (committed campaign)",
           regenerate_convergence, convergence_blocks, _CONVERGENCE_DOC,
-          ("coursework_convergence", "coursework_convergence_listing")),
+          ("coursework_convergence", *_CONVERGENCE_CONTINUED)),
+    Study("coursework_settling_ripple", "seed 004: the listing β-PD's ripple at its settling instant (committed "
+          "plant runs)", regenerate_ripple, ripple_blocks, _CONVERGENCE_DOC),
     Study("coursework_grids", "seed 004: the gain sweeps and the noise study (committed campaigns)",
           regenerate_grids, grid_blocks, _CONVERGENCE_DOC,
           ("coursework_cross_product_sweep", "coursework_beta_pd_grid", "coursework_wheels_pd_grid",
@@ -1857,6 +1992,8 @@ def main(argv: list[str] | None = None) -> int:
                 CAMPAIGNS[key].rerun()
             if name == "coursework_replica_magnetorquer1":
                 fly_magnetorquer1()
+            if name == "coursework_settling_ripple":
+                fly_ripple()
             if name == "sun_safe":
                 fly_sun_safe_mismatch()
             flown = set()

@@ -11,6 +11,10 @@ Three definitions, because they answer different questions:
 * :func:`transient_time` — ``lsiminfo``'s TransientTime: the band is 2 % of the peak error.
 * :func:`time_below` — the horizon-free detumble metric the rest of the project uses: the first
   time after which a magnitude (|ω|, in the caller's unit) stays below a threshold.
+* :func:`envelope_settling_time` — the settling time of a rippled decay read off its envelope (the line
+  through the peaks of ``|y − y_final|``, :func:`ripple_peaks`) instead of the signal: where the ripple's
+  last peak above the band lies within a hair of it, ``lsiminfo``'s figure jumps by one ripple period when
+  that peak's height crosses the band; the envelope's crossing moves only as much as the peaks do.
 
 A series that never settles gives ``None``. Times in seconds, values in the caller's units.
 """
@@ -20,8 +24,8 @@ from typing import Sequence
 
 import numpy as np
 
-__all__ = ["settling_time", "transient_time", "time_below", "settling_times_per_axis", "SettlingTracker",
-           "BelowTracker", "DEFAULT_BAND"]
+__all__ = ["settling_time", "transient_time", "time_below", "settling_times_per_axis", "ripple_peaks",
+           "envelope_settling_time", "SettlingTracker", "BelowTracker", "DEFAULT_BAND"]
 
 #: The report's band: 2 % (MATLAB's default SettlingTimeThreshold).
 DEFAULT_BAND = 0.02
@@ -77,6 +81,44 @@ def time_below(t: Sequence[float], magnitude: Sequence[float], threshold: float)
     tt = np.asarray(t, dtype=float)
     mm = np.asarray(magnitude, dtype=float)
     return _first_time_after_last(tt, ~(mm < threshold))
+
+
+def ripple_peaks(t: Sequence[float], y: Sequence[float], y_final: float) -> list[tuple[float, float]]:
+    """The local maxima of ``|y − y_final|``: ``[(time, height)]`` in time order, each refined by the parabola
+    through the sample and its two neighbours (a peak on the first or last sample is not one)."""
+    tt = np.asarray(t, dtype=float)
+    e = np.abs(np.asarray(y, dtype=float) - float(y_final))
+    if tt.shape != e.shape or tt.ndim != 1:
+        raise ValueError("t and y must be 1-D sequences of the same length")
+    inner = np.flatnonzero((e[1:-1] > e[:-2]) & (e[1:-1] >= e[2:])) + 1
+    peaks = []
+    for i in inner:
+        a, b, c = e[i - 1], e[i], e[i + 1]
+        curvature = a - 2.0 * b + c
+        shift = 0.5 * (a - c) / curvature if curvature < 0.0 else 0.0  # in samples, within ±0.5
+        step = 0.5 * (tt[i + 1] - tt[i - 1])
+        peaks.append((float(tt[i] + shift * step), float(b - 0.25 * (a - c) * shift)))
+    return peaks
+
+
+def envelope_settling_time(t: Sequence[float], y: Sequence[float], y_final: float, y_init: float,
+                           band: float = DEFAULT_BAND) -> float | None:
+    """The time the envelope of ``|y − y_final|`` last falls through the band ``band · |y_final − y_init|``.
+
+    The envelope is the straight line between successive :func:`ripple_peaks`; the figure is where it crosses
+    the band between the last peak above the band and the next one (None when there is no peak after it). A
+    signal with no peak above the band settles as :func:`settling_time` says. Same units as ``t``.
+    """
+    width = band * abs(float(y_final) - float(y_init))
+    peaks = ripple_peaks(t, y, y_final)
+    above = [k for k, (_, h) in enumerate(peaks) if h > width]
+    if not above:
+        return settling_time(t, y, y_final, y_init, band)
+    k = above[-1]
+    if k + 1 >= len(peaks):
+        return None
+    (t0, h0), (t1, h1) = peaks[k], peaks[k + 1]
+    return t0 + (h0 - width) / (h0 - h1) * (t1 - t0)
 
 
 class SettlingTracker:
