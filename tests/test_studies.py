@@ -32,7 +32,7 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "environment_feed_forward", "environment_four_wheels", "pointing_gyroscopic", "magnetic_pointing",
              "magnetic_pointing_runs", "attitude_modes_magnetorquers", "attitude_modes_sensors",
              "magnetic_pointing_hold_worst", "magnetic_pointing_tumble", "environment_closed_form",
-             "attitude_knowledge_single_runs", "magnetic_pointing_hold_campaign")
+             "attitude_knowledge_single_runs", "magnetic_pointing_hold_campaign", "magnetic_pointing_floquet_figure")
 # its committed folder is older than its campaign file: its blocks are checked against the committed results, the
 # folder's belonging is reported by --check
 BLOCKS_ONLY = ("flight_detumble_campaign",)
@@ -150,6 +150,8 @@ def test_the_bdot_noise_study_is_what_the_code_computes_now(tmp_path, monkeypatc
     ("attitude_knowledge_single_runs", "attitude_knowledge_sensors", "| both ideal | 0.0019°",
      "| both ideal | 0.0013°"),
     ("magnetic_pointing", "magnetic_pointing_floor", "**0.00–1.45°**", "**0.18–0.93°**"),
+    ("magnetic_pointing_floquet_figure", "magnetic_pointing_floquet_maps", "eigenvalues 0.58, 0.63, 0.79",
+     "eigenvalues 0.61, 0.62, 0.77"),
 ])
 def test_a_hand_edited_figure_of_the_new_study_blocks_is_reported(tmp_path, monkeypatch, name, block, old, new):
     """STUDY-010: magnetic_pointing.md's hold table, flight_bdot_noise.md's, robust_rates.md's,
@@ -379,6 +381,34 @@ def test_the_gravity_gradient_floor_is_what_the_code_computes_now(tmp_path, monk
     _nudged_script_table(tmp_path, monkeypatch, table, nudge)
     problems = table.run_probe()
     assert len(problems) == 1 and "IGRF-14" in problems[0]
+
+
+def test_the_floquet_figure_is_drawn_from_maps_the_code_computes_now(tmp_path, monkeypatch):
+    """STUDY-044: magnetic_pointing.md's Floquet figure and the figures quoted from it come from committed maps
+    (campaigns/adcs/magnetic_pointing_figures.py --json, the scenario's field); the probe computes the field line and
+    the old gains' rate again and finds them to the float; maps of the tilted dipole (the field of the figure's first
+    version) are reported; regenerating draws the figure from the committed maps (quick: into a scratch folder)."""
+    table = studies.FLOQUET_MAPS
+    assert table.run_probe() == []
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    assert committed["field_model"] == "igrf14"
+    ctx = studies.Context(quick=True, out=tmp_path / "quick")
+    studies.regenerate_floquet_figure(ctx)
+    assert (tmp_path / "quick" / "docs" / "img" / "magnetic_pointing" / "floquet.png").stat().st_size > 10_000
+    script = table.code()
+    from detumble.sim.plant import Plant
+    from detumble.sim.scenario import load_scenario
+
+    dipole = Plant(load_scenario("adcs", settings=["field.model=dipole"]))
+    _, period, b, bd = script.field_line(dipole)
+    inertia = dipole.scenario.spacecraft.inertia_kg_m2
+
+    def nudge(data):
+        data["old_gains_rate"] = float(script.floquet_rate("seed_pd", period, b, bd, inertia, *script.OLD_GAINS))
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 1 and "old_gains_rate" in problems[0]
 
 
 def test_the_hold_campaign_folder_belongs_to_its_campaign_file():

@@ -1294,6 +1294,23 @@ ENV_CLOSED_FORM_TABLES = tuple(
     for part in ("nadir", "surfaces", "floquet_bias", "igrf_table"))
 
 
+#: magnetic_pointing.md's Floquet figure: the maps kept as JSON (campaigns/adcs/magnetic_pointing_figures.py), the
+#: figures the page quotes from them rendered into a block, the figure drawn from them by the script's draw_floquet
+FLOQUET_MAPS = ScriptTable("magnetic_pointing_floquet_figure", "magnetorquer pointing: the Floquet maps' figure and "
+                           "the figures quoted from them (committed JSON, ~30 CPU-s)", "magnetic_pointing_floquet_maps",
+                           "campaigns/adcs/magnetic_pointing_figures.py", "magnetic_pointing/floquet_maps.json",
+                           STUDIES_DIR / "magnetic_pointing.md", ("floquet",), render="maps_markdown", probe="probe")
+
+
+def regenerate_floquet_figure(ctx: Context) -> None:
+    """The block from the committed maps, and docs/img/magnetic_pointing/floquet.png drawn from them."""
+    FLOQUET_MAPS.regenerate(ctx)
+    maps = json.loads(FLOQUET_MAPS.path.read_text(encoding="utf-8"))
+    with tempfile.TemporaryDirectory() as scratch:
+        png = FLOQUET_MAPS.code().draw_floquet(maps, pathlib.Path(scratch))
+        ctx.copy(png, IMG_DIR / "magnetic_pointing" / "floquet.png")
+
+
 def _grouped_study(tables: tuple[ScriptTable, ...]) -> Study:
     """One study of several tables of one script (one JSON file, one page, blocks rendered by their own functions)."""
     doc = tables[0].doc
@@ -1780,6 +1797,8 @@ STUDIES = {s.name: s for s in (
           STUDIES_DIR / "magnetic_pointing.md",
           probe=lambda: [p for t in MAG_POINTING_TABLES if t.name == "magnetic_pointing" for p in t.run_probe()]),
     _grouped_study(KNOWLEDGE_SINGLE_TABLES),
+    Study(FLOQUET_MAPS.name, FLOQUET_MAPS.summary, regenerate_floquet_figure, FLOQUET_MAPS.blocks, FLOQUET_MAPS.doc,
+          probe=FLOQUET_MAPS.run_probe),
     _grouped_study(ENV_CLOSED_FORM_TABLES),
     Study("magnetic_pointing_runs", _MAG_RUNS_SUMMARY, regenerate_magnetic_pointing_runs,
           magnetic_pointing_runs_blocks, STUDIES_DIR / "magnetic_pointing.md"),
@@ -1909,7 +1928,7 @@ def main(argv: list[str] | None = None) -> int:
                 fly_sun_safe_mismatch()
             flown = set()
             for table in (*SUN_SAFE_TABLES, *SCRIPT_TABLES.values(), *MAG_POINTING_TABLES, *KNOWLEDGE_SINGLE_TABLES,
-                          *ENV_CLOSED_FORM_TABLES):
+                          *ENV_CLOSED_FORM_TABLES, FLOQUET_MAPS):
                 if table.name == name and table.command not in flown:  # two tables may share one JSON file
                     table.fly()
                     flown.add(table.command)
