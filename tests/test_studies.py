@@ -32,7 +32,8 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "environment_feed_forward", "environment_four_wheels", "pointing_gyroscopic", "magnetic_pointing",
              "magnetic_pointing_runs", "attitude_modes_magnetorquers", "attitude_modes_sensors",
              "magnetic_pointing_hold_worst", "magnetic_pointing_tumble", "environment_closed_form",
-             "attitude_knowledge_single_runs", "magnetic_pointing_hold_campaign", "magnetic_pointing_floquet_figure")
+             "attitude_knowledge_single_runs", "magnetic_pointing_hold_campaign", "magnetic_pointing_floquet_figure",
+             "attitude_knowledge_orbit_runs")
 # its committed folder is older than its campaign file: its blocks are checked against the committed results, the
 # folder's belonging is reported by --check
 BLOCKS_ONLY = ("flight_detumble_campaign",)
@@ -150,6 +151,7 @@ def test_the_bdot_noise_study_is_what_the_code_computes_now(tmp_path, monkeypatc
     ("attitude_knowledge_single_runs", "attitude_knowledge_sensors", "| both ideal | 0.0019°",
      "| both ideal | 0.0013°"),
     ("magnetic_pointing", "magnetic_pointing_floor", "**0.00–1.45°**", "**0.18–0.93°**"),
+    ("magnetic_pointing_runs", "magnetic_pointing_corner_runs", "(1.0, -0.5, 0.8)e-3", "(1.0, -0.5, 0.9)e-3"),
     ("magnetic_pointing_floquet_figure", "magnetic_pointing_floquet_maps", "eigenvalues 0.58, 0.63, 0.79",
      "eigenvalues 0.61, 0.62, 0.77"),
 ])
@@ -314,6 +316,26 @@ def test_the_magnetic_pointing_hold_run_is_what_the_deployment_flies_now(tmp_pat
     figures to the float."""
     script, committed = _mag_table("magnetic_pointing_hold_runs")
     assert script.fly("hold", tmp_path) == committed["runs"]["hold"]
+
+
+@pytest.mark.slow
+def test_the_wheel_orbit_run_is_what_the_deployment_flies_now(tmp_path):
+    """STUDY-045 (`slow`: one orbit of adcs_ref, about a CPU-minute): attitude_knowledge.md's orbit table is rendered
+    from a committed JSON file (three runs of an orbit or more); its orbit run (one 5580 s deployment run) flies again
+    and gives its committed figures to the float."""
+    table = studies.SCRIPT_TABLES["attitude_knowledge_orbit_runs"]
+    script = studies._load_script(table.script)
+    committed = json.loads(table.path.read_text(encoding="utf-8"))["runs"]["orbit"]
+    assert json.loads(json.dumps(script.fly("orbit", tmp_path))) == committed
+
+
+@pytest.mark.slow
+def test_the_magnetic_pointing_corner_run_is_what_the_deployment_flies_now(tmp_path):
+    """STUDY-046 (`slow`: one orbit of adcs_ref, about a CPU-minute): magnetic_pointing.md's worst-corner run with the
+    on-board residual-dipole estimate (test ADCS-064's start, committed in magnetic_pointing/deployment.json) flies
+    again and gives its committed figures, the estimate included, to the float."""
+    script, committed = _mag_table("magnetic_pointing_corner_runs")
+    assert json.loads(json.dumps(script.fly("corner", tmp_path))) == committed["runs"]["corner"]
 
 
 def test_the_wheels_sensor_table_is_what_the_deployment_flies_now(tmp_path):

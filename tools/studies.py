@@ -19,8 +19,9 @@ never into the docs: it shows the whole chain works in minutes. ``--check`` writ
 every block from the committed results and compares it with the docs, checks that each committed
 campaign folder belongs to its campaign file as it is now (same file hash, every run id still planned,
 the same resolved configuration: the manifest's ``resolved``, a topology's default scenario and field
-model; a manifest recording none is reported UNKNOWN, not stale), and re-flies each campaign's cheap
-probe runs and compares their metrics with the committed rows.
+model; a manifest recording none is reported UNKNOWN, not stale), re-flies each campaign's cheap
+probe runs and compares their metrics with the committed rows, and runs each study's own probe (a study script's
+``probe``: a cheap piece of its committed JSON file recomputed or re-flown and compared to the float).
 ``tests/test_studies.py`` runs that check. Exit status: 0 done (or nothing stale), 1 stale, 2 usage.
 
 Campaign results are not re-run here (that is hours of CPU for some); each study names the command that
@@ -1191,6 +1192,10 @@ SCRIPT_TABLES = {t.name: t for t in (
     ScriptTable("attitude_modes_sensors", "seed 003's pointing on the wheels with noiseless sensors: four 300 s "
                 "adcs_ref runs (committed JSON)", "attitude_modes_sensors", "campaigns/adcs/wheels_sensor_table.py",
                 "attitude_modes/sensors.json", STUDIES_DIR / "attitude_modes.md"),
+    ScriptTable("attitude_knowledge_orbit_runs", "issue 13's pointing on the wheels over an orbit and the shipped "
+                "sequence: three adcs_ref runs, ~3 CPU-minutes (committed JSON)", "attitude_knowledge_orbit_runs",
+                "campaigns/adcs/wheels_orbit_table.py", "attitude_knowledge/orbit_runs.json",
+                STUDIES_DIR / "attitude_knowledge.md"),
 )}
 
 
@@ -1257,7 +1262,7 @@ def fly_sun_safe_mismatch() -> None:
 
 
 _MAG_PLANT_SUMMARY = "magnetorquer pointing: Floquet maps and plant-only checks (committed JSON, ~6 CPU-minutes)"
-_MAG_RUNS_SUMMARY = "magnetorquer pointing: ten one-orbit adcs_ref runs (committed JSON, ~4 CPU-minutes)"
+_MAG_RUNS_SUMMARY = "magnetorquer pointing: eleven one-orbit adcs_ref runs (committed JSON, ~4 CPU-minutes)"
 #: magnetic_pointing.md's plant-only tables (campaigns/adcs/magnetic_pointing_tables.py) and single deployment runs
 #: (campaigns/adcs/magnetic_pointing_runs.py: one JSON file, two tables)
 MAG_POINTING_TABLES = (
@@ -1272,7 +1277,8 @@ MAG_POINTING_TABLES = (
                 STUDIES_DIR / "magnetic_pointing.md", ("floor",), probe="floor_probe"),
     *(ScriptTable("magnetic_pointing_runs", _MAG_RUNS_SUMMARY, f"magnetic_pointing_{start}_runs",
                   "campaigns/adcs/magnetic_pointing_runs.py", "magnetic_pointing/deployment.json",
-                  STUDIES_DIR / "magnetic_pointing.md", render=f"{start}_markdown") for start in ("tumble", "hold")),
+                  STUDIES_DIR / "magnetic_pointing.md", render=f"{start}_markdown")
+      for start in ("tumble", "hold", "corner")),
 )
 
 
