@@ -32,7 +32,9 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "environment_feed_forward", "environment_four_wheels", "pointing_gyroscopic", "magnetic_pointing",
              "magnetic_pointing_runs", "attitude_modes_magnetorquers", "attitude_modes_sensors",
              "magnetic_pointing_hold_worst", "magnetic_pointing_tumble", "robust_rates_tail",
-             "robust_rates_window_campaign", "coursework_settling_ripple")
+             "robust_rates_window_campaign", "coursework_settling_ripple", "environment_closed_form",
+             "attitude_knowledge_single_runs", "magnetic_pointing_hold_campaign", "magnetic_pointing_floquet_figure",
+             "attitude_knowledge_orbit_runs")
 # its committed folder is older than its campaign file: its blocks are checked against the committed results, the
 # folder's belonging is reported by --check
 BLOCKS_ONLY = ("flight_detumble_campaign",)
@@ -143,6 +145,16 @@ def test_the_bdot_noise_study_is_what_the_code_computes_now(tmp_path, monkeypatc
     ("attitude_modes_magnetorquers", "attitude_modes_magnetorquers", "99/100", "84/100"),
     ("attitude_modes_sensors", "attitude_modes_sensors", "| as in the scenario | 0.0063°",
      "| as in the scenario | 0.045°"),
+    ("environment_closed_form", "environment_torques_nadir", "**7.1e-6°**", "**7e-6°**"),
+    ("environment_closed_form", "environment_torques_floquet_bias", "**+5.5e-3**", "−2.0e-3"),
+    ("environment_closed_form", "environment_torques_igrf_table", "**5.2 nT**", "**5.0 nT**"),
+    ("attitude_knowledge_single_runs", "attitude_knowledge_design", "| 26.5 s | 0.0155° |", "| 27.5 s | 0.0155° |"),
+    ("attitude_knowledge_single_runs", "attitude_knowledge_sensors", "| both ideal | 0.0019°",
+     "| both ideal | 0.0013°"),
+    ("magnetic_pointing", "magnetic_pointing_floor", "**0.00–1.45°**", "**0.18–0.93°**"),
+    ("magnetic_pointing_runs", "magnetic_pointing_corner_runs", "(1.0, -0.5, 0.8)e-3", "(1.0, -0.5, 0.9)e-3"),
+    ("magnetic_pointing_floquet_figure", "magnetic_pointing_floquet_maps", "eigenvalues 0.58, 0.63, 0.79",
+     "eigenvalues 0.61, 0.62, 0.77"),
 ])
 def test_a_hand_edited_figure_of_the_new_study_blocks_is_reported(tmp_path, monkeypatch, name, block, old, new):
     """STUDY-010: magnetic_pointing.md's hold table, flight_bdot_noise.md's, robust_rates.md's,
@@ -337,6 +349,26 @@ def test_the_magnetic_pointing_hold_run_is_what_the_deployment_flies_now(tmp_pat
     assert script.fly("hold", tmp_path) == committed["runs"]["hold"]
 
 
+@pytest.mark.slow
+def test_the_wheel_orbit_run_is_what_the_deployment_flies_now(tmp_path):
+    """STUDY-045 (`slow`: one orbit of adcs_ref, about a CPU-minute): attitude_knowledge.md's orbit table is rendered
+    from a committed JSON file (three runs of an orbit or more); its orbit run (one 5580 s deployment run) flies again
+    and gives its committed figures to the float."""
+    table = studies.SCRIPT_TABLES["attitude_knowledge_orbit_runs"]
+    script = studies._load_script(table.script)
+    committed = json.loads(table.path.read_text(encoding="utf-8"))["runs"]["orbit"]
+    assert json.loads(json.dumps(script.fly("orbit", tmp_path))) == committed
+
+
+@pytest.mark.slow
+def test_the_magnetic_pointing_corner_run_is_what_the_deployment_flies_now(tmp_path):
+    """STUDY-046 (`slow`: one orbit of adcs_ref, about a CPU-minute): magnetic_pointing.md's worst-corner run with the
+    on-board residual-dipole estimate (test ADCS-064's start, committed in magnetic_pointing/deployment.json) flies
+    again and gives its committed figures, the estimate included, to the float."""
+    script, committed = _mag_table("magnetic_pointing_corner_runs")
+    assert json.loads(json.dumps(script.fly("corner", tmp_path))) == committed["runs"]["corner"]
+
+
 def test_the_wheels_sensor_table_is_what_the_deployment_flies_now(tmp_path):
     """STUDY-038: attitude_modes.md's sensor table is rendered from a committed JSON file (four 300 s adcs_ref runs);
     its first row (the scenario's sensors: one 300 s deployment run, a few CPU-s) flies again and gives the committed
@@ -345,6 +377,106 @@ def test_the_wheels_sensor_table_is_what_the_deployment_flies_now(tmp_path):
     script = studies._load_script(table.script)
     committed = json.loads(table.path.read_text(encoding="utf-8"))["rows"]["as in the scenario"]
     assert script.fly("as in the scenario", tmp_path) == committed
+
+
+def _nudged_script_table(tmp_path, monkeypatch, table, nudge) -> None:
+    """Point ``studies`` at a copy of ``table``'s committed JSON file changed by ``nudge(data)`` (in place)."""
+    data = json.loads(table.path.read_text(encoding="utf-8"))
+    nudge(data)
+    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path)
+    (tmp_path / table.results).parent.mkdir(parents=True, exist_ok=True)
+    (tmp_path / table.results).write_text(json.dumps(data), encoding="utf-8")
+
+
+def test_the_closed_form_figures_are_what_the_code_computes_now(tmp_path, monkeypatch):
+    """STUDY-040: environment_torques.md's closed-form blocks (nadir torques, drag and solar pressure, the coil law's
+    Floquet margin to the magnetometer bias, the IGRF table's accuracy) are rendered from a committed JSON file; its
+    --check probe computes every figure again (about a CPU-second) and finds the committed ones to the float; a copy
+    whose Floquet rate at 1.75 × the bias is nudged by 1e-12 /s is reported, through --check."""
+    assert studies.check(["environment_closed_form"], fly_probes=True) == []
+    table = studies.ENV_CLOSED_FORM_TABLES[0]
+
+    def nudge(data):
+        data["floquet_bias"]["rates"]["igrf14"][4] += 1e-12
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 1 and "floquet_bias" in problems[0] and "no longer computes" in problems[0]
+
+
+def test_the_single_run_design_table_is_what_the_deployment_flies_now(tmp_path, monkeypatch):
+    """STUDY-041: attitude_knowledge.md's two single-run tables are rendered from a committed JSON file (fifteen 400 s
+    adcs_ref runs, re-flown in IGRF-14); the probe flies the default design's row again (one 400 s deployment run, a
+    few CPU-s) and finds its committed figures to the float; a copy whose steady median is nudged is reported."""
+    table = studies.KNOWLEDGE_SINGLE_TABLES[0]
+    assert table.run_probe() == []
+    script = studies._load_script(table.script)
+
+    def nudge(data):
+        data["design"][script.PROBE_ROW]["median_deg"] += 1e-9
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 1 and "median_deg" in problems[0]
+
+
+def test_the_gravity_gradient_floor_is_what_the_code_computes_now(tmp_path, monkeypatch):
+    """STUDY-042: magnetic_pointing.md's gravity-gradient floor is rendered from a committed JSON file; its probe (run
+    by --check with the magnetic_pointing study) computes the closed form again in both fields and finds the committed
+    figures to the float; a copy holding the tilted dipole's figures under IGRF-14 (what the page quoted before the
+    field changed) is reported."""
+    table = next(t for t in studies.MAG_POINTING_TABLES if t.block == "magnetic_pointing_floor")
+    assert table.run_probe() == []
+
+    def nudge(data):
+        data["closed_form"]["igrf14"] = data["closed_form"]["dipole"]
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 1 and "IGRF-14" in problems[0]
+
+
+def test_the_floquet_figure_is_drawn_from_maps_the_code_computes_now(tmp_path, monkeypatch):
+    """STUDY-044: magnetic_pointing.md's Floquet figure and the figures quoted from it come from committed maps
+    (campaigns/adcs/magnetic_pointing_figures.py --json, the scenario's field); the probe computes the field line and
+    the old gains' rate again and finds them to the float; maps of the tilted dipole (the field of the figure's first
+    version) are reported; regenerating draws the figure from the committed maps (quick: into a scratch folder)."""
+    table = studies.FLOQUET_MAPS
+    assert table.run_probe() == []
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    assert committed["field_model"] == "igrf14"
+    ctx = studies.Context(quick=True, out=tmp_path / "quick")
+    studies.regenerate_floquet_figure(ctx)
+    assert (tmp_path / "quick" / "docs" / "img" / "magnetic_pointing" / "floquet.png").stat().st_size > 10_000
+    script = table.code()
+    from detumble.sim.plant import Plant
+    from detumble.sim.scenario import load_scenario
+
+    dipole = Plant(load_scenario("adcs", settings=["field.model=dipole"]))
+    _, period, b, bd = script.field_line(dipole)
+    inertia = dipole.scenario.spacecraft.inertia_kg_m2
+
+    def nudge(data):
+        data["old_gains_rate"] = float(script.floquet_rate("seed_pd", period, b, bd, inertia, *script.OLD_GAINS))
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 1 and "old_gains_rate" in problems[0]
+
+
+def test_the_hold_campaign_folder_belongs_to_its_campaign_file():
+    """STUDY-043: the hold campaign flown again with today's code (docs/studies/magnetic_pointing_hold/campaign/,
+    complete or stopped) belongs to campaigns/adcs/hold_magnetorquers.yaml as it is now (hash, run ids, the resolved
+    scenario and field model: IGRF-14); its block says how many of the 100 runs were flown."""
+    campaign = studies.CAMPAIGNS["magnetic_pointing_hold_campaign"]
+    if not (campaign.path / "results.parquet").exists():
+        pytest.skip("docs/studies/magnetic_pointing_hold/campaign not committed")
+    assert campaign.problems(fly_probes=False) == []
+    manifest = json.loads((campaign.path / "manifest.json").read_text(encoding="utf-8"))
+    assert [v["field_model"] for v in manifest["resolved"].values()] == ["igrf14"]
+    block = studies.magnetic_hold_campaign_blocks()["magnetic_pointing_hold_campaign"]
+    flown = len(campaign.results())
+    assert (f"of {flown} runs ok" in block) and (flown == 100 or f"stopped after {flown} of 100 runs" in block)
 
 
 def test_a_script_table_of_a_quick_run_is_refused(tmp_path, monkeypatch):

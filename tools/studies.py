@@ -19,8 +19,9 @@ never into the docs: it shows the whole chain works in minutes. ``--check`` writ
 every block from the committed results and compares it with the docs, checks that each committed
 campaign folder belongs to its campaign file as it is now (same file hash, every run id still planned,
 the same resolved configuration: the manifest's ``resolved``, a topology's default scenario and field
-model; a manifest recording none is reported UNKNOWN, not stale), and re-flies each campaign's cheap
-probe runs and compares their metrics with the committed rows.
+model; a manifest recording none is reported UNKNOWN, not stale), re-flies each campaign's cheap
+probe runs and compares their metrics with the committed rows, and runs each study's own probe (a study script's
+``probe``: a cheap piece of its committed JSON file recomputed or re-flown and compared to the float).
 ``tests/test_studies.py`` runs that check. Exit status: 0 done (or nothing stale), 1 stale, 2 usage.
 
 Campaign results are not re-run here (that is hours of CPU for some); each study names the command that
@@ -359,6 +360,9 @@ CAMPAIGNS = {
                                                       "campaigns/adcs/hold_magnetorquers_worst.yaml"),
     "magnetic_pointing_tumble": CommittedCampaign("magnetic_pointing_tumble",
                                                   "campaigns/adcs/pointing_magnetorquers.yaml"),
+    # the 100-run hold flown again with today's code (IGRF-14): committed as far as it got, resumable
+    "magnetic_pointing_hold_campaign": CommittedCampaign("magnetic_pointing_hold/campaign",
+                                                         "campaigns/adcs/hold_magnetorquers.yaml"),
     "magnetorquer_hold_after_acquisition": CommittedCampaign("magnetorquer_hold_after_acquisition/campaign",
                                                              "campaigns/adcs/pointing_magnetorquers_plant.yaml",
                                                              probe=lambda t: t["seed_index"] == 0),
@@ -384,6 +388,9 @@ class Study:
     blocks: Callable[[], dict[str, str]] | None = None   # from committed results only (what --check compares)
     doc: pathlib.Path | None = None
     campaigns: tuple[str, ...] = ()
+    # recomputes or re-flies a cheap piece of the committed source and compares it to the float (--check, unless
+    # --no-probes): the problems found, empty when it agrees
+    probe: Callable[[], list[str]] | None = None
 
 
 # --- seed 004: convergence -------------------------------------------------------------------------------
@@ -1246,10 +1253,24 @@ class ScriptTable:
     args: tuple[str, ...] = ()   # the script's arguments before --json
     module: bool = False   # script names a module (python -m SCRIPT), not a file
     render: str = "markdown"   # the script's function that renders the table from the JSON file
+    # the script's function ``probe(committed) -> list[str]``: recompute a cheap piece of the JSON file (the study's
+    # --check probe); empty: none
+    probe: str = ""
 
     @property
     def path(self) -> pathlib.Path:
         return STUDIES_DIR / self.results
+
+    def run_probe(self) -> list[str]:
+        """The script's probe against the committed JSON file (its problems, each naming the command to re-fly)."""
+        if not self.probe:
+            return []
+        if not self.path.exists():
+            return [f"{_shown(self.path)} is not committed: make it with `{self.command}`"]
+        committed = json.loads(self.path.read_text(encoding="utf-8"))
+        found = getattr(self.code(), self.probe)(committed)
+        return [f"{_shown(self.path)}: {p}: the code no longer computes the documented figures (`{self.command}` "
+                f"then `python tools/studies.py --only {self.name}`)" for p in found]
 
     @property
     def command(self) -> str:
@@ -1273,7 +1294,8 @@ class ScriptTable:
         ctx.set_blocks(self.doc, self.blocks())
 
     def study(self) -> Study:
-        return Study(self.name, self.summary, self.regenerate, self.blocks, self.doc)
+        return Study(self.name, self.summary, self.regenerate, self.blocks, self.doc,
+                     probe=self.run_probe if self.probe else None)
 
     def fly(self) -> None:
         """Fly the script again into its committed JSON file (minutes)."""
@@ -1309,6 +1331,10 @@ SCRIPT_TABLES = {t.name: t for t in (
     ScriptTable("attitude_modes_sensors", "seed 003's pointing on the wheels with noiseless sensors: four 300 s "
                 "adcs_ref runs (committed JSON)", "attitude_modes_sensors", "campaigns/adcs/wheels_sensor_table.py",
                 "attitude_modes/sensors.json", STUDIES_DIR / "attitude_modes.md"),
+    ScriptTable("attitude_knowledge_orbit_runs", "issue 13's pointing on the wheels over an orbit and the shipped "
+                "sequence: three adcs_ref runs, ~3 CPU-minutes (committed JSON)", "attitude_knowledge_orbit_runs",
+                "campaigns/adcs/wheels_orbit_table.py", "attitude_knowledge/orbit_runs.json",
+                STUDIES_DIR / "attitude_knowledge.md"),
 )}
 
 
@@ -1382,7 +1408,7 @@ def fly_sun_safe_mismatch() -> None:
 
 
 _MAG_PLANT_SUMMARY = "magnetorquer pointing: Floquet maps and plant-only checks (committed JSON, ~6 CPU-minutes)"
-_MAG_RUNS_SUMMARY = "magnetorquer pointing: ten one-orbit adcs_ref runs (committed JSON, ~4 CPU-minutes)"
+_MAG_RUNS_SUMMARY = "magnetorquer pointing: eleven one-orbit adcs_ref runs (committed JSON, ~4 CPU-minutes)"
 #: magnetic_pointing.md's plant-only tables (campaigns/adcs/magnetic_pointing_tables.py) and single deployment runs
 #: (campaigns/adcs/magnetic_pointing_runs.py: one JSON file, two tables)
 MAG_POINTING_TABLES = (
@@ -1391,10 +1417,66 @@ MAG_POINTING_TABLES = (
                   "magnetic_pointing.md", tuple(args.split()))
       for key, args in (("floquet", "floquet"), ("checks", "checks"), ("corner_dipole", "corner --field dipole"),
                         ("corner_igrf14", "corner --field igrf14"))),
+    # the gravity-gradient floor: its closed form re-computed by --check (a CPU-second)
+    ScriptTable("magnetic_pointing", _MAG_PLANT_SUMMARY, "magnetic_pointing_floor",
+                "campaigns/adcs/magnetic_pointing_tables.py", "magnetic_pointing/floor.json",
+                STUDIES_DIR / "magnetic_pointing.md", ("floor",), probe="floor_probe"),
     *(ScriptTable("magnetic_pointing_runs", _MAG_RUNS_SUMMARY, f"magnetic_pointing_{start}_runs",
                   "campaigns/adcs/magnetic_pointing_runs.py", "magnetic_pointing/deployment.json",
-                  STUDIES_DIR / "magnetic_pointing.md", render=f"{start}_markdown") for start in ("tumble", "hold")),
+                  STUDIES_DIR / "magnetic_pointing.md", render=f"{start}_markdown")
+      for start in ("tumble", "hold", "corner")),
 )
+
+
+#: attitude_knowledge.md's two single-run tables (campaigns/adcs/pointing_single_table.py: one JSON file, 15 runs)
+KNOWLEDGE_SINGLE_TABLES = tuple(
+    ScriptTable("attitude_knowledge_single_runs", "issue 13's estimator and D-term design, one 400 s adcs_ref run "
+                "per row: 15 runs (committed JSON)", f"attitude_knowledge_{part}",
+                "campaigns/adcs/pointing_single_table.py",
+                "attitude_knowledge/single_runs.json", STUDIES_DIR / "attitude_knowledge.md",
+                render=f"{part}_markdown", probe="probe" if part == "design" else "")
+    for part in ("design", "sensors"))
+#: environment_torques.md's closed-form figures and the magnetorquer hold's bias margin (no flight: a CPU-second)
+ENV_CLOSED_FORM_TABLES = tuple(
+    ScriptTable("environment_closed_form", "environment torques in closed form and the coil law's Floquet margin to "
+                "the magnetometer bias (committed JSON, a CPU-second)", f"environment_torques_{part}",
+                "campaigns/adcs/environment_closed_form.py", "environment_torques/closed_form.json",
+                STUDIES_DIR / "environment_torques.md", render=f"{part}_markdown",
+                probe="probe" if part == "nadir" else "")
+    for part in ("nadir", "surfaces", "floquet_bias", "igrf_table"))
+
+
+#: magnetic_pointing.md's Floquet figure: the maps kept as JSON (campaigns/adcs/magnetic_pointing_figures.py), the
+#: figures the page quotes from them rendered into a block, the figure drawn from them by the script's draw_floquet
+FLOQUET_MAPS = ScriptTable("magnetic_pointing_floquet_figure", "magnetorquer pointing: the Floquet maps' figure and "
+                           "the figures quoted from them (committed JSON, ~30 CPU-s)", "magnetic_pointing_floquet_maps",
+                           "campaigns/adcs/magnetic_pointing_figures.py", "magnetic_pointing/floquet_maps.json",
+                           STUDIES_DIR / "magnetic_pointing.md", ("floquet",), render="maps_markdown", probe="probe")
+
+
+def regenerate_floquet_figure(ctx: Context) -> None:
+    """The block from the committed maps, and docs/img/magnetic_pointing/floquet.png drawn from them."""
+    FLOQUET_MAPS.regenerate(ctx)
+    maps = json.loads(FLOQUET_MAPS.path.read_text(encoding="utf-8"))
+    with tempfile.TemporaryDirectory() as scratch:
+        png = FLOQUET_MAPS.code().draw_floquet(maps, pathlib.Path(scratch))
+        ctx.copy(png, IMG_DIR / "magnetic_pointing" / "floquet.png")
+
+
+def _grouped_study(tables: tuple[ScriptTable, ...]) -> Study:
+    """One study of several tables of one script (one JSON file, one page, blocks rendered by their own functions)."""
+    doc = tables[0].doc
+
+    def blocks() -> dict[str, str]:
+        return {block: body for t in tables for block, body in t.blocks().items()}
+
+    def regenerate(ctx: Context) -> None:
+        ctx.set_blocks(doc, blocks())
+
+    def probe() -> list[str]:
+        return [p for t in tables for p in t.run_probe()]
+
+    return Study(tables[0].name, tables[0].summary, regenerate, blocks, doc, probe=probe)
 
 
 def _mag_blocks(name: str) -> dict[str, str]:
@@ -1491,6 +1573,40 @@ def magnetic_tumble_blocks() -> dict[str, str]:
     lines = _per_run_spread(df, "the run summary's window: after the error stays below 30°")
     lines += ["", _source("magnetic_pointing_tumble", campaign)]
     return {"magnetic_pointing_tumble": "\n".join(lines) + "\n"}
+
+
+def _pooled_lines(df) -> list[str]:
+    """The pointing error pooled over the ok runs' windows (time-weighted, from each run's histogram): p50 and p95
+    with their histogram brackets (markdown lines; none when the results have no pooling columns)."""
+    from detumble.analysis.pooled_stats import POINTING_THRESHOLDS_DEG, pooled_percentile, runs_from_columns
+
+    try:
+        runs = runs_from_columns(_ok(df), "pointing_error_deg", POINTING_THRESHOLDS_DEG)
+    except KeyError:
+        return []
+    if not runs:
+        return []
+    cells = []
+    for p in (0.5, 0.95):
+        q = pooled_percentile(runs, p)
+        cells.append(f"p{100 * p:g} **{q.estimate_deg:.2f}°** (histogram bracket {q.lower_deg:.2f}–{q.upper_deg:.2f}°)")
+    return [f"- pooled over the runs (time-weighted, from each run's error histogram): {', '.join(cells)}"]
+
+
+def magnetic_hold_campaign_blocks() -> dict[str, str]:
+    """The 100-run hold (campaigns/adcs/hold_magnetorquers.yaml) flown again with today's code, from its committed
+    results folder (complete or stopped: the block says how many runs): per-run spread, targets, pooled figures."""
+    campaign, df = _committed("magnetic_pointing_hold_campaign")
+    if df is None:
+        return {"magnetic_pointing_hold_campaign": _not_committed(campaign)}
+    lines = _per_run_spread(df, "the run summary's window: after the error stays below 30°")
+    lines[-1:-1] = _pooled_lines(df)
+    lines += ["", _source("magnetic_pointing_hold_campaign", campaign)]
+    return {"magnetic_pointing_hold_campaign": "\n".join(lines) + "\n"}
+
+
+def regenerate_magnetic_hold_campaign(ctx: Context) -> None:
+    ctx.set_blocks(_MAG_DOC, magnetic_hold_campaign_blocks())
 
 
 def regenerate_magnetic_tumble(ctx: Context) -> None:
@@ -1875,7 +1991,12 @@ STUDIES = {s.name: s for s in (
           "(committed campaign)", regenerate_robust_rates_window_campaign, robust_rates_window_campaign_blocks,
           _ROBUST_DOC, ("robust_rates_window_campaign",)),
     Study("magnetic_pointing", _MAG_PLANT_SUMMARY, regenerate_magnetic_pointing, magnetic_pointing_blocks,
-          STUDIES_DIR / "magnetic_pointing.md"),
+          STUDIES_DIR / "magnetic_pointing.md",
+          probe=lambda: [p for t in MAG_POINTING_TABLES if t.name == "magnetic_pointing" for p in t.run_probe()]),
+    _grouped_study(KNOWLEDGE_SINGLE_TABLES),
+    Study(FLOQUET_MAPS.name, FLOQUET_MAPS.summary, regenerate_floquet_figure, FLOQUET_MAPS.blocks, FLOQUET_MAPS.doc,
+          probe=FLOQUET_MAPS.run_probe),
+    _grouped_study(ENV_CLOSED_FORM_TABLES),
     Study("magnetic_pointing_runs", _MAG_RUNS_SUMMARY, regenerate_magnetic_pointing_runs,
           magnetic_pointing_runs_blocks, STUDIES_DIR / "magnetic_pointing.md"),
     Study("magnetic_pointing_hold_worst", "magnetorquer-only hold at its worst corner: 10 deployment runs "
@@ -1884,6 +2005,9 @@ STUDIES = {s.name: s for s in (
     Study("magnetic_pointing_tumble", "magnetorquer-only pointing from dispersed tumbles: up to 100 deployment runs "
           "(committed campaign)", regenerate_magnetic_tumble, magnetic_tumble_blocks, _MAG_DOC,
           ("magnetic_pointing_tumble",)),
+    Study("magnetic_pointing_hold_campaign", "magnetorquer-only hold, 100 deployment runs flown again with today's "
+          "code (committed campaign; the block says how many were flown)", regenerate_magnetic_hold_campaign,
+          magnetic_hold_campaign_blocks, _MAG_DOC, ("magnetic_pointing_hold_campaign",)),
     Study("magnetic_pointing_hold", "magnetorquer-only hold over 100 deployment runs (committed per-run table)",
           regenerate_magnetic_hold, magnetic_hold_blocks, _MAG_DOC),
     Study("magnetorquer_hold_after_acquisition", "issue 27's coil-only hold after acquisition over 100 plant runs "
@@ -1928,6 +2052,11 @@ def check(names: list[str], *, fly_probes: bool = True) -> list[str]:
                 elif present[block].rstrip("\n") != body.rstrip("\n"):
                     problems.append(f"{_shown(study.doc)}: block '{block}' is not what the committed "
                                     f"results give: run `python tools/studies.py --only {name}`")
+        if fly_probes and study.probe is not None:
+            try:
+                problems += study.probe()
+            except StudyError as exc:
+                problems.append(f"{name}: {exc}")
         for key in study.campaigns:
             try:
                 problems += CAMPAIGNS[key].problems(fly_probes=fly_probes)
@@ -1997,7 +2126,8 @@ def main(argv: list[str] | None = None) -> int:
             if name == "sun_safe":
                 fly_sun_safe_mismatch()
             flown = set()
-            for table in (*SUN_SAFE_TABLES, *SCRIPT_TABLES.values(), *MAG_POINTING_TABLES):
+            for table in (*SUN_SAFE_TABLES, *SCRIPT_TABLES.values(), *MAG_POINTING_TABLES, *KNOWLEDGE_SINGLE_TABLES,
+                          *ENV_CLOSED_FORM_TABLES, FLOQUET_MAPS):
                 if table.name == name and table.command not in flown:  # two tables may share one JSON file
                     table.fly()
                     flown.add(table.command)

@@ -6,16 +6,17 @@
     python campaigns/adcs/magnetic_pointing_runs.py --only tumble hold --json FILE   # some runs (merged into FILE)
 
 Each run is ``fprime-lite run deployments/adcs_ref/topology.yaml --duration 5580 --seq SEQ --set ...`` with SEQ
-``campaigns/adcs/pointing_magnetorquers.seq`` plus the run's parameter lines before its FORCE_MODE (≈ 20 CPU-s a
-run on this machine, 2026-12-04). Starts: *tumble* 0.5 °/s about the scenario's axis from the identity, 45° from
-the target; *hold* at rest on the target. Rows: the present defaults (in the scenario's field, IGRF-14 since
-2026-12-04, and in the tilted dipole), seed 003's PD with its old gains, and the first pass's parameters (K_P_MAG
-1e-6, K_D_MAG 1e-4, ζ 0.7, the complementary filter, no residual feed-forward, MAG_SETTLE_TIME 120 s or 0) in the
-tilted dipole they were chosen in: today's code with those parameters, not the build of 2026-12-01. Figures
-(:func:`figures`): the true error over POINTING after its first 10 % from ``attitude.csv`` (the page's
-convention), and the run summary's own window (after acquisition). ``tools/studies.py --only
-magnetic_pointing_runs`` renders the pages' tables from the JSON file (:func:`tumble_markdown`,
-:func:`hold_markdown`).
+``campaigns/adcs/pointing_magnetorquers.seq`` plus the run's parameter lines before its FORCE_MODE (≈ 20 CPU-s a run
+on this machine, 2026-12-04). Starts: *tumble* 0.5 °/s about the scenario's axis from the identity, 45° from the
+target; *hold* at rest on the target; *corner* the hold campaign's worst corner as test ADCS-064 flies it (20° off
+at 0.05 °/s), with the on-board residual-dipole estimate at the end (:func:`corner_markdown`). Rows: the present
+defaults (in the scenario's field, IGRF-14 since 2026-12-04, and in the tilted dipole), seed 003's PD with its old
+gains, and the first pass's parameters (K_P_MAG 1e-6, K_D_MAG 1e-4, ζ 0.7, the complementary filter, no residual
+feed-forward, MAG_SETTLE_TIME 120 s or 0) in the tilted dipole they were chosen in: today's code with those
+parameters, not the build of 2026-12-01. Figures (:func:`figures`): the true error over POINTING after its first
+10 % from ``attitude.csv`` (the page's convention), and the run summary's own window (after acquisition).
+``tools/studies.py --only magnetic_pointing_runs`` renders the pages' tables from the JSON file
+(:func:`tumble_markdown`, :func:`hold_markdown`).
 """
 
 from __future__ import annotations
@@ -34,6 +35,11 @@ HOLD_Q = "[0.9238795325112867,0,0.3826834323650898,0]"
 TUMBLE = ("initial.rate.magnitude_deg_s=0.5",)
 HOLD = ("initial.rate.magnitude_deg_s=0.0", f"initial.attitude.quaternion={HOLD_Q}")
 DIPOLE = ("field.model=dipole",)
+#: the hold campaign's worst corner as test ADCS-064 flies it: 20° off the target, 0.05 °/s
+CORNER = ("initial.rate.magnitude_deg_s=0.05",
+          "initial.rate.axis=[0.6639284297189,0.7349611899967293,0.13795321456779147]",
+          "initial.attitude.quaternion=[0.873197000649162,0.11579247954753936,0.46534263362703093,0.08703638932423131]")
+RESIDUAL = "ReferenceDeployment.attitudeController.ResidualDipole"
 #: the first pass's parameters (2026-12-01), before the second pass of section 4
 FIRST = ("K_P_MAG_PRM_SET 1.0e-6", "K_D_MAG_PRM_SET 1.0e-4", "MAG_STEER_ZETA_PRM_SET 0.7",
          "MAG_RESIDUAL_MODE_PRM_SET OFF", "ESTIMATOR_PRM_SET COMPLEMENTARY", "MAG_SETTLE_TIME_PRM_SET 120.0")
@@ -56,6 +62,8 @@ RUNS: dict[str, tuple[str, str, tuple[str, ...], tuple[str, ...]]] = {
                            HOLD + DIPOLE),
     "tumble_first_kd4e-5": ("tumble", "FIELD_STEERING, first pass, K_D_MAG 4e-5, no settle wait (dipole)",
                             FIRST + NO_WAIT + ("K_D_MAG_PRM_SET 4.0e-5",), TUMBLE + DIPOLE),
+    "corner": ("corner", "**FIELD_STEERING, present defaults** (IGRF-14), 20° off at 0.05 °/s (test ADCS-064's start)",
+               (), CORNER),
 }
 
 
@@ -102,11 +110,19 @@ def figures(name: str, out: pathlib.Path) -> dict:
     tail = np.array(errors[len(errors) // 10:])
     summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     e = summary.get("pointing_error_deg") or {}
-    return {"start": start, "seq_lines": list(lines), "settings": list(sets), "duration_s": DURATION_S,
-            "samples": len(tail), "median_deg": float(np.median(tail)), "p95_deg": float(np.percentile(tail, 95)),
-            "max_deg": float(tail.max()), "final_deg": errors[-1],
-            "acquisition_s": e.get("acquisition_s"), "steady_median_deg": e.get("median"),
-            "steady_p95_deg": e.get("p95")}
+    out_figures = {"start": start, "seq_lines": list(lines), "settings": list(sets), "duration_s": DURATION_S,
+                   "samples": len(tail), "median_deg": float(np.median(tail)),
+                   "p95_deg": float(np.percentile(tail, 95)), "max_deg": float(tail.max()), "final_deg": errors[-1],
+                   "acquisition_s": e.get("acquisition_s"), "steady_median_deg": e.get("median"),
+                   "steady_p95_deg": e.get("p95")}
+    if start == "corner":  # the on-board residual-dipole estimate (telemetry ResidualDipole, A·m², B) at the end
+        with open(out / "channels_wide.csv", newline="", encoding="utf-8") as f:
+            rows = [r for r in csv.DictReader(f) if r.get(f"{RESIDUAL}.0")]
+        from detumble.sim.scenario import load_scenario
+
+        out_figures["residual_estimate_am2"] = [float(rows[-1][f"{RESIDUAL}.{i}"]) for i in range(3)]
+        out_figures["residual_plant_am2"] = list(load_scenario("adcs").spacecraft.residual_dipole_am2)
+    return out_figures
 
 
 def _cell(x, digits: int = 2) -> str:
@@ -149,6 +165,23 @@ def hold_markdown(table: dict) -> str:
     return markdown(table, "hold")
 
 
+def corner_markdown(table: dict) -> str:
+    """The worst-corner run with the on-board residual-dipole estimate (tools/studies.py renders it)."""
+    import math
+
+    lines = [markdown(table, "corner").rstrip("\n")]
+    r = table["runs"].get("corner")
+    if r is not None:
+        est, plant = r["residual_estimate_am2"], r["residual_plant_am2"]
+        worst = max(abs(a - b) for a, b in zip(est, plant, strict=True))
+        norm = math.sqrt(sum(b * b for b in plant))
+        lines += ["", f"On-board residual-dipole estimate at the end (telemetry `ResidualDipole`): "
+                  f"({', '.join(f'{1e3 * x:.3f}' for x in est)})e-3 A·m², the plant's "
+                  f"({', '.join(f'{1e3 * x:.1f}' for x in plant)})e-3: **{worst:.1e} A·m²** at most per axis "
+                  f"({100 * worst / norm:.1f} % of \\|m\\|)."]
+    return "\n".join(lines) + "\n"
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--json", type=pathlib.Path, metavar="FILE", help="also keep the figures in FILE (merged)")
@@ -176,6 +209,7 @@ def main(argv: list[str] | None = None) -> int:
             atomic_write_json(args.json, table)
     for start in ("tumble", "hold"):
         print(markdown(table, start))
+    print(corner_markdown(table))
     return 0
 
 

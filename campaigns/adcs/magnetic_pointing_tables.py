@@ -15,6 +15,11 @@ LIS2MDL bias (0.012, −0.008, 0.005) G (constant in B ≈ T while holding) and 
 ``corner`` (≈ 3 CPU-minutes): the hold campaign's worst corner on the plant (``detumble.sim.magnetic_pointing_check``):
 20 draws of the axes (seeds 1–20), 20° off and 0.05 °/s, coils off for the settle time, the LIS2MDL bias in the
 field the law sees (its ḃ from the flight estimator), 0.2 s steps, one orbit (5580 s), per gain row.
+``floor`` (≈ 10 CPU-s): section 4's gravity-gradient floor — the closed form ``α = −τ∥ / (J r²)`` over one orbit
+(``magnetic_floquet.along_field_offset_from_gravity_gradient``, 400 samples) with the largest gravity-gradient torque
+and its largest part along the field line, in both fields; and two plant flights of the present gains with the
+residual dipole compensated exactly (20 % of the hold's corner: 10° off at 0.02 °/s, seed 3, 30 s settle, duty 0.8,
+0.2 s steps, no magnetometer bias), with the gravity gradient and without it (MAGPT-024's flights), in IGRF-14.
 ``checks`` (≈ 1 CPU-minute): sections 1 and 3's plant flights from a 0.5 °/s tumble at the identity (45° from
 the target), ideal knowledge: seed 003's PD with its old gains (seed 1, 0.1 s steps), and the steering law over ten
 tumble axes (seeds 1–10, 0.2 s steps) with the first-pass and the present gains; in both fields.
@@ -46,8 +51,9 @@ SPREAD_SEEDS = range(1, 11)
 GAINS = {"first pass": (1e-6, 1e-4, 2.0, 0.7), "present": (4e-6, 4e-4, 2.0, 1.0)}
 
 
-def floquet_row(field: str, k_p: float, k_d: float, rho: float, zeta: float) -> list[float]:
-    """The slowest mode's rate (1/s) at bias × 0, 1, 2 in ``field``."""
+def floquet_row(field: str, k_p: float, k_d: float, rho: float, zeta: float,
+                factors: tuple[float, ...] = (0.0, 1.0, 2.0)) -> list[float]:
+    """The slowest mode's rate (1/s) at bias × each of ``factors`` (0, 1, 2 for the page's gain table) in ``field``."""
     import numpy as np
 
     from detumble.analysis.magnetic_floquet import field_line_along_orbit, floquet_rate
@@ -58,7 +64,7 @@ def floquet_row(field: str, k_p: float, k_d: float, rho: float, zeta: float) -> 
     period, b, bd = field_line_along_orbit(plant, TARGET, samples=200)
     inertia = 1.25 * np.array(plant.scenario.spacecraft.inertia_kg_m2)
     rates = []
-    for k in (0.0, 1.0, 2.0):
+    for k in factors:
         _, bl, bdl = field_line_along_orbit(plant, TARGET, samples=200, bias_t=[k * 1e-4 * c for c in BIAS_G])
         rates.append(floquet_rate("field_steering", period, b, bd, inertia, k_p, k_d, substeps=4, rho=rho, zeta=zeta,
                                   b_law=bl, bdot_law=bdl))
@@ -103,6 +109,71 @@ def checks() -> dict:
             name: [list(fly("field_steering", kp, kd, rho=rho, zeta=zeta, seed=s, dt_s=0.2, settings=sets).stats())
                    for s in SPREAD_SEEDS] for name, (kp, kd, rho, zeta) in GAINS.items()}
     return out
+
+
+#: the floor's plant flights (MAGPT-024): the present gains, the residual dipole fed forward exactly
+FLOOR_FLIGHT = dict(rate_deg_s=0.02, offset_deg=10.0, settle_s=30.0, dt_s=0.2, duty=0.8, seed=3)
+FLOOR_LATE_S = 2000.0
+
+
+def floor_flight(gravity_gradient: bool) -> dict:
+    """One of the floor's plant flights (IGRF-14): its median / p95 / max (deg) and the largest error after 2000 s."""
+    from detumble.sim.magnetic_pointing_check import fly
+
+    sets = FIELDS["igrf14"] + (() if gravity_gradient else ("spacecraft.gravity_gradient=false",))
+    kp, kd, rho, zeta = GAINS["present"]
+    r = fly("field_steering", kp, kd, rho=rho, zeta=zeta, settings=sets, residual_ff_am2=_residual("igrf14"),
+            **FLOOR_FLIGHT)
+    late = max(e for t, e in zip(r.times_s, r.errors_deg, strict=True) if t >= FLOOR_LATE_S)
+    return {"stats": list(r.stats()), "late_max_deg": late}
+
+
+def floor_closed_form(field: str) -> dict:
+    """The closed form's along-field offset over one orbit in ``field`` (deg), the torques behind it (N·m)."""
+    import numpy as np
+
+    from detumble.analysis.magnetic_floquet import _dcm  # the target's DCM, as the closed form turns r̂ with it
+    from detumble.analysis.magnetic_floquet import along_field_offset_from_gravity_gradient, field_line_along_orbit
+    from detumble.sim.plant import Plant
+    from detumble.sim.scenario import load_scenario
+
+    plant = Plant(load_scenario("adcs", settings=list(FIELDS[field])))
+    _, alpha = along_field_offset_from_gravity_gradient(plant, TARGET, samples=400)
+    period, b, bd = field_line_along_orbit(plant, TARGET, samples=400)
+    inertia = np.asarray(plant.scenario.spacecraft.inertia_kg_m2, dtype=float)
+    j_mean = float(np.trace(inertia)) / 3.0
+    rates = np.linalg.norm(np.asarray(bd), axis=1)
+    ts = np.linspace(0.0, period, 401)
+    r_tn = _dcm(TARGET)
+    tau_all, tau_par = [], []
+    for k, t in enumerate(ts):
+        r = plant.orbit.position_N(t)
+        r_n = np.array(r, dtype=float)
+        rh = r_tn @ (r_n / float(np.linalg.norm(r_n)))
+        tau = plant.orbit.gravity_gradient_coeff(r) * np.cross(rh, inertia @ rh)
+        tau_all.append(float(np.linalg.norm(tau)))
+        tau_par.append(abs(float(tau @ b[k])))
+    deg = np.abs(np.degrees(alpha))
+    return {"offset_deg_min": float(deg.min()), "offset_deg_max": float(deg.max()), "tau_gg_max_nm": max(tau_all),
+            "tau_along_max_nm": max(tau_par), "stiffness_mean_nm_per_rad": float(j_mean * np.mean(rates ** 2))}
+
+
+def floor_probe(committed: dict) -> list[str]:
+    """The floor's closed form computed again in both fields (a CPU-second) against the committed one, to the float."""
+    import json
+
+    out = []
+    for field in FIELDS:
+        again = json.loads(json.dumps(floor_closed_form(field)))
+        if again != committed["closed_form"][field]:
+            out.append(f"the closed form in {FIELD_NAMES[field]} is {again} now, {committed['closed_form'][field]} "
+                       "committed")
+    return out
+
+
+def floor() -> dict:
+    return {"table": "floor", "closed_form": {f: floor_closed_form(f) for f in FIELDS},
+            "flight": {"with_gravity_gradient": floor_flight(True), "without": floor_flight(False)}}
 
 
 def _mid(values) -> float:
@@ -164,19 +235,40 @@ def checks_markdown(table: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+def floor_markdown(table: dict) -> str:
+    lines = ["| gravity-gradient floor (present gains, residual dipole compensated) | tilted dipole | IGRF-14 |",
+             "|---|---|---|"]
+    cf = table["closed_form"]
+    rows = (("largest \\|τ_gg\\| at the target over the orbit (N·m)", lambda c: _short(c["tau_gg_max_nm"], 1)),
+            ("largest \\|τ∥\\|, its part along the field line (N·m)", lambda c: _short(c["tau_along_max_nm"], 2)),
+            ("along-field stiffness J r², orbit mean (N·m/rad)", lambda c: _short(c["stiffness_mean_nm_per_rad"], 1)),
+            ("closed form \\|α\\| = \\|τ∥\\| / (J r²) over the orbit",
+             lambda c: f"**{c['offset_deg_min']:.2f}–{c['offset_deg_max']:.2f}°**"))
+    for label, cell in rows:
+        lines.append(f"| {label} | {cell(cf['dipole'])} | {cell(cf['igrf14'])} |")
+    w, wo = table["flight"]["with_gravity_gradient"], table["flight"]["without"]
+    lines += ["", "Plant flights in IGRF-14 (10° off at 0.02 °/s, seed 3, 30 s settle, duty 0.8, the residual dipole "
+              f"fed forward exactly, no magnetometer bias): with the gravity gradient median {w['stats'][0]:.2f}°, p95 "
+              f"{w['stats'][1]:.2f}°, largest error after {FLOOR_LATE_S:g} s **{w['late_max_deg']:.2f}°** (closed "
+              f"form {cf['igrf14']['offset_deg_max']:.2f}° at most); without it (`spacecraft.gravity_gradient=false`) "
+              f"median **{wo['stats'][0]:.3f}°**, p95 {wo['stats'][1]:.3f}°."]
+    return "\n".join(lines) + "\n"
+
+
 def markdown(table: dict) -> str:
-    return {"floquet": floquet_markdown, "corner": corner_markdown, "checks": checks_markdown}[table["table"]](table)
+    return {"floquet": floquet_markdown, "corner": corner_markdown, "checks": checks_markdown,
+            "floor": floor_markdown}[table["table"]](table)
 
 
 def main(argv: list[str] | None = None) -> int:
     from detumble.reports.study_table import table_script_main
 
     def options(parser) -> None:
-        parser.add_argument("table", choices=("floquet", "corner", "checks"))
+        parser.add_argument("table", choices=("floquet", "corner", "checks", "floor"))
         parser.add_argument("--field", choices=list(FIELDS), default="dipole", help="corner: field (default dipole)")
 
     def results(args) -> dict:
-        table = {"floquet": floquet, "checks": checks}.get(args.table, lambda: corner(args.field))()
+        table = {"floquet": floquet, "checks": checks, "floor": floor}.get(args.table, lambda: corner(args.field))()
         return dict(table, script="campaigns/adcs/magnetic_pointing_tables.py")
 
     return table_script_main(argv, __doc__.split("\n\n")[0], results, markdown, options)

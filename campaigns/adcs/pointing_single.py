@@ -25,23 +25,33 @@ SETTINGS = ["initial.rate.magnitude_deg_s=0.05",
             "initial.attitude.quaternion=[0.7071067811865476,0.4082482904638631,0.4082482904638631,0.4082482904638631]"]
 
 
-def main(argv: list[str]) -> int:
-    if not argv:
-        print(__doc__)
-        return 2
-    out = pathlib.Path(argv[0])
+def fly(out: pathlib.Path, params: list[str], settings: list[str]) -> dict:
+    """One run into ``out`` with the controller parameters ``params`` ("NAME_PRM_SET VALUE", set at 0 s) and the
+    scenario ``settings`` (after the geometry's): the first slew's settling below 0.1° (s, None if it never did)
+    and the steady error's median / p95 / max (deg), the wheels' largest momentum fraction."""
     out.mkdir(parents=True, exist_ok=True)
-    params = [p.strip() for p in (argv[1] if len(argv) > 1 else "").split(";") if p.strip()]
     lines = [f"R00:00:00 {CTRL}.{p}" for p in params]
     lines += [f"R00:00:30 {CTRL}.FORCE_MODE POINTING", f"R00:01:00 {CTRL}.SET_TARGET_QUATERNION 1.0 0.0 0.0 0.0"]
     seq = out / "pointing.seq"
     seq.write_text("\n".join(lines) + "\n", encoding="utf-8")
-    loaded = load_topology(TOPOLOGY, {"spacecraft": {"settings": SETTINGS + argv[2:]}})
-    summary = run_deployment(loaded, out, duration_s=400.0, sequence=seq, plots=False)
+    loaded = load_topology(TOPOLOGY, {"spacecraft": {"settings": SETTINGS + settings}})
+    summary = run_deployment(loaded, out, duration_s=400.0, sequence=seq, plots=False, quiet=True)
     errors = steady_errors(RunOutput(summary=summary, out_dir=out))
-    slew = summary["slews"][0] if summary["slews"] else None
-    print(f"slew {slew}; steady median {percentile(errors, 0.5):.4f} p95 {percentile(errors, 0.95):.4f} "
-          f"max {max(errors):.4f} deg ({len(errors)} samples); wheel {summary['wheel_momentum_max_fraction']:.3f}")
+    slew = summary["slews"][0] if summary["slews"] else {}
+    return {"params": params, "settings": settings, "slew_settle_s": slew.get("settle_below_0p1_deg_s"),
+            "samples": len(errors), "median_deg": percentile(errors, 0.5), "p95_deg": percentile(errors, 0.95),
+            "max_deg": max(errors), "wheel_momentum_max_fraction": summary["wheel_momentum_max_fraction"]}
+
+
+def main(argv: list[str]) -> int:
+    if not argv:
+        print(__doc__)
+        return 2
+    params = [p.strip() for p in (argv[1] if len(argv) > 1 else "").split(";") if p.strip()]
+    r = fly(pathlib.Path(argv[0]), params, argv[2:])
+    print(f"slew settled below 0.1 deg at {r['slew_settle_s']} s; steady median {r['median_deg']:.4f} p95 "
+          f"{r['p95_deg']:.4f} max {r['max_deg']:.4f} deg ({r['samples']} samples); wheel "
+          f"{r['wheel_momentum_max_fraction']:.3f}")
     return 0
 
 

@@ -70,13 +70,9 @@ def markdown(table: dict) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from detumble.reports.study_table import table_script_main
+    from detumble.reports.study_table import runs_table_script_main
 
-    def runs(parser) -> None:
-        parser.add_argument("--runs", type=pathlib.Path, default=ROOT / "runs" / "wheels_sensors",
-                            help="where the runs' folders go (default runs/wheels_sensors)")
-
-    return table_script_main(argv, __doc__.split("\n\n")[0], lambda args: results(args.runs), markdown, runs)
+    return runs_table_script_main(argv, __doc__.split("\n\n")[0], results, markdown, ROOT / "runs" / "wheels_sensors")
 
 
 if __name__ == "__main__":

@@ -4,7 +4,10 @@
 from __future__ import annotations
 
 import argparse
+import importlib
 import pathlib
+import sys
+from types import ModuleType
 from typing import Callable
 
 
@@ -25,3 +28,23 @@ def table_script_main(argv: list[str] | None, description: str, results: Callabl
         atomic_write_json(args.json, table)
     print(markdown(table), end="")
     return 0
+
+
+def runs_table_script_main(argv: list[str] | None, description: str, results: Callable[[pathlib.Path], dict],
+                           markdown: Callable[[dict], str], runs_dir: pathlib.Path) -> int:
+    """:func:`table_script_main` for a script that flies runs: ``--runs DIR`` (default ``runs_dir``) is where the
+    runs' folders go, and ``results(DIR)`` flies them."""
+    def option(parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--runs", type=pathlib.Path, default=runs_dir,
+                            help=f"where the runs' folders go (default {runs_dir})")
+
+    return table_script_main(argv, description, lambda args: results(args.runs), markdown, option)
+
+
+def sibling_script(here: pathlib.Path, name: str) -> ModuleType:
+    """The study script ``name`` of the folder ``here`` (campaigns/adcs/: scripts, not a package) as a module."""
+    sys.path.insert(0, str(here))
+    try:
+        return importlib.import_module(name)
+    finally:
+        sys.path.remove(str(here))
