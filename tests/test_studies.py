@@ -660,3 +660,49 @@ def test_the_window_campaign_comparison_is_checked_and_needs_the_same_draws(tmp_
     with pytest.raises(studies.StudyError, match="draws"):
         studies.robust_rates_window_campaign_blocks()
 
+
+
+def test_a_changed_resolution_is_confirmed_only_by_flights_that_agree(tmp_path, monkeypatch):
+    """STUDY-080: a committed campaign whose resolved configuration changed is stale; `--confirm-resolution`
+    re-flies its probe run with today's configuration and, when the metrics agree to the float, records the
+    new configuration in the manifest (then it is no longer stale, and the original `resolved` is kept); when
+    a committed metric disagrees, nothing is recorded and it stays stale."""
+    pytest.importorskip("pandas")
+    import pandas as pd
+
+    original = studies.CAMPAIGNS["robust_rates_campaign"]
+    shutil.copytree(original.path, tmp_path / original.folder)
+    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path)
+    campaign = dataclasses.replace(original)
+    manifest_path = campaign.path / "manifest.json"
+    manifest = json.loads(manifest_path.read_text(encoding="utf-8"))
+    manifest.pop("resolution_confirmed", None)  # as flown: one resolution, today's or not
+    from fprime_lite.tools.campaign.manifest import resolved_configuration
+    from fprime_lite.tools.campaign.plan import plan_runs
+
+    today = resolved_configuration(plan_runs(campaign.campaign(), tmp_path / "plan"))
+    key = next(iter(manifest["resolved"]))
+    manifest["resolved"][key] = dict(manifest["resolved"][key], sha256="0" * 64,
+                                     sections=dict(manifest["resolved"][key]["sections"], control="0" * 16))
+    manifest_path.write_text(json.dumps(manifest, indent=2) + "\n", encoding="utf-8")
+    assert any("scenario sections changed: control" in p for p in campaign.problems(fly_probes=False))
+
+    # a committed metric the flight no longer gives: not confirmed, the manifest untouched
+    df = pd.read_parquet(campaign.path / "results.parquet")
+    good = df.copy()
+    probe_row = df.index[df["seed_index"] == 0][0]
+    df.loc[probe_row, "slew_settle_s"] = float(df.loc[probe_row, "slew_settle_s"]) + 0.5
+    df.to_parquet(campaign.path / "results.parquet")
+    before = manifest_path.read_bytes()
+    problems = campaign.confirm_resolution()
+    assert len(problems) == 1 and "slew_settle_s" in problems[0]
+    assert manifest_path.read_bytes() == before
+
+    # the committed rows as flown: confirmed and recorded; the original resolution stays as it was
+    good.to_parquet(campaign.path / "results.parquet")
+    assert campaign.confirm_resolution() == []
+    after = json.loads(manifest_path.read_text(encoding="utf-8"))
+    (entry,) = after["resolution_confirmed"]
+    assert entry["resolved"] == today and entry["runs"] == [df.loc[probe_row, "run_id"]]
+    assert after["resolved"][key]["sha256"] == "0" * 64
+    assert campaign.problems(fly_probes=False) == []

@@ -24,6 +24,11 @@ probe runs and compares their metrics with the committed rows, and runs each stu
 ``probe``: a cheap piece of its committed JSON file recomputed or re-flown and compared to the float).
 ``tests/test_studies.py`` runs that check. Exit status: 0 done (or nothing stale), 1 stale, 2 usage.
 
+``--confirm-resolution FOLDER ...``: for a committed campaign whose resolved configuration changed in a way
+that cannot alter its flights (a parameter added at its former constant), re-fly its probe runs (else its
+first run) and, if every metric agrees to the float, record today's configuration in its manifest
+(``resolution_confirmed``), which ``--check`` compares against from then on; a disagreement records nothing.
+
 Campaign results are not re-run here (that is hours of CPU for some); each study names the command that
 produces them, and ``--rerun-campaigns`` runs those (one worker, resuming what is already there).
 """
@@ -215,10 +220,51 @@ class CommittedCampaign:
         return out
 
     def _recorded_resolution(self) -> dict | None:
-        """The manifest's ``resolved`` (what the runs resolved their configuration from), None if it
-        records none (a folder made before manifests did)."""
+        """What the committed results stand for: the manifest's ``resolved`` (what the runs resolved their
+        configuration from), or the latest ``resolution_confirmed`` entry's when a later configuration was
+        confirmed to fly the same (:meth:`confirm_resolution`); None if it records none (a folder made
+        before manifests did)."""
         manifest = json.loads((self.path / "manifest.json").read_text(encoding="utf-8"))
-        return manifest.get("resolved")
+        confirmed = manifest.get("resolution_confirmed") or []
+        return confirmed[-1]["resolved"] if confirmed else manifest.get("resolved")
+
+    def confirmation_tasks(self, df, tasks: list[dict]) -> list[dict]:
+        """The runs :meth:`confirm_resolution` re-flies: the probe runs, else the first committed run."""
+        committed = set(df["run_id"])
+        chosen = [t for t in tasks if t["run_id"] in committed and (self.probe is None or self.probe(t))]
+        return chosen if self.probe is not None else chosen[:1]
+
+    def confirm_resolution(self) -> list[str]:
+        """When what the campaign resolves to changed (e.g. a parameter added at the value that was a constant
+        before), fly :meth:`confirmation_tasks` with today's configuration and compare each metric with its
+        committed row to the float (``probe_rel_tol``); if all agree, append to the manifest a
+        ``resolution_confirmed`` entry (today's resolution, the date, the code's commit, the runs compared),
+        which :meth:`resolution_problems` then compares against. Returns the disagreements (nothing is
+        written then: the campaign must be re-flown), or an empty list."""
+        from fprime_lite.osal.atomic import atomic_write_text
+        from fprime_lite.tools.campaign.manifest import now_utc, resolved_configuration
+        from fprime_lite.tools.campaign.plan import plan_runs
+
+        df = self.results()
+        with tempfile.TemporaryDirectory() as scratch:
+            tasks = plan_runs(self.campaign(), pathlib.Path(scratch))
+            if not self.resolution_problems(tasks):
+                return []
+            chosen = self.confirmation_tasks(df, tasks)
+            if not chosen:
+                return [f"docs/studies/{self.folder}: no committed run to confirm with: re-fly it (`{self.command}`)"]
+            problems = self._fly_probes(df, chosen, pathlib.Path(scratch))
+            if problems:
+                return problems
+            manifest_path = self.path / "manifest.json"
+            manifest = json.loads(manifest_path.read_text(encoding="utf-8"))
+            manifest.setdefault("resolution_confirmed", []).append({
+                "resolved": resolved_configuration(tasks), "date": now_utc(), "code": _code_revision(),
+                "runs": [t["run_id"] for t in chosen],
+                "how": "these runs flown again with this configuration gave their committed metrics to the float "
+                       f"(relative tolerance {self.probe_rel_tol}): tools/studies.py --confirm-resolution"})
+            atomic_write_text(manifest_path, json.dumps(manifest, indent=2) + "\n")  # the engine's layout
+        return []
 
     def resolution_problems(self, tasks: list[dict]) -> list[str]:
         """Whether what the planned runs resolve to now (a topology's default scenario, its field model)
@@ -236,7 +282,9 @@ class CommittedCampaign:
             return []
         return [f"docs/studies/{self.folder}: what {self.campaign_file} resolves to changed since these results "
                 f"were made ({'; '.join(changes)}): re-fly it, `git rm -r -q docs/studies/{self.folder}` then "
-                f"`nice -n 10 fprime-lite campaign {self.campaign_file} --workers 1 --out docs/studies/{self.folder}`"]
+                f"`nice -n 10 fprime-lite campaign {self.campaign_file} --workers 1 --out docs/studies/{self.folder}`; "
+                f"or, when the change cannot alter its flights, `python tools/studies.py --confirm-resolution "
+                f"{self.folder}` flies a run or two again and records the new configuration if they agree to the float"]
 
     def resolution_unknown(self) -> str | None:
         """A note (not a staleness) when the committed manifest records no resolved configuration."""
@@ -280,6 +328,17 @@ class CommittedCampaign:
         from fprime_lite.tools.campaign import run_campaign
 
         run_campaign(ROOT / self.campaign_file, workers=1, out=self.path, resume=True)
+
+
+def _code_revision() -> str:
+    """The work tree's commit, ``+dirty`` when it has uncommitted changes (as campaign manifests say)."""
+    import subprocess
+
+    def git(*argv: str) -> str:
+        return subprocess.run(["git", *argv], cwd=ROOT, capture_output=True, text=True, check=False).stdout.strip()
+
+    head = git("rev-parse", "--short", "HEAD") or "unknown"
+    return head + ("+dirty" if git("status", "--porcelain", "--untracked-files=no") else "")
 
 
 def _same_yaml(now: str, then: str | None) -> bool:
@@ -2072,6 +2131,24 @@ def unknown_resolutions(names: list[str]) -> list[str]:
     return [note for key in keys if (note := CAMPAIGNS[key].resolution_unknown()) is not None]
 
 
+def confirm_resolutions(folders: list[str]) -> int:
+    """``--confirm-resolution``: :meth:`CommittedCampaign.confirm_resolution` for each named folder."""
+    by_folder = {c.folder: c for c in CAMPAIGNS.values()}
+    failed = 0
+    for name in folders:
+        campaign = CAMPAIGNS.get(name) or by_folder.get(name.removeprefix("docs/studies/").rstrip("/"))
+        if campaign is None:
+            print(f"studies: {name}: no committed campaign of that folder or key; known folders: "
+                  f"{', '.join(sorted(by_folder))}", file=sys.stderr)
+            return 2
+        problems = campaign.confirm_resolution()
+        for problem in problems:
+            print(f"NOT CONFIRMED: {problem}")
+        print(f"docs/studies/{campaign.folder}: " + ("not confirmed: re-fly it" if problems else "agrees"))
+        failed += bool(problems)
+    return 1 if failed else 0
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -2085,7 +2162,13 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--reuse-runs", action="store_true",
                     help="use again a finished flight of the same request in runs/studies/ (resume a long run)")
     ap.add_argument("--list", action="store_true", help="name every study and stop")
+    ap.add_argument("--confirm-resolution", nargs="+", metavar="FOLDER",
+                    help="committed campaign folders (under docs/studies/, or their study's campaign key) whose "
+                         "resolved configuration changed: fly their probe runs (else the first run) again and, if "
+                         "every metric agrees to the float, record the new configuration in their manifest")
     args = ap.parse_args(argv)
+    if args.confirm_resolution:
+        return confirm_resolutions(args.confirm_resolution)
     if args.list:
         for study in STUDIES.values():
             print(f"{study.name:30s} {study.summary}")
