@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import functools
 import hashlib
 import importlib
 import importlib.util
@@ -330,8 +331,10 @@ class CommittedCampaign:
         run_campaign(ROOT / self.campaign_file, workers=1, out=self.path, resume=True)
 
 
+@functools.lru_cache(maxsize=1)
 def _code_revision() -> str:
-    """The work tree's commit, ``+dirty`` when it has uncommitted changes (as campaign manifests say)."""
+    """The work tree's commit, ``+dirty`` when it has uncommitted changes (as campaign manifests say); read
+    once, before the first manifest is written (a written manifest is itself an uncommitted change)."""
     import subprocess
 
     def git(*argv: str) -> str:
@@ -2134,6 +2137,7 @@ def unknown_resolutions(names: list[str]) -> list[str]:
 def confirm_resolutions(folders: list[str]) -> int:
     """``--confirm-resolution``: :meth:`CommittedCampaign.confirm_resolution` for each named folder."""
     by_folder = {c.folder: c for c in CAMPAIGNS.values()}
+    _code_revision()  # the tree as it is before any manifest changes
     failed = 0
     for name in folders:
         campaign = CAMPAIGNS.get(name) or by_folder.get(name.removeprefix("docs/studies/").rstrip("/"))
