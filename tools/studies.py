@@ -333,15 +333,15 @@ class CommittedCampaign:
 
 @functools.lru_cache(maxsize=1)
 def _code_revision() -> str:
-    """The work tree's commit, ``+dirty`` when it has uncommitted changes (as campaign manifests say); read
-    once, before the first manifest is written (a written manifest is itself an uncommitted change)."""
+    """The work tree's commit, ``+dirty`` when it has uncommitted changes outside ``docs/`` (as campaign
+    manifests say; the docs and committed results cannot change a flight); read once."""
     import subprocess
 
     def git(*argv: str) -> str:
         return subprocess.run(["git", *argv], cwd=ROOT, capture_output=True, text=True, check=False).stdout.strip()
 
     head = git("rev-parse", "--short", "HEAD") or "unknown"
-    return head + ("+dirty" if git("status", "--porcelain", "--untracked-files=no") else "")
+    return head + ("+dirty" if git("status", "--porcelain", "--untracked-files=no", "--", ".", ":!docs") else "")
 
 
 def _same_yaml(now: str, then: str | None) -> bool:
