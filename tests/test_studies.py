@@ -534,7 +534,7 @@ def test_a_folder_flown_under_another_default_field_model_is_stale(tmp_path, mon
         "igrf14"]
 
     def problems_with(resolved):
-        recorded = {k: v for k, v in manifest.items() if k != "resolved"}
+        recorded = {k: v for k, v in manifest.items() if k not in ("resolved", "resolution_confirmed")}
         if resolved is not None:
             recorded["resolved"] = resolved
         (folder / "manifest.json").write_text(json.dumps(recorded), encoding="utf-8")
