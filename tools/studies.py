@@ -335,13 +335,12 @@ class CommittedCampaign:
 def _code_revision() -> str:
     """The work tree's commit, ``+dirty`` when it has uncommitted changes outside ``docs/`` (as campaign
     manifests say; the docs and committed results cannot change a flight); read once."""
-    import subprocess
+    from fprime_lite.tools.campaign.manifest import git_state
 
-    def git(*argv: str) -> str:
-        return subprocess.run(["git", *argv], cwd=ROOT, capture_output=True, text=True, check=False).stdout.strip()
-
-    head = git("rev-parse", "--short", "HEAD") or "unknown"
-    return head + ("+dirty" if git("status", "--porcelain", "--untracked-files=no", "--", ".", ":!docs") else "")
+    state = git_state(ROOT, ignore=("docs",))
+    if state is None:
+        return "unknown"
+    return state["commit"][:7] + ("+dirty" if state["dirty"] else "")
 
 
 def _same_yaml(now: str, then: str | None) -> bool:

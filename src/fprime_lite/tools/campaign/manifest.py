@@ -75,12 +75,14 @@ def _git(folder: pathlib.Path, *args: str) -> str | None:
     return r.stdout.strip() if r.returncode == 0 else None
 
 
-def git_state(folder: pathlib.Path) -> dict | None:
-    """``{"commit", "dirty"}`` of the git work tree holding ``folder``; None outside one."""
+def git_state(folder: pathlib.Path, ignore: tuple[str, ...] = ()) -> dict | None:
+    """``{"commit", "dirty"}`` of the git work tree holding ``folder``; None outside one. ``ignore``:
+    paths (relative to ``folder``) whose uncommitted changes do not make it dirty."""
     commit = _git(folder, "rev-parse", "HEAD")
     if commit is None:
         return None
-    status = _git(folder, "status", "--porcelain", "--untracked-files=no")
+    excluded = ("--", ".", *(f":!{path}" for path in ignore)) if ignore else ()
+    status = _git(folder, "status", "--porcelain", "--untracked-files=no", *excluded)
     return {"commit": commit, "dirty": bool(status)}
 
 
