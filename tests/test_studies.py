@@ -34,7 +34,7 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "magnetic_pointing_hold_worst", "magnetic_pointing_tumble", "robust_rates_tail",
              "robust_rates_window_campaign", "coursework_settling_ripple", "environment_closed_form",
              "attitude_knowledge_single_runs", "magnetic_pointing_hold_campaign", "magnetic_pointing_floquet_figure",
-             "attitude_knowledge_orbit_runs")
+             "attitude_knowledge_orbit_runs", "attitude_modes_pointing", "attitude_modes_orbit")
 # its committed folder is older than its campaign file: its blocks are checked against the committed results, the
 # folder's belonging is reported by --check
 BLOCKS_ONLY = ("flight_detumble_campaign",)
@@ -706,3 +706,80 @@ def test_a_changed_resolution_is_confirmed_only_by_flights_that_agree(tmp_path, 
     assert entry["resolved"] == today and entry["runs"] == [df.loc[probe_row, "run_id"]]
     assert after["resolved"][key]["sha256"] == "0" * 64
     assert campaign.problems(fly_probes=False) == []
+
+
+def _sun_table(block: str):
+    return next(t for t in studies.SUN_SAFE_TABLES if t.block == block)
+
+
+def test_the_spin_down_table_is_what_the_code_flies_now():
+    """STUDY-110: sun_safe.md's plant-only spin-down table is rendered from a committed JSON file (5 one-orbit seed
+    flights); `--check`'s probe flies seed 1 again to the end of its first sunlit part (one 2810 s plant-only flight)
+    and its figures there are the committed row's to the float; with one committed figure nudged by 1e-9° the same
+    flight is reported, naming the figure."""
+    from detumble.sim import sun_safe_check
+
+    table = _sun_table("sun_safe_spin_down")
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    assert committed["options"]["spin_down"] and committed["options"]["seeds"] == 5
+    assert [r["seed"] for r in committed["rows"]] == [1, 2, 3, 4, 5]
+    row = sun_safe_check.spin_down_probe_row(committed)
+    assert sun_safe_check.spin_down_compare(row, committed) == []
+    tampered = json.loads(json.dumps(committed))
+    tampered["rows"][0]["after_deg"]["max"] += 1e-9
+    found = sun_safe_check.spin_down_compare(row, tampered)
+    assert len(found) == 1 and "after_deg" in found[0]
+
+
+def test_the_spin_down_variants_fly_the_spin_down_table_at_the_defaults():
+    """STUDY-111: the spin-down variants' file (51 plant-only flights, four tables of sun_safe.md) holds every variant
+    as its script defines it, and its default variant's seeds 1–3 are the plant-only spin-down table's rows to the
+    float (two scripts, one flight); a variant flown with other parameters is refused by name, not rendered."""
+    variants = _sun_table("sun_safe_spin_down_gate")
+    script = studies._load_script(variants.script)
+    table = json.loads(variants.path.read_text(encoding="utf-8"))
+    assert set(table["variants"]) == set(script.VARIANTS)
+    for key, (_, params, duration) in script.VARIANTS.items():
+        assert table["variants"][key]["params"] == params and table["variants"][key]["duration_s"] == duration
+    spin_down = json.loads(_sun_table("sun_safe_spin_down").path.read_text(encoding="utf-8"))
+    assert table["variants"]["default"]["rows"] == spin_down["rows"][:3]
+    moved = json.loads(json.dumps(table))
+    moved["variants"]["gate_70"]["params"]["SUN_HOLD_FIELD_ANGLE"] = 65.0
+    with pytest.raises(ValueError, match="gate_70"):
+        script.gate_markdown(moved)
+
+
+@pytest.mark.parametrize("name,block,old,new", [
+    ("sun_safe", "sun_safe_spin_down", "| 2361 | 354 |", "| 2361 | 355 |"),
+    ("attitude_modes_pointing", "attitude_modes_shipped", "| 5.3 % |", "| 5.4 % |"),
+    ("attitude_modes_orbit", "attitude_modes_orbit", "**18.5 s**", "**19.0 s**"),
+])
+def test_a_hand_edited_figure_of_the_spin_down_and_attitude_mode_blocks_is_reported(tmp_path, monkeypatch, name,
+                                                                                       block, old, new):
+    """STUDY-112: sun_safe.md's spin-down tables and attitude_modes.md's shipped-sequence and orbit tables with one
+    figure changed by hand: --check reports that block."""
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, name, block, old, new)
+    assert len(problems) == 1 and f"block '{block}'" in problems[0]
+
+
+def test_the_attitude_mode_flights_are_what_the_deployment_flies_now(tmp_path):
+    """STUDY-113: attitude_modes.md's shipped-sequence and wheel-orbit tables and figures are rendered from a
+    committed JSON file and traces (two adcs_ref flights of 6000 and 5580 s); `--check`'s probe flies the shipped
+    flight's first 30 s again (one deployment run of seconds) and its attitude.csv rows are the committed ones to the
+    float; with one committed pointing error nudged by 1e-12° it reports that row. The figures are drawn from the
+    committed files alone (the four of the shipped flight)."""
+    table = studies.ATTITUDE_RUNS_TABLES[0]
+    script = studies._load_script(table.script)
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    assert committed["flights"]["shipped"]["duration_s"] == 6000.0
+    assert committed["flights"]["orbit"]["settings"] == ["initial.rate.magnitude_deg_s=0.5"]
+    probe = committed["flights"]["shipped"]["probe"]
+    assert probe[-1][0] == script.PROBE_S and len(probe) == 2 * script.PROBE_S + 1
+    assert script.shipped_probe(committed) == []
+    tampered = json.loads(json.dumps(committed))
+    tampered["flights"]["shipped"]["probe"][20][2] += 1e-12
+    found = script.shipped_probe(tampered)
+    assert len(found) == 1 and "row 20" in found[0]
+    drawn = script.draw(committed, table.path, "shipped", tmp_path)
+    assert sorted(p.name for p in drawn) == ["attitude_mode.png", "dipole.png", "pointing_error.png",
+                                             "wheel_momentum.png"]

@@ -12,7 +12,8 @@ the spacecraft is in eclipse, and the Sun vector estimate's error against the tr
 [--albedo A] [--penumbra] [--param NAME=VALUE ...] [--spin-down] [--json FILE]``
 prints a table of ``docs/studies/sun_safe.md`` (:func:`markdown`); ``--json`` also keeps its figures
 (:func:`table`), from which ``tools/studies.py --only sun_safe`` renders the page's tables; ``--spin-down`` prints
-the coils' automatic spin-down table instead (when the spin was lowered, the true error and body rate from then on);
+the coils' automatic spin-down table instead (when the spin was lowered, the true error and body rate from then on;
+:func:`spin_down_table`, kept with ``--json`` too, its seed 1 re-flown by :func:`spin_down_probe`);
 ``--from-run DIR`` reads a deployment's flight.
 """
 
@@ -34,7 +35,8 @@ from detumble.sim.scenario import load_scenario
 from detumble.sim.sun_sensors import SunSensorModel, SunSensorSpec
 
 __all__ = ["SunSafeResult", "fly", "seed_settings", "main", "markdown", "pointing_from_run", "table",
-           "vector_errors_from_run", "HAND_BACK_RATE_DEG_S", "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
+           "vector_errors_from_run", "spin_down_row", "spin_down_table", "spin_down_markdown",
+           "spin_down_probe", "HAND_BACK_RATE_DEG_S", "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
 
 #: The targets (issue 27): Sun-pointing error within this after acquisition, light-sensor vector within that.
 POINTING_THRESHOLD_DEG = 10.0
@@ -385,16 +387,7 @@ def main(argv: list[str] | None = None) -> int:
     figures = table(args.seeds, rate_deg_s=args.rate, duration_s=args.duration, actuator=args.actuator,
                     axis=args.axis, sensor_spec=spec, albedo_model=args.albedo_model, params=args.params)
     if args.json is not None:
-        import json
-        import pathlib
-
-        from detumble.sim.runner import write_atomic
-
-        options = {k: v for k, v in vars(args).items() if k not in ("json", "from_run", "param", "params", "spin_down")}
-        if args.params:
-            options["params"] = args.params
-        pathlib.Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-        write_atomic(args.json, json.dumps(dict(figures, options=options), indent=1) + "\n")
+        _write_json(args, figures)
     print(markdown(figures), end="")
     return 0
 
@@ -457,37 +450,126 @@ def _slow_from(t0: float, rate: list, limit: float = 2.0) -> str:
     return "never" if last_fast == len(rate) - 1 else f"{t0 + (0 if last_fast is None else last_fast + 1):.0f}"
 
 
-def _spin_down_table(args, spec) -> int:
-    """The ``--spin-down`` table: each seed on the coils, the spin lowered by SUN_HOLD_* (defaults)."""
+def spin_down_row(seed: int, r: SunSafeResult, limit_deg_s: float = 2.0) -> dict:
+    """One coil flight's spin-down figures: the first sunlit part (s), the acquisition (s from its start; None:
+    never), when the spin was lowered (s; None: never), the true pointing error from then to the part's end (deg,
+    median / p95 / max; None: not lowered in the part) and its share within POINTING_THRESHOLD_DEG, when the true body
+    rate went below ``limit_deg_s`` (deg/s; the star tracker's smear limit) for good in that stretch (s; None: never,
+    or not lowered), and the reacquisition after the eclipse (s from the second sunlit part's start; None: never;
+    absent with one sunlit part)."""
+    parts = r.sunlit_parts()
+    err, rate = r.after_spin_down()
+    slow = _slow_from(r.spin_lowered_s, rate, limit_deg_s) if err and r.spin_lowered_s is not None else None
+    return {"seed": seed, "first_sunlit_part_s": r.first_sunlit_part(), "acquisition_s": r.acquisition_s(),
+            "spin_lowered_s": r.spin_lowered_s, "after_deg": _stats(err),
+            "within": sum(e <= POINTING_THRESHOLD_DEG for e in err) / len(err) if err else None,
+            "slow_from_s": None if slow in (None, "never") else float(slow), "slow_never": slow == "never",
+            "sunlit_parts": len(parts),
+            "reacquisition_s": r.acquisition_s(part_index=1) if len(parts) > 1 else None}
+
+
+def spin_down_table(seeds, **fly_args) -> dict:
+    """Seeds ``seeds`` (an iterable of ints) flown on the coils by :func:`fly` (``fly_args``; the actuator is set to
+    MAGNETORQUERS), one :func:`spin_down_row` each, and the controller parameters the flights used."""
     from detumble.control.attitude_defaults import DEFAULTS
 
-    values = {**DEFAULTS, **args.params}
-    limit = 2.0  # deg/s: the adcs scenario's star tracker smears above this (sim.star_tracker max_rate_deg_s)
-    print(f"SUN_HOLD_ANGLE {values['SUN_HOLD_ANGLE']} deg, SUN_HOLD_DWELL {values['SUN_HOLD_DWELL']} s, "
-          f"SUN_HOLD_SPIN_RATE {values['SUN_HOLD_SPIN_RATE']} deg/s (from SUN_SPIN_RATE {values['SUN_SPIN_RATE']}), "
-          f"SUN_HOLD_RAMP {values['SUN_HOLD_RAMP']} deg/s²")
-    print("| seed | first sunlit part (s) | acquisition ≤ 10° (s) | spin lowered at (s) | after it to the part's end: "
-          "error median / p95 / max (deg) | within 10° | |ω| < 2 °/s from (s) | after the eclipse: reacquisition (s) |")
-    print("|---|---|---|---|---|---|---|---|")
-    for seed in range(1, args.seeds + 1):
-        r = fly(seed, rate_deg_s=args.rate, duration_s=args.duration, actuator="MAGNETORQUERS", axis=args.axis,
-                sensor_spec=spec, albedo_model=args.albedo_model, params=args.params)
-        part, acq = r.first_sunlit_part(), r.acquisition_s()
-        err, rate = r.after_spin_down()
+    fly_args = {**fly_args, "actuator": "MAGNETORQUERS"}
+    rows = [spin_down_row(seed, fly(seed, **fly_args)) for seed in seeds]
+    params = fly_args.get("params") or {}
+    names = ("SUN_SPIN_RATE", "SUN_HOLD_ANGLE", "SUN_HOLD_DWELL", "SUN_HOLD_SPIN_RATE", "SUN_HOLD_RAMP",
+             "SUN_HOLD_FIELD_ANGLE", "SUN_HOLD_TIP_ANGLE")
+    return {"rows": rows, "values": {n: params.get(n, DEFAULTS[n]) for n in names},
+            "fly": {k: v for k, v in fly_args.items() if k != "sensor_spec" and not (k == "params" and not v)}}
+
+
+#: The first-sunlit-part figures of a :func:`spin_down_row` (what a flight to PROBE_DURATION_S gives as a whole orbit
+#: does) and that flight's duration (s): the first sunlit part is 0–2809 s
+PROBE_FIELDS = ("first_sunlit_part_s", "acquisition_s", "spin_lowered_s", "after_deg", "within", "slow_from_s",
+                "slow_never")
+PROBE_DURATION_S = 2810.0
+
+
+def spin_down_probe_row(committed: dict) -> dict:
+    """Seed 1 of a ``--spin-down`` JSON file flown again to the end of its first sunlit part (one 2810 s plant-only
+    flight, seconds) with the file's options: its :func:`spin_down_row` as the JSON file keeps it."""
+    import json
+
+    opts = committed["options"]
+    spec = SunSensorSpec(albedo=opts["albedo"], penumbra=opts["penumbra"])
+    again = spin_down_table([1], rate_deg_s=opts["rate"], duration_s=PROBE_DURATION_S, axis=opts["axis"],
+                            sensor_spec=spec, albedo_model=opts["albedo_model"], params=opts.get("params") or {})
+    return json.loads(json.dumps(again["rows"][0]))  # tuples as lists
+
+
+def spin_down_compare(row: dict, committed: dict) -> list[str]:
+    """Each first-sunlit-part figure (:data:`PROBE_FIELDS`) of ``row`` against seed 1's committed row, to the float:
+    the differences found (empty: none)."""
+    old = committed["rows"][0]
+    return [f"seed 1's {name} is {row[name]} now, {old[name]} committed" for name in PROBE_FIELDS
+            if row[name] != old[name]]
+
+
+def spin_down_probe(committed: dict) -> list[str]:
+    """The ``--spin-down`` table's probe (``tools/studies.py --check``): :func:`spin_down_probe_row` against the
+    committed seed 1 (:func:`spin_down_compare`)."""
+    return spin_down_compare(spin_down_probe_row(committed), committed)
+
+
+def _slow_text(row: dict) -> str:
+    """"t" (s), "never", or "—" (the spin not lowered in the first sunlit part) of a :func:`spin_down_row`."""
+    if row["slow_from_s"] is not None:
+        return f"{row['slow_from_s']:.0f}"
+    return "never" if row["slow_never"] else "—"
+
+
+def spin_down_markdown(figures: dict) -> str:
+    """The ``--spin-down`` table (:func:`spin_down_table`'s figures) as the page prints it."""
+    v = figures["values"]
+    lines = [f"SUN_HOLD_ANGLE {v['SUN_HOLD_ANGLE']:g}°, SUN_HOLD_DWELL {v['SUN_HOLD_DWELL']:g} s, SUN_HOLD_SPIN_RATE "
+             f"{v['SUN_HOLD_SPIN_RATE']:g} °/s (from SUN_SPIN_RATE {v['SUN_SPIN_RATE']:g}), SUN_HOLD_RAMP "
+             f"{v['SUN_HOLD_RAMP']:g} °/s², SUN_HOLD_FIELD_ANGLE {v['SUN_HOLD_FIELD_ANGLE']:g}°", "",
+             "| seed | first sunlit part (s) | acquisition ≤ 10° (s) | spin lowered at (s) | from then to the "
+             "part's end: error median / p95 / max (deg) | within 10° | \\|ω\\| < 2 °/s from (s) | after the "
+             "eclipse: reacquisition (s) |", "|---|---|---|---|---|---|---|---|"]
+    for r in figures["rows"]:
+        part, acq, st = r["first_sunlit_part_s"], r["acquisition_s"], r["after_deg"]
         part_s = "none" if part is None else f"{part[0]:.0f}–{part[1]:.0f}"
-        low = "never" if r.spin_lowered_s is None else f"{r.spin_lowered_s:.0f}"
-        if err and r.spin_lowered_s is not None:
-            st = f"{statistics.median(err):.2f} / {_percentile(err, 95):.2f} / {max(err):.2f}"
-            within = f"{100 * sum(e <= POINTING_THRESHOLD_DEG for e in err) / len(err):.1f} %"
-            slow = _slow_from(r.spin_lowered_s, rate, limit)
-        else:
-            st = within = slow = "—"
-        parts = r.sunlit_parts()
-        re_acq = r.acquisition_s(part_index=1) if len(parts) > 1 else None
-        re_s = "—" if len(parts) < 2 else ("never" if re_acq is None else f"{re_acq:.0f}")
-        print(f"| {seed} | {part_s} | {'never' if acq is None else f'{acq:.0f}'} | {low} | {st} | {within} | {slow} | "
-              f"{re_s} |")
+        low = "never" if r["spin_lowered_s"] is None else f"{r['spin_lowered_s']:.0f}"
+        three = "—" if st is None else f"{st['median']:.2f} / {st['p95']:.2f} / {st['max']:.2f}"
+        within = "—" if r["within"] is None else f"{100 * r['within']:.1f} %"
+        re_s = "—" if r["sunlit_parts"] < 2 else (
+            "never" if r["reacquisition_s"] is None else f"{r['reacquisition_s']:.0f}")
+        lines.append(f"| {r['seed']} | {part_s} | {'never' if acq is None else f'{acq:.0f}'} | {low} | {three} | "
+                     f"{within} | {_slow_text(r)} | {re_s} |")
+    return "\n".join(lines) + "\n"
+
+
+def _spin_down_table(args, spec) -> int:
+    """The ``--spin-down`` table: each seed on the coils, the spin lowered by SUN_HOLD_* (defaults, or ``--param``);
+    with ``--json`` its figures (:func:`spin_down_table`) kept in that file."""
+    figures = spin_down_table(range(1, args.seeds + 1), rate_deg_s=args.rate, duration_s=args.duration,
+                              axis=args.axis, sensor_spec=spec, albedo_model=args.albedo_model, params=args.params)
+    if args.json is not None:
+        _write_json(args, figures)
+    print(spin_down_markdown(figures), end="")
     return 0
+
+
+def _write_json(args, figures: dict) -> None:
+    """Keep ``figures`` in ``args.json`` with the command's options (and its ``--param`` values, if any)."""
+    import json
+    import pathlib
+
+    from detumble.sim.runner import write_atomic
+
+    dropped = ("json", "from_run", "vector_channel", "param", "params", "spin_down")
+    options = {k: v for k, v in vars(args).items() if k not in dropped}
+    if args.params:
+        options["params"] = args.params
+    if args.spin_down:
+        options["spin_down"] = True
+    pathlib.Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+    write_atomic(args.json, json.dumps(dict(figures, options=options), indent=1) + "\n")
 
 
 if __name__ == "__main__":

@@ -113,3 +113,39 @@ def test_param_option_refuses_a_bad_parameter(capsys):
             main(bad)
         assert exc.value.code == 2
         assert says in capsys.readouterr().err
+
+
+def _made_up_flight():
+    """Ten 1 s samples: sunlit 0–5 s, eclipse 6–7 s, sunlit 8–9 s; the spin lowered at 2 s."""
+    from detumble.sim.sun_safe_check import SunSafeResult
+
+    return SunSafeResult(times=[float(t) for t in range(10)],
+                         pointing_deg=[20.0, 12.0, 8.0, 6.0, 4.0, 9.0, 50.0, 50.0, 30.0, 5.0],
+                         eclipse=[False] * 6 + [True] * 2 + [False] * 2,
+                         rate_deg_s=[3.0, 3.0, 2.5, 2.2, 1.9, 1.8, 1.8, 1.8, 1.8, 1.8], spin_lowered_s=2.0)
+
+
+def test_spin_down_row_reads_the_figures_of_the_first_sunlit_part_after_the_spin_down():
+    """SUNSAFE-040: ``spin_down_row`` on a made-up flight: first sunlit part 0–6 s, acquisition 2 s (above 10° at
+    0 and 1 s), the error from the spin-down (2 s) to the part's end 8, 6, 4, 9° (median 7, p95 9, max 9, all within
+    10°), the body rate below 2 °/s for good from 4 s (2.2 °/s at 3 s), two sunlit parts and no reacquisition in the
+    second (30° at its first sample, above 10° to its last); the markdown row says so. With the spin lowered only
+    after the first part, no figures after it; with the rate never below the limit, "never"."""
+    from detumble.sim.sun_safe_check import spin_down_markdown, spin_down_row
+
+    row = spin_down_row(1, _made_up_flight())
+    assert row == {"seed": 1, "first_sunlit_part_s": (0.0, 6.0), "acquisition_s": 2.0, "spin_lowered_s": 2.0,
+                   "after_deg": {"median": 7.0, "p95": 9.0, "max": 9.0}, "within": 1.0, "slow_from_s": 4.0,
+                   "slow_never": False, "sunlit_parts": 2, "reacquisition_s": None}
+    values = {"SUN_SPIN_RATE": 3.0, "SUN_HOLD_ANGLE": 10.0, "SUN_HOLD_DWELL": 300.0, "SUN_HOLD_SPIN_RATE": 1.5,
+              "SUN_HOLD_RAMP": 0.005, "SUN_HOLD_FIELD_ANGLE": 80.0}
+    assert "| 1 | 0–6 | 2 | 2 | 7.00 / 9.00 / 9.00 | 100.0 % | 4 | never |" in spin_down_markdown(
+        {"rows": [row], "values": values})
+    late = _made_up_flight()
+    late.spin_lowered_s = 7.0
+    row = spin_down_row(2, late)
+    assert row["after_deg"] is None and row["within"] is None and row["slow_from_s"] is None and not row["slow_never"]
+    fast = _made_up_flight()
+    fast.rate_deg_s = [3.0] * 10
+    row = spin_down_row(3, fast)
+    assert row["slow_from_s"] is None and row["slow_never"]
