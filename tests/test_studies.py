@@ -751,6 +751,10 @@ def test_the_spin_down_variants_fly_the_spin_down_table_at_the_defaults():
 
 @pytest.mark.parametrize("name,block,old,new", [
     ("sun_safe", "sun_safe_spin_down", "| 2361 | 354 |", "| 2361 | 355 |"),
+    ("sun_safe", "sun_safe_spin_down_gate", "| 5.3° / 5.4° / 4.9° |", "| 5.3° / 5.4° / 5.0° |"),
+    ("sun_safe", "sun_safe_spin_down_tip", "| 81.5 % / 56.8 % / 100.0 % |", "| 81.5 % / 58.6 % / 100.0 % |"),
+    ("sun_safe", "sun_safe_spin_down_hold_rate", "| 288 / 439 / 396 |", "| 288 / 439 / 395 |"),
+    ("sun_safe", "sun_safe_spin_down_spin_rate", "| 2361 / 2556 / never |", "| 2361 / 2556 / 2800 |"),
     ("attitude_modes_pointing", "attitude_modes_shipped", "| 5.3 % |", "| 5.4 % |"),
     ("attitude_modes_orbit", "attitude_modes_orbit", "**18.5 s**", "**19.0 s**"),
 ])
