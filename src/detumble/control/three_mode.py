@@ -235,6 +235,7 @@ class ThreeModeLaw:
     K_D: float
     K_I: float
     INTEGRAL_WINDOW: float
+    INTEGRAL_RATE_GATE: float
     K_P_MAG: float
     K_D_MAG: float
     C_DAMP: float
@@ -1025,7 +1026,8 @@ class ThreeModeLaw:
                 if ff is not None:
                     tau = (tau[0] + ff[0], tau[1] + ff[1], tau[2] + ff[2])
                 self.integrator.window_rad = self.INTEGRAL_WINDOW * _DEG
-                ti = self.integrator.update(qe, dt, self.K_I)
+                self.integrator.rate_gate_rad_s = self.INTEGRAL_RATE_GATE * _DEG
+                ti = self.integrator.update(qe, dt, self.K_I, rate)  # rate: the D term's, relative to the reference
                 tau = (tau[0] + ti[0], tau[1] + ti[1], tau[2] + ti[2])
                 tau_mag = _ZERO
                 if self.b_tesla is not None and self.wheel_momenta is not None:
