@@ -74,10 +74,12 @@ class ErrorIntegrator:
     it integrates only while the error angle is below ``window_rad`` and its torque is clipped to
     ``max_torque`` per axis; :meth:`reset` on every new target.
 
-    Rate gate (``rate_gate_rad_s`` > 0): it integrates only while, besides, the rate the PD damps (the body's rate
-    relative to the reference, rad/s, B, given to :meth:`update`) is below the gate. A slew's final approach moves
-    at ``(K_p/(2 K_d)) θ`` and is not integrated until it has nearly ended; an offset held by a constant torque
-    does not move, so it is integrated anywhere inside the window (docs/studies/robust_rates.md, "The rate gate").
+    Rate gate (``rate_gate_rad_s`` > 0): it integrates only while, besides, the body's rate relative to the
+    reference (rad/s, B, given to :meth:`update`; the wheel law gives the gyro's, which an unmodelled torque does not
+    bias as it biases the rate observer's) is below the gate. A slew's final approach moves at more than
+    ``K_d/(2 I)`` times its error and is not integrated until it has nearly ended; an offset held by a constant
+    torque does not move, so it is integrated anywhere inside the window (docs/studies/robust_rates.md, "The rate
+    gate").
     0 (the default) turns the gate off.
     """
 
