@@ -1372,7 +1372,7 @@ SCRIPT_TABLES = {t.name: t for t in (
                 "(committed JSON)", "robust_rates_single_runs", "campaigns/adcs/robust_rates_table.py",
                 "robust_rates/table.json", STUDIES_DIR / "robust_rates.md"),
     ScriptTable("robust_rates_tail", "where the robust-rates campaign's p95 comes from: its 100 draws, the integral's "
-                "window at 1° and 0.1° and its rate gate, 600 plant runs (committed JSON)", "robust_rates_tail",
+                "window at 1° and 0.1°, 400 plant runs (committed JSON)", "robust_rates_tail",
                 "campaigns/adcs/robust_rates_tail.py", "robust_rates/tail.json", STUDIES_DIR / "robust_rates.md"),
     ScriptTable("pointing_targets", "issue 27's moving targets on the wheels: 9 plant-only runs (committed JSON)",
                 "pointing_targets", "campaigns/adcs/targets_study.py", "pointing_targets/table.json",
