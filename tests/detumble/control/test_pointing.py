@@ -180,7 +180,12 @@ def test_gravity_gradient_feed_forward_closed_form():
     assert gyroscopic_torque(diag, (0.0, 0.0, 0.1), (1e-3, 0.0, 0.0)) == pytest.approx((0.0, 1e-4, 0.0), abs=1e-18)
 
 
-def _fly_slew_end(window_deg, gate_deg_s, seconds=60.0):
+def _rates(window_deg, gate_deg_s, seconds=60.0):
+    """:func:`_fly_slew_end`'s flight: per cycle (t s, signed angle rad, rate about x rad/s)."""
+    return _fly_slew_end(window_deg, gate_deg_s, seconds, rates=True)
+
+
+def _fly_slew_end(window_deg, gate_deg_s, seconds=60.0, rates=False):
     """The defaults' PID (K_P 1.1e-3, K_D 2e-3, K_I 5.5e-5, I = 2.2e-3, the 8°/s slew limit) from 90° at rest about
     x, control at 10 Hz, the gate fed the body's rate: per cycle (t s, signed angle rad, integral state, whether the
     integral moved this cycle)."""
@@ -195,7 +200,9 @@ def _fly_slew_end(window_deg, gate_deg_s, seconds=60.0):
         before = integ.state
         ti = integ.update(qe, 0.1, ki, state[4:])
         state = body.step(state, 0.1, (tau[0] + ti[0], tau[1] + ti[1], tau[2] + ti[2]))
-        out.append(((k + 1) * 0.1, 2.0 * math.atan2(state[1], state[0]), integ.state[0], integ.state != before))
+        angle = 2.0 * math.atan2(state[1], state[0])
+        out.append(((k + 1) * 0.1, angle, state[4]) if rates else
+                   ((k + 1) * 0.1, angle, integ.state[0], integ.state != before))
     return out
 
 
@@ -209,6 +216,10 @@ def test_rate_gate_keeps_the_slews_approach_out_of_the_integral():
     i, kd = 2.2e-3, 2.0e-3
     gate = 0.05
     wide, gated = _fly_slew_end(1.0, 0.0), _fly_slew_end(1.0, gate)
+    # the closed form's premise: from 1° down to 0.05° the approach moves at more than K_D/(2I) times its error
+    approach = [(a, w) for (_, a, _, _), (_, _, w) in zip(wide[1:], _rates(1.0, 0.0)[1:], strict=True)
+                if math.radians(0.05) < a < math.radians(1.0)]
+    assert len(approach) > 10 and all(abs(w) > kd / (2 * i) * a for a, w in approach)
 
     def first_integrated_deg(run):  # the angle the integral saw (the previous cycle's) when it first moved
         return math.degrees(next(abs(run[k - 1][1]) for k in range(1, len(run)) if run[k][3]))
