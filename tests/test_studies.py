@@ -648,18 +648,41 @@ def test_the_window_campaign_comparison_is_checked_and_needs_the_same_draws(tmp_
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "robust_rates_window_campaign",
                                        "robust_rates_window_campaign", count, count.replace("→", "->"))
     assert len(problems) == 1 and "block 'robust_rates_window_campaign'" in problems[0]
-    base = studies.CAMPAIGNS["robust_rates_campaign"]
+    _campaigns_with_a_foreign_seed(tmp_path, monkeypatch, "robust_rates_campaign", ("robust_rates_window_campaign",))
+    with pytest.raises(studies.StudyError, match="draws"):
+        studies.robust_rates_window_campaign_blocks()
+
+
+def _campaigns_with_a_foreign_seed(tmp_path, monkeypatch, foreign: str, copies: tuple[str, ...]) -> None:
+    """STUDIES_DIR moved to a copy holding committed campaign ``foreign`` with its first run's seed changed and the
+    campaigns ``copies`` as committed."""
+    base = studies.CAMPAIGNS[foreign]
     df = base.results().copy()
     df.loc[df.index[0], "seed"] = int(df["seed"].max()) + 1
     folder = tmp_path / "docs" / "studies" / base.folder
     folder.mkdir(parents=True)
     df.to_parquet(folder / "results.parquet")
-    window = studies.CAMPAIGNS["robust_rates_window_campaign"]
-    shutil.copytree(window.path, tmp_path / "docs" / "studies" / window.folder)
+    for key in copies:
+        shutil.copytree(studies.CAMPAIGNS[key].path, tmp_path / "docs" / "studies" / studies.CAMPAIGNS[key].folder)
     monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path / "docs" / "studies")
-    with pytest.raises(studies.StudyError, match="draws"):
-        studies.robust_rates_window_campaign_blocks()
 
+
+
+def test_the_rate_gate_campaign_block_is_checked_and_pairs_the_same_draws(tmp_path, monkeypatch):
+    """STUDY-120: robust_rates.md's INTEGRAL_RATE_GATE campaign block: its run-by-run comparison with the 0.1° window's
+    campaign edited by hand is reported by --check; a window campaign with another run's seed is refused (the
+    comparison pairs the same draws)."""
+    pytest.importorskip("pandas")
+    block = studies.doc_blocks(studies._ROBUST_DOC.read_text(encoding="utf-8"))["robust_rates_gate_campaign"]
+    count = block.split("p95 ≤ 0.05° in ")[2].split(" of ")[0]  # against the window's: "97 → 97"
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "robust_rates_gate_campaign",
+                                       "robust_rates_gate_campaign", f"in {count} of",
+                                       f"in {count.split(' → ')[0]} → 98 of")
+    assert len(problems) == 1 and "block 'robust_rates_gate_campaign'" in problems[0]
+    _campaigns_with_a_foreign_seed(tmp_path, monkeypatch, "robust_rates_window_campaign",
+                                   ("robust_rates_campaign", "robust_rates_gate_campaign"))
+    with pytest.raises(studies.StudyError, match="draws of robust_rates/campaign_window"):
+        studies.robust_rates_gate_campaign_blocks()
 
 
 def test_a_changed_resolution_is_confirmed_only_by_flights_that_agree(tmp_path, monkeypatch):

@@ -73,22 +73,35 @@ class ErrorIntegrator:
     ``K_d ω`` term) as an attitude offset of ``d / (K_p/2)`` rad; the integral removes it. Anti-windup:
     it integrates only while the error angle is below ``window_rad`` and its torque is clipped to
     ``max_torque`` per axis; :meth:`reset` on every new target.
+
+    Rate gate (``rate_gate_rad_s`` > 0): it integrates only while, besides, the body's rate relative to the
+    reference (rad/s, B, given to :meth:`update`; the wheel law gives the gyro's, which an unmodelled torque does not
+    bias as it biases the rate observer's) is below the gate. A slew's final approach moves at more than
+    ``K_d/(2 I)`` times its error and is not integrated until it has nearly ended; an offset held by a constant
+    torque does not move, so it is integrated anywhere inside the window (docs/studies/robust_rates.md, "The rate
+    gate").
+    0 (the default) turns the gate off.
     """
 
-    def __init__(self, window_rad: float, max_torque: float) -> None:
+    def __init__(self, window_rad: float, max_torque: float, rate_gate_rad_s: float = 0.0) -> None:
         self.window_rad = float(window_rad)
         self.max_torque = float(max_torque)
+        self.rate_gate_rad_s = float(rate_gate_rad_s)
         self.state: Vec3 = (0.0, 0.0, 0.0)  # ∫ q_err.v dt, s
 
     def reset(self) -> None:
         self.state = (0.0, 0.0, 0.0)
 
-    def update(self, q_err: Quat, dt: float, k_i: float) -> Vec3:
-        """Integrate ``q_err.v`` over ``dt`` s (inside the window) and return ``τ_i``."""
+    def update(self, q_err: Quat, dt: float, k_i: float, rate: Vec3 | None = None) -> Vec3:
+        """Integrate ``q_err.v`` over ``dt`` s (inside the window and, with a gate, while ``|rate|`` rad/s is below
+        it; no rate given: the gate is not applied) and return ``τ_i``."""
         v = math.sqrt(q_err[1] ** 2 + q_err[2] ** 2 + q_err[3] ** 2)
         angle = 2.0 * math.atan2(v, abs(q_err[0]))
         st = self.state
-        if angle < self.window_rad:
+        gate = self.rate_gate_rad_s
+        gated = (gate > 0.0 and rate is not None
+                 and not rate[0] * rate[0] + rate[1] * rate[1] + rate[2] * rate[2] < gate * gate)
+        if angle < self.window_rad and not gated:
             st = (st[0] + q_err[1] * dt, st[1] + q_err[2] * dt, st[2] + q_err[3] * dt)
             if k_i > 0.0:
                 cap = self.max_torque / k_i

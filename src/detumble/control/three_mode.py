@@ -235,6 +235,7 @@ class ThreeModeLaw:
     K_D: float
     K_I: float
     INTEGRAL_WINDOW: float
+    INTEGRAL_RATE_GATE: float
     K_P_MAG: float
     K_D_MAG: float
     C_DAMP: float
@@ -1012,7 +1013,7 @@ class ThreeModeLaw:
             target = self.target
             assert target is not None  # set_target set it
             if self._pointing_uses_wheels():
-                rate = self.pd_rate if self.pd_rate is not None else self.omega
+                rate = base = self.pd_rate if self.pd_rate is not None else self.omega
                 ref = self.reference
                 ff = None
                 if ref is not None and (ref.omega_R != _ZERO or ref.alpha_R != _ZERO):
@@ -1025,7 +1026,13 @@ class ThreeModeLaw:
                 if ff is not None:
                     tau = (tau[0] + ff[0], tau[1] + ff[1], tau[2] + ff[2])
                 self.integrator.window_rad = self.INTEGRAL_WINDOW * _DEG
-                ti = self.integrator.update(qe, dt, self.K_I)
+                # the rate gate reads the gyro (the bias-corrected cycle mean) relative to the reference, not the
+                # D term's observer rate: that one carries an unmodelled torque's d/(I L) and would shut the gate
+                # on the very offset the integral is there to remove (docs/studies/robust_rates.md, "The rate gate")
+                self.integrator.rate_gate_rad_s = self.INTEGRAL_RATE_GATE * _DEG
+                w = self.omega
+                gate_rate = (w[0] - base[0] + rate[0], w[1] - base[1] + rate[1], w[2] - base[2] + rate[2])
+                ti = self.integrator.update(qe, dt, self.K_I, gate_rate)
                 tau = (tau[0] + ti[0], tau[1] + ti[1], tau[2] + ti[2])
                 tau_mag = _ZERO
                 if self.b_tesla is not None and self.wheel_momenta is not None:

@@ -1160,3 +1160,11 @@ def test_sun_hold_field_angle_acts_from_the_ground(fprime_harness):
     seconds(h, 20)
     assert h.comp.law.sun_hold.command_deg_s == 1.5
     assert h.comp.law.torque_request[2] == pytest.approx(k * 1.5 * DEG, rel=1e-6)
+
+
+@pytest.mark.parametrize("bad", [{"INTEGRAL_RATE_GATE": -0.01}, {"INTEGRAL_RATE_GATE": 10.5},
+                                 {"INTEGRAL_RATE_GATE": math.nan}, {"INTEGRAL_RATE_GATE": math.inf}])
+def test_integral_rate_gate_has_a_range(fprime_harness, bad):
+    """ADCS-143: INTEGRAL_RATE_GATE outside 0…10 °/s (or not finite) is refused by PRM_SET (VALIDATION_ERROR) and the
+    value in use is kept; 0, its default, turns the gate off."""
+    assert_refused_and_kept(fprime_harness, bad)

@@ -178,3 +178,96 @@ def test_gravity_gradient_feed_forward_closed_form():
     assert t[0] == pytest.approx(3 * n2 * (2.05e-3 - 2.15e-3) * th, rel=1e-6)
     assert gyroscopic_torque(diag, (0.0, 0.0, 0.0), (1e-3, 2e-3, 3e-3)) == (0.0, 0.0, 0.0)
     assert gyroscopic_torque(diag, (0.0, 0.0, 0.1), (1e-3, 0.0, 0.0)) == pytest.approx((0.0, 1e-4, 0.0), abs=1e-18)
+
+
+def _rates(window_deg, gate_deg_s, seconds=60.0):
+    """:func:`_fly_slew_end`'s flight: per cycle (t s, signed angle rad, rate about x rad/s)."""
+    return _fly_slew_end(window_deg, gate_deg_s, seconds, rates=True)
+
+
+def _fly_slew_end(window_deg, gate_deg_s, seconds=60.0, rates=False):
+    """The defaults' PID (K_P 1.1e-3, K_D 2e-3, K_I 5.5e-5, I = 2.2e-3, the 8°/s slew limit) from 90° at rest about
+    x, control at 10 Hz, the gate fed the body's rate: per cycle (t s, signed angle rad, integral state, whether the
+    integral moved this cycle)."""
+    i = 2.2e-3
+    kp, kd, ki = 1.1e-3, 2.0e-3, 5.5e-5
+    body = RigidBody(((i, 0, 0), (0, i, 0), (0, 0, i)))
+    integ = ErrorIntegrator(math.radians(window_deg), 1e-5, math.radians(gate_deg_s))
+    state = (math.cos(math.radians(45.0)), math.sin(math.radians(45.0)), 0.0, 0.0, 0.0, 0.0, 0.0)
+    out = []
+    for k in range(int(seconds * 10)):
+        tau, qe = pd_torque((1.0, 0.0, 0.0, 0.0), state[:4], state[4:], kp, kd, math.radians(8.0))
+        before = integ.state
+        ti = integ.update(qe, 0.1, ki, state[4:])
+        state = body.step(state, 0.1, (tau[0] + ti[0], tau[1] + ti[1], tau[2] + ti[2]))
+        angle = 2.0 * math.atan2(state[1], state[0])
+        out.append(((k + 1) * 0.1, angle, state[4]) if rates else
+                   ((k + 1) * 0.1, angle, integ.state[0], integ.state != before))
+    return out
+
+
+def test_rate_gate_keeps_the_slews_approach_out_of_the_integral():
+    """ADCS-140: with the 1° window and INTEGRAL_RATE_GATE 0.05 °/s, a 90° slew's approach is not integrated until
+    its error is below ``g 2I/K_D`` = 0.11° (the approach moves at more than ``K_D/(2I)`` = 0.45/s times its error in
+    its last degree; docs/studies/robust_rates.md, "The rate gate"), where without the gate it is integrated from 1°;
+    so the tail the integral returns at the slow root (ADCS-130) is gone: from 1 s after the error first fell below
+    0.1°, the ungated error spends more than 5 s beyond 0.05° (past 0.07° on the other side), the gated none, and
+    from 10 s on the gated error stays under 0.15 of the ungated one's largest."""
+    i, kd = 2.2e-3, 2.0e-3
+    gate = 0.05
+    wide, gated = _fly_slew_end(1.0, 0.0), _fly_slew_end(1.0, gate)
+    # the closed form's premise: from 1° down to 0.05° the approach moves at more than K_D/(2I) times its error
+    approach = [(a, w) for (_, a, _, _), (_, _, w) in zip(wide[1:], _rates(1.0, 0.0)[1:], strict=True)
+                if math.radians(0.05) < a < math.radians(1.0)]
+    assert len(approach) > 10 and all(abs(w) > kd / (2 * i) * a for a, w in approach)
+
+    def first_integrated_deg(run):  # the angle the integral saw (the previous cycle's) when it first moved
+        return math.degrees(next(abs(run[k - 1][1]) for k in range(1, len(run)) if run[k][3]))
+
+    assert 0.9 < first_integrated_deg(wide) <= 1.0
+    assert first_integrated_deg(gated) <= math.degrees(math.radians(gate) * 2 * i / kd)  # 0.11°
+    t_in = next(t for t, a, _, _ in wide if abs(a) < math.radians(0.1))
+
+    def above(run):  # seconds beyond 0.05° from 1 s after the error first fell below 0.1° (past the descent)
+        return 0.1 * sum(1 for t, a, _, _ in run if t > t_in + 1.0 and abs(a) > math.radians(0.05))
+
+    assert above(wide) > 5.0 and min(a for t, a, _, _ in wide if t > t_in) < math.radians(-0.07)  # the tail, past 0
+    assert above(gated) == 0.0
+    # and no tail: from 10 s on (the PD's modes down to 1 %) under 0.15 of the ungated one's largest
+    assert max(abs(a) for t, a, _, _ in gated if t > t_in + 10.0) < 0.15 * max(abs(a) for t, a, _, _ in wide
+                                                                                 if t > t_in + 10.0)
+
+
+def test_rate_gate_keeps_the_integrals_1_deg_reach_under_an_unmodelled_torque():
+    """ADCS-141: the wheel law's loop about one axis with its rate observer (model = plant, L = 0.1/s, the blend off)
+    in the D term and a constant torque d = 3e-7 N·m the observer does not know. Without the integral the observer's
+    lag ``d/(I L)`` makes the spring hold ``(1 + K_D/(I L)) d/(K_P/2)`` = 0.316° (to 3 %), above a 0.1° window, which
+    therefore never integrates it; with the 1° window and the 0.05 °/s gate fed the body's (gyro's) rate the integral
+    removes it (below 2 % of it after 300 s). Fed the observer's rate instead, whose lag 0.078 °/s exceeds the gate,
+    the gate would shut on the offset it is there to remove (why the wheel law gives it the gyro's)."""
+    from detumble.control.rate_observer import RateObserver
+
+    i = 2.2e-3
+    kp, kd, ki, lg = 1.1e-3, 2.0e-3, 5.5e-5, 0.1
+    d = 3.0e-7
+
+    def fly(k_i, window_deg, gate_deg_s, gate_on_observer=False):
+        body = RigidBody(((i, 0, 0), (0, i, 0), (0, 0, i)))
+        obs = RateObserver((i, i, i), lg)
+        integ = ErrorIntegrator(math.radians(window_deg), 1e-5, math.radians(gate_deg_s))
+        state = (1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+        torque = (0.0, 0.0, 0.0)
+        for _ in range(3000):
+            w_hat = obs.update(state[4:], torque, (0.0, 0.0, 0.0), 0.1)
+            tau, qe = pd_torque((1.0, 0.0, 0.0, 0.0), state[:4], w_hat, kp, kd)
+            ti = integ.update(qe, 0.1, k_i, w_hat if gate_on_observer else state[4:])
+            torque = (tau[0] + ti[0], tau[1] + ti[1], tau[2] + ti[2])
+            state = body.step(state, 0.1, (torque[0] + d, torque[1], torque[2]))
+        return quat_angle(state[:4])
+
+    offset = fly(0.0, 1.0, 0.0)
+    assert offset == pytest.approx((1.0 + kd / (i * lg)) * d / (kp / 2), rel=0.03)
+    assert math.degrees(offset) > 0.3
+    assert fly(ki, 0.1, 0.0) > 0.9 * offset  # only what it integrated on the way up through 0.1°
+    assert fly(ki, 1.0, 0.05) < 0.02 * offset
+    assert fly(ki, 1.0, 0.05, gate_on_observer=True) > 0.5 * offset
