@@ -62,6 +62,8 @@ AB_START = ("initial.rate.magnitude_deg_s=0.05", "initial.rate.axis=[0.2,0.9,-0.
 PREVIOUS = ("K_P_MAG_PRM_SET 1.0e-6", "K_D_MAG_PRM_SET 1.0e-4", "MAG_STEER_ZETA_PRM_SET 0.7",
             "MAG_SETTLE_TIME_PRM_SET 120.0")
 COMP_OFF = ("MAG_RESIDUAL_MODE_PRM_SET OFF",)
+#: the coils' per-axis dipole capacity (A·m², B; magnetic_pointing.md section 1)
+COIL_CAPACITY_AM2 = (0.116, 0.116, 0.0087)
 
 #: name: (start, the label the page gives, parameter lines, scenario settings), in the order flown
 RUNS: dict[str, tuple[str, str, tuple[str, ...], tuple[str, ...]]] = {
@@ -162,6 +164,19 @@ def figures(name: str, out: pathlib.Path) -> dict:
         out_figures["residual_ready_s"] = next((float(r["t_s"]) for r in rows
                                                 if any(float(r[f"{RESIDUAL}.{i}"]) != 0.0 for i in range(3))), None)
         out_figures["residual_plant_am2"] = list(load_scenario("adcs").spacecraft.residual_dipole_am2)
+    if start == "residual_ab":  # the gyro-bias estimate at 30 s and 60 s (°/s, B) and the largest dipole commanded
+        with open(out / "channels_wide.csv", newline="", encoding="utf-8") as f:
+            rows = list(csv.DictReader(f))
+        bias, dipole = f"{C}.GyroBiasEstimate", f"{C}.CommandedDipole"
+        out_figures["gyro_bias_estimate_deg_s"] = {
+            f"{t:.0f}": [float(r[f"{bias}.{i}"]) for i in range(3)]
+            for t in (30.0, 60.0) for r in rows if float(r["t_s"]) == t and r.get(f"{bias}.0")}
+        out_figures["gyro_bias_plant_deg_s"] = list(load_scenario("adcs").gyro.bias_dps)
+        commanded = [[abs(float(r[f"{dipole}.{i}"])) for i in range(3)] for r in rows if r.get(f"{dipole}.0")]
+        out_figures["commanded_dipole_max_am2"] = [max(m[i] for m in commanded) for i in range(3)]
+        # the share of the 1 s telemetry samples with some coil commanded at 99 % of its capacity or more
+        out_figures["coil_limit_share"] = sum(
+            any(m[i] >= 0.99 * COIL_CAPACITY_AM2[i] for i in range(3)) for m in commanded) / len(commanded)
     return out_figures
 
 
@@ -272,6 +287,22 @@ def residual_ab_markdown(table: dict) -> str:
                      f"({', '.join(f'{1e3 * x:.3f}' for x in e)})e-3 A·m², **{worst:.1e} A·m²** at most per axis "
                      f"({100 * worst / norm:.1f} % of \\|m\\|) from the plant's "
                      f"({', '.join(f'{1e3 * x:.1f}' for x in plant)})e-3")
+    r = table["runs"].get("ab_present_on", {})
+    if r.get("gyro_bias_estimate_deg_s"):
+        plant = r["gyro_bias_plant_deg_s"]
+        worst = max(abs(x - y) for e in r["gyro_bias_estimate_deg_s"].values() for x, y in zip(e, plant, strict=True))
+        at = "; ".join(f"({', '.join(f'{x:.4f}' for x in e)}) °/s at {t} s"
+                       for t, e in r["gyro_bias_estimate_deg_s"].items())
+        lines.append(f"- present defaults' gyro-bias estimate (MEKF, telemetry `GyroBiasEstimate`): {at}; at most "
+                     f"**{worst:.4f} °/s** from the LSM6DSO's ({', '.join(f'{x:g}' for x in plant)}) °/s")
+    for n in ("ab_previous_on", "ab_present_on"):
+        r = table["runs"].get(n, {})
+        if r.get("commanded_dipole_max_am2"):
+            peak = ", ".join(f"{x:.4f}" for x in r["commanded_dipole_max_am2"])
+            lines.append(f"- {RUNS[n][1].split(' ')[0]} defaults, compensation on: commanded dipole (telemetry "
+                         f"`CommandedDipole`, 1 s samples) at most ({peak}) "
+                         f"A·m² (x, y, z; capacity {', '.join(f'{x:g}' for x in COIL_CAPACITY_AM2)}); some coil at "
+                         f"≥ 99 % of its capacity in **{100 * r['coil_limit_share']:.1f} %** of the samples")
     return "\n".join(lines) + "\n"
 
 

@@ -8,7 +8,9 @@ MAGPT-061: ``error_runs_markdown`` quotes the largest error of the no-settle-wai
 of the whole run), the K_D 4e-5 run's smallest error and the largest after it, and the present defaults' largest
 error after the first 1000 s.
 MAGPT-062: ``residual_ab_markdown`` compares each pair off → on (the same start, the compensation its only
-difference) and gives the estimate's largest per-axis error from the plant's dipole.
+difference) and gives the estimate's largest per-axis error from the plant's dipole, the gyro-bias estimate's largest
+error over both times and the share of samples at a coil's limit.
+MAGPT-063: ``figures`` reads an A/B run's residual-dipole, gyro-bias and commanded-dipole telemetry.
 """
 
 import importlib.util
@@ -73,10 +75,44 @@ def test_the_residual_ab_compares_each_pair_off_to_on():
                       "ab_present_off": _ab_run(1.5, 6.0, 1.2),
                       "ab_previous_on": _ab_run(1.3, 16.0, 0.5, [0.99e-3, -5.1e-4, 8.0e-4]),
                       "ab_previous_off": _ab_run(3.4, 17.0, 3.1)}}
+    table["runs"]["ab_present_on"].update({
+        "gyro_bias_estimate_deg_s": {"30": [0.2988, -0.1995, 0.0987], "60": [0.3002, -0.1997, 0.0991]},
+        "gyro_bias_plant_deg_s": [0.3, -0.2, 0.1], "commanded_dipole_max_am2": [0.1, 0.116, 0.0087],
+        "coil_limit_share": 0.177})
     text = runs.residual_ab_markdown(table)
+    assert "at most **0.0013 °/s** from the LSM6DSO's (0.3, -0.2, 0.1) °/s" in text   # the worst of both times
+    assert "some coil at ≥ 99 % of its capacity in **17.7 %** of the samples" in text
     assert "present defaults, compensation off → on: median 1.50° → **0.90°**, p95 6.00° → 5.00°, final 1.20° → " \
            "0.40°" in text
     assert "previous defaults, compensation off → on: median 3.40° → **1.30°**" in text
     assert "fed forward from 600 s" in text
     assert "**5.0e-06 A·m²** at most per axis" in text       # present: 5e-6 on z
     assert "**1.0e-05 A·m²** at most per axis" in text       # previous: 1e-5 on x and y
+
+
+def test_an_ab_run_s_figures_are_read_from_its_telemetry(tmp_path):
+    """MAGPT-063: ``figures`` of an A/B run reads, from the run's ``channels_wide.csv``: when the residual-dipole
+    feed-forward first differs from zero, the gyro-bias estimate at 30 s and 60 s, the largest commanded dipole per
+    axis and the share of samples with some coil at ≥ 99 % of its capacity (the weak z coil's own capacity)."""
+    c = runs.C
+    with open(tmp_path / "attitude.csv", "w", encoding="utf-8") as f:
+        f.write("t_s,mode,pointing_error_deg\n")
+        f.writelines(f"{5.5 + 0.5 * i},POINTING,{20.0 - 0.01 * i}\n" for i in range(200))
+    (tmp_path / "summary.json").write_text('{"pointing_error_deg": {"acquisition_s": 0.0, "median": 1.0, '
+                                           '"p95": 2.0}}', encoding="utf-8")
+    names = [f"{c}.{k}.{i}" for k in ("ResidualDipole", "GyroBiasEstimate", "CommandedDipole") for i in range(3)]
+    rows = []
+    for t in range(100):
+        residual = (1e-3, 0.0, 0.0) if t >= 70 else (0.0, 0.0, 0.0)
+        bias = (0.3 + 1e-4 * t, -0.2, 0.1)
+        # t 10-19: z at its capacity (0.0087, not x's 0.116); t 50: x at 0.115 (≥ 99 %); otherwise well below
+        dipole = (0.115 if t == 50 else 0.01, -0.02, 0.0087 if 10 <= t < 20 else 0.001)
+        rows.append(f"{t}.000000," + ",".join(str(x) for x in (*residual, *bias, *dipole)))
+    (tmp_path / "channels_wide.csv").write_text("t_s," + ",".join(names) + "\n" + "\n".join(rows) + "\n",
+                                                encoding="utf-8")
+    out = runs.figures("ab_present_on", tmp_path)
+    assert out["residual_ready_s"] == 70.0
+    assert out["gyro_bias_estimate_deg_s"] == {"30": [0.3 + 1e-4 * 30, -0.2, 0.1], "60": [0.3 + 1e-4 * 60, -0.2, 0.1]}
+    assert out["commanded_dipole_max_am2"] == [0.115, 0.02, 0.0087]
+    assert out["coil_limit_share"] == 11 / 100
+    assert out["series"]["t_s"][:3] == [5.5, 15.5, 25.5]
