@@ -34,7 +34,8 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "magnetic_pointing_hold_worst", "magnetic_pointing_tumble", "robust_rates_tail",
              "robust_rates_window_campaign", "coursework_settling_ripple", "environment_closed_form",
              "attitude_knowledge_single_runs", "magnetic_pointing_hold_campaign", "magnetic_pointing_floquet_figure",
-             "attitude_knowledge_orbit_runs", "attitude_modes_pointing", "attitude_modes_orbit")
+             "attitude_knowledge_orbit_runs", "attitude_modes_pointing", "attitude_modes_orbit",
+             "magnetic_pointing_residual_ab")
 # its committed folder is older than its campaign file: its blocks are checked against the committed results, the
 # folder's belonging is reported by --check
 BLOCKS_ONLY = ("flight_detumble_campaign",)
@@ -810,3 +811,63 @@ def test_the_attitude_mode_flights_are_what_the_deployment_flies_now(tmp_path):
     drawn = script.draw(committed, table.path, "shipped", tmp_path)
     assert sorted(p.name for p in drawn) == ["attitude_mode.png", "dipole.png", "pointing_error.png",
                                              "wheel_momentum.png"]
+
+
+def test_the_residual_dipole_ab_is_what_the_deployment_flies_now(tmp_path, monkeypatch):
+    """STUDY-100: magnetic_pointing.md's residual-dipole A/B (four one-orbit adcs_ref runs, the compensation on and
+    off from the same start and noise seed) is rendered from a committed JSON file; its probe flies the first 300 s
+    of the compensated present-defaults run again (a few CPU-s) and finds the committed error series to the float;
+    a copy with one sample of that series nudged is reported by the probe."""
+    table = studies.SCRIPT_TABLES["magnetic_pointing_residual_ab"]
+    assert table.run_probe() == []
+    script = table.code()
+
+    def nudge(data):
+        data["runs"]["ab_present_on"]["series"]["error_deg"][3] += 1e-3
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 1 and "ab_present_on" in problems[0] and f"{script.PROBE_S:.0f} s" in problems[0]
+
+
+def test_a_tampered_residual_ab_figure_is_reported_by_check(tmp_path, monkeypatch):
+    """STUDY-101: --check compares the A/B block with what the committed JSON gives: a committed median changed in a
+    copy of the JSON (the page left as it is) is reported as a stale block."""
+    assert studies.check(["magnetic_pointing_residual_ab"], fly_probes=False) == []
+    table = studies.SCRIPT_TABLES["magnetic_pointing_residual_ab"]
+
+    def nudge(data):
+        data["runs"]["ab_previous_off"]["median_deg"] += 0.01
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = studies.check(["magnetic_pointing_residual_ab"], fly_probes=False)
+    assert len(problems) == 1 and "magnetic_pointing_residual_ab" in problems[0] and "not what" in problems[0]
+
+
+def test_the_error_figure_is_drawn_from_series_the_deployment_flies_now(tmp_path, monkeypatch):
+    """STUDY-102: the error-vs-time figure of the single deployment runs and the figures quoted from it come from the
+    error series kept in docs/studies/magnetic_pointing/deployment.json; the runs' probe flies the first 300 s of the
+    present defaults' tumble again and finds its series to the float; regenerating draws the figure (quick: into a
+    scratch folder); a copy whose no-settle-wait series is changed inside its first 400 s is reported by --check (the
+    block quoting it), and one whose tumble series is nudged by the probe."""
+    table = next(t for t in studies.MAG_POINTING_TABLES if t.block == "magnetic_pointing_error_figure")
+    assert table.run_probe() == []
+    ctx = studies.Context(quick=True, out=tmp_path / "quick")
+    studies.regenerate_magnetic_pointing_runs(ctx)
+    assert (tmp_path / "quick" / "docs" / "img" / "magnetic_pointing" / "pointing_error_runs.png").stat().st_size \
+        > 10_000
+
+    def raise_peak(data):
+        e = data["runs"]["tumble_first_no_wait"]["series"]["error_deg"]
+        e[10] = max(e[:40]) + 5.0
+
+    _nudged_script_table(tmp_path / "a", monkeypatch, table, raise_peak)
+    problems = studies.check(["magnetic_pointing_runs"], fly_probes=False)
+    assert len(problems) == 1 and "magnetic_pointing_error_figure" in problems[0]
+
+    def nudge(data):
+        data["runs"]["tumble"]["series"]["error_deg"][5] += 1e-3
+
+    _nudged_script_table(tmp_path / "b", monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 1 and "tumble" in problems[0]

@@ -1402,6 +1402,13 @@ SCRIPT_TABLES = {t.name: t for t in (
                 "sequence: three adcs_ref runs, ~3 CPU-minutes (committed JSON)", "attitude_knowledge_orbit_runs",
                 "campaigns/adcs/wheels_orbit_table.py", "attitude_knowledge/orbit_runs.json",
                 STUDIES_DIR / "attitude_knowledge.md"),
+    ScriptTable("magnetic_pointing_residual_ab", "magnetorquer hold: the residual-dipole compensation on and off, "
+                "same start and noise seed, present and previous gains: four one-orbit adcs_ref runs (committed "
+                "JSON; the probe re-flies 300 s of one)", "magnetic_pointing_residual_ab",
+                "campaigns/adcs/magnetic_pointing_runs.py", "magnetic_pointing/residual_ab.json",
+                STUDIES_DIR / "magnetic_pointing.md",
+                ("--only", "ab_present_on", "ab_present_off", "ab_previous_on", "ab_previous_off"),
+                render="residual_ab_markdown", probe="ab_probe"),
 )}
 
 
@@ -1484,7 +1491,8 @@ def fly_sun_safe_mismatch() -> None:
 
 
 _MAG_PLANT_SUMMARY = "magnetorquer pointing: Floquet maps and plant-only checks (committed JSON, ~6 CPU-minutes)"
-_MAG_RUNS_SUMMARY = "magnetorquer pointing: eleven one-orbit adcs_ref runs (committed JSON, ~4 CPU-minutes)"
+_MAG_RUNS_SUMMARY = ("magnetorquer pointing: eleven one-orbit adcs_ref runs and their error-vs-time figure (committed "
+                     "JSON, ~4 CPU-minutes; the probe re-flies 300 s of one)")
 #: magnetic_pointing.md's plant-only tables (campaigns/adcs/magnetic_pointing_tables.py) and single deployment runs
 #: (campaigns/adcs/magnetic_pointing_runs.py: one JSON file, two tables)
 MAG_POINTING_TABLES = (
@@ -1501,6 +1509,11 @@ MAG_POINTING_TABLES = (
                   "campaigns/adcs/magnetic_pointing_runs.py", "magnetic_pointing/deployment.json",
                   STUDIES_DIR / "magnetic_pointing.md", render=f"{start}_markdown")
       for start in ("tumble", "hold", "corner")),
+    # the figures quoted from the error-vs-time figure (drawn from the same JSON file's error series); the probe
+    # re-flies the first 300 s of the present defaults' tumble
+    ScriptTable("magnetic_pointing_runs", _MAG_RUNS_SUMMARY, "magnetic_pointing_error_figure",
+                "campaigns/adcs/magnetic_pointing_runs.py", "magnetic_pointing/deployment.json",
+                STUDIES_DIR / "magnetic_pointing.md", render="error_runs_markdown", probe="probe"),
 )
 
 
@@ -1572,7 +1585,12 @@ def regenerate_magnetic_pointing(ctx: Context) -> None:
 
 
 def regenerate_magnetic_pointing_runs(ctx: Context) -> None:
+    """The runs' blocks, and docs/img/magnetic_pointing/pointing_error_runs.png drawn from their error series."""
     ctx.set_blocks(STUDIES_DIR / "magnetic_pointing.md", magnetic_pointing_runs_blocks())
+    table = next(t for t in MAG_POINTING_TABLES if t.name == "magnetic_pointing_runs")
+    with tempfile.TemporaryDirectory() as scratch:
+        png = table.code().draw_errors(json.loads(table.path.read_text(encoding="utf-8")), pathlib.Path(scratch))
+        ctx.copy(png, IMG_DIR / "magnetic_pointing" / "pointing_error_runs.png")
 
 
 def sun_safe_blocks() -> dict[str, str]:
@@ -2080,7 +2098,8 @@ STUDIES = {s.name: s for s in (
           probe=FLOQUET_MAPS.run_probe),
     _grouped_study(ENV_CLOSED_FORM_TABLES),
     Study("magnetic_pointing_runs", _MAG_RUNS_SUMMARY, regenerate_magnetic_pointing_runs,
-          magnetic_pointing_runs_blocks, STUDIES_DIR / "magnetic_pointing.md"),
+          magnetic_pointing_runs_blocks, STUDIES_DIR / "magnetic_pointing.md",
+          probe=lambda: [p for t in MAG_POINTING_TABLES if t.name == "magnetic_pointing_runs" for p in t.run_probe()]),
     Study("magnetic_pointing_hold_worst", "magnetorquer-only hold at its worst corner: 10 deployment runs "
           "(committed campaign)", regenerate_magnetic_hold_worst, magnetic_hold_worst_blocks, _MAG_DOC,
           ("magnetic_pointing_hold_worst",)),

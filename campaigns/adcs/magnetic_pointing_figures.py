@@ -2,21 +2,19 @@
 
     python campaigns/adcs/magnetic_pointing_figures.py floquet --out docs/img/magnetic_pointing \
         --json docs/studies/magnetic_pointing/floquet_maps.json
-    python campaigns/adcs/magnetic_pointing_figures.py runs \
-        "SEED_PD, K_D 4e-4=RUN1" "FIELD_STEERING, K_D 4e-5=RUN2" "FIELD_STEERING (default)=RUN3" --out DIR
 
 ``floquet``: the Floquet growth rate (1/s, one orbit of the adcs_ref field toward its start-up target) of
 seed 003's projected PD over (K_P, K_D), and of the steering law over (ρ, K_D) at the first pass's K_P (ζ 0.7), in
 the scenario's field; the figures the page quotes from them are printed (``maps_markdown``), and ``--json`` keeps
 the maps, from which ``tools/studies.py --only magnetic_pointing_floquet_figure`` draws the figure and the page's
 block again.
-``runs``: the true pointing error against time of ``fprime-lite run`` output folders (their attitude.csv).
+The error-vs-time figure of the single deployment runs is drawn by ``magnetic_pointing_runs.py``'s ``draw_errors``
+from the error series its ``--json`` keeps (``tools/studies.py --only magnetic_pointing_runs``).
 """
 
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 import pathlib
 import sys
@@ -143,47 +141,13 @@ def floquet(out: pathlib.Path, json_path: pathlib.Path | None = None) -> None:
     print(f"wrote {draw_floquet(maps, out)}")
 
 
-def runs(out: pathlib.Path, specs: list[str]) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(10, 4.5))
-    for spec in specs:
-        label, _, folder = spec.rpartition("=")
-        t, e = [], []
-        with open(pathlib.Path(folder) / "attitude.csv", newline="") as f:
-            for row in csv.DictReader(f):
-                if row["mode"] == "POINTING" and row["pointing_error_deg"] not in ("", "nan"):
-                    t.append(float(row["t_s"]))
-                    e.append(float(row["pointing_error_deg"]))
-        ax.plot(t, e, lw=1, label=label)
-    ax.axhline(5.0, color="k", ls="--", lw=0.8)
-    ax.axhline(15.0, color="k", ls=":", lw=0.8)
-    ax.set_yscale("log")
-    ax.set_ylim(0.5, 200)
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("pointing error (deg, truth)")
-    ax.set_title("adcs_ref, magnetorquers only, POINTING forced at 5 s "
-                 "(0.5 deg/s start 45 deg off, or at rest on target)")
-    ax.legend()
-    fig.tight_layout()
-    out.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out / "pointing_error_runs.png", dpi=90)
-    print(f"wrote {out / 'pointing_error_runs.png'}")
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("what", choices=("floquet", "runs"))
-    ap.add_argument("specs", nargs="*", help="runs: LABEL=FOLDER of fprime-lite run outputs")
+    ap.add_argument("what", choices=("floquet",))
     ap.add_argument("--out", default="docs/img/magnetic_pointing")
-    ap.add_argument("--json", type=pathlib.Path, metavar="FILE", help="floquet: also keep the maps in FILE (JSON)")
+    ap.add_argument("--json", type=pathlib.Path, metavar="FILE", help="also keep the maps in FILE (JSON)")
     a = ap.parse_args(argv)
-    if a.what == "floquet":
-        floquet(pathlib.Path(a.out), a.json)
-    else:
-        runs(pathlib.Path(a.out), a.specs)
+    floquet(pathlib.Path(a.out), a.json)
     return 0
 
 

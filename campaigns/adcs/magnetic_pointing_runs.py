@@ -16,7 +16,15 @@ feed-forward, MAG_SETTLE_TIME 120 s or 0) in the tilted dipole they were chosen 
 parameters, not the build of 2026-12-01. Figures (:func:`figures`): the true error over POINTING after its first
 10 % from ``attitude.csv`` (the page's convention), and the run summary's own window (after acquisition).
 ``tools/studies.py --only magnetic_pointing_runs`` renders the pages' tables from the JSON file
-(:func:`tumble_markdown`, :func:`hold_markdown`).
+(:func:`tumble_markdown`, :func:`hold_markdown`), and the error-vs-time figure from the error series each run keeps
+(one POINTING sample every SERIES_STEP_S; :func:`draw_errors`, :func:`error_runs_markdown`).
+
+*residual_ab* (its own JSON file, ``--only ab_present_on ab_present_off ab_previous_on ab_previous_off --json
+docs/studies/magnetic_pointing/residual_ab.json``): a deliberate A/B of the residual-dipole compensation, the same
+start (20° off at 0.05 °/s, the run that first flew the on-board estimate) and noise seed with MAG_RESIDUAL_MODE
+ESTIMATE (the default) or OFF, with the present and the previous defaults, in IGRF-14 (:func:`residual_ab_markdown`).
+The probes (``--check``) fly the first PROBE_S of one run again and compare its error series to the float
+(:func:`probe`, :func:`ab_probe`).
 """
 
 from __future__ import annotations
@@ -45,6 +53,17 @@ FIRST = ("K_P_MAG_PRM_SET 1.0e-6", "K_D_MAG_PRM_SET 1.0e-4", "MAG_STEER_ZETA_PRM
          "MAG_RESIDUAL_MODE_PRM_SET OFF", "ESTIMATOR_PRM_SET COMPLEMENTARY", "MAG_SETTLE_TIME_PRM_SET 120.0")
 NO_WAIT = ("MAG_SETTLE_TIME_PRM_SET 0.0",)
 SEED_PD = ("MAG_POINTING_LAW_PRM_SET SEED_PD", "K_P_MAG_PRM_SET 2.0e-6", "K_D_MAG_PRM_SET 4.0e-4")
+#: the start of the residual-dipole A/B: 20° off the target (about (0.6, −0.48, 0.64)) at 0.05 °/s about
+#: (0.2, 0.9, −0.3), the run that first flew the on-board estimate (2026-12-02, by accident with the previous gains)
+AB_START = ("initial.rate.magnitude_deg_s=0.05", "initial.rate.axis=[0.2,0.9,-0.3]",
+            "initial.attitude.quaternion=[0.9417408211801008,0.13878745794087152,0.29986321248437037,"
+            "0.06280382981867638]")
+#: the previous defaults of section 4 (before the second pass): gains, ζ and the settle wait; MEKF as today
+PREVIOUS = ("K_P_MAG_PRM_SET 1.0e-6", "K_D_MAG_PRM_SET 1.0e-4", "MAG_STEER_ZETA_PRM_SET 0.7",
+            "MAG_SETTLE_TIME_PRM_SET 120.0")
+COMP_OFF = ("MAG_RESIDUAL_MODE_PRM_SET OFF",)
+#: the coils' per-axis dipole capacity (A·m², B; magnetic_pointing.md section 1)
+COIL_CAPACITY_AM2 = (0.116, 0.116, 0.0087)
 
 #: name: (start, the label the page gives, parameter lines, scenario settings), in the order flown
 RUNS: dict[str, tuple[str, str, tuple[str, ...], tuple[str, ...]]] = {
@@ -64,7 +83,28 @@ RUNS: dict[str, tuple[str, str, tuple[str, ...], tuple[str, ...]]] = {
                             FIRST + NO_WAIT + ("K_D_MAG_PRM_SET 4.0e-5",), TUMBLE + DIPOLE),
     "corner": ("corner", "**FIELD_STEERING, present defaults** (IGRF-14), 20° off at 0.05 °/s (test ADCS-064's start)",
                (), CORNER),
+    # the residual-dipole A/B: the same start and noise seed, the on-board estimate fed forward (the default,
+    # MAG_RESIDUAL_MODE ESTIMATE) or not (OFF), with the present and with the previous gains; IGRF-14
+    "ab_present_on": ("residual_ab", "present defaults, **compensation on** (ESTIMATE)", (), AB_START),
+    "ab_present_off": ("residual_ab", "present defaults, compensation off", COMP_OFF, AB_START),
+    "ab_previous_on": ("residual_ab", "previous defaults (K_P 1e-6, K_D 1e-4, ζ 0.7, 120 s), **compensation on**",
+                       PREVIOUS, AB_START),
+    "ab_previous_off": ("residual_ab", "previous defaults, compensation off", PREVIOUS + COMP_OFF, AB_START),
 }
+#: the runs of the residual-dipole A/B (their own JSON file: ``--only`` these)
+AB_RUNS = tuple(n for n, (s, *_) in RUNS.items() if s == "residual_ab")
+#: the error-vs-time figure's runs (:func:`draw_errors`), with their legends
+FIGURE_RUNS = {"tumble_seed_pd": "SEED_PD, K_P 2e-6, K_D 4e-4 (seed 003's law, dipole)",
+               "tumble_first_kd4e-5": "first pass, K_D 4e-5, no settle wait (dipole)",
+               "tumble_first_no_wait": "first pass, no settle wait (dipole)",
+               "tumble_first": "first pass, 120 s settle wait (dipole)",
+               "tumble": "present defaults (IGRF-14)",
+               "hold_first_no_wait": "hold at rest: first pass, no settle wait (dipole)",
+               "hold_first": "hold at rest: first pass (dipole)",
+               "hold": "hold at rest: present defaults (IGRF-14)"}
+#: the error series keeps one POINTING sample every SERIES_STEP_S (s); the probe re-flies PROBE_S of a run
+SERIES_STEP_S = 10.0
+PROBE_S = 300.0
 
 
 def sequence(lines: tuple[str, ...]) -> str:
@@ -78,8 +118,8 @@ def sequence(lines: tuple[str, ...]) -> str:
     return "\n".join(out) + "\n"
 
 
-def fly(name: str, runs_dir: pathlib.Path) -> dict:
-    """Fly run ``name`` into ``runs_dir/name``; its figures (:func:`figures`)."""
+def fly(name: str, runs_dir: pathlib.Path, duration_s: float = DURATION_S) -> dict:
+    """Fly run ``name`` (``duration_s`` simulated seconds) into ``runs_dir/name``; its figures (:func:`figures`)."""
     import shutil
 
     from fprime_lite.tools import run
@@ -90,7 +130,7 @@ def fly(name: str, runs_dir: pathlib.Path) -> dict:
     runs_dir.mkdir(parents=True, exist_ok=True)
     seq = runs_dir / f"{name}.seq"
     seq.write_text(sequence(lines), encoding="utf-8")
-    run(TOPOLOGY, duration_s=DURATION_S, out=out, seq=seq, settings=list(sets))
+    run(TOPOLOGY, duration_s=duration_s, out=out, seq=seq, settings=list(sets))
     return figures(name, out)
 
 
@@ -104,9 +144,7 @@ def figures(name: str, out: pathlib.Path) -> dict:
     import numpy as np
 
     start, _, lines, sets = RUNS[name]
-    with open(out / "attitude.csv", newline="", encoding="utf-8") as f:
-        errors = [float(r["pointing_error_deg"]) for r in csv.DictReader(f)
-                  if r["mode"] == "POINTING" and r["pointing_error_deg"] not in ("", "nan")]
+    times, errors = pointing_errors(out)
     tail = np.array(errors[len(errors) // 10:])
     summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     e = summary.get("pointing_error_deg") or {}
@@ -114,15 +152,56 @@ def figures(name: str, out: pathlib.Path) -> dict:
                    "samples": len(tail), "median_deg": float(np.median(tail)),
                    "p95_deg": float(np.percentile(tail, 95)), "max_deg": float(tail.max()), "final_deg": errors[-1],
                    "acquisition_s": e.get("acquisition_s"), "steady_median_deg": e.get("median"),
-                   "steady_p95_deg": e.get("p95")}
-    if start == "corner":  # the on-board residual-dipole estimate (telemetry ResidualDipole, A·m², B) at the end
+                   "steady_p95_deg": e.get("p95"), "series": series(times, errors)}
+    if start in ("corner", "residual_ab"):  # the residual-dipole estimate (telemetry ResidualDipole, A·m², B)
         with open(out / "channels_wide.csv", newline="", encoding="utf-8") as f:
             rows = [r for r in csv.DictReader(f) if r.get(f"{RESIDUAL}.0")]
         from detumble.sim.scenario import load_scenario
 
-        out_figures["residual_estimate_am2"] = [float(rows[-1][f"{RESIDUAL}.{i}"]) for i in range(3)]
+        out_figures["residual_estimate_am2"] = [float(rows[-1][f"{RESIDUAL}.{i}"]) for i in range(3)] if rows \
+            else None
+        # when the feed-forward first differs from zero (s; None: never, e.g. with MAG_RESIDUAL_MODE OFF)
+        out_figures["residual_ready_s"] = next((float(r["t_s"]) for r in rows
+                                                if any(float(r[f"{RESIDUAL}.{i}"]) != 0.0 for i in range(3))), None)
         out_figures["residual_plant_am2"] = list(load_scenario("adcs").spacecraft.residual_dipole_am2)
+    if start == "residual_ab":  # the gyro-bias estimate at 30 s and 60 s (°/s, B) and the largest dipole commanded
+        with open(out / "channels_wide.csv", newline="", encoding="utf-8") as f:
+            rows = list(csv.DictReader(f))
+        bias, dipole = f"{C}.GyroBiasEstimate", f"{C}.CommandedDipole"
+        out_figures["gyro_bias_estimate_deg_s"] = {
+            f"{t:.0f}": [float(r[f"{bias}.{i}"]) for i in range(3)]
+            for t in (30.0, 60.0) for r in rows if float(r["t_s"]) == t and r.get(f"{bias}.0")}
+        out_figures["gyro_bias_plant_deg_s"] = list(load_scenario("adcs").gyro.bias_dps)
+        commanded = [[abs(float(r[f"{dipole}.{i}"])) for i in range(3)] for r in rows if r.get(f"{dipole}.0")]
+        out_figures["commanded_dipole_max_am2"] = [max(m[i] for m in commanded) for i in range(3)]
+        # the share of the 1 s telemetry samples with some coil commanded at 99 % of its capacity or more
+        out_figures["coil_limit_share"] = sum(
+            any(m[i] >= 0.99 * COIL_CAPACITY_AM2[i] for i in range(3)) for m in commanded) / len(commanded)
     return out_figures
+
+
+def pointing_errors(out: pathlib.Path) -> tuple[list[float], list[float]]:
+    """The POINTING samples of a run's ``attitude.csv``: times (s) and the true pointing error (degrees)."""
+    import csv
+
+    times, errors = [], []
+    with open(out / "attitude.csv", newline="", encoding="utf-8") as f:
+        for r in csv.DictReader(f):
+            if r["mode"] == "POINTING" and r["pointing_error_deg"] not in ("", "nan"):
+                times.append(float(r["t_s"]))
+                errors.append(float(r["pointing_error_deg"]))
+    return times, errors
+
+
+def series(times: list[float], errors: list[float], step_s: float = SERIES_STEP_S) -> dict:
+    """The error series kept for the figure: the first POINTING sample, then the first one at least ``step_s``
+    after the last kept (times in s to 0.1 s, errors in degrees to 1e-3°)."""
+    t_kept, e_kept = [], []
+    for t, e in zip(times, errors, strict=True):
+        if not t_kept or t >= t_kept[-1] + step_s - 1e-9:
+            t_kept.append(round(t, 1))
+            e_kept.append(round(e, 3))
+    return {"step_s": step_s, "t_s": t_kept, "error_deg": e_kept}
 
 
 def _cell(x, digits: int = 2) -> str:
@@ -182,6 +261,155 @@ def corner_markdown(table: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+def residual_ab_markdown(table: dict) -> str:
+    """The residual-dipole A/B: the same start and noise seed with the on-board estimate fed forward or not
+    (tools/studies.py renders it)."""
+    import math
+
+    lines = [markdown(table, "residual_ab").rstrip("\n")]
+    pairs = (("present", "ab_present_on", "ab_present_off"), ("previous", "ab_previous_on", "ab_previous_off"))
+    for gains, on, off in pairs:
+        a, b = table["runs"].get(off), table["runs"].get(on)
+        if a is None or b is None:
+            continue
+        lines.append(f"{'' if gains == 'previous' else chr(10)}- {gains} defaults, compensation off → on: median "
+                     f"{_cell(a['median_deg'])} → **{_cell(b['median_deg'])}**, p95 {_cell(a['p95_deg'])} → "
+                     f"{_cell(b['p95_deg'])}, final {_cell(a['final_deg'])} → {_cell(b['final_deg'])}")
+    est = [(n, table["runs"][n]["residual_estimate_am2"]) for n in ("ab_present_on", "ab_previous_on")
+           if n in table["runs"] and table["runs"][n].get("residual_estimate_am2")]
+    for n, e in est:
+        plant = table["runs"][n]["residual_plant_am2"]
+        worst = max(abs(x - y) for x, y in zip(e, plant, strict=True))
+        norm = math.sqrt(sum(x * x for x in plant))
+        ready = table["runs"][n].get("residual_ready_s")
+        lines.append(f"- {RUNS[n][1].split(' ')[0]} defaults' on-board estimate (telemetry `ResidualDipole`): "
+                     f"fed forward from {'—' if ready is None else f'{ready:.0f}'} s; at the end "
+                     f"({', '.join(f'{1e3 * x:.3f}' for x in e)})e-3 A·m², **{worst:.1e} A·m²** at most per axis "
+                     f"({100 * worst / norm:.1f} % of \\|m\\|) from the plant's "
+                     f"({', '.join(f'{1e3 * x:.1f}' for x in plant)})e-3")
+    r = table["runs"].get("ab_present_on", {})
+    if r.get("gyro_bias_estimate_deg_s"):
+        plant = r["gyro_bias_plant_deg_s"]
+        worst = max(abs(x - y) for e in r["gyro_bias_estimate_deg_s"].values() for x, y in zip(e, plant, strict=True))
+        at = "; ".join(f"({', '.join(f'{x:.4f}' for x in e)}) °/s at {t} s"
+                       for t, e in r["gyro_bias_estimate_deg_s"].items())
+        lines.append(f"- present defaults' gyro-bias estimate (MEKF, telemetry `GyroBiasEstimate`): {at}; at most "
+                     f"**{worst:.4f} °/s** from the LSM6DSO's ({', '.join(f'{x:g}' for x in plant)}) °/s")
+    for n in ("ab_previous_on", "ab_present_on"):
+        r = table["runs"].get(n, {})
+        if r.get("commanded_dipole_max_am2"):
+            peak = ", ".join(f"{x:.4f}" for x in r["commanded_dipole_max_am2"])
+            lines.append(f"- {RUNS[n][1].split(' ')[0]} defaults, compensation on: commanded dipole (telemetry "
+                         f"`CommandedDipole`, 1 s samples) at most ({peak}) "
+                         f"A·m² (x, y, z; capacity {', '.join(f'{x:g}' for x in COIL_CAPACITY_AM2)}); some coil at "
+                         f"≥ 99 % of its capacity in **{100 * r['coil_limit_share']:.1f} %** of the samples")
+    return "\n".join(lines) + "\n"
+
+
+def _first_index(times: list[float], t: float) -> int:
+    return next((i for i, x in enumerate(times) if x >= t), len(times))
+
+
+def error_runs_markdown(table: dict) -> str:
+    """The figures the page quotes from the error-vs-time figure (:func:`draw_errors`), from the kept series
+    (one sample every SERIES_STEP_S: the extremes are those of the kept samples)."""
+    lines = []
+    r = table["runs"].get("tumble_first_no_wait", {}).get("series")
+    if r:
+        t, e = r["t_s"], r["error_deg"]
+        i = max(range(_first_index(t, 405.0)), key=e.__getitem__)
+        lines.append(f"- first pass, no settle wait, from the tumble: largest error in POINTING's first 400 s "
+                     f"**{e[i]:.0f}°** at {t[i]:.0f} s (the statistics start after the first 10 % of POINTING, "
+                     f"≈ {t[0] + 0.1 * (t[-1] - t[0]):.0f} s)")
+    r = table["runs"].get("tumble_first_kd4e-5", {}).get("series")
+    if r:
+        t, e = r["t_s"], r["error_deg"]
+        i = min(range(len(e)), key=e.__getitem__)
+        j = max(range(i, len(e)), key=e.__getitem__)
+        lines.append(f"- first pass with K_D_MAG 4e-5, no settle wait: smallest error **{e[i]:.1f}°** at {t[i]:.0f} s, "
+                     f"then thrown off again: {e[j]:.0f}° at {t[j]:.0f} s")
+    r = table["runs"].get("tumble_seed_pd", {}).get("series")
+    if r:
+        e = r["error_deg"]
+        lines.append(f"- seed 003's PD: error {min(e):.0f}–{max(e):.0f}° over POINTING (never below 30°)"
+                     if min(e) >= 30.0 else f"- seed 003's PD: smallest error {min(e):.1f}° over POINTING")
+    late = []
+    for name in ("tumble", "hold"):
+        r = table["runs"].get(name, {}).get("series")
+        if r:
+            t, e = r["t_s"], r["error_deg"]
+            i = max(range(_first_index(t, 1000.0), len(e)), key=e.__getitem__)
+            late.append(f"{'from the tumble' if name == 'tumble' else 'at rest'} {e[i]:.1f}° at {t[i]:.0f} s")
+    if late:
+        lines.append(f"- present defaults (IGRF-14), largest error after the first 1000 s: {', '.join(late)}")
+    missing = [n for n in FIGURE_RUNS if not table["runs"].get(n, {}).get("series")]
+    if missing:
+        lines.append(f"- not in the figure (no error series kept: `--only {' '.join(missing)}` flies them): "
+                     f"{', '.join(missing)}")
+    return "\n".join(lines) + "\n"
+
+
+def draw_errors(table: dict, out: pathlib.Path) -> pathlib.Path:
+    """The true pointing error against time of FIGURE_RUNS, from their kept series, into
+    ``out/pointing_error_runs.png``."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(10, 5.4))
+    for name, label in FIGURE_RUNS.items():
+        r = table["runs"].get(name, {}).get("series")
+        if r:
+            ax.plot(r["t_s"], r["error_deg"], lw=1.1 if name in ("tumble", "hold") else 0.9, label=label,
+                    ls="-" if RUNS[name][0] == "tumble" else "--")
+    ax.axhline(5.0, color="k", ls="--", lw=0.6)
+    ax.axhline(15.0, color="k", ls=":", lw=0.6)
+    ax.set_yscale("log")
+    ax.set_ylim(0.05, 200)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("pointing error (deg, truth)")
+    ax.set_title("adcs_ref, magnetorquers only, POINTING forced at 5 s: 0.5 deg/s start 45 deg off (solid) "
+                 "or at rest on the target (dashed)", fontsize=9)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3)
+    fig.tight_layout()
+    out.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out / "pointing_error_runs.png", dpi=90, bbox_inches="tight")
+    plt.close(fig)
+    return out / "pointing_error_runs.png"
+
+
+def probe_run(committed: dict, name: str) -> list[str]:
+    """Fly the first PROBE_S of run ``name`` again and compare its error series with the committed one's first
+    samples, to the float (a few CPU-s)."""
+    import tempfile
+
+    kept = committed["runs"].get(name, {}).get("series")
+    if not kept:
+        return [f"run {name} has no committed error series"]
+    with tempfile.TemporaryDirectory() as scratch:
+        fly(name, pathlib.Path(scratch), duration_s=PROBE_S)
+        again = series(*pointing_errors(pathlib.Path(scratch) / name), step_s=kept["step_s"])
+    n = _first_index(kept["t_s"], PROBE_S - kept["step_s"])
+    now = list(zip(again["t_s"], again["error_deg"], strict=True))[:n]
+    then = list(zip(kept["t_s"], kept["error_deg"], strict=True))[:n]
+    if now != then:
+        i = next((k for k, (a, b) in enumerate(zip(now, then, strict=False)) if a != b), min(len(now), len(then)))
+        shown = now[i] if i < len(now) else None
+        return [f"run {name}'s first {PROBE_S:.0f} s: (t, error) {shown} now, "
+                f"{then[i] if i < len(then) else None} committed"]
+    return []
+
+
+def probe(committed: dict) -> list[str]:
+    """The deployment runs' probe: the present defaults' tumble, its first PROBE_S flown again."""
+    return probe_run(committed, "tumble")
+
+
+def ab_probe(committed: dict) -> list[str]:
+    """The A/B's probe: the compensated present-defaults run, its first PROBE_S flown again."""
+    return probe_run(committed, "ab_present_on")
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--json", type=pathlib.Path, metavar="FILE", help="also keep the figures in FILE (merged)")
@@ -210,6 +438,8 @@ def main(argv: list[str] | None = None) -> int:
     for start in ("tumble", "hold"):
         print(markdown(table, start))
     print(corner_markdown(table))
+    if any(n in table["runs"] for n in AB_RUNS):
+        print(residual_ab_markdown(table))
     return 0
 
 
