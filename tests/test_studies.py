@@ -686,6 +686,17 @@ def test_the_rate_gate_campaign_block_is_checked_and_pairs_the_same_draws(tmp_pa
         studies.robust_rates_gate_campaign_blocks()
 
 
+def _copied_campaign(tmp_path, monkeypatch, key: str):
+    """A copy of a committed campaign folder under tmp_path (STUDIES_DIR pointed there): the campaign, its
+    manifest's path and the manifest as read."""
+    original = studies.CAMPAIGNS[key]
+    shutil.copytree(original.path, tmp_path / original.folder)
+    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path)
+    campaign = dataclasses.replace(original)
+    manifest_path = campaign.path / "manifest.json"
+    return campaign, manifest_path, json.loads(manifest_path.read_text(encoding="utf-8"))
+
+
 def test_a_changed_resolution_is_confirmed_only_by_flights_that_agree(tmp_path, monkeypatch):
     """STUDY-080: a committed campaign whose resolved configuration changed is stale; `--confirm-resolution`
     re-flies its probe run with today's configuration and, when the metrics agree to the float, records the
@@ -694,12 +705,7 @@ def test_a_changed_resolution_is_confirmed_only_by_flights_that_agree(tmp_path, 
     pytest.importorskip("pandas")
     import pandas as pd
 
-    original = studies.CAMPAIGNS["robust_rates_campaign"]
-    shutil.copytree(original.path, tmp_path / original.folder)
-    monkeypatch.setattr(studies, "STUDIES_DIR", tmp_path)
-    campaign = dataclasses.replace(original)
-    manifest_path = campaign.path / "manifest.json"
-    manifest = json.loads(manifest_path.read_text(encoding="utf-8"))
+    campaign, manifest_path, manifest = _copied_campaign(tmp_path, monkeypatch, "robust_rates_campaign")
     manifest.pop("resolution_confirmed", None)  # as flown: one resolution, today's or not
     from fprime_lite.tools.campaign.manifest import resolved_configuration
     from fprime_lite.tools.campaign.plan import plan_runs
@@ -871,3 +877,55 @@ def test_the_error_figure_is_drawn_from_series_the_deployment_flies_now(tmp_path
     _nudged_script_table(tmp_path / "b", monkeypatch, table, nudge)
     problems = table.run_probe()
     assert len(problems) == 1 and "tumble" in problems[0]
+
+
+def test_a_folder_recording_no_resolution_is_confirmed_only_by_flights_that_agree(tmp_path, monkeypatch):
+    """STUDY-090: a committed campaign folder whose manifest records no resolved configuration (UNKNOWN) is
+    confirmed by `--confirm-resolution`: it re-flies the probe run, the last run and one run of every other run
+    section (flight_bdot_noise: two topologies), and only when every metric agrees to the float appends a
+    `resolution_confirmed` entry saying the folder had none before (then it is no longer UNKNOWN nor stale); when a
+    committed metric of the run chosen for the other section disagrees, nothing is written and it stays UNKNOWN."""
+    pytest.importorskip("pandas")
+    import pandas as pd
+    from fprime_lite.tools.campaign.manifest import resolved_configuration
+    from fprime_lite.tools.campaign.plan import plan_runs
+
+    original = studies.CAMPAIGNS["flight_bdot_noise"]
+    campaign, manifest_path, manifest = _copied_campaign(tmp_path, monkeypatch, "flight_bdot_noise")
+    for key in ("resolved", "resolution_confirmed"):  # as made before manifests recorded a resolution
+        manifest.pop(key, None)
+    manifest_path.write_text(json.dumps(manifest, indent=2) + "\n", encoding="utf-8")
+    assert campaign.resolution_unknown() is not None
+
+    tasks = plan_runs(campaign.campaign(), tmp_path / "plan")
+    today = resolved_configuration(tasks)
+    assert len(today) == 2  # the two topologies: each must be flown
+    df = pd.read_parquet(campaign.path / "results.parquet")
+    chosen = campaign.confirmation_tasks(df, tasks, unknown=True)
+    probe_ids = [t["run_id"] for t in tasks if original.probe(t)]
+    assert [t["run_id"] for t in campaign.confirmation_tasks(df, tasks)] == probe_ids
+    ids = [t["run_id"] for t in chosen]
+    assert set(probe_ids) <= set(ids) and tasks[-1]["run_id"] in ids and len(ids) == len(set(ids))
+    assert set().union(*(resolved_configuration([t]) for t in chosen)) == set(today)
+    other = next(t for t in chosen if t["config"]["topology"] != tasks[-1]["config"]["topology"]
+                 and t["run_id"] not in probe_ids)
+
+    # a committed metric the other section's run no longer gives: not confirmed, the manifest untouched
+    good = df.copy()
+    row = df.index[df["run_id"] == other["run_id"]][0]
+    df.loc[row, "detumble_complete_s"] = float(df.loc[row, "detumble_complete_s"]) + 0.5
+    df.to_parquet(campaign.path / "results.parquet")
+    before = manifest_path.read_bytes()
+    problems = campaign.confirm_resolution()
+    assert len(problems) == 1 and other["run_id"] in problems[0] and "detumble_complete_s" in problems[0], problems
+    assert manifest_path.read_bytes() == before and campaign.resolution_unknown() is not None
+
+    # the committed rows as flown: confirmed, recorded as having had no resolution before
+    good.to_parquet(campaign.path / "results.parquet")
+    assert campaign.confirm_resolution() == []
+    after = json.loads(manifest_path.read_text(encoding="utf-8"))
+    (entry,) = after["resolution_confirmed"]
+    assert entry["resolved"] == today and entry["runs"] == ids
+    assert entry["how"].startswith("the manifest recorded no resolved configuration before")
+    assert "resolved" not in after and campaign.resolution_unknown() is None
+    assert campaign.problems(fly_probes=False) == []

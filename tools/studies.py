@@ -28,6 +28,8 @@ probe runs and compares their metrics with the committed rows, and runs each stu
 that cannot alter its flights (a parameter added at its former constant), re-fly its probe runs (else its
 first run) and, if every metric agrees to the float, record today's configuration in its manifest
 (``resolution_confirmed``), which ``--check`` compares against from then on; a disagreement records nothing.
+A folder whose manifest records no configuration (``UNKNOWN``) is confirmed the same way, flying also its last
+run and the cheapest run of each configuration its runs resolve to.
 
 Campaign results are not re-run here (that is hours of CPU for some); each study names the command that
 produces them, and ``--rerun-campaigns`` runs those (one worker, resuming what is already there).
@@ -229,29 +231,51 @@ class CommittedCampaign:
         confirmed = manifest.get("resolution_confirmed") or []
         return confirmed[-1]["resolved"] if confirmed else manifest.get("resolved")
 
-    def confirmation_tasks(self, df, tasks: list[dict]) -> list[dict]:
-        """The runs :meth:`confirm_resolution` re-flies: the probe runs, else the first committed run."""
+    def confirmation_tasks(self, df, tasks: list[dict], *, unknown: bool = False) -> list[dict]:
+        """The runs :meth:`confirm_resolution` re-flies: the probe runs, else the first committed run.
+
+        ``unknown`` (the manifest records no resolution, so nothing says which of its configurations may have
+        moved): besides those, the last committed run (another corner of the campaign's grid) and, for each run
+        section (run kind and section configuration: a topology, a plant run's law, scenario and gains, what
+        :func:`resolved_configuration` fingerprints once each) that no chosen run flies yet, its committed run
+        cheapest in CPU-seconds (else wall-clock seconds): every section is flown at least once, so a changed
+        default that only one law or topology reads is caught too."""
         committed = set(df["run_id"])
-        chosen = [t for t in tasks if t["run_id"] in committed and (self.probe is None or self.probe(t))]
-        return chosen if self.probe is not None else chosen[:1]
+        runs = [t for t in tasks if t["run_id"] in committed]
+        probed = [t for t in runs if self.probe is None or self.probe(t)]
+        chosen = probed if self.probe is not None else probed[:1]
+        if not unknown or not runs:
+            return chosen
+        chosen = chosen + [runs[-1]]
+        cost = _committed_cost(df)
+        keys = {t["run_id"]: json.dumps([t["kind"], t["config"], str(t.get("base_dir"))], sort_keys=True, default=str)
+                for t in runs}  # a run section, as resolved_configuration tells them apart
+        for key in dict.fromkeys(keys.values()):
+            if not any(keys[t["run_id"]] == key for t in chosen):
+                chosen.append(min((t for t in runs if keys[t["run_id"]] == key), key=lambda t: cost(t["run_id"])))
+        order = {t["run_id"]: i for i, t in enumerate(runs)}
+        return sorted({t["run_id"]: t for t in chosen}.values(), key=lambda t: order[t["run_id"]])
 
     def confirm_resolution(self) -> list[str]:
         """When what the campaign resolves to changed (e.g. a parameter added at the value that was a constant
         before), fly :meth:`confirmation_tasks` with today's configuration and compare each metric with its
         committed row to the float (``probe_rel_tol``); if all agree, append to the manifest a
         ``resolution_confirmed`` entry (today's resolution, the date, the code's commit, the runs compared),
-        which :meth:`resolution_problems` then compares against. Returns the disagreements (nothing is
-        written then: the campaign must be re-flown), or an empty list."""
+        which :meth:`resolution_problems` then compares against. A manifest recording no resolution (made before
+        manifests did, :meth:`resolution_unknown`) is confirmed the same way, with more runs flown
+        (``confirmation_tasks(..., unknown=True)``) and an entry saying it had none before. Returns the
+        disagreements (nothing is written then: the campaign must be re-flown), or an empty list."""
         from fprime_lite.osal.atomic import atomic_write_text
         from fprime_lite.tools.campaign.manifest import now_utc, resolved_configuration
         from fprime_lite.tools.campaign.plan import plan_runs
 
         df = self.results()
+        unknown = self._recorded_resolution() is None
         with tempfile.TemporaryDirectory() as scratch:
             tasks = plan_runs(self.campaign(), pathlib.Path(scratch))
-            if not self.resolution_problems(tasks):
+            if not unknown and not self.resolution_problems(tasks):
                 return []
-            chosen = self.confirmation_tasks(df, tasks)
+            chosen = self.confirmation_tasks(df, tasks, unknown=unknown)
             if not chosen:
                 return [f"docs/studies/{self.folder}: no committed run to confirm with: re-fly it (`{self.command}`)"]
             problems = self._fly_probes(df, chosen, pathlib.Path(scratch))
@@ -262,7 +286,9 @@ class CommittedCampaign:
             manifest.setdefault("resolution_confirmed", []).append({
                 "resolved": resolved_configuration(tasks), "date": now_utc(), "code": _code_revision(),
                 "runs": [t["run_id"] for t in chosen],
-                "how": "these runs flown again with this configuration gave their committed metrics to the float "
+                "how": ("the manifest recorded no resolved configuration before (made before manifests did); "
+                        if unknown else "")
+                       + "these runs flown again with this configuration gave their committed metrics to the float "
                        f"(relative tolerance {self.probe_rel_tol}): tools/studies.py --confirm-resolution"})
             atomic_write_text(manifest_path, json.dumps(manifest, indent=2) + "\n")  # the engine's layout
         return []
@@ -293,7 +319,8 @@ class CommittedCampaign:
             return None
         return (f"docs/studies/{self.folder}: manifest.json records no resolved configuration (made before "
                 f"manifests did): whether a topology default it flew (scenario, field model) changed since is "
-                f"unknown; re-flying it records one")
+                f"unknown; re-flying it records one, or `python tools/studies.py --confirm-resolution {self.folder}` "
+                f"flies a few of its runs again and records today's if they agree to the float")
 
     def _fly_probes(self, df, tasks: list[dict], scratch: pathlib.Path) -> list[str]:
         from fprime_lite.tools.campaign.task import fly
@@ -341,6 +368,16 @@ def _code_revision() -> str:
     if state is None:
         return "unknown"
     return state["commit"][:7] + ("+dirty" if state["dirty"] else "")
+
+
+def _committed_cost(df) -> Callable[[str], float]:
+    """A committed run's cost by its run id: its ``cpu_s``, else its ``wall_s`` (seconds; infinite when the
+    results record neither), for choosing the cheapest run to fly again."""
+    for column in ("cpu_s", "wall_s"):
+        if column in df.columns:
+            costs = {run: _float(value) for run, value in zip(df["run_id"], df[column], strict=True)}
+            return lambda run: math.inf if costs.get(run) is None else float(costs[run])
+    return lambda run: math.inf
 
 
 def _same_yaml(now: str, then: str | None) -> bool:
@@ -2205,8 +2242,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--list", action="store_true", help="name every study and stop")
     ap.add_argument("--confirm-resolution", nargs="+", metavar="FOLDER",
                     help="committed campaign folders (under docs/studies/, or their study's campaign key) whose "
-                         "resolved configuration changed: fly their probe runs (else the first run) again and, if "
-                         "every metric agrees to the float, record the new configuration in their manifest")
+                         "resolved configuration changed or is unknown: fly their probe runs (else the first run; "
+                         "when unknown, also the last and the cheapest of each configuration) again and, if "
+                         "every metric agrees to the float, record today's configuration in their manifest")
     args = ap.parse_args(argv)
     if args.confirm_resolution:
         return confirm_resolutions(args.confirm_resolution)
