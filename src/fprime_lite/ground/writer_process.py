@@ -12,7 +12,9 @@ the formatting of its largest outputs moves to a **writer process** forked when 
 
 The flight's side appends each packet (its bytes and reception time in µs) or row to a list and,
 every :data:`BATCH_ITEMS` items, sends the list through a pipe in one ``send``; a full pipe makes the
-flight wait for the child (memory stays flat). Events, downlinked files and every counter the summary
+flight wait for the child (memory stays flat). The child runs as ``SCHED_BATCH`` (Linux): woken by a
+send, it does not preempt the flight on the flight's core (measured: the flight's sends took 0.27 s of
+an orbit's 7.5 s without it, 0.05 s with it, at load 6). Events, downlinked files and every counter the summary
 reads stay with the flight (the reports and ``stop_on_events`` see each event at its tick).
 
 Files are still written under a temporary name and renamed into place: a row stream when its report
@@ -47,7 +49,7 @@ __all__ = ["OutputWriter", "OutputWriterError", "open_row_stream", "choose_write
 WRITER_MODES = ("auto", "process", "inline")
 
 #: Items (packets and rows) gathered before one send to the writer process.
-BATCH_ITEMS = 64
+BATCH_ITEMS = 256
 
 _RECORDER = 0  # the stream id of the ground recorder's packets
 
@@ -257,6 +259,10 @@ def _child_main(conn, topology, out_dir: pathlib.Path, start_us: int) -> None:
     """The writer process: record packets and write row streams until the flight says ``end``."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # a Ctrl-C reaches the whole group: finish on "end"
     signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    try:  # a throughput task: woken by the flight's send, it must not preempt the flight on its core
+        os.sched_setscheduler(0, os.SCHED_BATCH, os.sched_param(0))
+    except (AttributeError, OSError):  # not on Linux
+        pass
     from fprime_lite.ground.downlink import GroundRecorder
 
     failed: tuple | None = None
