@@ -7,7 +7,11 @@ Only what runs inside ``itertools.starmap`` is counted. MODE ``run``: ``run_depl
 topology's load (every output written, plots off: what ``fprime-lite run --no-plots`` does after the
 load). MODE ``deploy``: the same flight without any output (``Deployment(loaded)``, ``start()`` and
 ``run_for(DURATION_S)``: the benchmark's ``fprime_lite_deployment_50hz`` kind, its start included),
-so that ``run`` - ``deploy`` is what the outputs, the reports and the dictionary cost. MODE ``row``:
+so that ``run`` - ``deploy`` is what the outputs, the reports and the dictionary cost. MODE ``runproc``:
+``run`` with ``writer="process"`` (the default of ``fprime-lite run`` on two cores): the telemetry files
+and the truth rows are formatted by a forked writer process, which callgrind counts in a file of its own
+(``callgrind.out.PID`` of the child); the flight's process's count is what stays on the flight's core.
+MODE ``row``:
 the flight runs uncounted except ``SimulatedSpacecraft.truth`` and the truth-trace callbacks (the
 run reports' sampled rows). MODE ``recorder``: uncounted except the ground recorder's handling of
 each downlinked packet (``GroundRecorder.receive``: decoding, ``events.log``, ``channels.csv``, the
@@ -54,7 +58,7 @@ def _count_recorder_only() -> None:
 
 
 def main(argv: list[str]) -> int:
-    if len(argv) != 4 or argv[2] not in ("run", "row", "deploy", "recorder"):
+    if len(argv) != 4 or argv[2] not in ("run", "runproc", "row", "deploy", "recorder"):
         print(__doc__)
         return 2
     topology, duration_s, mode, out = argv[0], float(argv[1]), argv[2], argv[3]
@@ -65,7 +69,8 @@ def main(argv: list[str]) -> int:
     loaded = load_topology(topology)
 
     def fly() -> None:
-        run_deployment(loaded, out, duration_s=duration_s, plots=False, quiet=True)
+        run_deployment(loaded, out, duration_s=duration_s, plots=False, quiet=True,
+                       writer="process" if mode == "runproc" else "inline")
 
     def fly_without_outputs() -> None:
         from fprime_lite.deploy.deployment import Deployment
@@ -76,7 +81,7 @@ def main(argv: list[str]) -> int:
 
     if mode == "deploy":
         next(itertools.starmap(fly_without_outputs, ((),)))
-    elif mode == "run":
+    elif mode in ("run", "runproc"):
         next(itertools.starmap(fly, ((),)))
     else:
         fly()

@@ -90,7 +90,8 @@ print(json.dumps({{"sim_seconds": {duration}, "wall_s": wall, "real_time_factor"
 """
 
 
-# fprime-lite run as users run it (no plots, no progress bar): load, fly, write every output file.
+# fprime-lite run as users run it (no plots, no progress bar): load, fly, write every output file, the
+# telemetry files and truth rows by the writer process where `fprime-lite run`'s default (--writer auto) has one.
 _RUN = """
 import json, tempfile, time
 t0 = time.perf_counter()
@@ -98,7 +99,8 @@ from fprime_lite.deploy.topology_loader import load_topology
 from fprime_lite.tools.runner import run_deployment
 loaded = load_topology({topology!r})
 with tempfile.TemporaryDirectory() as out:
-    s = run_deployment(loaded, out, duration_s={duration}, plots=False, quiet=True, allow_warnings=True)
+    s = run_deployment(loaded, out, duration_s={duration}, plots=False, quiet=True, allow_warnings=True,
+                       writer="auto")
     wall = time.perf_counter() - t0
 print(json.dumps({{"sim_seconds": s["sim_seconds"], "wall_s": wall, "real_time_factor": s["sim_seconds"] / wall,
                   "flight_wall_s": s["wall_seconds"]}}))

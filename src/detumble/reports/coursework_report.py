@@ -10,12 +10,12 @@ draws seed 004's time histories from ``truth.csv`` (:mod:`detumble.reports.histo
 """
 from __future__ import annotations
 
-from typing import TextIO
+from typing import Any
 import math
-import os
 import pathlib
 
 from fprime_lite.deploy.resources import topology_resource
+from fprime_lite.ground.writer_process import open_row_stream
 from fprime_lite.model.time import US_PER_S
 
 from detumble.sim.settling_metrics import SettlingMetrics
@@ -50,8 +50,7 @@ class CourseworkRunReport:
         self.metrics: SettlingMetrics | None = None
         self._count = 0
         self._path: pathlib.Path | None = None
-        self._file: TextIO | None = None
-        self._writer: FastCsvWriter | None = None
+        self._writer: Any = None  # truth.csv's row stream (open_row_stream), begin() to finish()
 
     def begin(self, deployment, out_dir: pathlib.Path) -> None:
         plant = self.spacecraft.plant
@@ -59,8 +58,8 @@ class CourseworkRunReport:
         self.metrics = SettlingMetrics(plant, omega_final=(0.0, -plant.orbit.mean_motion, 0.0),
                                        include_attitude=self.wheel_law)
         self._path = pathlib.Path(out_dir) / "truth.csv"
-        self._file = fh = open(self._path.with_name(".truth.csv.part"), "w", encoding="utf-8", newline="")
-        self._writer = FastCsvWriter(fh)
+        # streamed under a temporary name, by the run's writer process when it has one
+        self._writer = open_row_stream(deployment, self._path, FastCsvWriter)
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s",
                                *adcs_header(plant, with_field=True)])
         self.spacecraft.set_trace(self._sample, self.metrics_us)
@@ -94,13 +93,10 @@ class CourseworkRunReport:
 
     def finish(self, out_dir: pathlib.Path, *, plots: bool = True) -> list[pathlib.Path]:
         self.spacecraft.set_trace(None)
-        if self._file is None or self._path is None:
+        if self._writer is None or self._path is None:
             return []
-        self._file.flush()
-        os.fsync(self._file.fileno())
-        self._file.close()
-        os.replace(self._path.with_name(".truth.csv.part"), self._path)
-        self._file = None
+        self._writer.close()  # truth.csv renamed into place (before the plots read it)
+        self._writer = None
         written = [self._path]
         if plots:
             from detumble.reports.history_plots import plot_time_histories

@@ -8,15 +8,15 @@ to ``summary.json`` and draws the plots. The spacecraft it watches is the ``simu
 
 from __future__ import annotations
 
-from typing import Any, TextIO
+from typing import Any
 
 import math
-import os
 import pathlib
 
 from fprime_lite.deploy.resources import topology_resource
 from fprime_lite.model.time import US_PER_S
-from fprime_lite.osal.atomic import clean_temporary_files, open_temporary
+from fprime_lite.ground.writer_process import open_row_stream
+from fprime_lite.osal.atomic import clean_temporary_files
 
 from detumble.control.coil_layout import COIL_FACES
 from detumble.sim.truth import adcs_header, adcs_row
@@ -62,10 +62,8 @@ class DetumbleRunReport:
         self.detumble_complete_s: float | None = None
         self.time_below_1_deg_s: float | None = None
         self.samples = 0
-        self._file: TextIO | None = None
-        self._writer: FastCsvWriter | None = None
+        self._writer: Any = None  # truth.csv's row stream (open_row_stream), begin() to finish()
         self._path: pathlib.Path | None = None
-        self._tmp: pathlib.Path | None = None  # where truth.csv is streamed until finish()
         self.power = PowerBudget(spacecraft)
 
     # --- run hooks (called by ``fprime-lite run``) ------------------------------------------------
@@ -76,9 +74,8 @@ class DetumbleRunReport:
         self.start_us = deployment.scheduler.now_us
         self._path = pathlib.Path(out_dir) / "truth.csv"
         clean_temporary_files(self._path.parent)  # what a killed run left (a live run's are kept)
-        self._file, self._tmp = open_temporary(self._path, "w", encoding="utf-8", newline="")
-        fh = self._file
-        self._writer = FastCsvWriter(fh)
+        # streamed under a temporary name, by the run's writer process when it has one
+        self._writer = open_row_stream(deployment, self._path, FastCsvWriter)
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
                                "bz_uT", *(f"level_mean_{_FACE_SUFFIX[f]}" for f in COIL_FACES),
                                *(f"on_{_FACE_SUFFIX[f]}" for f in COIL_FACES),
@@ -208,12 +205,9 @@ class DetumbleRunReport:
     def finish(self, out_dir: pathlib.Path, *, plots: bool = True) -> list[pathlib.Path]:
         """Close the truth log; draw the plots; return the files written."""
         self.spacecraft.set_trace(None)
-        if self._file is not None and self._path is not None and self._tmp is not None:  # begin() sets them
-            self._file.flush()
-            os.fsync(self._file.fileno())
-            self._file.close()
-            os.replace(self._tmp, self._path)
-            self._file = None
+        if self._writer is not None:  # begin() opened it
+            self._writer.close()  # truth.csv renamed into place (before the plots read it)
+            self._writer = None
         written = [self._path] if self._path is not None else []
         if plots and self._path is not None:
             from detumble.reports.plots import plot_truth

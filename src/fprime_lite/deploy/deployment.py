@@ -29,7 +29,7 @@ the sequencer's one input port of type ``Svc.CmdSeqIn``.
 from __future__ import annotations
 
 import os
-from typing import Callable
+from typing import Any, Callable
 
 from fprime_lite.model.component import QueuedComponent
 from fprime_lite.model.time import US_PER_S
@@ -79,6 +79,9 @@ class Deployment:
         self.started = False
         #: completed software restarts
         self.restarts = 0
+        #: ``fprime-lite run``'s writer process (:class:`fprime_lite.ground.writer_process.OutputWriter`),
+        #: which a report's row streams use (``open_row_stream``); None: outputs are written in this process
+        self.output_writer: Any = None
         self._start_args: dict = {}
         self._startup_call: ScheduledCall | None = None
         #: Calls that set up components after construction (the runner's file roots); a software restart

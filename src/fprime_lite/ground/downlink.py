@@ -181,22 +181,33 @@ class GroundRecorder:
     """
 
     def __init__(self, topology: Topology, out_dir, *, on_event: Callable[[DecodedEvent], None] | None = None,
-                 on_channel: Callable[[DecodedChannel], None] | None = None, clock=None):
+                 on_channel: Callable[[DecodedChannel], None] | None = None, clock=None,
+                 telemetry_sink: Callable[[bytes, int], None] | None = None, telemetry_only: bool = False):
         """``clock`` (the deployment's, a :class:`~fprime_lite.model.time.Clock`) times the rows of
         ``channels_wide.csv`` by reception; without one a row is started whenever a channel's own
-        time stamp changes."""
+        time stamp changes.
+
+        The two halves of a recorder split between processes (:mod:`fprime_lite.ground.writer_process`):
+        with ``telemetry_sink`` (and a ``clock``) telemetry packets are not recorded here but handed to
+        ``telemetry_sink(packet, reception_us)`` (µs of ``clock.now()``), and ``channels.csv`` and
+        ``channels_wide.csv`` are not opened; ``telemetry_only`` records the telemetry alone (no
+        ``events.log``)."""
+        if telemetry_sink is not None and (clock is None or on_channel is not None or telemetry_only):
+            raise ValueError("telemetry_sink needs a clock, no on_channel and not telemetry_only")
         self.decoder = GroundDecoder(topology)
         out_dir = pathlib.Path(out_dir)
         out_dir.mkdir(parents=True, exist_ok=True)
         clean_temporary_files(out_dir)  # what a killed recorder left (a live one's are kept)
-        self._events = _StreamedFile(out_dir / "events.log")
-        self._channels = _StreamedFile(out_dir / "channels.csv", newline="")
-        self._csv = csv.writer(self._channels.file, lineterminator="\n")
-        self._csv.writerow(["time", "channel", "value"])
-        self._wide_file = _StreamedFile(out_dir / "channels_wide.csv", newline="")
+        self._events = None if telemetry_only else _StreamedFile(out_dir / "events.log")
         self._clock = clock
-        self._wide = WideTelemetryTable(self._wide_file.file, self.decoder.channel_types,
-                                        start=clock.now() if clock is not None else None)
+        self._sink = telemetry_sink
+        if telemetry_sink is None:
+            self._channels = _StreamedFile(out_dir / "channels.csv", newline="")
+            self._csv = csv.writer(self._channels.file, lineterminator="\n")
+            self._csv.writerow(["time", "channel", "value"])
+            self._wide_file = _StreamedFile(out_dir / "channels_wide.csv", newline="")
+            self._wide = WideTelemetryTable(self._wide_file.file, self.decoder.channel_types,
+                                            start=clock.now() if clock is not None else None)
         self.on_event = on_event
         self.on_channel = on_channel
         self.events_by_severity: Counter = Counter()
@@ -250,7 +261,10 @@ class GroundRecorder:
         """Handle one downlinked packet (a Com buffer)."""
         try:
             descriptor = int.from_bytes(data[:2], "big")
-            if descriptor == Apid.FW_PACKET_LOG:
+            if self._sink is not None and (descriptor == Apid.FW_PACKET_TELEM or (
+                    descriptor == Apid.FW_PACKET_PACKETIZED_TLM and self.decoder.packetized is not None)):
+                self._sink(data, self._clock.now().total_us)
+            elif descriptor == Apid.FW_PACKET_LOG:
                 self._event(self.decoder.decode_event(data))
             elif descriptor == Apid.FW_PACKET_TELEM:
                 if self.on_channel is not None or self._clock is None or not self._telemetry(data):
@@ -321,6 +335,7 @@ class GroundRecorder:
         self.events_by_severity[e.severity.name] += 1
         self.events_by_name[e.name] += 1
         self.event_names_by_severity.setdefault(e.severity.name, Counter())[e.name] += 1
+        assert self._events is not None, "a telemetry-only recorder got an event"
         self._events.file.write(f"{format_time(e.time)} {e.name} {e.severity.name} {e.text}\n")
         if self.on_event is not None:
             self.on_event(e)
@@ -333,8 +348,10 @@ class GroundRecorder:
             self.on_channel(c)
 
     def close(self) -> None:
-        self._events.close()
-        self._channels.close()
-        self._wide.close()
-        self._wide_file.close()
+        if self._events is not None:
+            self._events.close()
+        if self._sink is None:
+            self._channels.close()
+            self._wide.close()
+            self._wide_file.close()
         self.files.close()

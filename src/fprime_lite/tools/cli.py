@@ -143,6 +143,10 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--out", metavar="DIR", help="output folder (default: a new runs/<timestamp>)")
     run.add_argument("--no-progress", action="store_true", help="no progress bar")
     run.add_argument("--no-plots", action="store_true", help="do not draw the PNG plots")
+    run.add_argument("--writer", choices=("auto", "process", "inline"), default="auto",
+                     help="who formats channels.csv, channels_wide.csv and truth.csv: a writer process on another "
+                          "core, or this one (auto: a process when there is a second core and the run is not "
+                          "paced; the same bytes either way)")
     run.add_argument("--truth-interval", type=float, metavar="SECONDS",
                      help="sampling interval of the truth log (default: the topology's)")
     run.add_argument("--allow-warnings", action="store_true", help="exit 0 even when the flight had handler "
@@ -526,7 +530,7 @@ def cmd_run(args) -> int:
                                  sequence=args.seq, progress=not args.no_progress and sys.stderr.isatty(),
                                  plots=not args.no_plots, allow_warnings=args.allow_warnings,
                                  stop_when=args.stop_when, interruptible=True, file_root=args.file_root,
-                                 board_root=args.board_root)
+                                 board_root=args.board_root, writer=args.writer)
     else:
         summary = _run_realtime(loaded, out, args, address)
     print(f"outputs in {out}/")

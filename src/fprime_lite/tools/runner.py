@@ -23,6 +23,7 @@ from __future__ import annotations
 import json
 import os
 import pathlib
+import sys
 import time
 from typing import Mapping
 
@@ -32,6 +33,7 @@ from fprime_lite.deploy.deployment import Deployment
 from fprime_lite.deploy.resources import SimulationEnded
 from fprime_lite.deploy.dictionary import write_dictionary
 from fprime_lite.ground.downlink import DecodedEvent, GroundRecorder
+from fprime_lite.ground.writer_process import OutputWriter, choose_writer
 from fprime_lite.svc.cmd_sequencer import CmdSequencer
 from fprime_lite.svc.file_downlink import FileDownlink
 from fprime_lite.svc.file_manager import FileManager
@@ -91,7 +93,7 @@ def use_board_as_flash(loaded: LoadedDeployment, board_root) -> None:
 def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, parameter_file=None, sequence=None,
                    progress: bool = False, plots: bool = True, console=None, allow_warnings: bool = False,
                    stop_on_events=(), stop_when=(), quiet: bool = False, interruptible: bool = False,
-                   file_root=None, board_root=None) -> dict:
+                   file_root=None, board_root=None, writer: str = "inline") -> dict:
     """Start ``loaded``, run it for ``duration_s`` simulated seconds, write the outputs; return the summary.
 
     The summary's ``ok`` is False when the flight had handler faults, rate-group member faults,
@@ -112,6 +114,10 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     in for the board's ``/`` for the file services and the command sequencers: an absolute path such as
     ``/seq/a.bin`` names ``board_root/seq/a.bin``, a relative one resolves against it, nothing outside it
     is reachable, and files are replaced as with ``file_root`` (PROVES's suite uplinks to ``/seq``).
+    ``writer``: ``"inline"`` writes every output in this process; ``"process"`` has a writer process
+    format the telemetry files and the reports' row streams (``truth.csv``) on another core, the same
+    bytes (:mod:`fprime_lite.ground.writer_process`; a failure there raises its ``OutputWriterError``);
+    ``"auto"``: :func:`~fprime_lite.ground.writer_process.choose_writer`.
     """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -151,7 +157,31 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
             stopped_by.append(f"event {event.name}")
             deployment.scheduler.stop()
 
-    recorder = GroundRecorder(topo, out, on_event=on_event, clock=loaded.clock)
+    output_writer: OutputWriter | None = None
+    if choose_writer(writer) == "process" and loaded.clock is not None:
+        for stream in (sys.stdout, sys.stderr):  # the child must not print what this process had buffered
+            stream.flush()
+        output_writer = OutputWriter(topo, out, loaded.clock.now().total_us, on_failure=deployment.scheduler.stop)
+    deployment.output_writer = output_writer  # the reports' row streams go to it (open_row_stream)
+    try:
+        return _fly_and_write(deployment, loaded, out, output_writer, reports, on_event, stopped_by, conditions,
+                              duration_s=duration_s, parameter_file=parameter_file, sequence=sequence,
+                              progress=progress, plots=plots, console=console, allow_warnings=allow_warnings,
+                              quiet=quiet, interruptible=interruptible)
+    except BaseException:
+        if output_writer is not None:
+            output_writer.abandon()
+        raise
+
+
+def _fly_and_write(deployment: Deployment, loaded: LoadedDeployment, out: pathlib.Path,
+                   output_writer: OutputWriter | None, reports, on_event, stopped_by: list[str], conditions, *,
+                   duration_s: float, parameter_file, sequence, progress: bool, plots: bool, console,
+                   allow_warnings: bool, quiet: bool, interruptible: bool) -> dict:
+    """:func:`run_deployment` from the recorder on."""
+    topo = deployment.topology
+    recorder = GroundRecorder(topo, out, on_event=on_event, clock=loaded.clock,
+                              telemetry_sink=output_writer.packet if output_writer is not None else None)
     recorder.attach(topo, topo.patterns.get("event"), topo.patterns.get("telemetry"))
     for instance in topo.instances.values():
         if isinstance(instance.component, FileDownlink):
@@ -187,6 +217,10 @@ def run_deployment(loaded: LoadedDeployment, out_dir, *, duration_s: float, para
     for r in reports:
         if hasattr(r, "finish"):
             written += r.finish(out, plots=plots) or []
+    if output_writer is not None:  # the child's files finished and renamed, its counters
+        counts = output_writer.close()
+        recorder.undecodable += counts["undecodable"]
+        recorder.channel_updates += counts["channel_updates"]
     sim_s = (deployment.scheduler.now_us - start_us) / 1e6  # less than duration_s when stopped early
     summary = _summary(deployment, recorder, reports, sim_s, wall)
     summary["stopped_by"] = stopped_by[0] if stopped_by and sim_s < duration_s - 1e-9 else None
