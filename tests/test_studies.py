@@ -35,22 +35,12 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "robust_rates_window_campaign", "coursework_settling_ripple", "environment_closed_form",
              "attitude_knowledge_single_runs", "magnetic_pointing_hold_campaign", "magnetic_pointing_floquet_figure",
              "attitude_knowledge_orbit_runs", "attitude_modes_pointing", "attitude_modes_orbit",
-             "magnetic_pointing_residual_ab")
-# its committed folder is older than its campaign file: its blocks are checked against the committed results, the
-# folder's belonging is reported by --check
-BLOCKS_ONLY = ("flight_detumble_campaign",)
+             "magnetic_pointing_residual_ab", "flight_detumble_campaign")
 
 
 @pytest.mark.parametrize("name", COMMITTED)
 def test_documented_blocks_are_what_the_committed_results_give(name):
     """STUDY-001."""
-    assert studies.check([name], fly_probes=False) == []
-
-
-@pytest.mark.parametrize("name", BLOCKS_ONLY)
-def test_documented_campaign_tables_are_what_the_committed_results_give(name, monkeypatch):
-    """STUDY-001 for the campaign tables of attitude_knowledge.md and flight_detumble_campaign.md."""
-    monkeypatch.setitem(studies.STUDIES, name, dataclasses.replace(studies.STUDIES[name], campaigns=()))
     assert studies.check([name], fly_probes=False) == []
 
 
