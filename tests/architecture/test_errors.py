@@ -19,14 +19,17 @@ import fprime_lite
 from detumble.errors import DetumbleError
 from fprime_lite.model.errors import FprimeLiteError, FwAssertionError
 from fprime_lite.deploy.resources import SimulationEnded
+from fprime_lite.ground.writer_process import OutputWriterError
 from fprime_lite.osal.confine import PathRefused
 from fprime_lite.tools.campaign.errors import CampaignInterrupted
 
 #: Below the root's layer (osal imports nothing of the model): an OSError by contract. And the run's stop
 #: signal when the simulated world cannot go on: a BaseException on purpose (the fault containment's
 #: ``except Exception`` must let it through, as it does KeyboardInterrupt), not an error; and a campaign's
-#: stop on SIGINT/SIGTERM, a KeyboardInterrupt on purpose (what a Python caller's Ctrl-C handling expects).
-OUTSIDE_THE_ROOT = {PathRefused, SimulationEnded, CampaignInterrupted}
+#: stop on SIGINT/SIGTERM, a KeyboardInterrupt on purpose (what a Python caller's Ctrl-C handling expects); and the
+#: output writer process's failure, an OSError on purpose (a full disk there is reported as one written inline is:
+#: the CLI's "cannot write or read", exit 1).
+OUTSIDE_THE_ROOT = {PathRefused, SimulationEnded, CampaignInterrupted, OutputWriterError}
 
 
 def _exception_classes(package) -> list[type[BaseException]]:
