@@ -1830,7 +1830,7 @@ def robust_rates_campaign_blocks() -> dict[str, str]:
 
 def robust_rates_window_campaign_blocks() -> dict[str, str]:
     """robust_rates.md's table of the same draws with INTEGRAL_WINDOW 0.1°, and its run-by-run comparison with the
-    default campaign (honest-window p95, settle time, after-slew p95)."""
+    ungated 1° campaign (INTEGRAL_RATE_GATE 0, the former default; honest-window p95, settle time, after-slew p95)."""
     key = "robust_rates_window_campaign"
     campaign, df = _committed(key)
     base, base_df = _committed("robust_rates_campaign")
@@ -1850,7 +1850,7 @@ def robust_rates_window_campaign_blocks() -> dict[str, str]:
     p95_new, p95_old = new.loc[both, "pointing_p95_deg"], old.loc[both, "pointing_p95_deg"]
     higher = p95_new.index[p95_new > p95_old]
     earlier = new.loc[higher, "slew_settle_s"] < old.loc[higher, "slew_settle_s"]
-    compare = (f"Run by run against the default campaign above (the same draws): {'; '.join(parts)}; the honest-window "
+    compare = (f"Run by run against the ungated campaign above (the same draws): {'; '.join(parts)}; the honest-window "
                f"p95 ≤ 0.05° in {int((p95_old <= 0.05).sum())} → {int((p95_new <= 0.05).sum())} of {len(both)}. Of "
                f"the {len(higher)} runs whose honest-window p95 is higher, {int(earlier.sum())} settle earlier.")
     table = _robust_campaign_table(key)
@@ -1859,14 +1859,15 @@ def robust_rates_window_campaign_blocks() -> dict[str, str]:
 
 def robust_rates_gate_campaign_blocks() -> dict[str, str]:
     """robust_rates.md's table of the same draws with the integral's rate gate (INTEGRAL_RATE_GATE 0.05 °/s, window
-    1°), and its run-by-run comparison with the default campaign and with the 0.1° window's (STUDY-120)."""
+    1°: the default), and its run-by-run comparison with the ungated 1° campaign (INTEGRAL_RATE_GATE 0) and with the
+    0.1° window's (STUDY-120)."""
     key = "robust_rates_gate_campaign"
     campaign, df = _committed(key)
     if df is None:
         return {key: _not_committed(campaign)}
     new = _ok(df).set_index("seed_index")
     sentences = []
-    for base_key, name in (("robust_rates_campaign", "the default campaign"),
+    for base_key, name in (("robust_rates_campaign", "the ungated 1° campaign"),
                            ("robust_rates_window_campaign", "the 0.1° window's")):
         base, base_df = _committed(base_key)
         if base_df is None:

@@ -31,7 +31,9 @@ PLANTS = {
 #: How the page names each plant.
 LABELS = {"exact": "exact", "x1.10": "×1.10", "x0.90": "×0.90",
           "skewed": "skewed (moments +10/−10/+5 %, x–y product 1.7e-4 kg·m²)"}
-SOURCES = {"default (blend)": [], "observer, no blend (before)": ["control.adcs.RATE_BLEND_ANGLE=180"],
+#: the D term's rate source per column; "before" is the issue's configuration: no blend and no integral rate gate
+SOURCES = {"default (blend)": [], "observer, no blend (before)": ["control.adcs.RATE_BLEND_ANGLE=180",
+                                                                 "control.adcs.INTEGRAL_RATE_GATE=0"],
            "gyro": ["control.adcs.RATE_SOURCE=GYRO"]}
 BASE = ["initial.rate.magnitude_deg_s=0.05",
         "initial.attitude.quaternion=[0.7071067811865476,0.4082482904638631,0.4082482904638631,0.4082482904638631]",

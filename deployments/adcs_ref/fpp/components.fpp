@@ -1309,7 +1309,7 @@ module Components {
     @ units: deg
     param SUN_HOLD_TIP_ANGLE: F64 default 0.0 id 0x4C set opcode 0x9F save opcode 0xA0
     @ units: deg/s
-    param INTEGRAL_RATE_GATE: F64 default 0.0 id 0x4D set opcode 0xA1 save opcode 0xA2
+    param INTEGRAL_RATE_GATE: F64 default 0.05 id 0x4D set opcode 0xA1 save opcode 0xA2
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver

@@ -22,7 +22,8 @@ K_P = 1.1e-3  # N·m: spring on q_err.v (ω_n 0.5 rad/s for 2.2e-3 kg·m²)
 K_D = 2.0e-3  # N·m·s: damping (ζ ≈ 0.9)
 K_I = 5.5e-5  # N·m/s: integral on q_err.v (0 turns it off)
 INTEGRAL_WINDOW = 1.0  # deg: the integral runs only below this error
-INTEGRAL_RATE_GATE = 0.0  # deg/s: >0: the integral runs only while the rate relative to the reference is below this
+INTEGRAL_RATE_GATE = 0.05  # deg/s: >0: the integral runs only while the rate relative to the reference is below this
+#                           (0.05: issue 27's default, docs/studies/robust_rates.md "The rate gate"; 0: no gate)
 SLEW_RATE_LIMIT = 8.0  # deg/s: largest rate a slew commands
 K_DUMP = 2.0e-3  # 1/s: magnetic momentum dumping while pointing on the wheels
 WHEEL_MAX_TORQUE = 2.0e-3  # N·m per wheel

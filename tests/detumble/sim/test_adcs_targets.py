@@ -63,14 +63,16 @@ def _slew(settings: list[str]) -> dict:
 def test_a_slew_with_the_inertia_model_10_percent_off_settles_within_30_s():
     """ADCS-095 (slow): the plant's inertia ×1.10 of the controller's model: the 90° slew is below 0.1° within 30 s
     and the steady p95 ≤ 0.05° (the issue's goals) with the default rate source (the observer pulled at
-    RATE_BLEND_GAIN while the error exceeds RATE_BLEND_ANGLE); without the blend (RATE_BLEND_ANGLE = 180°) the same
-    slew takes more than 60 s (the issue's 67 s)."""
+    RATE_BLEND_GAIN while the error exceeds RATE_BLEND_ANGLE, and the default rate gate); without the blend
+    (RATE_BLEND_ANGLE = 180°) and without the gate (INTEGRAL_RATE_GATE 0) the same slew takes more than 60 s (the
+    issue's 67 s)."""
     big = ["spacecraft.inertia_kg_m2=[[0.00242, 0.00002, -0.000015], [0.00002, 0.002365, 0.00001], "
            "[-0.000015, 0.00001, 0.002255]]"]
     s = _slew(big)
     assert s["slews"][0]["angle_deg"] > 89.0 and s["slews"][0]["settle_below_0p1_deg_s"] < 30.0
     assert s["pointing_error_deg"]["p95"] <= 0.05 and s["steady_after_slew_p95_deg"] <= 0.05
-    old = _slew(big + ["control.adcs.RATE_BLEND_ANGLE=180"])
+    # the issue's configuration: no blend and no rate gate (both came later; the gate alone brings this to 42 s)
+    old = _slew(big + ["control.adcs.RATE_BLEND_ANGLE=180", "control.adcs.INTEGRAL_RATE_GATE=0"])
     assert old["slews"][0]["settle_below_0p1_deg_s"] > 60.0
 
 
@@ -86,13 +88,13 @@ _DRAW_C851 = ["spacecraft.inertia_kg_m2=[[0.002070388808621008, -1.3996533902924
               "orbit.arg_latitude_deg=114.25499619977569", "record_interval_s=0.5"]
 
 
-def _tail_after_settle(settings: list[str]) -> tuple[dict, float]:
-    """The campaign's flight (campaigns/adcs/scenarios/robust_rates.yaml, 330 s) of ``settings``: its summary and the
-    seconds the true error spent above 0.05° after the slew settled below 0.1°."""
+def _tail_after_settle(settings: list[str], scenario: str | None = None) -> tuple[dict, float]:
+    """The campaign's flight (campaigns/adcs/scenarios/robust_rates.yaml, 330 s, unless ``scenario`` names another) of
+    ``settings``: its summary and the seconds the true error spent above 0.05° after the slew settled below 0.1°."""
     import pathlib
 
     path = pathlib.Path(__file__).resolve().parents[3] / "campaigns" / "adcs" / "scenarios" / "robust_rates.yaml"
-    r = run(load_scenario(str(path), seed=2102531420, settings=settings), law="adcs", duration_s=330.0)
+    r = run(load_scenario(scenario or str(path), seed=2102531420, settings=settings), law="adcs", duration_s=330.0)
     s = r.summary
     assert r.adcs_header is not None and r.adcs_rows is not None
     k = r.adcs_header.index("pointing_error_deg")
@@ -104,12 +106,14 @@ def _tail_after_settle(settings: list[str]) -> tuple[dict, float]:
 
 @pytest.mark.slow
 def test_the_integral_window_removes_the_tail_after_a_slew():
-    """ADCS-131 (slow): the robust-rates campaign's draw c85102070e557b0b. With the default INTEGRAL_WINDOW (1°) the
+    """ADCS-131 (slow): the robust-rates campaign's draw c85102070e557b0b, without the rate gate (INTEGRAL_RATE_GATE 0,
+    the default before issue 27's gate). With the default INTEGRAL_WINDOW (1°) the
     integral fills during the slew's last degree and returns it as a tail at the slow root (ADCS-130): more than
     10 s above 0.05° after the settle and an honest-window p95 above 0.05°; with INTEGRAL_WINDOW 0.1° at most 2 s
     and p95 ≤ 0.05° (docs/studies/robust_rates.md). The settle stays below 30 s in both."""
-    wide, wide_above = _tail_after_settle(_DRAW_C851)
-    narrow, narrow_above = _tail_after_settle(_DRAW_C851 + ["control.adcs.INTEGRAL_WINDOW=0.1"])
+    off = ["control.adcs.INTEGRAL_RATE_GATE=0"]  # the former default: no rate gate (ADCS-144 flies the gate)
+    wide, wide_above = _tail_after_settle(_DRAW_C851 + off)
+    narrow, narrow_above = _tail_after_settle(_DRAW_C851 + off + ["control.adcs.INTEGRAL_WINDOW=0.1"])
     for s in (wide, narrow):
         assert s["slews"][0]["angle_deg"] > 80.0 and s["slews"][0]["settle_below_0p1_deg_s"] < 30.0
     assert wide_above > 10.0 and wide["pointing_error_deg"]["p95"] > 0.05
@@ -118,11 +122,30 @@ def test_the_integral_window_removes_the_tail_after_a_slew():
 
 @pytest.mark.slow
 def test_the_rate_gate_removes_the_tail_after_a_slew():
-    """ADCS-144 (slow): the draw of ADCS-131 with INTEGRAL_RATE_GATE 0.05 °/s and the default 1° window: at most 2 s
+    """ADCS-144 (slow): the draw of ADCS-131 with INTEGRAL_RATE_GATE 0.05 °/s (the default; set here explicitly) and
+    the default 1° window: at most 2 s
     above 0.05° after the settle (24 s without the gate) and an honest-window p95 ≤ 0.05°, the settle below 30 s."""
     gated, above = _tail_after_settle(_DRAW_C851 + ["control.adcs.INTEGRAL_RATE_GATE=0.05"])
     assert gated["slews"][0]["angle_deg"] > 80.0 and gated["slews"][0]["settle_below_0p1_deg_s"] < 30.0
     assert above <= 2.0 and gated["pointing_error_deg"]["p95"] <= 0.05
+
+
+@pytest.mark.slow
+def test_the_default_flies_the_rate_gate(tmp_path):
+    """ADCS-160 (slow): the controller's defaults fly the rate gate (INTEGRAL_RATE_GATE 0.05 °/s, issue 27): the draw of
+    ADCS-131 with no controller parameter set leaves at most 2 s above 0.05° after the settle and an honest-window p95
+    ≤ 0.05° (without the gate, ADCS-131: more than 10 s and p95 above 0.05°), the settle below 30 s."""
+    import pathlib
+
+    # the campaign's scenario without its pin of the former default (INTEGRAL_RATE_GATE 0): the controller's own
+    scenarios = pathlib.Path(__file__).resolve().parents[3] / "campaigns" / "adcs" / "scenarios"
+    text = (scenarios / "robust_rates.yaml").read_text(encoding="utf-8")
+    pin = [line for line in text.splitlines(keepends=True) if line.strip().startswith("INTEGRAL_RATE_GATE:")]
+    assert len(pin) == 1
+    (tmp_path / "robust_rates_default.yaml").write_text(text.replace(pin[0], ""), encoding="utf-8")
+    flown, above = _tail_after_settle(_DRAW_C851, scenario=str(tmp_path / "robust_rates_default.yaml"))
+    assert flown["slews"][0]["angle_deg"] > 80.0 and flown["slews"][0]["settle_below_0p1_deg_s"] < 30.0
+    assert above <= 2.0 and flown["pointing_error_deg"]["p95"] <= 0.05
 
 
 def _hold_under_a_constant_torque(torque_nm: float, settings: list[str]) -> float:
@@ -164,7 +187,8 @@ def test_the_rate_gate_keeps_the_integrals_reach_in_the_law():
     assert _hold_under_a_constant_torque(3e-7, ["control.adcs.K_I=0"]) > 0.08
     assert _hold_under_a_constant_torque(3e-7, gate) < 0.01
     # the blend's switching at 0.1° lets a 0.1° window reach this torque too (the page's limit 9.5e-8 N·m ignored it)
-    assert _hold_under_a_constant_torque(3e-7, ["control.adcs.INTEGRAL_WINDOW=0.1"]) < 0.01
-    window = _hold_under_a_constant_torque(1e-6, ["control.adcs.INTEGRAL_WINDOW=0.1"])
+    narrow = ["control.adcs.INTEGRAL_WINDOW=0.1", "control.adcs.INTEGRAL_RATE_GATE=0"]  # the window alone, no gate
+    assert _hold_under_a_constant_torque(3e-7, narrow) < 0.01
+    window = _hold_under_a_constant_torque(1e-6, narrow)
     assert window > 0.14
     assert _hold_under_a_constant_torque(1e-6, gate) < 0.5 * window
