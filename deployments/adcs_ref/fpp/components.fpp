@@ -1308,6 +1308,12 @@ module Components {
     param SUN_HOLD_FIELD_ANGLE: F64 default 80.0 id 0x4B set opcode 0x9D save opcode 0x9E
     @ units: deg
     param SUN_HOLD_TIP_ANGLE: F64 default 0.0 id 0x4C set opcode 0x9F save opcode 0xA0
+    @ units: 1
+    param MAG_STEER_RHO_LARGE: F64 default 0.0 id 0x4D set opcode 0xA1 save opcode 0xA2
+    @ units: deg
+    param MAG_STEER_RHO_FROM: F64 default 12.0 id 0x4E set opcode 0xA3 save opcode 0xA4
+    @ units: deg
+    param MAG_STEER_RHO_AT: F64 default 20.0 id 0x4F set opcode 0xA5 save opcode 0xA6
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver
