@@ -16,7 +16,8 @@ from a larger ρ.
 with the longest tails (and four that pass, for the schedule) flown again plant-only (``detumble.sim.runner.run``,
 law adcs, one orbit) with their committed seed and start, under: no magnetometer bias (ρ 2, the oracle of an on-board
 bias estimate); no bias and ρ 3; ρ scheduled on the error (MAG_STEER_RHO_LARGE 4 from 20°, 2 below 12°) with the
-bias. Per run the summary's window statistics and the tail (the time from the acquisition below 30° to the error
+bias; the same schedule without the bias. ``--part draws --case KEY`` flies one case into the file, keeping the
+others. Per run the summary's window statistics and the tail (the time from the acquisition below 30° to the error
 staying below 15°). ``tools/studies.py --only magnetorquer_hold_candidates`` renders the blocks (:func:`markdown`).
 """
 
@@ -38,7 +39,8 @@ SAMPLES = ((200, 4), (400, 4), (1000, 2), (2000, 2), (4000, 1))  # (samples of t
 BIAS_FACTORS = (0.0, 1.0, 1.5, 2.0)
 RHO_GAINS = ((4e-6, 4e-4), (8e-6, 8e-4))
 RHOS = (2.0, 2.5, 3.0, 3.5, 4.0, 5.0)
-#: the committed campaign's rows (0-based) flown again: the six misses with the longest tails, four passes
+#: the committed campaign's draws (seed indices, = its rows) flown again: the six misses with the longest tails,
+#: four passes
 MISSES = (12, 72, 89, 76, 26, 8)
 PASSES = (50, 87, 33, 0)
 NO_BIAS = "sensors.magnetometer.bias_gauss=[0.0, 0.0, 0.0]"
@@ -47,7 +49,9 @@ SCHEDULE = ("control.adcs.MAG_STEER_RHO_LARGE=4.0", "control.adcs.MAG_STEER_RHO_
 #: (key, label, scenario settings, rows)
 CASES = (("no_bias", "no magnetometer bias, ρ 2 (the oracle of a bias estimate)", (NO_BIAS,), MISSES),
          ("no_bias_rho3", "no magnetometer bias, ρ 3", (NO_BIAS, "control.adcs.MAG_STEER_RHO=3.0"), MISSES),
-         ("schedule", "ρ 4 from 20°, 2 below 12° (the bias as flown)", SCHEDULE, MISSES + PASSES))
+         ("schedule", "ρ 4 from 20°, 2 below 12° (the bias as flown)", SCHEDULE, MISSES + PASSES),
+         ("no_bias_schedule", "no magnetometer bias, ρ 4 from 20°, 2 below 12°", (NO_BIAS, *SCHEDULE),
+          MISSES + PASSES))
 
 
 def _rate(plant, period, b, bd, samples, substeps, k_p, k_d, rho, k) -> float | None:
@@ -120,9 +124,17 @@ def fly_draw(row: int, settings: tuple[str, ...]) -> dict:
                           "acquisition_15deg_s": float(d["pointing_acquisition_15deg_s"])}}
 
 
-def draws() -> dict:
-    return {"cases": [{"key": key, "label": label, "settings": list(sets), "runs": [fly_draw(r, sets) for r in rows]}
-                      for key, label, sets, rows in CASES]}
+def draws(only: str | None = None, table: dict | None = None) -> dict:
+    """Every case of :data:`CASES` flown, or (``only``, a case's key) that one flown into ``table``'s other cases."""
+    kept = {c["key"]: c for c in (table or {}).get("cases", [])} if only else {}
+    cases = []
+    for key, label, sets, rows in CASES:
+        if only and key != only:
+            if key in kept:
+                cases.append(kept[key])
+            continue
+        cases.append({"key": key, "label": label, "settings": list(sets), "runs": [fly_draw(r, sets) for r in rows]})
+    return {"cases": cases}
 
 
 def _sci(x: float) -> str:
@@ -168,7 +180,7 @@ def _f(x, fmt: str) -> str:
 
 
 def draws_markdown(table: dict) -> str:
-    lines = ["| case | committed row | p95 (deg), flown / as committed | median (deg) | acquisition < 30° (s) | "
+    lines = ["| case | draw (seed index) | p95 (deg), flown / as committed | median (deg) | acquisition < 30° (s) | "
              "tail (s), flown / as committed |", "|---|---|---|---|---|---|"]
     for case in table["draws"]["cases"]:
         for run in case["runs"]:
@@ -201,13 +213,25 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--json", required=True, help="write the figures here")
     ap.add_argument("--part", choices=("all", "floquet", "draws"), default="all")
+    ap.add_argument("--case", choices=[key for key, _, _, _ in CASES],
+                    help="with --part draws: fly only this case, keeping the file's others")
     args = ap.parse_args(argv)
     path = pathlib.Path(args.json)
+    if args.part in ("all", "floquet"):
+        fl = floquet()
+    if args.part in ("all", "draws"):
+        old = json.loads(path.read_text(encoding="utf-8")).get("draws") if args.case and path.exists() else None
+        dr = draws(args.case, old)
+    # read what is there only now (another part may have been written meanwhile), then replace this part
     table = json.loads(path.read_text(encoding="utf-8")) if path.exists() and args.part != "all" else {}
     if args.part in ("all", "floquet"):
-        table["floquet"] = floquet()
+        table["floquet"] = fl
     if args.part in ("all", "draws"):
-        table["draws"] = draws()
+        if args.case and table.get("draws"):  # keep cases flown meanwhile by another process
+            mine = {c["key"]: c for c in dr["cases"]}
+            have = {c["key"]: c for c in table["draws"]["cases"]}
+            dr = {"cases": [mine.get(k) or have.get(k) for k, _, _, _ in CASES if k in mine or k in have]}
+        table["draws"] = dr
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(table, indent=1) + "\n", encoding="utf-8")
     if "floquet" in table and "draws" in table:
