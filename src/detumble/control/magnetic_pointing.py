@@ -55,10 +55,11 @@ def scheduled_rho(rho: float, rho_large: float, angle_deg: float, from_deg: floa
     ``rho_large`` from ``at_deg`` on, linear in the angle between (a step at ``from_deg`` when ``at_deg`` ≤
     ``from_deg``); ``rho_large`` ≤ 0 turns the schedule off (``rho`` at every angle).
 
-    Why: the slow along-field pair falls at ``ζ ρ r``; a larger ρ shortens the fall from the acquisition's 30°,
-    but with a biased magnetometer it destabilises the hold (``docs/studies/magnetorquer_hold_after_acquisition.md``,
-    "A ρ scheduled on the error"). Below ``from_deg`` the law is the unscheduled one, so the hold's Floquet margin
-    is that of ``rho``."""
+    Why: the slow along-field pair falls at ``ζ ρ r`` in the closed form, so a larger ρ while the error is large
+    was to shorten the fall from the acquisition's 30° without touching the hold (below ``from_deg`` the law is the
+    unscheduled one, the hold's Floquet margin that of ``rho``). Tried for issue 27 and not adopted: with the
+    magnetometer's bias ρ 4 is unstable and most draws never acquire
+    (``docs/studies/magnetorquer_hold_after_acquisition.md``, "Candidates for a faster fall from 30°")."""
     if not rho_large > 0.0 or angle_deg <= from_deg:
         return rho
     if angle_deg >= at_deg:
