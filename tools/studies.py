@@ -435,7 +435,7 @@ CAMPAIGNS = {
                                                       probe=lambda t: t["seed_index"] == 0),
     "magnetorquer_hold_two_orbits": CommittedCampaign("magnetorquer_hold_after_acquisition/two_orbits",
                                                       "campaigns/adcs/pointing_magnetorquers_plant_2orbits.yaml"),
-    # issue 27's candidates on the first 50 and 10 draws (plant runs of an orbit, ~10 CPU-s each)
+    # issue 27's candidates on the first 100 and 10 draws (plant runs of an orbit, ~10 CPU-s each)
     "magnetorquer_hold_rho_schedule": CommittedCampaign(
         "magnetorquer_hold_after_acquisition/campaign_rho_schedule",
         "campaigns/adcs/pointing_magnetorquers_plant_rho_schedule.yaml"),
@@ -2116,7 +2116,7 @@ STUDIES = {s.name: s for s in (
     Study("magnetic_pointing_hold", "magnetorquer-only hold over 100 deployment runs (committed per-run table)",
           regenerate_magnetic_hold, magnetic_hold_blocks, _MAG_DOC),
     _grouped_study(HOLD_CANDIDATE_TABLES),
-    Study("magnetorquer_hold_candidate_campaigns", "issue 27's coil hold: two candidates on the campaign's first 50 "
+    Study("magnetorquer_hold_candidate_campaigns", "issue 27's coil hold: two candidates on the campaign's first 100 "
           "and 10 draws (committed campaigns)", regenerate_hold_candidate_campaigns, hold_candidate_campaign_blocks,
           _HOLD_DOC, tuple(key for key, _, _ in _HOLD_CANDIDATE_CAMPAIGNS)),
     Study("magnetorquer_hold_after_acquisition", "issue 27's coil-only hold after acquisition over 100 plant runs "
