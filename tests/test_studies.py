@@ -35,7 +35,8 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "robust_rates_window_campaign", "coursework_settling_ripple", "environment_closed_form",
              "attitude_knowledge_single_runs", "magnetic_pointing_hold_campaign", "magnetic_pointing_floquet_figure",
              "attitude_knowledge_orbit_runs", "attitude_modes_pointing", "attitude_modes_orbit",
-             "magnetic_pointing_residual_ab", "flight_detumble_campaign")
+             "magnetic_pointing_residual_ab", "flight_detumble_campaign",
+             "magnetorquer_hold_candidates", "magnetorquer_hold_candidate_campaigns")
 
 
 @pytest.mark.parametrize("name", COMMITTED)
@@ -919,3 +920,52 @@ def test_a_folder_recording_no_resolution_is_confirmed_only_by_flights_that_agre
     assert entry["how"].startswith("the manifest recorded no resolved configuration before")
     assert "resolved" not in after and campaign.resolution_unknown() is None
     assert campaign.problems(fly_probes=False) == []
+
+
+def _hold_rows(pd, rows):
+    """A campaign frame of (seed_index, seed, status, p95, median, acquisition, acquisition at 15°) rows."""
+    return pd.DataFrame(rows, columns=["seed_index", "seed", "status", "pointing_p95_deg", "pointing_median_deg",
+                                       "pointing_acquisition_s", "pointing_acquisition_15deg_s"])
+
+
+def test_a_hold_candidate_campaign_is_paired_with_the_same_draws_and_counts_the_runs_that_never_acquire():
+    """STUDY-130: magnetorquer_hold_after_acquisition.md's candidate campaigns: each draw is paired with the committed
+    campaign's draw of the same seed index, the counts of p95 ≤ 15° before and after are the runs' own, a run whose
+    error never stays below 30° (no p95) counts as never acquired and not as a pass, and a candidate run whose seed
+    is not the committed draw's is refused (there is nothing to pair)."""
+    pd = pytest.importorskip("pandas")
+    script = studies._load_script(studies.HOLD_CANDIDATE_TABLES[0].script)
+    nan = float("nan")
+    base = _hold_rows(pd, [(0, 11, "ok", 16.0, 1.0, 500.0, 900.0), (1, 12, "ok", 9.0, 1.0, 300.0, 350.0),
+                           (2, 13, "ok", 14.0, 1.1, 200.0, 400.0), (3, 14, "ok", 20.0, 1.2, 600.0, 1200.0)])
+    new = _hold_rows(pd, [(0, 11, "ok", 8.0, 1.0, 700.0, 760.0), (1, 12, "ok", nan, nan, nan, nan),
+                          (2, 13, "ok", 15.5, 1.1, 200.0, 500.0)])
+    text = script.campaign_markdown(base, new, "X")
+    assert "p95 ≤ 15° in **2/3** as committed, **1/3** with X" in text
+    assert "median ≤ 5° in 2/3" in text and "to the orbit's end): 1." in text
+    assert "| 1 | 9.0 → never acquired |" in text and "| 0 | 16.0 → 8.0 |" in text
+    assert "| 400 → 60 |" in text  # draw 0's tail: 900 − 500 as committed, 760 − 700 flown
+    new.loc[0, "seed"] = 99
+    with pytest.raises(ValueError, match="not the committed campaign's draws"):
+        script.campaign_markdown(base, new, "X")
+
+
+def test_the_hold_candidates_draw_table_counts_the_misses_met_and_the_runs_never_acquired():
+    """STUDY-131: the re-flown draws' table: per case the misses meeting p95 ≤ 15° (a run without a p95 is not one),
+    the passes kept, and the runs that never acquire; the tail is the flown run's acquisition at 15° minus at 30°."""
+    script = studies._load_script(studies.HOLD_CANDIDATE_TABLES[0].script)
+    miss, passed = script.MISSES, script.PASSES
+
+    def run(row, p95, a30, a15):
+        return {"row": row, "seed": 1, "median": None if p95 is None else 1.0, "p95": p95, "acquisition_s": a30,
+                "acquisition_15deg_s": a15,
+                "committed": {"median": 1.0, "p95": 18.0, "acquisition_s": 500.0, "acquisition_15deg_s": 1100.0}}
+
+    table = {"draws": {"cases": [{"key": "k", "label": "L", "settings": [], "runs": [
+        run(miss[0], 10.0, 400.0, 455.0), run(miss[1], 15.2, 400.0, 800.0), run(miss[2], None, None, None),
+        run(passed[0], 7.0, 100.0, 150.0), run(passed[1], None, None, None)]}]}}
+    text = script.draws_markdown(table)
+    assert "- L: p95 ≤ 15° in **1 of 3** misses; of 2 that passed, 1 still pass; 2 of 5 never acquire" in text
+    assert f"| L | {miss[0]} | 10.0 / 18.0 | 1.00 / 1.00 | 400 / 500 | 55 / 600 |" in text
+    assert f"| L | {miss[2]} | never acquired / 18.0 |" in text
+

@@ -475,6 +475,13 @@ CAMPAIGNS = {
     "robust_rates_gate_campaign": CommittedCampaign("robust_rates/campaign_gate",
                                                     "campaigns/adcs/robust_rates_plant_gate.yaml",
                                                     probe=lambda t: t["seed_index"] == 0),
+    # issue 27's candidates on the first 100 and 10 draws (plant runs of an orbit, ~10 CPU-s each)
+    "magnetorquer_hold_rho_schedule": CommittedCampaign(
+        "magnetorquer_hold_after_acquisition/campaign_rho_schedule",
+        "campaigns/adcs/pointing_magnetorquers_plant_rho_schedule.yaml"),
+    "magnetorquer_hold_no_mag_bias": CommittedCampaign(
+        "magnetorquer_hold_after_acquisition/campaign_no_mag_bias",
+        "campaigns/adcs/pointing_magnetorquers_plant_no_mag_bias.yaml"),
 }
 
 
@@ -1799,6 +1806,43 @@ def regenerate_hold_after_acquisition(ctx: Context) -> None:
             CAMPAIGNS[key].redraw_plots(ctx)
 
 
+#: issue 27's candidates for a faster fall from 30°: Floquet maps and re-flown draws (campaigns/adcs/...candidates.py)
+HOLD_CANDIDATE_TABLES = tuple(
+    ScriptTable("magnetorquer_hold_candidates", "issue 27's coil hold: Floquet maps of the candidates and 32 re-flown "
+                "plant draws (committed JSON, ~5 CPU-minutes)", f"magnetorquer_hold_candidates_{part}",
+                "campaigns/adcs/magnetorquer_hold_candidates.py", "magnetorquer_hold_after_acquisition/candidates.json",
+                _HOLD_DOC, render=f"{part}_markdown")
+    for part in ("floquet", "draws"))
+#: (campaign key, block, how the page names the candidate)
+_HOLD_CANDIDATE_CAMPAIGNS = (("magnetorquer_hold_rho_schedule", "magnetorquer_hold_rho_schedule_campaign",
+                              "ρ scheduled (4 from 20°)"),
+                             ("magnetorquer_hold_no_mag_bias", "magnetorquer_hold_no_mag_bias_campaign",
+                              "no magnetometer bias"))
+
+
+def hold_candidate_campaign_blocks() -> dict[str, str]:
+    """Each candidate's campaign on the first draws against the committed 100-run campaign's same draws."""
+    _, base = _committed("magnetorquer_hold_after_acquisition")
+    script = _load_script(HOLD_CANDIDATE_TABLES[0].script)
+    blocks = {}
+    for key, block, label in _HOLD_CANDIDATE_CAMPAIGNS:
+        campaign, df = _committed(key)
+        if df is None or base is None:
+            blocks[block] = _not_committed(campaign if df is None else CAMPAIGNS["magnetorquer_hold_after_acquisition"])
+            continue
+        try:
+            body = script.campaign_markdown(base, df, label)
+        except ValueError as exc:
+            raise StudyError(f"{key}: {exc}") from None
+        blocks[block] = (body + "\n"
+                         + _source("magnetorquer_hold_candidate_campaigns", campaign) + "\n")
+    return blocks
+
+
+def regenerate_hold_candidate_campaigns(ctx: Context) -> None:
+    ctx.set_blocks(_HOLD_DOC, hold_candidate_campaign_blocks())
+
+
 # --- robust_rates.md: the 100-run campaign with the plant's inertia dispersed around the model ------------------
 
 _ROBUST_DOC = STUDIES_DIR / "robust_rates.md"
@@ -2149,6 +2193,10 @@ STUDIES = {s.name: s for s in (
           magnetic_hold_campaign_blocks, _MAG_DOC, ("magnetic_pointing_hold_campaign",)),
     Study("magnetic_pointing_hold", "magnetorquer-only hold over 100 deployment runs (committed per-run table)",
           regenerate_magnetic_hold, magnetic_hold_blocks, _MAG_DOC),
+    _grouped_study(HOLD_CANDIDATE_TABLES),
+    Study("magnetorquer_hold_candidate_campaigns", "issue 27's coil hold: two candidates on the campaign's first 100 "
+          "and 10 draws (committed campaigns)", regenerate_hold_candidate_campaigns, hold_candidate_campaign_blocks,
+          _HOLD_DOC, tuple(key for key, _, _ in _HOLD_CANDIDATE_CAMPAIGNS)),
     Study("magnetorquer_hold_after_acquisition", "issue 27's coil-only hold after acquisition over 100 plant runs "
           "(committed campaign)", regenerate_hold_after_acquisition, hold_after_acquisition_blocks, _HOLD_DOC,
           ("magnetorquer_hold_after_acquisition", "magnetorquer_hold_two_orbits")),
@@ -2290,7 +2338,8 @@ def main(argv: list[str] | None = None) -> int:
                 fly_sun_safe_mismatch()
             flown = set()
             for table in (*SUN_SAFE_TABLES, *SCRIPT_TABLES.values(), *MAG_POINTING_TABLES, *KNOWLEDGE_SINGLE_TABLES,
-                          *ENV_CLOSED_FORM_TABLES, FLOQUET_MAPS, *ATTITUDE_RUNS_TABLES):
+                          *ENV_CLOSED_FORM_TABLES, FLOQUET_MAPS, *ATTITUDE_RUNS_TABLES,
+                          *HOLD_CANDIDATE_TABLES):
                 if table.name == name and table.command not in flown:  # two tables may share one JSON file
                     table.fly()
                     flown.add(table.command)

@@ -1310,6 +1310,12 @@ module Components {
     param SUN_HOLD_TIP_ANGLE: F64 default 0.0 id 0x4C set opcode 0x9F save opcode 0xA0
     @ units: deg/s
     param INTEGRAL_RATE_GATE: F64 default 0.05 id 0x4D set opcode 0xA1 save opcode 0xA2
+    @ units: 1
+    param MAG_STEER_RHO_LARGE: F64 default 0.0 id 0x4E set opcode 0xA3 save opcode 0xA4
+    @ units: deg
+    param MAG_STEER_RHO_FROM: F64 default 12.0 id 0x4F set opcode 0xA5 save opcode 0xA6
+    @ units: deg
+    param MAG_STEER_RHO_AT: F64 default 20.0 id 0x50 set opcode 0xA7 save opcode 0xA8
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver

@@ -36,6 +36,11 @@ K_D_MAG = 4.0e-4  # N·m·s: damping ⟂ B
 MAG_POINTING_LAW = "FIELD_STEERING"
 MAG_STEER_RHO = 2.0  # along-field poles at ρ × the field line's rate
 MAG_STEER_ZETA = 1.0  # their damping ratio
+# ρ scheduled on the pointing error (magnetic_pointing.scheduled_rho): MAG_STEER_RHO up to MAG_STEER_RHO_FROM,
+# MAG_STEER_RHO_LARGE from MAG_STEER_RHO_AT on, linear between; MAG_STEER_RHO_LARGE 0 (default): off
+MAG_STEER_RHO_LARGE = 0.0  # ρ at large errors (0: no schedule)
+MAG_STEER_RHO_FROM = 12.0  # deg: the schedule starts above this error
+MAG_STEER_RHO_AT = 20.0  # deg: ... and reaches MAG_STEER_RHO_LARGE at this error
 MAG_FIELD_RATE_BANDWIDTH = 0.05  # rad/s: the field-direction-rate estimator's bandwidth
 MAG_FIELD_RATE_MIN = 5.0e-4  # 1/s: floor of |ḃ| in the law
 MAG_SETTLE_TIME = 30.0  # s of known attitude before the coils point
@@ -214,6 +219,9 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "SUN_HOLD_FIELD_ANGLE": ("deg", 0.0, 89.0, True),
     "SUN_HOLD_TIP_ANGLE": ("deg", 0.0, 10.0, True),
     "INTEGRAL_RATE_GATE": ("deg/s", 0.0, 10.0, True),
+    "MAG_STEER_RHO_LARGE": ("1", 0.0, 10.0, True),
+    "MAG_STEER_RHO_FROM": ("deg", 0.0, 180.0, True),
+    "MAG_STEER_RHO_AT": ("deg", 0.0, 180.0, True),
 }
 #: Each parameter's units (the first column of :data:`PARAMETERS`).
 UNITS: dict[str, str] = {name: row[0] for name, row in PARAMETERS.items()}

@@ -41,25 +41,46 @@ from __future__ import annotations
 import math
 
 from detumble.control.mat3 import det3 as _det3
-from detumble.control.quaternion import Quat, Vec3, quat_error, rotate_b_to_n, rotate_n_to_b
+from detumble.control.quaternion import Quat, Vec3, quat_angle, quat_error, rotate_b_to_n, rotate_n_to_b
 
-__all__ = ["field_steering_torque", "slow_pole_rate", "FieldDirectionRate", "ResidualDipoleEstimator"]
+__all__ = ["field_steering_torque", "scheduled_rho", "slow_pole_rate", "FieldDirectionRate", "ResidualDipoleEstimator"]
 
 
 def _dot(a: Vec3, b: Vec3) -> float:
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
+def scheduled_rho(rho: float, rho_large: float, angle_deg: float, from_deg: float, at_deg: float) -> float:
+    """The along-field pole ratio at a pointing error of ``angle_deg`` (deg): ``rho`` up to ``from_deg``,
+    ``rho_large`` from ``at_deg`` on, linear in the angle between (a step at ``from_deg`` when ``at_deg`` ≤
+    ``from_deg``); ``rho_large`` ≤ 0 turns the schedule off (``rho`` at every angle).
+
+    Why: the slow along-field pair falls at ``ζ ρ r`` in the closed form, so a larger ρ while the error is large
+    was to shorten the fall from the acquisition's 30° without touching the hold (below ``from_deg`` the law is the
+    unscheduled one, the hold's Floquet margin that of ``rho``). Tried for issue 27 and not adopted: with the
+    magnetometer's bias ρ 4 is unstable and most draws never acquire
+    (``docs/studies/magnetorquer_hold_after_acquisition.md``, "Candidates for a faster fall from 30°")."""
+    if not rho_large > 0.0 or angle_deg <= from_deg:
+        return rho
+    if angle_deg >= at_deg:
+        return rho_large
+    return rho + (rho_large - rho) * (angle_deg - from_deg) / (at_deg - from_deg)
+
+
 def field_steering_torque(q_target: Quat, q_BN: Quat, omega_B: Vec3, b_B: Vec3, bdot_hat_B: Vec3,
                           k_p: float, k_d: float, rho: float = 1.0, zeta: float = 0.7,
-                          r_min: float = 5.0e-4) -> tuple[Vec3, Quat]:
+                          r_min: float = 5.0e-4, rho_large: float = 0.0, large_from_deg: float = 12.0,
+                          large_at_deg: float = 20.0) -> tuple[Vec3, Quat]:
     """``(τ_req, q_err)``: the torque to request (project it ⟂ B for the coils) and the error ``q_BT``.
 
     ``θ = 2 q_err.v`` (short way round); ``r = max(|ḃ|, r_min)`` so a field line that hardly turns
     does not blow the offset up (``r_min`` 1/s). With ``rho = 0`` the law is the PD on ``θ`` with the
-    D term relative to the turning line — the unstable "stiff PD" case above.
+    D term relative to the turning line — the unstable "stiff PD" case above. ``rho_large`` > 0 schedules ρ on
+    the error angle (:func:`scheduled_rho`, angles in deg); 0 (default): ``rho`` at every angle.
     """
     qe = quat_error(q_target, q_BN)
+    if rho_large > 0.0:
+        rho = scheduled_rho(rho, rho_large, math.degrees(quat_angle(qe)), large_from_deg, large_at_deg)
     th = (2.0 * qe[1], 2.0 * qe[2], 2.0 * qe[3])
     bn = math.sqrt(_dot(b_B, b_B))
     if not (bn > 0.0 and math.isfinite(bn)):

@@ -282,6 +282,9 @@ class ThreeModeLaw:
     MAG_POINTING_LAW: int
     MAG_STEER_RHO: float
     MAG_STEER_ZETA: float
+    MAG_STEER_RHO_LARGE: float
+    MAG_STEER_RHO_FROM: float
+    MAG_STEER_RHO_AT: float
     MAG_FIELD_RATE_BANDWIDTH: float
     MAG_FIELD_RATE_MIN: float
     MAG_SETTLE_TIME: float
@@ -1112,7 +1115,8 @@ class ThreeModeLaw:
             return pd_torque(target, q, w, kp, kd)
         bd = self.bdot_hat_B if self.bdot_hat_B is not None else _ZERO  # no estimate yet: the law's ρ = 0 case
         return field_steering_torque(target, q, w, self.b_tesla, bd, kp, kd, self.MAG_STEER_RHO,
-                                     self.MAG_STEER_ZETA, self.MAG_FIELD_RATE_MIN)
+                                     self.MAG_STEER_ZETA, self.MAG_FIELD_RATE_MIN, self.MAG_STEER_RHO_LARGE,
+                                     self.MAG_STEER_RHO_FROM, self.MAG_STEER_RHO_AT)
 
     def _body_momentum(self, momenta) -> Vec3:
         """``Σ h_i g_i`` over the wheels, N·m·s (B)."""

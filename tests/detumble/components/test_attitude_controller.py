@@ -496,18 +496,13 @@ def test_pointing_on_magnetorquers_projects_the_pd_torque(fprime_harness):
     assert all(abs(a - e) <= 2 * cx / 127 for a, e in zip(h.comp.dipole, m, strict=True))
 
 
-def test_magnetorquer_pointing_steers_with_the_measured_field_line_rate(fprime_harness):
-    """ADCS-060: MAG_POINTING_LAW = FIELD_STEERING (default): with the field turning at 2e-3 rad/s (0.115 °/s) in N,
-    FieldLineRate reads that rate within 5 % after 60 s at MAG_FIELD_RATE_BANDWIDTH 0.2 rad/s (the estimator runs in
-    every mode while the attitude is known), and RequestedTorque is field_steering_torque of the controller's
-    attitude, rate, field and field-line rate with K_P_MAG, K_D_MAG, MAG_STEER_RHO, MAG_STEER_ZETA (1e-12 N·m);
-    SEED_PD requests seed 003's PD."""
-    r = 2.0e-3
+def _coils_in_a_turning_field(fprime_harness, r: float, b0: float):
+    """A coil-pointing harness 0.2 rad about y from the identity, its field (gauss) turning at ``r`` rad/s in N on a
+    cone (``b0`` in the x–y plane, 0.1 along z), run 60 s so the field-line rate estimate has settled."""
     h = make(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS,
                                      "MAG_FIELD_RATE_BANDWIDTH": 0.2, "MAG_SETTLE_TIME": 30.0})
     h.world.q = quat_from_axis_angle((0.0, 1.0, 0.0), 0.2)
     t0 = h.test_time.total_us
-    b0 = 0.4  # gauss
 
     def turning_field():
         t = (h.test_time.total_us - t0) / 1e6
@@ -517,6 +512,18 @@ def test_magnetorquer_pointing_steers_with_the_measured_field_line_rate(fprime_h
 
     h.set_port_handler("magneticFieldGet", turning_field)
     seconds(h, 60)
+    return h
+
+
+def test_magnetorquer_pointing_steers_with_the_measured_field_line_rate(fprime_harness):
+    """ADCS-060: MAG_POINTING_LAW = FIELD_STEERING (default): with the field turning at 2e-3 rad/s (0.115 °/s) in N,
+    FieldLineRate reads that rate within 5 % after 60 s at MAG_FIELD_RATE_BANDWIDTH 0.2 rad/s (the estimator runs in
+    every mode while the attitude is known), and RequestedTorque is field_steering_torque of the controller's
+    attitude, rate, field and field-line rate with K_P_MAG, K_D_MAG, MAG_STEER_RHO, MAG_STEER_ZETA (1e-12 N·m);
+    SEED_PD requests seed 003's PD."""
+    r = 2.0e-3
+    b0 = 0.4  # gauss
+    h = _coils_in_a_turning_field(fprime_harness, r, b0)
     h.send_command("SET_TARGET_QUATERNION", 1.0, 0.0, 0.0, 0.0)
     h.send_command("FORCE_MODE", ControlMode.POINTING)
     tick(h, 5)
@@ -533,6 +540,37 @@ def test_magnetorquer_pointing_steers_with_the_measured_field_line_rate(fprime_h
     tick(h, 5)
     pd, _ = pd_torque(c.target, c.law.filter.q, c.law.omega, c.K_P_MAG.value, c.K_D_MAG.value)
     assert all(abs(a - e) < 1e-12 for a, e in zip(h.tlm_values("RequestedTorque")[-1], pd, strict=True))
+
+
+@pytest.mark.parametrize("bad", [{"MAG_STEER_RHO_LARGE": -0.1}, {"MAG_STEER_RHO_LARGE": 10.5},
+                                 {"MAG_STEER_RHO_LARGE": math.nan}, {"MAG_STEER_RHO_FROM": -1.0},
+                                 {"MAG_STEER_RHO_FROM": 181.0}, {"MAG_STEER_RHO_FROM": math.inf},
+                                 {"MAG_STEER_RHO_AT": -1.0}, {"MAG_STEER_RHO_AT": 181.0},
+                                 {"MAG_STEER_RHO_AT": math.nan}])
+def test_scheduled_rho_parameters_have_ranges(fprime_harness, bad):
+    """ADCS-150: MAG_STEER_RHO_LARGE outside 0…10, MAG_STEER_RHO_FROM or MAG_STEER_RHO_AT outside 0…180° (or any
+    of them not finite) are refused by PRM_SET (VALIDATION_ERROR) and the value in use is kept."""
+    assert_refused_and_kept(fprime_harness, bad)
+
+
+def test_magnetorquer_pointing_schedules_rho_on_the_error(fprime_harness):
+    """ADCS-151: MAG_STEER_RHO_LARGE is 0 (no schedule) by default; set to 4 with MAG_STEER_RHO_FROM 5° and
+    MAG_STEER_RHO_AT 10°, at an error of 11.5° RequestedTorque is field_steering_torque with those three (1e-12 N·m),
+    which differs from the unscheduled law's."""
+    h = _coils_in_a_turning_field(fprime_harness, 2.0e-3, 0.4)
+    assert h.comp.MAG_STEER_RHO_LARGE.value == 0.0
+    for name, value in (("MAG_STEER_RHO_LARGE", 4.0), ("MAG_STEER_RHO_FROM", 5.0), ("MAG_STEER_RHO_AT", 10.0)):
+        h.send_command(f"{name}_PRM_SET", value)
+    h.send_command("SET_TARGET_QUATERNION", 1.0, 0.0, 0.0, 0.0)
+    h.send_command("FORCE_MODE", ControlMode.POINTING)
+    tick(h, 5)
+    c = h.comp
+    args = (c.target, c.law.filter.q, c.law.omega, c.law.b_tesla, c.law.bdot_hat_B, c.K_P_MAG.value, c.K_D_MAG.value,
+            c.MAG_STEER_RHO.value, c.MAG_STEER_ZETA.value, c.MAG_FIELD_RATE_MIN.value)
+    tau, _ = field_steering_torque(*args, 4.0, 5.0, 10.0)
+    assert all(abs(a - e) < 1e-12 for a, e in zip(h.tlm_values("RequestedTorque")[-1], tau, strict=True))
+    plain, _ = field_steering_torque(*args)
+    assert max(abs(a - p) for a, p in zip(tau, plain, strict=True)) > 1e-9
 
 
 def test_magnetorquer_pointing_waits_for_the_gyro_bias_to_settle(fprime_harness):

@@ -11,7 +11,8 @@ import math
 
 import pytest
 
-from detumble.control.magnetic_pointing import FieldDirectionRate, field_steering_torque, slow_pole_rate
+from detumble.control.magnetic_pointing import (FieldDirectionRate, field_steering_torque, scheduled_rho,
+                                               slow_pole_rate)
 from detumble.control.pointing import pd_torque
 from detumble.control.quaternion import quat_angle, quat_from_axis_angle, quat_mul, rotate_n_to_b
 from detumble.sim.attitude import RigidBody
@@ -218,3 +219,32 @@ def test_residual_dipole_estimate_without_noise_is_exact_and_needs_a_turning_fie
     assert fixed.windows > 100
     assert fixed.conditioning() < 1e-9
     assert fixed.estimate is None
+
+
+def test_scheduled_rho_ramps_between_the_two_angles():
+    """MAGPT-070: ρ scheduled on the error (deg): MAG_STEER_RHO up to the lower angle (12°), the large ρ from the
+    upper angle (20°) on, linear between (3 at 16° for 2 → 4); a large ρ of 0 is no schedule at every angle; an upper
+    angle at or below the lower one is a step at the lower one."""
+    assert scheduled_rho(2.0, 4.0, 5.0, 12.0, 20.0) == 2.0
+    assert scheduled_rho(2.0, 4.0, 12.0, 12.0, 20.0) == 2.0
+    assert scheduled_rho(2.0, 4.0, 16.0, 12.0, 20.0) == pytest.approx(3.0, abs=1e-12)
+    assert scheduled_rho(2.0, 4.0, 20.0, 12.0, 20.0) == 4.0
+    assert scheduled_rho(2.0, 4.0, 90.0, 12.0, 20.0) == 4.0
+    assert scheduled_rho(2.0, 0.0, 90.0, 12.0, 20.0) == 2.0
+    assert scheduled_rho(2.0, 4.0, 12.5, 12.0, 12.0) == 4.0
+    assert scheduled_rho(2.0, 4.0, 11.5, 12.0, 12.0) == 2.0
+
+
+def test_the_scheduled_law_is_the_plain_law_at_the_scheduled_rho():
+    """MAGPT-071: field_steering_torque with a large ρ is the unscheduled law at scheduled_rho of its own error
+    angle: below the lower angle the torque is the plain law's at MAG_STEER_RHO (bit for bit), above the upper
+    angle the plain law's at the large ρ, which differs (the schedule acts)."""
+    b, bd, w = (0.3, -0.2, 0.9), (1.5e-3, 1.0e-3, 0.0), (1e-3, -2e-3, 5e-4)
+    for angle_deg, rho_used in ((8.0, 2.0), (25.0, 4.0), (16.0, 3.0)):
+        q = quat_from_axis_angle((0.36, 0.48, 0.8), math.radians(angle_deg))
+        tau, _ = field_steering_torque(TARGET, q, w, b, bd, 4e-6, 4e-4, 2.0, 1.0, 5e-4, 4.0, 12.0, 20.0)
+        plain, _ = field_steering_torque(TARGET, q, w, b, bd, 4e-6, 4e-4, rho_used, 1.0, 5e-4)
+        assert all(abs(a - e) <= 1e-15 for a, e in zip(tau, plain, strict=True))
+        if rho_used != 2.0:
+            unscheduled, _ = field_steering_torque(TARGET, q, w, b, bd, 4e-6, 4e-4, 2.0, 1.0, 5e-4)
+            assert max(abs(a - e) for a, e in zip(tau, unscheduled, strict=True)) > 1e-9
