@@ -97,7 +97,8 @@ class ProjectPointing(sysModel.SysModel):
         self.rate_limit = math.radians(_param("SLEW_RATE_LIMIT"))
         self.k_dump = _param("K_DUMP")
         self.limits = _coil_limits()
-        self.integrator = ErrorIntegrator(math.radians(_param("INTEGRAL_WINDOW")), 1.0e-5)
+        self.integrator = ErrorIntegrator(math.radians(_param("INTEGRAL_WINDOW")), 1.0e-5,
+                                          math.radians(_param("INTEGRAL_RATE_GATE")))
         self.allocator = WheelAllocator(self.axes, _param("WHEEL_MAX_TORQUE"), _param("WHEEL_MAX_MOMENTUM"))
         self.body_momentum = WheelAllocator(self.axes, 1.0, 1.0).body_momentum
 
@@ -114,7 +115,7 @@ class ProjectPointing(sysModel.SysModel):
         w = nav.omega_BN_B
         omega = (w[0], w[1], w[2])
         tau, qe = pd_torque(self.target, q, omega, self.kp, self.kd, self.rate_limit)
-        ti = self.integrator.update(qe, self.dt, self.ki)
+        ti = self.integrator.update(qe, self.dt, self.ki, omega)  # inertial targets: the reference does not turn
         speeds = self.rwSpeedInMsg().wheelSpeeds
         momenta = tuple(self.js[i] * (speeds[i] + sum(a * b for a, b in zip(self.axes[i], omega, strict=True)))
                         for i in range(len(self.axes)))
