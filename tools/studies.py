@@ -1544,7 +1544,7 @@ MAG_POINTING_TABLES = (
                   "campaigns/adcs/magnetic_pointing_tables.py", f"magnetic_pointing/{key}.json", STUDIES_DIR /
                   "magnetic_pointing.md", tuple(args.split()))
       for key, args in (("floquet", "floquet"), ("checks", "checks"), ("corner_dipole", "corner --field dipole"),
-                        ("corner_igrf14", "corner --field igrf14"))),
+                        ("corner_igrf14", "corner --field igrf14"), ("floquet_convergence", "convergence"))),
     # the gravity-gradient floor: its closed form re-computed by --check (a CPU-second)
     ScriptTable("magnetic_pointing", _MAG_PLANT_SUMMARY, "magnetic_pointing_floor",
                 "campaigns/adcs/magnetic_pointing_tables.py", "magnetic_pointing/floor.json",
