@@ -383,7 +383,7 @@ def _nudged_script_table(tmp_path, monkeypatch, table, nudge) -> None:
 def test_the_closed_form_figures_are_what_the_code_computes_now(tmp_path, monkeypatch):
     """STUDY-040: environment_torques.md's closed-form blocks (nadir torques, drag and solar pressure, the coil law's
     Floquet margin to the magnetometer bias, the IGRF table's accuracy) are rendered from a committed JSON file; its
-    --check probe computes every figure again (about a CPU-second) and finds the committed ones to the float; a copy
+    --check probe computes every figure again (about 8 CPU-s) and finds the committed ones to the float; a copy
     whose Floquet rate at 1.75 × the bias is nudged by 1e-12 /s is reported, through --check."""
     assert studies.check(["environment_closed_form"], fly_probes=True) == []
     table = studies.ENV_CLOSED_FORM_TABLES[0]

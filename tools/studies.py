@@ -1572,7 +1572,7 @@ KNOWLEDGE_SINGLE_TABLES = tuple(
 #: environment_torques.md's closed-form figures and the magnetorquer hold's bias margin (no flight: a CPU-second)
 ENV_CLOSED_FORM_TABLES = tuple(
     ScriptTable("environment_closed_form", "environment torques in closed form and the coil law's Floquet margin to "
-                "the magnetometer bias (committed JSON, a CPU-second)", f"environment_torques_{part}",
+                "the magnetometer bias (committed JSON, about 8 CPU-s)", f"environment_torques_{part}",
                 "campaigns/adcs/environment_closed_form.py", "environment_torques/closed_form.json",
                 STUDIES_DIR / "environment_torques.md", render=f"{part}_markdown",
                 probe="probe" if part == "nadir" else "")
