@@ -8,9 +8,9 @@
 linearised about the adcs_ref target over one orbit (``detumble.analysis.magnetic_floquet``, inertia × 1.25 for the
 coils' 80 % duty, ζ 1), (a) for the present gains (K_P_MAG 4e-6 N·m, K_D_MAG 4e-4 N·m·s, ρ 2) at 200 … 4000 samples
 of the orbit, the law seeing the field through 0, 1, 1.5 and 2 × the scenario's LIS2MDL bias, in the tilted dipole and
-IGRF-14: whether the maps the study pages quoted until 2026-12-04 (200 samples) are converged; (b) over ρ 2 … 5 and two gain pairs at
-2000 samples in the tilted dipole (the campaign's field), without the bias and with it: what a bias-free law can gain
-from a larger ρ.
+IGRF-14: whether the maps the study pages quoted until 2026-12-04 (200 samples) are converged; (b) over ρ 2 … 5 and
+two gain pairs at 2000 samples in the tilted dipole (the campaign's field), without the bias and with it: what a
+bias-free law can gain from a larger ρ.
 
 ``draws`` (≈ 6 CPU-minutes): the six draws of ``campaigns/adcs/pointing_magnetorquers_plant.yaml`` that miss the p95
 with the longest tails (and four that pass, for the schedule) flown again plant-only (``detumble.sim.runner.run``,
