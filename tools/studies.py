@@ -1582,7 +1582,7 @@ ENV_CLOSED_FORM_TABLES = tuple(
 #: magnetic_pointing.md's Floquet figure: the maps kept as JSON (campaigns/adcs/magnetic_pointing_figures.py), the
 #: figures the page quotes from them rendered into a block, the figure drawn from them by the script's draw_floquet
 FLOQUET_MAPS = ScriptTable("magnetic_pointing_floquet_figure", "magnetorquer pointing: the Floquet maps' figure and "
-                           "the figures quoted from them (committed JSON, ~30 CPU-s)", "magnetic_pointing_floquet_maps",
+                           "the figures quoted from them (committed JSON, ~60 CPU-s)", "magnetic_pointing_floquet_maps",
                            "campaigns/adcs/magnetic_pointing_figures.py", "magnetic_pointing/floquet_maps.json",
                            STUDIES_DIR / "magnetic_pointing.md", ("floquet",), render="maps_markdown", probe="probe")
 
