@@ -315,6 +315,20 @@ def test_the_magnetic_pointing_floquet_table_is_what_the_code_computes_now():
         == row["rates"]
 
 
+def test_the_floquet_convergence_table_is_what_the_code_computes_now():
+    """STUDY-150: magnetic_pointing.md's convergence table of the Floquet maps is rendered from a committed JSON file
+    made with the maps' present sample count (FLOQUET_SAMPLES, so the block cannot vouch for a count it did not
+    test); its row at that count in the tilted dipole is computed again (≈ 2 CPU-s) and gives the committed rates to
+    the float, and the block says the rule is met there."""
+    script, committed = _mag_table("magnetic_pointing_floquet_convergence")
+    assert committed["chosen_samples"] == script.FLOQUET_SAMPLES
+    row = next(r for r in committed["rows"] if r["samples"] == script.FLOQUET_SAMPLES and r["substeps"] == 1)
+    kp, kd, rho, zeta = committed["gains"]
+    assert script.floquet_row("dipole", kp, kd, rho, zeta, samples=script.FLOQUET_SAMPLES) == row["rates"]["dipole"]
+    assert f"from {script.FLOQUET_SAMPLES} to {2 * script.FLOQUET_SAMPLES} samples: **met**" in \
+        script.convergence_markdown(committed)
+
+
 def test_the_magnetic_pointing_plant_tables_are_what_the_code_flies_now():
     """STUDY-036: magnetic_pointing.md's plant checks are rendered from committed JSON files (≈ 400 one-orbit plant
     flights); the worst corner's chosen row, draw 1, in both fields, and seed 003's PD in the dipole (four plant
