@@ -1544,7 +1544,7 @@ MAG_POINTING_TABLES = (
                   "campaigns/adcs/magnetic_pointing_tables.py", f"magnetic_pointing/{key}.json", STUDIES_DIR /
                   "magnetic_pointing.md", tuple(args.split()))
       for key, args in (("floquet", "floquet"), ("checks", "checks"), ("corner_dipole", "corner --field dipole"),
-                        ("corner_igrf14", "corner --field igrf14"))),
+                        ("corner_igrf14", "corner --field igrf14"), ("floquet_convergence", "convergence"))),
     # the gravity-gradient floor: its closed form re-computed by --check (a CPU-second)
     ScriptTable("magnetic_pointing", _MAG_PLANT_SUMMARY, "magnetic_pointing_floor",
                 "campaigns/adcs/magnetic_pointing_tables.py", "magnetic_pointing/floor.json",
@@ -1572,7 +1572,7 @@ KNOWLEDGE_SINGLE_TABLES = tuple(
 #: environment_torques.md's closed-form figures and the magnetorquer hold's bias margin (no flight: a CPU-second)
 ENV_CLOSED_FORM_TABLES = tuple(
     ScriptTable("environment_closed_form", "environment torques in closed form and the coil law's Floquet margin to "
-                "the magnetometer bias (committed JSON, a CPU-second)", f"environment_torques_{part}",
+                "the magnetometer bias (committed JSON, about 8 CPU-s)", f"environment_torques_{part}",
                 "campaigns/adcs/environment_closed_form.py", "environment_torques/closed_form.json",
                 STUDIES_DIR / "environment_torques.md", render=f"{part}_markdown",
                 probe="probe" if part == "nadir" else "")
@@ -1582,7 +1582,7 @@ ENV_CLOSED_FORM_TABLES = tuple(
 #: magnetic_pointing.md's Floquet figure: the maps kept as JSON (campaigns/adcs/magnetic_pointing_figures.py), the
 #: figures the page quotes from them rendered into a block, the figure drawn from them by the script's draw_floquet
 FLOQUET_MAPS = ScriptTable("magnetic_pointing_floquet_figure", "magnetorquer pointing: the Floquet maps' figure and "
-                           "the figures quoted from them (committed JSON, ~30 CPU-s)", "magnetic_pointing_floquet_maps",
+                           "the figures quoted from them (committed JSON, ~60 CPU-s)", "magnetic_pointing_floquet_maps",
                            "campaigns/adcs/magnetic_pointing_figures.py", "magnetic_pointing/floquet_maps.json",
                            STUDIES_DIR / "magnetic_pointing.md", ("floquet",), render="maps_markdown", probe="probe")
 

@@ -1,5 +1,5 @@
 """The closed-form figures of docs/studies/environment_torques.md (no flight: arithmetic on the adcs scenario and
-the flight software's defaults, and twelve Floquet maps, about a CPU-second in all).
+the flight software's defaults, and twelve Floquet maps of 16000 samples, about 8 CPU-s in all).
 
     python campaigns/adcs/environment_closed_form.py                                                        # printed
     python campaigns/adcs/environment_closed_form.py --json docs/studies/environment_torques/closed_form.json  # kept
@@ -124,7 +124,7 @@ def results() -> dict:
 
 
 def probe(committed: dict) -> list[str]:
-    """Compute every figure again (a CPU-second) and compare with the committed file to the float."""
+    """Compute every figure again (about 8 CPU-s) and compare with the committed file to the float."""
     import json
 
     again = json.loads(json.dumps(results()))

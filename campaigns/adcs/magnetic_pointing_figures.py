@@ -34,12 +34,15 @@ RHOS = [0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0]
 KDS_STEER = [2e-5, 4e-5, 1e-4, 2e-4, 4e-4]
 OLD_GAINS = (2e-6, 4e-4)          # seed 003's PD: K_P_MAG, K_D_MAG
 FIRST_PASS = (1e-6, 1e-4, 2.0)    # the steering law's first-pass K_P_MAG, K_D_MAG, ρ (ζ 0.7, the law's default)
+#: samples of the orbit, one RK4 step each: magnetic_pointing_tables.py's FLOQUET_SAMPLES, the count its convergence
+#: table justifies (400 samples × 8 sub-steps until 2026-12-04)
+SAMPLES, SUBSTEPS = 16000, 1
 
 
 def field_line(plant=None):
-    """(period, b̂, ḃ) over one orbit of the adcs scenario toward the start-up target (400 samples)."""
+    """(period, b̂, ḃ) over one orbit of the adcs scenario toward the start-up target (:data:`SAMPLES`)."""
     plant = plant or Plant(load_scenario("adcs"))
-    return plant, *field_line_along_orbit(plant, TARGET, samples=400)
+    return plant, *field_line_along_orbit(plant, TARGET, samples=SAMPLES)
 
 
 def floquet_maps() -> dict:
@@ -47,14 +50,15 @@ def floquet_maps() -> dict:
     plant, period, b, bd = field_line()
     inertia = np.array(plant.scenario.spacecraft.inertia_kg_m2)
     rate = np.linalg.norm(bd, axis=1)
-    seed = [[floquet_rate("seed_pd", period, b, bd, inertia, kp, kd) for kp in KPS] for kd in KDS]
-    steer = [[floquet_rate("field_steering", period, b, bd, inertia, FIRST_PASS[0], kd, rho=rho) for rho in RHOS]
+    seed = [[floquet_rate("seed_pd", period, b, bd, inertia, kp, kd, substeps=SUBSTEPS) for kp in KPS] for kd in KDS]
+    steer = [[floquet_rate("field_steering", period, b, bd, inertia, FIRST_PASS[0], kd, rho=rho,
+                          substeps=SUBSTEPS) for rho in RHOS]
              for kd in KDS_STEER]
     return {"field_model": plant.scenario.field.model, "period_s": float(period),
             "mean_motion_rad_s": float(plant.orbit.mean_motion),
             "field_line_rate": {"min": float(rate.min()), "mean": float(rate.mean()), "max": float(rate.max())},
             "averaged_projection_eig": [float(x) for x in np.linalg.eigvalsh(averaged_projection(b[:-1]))],
-            "old_gains_rate": float(floquet_rate("seed_pd", period, b, bd, inertia, *OLD_GAINS)),
+            "old_gains_rate": float(floquet_rate("seed_pd", period, b, bd, inertia, *OLD_GAINS, substeps=SUBSTEPS)),
             "k_p": KPS, "k_d": KDS, "seed_pd": seed, "rho": RHOS, "k_d_steer": KDS_STEER, "field_steering": steer}
 
 
@@ -119,14 +123,14 @@ def draw_floquet(maps: dict, out: pathlib.Path) -> pathlib.Path:
 
 
 def probe(committed: dict) -> list[str]:
-    """The field line's figures and the old gains' rate computed again (one Floquet map, a CPU-second) against the
+    """The field line's figures and the old gains' rate computed again (one Floquet map, a few CPU-s) against the
     committed ones, to the float."""
     plant, period, b, bd = field_line()
     inertia = np.array(plant.scenario.spacecraft.inertia_kg_m2)
     rate = np.linalg.norm(bd, axis=1)
     again = {"period_s": float(period), "field_line_rate": {"min": float(rate.min()), "mean": float(rate.mean()),
                                                             "max": float(rate.max())},
-             "old_gains_rate": float(floquet_rate("seed_pd", period, b, bd, inertia, *OLD_GAINS))}
+             "old_gains_rate": float(floquet_rate("seed_pd", period, b, bd, inertia, *OLD_GAINS, substeps=SUBSTEPS))}
     return [f"{key} is {value} now, {committed.get(key)} committed" for key, value in again.items()
             if committed.get(key) != value]
 

@@ -6,12 +6,19 @@
     python campaigns/adcs/magnetic_pointing_tables.py corner --field igrf14 \
         --json docs/studies/magnetic_pointing/corner_igrf14.json
     python campaigns/adcs/magnetic_pointing_tables.py checks --json docs/studies/magnetic_pointing/checks.json
+    python campaigns/adcs/magnetic_pointing_tables.py convergence \
+        --json docs/studies/magnetic_pointing/floquet_convergence.json
 
-``floquet`` (≈ 1 CPU-s): section 4's gain table — the slowest mode's Floquet rate (1/s, negative decays) of the
-steering law linearised about the adcs_ref start-up target over one orbit (200 samples, RK4 with 4 substeps), the
+``floquet`` (≈ 30 CPU-s): section 4's gain table — the slowest mode's Floquet rate (1/s, negative decays) of the
+steering law linearised about the adcs_ref start-up target over one orbit (:data:`FLOQUET_SAMPLES` samples, RK4 with
+one step per sample, the count ``convergence`` justifies), the
 body's inertia × 1.25 (the coils' 80 % duty), with the law seeing the field without bias, through the scenario's
 LIS2MDL bias (0.012, −0.008, 0.005) G (constant in B ≈ T while holding) and through twice it; in the tilted dipole
 (where the gains were chosen, 2026-12-01) and in IGRF-14 (the adcs scenario's field since 2026-12-04).
+``convergence`` (≈ 20 CPU-s): the present gains' slowest rate (0, 1 and 2 × the bias, both fields) against the samples
+of the orbit and the RK4 sub-steps (``A`` is held over each sample and ḃ comes from differences, so the map errs by
+O(1/samples) whatever the sub-steps): the evidence for :data:`FLOQUET_SAMPLES` (spec/control.md: halve the step until
+the figure moves < 0.5 %; a move below :data:`MARGINAL_RATE` counts as converged, for rates near zero).
 ``corner`` (≈ 3 CPU-minutes): the hold campaign's worst corner on the plant (``detumble.sim.magnetic_pointing_check``):
 20 draws of the axes (seeds 1–20), 20° off and 0.05 °/s, coils off for the settle time, the LIS2MDL bias in the
 field the law sees (its ḃ from the flight estimator), 0.2 s steps, one orbit (5580 s), per gain row.
@@ -47,13 +54,25 @@ CORNER_ROWS = ((1e-6, 1e-4, 2.0, 0.7, 120.0, 1.0, 0.0), (1e-6, 1e-4, 2.0, 0.7, 1
                (4e-6, 4e-4, 2.0, 1.0, 30.0, 0.8, 0.8), (3e-6, 3e-4, 2.0, 1.0, 30.0, 0.8, 0.8),
                (2e-6, 2e-4, 2.0, 1.0, 30.0, 0.8, 0.8))
 CORNER_SEEDS = range(1, 21)
+#: samples of the orbit in every Floquet map of the study pages (RK4, one step per sample): the first count whose
+#: rates move < 0.5 % (or < MARGINAL_RATE) on doubling it — see :func:`convergence` (200 until 2026-12-04)
+FLOQUET_SAMPLES = 16000
+FLOQUET_SUBSTEPS = 1
+#: 1/s: a move this small is converged whatever the rate (≈ 1 % per 5580 s orbit, an e-fold in 5.8 days): a marginal
+#: rate (≈ 0, e.g. IGRF-14 at twice the bias) cannot meet 0.5 % of itself
+MARGINAL_RATE = 2e-6
+#: the convergence table's (samples, RK4 sub-steps); (200, 4) is the pages' map until 2026-12-04
+CONVERGENCE_STEPS = ((200, 4), (400, 4), (1000, 1), (2000, 1), (4000, 1), (8000, 1), (16000, 1), (16000, 2),
+                     (32000, 1))
 SPREAD_SEEDS = range(1, 11)
 GAINS = {"first pass": (1e-6, 1e-4, 2.0, 0.7), "present": (4e-6, 4e-4, 2.0, 1.0)}
 
 
 def floquet_row(field: str, k_p: float, k_d: float, rho: float, zeta: float,
-                factors: tuple[float, ...] = (0.0, 1.0, 2.0)) -> list[float]:
-    """The slowest mode's rate (1/s) at bias × each of ``factors`` (0, 1, 2 for the page's gain table) in ``field``."""
+                factors: tuple[float, ...] = (0.0, 1.0, 2.0), samples: int = FLOQUET_SAMPLES,
+                substeps: int = FLOQUET_SUBSTEPS) -> list[float]:
+    """The slowest mode's rate (1/s) at bias × each of ``factors`` (0, 1, 2 for the page's gain table) in ``field``,
+    over ``samples`` of the orbit with ``substeps`` RK4 steps each."""
     import numpy as np
 
     from detumble.analysis.magnetic_floquet import field_line_along_orbit, floquet_rate
@@ -61,14 +80,29 @@ def floquet_row(field: str, k_p: float, k_d: float, rho: float, zeta: float,
     from detumble.sim.scenario import load_scenario
 
     plant = Plant(load_scenario("adcs", settings=list(FIELDS[field])))
-    period, b, bd = field_line_along_orbit(plant, TARGET, samples=200)
+    period, b, bd = field_line_along_orbit(plant, TARGET, samples=samples)
     inertia = 1.25 * np.array(plant.scenario.spacecraft.inertia_kg_m2)
     rates = []
     for k in factors:
-        _, bl, bdl = field_line_along_orbit(plant, TARGET, samples=200, bias_t=[k * 1e-4 * c for c in BIAS_G])
-        rates.append(floquet_rate("field_steering", period, b, bd, inertia, k_p, k_d, substeps=4, rho=rho, zeta=zeta,
-                                  b_law=bl, bdot_law=bdl))
+        _, bl, bdl = field_line_along_orbit(plant, TARGET, samples=samples, bias_t=[k * 1e-4 * c for c in BIAS_G])
+        rates.append(floquet_rate("field_steering", period, b, bd, inertia, k_p, k_d, substeps=substeps, rho=rho,
+                                  zeta=zeta, b_law=bl, bdot_law=bdl))
     return rates
+
+
+def converged(rate: float, rate_doubled: float) -> bool:
+    """Whether a rate moves within the rule (< 0.5 %, or < :data:`MARGINAL_RATE` near zero) on doubling the samples."""
+    return abs(rate_doubled - rate) < max(0.005 * abs(rate_doubled), MARGINAL_RATE)
+
+
+def convergence() -> dict:
+    """The present gains' slowest rate per :data:`CONVERGENCE_STEPS` row, 0, 1 and 2 × the bias, both fields."""
+    kp, kd, rho, zeta = GAINS["present"]
+    return {"table": "convergence", "gains": [kp, kd, rho, zeta], "factors": [0.0, 1.0, 2.0],
+            "chosen_samples": FLOQUET_SAMPLES, "marginal_rate": MARGINAL_RATE,
+            "rows": [{"samples": n, "substeps": sub,
+                      "rates": {f: floquet_row(f, kp, kd, rho, zeta, samples=n, substeps=sub) for f in FIELDS}}
+                     for n, sub in CONVERGENCE_STEPS]}
 
 
 def floquet() -> dict:
@@ -202,6 +236,44 @@ def floquet_markdown(table: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+def convergence_markdown(table: dict) -> str:
+    head = " | ".join(f"{FIELD_NAMES[f]}: {b}" for f in FIELDS for b in ("no bias", "scenario bias", "2 × bias"))
+    lines = [f"| samples of the orbit (RK4 sub-steps) | {head} |", "|---|" + "---|" * 6]
+    one_step = {r["samples"]: r for r in table["rows"] if r["substeps"] == 1}
+    for r in table["rows"]:
+        half = one_step.get(r["samples"] // 2) if r["substeps"] == 1 else one_step.get(r["samples"])
+        cells = []
+        for f in FIELDS:
+            for k, x in enumerate(r["rates"][f]):
+                moved = "" if half is None else f" ({_moved(half['rates'][f][k], x)})"
+                cells.append(f"{_rate(x)}{moved}")
+        lines.append(f"| {r['samples']} ({r['substeps']}) | " + " | ".join(cells) + " |")
+    n = table["chosen_samples"]
+
+    def judged(m: int) -> str:
+        pair = [one_step.get(m), one_step.get(2 * m)]
+        if None in pair:
+            return f"from {m} to {2 * m}: no rows to judge"
+        bad = [f"{FIELD_NAMES[f]} at {table['factors'][k]:g} × bias" for f in FIELDS
+               for k, (a, b) in enumerate(zip(pair[0]["rates"][f], pair[1]["rates"][f], strict=True))
+               if not converged(a, b)]
+        return f"from {m} to {2 * m} samples: " + ("**met**" if not bad else "**not met** for " + ", ".join(bad))
+
+    verdict = (f"The rule (spec/control.md): every rate moves < 0.5 % or < {_short(table['marginal_rate'])} /s on "
+               f"doubling the samples; {judged(n // 2)}; {judged(n)}, the maps' count")
+    kp, kd, rho, zeta = table["gains"]
+    return ("\n".join(lines) + f"\n\nIn brackets: the move from the row above it in samples (half as many, or the same "
+            f"count with one sub-step). Gains K_P_MAG {_short(kp)} N·m, K_D_MAG {_short(kd)} N·m·s, ρ {rho:g}, "
+            f"ζ {zeta:g}, inertia × 1.25. {verdict}.\n")
+
+
+def _moved(before: float, after: float) -> str:
+    """How far a rate moved: % of the new value, or the absolute step (1/s) near zero."""
+    if abs(after) < MARGINAL_RATE / 0.005 or abs(after - before) >= abs(after):  # where the absolute step rules
+        return f"{'+' if after >= before else '−'}{_short(abs(after - before), 1)}"
+    return f"{100 * abs(after - before) / abs(after):.2f} %"
+
+
 def corner_markdown(table: dict) -> str:
     lines = ["| gains (K_P, K_D, ρ, ζ), settle | duty, compensation | runs with p95 ≤ 15° | p95: median / worst "
              "| median: worst |", "|---|---|---|---|---|"]
@@ -256,19 +328,20 @@ def floor_markdown(table: dict) -> str:
 
 
 def markdown(table: dict) -> str:
-    return {"floquet": floquet_markdown, "corner": corner_markdown, "checks": checks_markdown,
-            "floor": floor_markdown}[table["table"]](table)
+    return {"floquet": floquet_markdown, "convergence": convergence_markdown, "corner": corner_markdown,
+            "checks": checks_markdown, "floor": floor_markdown}[table["table"]](table)
 
 
 def main(argv: list[str] | None = None) -> int:
     from detumble.reports.study_table import table_script_main
 
     def options(parser) -> None:
-        parser.add_argument("table", choices=("floquet", "corner", "checks", "floor"))
+        parser.add_argument("table", choices=("floquet", "convergence", "corner", "checks", "floor"))
         parser.add_argument("--field", choices=list(FIELDS), default="dipole", help="corner: field (default dipole)")
 
     def results(args) -> dict:
-        table = {"floquet": floquet, "checks": checks, "floor": floor}.get(args.table, lambda: corner(args.field))()
+        makers = {"floquet": floquet, "convergence": convergence, "checks": checks, "floor": floor}
+        table = makers.get(args.table, lambda: corner(args.field))()
         return dict(table, script="campaigns/adcs/magnetic_pointing_tables.py")
 
     return table_script_main(argv, __doc__.split("\n\n")[0], results, markdown, options)

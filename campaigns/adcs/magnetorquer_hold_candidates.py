@@ -8,9 +8,9 @@
 linearised about the adcs_ref target over one orbit (``detumble.analysis.magnetic_floquet``, inertia × 1.25 for the
 coils' 80 % duty, ζ 1), (a) for the present gains (K_P_MAG 4e-6 N·m, K_D_MAG 4e-4 N·m·s, ρ 2) at 200 … 4000 samples
 of the orbit, the law seeing the field through 0, 1, 1.5 and 2 × the scenario's LIS2MDL bias, in the tilted dipole and
-IGRF-14: whether the maps the study pages quote (200 samples) are converged; (b) over ρ 2 … 5 and two gain pairs at
-2000 samples in the tilted dipole (the campaign's field), without the bias and with it: what a bias-free law can gain
-from a larger ρ.
+IGRF-14: whether the maps the study pages quoted until 2026-12-04 (200 samples) are converged; (b) over ρ 2 … 5 and
+two gain pairs at 16000 samples (:data:`RHO_SAMPLES`) in the tilted dipole (the campaign's field), without the bias
+and with it: what a bias-free law can gain from a larger ρ.
 
 ``draws`` (≈ 6 CPU-minutes): the six draws of ``campaigns/adcs/pointing_magnetorquers_plant.yaml`` that miss the p95
 with the longest tails (and four that pass, for the schedule) flown again plant-only (``detumble.sim.runner.run``,
@@ -39,6 +39,9 @@ SAMPLES = ((200, 4), (400, 4), (1000, 2), (2000, 2), (4000, 1))  # (samples of t
 BIAS_FACTORS = (0.0, 1.0, 1.5, 2.0)
 RHO_GAINS = ((4e-6, 4e-4), (8e-6, 8e-4))
 RHOS = (2.0, 2.5, 3.0, 3.5, 4.0, 5.0)
+#: (b)'s samples of the orbit, one RK4 step each: magnetic_pointing_tables.py's FLOQUET_SAMPLES (2000 × 2 until the
+#: maps were found unconverged below it, 2026-12-04)
+RHO_SAMPLES = 16000
 #: the committed campaign's draws (seed indices, = its rows) flown again: the six misses with the longest tails,
 #: four passes
 MISSES = (12, 72, 89, 76, 26, 8)
@@ -85,12 +88,14 @@ def floquet() -> dict:
             rows.append({"samples": samples, "substeps": sub, "rates": rates})
         out["convergence"][field] = rows
     plant = plants["dipole"]
-    period, b, bd = field_line_along_orbit(plant, TARGET, samples=2000)
+    period, b, bd = field_line_along_orbit(plant, TARGET, samples=RHO_SAMPLES)
+    out["rho_samples"] = RHO_SAMPLES
     out["r_mean"] = float(sum(math.sqrt(float(v @ v)) for v in bd[:-1]) / (len(bd) - 1))  # rad/s, orbit mean
     for k_p, k_d in RHO_GAINS:
         for rho in RHOS:
             out["rho"].append({"k_p": k_p, "k_d": k_d, "rho": rho,
-                               "rates": [_rate(plant, period, b, bd, 2000, 2, k_p, k_d, rho, k) for k in (0.0, 1.0)]})
+                               "rates": [_rate(plant, period, b, bd, RHO_SAMPLES, 1, k_p, k_d, rho, k)
+                                         for k in (0.0, 1.0)]})
     return out
 
 
@@ -166,7 +171,7 @@ def floquet_markdown(table: dict) -> str:
     for r in f["rho"]:
         lines.append(f"| {_sci(r['k_p'])[1:].replace('.00', '')}, {_sci(r['k_d'])[1:].replace('.00', '')} | "
                      f"{r['rho']:g} | {_e(r['rates'][0])} | {_e(r['rates'][1])} | {_sci(-r['rho'] * f['r_mean'])} |")
-    lines += ["", "Tilted dipole (the campaign's field), 2000 samples, ζ 1, inertia × 1.25."]
+    lines += ["", f"Tilted dipole (the campaign's field), {f.get('rho_samples', 2000)} samples, ζ 1, inertia × 1.25."]
     return "\n".join(lines) + "\n"
 
 

@@ -23,7 +23,8 @@ N·m·s for the controller's defaults K_p 4e-6 N·m, ρ 2), 10–30 times ``K_d`
 by ``δ`` (a magnetometer bias: the default LIS2MDL's 0.015 G is δ ≈ 3.5° where the field is weakest) leaks
 ``δ |ω⊥|`` into it, which acts as negative damping of ``ω⊥`` unless ``K_d > K_p (1 + ρ²) δ / (2 r)``: with
 ``K_p`` 1e-6 and ``K_d`` = 4e-5 N·m·s the deployment spun up after converging, with 1e-4 it held; the present
-defaults (4e-6, 4e-4, ρ 2, ζ 1) keep a Floquet decay of 2.4e-3 /s at twice the scenario's bias (study).
+defaults (4e-6, 4e-4, ρ 2, ζ 1) keep a Floquet decay of 2.6e-3 /s with the scenario's bias but not at twice it
+(converged maps, 16000 samples of the orbit: +9.2e-4 /s in the tilted dipole; study section 4).
 ζ = 1 maximises the slow pair's decay for a given ρ: its slower root is ``ρ r (ζ − √(ζ² − 1))`` above 1.
 
 The residual dipole (a constant ``m_res`` in B, ~1e-3 A·m² on a 1U) adds ``m_res × B`` ≈ 4e-8 N·m, which the

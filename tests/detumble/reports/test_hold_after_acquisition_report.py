@@ -126,11 +126,11 @@ def test_acquisition_metrics_follow_the_summary_rule():
 
 
 def test_slow_pair_fall_from_30_to_15_matches_an_integration():
-    """MAGPT-042: x'' + 2σx' + σ²x = 0 (critically damped, σ = 3.04e-3 /s) from x = 0, x' = v, integrated by RK4
-    (0.05 s): the time from 30° down to 15° equals the closed form within 0.2 s for peaks of 31°, 45°, 90°, 180°;
-    the limits are ln 2/σ and 1.678/σ."""
+    """MAGPT-042: x'' + 2σx' + σ²x = 0 (critically damped, σ the report's FLOQUET_SLOW_RATE_PER_S, 2.614e-3 /s)
+    from x = 0, x' = v, integrated by RK4 (0.05 s): the time from 30° down to 15° equals the closed form within 0.2 s
+    for peaks of 31°, 45°, 90°, 180°; the limits are ln 2/σ and 1.678/σ."""
     report = _report()
-    sigma = 3.04e-3
+    sigma = report.FLOQUET_SLOW_RATE_PER_S
     for peak in (31.0, 45.0, 90.0, 180.0):
         v = peak * sigma * math.e       # the peak of v t e^{-σt} is v/(σ e) at t = 1/σ
         x, xd, t, h = 0.0, v, 0.0, 0.05
