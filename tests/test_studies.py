@@ -1016,3 +1016,26 @@ def test_the_hold_spin_hand_back_probe_catches_a_tampered_file(tmp_path, monkeyp
     (tmp_path / table.results).write_text(json.dumps(dict(plain, kind="hand_back_hold_1_9")), encoding="utf-8")
     with pytest.raises(studies.StudyError, match="parameters"):
         table.blocks()
+
+
+def test_the_two_deg_s_hand_back_block_is_checked_and_probed(tmp_path, monkeypatch):
+    """STUDY-162: sun_safe.md's hand-back flights from the 2 °/s draws (five one-orbit adcs_ref flights, committed
+    JSON): one acquisition changed by hand in the block is reported by --check; the probe flies seed 1's first 120 s
+    again and finds the committed errors to 1e-9 deg and every SunSpinLowered at the default 1.5 °/s; a copy with
+    one committed error nudged by 1e-9 deg is reported."""
+    block = "sun_safe_coil_hand_back_2_deg_s"
+    table = _sun_table(block)
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    assert committed["rate_deg_s"] == 2.0 and committed["params"] == [] and len(committed["rows"]) == 5
+    assert table.run_probe() == []
+    row = committed["rows"][0]["acquisition_s"]
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "sun_safe", block, f"| {row:.0f} |",
+                                       f"| {row + 1:.0f} |")
+    assert len(problems) == 1 and f"block '{block}'" in problems[0]
+
+    def nudge(data):
+        data["probe"][119] -= 1e-9
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 1 and "at 119 s" in problems[0]

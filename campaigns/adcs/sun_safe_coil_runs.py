@@ -153,8 +153,10 @@ def table(kind: str, seeds: int, duration_s: float) -> dict:
 def coil_probe(committed: dict) -> list[str]:
     """The probe of a kind's table (``tools/studies.py --check``): seed 1's first :data:`PROBE_S` s flown again (one
     adcs_ref run of seconds) with the file's kind, its true Sun-pointing error against the committed probe to 1e-9
-    deg; and every committed SunSpinLowered at the kind's hold spin (:data:`PARAMS`; the controller's default, 1.5
-    °/s, when it sets none). The differences found (empty: none)."""
+    deg; and every committed SunSpinLowered at the kind's hold spin (:data:`PARAMS`; the controller's default,
+    ``attitude_defaults.SUN_HOLD_SPIN_RATE``, when it sets none). The differences found (empty: none)."""
+    from detumble.control import attitude_defaults
+
     kind = committed["kind"]
     problems = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -166,7 +168,7 @@ def coil_probe(committed: dict) -> list[str]:
                  min(len(again), len(committed["probe"])))
         problems.append(f"seed 1's pointing error at {n} s is {again[n] if n < len(again) else 'missing'} deg now, "
                         f"{committed['probe'][n] if n < len(committed['probe']) else 'missing'} committed")
-    hold = float(dict(PARAMS.get(kind, ())).get("SUN_HOLD_SPIN_RATE", "1.5"))
+    hold = float(dict(PARAMS.get(kind, ())).get("SUN_HOLD_SPIN_RATE", attitude_defaults.SUN_HOLD_SPIN_RATE))
     for r in committed["rows"]:
         to = r.get("spin_lowered_to_deg_s")
         if r["spin_lowered_s"] is not None and to != hold:
