@@ -983,3 +983,59 @@ def test_the_hold_candidates_draw_table_counts_the_misses_met_and_the_runs_never
     assert f"| L | {miss[0]} | 10.0 / 18.0 | 1.00 / 1.00 | 400 / 500 | 55 / 600 |" in text
     assert f"| L | {miss[2]} | never acquired / 18.0 |" in text
 
+
+
+def test_the_hold_spin_hand_back_block_edited_by_hand_is_reported(tmp_path, monkeypatch):
+    """STUDY-160: sun_safe.md's hand-back flights with the hold spin at 1.9 °/s (five one-orbit adcs_ref flights,
+    committed JSON) are a generated block: one hand-back time changed by hand in it is reported by --check, naming
+    the block."""
+    block = "sun_safe_coil_hand_back_hold_1_9"
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "sun_safe", block, "**3010.0 s**", "**3011.0 s**")
+    assert len(problems) == 1 and f"block '{block}'" in problems[0]
+
+
+def test_the_hold_spin_hand_back_probe_catches_a_tampered_file(tmp_path, monkeypatch):
+    """STUDY-161: the 1.9 °/s hold-spin hand-back table's --check probe flies seed 1's first 120 s again (one adcs_ref
+    run of seconds) and finds the committed pointing errors to 1e-9 deg, and every committed SunSpinLowered at 1.9
+    °/s; a copy with one committed error nudged by 1e-9 deg, or one spin lowered to 1.5 °/s, is reported; a file
+    made without the kind's parameter (the plain hand-back's) is refused, not rendered."""
+    table = _sun_table("sun_safe_coil_hand_back_hold_1_9")
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    assert committed["params"] == [["SUN_HOLD_SPIN_RATE", "1.9"]] and committed["kind"] == "hand_back_hold_1_9"
+    assert table.run_probe() == []
+    plain = json.loads(_sun_table("sun_safe_coil_hand_back").path.read_text(encoding="utf-8"))
+
+    def nudge(data):
+        data["probe"][60] += 1e-9
+        data["rows"][2]["spin_lowered_to_deg_s"] = 1.5
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 2 and "at 60 s" in problems[0] and "seed 3 lowered its spin to 1.5" in problems[1]
+    assert all("no longer computes" in p for p in problems)
+    (tmp_path / table.results).write_text(json.dumps(dict(plain, kind="hand_back_hold_1_9")), encoding="utf-8")
+    with pytest.raises(studies.StudyError, match="parameters"):
+        table.blocks()
+
+
+def test_the_two_deg_s_hand_back_block_is_checked_and_probed(tmp_path, monkeypatch):
+    """STUDY-162: sun_safe.md's hand-back flights from the 2 °/s draws (five one-orbit adcs_ref flights, committed
+    JSON): one acquisition changed by hand in the block is reported by --check; the probe flies seed 1's first 120 s
+    again and finds the committed errors to 1e-9 deg and every SunSpinLowered at the default 1.5 °/s; a copy with
+    one committed error nudged by 1e-9 deg is reported."""
+    block = "sun_safe_coil_hand_back_2_deg_s"
+    table = _sun_table(block)
+    committed = json.loads(table.path.read_text(encoding="utf-8"))
+    assert committed["rate_deg_s"] == 2.0 and committed["params"] == [] and len(committed["rows"]) == 5
+    assert table.run_probe() == []
+    row = committed["rows"][0]["acquisition_s"]
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "sun_safe", block, f"| {row:.0f} |",
+                                       f"| {row + 1:.0f} |")
+    assert len(problems) == 1 and f"block '{block}'" in problems[0]
+
+    def nudge(data):
+        data["probe"][119] -= 1e-9
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 1 and "at 119 s" in problems[0]

@@ -1457,7 +1457,7 @@ SCRIPT_TABLES = {t.name: t for t in (
 
 
 _SUN_SAFE_DOC = STUDIES_DIR / "sun_safe.md"
-_SUN_SAFE_SUMMARY = ("issue 27's Sun-safe on the light sensors: 85 plant-only seed flights and 14 adcs_ref flights "
+_SUN_SAFE_SUMMARY = ("issue 27's Sun-safe on the light sensors: 85 plant-only seed flights and 24 adcs_ref flights "
                      "(committed JSON)")
 #: sun_safe.md's plant-only tables: (block and JSON file name, the module's arguments)
 SUN_SAFE_TABLES = tuple(
@@ -1472,10 +1472,13 @@ SUN_SAFE_TABLES = tuple(
     # the F´ side: the ADCS component's raw and corrected vector over adcs_ref's AUTO flight (3 deployment runs)
     ScriptTable("sun_safe", _SUN_SAFE_SUMMARY, "sun_safe_albedo_deployment", "campaigns/adcs/sun_albedo_deployment.py",
                 "sun_safe/albedo_deployment.json", _SUN_SAFE_DOC),
-    # the coils through adcs_ref (11 deployment runs): by ground command, the operator procedure, the hand-back
+    # the coils through adcs_ref (21 deployment runs): by ground command, the operator procedure, the hand-back,
+    # the hand-back with the hold spin at 1.9 °/s (the candidate fix for the eclipse the hold costs) and from a
+    # 2 °/s tumble (why the tracker-loss kinds fly 1.9 °/s); the last two with a --check probe (120 s of seed 1)
     *(ScriptTable("sun_safe", _SUN_SAFE_SUMMARY, f"sun_safe_coil_{kind}", "campaigns/adcs/sun_safe_coil_runs.py",
-                  f"sun_safe/coil_{kind}.json", _SUN_SAFE_DOC, (kind,))
-      for kind in ("command", "operator", "hand_back")),
+                  f"sun_safe/coil_{kind}.json", _SUN_SAFE_DOC, (kind,),
+                  probe="coil_probe" if kind in ("hand_back_hold_1_9", "hand_back_2_deg_s") else "")
+      for kind in ("command", "operator", "hand_back", "hand_back_hold_1_9", "hand_back_2_deg_s")),
     # where along the orbit the field lets the coils lower the spin (no flight: one pass over the orbit, ~1 s)
     ScriptTable("sun_safe", _SUN_SAFE_SUMMARY, "sun_safe_spin_down_geometry", "detumble.sim.spin_down_geometry",
                 "sun_safe/spin_down_geometry.json", _SUN_SAFE_DOC, module=True),

@@ -9,7 +9,12 @@ draws the plant-only check flies) for ``--duration`` s (one orbit):
 * ``operator``: ``campaigns/adcs/sun_safe_tracker_loss.seq`` (POINTING on the coils at 1 s, the ground's
   SUN_SPIN_RATE_PRM_SET 1.5 at 2900 s), the tracker out 20–3000 s, a 1.9 °/s tumble;
 * ``hand_back``: ``campaigns/adcs/sun_safe_hand_back.seq`` (the same without the ground step: the automatic
-  spin-down), the tracker out 20–3000 s, a 1.9 °/s tumble.
+  spin-down), the tracker out 20–3000 s, a 1.9 °/s tumble;
+* ``hand_back_hold_1_9``: ``hand_back`` with the hold spin raised to 1.9 °/s (``SUN_HOLD_SPIN_RATE_PRM_SET 1.9``
+  sent at 00:00:00, before the sequence's first command: :data:`PARAMS`), the candidate fix for the eclipse that
+  the hold costs (sun_safe.md, "The hold costs the eclipse");
+* ``hand_back_2_deg_s``: ``hand_back`` from seed N's draws at 2 °/s (issue 27's tumble), to show why the tracker-loss
+  kinds fly 1.9 °/s (below).
 
 Why 1.9 °/s for the two tracker-loss kinds: their premise is POINTING with a tracker fix before the FORCE_MODE
 POINTING at 1 s, and at 2 °/s the tumble sits on the tracker's 2 °/s smear limit, where whether a fix comes is
@@ -40,17 +45,35 @@ _OUTAGE = "sensors.star_tracker.outage_s=[20,3000]"
 #: kind → (sequence under campaigns/adcs/, tumble deg/s, extra --set lines, default seeds)
 KINDS = {"command": ("sun_safe_magnetorquers.seq", 2.0, ("sensors.star_tracker.dropout_probability=1.0",), 3),
          "operator": ("sun_safe_tracker_loss.seq", HAND_BACK_RATE_DEG_S, (_OUTAGE,), 3),
-         "hand_back": ("sun_safe_hand_back.seq", HAND_BACK_RATE_DEG_S, (_OUTAGE,), 5)}
+         "hand_back": ("sun_safe_hand_back.seq", HAND_BACK_RATE_DEG_S, (_OUTAGE,), 5),
+         "hand_back_hold_1_9": ("sun_safe_hand_back.seq", HAND_BACK_RATE_DEG_S, (_OUTAGE,), 5),
+         "hand_back_2_deg_s": ("sun_safe_hand_back.seq", 2.0, (_OUTAGE,), 5)}
+#: kind → AttitudeController parameters set by command at 00:00:00, before the sequence's first command
+PARAMS = {"hand_back_hold_1_9": (("SUN_HOLD_SPIN_RATE", "1.9"),)}
+_CONTROLLER = "ReferenceDeployment.attitudeController"
 #: s of seed 1's flight whose pointing errors are kept for the probe
 PROBE_S = 120
+
+
+def with_params(sequence: str, params: tuple[tuple[str, str], ...]) -> str:
+    """``sequence`` (a .seq file's text) with one ``R00:00:00 <controller>.NAME_PRM_SET VALUE`` line per parameter
+    put before its first command: relative times, so the rest of the sequence keeps its times."""
+    lines = sequence.splitlines()
+    first = next((i for i, ln in enumerate(lines) if ln.strip() and not ln.lstrip().startswith(";")), len(lines))
+    sets = [f"R00:00:00 {_CONTROLLER}.{name}_PRM_SET {value}" for name, value in params]
+    return "\n".join(lines[:first] + sets + lines[first:]) + "\n"
 
 
 def fly(kind: str, seed: int, duration_s: float, out: pathlib.Path) -> None:
     """One ``fprime-lite run`` of adcs_ref into ``out``: ``kind``'s sequence and settings, seed ``seed``'s draws."""
     seq, rate, extra, _ = KINDS[kind]
     sets = [*seed_settings(seed, rate), *extra]
+    seq_path = ROOT / "campaigns" / "adcs" / seq
+    if kind in PARAMS:
+        seq_path = out.parent / f"{out.name}.seq"
+        seq_path.write_text(with_params((ROOT / "campaigns" / "adcs" / seq).read_text(), PARAMS[kind]))
     cmd = [sys.executable, "-m", "fprime_lite.tools.cli", "run", str(TOPOLOGY), "--duration", f"{duration_s:g}",
-           "--seq", str(ROOT / "campaigns" / "adcs" / seq), "--seed", str(seed), "--out", str(out),
+           "--seq", str(seq_path), "--seed", str(seed), "--out", str(out),
            "--no-progress", "--no-plots", "--allow-warnings"]
     for s in sets:
         cmd += ["--set", s]
@@ -76,6 +99,16 @@ def _transitions(run_dir: pathlib.Path) -> list[dict]:
     return out
 
 
+def spin_lowered_to(run_dir: pathlib.Path) -> float | None:
+    """The spin (deg/s) the run's first SunSpinLowered event lowered SUN_SAFE's to (None: no such event): the
+    SUN_HOLD_SPIN_RATE the controller flew, read from its own log."""
+    for line in (run_dir / "events.log").read_text().splitlines():
+        stamp, _, rest = line.partition(" ")
+        if rest.split(" ", 1)[0].endswith(".SunSpinLowered"):
+            return float(rest.split("lowering the SUN_SAFE spin to ", 1)[1].split(" ", 1)[0])
+    return None
+
+
 def _three(values: list[float]) -> dict | None:
     if not values:
         return None
@@ -92,7 +125,7 @@ def figures(run_dir: pathlib.Path) -> dict:
            "acquisition_s": run.acquisition_s(), "steady_deg": _three(run.steady_sunlit()),
            "reacquisition_s": run.acquisition_s(part_index=1) if len(parts) > 1 else None, "sunlit_parts": len(parts),
            "vector_deg": _three(errs), "vector_invalid_sunlit": invalid, "spin_lowered_s": run.spin_lowered_s,
-           "after_spin_down": None}
+           "spin_lowered_to_deg_s": spin_lowered_to(run_dir), "after_spin_down": None}
     err, rate = run.after_spin_down()
     if err and run.spin_lowered_s is not None:
         row["after_spin_down"] = {"median": statistics.median(err), "max": max(err),
@@ -113,8 +146,34 @@ def table(kind: str, seeds: int, duration_s: float) -> dict:
     for r in rows:
         r.pop("probe", None)
     seq, rate, extra, _ = KINDS[kind]
-    return {"kind": kind, "sequence": seq, "rate_deg_s": rate, "settings": list(extra), "duration": duration_s,
-            "rows": rows, "probe": probe}
+    return {"kind": kind, "sequence": seq, "rate_deg_s": rate, "settings": list(extra),
+            "params": [list(p) for p in PARAMS.get(kind, ())], "duration": duration_s, "rows": rows, "probe": probe}
+
+
+def coil_probe(committed: dict) -> list[str]:
+    """The probe of a kind's table (``tools/studies.py --check``): seed 1's first :data:`PROBE_S` s flown again (one
+    adcs_ref run of seconds) with the file's kind, its true Sun-pointing error against the committed probe to 1e-9
+    deg; and every committed SunSpinLowered at the kind's hold spin (:data:`PARAMS`; the controller's default,
+    ``attitude_defaults.SUN_HOLD_SPIN_RATE``, when it sets none). The differences found (empty: none)."""
+    from detumble.control import attitude_defaults
+
+    kind = committed["kind"]
+    problems = []
+    with tempfile.TemporaryDirectory() as tmp:
+        out = pathlib.Path(tmp) / "probe"
+        fly(kind, 1, float(PROBE_S), out)
+        again = figures(out)["probe"]
+    if again != committed["probe"]:
+        n = next((i for i, (a, b) in enumerate(zip(again, committed["probe"], strict=False)) if a != b),
+                 min(len(again), len(committed["probe"])))
+        problems.append(f"seed 1's pointing error at {n} s is {again[n] if n < len(again) else 'missing'} deg now, "
+                        f"{committed['probe'][n] if n < len(committed['probe']) else 'missing'} committed")
+    hold = float(dict(PARAMS.get(kind, ())).get("SUN_HOLD_SPIN_RATE", attitude_defaults.SUN_HOLD_SPIN_RATE))
+    for r in committed["rows"]:
+        to = r.get("spin_lowered_to_deg_s")
+        if r["spin_lowered_s"] is not None and to != hold:
+            problems.append(f"seed {r['seed']} lowered its spin to {to} °/s, not the kind's {hold:g}")
+    return problems
 
 
 def _s(v) -> str:
@@ -143,6 +202,8 @@ def _restored(r: dict) -> tuple[str, str]:
 
 def markdown(data: dict) -> str:
     kind, rows = data["kind"], data["rows"]
+    if data.get("params", []) != [list(p) for p in PARAMS.get(kind, ())]:
+        raise ValueError(f"made with the parameters {data.get('params', [])}, not {kind}'s")
     if kind == "command":
         lines = ["| seed | modes | acquisition ≤ 10° in the first sunlit part (s) | after it: median / p95 / max (deg) "
                  "| after the eclipse: reacquisition (s) | ADCS SunVector median / p95 / max (deg) |",
@@ -165,6 +226,8 @@ def markdown(data: dict) -> str:
         for r in rows:
             back, then = _restored(r)
             low = "never" if r["spin_lowered_s"] is None else f"{r['spin_lowered_s']:.1f} s"
+            if r.get("spin_lowered_to_deg_s") is not None:
+                low += f" (to {r['spin_lowered_to_deg_s']:g} °/s)"
             a = r["after_spin_down"]
             after = "—" if a is None else f"{a['median']:.2f}° / {a['max']:.2f}°, {100 * a['within']:.0f} %"
             slow = "—" if a is None else (a["slow_from"] + (" s" if a["slow_from"] != "never" else ""))
