@@ -157,7 +157,7 @@ def channel_text(value, template: str | None) -> str:
     return json.dumps(_plain(value))
 
 
-class _StreamedFile:
+class StreamedFile:
     """A text file written under a temporary name and renamed into place on close."""
 
     def __init__(self, path: pathlib.Path, newline: str | None = None):
@@ -198,14 +198,14 @@ class GroundRecorder:
         out_dir = pathlib.Path(out_dir)
         out_dir.mkdir(parents=True, exist_ok=True)
         clean_temporary_files(out_dir)  # what a killed recorder left (a live one's are kept)
-        self._events = None if telemetry_only else _StreamedFile(out_dir / "events.log")
+        self._events = None if telemetry_only else StreamedFile(out_dir / "events.log")
         self._clock = clock
         self._sink = telemetry_sink
         if telemetry_sink is None:
-            self._channels = _StreamedFile(out_dir / "channels.csv", newline="")
+            self._channels = StreamedFile(out_dir / "channels.csv", newline="")
             self._csv = csv.writer(self._channels.file, lineterminator="\n")
             self._csv.writerow(["time", "channel", "value"])
-            self._wide_file = _StreamedFile(out_dir / "channels_wide.csv", newline="")
+            self._wide_file = StreamedFile(out_dir / "channels_wide.csv", newline="")
             self._wide = WideTelemetryTable(self._wide_file.file, self.decoder.channel_types,
                                             start=clock.now() if clock is not None else None)
         self.on_event = on_event

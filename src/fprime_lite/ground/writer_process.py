@@ -39,7 +39,7 @@ import threading
 import traceback
 from typing import Any, Callable
 
-from fprime_lite.osal.atomic import open_temporary
+from fprime_lite.ground.downlink import GroundRecorder, StreamedFile
 
 __all__ = ["OutputWriter", "OutputWriterError", "open_row_stream", "choose_writer", "WRITER_MODES",
            "BATCH_ITEMS"]
@@ -77,21 +77,12 @@ def choose_writer(mode: str, *, realtime: bool = False) -> str:
     return "process" if cores > 1 and forks and alone and not realtime else "inline"
 
 
-class _InlineRows:
+class _InlineRows(StreamedFile):
     """A row stream written here: ``factory(file).writerow`` into a temporary file, renamed on close."""
 
     def __init__(self, path: pathlib.Path, factory: Callable[[Any], Any]):
-        self.path = path
-        self._file, self._tmp = open_temporary(path, "w", encoding="utf-8", newline="")
-        self.writerow = factory(self._file).writerow
-
-    def close(self) -> None:
-        if self._file.closed:
-            return
-        self._file.flush()
-        os.fsync(self._file.fileno())
-        self._file.close()
-        os.replace(self._tmp, self.path)
+        super().__init__(path, newline="")
+        self.writerow = factory(self.file).writerow
 
 
 class _RemoteRows:
@@ -263,7 +254,6 @@ def _child_main(conn, topology, out_dir: pathlib.Path, start_us: int) -> None:
         os.sched_setscheduler(0, os.SCHED_BATCH, os.sched_param(0))
     except (AttributeError, OSError):  # not on Linux
         pass
-    from fprime_lite.ground.downlink import GroundRecorder
 
     failed: tuple | None = None
     recorder = None
