@@ -1316,6 +1316,8 @@ module Components {
     param MAG_STEER_RHO_FROM: F64 default 12.0 id 0x4F set opcode 0xA5 save opcode 0xA6
     @ units: deg
     param MAG_STEER_RHO_AT: F64 default 20.0 id 0x50 set opcode 0xA7 save opcode 0xA8
+    @ units: s
+    param RATE_OBSERVER_DIPOLE_TIME: F64 default 0.0 id 0x51 set opcode 0xA9 save opcode 0xAA
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver

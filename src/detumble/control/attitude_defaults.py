@@ -109,6 +109,8 @@ TRACKER_NOISE_CROSS = 10.0  # arcsec 1σ across the boresight
 TRACKER_NOISE_ABOUT = 70.0  # arcsec 1σ about the boresight
 RATE_SOURCE = "OBSERVER"
 RATE_OBSERVER_GAIN = 0.1  # 1/s: the observer's pull toward the gyro
+RATE_OBSERVER_DIPOLE_TIME = 0.0  # s: >0: the observer learns the residual dipole (m̂ × B in its torque) with this
+#                                  time constant while calm (rate_observer.RateObserver.learn_dipole); 0: off
 INERTIA_XX = 2.20e-3  # kg·m², the observer's model (matrix elements)
 INERTIA_YY = 2.15e-3
 INERTIA_ZZ = 2.05e-3
@@ -222,6 +224,7 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "MAG_STEER_RHO_LARGE": ("1", 0.0, 10.0, True),
     "MAG_STEER_RHO_FROM": ("deg", 0.0, 180.0, True),
     "MAG_STEER_RHO_AT": ("deg", 0.0, 180.0, True),
+    "RATE_OBSERVER_DIPOLE_TIME": ("s", 0.0, 3600.0, True),
 }
 #: Each parameter's units (the first column of :data:`PARAMETERS`).
 UNITS: dict[str, str] = {name: row[0] for name, row in PARAMETERS.items()}

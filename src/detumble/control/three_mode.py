@@ -45,7 +45,8 @@ from detumble.control.mekf import Mekf
 from detumble.control.pointing import ErrorIntegrator, gravity_gradient_torque, gyroscopic_torque, pd_torque
 from detumble.control.quaternion import (Quat, Vec3, is_unit_quaternion, quat_angle, quat_error, quat_normalize,
                                          quat_shortest, rotate_n_to_b, target_pointing_axis)
-from detumble.control.rate_observer import RateObserver, applied_torque
+from detumble.control.rate_observer import (DIPOLE_LEARN_MAX_RATE, DIPOLE_LEARN_MAX_TORQUE, RateObserver,
+                                            applied_torque)
 from detumble.control.spin import SeedKaneDamper, SpinRateRegulator, VirtualDamper, spin_errors
 from detumble.control.sun_safe import SunHold, SunRateBias, spin_down_tip, sun_spin_torque
 from detumble.control.sun_vector import propagate_body_vector
@@ -273,6 +274,7 @@ class ThreeModeLaw:
     TRACKER_NOISE_ABOUT: float
     RATE_SOURCE: int
     RATE_OBSERVER_GAIN: float
+    RATE_OBSERVER_DIPOLE_TIME: float
     INERTIA_XX: float
     INERTIA_YY: float
     INERTIA_ZZ: float
@@ -761,7 +763,18 @@ class ThreeModeLaw:
         # model's inertia error cannot build up a rate error over the slew's large torques
         # (docs/studies/robust_rates.md); at the default gain the step is the same floats as before
         blend = self.mode == POINTING and self.pointing_error_deg > self.RATE_BLEND_ANGLE
-        w = obs.update(self.omega, torque, h, dt, self.RATE_BLEND_GAIN if blend else None)
+        b = None
+        if self.RATE_OBSERVER_DIPOLE_TIME > 0.0 and self.b_tesla is not None:
+            # the residual dipole, a body-fixed constant, learned while calm and kept across target changes and
+            # mode changes (docs/studies/robust_rates.md, "The residual dipole in the observer")
+            b = self.b_tesla
+            w = self.omega
+            calm = (not blend and _norm(w) < DIPOLE_LEARN_MAX_RATE and _norm(torque) < DIPOLE_LEARN_MAX_TORQUE)
+            if calm:
+                obs.learn_dipole(w, torque, h, b, dt, self.RATE_OBSERVER_DIPOLE_TIME)
+            else:
+                obs.skip_dipole()
+        w = obs.update(self.omega, torque, h, dt, self.RATE_BLEND_GAIN if blend else None, b)
         self.pd_rate = w if self.RATE_SOURCE == _OBSERVER else self.omega
 
     def _track_field_line(self, dt: float) -> None:
