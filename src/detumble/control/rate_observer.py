@@ -128,7 +128,7 @@ class RateObserver:
         # move the origin to now (t → t − Δt, p → p − Δp), fade, and add the new sample at (0, 0)
         stt = stt - 2.0 * dt * st + dt * dt * sw
         st = st - dt * sw
-        stp = [stp[i] - dt * sp[i] - dp[i] * st - dp[i] * dt * sw for i in range(3)]
+        stp = [stp[i] - dt * sp[i] - dp[i] * st for i in range(3)]  # st: already moved
         sp = [sp[i] - dp[i] * sw for i in range(3)]
         fade = math.exp(-dt / time_s)
         sw, st, stt = fade * sw + 1.0, fade * st, fade * stt
