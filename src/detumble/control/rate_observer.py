@@ -101,9 +101,11 @@ class RateObserver:
         The momentum the model does not explain, ``p(t) = I ω_meas − ∫ (τ − ω̂ × (I ω̂ + h_w)) dt`` (N·m·s; the
         torque between the middles of two gyro means taken as the mean of the two intervals'), grows at the
         unmodelled torque ``d``. Its slope over the calm stretch so far is fitted by least squares with weights
-        fading as ``e^(−age/T)`` (``T`` = ``time_s``): the gyro's noise σ (rad/s per mean) then leaves
-        ``σ_d ≈ I σ √(12 Δt) / T^1.5`` (2e-8 N·m at T = 10 s, 4e-9 at 30 s), where a low-pass on the differenced
-        gyro would leave ``I σ / T``. Once the stretch is ``T`` long, ``m̂`` takes the field-perpendicular
+        fading as ``e^(−age/T)`` (``T`` = ``time_s``): the gyro's noise σ (rad/s per mean, white) then leaves
+        ``σ_d = I σ √Δt / (2 T^1.5)`` per axis once the stretch is long (the weighted fit's variance with the
+        exponential's moments; 1e-9 N·m at T = 20 s, Δt = 0.1 s and the adcs gyro's 2.65e-4 rad/s: ADCS-172), where
+        a low-pass on the differenced gyro would leave ``I σ / T`` (3e-8 N·m). Once the stretch is ``T`` long,
+        ``m̂`` takes the field-perpendicular
         part that explains ``d``, ``(B × d)/|B|²``, and keeps its own part along B (which gives no torque and is
         learned only when the field turns in B). A new stretch (after :meth:`skip_dipole`) starts from the
         dipole learned before, whose torque ``m̂ × B`` turns with the body through a slew."""

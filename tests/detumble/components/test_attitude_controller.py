@@ -1206,3 +1206,11 @@ def test_integral_rate_gate_has_a_range(fprime_harness, bad):
     """ADCS-143: INTEGRAL_RATE_GATE outside 0…10 °/s (or not finite) is refused by PRM_SET (VALIDATION_ERROR) and the
     value in use is kept; 0, its default, turns the gate off."""
     assert_refused_and_kept(fprime_harness, bad)
+
+
+@pytest.mark.parametrize("bad", [{"RATE_OBSERVER_DIPOLE_TIME": -1.0}, {"RATE_OBSERVER_DIPOLE_TIME": 3601.0},
+                                 {"RATE_OBSERVER_DIPOLE_TIME": math.nan}, {"RATE_OBSERVER_DIPOLE_TIME": math.inf}])
+def test_rate_observer_dipole_time_has_a_range(fprime_harness, bad):
+    """ADCS-173: RATE_OBSERVER_DIPOLE_TIME outside 0…3600 s (or not finite) is refused by PRM_SET (VALIDATION_ERROR)
+    and the value in use is kept; 0, its default, leaves the residual dipole out of the rate observer."""
+    assert_refused_and_kept(fprime_harness, bad)
