@@ -699,6 +699,23 @@ def test_the_rate_gate_campaign_block_is_checked_and_pairs_the_same_draws(tmp_pa
         studies.robust_rates_gate_campaign_blocks()
 
 
+
+def test_the_residual_dipole_campaign_block_is_checked_and_pairs_the_same_draws(tmp_path, monkeypatch):
+    """STUDY-170: robust_rates.md's RATE_OBSERVER_DIPOLE_TIME campaign block: its run-by-run comparison with the gate
+    campaign edited by hand (the count of runs meeting 0.05°) is reported by --check; a gate campaign with another
+    run's seed is refused (the comparison pairs the same draws)."""
+    pytest.importorskip("pandas")
+    block = studies.doc_blocks(studies._ROBUST_DOC.read_text(encoding="utf-8"))["robust_rates_dipole_campaign"]
+    count = block.split("≤ 0.05° in ")[1].split(" of ")[0]  # the honest-window p95: "97 → 100"
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "robust_rates_dipole_campaign",
+                                       "robust_rates_dipole_campaign", f"in {count} of",
+                                       f"in {count.split(' → ')[0]} → 99 of")
+    assert len(problems) == 1 and "block 'robust_rates_dipole_campaign'" in problems[0]
+    _campaigns_with_a_foreign_seed(tmp_path, monkeypatch, "robust_rates_gate_campaign",
+                                   ("robust_rates_dipole_campaign",))
+    with pytest.raises(studies.StudyError, match="draws of robust_rates/campaign_gate"):
+        studies.robust_rates_dipole_campaign_blocks()
+
 def _copied_campaign(tmp_path, monkeypatch, key: str):
     """A copy of a committed campaign folder under tmp_path (STUDIES_DIR pointed there): the campaign, its
     manifest's path and the manifest as read."""
