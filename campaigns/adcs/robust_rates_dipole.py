@@ -3,13 +3,16 @@ the figures the page gives beside its campaign, flown plant-only.
 
     python campaigns/adcs/robust_rates_dipole.py draws      # the default's three misses, T 0/10/20/40 s
     python campaigns/adcs/robust_rates_dipole.py targets    # pointing_targets.md's nadir and station pass, 0 and 20 s
+    python campaigns/adcs/robust_rates_dipole.py blocks 26  # one draw's error in 20 s blocks, 0 and 20 s
 
 ``draws``: the robust-rates campaign's draws 3, 0 and 77 (the three the default gate misses) flown as the gate
 campaign flies them (``robust_rates_tail.fly`` with INTEGRAL_RATE_GATE 0.05 °/s) with the estimate's time constant
 at 0 (off), 10, 20 and 40 s: honest-window p95 (deg), seconds above 0.05° in the hold of the attitude of entry and
 after the slew's settle. ``targets``: pointing_targets.md's default cases (adcs scenario, seed 1, from rest, FORCE_MODE
 POINTING at 1 s: nadir over one orbit, the ground-station pass over 1900 s) with the estimate off and at 20 s:
-acquisition (s) and steady median / p95 / max (deg) per active reference.
+acquisition (s) and steady median / p95 / max (deg) per active reference. ``blocks N``: the campaign's draw N flown
+as ``draws`` does with the estimate off and at 20 s: the true error's p95 / median (deg) in each 20 s block from the
+slew's command (60 s) on, and the dipole estimate (A·m², B) just before the slew's stretch is one time constant old.
 """
 
 from __future__ import annotations
@@ -59,5 +62,55 @@ def targets() -> None:
                       flush=True)
 
 
+def blocks(index: int) -> None:
+    import numpy as np
+    import pandas as pd
+
+    sys.path.insert(0, str(ROOT / "campaigns" / "adcs"))
+    from robust_rates_tail import CAMPAIGN
+
+    from detumble.control.rate_observer import RateObserver
+    from detumble.sim.runner import run
+    from detumble.sim.scenario import load_scenario
+    from fprime_lite.tools.campaign.values import yaml_text
+
+    df = pd.read_parquet(CAMPAIGN).set_index("seed_index")
+    requested = json.loads(df.loc[index, "requested"])
+    settings = [f"{k[9:]}={yaml_text(v)}" for k, v in sorted(requested.items()) if k.startswith("scenario.")]
+    scenario = ROOT / "campaigns" / "adcs" / "scenarios" / "robust_rates_gate.yaml"
+    learn = RateObserver.learn_dipole
+    for t in (0.0, 20.0):
+        seen: list = []
+
+        def spy(self, *args, seen=seen):
+            seen.append(self.dipole)
+            return learn(self, *args)
+
+        RateObserver.learn_dipole = spy  # type: ignore[method-assign]
+        try:
+            r = run(load_scenario(str(scenario), seed=int(df.loc[index, "seed"]),
+                                  settings=settings + [f"control.adcs.RATE_OBSERVER_DIPOLE_TIME={t:g}"]),
+                    law="adcs", duration_s=330.0)
+        finally:
+            RateObserver.learn_dipole = learn  # type: ignore[method-assign]
+        assert r.adcs_header is not None and r.adcs_rows is not None
+        k = r.adcs_header.index("pointing_error_deg")
+        trace = np.array([(row[0], float(a[k])) for row, a in zip(r.rows, r.adcs_rows, strict=True)
+                          if a[k] not in ("", None)])
+        cells = []
+        for t0 in range(80, 330, 20):
+            e = trace[(trace[:, 0] >= t0) & (trace[:, 0] < t0 + 20), 1]
+            cells.append(f"{t0}-{t0 + 20} s {np.percentile(e, 95):.4f} / {np.median(e):.4f}")
+        print(f"draw {index} T {t:g} s: " + ", ".join(cells), flush=True)
+        changes = [i for i in range(1, len(seen)) if seen[i] != seen[i - 1]]
+        if changes:
+            print("  dipole estimates taken (A·m²): " + ", ".join(
+                f"({', '.join(f'{x:.2e}' for x in seen[i])})" for i in changes[::max(1, len(changes) // 6)]))
+
+
 if __name__ == "__main__":
-    {"draws": draws, "targets": targets}[sys.argv[1] if len(sys.argv) > 1 else "draws"]()
+    command = sys.argv[1] if len(sys.argv) > 1 else "draws"
+    if command == "blocks":
+        blocks(int(sys.argv[2]))
+    else:
+        {"draws": draws, "targets": targets}[command]()
