@@ -4,6 +4,7 @@ the figures the page gives beside its campaign, flown plant-only.
     python campaigns/adcs/robust_rates_dipole.py draws      # the default's three misses, T 0/10/20/40 s
     python campaigns/adcs/robust_rates_dipole.py targets    # pointing_targets.md's nadir and station pass, 0 and 20 s
     python campaigns/adcs/robust_rates_dipole.py blocks 26  # one draw's error in 20 s blocks, 0 and 20 s
+    python campaigns/adcs/robust_rates_dipole.py auto       # the adcs scenario's own orbit (AUTO), 0 and 20 s
 
 ``draws``: the robust-rates campaign's draws 3, 0 and 77 (the three the default gate misses) flown as the gate
 campaign flies them (``robust_rates_tail.fly`` with INTEGRAL_RATE_GATE 0.05 °/s) with the estimate's time constant
@@ -13,6 +14,8 @@ POINTING at 1 s: nadir over one orbit, the ground-station pass over 1900 s) with
 acquisition (s) and steady median / p95 / max (deg) per active reference. ``blocks N``: the campaign's draw N flown
 as ``draws`` does with the estimate off and at 20 s: the true error's p95 / median (deg) in each 20 s block from the
 slew's command (60 s) on, and the dipole estimate (A·m², B) just before the slew's stretch is one time constant old.
+``auto``: the adcs scenario as it is (a tumble, AUTO through detumble and spin into POINTING, which holds the attitude
+of entry to the end of the orbit) with the estimate off and at 20 s: the pointing statistics after acquisition (deg).
 """
 
 from __future__ import annotations
@@ -60,6 +63,18 @@ def targets() -> None:
                 figures = "none" if st is None else f"{st['median']:.4f} / {st['p95']:.4f} / {st['max']:.3f}"
                 print(f"{case:15s} T {t:4.0f} s  {label:17s} acquisitions {acq}  median / p95 / max {figures}",
                       flush=True)
+
+
+def auto() -> None:
+    from detumble.sim.runner import run
+    from detumble.sim.scenario import load_scenario
+
+    for t in (0.0, 20.0):
+        s = run(load_scenario("adcs", settings=[f"control.adcs.RATE_OBSERVER_DIPOLE_TIME={t:g}"]), law="adcs").summary
+        e = s["pointing_error_deg"]
+        entries = [i["t_s"] for i in s["pointing_intervals"]]
+        print(f"adcs T {t:4.0f} s  POINTING from {entries} s  acquisition {e['acquisition_s']} s  median / p95 / max "
+              f"{e['median']:.4f} / {e['p95']:.4f} / {e['max']:.3f}  samples {e['samples']}", flush=True)
 
 
 def blocks(index: int) -> None:
@@ -113,4 +128,4 @@ if __name__ == "__main__":
     if command == "blocks":
         blocks(int(sys.argv[2]))
     else:
-        {"draws": draws, "targets": targets}[command]()
+        {"draws": draws, "targets": targets, "auto": auto}[command]()
