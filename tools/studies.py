@@ -1457,7 +1457,7 @@ SCRIPT_TABLES = {t.name: t for t in (
 
 
 _SUN_SAFE_DOC = STUDIES_DIR / "sun_safe.md"
-_SUN_SAFE_SUMMARY = ("issue 27's Sun-safe on the light sensors: 85 plant-only seed flights and 24 adcs_ref flights "
+_SUN_SAFE_SUMMARY = ("issue 27's Sun-safe on the light sensors: 96 plant-only seed flights and 35 adcs_ref flights "
                      "(committed JSON)")
 #: sun_safe.md's plant-only tables: (block and JSON file name, the module's arguments)
 SUN_SAFE_TABLES = tuple(
@@ -1490,7 +1490,13 @@ SUN_SAFE_TABLES = tuple(
     *(ScriptTable("sun_safe", _SUN_SAFE_SUMMARY, f"sun_safe_spin_down_{part}",
                   "campaigns/adcs/sun_spin_down_variants.py", "sun_safe/spin_down_variants.json", _SUN_SAFE_DOC,
                   render=f"{part}_markdown")
-      for part in ("gate", "tip", "hold_rate", "spin_rate")),)
+      for part in ("gate", "tip", "hold_rate", "spin_rate")),
+    # the single flights the page's prose quotes (one JSON file, five tables: 11 plant-only flights, 11 short
+    # adcs_ref runs; the probe, on the first only, recomputes the t = 0 figures and re-flies two parts in seconds)
+    *(ScriptTable("sun_safe", _SUN_SAFE_SUMMARY, f"sun_safe_single_{part}",
+                  "campaigns/adcs/sun_safe_single_flights.py", "sun_safe/single_flights.json", _SUN_SAFE_DOC,
+                  render=f"{part}_markdown", probe="probe" if part == "bias" else "")
+      for part in ("bias", "lit", "coil_gains", "tracker_limit", "bounce")),)
 #: sun_safe.md's albedo-mismatch table (wheels, model a = 0.3): (albedo in the sensors, its JSON file under
 #: docs/studies/, what the row is called); the 0.3 row is the albedo_model_wheels table's file
 SUN_SAFE_MISMATCH = ((0.0, "sun_safe/albedo_model_truth_00.json", "0 (the model subtracts light that is not there)"),
@@ -1712,8 +1718,34 @@ def magnetic_tumble_blocks() -> dict[str, str]:
     if df is None:
         return {"magnetic_pointing_tumble": _not_committed(campaign)}
     lines = _per_run_spread(df, "the run summary's window: after the error stays below 30°")
+    lines += _tumble_misses_by_rate(df)
     lines += ["", _source("magnetic_pointing_tumble", campaign)]
     return {"magnetic_pointing_tumble": "\n".join(lines) + "\n"}
+
+
+#: the initial-rate bins (deg/s, lower bound included, upper excluded but the last) of the tumble campaign's misses
+_TUMBLE_RATE_BINS = ((0.0, 0.1), (0.1, 0.3), (0.3, 0.5))
+
+
+def _tumble_misses_by_rate(df) -> list[str]:
+    """Which tumbles miss p95 ≤ 15°: the misses' p95 and initial-rate spans, and the runs meeting it per initial-rate
+    bin (markdown lines)."""
+    ok = df[df["status"] == "ok"]
+    rate = ok["scenario.initial.rate.magnitude_deg_s"].astype(float)
+    p95 = ok["pointing_p95_deg"].astype(float)
+    miss = p95 > _MAG_TARGETS[1][1]
+    lines = []
+    if miss.any():
+        lines.append(f"- the {int(miss.sum())} p95 misses: p95 {_fmt(float(p95[miss].min()), 1)}–"
+                     f"{_fmt(float(p95[miss].max()), 1)}°, initial rate {_fmt(float(rate[miss].min()), 2)}–"
+                     f"{_fmt(float(rate[miss].max()), 2)} °/s")
+    cells = []
+    for i, (low, high) in enumerate(_TUMBLE_RATE_BINS):
+        last = i == len(_TUMBLE_RATE_BINS) - 1
+        inside = (rate >= low) & ((rate <= high) if last else (rate < high))
+        cells.append(f"{int((inside & ~miss).sum())}/{int(inside.sum())} at {low:g}–{high:g} °/s")
+    lines.append("- runs with p95 ≤ 15° by initial rate: " + ", ".join(cells))
+    return lines
 
 
 def _pooled_lines(df) -> list[str]:

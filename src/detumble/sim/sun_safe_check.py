@@ -26,6 +26,7 @@ import statistics
 from dataclasses import dataclass, field
 
 from detumble.control.attitude_defaults import PARAMETERS
+from detumble.control.sun_vector import SUN_LIT_FRACTION
 from detumble.control.three_mode import checked_parameters
 from detumble.sim.adcs_law import AdcsLaw, PlantIo
 from detumble.sim.epoch import julian_date
@@ -53,9 +54,11 @@ def _angle_deg(a, b) -> float:
 
 @dataclass
 class SunSafeResult:
-    """One flight's samples (1 Hz): time (s), true Sun-pointing error (deg), eclipse, true body rate |ω| (deg/s); the
-    Sun vector's errors (deg) at its sunlit readings; the mode transitions ``(t s, mode, reason)``; the time the
-    coils' SUN_SAFE lowered its spin to SUN_HOLD_SPIN_RATE (s; None: it did not)."""
+    """One flight's samples (1 Hz): time (s), true Sun-pointing error (deg), eclipse, true body rate |ω| and its part
+    across the pointed axis |ω − (ω·â)â| (deg/s); the Sun vector's errors (deg) at its sunlit readings; the mode
+    transitions ``(t s, mode, reason)``; the time the coils' SUN_SAFE lowered its spin to SUN_HOLD_SPIN_RATE (s;
+    None: it did not); at the flight's end, SUN_SAFE's gyro-bias estimate (``control.sun_safe.SunRateBias``) and the
+    gyro's true bias (deg/s, B), and the true Sun direction (unit, B: ``sun_body_end``)."""
 
     times: list = field(default_factory=list)
     pointing_deg: list = field(default_factory=list)
@@ -64,7 +67,11 @@ class SunSafeResult:
     vector_invalid_sunlit: int = 0
     transitions: list = field(default_factory=list)
     rate_deg_s: list = field(default_factory=list)
+    transverse_deg_s: list = field(default_factory=list)
     spin_lowered_s: float | None = None
+    bias_estimate_deg_s: tuple | None = None
+    bias_true_deg_s: tuple | None = None
+    sun_body_end: tuple | None = None
 
     def sunlit_parts(self) -> list[tuple[float, float]]:
         """``(start, end)`` s of each sunlit stretch of the run, in order."""
@@ -143,17 +150,18 @@ def seed_settings(seed: int, rate_deg_s: float = 2.0) -> list[str]:
 def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, actuator: str = "ANY",
         axis: str = "PLUS_Z", scenario: str = "adcs", settings: tuple[str, ...] = (),
         params: dict | None = None, sensor_spec: SunSensorSpec | None = None,
-        albedo_model: float = 0.0) -> SunSafeResult:
+        albedo_model: float = 0.0, lit_fraction: float = SUN_LIT_FRACTION) -> SunSafeResult:
     """Fly SUN_SAFE from a ``rate_deg_s`` tumble about an axis drawn from ``seed`` (the attitude drawn too), the
     star tracker off, POINTING_ACTUATOR = ``actuator``, SUN_SAFE_AXIS = ``axis``; the light sensors as
-    ``sensor_spec`` (default: the stated noise, no albedo, cylindrical shadow); with ``albedo_model`` > 0 the Sun
+    ``sensor_spec`` (default: the stated noise, no albedo, cylindrical shadow), a face taken as lit above
+    ``lit_fraction`` of the full Sun (the ADCS component's SUN_LIT_FRACTION); with ``albedo_model`` > 0 the Sun
     vector has that Bond albedo taken out (``control.albedo``; the law flies on it too)."""
     if axis not in _AXES:
         raise ValueError(f"axis must be one of {', '.join(_AXES)}, got {axis!r}")
     sc = load_scenario(scenario, seed=seed, settings=seed_settings(seed, rate_deg_s) + list(settings))
     plant = Plant(sc, seed)
     sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, sensor_spec or SunSensorSpec(), seed=seed)
-    io = PlantIo(plant, sensors, albedo_model=albedo_model)
+    io = PlantIo(plant, sensors, albedo_model=albedo_model, lit_fraction=lit_fraction)
     io.has_tracker = False
     law = AdcsLaw(params={"POINTING_ACTUATOR": actuator, "SUN_SAFE_AXIS": axis, **(params or {})},
                   force_mode="SUN_SAFE")
@@ -173,6 +181,8 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
             out.pointing_deg.append(_angle_deg(a, s_true))
             w = plant.omega_BN_B
             out.rate_deg_s.append(math.degrees(math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])))
+            w_a = w[0] * a[0] + w[1] * a[1] + w[2] * a[2]
+            out.transverse_deg_s.append(math.degrees(math.sqrt(sum((w[i] - w_a * a[i]) ** 2 for i in range(3)))))
             if out.spin_lowered_s is None and law.law.sun_hold.lowered:
                 out.spin_lowered_s = t
             if not sensors.eclipse:
@@ -184,6 +194,9 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
             law.tick(io)
         plant.step(dt)
     out.transitions = list(law.transitions)
+    out.bias_estimate_deg_s = tuple(math.degrees(b) for b in law.law.sun_bias.bias)
+    out.bias_true_deg_s = tuple(sc.gyro.bias_dps)
+    out.sun_body_end = tuple(sensors.true_sun_B(plant.t, plant.q_BN))
     return out
 
 
