@@ -40,7 +40,6 @@ import subprocess
 import sys
 import tempfile
 
-from detumble.sim.runner import write_json
 from detumble.sim.scenario import load_scenario
 from detumble.sim.sun_safe_check import POINTING_THRESHOLD_DEG, _percentile, fly, seed_settings
 
@@ -150,12 +149,10 @@ def _run(out: pathlib.Path, duration_s: float, sequence: str, settings, seed: in
 
 
 def _transitions(run_dir: pathlib.Path) -> list[dict]:
-    sys.path.insert(0, str(ROOT / "campaigns" / "adcs"))
-    try:
-        from sun_safe_coil_runs import _transitions as read
-    finally:
-        sys.path.pop(0)
-    return read(run_dir)
+    """The run's mode changes, as ``campaigns/adcs/sun_safe_coil_runs.py`` reads them from its events.log."""
+    from detumble.reports.study_table import sibling_script
+
+    return sibling_script(pathlib.Path(__file__).resolve().parent, "sun_safe_coil_runs")._transitions(run_dir)
 
 
 def fly_tracker_limit() -> dict:
@@ -299,23 +296,25 @@ def probe(committed: dict) -> list[str]:
     return found
 
 
-def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--json", type=pathlib.Path, metavar="FILE", help="also keep the flights' figures in FILE")
-    parser.add_argument("--only", nargs="+", choices=sorted(PARTS), metavar="PART",
-                        help="fly these parts only, keeping the others as --json's FILE holds them")
-    args = parser.parse_args(argv)
+def _results(args: argparse.Namespace) -> dict:
+    """The parts flown (``--only``: those, the others kept as the ``--json`` file holds them)."""
     kept: dict = {}
     if args.only:
         if args.json is None or not args.json.exists():
-            parser.error("--only needs --json FILE, an existing file whose other parts are kept")
+            raise SystemExit("--only needs --json FILE, an existing file whose other parts are kept")
         kept = json.loads(args.json.read_text(encoding="utf-8"))["parts"]
     parts = {k: (f() if not args.only or k in args.only else kept[k]) for k, f in PARTS.items()}
-    table = {"script": "campaigns/adcs/sun_safe_single_flights.py", "parts": parts}
-    print(markdown(table), end="")
-    if args.json is not None:
-        write_json(args.json, table)
-    return 0
+    return {"script": "campaigns/adcs/sun_safe_single_flights.py", "parts": parts}
+
+
+def main(argv: list[str] | None = None) -> int:
+    from detumble.reports.study_table import table_script_main
+
+    def only(parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--only", nargs="+", choices=sorted(PARTS), metavar="PART",
+                            help="fly these parts only, keeping the others as --json's FILE holds them")
+
+    return table_script_main(argv, __doc__.split("\n\n")[0], _results, markdown, only)
 
 
 if __name__ == "__main__":

@@ -26,6 +26,7 @@ to the float: tests/test_studies.py STUDY-111).
 from __future__ import annotations
 
 import argparse
+import json
 import pathlib
 import sys
 
@@ -171,9 +172,10 @@ def main(argv: list[str] | None = None) -> int:
              "variants": fly_variants()}
     print(markdown(table), end="")
     if args.json is not None:
-        from detumble.sim.runner import write_json
+        from detumble.sim.runner import write_atomic
 
-        write_json(args.json, table)
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        write_atomic(args.json, json.dumps(table, indent=1) + "\n")
     return 0
 
 

@@ -292,14 +292,6 @@ def run(scenario: Scenario, law: str | None = None, gain: float | None = None, d
     return RunResult(summary, rows, adcs_header(plant), adcs)
 
 
-def write_json(path, data) -> None:
-    """Keep ``data`` (JSON values) in ``path`` (its folder made if missing), indented by one, atomically."""
-    import json
-
-    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-    write_atomic(str(path), json.dumps(data, indent=1) + "\n")
-
-
 def write_atomic(path: str, text: str) -> None:
     """Write ``text`` to ``path`` atomically: temp file in the same folder, fsync, os.replace.
 
