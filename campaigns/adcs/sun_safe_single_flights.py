@@ -24,7 +24,8 @@
 
 ``--only`` flies the named parts again and keeps the others as the ``--json`` file holds them.
 
-11 plant-only flights (~22,000 simulated s) and 11 short adcs_ref runs: about a minute on this machine.
+11 plant-only flights (~22,000 simulated s), 11 short adcs_ref runs and one of an orbit: about a minute and a half
+on this machine.
 :func:`probe` (``tools/studies.py --check``) recomputes the t = 0 excesses and re-flies the ``lit`` and ``bounce``
 parts (seconds) and compares them with the committed file to the float.
 """
@@ -65,6 +66,8 @@ BOUNCE_SEQUENCE = (f"R00:00:00 {_CONTROLLER}.POINTING_ACTUATOR_PRM_SET MAGNETORQ
                    f"R00:00:00 {_CONTROLLER}.SET_TARGET_QUATERNION 0.9238795325112867 0 0.3826834323650898 0\n"
                    f"R00:00:01 {_CONTROLLER}.FORCE_MODE POINTING\n")
 BOUNCE_SETTINGS = ("sensors.star_tracker.outage_s=[20,400]",)
+ORBIT_S = 5580.0
+ALBEDO = 0.3
 
 
 def _coil_variants() -> dict:
@@ -148,11 +151,16 @@ def _run(out: pathlib.Path, duration_s: float, sequence: str, settings, seed: in
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, cwd=ROOT)
 
 
-def _transitions(run_dir: pathlib.Path) -> list[dict]:
-    """The run's mode changes, as ``campaigns/adcs/sun_safe_coil_runs.py`` reads them from its events.log."""
+def _sibling(name: str):
+    """The study script ``name`` of campaigns/adcs/ as a module."""
     from detumble.reports.study_table import sibling_script
 
-    return sibling_script(pathlib.Path(__file__).resolve().parent, "sun_safe_coil_runs")._transitions(run_dir)
+    return sibling_script(pathlib.Path(__file__).resolve().parent, name)
+
+
+def _transitions(run_dir: pathlib.Path) -> list[dict]:
+    """The run's mode changes, as ``campaigns/adcs/sun_safe_coil_runs.py`` reads them from its events.log."""
+    return _sibling("sun_safe_coil_runs")._transitions(run_dir)
 
 
 def fly_tracker_limit() -> dict:
@@ -193,8 +201,49 @@ def fly_bounce() -> dict:
             "peak_after_deg_s": None if peak is None else peak[1], "peak_after_s": None if peak is None else peak[0]}
 
 
+def _spans(seconds: list[int]) -> list[list[int]]:
+    """Consecutive runs of whole seconds, ``[[first, last], ...]``."""
+    spans: list[list[int]] = []
+    for k in seconds:
+        if spans and k == spans[-1][1] + 1:
+            spans[-1][1] = k
+        else:
+            spans.append([k, k])
+    return spans
+
+
+def fly_albedo_flight() -> dict:
+    """adcs_ref's AUTO flight with albedo 0.3 in the sensors and the correction on (the albedo-deployment table's
+    first row, ``campaigns/adcs/sun_albedo_deployment.py``): where the corrected vector is beyond 5°, the sunlit
+    seconds it was not corrected, and the AlbedoCorrectionUnavailable events."""
+    import csv
+
+    from detumble.sim.sun_safe_check import VECTOR_THRESHOLD_DEG, vector_errors_by_second
+
+    deployment = _sibling("sun_albedo_deployment")
+    with tempfile.TemporaryDirectory() as scratch:
+        out = pathlib.Path(scratch) / "albedo"
+        deployment.fly(ALBEDO, ORBIT_S, out)
+        timed, invalid = vector_errors_by_second(out)
+        corrected, t0 = {}, None
+        with open(out / "channels.csv", newline="") as f:
+            for row in csv.DictReader(f):
+                if row["channel"].endswith(".adcs.AlbedoCorrected"):
+                    stamp = float(row["time"])
+                    t0 = stamp if t0 is None else t0
+                    corrected[int(round(stamp - t0))] = row["value"] == "1"
+        events = (out / "events.log").read_text().splitlines()
+    beyond = [(k, e) for k, e in timed if e > VECTOR_THRESHOLD_DEG]
+    return {"albedo": ALBEDO, "duration_s": ORBIT_S, "readings": len(timed), "invalid": invalid,
+            "beyond": len(beyond), "beyond_max_deg": max((e for _, e in beyond), default=None),
+            "beyond_from_s": min((k for k, _ in beyond), default=None),
+            "beyond_to_s": max((k for k, _ in beyond), default=None),
+            "uncorrected_spans_s": _spans([k for k, _ in timed if not corrected.get(k, False)]),
+            "unavailable_events": sum(".adcs.AlbedoCorrectionUnavailable " in ln for ln in events)}
+
+
 PARTS = {"bias": fly_bias, "lit": fly_lit, "coil_gains": fly_coil_gains, "tracker_limit": fly_tracker_limit,
-         "bounce": fly_bounce}
+         "bounce": fly_bounce, "albedo_flight": fly_albedo_flight}
 
 
 def _part(table: dict, key: str) -> dict:
@@ -268,9 +317,20 @@ def bounce_markdown(table: dict) -> str:
             f"{part['peak_after_s']:.0f} s, {part['rate_at_end_deg_s']:.2f} °/s at {part['end_s']:.0f} s\n")
 
 
+def albedo_flight_markdown(table: dict) -> str:
+    part = _part(table, "albedo_flight")
+    spans = ", ".join(f"{a}–{b} s ({b - a + 1} s)" for a, b in part["uncorrected_spans_s"]) or "none"
+    where = ("none" if not part["beyond"] else f"{part['beyond']}, max {part['beyond_max_deg']:.1f}°, all at "
+             f"{part['beyond_from_s']}–{part['beyond_to_s']} s")
+    return (f"adcs_ref's AUTO flight, {part['duration_s']:.0f} s, albedo {part['albedo']:g} in the sensors, the "
+            f"correction on: {part['readings']} sunlit SunVector readings ({part['invalid']} invalid); beyond 5°: "
+            f"{where}; sunlit readings not corrected (AlbedoCorrected 0): {spans}; AlbedoCorrectionUnavailable "
+            f"events: {part['unavailable_events']}\n")
+
+
 def markdown(table: dict) -> str:
     return "\n".join(f(table) for f in (bias_markdown, lit_markdown, coil_gains_markdown, tracker_limit_markdown,
-                                        bounce_markdown))
+                                        bounce_markdown, albedo_flight_markdown))
 
 
 def differences(now, then, where: str = "") -> list[str]:

@@ -36,8 +36,9 @@ from detumble.sim.scenario import load_scenario
 from detumble.sim.sun_sensors import SunSensorModel, SunSensorSpec
 
 __all__ = ["SunSafeResult", "fly", "seed_settings", "main", "markdown", "pointing_from_run", "table",
-           "vector_errors_from_run", "spin_down_row", "spin_down_table", "spin_down_markdown",
-           "spin_down_probe", "HAND_BACK_RATE_DEG_S", "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
+           "vector_errors_from_run", "vector_errors_by_second", "spin_down_row", "spin_down_table",
+           "spin_down_markdown", "spin_down_probe", "HAND_BACK_RATE_DEG_S", "POINTING_THRESHOLD_DEG",
+           "VECTOR_THRESHOLD_DEG"]
 
 #: The targets (issue 27): Sun-pointing error within this after acquisition, light-sensor vector within that.
 POINTING_THRESHOLD_DEG = 10.0
@@ -201,12 +202,19 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
 
 
 def vector_errors_from_run(run_dir, scenario: str = "adcs", channel: str = "SunVector") -> tuple[list, int]:
+    """:func:`vector_errors_by_second` without the seconds: ``([error deg at each valid sunlit reading], invalid
+    sunlit readings)``."""
+    timed, invalid = vector_errors_by_second(run_dir, scenario, channel)
+    return [e for _, e in timed], invalid
+
+
+def vector_errors_by_second(run_dir, scenario: str = "adcs", channel: str = "SunVector") -> tuple[list, int]:
     """The ADCS component's Sun vector in a ``fprime-lite run`` of ``deployments/adcs_ref`` against the truth:
-    ``([error deg at each valid sunlit reading], invalid sunlit readings)``. Reads ``channels.csv`` (``channel``:
-    SunVector, the published one, or SunVectorRaw, the one before the albedo correction; SunVectorValid; 1 Hz)
-    and ``truth.csv`` (``q_BN`` and the power model's eclipse flag at 1 s); the Sun from
-    ``sim.sun`` at the scenario's epoch; a reading within 1 s of an eclipse boundary is left out (the flag is the
-    power model's over 100 ms steps)."""
+    ``([(s from the run's start, error deg) at each valid sunlit reading], invalid sunlit readings)``. Reads
+    ``channels.csv`` (``channel``: SunVector, the published one, or SunVectorRaw, the one before the albedo
+    correction; SunVectorValid; 1 Hz) and ``truth.csv`` (``q_BN`` and the power model's eclipse flag at 1 s); the
+    Sun from ``sim.sun`` at the scenario's epoch; a reading within 1 s of an eclipse boundary is left out (the flag
+    is the power model's over 100 ms steps)."""
     import csv
     import json
     import pathlib
@@ -246,7 +254,7 @@ def vector_errors_from_run(run_dir, scenario: str = "adcs", channel: str = "SunV
         q = here[0]
         s_B = rotate_n_to_b(q, sun_direction_N(jd0 + k / 86400.0)[0])
         if valid.get(k):
-            errors.append(_angle_deg(v, s_B))
+            errors.append((k, _angle_deg(v, s_B)))
         else:
             invalid += 1
     return errors, invalid
