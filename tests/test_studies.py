@@ -1040,12 +1040,14 @@ def test_the_two_deg_s_hand_back_block_is_checked_and_probed(tmp_path, monkeypat
     ("sun_safe_single_bounce", "1.29 °/s", "1.30 °/s"),
     ("sun_safe_single_albedo_flight", "2456–2807 s (352 s)", "2456–2808 s (353 s)"),
     ("sun_safe_albedo_mismatch", "| 15 / 1319 / 14 |", "| 15 / 1320 / 14 |"),
+    ("sun_safe_spin_down_geometry", "23–41 µT over the first", "23–40 µT over the first"),
 ])
 def test_a_hand_edited_single_flight_block_is_reported(tmp_path, monkeypatch, block, old, new):
     """STUDY-180: sun_safe.md's single-flight blocks (the figures its prose quoted by hand until 2026-12-04: the
     bias observer, the lit threshold, the coils' gains, the tracker's rate limit at t = 0, ADCS-109's flight, the
-    albedo deployment flight second by second) and the albedo-mismatch table's acquisition column are rendered from
-    committed JSON: one figure changed by hand in each (for three, back to the figure the page quoted before) is
+    albedo deployment flight second by second), the albedo-mismatch table's acquisition column and the field
+    geometry's line after its tables (the gate's windows after the first sunlit part, the field's range) are rendered
+    from committed JSON: one figure changed by hand in each (for three, back to the figure the page quoted before) is
     reported by --check, naming the block."""
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "sun_safe", block, old, new)
     assert len(problems) == 1 and f"block '{block}'" in problems[0]
