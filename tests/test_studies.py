@@ -1047,3 +1047,78 @@ def test_the_two_deg_s_hand_back_block_is_checked_and_probed(tmp_path, monkeypat
     _nudged_script_table(tmp_path, monkeypatch, table, nudge)
     problems = table.run_probe()
     assert len(problems) == 1 and "at 119 s" in problems[0]
+
+
+@pytest.mark.parametrize("block, old, new", [
+    ("sun_safe_single_bias", "| 0.0013 |", "| 0.0014 |"),
+    ("sun_safe_single_lit", "| 2.98 / 4.33 |", "| 2.78 / 4.42 |"),
+    ("sun_safe_single_coil_gains", "| 654 |", "| 655 |"),
+    ("sun_safe_single_tracker_limit", "| 5 | 2.2e-19;", "| 5 | 2e-19;"),
+    ("sun_safe_single_bounce", "1.29 °/s", "1.30 °/s"),
+    ("sun_safe_single_albedo_flight", "2456–2807 s (352 s)", "2456–2808 s (353 s)"),
+    ("sun_safe_albedo_mismatch", "| 15 / 1319 / 14 |", "| 15 / 1320 / 14 |"),
+    ("sun_safe_spin_down_geometry", "23–41 µT over the first", "23–40 µT over the first"),
+])
+def test_a_hand_edited_single_flight_block_is_reported(tmp_path, monkeypatch, block, old, new):
+    """STUDY-180: sun_safe.md's single-flight blocks (the figures its prose quoted by hand until 2026-12-04: the
+    bias observer, the lit threshold, the coils' gains, the tracker's rate limit at t = 0, ADCS-109's flight, the
+    albedo deployment flight second by second), the albedo-mismatch table's acquisition column and the field
+    geometry's line after its tables (the gate's windows after the first sunlit part, the field's range) are rendered
+    from committed JSON: one figure changed by hand in each (for three, back to the figure the page quoted before) is
+    reported by --check, naming the block."""
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "sun_safe", block, old, new)
+    assert len(problems) == 1 and f"block '{block}'" in problems[0]
+
+
+def test_the_single_flights_probe_catches_a_tampered_file(tmp_path, monkeypatch):
+    """STUDY-181: the single flights' --check probe recomputes the tracker table's t = 0 excesses and re-flies the
+    lit-threshold part (two 600 s plant-only flights) and ADCS-109's flight (one 500 s adcs_ref run): the committed
+    file passes; a copy with the 5 % row's median, the hand-back rate and seed 5's excess each nudged is reported,
+    one problem each, naming the figure."""
+    table = _sun_table("sun_safe_single_bias")
+    assert table.run_probe() == []
+
+    def nudge(data):
+        data["parts"]["lit"]["rows"][0]["median_deg"] += 1e-9
+        data["parts"]["bounce"]["rate_at_hand_back_deg_s"] += 1e-9
+        data["parts"]["tracker_limit"]["rows"][4]["excess_rad2_s2"] *= 2.0
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 3 and all("no longer computes" in p for p in problems)
+    assert "seed 5 at 2 °/s" in problems[0] and "lit.rows[0].median_deg" in problems[1]
+    assert "bounce.rate_at_hand_back_deg_s" in problems[2]
+
+
+def test_the_single_flights_are_what_the_code_flies_now():
+    """STUDY-182: the single flights' parts not in the probe fly again to the float: seed 1's bias-observer estimate
+    after 900 s (plant-only, wheels) and the coils' τ = 20 s row (seed 2, the first sunlit part: its acquisition,
+    error and rate across +Z); a file with a part missing is refused by name, not rendered."""
+    table = _sun_table("sun_safe_single_bias")
+    script = table.code()
+    committed = json.loads(table.path.read_text(encoding="utf-8"))["parts"]
+    bias = committed["bias"]["rows"][0]
+    r = script.fly(1, duration_s=script.BIAS_S)
+    assert [list(r.bias_estimate_deg_s), list(r.bias_true_deg_s), list(r.sun_body_end)] == [
+        bias["estimate_deg_s"], bias["true_deg_s"], bias["sun_B"]]
+    row = next(x for x in committed["coil_gains"]["rows"] if x["key"] == "tau_20")
+    again = script.fly_coil_gains(keys=("tau_20",))["rows"][0]
+    assert script.differences(json.loads(json.dumps(again)), row) == []
+    with pytest.raises(ValueError, match="'lit'"):
+        script.lit_markdown({"parts": {"bias": committed["bias"]}})
+
+
+def test_the_tumble_campaigns_misses_by_initial_rate_are_generated(tmp_path, monkeypatch):
+    """STUDY-183: magnetic_pointing.md's dispersed-tumble block gives which runs miss p95 ≤ 15° by initial rate (the
+    figures its prose quoted by hand until 2026-12-04), from the committed campaign: the bins' counts add up to the
+    runs and their misses to the block's; one count changed by hand is reported by --check."""
+    pytest.importorskip("pandas")
+    body = studies.magnetic_tumble_blocks()["magnetic_pointing_tumble"]
+    line = next(ln for ln in body.splitlines() if ln.startswith("- runs with p95 ≤ 15° by initial rate:"))
+    pairs = [cell.split(" at ")[0].split("/") for cell in line.split(": ", 1)[1].split(", ")]
+    met, runs = sum(int(a) for a, _ in pairs), sum(int(b) for _, b in pairs)
+    assert runs == 100 and f"p95 ≤ 15°: **{met} / {runs}**" in body
+    assert f"- the {runs - met} p95 misses:" in body
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "magnetic_pointing_tumble", "magnetic_pointing_tumble",
+                                       "23/23 at", "22/23 at")
+    assert len(problems) == 1 and "block 'magnetic_pointing_tumble'" in problems[0]

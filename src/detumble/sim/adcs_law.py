@@ -36,13 +36,16 @@ COIL_FACES = (0, 1, 2, 3, 5)
 class PlantIo:
     """The law's ``ControllerIo`` on a plant: three or four wheels (else none), face coils or torque rods; with
     ``sun_sensors`` (a ``sim.sun_sensors.SunSensorModel``) the six face light sensors, read and turned into a Sun
-    vector every ``sun_period_s`` as the ADCS component does (``detumble.proves.adcs``); with ``albedo_model`` > 0
+    vector every ``sun_period_s`` as the ADCS component does (``detumble.proves.adcs``; a face lit above
+    ``lit_fraction`` of the full Sun, the component's SUN_LIT_FRACTION); with ``albedo_model`` > 0
     the Earth's albedo (that Bond albedo) taken out of it (``control.albedo``: TRIAD on the Sun vector and the
     magnetometer against the ephemeris and the plant's field model as the on-board one); ``system_safe`` stands
     for the mode manager (None: not connected; True: safe mode)."""
 
-    def __init__(self, plant, sun_sensors=None, sun_period_s: float = 1.0, albedo_model: float = 0.0) -> None:
+    def __init__(self, plant, sun_sensors=None, sun_period_s: float = 1.0, albedo_model: float = 0.0,
+                 lit_fraction: float = SUN_LIT_FRACTION) -> None:
         self.plant = plant
+        self.lit_fraction = float(lit_fraction)
         self.albedo = (AlbedoCorrector(albedo_model, sun_sensors.earth_radius_m)
                        if albedo_model > 0.0 and sun_sensors is not None and plant.field is not None else None)
         self.sun_sensors = sun_sensors
@@ -120,7 +123,7 @@ class PlantIo:
                 est = self.albedo.estimate(readings, FULL_SUN_LUX, t, r_N=r_N, sun_N=sun_N, field_B=self.field()[0],
                                            field_N=p.field.b_N(t, r_N), omega_B=self.gyro())
             else:
-                est = estimate_sun_vector(readings, FULL_SUN_LUX, lit_fraction=SUN_LIT_FRACTION,
+                est = estimate_sun_vector(readings, FULL_SUN_LUX, lit_fraction=self.lit_fraction,
                                           magnitude_tolerance=SUN_MAGNITUDE_TOLERANCE)
             self._sun = (est.direction, est.valid, t_us)
         return self._sun

@@ -48,21 +48,23 @@ def _angle_deg(a, b) -> float:
 
 
 def geometry(scenario: str = "adcs", duration_s: float = 5580.0, step_s: float = 1.0) -> dict:
-    """``{"t": [s], "beta_deg": [deg], "eclipse": [bool]}`` over ``duration_s``: β the angle between the field and
-    the Sun line folded to 0–90° (90°: the field across the Sun line, the gate fully open), the eclipse the
-    cylindrical shadow (the light sensors' default)."""
+    """``{"t": [s], "beta_deg": [deg], "eclipse": [bool], "field_ut": [µT]}`` over ``duration_s``: β the angle
+    between the field and the Sun line folded to 0–90° (90°: the field across the Sun line, the gate fully open), the
+    eclipse the cylindrical shadow (the light sensors' default), |B| the field's magnitude."""
     sc = load_scenario(scenario)
     orbit = build_orbit(sc)
     field = build_field(sc, orbit)
     if field is None:
         raise ValueError(f"scenario {scenario!r} has no field model")
     jd0 = julian_date(sc.epoch)
-    out: dict = {"t": [], "beta_deg": [], "eclipse": []}
+    out: dict = {"t": [], "beta_deg": [], "eclipse": [], "field_ut": []}
     for k in range(int(round(duration_s / step_s)) + 1):
         t = k * step_s
         r = orbit.position_N(t)
         s = sun_direction_N(jd0 + t / 86400.0)[0]
-        beta = _angle_deg(field.b_N(t, r), s)
+        b = field.b_N(t, r)
+        beta = _angle_deg(b, s)
+        out["field_ut"].append(1e6 * math.sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]))
         out["t"].append(t)
         out["beta_deg"].append(min(beta, 180.0 - beta))
         out["eclipse"].append(in_umbra(r, s, sc.orbit.earth_radius_m))
@@ -106,8 +108,10 @@ def _sunlit_parts(geo: dict) -> list[tuple[float, float]]:
 
 def table(geo: dict, gates: list[float], starts: list[float], scenario: str) -> dict:
     """The figures kept by ``--json``: per gate, the open time and windows in the first sunlit part; per
-    spin-down start, when the command reaches the tracker's limit and the hold spin."""
-    part = _sunlit_parts(geo)[0]
+    spin-down start, when the command reaches the tracker's limit and the hold spin; the 80° gate's windows after
+    the first sunlit part, the sunlit parts, and the field's range over the orbit (µT)."""
+    parts = _sunlit_parts(geo)
+    part = parts[0]
     to_limit = (ACQUIRE_DEG_S - TRACKER_LIMIT_DEG_S) / RAMP_DEG_S2
     to_hold = (ACQUIRE_DEG_S - HOLD_DEG_S) / RAMP_DEG_S2
     rows = []
@@ -119,9 +123,12 @@ def table(geo: dict, gates: list[float], starts: list[float], scenario: str) -> 
         reach.append({"start_s": t0, "gate_deg": 80.0, "limit_s": reach_time(geo, 80.0, t0, to_limit),
                       "hold_s": reach_time(geo, 80.0, t0, to_hold)})
     sunlit_beta = [b for t, b in zip(geo["t"], geo["beta_deg"], strict=True) if part[0] <= t < part[1]]
+    sunlit_field = [b for t, b in zip(geo["t"], geo["field_ut"], strict=True) if part[0] <= t < part[1]]
     return {"scenario": scenario, "first_sunlit_part": part, "gates": rows, "reach": reach,
             "open_to_limit_s": to_limit, "open_to_hold_s": to_hold, "beta_max_deg": max(sunlit_beta),
-            "beta_min_deg": min(sunlit_beta)}
+            "beta_min_deg": min(sunlit_beta), "sunlit_parts": parts, "windows_80_after": windows(geo, 80.0, part[1]),
+            "field_min_ut": min(geo["field_ut"]), "field_max_ut": max(geo["field_ut"]),
+            "sunlit_field_min_ut": min(sunlit_field), "sunlit_field_max_ut": max(sunlit_field)}
 
 
 def _fmt_windows(w) -> str:
@@ -143,6 +150,10 @@ def markdown(data: dict) -> str:
     for r in data["reach"]:
         cells = [f"{r[k]:.0f}" if r[k] is not None else "not in the orbit" for k in ("limit_s", "hold_s")]
         lines.append(f"| {r['start_s']:.0f} | {cells[0]} | {cells[1]} |")
+    lines += ["", f"After the first sunlit part the 80° gate is open at {_fmt_windows(data['windows_80_after'])} s "
+              f"(sunlit parts of the orbit: {_fmt_windows(data['sunlit_parts'])} s, the cylindrical shadow); |B| "
+              f"{data['sunlit_field_min_ut']:.0f}–{data['sunlit_field_max_ut']:.0f} µT over the first sunlit part, "
+              f"{data['field_min_ut']:.0f}–{data['field_max_ut']:.0f} µT over the orbit."]
     return "\n".join(lines) + "\n"
 
 

@@ -26,6 +26,7 @@ import statistics
 from dataclasses import dataclass, field
 
 from detumble.control.attitude_defaults import PARAMETERS
+from detumble.control.sun_vector import SUN_LIT_FRACTION
 from detumble.control.three_mode import checked_parameters
 from detumble.sim.adcs_law import AdcsLaw, PlantIo
 from detumble.sim.epoch import julian_date
@@ -35,8 +36,9 @@ from detumble.sim.scenario import load_scenario
 from detumble.sim.sun_sensors import SunSensorModel, SunSensorSpec
 
 __all__ = ["SunSafeResult", "fly", "seed_settings", "main", "markdown", "pointing_from_run", "table",
-           "vector_errors_from_run", "spin_down_row", "spin_down_table", "spin_down_markdown",
-           "spin_down_probe", "HAND_BACK_RATE_DEG_S", "POINTING_THRESHOLD_DEG", "VECTOR_THRESHOLD_DEG"]
+           "vector_errors_from_run", "vector_errors_by_second", "spin_down_row", "spin_down_table",
+           "spin_down_markdown", "spin_down_probe", "HAND_BACK_RATE_DEG_S", "POINTING_THRESHOLD_DEG",
+           "VECTOR_THRESHOLD_DEG"]
 
 #: The targets (issue 27): Sun-pointing error within this after acquisition, light-sensor vector within that.
 POINTING_THRESHOLD_DEG = 10.0
@@ -53,9 +55,11 @@ def _angle_deg(a, b) -> float:
 
 @dataclass
 class SunSafeResult:
-    """One flight's samples (1 Hz): time (s), true Sun-pointing error (deg), eclipse, true body rate |ω| (deg/s); the
-    Sun vector's errors (deg) at its sunlit readings; the mode transitions ``(t s, mode, reason)``; the time the
-    coils' SUN_SAFE lowered its spin to SUN_HOLD_SPIN_RATE (s; None: it did not)."""
+    """One flight's samples (1 Hz): time (s), true Sun-pointing error (deg), eclipse, true body rate |ω| and its part
+    across the pointed axis |ω − (ω·â)â| (deg/s); the Sun vector's errors (deg) at its sunlit readings; the mode
+    transitions ``(t s, mode, reason)``; the time the coils' SUN_SAFE lowered its spin to SUN_HOLD_SPIN_RATE (s;
+    None: it did not); at the flight's end, SUN_SAFE's gyro-bias estimate (``control.sun_safe.SunRateBias``) and the
+    gyro's true bias (deg/s, B), and the true Sun direction (unit, B: ``sun_body_end``)."""
 
     times: list = field(default_factory=list)
     pointing_deg: list = field(default_factory=list)
@@ -64,7 +68,11 @@ class SunSafeResult:
     vector_invalid_sunlit: int = 0
     transitions: list = field(default_factory=list)
     rate_deg_s: list = field(default_factory=list)
+    transverse_deg_s: list = field(default_factory=list)
     spin_lowered_s: float | None = None
+    bias_estimate_deg_s: tuple | None = None
+    bias_true_deg_s: tuple | None = None
+    sun_body_end: tuple | None = None
 
     def sunlit_parts(self) -> list[tuple[float, float]]:
         """``(start, end)`` s of each sunlit stretch of the run, in order."""
@@ -143,17 +151,18 @@ def seed_settings(seed: int, rate_deg_s: float = 2.0) -> list[str]:
 def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, actuator: str = "ANY",
         axis: str = "PLUS_Z", scenario: str = "adcs", settings: tuple[str, ...] = (),
         params: dict | None = None, sensor_spec: SunSensorSpec | None = None,
-        albedo_model: float = 0.0) -> SunSafeResult:
+        albedo_model: float = 0.0, lit_fraction: float = SUN_LIT_FRACTION) -> SunSafeResult:
     """Fly SUN_SAFE from a ``rate_deg_s`` tumble about an axis drawn from ``seed`` (the attitude drawn too), the
     star tracker off, POINTING_ACTUATOR = ``actuator``, SUN_SAFE_AXIS = ``axis``; the light sensors as
-    ``sensor_spec`` (default: the stated noise, no albedo, cylindrical shadow); with ``albedo_model`` > 0 the Sun
+    ``sensor_spec`` (default: the stated noise, no albedo, cylindrical shadow), a face taken as lit above
+    ``lit_fraction`` of the full Sun (the ADCS component's SUN_LIT_FRACTION); with ``albedo_model`` > 0 the Sun
     vector has that Bond albedo taken out (``control.albedo``; the law flies on it too)."""
     if axis not in _AXES:
         raise ValueError(f"axis must be one of {', '.join(_AXES)}, got {axis!r}")
     sc = load_scenario(scenario, seed=seed, settings=seed_settings(seed, rate_deg_s) + list(settings))
     plant = Plant(sc, seed)
     sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, sensor_spec or SunSensorSpec(), seed=seed)
-    io = PlantIo(plant, sensors, albedo_model=albedo_model)
+    io = PlantIo(plant, sensors, albedo_model=albedo_model, lit_fraction=lit_fraction)
     io.has_tracker = False
     law = AdcsLaw(params={"POINTING_ACTUATOR": actuator, "SUN_SAFE_AXIS": axis, **(params or {})},
                   force_mode="SUN_SAFE")
@@ -173,6 +182,8 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
             out.pointing_deg.append(_angle_deg(a, s_true))
             w = plant.omega_BN_B
             out.rate_deg_s.append(math.degrees(math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])))
+            w_a = w[0] * a[0] + w[1] * a[1] + w[2] * a[2]
+            out.transverse_deg_s.append(math.degrees(math.sqrt(sum((w[i] - w_a * a[i]) ** 2 for i in range(3)))))
             if out.spin_lowered_s is None and law.law.sun_hold.lowered:
                 out.spin_lowered_s = t
             if not sensors.eclipse:
@@ -184,16 +195,26 @@ def fly(seed: int = 1, *, rate_deg_s: float = 2.0, duration_s: float = 5580.0, a
             law.tick(io)
         plant.step(dt)
     out.transitions = list(law.transitions)
+    out.bias_estimate_deg_s = tuple(math.degrees(b) for b in law.law.sun_bias.bias)
+    out.bias_true_deg_s = tuple(sc.gyro.bias_dps)
+    out.sun_body_end = tuple(sensors.true_sun_B(plant.t, plant.q_BN))
     return out
 
 
 def vector_errors_from_run(run_dir, scenario: str = "adcs", channel: str = "SunVector") -> tuple[list, int]:
+    """:func:`vector_errors_by_second` without the seconds: ``([error deg at each valid sunlit reading], invalid
+    sunlit readings)``."""
+    timed, invalid = vector_errors_by_second(run_dir, scenario, channel)
+    return [e for _, e in timed], invalid
+
+
+def vector_errors_by_second(run_dir, scenario: str = "adcs", channel: str = "SunVector") -> tuple[list, int]:
     """The ADCS component's Sun vector in a ``fprime-lite run`` of ``deployments/adcs_ref`` against the truth:
-    ``([error deg at each valid sunlit reading], invalid sunlit readings)``. Reads ``channels.csv`` (``channel``:
-    SunVector, the published one, or SunVectorRaw, the one before the albedo correction; SunVectorValid; 1 Hz)
-    and ``truth.csv`` (``q_BN`` and the power model's eclipse flag at 1 s); the Sun from
-    ``sim.sun`` at the scenario's epoch; a reading within 1 s of an eclipse boundary is left out (the flag is the
-    power model's over 100 ms steps)."""
+    ``([(s from the run's start, error deg) at each valid sunlit reading], invalid sunlit readings)``. Reads
+    ``channels.csv`` (``channel``: SunVector, the published one, or SunVectorRaw, the one before the albedo
+    correction; SunVectorValid; 1 Hz) and ``truth.csv`` (``q_BN`` and the power model's eclipse flag at 1 s); the
+    Sun from ``sim.sun`` at the scenario's epoch; a reading within 1 s of an eclipse boundary is left out (the flag
+    is the power model's over 100 ms steps)."""
     import csv
     import json
     import pathlib
@@ -233,7 +254,7 @@ def vector_errors_from_run(run_dir, scenario: str = "adcs", channel: str = "SunV
         q = here[0]
         s_B = rotate_n_to_b(q, sun_direction_N(jd0 + k / 86400.0)[0])
         if valid.get(k):
-            errors.append(_angle_deg(v, s_B))
+            errors.append((k, _angle_deg(v, s_B)))
         else:
             invalid += 1
     return errors, invalid
