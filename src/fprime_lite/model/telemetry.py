@@ -442,25 +442,11 @@ def _quick_check(cls: type, members_of: Any, exact: tuple[type, ...], times_at: 
     ``members_of`` gives them) have exactly the types ``exact``, position by position, and whose
     time members fit (:func:`_times_fit`); else what ``full_check(value)`` returns or raises.
 
-    Written out for three and four members (vectors, quaternions, a vector with its time), a loop
-    otherwise: ``tuple(map(type, members))`` alone costs as much as a write's bookkeeping. Kept
-    (issue 26): 0.8-2.0 µs less a check than the loop, 2.7 checks an adcs_ref tick (≈ 77 µs of
-    CPU) and 3.0 a coursework one (≈ 71 µs): 3-8 % of either; ``python benchmarks/bench_inlined.py
-    snapshot_check`` (3 sittings on the shared 2-core machine, 2026-12-03, each the best of 40).
+    The general path's (:meth:`BoundChannel._write_general`): a channel written into TlmChan's table
+    runs the same tests written into its generated writer (:func:`_snapshot_writer_factory`). The
+    three- and four-member copy kept here by issue 26 (2.7 checks an adcs_ref tick then) was folded
+    back when the tests moved into the writer (issue 32, branch fpart): no tick runs it any more.
     """
-    if len(exact) in (3, 4):
-        three = len(exact) == 3
-        e0, e1, e2, e3 = exact if not three else (*exact, None)
-
-        def check_short(value: Any) -> Any:
-            if type(value) is cls:
-                m = members_of(value)
-                if (type(m[0]) is e0 and type(m[1]) is e1 and type(m[2]) is e2 and (three or type(m[3]) is e3)
-                        and (not times_at or _times_fit(m, times_at))):
-                    return value
-            return full_check(value)
-        return check_short
-
     def check(value: Any) -> Any:
         if type(value) is not cls:
             return full_check(value)
