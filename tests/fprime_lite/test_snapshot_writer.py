@@ -49,12 +49,22 @@ class SnapArray(Array, elem=F64, size=3, namespace="Snap"):
     pass
 
 
+class SnapOne(Array, elem=F64, size=1, namespace="Snap"):
+    pass
+
+
+class SnapLong(Array, elem=F64, size=20, namespace="Snap"):  # beyond _QUICK_MEMBERS_MAX: the check is called
+    pass
+
+
 class _Writer(PassiveComponent):
     Vec = Channel(SnapVec)
     Field = Channel(SnapField)
     ModeRate = Channel(SnapModeRate, update="on change")
     Values = Channel(SnapArray)
     VecOnChange = Channel(SnapVec, update="on change")
+    One = Channel(SnapOne)
+    Long = Channel(SnapLong)
 
 
 _NAMES = ("Vec", "Field", "ModeRate", "Values", "VecOnChange")
@@ -161,3 +171,17 @@ def test_tick_021_a_snapshot_channel_writes_through_the_member_testing_writer():
             channel.write(_value(name, random.Random(0)))  # seed 0: a valid value of every channel
         assert channel.write.__code__.co_filename.startswith("<channel writer snapshot "), name
         assert tlm._latest[channel.id][1] == tuple(channel._members_of(channel.last)), name
+    one, long = writer.channels["One"], writer.channels["Long"]
+    for value in (SnapOne([0.5]), SnapOne([0.25])):
+        one.write(value)
+    assert one.write.__code__.co_filename == "<channel writer snapshot 1>"
+    assert tlm._latest[one.id][1] == (0.25,)
+    bad = SnapOne([0.5])
+    bad[0] = 1  # an int element: the member test fails, the array type's own check decides what is stored
+    one.write(bad)
+    checked = tuple(SnapOne.__fprime_type__.check(bad))
+    assert tlm._latest[one.id][1] == checked and [type(m) for m in tlm._latest[one.id][1]] == [type(m) for m in checked]
+    for value in (SnapLong([float(i) for i in range(20)]), SnapLong([2.0] * 20)):
+        long.write(value)
+    assert long.write.__code__.co_filename == "<channel writer none snapshot>"
+    assert tlm._latest[long.id][1] == (2.0,) * 20
