@@ -167,26 +167,6 @@ def case_channel_write_time(repeat):
 """, repeat, _f64_channel)
 
 
-def case_snapshot_check(repeat):
-    """every deployment: a struct channel's value check, written out for three members vs the loop
-    over the members (a 3-vector with F64 members)."""
-    from fprime_lite.model import telemetry
-
-    loop_only = _refold(telemetry._quick_check, "    if len(exact) in (3, 4):", "    if False:", {})
-
-    class Vec(tuple):
-        pass
-
-    def full_check(value):
-        return value
-
-    exact = (float, float, float)
-    fast = telemetry._quick_check(Vec, tuple, exact, (), full_check)
-    loop = loop_only(Vec, tuple, exact, (), full_check)
-    v = Vec((1.0, 2.0, 3.0))
-    return _best(lambda: fast(v), lambda: loop(v), 5000, repeat)
-
-
 def _instance(loaded, cls):
     return next(i.component for i in loaded.topology.instances.values() if isinstance(i.component, cls))
 

@@ -26,7 +26,9 @@ kind (its value check, on change or always, snapshot or not) and closed over its
 assigns the stored entry to the store's table itself instead of calling ``store_tlm_value``. It
 checks on every write that the ``tlmOut`` and time-port slots still hold what it was made for and
 that the clock has made this instant's Time, and otherwise hands the write to the general path
-(``BoundChannel._write_general``), which sees the change and makes a new writer.
+(``BoundChannel._write_general``), which sees the change and makes a new writer. A snapshot channel
+whose members all have one always-valid Python type gets a writer with its member tests written in
+(``_snapshot_writer_factory``): the members it tests are the tuple it stores.
 """
 
 from __future__ import annotations
@@ -142,7 +144,7 @@ class BoundChannel(Generic[V]):
     __slots__ = ("component", "decl", "id", "last", "written", "_on_change", "_serialize", "_check", "_port",
                  "_valid_type", "_tlm_targets", "_tlm_calls", "_time_calls", "_deferrable",
                  "_bound_call", "_store", "_members_of", "_min", "_max", "_clock", "_clock_now", "_table_owner",
-                 "write")
+                 "_quick", "write")
 
     #: Record ``value`` and send it (time-stamped now, unless ``time`` is given): an instance slot
     #: holding the writer generated for this channel, or :meth:`_write_general`.
@@ -181,6 +183,9 @@ class BoundChannel(Generic[V]):
         self._store = None  # the target's deferred store, or None: send packed bytes
         #: For a mutable value made of immutable parts: what is stored and packed (a tuple of them).
         self._members_of: Any = None
+        #: For a snapshot channel whose check is :func:`_quick_check`'s: ``(cls, exact, times_at,
+        #: full_check)``, which its generated writer tests in place of calling the check.
+        self._quick: tuple | None = None
         self._table_owner: Any = None  # the store whose table the generated writer assigns to
         #: What ``channel.write(value, time=None)`` calls: this general path until a write has found
         #: a store with a table, then the writer generated for this channel (see _specialise).
@@ -267,16 +272,20 @@ class BoundChannel(Generic[V]):
         self._table_owner = owner
         valid = self._valid_type
         check_kind = "int" if valid is int else "none" if valid is None else "type"
-        make = _writer_factory(check_kind, self._on_change, self._members_of is not None, table)
+        quick = self._quick
+        if quick is not None and len(quick[1]) <= _QUICK_MEMBERS_MAX:
+            make = _snapshot_writer_factory(len(quick[1]), quick[2], self._on_change, table)
+        else:
+            make = _writer_factory(check_kind, self._on_change, self._members_of is not None, table)
         self.write = make(self, self._write_general, owner, self.id, self._serialize, self._check, valid,
                           self._min, self._max, self._members_of, self._tlm_calls, self._bound_call,
-                          self._time_calls, self._clock_now, self._clock)
+                          self._time_calls, self._clock_now, self._clock, quick)
 
 
 _WRITER_TEMPLATE = """
 def make(channel, general, owner, cid, pack, check, valid, lo, hi, members_of, tlm_calls, bound_call,
-         time_calls, clock_now, clock):
-    def write(value, time=None):
+         time_calls, clock_now, clock, quick=None):
+{unpack}    def write(value, time=None):
         if tlm_calls[0] is not bound_call:
             return general(value, time)
         if time is None:
@@ -288,6 +297,8 @@ def make(channel, general, owner, cid, pack, check, valid, lo, hi, members_of, t
         owner.{table}[cid] = (time, {stored}, pack)
     return write
 """
+
+_ON_CHANGE = "        if channel.written and value == channel.last:\n            return\n"
 
 _CHECKS = {
     "type": "        if type(value) is not valid:\n            value = check(value)\n",
@@ -304,12 +315,51 @@ def _writer_factory(check_kind: str, on_change: bool, snapshot: bool, table: str
     the type's range is) or ``"none"`` (the type's check always runs), as in
     :meth:`BoundChannel._write_general`; ``table`` is the store's ``deferred_tlm_table``."""
     source = _WRITER_TEMPLATE.format(
-        check=_CHECKS[check_kind],
-        on_change=("        if channel.written and value == channel.last:\n            return\n" if on_change else ""),
+        unpack="", check=_CHECKS[check_kind],
+        on_change=_ON_CHANGE if on_change else "",
         stored="members_of(value)" if snapshot else "value", table=table)
     namespace: dict[str, Any] = {}
     exec(compile(source, f"<channel writer {check_kind}{' on-change' if on_change else ''}"
                          f"{' snapshot' if snapshot else ''}>", "exec"), namespace)
+    return namespace["make"]
+
+
+#: A snapshot writer's check (:func:`_snapshot_writer_factory`): the members tested are those stored.
+_SNAPSHOT_CHECK = """        if type(value) is cls:
+            members = members_of(value)
+            if not ({members_ok}):
+                value = full_check(value)
+                members = members_of(value)
+        else:
+            value = full_check(value)
+            members = members_of(value)
+"""
+
+#: The most members a snapshot writer tests written out (one ``type(...) is`` test each).
+_QUICK_MEMBERS_MAX = 16
+
+
+@functools.lru_cache(maxsize=None)
+def _snapshot_writer_factory(size: int, times_at: tuple[int, ...], on_change: bool, table: str) -> Any:
+    """The factory of generated writers for a snapshot channel with a quick check (:func:`_quick_check`),
+    for ``size`` members with time members at ``times_at``: the ``none snapshot`` writer of
+    :func:`_writer_factory` with the check's tests written into it, so that the members taken for the
+    test are those stored (one Python call and one member snapshot less a write). The value stored,
+    the one kept as ``last`` and every error are those of the check: a ``cls`` whose members have
+    exactly the types ``exact`` and whose time members fit (:func:`_times_fit`) as it is, anything
+    else through ``full_check``."""
+    tests = [f"type(members[{i}]) is e{i}" for i in range(size)]
+    if times_at:
+        tests.append("_times_fit(members, times_at)")
+    source = _WRITER_TEMPLATE.format(
+        unpack=("    cls, exact, times_at, full_check = quick\n"
+                f"    {', '.join(f'e{i}' for i in range(size))}{',' if size == 1 else ''} = exact\n"),
+        check=_SNAPSHOT_CHECK.format(members_ok=" and ".join(tests)),
+        on_change=_ON_CHANGE if on_change else "",
+        stored="members", table=table)
+    namespace: dict[str, Any] = {"_times_fit": _times_fit}
+    exec(compile(source, f"<channel writer snapshot {size}{' on-change' if on_change else ''}>", "exec"),
+         namespace)
     return namespace["make"]
 
 
@@ -362,8 +412,9 @@ class BoundSnapshotChannel(BoundChannel[V]):
             self._check = t.check
         else:
             times_at = tuple(i for i, mt in enumerate(member_types) if isinstance(mt, TimeType))
-            self._check = _quick_check(t.cls, self._members_of, tuple(e for e in exact if e is not None),
-                                       times_at, t.check)
+            exact_types = tuple(e for e in exact if e is not None)
+            self._check = _quick_check(t.cls, self._members_of, exact_types, times_at, t.check)
+            self._quick = (t.cls, exact_types, times_at, t.check)
         fixed = t._fixed
         if fixed is not None:
             self._serialize = lambda members: fixed.pack(*members)
@@ -391,25 +442,11 @@ def _quick_check(cls: type, members_of: Any, exact: tuple[type, ...], times_at: 
     ``members_of`` gives them) have exactly the types ``exact``, position by position, and whose
     time members fit (:func:`_times_fit`); else what ``full_check(value)`` returns or raises.
 
-    Written out for three and four members (vectors, quaternions, a vector with its time), a loop
-    otherwise: ``tuple(map(type, members))`` alone costs as much as a write's bookkeeping. Kept
-    (issue 26): 0.8-2.0 µs less a check than the loop, 2.7 checks an adcs_ref tick (≈ 77 µs of
-    CPU) and 3.0 a coursework one (≈ 71 µs): 3-8 % of either; ``python benchmarks/bench_inlined.py
-    snapshot_check`` (3 sittings on the shared 2-core machine, 2026-12-03, each the best of 40).
+    The general path's (:meth:`BoundChannel._write_general`): a channel written into TlmChan's table
+    runs the same tests written into its generated writer (:func:`_snapshot_writer_factory`). The
+    three- and four-member copy kept here by issue 26 (2.7 checks an adcs_ref tick then) was folded
+    back when the tests moved into the writer (issue 32, branch fpart): no tick runs it any more.
     """
-    if len(exact) in (3, 4):
-        three = len(exact) == 3
-        e0, e1, e2, e3 = exact if not three else (*exact, None)
-
-        def check_short(value: Any) -> Any:
-            if type(value) is cls:
-                m = members_of(value)
-                if (type(m[0]) is e0 and type(m[1]) is e1 and type(m[2]) is e2 and (three or type(m[3]) is e3)
-                        and (not times_at or _times_fit(m, times_at))):
-                    return value
-            return full_check(value)
-        return check_short
-
     def check(value: Any) -> Any:
         if type(value) is not cls:
             return full_check(value)
