@@ -28,7 +28,13 @@ outputs' share by that measure, like for like. ``benchmarks/bench_vs_basilisk.py
 timed from before its imports, the second only around ``run_for`` (it times ``run`` as users run it,
 for the comparison with Basilisk), so their difference also holds the imports, the topology's load
 and the start (about 0.3 s of a one-orbit run: docs/performance.md, "Issue 32: … (outputs lane,
-2026-12-05)").
+2026-12-05)"). ``--vs-basilisk`` flies those two kinds too (the same child code, imported from
+``benchmarks/basilisk/bench.py``), so that both measures come from one sitting: ``outputs_share_vs_basilisk``
+is ``1 − deployment / run`` by their own timings.
+
+The children run with Python's bytecode cache on (``basilisk.bench``'s ``_child_env``, warmed before the
+first round), as ``bench_vs_basilisk.py``'s do: a user's install runs from compiled bytecode, and the
+whole-process timing would otherwise count the compilation of every module imported.
 """
 
 from __future__ import annotations
@@ -41,6 +47,8 @@ import sys
 import time
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO / "benchmarks"))
+from basilisk.bench import _DEPLOYMENT, _RUN, _child_env, _warm_bytecode  # noqa: E402  (benchmarks/ on the path)
 
 _CHILD = """
 import json, sys, tempfile, time
@@ -65,16 +73,22 @@ print(json.dumps({"wall_s": wall, "cpu_s": cpu}))
 """
 
 KINDS = ("deployment", "run")
+#: bench_vs_basilisk.py's two fprime-lite kinds of proves_ref (their own timing windows; ``--vs-basilisk``)
+VS_BASILISK = {"vs_basilisk_deployment": _DEPLOYMENT, "vs_basilisk_run": _RUN}
 
 
 def fly(kind: str, topology: str, duration_s: float) -> dict:
     """One child's ``{"wall_s", "cpu_s", "process_wall_s"}``: its own timing of the load, flight and
     outputs, and the whole process's wall time seen from here (start to exit)."""
+    if kind in VS_BASILISK:
+        argv = [sys.executable, "-c", VS_BASILISK[kind].format(topology=topology, duration=duration_s)]
+    else:
+        argv = [sys.executable, "-c", _CHILD, kind, topology, str(duration_s)]
     wall0 = time.perf_counter()
-    out = subprocess.run([sys.executable, "-c", _CHILD, kind, topology, str(duration_s)], capture_output=True,
-                         text=True, check=True, cwd=REPO)
+    out = subprocess.run(argv, capture_output=True, text=True, check=True, cwd=REPO, env=_child_env())
     process_wall = time.perf_counter() - wall0
-    return {**json.loads(out.stdout.strip().splitlines()[-1]), "process_wall_s": process_wall}
+    figures = json.loads(out.stdout.strip().splitlines()[-1])
+    return {"wall_s": figures["wall_s"], "cpu_s": figures.get("cpu_s"), "process_wall_s": process_wall}
 
 
 #: What each kind's best round keeps: the child's own timing and the whole process's wall time.
@@ -88,7 +102,8 @@ def measure(topology: str, duration_s: float, rounds: int, kinds=KINDS, fly=fly)
     for _ in range(rounds):
         for kind in kinds:
             runs[kind].append(fly(kind, topology, duration_s))
-    best = {k: {m: min(r[m] for r in runs[k]) for m in MEASURES} for k in kinds}
+    best = {k: {m: min((r[m] for r in runs[k] if r.get(m) is not None), default=None) for m in MEASURES}
+            for k in kinds}
 
     def share(kind: str, m: str) -> float:
         return 1.0 - best["deployment"][m] / best[kind][m]
@@ -99,6 +114,9 @@ def measure(topology: str, duration_s: float, rounds: int, kinds=KINDS, fly=fly)
     if "run_process" in kinds:
         result["outputs_share_wall_writer_process"] = share("run_process", "wall_s")
         result["outputs_share_process_wall_writer_process"] = share("run_process", "process_wall_s")
+    if "vs_basilisk_run" in kinds:
+        result["outputs_share_vs_basilisk"] = 1.0 - (best["vs_basilisk_deployment"]["wall_s"]
+                                                     / best["vs_basilisk_run"]["wall_s"])
     return result
 
 
@@ -110,18 +128,23 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--json", help="also write the figures to this file")
     parser.add_argument("--writer-process", action="store_true",
                         help="also fly the kind run_process (the outputs formatted by the writer process)")
+    parser.add_argument("--vs-basilisk", action="store_true",
+                        help="also fly bench_vs_basilisk.py's two fprime-lite kinds (its timing windows)")
     args = parser.parse_args(argv)
-    kinds = KINDS + ("run_process",) if args.writer_process else KINDS
+    kinds = KINDS + (("run_process",) if args.writer_process else ()) + (tuple(VS_BASILISK) if args.vs_basilisk else ())
+    _warm_bytecode()
     result = measure(args.topology, args.duration, args.rounds, kinds)
     for kind in kinds:
         b = result["best"][kind]
-        print(f"{kind:11s} wall {b['wall_s']:8.3f} s   cpu {b['cpu_s']:8.3f} s   "
-              f"whole process {b['process_wall_s']:8.3f} s")
+        cpu = f"{b['cpu_s']:8.3f} s" if b["cpu_s"] is not None else "       —  "
+        print(f"{kind:22s} wall {b['wall_s']:8.3f} s   cpu {cpu}   whole process {b['process_wall_s']:8.3f} s")
     print(f"outputs' share of a run: wall {result['outputs_share_wall']:.1%}, cpu {result['outputs_share_cpu']:.1%}, "
           f"whole process {result['outputs_share_process_wall']:.1%} (goal <= 10 %)")
     if "outputs_share_wall_writer_process" in result:
         print(f"with the writer process: wall {result['outputs_share_wall_writer_process']:.1%}, "
               f"whole process {result['outputs_share_process_wall_writer_process']:.1%}")
+    if "outputs_share_vs_basilisk" in result:
+        print(f"bench_vs_basilisk's kinds (their timing windows): {result['outputs_share_vs_basilisk']:.1%}")
     if args.json:
         pathlib.Path(args.json).write_text(json.dumps(result, indent=2) + "\n")
     return 0
