@@ -50,3 +50,26 @@ def test_each_kind_flies_and_is_timed_from_outside_too(kind):
     figures = bench_outputs.fly(kind, REFERENCE, 2.0)
     assert 0.0 < figures["wall_s"] < figures["process_wall_s"]
     assert (figures["cpu_s"] is None) == kind.startswith("vs_basilisk")
+
+
+def test_a_base_revision_is_flown_in_the_same_rounds_first():
+    """BENCH-022: with ``base_src`` each round flies every kind with the base's sources, then with this
+    checkout's ``src``; each side's figures are formed from its own rounds only."""
+    flown: list[tuple[str, str | None]] = []
+
+    def fly(kind, topology, duration_s, src=None):
+        flown.append((kind, src))
+        wall = {"deployment": 6.0, "run": 7.0}[kind] + (0.5 if src == "/base/src" else 0.0) + 0.1 * len(flown)
+        return {"wall_s": wall, "cpu_s": wall, "process_wall_s": wall + 0.2}
+
+    result = bench_outputs.measure("t.yaml", 10.0, 2, ("deployment", "run"), fly=fly, base_src="/base/src")
+    here = str(bench_outputs.REPO / "src")
+    one_round = [("deployment", "/base/src"), ("run", "/base/src"), ("deployment", here), ("run", here)]
+    assert flown == one_round * 2
+    assert result["base"]["src"] == "/base/src" and result["src"] == here
+    assert result["base"]["best"]["deployment"]["wall_s"] == pytest.approx(6.6)
+    assert result["best"]["deployment"]["wall_s"] == pytest.approx(6.3)
+    assert result["best"]["run"]["wall_s"] == pytest.approx(7.4)
+    assert result["median"]["run"]["wall_s"] == pytest.approx((7.4 + 7.8) / 2)
+    assert result["outputs_share_wall"] == pytest.approx(1 - 6.3 / 7.4)
+    assert result["base"]["outputs_share_wall"] == pytest.approx(1 - 6.6 / 7.7)
