@@ -47,18 +47,34 @@ class FormattedCsvWriter(FastCsvWriter):
     """:class:`FastCsvWriter` that formats column ``i`` with ``formats[i]`` (a format spec such as ``".4f"``;
     None or past the end: written as is). A field that is a ``str`` is written as is in every column (the
     header, an empty cell, ``"nan"``), so ``writerow([x])`` with ``formats=(".4f",)`` writes ``f"{x:.4f}"``
-    and ``writerow([""])`` an empty cell."""
+    and ``writerow([""])`` an empty cell.
 
-    __slots__ = ("_formats",)
+    A row of as many fields as formats is first formatted by one ``str.format`` of a template
+    (``"{:.6f},{!s},…"``); a text in a formatted column (which ``format`` refuses) or a line the csv module
+    would write otherwise (the checks of :class:`FastCsvWriter`) takes the field-by-field path."""
+
+    __slots__ = ("_formats", "_template")
 
     def __init__(self, file: TextIO, formats: tuple) -> None:
         super().__init__(file)
         self._formats = tuple(formats)
+        self._template = ",".join("{!s}" if spec is None else "{:" + spec + "}" for spec in self._formats)
 
     def writerow(self, row: list | tuple) -> None:
         """Format the numbers of the formatted columns, then write ``row`` as :class:`FastCsvWriter` does."""
-        if len(row) > len(self._formats):
-            specs = self._formats + (None,) * (len(row) - len(self._formats))
+        n = len(row)
+        if n == len(self._formats) and n > 1:
+            try:
+                line = self._template.format(*row)
+            except (ValueError, TypeError):  # a text (or None) in a formatted column
+                pass
+            else:
+                if (line.count(",") == n - 1 and '"' not in line and "\n" not in line and "\r" not in line
+                        and "None" not in line):
+                    self._write(line + "\n")
+                    return
+        if n > len(self._formats):
+            specs = self._formats + (None,) * (n - len(self._formats))
         else:
             specs = self._formats
         super().writerow([v if s is None or type(v) is str else format(v, s) for v, s in zip(row, specs, strict=False)])
