@@ -11,6 +11,11 @@ so that ``run`` - ``deploy`` is what the outputs, the reports and the dictionary
 ``run`` with ``writer="process"`` (the default of ``fprime-lite run`` on two cores): the telemetry files
 and the truth rows are formatted by a forked writer process, which callgrind counts in a file of its own
 (``callgrind.out.PID`` of the child); the flight's process's count is what stays on the flight's core.
+MODE ``runproc-without-row``, ``runproc-without-report-clock``, ``runproc-without-packets``: ``runproc``
+with one piece of what stays in the flight's process left out, so that its difference from ``runproc`` is
+that piece's count: the truth rows (the trace sampled once, at its start), the detumble report's time
+listener (called at every tick to credit the manager's states), the hand-over of the telemetry packets
+to the writer process (``OutputWriter.packet`` does nothing: the child records no telemetry).
 MODE ``row``:
 the flight runs uncounted except ``SimulatedSpacecraft.truth`` and the truth-trace callbacks (the
 run reports' sampled rows). MODE ``recorder``: uncounted except the ground recorder's handling of
@@ -57,11 +62,45 @@ def _count_recorder_only() -> None:
     GroundRecorder.receive = counted_receive  # type: ignore[method-assign]
 
 
+def _leave_out(piece: str) -> None:
+    """``runproc`` without ``piece`` (see the MODEs ``runproc-without-…``)."""
+    if piece == "row":
+        from detumble.drivers.spacecraft import SimulatedSpacecraft
+
+        set_trace = SimulatedSpacecraft.set_trace
+
+        def once(self, callback, interval_us=1_000_000):
+            return set_trace(self, callback, 10**15 if callback is not None else interval_us)
+
+        SimulatedSpacecraft.set_trace = once  # type: ignore[method-assign]
+    elif piece == "report-clock":
+        from detumble.reports.detumble_report import DetumbleRunReport
+        from fprime_lite.deploy.scheduler import Scheduler
+
+        add = Scheduler.add_time_listener
+
+        def add_but_the_report(self, listener):
+            if getattr(listener, "__func__", None) is not DetumbleRunReport._on_time:
+                add(self, listener)
+
+        Scheduler.add_time_listener = add_but_the_report  # type: ignore[method-assign]
+    elif piece == "packets":
+        from fprime_lite.ground.writer_process import OutputWriter
+
+        OutputWriter.packet = lambda self, data, reception_us: None  # type: ignore[method-assign]
+
+
+_WITHOUT = ("runproc-without-row", "runproc-without-report-clock", "runproc-without-packets")
+
+
 def main(argv: list[str]) -> int:
-    if len(argv) != 4 or argv[2] not in ("run", "runproc", "row", "deploy", "recorder"):
+    if len(argv) != 4 or argv[2] not in ("run", "runproc", "row", "deploy", "recorder", *_WITHOUT):
         print(__doc__)
         return 2
     topology, duration_s, mode, out = argv[0], float(argv[1]), argv[2], argv[3]
+    if mode in _WITHOUT:
+        _leave_out(mode.removeprefix("runproc-without-"))
+        mode = "runproc"
     if mode == "row":
         _count_row_only()
     elif mode == "recorder":

@@ -20,8 +20,8 @@ from fprime_lite.osal.atomic import clean_temporary_files
 
 from detumble.control.coil_layout import COIL_FACES
 from detumble.sim.truth import adcs_header, adcs_row
-from detumble.reports.csv_rows import FastCsvWriter
-from detumble.reports.power_budget import POWER_COLUMNS as _POWER_COLUMNS, PowerBudget, plot_power
+from detumble.reports.csv_rows import formatted_csv_writer
+from detumble.reports.power_budget import POWER_COLUMNS as _POWER_COLUMNS, POWER_FORMATS, PowerBudget, plot_power
 from detumble.drivers.spacecraft import SimulatedSpacecraft, TruthSample
 from detumble.components.types import DetumbleState
 
@@ -74,14 +74,18 @@ class DetumbleRunReport:
         self.start_us = deployment.scheduler.now_us
         self._path = pathlib.Path(out_dir) / "truth.csv"
         clean_temporary_files(self._path.parent)  # what a killed run left (a live run's are kept)
+        adcs = adcs_header(self.spacecraft.plant, with_field=False)
+        # the numbers written with a fixed number of decimals go over as numbers: the row's writer (the
+        # run's writer process when it has one) formats them
+        formats = (".6f", *(None,) * 7, *(".3f",) * len(COIL_FACES), *(".4f",) * len(COIL_FACES),
+                   *(".4f",) * len(states), *([None] if states else []), *(None,) * (len(adcs) + 3), *POWER_FORMATS)
         # streamed under a temporary name, by the run's writer process when it has one
-        self._writer = open_row_stream(deployment, self._path, FastCsvWriter)
+        self._writer = open_row_stream(deployment, self._path, formatted_csv_writer(formats))
         self._writer.writerow(["t_s", "wx_deg_s", "wy_deg_s", "wz_deg_s", "rate_deg_s", "bx_uT", "by_uT",
                                "bz_uT", *(f"level_mean_{_FACE_SUFFIX[f]}" for f in COIL_FACES),
                                *(f"on_{_FACE_SUFFIX[f]}" for f in COIL_FACES),
                                *(f"frac_{st.name.lower()}" for st in states), *(["strategy"] if states else []),
-                               *adcs_header(self.spacecraft.plant, with_field=False), *_MEAN_DIPOLE_COLUMNS,
-                               *_POWER_COLUMNS])
+                               *adcs, *_MEAN_DIPOLE_COLUMNS, *_POWER_COLUMNS])
         plant = self.spacecraft.plant
         self._drive_before = plant.drive_integrals.totals(plant.t_ns)
         self._state_us = {s: 0 for s in DetumbleState}
@@ -132,7 +136,7 @@ class DetumbleRunReport:
         if now.t_ns > self._drive_before.t_ns:  # the means over the interval since the previous sample
             means = drive.interval_means(self._drive_before, now)
             level, on = means.level, means.on
-            switched = [f"{level.get(f, 0.0):.3f}" for f in COIL_FACES] + [f"{on.get(f, 0.0):.4f}" for f in COIL_FACES]
+            switched: list = [level.get(f, 0.0) for f in COIL_FACES] + [on.get(f, 0.0) for f in COIL_FACES]
             dipole: list = list(means.m_B)
         else:  # the first sample closes no interval
             switched, dipole = [""] * (2 * len(COIL_FACES)), [""] * 3
@@ -142,9 +146,9 @@ class DetumbleRunReport:
             strategy = getattr(self.manager, "strategy", None)
             state_us = self.take_state_us()
             total = sum(state_us.values())
-            manager_columns = [f"{state_us[st] / total if total else 0.0:.4f}" for st in _STATES]
+            manager_columns = [state_us[st] / total if total else 0.0 for st in _STATES]
             manager_columns.append(strategy.name if strategy is not None else "")
-        writer.writerow([f"{t:.6f}", math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
+        writer.writerow([t, math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2]),
                                s.rate_deg_s, s.b_B[0] * 1e6, s.b_B[1] * 1e6, s.b_B[2] * 1e6, *switched,
                                *manager_columns,
                                *adcs_row(plant, with_field=False, sample=s), *dipole, *self.power.sample(t)])

@@ -14,12 +14,14 @@ import pathlib
 
 from detumble.reports.figures import read_truth, save_figure
 
-__all__ = ["PowerBudget", "plot_power", "POWER_COLUMNS"]
+__all__ = ["PowerBudget", "plot_power", "POWER_COLUMNS", "POWER_FORMATS"]
 
 #: Columns the run report appends to ``truth.csv`` (``nan`` without an electrical system): the state at
 #: the sample (``load_w``/``coil_w``: the electrical system's last 100 ms step), then the exact mean
 #: load and coil power over the interval since the previous sample (the coils switch within it).
 POWER_COLUMNS = ("soc", "bus_v", "solar_w", "load_w", "coil_w", "coil_j", "eclipse", "load_w_mean", "coil_w_mean")
+#: How ``truth.csv`` writes each of :data:`POWER_COLUMNS` (format specs: :meth:`PowerBudget.sample` gives numbers)
+POWER_FORMATS = (".6f", ".4f", ".4f", ".4f", ".4f", ".3f", None, ".4f", ".4f")
 
 
 class PowerBudget:
@@ -37,7 +39,8 @@ class PowerBudget:
         self._energy_t_s = 0.0
 
     def sample(self, t_s: float) -> tuple:
-        """One row of the power columns at run time ``t_s``."""
+        """One row of the power columns at run time ``t_s``: numbers, written with :data:`POWER_FORMATS`
+        (the texts ``"nan"`` without an electrical system; the means ``""`` at the first sample)."""
         eps = self.spacecraft.power
         if eps is None:
             return ("nan",) * len(POWER_COLUMNS)
@@ -48,10 +51,9 @@ class PowerBudget:
         coil_j, load_j = energy = self.spacecraft.energy_j()
         before, dt = self._energy, t_s - self._energy_t_s
         means = ("", "") if before is None or dt <= 0.0 else \
-            (f"{(load_j - before[1]) / dt:.4f}", f"{(coil_j - before[0]) / dt:.4f}")  # none at the first sample
+            ((load_j - before[1]) / dt, (coil_j - before[0]) / dt)  # none at the first sample
         self._energy, self._energy_t_s = energy, t_s
-        return (f"{eps.battery.soc:.6f}", f"{eps.bus_v:.4f}", f"{eps.solar_w:.4f}", f"{eps.load_w:.4f}",
-                f"{eps.coil_w:.4f}", f"{eps.coil_j:.3f}", int(eps.eclipse), *means)
+        return (eps.battery.soc, eps.bus_v, eps.solar_w, eps.load_w, eps.coil_w, eps.coil_j, int(eps.eclipse), *means)
 
     def coil_energy_at(self, t_s: float) -> float:
         """Cumulative coil energy (J) at run time ``t_s`` (interpolated between samples)."""

@@ -8,7 +8,9 @@ the formatting of its largest outputs moves to a **writer process** forked when 
   ``channels.csv`` and ``channels_wide.csv`` (:class:`~fprime_lite.ground.downlink.GroundRecorder`,
   the same code in the child, so the same bytes);
 - row streams a run report opens with :func:`open_row_stream` (the detumble report's ``truth.csv``):
-  the row's values (floats and texts, pickled exactly) go over, the child writes the line.
+  the row's values (floats and texts, pickled exactly) go over, the child writes the line;
+- ``dictionary.json`` (:meth:`OutputWriter.write_dictionary`): the child builds and writes it from its
+  copy of the topology while the flight starts (the topology's dictionary does not change after the fork).
 
 The flight's side appends each packet (its bytes and reception time in µs) or row to a list and,
 every :data:`BATCH_ITEMS` items, sends the list through a pipe in one ``send``; a full pipe makes the
@@ -39,6 +41,7 @@ import threading
 import traceback
 from typing import Any, Callable
 
+from fprime_lite.deploy.dictionary import write_dictionary
 from fprime_lite.ground.downlink import GroundRecorder, StreamedFile
 
 __all__ = ["OutputWriter", "OutputWriterError", "open_row_stream", "choose_writer", "WRITER_MODES",
@@ -152,6 +155,12 @@ class OutputWriter:
         self._send(("open", self._streams, path, factory))
         return _RemoteRows(self, self._streams)
 
+    def write_dictionary(self, path: pathlib.Path) -> None:
+        """Have the child write the topology's dictionary to ``path`` (atomically, as
+        :func:`~fprime_lite.deploy.dictionary.write_dictionary` does): done before the items that follow."""
+        self._send_items()
+        self._send(("dictionary", pathlib.Path(path)))
+
     def _send_items(self) -> None:
         if not self._items:
             return
@@ -197,7 +206,7 @@ class OutputWriter:
             code = self._process.exitcode
             self._failure = OutputWriterError(
                 f"the output writer process (pid {self.pid}) ended unexpectedly (exit code {code}); the outputs "
-                "it was writing (channels.csv, channels_wide.csv, truth.csv) were not finished")
+                "it was writing (channels.csv, channels_wide.csv, truth.csv, dictionary.json) were not finished")
         if self._on_failure is not None:
             self._on_failure()
 
@@ -282,6 +291,8 @@ def _child_main(conn, topology, out_dir: pathlib.Path, start_us: int) -> None:
                         receive(payload[0])
                     else:
                         streams[stream].writerow(payload)
+            elif kind == "dictionary":
+                write_dictionary(topology, message[1])
             elif kind == "open":
                 _, stream, path, factory = message
                 streams[stream] = _InlineRows(path, factory)

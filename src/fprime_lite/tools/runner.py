@@ -186,7 +186,10 @@ def _fly_and_write(deployment: Deployment, loaded: LoadedDeployment, out: pathli
     for instance in topo.instances.values():
         if isinstance(instance.component, FileDownlink):
             recorder.attach_file_downlink(topo, instance.qualified_name)
-    write_dictionary(topo, out / "dictionary.json")
+    if output_writer is not None:  # the child builds and writes it while the flight starts
+        output_writer.write_dictionary(out / "dictionary.json")
+    else:
+        write_dictionary(topo, out / "dictionary.json")
     for r in reports:
         if hasattr(r, "begin"):
             r.begin(deployment, out)

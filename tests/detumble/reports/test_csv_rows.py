@@ -7,7 +7,7 @@ import io
 import math
 import random
 
-from detumble.reports.csv_rows import FastCsvWriter
+from detumble.reports.csv_rows import FastCsvWriter, FormattedCsvWriter
 
 _WORDS = ["", "BDOT", "IDLE", "a,b", 'say "hi"', "two\nlines", "cr\rhere", "None", "x None y", " spaced ",
           "nan", "0.5000", "é", "tab\there"]
@@ -66,3 +66,28 @@ def test_csvrow_003_a_report_row_takes_the_fast_path():
     row = ["1.000000", 11.083847526465805, -3.0796131486843206, "80.000", "", "BDOT", 0.0, -0.0, 5.7e-11, 0]
     writer.writerow(row)
     assert out.getvalue() == "1.000000,11.083847526465805,-3.0796131486843206,80.000,,BDOT,0.0,-0.0,5.7e-11,0\n"
+
+
+def test_formatted_rows_are_the_f_strings_bytes():
+    """OUT-010: :class:`FormattedCsvWriter` given raw numbers writes what ``csv.writer`` writes of the row
+    formatted with f-strings (floats, ints, bools, nan/inf, -0.0 in formatted columns; texts — the header,
+    empty cells, ``"nan"`` — and unformatted columns as they are; a row longer than the formats)."""
+    rng = random.Random(20261205)
+    specs = (".6f", None, ".3f", ".4f", None, ".4f")
+    numbers = [0.0, -0.0, math.nan, math.inf, -math.inf, 1e-300, 5e-324, 1e22, 0.00005, -0.00005, 2.5, 7, -3,
+               True, False]
+    rows = [["t_s", "a", "b", "c", "d", "e"], ["", "", "", "", "", ""], ["nan"] * 6]
+    for _ in range(2000):
+        rows.append([rng.choice(numbers) if rng.random() < 0.3 else rng.uniform(-1e3, 1e3)
+                     for _ in range(rng.randrange(1, 9))])
+    out, ref = io.StringIO(), io.StringIO()
+    writer, reference = FormattedCsvWriter(out, specs), csv.writer(ref, lineterminator="\n")
+    for row in rows:
+        writer.writerow(row)
+        padded = specs + (None,) * max(0, len(row) - len(specs))
+        reference.writerow([v if s is None or isinstance(v, str) else f"{v:{s}}"
+                            for v, s in zip(row, padded, strict=False)])
+    assert out.getvalue() == ref.getvalue()
+    one = io.StringIO()
+    FormattedCsvWriter(one, specs).writerow([1.5, 0.1, 2, "", "IDLE", 1 / 3, 0.25])
+    assert one.getvalue() == "1.500000,0.1,2.000,,IDLE,0.3333,0.25\n"

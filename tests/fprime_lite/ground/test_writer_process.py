@@ -203,3 +203,64 @@ def test_auto_picks_the_process_only_where_it_helps(monkeypatch):
     assert choose_writer("auto") == "inline"
     with pytest.raises(ValueError, match="writer must be one of"):
         choose_writer("thread")
+
+
+def test_the_writer_process_writes_the_dictionary(tmp_path, monkeypatch):
+    """WRITER-010: with a writer process the flight's process does not build ``dictionary.json`` (the child
+    does, from its copy of the topology, as the flight starts); the file is the inline run's, byte for byte."""
+    built_here: list[str] = []
+    write = runner.write_dictionary
+
+    def spy(topology, path, **kwargs):
+        built_here.append(str(path))
+        return write(topology, path, **kwargs)
+
+    monkeypatch.setattr(runner, "write_dictionary", spy)  # the runner's name: the child does not use it
+    outs = {}
+    for writer in ("inline", "process"):
+        outs[writer] = tmp_path / writer
+        run_deployment(load_topology(PROVES), outs[writer], duration_s=2.0, plots=False, quiet=True,
+                       allow_warnings=True, writer=writer)
+    assert built_here == [str(outs["inline"] / "dictionary.json")]
+    assert (outs["process"] / "dictionary.json").read_bytes() == (outs["inline"] / "dictionary.json").read_bytes()
+
+
+def test_a_dictionary_error_in_the_writer_process_is_reported(tmp_path, monkeypatch):
+    """WRITER-011: the child failing to write ``dictionary.json`` (a full disk) fails the run with the errno,
+    the file's name and the child's text, as an inline write error would; no dictionary is left in place."""
+    def full(topology, path, **kwargs):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
+
+    monkeypatch.setattr(writer_process, "write_dictionary", full)  # the forked child inherits it
+    with pytest.raises(OutputWriterError) as caught:
+        run_deployment(load_topology(PROVES), tmp_path / "run", duration_s=5.0, plots=False, quiet=True,
+                       allow_warnings=True, writer="process")
+    assert caught.value.errno == errno.ENOSPC and caught.value.filename.endswith("dictionary.json")
+    assert "in the output writer process: No space left on device" in str(caught.value)
+    assert not (tmp_path / "run" / "dictionary.json").exists()
+
+
+def test_the_flight_hands_the_truth_rows_over_unformatted(tmp_path, monkeypatch):
+    """WRITER-012: with a writer process the flight's process hands each truth row's numbers over as numbers
+    (the time, the coil means, the state shares and the power columns, which ``truth.csv`` writes with a
+    fixed number of decimals): the writer process formats them; the file is the inline run's."""
+    handed: list = []
+    writerow = writer_process._RemoteRows.writerow
+
+    def spy(self, row):
+        handed.append(row)
+        return writerow(self, row)
+
+    monkeypatch.setattr(writer_process._RemoteRows, "writerow", spy)
+    outs = {}
+    for writer in ("inline", "process"):
+        outs[writer] = tmp_path / writer
+        run_deployment(load_topology(PROVES), outs[writer], duration_s=5.0, plots=False, quiet=True,
+                       allow_warnings=True, writer=writer)
+    header, rows = handed[0], handed[2:]  # the first sample closes no interval (empty means)
+    assert len(rows) == 5 and all(isinstance(name, str) for name in header)  # t = 1 … 5 s
+    formatted = [i for i, name in enumerate(header) if name == "t_s" or name.startswith(("level_mean_", "frac_"))
+                 or name in ("soc", "bus_v", "coil_w_mean")]
+    assert len(formatted) > 10
+    assert all(type(row[i]) is float for row in rows for i in formatted), [row[i] for row in rows for i in formatted]
+    assert (outs["process"] / "truth.csv").read_bytes() == (outs["inline"] / "truth.csv").read_bytes()
