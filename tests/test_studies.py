@@ -36,7 +36,8 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "attitude_knowledge_single_runs", "magnetic_pointing_hold_campaign", "magnetic_pointing_floquet_figure",
              "attitude_knowledge_orbit_runs", "attitude_modes_pointing", "attitude_modes_orbit",
              "magnetic_pointing_residual_ab", "flight_detumble_campaign",
-             "magnetorquer_hold_candidates", "magnetorquer_hold_candidate_campaigns")
+             "magnetorquer_hold_candidates", "magnetorquer_hold_candidate_campaigns", "coursework_replica",
+             "coursework_summary")
 
 
 @pytest.mark.parametrize("name", COMMITTED)
@@ -1122,3 +1123,33 @@ def test_the_tumble_campaigns_misses_by_initial_rate_are_generated(tmp_path, mon
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "magnetic_pointing_tumble", "magnetic_pointing_tumble",
                                        "23/23 at", "22/23 at")
     assert len(problems) == 1 and "block 'magnetic_pointing_tumble'" in problems[0]
+
+
+@pytest.mark.parametrize(("block", "old", "new"), (
+    ("coursework_summary", "6,285 s", "6,284 s"),
+    ("coursework_summary", "**6,962 s**", "**6,961 s**"),
+    ("coursework_beta_pattern", "| 73.7 |", "| 73.8 |"),
+    ("coursework_beta_pattern", "z before x, y ≈ 60 s", "x before z, y ≈ 60 s"),
+))
+def test_the_coursework_summary_tables_are_generated(tmp_path, monkeypatch, block, old, new):
+    """STUDY-190: coursework_reproduction.md's side-by-side table and the β-PD's per-axis pattern (typed by hand until
+    2026-12-05) are rendered from the committed replica runs and the convergence campaigns: a figure or a pattern
+    changed by hand in either is reported by --check, naming the block."""
+    pytest.importorskip("pandas")
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_summary", block, old, new)
+    assert len(problems) == 1 and f"block '{block}'" in problems[0]
+
+
+def test_the_replica_table_is_rendered_from_committed_runs(tmp_path, monkeypatch):
+    """STUDY-191: the report's-model table (β-PD and wheels under RK45) is rendered from the committed JSON lines of
+    report_replica.py, no longer by running SciPy: --check reports a hand edit; a missing file is refused with the
+    command that makes it."""
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_replica", "coursework_replica",
+                                       "**6,099**", "**6,094**")
+    assert len(problems) == 1 and "block 'coursework_replica'" in problems[0]
+    folder = tmp_path / "coursework_replica"
+    shutil.copytree(studies._MT1_DIR, folder)
+    (folder / "wheels_tight.json").unlink()
+    monkeypatch.setattr(studies, "_MT1_DIR", folder)
+    with pytest.raises(studies.StudyError, match="wheels_pd --t-max 30 --rtol 1e-8 --atol 1e-10 > "):
+        studies.replica_blocks()
