@@ -37,7 +37,7 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "attitude_knowledge_orbit_runs", "attitude_modes_pointing", "attitude_modes_orbit",
              "magnetic_pointing_residual_ab", "flight_detumble_campaign",
              "magnetorquer_hold_candidates", "magnetorquer_hold_candidate_campaigns", "coursework_replica",
-             "coursework_summary")
+             "coursework_summary", "coursework_real_wheel")
 
 
 @pytest.mark.parametrize("name", COMMITTED)
@@ -1153,3 +1153,16 @@ def test_the_replica_table_is_rendered_from_committed_runs(tmp_path, monkeypatch
     monkeypatch.setattr(studies, "_MT1_DIR", folder)
     with pytest.raises(studies.StudyError, match="wheels_pd --t-max 30 --rtol 1e-8 --atol 1e-10 > "):
         studies.replica_blocks()
+
+
+def test_the_real_wheel_table_is_generated_and_flies_again(tmp_path, monkeypatch):
+    """STUDY-192: coursework_reproduction.md's real-1U-wheel table (typed by hand until 2026-12-05) is rendered from
+    the committed JSON of campaigns/coursework/real_wheel.py and the convergence campaigns: a hand edit is reported by
+    --check; the orbit flown again (~15 CPU-s) gives the committed file's figures to the float."""
+    pytest.importorskip("pandas")
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_real_wheel", "coursework_real_wheel",
+                                       "| 9.93 s |", "| 9.94 s |")
+    assert len(problems) == 1 and "block 'coursework_real_wheel'" in problems[0]
+    committed = json.loads((studies.STUDIES_DIR / studies.REAL_WHEEL).read_text(encoding="utf-8"))
+    again = json.loads(json.dumps(studies._load_script(studies._REAL_WHEEL_SCRIPT).fly()))
+    assert again == committed
