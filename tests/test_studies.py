@@ -1166,3 +1166,15 @@ def test_the_real_wheel_table_is_generated_and_flies_again(tmp_path, monkeypatch
     committed = json.loads((studies.STUDIES_DIR / studies.REAL_WHEEL).read_text(encoding="utf-8"))
     again = json.loads(json.dumps(studies._load_script(studies._REAL_WHEEL_SCRIPT).fly()))
     assert again == committed
+
+
+def test_the_listing_beta_pd_grid_is_generated(tmp_path, monkeypatch):
+    """STUDY-193: the β-PD grid in the listing's form (typed by hand from uncommitted runs of 2026-12-02 until
+    2026-12-05) is rendered from its committed campaign (campaigns/coursework/beta_pd_grid_listing.yaml): a settling
+    time changed by hand is reported by --check, naming its block, and the block says which form it is."""
+    pytest.importorskip("pandas")
+    body = studies.grid_blocks()["coursework_beta_pd_listing"]
+    assert "`switched: false`" in body and "coursework_beta_pd_grid_listing/" in body
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_grids", "coursework_beta_pd_listing",
+                                       "8,943", "8,944")
+    assert len(problems) == 1 and "block 'coursework_beta_pd_listing'" in problems[0]

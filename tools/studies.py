@@ -439,6 +439,8 @@ CAMPAIGNS = {
     "coursework_cross_product_sweep": CommittedCampaign("coursework_cross_product_sweep",
                                                         "campaigns/coursework/cross_product_sweep.yaml"),
     "coursework_beta_pd_grid": CommittedCampaign("coursework_beta_pd_grid", "campaigns/coursework/beta_pd_grid.yaml"),
+    "coursework_beta_pd_grid_listing": CommittedCampaign("coursework_beta_pd_grid_listing",
+                                                         "campaigns/coursework/beta_pd_grid_listing.yaml"),
     "coursework_wheels_pd_grid": CommittedCampaign("coursework_wheels_pd_grid",
                                                    "campaigns/coursework/wheels_pd_grid.yaml",
                                                    probe=lambda t: t["values"].get("scenario.control.wheels_pd.k_d")
@@ -752,8 +754,10 @@ def cross_product_block() -> str:
     return "\n".join(lines + notes) + "\n\n" + _source("coursework_grids", campaign) + "\n"
 
 
-def beta_pd_block() -> str:
-    campaign, df = _committed("coursework_beta_pd_grid")
+def beta_pd_block(key: str = "coursework_beta_pd_grid",
+                  form: str = "Equations' form (`switched: true`, the default), 0.01 s.") -> str:
+    """The β-PD's (K_s, K_d) grid of the committed campaign ``key`` (settling time, s), ``form`` its closing line."""
+    campaign, df = _committed(key)
     if df is None:
         return _not_committed(campaign)
     ks_key, kd_key = "scenario.control.beta_pd.k_s", "scenario.control.beta_pd.k_d"
@@ -771,8 +775,7 @@ def beta_pd_block() -> str:
     at = [(ks, _cell(f, 0, **{ks_key: ks, kd_key: 0.06})) for ks in others]
     lines += ["", "At K_d = 0.06: " + ", ".join(f"K_s = {ks:g} → {c}" + ("" if c == "not flown" else " s")
                                                  for ks, c in at) + ".",
-              "(— : not within the run; `not flown`: the campaign was stopped before this point.) "
-              "Equations' form (`switched: true`, the default), 0.01 s."]
+              "(— : not within the run; `not flown`: the campaign was stopped before this point.) " + form]
     return "\n".join(lines) + "\n\n" + _source("coursework_grids", campaign) + "\n"
 
 
@@ -834,7 +837,13 @@ def noise_block() -> str:
     return "\n".join(lines) + "\n\n" + _source("coursework_grids", campaign) + "\n"
 
 
+def beta_pd_listing_block() -> str:
+    return beta_pd_block("coursework_beta_pd_grid_listing",
+                         "The listing's form (`switched: false`, both spin terms), 0.01 s.")
+
+
 _GRID_BLOCKS = {"coursework_cross_product": cross_product_block, "coursework_beta_pd": beta_pd_block,
+                "coursework_beta_pd_listing": beta_pd_listing_block,
                 "coursework_wheels_pd": wheels_pd_block, "coursework_noise": noise_block}
 _GRID_FIGURES = {"coursework_cross_product_sweep": "cross_product_settling.png",
                  "coursework_beta_pd_grid": "beta_pd_heatmap_settling.png",
@@ -2403,7 +2412,7 @@ STUDIES = {s.name: s for s in (
     Study("coursework_grids", "seed 004: the gain sweeps and the noise study (committed campaigns)",
           regenerate_grids, grid_blocks, _CONVERGENCE_DOC,
           ("coursework_cross_product_sweep", "coursework_beta_pd_grid", "coursework_wheels_pd_grid",
-           "coursework_noise")),
+           "coursework_noise", "coursework_beta_pd_grid_listing")),
     Study("coursework_replica_magnetorquer1", "seed 004: magnetorquer1 in the report's own model (committed RK45 runs)",
           regenerate_magnetorquer1, magnetorquer1_blocks, _CONVERGENCE_DOC),
     Study("coursework_replica", "seed 004: the report's own model under SciPy's RK45 (committed RK45 runs)",
