@@ -37,7 +37,7 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "attitude_knowledge_orbit_runs", "attitude_modes_pointing", "attitude_modes_orbit",
              "magnetic_pointing_residual_ab", "flight_detumble_campaign",
              "magnetorquer_hold_candidates", "magnetorquer_hold_candidate_campaigns", "coursework_replica",
-             "coursework_summary", "coursework_real_wheel")
+             "coursework_summary", "coursework_real_wheel", "attitude_knowledge_mekf")
 
 
 @pytest.mark.parametrize("name", COMMITTED)
@@ -1178,3 +1178,22 @@ def test_the_listing_beta_pd_grid_is_generated(tmp_path, monkeypatch):
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_grids", "coursework_beta_pd_listing",
                                        "8,943", "8,944")
     assert len(problems) == 1 and "block 'coursework_beta_pd_listing'" in problems[0]
+
+
+def test_the_mekf_evidence_table_is_generated_and_flies_again(tmp_path, monkeypatch):
+    """STUDY-194: attitude_knowledge.md's MEKF evidence table (typed by hand from the unit tests' flights until
+    2026-12-05) is rendered from the committed JSON of campaigns/adcs/mekf_evidence.py, which flies
+    tests/detumble/control/test_mekf.py's own harness: a hand edit is reported by --check; its probe flies everything
+    again (a few CPU-s) and passes on the committed file, and reports a copy with one NEES nudged, by name."""
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "attitude_knowledge_mekf", "attitude_knowledge_mekf",
+                                       "**MEKF 8.0 /", "**MEKF 7.9 /")
+    assert len(problems) == 1 and "block 'attitude_knowledge_mekf'" in problems[0]
+    table = studies.SCRIPT_TABLES["attitude_knowledge_mekf"]
+    assert table.run_probe() == []
+
+    def nudge(data):
+        data["nees"][1]["nees_attitude"] += 1e-9
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 1 and "nees[1].nees_attitude" in problems[0] and "no longer computes" in problems[0]

@@ -1640,6 +1640,10 @@ SCRIPT_TABLES = {t.name: t for t in (
                 STUDIES_DIR / "magnetic_pointing.md",
                 ("--only", "ab_present_on", "ab_present_off", "ab_previous_on", "ab_previous_off"),
                 render="residual_ab_markdown", probe="ab_probe"),
+    ScriptTable("attitude_knowledge_mekf", "issue 13's MEKF: the figures of the flights its unit tests assert on "
+                "(tests/detumble/control/test_mekf.py's harness; committed JSON, a few CPU-s, re-flown by the probe)",
+                "attitude_knowledge_mekf", "campaigns/adcs/mekf_evidence.py", "attitude_knowledge/mekf_evidence.json",
+                STUDIES_DIR / "attitude_knowledge.md", probe="probe"),
 )}
 
 

@@ -16,7 +16,6 @@ About 15 CPU-s.
 
 from __future__ import annotations
 
-import argparse
 import csv
 import json
 import math
@@ -82,15 +81,9 @@ def markdown(table: dict) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--json", type=pathlib.Path, help="write the figures to this file")
-    args = ap.parse_args(argv)
-    table = fly()
-    if args.json:
-        args.json.parent.mkdir(parents=True, exist_ok=True)
-        args.json.write_text(json.dumps(table, indent=1) + "\n", encoding="utf-8")
-    print(markdown(table))
-    return 0
+    from detumble.reports.study_table import table_script_main
+
+    return table_script_main(argv, __doc__.split("\n\n")[0], lambda args: fly(), markdown)
 
 
 if __name__ == "__main__":
