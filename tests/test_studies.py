@@ -37,7 +37,8 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "attitude_knowledge_orbit_runs", "attitude_modes_pointing", "attitude_modes_orbit",
              "magnetic_pointing_residual_ab", "flight_detumble_campaign",
              "magnetorquer_hold_candidates", "magnetorquer_hold_candidate_campaigns", "coursework_replica",
-             "coursework_summary", "coursework_real_wheel", "attitude_knowledge_mekf")
+             "coursework_summary", "coursework_real_wheel", "attitude_knowledge_mekf",
+             "attitude_knowledge_verdict")
 
 
 @pytest.mark.parametrize("name", COMMITTED)
@@ -1197,3 +1198,14 @@ def test_the_mekf_evidence_table_is_generated_and_flies_again(tmp_path, monkeypa
     _nudged_script_table(tmp_path, monkeypatch, table, nudge)
     problems = table.run_probe()
     assert len(problems) == 1 and "nees[1].nees_attitude" in problems[0] and "no longer computes" in problems[0]
+
+
+@pytest.mark.parametrize(("old", "new"), (("100 / 100 runs, 18.5–20.0 s", "100 / 100 runs, 18.5–20.5 s"),
+                                          ("peak 7.3 %", "peak 7.2 %")))
+def test_the_pointing_verdict_is_generated(tmp_path, monkeypatch, old, new):
+    """STUDY-195: attitude_knowledge.md's verdict on issue 13's targets (typed by hand until 2026-12-05) is rendered
+    from the committed 100-run campaign and orbit_runs.json: a figure changed by hand is reported by --check."""
+    pytest.importorskip("pandas")
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "attitude_knowledge_verdict",
+                                       "attitude_knowledge_verdict", old, new)
+    assert len(problems) == 1 and "block 'attitude_knowledge_verdict'" in problems[0]
