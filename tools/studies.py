@@ -1126,6 +1126,12 @@ def real_wheel_blocks() -> dict[str, str]:
     return {"coursework_real_wheel": "\n".join(lines) + "\n"}
 
 
+def fly_real_wheel() -> None:
+    """Fly the real wheel's orbit again into its committed JSON file (~15 CPU-s)."""
+    if _load_script(_REAL_WHEEL_SCRIPT).main(["--json", str(STUDIES_DIR / REAL_WHEEL)]) != 0:
+        raise StudyError(f"`python {_REAL_WHEEL_SCRIPT}` failed")
+
+
 def regenerate_real_wheel(ctx: Context) -> None:
     ctx.set_blocks(_CONVERGENCE_DOC, real_wheel_blocks())
 
@@ -2670,6 +2676,8 @@ def main(argv: list[str] | None = None) -> int:
                 fly_magnetorquer1()
             if name == "coursework_replica":
                 fly_replica()
+            if name == "coursework_real_wheel":
+                fly_real_wheel()
             if name == "coursework_settling_ripple":
                 fly_ripple()
             if name == "sun_safe":
