@@ -36,7 +36,9 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "attitude_knowledge_single_runs", "magnetic_pointing_hold_campaign", "magnetic_pointing_floquet_figure",
              "attitude_knowledge_orbit_runs", "attitude_modes_pointing", "attitude_modes_orbit",
              "magnetic_pointing_residual_ab", "flight_detumble_campaign",
-             "magnetorquer_hold_candidates", "magnetorquer_hold_candidate_campaigns")
+             "magnetorquer_hold_candidates", "magnetorquer_hold_candidate_campaigns", "coursework_replica",
+             "coursework_summary", "coursework_real_wheel", "attitude_knowledge_mekf",
+             "attitude_knowledge_verdict")
 
 
 @pytest.mark.parametrize("name", COMMITTED)
@@ -1122,3 +1124,88 @@ def test_the_tumble_campaigns_misses_by_initial_rate_are_generated(tmp_path, mon
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "magnetic_pointing_tumble", "magnetic_pointing_tumble",
                                        "23/23 at", "22/23 at")
     assert len(problems) == 1 and "block 'magnetic_pointing_tumble'" in problems[0]
+
+
+@pytest.mark.parametrize(("block", "old", "new"), (
+    ("coursework_summary", "6,285 s", "6,284 s"),
+    ("coursework_summary", "**6,962 s**", "**6,961 s**"),
+    ("coursework_beta_pattern", "| 73.7 |", "| 73.8 |"),
+    ("coursework_beta_pattern", "z before x, y ≈ 60 s", "x before z, y ≈ 60 s"),
+))
+def test_the_coursework_summary_tables_are_generated(tmp_path, monkeypatch, block, old, new):
+    """STUDY-190: coursework_reproduction.md's side-by-side table and the β-PD's per-axis pattern (typed by hand until
+    2026-12-05) are rendered from the committed replica runs and the convergence campaigns: a figure or a pattern
+    changed by hand in either is reported by --check, naming the block."""
+    pytest.importorskip("pandas")
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_summary", block, old, new)
+    assert len(problems) == 1 and f"block '{block}'" in problems[0]
+
+
+def test_the_replica_table_is_rendered_from_committed_runs(tmp_path, monkeypatch):
+    """STUDY-191: the report's-model table (β-PD and wheels under RK45) is rendered from the committed JSON lines of
+    report_replica.py, no longer by running SciPy: --check reports a hand edit; a missing file is refused with the
+    command that makes it."""
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_replica", "coursework_replica",
+                                       "**6,099**", "**6,094**")
+    assert len(problems) == 1 and "block 'coursework_replica'" in problems[0]
+    folder = tmp_path / "coursework_replica"
+    shutil.copytree(studies._MT1_DIR, folder)
+    (folder / "wheels_tight.json").unlink()
+    monkeypatch.setattr(studies, "_MT1_DIR", folder)
+    with pytest.raises(studies.StudyError, match="wheels_pd --t-max 30 --rtol 1e-8 --atol 1e-10 > "):
+        studies.replica_blocks()
+
+
+def test_the_real_wheel_table_is_generated_and_flies_again(tmp_path, monkeypatch):
+    """STUDY-192: coursework_reproduction.md's real-1U-wheel table (typed by hand until 2026-12-05) is rendered from
+    the committed JSON of campaigns/coursework/real_wheel.py and the convergence campaigns: a hand edit is reported by
+    --check; the orbit flown again (~15 CPU-s) gives the committed file's figures to the float."""
+    pytest.importorskip("pandas")
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_real_wheel", "coursework_real_wheel",
+                                       "| 9.93 s |", "| 9.94 s |")
+    assert len(problems) == 1 and "block 'coursework_real_wheel'" in problems[0]
+    committed = json.loads((studies.STUDIES_DIR / studies.REAL_WHEEL).read_text(encoding="utf-8"))
+    again = json.loads(json.dumps(studies._load_script(studies._REAL_WHEEL_SCRIPT).fly()))
+    assert again == committed
+
+
+def test_the_listing_beta_pd_grid_is_generated(tmp_path, monkeypatch):
+    """STUDY-193: the β-PD grid in the listing's form (typed by hand from uncommitted runs of 2026-12-02 until
+    2026-12-05) is rendered from its committed campaign (campaigns/coursework/beta_pd_grid_listing.yaml): a settling
+    time changed by hand is reported by --check, naming its block, and the block says which form it is."""
+    pytest.importorskip("pandas")
+    body = studies.grid_blocks()["coursework_beta_pd_listing"]
+    assert "`switched: false`" in body and "coursework_beta_pd_grid_listing/" in body
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_grids", "coursework_beta_pd_listing",
+                                       "8,943", "8,944")
+    assert len(problems) == 1 and "block 'coursework_beta_pd_listing'" in problems[0]
+
+
+def test_the_mekf_evidence_table_is_generated_and_flies_again(tmp_path, monkeypatch):
+    """STUDY-194: attitude_knowledge.md's MEKF evidence table (typed by hand from the unit tests' flights until
+    2026-12-05) is rendered from the committed JSON of campaigns/adcs/mekf_evidence.py, which flies
+    tests/detumble/control/test_mekf.py's own harness: a hand edit is reported by --check; its probe flies everything
+    again (a few CPU-s) and passes on the committed file, and reports a copy with one NEES nudged, by name."""
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "attitude_knowledge_mekf", "attitude_knowledge_mekf",
+                                       "**MEKF 8.0 /", "**MEKF 7.9 /")
+    assert len(problems) == 1 and "block 'attitude_knowledge_mekf'" in problems[0]
+    table = studies.SCRIPT_TABLES["attitude_knowledge_mekf"]
+    assert table.run_probe() == []
+
+    def nudge(data):
+        data["nees"][1]["nees_attitude"] += 1e-9
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 1 and "nees[1].nees_attitude" in problems[0] and "no longer computes" in problems[0]
+
+
+@pytest.mark.parametrize(("old", "new"), (("100 / 100 runs, 18.5–20.0 s", "100 / 100 runs, 18.5–20.5 s"),
+                                          ("peak 7.3 %", "peak 7.2 %")))
+def test_the_pointing_verdict_is_generated(tmp_path, monkeypatch, old, new):
+    """STUDY-195: attitude_knowledge.md's verdict on issue 13's targets (typed by hand until 2026-12-05) is rendered
+    from the committed 100-run campaign and orbit_runs.json: a figure changed by hand is reported by --check."""
+    pytest.importorskip("pandas")
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "attitude_knowledge_verdict",
+                                       "attitude_knowledge_verdict", old, new)
+    assert len(problems) == 1 and "block 'attitude_knowledge_verdict'" in problems[0]

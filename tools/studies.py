@@ -439,6 +439,8 @@ CAMPAIGNS = {
     "coursework_cross_product_sweep": CommittedCampaign("coursework_cross_product_sweep",
                                                         "campaigns/coursework/cross_product_sweep.yaml"),
     "coursework_beta_pd_grid": CommittedCampaign("coursework_beta_pd_grid", "campaigns/coursework/beta_pd_grid.yaml"),
+    "coursework_beta_pd_grid_listing": CommittedCampaign("coursework_beta_pd_grid_listing",
+                                                         "campaigns/coursework/beta_pd_grid_listing.yaml"),
     "coursework_wheels_pd_grid": CommittedCampaign("coursework_wheels_pd_grid",
                                                    "campaigns/coursework/wheels_pd_grid.yaml",
                                                    probe=lambda t: t["values"].get("scenario.control.wheels_pd.k_d")
@@ -752,8 +754,10 @@ def cross_product_block() -> str:
     return "\n".join(lines + notes) + "\n\n" + _source("coursework_grids", campaign) + "\n"
 
 
-def beta_pd_block() -> str:
-    campaign, df = _committed("coursework_beta_pd_grid")
+def beta_pd_block(key: str = "coursework_beta_pd_grid",
+                  form: str = "Equations' form (`switched: true`, the default), 0.01 s.") -> str:
+    """The β-PD's (K_s, K_d) grid of the committed campaign ``key`` (settling time, s), ``form`` its closing line."""
+    campaign, df = _committed(key)
     if df is None:
         return _not_committed(campaign)
     ks_key, kd_key = "scenario.control.beta_pd.k_s", "scenario.control.beta_pd.k_d"
@@ -771,8 +775,7 @@ def beta_pd_block() -> str:
     at = [(ks, _cell(f, 0, **{ks_key: ks, kd_key: 0.06})) for ks in others]
     lines += ["", "At K_d = 0.06: " + ", ".join(f"K_s = {ks:g} → {c}" + ("" if c == "not flown" else " s")
                                                  for ks, c in at) + ".",
-              "(— : not within the run; `not flown`: the campaign was stopped before this point.) "
-              "Equations' form (`switched: true`, the default), 0.01 s."]
+              "(— : not within the run; `not flown`: the campaign was stopped before this point.) " + form]
     return "\n".join(lines) + "\n\n" + _source("coursework_grids", campaign) + "\n"
 
 
@@ -834,7 +837,13 @@ def noise_block() -> str:
     return "\n".join(lines) + "\n\n" + _source("coursework_grids", campaign) + "\n"
 
 
+def beta_pd_listing_block() -> str:
+    return beta_pd_block("coursework_beta_pd_grid_listing",
+                         "The listing's form (`switched: false`, both spin terms), 0.01 s.")
+
+
 _GRID_BLOCKS = {"coursework_cross_product": cross_product_block, "coursework_beta_pd": beta_pd_block,
+                "coursework_beta_pd_listing": beta_pd_listing_block,
                 "coursework_wheels_pd": wheels_pd_block, "coursework_noise": noise_block}
 _GRID_FIGURES = {"coursework_cross_product_sweep": "cross_product_settling.png",
                  "coursework_beta_pd_grid": "beta_pd_heatmap_settling.png",
@@ -865,33 +874,52 @@ def regenerate_grids(ctx: Context) -> None:
 # --- seed 004: the report's model (SciPy) ----------------------------------------------------------------
 
 _REPLICA_CASES = (
-    # (label, arguments, quick arguments)
-    ("`magnetorquer2`, eq. 23 *or* 24, ode45 defaults", ["beta_pd", "--t-max", "9000"], None),
-    ("`magnetorquer2`, both spin terms (listing), ode45 defaults", ["beta_pd", "--listing", "--t-max", "9000"], None),
-    ("`wheels`, K_p = 5, K_d = 9, ode45 defaults", ["wheels_pd", "--t-max", "30"], ["wheels_pd", "--t-max", "30"]),
-    ("`wheels`, K_p = 5, K_d = 9, RelTol 1e-8", ["wheels_pd", "--t-max", "30", "--rtol", "1e-8", "--atol", "1e-10"],
+    # (file under docs/studies/coursework_replica/, label, report_replica.py arguments)
+    ("magnetorquer2_ode45.json", "`magnetorquer2`, eq. 23 *or* 24, ode45 defaults", ["beta_pd", "--t-max", "9000"]),
+    ("magnetorquer2_listing_ode45.json", "`magnetorquer2`, both spin terms (listing), ode45 defaults",
+     ["beta_pd", "--listing", "--t-max", "9000"]),
+    ("wheels_ode45.json", "`wheels`, K_p = 5, K_d = 9, ode45 defaults", ["wheels_pd", "--t-max", "30"]),
+    ("wheels_tight.json", "`wheels`, K_p = 5, K_d = 9, RelTol 1e-8",
      ["wheels_pd", "--t-max", "30", "--rtol", "1e-8", "--atol", "1e-10"]),
-    ("`wheels`, same, read off its accepted steps only (`--sample 0`)",
-     ["wheels_pd", "--t-max", "30", "--rtol", "1e-8", "--atol", "1e-10", "--sample", "0"],
+    ("wheels_tight_steps.json", "`wheels`, same, read off its accepted steps only (`--sample 0`)",
      ["wheels_pd", "--t-max", "30", "--rtol", "1e-8", "--atol", "1e-10", "--sample", "0"]),
 )
 
 
-def regenerate_replica(ctx: Context) -> None:
-    replica = _load_script("campaigns/coursework/report_replica.py")
+def _replica_run(name: str, args: list[str]) -> dict:
+    """The committed JSON line of ``report_replica.py ARGS`` (docs/studies/coursework_replica/NAME)."""
+    path = _MT1_DIR / name
+    if not path.exists():
+        raise StudyError(f"{_shown(path)} is not committed: make it with `python campaigns/coursework/"
+                         f"report_replica.py {' '.join(args)} > docs/studies/coursework_replica/{name}`")
+    return json.loads(path.read_text(encoding="utf-8"))
+
+
+def replica_blocks() -> dict[str, str]:
+    """The report's model of ``magnetorquer2`` and ``wheels`` under SciPy's RK45, from the committed JSON lines of
+    ``report_replica.py`` (docs/studies/coursework_replica/; the runs themselves take CPU-minutes and need SciPy)."""
     lines = ["| case (`campaigns/coursework/report_replica.py ARGS`) | ARGS | settling, 2 % bands: overall "
              "(x / y / z) | solver steps |", "|---|---|---|---|"]
-    for label, args, quick in _REPLICA_CASES:
-        if ctx.quick and quick is None:
-            continue
-        out = replica.run(replica.parse_args(quick if ctx.quick else args))
+    for name, label, args in _REPLICA_CASES:
+        out = _replica_run(name, args)
         digits = 3 if args[0] == "wheels_pd" else 0
         axes = " / ".join(_fmt(a, digits) for a in out["settling_axes_s"])
         lines.append(f"| {label} | `{' '.join(args)}` | **{_fmt(out['settling_overall_s'], digits)}** ({axes}) "
                      f"| {out['steps']} |")
-    lines += ["", "Generated by `python tools/studies.py --only coursework_replica` (SciPy "
-              "RK45, settling read off its dense output every 1 ms unless `--sample 0`)."]
-    ctx.set_blocks(_CONVERGENCE_DOC, {"coursework_replica": "\n".join(lines) + "\n"})
+    lines += ["", "Generated by `python tools/studies.py --only coursework_replica` from "
+              "`docs/studies/coursework_replica/*.json` (each the JSON line of `python campaigns/coursework/"
+              "report_replica.py ARGS > docs/studies/coursework_replica/FILE`: SciPy RK45, settling read off its "
+              "dense output every 1 ms unless `--sample 0`; `--rerun-campaigns` flies them again)."]
+    return {"coursework_replica": "\n".join(lines) + "\n"}
+
+
+def regenerate_replica(ctx: Context) -> None:
+    ctx.set_blocks(_CONVERGENCE_DOC, replica_blocks())
+
+
+def fly_replica() -> None:
+    """Fly the β-PD and wheel replica runs again into docs/studies/coursework_replica/ (CPU-minutes; needs scipy)."""
+    _fly_replica_cases(_REPLICA_CASES)
 
 
 _MT1_DIR = STUDIES_DIR / "coursework_replica"
@@ -938,12 +966,174 @@ def regenerate_magnetorquer1(ctx: Context) -> None:
 
 def fly_magnetorquer1() -> None:
     """Fly the three replica runs again into docs/studies/coursework_replica/ (CPU-minutes; needs scipy)."""
+    _fly_replica_cases(_MT1_CASES)
+
+
+def _fly_replica_cases(cases) -> None:
+    """Each case's ``report_replica.py ARGS`` again, its JSON line into docs/studies/coursework_replica/FILE."""
     from fprime_lite.osal.atomic import atomic_write_bytes
 
     replica = _load_script("campaigns/coursework/report_replica.py")
-    for name, _, args in _MT1_CASES:
+    for name, _, args in cases:
         _MT1_DIR.mkdir(parents=True, exist_ok=True)
         atomic_write_bytes(_MT1_DIR / name, (json.dumps(replica.run(replica.parse_args(args))) + "\n").encode())
+
+
+# --- seed 004: the page's summary tables (report, replica, plant side by side) -----------------------------
+
+#: The report's own figures (seed 004, the coursework report: Table 1 and its text), constants of the report quoted
+#: as it prints them, not measured here: overall settling per controller, and the β-PD's per-axis times of Table 1
+#: (1.669 h, 0.023 h, 1.693 h).
+_REPORT_OVERALL = {"cross_product": "20,442 s", "beta_pd": "6,094.5 s", "listing": "—",
+                   "wheels_pd": "\"within seconds\""}
+_REPORT_BETA_AXES = ("6,008", "83", "6,095", "6,094.5")
+#: The summary's rows: (key, label, the convergence campaign's series, the replica's committed file)
+_SUMMARY_ROWS = (
+    ("cross_product", "`magnetorquer1`, k = 146", "`cross_product`, k = 146", "magnetorquer1_ode45.json"),
+    ("beta_pd", "`magnetorquer2` (β-PD), K_s = 990, K_d = 0.06, eq. 23 *or* 24 (the default)",
+     "`beta_pd`, eq. 23 *or* 24 (default)", "magnetorquer2_ode45.json"),
+    ("listing", "`magnetorquer2`, both spin terms (the listing, `switched: false`)",
+     "`beta_pd`, both spin terms (listing)", "magnetorquer2_listing_ode45.json"),
+    ("wheels_pd", "`wheels`, K_p = 5, K_d = 9", "`wheels_pd`, error `report`", "wheels_ode45.json"),
+)
+#: the replica's run at RelTol 1e-8 quoted beside its ode45 figure, where one is committed
+_SUMMARY_TIGHT = {"cross_product": "magnetorquer1_tight.json", "wheels_pd": "wheels_tight.json"}
+
+
+def _summary_series() -> dict[str, list[tuple[float, dict]]]:
+    """The convergence campaigns' step-halving series (step = period; a point flown twice kept once), by label."""
+    out = {}
+    for label, rows in _convergence_series(_convergence_results()):
+        kept, _ = _repeated_runs(rows)
+        out[label] = [(step, m) for step, period, m in kept if step == period and m["status"] == "ok"]
+    return out
+
+
+def _replica_file(name: str) -> dict:
+    args = {n: a for n, _, a in (*_MT1_CASES, *_REPLICA_CASES)}[name]
+    return _replica_run(name, args)
+
+
+def _converged_cell(series: list[tuple[float, dict]], digits: int) -> str:
+    """The published figure by the rule (< 0.5 % on halving), its step and the halvings around it."""
+    flown = [(step, m["overall"]) for step, m in series]
+    published = _first_converged(flown)
+    if published is None:
+        step, value = flown[-1]
+        return f"not converged over the steps flown ({_fmt(value, digits)} s at {step:g} s)"
+    steps = [h for h, _ in flown]
+    i = steps.index(published[0])
+    moves = [100.0 * (flown[j][1] - flown[j - 1][1]) / flown[j - 1][1] for j in range(i, len(flown))]
+    text = f"**{_fmt(published[1], digits)} s** ({published[0]:g} s: the halving to it moves it {moves[0]:+.2f} %"
+    if len(moves) > 1:
+        text += (", the next " + ", ".join(f"{m:+.2f} %" for m in moves[1:]) + ", to "
+                 + ", ".join(f"{_fmt(v, digits)} s" for _, v in flown[i + 1:]))
+    return text + ")"
+
+
+def coursework_summary_blocks() -> dict[str, str]:
+    """coursework_reproduction.md's two summary tables: the figures side by side (the report's, its model under
+    RK45 at ode45's defaults, the plant at 0.01 s and converged) and the β-PD's per-axis pattern, from the committed
+    replica runs (docs/studies/coursework_replica/) and the convergence campaigns, with the report's own figures."""
+    series = _summary_series()
+    lines = ["| controller (report's gains) | report | report's model, RK45 at ode45 defaults | plant, 0.01 s | "
+             "plant, converged (the spec's < 0.5 % on halving) | flight deployment |", "|---|---|---|---|---|---|"]
+    for key, label, name, replica in _SUMMARY_ROWS:
+        digits = 3 if key == "wheels_pd" else 0
+        rk = _replica_file(replica)
+        at = dict(series[name])
+        plant = at[0.01]["overall"] if 0.01 in at else None
+        flight = ("same law, same trajectory (CWD-001)" if key == "cross_product" else
+                  "within 0.3 s of the plant (CWD-001)" if key == "wheels_pd" else "(CWD-001)")
+        model = f"{_fmt(rk['settling_overall_s'], digits)} s"
+        if key in _SUMMARY_TIGHT:
+            tight = _replica_file(_SUMMARY_TIGHT[key])["settling_overall_s"]
+            model += f" ({_fmt(tight, 1 if digits == 0 else digits)} s at RelTol 1e-8)"
+        lines.append(f"| {label} | {_REPORT_OVERALL[key]} | {model} | "
+                     f"{_fmt(plant, digits)} s | {_converged_cell(series[name], digits)} | {flight} |")
+    lines += ["", "The report's column is its own figures (Table 1 and its text). The model's: "
+              "`docs/studies/coursework_replica/` (the blocks below). The plant's: the convergence campaigns (the "
+              "convergence section), `error: report` for the wheels; converged is the first step from which every "
+              "halving moves the figure by < 0.5 %. The flight column names the test that compares the deployment "
+              "with the plant (CWD-001: the same trajectory, settling within 0.3 s)."]
+    summary = "\n".join(lines) + "\n\nGenerated by `python tools/studies.py --only coursework_summary`.\n"
+
+    def pattern(x: float, y: float, z: float) -> str:
+        return f"{'x before z' if x < z else 'z before x'}, y ≈ {y:.0f} s"
+
+    rows = ["| β-PD, K_s = 990, K_d = 0.06 | ω_x (s) | ω_y (s) | ω_z (s) | overall (s) | pattern |",
+            "|---|---|---|---|---|---|"]
+    x, y, z, overall = (float(v.replace(",", "")) for v in _REPORT_BETA_AXES)
+    rows.append(f"| the report, Table 1 | {' | '.join(_REPORT_BETA_AXES)} | {pattern(x, y, z)} |")
+    for label, axes, total in (
+            ("report's model at ode45 defaults, eq. 23 *or* 24", *(lambda r: (r["settling_axes_s"],
+                                                                              r["settling_overall_s"]))(
+                _replica_file("magnetorquer2_ode45.json"))),
+            ("same, both spin terms (listing)", *(lambda r: (r["settling_axes_s"], r["settling_overall_s"]))(
+                _replica_file("magnetorquer2_listing_ode45.json"))),
+            ("plant at 0.01 s, eq. 23 *or* 24", dict(series["`beta_pd`, eq. 23 *or* 24 (default)"])[0.01]["axes"],
+             dict(series["`beta_pd`, eq. 23 *or* 24 (default)"])[0.01]["overall"]),
+            ("plant at 0.01 s, both spin terms", dict(series["`beta_pd`, both spin terms (listing)"])[0.01]["axes"],
+             dict(series["`beta_pd`, both spin terms (listing)"])[0.01]["overall"])):
+        rows.append(f"| {label} | {_fmt(axes[0])} | {_fmt(axes[1], 1)} | {_fmt(axes[2])} | {_fmt(total)} | "
+                    f"{pattern(*axes)} |")
+    rows += ["", "Generated by `python tools/studies.py --only coursework_summary` from "
+             "`docs/studies/coursework_replica/magnetorquer2*.json` and the convergence campaigns' 0.01 s rows (the "
+             "report's row: its Table 1)."]
+    return {"coursework_summary": summary, "coursework_beta_pattern": "\n".join(rows) + "\n"}
+
+
+def regenerate_coursework_summary(ctx: Context) -> None:
+    ctx.set_blocks(_CONVERGENCE_DOC, coursework_summary_blocks())
+
+
+#: "Beyond the report": the real 1U wheel's orbit, kept as the JSON file of campaigns/coursework/real_wheel.py
+REAL_WHEEL = "coursework_real_wheel.json"
+_REAL_WHEEL_SCRIPT = "campaigns/coursework/real_wheel.py"
+#: the magnetic laws shown beside it (keys of _SUMMARY_ROWS)
+_REAL_WHEEL_BESIDE = {"beta_pd": "report's `magnetorquer2` (β-PD, eq. 23 *or* 24)",
+                      "cross_product": "report's `magnetorquer1` (k = 146)"}
+
+
+def real_wheel_blocks() -> dict[str, str]:
+    """The real 1U wheel with dumping (its committed JSON file) beside the report's magnetic laws at 0.01 s and
+    converged (the convergence campaigns' rows: their settling time and time under 1 °/s)."""
+    command = f"python {_REAL_WHEEL_SCRIPT} --json docs/studies/{REAL_WHEEL}"
+    path = STUDIES_DIR / REAL_WHEEL
+    if not path.exists():
+        raise StudyError(f"{_shown(path)} is not committed: make it with `{command}`")
+    table = json.loads(path.read_text(encoding="utf-8"))
+    lines = ["| | settling (2 % bands) | \\|ω − ω_final\\| < 1 °/s | wheel momentum |", "|---|---|---|---|",
+             _load_script(_REAL_WHEEL_SCRIPT).markdown(table)]
+    df = _convergence_results()
+    series = _summary_series()
+    for key, _, name, _ in _SUMMARY_ROWS:
+        if key not in _REAL_WHEEL_BESIDE:
+            continue
+        at = dict(series[name])
+        law = df[(df["law"] == key) & (df["scenario.dynamics_step_s"].astype(float) == 0.01)]
+        if key == "beta_pd":
+            law = law[law["scenario.control.beta_pd.switched"].astype(bool)]
+        row = law.iloc[0]
+        below = _float(row["time_below_threshold_s"])
+        below_text = (f"{_fmt(below)} s" if below is not None else
+                      f"not within {_fmt(float(row['duration_s']))} s")
+        lines.append(f"| {_REAL_WHEEL_BESIDE[key]} | {_fmt(at[0.01]['overall'])} s at 0.01 s; converged "
+                     f"{_converged_cell(series[name], 0)} | {below_text} (0.01 s) | — |")
+    lines += ["", f"Generated by `python tools/studies.py --only coursework_real_wheel` from "
+              f"`docs/studies/{REAL_WHEEL}` (made by `{command}`) and the convergence campaigns (the magnetic "
+              f"laws' rows)."]
+    return {"coursework_real_wheel": "\n".join(lines) + "\n"}
+
+
+def fly_real_wheel() -> None:
+    """Fly the real wheel's orbit again into its committed JSON file (~15 CPU-s)."""
+    if _load_script(_REAL_WHEEL_SCRIPT).main(["--json", str(STUDIES_DIR / REAL_WHEEL)]) != 0:
+        raise StudyError(f"`python {_REAL_WHEEL_SCRIPT}` failed")
+
+
+def regenerate_real_wheel(ctx: Context) -> None:
+    ctx.set_blocks(_CONVERGENCE_DOC, real_wheel_blocks())
 
 
 _RIPPLE_DIR = STUDIES_DIR / "coursework_settling_ripple"
@@ -1159,6 +1349,58 @@ def knowledge_blocks() -> dict[str, str]:
     lines += ["", f"{len(ok)} of {len(df)} runs ok; {cpu:,.0f} CPU-s in the runs. Statistics over the runs' own "
               "figures (numpy's linear percentile)."]
     return {"attitude_knowledge_campaign": "\n".join(lines) + "\n\n" + _source("attitude_knowledge", campaign) + "\n"}
+
+
+def knowledge_verdict_blocks() -> dict[str, str]:
+    """attitude_knowledge.md's verdict on issue 13's targets, from the 100-run campaign's committed results and the
+    orbit runs' committed JSON (docs/studies/attitude_knowledge/orbit_runs.json)."""
+    import numpy as np
+
+    campaign, df = _committed("attitude_knowledge")
+    orbit_path = STUDIES_DIR / "attitude_knowledge" / "orbit_runs.json"
+    if df is None or not orbit_path.exists():
+        raise StudyError(f"the verdict needs docs/studies/{campaign.folder}/ and {_shown(orbit_path)} committed")
+    runs = json.loads(orbit_path.read_text(encoding="utf-8"))["runs"]
+    orbit, no_dump, shipped = runs["orbit"], runs["orbit_no_dumping"], runs["shipped"]
+    ok, n = _ok(df), len(df)
+
+    def column(metric: str) -> list[float]:
+        return [float(v) for v in ok[metric].dropna()]
+
+    def verdict(met: bool) -> str:
+        return "**met**" if met else "**not met**"
+
+    slew, med, p95 = column("slew_settle_s"), column("pointing_steady_median_deg"), column("pointing_steady_p95_deg")
+    events, peak = column("wheel_limit_events"), column("wheel_momentum_max_fraction")
+    med_ok, p95_ok, slew_ok = (sum(v <= 0.01 for v in med), sum(v <= 0.05 for v in p95),
+                               sum(v <= 30.0 for v in slew))
+    orbit_events = sum(r["limit_events"] for r in runs.values())
+    ratio = orbit["h_after_slew_mean_nms"] / no_dump["h_after_slew_mean_nms"]
+    lines = [
+        "| target (issue 13, wheels + star tracker 10″) | verdict | evidence |", "|---|---|---|",
+        f"| 90° slew settled below 0.1° in ≤ 30 s | {verdict(slew_ok == n)}: {slew_ok} / {n} runs, "
+        f"{_fmt(min(slew), 1)}–{_fmt(max(slew), 1)} s | campaign; the orbit run "
+        f"({_fmt(orbit['slew_settle_s'], 1)} s) |",
+        f"| steady-state median ≤ 0.01° | {verdict(float(np.median(med)) <= 0.01)} as a statistic (median of per-run "
+        f"medians {float(np.median(med)):.4f}°, p95 {float(np.percentile(med, 95)):.4f}°) and in {med_ok} / {n} runs "
+        f"individually (largest {max(med):.4f}°) | campaign; the shipped run ({shipped['steady_median_deg']:.4f}°) |",
+        f"| steady-state p95 ≤ 0.05° | {verdict(p95_ok == n)}: {p95_ok} / {n}, largest {max(p95):.3f}° | campaign; "
+        f"the shipped run ({shipped['steady_p95_deg']:.4f}°) |",
+        f"| torque and momentum limits never exceeded | {verdict(sum(events) == 0 and orbit_events == 0)}: "
+        f"{sum(events):.0f} events in {len(events)} runs and {orbit_events} in the {len(runs)} orbit-table runs | no "
+        f"limit event in any run |",
+        f"| wheel momentum < 50 % of capacity by magnetic dumping over an orbit | "
+        f"{'met' if orbit['wheel_momentum_max_fraction'] < 0.5 else '**not met**'} (one orbit, one run): peak "
+        f"{100 * orbit['wheel_momentum_max_fraction']:.1f} %, set by the slew; after it dumping holds \\|h\\| to "
+        f"{ratio:.2f} of what it averages without | orbit runs; the campaign's runs peak at {100 * max(peak):.1f} % |",
+    ]
+    source = (f"Generated by `python tools/studies.py --only attitude_knowledge_verdict` from "
+              f"`docs/studies/{campaign.folder}/` (made by `{campaign.command}`) and `{_shown(orbit_path)}`.")
+    return {"attitude_knowledge_verdict": "\n".join(lines) + "\n\n" + source + "\n"}
+
+
+def regenerate_knowledge_verdict(ctx: Context) -> None:
+    ctx.set_blocks(_KNOWLEDGE_DOC, knowledge_verdict_blocks())
 
 
 def regenerate_knowledge(ctx: Context) -> None:
@@ -1456,6 +1698,10 @@ SCRIPT_TABLES = {t.name: t for t in (
                 STUDIES_DIR / "magnetic_pointing.md",
                 ("--only", "ab_present_on", "ab_present_off", "ab_previous_on", "ab_previous_off"),
                 render="residual_ab_markdown", probe="ab_probe"),
+    ScriptTable("attitude_knowledge_mekf", "issue 13's MEKF: the figures of the flights its unit tests assert on "
+                "(tests/detumble/control/test_mekf.py's harness; committed JSON, a few CPU-s, re-flown by the probe)",
+                "attitude_knowledge_mekf", "campaigns/adcs/mekf_evidence.py", "attitude_knowledge/mekf_evidence.json",
+                STUDIES_DIR / "attitude_knowledge.md", probe="probe"),
 )}
 
 
@@ -2228,15 +2474,23 @@ STUDIES = {s.name: s for s in (
     Study("coursework_grids", "seed 004: the gain sweeps and the noise study (committed campaigns)",
           regenerate_grids, grid_blocks, _CONVERGENCE_DOC,
           ("coursework_cross_product_sweep", "coursework_beta_pd_grid", "coursework_wheels_pd_grid",
-           "coursework_noise")),
+           "coursework_noise", "coursework_beta_pd_grid_listing")),
     Study("coursework_replica_magnetorquer1", "seed 004: magnetorquer1 in the report's own model (committed RK45 runs)",
           regenerate_magnetorquer1, magnetorquer1_blocks, _CONVERGENCE_DOC),
-    Study("coursework_replica", "seed 004: the report's own model under SciPy's RK45 (minutes; needs scipy)",
-          regenerate_replica, None, _CONVERGENCE_DOC),
+    Study("coursework_replica", "seed 004: the report's own model under SciPy's RK45 (committed RK45 runs)",
+          regenerate_replica, replica_blocks, _CONVERGENCE_DOC),
+    Study("coursework_summary", "seed 004: the report, its model and the plant side by side, and the β-PD's "
+          "per-axis pattern (committed RK45 runs and campaigns)", regenerate_coursework_summary,
+          coursework_summary_blocks, _CONVERGENCE_DOC, ("coursework_convergence", *_CONVERGENCE_CONTINUED)),
+    Study("coursework_real_wheel", "seed 004's tumble under a real 1U wheel with dumping, beside the magnetic laws "
+          "(committed JSON of one orbit and the convergence campaigns)", regenerate_real_wheel, real_wheel_blocks,
+          _CONVERGENCE_DOC),
     Study("spin_stabilisation_campaign", "issue 13's spin target over 2 × 100 deployment runs (committed campaigns)",
           regenerate_spin_campaign, spin_campaign_blocks, _SPIN_DOC, ("spin_minor_axis", "spin_major_axis")),
     Study("attitude_knowledge", "issue 13's pointing on the wheels over 100 deployment runs (committed campaign)",
           regenerate_knowledge, knowledge_blocks, _KNOWLEDGE_DOC, ("attitude_knowledge",)),
+    Study("attitude_knowledge_verdict", "issue 13's targets: the verdict from the 100-run campaign and the orbit runs "
+          "(committed campaign and JSON)", regenerate_knowledge_verdict, knowledge_verdict_blocks, _KNOWLEDGE_DOC),
     Study("flight_detumble_campaign", "the PROVES flight detumble configurations (two committed campaigns)",
           regenerate_flight, flight_blocks, _FLIGHT_DOC, ("flight_detumble_campaign", "flight_detumble_campaign_p95")),
     Study("gain_sweep", "the flight B-dot and BDotDetumble against their gains (committed campaign)",
@@ -2420,6 +2674,10 @@ def main(argv: list[str] | None = None) -> int:
                 CAMPAIGNS[key].rerun()
             if name == "coursework_replica_magnetorquer1":
                 fly_magnetorquer1()
+            if name == "coursework_replica":
+                fly_replica()
+            if name == "coursework_real_wheel":
+                fly_real_wheel()
             if name == "coursework_settling_ripple":
                 fly_ripple()
             if name == "sun_safe":
