@@ -29,7 +29,7 @@ outputs' share by that measure, like for like. ``benchmarks/bench_vs_basilisk.py
 timed from before its imports, the second only around ``run_for`` (it times ``run`` as users run it,
 for the comparison with Basilisk), so their difference also holds the imports, the topology's load
 and the start (about 0.3 s of a one-orbit run: docs/performance.md, "Issue 32: … (outputs lane,
-2026-12-05)"). ``--vs-basilisk`` flies those two kinds too (the same child code, imported from
+2026-12-04)"). ``--vs-basilisk`` flies those two kinds too (the same child code, imported from
 ``benchmarks/basilisk/bench.py``), so that both measures come from one sitting: ``outputs_share_vs_basilisk``
 is ``1 − deployment / run`` by their own timings.
 

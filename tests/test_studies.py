@@ -1134,7 +1134,7 @@ def test_the_tumble_campaigns_misses_by_initial_rate_are_generated(tmp_path, mon
 ))
 def test_the_coursework_summary_tables_are_generated(tmp_path, monkeypatch, block, old, new):
     """STUDY-190: coursework_reproduction.md's side-by-side table and the β-PD's per-axis pattern (typed by hand until
-    2026-12-05) are rendered from the committed replica runs and the convergence campaigns: a figure or a pattern
+    2026-12-04) are rendered from the committed replica runs and the convergence campaigns: a figure or a pattern
     changed by hand in either is reported by --check, naming the block."""
     pytest.importorskip("pandas")
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "coursework_summary", block, old, new)
@@ -1157,7 +1157,7 @@ def test_the_replica_table_is_rendered_from_committed_runs(tmp_path, monkeypatch
 
 
 def test_the_real_wheel_table_is_generated_and_flies_again(tmp_path, monkeypatch):
-    """STUDY-192: coursework_reproduction.md's real-1U-wheel table (typed by hand until 2026-12-05) is rendered from
+    """STUDY-192: coursework_reproduction.md's real-1U-wheel table (typed by hand until 2026-12-04) is rendered from
     the committed JSON of campaigns/coursework/real_wheel.py and the convergence campaigns: a hand edit is reported by
     --check; the orbit flown again (~15 CPU-s) gives the committed file's figures to the float."""
     pytest.importorskip("pandas")
@@ -1171,7 +1171,7 @@ def test_the_real_wheel_table_is_generated_and_flies_again(tmp_path, monkeypatch
 
 def test_the_listing_beta_pd_grid_is_generated(tmp_path, monkeypatch):
     """STUDY-193: the β-PD grid in the listing's form (typed by hand from uncommitted runs of 2026-12-02 until
-    2026-12-05) is rendered from its committed campaign (campaigns/coursework/beta_pd_grid_listing.yaml): a settling
+    2026-12-04) is rendered from its committed campaign (campaigns/coursework/beta_pd_grid_listing.yaml): a settling
     time changed by hand is reported by --check, naming its block, and the block says which form it is."""
     pytest.importorskip("pandas")
     body = studies.grid_blocks()["coursework_beta_pd_listing"]
@@ -1183,7 +1183,7 @@ def test_the_listing_beta_pd_grid_is_generated(tmp_path, monkeypatch):
 
 def test_the_mekf_evidence_table_is_generated_and_flies_again(tmp_path, monkeypatch):
     """STUDY-194: attitude_knowledge.md's MEKF evidence table (typed by hand from the unit tests' flights until
-    2026-12-05) is rendered from the committed JSON of campaigns/adcs/mekf_evidence.py, which flies
+    2026-12-04) is rendered from the committed JSON of campaigns/adcs/mekf_evidence.py, which flies
     tests/detumble/control/test_mekf.py's own harness: a hand edit is reported by --check; its probe flies everything
     again (a few CPU-s) and passes on the committed file, and reports a copy with one NEES nudged, by name."""
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "attitude_knowledge_mekf", "attitude_knowledge_mekf",
@@ -1203,7 +1203,7 @@ def test_the_mekf_evidence_table_is_generated_and_flies_again(tmp_path, monkeypa
 @pytest.mark.parametrize(("old", "new"), (("100 / 100 runs, 18.5–20.0 s", "100 / 100 runs, 18.5–20.5 s"),
                                           ("peak 7.3 %", "peak 7.2 %")))
 def test_the_pointing_verdict_is_generated(tmp_path, monkeypatch, old, new):
-    """STUDY-195: attitude_knowledge.md's verdict on issue 13's targets (typed by hand until 2026-12-05) is rendered
+    """STUDY-195: attitude_knowledge.md's verdict on issue 13's targets (typed by hand until 2026-12-04) is rendered
     from the committed 100-run campaign and orbit_runs.json: a figure changed by hand is reported by --check."""
     pytest.importorskip("pandas")
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "attitude_knowledge_verdict",
