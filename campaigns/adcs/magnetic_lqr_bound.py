@@ -67,6 +67,23 @@ def _falls(a_seq, b_seq, gains, h, x0) -> list[float | None]:
     return [None if t >= 2 * n * h - 1e-9 else float(t) for t in last_above]
 
 
+def _saturated_fall(a_seq, b_seq, gains, h, x0, m_max) -> float | None:
+    """The fall (s) from ``x0`` (θ rad, rate 0) with the dipole scaled down, direction kept, to the capacity on every
+    axis (the plant's ``scale_to_limits``): the linear law flown by the coils. None: above 15° after two periods."""
+    n = len(a_seq)
+    cap = np.asarray(m_max, dtype=float)
+    x = np.concatenate([np.asarray(x0, dtype=float), np.zeros(3)])
+    last = 0.0
+    with np.errstate(all="ignore"):
+        for j in range(2 * n):
+            m = -gains[j % n] @ x
+            m = m / max(1.0, float(np.max(np.abs(m) / cap)))
+            x = a_seq[j % n] @ x + b_seq[j % n] @ m
+            if not float(np.linalg.norm(x[:3])) <= math.radians(15.0):
+                last = (j + 1) * h
+    return None if last >= 2 * n * h - 1e-9 else last
+
+
 def _peak_ratio(a_seq, b_seq, gains, m_max) -> float:
     """The largest per-axis dipole over the capacity from a 30° error at rest in the worst direction, flown from
     sample 0 for two periods: exact over directions (the norm of each row of the gain times θ's columns)."""
@@ -93,7 +110,8 @@ def _figures(a_seq, b_seq, gains, gains_law, m_max, h, field_hat) -> dict:
     cap = np.asarray(m_max, dtype=float)
     # the first step's dipole from every sample (the flights below see 12 phases; the kick depends on the phase)
     first = max(float(np.max(np.linalg.norm(k[:, :3], axis=1) * THETA0 / cap)) for k in gains)
-    out: dict = {"peak_ratio": first, "fall_field_s": [], "fall_field_bias_s": [], "fall_any_s": 0.0}
+    out: dict = {"peak_ratio": first, "fall_field_s": [], "fall_field_bias_s": [], "fall_any_s": 0.0,
+                 "fall_field_saturated_s": [], "fall_field_saturated_bias_s": []}
     spread = _directions(DIRECTIONS).T * THETA0
     for start in (round(i * n / PHASES) for i in range(PHASES)):
         a, b, k, kl = (_rotate(x, start) for x in (a_seq, b_seq, gains, gains_law))
@@ -101,6 +119,8 @@ def _figures(a_seq, b_seq, gains, gains_law, m_max, h, field_hat) -> dict:
         along = field_hat[start][:, None] * THETA0
         out["fall_field_s"].append(_falls(a, b, k, h, along)[0])
         out["fall_field_bias_s"].append(_falls(a, b, kl, h, along)[0])
+        out["fall_field_saturated_s"].append(_saturated_fall(a, b, k, h, along[:, 0], m_max))
+        out["fall_field_saturated_bias_s"].append(_saturated_fall(a, b, kl, h, along[:, 0], m_max))
         falls = _falls(a, b, k, h, spread)
         if out["fall_any_s"] is not None:
             out["fall_any_s"] = None if None in falls else max(out["fall_any_s"], *falls)
@@ -216,10 +236,15 @@ def summary(table: dict) -> dict:
     def worst(r):
         return math.inf if None in r["fall_field_s"] else max(r["fall_field_s"])
 
+    def worst_of(key):
+        return lambda r: math.inf if None in r[key] else max(r[key])
+
     fast = [r for r in rows if worst(r) <= 200.0]
     return {"fastest": min(fits, key=lambda r: r["rate"]) if fits else None,
             "shortest_fall": min(fits, key=worst) if fits else None,
-            "fall_200": min(fast, key=lambda r: r["peak_ratio"]) if fast else None}
+            "fall_200": min(fast, key=lambda r: r["peak_ratio"]) if fast else None,
+            "saturated": min(rows, key=worst_of("fall_field_saturated_s")) if rows else None,
+            "saturated_bias": min(rows, key=worst_of("fall_field_saturated_bias_s")) if rows else None}
 
 
 def _law(row: dict) -> str:
@@ -232,17 +257,21 @@ def markdown(table: dict) -> str:
     m = table["m_max_am2"]
     lines = ["| rate weight's scale (rad/s) | dipole weight r | α-shift (1/s) | slowest rate (1/s) | with the bias "
              "| peak dipole / capacity, 30° at rest | fall 30° → 15° along the field (s): median (max) "
-             "| with the bias | longest fall, 13 directions (s) |", "|---|---|---|---|---|---|---|---|---|"]
+             "| with the bias | longest fall, 13 directions (s) "
+             "| fall along the field, the dipole scaled to the capacity (s): median (max) | the same with the bias |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for row in table["rows"]:
         head = f"| {row['w_scale']:g} | {row['r']:g} | {row['alpha']:g}"
         if "error" in row:
-            lines.append(f"{head} | no gain: {row['error']} | | | | | |")
+            lines.append(f"{head} | no gain: {row['error']} | | | | | | | |")
             continue
         ratio = f"{row['peak_ratio']:.2f}"
         ratio = f"**{ratio}**" if row["peak_ratio"] <= 1.0 else ratio
         fall_any = "> 2 orbits" if row["fall_any_s"] is None else f"{row['fall_any_s']:.0f}"
         lines.append(f"{head} | {_rate_cell(row['rate'])} | {_rate_cell(row['rate_bias'])} | {ratio} | "
-                     f"{_falls_cell(row['fall_field_s'])} | {_falls_cell(row['fall_field_bias_s'])} | {fall_any} |")
+                     f"{_falls_cell(row['fall_field_s'])} | {_falls_cell(row['fall_field_bias_s'])} | {fall_any} | "
+                     f"{_falls_cell(row['fall_field_saturated_s'])} | "
+                     f"{_falls_cell(row['fall_field_saturated_bias_s'])} |")
     lo, hi = table["field_t_range"]
     lines += ["", f"Tilted dipole (the campaign's field, {lo * 1e6:.0f}–{hi * 1e6:.0f} µT), {table['samples']} samples "
               f"of the {table['period_s']:.0f} s orbit (the dipole held over each), inertia × 1.25; capacity "
@@ -271,6 +300,11 @@ def markdown(table: dict) -> str:
                      f"capacity** ({_law(f)}; {_falls_cell(f['fall_field_s'])} s; "
                      f"with the bias {_falls_cell(f['fall_field_bias_s'])}, "
                      f"rate {_rate_cell(f['rate_bias'])} /s).")
+    for key, label in (("saturated", "the true field"), ("saturated_bias", "the field seen through the bias")):
+        f = s[key]
+        if f is not None:
+            lines.append(f"- Shortest fall along the field (worst phase) with the dipole scaled to the capacity, gains "
+                         f"from {label}: **{_falls_cell(f['fall_field_' + key + '_s'])} s** ({_law(f)}).")
     return "\n".join(lines) + "\n"
 
 
@@ -286,7 +320,8 @@ def probe(committed: dict) -> list[str]:
     if not then:
         return [f"no committed row for {PROBE}"]
     out = []
-    for key in ("rate", "rate_bias", "peak_ratio", "fall_field_s", "fall_field_bias_s", "fall_any_s"):
+    for key in ("rate", "rate_bias", "peak_ratio", "fall_field_s", "fall_field_bias_s", "fall_any_s",
+                "fall_field_saturated_s", "fall_field_saturated_bias_s"):
         a, b = np.array(now[key], dtype=float), np.array(then[0][key], dtype=float)
         if a.shape != b.shape or not np.allclose(a, b, rtol=1e-6, atol=0.0, equal_nan=True):
             out.append(f"{key} of {PROBE}: {then[0][key]} committed, {now[key]} now")
