@@ -38,7 +38,7 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "magnetic_pointing_residual_ab", "flight_detumble_campaign",
              "magnetorquer_hold_candidates", "magnetorquer_hold_candidate_campaigns", "coursework_replica",
              "coursework_summary", "coursework_real_wheel", "attitude_knowledge_mekf",
-             "attitude_knowledge_verdict")
+             "attitude_knowledge_verdict", "magnetorquer_hold_lqr_bound")
 
 
 @pytest.mark.parametrize("name", COMMITTED)
@@ -1209,3 +1209,31 @@ def test_the_pointing_verdict_is_generated(tmp_path, monkeypatch, old, new):
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "attitude_knowledge_verdict",
                                        "attitude_knowledge_verdict", old, new)
     assert len(problems) == 1 and "block 'attitude_knowledge_verdict'" in problems[0]
+
+
+def test_the_hold_lqr_bound_block_edited_by_hand_is_reported(tmp_path, monkeypatch):
+    """STUDY-200: magnetorquer_hold_after_acquisition.md's periodic-LQR bound (committed JSON of
+    campaigns/adcs/magnetic_lqr_bound.py) is a generated block: its verdict's fastest rate changed by hand is reported
+    by --check, naming the block."""
+    block = "magnetorquer_hold_lqr_bound"
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, block, block, "within the capacity: **−",
+                                       "within the capacity: **−9")
+    assert len(problems) == 1 and f"block '{block}'" in problems[0]
+
+
+def test_the_hold_lqr_bound_probe_catches_a_tampered_file(tmp_path, monkeypatch):
+    """STUDY-201: the LQR bound's --check probe solves one weight again (rate scale 0.01 rad/s, r 1e4, α 4e-3; a few
+    CPU-s) and finds the committed row to 1e-6; a copy whose slowest rate is nudged by 1e-5 relative, or one of whose
+    falls is moved by 1 s, is reported with both figures."""
+    table = studies.SCRIPT_TABLES["magnetorquer_hold_lqr_bound"]
+    assert table.run_probe() == []
+
+    def nudge(data):
+        row = next(r for r in data["rows"] if (r["w_scale"], r["r"], r["alpha"]) == (0.01, 1e4, 4e-3))
+        row["rate"] *= 1.0 + 1e-5
+        row["fall_field_s"][3] += 1.0
+
+    _nudged_script_table(tmp_path, monkeypatch, table, nudge)
+    problems = table.run_probe()
+    assert len(problems) == 2 and ": rate of (0.01, 10000.0, 0.004)" in problems[0]
+    assert ": fall_field_s of" in problems[1] and all("no longer computes" in p for p in problems)

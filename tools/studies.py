@@ -1702,6 +1702,11 @@ SCRIPT_TABLES = {t.name: t for t in (
                 "(tests/detumble/control/test_mekf.py's harness; committed JSON, a few CPU-s, re-flown by the probe)",
                 "attitude_knowledge_mekf", "campaigns/adcs/mekf_evidence.py", "attitude_knowledge/mekf_evidence.json",
                 STUDIES_DIR / "attitude_knowledge.md", probe="probe"),
+    ScriptTable("magnetorquer_hold_lqr_bound", "issue 27's coil hold: how fast a periodic LQR (any linear coil law "
+                "with B(t) known) makes the linearised hold fall from 30°, at what dipole (committed JSON, "
+                "~4 CPU-minutes; the probe recomputes one weight)", "magnetorquer_hold_lqr_bound",
+                "campaigns/adcs/magnetic_lqr_bound.py", "magnetorquer_hold_after_acquisition/lqr_bound.json",
+                STUDIES_DIR / "magnetorquer_hold_after_acquisition.md", probe="probe"),
 )}
 
 
