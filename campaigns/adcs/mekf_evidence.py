@@ -49,22 +49,7 @@ def _mean(values: list[float]) -> float:
 def _consistency(h, gyro_spec, sigma_g: float, seed: int) -> dict:
     """The test's consistency flight (700 s, sampled after 100 s): mean NEES (attitude 3 dof, bias 3 dof, 6 dof)
     every 2 s and mean NIS of every tracker update, with the sample counts."""
-    f = h.make_mekf(gyro_noise_rad_s=sigma_g)
-    att, bias, full, nis = [], [], [], []
-
-    def on_cycle(t, state, filters):
-        if t < 100.0:
-            return
-        m = filters[0]
-        if m.last_residual is not None and m.since_measurement_s == 0.0:
-            nis.append(h._quad3(m.last_innovation_cov, m.last_residual))
-        if abs(t / 2.0 - round(t / 2.0)) < 1e-6:
-            x = h.small_error(state[:4], m.q) + tuple(bt - be for bt, be in zip(h.BIAS, m.bias, strict=True))
-            att.append(h._quad3([row[:3] for row in m.P[:3]], x[:3]))
-            bias.append(h._quad3([row[3:] for row in m.P[3:]], x[3:]))
-            full.append(h.quad6(m.P, x))
-
-    h.fly([f], 700.0, seed=seed, gyro_spec=gyro_spec, on_cycle=on_cycle)
+    att, bias, full, nis = h._consistency(gyro_spec, sigma_g, seed)
     return {"seed": seed, "samples": len(att), "updates": len(nis), "nees_attitude": _mean(att),
             "nees_bias": _mean(bias), "nees_6": _mean(full), "nis": _mean(nis),
             "band_3": list(h._band(3, len(att))), "band_6": list(h._band(6, len(full))),
@@ -98,26 +83,9 @@ def _covariance(h) -> dict:
 
 
 def _rms(h) -> dict:
-    from detumble.control.attitude_filter import AttitudeFilter
-
-    m, c = h.make_mekf(), AttitudeFilter(0.5, 0.02)
-    sq = {"mekf": [0.0] * 3, "complementary": [0.0] * 3}
-    bias_sq = {"mekf": 0.0, "complementary": 0.0}
-    count = [0]
-
-    def on_cycle(t, state, filters):
-        if t < 100.0:
-            return
-        count[0] += 1
-        for name, flt in (("mekf", filters[0]), ("complementary", filters[1])):
-            e = h.small_error(state[:4], flt.q)
-            for i in range(3):
-                sq[name][i] += e[i] ** 2
-            bias_sq[name] += sum((bt - be) ** 2 for bt, be in zip(h.BIAS, flt.bias, strict=True))
-
-    h.fly([m, c], 400.0, on_cycle=on_cycle)
-    return {name: {"attitude_arcsec": [math.sqrt(v / count[0]) / h.ARCSEC for v in sq[name]],
-                   "bias_deg_s": math.degrees(math.sqrt(bias_sq[name] / count[0]))} for name in sq}
+    rms, brms = h.rms_errors()
+    return {name: {"attitude_arcsec": rms[key], "bias_deg_s": brms[key]}
+            for name, key in (("mekf", "mekf"), ("complementary", "cf"))}
 
 
 def evidence() -> dict:
