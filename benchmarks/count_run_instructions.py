@@ -16,6 +16,9 @@ with one piece of what stays in the flight's process left out, so that its diffe
 that piece's count: the truth rows (the trace sampled once, at its start), the detumble report's time
 listener (called at every tick to credit the manager's states), the hand-over of the telemetry packets
 to the writer process (``OutputWriter.packet`` does nothing: the child records no telemetry).
+MODE ``plant``: the deployment's plant-only counterpart instead (``detumble.sim.runner.run`` on the
+topology's scenario with ``detumble.tools.bench.PLANT_ONLY_LAWS``' law, as ``measure_deployment`` times it; the
+fresh ``Plant`` built outside the count; OUT_DIR unused), so that ``deploy`` - ``plant`` is the F´ part.
 MODE ``row``:
 the flight runs uncounted except ``SimulatedSpacecraft.truth`` and the truth-trace callbacks (the
 run reports' sampled rows). MODE ``recorder``: uncounted except the ground recorder's handling of
@@ -94,7 +97,7 @@ _WITHOUT = ("runproc-without-row", "runproc-without-report-clock", "runproc-with
 
 
 def main(argv: list[str]) -> int:
-    if len(argv) != 4 or argv[2] not in ("run", "runproc", "row", "deploy", "recorder", *_WITHOUT):
+    if len(argv) != 4 or argv[2] not in ("run", "runproc", "row", "deploy", "plant", "recorder", *_WITHOUT):
         print(__doc__)
         return 2
     topology, duration_s, mode, out = argv[0], float(argv[1]), argv[2], argv[3]
@@ -118,8 +121,20 @@ def main(argv: list[str]) -> int:
         deployment.start()
         deployment.run_for(duration_s)
 
+    def fly_plant_only() -> None:
+        from detumble.sim.plant import Plant
+        from detumble.sim.runner import run as plant_only
+        from detumble.tools.bench import PLANT_ONLY_LAWS
+
+        scenario = loaded.resources["spacecraft"].scenario
+        law = PLANT_ONLY_LAWS.get(scenario.name, scenario.control.law)
+        fresh = Plant(scenario)
+        next(itertools.starmap(lambda: plant_only(scenario, law=law, duration_s=duration_s, plant=fresh), ((),)))
+
     if mode == "deploy":
         next(itertools.starmap(fly_without_outputs, ((),)))
+    elif mode == "plant":
+        fly_plant_only()
     elif mode in ("run", "runproc"):
         next(itertools.starmap(fly, ((),)))
     else:
