@@ -1,7 +1,7 @@
 """The residual dipole in the rate observer (docs/studies/robust_rates.md, "The residual dipole in the observer"):
 the figures the page gives beside its campaign, flown plant-only.
 
-    python campaigns/adcs/robust_rates_dipole.py draws      # the default's three misses, T 0/10/20/40 s
+    python campaigns/adcs/robust_rates_dipole.py draws      # the gate campaign's three misses, T 0/10/20/40 s
     python campaigns/adcs/robust_rates_dipole.py targets    # pointing_targets.md's nadir and station pass, 0 and 20 s
     python campaigns/adcs/robust_rates_dipole.py blocks 26  # one draw's error in 20 s blocks, 0 and 20 s
     python campaigns/adcs/robust_rates_dipole.py auto       # the adcs scenario's own orbit (AUTO), 0 and 20 s
