@@ -1,10 +1,12 @@
 """The residual dipole in the rate observer (docs/studies/robust_rates.md, "The residual dipole in the observer"):
 the figures the page gives beside its campaign, flown plant-only.
 
-    python campaigns/adcs/robust_rates_dipole.py draws      # the default's three misses, T 0/10/20/40 s
+    python campaigns/adcs/robust_rates_dipole.py draws      # the gate campaign's three misses, T 0/10/20/40 s
     python campaigns/adcs/robust_rates_dipole.py targets    # pointing_targets.md's nadir and station pass, 0 and 20 s
     python campaigns/adcs/robust_rates_dipole.py blocks 26  # one draw's error in 20 s blocks, 0 and 20 s
     python campaigns/adcs/robust_rates_dipole.py auto       # the adcs scenario's own orbit (AUTO), 0 and 20 s
+    python campaigns/adcs/robust_rates_dipole.py learn      # when that orbit's observer learns, at the defaults
+    python campaigns/adcs/robust_rates_dipole.py estimators # the single-run slew with each ESTIMATOR, 0 and 20 s
 
 ``draws``: the robust-rates campaign's draws 3, 0 and 77 (the three the default gate misses) flown as the gate
 campaign flies them (``robust_rates_tail.fly`` with INTEGRAL_RATE_GATE 0.05 °/s) with the estimate's time constant
@@ -16,6 +18,12 @@ as ``draws`` does with the estimate off and at 20 s: the true error's p95 / medi
 slew's command (60 s) on, and the dipole estimate (A·m², B) just before the slew's stretch is one time constant old.
 ``auto``: the adcs scenario as it is (a tumble, AUTO through detumble and spin into POINTING, which holds the attitude
 of entry to the end of the orbit) with the estimate off and at 20 s: the pointing statistics after acquisition (deg).
+``learn``: the same orbit at the controller's defaults (the estimate on, 20 s since issue 27): when POINTING is
+entered and acquired, the calm stretches in which the observer learns the dipole (s; those under 1 s only counted),
+when its estimate first differs from zero (s), and the estimate at the end against the plant's dipole (A·m², B).
+``estimators``: the robust-rates single-run geometry (``robust_rates_table``, the plant's inertia exact, 400 s) with
+ESTIMATOR COMPLEMENTARY and MEKF, the estimate off and at 20 s: the slew's settle below 0.1° (s), median / p95 from
+120 s (deg), and the dipole estimate when POINTING is entered (30 s) and at the end (A·m², B).
 """
 
 from __future__ import annotations
@@ -123,9 +131,91 @@ def blocks(index: int) -> None:
                 f"({', '.join(f'{x:.2e}' for x in seen[i])})" for i in changes[::max(1, len(changes) // 6)]))
 
 
+def learn() -> None:
+    from detumble.control.rate_observer import RateObserver
+    from detumble.sim.runner import run
+    from detumble.sim.scenario import load_scenario
+
+    fit, update = RateObserver.learn_dipole, RateObserver.update
+    cycles: list[int] = [0]
+    calm: list[tuple[int, tuple]] = []  # (cycle, estimate after it) of every cycle that learned
+
+    def counted(self, *args, **kwargs):
+        cycles[0] += 1
+        return update(self, *args, **kwargs)
+
+    def learned(self, *args, **kwargs):
+        calm.append((cycles[0], fit(self, *args, **kwargs)))
+        return self.dipole
+
+    RateObserver.learn_dipole, RateObserver.update = learned, counted  # type: ignore[method-assign]
+    try:
+        sc = load_scenario("adcs")
+        r = run(sc, law="adcs")
+    finally:
+        RateObserver.learn_dipole, RateObserver.update = fit, update  # type: ignore[method-assign]
+    cycle_s = r.rows[-1][0] / cycles[0]
+    stretches: list[list[int]] = []
+    for n, _ in calm:
+        if stretches and n == stretches[-1][1] + 1:
+            stretches[-1][1] = n
+        else:
+            stretches.append([n, n])
+    long = [(a * cycle_s, b * cycle_s) for a, b in stretches if (b - a + 1) * cycle_s >= 1.0]
+    e = r.summary["pointing_error_deg"]
+    first = next((n * cycle_s for n, m in calm if any(x != 0.0 for x in m)), None)
+    print(f"POINTING from {[i['t_s'] for i in r.summary['pointing_intervals']]} s, acquisition {e['acquisition_s']} s; "
+          f"{len(stretches)} calm stretches, {len(stretches) - len(long)} under 1 s; the others (s): "
+          + ", ".join(f"{a:.1f}-{b:.1f}" for a, b in long))
+    when = "never" if first is None else f"{first:.1f}"
+    end = ", ".join(f"{x:.2e}" for x in calm[-1][1])
+    print(f"estimate first non-zero at {when} s; at the end ({end}) A·m², the plant's "
+          f"{sc.spacecraft.residual_dipole_am2}")
+
+
+def estimators() -> None:
+    sys.path.insert(0, str(ROOT / "campaigns" / "adcs"))
+    from robust_rates_table import BASE
+
+    from detumble.control.rate_observer import RateObserver
+    from detumble.sim.runner import run
+    from detumble.sim.scenario import load_scenario
+
+    fit, update = RateObserver.learn_dipole, RateObserver.update
+    for estimator in ("COMPLEMENTARY", "MEKF"):
+        for t in (0.0, 20.0):
+            cycles, seen = [0], []  # control cycles so far; (cycle, estimate) of each cycle that learned
+
+            def counted(self, *args, cycles=cycles, **kwargs):
+                cycles[0] += 1
+                return update(self, *args, **kwargs)
+
+            def learned(self, *args, cycles=cycles, seen=seen):
+                seen.append((cycles[0], fit(self, *args)))
+                return self.dipole
+
+            RateObserver.learn_dipole, RateObserver.update = learned, counted  # type: ignore[method-assign]
+            try:
+                r = run(load_scenario("adcs", settings=BASE + [f"control.adcs.ESTIMATOR={estimator}",
+                                                               f"control.adcs.RATE_OBSERVER_DIPOLE_TIME={t:g}"]),
+                        law="adcs", duration_s=400.0)
+            finally:
+                RateObserver.learn_dipole, RateObserver.update = fit, update  # type: ignore[method-assign]
+            assert r.adcs_header is not None and r.adcs_rows is not None
+            k = r.adcs_header.index("pointing_error_deg")
+            steady = sorted(float(a[k]) for row, a in zip(r.rows, r.adcs_rows, strict=True) if row[0] >= 120.0)
+            cycle_s = r.rows[-1][0] / cycles[0]
+            entry = [m for n, m in seen if n * cycle_s <= 30.0]
+            vec = lambda m: "(" + ", ".join(f"{x:.1e}" for x in m) + ")"  # noqa: E731
+            text = f"at 30 s {vec(entry[-1])}, at the end {vec(seen[-1][1])}" if entry else "none"
+            print(f"{estimator:13s} T {t:2.0f} s  settle {r.summary['slews'][0]['settle_below_0p1_deg_s']} s  "
+                  f"median / p95 {steady[len(steady) // 2]:.4f} / {steady[int(round(0.95 * (len(steady) - 1)))]:.4f}"
+                  f"  dipole estimate {text}", flush=True)
+
+
 if __name__ == "__main__":
     command = sys.argv[1] if len(sys.argv) > 1 else "draws"
     if command == "blocks":
         blocks(int(sys.argv[2]))
     else:
-        {"draws": draws, "targets": targets, "auto": auto}[command]()
+        {"draws": draws, "targets": targets, "auto": auto, "learn": learn, "estimators": estimators}[command]()

@@ -10,8 +10,9 @@ Geometry (seed 1): from 90° about (1, 1, 1)/√3 and a 0.05 °/s tumble, FORCE_
 attitude of entry, the identity commanded at 60 s, 400 s. Rows: the plant's inertia exact, ×1.10, ×0.90 and skewed
 (moments +10 / −10 / +5 %, the x–y product 1.7e-4 kg·m², 8 % of a moment); columns per rate source: the default
 (observer, blended to the gyro during slews), the observer without the blend (RATE_BLEND_ANGLE = 180, the law before
-issue 27) and the bias-corrected gyro (RATE_SOURCE = GYRO). Figures: the slew's settle time below 0.1° (summary
-``slews``), and median / p95 of the true error from 120 s to the end (60 s after the slew began).
+issue 27: also no integral rate gate and no residual-dipole estimate) and the bias-corrected gyro (RATE_SOURCE = GYRO).
+Figures: the slew's settle time below 0.1° (summary ``slews``), and median / p95 of the true error from 120 s to the
+end (60 s after the slew began).
 """
 
 from __future__ import annotations
@@ -31,9 +32,11 @@ PLANTS = {
 #: How the page names each plant.
 LABELS = {"exact": "exact", "x1.10": "×1.10", "x0.90": "×0.90",
           "skewed": "skewed (moments +10/−10/+5 %, x–y product 1.7e-4 kg·m²)"}
-#: the D term's rate source per column; "before" is the issue's configuration: no blend and no integral rate gate
+#: the D term's rate source per column; "before" is the issue's configuration: no blend, no integral rate gate and
+#: no residual-dipole estimate in the observer
 SOURCES = {"default (blend)": [], "observer, no blend (before)": ["control.adcs.RATE_BLEND_ANGLE=180",
-                                                                 "control.adcs.INTEGRAL_RATE_GATE=0"],
+                                                                 "control.adcs.INTEGRAL_RATE_GATE=0",
+                                                                 "control.adcs.RATE_OBSERVER_DIPOLE_TIME=0"],
            "gyro": ["control.adcs.RATE_SOURCE=GYRO"]}
 BASE = ["initial.rate.magnitude_deg_s=0.05",
         "initial.attitude.quaternion=[0.7071067811865476,0.4082482904638631,0.4082482904638631,0.4082482904638631]",

@@ -1317,7 +1317,7 @@ module Components {
     @ units: deg
     param MAG_STEER_RHO_AT: F64 default 20.0 id 0x50 set opcode 0xA7 save opcode 0xA8
     @ units: s
-    param RATE_OBSERVER_DIPOLE_TIME: F64 default 0.0 id 0x51 set opcode 0xA9 save opcode 0xAA
+    param RATE_OBSERVER_DIPOLE_TIME: F64 default 20.0 id 0x51 set opcode 0xA9 save opcode 0xAA
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver

@@ -109,8 +109,9 @@ TRACKER_NOISE_CROSS = 10.0  # arcsec 1σ across the boresight
 TRACKER_NOISE_ABOUT = 70.0  # arcsec 1σ about the boresight
 RATE_SOURCE = "OBSERVER"
 RATE_OBSERVER_GAIN = 0.1  # 1/s: the observer's pull toward the gyro
-RATE_OBSERVER_DIPOLE_TIME = 0.0  # s: >0: the observer learns the residual dipole (m̂ × B in its torque) with this
-#                                  time constant while calm (rate_observer.RateObserver.learn_dipole); 0: off
+RATE_OBSERVER_DIPOLE_TIME = 20.0  # s: >0: the observer learns the residual dipole (m̂ × B in its torque) with this
+#                                   time constant while calm (rate_observer.RateObserver.learn_dipole); 0: off
+#                                   (on by default since issue 27: docs/studies/robust_rates.md)
 INERTIA_XX = 2.20e-3  # kg·m², the observer's model (matrix elements)
 INERTIA_YY = 2.15e-3
 INERTIA_ZZ = 2.05e-3

@@ -98,6 +98,10 @@ class RateObserver:
         interval, only while calm (the caller's gate: :data:`DIPOLE_LEARN_MAX_RATE`, :data:`DIPOLE_LEARN_MAX_TORQUE`,
         no slew; :meth:`skip_dipole` otherwise).
 
+        ``omega_meas`` is the gyro's reading (rad/s, B); a constant bias in it adds a constant to ``I ω_meas`` and
+        nothing to the slope fitted, so the caller gives the reading as measured, not the estimator's bias-corrected
+        rate, whose correction moves while it converges.
+
         The momentum the model does not explain, ``p(t) = I ω_meas − ∫ (τ − ω̂ × (I ω̂ + h_w)) dt`` (N·m·s; the
         torque between the middles of two gyro means taken as the mean of the two intervals'), grows at the
         unmodelled torque ``d``. Its slope over the calm stretch so far is fitted by least squares with weights

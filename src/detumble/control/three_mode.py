@@ -343,6 +343,7 @@ class ThreeModeLaw:
         self.cycles = 0
         self.coils_driven = False
         self.omega: Vec3 | None = None  # ω̂ rad/s, B
+        self.gyro_mean: Vec3 = _ZERO  # rad/s, B: the cycle's gyro mean as read, bias and all (the dipole fit's rate)
         self.b_tesla: Vec3 | None = None
         self.b_gauss: Vec3 = _ZERO  # the cycle's magnetometer sample, gauss (B), and its time µs
         self.b_stamp_us = 0
@@ -722,6 +723,7 @@ class ThreeModeLaw:
             else:
                 f.update(gyro, dt, q_meas, age_s)
             self.omega = f.omega
+            self.gyro_mean = gyro
         else:
             self.omega = None
         field = io.field()
@@ -771,7 +773,10 @@ class ThreeModeLaw:
             w = self.omega
             calm = (not blend and _norm(w) < DIPOLE_LEARN_MAX_RATE and _norm(torque) < DIPOLE_LEARN_MAX_TORQUE)
             if calm:
-                obs.learn_dipole(w, torque, h, b, dt, self.RATE_OBSERVER_DIPOLE_TIME)
+                # the fit reads the gyro as measured: its bias is a constant with no slope, where the estimator's
+                # bias correction moves while it converges and would read as a torque (the complementary filter's
+                # did: docs/studies/robust_rates.md, limit (3))
+                obs.learn_dipole(self.gyro_mean, torque, h, b, dt, self.RATE_OBSERVER_DIPOLE_TIME)
             else:
                 obs.skip_dipole()
         w = obs.update(self.omega, torque, h, dt, self.RATE_BLEND_GAIN if blend else None, b)

@@ -1212,5 +1212,24 @@ def test_integral_rate_gate_has_a_range(fprime_harness, bad):
                                  {"RATE_OBSERVER_DIPOLE_TIME": math.nan}, {"RATE_OBSERVER_DIPOLE_TIME": math.inf}])
 def test_rate_observer_dipole_time_has_a_range(fprime_harness, bad):
     """ADCS-173: RATE_OBSERVER_DIPOLE_TIME outside 0…3600 s (or not finite) is refused by PRM_SET (VALIDATION_ERROR)
-    and the value in use is kept; 0, its default, leaves the residual dipole out of the rate observer."""
+    and the value in use is kept; 0 leaves the residual dipole out of the rate observer (the default is 20 s,
+    ADCS-180)."""
     assert_refused_and_kept(fprime_harness, bad)
+
+
+def test_rate_observer_dipole_time_is_on_by_default_and_shipped(fprime_harness):
+    """ADCS-180: the rate observer's residual-dipole estimate is on by default since issue 27
+    (RATE_OBSERVER_DIPOLE_TIME 20 s, docs/studies/robust_rates.md): the controller's defaults, the component's
+    parameter as it starts and adcs_ref's shipped parameter file (id 0x51 of the attitude controller) all carry 20 s."""
+    import pathlib
+    import struct
+
+    from detumble.control.attitude_defaults import DEFAULTS
+    from fprime_lite.svc.prm_db import decode_param_file
+
+    assert DEFAULTS["RATE_OBSERVER_DIPOLE_TIME"] == 20.0
+    h = make(fprime_harness)
+    assert h.comp.RATE_OBSERVER_DIPOLE_TIME.value == 20.0
+    shipped = pathlib.Path(__file__).resolve().parents[3] / "deployments" / "adcs_ref" / "flight_params.dat"
+    records = dict(decode_param_file(shipped.read_bytes()).records)
+    assert records[0x1005C000 + 0x51] == struct.pack(">d", 20.0)
