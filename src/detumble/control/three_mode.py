@@ -91,16 +91,18 @@ _FF_GRAVITY = _member("WHEEL_FEED_FORWARD", "REFERENCE_GYROSCOPIC_GRAVITY")
 
 _DEG = math.pi / 180.0
 _ARCSEC = _DEG / 3600.0
-# the model-scheduled hold (MAG_LQR_ANGLE > 0; control.magnetic_lqr): the weights of the periodic-LQR bound's law that
-# fell fastest scaled to the capacity (docs/studies/magnetorquer_hold_after_acquisition.md: rate scale 0.01 rad/s,
-# r 1, α 8e-3 /s, θ scale 30°), its 1.4 s step, a table for an orbit computed over two
+# the model-scheduled hold (MAG_LQR_ANGLE > 0; control.magnetic_lqr): weights chosen on the linearised hold in the
+# campaign's field (docs/studies/magnetorquer_hold_after_acquisition.md, "The hold scheduled on the field model"): the
+# periodic-LQR bound's fastest law (rate scale 0.01 rad/s, α 8e-3 /s) swings a 30° error at rest past 100° once
+# scaled to the coils and diverges on the plant; rate scale 0.03 rad/s, r 1, α 2e-3 /s peaks at 63-100° and holds;
+# its 1.4 s step, a table for an orbit computed over two
 MAG_LQR_STEP_S = 1.4
 MAG_LQR_USE_S = 5580.0
 MAG_LQR_EXTRA_S = 5580.0
 MAG_LQR_THETA_SCALE = math.radians(30.0)
-MAG_LQR_RATE_SCALE = 0.01
+MAG_LQR_RATE_SCALE = 0.03
 MAG_LQR_R_WEIGHT = 1.0
-MAG_LQR_ALPHA = 8.0e-3
+MAG_LQR_ALPHA = 2.0e-3
 _ZERO = (0.0, 0.0, 0.0)
 _isfinite = math.isfinite
 
