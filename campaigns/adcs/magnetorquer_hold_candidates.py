@@ -16,9 +16,12 @@ and with it: what a bias-free law can gain from a larger ρ.
 with the longest tails (and four that pass, for the schedule) flown again plant-only (``detumble.sim.runner.run``,
 law adcs, one orbit) with their committed seed and start, under: no magnetometer bias (ρ 2, the oracle of an on-board
 bias estimate); no bias and ρ 3; ρ scheduled on the error (MAG_STEER_RHO_LARGE 4 from 20°, 2 below 12°) with the
-bias; the same schedule without the bias. ``--part draws --case KEY`` flies one case into the file, keeping the
-others. Per run the summary's window statistics and the tail (the time from the acquisition below 30° to the error
-staying below 15°). ``tools/studies.py --only magnetorquer_hold_candidates`` renders the blocks (:func:`markdown`).
+bias; the same schedule without the bias; the controller's field from the on-board dipole model (MAG_BIAS_TIME 1 s,
+2026-12-05); the hold scheduled on that model (MAG_LQR_ANGLE 180°, ``control.magnetic_lqr``, 2026-12-05), and it
+and the present law in an IGRF-14 plant (the on-board model's error that of the dipole against the full field).
+``--part draws --case KEY`` flies one case into the file, keeping the others. Per run the summary's window
+statistics and the tail (the time from the acquisition below 30° to the error staying below 15°).
+``tools/studies.py --only magnetorquer_hold_candidates`` renders the blocks (:func:`markdown`).
 """
 
 from __future__ import annotations
@@ -49,12 +52,21 @@ PASSES = (50, 87, 33, 0)
 NO_BIAS = "sensors.magnetometer.bias_gauss=[0.0, 0.0, 0.0]"
 SCHEDULE = ("control.adcs.MAG_STEER_RHO_LARGE=4.0", "control.adcs.MAG_STEER_RHO_FROM=12.0",
             "control.adcs.MAG_STEER_RHO_AT=20.0")
+#: the controller's field from the on-board dipole model (the reading less a bias estimate low-passed at 1 s)
+FIELD_MODEL = "control.adcs.MAG_BIAS_TIME=1.0"
 #: (key, label, scenario settings, rows)
 CASES = (("no_bias", "no magnetometer bias, ρ 2 (the oracle of a bias estimate)", (NO_BIAS,), MISSES),
          ("no_bias_rho3", "no magnetometer bias, ρ 3", (NO_BIAS, "control.adcs.MAG_STEER_RHO=3.0"), MISSES),
          ("schedule", "ρ 4 from 20°, 2 below 12° (the bias as flown)", SCHEDULE, MISSES + PASSES),
          ("no_bias_schedule", "no magnetometer bias, ρ 4 from 20°, 2 below 12°", (NO_BIAS, *SCHEDULE),
-          MISSES + PASSES))
+          MISSES + PASSES),
+         ("field_model", "the field from the on-board model (MAG_BIAS_TIME 1 s), ρ 2", (FIELD_MODEL,),
+          MISSES + PASSES),
+         ("field_model_lqr", "the hold scheduled on the on-board field model (MAG_LQR_ANGLE 180°, MAG_BIAS_TIME 1 s)",
+          (FIELD_MODEL, "control.adcs.MAG_LQR_ANGLE=180.0"), MISSES + PASSES),
+         ("field_model_lqr_igrf14", "the same in an IGRF-14 plant (the on-board model still the tilted dipole)",
+          (*FIELDS["igrf14"], FIELD_MODEL, "control.adcs.MAG_LQR_ANGLE=180.0"), MISSES + PASSES),
+         ("igrf14", "the present law in an IGRF-14 plant", FIELDS["igrf14"], MISSES + PASSES))
 
 
 def _rate(plant, period, b, bd, samples, substeps, k_p, k_d, rho, k) -> float | None:
