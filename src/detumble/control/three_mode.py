@@ -94,7 +94,8 @@ _ARCSEC = _DEG / 3600.0
 # the model-scheduled hold (MAG_LQR_ANGLE > 0; control.magnetic_lqr): weights chosen on the linearised hold in the
 # campaign's field (docs/studies/magnetorquer_hold_after_acquisition.md, "The hold scheduled on the field model"): the
 # periodic-LQR bound's fastest law (rate scale 0.01 rad/s, α 8e-3 /s) swings a 30° error at rest past 100° once
-# scaled to the coils and diverges on the plant; rate scale 0.03 rad/s, r 1, α 2e-3 /s peaks at 63-100° and holds;
+# scaled to the coils (campaigns/adcs/magnetorquer_hold_lqr_weights.py); rate scale 0.03 rad/s, r 1, α 2e-3 /s peaks
+# at 63-80° and falls to 15° in 200-304 s (median over the axes);
 # its 1.4 s step, a table for an orbit computed over two
 MAG_LQR_STEP_S = 1.4
 MAG_LQR_USE_S = 5580.0
