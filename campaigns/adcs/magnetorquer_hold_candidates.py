@@ -18,7 +18,8 @@ law adcs, one orbit) with their committed seed and start, under: no magnetometer
 bias estimate); no bias and ρ 3; ρ scheduled on the error (MAG_STEER_RHO_LARGE 4 from 20°, 2 below 12°) with the
 bias; the same schedule without the bias; the controller's field from the on-board dipole model (MAG_BIAS_TIME 1 s,
 2026-12-05); the hold scheduled on that model (MAG_LQR_ANGLE 180°, ``control.magnetic_lqr``, 2026-12-05), and it
-and the present law in an IGRF-14 plant (the on-board model's error that of the dipole against the full field).
+and the present law in an IGRF-14 plant (the on-board model's error that of the dipole against the full field), and
+the hold with an on-board IGRF-14 truncated to degree 6 in that plant.
 ``--part draws --case KEY`` flies one case into the file, keeping the others. Per run the summary's window
 statistics and the tail (the time from the acquisition below 30° to the error staying below 15°).
 ``tools/studies.py --only magnetorquer_hold_candidates`` renders the blocks (:func:`markdown`).
@@ -66,7 +67,15 @@ CASES = (("no_bias", "no magnetometer bias, ρ 2 (the oracle of a bias estimate)
           (FIELD_MODEL, "control.adcs.MAG_LQR_ANGLE=180.0"), MISSES + PASSES),
          ("field_model_lqr_igrf14", "the same in an IGRF-14 plant (the on-board model still the tilted dipole)",
           (*FIELDS["igrf14"], FIELD_MODEL, "control.adcs.MAG_LQR_ANGLE=180.0"), MISSES + PASSES),
-         ("igrf14", "the present law in an IGRF-14 plant", FIELDS["igrf14"], MISSES + PASSES))
+         ("field_model_lqr_reading_igrf14", "the hold scheduled on the on-board field model, the reading for its "
+          "projection (MAG_LQR_ANGLE 180°, MAG_BIAS_TIME 0), in an IGRF-14 plant",
+          (*FIELDS["igrf14"], "control.adcs.MAG_LQR_ANGLE=180.0"), MISSES + PASSES),
+         ("igrf14", "the present law in an IGRF-14 plant", FIELDS["igrf14"], MISSES + PASSES),
+         ("field_model_lqr_igrf14_degree6", "the hold scheduled on an on-board IGRF-14 of degree 6 "
+          "(MAG_FIELD_MODEL_DEGREE 6, MAG_LQR_ANGLE 180°, MAG_BIAS_TIME 1 s) in an IGRF-14 plant",
+          (*FIELDS["igrf14"], FIELD_MODEL, "control.adcs.MAG_LQR_ANGLE=180.0",
+           "control.adcs.MAG_FIELD_MODEL_DEGREE=6.0"),
+          MISSES + PASSES))
 
 
 def _rate(plant, period, b, bd, samples, substeps, k_p, k_d, rho, k) -> float | None:

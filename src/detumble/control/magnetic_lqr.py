@@ -134,15 +134,16 @@ class HoldGainTable:
 
 def hold_gain_table(q_tn: Quat, t0_s: float, r_N: Vec3, v_N: Vec3, earth_angle_rad: float, inertia, m_max: Vec3,
                     step_s: float, use_s: float, extra_s: float, theta_scale_rad: float, rate_scale_rad_s: float,
-                    r_weight: float, alpha: float) -> HoldGainTable:
-    """The table for ``use_s`` seconds from ``t0_s``: the on-board dipole model along the circular propagation of
+                    r_weight: float, alpha: float, field_N=dipole_field_N) -> HoldGainTable:  # noqa: N803
+    """The table for ``use_s`` seconds from ``t0_s``: the on-board field model ``field_N(r_N, earth_angle)`` (T, N;
+    the tilted dipole by default, ``control.geomagnetic.OnboardField``) along the circular propagation of
     ``(r_N, v_N)`` (the ephemeris at ``t0_s``, Earth angle ``earth_angle_rad`` then), turned into T by ``q_tn``,
     over ``use_s + extra_s`` (the extra backward horizon lets the gains at the start settle)."""
     n = int(math.ceil((use_s + extra_s) / step_s))
     fields = []
     for k in range(n):
         t = k * step_s
-        b_N = dipole_field_N(circular_position_N(r_N, v_N, t), earth_angle_rad + EARTH_ROTATION_RATE_RAD_S * t)
+        b_N = field_N(circular_position_N(r_N, v_N, t), earth_angle_rad + EARTH_ROTATION_RATE_RAD_S * t)
         fields.append(rotate_n_to_b(q_tn, b_N))
     gains = hold_gains(fields, inertia, step_s, m_max, theta_scale_rad, rate_scale_rad_s, r_weight, alpha)
     return HoldGainTable(q_tn, t0_s, step_s, use_s, gains)

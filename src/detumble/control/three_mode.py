@@ -37,7 +37,7 @@ from typing import Mapping, Protocol, Sequence
 
 from detumble.control import attitude_defaults as defaults
 from detumble.control.attitude_filter import AttitudeFilter
-from detumble.control.geomagnetic import dipole_field_N
+from detumble.control.geomagnetic import OnboardField
 from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
 from detumble.control.magnetic_lqr import HoldGainTable, hold_gain_table, lqr_dipole_B
 from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipoleEstimator, field_steering_torque
@@ -331,6 +331,7 @@ class ThreeModeLaw:
     SUN_HOLD_TIP_ANGLE: float
     MAG_BIAS_TIME: float
     MAG_LQR_ANGLE: float
+    MAG_FIELD_MODEL_DEGREE: float
 
     def __init__(self, io: ControllerIo, notify: Notify, provider: DipoleProvider,
                  wheel_axes: Sequence[Sequence[float]] = XYZ, params: Mapping[str, object] | None = None) -> None:
@@ -363,6 +364,7 @@ class ThreeModeLaw:
         self.b_tesla: Vec3 | None = None
         self.b_gauss: Vec3 = _ZERO  # the cycle's magnetometer sample, gauss (B), and its time µs
         self.b_stamp_us = 0
+        self._onboard_field: OnboardField | None = None  # MAG_FIELD_MODEL_DEGREE's model (made when first used)
         self._lqr_table: HoldGainTable | None = None  # MAG_LQR_ANGLE > 0: the model-scheduled hold's gains
         self.mag_bias_T: Vec3 | None = None  # T, B: the on-board magnetometer-bias estimate (MAG_BIAS_TIME > 0)
         self.dipole: Vec3 = _ZERO  # A·m² achieved by the levels of the present cycle
@@ -763,21 +765,29 @@ class ThreeModeLaw:
         self._update_rate_observer(dt, torque)
         self._track_residual_dipole(dt, torque)
 
+    def _field_model(self) -> OnboardField:
+        """The on-board field model of MAG_FIELD_MODEL_DEGREE (made again when the parameter changes)."""
+        degree = int(self.MAG_FIELD_MODEL_DEGREE)
+        model = self._onboard_field
+        if model is None or model.degree != degree:
+            model = self._onboard_field = OnboardField(degree)
+        return model
+
     def _correct_mag_bias(self, b_meas: Vec3, dt: float) -> Vec3:
         """The magnetometer reading ``b_meas`` (T, B) less the on-board bias estimate (MAG_BIAS_TIME > 0).
 
         The estimate low-passes, at the time constant MAG_BIAS_TIME (s), the reading minus the on-board field model
-        (``control.geomagnetic.dipole_field_N`` at the ephemeris' position and Earth angle) turned into B by the
-        attitude estimate: ``b̂ += min(dt/τ, 1) (b − A(q̂) B_model − b̂)``, started at the first difference. It is
-        updated only with a valid attitude and an ephemeris, and held (still subtracted) without them; before the
-        first update the reading is returned as it is. With τ of the order of the cycle the corrected field is the
-        model's own (the reading's noise and bias gone, its model error in); with τ ≫ an orbit it is the reading
-        less the orbit-mean of the model's error and the bias."""
+        (``control.geomagnetic.OnboardField`` of MAG_FIELD_MODEL_DEGREE at the ephemeris' position and Earth angle)
+        turned into B by the attitude estimate: ``b̂ += min(dt/τ, 1) (b − A(q̂) B_model − b̂)``, started at the
+        first difference. It is updated only with a valid attitude and an ephemeris, and held (still subtracted)
+        without them; before the first update the reading is returned as it is. With τ of the order of the cycle
+        the corrected field is the model's own (the reading's noise and bias gone, its model error in); with τ ≫ an
+        orbit it is the reading less the orbit-mean of the model's error and the bias."""
         q = self.filter.q
         eph = self.io.ephemeris() if q is not None and self.attitude_valid else None
         if eph is not None and q is not None:
             try:
-                b_model_B = rotate_n_to_b(q, dipole_field_N(eph.r_N, eph.earth_angle_rad))
+                b_model_B = rotate_n_to_b(q, self._field_model()(eph.r_N, eph.earth_angle_rad))
             except ValueError:
                 b_model_B = None
             if b_model_B is not None:
@@ -1212,7 +1222,7 @@ class ThreeModeLaw:
             try:
                 table = hold_gain_table(target, t, eph.r_N, eph.v_N, eph.earth_angle_rad, inertia, self.coil_limits(),
                                         MAG_LQR_STEP_S, MAG_LQR_USE_S, MAG_LQR_EXTRA_S, MAG_LQR_THETA_SCALE,
-                                        MAG_LQR_RATE_SCALE, MAG_LQR_R_WEIGHT, MAG_LQR_ALPHA)
+                                        MAG_LQR_RATE_SCALE, MAG_LQR_R_WEIGHT, MAG_LQR_ALPHA, self._field_model())
             except (ArithmeticError, ValueError):
                 return None
             self._lqr_table = table

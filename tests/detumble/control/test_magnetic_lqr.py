@@ -83,3 +83,24 @@ def test_lqr_dipole_acts_in_the_target_frame():
     th = (2.0 * q_err[1], 2.0 * q_err[2], 2.0 * q_err[3])
     assert lqr_dipole_B(gain, q_err, (0.0, 0.0, 0.0)) == pytest.approx(
         rotate_n_to_b(q_err, (-3.0 * th[0], -3.0 * th[1], -3.0 * th[2])), abs=1e-15)
+
+
+def test_onboard_field_is_the_dipole_at_degree_one_and_igrf_above():
+    """MAGPT-114: the on-board model (``geomagnetic.OnboardField``) at degree 1 is :func:`dipole_field_N` (the closed
+    form, 1e-12 relative: IGRF's degree 1 is that dipole); at 13 it is the plant's IGRF-14 of epoch 2025.0 at the same
+    Earth angle (1e-12 relative); at 8 it differs from it (truncation) by less than 1 % of the field and more than 0."""
+    from detumble.control.geomagnetic import OnboardField
+    from detumble.sim.igrf import IgrfField
+
+    r = (4.1e6, -3.2e6, 4.3e6)
+    angle = 1.1
+    dip = dipole_field_N(r, angle)
+    assert OnboardField(1)(r, angle) == pytest.approx(dip, rel=1e-12)
+    plant = IgrfField(2025.0, 13, theta0_rad=angle).b_N(0.0, r)
+    assert OnboardField(13)(r, angle) == pytest.approx(plant, rel=1e-12)
+    b8 = OnboardField(8)(r, angle)
+    diff = math.dist(b8, plant)
+    assert 0.0 < diff < 0.01 * math.hypot(*plant)
+    assert math.dist(dip, plant) > 0.05 * math.hypot(*plant)  # the dipole is far from IGRF-14 here
+    with pytest.raises(ValueError):
+        OnboardField(14)

@@ -182,3 +182,16 @@ def test_model_lqr_needs_an_ephemeris_for_its_table():
                                      law.K_P_MAG, law.K_D_MAG, law.MAG_STEER_RHO, law.MAG_STEER_ZETA,
                                      law.MAG_FIELD_RATE_MIN)
     assert law.torque_request == pytest.approx(steer, rel=1e-12, abs=1e-20)
+
+
+def test_bias_estimate_uses_the_model_of_its_degree():
+    """ADCS-193: with MAG_FIELD_MODEL_DEGREE 8 the bias estimate is taken against IGRF-14 of degree 8
+    (``geomagnetic.OnboardField(8)``), not the dipole: the controller's field is that model turned into B."""
+    from detumble.control.geomagnetic import OnboardField
+
+    q = quat_from_axis_angle((0.3, 0.4, 0.866), 0.7)
+    io, law = _law(q, (0.012, -0.008, 0.005), MAG_BIAS_TIME=20.0, MAG_FIELD_MODEL_DEGREE=8.0)
+    _cycles(io, law, 3)
+    model = rotate_n_to_b(q, OnboardField(8)(R_N, EARTH))
+    assert law.b_tesla == pytest.approx(model, abs=1e-6 * math.hypot(*model))
+    assert math.dist(law.b_tesla, io.model_b()) > 1e-3 * math.hypot(*model)
