@@ -10,6 +10,12 @@ the linear hold (``analysis.magnetic_periodic_lqr.sampled_double_integrator``, t
 capacity, direction kept) flown for 3000 s from 30° at rest about 8 random axes and the field line: the largest error
 reached (deg; "peak") and the time after which the error stays ≤ 15° (s; median, max over the 9 axes, and along the
 field line). One line per start and weight set.
+
+``--field-errors``: instead, the direction error (deg) of the on-board field model
+(``control.geomagnetic.OnboardField`` of degree 1, 6, 8, 10) against the IGRF-14 plant's field along the campaign's
+first orbit (every 20 s): median, p95, max.
+
+    python campaigns/adcs/magnetorquer_hold_lqr_weights.py --field-errors
 """
 
 from __future__ import annotations
@@ -71,12 +77,39 @@ def sweep(rate_scales, r_weights, alphas, starts=(0.0, 2000.0, 4000.0)) -> list[
     return lines
 
 
+def field_errors(degrees=(1, 6, 8, 10)) -> list[str]:
+    from detumble.control.geomagnetic import OnboardField
+    from detumble.sim.plant import Plant
+    from detumble.sim.scenario import load_scenario
+
+    sc = load_scenario(str(SCENARIO), seed=1, settings=["field.model=igrf14", "field.table_step_s=10"])
+    plant = Plant(sc)
+    lines = []
+    for degree in degrees:
+        model, errors = OnboardField(degree), []
+        for t in range(0, 5580, 20):
+            r = plant.orbit.position_N(t)
+            truth = plant.field.b_N(t, r)
+            b = model(r, sc.earth_angle0_rad + sc.field.earth_rotation_rate_rad_s * t)
+            c = sum(x * y for x, y in zip(truth, b, strict=True)) / math.hypot(*truth) / math.hypot(*b)
+            errors.append(math.degrees(math.acos(max(-1.0, min(1.0, c)))))
+        errors.sort()
+        lines.append(f"degree {degree}: direction error median {errors[len(errors) // 2]:.2f}°, "
+                     f"p95 {errors[int(0.95 * len(errors))]:.2f}°, max {errors[-1]:.2f}°")
+    return lines
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--rate-scales", default="0.03,0.01", help="rad/s, comma-separated (default 0.03,0.01)")
     ap.add_argument("--r-weights", default="1", help="comma-separated (default 1)")
     ap.add_argument("--alphas", default="0,0.002,0.008", help="1/s, comma-separated (default 0,0.002,0.008)")
+    ap.add_argument("--field-errors", action="store_true", help="the on-board model's direction error instead")
     args = ap.parse_args(argv)
+    if args.field_errors:
+        for line in field_errors():
+            print(line)
+        return 0
 
     def floats(text):
         return [float(x) for x in text.split(",")]
