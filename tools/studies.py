@@ -490,6 +490,9 @@ CAMPAIGNS = {
     "magnetorquer_hold_field_model_lqr": CommittedCampaign(
         "magnetorquer_hold_after_acquisition/campaign_field_model_lqr",
         "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr.yaml"),
+    "magnetorquer_hold_field_model_lqr_igrf14": CommittedCampaign(
+        "magnetorquer_hold_after_acquisition/campaign_field_model_lqr_igrf14",
+        "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr_igrf14.yaml"),
 }
 
 
@@ -2114,7 +2117,10 @@ _HOLD_CANDIDATE_CAMPAIGNS = (("magnetorquer_hold_rho_schedule", "magnetorquer_ho
                              ("magnetorquer_hold_no_mag_bias", "magnetorquer_hold_no_mag_bias_campaign",
                               "no magnetometer bias"),
                              ("magnetorquer_hold_field_model_lqr", "magnetorquer_hold_field_model_lqr_campaign",
-                              "the hold scheduled on the field model"))
+                              "the hold scheduled on the field model"),
+                             ("magnetorquer_hold_field_model_lqr_igrf14",
+                              "magnetorquer_hold_field_model_lqr_igrf14_campaign",
+                              "IGRF-14 plant, the hold on IGRF-14 of degree 6"))
 
 
 def hold_candidate_campaign_blocks() -> dict[str, str]:
