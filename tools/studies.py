@@ -493,6 +493,9 @@ CAMPAIGNS = {
     "magnetorquer_hold_field_model_lqr_igrf14": CommittedCampaign(
         "magnetorquer_hold_after_acquisition/campaign_field_model_lqr_igrf14",
         "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr_igrf14.yaml"),
+    "magnetorquer_hold_field_model_lqr_below_40": CommittedCampaign(
+        "magnetorquer_hold_after_acquisition/campaign_field_model_lqr_below_40",
+        "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr_below_40.yaml"),
 }
 
 
@@ -2120,7 +2123,10 @@ _HOLD_CANDIDATE_CAMPAIGNS = (("magnetorquer_hold_rho_schedule", "magnetorquer_ho
                               "the hold scheduled on the field model"),
                              ("magnetorquer_hold_field_model_lqr_igrf14",
                               "magnetorquer_hold_field_model_lqr_igrf14_campaign",
-                              "IGRF-14 plant, the hold on IGRF-14 of degree 6"))
+                              "IGRF-14 plant, the hold on IGRF-14 of degree 6"),
+                             ("magnetorquer_hold_field_model_lqr_below_40",
+                              "magnetorquer_hold_field_model_lqr_below_40_campaign",
+                              "the scheduled hold below 40°, field steering above"))
 
 
 def hold_candidate_campaign_blocks() -> dict[str, str]:
