@@ -81,7 +81,12 @@ CASES = (("no_bias", "no magnetometer bias, ρ 2 (the oracle of a bias estimate)
           MISSES + PASSES),
          ("field_model_lqr_below_40", "the hold scheduled on the on-board field model below 40°, field steering above "
           "(MAG_LQR_ANGLE 40°, MAG_BIAS_TIME 1 s)", (FIELD_MODEL, "control.adcs.MAG_LQR_ANGLE=40.0"),
-          MISSES[:3] + LQR_NEVER))
+          MISSES[:3] + LQR_NEVER),
+         ("field_model_lqr_below_40_igrf14_degree6", "the hold scheduled on an on-board IGRF-14 of degree 6 below 40°, "
+          "field steering above, in an IGRF-14 plant", (*FIELDS["igrf14"], FIELD_MODEL,
+                                                        "control.adcs.MAG_LQR_ANGLE=40.0",
+                                                        "control.adcs.MAG_FIELD_MODEL_DEGREE=6.0"),
+          MISSES + PASSES + LQR_NEVER))
 
 
 def _rate(plant, period, b, bd, samples, substeps, k_p, k_d, rho, k) -> float | None:
