@@ -994,6 +994,27 @@ def test_the_hold_candidates_draw_table_counts_the_misses_met_and_the_runs_never
     assert f"| L | {miss[2]} | never acquired / 18.0 |" in text
 
 
+def test_the_hold_candidates_draw_table_counts_draws_beyond_the_misses_and_passes():
+    """STUDY-220: a case flown on draws that are neither the six misses nor the four passes (the all-angle scheduled
+    hold's spin-ups, re-flown at 40°) names them and counts those meeting the p95; a case without passes says
+    nothing of passes kept."""
+    script = studies._load_script(studies.HOLD_CANDIDATE_TABLES[0].script)
+    miss = script.MISSES
+    others = [r for r in range(100) if r not in miss and r not in script.PASSES][:3]
+
+    def run(row, p95):
+        return {"row": row, "seed": 1, "median": None if p95 is None else 1.0, "p95": p95, "acquisition_s": 100.0,
+                "acquisition_15deg_s": 150.0,
+                "committed": {"median": 1.0, "p95": 18.0, "acquisition_s": 500.0, "acquisition_15deg_s": 1100.0}}
+
+    table = {"draws": {"cases": [{"key": "k", "label": "L", "settings": [], "runs": [
+        run(miss[0], 10.0), run(others[0], 14.0), run(others[1], 15.5), run(others[2], None)]}]}}
+    text = script.draws_markdown(table)
+    assert (f"- L: p95 ≤ 15° in **1 of 1** misses; of the 3 draws {others[0]}, {others[1]}, {others[2]}, 1 meet the "
+            "p95; 1 of 4 never acquire") in text
+    assert "that passed" not in text
+
+
 
 def test_the_hold_spin_hand_back_block_edited_by_hand_is_reported(tmp_path, monkeypatch):
     """STUDY-160: sun_safe.md's hand-back flights with the hold spin at 1.9 °/s (five one-orbit adcs_ref flights,

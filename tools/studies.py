@@ -487,6 +487,15 @@ CAMPAIGNS = {
     "magnetorquer_hold_no_mag_bias": CommittedCampaign(
         "magnetorquer_hold_after_acquisition/campaign_no_mag_bias",
         "campaigns/adcs/pointing_magnetorquers_plant_no_mag_bias.yaml"),
+    "magnetorquer_hold_field_model_lqr": CommittedCampaign(
+        "magnetorquer_hold_after_acquisition/campaign_field_model_lqr",
+        "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr.yaml"),
+    "magnetorquer_hold_field_model_lqr_igrf14": CommittedCampaign(
+        "magnetorquer_hold_after_acquisition/campaign_field_model_lqr_igrf14",
+        "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr_igrf14.yaml"),
+    "magnetorquer_hold_field_model_lqr_below_40": CommittedCampaign(
+        "magnetorquer_hold_after_acquisition/campaign_field_model_lqr_below_40",
+        "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr_below_40.yaml"),
 }
 
 
@@ -2100,7 +2109,7 @@ def regenerate_hold_after_acquisition(ctx: Context) -> None:
 
 #: issue 27's candidates for a faster fall from 30°: Floquet maps and re-flown draws (campaigns/adcs/...candidates.py)
 HOLD_CANDIDATE_TABLES = tuple(
-    ScriptTable("magnetorquer_hold_candidates", "issue 27's coil hold: Floquet maps of the candidates and 32 re-flown "
+    ScriptTable("magnetorquer_hold_candidates", "issue 27's coil hold: Floquet maps of the candidates and 92 re-flown "
                 "plant draws (committed JSON, ~5 CPU-minutes)", f"magnetorquer_hold_candidates_{part}",
                 "campaigns/adcs/magnetorquer_hold_candidates.py", "magnetorquer_hold_after_acquisition/candidates.json",
                 _HOLD_DOC, render=f"{part}_markdown")
@@ -2109,7 +2118,15 @@ HOLD_CANDIDATE_TABLES = tuple(
 _HOLD_CANDIDATE_CAMPAIGNS = (("magnetorquer_hold_rho_schedule", "magnetorquer_hold_rho_schedule_campaign",
                               "ρ scheduled (4 from 20°)"),
                              ("magnetorquer_hold_no_mag_bias", "magnetorquer_hold_no_mag_bias_campaign",
-                              "no magnetometer bias"))
+                              "no magnetometer bias"),
+                             ("magnetorquer_hold_field_model_lqr", "magnetorquer_hold_field_model_lqr_campaign",
+                              "the hold scheduled on the field model"),
+                             ("magnetorquer_hold_field_model_lqr_igrf14",
+                              "magnetorquer_hold_field_model_lqr_igrf14_campaign",
+                              "IGRF-14 plant, the hold on IGRF-14 of degree 6"),
+                             ("magnetorquer_hold_field_model_lqr_below_40",
+                              "magnetorquer_hold_field_model_lqr_below_40_campaign",
+                              "the scheduled hold below 40°, field steering above"))
 
 
 def hold_candidate_campaign_blocks() -> dict[str, str]:
@@ -2542,7 +2559,7 @@ STUDIES = {s.name: s for s in (
     Study("magnetic_pointing_hold", "magnetorquer-only hold over 100 deployment runs (committed per-run table)",
           regenerate_magnetic_hold, magnetic_hold_blocks, _MAG_DOC),
     _grouped_study(HOLD_CANDIDATE_TABLES),
-    Study("magnetorquer_hold_candidate_campaigns", "issue 27's coil hold: two candidates on the campaign's first 100 "
+    Study("magnetorquer_hold_candidate_campaigns", "issue 27's coil hold: the candidates on the campaign's first 100 "
           "and 10 draws (committed campaigns)", regenerate_hold_candidate_campaigns, hold_candidate_campaign_blocks,
           _HOLD_DOC, tuple(key for key, _, _ in _HOLD_CANDIDATE_CAMPAIGNS)),
     Study("magnetorquer_hold_after_acquisition", "issue 27's coil-only hold after acquisition over 100 plant runs "

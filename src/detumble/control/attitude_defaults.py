@@ -49,6 +49,13 @@ MAG_RESIDUAL_DIPOLE_X = 0.0  # A·m², B: ground-calibrated residual dipole
 MAG_RESIDUAL_DIPOLE_Y = 0.0  # A·m², B
 MAG_RESIDUAL_DIPOLE_Z = 0.0  # A·m², B
 MAG_RESIDUAL_WINDOW = 60.0  # s: the estimator's momentum-balance window
+MAG_BIAS_TIME = 0.0  # s: >0: the field the controller uses is the reading less an on-board bias estimate (the
+#                      reading minus the on-board dipole model turned into B by q̂, low-passed at this time constant;
+#                      three_mode._correct_mag_bias); 0 (default): the reading as it is
+MAG_LQR_ANGLE = 0.0  # deg: >0: below this pointing error the coils' hold is the LQR scheduled on the on-board
+#                      field model (control.magnetic_lqr; three_mode._model_lqr_torque), field steering above; 0: off
+MAG_FIELD_MODEL_DEGREE = 1.0  # the on-board field model of MAG_BIAS_TIME and MAG_LQR_ANGLE: 1 the tilted dipole,
+#                               2…13 IGRF-14 truncated to that degree (control.geomagnetic.OnboardField)
 
 # --- moving targets (control.targets) ----------------------------------------------------------
 GS_MIN_ELEVATION = 10.0  # deg: a ground station is tracked while it sees the spacecraft this high or higher
@@ -226,6 +233,9 @@ PARAMETERS: dict[str, tuple[str, float | None, float | None, bool]] = {
     "MAG_STEER_RHO_FROM": ("deg", 0.0, 180.0, True),
     "MAG_STEER_RHO_AT": ("deg", 0.0, 180.0, True),
     "RATE_OBSERVER_DIPOLE_TIME": ("s", 0.0, 3600.0, True),
+    "MAG_BIAS_TIME": ("s", 0.0, 1.0e5, True),
+    "MAG_LQR_ANGLE": ("deg", 0.0, 180.0, True),
+    "MAG_FIELD_MODEL_DEGREE": ("1", 1.0, 13.0, True),
 }
 #: Each parameter's units (the first column of :data:`PARAMETERS`).
 UNITS: dict[str, str] = {name: row[0] for name, row in PARAMETERS.items()}

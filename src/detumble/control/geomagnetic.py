@@ -24,7 +24,8 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-__all__ = ["dipole_field_N", "IGRF2025_G10_NT", "IGRF2025_G11_NT", "IGRF2025_H11_NT", "IGRF_REFERENCE_RADIUS_M"]
+__all__ = ["dipole_field_N", "OnboardField", "IGRF2025_G10_NT", "IGRF2025_G11_NT", "IGRF2025_H11_NT",
+           "IGRF_REFERENCE_RADIUS_M"]
 
 #: nT: IGRF-14 degree-1 Gauss coefficients at epoch 2025.0.
 IGRF2025_G10_NT = -29350.0
@@ -51,3 +52,25 @@ def dipole_field_N(r_N: Sequence[float], earth_angle_rad: float, *, g10_nT: floa
     k = 3.0 * (dx * x + dy * y + dz * z) / r2
     inv_r3 = 1.0 / (r2 * r)
     return ((k * x - dx) * inv_r3, (k * y - dy) * inv_r3, (k * z - dz) * inv_r3)
+
+
+class OnboardField:
+    """The on-board field model as a function of position and Earth angle: the tilted dipole
+    (:func:`dipole_field_N`, ``degree`` 1) or IGRF-14 truncated to ``degree`` (2…13, ``control.igrf``, its 2025.0
+    coefficients without secular variation). Call with ``(r_N m, earth_angle_rad)``; returns T in N."""
+
+    def __init__(self, degree: int = 1) -> None:
+        from detumble.control.igrf import IgrfField
+
+        self.degree = int(degree)
+        if not 1 <= self.degree <= 13:
+            raise ValueError(f"the on-board field model's degree must be 1…13, got {degree}")
+        self._igrf = IgrfField(2025.0, self.degree) if self.degree > 1 else None
+
+    def __call__(self, r_N: Sequence[float], earth_angle_rad: float) -> tuple[float, float, float]:  # noqa: N803
+        if self._igrf is None:
+            return dipole_field_N(r_N, earth_angle_rad)
+        c, s = math.cos(earth_angle_rad), math.sin(earth_angle_rad)
+        x, y, z = float(r_N[0]), float(r_N[1]), float(r_N[2])
+        bx, by, bz = self._igrf.b_ecef((c * x + s * y, -s * x + c * y, z))
+        return (c * bx - s * by, s * bx + c * by, bz)

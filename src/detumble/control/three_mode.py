@@ -37,7 +37,9 @@ from typing import Mapping, Protocol, Sequence
 
 from detumble.control import attitude_defaults as defaults
 from detumble.control.attitude_filter import AttitudeFilter
+from detumble.control.geomagnetic import OnboardField
 from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
+from detumble.control.magnetic_lqr import HoldGainTable, hold_gain_table, lqr_dipole_B
 from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipoleEstimator, field_steering_torque
 from detumble.control.magnetorquer import face_coil_levels
 from detumble.control.mat3 import cross as _cross
@@ -89,6 +91,19 @@ _FF_GRAVITY = _member("WHEEL_FEED_FORWARD", "REFERENCE_GYROSCOPIC_GRAVITY")
 
 _DEG = math.pi / 180.0
 _ARCSEC = _DEG / 3600.0
+# the model-scheduled hold (MAG_LQR_ANGLE > 0; control.magnetic_lqr): weights chosen on the linearised hold in the
+# campaign's field (docs/studies/magnetorquer_hold_after_acquisition.md, "The hold scheduled on the field model"): the
+# periodic-LQR bound's fastest law (rate scale 0.01 rad/s, α 8e-3 /s) swings a 30° error at rest past 100° once
+# scaled to the coils (campaigns/adcs/magnetorquer_hold_lqr_weights.py); rate scale 0.03 rad/s, r 1, α 2e-3 /s peaks
+# at 63-80° and falls to 15° in 200-304 s (median over the axes);
+# its 1.4 s step, a table for an orbit computed over two
+MAG_LQR_STEP_S = 1.4
+MAG_LQR_USE_S = 5580.0
+MAG_LQR_EXTRA_S = 5580.0
+MAG_LQR_THETA_SCALE = math.radians(30.0)
+MAG_LQR_RATE_SCALE = 0.03
+MAG_LQR_R_WEIGHT = 1.0
+MAG_LQR_ALPHA = 2.0e-3
 _ZERO = (0.0, 0.0, 0.0)
 _isfinite = math.isfinite
 
@@ -314,6 +329,9 @@ class ThreeModeLaw:
     SUN_HOLD_RAMP: float
     SUN_HOLD_FIELD_ANGLE: float
     SUN_HOLD_TIP_ANGLE: float
+    MAG_BIAS_TIME: float
+    MAG_LQR_ANGLE: float
+    MAG_FIELD_MODEL_DEGREE: float
 
     def __init__(self, io: ControllerIo, notify: Notify, provider: DipoleProvider,
                  wheel_axes: Sequence[Sequence[float]] = XYZ, params: Mapping[str, object] | None = None) -> None:
@@ -347,6 +365,9 @@ class ThreeModeLaw:
         self.b_tesla: Vec3 | None = None
         self.b_gauss: Vec3 = _ZERO  # the cycle's magnetometer sample, gauss (B), and its time µs
         self.b_stamp_us = 0
+        self._onboard_field: OnboardField | None = None  # MAG_FIELD_MODEL_DEGREE's model (made when first used)
+        self._lqr_table: HoldGainTable | None = None  # MAG_LQR_ANGLE > 0: the model-scheduled hold's gains
+        self.mag_bias_T: Vec3 | None = None  # T, B: the on-board magnetometer-bias estimate (MAG_BIAS_TIME > 0)
         self.dipole: Vec3 = _ZERO  # A·m² achieved by the levels of the present cycle
         self.torque_request: Vec3 = _ZERO
         self.wheel_torques: tuple[float, ...] = ()
@@ -732,6 +753,8 @@ class ThreeModeLaw:
             b, self.b_stamp_us = field
             self.b_gauss = b
             self.b_tesla = (b[0] * TESLA_PER_GAUSS, b[1] * TESLA_PER_GAUSS, b[2] * TESLA_PER_GAUSS)
+            if self.MAG_BIAS_TIME > 0.0:
+                self.b_tesla = self._correct_mag_bias(self.b_tesla, dt)
         else:
             notify.event("MagneticFieldRetrievalFailed")
             self.b_tesla = None
@@ -743,6 +766,45 @@ class ThreeModeLaw:
                   if self.omega is not None else None)
         self._update_rate_observer(dt, torque)
         self._track_residual_dipole(dt, torque)
+
+    def _field_model(self) -> OnboardField:
+        """The on-board field model of MAG_FIELD_MODEL_DEGREE (made again when the parameter changes)."""
+        degree = int(self.MAG_FIELD_MODEL_DEGREE)
+        model = self._onboard_field
+        if model is None or model.degree != degree:
+            model = self._onboard_field = OnboardField(degree)
+        return model
+
+    def _correct_mag_bias(self, b_meas: Vec3, dt: float) -> Vec3:
+        """The magnetometer reading ``b_meas`` (T, B) less the on-board bias estimate (MAG_BIAS_TIME > 0).
+
+        The estimate low-passes, at the time constant MAG_BIAS_TIME (s), the reading minus the on-board field model
+        (``control.geomagnetic.OnboardField`` of MAG_FIELD_MODEL_DEGREE at the ephemeris' position and Earth angle)
+        turned into B by the attitude estimate: ``b̂ += min(dt/τ, 1) (b − A(q̂) B_model − b̂)``, started at the
+        first difference. It is updated only with a valid attitude and an ephemeris, and held (still subtracted)
+        without them; before the first update the reading is returned as it is. With τ of the order of the cycle
+        the corrected field is the model's own (the reading's noise and bias gone, its model error in); with τ ≫ an
+        orbit it is the reading less the orbit-mean of the model's error and the bias."""
+        q = self.filter.q
+        eph = self.io.ephemeris() if q is not None and self.attitude_valid else None
+        if eph is not None and q is not None:
+            try:
+                b_model_B = rotate_n_to_b(q, self._field_model()(eph.r_N, eph.earth_angle_rad))
+            except ValueError:
+                b_model_B = None
+            if b_model_B is not None:
+                e = (b_meas[0] - b_model_B[0], b_meas[1] - b_model_B[1], b_meas[2] - b_model_B[2])
+                est = self.mag_bias_T
+                if est is None:
+                    est = e
+                else:
+                    k = min(dt / self.MAG_BIAS_TIME, 1.0) if dt > 0.0 else 0.0
+                    est = (est[0] + k * (e[0] - est[0]), est[1] + k * (e[1] - est[1]), est[2] + k * (e[2] - est[2]))
+                self.mag_bias_T = est
+        est = self.mag_bias_T
+        if est is None:
+            return b_meas
+        return (b_meas[0] - est[0], b_meas[1] - est[1], b_meas[2] - est[2])
 
     def _update_rate_observer(self, dt: float, torque) -> None:
         """The derivative term's rate: the bias-corrected gyro, or the model-aided observer (RATE_SOURCE)."""
@@ -1131,10 +1193,49 @@ class ThreeModeLaw:
         kp, kd = self.K_P_MAG, self.K_D_MAG
         if self.MAG_POINTING_LAW == _SEED_PD or self.b_tesla is None:
             return pd_torque(target, q, w, kp, kd)
+        if self.MAG_LQR_ANGLE > 0.0:
+            lqr = self._model_lqr_torque(target, q, w)
+            if lqr is not None:
+                return lqr
         bd = self.bdot_hat_B if self.bdot_hat_B is not None else _ZERO  # no estimate yet: the law's ρ = 0 case
         return field_steering_torque(target, q, w, self.b_tesla, bd, kp, kd, self.MAG_STEER_RHO,
                                      self.MAG_STEER_ZETA, self.MAG_FIELD_RATE_MIN, self.MAG_STEER_RHO_LARGE,
                                      self.MAG_STEER_RHO_FROM, self.MAG_STEER_RHO_AT)
+
+    def _model_lqr_torque(self, target: Quat, q: Quat, w: Vec3):
+        """``(τ_req, q_err)`` of the hold scheduled on the on-board field model (``control.magnetic_lqr``), or None
+        where it does not apply: an error of MAG_LQR_ANGLE or more, a moving target, no field reading or no
+        ephemeris for a new table. ``τ_req = m × b`` for the LQR's dipole ``m`` and the field ``b`` the projection
+        uses, so the projection gives ``m`` back (its part ⟂ b). The table (the gains for an orbit from its
+        computation, over the field the on-board dipole model predicts along the propagated orbit) is computed
+        when there is none, the target changed or it has run out."""
+        qe = quat_error(target, q)
+        b = self.b_tesla
+        spec = self.target_spec
+        if (b is None or math.degrees(quat_angle(qe)) >= self.MAG_LQR_ANGLE
+                or (spec is not None and spec.needs_ephemeris)):
+            return None
+        t = self.io.now_us() / 1e6
+        table = self._lqr_table
+        gain = table.gain(t) if table is not None and table.q_tn == target else None
+        if gain is None:
+            eph = self.io.ephemeris()
+            if eph is None:
+                return None
+            duty = self.duty
+            inertia = tuple(tuple(x / duty for x in row) for row in self.rate_observer.inertia)
+            try:
+                table = hold_gain_table(target, t, eph.r_N, eph.v_N, eph.earth_angle_rad, inertia, self.coil_limits(),
+                                        MAG_LQR_STEP_S, MAG_LQR_USE_S, MAG_LQR_EXTRA_S, MAG_LQR_THETA_SCALE,
+                                        MAG_LQR_RATE_SCALE, MAG_LQR_R_WEIGHT, MAG_LQR_ALPHA, self._field_model())
+            except (ArithmeticError, ValueError):
+                return None
+            self._lqr_table = table
+            gain = table.gain(t)
+            if gain is None:
+                return None
+        m = lqr_dipole_B(gain, qe, w)
+        return _cross(m, b), qe
 
     def _body_momentum(self, momenta) -> Vec3:
         """``Σ h_i g_i`` over the wheels, N·m·s (B)."""
