@@ -70,7 +70,4 @@ class OnboardField:
     def __call__(self, r_N: Sequence[float], earth_angle_rad: float) -> tuple[float, float, float]:  # noqa: N803
         if self._igrf is None:
             return dipole_field_N(r_N, earth_angle_rad)
-        c, s = math.cos(earth_angle_rad), math.sin(earth_angle_rad)
-        x, y, z = float(r_N[0]), float(r_N[1]), float(r_N[2])
-        bx, by, bz = self._igrf.b_ecef((c * x + s * y, -s * x + c * y, z))
-        return (c * bx - s * by, s * bx + c * by, bz)
+        return self._igrf.b_N_at_angle((float(r_N[0]), float(r_N[1]), float(r_N[2])), earth_angle_rad)

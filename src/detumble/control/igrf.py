@@ -215,8 +215,11 @@ class IgrfField:
 
     def b_N(self, t: float, r_N: tuple[float, float, float]) -> tuple[float, float, float]:
         """Field (T) in N at position ``r_N`` (m) and time ``t`` (s after epoch)."""
-        th = self.theta0_rad + self.earth_rotation_rate * t
-        c, s = math.cos(th), math.sin(th)
+        return self.b_N_at_angle(r_N, self.theta0_rad + self.earth_rotation_rate * t)
+
+    def b_N_at_angle(self, r_N: tuple[float, float, float], earth_angle_rad: float) -> tuple[float, float, float]:  # noqa: N802
+        """Field (T) in N at position ``r_N`` (m) with the Earth turned ``earth_angle_rad`` (rad) from N to ECEF."""
+        c, s = math.cos(earth_angle_rad), math.sin(earth_angle_rad)
         x, y, z = r_N
         bx, by, bz = self.b_ecef((c * x + s * y, -s * x + c * y, z))
         return (c * bx - s * by, s * bx + c * by, bz)
