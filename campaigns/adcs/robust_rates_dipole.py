@@ -7,6 +7,7 @@ the figures the page gives beside its campaign, flown plant-only.
     python campaigns/adcs/robust_rates_dipole.py auto       # the adcs scenario's own orbit (AUTO), 0 and 20 s
     python campaigns/adcs/robust_rates_dipole.py learn      # when that orbit's observer learns, at the defaults
     python campaigns/adcs/robust_rates_dipole.py estimators # the single-run slew with each ESTIMATOR, 0 and 20 s
+    python campaigns/adcs/robust_rates_dipole.py along      # that orbit's estimate error, along and across the field
 
 ``draws``: the robust-rates campaign's draws 3, 0 and 77 (the three the default gate misses) flown as the gate
 campaign flies them (``robust_rates_tail.fly`` with INTEGRAL_RATE_GATE 0.05 °/s) with the estimate's time constant
@@ -24,6 +25,10 @@ when its estimate first differs from zero (s), and the estimate at the end again
 ``estimators``: the robust-rates single-run geometry (``robust_rates_table``, the plant's inertia exact, 400 s) with
 ESTIMATOR COMPLEMENTARY and MEKF, the estimate off and at 20 s: the slew's settle below 0.1° (s), median / p95 from
 120 s (deg), and the dipole estimate when POINTING is entered (30 s) and at the end (A·m², B).
+``along``: the ``learn`` orbit again; at twenty evenly spaced learning cycles and the last, the estimate's error
+against the plant's dipole split into its part along the field the observer was given that cycle (which gives no
+torque) and the part across it (A·m², B), the torque error that part makes and the plant dipole's own torque
+``|m × B|`` (nN·m).
 """
 
 from __future__ import annotations
@@ -213,9 +218,56 @@ def estimators() -> None:
                   f"  dipole estimate {text}", flush=True)
 
 
+def along() -> None:
+    import math
+
+    from detumble.control.rate_observer import RateObserver
+    from detumble.sim.runner import run
+    from detumble.sim.scenario import load_scenario
+
+    fit, update = RateObserver.learn_dipole, RateObserver.update
+    cycles: list[int] = [0]
+    seen: list[tuple[int, tuple, tuple]] = []  # (cycle, estimate after it, field given, T) of every learning cycle
+
+    def counted(self, *args, **kwargs):
+        cycles[0] += 1
+        return update(self, *args, **kwargs)
+
+    def learned(self, omega, torque, momentum, b_tesla, dt, time_s):
+        seen.append((cycles[0], fit(self, omega, torque, momentum, b_tesla, dt, time_s), b_tesla))
+        return self.dipole
+
+    RateObserver.learn_dipole, RateObserver.update = learned, counted  # type: ignore[method-assign]
+    try:
+        sc = load_scenario("adcs")
+        r = run(sc, law="adcs")
+    finally:
+        RateObserver.learn_dipole, RateObserver.update = fit, update  # type: ignore[method-assign]
+    cycle_s = r.rows[-1][0] / cycles[0]
+    true = sc.spacecraft.residual_dipole_am2
+
+    def dot(a, b):
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+    def cross_norm(a, b):
+        return math.sqrt(max(dot(a, a) * dot(b, b) - dot(a, b) ** 2, 0.0))
+
+    n = len(seen)
+    for k in [*range(n // 20, n, n // 20)][:19] + [n - 1]:
+        cycle, m, b = seen[k]
+        e = (m[0] - true[0], m[1] - true[1], m[2] - true[2])
+        b_norm = math.sqrt(dot(b, b))
+        along_b = dot(e, b) / b_norm
+        across = math.sqrt(max(dot(e, e) - along_b ** 2, 0.0))
+        print(f"t {cycle * cycle_s:7.1f} s  error along B {along_b * 1e3:+.3f}e-3, across {across * 1e3:.3f}e-3 A·m²  "
+              f"torque error {across * b_norm * 1e9:.1f} nN·m of the dipole's {cross_norm(true, b) * 1e9:.1f}",
+              flush=True)
+
+
 if __name__ == "__main__":
     command = sys.argv[1] if len(sys.argv) > 1 else "draws"
     if command == "blocks":
         blocks(int(sys.argv[2]))
     else:
-        {"draws": draws, "targets": targets, "auto": auto, "learn": learn, "estimators": estimators}[command]()
+        {"draws": draws, "targets": targets, "auto": auto, "learn": learn, "estimators": estimators,
+         "along": along}[command]()
