@@ -136,21 +136,23 @@ def blocks(index: int) -> None:
                 f"({', '.join(f'{x:.2e}' for x in seen[i])})" for i in changes[::max(1, len(changes) // 6)]))
 
 
-def learn() -> None:
+def _fly_auto_orbit():
+    """The adcs scenario's AUTO orbit at the defaults, plant-only: ``(scenario, result, cycle_s, calm)`` with
+    ``calm`` the ``(cycle, estimate after it, field given)`` of every control cycle in which the observer learned."""
     from detumble.control.rate_observer import RateObserver
     from detumble.sim.runner import run
     from detumble.sim.scenario import load_scenario
 
     fit, update = RateObserver.learn_dipole, RateObserver.update
     cycles: list[int] = [0]
-    calm: list[tuple[int, tuple]] = []  # (cycle, estimate after it) of every cycle that learned
+    calm: list[tuple[int, tuple, tuple]] = []
 
     def counted(self, *args, **kwargs):
         cycles[0] += 1
         return update(self, *args, **kwargs)
 
-    def learned(self, *args, **kwargs):
-        calm.append((cycles[0], fit(self, *args, **kwargs)))
+    def learned(self, omega, torque, momentum, b_tesla, dt, time_s):
+        calm.append((cycles[0], fit(self, omega, torque, momentum, b_tesla, dt, time_s), b_tesla))
         return self.dipole
 
     RateObserver.learn_dipole, RateObserver.update = learned, counted  # type: ignore[method-assign]
@@ -159,16 +161,20 @@ def learn() -> None:
         r = run(sc, law="adcs")
     finally:
         RateObserver.learn_dipole, RateObserver.update = fit, update  # type: ignore[method-assign]
-    cycle_s = r.rows[-1][0] / cycles[0]
+    return sc, r, r.rows[-1][0] / cycles[0], calm
+
+
+def learn() -> None:
+    sc, r, cycle_s, calm = _fly_auto_orbit()
     stretches: list[list[int]] = []
-    for n, _ in calm:
+    for n, _, _ in calm:
         if stretches and n == stretches[-1][1] + 1:
             stretches[-1][1] = n
         else:
             stretches.append([n, n])
     long = [(a * cycle_s, b * cycle_s) for a, b in stretches if (b - a + 1) * cycle_s >= 1.0]
     e = r.summary["pointing_error_deg"]
-    first = next((n * cycle_s for n, m in calm if any(x != 0.0 for x in m)), None)
+    first = next((n * cycle_s for n, m, _ in calm if any(x != 0.0 for x in m)), None)
     print(f"POINTING from {[i['t_s'] for i in r.summary['pointing_intervals']]} s, acquisition {e['acquisition_s']} s; "
           f"{len(stretches)} calm stretches, {len(stretches) - len(long)} under 1 s; the others (s): "
           + ", ".join(f"{a:.1f}-{b:.1f}" for a, b in long))
@@ -221,29 +227,7 @@ def estimators() -> None:
 def along() -> None:
     import math
 
-    from detumble.control.rate_observer import RateObserver
-    from detumble.sim.runner import run
-    from detumble.sim.scenario import load_scenario
-
-    fit, update = RateObserver.learn_dipole, RateObserver.update
-    cycles: list[int] = [0]
-    seen: list[tuple[int, tuple, tuple]] = []  # (cycle, estimate after it, field given, T) of every learning cycle
-
-    def counted(self, *args, **kwargs):
-        cycles[0] += 1
-        return update(self, *args, **kwargs)
-
-    def learned(self, omega, torque, momentum, b_tesla, dt, time_s):
-        seen.append((cycles[0], fit(self, omega, torque, momentum, b_tesla, dt, time_s), b_tesla))
-        return self.dipole
-
-    RateObserver.learn_dipole, RateObserver.update = learned, counted  # type: ignore[method-assign]
-    try:
-        sc = load_scenario("adcs")
-        r = run(sc, law="adcs")
-    finally:
-        RateObserver.learn_dipole, RateObserver.update = fit, update  # type: ignore[method-assign]
-    cycle_s = r.rows[-1][0] / cycles[0]
+    sc, _, cycle_s, seen = _fly_auto_orbit()
     true = sc.spacecraft.residual_dipole_am2
 
     def dot(a, b):
