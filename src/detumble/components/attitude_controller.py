@@ -4,8 +4,9 @@ The controller is :class:`detumble.control.three_mode.ThreeModeLaw` (framework-f
 adcs`` flies it too). This module declares what the ground sees (``docs/components/attitude_controller.md``) and
 adapts the law to it: the component is the law's ``ControllerIo`` and ``DipoleProvider`` (its ports) and its
 ``Notify`` (events, the cycle's telemetry), and hands it the parameter values when they load and at every
-PRM_SET (they act from the next cycle). ``run`` is on the 50 Hz rate group. Units: rad/s inside, deg/s in
-parameters and telemetry; field gauss at the port; N·m, N·m·s, A·m²; quaternions ``q_BN`` scalar first.
+PRM_SET (they act from the next cycle). ``run`` is on the 50 Hz rate group; ``tlmRun`` (1 Hz, just before
+TlmChan's ``Run``) writes the cycles' telemetry (:meth:`AttitudeController.cycle_done`). Units: rad/s inside,
+deg/s in parameters and telemetry; field gauss at the port; N·m, N·m·s, A·m²; quaternions ``q_BN`` scalar first.
 """
 
 from __future__ import annotations
@@ -265,6 +266,7 @@ class AttitudeController(PassiveComponent):
         self._tlm_records: list[tuple] = []
         self._tlm_floors = [0] * len(_GROUPS)
         self._tlm_unwritten: tuple[int, ...] = ()
+        self._tlm_leads = tuple(getattr(self, name) for name in _GROUP_LEADS)  # each group's first channel
         self.law = ThreeModeLaw(self, self, self, wheel_axes, {n: b.value for n, b in self.params.items()})
 
     def parameters_loaded(self) -> None:
@@ -441,7 +443,7 @@ class AttitudeController(PassiveComponent):
         from its first call the cycles keep their telemetry for it. A fault is reported, never raised."""
         if not self._tlm_deferred:
             self._tlm_deferred = True
-            self._tlm_unwritten = tuple(g for g in range(len(_GROUPS)) if not _GROUP_LEAD[g](self).written)
+            self._tlm_unwritten = tuple(g for g, lead in enumerate(self._tlm_leads) if not lead.written)
         try:
             self._write_telemetry()
         except Exception as exc:  # noqa: BLE001 - the rate group must keep running
@@ -472,7 +474,7 @@ class AttitudeController(PassiveComponent):
         still = []
         for g in self._tlm_unwritten:
             present, write = _GROUPS[g]
-            if _GROUP_LEAD[g](self).written:
+            if self._tlm_leads[g].written:
                 continue
             if present is None or record[present] is not None:
                 write(self, record)
@@ -587,8 +589,7 @@ _GROUPS = ((None, _w_mode), (None, _w_autonomy), (_R_OMEGA, _w_rate), (_R_POINTI
            (_R_SUN_ERROR, _w_sun_error), (_R_REFERENCE, _w_target), (_R_MOVING_REFERENCE, _w_reference_rate),
            (_R_MOVING_REFERENCE, _w_target_quaternion))
 #: Each group's first channel (written first: the group was written when it was).
-_GROUP_LEAD = tuple(lambda c, n=n: getattr(c, n) for n in (
-    "Mode", "Autonomy", "AngularRate", "PointingError", "DamperState", "WheelMomentum", "GyroBiasEstimate",
-    "AttitudeSigma3", "FieldLineRate", "ResidualDipole", "SunVectorEstimate", "SunPointingError", "ActiveTarget",
-    "ReferenceRate", "TargetQuaternion"))
+_GROUP_LEADS = ("Mode", "Autonomy", "AngularRate", "PointingError", "DamperState", "WheelMomentum",
+                "GyroBiasEstimate", "AttitudeSigma3", "FieldLineRate", "ResidualDipole", "SunVectorEstimate",
+                "SunPointingError", "ActiveTarget", "ReferenceRate", "TargetQuaternion")
 _G_MODE, _G_TARGET = 0, 14
