@@ -232,6 +232,14 @@ def _attitude_controller_run_safing(rig):
     return Expect(h, ["run", "run: safing"], safe=_wheels_zero(h, ac))
 
 
+@recipe("AttitudeController", "tlmRun")
+def _attitude_controller_tlm_run(rig):
+    h, ac = rig.harness("AttitudeController")
+    rig.patch(ac, "_write_telemetry")
+    h.invoke("tlmRun", 0)
+    return Expect(h, ["tlmRun"], no_actuator="it writes the cycles' telemetry; the cycles command the actuators")
+
+
 # the ADCS light sensors
 
 

@@ -1077,6 +1077,7 @@ module Components {
     param get port prmGetOut
     param set port prmSetOut
     sync input port run: Svc.Sched
+    sync input port tlmRun: Svc.Sched
     output port angularVelocityGet: Components.AngularVelocityGet
     output port magneticFieldGet: Components.MagneticFieldGet
     output port attitudeGet: Drv.AttitudeGet

@@ -216,9 +216,10 @@ module AdcsDeployment {
       ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[7] -> ReferenceDeployment.reactionWheel1.run[0]
       ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[8] -> ReferenceDeployment.reactionWheel2.run[0]
       ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[9] -> ReferenceDeployment.starTracker.run[0]
-      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[10] -> CdhCore.tlmSend.Run[0]
-      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[11] -> CdhCore.$health.Run[0]
-      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[12] -> FileHandling.fileDownlink.Run[0]
+      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[10] -> ReferenceDeployment.attitudeController.tlmRun[0]
+      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[11] -> CdhCore.tlmSend.Run[0]
+      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[12] -> CdhCore.$health.Run[0]
+      ReferenceDeployment.rateGroup1Hz.RateGroupMemberOut[13] -> FileHandling.fileDownlink.Run[0]
     }
     connections Pattern_command {
       CdhCore.cmdDisp.cmdRegOut[0] -> CdhCore.cmdDisp.compCmdReg[0]

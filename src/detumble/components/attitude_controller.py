@@ -4,8 +4,9 @@ The controller is :class:`detumble.control.three_mode.ThreeModeLaw` (framework-f
 adcs`` flies it too). This module declares what the ground sees (``docs/components/attitude_controller.md``) and
 adapts the law to it: the component is the law's ``ControllerIo`` and ``DipoleProvider`` (its ports) and its
 ``Notify`` (events, the cycle's telemetry), and hands it the parameter values when they load and at every
-PRM_SET (they act from the next cycle). ``run`` is on the 50 Hz rate group. Units: rad/s inside, deg/s in
-parameters and telemetry; field gauss at the port; N·m, N·m·s, A·m²; quaternions ``q_BN`` scalar first.
+PRM_SET (they act from the next cycle). ``run`` is on the 50 Hz rate group; ``tlmRun`` (1 Hz, just before
+TlmChan's ``Run``) writes the cycles' telemetry (:meth:`AttitudeController.cycle_done`). Units: rad/s inside,
+deg/s in parameters and telemetry; field gauss at the port; N·m, N·m·s, A·m²; quaternions ``q_BN`` scalar first.
 """
 
 from __future__ import annotations
@@ -259,6 +260,13 @@ class AttitudeController(PassiveComponent):
         self._sun_port = self.output_port("sunVectorGet")
         self._system_mode_port = self.output_port("getSystemMode")
         self._wheels_enabled = False
+        # The cycle's telemetry kept for tlmRun (see cycle_done): the cycles' records since its last call,
+        # per group the first record a command's write leaves it, and the groups never written yet.
+        self._tlm_deferred = False
+        self._tlm_records: list[tuple] = []
+        self._tlm_floors = [0] * len(_GROUPS)
+        self._tlm_unwritten: tuple[int, ...] = ()
+        self._tlm_leads = tuple(getattr(self, name) for name in _GROUP_LEADS)  # each group's first channel
         self.law = ThreeModeLaw(self, self, self, wheel_axes, {n: b.value for n, b in self.params.items()})
 
     def parameters_loaded(self) -> None:
@@ -404,46 +412,184 @@ class AttitudeController(PassiveComponent):
     def mode_changed(self, old: int, new: int, reason: int) -> None:
         self.ControlModeChanged(_MODES[old], _MODES[new], ModeChangeReason(reason))
         self.Mode.write(_MODES[new])
+        self._tlm_floors[_G_MODE] = len(self._tlm_records)  # no older cycle's Mode may follow this write
 
     def target_set(self, q) -> None:
         self.TargetSet(*q)
         self.TargetQuaternion.write(Quaternion(*q))
+        self._tlm_floors[_G_TARGET] = len(self._tlm_records)
 
     def cycle_done(self) -> None:
+        """The cycle's telemetry: written now (every cycle) until ``tlmRun`` has run once, then kept as the
+        cycle's record for ``tlmRun`` to write (a channel's first write still happens on its cycle)."""
+        record = self._cycle_record()
+        if not self._tlm_deferred:
+            for present, write in _GROUPS:
+                if present is None or record[present] is not None:
+                    write(self, record)
+            return
+        records = self._tlm_records
+        records.append(record)
+        if self._tlm_unwritten:
+            self._first_writes(record)
+        if len(records) >= TLM_RECORDS_MAX:
+            self._write_telemetry()
+
+    @sync_input(Sched)
+    def tlmRun(self, context):
+        """Write the telemetry of the cycles since the last call: each channel's value from the latest cycle
+        that wrote it, time-tagged with that cycle's time (the writes the cycles made, less those TlmChan's
+        next ``Run`` would not send). Scheduled just before ``tlmSend.Run`` in the group that sends (1 Hz);
+        from its first call the cycles keep their telemetry for it. A fault is reported, never raised."""
+        if not self._tlm_deferred:
+            self._tlm_deferred = True
+            self._tlm_unwritten = tuple(g for g, lead in enumerate(self._tlm_leads) if not lead.written)
+        try:
+            self._write_telemetry()
+        except Exception as exc:  # noqa: BLE001 - the rate group must keep running
+            self.report_fault("tlmRun", exc)
+
+    def _cycle_record(self) -> tuple:
+        """The cycle's telemetry values before conversion (see the ``_R_*`` indices): the time now and the
+        law's values, each an immutable number or tuple the law replaces (never changes in place), None
+        where the cycle writes no such channel."""
         law = self.law
-        self.Mode.write(_MODES[law.mode])
-        self.Autonomy.write(_AUTONOMIES[law.autonomy])
-        w = law.omega
-        if w is not None:
-            n = math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])
-            self.AngularRate.write(math.degrees(n))
-            self.SpinAxisError.write(spin_axis_error_deg(w))
-            self.SpinRate.write(math.degrees(w[2]))
-        if law.mode == POINTING and _isfinite(law.pointing_error_deg):
-            self.PointingError.write(law.pointing_error_deg)
-        self.DamperState.write(float(law.damper_state))
-        self.RequestedTorque.write(Vector3(law.torque_request))
-        self.CommandedDipole.write(Vector3(law.dipole))
-        self.WheelTorqueCommand.write(WheelValues(_pad(law.wheel_torques)))
-        if law.wheel_momenta is not None:
-            self.WheelMomentum.write(WheelValues(_pad(law.wheel_momenta)))
-        b = law.filter.bias
-        self.GyroBiasEstimate.write(Vector3([math.degrees(b[0]), math.degrees(b[1]), math.degrees(b[2])]))
-        self.AttitudeValid.write(1 if law.attitude_valid else 0)
-        if isinstance(law.filter, Mekf) and law.filter.q is not None:
-            self.AttitudeSigma3.write(math.degrees(law.filter.attitude_sigma3_rad))
-        if law.bdot_hat_B is not None:
-            d = law.bdot_hat_B
-            self.FieldLineRate.write(math.degrees(math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])))
-        self.ResidualDipole.write(Vector3(law.residual_ff))
-        if law.sun_B is not None:
-            self.SunVectorEstimate.write(Vector3(list(law.sun_B)))
-        if law.mode == SUN_SAFE and _isfinite(law.sun_error_deg):
-            self.SunPointingError.write(law.sun_error_deg)
+        mode = law.mode
+        f = law.filter
+        pe, se = law.pointing_error_deg, law.sun_error_deg
         ref = law.reference
-        if ref is not None:
-            self.ActiveTarget.write(PointingReference(ref.label))
-            if law.target_spec is not None and law.target_spec.needs_ephemeris:
-                w = ref.omega_R
-                self.ReferenceRate.write(Vector3([math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2])]))
-                self.TargetQuaternion.write(Quaternion(*ref.q_RN))
+        spec = law.target_spec
+        return (self.get_time(), mode, law.autonomy, law.omega,
+                pe if mode == POINTING and _isfinite(pe) else None,
+                law.damper_state, law.torque_request, law.dipole, law.wheel_torques, law.wheel_momenta, f.bias,
+                law.attitude_valid,
+                f.attitude_sigma3_rad if isinstance(f, Mekf) and f.q is not None else None,
+                law.bdot_hat_B, law.residual_ff, law.sun_B,
+                se if mode == SUN_SAFE and _isfinite(se) else None,
+                ref, ref if ref is not None and spec is not None and spec.needs_ephemeris else None)
+
+    def _first_writes(self, record: tuple) -> None:
+        """Write now each group of ``record`` whose channels were never written, in the cycle's order, so
+        that TlmChan first receives them when it did when every cycle wrote (its packets keep that order)."""
+        still = []
+        for g in self._tlm_unwritten:
+            present, write = _GROUPS[g]
+            if self._tlm_leads[g].written:
+                continue
+            if present is None or record[present] is not None:
+                write(self, record)
+            else:
+                still.append(g)
+        self._tlm_unwritten = tuple(still)
+
+    def _write_telemetry(self) -> None:
+        """Write each group from the latest record that has it (not older than a command's write of it)."""
+        records, floors = self._tlm_records, self._tlm_floors
+        self._tlm_records, self._tlm_floors = [], [0] * len(_GROUPS)
+        last = len(records) - 1
+        for g, (present, write) in enumerate(_GROUPS):
+            floor = floors[g]
+            if present is None:
+                if last >= floor:
+                    write(self, records[last])
+                continue
+            for i in range(last, floor - 1, -1):
+                record = records[i]
+                if record[present] is not None:
+                    write(self, record)
+                    break
+
+
+#: Cycles kept for ``tlmRun`` before a cycle writes them itself (10 s at 50 Hz: it is not scheduled).
+TLM_RECORDS_MAX = 500
+
+# A cycle record's fields (AttitudeController._cycle_record).
+(_R_TIME, _R_MODE, _R_AUTONOMY, _R_OMEGA, _R_POINTING_ERROR, _R_DAMPER, _R_TORQUE, _R_DIPOLE, _R_WHEEL_TORQUES,
+ _R_WHEEL_MOMENTA, _R_BIAS, _R_ATTITUDE_VALID, _R_SIGMA3, _R_BDOT, _R_RESIDUAL, _R_SUN, _R_SUN_ERROR, _R_REFERENCE,
+ _R_MOVING_REFERENCE) = range(19)
+
+
+def _w_mode(c: AttitudeController, r: tuple) -> None:
+    c.Mode.write(_MODES[r[_R_MODE]], r[_R_TIME])
+
+
+def _w_autonomy(c: AttitudeController, r: tuple) -> None:
+    c.Autonomy.write(_AUTONOMIES[r[_R_AUTONOMY]], r[_R_TIME])
+
+
+def _w_rate(c: AttitudeController, r: tuple) -> None:
+    w, t = r[_R_OMEGA], r[_R_TIME]
+    c.AngularRate.write(math.degrees(math.sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2])), t)
+    c.SpinAxisError.write(spin_axis_error_deg(w), t)
+    c.SpinRate.write(math.degrees(w[2]), t)
+
+
+def _w_pointing_error(c: AttitudeController, r: tuple) -> None:
+    c.PointingError.write(r[_R_POINTING_ERROR], r[_R_TIME])
+
+
+def _w_commands(c: AttitudeController, r: tuple) -> None:
+    t = r[_R_TIME]
+    c.DamperState.write(float(r[_R_DAMPER]), t)
+    c.RequestedTorque.write(Vector3(r[_R_TORQUE]), t)
+    c.CommandedDipole.write(Vector3(r[_R_DIPOLE]), t)
+    c.WheelTorqueCommand.write(WheelValues(_pad(r[_R_WHEEL_TORQUES])), t)
+
+
+def _w_wheel_momentum(c: AttitudeController, r: tuple) -> None:
+    c.WheelMomentum.write(WheelValues(_pad(r[_R_WHEEL_MOMENTA])), r[_R_TIME])
+
+
+def _w_estimate(c: AttitudeController, r: tuple) -> None:
+    b, t = r[_R_BIAS], r[_R_TIME]
+    c.GyroBiasEstimate.write(Vector3([math.degrees(b[0]), math.degrees(b[1]), math.degrees(b[2])]), t)
+    c.AttitudeValid.write(1 if r[_R_ATTITUDE_VALID] else 0, t)
+
+
+def _w_sigma3(c: AttitudeController, r: tuple) -> None:
+    c.AttitudeSigma3.write(math.degrees(r[_R_SIGMA3]), r[_R_TIME])
+
+
+def _w_field_line_rate(c: AttitudeController, r: tuple) -> None:
+    d = r[_R_BDOT]
+    c.FieldLineRate.write(math.degrees(math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])), r[_R_TIME])
+
+
+def _w_residual(c: AttitudeController, r: tuple) -> None:
+    c.ResidualDipole.write(Vector3(r[_R_RESIDUAL]), r[_R_TIME])
+
+
+def _w_sun(c: AttitudeController, r: tuple) -> None:
+    c.SunVectorEstimate.write(Vector3(list(r[_R_SUN])), r[_R_TIME])
+
+
+def _w_sun_error(c: AttitudeController, r: tuple) -> None:
+    c.SunPointingError.write(r[_R_SUN_ERROR], r[_R_TIME])
+
+
+def _w_target(c: AttitudeController, r: tuple) -> None:
+    c.ActiveTarget.write(PointingReference(r[_R_REFERENCE].label), r[_R_TIME])
+
+
+def _w_reference_rate(c: AttitudeController, r: tuple) -> None:
+    w = r[_R_MOVING_REFERENCE].omega_R
+    c.ReferenceRate.write(Vector3([math.degrees(w[0]), math.degrees(w[1]), math.degrees(w[2])]), r[_R_TIME])
+
+
+def _w_target_quaternion(c: AttitudeController, r: tuple) -> None:
+    c.TargetQuaternion.write(Quaternion(*r[_R_MOVING_REFERENCE].q_RN), r[_R_TIME])
+
+
+#: The cycle's telemetry in the order a cycle writes it: (the record field that must not be None for the
+#: cycle to write the group, or None: every cycle; the group's writer). Each group's channels are written
+#: together by every cycle that writes one of them.
+_GROUPS = ((None, _w_mode), (None, _w_autonomy), (_R_OMEGA, _w_rate), (_R_POINTING_ERROR, _w_pointing_error),
+           (None, _w_commands), (_R_WHEEL_MOMENTA, _w_wheel_momentum), (None, _w_estimate),
+           (_R_SIGMA3, _w_sigma3), (_R_BDOT, _w_field_line_rate), (None, _w_residual), (_R_SUN, _w_sun),
+           (_R_SUN_ERROR, _w_sun_error), (_R_REFERENCE, _w_target), (_R_MOVING_REFERENCE, _w_reference_rate),
+           (_R_MOVING_REFERENCE, _w_target_quaternion))
+#: Each group's first channel (written first: the group was written when it was).
+_GROUP_LEADS = ("Mode", "Autonomy", "AngularRate", "PointingError", "DamperState", "WheelMomentum",
+                "GyroBiasEstimate", "AttitudeSigma3", "FieldLineRate", "ResidualDipole", "SunVectorEstimate",
+                "SunPointingError", "ActiveTarget", "ReferenceRate", "TargetQuaternion")
+_G_MODE, _G_TARGET = 0, 14
