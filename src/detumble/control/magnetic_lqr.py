@@ -27,6 +27,7 @@ Units: s, m, T, A·m², rad, rad/s; ``q`` scalar first, ``q_BN`` / ``q_TN``; ine
 from __future__ import annotations
 
 import math
+from array import array
 from collections.abc import Sequence
 
 from detumble.control.geomagnetic import dipole_field_N
@@ -40,9 +41,10 @@ __all__ = ["EARTH_ROTATION_RATE_RAD_S", "SAMPLE_UNITS", "RICCATI_STEP_UNITS", "c
 EARTH_ROTATION_RATE_RAD_S = 7.2921159e-5
 
 Mat = list[list[float]]
-#: a gain ``K`` (3×6) as the table keeps it: tuples of floats, which the garbage collector stops tracking, so a table of
-#: thousands of gains does not lengthen (and trigger) the interpreter's full collections
-Gain = tuple[tuple[float, ...], ...]
+#: a gain ``K`` (3×6) as the table gives it: its 18 floats row by row (``K[i][k]`` at ``6 i + k``), a slice of the
+#: table's one ``array('d')``. A table of 7,972 gains kept as Python lists or tuples is ~32,000 objects: freeing them
+#: took 2.4 ms (and made the interpreter's full collections longer); one array is freed at once and never tracked.
+Gain = Sequence[float]
 
 
 def circular_position_N(r_N: Vec3, v_N: Vec3, t_s: float) -> Vec3:
@@ -84,7 +86,7 @@ class _RiccatiRecursion:
     """The backward Riccati recursion of :func:`hold_gains`, one step per :meth:`step` (the state between steps:
     ``P`` and the index of the next step, counting down to 0)."""
 
-    def __init__(self, fields_t: Sequence[Vec3], inertia, step_s: float, m_max: Vec3, theta_scale_rad: float,
+    def __init__(self, fields_t: array, inertia, step_s: float, m_max: Vec3, theta_scale_rad: float,
                  rate_scale_rad_s: float, r_weight: float, alpha: float) -> None:
         h = self.h = float(step_s)
         self.fields = fields_t
@@ -94,14 +96,15 @@ class _RiccatiRecursion:
         self.q_h = [[(qt if i < 3 else qw) if i == k else 0.0 for k in range(6)] for i in range(6)]
         self.r_h = [[r_weight * h / m_max[i] ** 2 if i == k else 0.0 for k in range(3)] for i in range(3)]
         self.p = [row[:] for row in self.q_h]
-        self.gains: list[Gain] = [()] * len(fields_t)
-        self.idx = len(fields_t)  # the next step computes gains[idx - 1]; 0: done
+        n = len(fields_t) // 3
+        self.gains = array("d", bytes(8 * 18 * n))  # gain k at [18 k, 18 k + 18), row by row
+        self.idx = n  # the next step computes gain idx - 1; 0: done
 
     def step(self) -> None:
         """One step backward: ``K`` at ``idx − 1`` and the ``P`` before it. ArithmeticError if it overflows."""
         idx = self.idx - 1
         h, s, j_inv, p, q_h, r_h = self.h, self.s, self.j_inv, self.p, self.q_h, self.r_h
-        bx, by, bz = self.fields[idx]
+        bx, by, bz = self.fields[3 * idx:3 * idx + 3]
         skew = ((0.0, -bz, by), (bz, 0.0, -bx), (-by, bx, 0.0))
         g = [[-sum(j_inv[i][n] * skew[n][k] for n in range(3)) for k in range(3)] for i in range(3)]
         # Â = s [[I, hI], [0, I]], B̂ = s [h²/2 G; h G]
@@ -131,28 +134,30 @@ class _RiccatiRecursion:
         if not all(math.isfinite(x) for row in p for x in row):
             raise ArithmeticError("the Riccati recursion overflowed")
         self.p = p
-        self.gains[idx] = tuple(tuple(row) for row in gain)
+        self.gains[18 * idx:18 * idx + 18] = array("d", gain[0] + gain[1] + gain[2])
         self.idx = idx
 
 
 def hold_gains(fields_t: Sequence[Vec3], inertia, step_s: float, m_max: Vec3, theta_scale_rad: float,
                rate_scale_rad_s: float, r_weight: float, alpha: float) -> list[Gain]:
-    """The gains ``K_k`` (3×6 each, ``m = −K_k (θ, ω)``, A·m² per rad and per rad/s) of the finite-horizon LQR over
-    the fields ``fields_t`` (T, target frame, one per step of ``step_s`` s; the horizon is their count × the step),
-    backward from ``P = Q h`` at its end. ``inertia``: 3×3 kg·m² (the coils' duty folded in by the caller);
-    ``m_max``: the per-axis dipole capacity (A·m²) in R's weights. ArithmeticError if the recursion overflows."""
-    recursion = _RiccatiRecursion(fields_t, inertia, step_s, m_max, theta_scale_rad, rate_scale_rad_s, r_weight,
-                                  alpha)
+    """The gains ``K_k`` (3×6 each as 18 floats row by row, :data:`Gain`; ``m = −K_k (θ, ω)``, A·m² per rad and per
+    rad/s) of the finite-horizon LQR over the fields ``fields_t`` (T, target frame, one per step of ``step_s`` s; the
+    horizon is their count × the step), backward from ``P = Q h`` at its end. ``inertia``: 3×3 kg·m² (the coils' duty
+    folded in by the caller); ``m_max``: the per-axis dipole capacity (A·m²) in R's weights. ArithmeticError if the
+    recursion overflows."""
+    recursion = _RiccatiRecursion(array("d", [c for b in fields_t for c in b]), inertia, step_s, m_max,
+                                  theta_scale_rad, rate_scale_rad_s, r_weight, alpha)
     while recursion.idx:
         recursion.step()
-    return recursion.gains
+    g = recursion.gains
+    return [g[18 * k:18 * k + 18] for k in range(len(fields_t))]
 
 
 class HoldGainTable:
     """The gains of :func:`hold_gains` for the target ``q_tn`` from ``t0_s`` (s, the controller's clock) on, one per
     ``step_s``; :meth:`gain` at a time within ``use_s`` of the start, else None (time to compute a new table)."""
 
-    def __init__(self, q_tn: Quat, t0_s: float, step_s: float, use_s: float, gains: list[Gain]) -> None:
+    def __init__(self, q_tn: Quat, t0_s: float, step_s: float, use_s: float, gains: array) -> None:
         self.q_tn, self.t0_s, self.step_s, self.use_s, self.gains = q_tn, t0_s, step_s, use_s, gains
 
     def gain(self, t_s: float) -> Gain | None:
@@ -160,7 +165,7 @@ class HoldGainTable:
         if not 0.0 <= dt < self.use_s:
             return None
         k = int(dt / self.step_s)
-        return self.gains[k] if k < len(self.gains) else None
+        return self.gains[18 * k:18 * k + 18] if 18 * k < len(self.gains) else None
 
 
 class HoldGainTableBuilder:
@@ -179,7 +184,7 @@ class HoldGainTableBuilder:
         self._orbit = (r_N, v_N, earth_angle_rad, field_N)
         self._weights = (inertia, step_s, m_max, theta_scale_rad, rate_scale_rad_s, r_weight, alpha)
         self.samples = int(math.ceil((use_s + extra_s) / step_s))
-        self.fields: list[Vec3] = []
+        self.fields = array("d")  # the samples (T, in T), three floats each
         self._recursion: _RiccatiRecursion | None = None
         #: work units done so far, of :attr:`units_total`
         self.units_done = 0
@@ -191,16 +196,16 @@ class HoldGainTableBuilder:
             raise ValueError(f"a budget below {RICCATI_STEP_UNITS} units cannot take a Riccati step")
         left = budget
         fields, n = self.fields, self.samples
-        if len(fields) < n:
+        if len(fields) < 3 * n:
             r_N, v_N, angle, field_N = self._orbit
             q_tn, h = self.q_tn, self.step_s
-            while left >= SAMPLE_UNITS and len(fields) < n:
-                t = len(fields) * h
+            while left >= SAMPLE_UNITS and len(fields) < 3 * n:
+                t = (len(fields) // 3) * h
                 b_N = field_N(circular_position_N(r_N, v_N, t), angle + EARTH_ROTATION_RATE_RAD_S * t)
-                fields.append(rotate_n_to_b(q_tn, b_N))
+                fields.extend(rotate_n_to_b(q_tn, b_N))
                 left -= SAMPLE_UNITS
                 self.units_done += SAMPLE_UNITS
-            if len(fields) < n:
+            if len(fields) < 3 * n:
                 return None
         recursion = self._recursion
         if recursion is None:
@@ -236,5 +241,5 @@ def lqr_dipole_B(gain: Gain, q_err: Quat, omega_B: Vec3) -> Vec3:
     th = (2.0 * q_err[1], 2.0 * q_err[2], 2.0 * q_err[3])
     w_t = rotate_b_to_n(q_err, omega_B)
     x = th + w_t
-    m_t = tuple(-sum(gain[i][k] * x[k] for k in range(6)) for i in range(3))
+    m_t = tuple(-sum(gain[6 * i + k] * x[k] for k in range(6)) for i in range(3))
     return rotate_n_to_b(q_err, (m_t[0], m_t[1], m_t[2]))
