@@ -63,7 +63,7 @@ def sweep(rate_scales, r_weights, alphas, starts=(0.0, 2000.0, 4000.0)) -> list[
                 last = 0.0
                 for k in range(int(3000.0 / STEP_S)):
                     a, b = steps[k]
-                    m = -np.array(gains[k]) @ x
+                    m = -np.array(gains[k]).reshape(3, 6) @ x  # the gain's 18 floats row by row
                     m = m / max(1.0, float(np.max(np.abs(m) / m_max)))
                     x = a @ x + b @ m
                     err = math.degrees(float(np.linalg.norm(x[:3])))

@@ -1138,9 +1138,10 @@ module Components {
     event SunSensorsUnavailable severity warning low id 0x1E format "SUN_SAFE refused: no Sun vector source (sunVectorGet) is connected" throttle 5
     event SunVectorRetrievalFailed severity warning low id 0x1F format "Failed to retrieve the Sun vector: carrying the last one on the gyro" throttle 5
     event SunSpinLowered(spin_rate: F64) severity activity high id 0x20 format "Sun held for SUN_HOLD_DWELL: lowering the SUN_SAFE spin to {} deg/s (below the star tracker's rate limit)"
-    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x21 format "Handler {} raised {}" throttle 10
-    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x22 format "{} PRM_SET refused: {}"
-    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x23 format "{} parameter file value refused ({}); default loaded"
+    event MagLqrTableFailed(reason: string size 80, retry_s: F64) severity warning low id 0x21 format "The magnetorquer hold's gain table failed ({}): field steering, next attempt in {} s" throttle 5
+    event HandlerFault($port: string size 40, exception: string size 120) severity warning high id 0x22 format "Handler {} raised {}" throttle 10
+    event ParamSetRefused($param: string size 40, reason: string size 120) severity warning low id 0x23 format "{} PRM_SET refused: {}"
+    event ParamDefaulted($param: string size 40, reason: string size 120) severity warning high id 0x24 format "{} parameter file value refused ({}); default loaded"
     telemetry Mode: Components.ControlMode id 0x0 update always
     telemetry Autonomy: Components.ControlAutonomy id 0x1 update always
     telemetry AngularRate: F64 id 0x2 update always format "{.3f}"

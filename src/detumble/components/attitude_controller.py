@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 
 from fprime_lite import (F64, U32, Channel, CmdResponse, Event, OutputPort, Param, PassiveComponent, Sched,
-                         Severity, sync_command, sync_input)
+                         Severity, String, sync_command, sync_input)
 
 from detumble.components.attitude_types import (MAX_WHEELS, AngularVelocityGet, AttitudeEstimator, BodyAxis,
                                                 ControlAutonomy, ControlMode, EphemerisGet, MagPointingLaw,
@@ -214,6 +214,8 @@ class AttitudeController(PassiveComponent):
                                      "the gyro", throttle=5)
     SunSpinLowered = Event(Severity.ACTIVITY_HI, "Sun held for SUN_HOLD_DWELL: lowering the SUN_SAFE spin to {} deg/s "
                            "(below the star tracker's rate limit)", spin_rate=F64)
+    MagLqrTableFailed = Event(Severity.WARNING_LO, "The magnetorquer hold's gain table failed ({}): field steering, "
+                              "next attempt in {} s", reason=String(80), retry_s=F64, throttle=5)
 
     # --- telemetry -----------------------------------------------------------------------------
 

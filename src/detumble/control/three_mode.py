@@ -39,7 +39,7 @@ from detumble.control import attitude_defaults as defaults
 from detumble.control.attitude_filter import AttitudeFilter
 from detumble.control.geomagnetic import OnboardField
 from detumble.control.magnetic import bdot_dipole, clip_to_limits, dump_torque, project_dipole_weighted, scale_to_limits
-from detumble.control.magnetic_lqr import HoldGainTable, hold_gain_table, lqr_dipole_B
+from detumble.control.magnetic_lqr import HoldGainTable, HoldGainTableBuilder, lqr_dipole_B
 from detumble.control.magnetic_pointing import FieldDirectionRate, ResidualDipoleEstimator, field_steering_torque
 from detumble.control.magnetorquer import face_coil_levels
 from detumble.control.mat3 import cross as _cross
@@ -104,6 +104,15 @@ MAG_LQR_THETA_SCALE = math.radians(30.0)
 MAG_LQR_RATE_SCALE = 0.03
 MAG_LQR_R_WEIGHT = 1.0
 MAG_LQR_ALPHA = 2.0e-3
+# the table is built over control cycles (control.magnetic_lqr.HoldGainTableBuilder), at most this many work units a
+# cycle (a field sample 1, a Riccati step 3): ≤ 10 Riccati steps, ~1.2 ms of CPU on the development machine (a field
+# sample ≤ 44 µs at IGRF degree 13), against the 20 ms rate-group tick; an orbit's table (7,972 samples and steps,
+# 31,888 units) takes 1,063 cycles, 106 s at 10 Hz (docs/components/attitude_controller.md, MAG_LQR_ANGLE)
+MAG_LQR_BUDGET_UNITS = 30
+# the next table is started when the one in use has less than the last build's time plus this margin left (s)
+MAG_LQR_RENEW_MARGIN_S = 60.0
+# after a failed build (MagLqrTableFailed), the next attempt waits this long (s); field steering meanwhile
+MAG_LQR_RETRY_S = 60.0
 _ZERO = (0.0, 0.0, 0.0)
 _isfinite = math.isfinite
 
@@ -367,6 +376,11 @@ class ThreeModeLaw:
         self.b_stamp_us = 0
         self._onboard_field: OnboardField | None = None  # MAG_FIELD_MODEL_DEGREE's model (made when first used)
         self._lqr_table: HoldGainTable | None = None  # MAG_LQR_ANGLE > 0: the model-scheduled hold's gains
+        self._lqr_builder: HoldGainTableBuilder | None = None  # the table being built (over cycles), if any
+        self._lqr_build_s = 0.0  # s: when that build started (its ephemeris' time)
+        self._lqr_lead_s = MAG_LQR_RENEW_MARGIN_S  # s: renew a table with less than this left (last build + margin)
+        self._lqr_retry_s = -math.inf  # s: no build before this (MAG_LQR_RETRY_S after a failure)
+        self.lqr_work_units = 0  # the gain-table work done so far (HoldGainTableBuilder units), for tests and studies
         self.mag_bias_T: Vec3 | None = None  # T, B: the on-board magnetometer-bias estimate (MAG_BIAS_TIME > 0)
         self.dipole: Vec3 = _ZERO  # A·m² achieved by the levels of the present cycle
         self.torque_request: Vec3 = _ZERO
@@ -1204,38 +1218,68 @@ class ThreeModeLaw:
 
     def _model_lqr_torque(self, target: Quat, q: Quat, w: Vec3):
         """``(τ_req, q_err)`` of the hold scheduled on the on-board field model (``control.magnetic_lqr``), or None
-        where it does not apply: an error of MAG_LQR_ANGLE or more, a moving target, no field reading or no
-        ephemeris for a new table. ``τ_req = m × b`` for the LQR's dipole ``m`` and the field ``b`` the projection
-        uses, so the projection gives ``m`` back (its part ⟂ b). The table (the gains for an orbit from its
-        computation, over the field the on-board dipole model predicts along the propagated orbit) is computed
-        when there is none, the target changed or it has run out."""
-        qe = quat_error(target, q)
-        b = self.b_tesla
+        where it does not apply: a moving target, an error of MAG_LQR_ANGLE or more, or no table for the target (yet).
+        ``τ_req = m × b`` for the LQR's dipole ``m`` and the field ``b`` the projection uses, so the projection gives
+        ``m`` back (its part ⟂ b). The table is built over cycles (:meth:`_build_lqr_table`) whatever the error, so it
+        is usually ready when the error comes below the angle."""
         spec = self.target_spec
-        if (b is None or math.degrees(quat_angle(qe)) >= self.MAG_LQR_ANGLE
-                or (spec is not None and spec.needs_ephemeris)):
+        if spec is not None and spec.needs_ephemeris:
+            self._lqr_builder = None
             return None
         t = self.io.now_us() / 1e6
+        self._build_lqr_table(target, t)
+        qe = quat_error(target, q)
+        if math.degrees(quat_angle(qe)) >= self.MAG_LQR_ANGLE:
+            return None
         table = self._lqr_table
         gain = table.gain(t) if table is not None and table.q_tn == target else None
         if gain is None:
-            eph = self.io.ephemeris()
-            if eph is None:
-                return None
-            duty = self.duty
-            inertia = tuple(tuple(x / duty for x in row) for row in self.rate_observer.inertia)
-            try:
-                table = hold_gain_table(target, t, eph.r_N, eph.v_N, eph.earth_angle_rad, inertia, self.coil_limits(),
-                                        MAG_LQR_STEP_S, MAG_LQR_USE_S, MAG_LQR_EXTRA_S, MAG_LQR_THETA_SCALE,
-                                        MAG_LQR_RATE_SCALE, MAG_LQR_R_WEIGHT, MAG_LQR_ALPHA, self._field_model())
-            except (ArithmeticError, ValueError):
-                return None
-            self._lqr_table = table
-            gain = table.gain(t)
-            if gain is None:
-                return None
+            return None
+        b = self.b_tesla
+        assert b is not None  # the caller steers on the field reading
         m = lqr_dipole_B(gain, qe, w)
         return _cross(m, b), qe
+
+    def _build_lqr_table(self, target: Quat, t: float) -> None:
+        """One cycle's share (MAG_LQR_BUDGET_UNITS) of the gain table for ``target``: a build starts (from the
+        ephemeris now) when there is no table for the target or the one in use has less than the last build's time
+        plus MAG_LQR_RENEW_MARGIN_S left, and none is under way; a target change abandons the build under way. The
+        finished table replaces the one in use. A failed build: ``MagLqrTableFailed`` and no new build for
+        MAG_LQR_RETRY_S (s)."""
+        builder = self._lqr_builder
+        if builder is not None and builder.q_tn != target:
+            builder = self._lqr_builder = None  # a new target: the build under way is for the old one
+        if builder is None:
+            table = self._lqr_table
+            if ((table is not None and table.q_tn == target and table.t0_s + table.use_s - t > self._lqr_lead_s)
+                    or t < self._lqr_retry_s):
+                return
+            eph = self.io.ephemeris()
+            if eph is None:
+                return
+            duty = self.duty
+            inertia = tuple(tuple(x / duty for x in row) for row in self.rate_observer.inertia)
+            builder = self._lqr_builder = HoldGainTableBuilder(
+                target, t, eph.r_N, eph.v_N, eph.earth_angle_rad, inertia, self.coil_limits(), MAG_LQR_STEP_S,
+                MAG_LQR_USE_S, MAG_LQR_EXTRA_S, MAG_LQR_THETA_SCALE, MAG_LQR_RATE_SCALE, MAG_LQR_R_WEIGHT,
+                MAG_LQR_ALPHA, self._field_model())
+            self._lqr_build_s = t
+        done = builder.units_done
+        try:
+            table = builder.advance(MAG_LQR_BUDGET_UNITS)
+        except (ArithmeticError, ValueError) as exc:
+            self.lqr_work_units += builder.units_done - done
+            self._lqr_builder = None
+            self._lqr_retry_s = t + MAG_LQR_RETRY_S
+            reason = str(exc).encode()[:80].decode(errors="ignore")  # the event's String(80), in bytes
+            self.notify.event("MagLqrTableFailed", reason, MAG_LQR_RETRY_S)
+            return
+        self.lqr_work_units += builder.units_done - done
+        if table is not None:
+            self._lqr_table = table
+            self._lqr_builder = None
+            self._lqr_lead_s = t - self._lqr_build_s + MAG_LQR_RENEW_MARGIN_S
+            self.notify.clear_event("MagLqrTableFailed")
 
     def _body_momentum(self, momenta) -> Vec3:
         """``Σ h_i g_i`` over the wheels, N·m·s (B)."""

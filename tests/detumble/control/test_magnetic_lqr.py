@@ -50,7 +50,7 @@ def test_hold_gains_match_the_periodic_riccati_of_the_analysis():
     assert len(got) == 2 * n
     for k in range(n):
         scale = float(np.max(np.abs(ref[k])))
-        assert float(np.max(np.abs(np.array(got[k]) - ref[k]))) <= 1e-9 * scale
+        assert float(np.max(np.abs(np.array(got[k]).reshape(3, 6) - ref[k]))) <= 1e-9 * scale
 
 
 def test_gain_table_predicts_the_model_field_along_the_orbit():
@@ -76,12 +76,12 @@ def test_lqr_dipole_acts_in_the_target_frame():
     gain[2][5] = 2.0  # m_z(T) = −2 ω_z(T)
     w_b = (0.01, -0.02, 0.03)
     w_t = rotate_b_to_n(q_err, w_b)
-    m = lqr_dipole_B(gain, q_err, w_b)
+    m = lqr_dipole_B([x for row in gain for x in row], q_err, w_b)  # the gain's 18 floats row by row
     assert m == pytest.approx(rotate_n_to_b(q_err, (0.0, 0.0, -2.0 * w_t[2])), abs=1e-15)
     # and a θ gain: θ = 2 q_err.v is the same vector in B and T
     gain = [[3.0 if i == k else 0.0 for k in range(6)] for i in range(3)]
     th = (2.0 * q_err[1], 2.0 * q_err[2], 2.0 * q_err[3])
-    assert lqr_dipole_B(gain, q_err, (0.0, 0.0, 0.0)) == pytest.approx(
+    assert lqr_dipole_B([x for row in gain for x in row], q_err, (0.0, 0.0, 0.0)) == pytest.approx(
         rotate_n_to_b(q_err, (-3.0 * th[0], -3.0 * th[1], -3.0 * th[2])), abs=1e-15)
 
 
@@ -104,3 +104,44 @@ def test_onboard_field_is_the_dipole_at_degree_one_and_igrf_above():
     assert math.dist(dip, plant) > 0.05 * math.hypot(*plant)  # the dipole is far from IGRF-14 here
     with pytest.raises(ValueError):
         OnboardField(14)
+
+
+def test_builder_in_pieces_gives_the_table_to_the_float():
+    """MAGPT-115: :class:`HoldGainTableBuilder` advanced a few units at a time (7, then 3: the budget's smallest) does
+    at most its budget each call and finishes with the gains :func:`hold_gain_table` gives in one call, to the float
+    (the dipole and IGRF-14 of degree 6 on board), after ``⌈units / budget⌉`` calls."""
+    from detumble.control.geomagnetic import OnboardField
+    from detumble.control.magnetic_lqr import RICCATI_STEP_UNITS, SAMPLE_UNITS, HoldGainTableBuilder
+
+    q_tn = quat_from_axis_angle((0.3, 0.5, 0.8), 0.9)
+    for field, budget in ((dipole_field_N, 7), (OnboardField(6), RICCATI_STEP_UNITS)):
+        args = (q_tn, 50.0, R0, V0, 0.3, INERTIA, M_MAX, 1.4, 56.0, 42.0, math.radians(30.0), 0.03, 1.0, 2e-3, field)
+        whole = hold_gain_table(*args)
+        builder = HoldGainTableBuilder(*args)
+        n = math.ceil(98.0 / 1.4)
+        assert builder.units_total == n * (SAMPLE_UNITS + RICCATI_STEP_UNITS)
+        calls, table = 0, None
+        while table is None:
+            before = builder.units_done
+            table = builder.advance(budget)
+            calls += 1
+            assert 0 < builder.units_done - before <= budget
+        assert builder.units_done == builder.units_total
+        assert list(table.gains) == list(whole.gains) and len(table.gains) == 18 * n
+        assert (table.q_tn, table.t0_s, table.step_s, table.use_s) == (q_tn, 50.0, 1.4, 56.0)
+        assert table.gain(50.0 + 1.4 * 7 + 0.2) == whole.gain(50.0 + 1.4 * 7 + 0.2)
+        # samples fill whole budgets; a step needs RICCATI_STEP_UNITS left
+        assert calls == math.ceil(n / budget) + math.ceil(n / (budget // RICCATI_STEP_UNITS))
+    with pytest.raises(ValueError):
+        HoldGainTableBuilder(*args).advance(RICCATI_STEP_UNITS - 1)
+
+
+def test_builder_raises_from_the_advance_that_meets_the_failure():
+    """MAGPT-116: an ephemeris without an orbit plane (v along r) raises ValueError from the first :meth:`advance`
+    (the first sample), not from the builder's construction."""
+    from detumble.control.magnetic_lqr import HoldGainTableBuilder
+
+    builder = HoldGainTableBuilder((1.0, 0.0, 0.0, 0.0), 0.0, R0, (7661.0, 0.0, 0.0), 0.3, INERTIA, M_MAX, 1.4, 56.0,
+                                   42.0, math.radians(30.0), 0.03, 1.0, 2e-3)
+    with pytest.raises(ValueError, match="no orbit plane"):
+        builder.advance(30)

@@ -1,5 +1,5 @@
 """The controller's use of the on-board field model: MAG_BIAS_TIME's magnetometer-bias estimate and MAG_LQR_ANGLE's
-hold scheduled on the model (ADCS-190…192). A hand-made io: the star tracker's fix, a still gyro, the reading the
+hold scheduled on the model (ADCS-190…196). A hand-made io: the star tracker's fix, a still gyro, the reading the
 on-board dipole gives at the ephemeris' position turned into B, plus a bias."""
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ class _Io:
     """A spacecraft at rest at the attitude ``q`` in the on-board model's field, read with ``bias_g`` (gauss)."""
 
     def __init__(self, q, bias_g) -> None:
-        self.q, self.bias_g, self.t_us, self.eph_ok = q, bias_g, 0, True
+        self.q, self.bias_g, self.t_us, self.eph_ok, self.bad_velocity = q, bias_g, 0, True, False
 
     def model_b(self):
         return rotate_n_to_b(self.q, dipole_field_N(R_N, EARTH))
@@ -61,7 +61,8 @@ class _Io:
         return tuple(0.0 for _ in torques)
 
     def ephemeris(self):
-        return Ephemeris(R_N, V_N, EARTH, (1.0, 0.0, 0.0)) if self.eph_ok else None
+        v = (7661.0, 0.0, 0.0) if self.bad_velocity else V_N  # along R_N: no orbit plane
+        return Ephemeris(R_N, v, EARTH, (1.0, 0.0, 0.0)) if self.eph_ok else None
 
     def has_sun_sensor(self):
         return False
@@ -137,10 +138,12 @@ def _pointing(error_deg, **params):
 
 
 def test_model_lqr_hold_below_its_angle():
-    """ADCS-191: MAG_LQR_ANGLE 40° on an inertial target at 20° of error: the torque request is ``m × b`` for the LQR
-    dipole of a table computed from the ephemeris at the table's time (the on-board model along the orbit), which is
-    not the field-steering law's; at 50° (above the angle) and with MAG_LQR_ANGLE 0 (default) it is field steering."""
+    """ADCS-191: MAG_LQR_ANGLE 40° on an inertial target at 20° of error: once its table is built (over cycles), the
+    torque request is ``m × b`` for the LQR dipole of a table computed from the ephemeris at the table's time (the
+    on-board model along the orbit), which is not the field-steering law's; at 50° (above the angle) and with
+    MAG_LQR_ANGLE 0 (default) it is field steering."""
     io, law = _pointing(20.0, MAG_LQR_ANGLE=40.0)
+    _cycles(io, law, 1100)  # an orbit's table: 31,888 work units at MAG_LQR_BUDGET_UNITS a cycle
     table = law._lqr_table
     assert table is not None and table.q_tn == TARGET
     duty = law.duty
@@ -195,3 +198,142 @@ def test_bias_estimate_uses_the_model_of_its_degree():
     model = rotate_n_to_b(q, OnboardField(8)(R_N, EARTH))
     assert law.b_tesla == pytest.approx(model, abs=1e-6 * math.hypot(*model))
     assert math.dist(law.b_tesla, io.model_b()) > 1e-3 * math.hypot(*model)
+
+
+class _Events(Quiet):
+    """A :class:`Notify` that keeps the events (name, args) and the cleared names."""
+
+    def __init__(self) -> None:
+        self.events: list[tuple] = []
+        self.cleared: list[str] = []
+
+    def event(self, name, *args):
+        self.events.append((name, *args))
+
+    def clear_event(self, name):
+        self.cleared.append(name)
+
+
+def _pointing_logged(error_deg, target=TARGET, **params):
+    """As :func:`_pointing` with an :class:`_Events` notify; returns ``(io, law, notify)``."""
+    q = quat_mul(target, quat_from_axis_angle((0.6, 0.0, 0.8), math.radians(error_deg)))
+    io = _Io(q, (0.0, 0.0, 0.0))
+    notify = _Events()
+    law = ThreeModeLaw(io, notify, _NoProvider(), params={"ESTIMATOR": "COMPLEMENTARY",
+                                                          "POINTING_ACTUATOR": "MAGNETORQUERS",
+                                                          "MAG_SETTLE_TIME": 0.0, **params})
+    _cycles(io, law, 2)
+    assert law.set_target_quaternion(target) == "OK"
+    assert law.force_mode(POINTING) == "OK"
+    return io, law, notify
+
+
+def _steering(law):
+    tau, _ = field_steering_torque(law.target, law.filter.q, law.omega, law.b_tesla, law.bdot_hat_B or (0.0, 0.0, 0.0),
+                                   law.K_P_MAG, law.K_D_MAG, law.MAG_STEER_RHO, law.MAG_STEER_ZETA,
+                                   law.MAG_FIELD_RATE_MIN)
+    return tau
+
+
+def _is_steering(law) -> bool:
+    steer = _steering(law)
+    return law.torque_request == pytest.approx(steer, rel=1e-12, abs=1e-20)
+
+
+def test_gain_table_is_built_over_cycles_within_the_budget():
+    """ADCS-194: an orbit's gain table (7,972 samples and Riccati steps) is built over control cycles, never more than
+    MAG_LQR_BUDGET_UNITS work units in one, from the first POINTING cycle even above MAG_LQR_ANGLE (50°); at 20° the
+    law is field steering until the table is ready, in the cycle its last unit is done, and the LQR hold from then."""
+    budget = three_mode.MAG_LQR_BUDGET_UNITS
+    io, law, _ = _pointing_logged(50.0, MAG_LQR_ANGLE=40.0)
+    _cycles(io, law, 20)
+    assert law.lqr_work_units == 20 * budget and law._lqr_table is None
+    io, law, _ = _pointing_logged(20.0, MAG_LQR_ANGLE=40.0)
+    total = 0
+    cycles = 0
+    while law._lqr_table is None:
+        before = law.lqr_work_units
+        _cycles(io, law, 1)
+        cycles += 1
+        done = law.lqr_work_units - before
+        assert 0 < done <= budget
+        total += done
+        if law._lqr_table is None:
+            assert _is_steering(law), cycles
+        assert cycles < 2000
+    n = math.ceil((three_mode.MAG_LQR_USE_S + three_mode.MAG_LQR_EXTRA_S) / three_mode.MAG_LQR_STEP_S)
+    assert total == n * 4  # a sample 1 unit, a step 3
+    assert cycles == math.ceil(total / budget)
+    assert not _is_steering(law)  # the table's first cycle already holds on it
+    _cycles(io, law, 5)
+    assert law.lqr_work_units == total and not _is_steering(law)  # nothing more to build
+
+
+def test_gain_table_renewed_without_a_gap_and_rebuilt_on_a_target_change(monkeypatch):
+    """ADCS-195: with a 70 s table (70 s more of horizon), the next table is started before the one in use runs out
+    (its time left below the last build's time plus MAG_LQR_RENEW_MARGIN_S) and taken when ready: over 200 s the hold
+    has a gain at every cycle once the first table is ready, within the budget every cycle. A target change abandons
+    the build under way: the new target's table takes a whole build from the change, and the old target's table is
+    not used meanwhile (field steering)."""
+    monkeypatch.setattr(three_mode, "MAG_LQR_USE_S", 70.0)
+    monkeypatch.setattr(three_mode, "MAG_LQR_EXTRA_S", 70.0)
+    monkeypatch.setattr(three_mode, "MAG_LQR_RENEW_MARGIN_S", 5.0)
+    budget = three_mode.MAG_LQR_BUDGET_UNITS
+    build_cycles = math.ceil(100 * 4 / budget)  # 100 samples and steps
+    io, law, _ = _pointing_logged(20.0, MAG_LQR_ANGLE=40.0)
+    _cycles(io, law, build_cycles)
+    first = law._lqr_table
+    assert first is not None and not _is_steering(law)
+    starts = {first.t0_s}
+    for _ in range(2000):  # 200 s
+        before = law.lqr_work_units
+        _cycles(io, law, 1)
+        assert law.lqr_work_units - before <= budget
+        table = law._lqr_table
+        starts.add(table.t0_s)
+        assert table.gain(law.last_cycle_us / 1e6) is not None
+        assert not _is_steering(law)
+    assert len(starts) >= 3  # renewed at least twice in 200 s of 70 s tables
+    # a target change in the middle of a build
+    _cycles(io, law, 1)
+    while law._lqr_builder is None:
+        _cycles(io, law, 1)
+    _cycles(io, law, 3)
+    old_table = law._lqr_table
+    new_target = quat_mul(TARGET, quat_from_axis_angle((0.0, 0.0, 1.0), math.radians(10.0)))
+    assert law.set_target_quaternion(new_target) == "OK"
+    cycles = 0
+    while law._lqr_table is old_table:
+        _cycles(io, law, 1)
+        cycles += 1
+        if law._lqr_table is old_table:
+            assert _is_steering(law)
+        assert cycles < 100
+    assert law._lqr_table.q_tn == new_target
+    assert cycles == build_cycles
+    assert not _is_steering(law)
+
+
+def test_failed_gain_table_gives_an_event_and_waits_before_trying_again():
+    """ADCS-196: an ephemeris without an orbit plane (v along r) fails the build: one MagLqrTableFailed(reason,
+    MAG_LQR_RETRY_S), field steering, and no new attempt for MAG_LQR_RETRY_S (no work, no event) — then one; once the
+    ephemeris is good again the next attempt builds the table and clears the event's throttle."""
+    io, law, notify = _pointing_logged(20.0, MAG_LQR_ANGLE=40.0)
+    io.bad_velocity = True
+    _cycles(io, law, 1)
+    failed = [e for e in notify.events if e[0] == "MagLqrTableFailed"]
+    assert failed == [("MagLqrTableFailed", "no orbit plane: r × v is zero", three_mode.MAG_LQR_RETRY_S)]
+    retry_cycles = round(three_mode.MAG_LQR_RETRY_S / 0.1)
+    work = law.lqr_work_units
+    for _ in range(retry_cycles - 1):
+        _cycles(io, law, 1)
+        assert _is_steering(law)
+    assert law.lqr_work_units == work
+    assert len([e for e in notify.events if e[0] == "MagLqrTableFailed"]) == 1
+    _cycles(io, law, 2)
+    assert len([e for e in notify.events if e[0] == "MagLqrTableFailed"]) == 2
+    io.bad_velocity = False
+    _cycles(io, law, retry_cycles + 1100)
+    assert law._lqr_table is not None and not _is_steering(law)
+    assert "MagLqrTableFailed" in notify.cleared
+    assert len([e for e in notify.events if e[0] == "MagLqrTableFailed"]) == 2
