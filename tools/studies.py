@@ -499,6 +499,9 @@ CAMPAIGNS = {
     "magnetorquer_hold_field_model_lqr_below_40_igrf14": CommittedCampaign(
         "magnetorquer_hold_after_acquisition/campaign_field_model_lqr_below_40_igrf14",
         "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr_below_40_igrf14.yaml"),
+    "magnetorquer_hold_field_model_lqr_below_40_igrf14_degree13": CommittedCampaign(
+        "magnetorquer_hold_after_acquisition/campaign_field_model_lqr_below_40_igrf14_degree13",
+        "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr_below_40_igrf14_degree13.yaml"),
 }
 
 
@@ -2132,7 +2135,10 @@ _HOLD_CANDIDATE_CAMPAIGNS = (("magnetorquer_hold_rho_schedule", "magnetorquer_ho
                               "the scheduled hold below 40°, field steering above"),
                              ("magnetorquer_hold_field_model_lqr_below_40_igrf14",
                               "magnetorquer_hold_field_model_lqr_below_40_igrf14_campaign",
-                              "IGRF-14 plant, the hold below 40° on IGRF-14 of degree 6"))
+                              "IGRF-14 plant, the hold below 40° on IGRF-14 of degree 6"),
+                             ("magnetorquer_hold_field_model_lqr_below_40_igrf14_degree13",
+                              "magnetorquer_hold_field_model_lqr_below_40_igrf14_degree13_campaign",
+                              "IGRF-14 plant, the hold below 40° on IGRF-14 of degree 13"))
 
 
 def hold_candidate_campaign_blocks() -> dict[str, str]:
