@@ -594,4 +594,4 @@ _GROUPS = ((None, _w_mode), (None, _w_autonomy), (_R_OMEGA, _w_rate), (_R_POINTI
 _GROUP_LEADS = ("Mode", "Autonomy", "AngularRate", "PointingError", "DamperState", "WheelMomentum",
                 "GyroBiasEstimate", "AttitudeSigma3", "FieldLineRate", "ResidualDipole", "SunVectorEstimate",
                 "SunPointingError", "ActiveTarget", "ReferenceRate", "TargetQuaternion")
-_G_MODE, _G_TARGET = 0, 14
+_G_MODE, _G_TARGET = _GROUP_LEADS.index("Mode"), _GROUP_LEADS.index("TargetQuaternion")
