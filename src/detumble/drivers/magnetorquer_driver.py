@@ -100,23 +100,51 @@ class MagnetorquerDriver(PassiveComponent):
     @sync_input(StartMagnetorquer)
     def start(self, val: int) -> Success:
         """Drive the coil at level ``val`` (−127…127, sign = current direction). Out-of-range or
-        non-integer levels are refused (FAILURE, InvalidDriveLevel) and switch the coil off."""
+        non-integer levels are refused (FAILURE, InvalidDriveLevel) and switch the coil off.
+
+        The one definition of a drive at a valid level (``STOP``, ``stop`` and the ``START`` command
+        come here too): initialise the device when its face is powered and settled, refuse under an
+        injected fault, set the coil, read the level back, and let DeviceNotReady and
+        DriveReadbackMismatch be reported again after a good drive."""
+        if type(val) is not int or not -MAX_LEVEL <= val <= MAX_LEVEL:  # _valid_level(val), its fast case
+            return self._start(val)
         # The manager re-commands the same level every tick. A healthy, initialised device whose coil
-        # already carries it and whose on-change DriveLevel last sent it: _apply would only clear the
-        # throttles, so it clears them here (stop is start(0)). Kept written out (issue 26): 0.72-2.5 µs
-        # less than _apply a re-command, 3.2 re-commands a proves_ref tick (≈ 32 µs of CPU): 7-25 % of
-        # the tick; `python benchmarks/bench_inlined.py magnetorquer_recommand`
+        # already carries it and whose on-change DriveLevel last sent it: the drive below would only
+        # clear the throttles, so it clears them here (stop is start(0)). Kept written out (issue 26):
+        # 0.72-2.5 µs less a re-command than the drive, 3.2 re-commands a proves_ref tick (≈ 32 µs of
+        # CPU): 7-25 % of the tick; `python benchmarks/bench_inlined.py magnetorquer_recommand`
         # (3 sittings on the shared 2-core machine, 2026-12-03, each the best of 40).
-        if (type(val) is int and val == self._coil.level and self.fault is _FAULT_NONE and self._initialized
+        fault = self.fault
+        if (fault is _FAULT_NONE and self._initialized and val == self._coil.level
                 and val == self.DriveLevel.last):
             if self.DeviceNotReady.count:
                 self.DeviceNotReady.clear_throttle()
             if self.DriveReadbackMismatch.count:
                 self.DriveReadbackMismatch.clear_throttle()
             return _SUCCESS
-        if type(val) is int and -MAX_LEVEL <= val <= MAX_LEVEL:  # _valid_level(val): _start would _apply it
-            return self._apply(val)
-        return self._start(val)
+        if not self._initialized and not self._powered():
+            self.DeviceNotReady()
+            return Success.FAILURE
+        if fault is not _FAULT_NONE:
+            if fault in (SimDriverFault.NOT_READY, SimDriverFault.STUCK) or (
+                    fault == SimDriverFault.STOP_FAILS and val == 0):
+                self.DeviceNotReady()
+                if fault == SimDriverFault.NOT_READY:
+                    self._set_coil(0)
+                return Success.FAILURE
+        if (fault is _FAULT_NONE or fault != SimDriverFault.LATCHED) and not self._set_coil(val):
+            self.DeviceNotReady()
+            return Success.FAILURE
+        actual = self._coil.level  # read back what the coil carries now
+        if actual != val:
+            self.DriveReadbackMismatch(int(actual), int(val))
+            return Success.FAILURE
+        # a successful drive lets DeviceNotReady and DriveReadbackMismatch be reported again
+        if self.DeviceNotReady.count:  # clear_throttle, where there is something to clear
+            self.DeviceNotReady.clear_throttle()
+        if self.DriveReadbackMismatch.count:
+            self.DriveReadbackMismatch.clear_throttle()
+        return _SUCCESS
 
     @sync_input(StopMagnetorquer)
     def stop(self) -> Success:
@@ -146,7 +174,7 @@ class MagnetorquerDriver(PassiveComponent):
     @sync_command()
     def STOP(self):
         """Switch the coil off."""
-        return CmdResponse.OK if self._apply(0) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
+        return CmdResponse.OK if self.start(0) == Success.SUCCESS else CmdResponse.EXECUTION_ERROR
 
     @sync_command()
     def SIM_SET_FAULT(self, fault: SimDriverFault):
@@ -206,7 +234,7 @@ class MagnetorquerDriver(PassiveComponent):
             if self.fault in (SimDriverFault.NONE, SimDriverFault.NOT_READY):
                 self._set_coil(0)  # a faulty output stays where it is
             return Success.FAILURE
-        return self._apply(val)
+        return self.start(int(val))  # an int subclass (not bool) as the plain int it stands for
 
     def _powered(self) -> bool:
         """Initialise the device when its face is powered and settled (the flight initializeDevice)."""
@@ -218,32 +246,6 @@ class MagnetorquerDriver(PassiveComponent):
         self._initialized = True
         self.DeviceInitialized()
         return True
-
-    def _apply(self, level: int) -> Success:
-        if not self._initialized and not self._powered():
-            self.DeviceNotReady()
-            return Success.FAILURE
-        fault = self.fault
-        if fault is not _FAULT_NONE:
-            if fault in (SimDriverFault.NOT_READY, SimDriverFault.STUCK) or (
-                    fault == SimDriverFault.STOP_FAILS and level == 0):
-                self.DeviceNotReady()
-                if fault == SimDriverFault.NOT_READY:
-                    self._set_coil(0)
-                return Success.FAILURE
-        if (fault is _FAULT_NONE or fault != SimDriverFault.LATCHED) and not self._set_coil(level):
-            self.DeviceNotReady()
-            return Success.FAILURE
-        actual = self._coil.level  # read back what the coil carries now
-        if actual != level:
-            self.DriveReadbackMismatch(int(actual), int(level))
-            return Success.FAILURE
-        # a successful drive lets DeviceNotReady and DriveReadbackMismatch be reported again
-        if self.DeviceNotReady.count:  # clear_throttle, where there is something to clear
-            self.DeviceNotReady.clear_throttle()
-        if self.DriveReadbackMismatch.count:
-            self.DriveReadbackMismatch.clear_throttle()
-        return _SUCCESS
 
     def _set_coil(self, level: int) -> bool:
         level = int(level)

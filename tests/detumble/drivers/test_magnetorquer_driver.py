@@ -259,3 +259,26 @@ def test_face_power_off_stops_the_coil_and_the_driver_reports_it(rig):
     assert h.invoke("start", 100) == Success.SUCCESS
     h.assert_event_count("DeviceInitialized", 1)
     assert craft.coil_level(0) == 100
+
+
+class _Level(int):
+    """An int subclass (not bool): a valid drive level that is not a plain ``int``."""
+
+
+@pytest.mark.parametrize("level", [_Level(77), _Level(-127), _Level(0)])
+def test_a_level_of_an_int_subclass_drives_as_its_plain_int(rig, level):
+    """TICK-034: ``start`` is the one definition of a valid drive (the former ``_apply`` folded into it);
+    a level that is an int subclass takes the general path and is driven as the plain int it stands for:
+    the coil carries it, DriveLevel sends it as a plain int, the port answers SUCCESS and no event fires;
+    the START command likewise."""
+    h, craft = rig
+    assert h.invoke("start", 5) == Success.SUCCESS
+    assert h.invoke("start", level) == Success.SUCCESS
+    assert craft.coil_level(0) == int(level)
+    assert type(h.component.DriveLevel.last) is int and h.component.DriveLevel.last == int(level)
+    assert h.tlm_values("DriveLevel") == [5, int(level)]
+    h.assert_event_count("InvalidDriveLevel", 0)
+    h.assert_event_count("DeviceNotReady", 0)
+    h.send_command("START", _Level(33), cmd_seq=1)
+    h.assert_cmd_response(0, "START", CmdResponse.OK, cmd_seq=1)
+    assert craft.coil_level(0) == 33
