@@ -27,11 +27,13 @@ from fprime_lite import F64, Channel, OutputPort, Param, PassiveComponent, sync_
 from detumble.control.attitude_defaults import BDOT_MIN_FIELD_GAUSS, BDOT_PROVIDER_GAIN
 from detumble.control.magnetic import normalised_bdot_dipole
 from detumble.components.types import DipoleMoment, DipoleMomentGet, MagneticField, MagneticFieldGet, Result, Success
+from detumble.components.types import new_result as _new_result  # Result(...) without its Python frame
 
 __all__ = ["BDotDetumble", "MIN_FIELD_MAGNITUDE_GAUSS"]
 
 #: Below this |B| (gauss) no dipole is computed (the plant-only law's provider uses the same value).
 MIN_FIELD_MAGNITUDE_GAUSS = BDOT_MIN_FIELD_GAUSS
+_SUCCESS = Success.SUCCESS  # read once: an enum class attribute costs a metaclass lookup; once a control cycle
 
 
 def _zero_failure() -> Result:
@@ -52,16 +54,18 @@ class BDotDetumble(PassiveComponent):
 
     def __init__(self, name: str, *, base_id: int = 0):
         super().__init__(name, base_id=base_id)
+        self._field_port = self.output_port("magneticFieldGet")  # looked up once: read every control cycle
         #: The last reading used (or primed with); None until the first good read.
         self.previous_field: MagneticField | None = None
 
     @sync_input(DipoleMomentGet)
     def dipoleMomentGet(self):
         """Read the magnetometer and return ``Result(DipoleMoment A·m², Success)``."""
-        if not self.is_connected("magneticFieldGet", 0):
+        port = self._field_port  # is_connected("magneticFieldGet", 0), on the port looked up once
+        if port.targets[0] is None:
             return _zero_failure()
-        field, condition = self.magneticFieldGet[0]()
-        if condition != Success.SUCCESS or not _finite_field(field):
+        field, condition = port.calls[0]()
+        if condition != _SUCCESS or not _finite_field(field):
             return _zero_failure()
         previous = self.previous_field
         if previous is None:
@@ -84,11 +88,11 @@ class BDotDetumble(PassiveComponent):
         self.GainParam.write(gain)
         x, y, z = normalised_bdot_dipole((previous.x, previous.y, previous.z), (field.x, field.y, field.z), dt, gain,
                                          magnitude)
-        moment = DipoleMoment(x=x, y=y, z=z)
+        moment = DipoleMoment(x, y, z)
         self.previous_field = field
         if not (math.isfinite(moment.x) and math.isfinite(moment.y) and math.isfinite(moment.z)):
             return _zero_failure()
-        return Result(moment, Success.SUCCESS)
+        return _new_result(Result, (moment, _SUCCESS))
 
 
 def _finite_field(field) -> bool:
