@@ -52,6 +52,7 @@ from fprime_lite.deploy.resources import ResetLine, RoleOptionError, SimulationE
 from fprime_lite.deploy.scheduler import Scheduler
 from fprime_lite.model.time import SimulatedClock, Time
 
+from detumble.sim import plant_kernel
 from detumble.sim.accelerometer import Accelerometer
 from detumble.sim.coils import CoilSet, MAX_LEVEL
 from detumble.sim.epoch import julian_date
@@ -578,6 +579,13 @@ class SimulatedSpacecraft(ResetLine):
                       if sc.power.enabled else None)
         #: face and interior temperatures (with the power model: the loads heat the interior)
         self.thermal = ThermalModel() if self.power is not None else None
+        #: the compiled kernel's power_step when the plant flies the compiled kernel (the same floats as
+        #: power.step then thermal.step: plant_kernel.step_power_thermal), else None
+        self._power_kernel = None
+        self._power_constants: tuple = ()
+        if self.power is not None and self.thermal is not None and self.plant.implementation == "compiled":
+            self._power_kernel = plant_kernel.load().module
+            self._power_constants = plant_kernel.power_constants(self.power, self.thermal)
         self.accelerometer = Accelerometer(sc.accelerometer, (sc.seed if seed is None else seed) * 7919 + 3)
         #: the six face light sensors (cosine response, eclipse, the stated noise: ``sim.sun_sensors``)
         self.sun_sensors = SunSensorModel(julian_date(sc.epoch), R_EARTH_EQ, sc.sun_sensors,
@@ -620,9 +628,14 @@ class SimulatedSpacecraft(ResetLine):
             dt = pending * 1e-9
             plant = self.plant
             assert self.power is not None  # only called with a power model
-            self.power.step(dt, self._power_t0_ns * 1e-9, plant.q_BN, plant.r_N, self._power_coil_j / dt)
-            assert self.thermal is not None  # made with the power model
-            self.thermal.step(dt, self.power.face_flux_w_m2, self.power.load_w)
+            if self._power_kernel is not None:
+                plant_kernel.step_power_thermal(self._power_kernel, self._power_constants, self.power, self.thermal,
+                                                dt, self._power_t0_ns * 1e-9, plant.q_BN, plant.r_N,
+                                                self._power_coil_j / dt)
+            else:
+                self.power.step(dt, self._power_t0_ns * 1e-9, plant.q_BN, plant.r_N, self._power_coil_j / dt)
+                assert self.thermal is not None  # made with the power model
+                self.thermal.step(dt, self.power.face_flux_w_m2, self.power.load_w)
             pending = 0
             self._power_coil_j = 0.0
         self._power_pending_ns = pending

@@ -1,9 +1,11 @@
 /* Compiled plant kernel: the RK4 steps of RigidBody.step_env and wheels.step_with_wheels, and the circular-
  * orbit environment of Plant._update_environment (with the centred dipole, the orbit-constant field, or a field
- * tabulated along the orbit whose nodes Python computes: IGRF-14, the WMM), as a CPython extension module
+ * tabulated along the orbit whose nodes Python computes: IGRF-14, the WMM), and the electrical and thermal
+ * step (power.ElectricalSystem.step, thermal.ThermalModel.step), as a CPython extension module
  * (detumble.sim._plant_kernel).
  *
- * The pure-Python code in attitude.py, wheels.py, orbit.py, field.py, frames.py and control/quaternion.py
+ * The pure-Python code in attitude.py, wheels.py, orbit.py, field.py, frames.py, power.py, sun.py (in_umbra),
+ * thermal.py and control/quaternion.py
  * (rotate_n_to_b) is the reference. Every expression below is the reference's, operand for operand and in
  * the same order, so that with IEEE double arithmetic, no contraction into fused multiply-adds
  * (-ffp-contract=off) and the same libm sin/cos/sqrt/pow the interpreter's math module and float ** call,
@@ -384,6 +386,137 @@ static void fl_step_wheels(const fl_body *bd, const fl_wheels *wh, const double 
     fl_rk4_combine(x0, (const double (*)[13])k, dt, out);
 }
 
+/* --- the electrical system and the thermal model (power.py ElectricalSystem.step with its solar_power_w,
+ * thermal.py ThermalModel.step). Powers W, energies J, dt s, temperatures K, flux W/m^2; s_N the Sun's unit
+ * direction in N, r_N metres, q the attitude q_BN. The constants, in the order plant_kernel.power_constants
+ * gives them: */
+enum { PC_EARTH_R, PC_SOLAR_CONST, PC_AREA0, PC_EFF = PC_AREA0 + 6, PC_R_INT, PC_CELLS, PC_CAPACITY_J,
+       PC_ALPHA, PC_FACE_AREA, PC_EMISSIVITY, PC_SIGMA, PC_C_FACE, PC_C_INTERIOR, PC_G, PC_MAX_SUBSTEP, PC_N };
+
+static const double fl_ocv_table[11] = {3.00, 3.45, 3.58, 3.66, 3.72, 3.78, 3.86, 3.94, 4.02, 4.10, 4.20};
+
+/* power.cell_ocv */
+static double fl_cell_ocv(double soc)
+{
+    if (soc <= 0.0)
+        return fl_ocv_table[0];
+    if (soc >= 1.0)
+        return fl_ocv_table[10];
+    const double x = soc * 10.0;
+    const int k = (int)x;
+    return fl_ocv_table[k] + (x - (double)k) * (fl_ocv_table[k + 1] - fl_ocv_table[k]);
+}
+
+/* ElectricalSystem.solar_power_w (sun.in_umbra inlined) with the Sun (s_N, d_au) given: the array's W, the
+ * face fluxes into flux[6]; *eclipse set. */
+static double fl_solar_power(const double *c, const double *q, const double *r, const double *s, double d_au,
+                             double *flux, int *eclipse)
+{
+    const double along = r[0] * s[0] + r[1] * s[1] + r[2] * s[2];
+    if (!(along >= 0.0)) {
+        const double px = r[0] - along * s[0], py = r[1] - along * s[1], pz = r[2] - along * s[2];
+        if (px * px + py * py + pz * pz < c[PC_EARTH_R] * c[PC_EARTH_R]) {
+            *eclipse = 1;
+            for (int i = 0; i < 6; i++)
+                flux[i] = 0.0;
+            return 0.0;
+        }
+    }
+    *eclipse = 0;
+    double sb[3], cs[6];
+    fl_rotate_n_to_b(q, s, sb);
+    const double f = c[PC_SOLAR_CONST] / (d_au * d_au);
+    for (int i = 0; i < 3; i++) {
+        const double v = sb[i];
+        cs[2 * i] = v > 0.0 ? v : 0.0;
+        cs[2 * i + 1] = v > 0.0 ? 0.0 : (v < 0.0 ? -v : 0.0);
+    }
+    for (int i = 0; i < 6; i++)
+        flux[i] = f * cs[i];
+    const double *a = c + PC_AREA0;
+    const double lit = a[0] * cs[0] + a[1] * cs[1] + a[2] * cs[2] + a[3] * cs[3] + a[4] * cs[4] + a[5] * cs[5];
+    return f * c[PC_EFF] * lit;
+}
+
+/* ElectricalSystem.step then ThermalModel.step over dt > 0 s. acc[7] in and out: battery energy, then the
+ * solar, shunted, load, coil, loss and unserved energies (J); faces[6] and *interior (K) in and out;
+ * out[5]: solar W, load W, battery current A, terminal V, eclipse (0/1); flux[6] out. */
+static void fl_power_step(const double *c, double dt, const double *q, const double *r, const double *s,
+                          double d_au, double coil_w, double load_sw, double *acc, double *faces,
+                          double *interior, double *out, double *flux)
+{
+    int eclipse;
+    const double solar = fl_solar_power(c, q, r, s, d_au, flux, &eclipse);
+    const double load = load_sw + coil_w;
+    const double rr = c[PC_R_INT], cap = c[PC_CAPACITY_J];
+    double energy = acc[0];
+    double net = load - solar;
+    double shunted = 0.0, unserved = 0.0, current;
+    if (net < 0.0 && energy >= cap) {
+        shunted = -net;
+        net = 0.0;
+    }
+    const double ocv = fl_cell_ocv(energy / cap) * c[PC_CELLS];
+    if (net != 0.0) {  /* Battery.current_for_ocv */
+        if (rr <= 0.0) {
+            current = net / ocv;
+        } else {
+            const double disc = ocv * ocv - 4.0 * rr * net;
+            current = disc < 0.0 ? ocv / (2.0 * rr) : (ocv - sqrt(disc)) / (2.0 * rr);
+        }
+    } else {
+        current = 0.0;
+    }
+    const double delivered = (ocv - current * rr) * current;
+    if (net > 0.0 && delivered < net)
+        unserved = net - delivered;
+    const double d_e = -ocv * current * dt;
+    const double loss = current * current * rr * dt;
+    double new_e = energy + d_e;
+    if (new_e > cap) {
+        const double excess = new_e - cap;
+        shunted += excess / dt;
+        new_e = cap;
+    } else if (new_e < 0.0) {
+        unserved += -new_e / dt;
+        new_e = 0.0;
+    }
+    acc[0] = new_e;
+    acc[1] += solar * dt;
+    acc[2] += shunted * dt;
+    acc[3] += load * dt;
+    acc[4] += coil_w * dt;
+    acc[5] += loss;
+    acc[6] += unserved * dt;
+    out[0] = solar;
+    out[1] = load;
+    out[2] = current;
+    out[3] = new_e > 0.0 ? ocv - current * rr : 0.0;
+    out[4] = eclipse;
+    /* ThermalModel.step with face_flux_w_m2 = flux, load_w = load */
+    long long n = (long long)(dt / c[PC_MAX_SUBSTEP] + 0.999999);
+    if (n < 1)
+        n = 1;
+    const double h = dt / (double)n;
+    const double a = c[PC_FACE_AREA], g = c[PC_G];
+    double absorbed[6];
+    for (int f = 0; f < 6; f++)
+        absorbed[f] = c[PC_ALPHA] * a * flux[f];
+    const double rad = c[PC_EMISSIVITY] * c[PC_SIGMA] * a;
+    const double c_face = c[PC_C_FACE], c_interior = c[PC_C_INTERIOR];
+    for (long long k = 0; k < n; k++) {
+        const double ti = *interior;
+        double to_interior = 0.0;
+        for (int f = 0; f < 6; f++) {
+            const double tf = faces[f];
+            const double cond = g * (tf - ti);
+            to_interior += cond;
+            faces[f] = tf + h * (absorbed[f] - rad * pow(tf, 4.0) - cond) / c_face;
+        }
+        *interior = ti + h * (load + to_interior) / c_interior;
+    }
+}
+
 /* --- Python boundary ------------------------------------------------------------------------------ */
 
 /* A tuple of n numbers into v; a TypeError naming `what` otherwise. */
@@ -730,9 +863,61 @@ static PyTypeObject KernelType = {
     .tp_new = PyType_GenericNew,
 };
 
+/* power_step(constants, dt, q_BN, r_N, s_N, d_au, coil_w, switched_load_w, accumulators7, face_k, interior_k)
+ *   -> (eclipse, face_flux6, solar_w, load_w, current_a, terminal_v, accumulators7, interior_k);
+ * face_k (a list of 6 floats, K) is updated in place. */
+static PyObject *power_step(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    double c[PC_N], dt, q[4], r[3], s[3], d_au, coil_w, load_sw, acc[7], faces[6], interior, out[5], flux[6];
+    (void)module;
+    if (check_nargs(nargs, 11, 11, "power_step") < 0
+        || read_floats(args[0], c, PC_N, "constants") < 0 || read_float(args[1], &dt) < 0
+        || read_floats(args[2], q, 4, "q_BN") < 0 || read_floats(args[3], r, 3, "r_N") < 0
+        || read_floats(args[4], s, 3, "s_N") < 0 || read_float(args[5], &d_au) < 0
+        || read_float(args[6], &coil_w) < 0 || read_float(args[7], &load_sw) < 0
+        || read_floats(args[8], acc, 7, "accumulators") < 0 || read_float(args[10], &interior) < 0)
+        return NULL;
+    PyObject *fl = args[9];
+    if (!PyList_Check(fl) || PyList_GET_SIZE(fl) != 6) {
+        PyErr_SetString(PyExc_TypeError, "face_k must be a list of 6 floats");
+        return NULL;
+    }
+    for (Py_ssize_t i = 0; i < 6; i++)
+        if (read_float(PyList_GET_ITEM(fl, i), &faces[i]) < 0)
+            return NULL;
+    if (!(dt > 0.0)) {
+        PyErr_SetString(PyExc_ValueError, "power_step needs dt > 0");
+        return NULL;
+    }
+    fl_power_step(c, dt, q, r, s, d_au, coil_w, load_sw, acc, faces, &interior, out, flux);
+    for (Py_ssize_t i = 0; i < 6; i++) {
+        PyObject *x = PyFloat_FromDouble(faces[i]);
+        if (x == NULL)
+            return NULL;
+        PyList_SetItem(fl, i, x);  /* steals x */
+    }
+    PyObject *ft = float_tuple(flux, 6);
+    PyObject *at = ft ? float_tuple(acc, 7) : NULL;
+    PyObject *res = at ? Py_BuildValue("(ONddddNd)", out[4] ? Py_True : Py_False, ft, out[0], out[1], out[2],
+                                       out[3], at, interior) : NULL;
+    if (res == NULL) {
+        Py_XDECREF(ft);
+        Py_XDECREF(at);
+    }
+    return res;
+}
+
+static PyMethodDef module_methods[] = {
+    {"power_step", (PyCFunction)(void (*)(void))power_step, METH_FASTCALL,
+     "power_step(constants, dt, q_BN, r_N, s_N, d_au, coil_w, switched_load_w, accumulators, face_k, interior_k)"
+     " -> (eclipse, face_flux, solar_w, load_w, current_a, terminal_v, accumulators, interior_k): "
+     "ElectricalSystem.step then ThermalModel.step"},
+    {NULL, NULL, 0, NULL},
+};
+
 static struct PyModuleDef kernel_module = {
     PyModuleDef_HEAD_INIT, "_plant_kernel", "Compiled plant kernel (see detumble.sim.plant_kernel).", -1,
-    NULL, NULL, NULL, NULL, NULL,
+    module_methods, NULL, NULL, NULL, NULL,
 };
 
 PyMODINIT_FUNC PyInit__plant_kernel(void)

@@ -226,7 +226,8 @@ def mismatch(module: ModuleType) -> str | None:
         if got_env != want_env:
             return f"orbit-constant environment at t = {t} s: {got_env} != {want_env}"
     problem = _table_mismatch(module, body, orbit, field)
-    return problem if problem is not None else _wheel_mismatch(module, body, orbit, field)
+    problem = problem if problem is not None else _wheel_mismatch(module, body, orbit, field)
+    return problem if problem is not None else _power_mismatch(module)
 
 
 def _table_mismatch(module: ModuleType, body, orbit, model) -> str | None:
@@ -303,6 +304,39 @@ def _wheel_mismatch(module: ModuleType, body, orbit, field) -> str | None:
                         f"{got_env} != {want_env}")
             st, h = want
             wheels.h = h
+    return None
+
+
+def _power_mismatch(module: ModuleType) -> str | None:
+    """The electrical and thermal step (:func:`step_power_thermal`) against ``ElectricalSystem.step`` then
+    ``ThermalModel.step``: sunlit and eclipsed, charging to full (the shunt), the burnwire and the payload on
+    (a pack emptied to brown-out), sub-stepped thermal steps."""
+    from detumble.sim.power import BatteryConfig, ElectricalSystem, PowerConfig
+    from detumble.sim.thermal import ThermalModel
+
+    cfg = PowerConfig(battery=BatteryConfig(capacity_wh=0.01, initial_soc=0.98))
+    ref, got = ElectricalSystem(cfg, 2460676.5, 6.378e6), ElectricalSystem(cfg, 2460676.5, 6.378e6)
+    ref_th, got_th = ThermalModel(), ThermalModel()
+    constants = power_constants(got, got_th)
+    s_N = ref.sun(0.0)[0]
+    r_lit, r_dark = tuple(6.9e6 * x for x in s_N), tuple(-6.9e6 * x + 1e5 for x in s_N)  # sunlit, in the shadow
+    for k in range(80):
+        if k == 30:
+            for e in (ref, got):
+                e.set_switch("payloadPower", True)
+                e.burnwire_on = True
+        q = (0.6, 0.0, 0.8, 0.0) if k % 5 == 0 else (0.9, 0.1 * (k % 3), -0.3, 0.3)
+        dt = 0.1 if k % 7 else (2.5 if k % 14 else 1.005)
+        args = (dt, 61.0 * k, q, r_dark if 40 <= k < 50 else r_lit, 0.25 * (k % 4))
+        ref.step(*args)
+        ref_th.step(args[0], ref.face_flux_w_m2, ref.load_w)
+        step_power_thermal(module, constants, got, got_th, *args)
+        want = (vars(ref), vars(ref.battery), vars(ref_th))
+        have = (vars(got), vars(got.battery), vars(got_th))
+        for w, h in zip(want, have, strict=True):
+            for name, value in w.items():
+                if name not in ("cfg", "battery") and repr(h[name]) != repr(value):
+                    return f"power step {k}: {name} {h[name]!r} != {value!r}"
     return None
 
 
@@ -411,6 +445,42 @@ def kernel_for(body, orbit, field, implementation: str | None = None, wheels=Non
         env = environment_parameters(orbit, field)  # IGRF-14 or the WMM on their table: nodes from Python
     wheel_part = None if wheels is None else wheel_parameters(wheels)
     return status.module.Kernel(body._j, body._jinv, body.wheel_momentum_B, env, wheel_part)
+
+
+def power_constants(eps, thermal) -> tuple[float, ...]:
+    """The kernel's constants for :func:`step_power_thermal`: an :class:`~.power.ElectricalSystem` ``eps``
+    and its :class:`~.thermal.ThermalModel`, in the order ``plant_kernel.c`` (``PC_*``) reads them: shadow
+    radius m, solar constant W/m^2, the six panel areas m^2, cell efficiency, pack resistance ohm, cells in
+    series, capacity J; absorptivity, face area m^2, emissivity, Stefan-Boltzmann W m^-2 K^-4, face and
+    interior heat capacities J/K, face-interior conductance W/K, longest sub-step s."""
+    from detumble.sim.sun import SOLAR_CONSTANT_W_M2
+    from detumble.sim.thermal import STEFAN_BOLTZMANN
+
+    bat, tc = eps.cfg.battery, thermal.cfg
+    return (float(eps.earth_radius_m), SOLAR_CONSTANT_W_M2, *eps._areas, float(eps.cfg.solar.efficiency),
+            float(bat.internal_resistance_ohm), float(bat.cells_in_series), float(eps.battery.capacity_j),
+            float(tc.absorptivity), float(tc.face_area_m2), float(tc.emissivity), STEFAN_BOLTZMANN,
+            float(tc.face_capacity_j_k), float(tc.interior_capacity_j_k), float(tc.face_interior_w_k),
+            float(tc.max_substep_s))
+
+
+def step_power_thermal(module: ModuleType, constants: tuple, eps, thermal, dt: float, t_s: float, q_BN, r_N,
+                       coil_w: float) -> None:
+    """``eps.step(dt, t_s, q_BN, r_N, coil_w)`` then ``thermal.step(dt, eps.face_flux_w_m2, eps.load_w)``
+    computed by the compiled ``module`` (the kernel :func:`load` gives), with the same floats, written back to
+    the same attributes. ``constants`` is :func:`power_constants` of the two models. The Sun's direction
+    (cached per minute) and the switched loads stay the Python models' own."""
+    if dt <= 0.0:
+        return
+    s_N, d_au = eps.sun(t_s)
+    bat = eps.battery
+    acc = (bat.energy_j, eps.solar_j, eps.shunted_j, eps.load_j, eps.coil_j, eps.loss_j, eps.unserved_j)
+    (eps.eclipse, eps.face_flux_w_m2, eps.solar_w, eps.load_w, bat.current_a, v, acc,
+     thermal.interior_k) = module.power_step(constants, dt, q_BN, r_N, s_N, d_au, coil_w, eps.switched_load_w(),
+                                             acc, thermal.face_k, thermal.interior_k)
+    (bat.energy_j, eps.solar_j, eps.shunted_j, eps.load_j, eps.coil_j, eps.loss_j, eps.unserved_j) = acc
+    eps.bus_v = bat.terminal_v = v
+    eps.coil_w = coil_w
 
 
 def describe(implementation: str | None = None) -> str:
