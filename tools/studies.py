@@ -2121,7 +2121,7 @@ def regenerate_hold_after_acquisition(ctx: Context) -> None:
 
 #: issue 27's candidates for a faster fall from 30°: Floquet maps and re-flown draws (campaigns/adcs/...candidates.py)
 HOLD_CANDIDATE_TABLES = tuple(
-    ScriptTable("magnetorquer_hold_candidates", "issue 27's coil hold: Floquet maps of the candidates and 137 re-flown "
+    ScriptTable("magnetorquer_hold_candidates", "issue 27's coil hold: Floquet maps of the candidates and 161 re-flown "
                 "plant draws (committed JSON, ~5 CPU-minutes)", f"magnetorquer_hold_candidates_{part}",
                 "campaigns/adcs/magnetorquer_hold_candidates.py", "magnetorquer_hold_after_acquisition/candidates.json",
                 _HOLD_DOC, render=f"{part}_markdown")

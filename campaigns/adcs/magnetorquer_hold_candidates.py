@@ -19,8 +19,8 @@ bias estimate); no bias and ρ 3; ρ scheduled on the error (MAG_STEER_RHO_LARGE
 bias; the same schedule without the bias; the controller's field from the on-board dipole model (MAG_BIAS_TIME 1 s,
 2026-12-05); the hold scheduled on that model (MAG_LQR_ANGLE 180°, ``control.magnetic_lqr``, 2026-12-05), and it
 and the present law in an IGRF-14 plant (the on-board model's error that of the dipole against the full field), and
-the hold with an on-board IGRF-14 truncated to degree 6 in that plant; the margin screen's MAG_LQR_ANGLE 50° on every
-draw that never acquired with the hold at every error (:data:`LQR_NEVER_ALL`, :data:`LQR_NEVER_IGRF14`).
+the hold with an on-board IGRF-14 truncated to degree 6 in that plant; the margin screen's MAG_LQR_ANGLE 50° and 60°
+on every draw that never acquired with the hold at every error (:data:`LQR_NEVER_ALL`, :data:`LQR_NEVER_IGRF14`).
 ``--part draws --case KEY`` flies one case into the file, keeping the others. Per run the summary's window
 statistics and the tail (the time from the acquisition below 30° to the error staying below 15°).
 ``tools/studies.py --only magnetorquer_hold_candidates`` renders the blocks (:func:`markdown`).
@@ -105,13 +105,13 @@ CASES = (("no_bias", "no magnetometer bias, ρ 2 (the oracle of a bias estimate)
                                                         "control.adcs.MAG_LQR_ANGLE=40.0",
                                                         "control.adcs.MAG_FIELD_MODEL_DEGREE=6.0"),
           MISSES + PASSES + LQR_NEVER),
-         ("field_model_lqr_below_50", "the hold scheduled on the on-board field model below 50°, field steering above "
-          "(MAG_LQR_ANGLE 50°, MAG_BIAS_TIME 1 s; the margin screen)", (FIELD_MODEL, "control.adcs.MAG_LQR_ANGLE=50.0"),
-          LQR_NEVER_ALL),
-         ("field_model_lqr_below_50_igrf14_degree6", "the hold scheduled on an on-board IGRF-14 of degree 6 below 50°, "
-          "field steering above, in an IGRF-14 plant (the margin screen)",
-          (*FIELDS["igrf14"], FIELD_MODEL, "control.adcs.MAG_LQR_ANGLE=50.0",
-           "control.adcs.MAG_FIELD_MODEL_DEGREE=6.0"), LQR_NEVER_IGRF14))
+         *((f"field_model_lqr_below_{a}", f"the hold scheduled on the on-board field model below {a}°, field "
+            f"steering above (MAG_LQR_ANGLE {a}°, MAG_BIAS_TIME 1 s; the margin screen)",
+            (FIELD_MODEL, f"control.adcs.MAG_LQR_ANGLE={a}.0"), LQR_NEVER_ALL) for a in (50, 60)),
+         *((f"field_model_lqr_below_{a}_igrf14_degree6", f"the hold scheduled on an on-board IGRF-14 of degree 6 "
+            f"below {a}°, field steering above, in an IGRF-14 plant (the margin screen)",
+            (*FIELDS["igrf14"], FIELD_MODEL, f"control.adcs.MAG_LQR_ANGLE={a}.0",
+             "control.adcs.MAG_FIELD_MODEL_DEGREE=6.0"), LQR_NEVER_IGRF14) for a in (50, 60)))
 
 
 def _rate(plant, period, b, bd, samples, substeps, k_p, k_d, rho, k) -> float | None:
