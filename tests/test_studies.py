@@ -38,7 +38,7 @@ COMMITTED = ("coursework_convergence", "spin_stabilisation_campaign", "coursewor
              "magnetic_pointing_residual_ab", "flight_detumble_campaign",
              "magnetorquer_hold_candidates", "magnetorquer_hold_candidate_campaigns", "coursework_replica",
              "coursework_summary", "coursework_real_wheel", "attitude_knowledge_mekf",
-             "attitude_knowledge_verdict", "magnetorquer_hold_lqr_bound")
+             "attitude_knowledge_verdict", "magnetorquer_hold_lqr_bound", "magnetorquer_hold_margin")
 
 
 @pytest.mark.parametrize("name", COMMITTED)
@@ -1014,6 +1014,117 @@ def test_the_hold_candidates_draw_table_counts_draws_beyond_the_misses_and_passe
             "p95; 1 of 4 never acquire") in text
     assert "that passed" not in text
 
+
+
+def _margin_script():
+    return studies._load_script("campaigns/adcs/magnetorquer_hold_candidates.py")
+
+
+def test_the_hold_margin_screen_draws_the_near_misses_then_seeded_passes_only():
+    """STUDY-221: the margin screen's draws are each plant's near-misses, then MARGIN_RANDOM draws whose committed
+    p95 is at most 15° (never a miss, a near-miss or a run that never acquired), the same for the same seed and
+    others for another seed."""
+    script = _margin_script()
+    p95 = {plant: {i: (20.0 if i % 3 == 0 else None if i % 7 == 0 else float("nan") if i % 11 == 0
+                       else 15.0 if i == 40 else 5.0) for i in range(100)}
+           for plant in script.MARGIN_NEAR}
+    chosen = script.margin_draws(p95, seed=3)
+    assert chosen == script.margin_draws(p95, seed=3)
+    others = [d for d in range(6)
+              if script.margin_draws(p95, seed=4 + d) != chosen]
+    assert others  # another seed, other draws (six tries)
+    for plant, near in script.MARGIN_NEAR.items():
+        rows = chosen[plant]
+        assert rows[:len(near)] == list(near) and len(rows) == len(near) + script.MARGIN_RANDOM
+        extra = rows[len(near):]
+        assert len(set(extra)) == len(extra) and not set(extra) & set(near)
+        assert all(p95[plant][i] is not None and p95[plant][i] <= 15.0 for i in extra)
+    everyone = script.margin_draws({plant: {i: 1.0 for i in [*near, 40, 41, 42, 43, 44]}
+                                    for plant, near in script.MARGIN_NEAR.items()}, seed=3)
+    assert all(sorted(v[-5:]) == [40, 41, 42, 43, 44] for v in everyone.values())  # a p95 of exactly 15° is a pass
+
+
+def test_the_committed_hold_margin_screen_flew_the_draws_its_seed_gives():
+    """STUDY-222: the committed margin.json's draws are those margin_draws gives on the two committed 40° campaigns
+    with the stated seed, and every candidate was flown on exactly those draws of each plant."""
+    pd = pytest.importorskip("pandas")
+    script = _margin_script()
+    table = json.loads((studies.STUDIES_DIR / "magnetorquer_hold_after_acquisition/margin.json").read_text())
+    p95 = {plant: {int(i): (None if pd.isna(v) else float(v))
+                   for i, v in pd.read_parquet(res).set_index("seed_index")["pointing_p95_deg"].items()}
+           for plant, (_, res) in script.MARGIN_PLANTS.items()}
+    assert table["seed"] == script.MARGIN_SEED
+    assert table["draws"] == script.margin_draws(p95, seed=table["seed"])
+    first = {key: n for key, *_, n in script.MARGIN_CANDIDATES}
+    for case in table["candidates"]:
+        assert {p: [r["row"] for r in runs] for p, runs in case["runs"].items()} == {
+            p: rows[:first[case["key"]]] for p, rows in table["draws"].items()}
+        for plant, runs in case["runs"].items():
+            assert all(r["committed"]["p95"] == pytest.approx(p95[plant][r["row"]], abs=1e-12) for r in runs)
+
+
+def test_the_hold_margin_table_counts_near_misses_passes_and_runs_never_acquired():
+    """STUDY-223: the margin block: per candidate and plant the near-misses at p95 ≤ 15° and ≤ 14°, the random
+    passes kept, the largest p95, the median change against the committed rows, the median tail (15° acquisition
+    minus 30°) and the runs that never acquire; each draw a row with the committed p95 then each candidate's."""
+    script = _margin_script()
+    near = script.MARGIN_NEAR["dipole"]
+
+    def run(row, p95, committed=15.1):
+        return {"row": row, "seed": 1, "median": 1.0, "p95": p95, "acquisition_s": None if p95 is None else 300.0,
+                "acquisition_15deg_s": None if p95 is None else 420.0,
+                "committed": {"median": 1.0, "p95": committed, "acquisition_s": 300.0,
+                              "acquisition_15deg_s": 600.0}}
+
+    rows = [near[0], near[1], near[2], 90]
+    table = {"seed": 5, "draws": {"dipole": rows}, "candidates": [
+        {"key": "as_committed", "label": "A", "runs": {"dipole": [run(near[0], 15.1), run(near[1], 15.098)]}},
+        {"key": "x", "label": "X", "runs": {"dipole": [run(near[0], 13.5), run(near[1], 14.5),
+                                                      run(near[2], None), run(90, 16.0)]}}]}
+    x = table["candidates"][1]["runs"]["dipole"]
+    x[0]["acquisition_s"], x[0]["acquisition_15deg_s"] = 401.0, 521.0  # 101 s later: counted
+    x[1]["acquisition_s"], x[1]["acquisition_15deg_s"] = 400.0, 520.0  # 100 s later: not
+    x[0]["median"], x[1]["median"], x[3]["median"] = 1.2, 1.4, 0.9
+    text = script.margin_markdown(table)
+    assert ("- X, tilted dipole (dipole on board): near-misses p95 ≤ 15° in **2 of 3**, ≤ 14° in 1; random passes "
+            "≤ 15° in 0 of 1; largest p95 16.00°; p95 change against the committed rows -0.60° at the median") in text
+    assert ("tail above 15° 120 s at the median; acquisition below 30° 300 → 400 s at the median, over 100 s later "
+            "in **1**; the runs' median error 1.00 → 1.20° at the median; 1 of 4 never acquire") in text
+    assert f"| tilted dipole (dipole on board) | {near[2]} | 15.10 | never acquired |" in text
+    assert "| tilted dipole (dipole on board) | 90 (random pass) | 15.10 | 16.00 |" in text
+    assert (f"The baseline flown again by this script (tilted dipole (dipole on board) {near[0]}, {near[1]}): 2 of 2 "
+            "acquire, their p95 within 2.0e-03° of the committed campaigns' rows.") in text
+    assert "| A |" not in text and "- A," not in text  # the baseline is a check, not a column
+
+
+def test_the_hold_margin_screen_patches_the_law_constants_only_inside_the_flight():
+    """STUDY-224: a candidate's module constants are set on control.three_mode inside the screen's `with` and put
+    back after it (also when the flight raises); a constant the module lacks is refused, not silently added."""
+    from detumble.control import three_mode
+
+    script = _margin_script()
+    before = three_mode.MAG_LQR_ALPHA
+    with script._Patched(three_mode, {"MAG_LQR_ALPHA": 9.0}):
+        assert three_mode.MAG_LQR_ALPHA == 9.0
+    assert three_mode.MAG_LQR_ALPHA == before
+    with pytest.raises(RuntimeError), script._Patched(three_mode, {"MAG_LQR_ALPHA": 9.0}):
+        raise RuntimeError
+    assert three_mode.MAG_LQR_ALPHA == before
+    with pytest.raises(AttributeError), script._Patched(three_mode, {"MAG_LQR_ALPHAS": 9.0}):
+        pass
+    assert not hasattr(three_mode, "MAG_LQR_ALPHAS")
+    for _, _, constants, _, _ in script.MARGIN_CANDIDATES:
+        assert all(hasattr(three_mode, name) for name in constants)
+
+
+def test_the_hold_margin_block_edited_by_hand_is_reported(tmp_path, monkeypatch):
+    """STUDY-225: the margin screen's block with one p95 changed by hand is reported by --check, naming the block."""
+    study = studies.STUDIES["magnetorquer_hold_margin"]
+    body = studies.doc_blocks(study.doc.read_text(encoding="utf-8"))["magnetorquer_hold_margin"]
+    cell = body.split("\n")[2].split(" | ")[2]  # the first draw's committed p95
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, "magnetorquer_hold_margin", "magnetorquer_hold_margin",
+                                       f"| {cell} |", f"| {float(cell) + 0.01:.2f} |")
+    assert len(problems) == 1 and "block 'magnetorquer_hold_margin'" in problems[0]
 
 
 def test_the_hold_spin_hand_back_block_edited_by_hand_is_reported(tmp_path, monkeypatch):

@@ -1722,6 +1722,12 @@ SCRIPT_TABLES = {t.name: t for t in (
                 "~4 CPU-minutes; the probe recomputes one weight)", "magnetorquer_hold_lqr_bound",
                 "campaigns/adcs/magnetic_lqr_bound.py", "magnetorquer_hold_after_acquisition/lqr_bound.json",
                 STUDIES_DIR / "magnetorquer_hold_after_acquisition.md", probe="probe"),
+    ScriptTable("magnetorquer_hold_margin", "issue 27's 40° coil hold: a screen of candidates for margin under the "
+                "p95 goal, 28 plant draws a candidate (committed JSON, ~15 CPU-minutes a candidate)",
+                "magnetorquer_hold_margin", "campaigns/adcs/magnetorquer_hold_candidates.py",
+                "magnetorquer_hold_after_acquisition/margin.json",
+                STUDIES_DIR / "magnetorquer_hold_after_acquisition.md", args=("--part", "margin"),
+                render="margin_markdown"),
 )}
 
 
@@ -2115,7 +2121,7 @@ def regenerate_hold_after_acquisition(ctx: Context) -> None:
 
 #: issue 27's candidates for a faster fall from 30°: Floquet maps and re-flown draws (campaigns/adcs/...candidates.py)
 HOLD_CANDIDATE_TABLES = tuple(
-    ScriptTable("magnetorquer_hold_candidates", "issue 27's coil hold: Floquet maps of the candidates and 92 re-flown "
+    ScriptTable("magnetorquer_hold_candidates", "issue 27's coil hold: Floquet maps of the candidates and 161 re-flown "
                 "plant draws (committed JSON, ~5 CPU-minutes)", f"magnetorquer_hold_candidates_{part}",
                 "campaigns/adcs/magnetorquer_hold_candidates.py", "magnetorquer_hold_after_acquisition/candidates.json",
                 _HOLD_DOC, render=f"{part}_markdown")

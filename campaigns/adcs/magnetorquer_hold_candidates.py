@@ -19,10 +19,23 @@ bias estimate); no bias and ρ 3; ρ scheduled on the error (MAG_STEER_RHO_LARGE
 bias; the same schedule without the bias; the controller's field from the on-board dipole model (MAG_BIAS_TIME 1 s,
 2026-12-05); the hold scheduled on that model (MAG_LQR_ANGLE 180°, ``control.magnetic_lqr``, 2026-12-05), and it
 and the present law in an IGRF-14 plant (the on-board model's error that of the dipole against the full field), and
-the hold with an on-board IGRF-14 truncated to degree 6 in that plant.
+the hold with an on-board IGRF-14 truncated to degree 6 in that plant; the margin screen's MAG_LQR_ANGLE 50° and 60°
+on every draw that never acquired with the hold at every error (:data:`LQR_NEVER_ALL`, :data:`LQR_NEVER_IGRF14`).
 ``--part draws --case KEY`` flies one case into the file, keeping the others. Per run the summary's window
 statistics and the tail (the time from the acquisition below 30° to the error staying below 15°).
 ``tools/studies.py --only magnetorquer_hold_candidates`` renders the blocks (:func:`markdown`).
+
+``margin`` (≈ 15 CPU-minutes a candidate; not part of ``all``, its own file): a screen of candidate changes that
+would give the 40° scheduled hold (MAG_LQR_ANGLE 40°, MAG_BIAS_TIME 1 s) margin under the p95 goal. Each candidate
+of :data:`MARGIN_CANDIDATES` (module constants of ``control.three_mode`` patched for its flights only, and/or scenario
+settings) flies each plant's near-misses (:data:`MARGIN_NEAR`) and five passing draws drawn with
+:data:`MARGIN_SEED` (:func:`margin_draws`) from the committed 40° campaigns (tilted-dipole plant with the dipole on
+board; IGRF-14 plant with IGRF-14 of degree 6 on board), each against its committed row; the baseline
+("as_committed") flies two draws of each plant unchanged, which must give the committed rows.
+``tools/studies.py --only magnetorquer_hold_margin`` renders its block (:func:`margin_markdown`).
+
+    python campaigns/adcs/magnetorquer_hold_candidates.py --part margin \
+        --json docs/studies/magnetorquer_hold_after_acquisition/margin.json [--case KEY]
 """
 
 from __future__ import annotations
@@ -53,6 +66,11 @@ PASSES = (50, 87, 33, 0)
 #: four of the draws that never acquired in the campaign of the hold scheduled on the field model at every error
 #: (MAG_LQR_ANGLE 180°, campaign_field_model_lqr: they end spinning at ~1.5 °/s)
 LQR_NEVER = (1, 7, 20, 40)
+#: every draw that never acquired with the hold scheduled at every error (campaign_field_model_lqr: 17 of 100, dipole
+#: plant; campaign_field_model_lqr_igrf14: 7 of its 30, IGRF-14 plant): the margin screen's MAG_LQR_ANGLE 50° flown
+#: on them (2026-12-05), since a larger switch angle hands more of the tumble to the linear hold
+LQR_NEVER_ALL = (3, 4, 7, 9, 17, 20, 40, 41, 44, 51, 56, 61, 68, 69, 75, 77, 78)
+LQR_NEVER_IGRF14 = (3, 4, 7, 9, 14, 17, 20)
 NO_BIAS = "sensors.magnetometer.bias_gauss=[0.0, 0.0, 0.0]"
 SCHEDULE = ("control.adcs.MAG_STEER_RHO_LARGE=4.0", "control.adcs.MAG_STEER_RHO_FROM=12.0",
             "control.adcs.MAG_STEER_RHO_AT=20.0")
@@ -86,7 +104,14 @@ CASES = (("no_bias", "no magnetometer bias, ρ 2 (the oracle of a bias estimate)
           "field steering above, in an IGRF-14 plant", (*FIELDS["igrf14"], FIELD_MODEL,
                                                         "control.adcs.MAG_LQR_ANGLE=40.0",
                                                         "control.adcs.MAG_FIELD_MODEL_DEGREE=6.0"),
-          MISSES + PASSES + LQR_NEVER))
+          MISSES + PASSES + LQR_NEVER),
+         *((f"field_model_lqr_below_{a}", f"the hold scheduled on the on-board field model below {a}°, field "
+            f"steering above (MAG_LQR_ANGLE {a}°, MAG_BIAS_TIME 1 s; the margin screen)",
+            (FIELD_MODEL, f"control.adcs.MAG_LQR_ANGLE={a}.0"), LQR_NEVER_ALL) for a in (50, 60)),
+         *((f"field_model_lqr_below_{a}_igrf14_degree6", f"the hold scheduled on an on-board IGRF-14 of degree 6 "
+            f"below {a}°, field steering above, in an IGRF-14 plant (the margin screen)",
+            (*FIELDS["igrf14"], FIELD_MODEL, f"control.adcs.MAG_LQR_ANGLE={a}.0",
+             "control.adcs.MAG_FIELD_MODEL_DEGREE=6.0"), LQR_NEVER_IGRF14) for a in (50, 60)))
 
 
 def _rate(plant, period, b, bd, samples, substeps, k_p, k_d, rho, k) -> float | None:
@@ -131,8 +156,11 @@ def floquet() -> dict:
     return out
 
 
-def fly_draw(row: int, settings: tuple[str, ...]) -> dict:
-    """One committed draw flown again with ``settings``: the window's statistics (deg) and the acquisitions (s)."""
+def fly_draw(row: int, settings: tuple[str, ...], scenario: pathlib.Path = SCENARIO,
+             committed: pathlib.Path = COMMITTED) -> dict:
+    """One draw of a committed campaign (``committed``: its results.parquet, whose row ``row`` gives the seed and the
+    start) flown again from ``scenario`` with ``settings``: the window's statistics (deg) and the acquisitions (s),
+    beside that campaign's row."""
     import pandas as pd
 
     from detumble.analysis.pointing_windows import acquisition_time
@@ -140,10 +168,11 @@ def fly_draw(row: int, settings: tuple[str, ...]) -> dict:
     from detumble.sim.scenario import load_scenario
     from fprime_lite.tools.campaign.values import yaml_text
 
-    d = pd.read_parquet(COMMITTED).iloc[row]
+    frame = pd.read_parquet(committed)
+    d = frame.set_index("seed_index").loc[row] if "seed_index" in frame else frame.iloc[row]
     q = [float(x) for x in d["scenario.initial.attitude.quaternion"]]
     w = [float(x) for x in d["scenario.initial.rate.omega_deg_s"]]
-    sc = load_scenario(str(SCENARIO), seed=int(d["seed"]),
+    sc = load_scenario(str(scenario), seed=int(d["seed"]),
                        settings=[f"initial.attitude.quaternion={yaml_text(q)}",
                                  f"initial.rate.omega_deg_s={yaml_text(w)}", *settings])
     r = run(sc, law="adcs", duration_s=5580)
@@ -172,6 +201,100 @@ def draws(only: str | None = None, table: dict | None = None) -> dict:
             continue
         cases.append({"key": key, "label": label, "settings": list(sets), "runs": [fly_draw(r, sets) for r in rows]})
     return {"cases": cases}
+
+
+#: the margin screen (2026-12-05): the 40° scheduled hold's two committed campaigns, (plant, scenario file, results)
+HOLD_DIR = ROOT / "docs/studies/magnetorquer_hold_after_acquisition"
+MARGIN_PLANTS = {
+    "dipole": (ROOT / "campaigns/adcs/scenarios/pointing_magnetorquers_field_model_lqr_below_40.yaml",
+               HOLD_DIR / "campaign_field_model_lqr_below_40/results.parquet"),
+    "igrf14": (ROOT / "campaigns/adcs/scenarios/pointing_magnetorquers_field_model_lqr_below_40_igrf14.yaml",
+               HOLD_DIR / "campaign_field_model_lqr_below_40_igrf14/results.parquet")}
+#: what the page calls each plant (the on-board model in brackets)
+MARGIN_PLANT_NAMES = {"dipole": "tilted dipole (dipole on board)", "igrf14": "IGRF-14 (degree 6 on board)"}
+#: each plant's misses and near-misses (p95 above 13° as committed; seed indices), worst first
+MARGIN_NEAR = {"dipole": (23, 86, 46, 13, 38, 8),
+               "igrf14": (23, 50, 13, 81, 12, 70, 87, 3, 27, 19, 29, 62)}
+#: passing draws drawn at random from each plant's other draws with p95 ≤ 15° (seeded: the same draws every time)
+MARGIN_RANDOM = 5
+#: s: an acquisition this much later than the committed run's is counted (the transient moved out of the window
+#: rather than shortened: a later acquisition shortens the window the p95 is taken over)
+MARGIN_LATER_S = 100.0
+MARGIN_SEED = 20261205
+#: the screen's candidates: (key, label, module constants of detumble.control.three_mode patched for the flight,
+#: scenario settings on top of the plant's file, how many of each plant's draws: None all). "as_committed" changes
+#: nothing and flies each plant's first two near-misses: it must give the committed campaigns' rows (the baseline).
+MARGIN_CANDIDATES = (
+    ("as_committed", "as committed (the baseline, flown again)", {}, (), 2),
+    ("theta_20", "θ scale 20° (rate scale 0.03 rad/s, r 1, α 2e-3 /s)", {"MAG_LQR_THETA_SCALE": math.radians(20.0)},
+     (), None),
+    ("alpha_3e-3", "α 3e-3 /s (rate scale 0.03 rad/s, r 1, θ scale 30°)", {"MAG_LQR_ALPHA": 3.0e-3}, (), None),
+    ("angle_50", "MAG_LQR_ANGLE 50° (the weights as committed)", {}, ("control.adcs.MAG_LQR_ANGLE=50.0",), None),
+    ("angle_60", "MAG_LQR_ANGLE 60° (the weights as committed)", {}, ("control.adcs.MAG_LQR_ANGLE=60.0",), None))
+
+
+def margin_draws(p95_by_plant: dict[str, dict[int, float]], seed: int = MARGIN_SEED,
+                 k: int = MARGIN_RANDOM) -> dict[str, list[int]]:
+    """Each plant's screened draws (seed indices): its :data:`MARGIN_NEAR`, then ``k`` drawn with ``seed`` (one
+    ``random.Random`` per plant, in :data:`MARGIN_NEAR`'s order of plants) from its other draws whose committed p95
+    (deg; ``p95_by_plant[plant][index]``, ``None`` or NaN: never acquired) is at most 15°."""
+    import random
+
+    rng = random.Random(seed)
+    out = {}
+    for plant, near in MARGIN_NEAR.items():
+        passing = sorted(i for i, p in p95_by_plant[plant].items()
+                         if i not in near and p is not None and p == p and p <= 15.0)
+        out[plant] = [*near, *rng.sample(passing, k)]
+    return out
+
+
+class _Patched:
+    """``constants`` (name → value) set on ``module`` inside the ``with``, the old values put back after."""
+
+    def __init__(self, module, constants: dict[str, float]):
+        self.module, self.constants, self.old = module, constants, {}
+
+    def __enter__(self):
+        for name, value in self.constants.items():
+            if not hasattr(self.module, name):
+                raise AttributeError(f"{self.module.__name__} has no constant {name}")
+            self.old[name] = getattr(self.module, name)
+            setattr(self.module, name, value)
+        return self
+
+    def __exit__(self, *exc) -> None:
+        for name, value in self.old.items():
+            setattr(self.module, name, value)
+
+
+def margin(only: str | None = None, table: dict | None = None) -> dict:
+    """The screen: every candidate of :data:`MARGIN_CANDIDATES` (or ``only``, kept beside ``table``'s others) flown
+    on each plant's :func:`margin_draws` from that plant's committed 40° campaign (seeds, starts and its row)."""
+    import pandas as pd
+
+    from detumble.control import three_mode
+
+    p95 = {plant: {int(i): (None if pd.isna(v) else float(v)) for i, v in
+                   pd.read_parquet(res).set_index("seed_index")["pointing_p95_deg"].items()}
+           for plant, (_, res) in MARGIN_PLANTS.items()}
+    chosen = margin_draws(p95)
+    kept = {c["key"]: c for c in (table or {}).get("candidates", [])} if only else {}
+    cases = []
+    for key, label, constants, settings, first in MARGIN_CANDIDATES:
+        if only and key != only:
+            if key in kept:
+                cases.append(kept[key])
+            continue
+        runs: dict[str, list[dict]] = {}
+        with _Patched(three_mode, constants):
+            for plant, rows in chosen.items():
+                scenario, results = MARGIN_PLANTS[plant]
+                runs[plant] = [fly_draw(r, settings, scenario, results) for r in rows[:first]]
+                print(f"{key} {plant}: " + ", ".join(f"{r['row']} {_f(r['p95'], '.2f')}" for r in runs[plant]),
+                      flush=True)
+        cases.append({"key": key, "label": label, "constants": constants, "settings": list(settings), "runs": runs})
+    return {"seed": MARGIN_SEED, "draws": chosen, "candidates": cases}
 
 
 def _sci(x: float) -> str:
@@ -251,6 +374,70 @@ def draws_markdown(table: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _p95_cell(run: dict) -> str:
+    return "never acquired" if run["p95"] is None else f"{run['p95']:.2f}"
+
+
+def margin_markdown(table: dict) -> str:
+    """The margin screen's table (p95 in deg per draw: the committed campaign's, then each candidate's) and, per
+    candidate and plant, the counts: p95 ≤ 15° and ≤ 14° (a degree of margin) among the near-misses and among the
+    random passes, the largest p95, the median change against the committed rows, the median tail (s); then how
+    closely the baseline ("as_committed") flown again gave the committed rows."""
+    import statistics
+
+    cases = [c for c in table["candidates"] if c["key"] != "as_committed"]
+    base = next((c for c in table["candidates"] if c["key"] == "as_committed"), None)
+    if not cases:
+        raise ValueError("no candidate flown")
+    lines = ["| plant | draw (seed index) | p95 (deg) as committed | " + " | ".join(c["label"] for c in cases) + " |",
+             "|---|---|---|" + "---|" * len(cases)]
+    for plant, rows in table["draws"].items():
+        for row in rows:
+            runs = [next(r for r in c["runs"][plant] if r["row"] == row) for c in cases]
+            kind = "" if row in MARGIN_NEAR[plant] else " (random pass)"
+            lines.append(f"| {MARGIN_PLANT_NAMES[plant]} | {row}{kind} | {runs[0]['committed']['p95']:.2f} | "
+                         + " | ".join(_p95_cell(r) for r in runs) + " |")
+    lines.append("")
+    for c in cases:
+        for plant, runs in c["runs"].items():
+            near = [r for r in runs if r["row"] in MARGIN_NEAR[plant]]
+            others = [r for r in runs if r["row"] not in MARGIN_NEAR[plant]]
+
+            def count(rs, limit):
+                return sum(1 for r in rs if r["p95"] is not None and r["p95"] <= limit)
+
+            flown = [r for r in runs if r["p95"] is not None]
+            worst = "—" if not flown else f"{max(r['p95'] for r in flown):.2f}°"
+            change = [r["p95"] - r["committed"]["p95"] for r in flown]
+            tails = [t for t in (_tail(r) for r in flown) if t is not None]
+            later = sum(1 for r in flown if r["acquisition_s"] > r["committed"]["acquisition_s"] + MARGIN_LATER_S)
+            acquired = [r["acquisition_s"] for r in flown]
+            lines.append(
+                f"- {c['label']}, {MARGIN_PLANT_NAMES[plant]}: near-misses p95 ≤ 15° in **{count(near, 15.0)} of "
+                f"{len(near)}**, ≤ 14° in {count(near, 14.0)}; random passes ≤ 15° in {count(others, 15.0)} of "
+                f"{len(others)}; largest p95 {worst}; p95 change against the committed rows "
+                f"{_f(statistics.median(change) if change else None, '+.2f')}° at the median; tail above 15° "
+                f"{_f(statistics.median(tails) if tails else None, '.0f')} s at the median; acquisition below 30° "
+                f"{statistics.median(r['committed']['acquisition_s'] for r in runs):.0f} → "
+                f"{_f(statistics.median(acquired) if acquired else None, '.0f')} s at the median, over "
+                f"{MARGIN_LATER_S:.0f} s later in **{later}**; the runs' median error "
+                f"{statistics.median(r['committed']['median'] for r in runs):.2f} → "
+                f"{_f(statistics.median(r['median'] for r in flown) if flown else None, '.2f')}° at the median; "
+                f"{len(runs) - len(flown)} of {len(runs)} never acquire")
+    lines.append("")
+    if base is not None:
+        flown = [r for runs in base["runs"].values() for r in runs]
+        diffs = [abs(r["p95"] - r["committed"]["p95"]) for r in flown if r["p95"] is not None]
+        named = ", ".join(f"{MARGIN_PLANT_NAMES[p]} {', '.join(str(r['row']) for r in rs)}"
+                          for p, rs in base["runs"].items())
+        lines.append(f"The baseline flown again by this script ({named}): {len(diffs)} of {len(flown)} acquire"
+                     + (f", their p95 within {max(diffs):.1e}° of the committed campaigns' rows. " if diffs
+                        else ". "))
+    lines[-1] += (f"Draws: each plant's near-misses, then {MARGIN_RANDOM} passes drawn with seed {table['seed']} "
+                  "(`margin_draws`).")
+    return "\n".join(lines) + "\n"
+
+
 def markdown(table: dict) -> str:
     return floquet_markdown(table) + "\n" + draws_markdown(table)
 
@@ -258,11 +445,24 @@ def markdown(table: dict) -> str:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--json", required=True, help="write the figures here")
-    ap.add_argument("--part", choices=("all", "floquet", "draws"), default="all")
-    ap.add_argument("--case", choices=[key for key, _, _, _ in CASES],
-                    help="with --part draws: fly only this case, keeping the file's others")
+    ap.add_argument("--part", choices=("all", "floquet", "draws", "margin"), default="all",
+                    help="margin: the 40° hold's margin screen, into its own file (not part of all)")
+    ap.add_argument("--case", choices=[key for key, *_ in (*CASES, *MARGIN_CANDIDATES)],
+                    help="with --part draws or margin: fly only this case, keeping the file's others")
     args = ap.parse_args(argv)
     path = pathlib.Path(args.json)
+    if args.part == "margin":
+        old = json.loads(path.read_text(encoding="utf-8")) if args.case and path.exists() else None
+        screen = margin(args.case, old)
+        if args.case and path.exists():  # keep candidates written meanwhile by another process, in the screen's order
+            have = {c["key"]: c for c in json.loads(path.read_text(encoding="utf-8"))["candidates"]}
+            have.update({c["key"]: c for c in screen["candidates"]})
+            screen["candidates"] = [have[k] for k, *_ in MARGIN_CANDIDATES if k in have]
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(screen, indent=1) + "\n", encoding="utf-8")
+        if any(c["key"] != "as_committed" for c in screen["candidates"]):
+            print(margin_markdown(screen))
+        return 0
     if args.part in ("all", "floquet"):
         fl = floquet()
     if args.part in ("all", "draws"):

@@ -2,6 +2,7 @@
 
     python campaigns/adcs/magnetorquer_hold_lqr_weights.py                      # ≈ 1 CPU-minute a weight set
     python campaigns/adcs/magnetorquer_hold_lqr_weights.py --rate-scales 0.01 --r-weights 1 --alphas 0.008
+    python campaigns/adcs/magnetorquer_hold_lqr_weights.py --sets 30/0.03/1/0.002,20/0.03/1/0.002   # θ/ω/r/α
 
 For each weight set (rate scale ``s_ω`` rad/s, dipole weight ``r``, α-shift 1/s; θ scale 30°) and each of three start
 times along the orbit (0, 2000, 4000 s), the gains of ``control.magnetic_lqr.hold_gains`` over two orbits of the
@@ -32,7 +33,10 @@ STEP_S = 1.4
 DUTY = 0.8
 
 
-def sweep(rate_scales, r_weights, alphas, starts=(0.0, 2000.0, 4000.0)) -> list[str]:
+def sweep(rate_scales, r_weights, alphas, starts=(0.0, 2000.0, 4000.0), theta_scales=(30.0,),
+          sets=None) -> list[str]:
+    """One line per start and weight set: the product of ``theta_scales`` (deg), ``rate_scales`` (rad/s),
+    ``r_weights`` and ``alphas`` (1/s), or ``sets`` of ``(theta_scale_deg, rate_scale, r, alpha)`` when given."""
     import numpy as np
 
     from detumble.analysis.magnetic_periodic_lqr import sampled_double_integrator
@@ -55,8 +59,8 @@ def sweep(rate_scales, r_weights, alphas, starts=(0.0, 2000.0, 4000.0)) -> list[
                   for k in range(n)]
         steps = [sampled_double_integrator(b, inertia, STEP_S) for b in fields]
         line = np.array(fields[0]) / np.linalg.norm(fields[0])
-        for ws, r, alpha in itertools.product(rate_scales, r_weights, alphas):
-            gains = hold_gains(fields, inertia.tolist(), STEP_S, tuple(m_max), math.radians(30.0), ws, r, alpha)
+        for th, ws, r, alpha in sets or itertools.product(theta_scales, rate_scales, r_weights, alphas):
+            gains = hold_gains(fields, inertia.tolist(), STEP_S, tuple(m_max), math.radians(th), ws, r, alpha)
             peak, falls = 0.0, []
             for axis in [*axes, line]:
                 x = np.concatenate([math.radians(30.0) * axis, np.zeros(3)])
@@ -71,7 +75,9 @@ def sweep(rate_scales, r_weights, alphas, starts=(0.0, 2000.0, 4000.0)) -> list[
                     if err > 15.0:
                         last = (k + 1) * STEP_S
                 falls.append(last)
-            lines.append(f"start {t0:.0f} s, rate scale {ws:g} rad/s, r {r:g}, α {alpha:g} /s: peak {peak:.0f}°, "
+            theta = "" if th == 30.0 else f"θ scale {th:g}°, "
+            lines.append(f"start {t0:.0f} s, {theta}rate scale {ws:g} rad/s, r {r:g}, α {alpha:g} /s: "
+                         f"peak {peak:.0f}°, "
                          f"fall to 15° median {float(np.median(falls)):.0f} s, max {max(falls):.0f} s, "
                          f"along the field line {falls[-1]:.0f} s")
     return lines
@@ -104,6 +110,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--rate-scales", default="0.03,0.01", help="rad/s, comma-separated (default 0.03,0.01)")
     ap.add_argument("--r-weights", default="1", help="comma-separated (default 1)")
     ap.add_argument("--alphas", default="0,0.002,0.008", help="1/s, comma-separated (default 0,0.002,0.008)")
+    ap.add_argument("--theta-scales", default="30", help="deg, comma-separated (default 30)")
+    ap.add_argument("--sets", help="instead of the product: weight sets 'θ deg/rate rad/s/r/α 1/s', comma-separated")
     ap.add_argument("--field-errors", action="store_true", help="the on-board model's direction error instead")
     args = ap.parse_args(argv)
     if args.field_errors:
@@ -114,7 +122,9 @@ def main(argv: list[str] | None = None) -> int:
     def floats(text):
         return [float(x) for x in text.split(",")]
 
-    for line in sweep(floats(args.rate_scales), floats(args.r_weights), floats(args.alphas)):
+    sets = [tuple(float(x) for x in s.split("/")) for s in args.sets.split(",")] if args.sets else None
+    for line in sweep(floats(args.rate_scales), floats(args.r_weights), floats(args.alphas),
+                      theta_scales=floats(args.theta_scales), sets=sets):
         print(line, flush=True)
     return 0
 
