@@ -1369,3 +1369,33 @@ def test_the_hold_lqr_bound_probe_catches_a_tampered_file(tmp_path, monkeypatch)
     problems = table.run_probe()
     assert len(problems) == 2 and ": rate of (0.01, 10000.0, 0.004)" in problems[0]
     assert ": fall_field_s of" in problems[1] and all("no longer computes" in p for p in problems)
+
+
+def _weight_record(start: float, theta: float = 30.0, peak: float = 70.2) -> dict:
+    return {"start_s": start, "theta_scale_deg": theta, "rate_scale_rad_s": 0.03, "r": 1.0, "alpha_per_s": 0.002,
+            "peak_deg": peak, "fall_median_s": 258.4, "fall_max_s": 391.0, "fall_field_line_s": 220.6}
+
+
+def test_the_weight_screen_renders_each_set_at_its_starts_and_refuses_a_set_missing_a_start():
+    """STUDY-226: the linear-model weight screen's table has a row per weight set in the order flown, each figure at
+    the starts in time order joined by " / " (rounded to the unit); a file in which one set lacks one start is
+    refused with the set named, not rendered with a gap."""
+    script = studies._load_script("campaigns/adcs/magnetorquer_hold_lqr_weights.py")
+    records = [_weight_record(2000.0, peak=63.4), _weight_record(0.0), _weight_record(4000.0, peak=80.0),
+               _weight_record(0.0, theta=20.0), _weight_record(2000.0, theta=20.0), _weight_record(4000.0, theta=20.0)]
+    lines = script.markdown({"records": records}).splitlines()
+    assert lines[2] == "| 30 | 0.03 | 1 | 0.002 | 70 / 63 / 80 | 258 / 258 / 258 | 391 / 391 / 391 | 221 / 221 / 221 |"
+    assert lines[3].startswith("| 20 | 0.03 | 1 | 0.002 | 70 / 70 / 70 |") and len(lines) == 4
+    with pytest.raises(ValueError, match="20/0.03/1/0.002 was not flown at every start"):
+        script.markdown({"records": records[:-1]})
+
+
+def test_the_weight_screen_block_edited_by_hand_is_reported(tmp_path, monkeypatch):
+    """STUDY-227: the weight screen's block (rendered from lqr_weights.json) with one peak changed by hand is reported
+    by --check, naming the block."""
+    name = "magnetorquer_hold_lqr_weights_screen"
+    body = studies.doc_blocks(studies.STUDIES[name].doc.read_text(encoding="utf-8"))[name]
+    cell = body.split("\n")[2].split(" | ")[4]  # the kept set's peaks, "a / b / c"
+    edited = " / ".join([str(int(cell.split(" / ")[0]) + 1), *cell.split(" / ")[1:]])
+    problems = _check_with_a_hand_edit(tmp_path, monkeypatch, name, name, f"| {cell} |", f"| {edited} |")
+    assert len(problems) == 1 and f"block '{name}'" in problems[0]

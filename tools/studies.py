@@ -1607,6 +1607,12 @@ def regenerate_performance_detumble(ctx: Context) -> None:
 # --- single-run tables of study scripts, from the JSON file each script writes (--json) ------------------------------
 
 
+#: the margin screen's weight sets on the linearised hold, 'θ scale deg/rate scale rad/s/r/α 1/s' (the kept one first)
+MARGIN_WEIGHT_SETS = ("30/0.03/1/0.002,30/0.02/1/0.002,30/0.025/1/0.002,30/0.03/1/0.001,30/0.03/1/0.003,"
+                      "30/0.03/1/0.004,30/0.03/0.5/0.002,30/0.03/2/0.002,20/0.03/1/0.002,25/0.03/1/0.002,"
+                      "30/0.02/1/0.003,15/0.03/1/0.002,20/0.03/1/0.003,20/0.02/0.5/0.002")
+
+
 @dataclasses.dataclass(frozen=True)
 class ScriptTable:
     """A table that a script under campaigns/ (or a module's ``main``) prints from its own flights (minutes: too
@@ -1728,6 +1734,11 @@ SCRIPT_TABLES = {t.name: t for t in (
                 "magnetorquer_hold_after_acquisition/margin.json",
                 STUDIES_DIR / "magnetorquer_hold_after_acquisition.md", args=("--part", "margin"),
                 render="margin_markdown"),
+    ScriptTable("magnetorquer_hold_lqr_weights_screen", "issue 27's 40° coil hold: weight sets near the kept one on "
+                "the linearised hold, the margin screen's first step (committed JSON, ~1 CPU-minute a set)",
+                "magnetorquer_hold_lqr_weights_screen", "campaigns/adcs/magnetorquer_hold_lqr_weights.py",
+                "magnetorquer_hold_after_acquisition/lqr_weights.json",
+                STUDIES_DIR / "magnetorquer_hold_after_acquisition.md", args=("--sets", MARGIN_WEIGHT_SETS)),
 )}
 
 

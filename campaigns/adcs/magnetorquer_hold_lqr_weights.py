@@ -10,7 +10,8 @@ campaign's tilted dipole turned into the adcs_ref target frame (1.4 s steps, ine
 the linear hold (``analysis.magnetic_periodic_lqr.sampled_double_integrator``, the dipole scaled down to the coils'
 capacity, direction kept) flown for 3000 s from 30° at rest about 8 random axes and the field line: the largest error
 reached (deg; "peak") and the time after which the error stays ≤ 15° (s; median, max over the 9 axes, and along the
-field line). One line per start and weight set.
+field line). One line per start and weight set; ``--json FILE`` also writes them as records, which
+``tools/studies.py`` renders as the study's table (block ``magnetorquer_hold_lqr_weights_screen``).
 
 ``--field-errors``: instead, the direction error (deg) of the on-board field model
 (``control.geomagnetic.OnboardField`` of degree 1, 6, 8, 10) against the IGRF-14 plant's field along the campaign's
@@ -23,6 +24,7 @@ from __future__ import annotations
 
 import argparse
 import itertools
+import json
 import math
 import pathlib
 
@@ -33,10 +35,12 @@ STEP_S = 1.4
 DUTY = 0.8
 
 
-def sweep(rate_scales, r_weights, alphas, starts=(0.0, 2000.0, 4000.0), theta_scales=(30.0,),
-          sets=None) -> list[str]:
-    """One line per start and weight set: the product of ``theta_scales`` (deg), ``rate_scales`` (rad/s),
-    ``r_weights`` and ``alphas`` (1/s), or ``sets`` of ``(theta_scale_deg, rate_scale, r, alpha)`` when given."""
+def sweep_records(rate_scales, r_weights, alphas, starts=(0.0, 2000.0, 4000.0), theta_scales=(30.0,),
+                  sets=None) -> list[dict]:
+    """One record per start and weight set: the product of ``theta_scales`` (deg), ``rate_scales`` (rad/s),
+    ``r_weights`` and ``alphas`` (1/s), or ``sets`` of ``(theta_scale_deg, rate_scale, r, alpha)`` when given; each
+    ``{start_s, theta_scale_deg, rate_scale_rad_s, r, alpha_per_s, peak_deg, fall_median_s, fall_max_s,
+    fall_field_line_s}``."""
     import numpy as np
 
     from detumble.analysis.magnetic_periodic_lqr import sampled_double_integrator
@@ -52,7 +56,7 @@ def sweep(rate_scales, r_weights, alphas, starts=(0.0, 2000.0, 4000.0), theta_sc
     axes = np.random.default_rng(0).normal(size=(8, 3))
     axes /= np.linalg.norm(axes, axis=1)[:, None]
     period = 2.0 * math.pi / plant.orbit.mean_motion
-    lines = []
+    records = []
     for t0 in starts:
         n = int(2 * period / STEP_S)
         fields = [rotate_n_to_b(TARGET, plant.field.b_N(t0 + k * STEP_S, plant.orbit.position_N(t0 + k * STEP_S)))
@@ -75,12 +79,49 @@ def sweep(rate_scales, r_weights, alphas, starts=(0.0, 2000.0, 4000.0), theta_sc
                     if err > 15.0:
                         last = (k + 1) * STEP_S
                 falls.append(last)
-            theta = "" if th == 30.0 else f"θ scale {th:g}°, "
-            lines.append(f"start {t0:.0f} s, {theta}rate scale {ws:g} rad/s, r {r:g}, α {alpha:g} /s: "
-                         f"peak {peak:.0f}°, "
-                         f"fall to 15° median {float(np.median(falls)):.0f} s, max {max(falls):.0f} s, "
-                         f"along the field line {falls[-1]:.0f} s")
-    return lines
+            records.append({"start_s": t0, "theta_scale_deg": th, "rate_scale_rad_s": ws, "r": r, "alpha_per_s": alpha,
+                            "peak_deg": peak, "fall_median_s": float(np.median(falls)), "fall_max_s": max(falls),
+                            "fall_field_line_s": falls[-1]})
+    return records
+
+
+def record_line(rec: dict) -> str:
+    """One record as the line the sweep prints."""
+    th = rec["theta_scale_deg"]
+    theta = "" if th == 30.0 else f"θ scale {th:g}°, "
+    return (f"start {rec['start_s']:.0f} s, {theta}rate scale {rec['rate_scale_rad_s']:g} rad/s, r {rec['r']:g}, "
+            f"α {rec['alpha_per_s']:g} /s: peak {rec['peak_deg']:.0f}°, "
+            f"fall to 15° median {rec['fall_median_s']:.0f} s, max {rec['fall_max_s']:.0f} s, "
+            f"along the field line {rec['fall_field_line_s']:.0f} s")
+
+
+def sweep(*args, **kwargs) -> list[str]:
+    """:func:`sweep_records` as printed lines."""
+    return [record_line(rec) for rec in sweep_records(*args, **kwargs)]
+
+
+def markdown(table: dict) -> str:
+    """The ``--json`` file's table: a row per weight set (in the order flown), each figure at the starts in order,
+    separated by " / ". Refuses a file whose weight sets were not each flown at the same starts."""
+    starts = sorted({rec["start_s"] for rec in table["records"]})
+    by_set: dict[tuple, dict] = {}
+    for rec in table["records"]:
+        key = (rec["theta_scale_deg"], rec["rate_scale_rad_s"], rec["r"], rec["alpha_per_s"])
+        by_set.setdefault(key, {})[rec["start_s"]] = rec
+    if not by_set:
+        raise ValueError("no weight set flown")
+    lines = ["| θ scale (deg) | rate scale (rad/s) | r | α (1/s) | peak (deg) | fall to 15°, median over the 9 axes "
+             "(s) | at the worst axis (s) | along the field line (s) |", "|---|---|---|---|---|---|---|---|"]
+    for (th, ws, r, alpha), at in by_set.items():
+        if sorted(at) != starts:
+            raise ValueError(f"weight set {th:g}/{ws:g}/{r:g}/{alpha:g} was not flown at every start {starts}")
+
+        def row(name):
+            return " / ".join(f"{at[t][name]:.0f}" for t in starts)  # noqa: B023 - used at once, in this pass
+
+        lines.append(f"| {th:g} | {ws:g} | {r:g} | {alpha:g} | {row('peak_deg')} | {row('fall_median_s')} | "
+                     f"{row('fall_max_s')} | {row('fall_field_line_s')} |")
+    return "\n".join(lines) + "\n"
 
 
 def field_errors(degrees=(1, 6, 8, 10)) -> list[str]:
@@ -113,6 +154,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--theta-scales", default="30", help="deg, comma-separated (default 30)")
     ap.add_argument("--sets", help="instead of the product: weight sets 'θ deg/rate rad/s/r/α 1/s', comma-separated")
     ap.add_argument("--field-errors", action="store_true", help="the on-board model's direction error instead")
+    ap.add_argument("--json", help="also write the sweep's records to this file (tools/studies.py renders it)")
     args = ap.parse_args(argv)
     if args.field_errors:
         for line in field_errors():
@@ -123,9 +165,15 @@ def main(argv: list[str] | None = None) -> int:
         return [float(x) for x in text.split(",")]
 
     sets = [tuple(float(x) for x in s.split("/")) for s in args.sets.split(",")] if args.sets else None
-    for line in sweep(floats(args.rate_scales), floats(args.r_weights), floats(args.alphas),
-                      theta_scales=floats(args.theta_scales), sets=sets):
-        print(line, flush=True)
+    records = sweep_records(floats(args.rate_scales), floats(args.r_weights), floats(args.alphas),
+                            theta_scales=floats(args.theta_scales), sets=sets)
+    for rec in records:
+        print(record_line(rec), flush=True)
+    if args.json:
+        out = pathlib.Path(args.json)
+        tmp = out.with_suffix(out.suffix + ".tmp")
+        tmp.write_text(json.dumps({"records": records}, indent=1) + "\n", encoding="utf-8")
+        tmp.replace(out)  # written whole or not at all
     return 0
 
 
