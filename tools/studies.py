@@ -502,6 +502,12 @@ CAMPAIGNS = {
     "magnetorquer_hold_field_model_lqr_below_40_igrf14_degree13": CommittedCampaign(
         "magnetorquer_hold_after_acquisition/campaign_field_model_lqr_below_40_igrf14_degree13",
         "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr_below_40_igrf14_degree13.yaml"),
+    "magnetorquer_hold_field_model_lqr_below_50": CommittedCampaign(
+        "magnetorquer_hold_after_acquisition/campaign_field_model_lqr_below_50",
+        "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr_below_50.yaml"),
+    "magnetorquer_hold_field_model_lqr_below_50_igrf14": CommittedCampaign(
+        "magnetorquer_hold_after_acquisition/campaign_field_model_lqr_below_50_igrf14",
+        "campaigns/adcs/pointing_magnetorquers_plant_field_model_lqr_below_50_igrf14.yaml"),
 }
 
 
@@ -2155,7 +2161,13 @@ _HOLD_CANDIDATE_CAMPAIGNS = (("magnetorquer_hold_rho_schedule", "magnetorquer_ho
                               "IGRF-14 plant, the hold below 40° on IGRF-14 of degree 6"),
                              ("magnetorquer_hold_field_model_lqr_below_40_igrf14_degree13",
                               "magnetorquer_hold_field_model_lqr_below_40_igrf14_degree13_campaign",
-                              "IGRF-14 plant, the hold below 40° on IGRF-14 of degree 13"))
+                              "IGRF-14 plant, the hold below 40° on IGRF-14 of degree 13"),
+                             ("magnetorquer_hold_field_model_lqr_below_50",
+                              "magnetorquer_hold_field_model_lqr_below_50_campaign",
+                              "the scheduled hold below 50°, field steering above"),
+                             ("magnetorquer_hold_field_model_lqr_below_50_igrf14",
+                              "magnetorquer_hold_field_model_lqr_below_50_igrf14_campaign",
+                              "IGRF-14 plant, the hold below 50° on IGRF-14 of degree 6"))
 
 
 def hold_candidate_campaign_blocks() -> dict[str, str]:
