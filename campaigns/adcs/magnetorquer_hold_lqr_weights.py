@@ -95,11 +95,6 @@ def record_line(rec: dict) -> str:
             f"along the field line {rec['fall_field_line_s']:.0f} s")
 
 
-def sweep(*args, **kwargs) -> list[str]:
-    """:func:`sweep_records` as printed lines."""
-    return [record_line(rec) for rec in sweep_records(*args, **kwargs)]
-
-
 def markdown(table: dict) -> str:
     """The ``--json`` file's table: a row per weight set (in the order flown), each figure at the starts in order,
     separated by " / ". Refuses a file whose weight sets were not each flown at the same starts."""
