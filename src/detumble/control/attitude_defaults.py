@@ -49,12 +49,17 @@ MAG_RESIDUAL_DIPOLE_X = 0.0  # A·m², B: ground-calibrated residual dipole
 MAG_RESIDUAL_DIPOLE_Y = 0.0  # A·m², B
 MAG_RESIDUAL_DIPOLE_Z = 0.0  # A·m², B
 MAG_RESIDUAL_WINDOW = 60.0  # s: the estimator's momentum-balance window
-MAG_BIAS_TIME = 0.0  # s: >0: the field the controller uses is the reading less an on-board bias estimate (the
-#                      reading minus the on-board dipole model turned into B by q̂, low-passed at this time constant;
-#                      three_mode._correct_mag_bias); 0 (default): the reading as it is
-MAG_LQR_ANGLE = 0.0  # deg: >0: below this pointing error the coils' hold is the LQR scheduled on the on-board
-#                      field model (control.magnetic_lqr; three_mode._model_lqr_torque), field steering above; 0: off
-MAG_FIELD_MODEL_DEGREE = 1.0  # the on-board field model of MAG_BIAS_TIME and MAG_LQR_ANGLE: 1 the tilted dipole,
+# The coils' hold as issue 27 chose it (docs/studies/magnetorquer_hold_after_acquisition.md, "The 50° switch on the
+# full 100 draws"): the LQR scheduled on an on-board IGRF-14 of degree 6 below 50°, field steering above, the field
+# taken from the on-board model through a 1 s bias estimate. MAG_LQR_ANGLE 0 and MAG_BIAS_TIME 0 fly the field
+# steering alone on the raw reading (the default before 2026-12-05); a tilted-dipole plant wants degree 1.
+MAG_BIAS_TIME = 1.0  # s: >0: while the coils are the pointing actuator (POINTING_ACTUATOR MAGNETORQUERS, or ANY
+#                      without every wheel answering), the field the controller uses is the reading less an on-board
+#                      bias estimate (the reading minus the on-board field model turned into B by q̂, low-passed at
+#                      this time constant; three_mode._correct_mag_bias); with the wheels pointing, or 0: the reading
+MAG_LQR_ANGLE = 50.0  # deg: >0: below this pointing error the coils' hold is the LQR scheduled on the on-board
+#                       field model (control.magnetic_lqr; three_mode._model_lqr_torque), field steering above; 0: off
+MAG_FIELD_MODEL_DEGREE = 6.0  # the on-board field model of MAG_BIAS_TIME and MAG_LQR_ANGLE: 1 the tilted dipole,
 #                               2…13 IGRF-14 truncated to that degree (control.geomagnetic.OnboardField)
 
 # --- moving targets (control.targets) ----------------------------------------------------------

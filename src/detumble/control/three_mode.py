@@ -767,14 +767,14 @@ class ThreeModeLaw:
             b, self.b_stamp_us = field
             self.b_gauss = b
             self.b_tesla = (b[0] * TESLA_PER_GAUSS, b[1] * TESLA_PER_GAUSS, b[2] * TESLA_PER_GAUSS)
-            if self.MAG_BIAS_TIME > 0.0:
-                self.b_tesla = self._correct_mag_bias(self.b_tesla, dt)
         else:
             notify.event("MagneticFieldRetrievalFailed")
             self.b_tesla = None
-        self._track_field_line(dt)
         self._track_sun(dt, now_us)
         self.wheel_momenta = io.wheel_momenta() if io.wheel_count() else None
+        if self.b_tesla is not None and self.MAG_BIAS_TIME > 0.0 and not self._pointing_uses_wheels():
+            self.b_tesla = self._correct_mag_bias(self.b_tesla, dt)
+        self._track_field_line(dt)
         # the last cycle's body torque (self.dipole: what it drove, zero when off), for both users below
         torque = (applied_torque(self.wheel_torques, self.wheel_axes, self.dipole, self.b_tesla, self.duty)
                   if self.omega is not None else None)
@@ -790,7 +790,8 @@ class ThreeModeLaw:
         return model
 
     def _correct_mag_bias(self, b_meas: Vec3, dt: float) -> Vec3:
-        """The magnetometer reading ``b_meas`` (T, B) less the on-board bias estimate (MAG_BIAS_TIME > 0).
+        """The magnetometer reading ``b_meas`` (T, B) less the on-board bias estimate (MAG_BIAS_TIME > 0, called only
+        while the coils are the pointing actuator: with the wheels pointing the reading is used as it is).
 
         The estimate low-passes, at the time constant MAG_BIAS_TIME (s), the reading minus the on-board field model
         (``control.geomagnetic.OnboardField`` of MAG_FIELD_MODEL_DEGREE at the ephemeris' position and Earth angle)

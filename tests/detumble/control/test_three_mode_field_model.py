@@ -82,9 +82,14 @@ class _NoProvider:
         return None
 
 
-def _law(q, bias_g, **params):
-    io = _Io(q, bias_g)
-    law = ThreeModeLaw(io, Quiet(), _NoProvider(), params={"ESTIMATOR": "COMPLEMENTARY", **params})
+# This world's field is the on-board tilted dipole: the tests fly degree 1 on board, and the estimate and the
+# scheduled hold only where a test turns them on (the defaults since 2026-12-05 are 1 s, 50°, degree 6).
+_THIS_WORLD = {"MAG_FIELD_MODEL_DEGREE": 1.0, "MAG_BIAS_TIME": 0.0, "MAG_LQR_ANGLE": 0.0}
+
+
+def _law(q, bias_g, io_class=None, **params):
+    io = (io_class or _Io)(q, bias_g)
+    law = ThreeModeLaw(io, Quiet(), _NoProvider(), params={"ESTIMATOR": "COMPLEMENTARY", **_THIS_WORLD, **params})
     return io, law
 
 
@@ -96,7 +101,7 @@ def _cycles(io, law, n):
 
 
 def test_bias_estimate_converges_at_its_time_constant():
-    """ADCS-190: MAG_BIAS_TIME 0 (default): the controller's field is the reading. 20 s: from the first cycle it is
+    """ADCS-190: MAG_BIAS_TIME 0: the controller's field is the reading. 20 s: from the first cycle it is
     the model's (the estimate starts at the reading less the model), and after a step Δ of the bias it moves by
     ``(1 − (1 − dt/τ)ⁿ) Δ`` in n cycles (the discrete low-pass, 1e-9 relative); without an ephemeris the estimate is
     held and still subtracted."""
@@ -127,6 +132,44 @@ def test_bias_estimate_converges_at_its_time_constant():
     assert law.b_tesla == pytest.approx(tuple(reading[i] * TESLA_PER_GAUSS - held[i] for i in range(3)), rel=1e-12)
 
 
+class _IoWithWheels(_Io):
+    """The same spacecraft with three wheels at rest, answering unless ``wheels_answer`` is False."""
+
+    wheels_answer = True
+
+    def wheel_count(self):
+        return 3
+
+    def wheel_momenta(self):
+        return (0.0, 0.0, 0.0) if self.wheels_answer else None
+
+
+def test_bias_estimate_serves_the_coils_alone():
+    """ADCS-197: the defaults are issue 27's hold (MAG_BIAS_TIME 1 s, MAG_LQR_ANGLE 50°, MAG_FIELD_MODEL_DEGREE 6),
+    and the bias estimate serves the coils alone: with POINTING_ACTUATOR ANY and every wheel answering the
+    controller's field is the reading as it is (no estimate made), with MAGNETORQUERS it is corrected (here to the
+    model's own field, the bias gone), and under ANY it is corrected from the first cycle a wheel stops answering."""
+    law = ThreeModeLaw(_Io((1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0)), Quiet(), _NoProvider())
+    assert (law.MAG_BIAS_TIME, law.MAG_LQR_ANGLE, law.MAG_FIELD_MODEL_DEGREE) == (1.0, 50.0, 6.0)
+    q = quat_from_axis_angle((0.3, 0.4, 0.866), 0.7)
+    bias = (0.012, -0.008, 0.005)
+
+    def reading_T(io):
+        return tuple(io.field()[0][i] * TESLA_PER_GAUSS for i in range(3))
+
+    io, law = _law(q, bias, _IoWithWheels, MAG_BIAS_TIME=1.0)
+    _cycles(io, law, 5)
+    assert law.b_tesla == reading_T(io)
+    assert law.mag_bias_T is None
+    io.wheels_answer = False
+    _cycles(io, law, 1)
+    model = io.model_b()
+    assert law.b_tesla == pytest.approx(model, abs=1e-9 * math.hypot(*model))
+    io, law = _law(q, bias, _IoWithWheels, MAG_BIAS_TIME=1.0, POINTING_ACTUATOR="MAGNETORQUERS")
+    _cycles(io, law, 5)
+    assert law.b_tesla == pytest.approx(model, abs=1e-9 * math.hypot(*model))
+
+
 def _pointing(error_deg, **params):
     q = quat_mul(TARGET, quat_from_axis_angle((0.6, 0.0, 0.8), math.radians(error_deg)))
     io, law = _law(q, (0.0, 0.0, 0.0), POINTING_ACTUATOR="MAGNETORQUERS", MAG_SETTLE_TIME=0.0, **params)
@@ -141,7 +184,7 @@ def test_model_lqr_hold_below_its_angle():
     """ADCS-191: MAG_LQR_ANGLE 40° on an inertial target at 20° of error: once its table is built (over cycles), the
     torque request is ``m × b`` for the LQR dipole of a table computed from the ephemeris at the table's time (the
     on-board model along the orbit), which is not the field-steering law's; at 50° (above the angle) and with
-    MAG_LQR_ANGLE 0 (default) it is field steering."""
+    MAG_LQR_ANGLE 0 it is field steering."""
     io, law = _pointing(20.0, MAG_LQR_ANGLE=40.0)
     _cycles(io, law, 1100)  # an orbit's table: 31,888 work units at MAG_LQR_BUDGET_UNITS a cycle
     table = law._lqr_table
@@ -219,7 +262,7 @@ def _pointing_logged(error_deg, target=TARGET, **params):
     q = quat_mul(target, quat_from_axis_angle((0.6, 0.0, 0.8), math.radians(error_deg)))
     io = _Io(q, (0.0, 0.0, 0.0))
     notify = _Events()
-    law = ThreeModeLaw(io, notify, _NoProvider(), params={"ESTIMATOR": "COMPLEMENTARY",
+    law = ThreeModeLaw(io, notify, _NoProvider(), params={"ESTIMATOR": "COMPLEMENTARY", **_THIS_WORLD,
                                                           "POINTING_ACTUATOR": "MAGNETORQUERS",
                                                           "MAG_SETTLE_TIME": 0.0, **params})
     _cycles(io, law, 2)
