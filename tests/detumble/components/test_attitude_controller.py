@@ -98,6 +98,12 @@ class World:
         return enable
 
 
+# The coils' field-steering hold on the raw reading (MAG_BIAS_TIME 0, MAG_LQR_ANGLE 0: the default before
+# 2026-12-05): the tests of that law and of the coils' other modes; this harness gives no ephemeris for the on-board
+# field model the default hold needs (its tests: tests/detumble/control/test_three_mode_field_model.py).
+FIELD_STEERING_HOLD = {"MAG_BIAS_TIME": 0.0, "MAG_LQR_ANGLE": 0.0}
+
+
 def make(fprime_harness, *, wheels=True, bdot_provider=False, params=None, sun=False, system_mode=False):
     comp = AttitudeController("attitudeController", base_id=BASE)
     h = fprime_harness(comp, test_time=START)
@@ -486,7 +492,8 @@ def test_pointing_on_magnetorquers_projects_the_pd_torque(fprime_harness):
     coil-weighted projection of τ = −K_P_MAG q_err.v − K_D_MAG ω (before rounding to drive levels: within one
     level), so m × B is τ's part ⟂ B."""
     h = pointing(fprime_harness, q=quat_from_axis_angle((0.0, 1.0, 0.0), 0.2),
-                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, "MAG_SETTLE_TIME": 0.0})
+                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, **FIELD_STEERING_HOLD,
+                         "MAG_SETTLE_TIME": 0.0})
     tick(h, 5)
     assert all(t == 0.0 for t in h.world.torques[1])
     assert any(c != 0.0 for c in h.tlm_values("RequestedTorque")[-1])
@@ -499,7 +506,7 @@ def test_pointing_on_magnetorquers_projects_the_pd_torque(fprime_harness):
 def _coils_in_a_turning_field(fprime_harness, r: float, b0: float):
     """A coil-pointing harness 0.2 rad about y from the identity, its field (gauss) turning at ``r`` rad/s in N on a
     cone (``b0`` in the x–y plane, 0.1 along z), run 60 s so the field-line rate estimate has settled."""
-    h = make(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS,
+    h = make(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, **FIELD_STEERING_HOLD,
                                      "MAG_FIELD_RATE_BANDWIDTH": 0.2, "MAG_SETTLE_TIME": 30.0})
     h.world.q = quat_from_axis_angle((0.0, 1.0, 0.0), 0.2)
     t0 = h.test_time.total_us
@@ -578,7 +585,8 @@ def test_magnetorquer_pointing_waits_for_the_gyro_bias_to_settle(fprime_harness)
     MAG_SETTLE_TIME (here 10 s; the steering's along-field gain would turn a still-settling gyro-bias estimate into
     a spin-up), then it requests the law's torque."""
     h = pointing(fprime_harness, q=quat_from_axis_angle((0.0, 1.0, 0.0), 0.2),
-                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, "MAG_SETTLE_TIME": 10.0})
+                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, **FIELD_STEERING_HOLD,
+                         "MAG_SETTLE_TIME": 10.0})
     seconds(h, 9)
     assert all(list(t) == [0.0, 0.0, 0.0] for t in h.tlm_values("RequestedTorque"))
     assert all(lv == 0 for p in STARTS for call in h.from_port(p) for lv in call.args)
@@ -596,7 +604,8 @@ def test_residual_dipole_feed_forward_by_mode(fprime_harness):
     throttled) and the parameters are used instead."""
     m_par = (8.0e-3, -6.0e-3, 1.0e-3)
     h = pointing(fprime_harness, q=quat_from_axis_angle((0.0, 1.0, 0.0), 0.2),
-                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, "MAG_SETTLE_TIME": 0.0,
+                 params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, **FIELD_STEERING_HOLD,
+                         "MAG_SETTLE_TIME": 0.0,
                          "MAG_RESIDUAL_MODE": MagResidualMode.PARAMETER, "MAG_RESIDUAL_DIPOLE_X": m_par[0],
                          "MAG_RESIDUAL_DIPOLE_Y": m_par[1], "MAG_RESIDUAL_DIPOLE_Z": m_par[2]})
     c = h.comp
@@ -635,7 +644,7 @@ def test_residual_dipole_estimator_runs_only_while_the_coils_point(fprime_harnes
     """ADCS-063: the estimator is fed (its windows count up, MAG_RESIDUAL_WINDOW long) only in POINTING on the coils
     past MAG_SETTLE_TIME with MAG_RESIDUAL_MODE = ESTIMATE; with the wheels pointing, during the settle wait or under
     another mode it is not, and its sums are kept."""
-    h = pointing(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS,
+    h = pointing(fprime_harness, params={"POINTING_ACTUATOR": PointingActuator.MAGNETORQUERS, **FIELD_STEERING_HOLD,
                                          "MAG_SETTLE_TIME": 10.0, "MAG_RESIDUAL_WINDOW": 5.0})
     est = h.comp.law.residual_estimator
     seconds(h, 9)
@@ -1155,7 +1164,7 @@ def test_sun_safe_spin_rate_and_bias_time_act_from_the_ground(fprime_harness):
     """ADCS-107: on the coils, SUN_SAFE with the Sun on +Z and the body at rest asks only for the spin about +Z,
     τ_z = SPIN_K_RATE · SUN_SPIN_RATE (rad/s): 3 °/s by default, 1.5 °/s after SUN_SPIN_RATE_PRM_SET 1.5 (OK, from
     the next cycle); SUN_BIAS_TIME_PRM_SET 40 becomes the Sun-vector bias observer's time constant."""
-    h = make(fprime_harness, sun=True, params={"POINTING_ACTUATOR": "MAGNETORQUERS"})
+    h = make(fprime_harness, sun=True, params={"POINTING_ACTUATOR": "MAGNETORQUERS", **FIELD_STEERING_HOLD})
     h.world.sun = (0.0, 0.0, 1.0)
     tick(h)
     h.send_command("FORCE_MODE", ControlMode.SUN_SAFE)
@@ -1177,7 +1186,8 @@ def test_sun_hold_field_angle_acts_from_the_ground(fprime_harness):
     SUN_HOLD_FIELD_ANGLE. The Sun on +Z, held for SUN_HOLD_DWELL (set to 1 s), the field 70° from +Z: at the default
     80° the spin command stays at SUN_SPIN_RATE (τ_z = SPIN_K_RATE · 3 °/s); after SUN_HOLD_FIELD_ANGLE_PRM_SET 60
     (OK) it ramps at SUN_HOLD_RAMP (set to 0.1 °/s²) down to SUN_HOLD_SPIN_RATE (1.5 °/s)."""
-    h = make(fprime_harness, sun=True, params={"POINTING_ACTUATOR": "MAGNETORQUERS", "SUN_HOLD_DWELL": 1.0,
+    h = make(fprime_harness, sun=True, params={"POINTING_ACTUATOR": "MAGNETORQUERS", **FIELD_STEERING_HOLD,
+                                               "SUN_HOLD_DWELL": 1.0,
                                                "SUN_HOLD_RAMP": 0.1})
     h.world.sun = (0.0, 0.0, 1.0)
     c, s = math.cos(math.radians(70.0)), math.sin(math.radians(70.0))
