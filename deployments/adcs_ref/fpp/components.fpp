@@ -1321,11 +1321,11 @@ module Components {
     @ units: s
     param RATE_OBSERVER_DIPOLE_TIME: F64 default 20.0 id 0x51 set opcode 0xA9 save opcode 0xAA
     @ units: s
-    param MAG_BIAS_TIME: F64 default 0.0 id 0x52 set opcode 0xAB save opcode 0xAC
+    param MAG_BIAS_TIME: F64 default 1.0 id 0x52 set opcode 0xAB save opcode 0xAC
     @ units: deg
-    param MAG_LQR_ANGLE: F64 default 0.0 id 0x53 set opcode 0xAD save opcode 0xAE
+    param MAG_LQR_ANGLE: F64 default 50.0 id 0x53 set opcode 0xAD save opcode 0xAE
     @ units: 1
-    param MAG_FIELD_MODEL_DEGREE: F64 default 1.0 id 0x54 set opcode 0xAF save opcode 0xB0
+    param MAG_FIELD_MODEL_DEGREE: F64 default 6.0 id 0x54 set opcode 0xAF save opcode 0xB0
   }
 
   @ fprime-lite: detumble.drivers.reaction_wheel_driver.ReactionWheelDriver
