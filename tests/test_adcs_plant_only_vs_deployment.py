@@ -130,6 +130,8 @@ def test_full_flight_without_the_start_up_latency(full_flights):
 
 
 HOLD_SEQUENCE = ROOT / "campaigns" / "adcs" / "pointing_magnetorquers.seq"
+#: what HOLD_SEQUENCE pins by PRM_SET: the field-steering hold on the raw reading (the default before 2026-12-05)
+FIELD_STEERING = ("control.adcs.MAG_BIAS_TIME=0.0", "control.adcs.MAG_LQR_ANGLE=0.0")
 #: 10° from the hold campaign's target at 0.04 °/s: one of the campaign's harder starts
 HOLD_START = ("initial.rate.magnitude_deg_s=0.04", "initial.rate.axis=[0.6, 0.0, 0.8]",
               "initial.attitude.quaternion=[0.9659258262890683, 0.0, 0.25881904510252074, 0.0]")
@@ -148,7 +150,8 @@ def test_forced_magnetorquer_hold_plant_only_matches_the_deployment(tmp_path):
     dep = run_deployment(load_topology(TOPOLOGY, overrides), tmp_path, duration_s=duration, plots=False,
                          sequence=HOLD_SEQUENCE, quiet=True)
     forced = ["control.adcs.POINTING_ACTUATOR=MAGNETORQUERS", "control.adcs.force_mode=POINTING",
-              "control.adcs.force_at_s=5.0", "control.adcs.target_q_bn=[0.9238795325112867, 0, 0.3826834323650898, 0]"]
+              "control.adcs.force_at_s=5.0", "control.adcs.target_q_bn=[0.9238795325112867, 0, 0.3826834323650898, 0]",
+              *FIELD_STEERING]  # the sequence pins the field-steering hold on the raw reading
     result = run(load_scenario("adcs", settings=[*HOLD_START, *forced]), law="adcs", duration_s=duration)
     po = result.summary
     with open(tmp_path / "truth.csv", newline="") as f:
@@ -163,6 +166,46 @@ def test_forced_magnetorquer_hold_plant_only_matches_the_deployment(tmp_path):
     for key in ("median", "p95", "max"):
         assert po["pointing_error_deg"][key] == pytest.approx(dep["pointing_error_deg"][key], abs=1e-6)
     assert po["pointing_error_deg"]["samples"] == dep["pointing_error_deg"]["samples"]
+
+
+def test_default_magnetorquer_hold_is_the_same_flight_on_both_sides(tmp_path):
+    """ADCS-198: the coils' default hold (since 2026-12-05: the LQR scheduled on the on-board IGRF-14 of degree 6 below
+    MAG_LQR_ANGLE 50°, the field through the MAG_BIAS_TIME 1 s estimate; its gain table built over control cycles from
+    the ephemeris) from 20° off at 0.04 °/s in adcs_ref's IGRF-14 plant, on the deployment (the OrbitEphemeris
+    component on ephemerisGet; flight_params.dat's defaults with POINTING_ACTUATOR MAGNETORQUERS written by
+    `fprime-lite params --set`, so the coils are the actuator from the first cycle as on the plant-only side, where a
+    PRM_SET in the sequence would start the bias estimate one 10 Hz cycle later; the target and FORCE_MODE at 5 s from
+    the sequence) and with `force_mode` on the plant-only law (PlantIo's ephemeris, the defaults): the same flight to
+    the last bit over 400 s, past the table's first use — the body rate at every second, the transition, the POINTING
+    error statistics — and the hold acted (the median error below the 20° start)."""
+    from fprime_lite.tools.cli import main as fprime_lite
+
+    controller = "ReferenceDeployment.attitudeController"
+    params = tmp_path / "coils.dat"
+    assert fprime_lite(["params", str(TOPOLOGY), "-o", str(params),
+                        "--set", f"{controller}.POINTING_ACTUATOR=MAGNETORQUERS"]) == 0
+    sequence = tmp_path / "hold.seq"
+    sequence.write_text(f"R00:00:00 {controller}.SET_TARGET_QUATERNION 0.9238795325112867 0 0.3826834323650898 0\n"
+                        f"R00:00:05 {controller}.FORCE_MODE POINTING\n")
+    start = ("initial.rate.magnitude_deg_s=0.04", "initial.rate.axis=[0.6, 0.0, 0.8]",
+             "initial.attitude.quaternion=[0.984807753012208, 0.0, 0.17364817766693033, 0.0]")  # 20° from the target
+    duration = 400.0
+    dep = run_deployment(load_topology(TOPOLOGY, {"spacecraft": {"settings": list(start)}}), tmp_path,
+                         duration_s=duration, plots=False, parameter_file=params, sequence=sequence, quiet=True)
+    forced = ["control.adcs.POINTING_ACTUATOR=MAGNETORQUERS", "control.adcs.force_mode=POINTING",
+              "control.adcs.force_at_s=5.0", "control.adcs.target_q_bn=[0.9238795325112867, 0, 0.3826834323650898, 0]"]
+    result = run(load_scenario("adcs", settings=[*start, *forced]), law="adcs", duration_s=duration)
+    with open(tmp_path / "truth.csv", newline="") as f:
+        dep_rates = {round(float(r["t_s"]), 3): float(r["rate_deg_s"]) for r in csv.DictReader(f)}
+    po_rates = {round(r[0], 3): r[4] for r in result.rows}
+    common = sorted(set(dep_rates) & set(po_rates))
+    assert len(common) == 401
+    assert [t for t in common if dep_rates[t] != po_rates[t]] == []
+    assert [(t["mode"], t["t_s"]) for t in dep["control_mode_transitions"]] == [("POINTING", 5.0)]
+    assert [(t["mode"], t["t_s"]) for t in result.summary["control_mode_transitions"]] == [("POINTING", 5.0)]
+    for key in ("median", "p95", "max", "samples"):
+        assert result.summary["pointing_error_deg"][key] == dep["pointing_error_deg"][key]
+    assert dep["pointing_error_deg"]["median"] < 10.0
 
 
 def test_side_by_side_pointing_case_plant_only_matches_the_deployment(tmp_path):

@@ -380,6 +380,9 @@ class ThreeModeLaw:
         self._lqr_build_s = 0.0  # s: when that build started (its ephemeris' time)
         self._lqr_lead_s = MAG_LQR_RENEW_MARGIN_S  # s: renew a table with less than this left (last build + margin)
         self._lqr_retry_s = -math.inf  # s: no build before this (MAG_LQR_RETRY_S after a failure)
+        # µs: the first control cycle's time, the LQR table's clock's zero (its seconds are integer µs differences from
+        # it, so the flight's absolute time, ~1.7e15 µs, does not round them: the deployment flies the plant-only law's floats)
+        self.first_cycle_us: int | None = None
         self.lqr_work_units = 0  # the gain-table work done so far (HoldGainTableBuilder units), for tests and studies
         self.mag_bias_T: Vec3 | None = None  # T, B: the on-board magnetometer-bias estimate (MAG_BIAS_TIME > 0)
         self.dipole: Vec3 = _ZERO  # A·m² achieved by the levels of the present cycle
@@ -686,6 +689,8 @@ class ThreeModeLaw:
         else:
             dt = (now_us - self.last_cycle_us) / 1e6
         self.last_cycle_us = now_us
+        if self.first_cycle_us is None:
+            self.first_cycle_us = now_us
         self.cycles += 1
         self._sense(dt, now_us)
         self._update_reference()
@@ -1227,7 +1232,7 @@ class ThreeModeLaw:
         if spec is not None and spec.needs_ephemeris:
             self._lqr_builder = None
             return None
-        t = self.io.now_us() / 1e6
+        t = (self.io.now_us() - (self.first_cycle_us or 0)) / 1e6  # s on the table's clock
         self._build_lqr_table(target, t)
         qe = quat_error(target, q)
         if math.degrees(quat_angle(qe)) >= self.MAG_LQR_ANGLE:
