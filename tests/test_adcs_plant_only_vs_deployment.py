@@ -129,6 +129,23 @@ def test_full_flight_without_the_start_up_latency(full_flights):
     assert math.isfinite(immediate["final_rate_deg_s"])
 
 
+def assert_same_forced_flight(out_dir, deployment: dict, plant_only, seconds: int) -> dict:
+    """The deployment's run in ``out_dir`` (its summary ``deployment``) and the plant-only ``plant_only`` result are
+    the same flight to the last bit: the body rate at each of the ``seconds + 1`` whole seconds, the one forced
+    transition to POINTING at 5 s, the POINTING error statistics. Returns the plant-only rates by time."""
+    with open(out_dir / "truth.csv", newline="") as f:
+        dep_rates = {round(float(r["t_s"]), 3): float(r["rate_deg_s"]) for r in csv.DictReader(f)}
+    po_rates = {round(r[0], 3): r[4] for r in plant_only.rows}
+    common = sorted(set(dep_rates) & set(po_rates))
+    assert len(common) == seconds + 1
+    assert [t for t in common if dep_rates[t] != po_rates[t]] == []
+    assert [(t["mode"], t["t_s"]) for t in deployment["control_mode_transitions"]] == [("POINTING", 5.0)]
+    assert [(t["mode"], t["t_s"]) for t in plant_only.summary["control_mode_transitions"]] == [("POINTING", 5.0)]
+    for key in ("median", "p95", "max", "samples"):
+        assert plant_only.summary["pointing_error_deg"][key] == deployment["pointing_error_deg"][key]
+    return po_rates
+
+
 HOLD_SEQUENCE = ROOT / "campaigns" / "adcs" / "pointing_magnetorquers.seq"
 #: what HOLD_SEQUENCE pins by PRM_SET: the field-steering hold on the raw reading (the default before 2026-12-05)
 FIELD_STEERING = ("control.adcs.MAG_BIAS_TIME=0.0", "control.adcs.MAG_LQR_ANGLE=0.0")
@@ -195,16 +212,7 @@ def test_default_magnetorquer_hold_is_the_same_flight_on_both_sides(tmp_path):
     forced = ["control.adcs.POINTING_ACTUATOR=MAGNETORQUERS", "control.adcs.force_mode=POINTING",
               "control.adcs.force_at_s=5.0", "control.adcs.target_q_bn=[0.9238795325112867, 0, 0.3826834323650898, 0]"]
     result = run(load_scenario("adcs", settings=[*start, *forced]), law="adcs", duration_s=duration)
-    with open(tmp_path / "truth.csv", newline="") as f:
-        dep_rates = {round(float(r["t_s"]), 3): float(r["rate_deg_s"]) for r in csv.DictReader(f)}
-    po_rates = {round(r[0], 3): r[4] for r in result.rows}
-    common = sorted(set(dep_rates) & set(po_rates))
-    assert len(common) == 401
-    assert [t for t in common if dep_rates[t] != po_rates[t]] == []
-    assert [(t["mode"], t["t_s"]) for t in dep["control_mode_transitions"]] == [("POINTING", 5.0)]
-    assert [(t["mode"], t["t_s"]) for t in result.summary["control_mode_transitions"]] == [("POINTING", 5.0)]
-    for key in ("median", "p95", "max", "samples"):
-        assert result.summary["pointing_error_deg"][key] == dep["pointing_error_deg"][key]
+    assert_same_forced_flight(tmp_path, dep, result, 400)
     assert dep["pointing_error_deg"]["median"] < 10.0
 
 
@@ -227,16 +235,8 @@ def test_side_by_side_pointing_case_plant_only_matches_the_deployment(tmp_path):
     dep = run_deployment(load_topology(TOPOLOGY, overrides), tmp_path, duration_s=duration, plots=False,
                          sequence=sequence, quiet=True)
     result = run(load_scenario(case.SCENARIO, settings=case.plant_only_settings()), law="adcs", duration_s=duration)
-    with open(tmp_path / "truth.csv", newline="") as f:
-        dep_rates = {round(float(r["t_s"]), 3): float(r["rate_deg_s"]) for r in csv.DictReader(f)}
-    po_rates = {round(r[0], 3): r[4] for r in result.rows}
-    common = sorted(set(dep_rates) & set(po_rates))
-    assert len(common) == 401 and max(po_rates[t] for t in common if 300.0 < t < 320.0) > 1.0  # the second slew
-    assert [t for t in common if dep_rates[t] != po_rates[t]] == []
-    assert [(t["mode"], t["t_s"]) for t in dep["control_mode_transitions"]] == [("POINTING", 5.0)]
-    assert [(t["mode"], t["t_s"]) for t in result.summary["control_mode_transitions"]] == [("POINTING", 5.0)]
-    for key in ("median", "p95", "max", "samples"):
-        assert result.summary["pointing_error_deg"][key] == dep["pointing_error_deg"][key]
+    po_rates = assert_same_forced_flight(tmp_path, dep, result, 400)
+    assert max(r for t, r in po_rates.items() if 300.0 < t < 320.0) > 1.0  # the second slew
 
 
 @pytest.mark.slow
@@ -257,14 +257,5 @@ def test_a_moving_target_is_the_same_flight_on_both_sides(tmp_path):
                                                  "control.adcs.force_at_s=5.0",
                                                  "control.adcs.target_changes=[[0.0, NADIR, PLUS_Z, PLUS_X]]"]),
                  law="adcs", duration_s=300.0)
-    with open(tmp_path / "truth.csv", newline="") as f:
-        dep_rates = {round(float(r["t_s"]), 3): float(r["rate_deg_s"]) for r in csv.DictReader(f)}
-    po_rates = {round(r[0], 3): r[4] for r in result.rows}
-    common = sorted(set(dep_rates) & set(po_rates))
-    assert len(common) == 301
-    assert [t for t in common if dep_rates[t] != po_rates[t]] == []
-    assert [(t["mode"], t["t_s"]) for t in dep["control_mode_transitions"]] == [("POINTING", 5.0)]
-    assert [(t["mode"], t["t_s"]) for t in result.summary["control_mode_transitions"]] == [("POINTING", 5.0)]
+    assert_same_forced_flight(tmp_path, dep, result, 300)
     assert dep["pointing_error_by_target_deg"].keys() == {"NADIR"}
-    for key in ("median", "p95", "max", "samples"):
-        assert result.summary["pointing_error_deg"][key] == dep["pointing_error_deg"][key]

@@ -380,8 +380,9 @@ class ThreeModeLaw:
         self._lqr_build_s = 0.0  # s: when that build started (its ephemeris' time)
         self._lqr_lead_s = MAG_LQR_RENEW_MARGIN_S  # s: renew a table with less than this left (last build + margin)
         self._lqr_retry_s = -math.inf  # s: no build before this (MAG_LQR_RETRY_S after a failure)
-        # µs: the first control cycle's time, the LQR table's clock's zero (its seconds are integer µs differences from
-        # it, so the flight's absolute time, ~1.7e15 µs, does not round them: the deployment flies the plant-only law's floats)
+        # µs: the first control cycle's time, the LQR table's clock's zero (its seconds are integer µs differences
+        # from it, so the flight's absolute time, ~1.7e15 µs, does not round them: the deployment flies the plant-only
+        # law's floats)
         self.first_cycle_us: int | None = None
         self.lqr_work_units = 0  # the gain-table work done so far (HoldGainTableBuilder units), for tests and studies
         self.mag_bias_T: Vec3 | None = None  # T, B: the on-board magnetometer-bias estimate (MAG_BIAS_TIME > 0)
