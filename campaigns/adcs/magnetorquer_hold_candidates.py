@@ -36,6 +36,12 @@ board; IGRF-14 plant with IGRF-14 of degree 6 on board), each against its commit
 
     python campaigns/adcs/magnetorquer_hold_candidates.py --part margin \
         --json docs/studies/magnetorquer_hold_after_acquisition/margin.json [--case KEY]
+
+Every draw pins the coils' hold of before 2026-12-05 where neither its scenario file nor its case sets it
+(:data:`HOLD_BEFORE`, :func:`pinned`): MAG_BIAS_TIME 0, MAG_LQR_ANGLE 0 (field steering on the raw reading) and
+MAG_FIELD_MODEL_DEGREE 1 (the tilted dipole on board, which the cases that set MAG_BIAS_TIME or MAG_LQR_ANGLE alone
+flew). Since 2026-12-05 the defaults are 1 s, 50° and 6 (the hold these candidates led to); the tables document the
+candidates as they were flown.
 """
 
 from __future__ import annotations
@@ -156,11 +162,24 @@ def floquet() -> dict:
     return out
 
 
+#: the coils' hold as these candidates were flown (flight name → value): the defaults before 2026-12-05
+HOLD_BEFORE = {"MAG_BIAS_TIME": 0.0, "MAG_LQR_ANGLE": 0.0, "MAG_FIELD_MODEL_DEGREE": 1.0}
+
+
+def pinned(scenario: pathlib.Path) -> list[str]:
+    """The settings pinning :data:`HOLD_BEFORE` for the parameters ``scenario``'s ``control.adcs`` does not set (a
+    draw's own settings come after them and win)."""
+    import yaml
+
+    given = (yaml.safe_load(scenario.read_text(encoding="utf-8")).get("control") or {}).get("adcs") or {}
+    return [f"control.adcs.{name}={value}" for name, value in HOLD_BEFORE.items() if name not in given]
+
+
 def fly_draw(row: int, settings: tuple[str, ...], scenario: pathlib.Path = SCENARIO,
              committed: pathlib.Path = COMMITTED) -> dict:
     """One draw of a committed campaign (``committed``: its results.parquet, whose row ``row`` gives the seed and the
-    start) flown again from ``scenario`` with ``settings``: the window's statistics (deg) and the acquisitions (s),
-    beside that campaign's row."""
+    start) flown again from ``scenario`` with :func:`pinned` then ``settings``: the window's statistics (deg) and the
+    acquisitions (s), beside that campaign's row."""
     import pandas as pd
 
     from detumble.analysis.pointing_windows import acquisition_time
@@ -174,7 +193,7 @@ def fly_draw(row: int, settings: tuple[str, ...], scenario: pathlib.Path = SCENA
     w = [float(x) for x in d["scenario.initial.rate.omega_deg_s"]]
     sc = load_scenario(str(scenario), seed=int(d["seed"]),
                        settings=[f"initial.attitude.quaternion={yaml_text(q)}",
-                                 f"initial.rate.omega_deg_s={yaml_text(w)}", *settings])
+                                 f"initial.rate.omega_deg_s={yaml_text(w)}", *pinned(scenario), *settings])
     r = run(sc, law="adcs", duration_s=5580)
     j = r.adcs_header.index("pointing_error_deg")
     t_in = float(r.summary["pointing_intervals"][0]["t_s"])

@@ -24,6 +24,14 @@ decided by the last bit of |ω| and by the drawn axis (seed 5 gets none: ``sun_s
 
 Prints the kind's table (markdown); ``--json`` keeps its figures and, for the probe STUDY-060, the true Sun-pointing
 error of seed 1's first :data:`PROBE_S` seconds (re-flown by tests/test_studies.py in seconds).
+
+Every kind flies the coils' POINTING as the field-steering hold on the raw magnetometer reading, the default before
+2026-12-05, pinned (:data:`FIELD_STEERING_HOLD`: MAG_BIAS_TIME 0, MAG_LQR_ANGLE 0, sent at 00:00:00 before the
+sequence's first command and before the kind's own :data:`PARAMS`): since 2026-12-05 the coils' default takes the
+field through an on-board bias estimate made while the tracker gives an attitude (in every mode, SUN_SAFE too) and
+holds with the LQR below 50°, which would change the tracker-loss kinds; the tables document Sun-safe as flown.
+``command`` (no tracker at all: no estimate) is pinned too, for one configuration. The JSON's ``params`` keeps the
+kind's own parameters only.
 """
 
 from __future__ import annotations
@@ -50,6 +58,9 @@ KINDS = {"command": ("sun_safe_magnetorquers.seq", 2.0, ("sensors.star_tracker.d
          "hand_back_2_deg_s": ("sun_safe_hand_back.seq", 2.0, (_OUTAGE,), 5)}
 #: kind → AttitudeController parameters set by command at 00:00:00, before the sequence's first command
 PARAMS = {"hand_back_hold_1_9": (("SUN_HOLD_SPIN_RATE", "1.9"),)}
+#: every kind's coil hold, pinned (sent before PARAMS): field steering on the raw reading, the defaults before
+#: 2026-12-05 (no on-board bias estimate, no model-scheduled LQR; MAG_FIELD_MODEL_DEGREE is then unused)
+FIELD_STEERING_HOLD = (("MAG_BIAS_TIME", "0.0"), ("MAG_LQR_ANGLE", "0.0"))
 _CONTROLLER = "ReferenceDeployment.attitudeController"
 #: s of seed 1's flight whose pointing errors are kept for the probe
 PROBE_S = 120
@@ -65,13 +76,13 @@ def with_params(sequence: str, params: tuple[tuple[str, str], ...]) -> str:
 
 
 def fly(kind: str, seed: int, duration_s: float, out: pathlib.Path) -> None:
-    """One ``fprime-lite run`` of adcs_ref into ``out``: ``kind``'s sequence and settings, seed ``seed``'s draws."""
+    """One ``fprime-lite run`` of adcs_ref into ``out``: ``kind``'s sequence with :data:`FIELD_STEERING_HOLD` and
+    its :data:`PARAMS` sent first, its settings, seed ``seed``'s draws."""
     seq, rate, extra, _ = KINDS[kind]
     sets = [*seed_settings(seed, rate), *extra]
-    seq_path = ROOT / "campaigns" / "adcs" / seq
-    if kind in PARAMS:
-        seq_path = out.parent / f"{out.name}.seq"
-        seq_path.write_text(with_params((ROOT / "campaigns" / "adcs" / seq).read_text(), PARAMS[kind]))
+    seq_path = out.parent / f"{out.name}.seq"
+    seq_path.write_text(with_params((ROOT / "campaigns" / "adcs" / seq).read_text(),
+                                    (*FIELD_STEERING_HOLD, *PARAMS.get(kind, ()))))
     cmd = [sys.executable, "-m", "fprime_lite.tools.cli", "run", str(TOPOLOGY), "--duration", f"{duration_s:g}",
            "--seq", str(seq_path), "--seed", str(seed), "--out", str(out),
            "--no-progress", "--no-plots", "--allow-warnings"]

@@ -24,6 +24,13 @@
 
 ``--only`` flies the named parts again and keeps the others as the ``--json`` file holds them.
 
+The adcs_ref flights on the coils (``tracker_limit``, ``bounce``) pin the coils' hold as it was flown, field steering
+on the raw magnetometer reading, the default before 2026-12-05 (MAG_BIAS_TIME 0, MAG_LQR_ANGLE 0 sent at 00:00:00:
+``sun_safe_coil_runs.FIELD_STEERING_HOLD``); ADCS-109's flight as the test flies it today uses the new defaults
+(the on-board bias estimate from the tracker's fixes before the outage, the LQR below 50°). The plant-only flights
+(``sun_safe_check.fly``) have no star tracker, so no bias estimate and no POINTING: the defaults' change does not
+reach them.
+
 11 plant-only flights (~22,000 simulated s), 11 short adcs_ref runs and one of an orbit: about a minute and a half
 on this machine.
 :func:`probe` (``tools/studies.py --check``) recomputes the t = 0 excesses and re-flies the ``lit`` and ``bounce``
@@ -60,8 +67,11 @@ TRACKER_RATES = (2.0, 1.9)
 TRACKER_SEEDS = (1, 2, 3, 4, 5)
 TRACKER_LIMIT_DEG_S = 2.0
 BOUNCE_S = 500.0
-#: ADCS-109's sequence (tests/test_adcs_deployment.py ``_tracker_loss_flight`` at 1.5 °/s)
-BOUNCE_SEQUENCE = (f"R00:00:00 {_CONTROLLER}.POINTING_ACTUATOR_PRM_SET MAGNETORQUERS\n"
+#: ADCS-109's sequence (tests/test_adcs_deployment.py ``_tracker_loss_flight`` at 1.5 °/s) with the coils' hold of
+#: before 2026-12-05 pinned (the first two lines: sun_safe_coil_runs.FIELD_STEERING_HOLD)
+BOUNCE_SEQUENCE = (f"R00:00:00 {_CONTROLLER}.MAG_BIAS_TIME_PRM_SET 0.0\n"
+                   f"R00:00:00 {_CONTROLLER}.MAG_LQR_ANGLE_PRM_SET 0.0\n"
+                   f"R00:00:00 {_CONTROLLER}.POINTING_ACTUATOR_PRM_SET MAGNETORQUERS\n"
                    f"R00:00:00 {_CONTROLLER}.SUN_SPIN_RATE_PRM_SET 1.5\n"
                    f"R00:00:00 {_CONTROLLER}.SET_TARGET_QUATERNION 0.9238795325112867 0 0.3826834323650898 0\n"
                    f"R00:00:01 {_CONTROLLER}.FORCE_MODE POINTING\n")
@@ -164,7 +174,9 @@ def _transitions(run_dir: pathlib.Path) -> list[dict]:
 
 
 def fly_tracker_limit() -> dict:
-    hand_back = (ROOT / "campaigns" / "adcs" / "sun_safe_hand_back.seq").read_text()
+    coil_runs = _sibling("sun_safe_coil_runs")
+    hand_back = coil_runs.with_params((ROOT / "campaigns" / "adcs" / "sun_safe_hand_back.seq").read_text(),
+                                      coil_runs.FIELD_STEERING_HOLD)
     rows = []
     with tempfile.TemporaryDirectory() as scratch:
         for rate in TRACKER_RATES:
