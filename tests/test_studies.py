@@ -1399,3 +1399,78 @@ def test_the_weight_screen_block_edited_by_hand_is_reported(tmp_path, monkeypatc
     edited = " / ".join([str(int(cell.split(" / ")[0]) + 1), *cell.split(" / ")[1:]])
     problems = _check_with_a_hand_edit(tmp_path, monkeypatch, name, name, f"| {cell} |", f"| {edited} |")
     assert len(problems) == 1 and f"block '{name}'" in problems[0]
+
+
+def test_the_hold_candidates_pin_the_coils_hold_they_were_flown_with(monkeypatch):
+    """STUDY-228: the coil-hold candidates' draws (magnetorquer_hold_candidates.fly_draw) pin the coils' hold of before
+    2026-12-05 (MAG_BIAS_TIME 0, MAG_LQR_ANGLE 0, MAG_FIELD_MODEL_DEGREE 1) for each parameter their scenario file
+    does not set: all three on the base scenario, the degree alone on the 40° dipole plant (which sets the other two),
+    none on the IGRF-14 plant that sets all three; a case's own setting comes after the pins and wins (the scenario
+    fly_draw hands the runner, captured instead of flown)."""
+    from detumble.sim import runner
+
+    script = studies._load_script("campaigns/adcs/magnetorquer_hold_candidates.py")
+    dipole, igrf14 = (script.MARGIN_PLANTS[p] for p in ("dipole", "igrf14"))
+    assert script.pinned(script.SCENARIO) == ["control.adcs.MAG_BIAS_TIME=0.0", "control.adcs.MAG_LQR_ANGLE=0.0",
+                                              "control.adcs.MAG_FIELD_MODEL_DEGREE=1.0"]
+    assert script.pinned(dipole[0]) == ["control.adcs.MAG_FIELD_MODEL_DEGREE=1.0"]
+    assert script.pinned(igrf14[0]) == []
+
+    class FlownError(Exception):
+        pass
+
+    def flown(sc, **_):
+        raise FlownError(sc.control.adcs)
+
+    monkeypatch.setattr(runner, "run", flown)
+    for args, hold in ((((script.FIELD_MODEL,),), (1.0, 0.0, 1.0)), (((), *dipole), (1.0, 40.0, 1.0)),
+                       (((), *igrf14), (1.0, 40.0, 6.0))):
+        with pytest.raises(FlownError) as got:
+            script.fly_draw(23, *args)
+        adcs = got.value.args[0]
+        assert (adcs.MAG_BIAS_TIME, adcs.MAG_LQR_ANGLE, adcs.MAG_FIELD_MODEL_DEGREE) == hold
+
+
+def test_the_coil_deployment_scripts_send_the_pinned_hold_first(tmp_path, monkeypatch):
+    """STUDY-229: the adcs_ref coil flights of magnetic_pointing.md and sun_safe.md send MAG_BIAS_TIME 0 and
+    MAG_LQR_ANGLE 0 (field steering on the raw reading, the default before 2026-12-05) at 00:00:00 before the
+    sequence's first coil command: magnetic_pointing_runs' sequence before the row's own lines (which come later and
+    win), every kind of sun_safe_coil_runs (its parameters after the pin), and the single flights' tracker-limit and
+    ADCS-109 flights (the sequences handed to the run, captured instead of flown)."""
+    pin = [f"R00:00:00 ReferenceDeployment.attitudeController.{x}"
+           for x in ("MAG_BIAS_TIME_PRM_SET 0.0", "MAG_LQR_ANGLE_PRM_SET 0.0")]
+
+    def commands(text: str) -> list[str]:
+        return [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith(";")]
+
+    runs = studies._load_script("campaigns/adcs/magnetic_pointing_runs.py")
+    seq = commands(runs.sequence(("K_P_MAG_PRM_SET 1.0e-6",)))
+    forced = next(i for i, ln in enumerate(seq) if "FORCE_MODE" in ln)
+    assert seq[forced - 3:forced - 1] == pin and seq[forced - 1].endswith("K_P_MAG_PRM_SET 1.0e-6")
+    coil = studies._load_script("campaigns/adcs/sun_safe_coil_runs.py")
+    sent = []
+
+    def captured(cmd, **_):
+        sent.append(commands(pathlib.Path(cmd[cmd.index("--seq") + 1]).read_text()))
+
+    monkeypatch.setattr(coil.subprocess, "run", captured)
+    for kind in coil.KINDS:
+        coil.fly(kind, 1, 1.0, tmp_path / kind)
+        own = [f"R00:00:00 ReferenceDeployment.attitudeController.{n}_PRM_SET {v}"
+               for n, v in coil.PARAMS.get(kind, ())]
+        assert sent[-1][:2 + len(own)] == pin + own, kind
+        assert any("POINTING_ACTUATOR_PRM_SET MAGNETORQUERS" in ln for ln in sent[-1][2:]), kind
+    single = studies._load_script("campaigns/adcs/sun_safe_single_flights.py")
+
+    def run_captured(out, duration, sequence, *args, **kwargs):
+        out.mkdir(parents=True)
+        (out / "events.log").write_text("")
+        sent.append(commands(sequence))
+
+    monkeypatch.setattr(single, "_run", run_captured)
+    monkeypatch.setattr(single, "_transitions", lambda run_dir: [])
+    n = len(sent)
+    single.fly_tracker_limit()
+    assert len(sent) == n + len(single.TRACKER_RATES) * len(single.TRACKER_SEEDS)
+    assert all(s[:2] == pin for s in sent[n:])
+    assert commands(single.BOUNCE_SEQUENCE)[:2] == pin
