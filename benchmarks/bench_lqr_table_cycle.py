@@ -12,10 +12,6 @@ the tree):
     PYTHONPATH=src python benchmarks/bench_lqr_table_cycle.py --duration 600 [--igrf14]
 
 CPU figures are comparable only within one sitting (a shared machine).
-
-The dipole case pins MAG_FIELD_MODEL_DEGREE 1 (:data:`DIPOLE_ON_BOARD`; its scenario file sets MAG_BIAS_TIME and
-MAG_LQR_ANGLE but not the degree, whose default is 6 since 2026-12-05), so it flies the tilted dipole on board as
-its figures in docs/components/attitude_controller.md were measured.
 """
 
 from __future__ import annotations
@@ -30,8 +26,6 @@ from detumble.control import three_mode
 from detumble.sim import runner
 
 SCENARIO = "campaigns/adcs/scenarios/pointing_magnetorquers_field_model_lqr_below_40.yaml"
-#: the dipole case's on-board model, pinned (the default before 2026-12-05)
-DIPOLE_ON_BOARD = ("--set", "control.adcs.MAG_FIELD_MODEL_DEGREE=1.0")
 
 
 def main(argv: list[str] | None = None) -> dict:
@@ -66,7 +60,7 @@ def main(argv: list[str] | None = None) -> dict:
             scenario = SCENARIO.replace(".yaml", "_igrf14.yaml") if args.igrf14 else SCENARIO
             runner.main([scenario, "--law", "adcs", "--duration", str(args.duration), "--seed", str(args.seed),
                          "--out", out, "--no-plots", "--set", f"initial.rate.magnitude_deg_s={args.rate}",
-                         "--set", "initial.attitude.quaternion=[1,0,0,0]", *(() if args.igrf14 else DIPOLE_ON_BOARD)])
+                         "--set", "initial.attitude.quaternion=[1,0,0,0]"])
     finally:
         three_mode.ThreeModeLaw.tick = tick  # type: ignore[method-assign]
         gc.callbacks.remove(on_gc)

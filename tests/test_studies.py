@@ -1404,17 +1404,15 @@ def test_the_weight_screen_block_edited_by_hand_is_reported(tmp_path, monkeypatc
 def test_the_hold_candidates_pin_the_coils_hold_they_were_flown_with(monkeypatch):
     """STUDY-228: the coil-hold candidates' draws (magnetorquer_hold_candidates.fly_draw) pin the coils' hold of before
     2026-12-05 (MAG_BIAS_TIME 0, MAG_LQR_ANGLE 0, MAG_FIELD_MODEL_DEGREE 1) for each parameter their scenario file
-    does not set: all three on the base scenario, the degree alone on the 40° dipole plant (which sets the other two),
-    none on the IGRF-14 plant that sets all three; a case's own setting comes after the pins and wins (the scenario
-    fly_draw hands the runner, captured instead of flown)."""
+    does not set: the degree on the base scenario (which pins the other two itself), none on the two 40° plants that
+    set all three; a case's own setting comes after the pin and wins (the scenario fly_draw hands the runner, captured
+    instead of flown): MAG_BIAS_TIME 1 s alone flies the dipole on board, not the new default's degree 6."""
     from detumble.sim import runner
 
     script = studies._load_script("campaigns/adcs/magnetorquer_hold_candidates.py")
     dipole, igrf14 = (script.MARGIN_PLANTS[p] for p in ("dipole", "igrf14"))
-    assert script.pinned(script.SCENARIO) == ["control.adcs.MAG_BIAS_TIME=0.0", "control.adcs.MAG_LQR_ANGLE=0.0",
-                                              "control.adcs.MAG_FIELD_MODEL_DEGREE=1.0"]
-    assert script.pinned(dipole[0]) == ["control.adcs.MAG_FIELD_MODEL_DEGREE=1.0"]
-    assert script.pinned(igrf14[0]) == []
+    assert script.pinned(script.SCENARIO) == ["control.adcs.MAG_FIELD_MODEL_DEGREE=1.0"]
+    assert script.pinned(dipole[0]) == script.pinned(igrf14[0]) == []
 
     class FlownError(Exception):
         pass
@@ -1423,8 +1421,9 @@ def test_the_hold_candidates_pin_the_coils_hold_they_were_flown_with(monkeypatch
         raise FlownError(sc.control.adcs)
 
     monkeypatch.setattr(runner, "run", flown)
-    for args, hold in ((((script.FIELD_MODEL,),), (1.0, 0.0, 1.0)), (((), *dipole), (1.0, 40.0, 1.0)),
-                       (((), *igrf14), (1.0, 40.0, 6.0))):
+    degree6 = (script.FIELD_MODEL, "control.adcs.MAG_FIELD_MODEL_DEGREE=6.0")
+    for args, hold in ((((script.FIELD_MODEL,),), (1.0, 0.0, 1.0)), ((degree6,), (1.0, 0.0, 6.0)),
+                       (((), *dipole), (1.0, 40.0, 1.0)), (((), *igrf14), (1.0, 40.0, 6.0))):
         with pytest.raises(FlownError) as got:
             script.fly_draw(23, *args)
         adcs = got.value.args[0]
@@ -1434,9 +1433,9 @@ def test_the_hold_candidates_pin_the_coils_hold_they_were_flown_with(monkeypatch
 def test_the_coil_deployment_scripts_send_the_pinned_hold_first(tmp_path, monkeypatch):
     """STUDY-229: the adcs_ref coil flights of magnetic_pointing.md and sun_safe.md send MAG_BIAS_TIME 0 and
     MAG_LQR_ANGLE 0 (field steering on the raw reading, the default before 2026-12-05) at 00:00:00 before the
-    sequence's first coil command: magnetic_pointing_runs' sequence before the row's own lines (which come later and
-    win), every kind of sun_safe_coil_runs (its parameters after the pin), and the single flights' tracker-limit and
-    ADCS-109 flights (the sequences handed to the run, captured instead of flown)."""
+    sequence's first coil command: magnetic_pointing_runs' sequence (pointing_magnetorquers.seq's first lines; the
+    row's own lines come later and win), every kind of sun_safe_coil_runs (its parameters after the pin), and the
+    single flights' tracker-limit and ADCS-109 flights (the sequences handed to the run, captured instead of flown)."""
     pin = [f"R00:00:00 ReferenceDeployment.attitudeController.{x}"
            for x in ("MAG_BIAS_TIME_PRM_SET 0.0", "MAG_LQR_ANGLE_PRM_SET 0.0")]
 
@@ -1446,7 +1445,7 @@ def test_the_coil_deployment_scripts_send_the_pinned_hold_first(tmp_path, monkey
     runs = studies._load_script("campaigns/adcs/magnetic_pointing_runs.py")
     seq = commands(runs.sequence(("K_P_MAG_PRM_SET 1.0e-6",)))
     forced = next(i for i, ln in enumerate(seq) if "FORCE_MODE" in ln)
-    assert seq[forced - 3:forced - 1] == pin and seq[forced - 1].endswith("K_P_MAG_PRM_SET 1.0e-6")
+    assert seq[:2] == pin and seq[forced - 1].endswith("K_P_MAG_PRM_SET 1.0e-6")
     coil = studies._load_script("campaigns/adcs/sun_safe_coil_runs.py")
     sent = []
 

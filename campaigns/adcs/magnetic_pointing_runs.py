@@ -26,12 +26,12 @@ ESTIMATE (the default) or OFF, with the present and the previous defaults, in IG
 The probes (``--check``) fly the first PROBE_S of one run again and compare its error series to the float
 (:func:`probe`, :func:`ab_probe`).
 
-Every run is the field-steering hold on the raw magnetometer reading, the default before 2026-12-05, pinned
-(:data:`FIELD_STEERING_HOLD`: MAG_BIAS_TIME 0, MAG_LQR_ANGLE 0, set first in the run's sequence, so a row's own lines
-still win): since 2026-12-05 the coils' default hold with the star tracker is the LQR scheduled on the on-board
-IGRF-14 below MAG_LQR_ANGLE 50° through a 1 s bias estimate (docs/studies/magnetorquer_hold_after_acquisition.md),
-and these rows document the field steering as it was flown. "Present defaults" in the rows' labels means the
-field steering's present gains (K_P_MAG 4e-6, K_D_MAG 4e-4, ζ 1, MAG_SETTLE_TIME 30 s) with that pin.
+Every run is the field-steering hold on the raw magnetometer reading, the default before 2026-12-05, pinned by
+``pointing_magnetorquers.seq`` itself (MAG_BIAS_TIME 0, MAG_LQR_ANGLE 0, its first lines, so a row's own lines still
+win): since 2026-12-05 the coils' default hold with the star tracker is the LQR scheduled on the on-board IGRF-14
+below MAG_LQR_ANGLE 50° through a 1 s bias estimate (docs/studies/magnetorquer_hold_after_acquisition.md), and these
+rows document the field steering as it was flown. "Present defaults" in the rows' labels means the field steering's
+present gains (K_P_MAG 4e-6, K_D_MAG 4e-4, ζ 1, MAG_SETTLE_TIME 30 s) with that pin.
 """
 
 from __future__ import annotations
@@ -71,9 +71,6 @@ PREVIOUS = ("K_P_MAG_PRM_SET 1.0e-6", "K_D_MAG_PRM_SET 1.0e-4", "MAG_STEER_ZETA_
 COMP_OFF = ("MAG_RESIDUAL_MODE_PRM_SET OFF",)
 #: the coils' per-axis dipole capacity (A·m², B; magnetic_pointing.md section 1)
 COIL_CAPACITY_AM2 = (0.116, 0.116, 0.0087)
-#: the hold these runs document, pinned: field steering at every error on the raw reading (no on-board bias estimate,
-#: no model-scheduled LQR), the defaults before 2026-12-05; MAG_FIELD_MODEL_DEGREE is then unused
-FIELD_STEERING_HOLD = ("MAG_BIAS_TIME_PRM_SET 0.0", "MAG_LQR_ANGLE_PRM_SET 0.0")
 
 #: name: (start, the label the page gives, parameter lines, scenario settings), in the order flown
 RUNS: dict[str, tuple[str, str, tuple[str, ...], tuple[str, ...]]] = {
@@ -118,12 +115,12 @@ PROBE_S = 300.0
 
 
 def sequence(lines: tuple[str, ...]) -> str:
-    """The start-up sequence of a run: pointing_magnetorquers.seq with :data:`FIELD_STEERING_HOLD` then ``lines``
-    (parameter sets, later ones win) inserted before its FORCE_MODE."""
+    """The start-up sequence of a run: pointing_magnetorquers.seq with ``lines`` (parameter sets, later ones win)
+    inserted before its FORCE_MODE."""
     out = []
     for line in SEQ.read_text(encoding="utf-8").splitlines():
         if "FORCE_MODE" in line:
-            out += [f"R00:00:00 {C}.{x}" for x in (*FIELD_STEERING_HOLD, *lines)]
+            out += [f"R00:00:00 {C}.{x}" for x in lines]
         out.append(line)
     return "\n".join(out) + "\n"
 
