@@ -390,6 +390,7 @@ class ThreeModeLaw:
         self.torque_request: Vec3 = _ZERO
         self.wheel_torques: tuple[float, ...] = ()
         self.wheel_momenta: tuple[float, ...] | None = None
+        self._cycle_wheel_count = 0  # wheels connected at the cycle's reading (io.wheel_count(), read once a cycle)
         self.pointing_error_deg = math.nan
         self.damper_state = 0.0  # seed w_d, |ω_d| of the 3-axis damper, or the spin-rate error (rad/s)
         self.last_cycle_us: int | None = None
@@ -605,9 +606,11 @@ class ThreeModeLaw:
     def _wheels_available(self, fresh: bool) -> bool:
         """Every wheel connected and answering: by the cycle's own reading, or, for a command between
         cycles (``fresh``), by reading them now."""
-        io = self.io
-        momenta = io.wheel_momenta() if fresh else self.wheel_momenta
-        return io.wheel_count() == len(self.wheel_axes) and momenta is not None
+        if fresh:
+            io = self.io
+            momenta = io.wheel_momenta()
+            return io.wheel_count() == len(self.wheel_axes) and momenta is not None
+        return self._cycle_wheel_count == len(self.wheel_axes) and self.wheel_momenta is not None
 
     @property
     def pointing_on_wheels(self) -> bool:
@@ -777,7 +780,8 @@ class ThreeModeLaw:
             notify.event("MagneticFieldRetrievalFailed")
             self.b_tesla = None
         self._track_sun(dt, now_us)
-        self.wheel_momenta = io.wheel_momenta() if io.wheel_count() else None
+        count = self._cycle_wheel_count = io.wheel_count()
+        self.wheel_momenta = io.wheel_momenta() if count else None
         if self.b_tesla is not None and self.MAG_BIAS_TIME > 0.0 and not self._pointing_uses_wheels():
             self.b_tesla = self._correct_mag_bias(self.b_tesla, dt)
         self._track_field_line(dt)
