@@ -117,6 +117,24 @@ def _switched(original: Callable, mark: Callable, on: list) -> Callable:
     return piece
 
 
+def resolve(spec: str, deployment: Any = None) -> tuple[Any, str, Callable]:
+    """``(owner, attribute, original)`` of a PIECE: a class's function (``module:Class.method``, from the class's
+    own ``__dict__``) or, with ``deployment``, a topology instance's attribute (``@Instance.name:attr[.attr]``)."""
+    if deployment is not None:
+        instance, path = spec[1:].split(":")
+        owner = deployment.topology.instance(instance).component
+        *parents, attr = path.split(".")
+        for parent in parents:
+            owner = getattr(owner, parent)
+        return owner, attr, getattr(owner, attr)
+    module, qualname = spec.split(":")
+    owner_path, attr = qualname.rsplit(".", 1)
+    owner = importlib.import_module(module)
+    for part in owner_path.split("."):
+        owner = getattr(owner, part)
+    return owner, attr, owner.__dict__[attr]
+
+
 def install(specs: list[str], deployment: Any = None, on: list | None = None) -> tuple[list, list]:
     """Replace each class piece of ``specs`` (or, with ``deployment``, each instance piece) by its marked
     wrapper; returns ``(on, [(marker name, spec, wrapper), ...])``: set ``on[0]`` True to route calls through
@@ -128,20 +146,7 @@ def install(specs: list[str], deployment: Any = None, on: list | None = None) ->
     for (name, mark), spec in zip(MARKERS, specs, strict=False):  # fewer pieces than markers
         if spec.startswith("@") != (deployment is not None):
             continue
-        if deployment is not None:
-            instance, path = spec[1:].split(":")
-            owner = deployment.topology.instance(instance).component
-            *parents, attr = path.split(".")
-            for parent in parents:
-                owner = getattr(owner, parent)
-            original = getattr(owner, attr)
-        else:
-            module, qualname = spec.split(":")
-            owner_path, attr = qualname.rsplit(".", 1)
-            owner = importlib.import_module(module)
-            for part in owner_path.split("."):
-                owner = getattr(owner, part)
-            original = owner.__dict__[attr]
+        owner, attr, original = resolve(spec, deployment)
         wrapper = _switched(original, mark, on)
         setattr(owner, attr, wrapper)
         done.append((name, spec, wrapper))
