@@ -137,6 +137,8 @@ class Plant:
         self.surface_torque_B: Vec3 = _ZERO
         self.magnetometer = Magnetometer(sc.magnetometer, _derive_seed(self.seed, 1))
         self.gyro = Gyro(sc.gyro, _derive_seed(self.seed, 2))
+        if kernel is not None:  # the held samples' resolve compiled too (the same floats and noise draws)
+            self.magnetometer.compiled, self.gyro.compiled = plant_kernel.sensor_samples()
         self._mag_samples = not self.magnetometer.spec.ideal  # an ideal sensor never latches
         self._gyro_samples = not self.gyro.spec.ideal
         q0 = sc.q_BN0

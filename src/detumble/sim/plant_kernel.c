@@ -1,7 +1,9 @@
 /* Compiled plant kernel: the RK4 steps of RigidBody.step_env and wheels.step_with_wheels, and the circular-
  * orbit environment of Plant._update_environment (with the centred dipole, the orbit-constant field, or a field
  * tabulated along the orbit whose nodes Python computes: IGRF-14, the WMM), and the electrical and thermal
- * step (power.ElectricalSystem.step, thermal.ThermalModel.step), as a CPython extension module
+ * step (power.ElectricalSystem.step, thermal.ThermalModel.step), and the resolve of a held magnetometer or gyro
+ * sample (sensors.Magnetometer._held_gauss, sensors.Gyro._held_rad_s: interpolation, bias, the noise drawn from
+ * the sensor's random.Random as its gauss() draws it, quantisation), as a CPython extension module
  * (detumble.sim._plant_kernel).
  *
  * The pure-Python code in attitude.py, wheels.py, orbit.py, field.py, frames.py, power.py, sun.py (in_umbra),
@@ -907,7 +909,171 @@ static PyObject *power_step(PyObject *module, PyObject *const *args, Py_ssize_t 
     return res;
 }
 
+/* --- sensor samples (sensors.py) ------------------------------------------------------------------ */
+
+/* random.Random.gauss's TWOPI: 2.0 * math.pi */
+#define FL_TWOPI (2.0 * 3.141592653589793)
+
+static PyObject *str_gauss_next, *str_random;
+
+/* One rng.random() through the generator's own method (``random_fn``, bound once a sample). */
+static int fl_random(PyObject *random_fn, double *out)
+{
+    PyObject *r = PyObject_CallNoArgs(random_fn);
+    if (r == NULL)
+        return -1;
+    *out = PyFloat_AsDouble(r);
+    Py_DECREF(r);
+    return (*out == -1.0 && PyErr_Occurred()) ? -1 : 0;
+}
+
+/* random.Random.gauss(0.0, sd) with the generator's state (its gauss_next attribute, its random()): the same
+ * draws in the same order, and the pair's second half left in gauss_next as gauss leaves it. */
+static int fl_gauss(PyObject *rng, PyObject *random_fn, double sd, double *out)
+{
+    double z;
+    PyObject *held = PyObject_GetAttr(rng, str_gauss_next);
+    if (held == NULL)
+        return -1;
+    if (PyObject_SetAttr(rng, str_gauss_next, Py_None) < 0) {
+        Py_DECREF(held);
+        return -1;
+    }
+    if (held != Py_None) {
+        z = PyFloat_AsDouble(held);
+        Py_DECREF(held);
+        if (z == -1.0 && PyErr_Occurred())
+            return -1;
+    } else {
+        double r1, r2;
+        Py_DECREF(held);
+        if (fl_random(random_fn, &r1) < 0 || fl_random(random_fn, &r2) < 0)
+            return -1;
+        const double x2pi = r1 * FL_TWOPI;
+        const double g2rad = sqrt(-2.0 * log(1.0 - r2));
+        z = cos(x2pi) * g2rad;
+        PyObject *second = PyFloat_FromDouble(sin(x2pi) * g2rad);
+        if (second == NULL)
+            return -1;
+        const int rc = PyObject_SetAttr(rng, str_gauss_next, second);
+        Py_DECREF(second);
+        if (rc < 0)
+            return -1;
+    }
+    *out = 0.0 + z * sd;  /* gauss's mu + z * sigma */
+    return 0;
+}
+
+/* sensors._measured's noise and _quantise3: ``v`` (3) plus three gauss draws when sd > 0, then quantised
+ * and limited; a value math.floor refuses raises as it does (the draws are made first, as in Python). */
+static PyObject *fl_measured(double *v, double sd, double lsb, double limit, PyObject *rng)
+{
+    if (sd > 0.0) {
+        PyObject *random_fn = PyObject_GetAttr(rng, str_random);
+        if (random_fn == NULL)
+            return NULL;
+        for (int i = 0; i < 3; i++) {
+            double g;
+            if (fl_gauss(rng, random_fn, sd, &g) < 0) {
+                Py_DECREF(random_fn);
+                return NULL;
+            }
+            v[i] += g;
+        }
+        Py_DECREF(random_fn);
+    }
+    for (int i = 0; i < 3; i++) {
+        double x = v[i];
+        if (lsb > 0.0) {
+            const double y = x / lsb + 0.5;
+            if (isnan(y)) {
+                PyErr_SetString(PyExc_ValueError, "cannot convert float NaN to integer");
+                return NULL;
+            }
+            if (isinf(y)) {
+                PyErr_SetString(PyExc_OverflowError, "cannot convert float infinity to integer");
+                return NULL;
+            }
+            x = floor(y) * lsb;
+        }
+        v[i] = x > limit ? limit : (x < -limit ? -limit : x);
+    }
+    return float_tuple(v, 3);
+}
+
+/* Reads 3 floats from a tuple or a list of 3 (a sensor's constants may come as either). */
+static int read_vec3(PyObject *obj, double *v, const char *what)
+{
+    if (PyTuple_Check(obj))
+        return read_floats(obj, v, 3, what);
+    if (!PyList_Check(obj) || PyList_GET_SIZE(obj) != 3) {
+        PyErr_Format(PyExc_TypeError, "%s must be 3 floats", what);
+        return -1;
+    }
+    for (Py_ssize_t i = 0; i < 3; i++) {
+        if (read_float(PyList_GET_ITEM(obj, i), v + i) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+/* Reads the first n floats of a tuple of at least n (a plant state: q_BN at 0..3, omega_BN_B at 4..6). */
+static int read_prefix(PyObject *obj, double *v, Py_ssize_t at, Py_ssize_t n, const char *what)
+{
+    if (!PyTuple_Check(obj) || PyTuple_GET_SIZE(obj) < at + n) {
+        PyErr_Format(PyExc_TypeError, "%s must be a tuple of at least %zd floats", what, at + n);
+        return -1;
+    }
+    for (Py_ssize_t i = 0; i < n; i++) {
+        if (read_float(PyTuple_GET_ITEM(obj, at + i), v + i) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+/* magnetometer_sample(q0, q1, b0_N, b1_N, s, m_coils_B, g, k, bias, sd, lsb, limit, rng) -> (x, y, z) gauss:
+ * sensors.Magnetometer._held_gauss's resolve of the held sample (g: gauss per tesla). */
+static PyObject *magnetometer_sample(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    double q0[4], q1[4], b0n[3], b1n[3], s, m[3], g, k[3], bias[3], sd, lsb, limit, b0[3], b1[3], v[3];
+    (void)module;
+    if (check_nargs(nargs, 13, 13, "magnetometer_sample") < 0
+        || read_prefix(args[0], q0, 0, 4, "q0") < 0 || read_prefix(args[1], q1, 0, 4, "q1") < 0
+        || read_vec3(args[2], b0n, "b0_N") < 0 || read_vec3(args[3], b1n, "b1_N") < 0
+        || read_float(args[4], &s) < 0 || read_vec3(args[5], m, "m_coils_B") < 0 || read_float(args[6], &g) < 0
+        || read_vec3(args[7], k, "k") < 0 || read_vec3(args[8], bias, "bias") < 0
+        || read_float(args[9], &sd) < 0 || read_float(args[10], &lsb) < 0 || read_float(args[11], &limit) < 0)
+        return NULL;
+    fl_rotate_n_to_b(q0, b0n, b0);
+    fl_rotate_n_to_b(q1, b1n, b1);
+    for (int i = 0; i < 3; i++) {
+        const double b = b0[i] + s * (b1[i] - b0[i]);
+        v[i] = g * b + k[i] * m[i] + bias[i];  /* the field in gauss + the coils' coupling + the bias */
+    }
+    return fl_measured(v, sd, lsb, limit, args[12]);
+}
+
+/* gyro_sample(s0, s1, s, bias, sd, lsb, limit, rng) -> (x, y, z) rad/s: sensors.Gyro._held_rad_s's resolve
+ * (the states' rates, slots 4..6). */
+static PyObject *gyro_sample(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    double w0[3], w1[3], s, bias[3], sd, lsb, limit, v[3];
+    (void)module;
+    if (check_nargs(nargs, 8, 8, "gyro_sample") < 0
+        || read_prefix(args[0], w0, 4, 3, "s0") < 0 || read_prefix(args[1], w1, 4, 3, "s1") < 0
+        || read_float(args[2], &s) < 0 || read_vec3(args[3], bias, "bias") < 0
+        || read_float(args[4], &sd) < 0 || read_float(args[5], &lsb) < 0 || read_float(args[6], &limit) < 0)
+        return NULL;
+    for (int i = 0; i < 3; i++)
+        v[i] = (w0[i] + s * (w1[i] - w0[i])) + bias[i];
+    return fl_measured(v, sd, lsb, limit, args[7]);
+}
+
 static PyMethodDef module_methods[] = {
+    {"magnetometer_sample", (PyCFunction)(void (*)(void))magnetometer_sample, METH_FASTCALL,
+     "magnetometer_sample(q0, q1, b0_N, b1_N, s, m_coils_B, g, k, bias, sd, lsb, limit, rng) -> (x, y, z) gauss"},
+    {"gyro_sample", (PyCFunction)(void (*)(void))gyro_sample, METH_FASTCALL,
+     "gyro_sample(s0, s1, s, bias, sd, lsb, limit, rng) -> (x, y, z) rad/s"},
     {"power_step", (PyCFunction)(void (*)(void))power_step, METH_FASTCALL,
      "power_step(constants, dt, q_BN, r_N, s_N, d_au, coil_w, switched_load_w, accumulators, face_k, interior_k)"
      " -> (eclipse, face_flux, solar_w, load_w, current_a, terminal_v, accumulators, interior_k): "
@@ -923,6 +1089,10 @@ static struct PyModuleDef kernel_module = {
 PyMODINIT_FUNC PyInit__plant_kernel(void)
 {
     if (PyType_Ready(&KernelType) < 0)
+        return NULL;
+    if (str_gauss_next == NULL && (str_gauss_next = PyUnicode_InternFromString("gauss_next")) == NULL)
+        return NULL;
+    if (str_random == NULL && (str_random = PyUnicode_InternFromString("random")) == NULL)
         return NULL;
     PyObject *m = PyModule_Create(&kernel_module);
     if (m == NULL)

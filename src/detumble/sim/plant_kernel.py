@@ -185,7 +185,8 @@ def mismatch(module: ModuleType) -> str | None:
 
     A full inertia tensor with products of inertia, a wheel momentum, gravity gradient, a J2 orbit
     and a turned Earth: every term of both functions contributes. Then the wheel step
-    (:func:`_wheel_mismatch`), the orbit-constant field and a tabulated field.
+    (:func:`_wheel_mismatch`), the orbit-constant field, a tabulated field, the electrical and thermal
+    step and the sensors' samples (:func:`_sensor_mismatch`).
     """
     from detumble.sim.attitude import RigidBody
     from detumble.sim.field import DipoleField, OrbitConstantField
@@ -227,7 +228,52 @@ def mismatch(module: ModuleType) -> str | None:
             return f"orbit-constant environment at t = {t} s: {got_env} != {want_env}"
     problem = _table_mismatch(module, body, orbit, field)
     problem = problem if problem is not None else _wheel_mismatch(module, body, orbit, field)
-    return problem if problem is not None else _power_mismatch(module)
+    problem = problem if problem is not None else _power_mismatch(module)
+    return problem if problem is not None else _sensor_mismatch(module)
+
+
+def _sensor_mismatch(module: ModuleType) -> str | None:
+    """The held samples' resolve (``magnetometer_sample``, ``gyro_sample``) against the sensors' Python: pairs of
+    sensors from one seed, one resolving in the kernel, fed the same steps (several samples skipped unread, one
+    each step, one at a step's end), noisy and quiet, quantised and not, saturating and tilted fast; every sample
+    read and the generators' whole states after it (the cached half of a gauss pair included) must agree."""
+    from detumble.sim.sensors import Gyro, GyroSpec, Magnetometer, MagnetometerSpec
+
+    specs = (MagnetometerSpec(bias_gauss=(0.012, -0.008, 0.005)),
+             MagnetometerSpec(noise_std_gauss=0.0, resolution_gauss=0.0, coupling_t_per_am2=(0.0, 2e-3, -1e-3),
+                              bias_gauss=(0.0137, -0.0291, 0.00731)),
+             MagnetometerSpec(noise_std_gauss=0.4, full_scale_gauss=0.3, odr_hz=155.0))
+    gyros = (GyroSpec(bias_dps=(0.2, -0.1, 0.05)),
+             GyroSpec(noise_density_dps_rthz=0.0, resolution_dps=0.0, bias_dps=(0.137, -0.291, 0.0731)),
+             GyroSpec(noise_density_dps_rthz=0.9, full_scale_dps=125.0, odr_hz=833.0))
+    for case in range(3):
+        ref, got = Magnetometer(specs[case], seed=17 + case), Magnetometer(specs[case], seed=17 + case)
+        ref_w, got_w = Gyro(gyros[case], seed=23 + case), Gyro(gyros[case], seed=23 + case)
+        got.compiled, got_w.compiled = module.magnetometer_sample, module.gyro_sample
+        if case == 1:  # start with the second half of a gauss pair cached
+            for rng in (ref.rng, got.rng, ref_w.rng, got_w.rng):
+                rng.gauss()
+        t0 = 0
+        for k in range(90):
+            dt = (20_000_000, 7_000_000, 3_300_000)[k % 3]
+            t1 = t0 + dt
+            c, sn = math.cos(0.3 * k), math.sin(0.3 * k)
+            q0, q1 = (c, sn * 0.6, -sn * 0.8, 0.0), (0.8, 0.0, 0.6, 0.0)
+            w0, w1 = (*q0, 0.3 * c, -2.0 * sn, 1.1), (*q1, 0.31 * c, -1.9 * sn, 1.2 + (case == 2) * 3.0)
+            b0, b1 = (2e-5 * c, -1e-5, 3e-5 * sn), (2.1e-5 * c, -1.1e-5, 2.9e-5)
+            m = (0.05 * c, -0.02, 0.01 * k)
+            for sensor, args in ((ref, (q0, q1, b0, b1, m)), (got, (q0, q1, b0, b1, m)),
+                                 (ref_w, (w0, w1)), (got_w, (w0, w1))):
+                tk = t1 // sensor.period_ns * sensor.period_ns
+                if tk > t0:
+                    sensor.defer(t0, t1, tk, *args)
+            if k % 4 != 1:  # the others stay unread until a later step (getstate holds gauss's cached half)
+                if (ref.sample_gauss, ref.rng.getstate()) != (got.sample_gauss, got.rng.getstate()):
+                    return f"magnetometer sample {k} (case {case}): {got.sample_gauss} != {ref.sample_gauss}"
+                if (ref_w.sample_rad_s, ref_w.rng.getstate()) != (got_w.sample_rad_s, got_w.rng.getstate()):
+                    return f"gyro sample {k} (case {case}): {got_w.sample_rad_s} != {ref_w.sample_rad_s}"
+            t0 = t1
+    return None
 
 
 def _table_mismatch(module: ModuleType, body, orbit, model) -> str | None:
@@ -383,6 +429,13 @@ def _load() -> KernelStatus:
         return KernelStatus(None, f"the compiled kernel does not reproduce the Python reference here ({problem})",
                             path, outcome="refused")
     return KernelStatus(module, "", path, built)
+
+
+def sensor_samples() -> tuple:
+    """``(magnetometer_sample, gyro_sample)``: the loaded kernel's resolve of a held sensor sample
+    (:attr:`.sensors.Magnetometer.compiled`, :attr:`.sensors.Gyro.compiled`); ``(None, None)`` without a kernel."""
+    module = load().module
+    return (None, None) if module is None else (module.magnetometer_sample, module.gyro_sample)
 
 
 def environment_parameters(orbit, field_model) -> tuple:

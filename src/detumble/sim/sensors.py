@@ -80,8 +80,16 @@ def _quantise(x: float, lsb: float, limit: float) -> float:
 
 
 def _quantise3(x: float, y: float, z: float, lsb: float, limit: float) -> tuple[float, float, float]:
-    """Each of the three components quantised to ``lsb`` and limited to ±``limit`` (:func:`_quantise`)."""
-    return (_quantise(x, lsb, limit), _quantise(y, lsb, limit), _quantise(z, lsb, limit))
+    """Each of the three components quantised to ``lsb`` and limited to ±``limit``: :func:`_quantise` of
+    each, in one call (every sensor sample read passes here)."""
+    if lsb > 0.0:
+        floor = math.floor
+        x = floor(x / lsb + 0.5) * lsb
+        y = floor(y / lsb + 0.5) * lsb
+        z = floor(z / lsb + 0.5) * lsb
+    return (limit if x > limit else -limit if x < -limit else x,
+            limit if y > limit else -limit if y < -limit else y,
+            limit if z > limit else -limit if z < -limit else z)
 
 
 def skip_gauss(rng: random.Random, n: int) -> None:
@@ -97,12 +105,11 @@ def skip_gauss(rng: random.Random, n: int) -> None:
     if held.gauss_next is not None:  # the pending second half of a pair is the next draw
         held.gauss_next = None
         n -= 1
-    r = rng.random
-    while n >= 2:
-        r()
-        r()
-        n -= 2
-    if n:
+    if n >= 2:
+        # a pair's two random() calls take two 32-bit outputs of the Mersenne Twister each; getrandbits
+        # takes one output a 32 bits asked, so one call skips every whole pair
+        rng.getrandbits(128 * (n // 2))
+    if n % 2:
         rng.gauss()
 
 
@@ -120,6 +127,9 @@ class _SampleHold:
         self._pending: tuple | None = None
         self._skipped = 0  # samples superseded unread since the last one computed
         self._sample: tuple[float, float, float] = (0.0, 0.0, 0.0)
+        #: the compiled kernel's resolve of a held sample (the same floats and draws as the Python below), set by a
+        #: plant flying the kernel (:meth:`.plant.Plant.__init__`); None: the Python
+        self.compiled: Any = None
 
     def _held(self) -> tuple[float, float, float]:
         """The held sample, computed now if it was deferred."""
@@ -177,6 +187,12 @@ class Magnetometer(_SampleHold):
         if self._pending is None:
             return self._sample
         t0, t1, q0, q1, b0_N, b1_N, m = self._take_pending()
+        if self.compiled is not None:  # plant_kernel.c magnetometer_sample: the lines below, compiled
+            tk, s = self.sample_time_ns, self.spec
+            sample = self._sample = self.compiled(q0, q1, b0_N, b1_N, (tk - t0) / (t1 - t0) if t1 > t0 else 1.0, m,
+                                                  GAUSS_PER_TESLA, self._k, s.bias_gauss, s.noise_std_gauss,
+                                                  s.resolution_gauss, s.full_scale_gauss, self.rng)
+            return sample
         b0 = rotate_n_to_b((q0[0], q0[1], q0[2], q0[3]), b0_N)
         b1 = rotate_n_to_b((q1[0], q1[1], q1[2], q1[3]), b1_N)
         sample = self._sample = self._interpolated(t0, t1, self.sample_time_ns, b0, b1, m)
@@ -236,8 +252,9 @@ class Magnetometer(_SampleHold):
 
     def _interpolated(self, t0_ns: int, t1_ns: int, tk: int, b0_B, b1_B, m_coils_B) -> tuple[float, float, float]:
         s = (tk - t0_ns) / (t1_ns - t0_ns) if t1_ns > t0_ns else 1.0
-        b = (b0_B[0] + s * (b1_B[0] - b0_B[0]), b0_B[1] + s * (b1_B[1] - b0_B[1]), b0_B[2] + s * (b1_B[2] - b0_B[2]))
-        return self.measure(b, m_coils_B)
+        # no sample is pending here (taken or discarded by the callers): measure()'s check is not needed
+        return self._measured(b0_B[0] + s * (b1_B[0] - b0_B[0]), b0_B[1] + s * (b1_B[1] - b0_B[1]),
+                              b0_B[2] + s * (b1_B[2] - b0_B[2]), m_coils_B)
 
 
 class Gyro(_SampleHold):
@@ -276,6 +293,11 @@ class Gyro(_SampleHold):
         if self._pending is None:
             return self._sample
         t0, t1, s0, s1 = self._take_pending()
+        if self.compiled is not None:  # plant_kernel.c gyro_sample: the lines below, compiled
+            tk = self.sample_time_ns
+            sample = self._sample = self.compiled(s0, s1, (tk - t0) / (t1 - t0) if t1 > t0 else 1.0, self._bias,
+                                                  self._sd, self._lsb, self._fs, self.rng)
+            return sample
         sample = self._sample = self._interpolated(t0, t1, self.sample_time_ns, (s0[4], s0[5], s0[6]),
                                                    (s1[4], s1[5], s1[6]))
         return sample
@@ -304,5 +326,6 @@ class Gyro(_SampleHold):
 
     def _interpolated(self, t0_ns: int, t1_ns: int, tk: int, w0_B, w1_B) -> tuple[float, float, float]:
         s = (tk - t0_ns) / (t1_ns - t0_ns) if t1_ns > t0_ns else 1.0
-        w = (w0_B[0] + s * (w1_B[0] - w0_B[0]), w0_B[1] + s * (w1_B[1] - w0_B[1]), w0_B[2] + s * (w1_B[2] - w0_B[2]))
-        return self.measure(w)
+        # no sample is pending here (taken or discarded by the callers): measure()'s check is not needed
+        return self._measured(w0_B[0] + s * (w1_B[0] - w0_B[0]), w0_B[1] + s * (w1_B[1] - w0_B[1]),
+                              w0_B[2] + s * (w1_B[2] - w0_B[2]))

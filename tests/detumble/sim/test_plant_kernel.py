@@ -13,6 +13,7 @@ import pathlib
 import pytest
 
 from detumble.sim import plant_kernel
+from detumble.sim.coils import X_PLUS
 from detumble.sim.plant import Plant
 from detumble.sim.runner import make_law, run
 from detumble.sim.scenario import load_scenario, scenario_from_dict
@@ -659,3 +660,65 @@ def test_a_kernel_that_drops_the_external_torque_is_refused(which):
 
     fake = type("FakeModule", (), {"Kernel": DropsTorque, "SOURCE_KEY": real.SOURCE_KEY})
     assert plant_kernel.mismatch(fake) is not None
+
+
+def _noisy_sensor_flight(implementation):
+    """A noisy plant (magnetometer and gyro noise, bias, coil coupling) stepped 600 times with the coils
+    switching: the magnetometer and gyro samples read at irregular steps (several left unread between
+    reads), and each generator's state after the flight."""
+    plant = Plant(scenario_from_dict({
+        "dynamics_step_s": 0.02,
+        "sensors": {"magnetometer": {"noise_std_gauss": 0.003, "bias_gauss": [0.012, -0.008, 0.005]},
+                    "gyro": {"noise_density_dps_rthz": 0.0038, "bias_dps": [0.2, -0.1, 0.05]}},
+        "initial": {"rate": {"omega_deg_s": [20.0, -10.0, 5.0]}},
+    }), implementation=implementation)
+    reads = []
+    for k in range(1, 601):
+        if k % 50 == 0:
+            plant.set_coil_level(X_PLUS, 127 if k % 100 else -60)
+        plant.step()
+        if k % 7 in (0, 3):
+            reads.append((k, "mag", plant.magnetometer.sample_gauss))
+        if k % 5 == 0 or k % 11 == 0:
+            reads.append((k, "gyro", plant.gyro.sample_rad_s))
+    return plant, reads, (plant.magnetometer.rng.getstate(), plant.gyro.rng.getstate())
+
+
+def test_the_sensor_samples_are_bit_identical_with_either_plant():
+    """SIM-KRN-034: a noisy plant's magnetometer and gyro samples, read at irregular steps with unread ones
+    between, are the same floats with the held samples resolved in the kernel and in Python, and the two
+    generators end in the same state (the noise draws consumed alike)."""
+    _kernel_or_skip()
+    python, python_reads, python_rngs = _noisy_sensor_flight("python")
+    compiled, compiled_reads, compiled_rngs = _noisy_sensor_flight("compiled")
+    assert python.magnetometer.compiled is None and python.gyro.compiled is None
+    assert compiled.magnetometer.compiled is not None and compiled.gyro.compiled is not None
+    assert len(python_reads) > 300 and python_reads == compiled_reads
+    assert python_rngs == compiled_rngs
+
+
+@pytest.mark.parametrize("which", ["magnetometer", "gyro"])
+def test_a_kernel_whose_sensor_sample_is_off_by_one_ulp_is_refused(monkeypatch, which):
+    """SIM-KRN-035: the load-time check covers both sensors' compiled resolve: one ulp off in one axis of
+    one of them and the kernel is refused, naming the sensor; the plant then flies the Python reference."""
+    _kernel_or_skip()
+    real = plant_kernel.load().module
+
+    def off(fn):
+        def sample(*args):
+            x, y, z = fn(*args)
+            return (x, math.nextafter(y, math.inf), z)
+        return staticmethod(sample)
+
+    members = {"Kernel": real.Kernel, "SOURCE_KEY": real.SOURCE_KEY, "power_step": staticmethod(real.power_step),
+               "magnetometer_sample": staticmethod(real.magnetometer_sample),
+               "gyro_sample": staticmethod(real.gyro_sample)}
+    members[f"{which}_sample"] = off(getattr(real, f"{which}_sample"))
+    fake = type("FakeModule", (), members)
+    problem = plant_kernel.mismatch(fake)
+    assert problem is not None and problem.startswith(f"{which} sample")
+    monkeypatch.setattr(plant_kernel, "_status", None)  # the real status is put back after the test
+    monkeypatch.setattr(plant_kernel, "_import", lambda path: fake)
+    assert plant_kernel.load().outcome == "refused"
+    plant = Plant(load_scenario("adcs"))
+    assert plant.implementation == "python" and plant.magnetometer.compiled is None
