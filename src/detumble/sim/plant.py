@@ -107,6 +107,8 @@ class Plant:
         # the fused RK4 step + environment: step (no wheels) or step_wheels_env (wheels), the other None
         self._kernel_step = kernel.step if with_env and self.wheels is None else None
         self._kernel_step_wheels = kernel.step_wheels_env if with_env and self.wheels is not None else None
+        if kernel is not None and self.wheels is not None:  # the wheels' commands and limits compiled too
+            self.wheels.compiled = kernel.motor_torques
         if sc.spacecraft.actuator_type == "rods":
             self.actuators: CoilSet | TorqueRods = TorqueRods(sc.spacecraft.rods_max_dipole_am2)
         else:

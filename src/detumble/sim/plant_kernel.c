@@ -837,7 +837,114 @@ static PyObject *Kernel_step_wheels_env(KernelObject *self, PyObject *const *arg
     return res;
 }
 
+/* Reads 3 floats from a tuple or a list of 3 (a sensor's constants may come as either). */
+static int read_vec3(PyObject *obj, double *v, const char *what)
+{
+    if (PyTuple_Check(obj))
+        return read_floats(obj, v, 3, what);
+    if (!PyList_Check(obj) || PyList_GET_SIZE(obj) != 3) {
+        PyErr_Format(PyExc_TypeError, "%s must be 3 floats", what);
+        return -1;
+    }
+    for (Py_ssize_t i = 0; i < 3; i++) {
+        if (read_float(PyList_GET_ITEM(obj, i), v + i) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+/* Reads n floats from a tuple or a list of n (the wheels' commands and limits). */
+static int read_seq(PyObject *obj, double *v, Py_ssize_t n, const char *what)
+{
+    if (PyTuple_Check(obj))
+        return read_floats(obj, v, n, what);
+    if (!PyList_Check(obj) || PyList_GET_SIZE(obj) != n) {
+        PyErr_Format(PyExc_TypeError, "%s must be %zd floats", what, n);
+        return -1;
+    }
+    for (Py_ssize_t i = 0; i < n; i++) {
+        if (read_float(PyList_GET_ITEM(obj, i), v + i) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+/* motor_torques(dt, omega_B, h, mode, speed, enabled, command, u_max, h_max, tau_s, clipped, limited) -> u:
+ * WheelAssembly.motor_torques with this kernel's wheel constants (axes, inertias, friction). ``mode`` and
+ * ``enabled`` are the assembly's lists (a wheel whose mode equals ``speed`` runs its speed loop), ``tau_s``
+ * the speed loops' time constants; ``clipped`` and ``limited`` (lists) are set in place as the Python sets
+ * torque_clipped and momentum_limited. Returns the limited motor torques (N m) as a tuple. */
+static PyObject *Kernel_motor_torques(KernelObject *self, PyObject *const *args, Py_ssize_t nargs)
+{
+    double dt, w[3], h[FL_MAX_WHEELS], cmd[FL_MAX_WHEELS], umax[FL_MAX_WHEELS], hmax[FL_MAX_WHEELS],
+        taus[FL_MAX_WHEELS], out[FL_MAX_WHEELS];
+    if (check_nargs(nargs, 12, 12, "motor_torques") || need_wheels(self))
+        return NULL;
+    const fl_wheels *wh = &self->wheels;
+    const Py_ssize_t n = wh->n;
+    PyObject *mode = args[3], *speed = args[4], *enabled = args[5], *clipped = args[10], *limited = args[11];
+    if (read_float(args[0], &dt) || read_vec3(args[1], w, "omega_B") || read_seq(args[2], h, n, "h")
+        || read_seq(args[6], cmd, n, "command") || read_seq(args[7], umax, n, "u_max")
+        || read_seq(args[8], hmax, n, "h_max") || read_seq(args[9], taus, n, "tau_s"))
+        return NULL;
+    if (!PyList_Check(mode) || PyList_GET_SIZE(mode) != n || !PyList_Check(enabled) || PyList_GET_SIZE(enabled) != n
+        || !PyList_Check(clipped) || PyList_GET_SIZE(clipped) != n || !PyList_Check(limited)
+        || PyList_GET_SIZE(limited) != n) {
+        PyErr_Format(PyExc_TypeError, "mode, enabled, clipped and limited must be lists of %zd", n);
+        return NULL;
+    }
+    for (Py_ssize_t i = 0; i < n; i++) {
+        const int on = PyObject_IsTrue(PyList_GET_ITEM(enabled, i));
+        if (on < 0)
+            return NULL;
+        if (!on) {
+            out[i] = 0.0;
+            PyList_SetItem(clipped, i, Py_NewRef(Py_False));
+            PyList_SetItem(limited, i, Py_NewRef(Py_False));
+            continue;
+        }
+        const int speed_mode = PyObject_RichCompareBool(PyList_GET_ITEM(mode, i), speed, Py_EQ);
+        if (speed_mode < 0)
+            return NULL;
+        const double gx = wh->g[3 * i], gy = wh->g[3 * i + 1], gz = wh->g[3 * i + 2];
+        /* speed_rad_s(i, omega_B), taken for the speed loop or the friction (both uses: the same value) */
+        const double spd = (speed_mode || wh->friction) ? h[i] / wh->js[i] - (gx * w[0] + gy * w[1] + gz * w[2])
+                                                        : 0.0;
+        double u;
+        if (speed_mode) {
+            const double tau = 2.0 * dt > taus[i] ? 2.0 * dt : taus[i];  /* max(time constant, 2 dt) */
+            u = wh->js[i] * (cmd[i] - spd) / tau;
+        } else {
+            u = cmd[i];
+        }
+        const double um = umax[i];
+        const int clip = u > um || u < -um;
+        if (clip)
+            u = u > 0.0 ? um : -um;
+        const double hi = h[i], hm = hmax[i];
+        int lim = 0;
+        const double f0 = wh->friction ? fl_friction(wh, (int)i, spd) : 0.0;
+        const double h1 = hi + (u + f0) * dt;
+        if (h1 > hm && u > 0.0) {
+            const double x = (hm - hi) / dt - f0;
+            u = x > 0.0 ? x : 0.0;  /* max(0.0, x) */
+            lim = 1;
+        } else if (h1 < -hm && u < 0.0) {
+            const double x = (-hm - hi) / dt - f0;
+            u = x < 0.0 ? x : 0.0;  /* min(0.0, x) */
+            lim = 1;
+        }
+        PyList_SetItem(clipped, i, Py_NewRef(clip && !speed_mode ? Py_True : Py_False));
+        PyList_SetItem(limited, i, Py_NewRef(lim ? Py_True : Py_False));
+        out[i] = u;
+    }
+    return float_tuple(out, n);
+}
+
 static PyMethodDef Kernel_methods[] = {
+    {"motor_torques", (PyCFunction)(void (*)(void))Kernel_motor_torques, METH_FASTCALL,
+     "motor_torques(dt, omega_B, h, mode, speed, enabled, command, u_max, h_max, tau_s, clipped, limited) -> u: "
+     "WheelAssembly.motor_torques"},
     {"step_env", (PyCFunction)(void (*)(void))Kernel_step_env, METH_FASTCALL,
      "step_env(state, dt, m_B, b_N, gg, r_hat_N[, torque_B]) -> state: RigidBody.step_env"},
     {"environment", (PyCFunction)(void (*)(void))Kernel_environment, METH_FASTCALL,
@@ -999,22 +1106,6 @@ static PyObject *fl_measured(double *v, double sd, double lsb, double limit, PyO
         v[i] = x > limit ? limit : (x < -limit ? -limit : x);
     }
     return float_tuple(v, 3);
-}
-
-/* Reads 3 floats from a tuple or a list of 3 (a sensor's constants may come as either). */
-static int read_vec3(PyObject *obj, double *v, const char *what)
-{
-    if (PyTuple_Check(obj))
-        return read_floats(obj, v, 3, what);
-    if (!PyList_Check(obj) || PyList_GET_SIZE(obj) != 3) {
-        PyErr_Format(PyExc_TypeError, "%s must be 3 floats", what);
-        return -1;
-    }
-    for (Py_ssize_t i = 0; i < 3; i++) {
-        if (read_float(PyList_GET_ITEM(obj, i), v + i) < 0)
-            return -1;
-    }
-    return 0;
 }
 
 /* Reads the first n floats of a tuple of at least n (a plant state: q_BN at 0..3, omega_BN_B at 4..6). */

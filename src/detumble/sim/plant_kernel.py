@@ -300,13 +300,15 @@ def _wheel_mismatch(module: ModuleType, body, orbit, field) -> str | None:
     body axes) and a fifth on body x, without friction and with viscous and Coulomb friction (speeds
     inside and beyond the Coulomb smoothing band), speed-mode and torque-mode commands, a momentum
     limit reached, a wheel disabled part-way and the fifth coasting from zero momentum on Coulomb
-    friction alone (so that its momentum is the friction's floats, not absorbed in a larger torque)."""
+    friction alone (so that its momentum is the friction's floats, not absorbed in a larger torque); then, with
+    each of the four kernels, the motor torques and their flags (:func:`_motor_torque_mismatch`)."""
     from detumble.sim.wheels import WheelAssembly, WheelSpec, step_with_wheels
 
     c, s3 = math.sqrt(2.0 / 3.0), math.sqrt(1.0 / 3.0)
     axes = ((c, 0.0, s3), (0.0, c, s3), (-c, 0.0, s3), (0.0, -c, s3), (1.0, 0.0, 0.0))
     # fast (0.6 rad/s: gyroscopic torques dominate) and slow (2 mrad/s: the magnetic and gravity-gradient
     # torques show in the rate's last bits)
+    made = []
     for friction, w0 in ((False, 0.3), (True, 0.3), (False, 1e-3), (True, 1e-3)):
         specs = tuple(WheelSpec(axis, 1.4e-5 + 1e-6 * i, 4e-3, 1.2e-2 + 1e-3 * i,
                                 viscous_friction_nms=(2e-7 * (i + 1)) if friction and i < 4 else 0.0,
@@ -350,6 +352,44 @@ def _wheel_mismatch(module: ModuleType, body, orbit, field) -> str | None:
                         f"{got_env} != {want_env}")
             st, h = want
             wheels.h = h
+        made.append((kernel, specs, friction))
+    for kernel, specs, friction in made:  # the commands and limits, once every step above agreed
+        problem = _motor_torque_mismatch(kernel, specs, friction)
+        if problem is not None:
+            return problem
+    return None
+
+
+def _motor_torque_mismatch(kernel, specs, friction: bool) -> str | None:
+    """``Kernel.motor_torques`` against ``WheelAssembly.motor_torques`` on 400 random states: momenta inside and
+    beyond the limits either way, torque and speed commands past the torque limit, wheels disabled, steps of 1 ms to
+    0.2 s and speed loops whose time constant is above and below two steps; the torques and both flags."""
+    import dataclasses
+    import random
+
+    from detumble.sim.wheels import WheelAssembly
+
+    rng = random.Random(29 + friction)
+    specs = tuple(dataclasses.replace(s, speed_loop_time_constant_s=(0.004, 0.1, 0.3, 0.05, 0.02)[i])
+                  for i, s in enumerate(specs))
+    ref, got = WheelAssembly(specs), WheelAssembly(specs)
+    got.compiled = kernel.motor_torques
+    for k in range(400):
+        dt = rng.choice((0.001, 0.01, 0.05, 0.2))
+        ref.h = got.h = tuple(rng.uniform(-1.5, 1.5) * s.max_momentum_nms for s in specs)
+        omega = (rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0))
+        for i, s in enumerate(specs):
+            on, speed_loop = rng.random() < 0.85, rng.random() < 0.4
+            command = rng.uniform(-400.0, 400.0) if speed_loop else rng.uniform(-2.0, 2.0) * s.max_torque_nm
+            for assembly in (ref, got):
+                assembly.set_enabled(i, on)
+                (assembly.set_speed if speed_loop else assembly.set_torque)(i, command)
+        want = ref.motor_torques(dt, omega)
+        have = got.motor_torques(dt, omega)
+        if (have, got.torque_applied, got.torque_clipped, got.momentum_limited) != \
+                (want, ref.torque_applied, ref.torque_clipped, ref.momentum_limited):
+            return (f"wheel motor torques, random state {k} (friction {friction}): {have} != {want} or the flags "
+                    f"{got.torque_clipped, got.momentum_limited} != {ref.torque_clipped, ref.momentum_limited}")
     return None
 
 

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 import random
+from typing import Any
 from dataclasses import dataclass
 
 from detumble.sim.vec import Vec3, rotate_n_to_b
@@ -106,6 +107,10 @@ class WheelAssembly:
         self.torque_clipped = [False] * self.n  # last step: |command| > u_max
         self.momentum_limited = [False] * self.n  # last step: cut by the momentum limit
         self.rng = random.Random(seed)
+        self._taus = tuple(s.speed_loop_time_constant_s for s in specs)
+        #: the compiled kernel's :meth:`motor_torques` (``Kernel.motor_torques``: the same floats and flags), set by a
+        #: plant flying the kernel with these wheels (:meth:`.plant.Plant.__init__`); None: the Python below
+        self.compiled: Any = None
 
     # --- commands --------------------------------------------------------------------------
 
@@ -161,6 +166,11 @@ class WheelAssembly:
 
     def motor_torques(self, dt: float, omega_B: Vec3) -> tuple[float, ...]:
         """The limited motor torques to hold over the next step of ``dt`` s."""
+        if self.compiled is not None:  # plant_kernel.c Kernel.motor_torques: the lines below, compiled
+            torques = self.compiled(dt, omega_B, self.h, self.mode, SPEED, self.enabled, self.command, self.u_max,
+                                    self.h_max, self._taus, self.torque_clipped, self.momentum_limited)
+            self.torque_applied = list(torques)
+            return torques
         out = []
         enabled, mode, command, u_max, h_max = self.enabled, self.mode, self.command, self.u_max, self.h_max
         h_all = self.h

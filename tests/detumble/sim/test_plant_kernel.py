@@ -389,7 +389,8 @@ def test_wheel_plant_is_bit_identical_over_a_long_commanded_run(friction):
     """SIM-KRN-020: a four-wheel plant for 20 000 steps (about 370 s) of torque and speed commands with
     torque clipping, the momentum limit, a wheel disabled and enabled, coils and noisy sensors (with and
     without bearing friction): every state, wheel momentum, applied torque, limit flag, field and sensor
-    sample is equal between the implementations (0 ulp), so every saturation happens at the same step."""
+    sample is equal between the implementations (0 ulp), so every saturation happens at the same step; the
+    compiled plant's torques and flags come from the kernel's ``motor_torques``."""
     _kernel_or_skip()
     sc = _wheel_scenario(friction)
     impl_a, a = _wheel_flight(sc, "python", 20_000)
@@ -402,6 +403,8 @@ def test_wheel_plant_is_bit_identical_over_a_long_commanded_run(friction):
     assert any(row[2][3] == 0.0 for row in a) and len({row[2][2] for row in a}) > 100
     assert abs(a[-1][1][0]) <= 1.5e-2 and max(abs(row[1][0]) for row in a) > 1.49e-2
     assert Plant(sc).wheels.friction == friction
+    assert Plant(sc, implementation="compiled").wheels.compiled is not None
+    assert Plant(sc, implementation="python").wheels.compiled is None
 
 
 @pytest.mark.parametrize("settings", [
@@ -722,3 +725,33 @@ def test_a_kernel_whose_sensor_sample_is_off_by_one_ulp_is_refused(monkeypatch, 
     assert plant_kernel.load().outcome == "refused"
     plant = Plant(load_scenario("adcs"))
     assert plant.implementation == "python" and plant.magnetometer.compiled is None
+
+
+def test_a_kernel_whose_motor_torques_are_off_by_one_ulp_is_refused(monkeypatch):
+    """SIM-KRN-036: the load-time check covers ``Kernel.motor_torques``: one ulp off in one wheel's torque and
+    the kernel is refused, naming the motor torques; the plant then flies the Python reference."""
+    _kernel_or_skip()
+    real = plant_kernel.load().module
+
+    class OneUlpOff:
+        def __init__(self, *args):
+            self._k = real.Kernel(*args)
+            for name in ("has_environment", "has_wheels", "wheel_friction", "wheel_count", "step_env", "step",
+                         "environment", "step_wheels", "step_wheels_env"):
+                setattr(self, name, getattr(self._k, name))
+
+        def motor_torques(self, *args):
+            u = self._k.motor_torques(*args)
+            return (*u[:1], math.nextafter(u[1], math.inf), *u[2:])
+
+    members = {name: getattr(real, name) for name in ("SOURCE_KEY",)}
+    members.update({name: staticmethod(getattr(real, name))
+                    for name in ("power_step", "magnetometer_sample", "gyro_sample")})
+    fake = type("FakeModule", (), {**members, "Kernel": OneUlpOff})
+    problem = plant_kernel.mismatch(fake)
+    assert problem is not None and problem.startswith("wheel motor torques")
+    monkeypatch.setattr(plant_kernel, "_status", None)  # the real status is put back after the test
+    monkeypatch.setattr(plant_kernel, "_import", lambda path: fake)
+    assert plant_kernel.load().outcome == "refused"
+    plant = Plant(_wheel_scenario(False))
+    assert plant.implementation == "python" and plant.wheels.compiled is None
