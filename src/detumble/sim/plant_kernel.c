@@ -837,23 +837,7 @@ static PyObject *Kernel_step_wheels_env(KernelObject *self, PyObject *const *arg
     return res;
 }
 
-/* Reads 3 floats from a tuple or a list of 3 (a sensor's constants may come as either). */
-static int read_vec3(PyObject *obj, double *v, const char *what)
-{
-    if (PyTuple_Check(obj))
-        return read_floats(obj, v, 3, what);
-    if (!PyList_Check(obj) || PyList_GET_SIZE(obj) != 3) {
-        PyErr_Format(PyExc_TypeError, "%s must be 3 floats", what);
-        return -1;
-    }
-    for (Py_ssize_t i = 0; i < 3; i++) {
-        if (read_float(PyList_GET_ITEM(obj, i), v + i) < 0)
-            return -1;
-    }
-    return 0;
-}
-
-/* Reads n floats from a tuple or a list of n (the wheels' commands and limits). */
+/* Reads n floats from a tuple or a list of n (the wheels' commands and limits, a sensor's constants). */
 static int read_seq(PyObject *obj, double *v, Py_ssize_t n, const char *what)
 {
     if (PyTuple_Check(obj))
@@ -883,7 +867,7 @@ static PyObject *Kernel_motor_torques(KernelObject *self, PyObject *const *args,
     const fl_wheels *wh = &self->wheels;
     const Py_ssize_t n = wh->n;
     PyObject *mode = args[3], *speed = args[4], *enabled = args[5], *clipped = args[10], *limited = args[11];
-    if (read_float(args[0], &dt) || read_vec3(args[1], w, "omega_B") || read_seq(args[2], h, n, "h")
+    if (read_float(args[0], &dt) || read_seq(args[1], w, 3, "omega_B") || read_seq(args[2], h, n, "h")
         || read_seq(args[6], cmd, n, "command") || read_seq(args[7], umax, n, "u_max")
         || read_seq(args[8], hmax, n, "h_max") || read_seq(args[9], taus, n, "tau_s"))
         return NULL;
@@ -1130,9 +1114,9 @@ static PyObject *magnetometer_sample(PyObject *module, PyObject *const *args, Py
     (void)module;
     if (check_nargs(nargs, 13, 13, "magnetometer_sample") < 0
         || read_prefix(args[0], q0, 0, 4, "q0") < 0 || read_prefix(args[1], q1, 0, 4, "q1") < 0
-        || read_vec3(args[2], b0n, "b0_N") < 0 || read_vec3(args[3], b1n, "b1_N") < 0
-        || read_float(args[4], &s) < 0 || read_vec3(args[5], m, "m_coils_B") < 0 || read_float(args[6], &g) < 0
-        || read_vec3(args[7], k, "k") < 0 || read_vec3(args[8], bias, "bias") < 0
+        || read_seq(args[2], b0n, 3, "b0_N") < 0 || read_seq(args[3], b1n, 3, "b1_N") < 0
+        || read_float(args[4], &s) < 0 || read_seq(args[5], m, 3, "m_coils_B") < 0 || read_float(args[6], &g) < 0
+        || read_seq(args[7], k, 3, "k") < 0 || read_seq(args[8], bias, 3, "bias") < 0
         || read_float(args[9], &sd) < 0 || read_float(args[10], &lsb) < 0 || read_float(args[11], &limit) < 0)
         return NULL;
     fl_rotate_n_to_b(q0, b0n, b0);
@@ -1152,7 +1136,7 @@ static PyObject *gyro_sample(PyObject *module, PyObject *const *args, Py_ssize_t
     (void)module;
     if (check_nargs(nargs, 8, 8, "gyro_sample") < 0
         || read_prefix(args[0], w0, 4, 3, "s0") < 0 || read_prefix(args[1], w1, 4, 3, "s1") < 0
-        || read_float(args[2], &s) < 0 || read_vec3(args[3], bias, "bias") < 0
+        || read_float(args[2], &s) < 0 || read_seq(args[3], bias, 3, "bias") < 0
         || read_float(args[4], &sd) < 0 || read_float(args[5], &lsb) < 0 || read_float(args[6], &limit) < 0)
         return NULL;
     for (int i = 0; i < 3; i++)
