@@ -22,7 +22,10 @@ The kernel is compiled at its first use on a machine with the C compiler Python 
 (``$FPRIME_LITE_CACHE``, else ``$XDG_CACHE_HOME/fprime-lite``, else ``~/.cache/fprime-lite``),
 once per source, Python version and platform (about 0.3 s). Before a process uses it, the loaded
 kernel must reproduce the reference's floats exactly on a check trajectory; otherwise the pure-Python
-plant is used. Nothing here is needed for correctness: without a compiler everything runs, slower.
+plant is used. A passed check leaves a stamp beside the kernel file, named by everything the check's
+outcome depends on (the kernel file, the reference's sources, this interpreter, the libm it maps and the
+CPU): later processes in that same configuration skip the check (about 25-70 ms a process). Nothing here
+is needed for correctness: without a compiler everything runs, slower.
 """
 
 from __future__ import annotations
@@ -79,6 +82,9 @@ class KernelStatus:
     #: "ok", "no toolchain" (no compiler or headers), "build failed", "import failed" or "refused"
     #: (built and loaded, but its floats differ from the reference's)
     outcome: str = "ok"
+    #: with a module: "now" (the load-time check ran in this process) or "stamp" (a stamp said it passed
+    #: in this configuration: :func:`check_key`)
+    checked: str | None = None
 
 
 _status: KernelStatus | None = None
@@ -464,11 +470,90 @@ def _load() -> KernelStatus:
     if getattr(module, "SOURCE_KEY", None) != key:
         return KernelStatus(None, f"{path} was not built from this source (remove it to rebuild)", path,
                             outcome="import failed")
+    # the stamp vouches for this file's module only (a test may hand over another module for the path)
+    stamp = check_stamp_path(path) if getattr(module, "__file__", None) == path else None
+    if stamp is not None and os.path.exists(stamp):
+        return KernelStatus(module, "", path, built, checked="stamp")
     problem = mismatch(module)
     if problem is not None:
         return KernelStatus(None, f"the compiled kernel does not reproduce the Python reference here ({problem})",
                             path, outcome="refused")
-    return KernelStatus(module, "", path, built)
+    if stamp is not None:
+        _leave_stamp(stamp)
+    return KernelStatus(module, "", path, built, checked="now")
+
+
+def check_stamp_path(kernel_path: str) -> str | None:
+    """The stamp a passed load-time check leaves beside ``kernel_path``: ``<kernel file>.checked-<check key>``
+    (:func:`check_key`), or None where the key cannot be formed (the check then runs in every process)."""
+    key = check_key(kernel_path)
+    return None if key is None else f"{kernel_path}.checked-{key}"
+
+
+def check_key(kernel_path: str) -> str | None:
+    """Names everything the load-time check's outcome depends on: the kernel file's bytes, the reference's
+    sources (every module of ``detumble.sim`` and ``detumble.control``, and ``detumble.errors``), this
+    interpreter (its version and ``random``/``math`` with it), the libm mapped into this process (path, size,
+    modification time, inode) and the CPU (model and flags: libm picks its code by them). None when the
+    kernel file or a source cannot be read or the libm cannot be named (not Linux, a static libm)."""
+    libm = _libm_identity()
+    if libm is None:
+        return None
+    here = os.path.dirname(os.path.abspath(__file__))
+    package = os.path.dirname(here)
+    h = hashlib.sha256()
+    try:
+        with open(kernel_path, "rb") as fh:
+            h.update(fh.read())
+        sources = [os.path.join(package, "errors.py")]
+        for folder in (here, os.path.join(package, "control")):
+            sources += sorted(os.path.join(folder, name) for name in os.listdir(folder) if name.endswith(".py"))
+        for source in sources:
+            with open(source, "rb") as fh:
+                h.update(os.path.relpath(source, package).encode() + b"\0" + fh.read())
+    except OSError:
+        return None
+    h.update(sys.version.encode() + b"\0" + libm.encode() + b"\0" + _cpu_identity().encode())
+    return h.hexdigest()[:16]
+
+
+def _libm_identity() -> str | None:
+    """``path:size:mtime_ns:inode`` of the libm this process has mapped (``/proc/self/maps``), or None."""
+    try:
+        with open("/proc/self/maps", encoding="ascii", errors="replace") as fh:
+            paths = {line.split(None, 5)[-1].strip() for line in fh if "/libm" in line}
+        libm = sorted(p for p in paths if os.path.basename(p).startswith(("libm.so", "libm-")))
+        if len(libm) != 1:
+            return None
+        st = os.stat(libm[0])
+    except OSError:
+        return None
+    return f"{libm[0]}:{st.st_size}:{st.st_mtime_ns}:{st.st_ino}"
+
+
+def _cpu_identity() -> str:
+    """The first CPU's model name and flags (``/proc/cpuinfo``); the platform's machine name elsewhere."""
+    wanted = ("vendor_id", "model name", "flags", "Features", "CPU implementer", "CPU part")
+    found: list[str] = []
+    try:
+        with open("/proc/cpuinfo", encoding="ascii", errors="replace") as fh:
+            for line in fh:
+                if not line.strip():
+                    break  # the end of the first processor's block
+                if line.split(":", 1)[0].strip() in wanted:
+                    found.append(line.strip())
+    except OSError:
+        pass
+    return "\n".join(found) or sysconfig.get_platform()
+
+
+def _leave_stamp(stamp: str) -> None:
+    """Create the (empty) stamp file; a cache that cannot take it only means the check runs again."""
+    try:
+        with open(stamp, "x"):
+            pass
+    except OSError:
+        pass
 
 
 def sensor_samples() -> tuple:

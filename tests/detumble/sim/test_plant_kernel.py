@@ -289,6 +289,82 @@ def test_the_kernel_is_built_once_into_the_cache_and_reused(fresh_kernel):
     assert again.module is not None and again.path == status.path and again.build_seconds is None
 
 
+def test_a_passed_check_is_stamped_and_later_processes_skip_it(fresh_kernel, monkeypatch):
+    """SIM-KRN-037: the first load checks the kernel and leaves a stamp beside it; a later process in the
+    same configuration takes the stamp's word (the check is not run); one whose configuration differs (here
+    the CPU's identity) checks again and leaves its own stamp."""
+    _kernel_or_skip()
+    first = plant_kernel.load()
+    assert first.checked == "now"
+    stamps = sorted(p.name for p in fresh_kernel.iterdir() if ".checked-" in p.name)
+    assert stamps == [pathlib.Path(plant_kernel.check_stamp_path(first.path)).name]
+
+    def must_not_run(module):
+        raise AssertionError("the load-time check ran although a stamp vouches for this configuration")
+
+    plant_kernel._reset_for_tests()
+    with monkeypatch.context() as m:
+        m.setattr(plant_kernel, "mismatch", must_not_run)
+        again = plant_kernel.load()
+    assert again.module is not None and again.checked == "stamp" and again.outcome == "ok"
+
+    ran = []
+    checked = plant_kernel.mismatch
+    monkeypatch.setattr(plant_kernel, "mismatch", lambda module: ran.append(module) or checked(module))
+    monkeypatch.setattr(plant_kernel, "_cpu_identity", lambda: "another CPU")
+    plant_kernel._reset_for_tests()
+    other = plant_kernel.load()
+    assert other.checked == "now" and len(ran) == 1
+    assert len([p for p in fresh_kernel.iterdir() if ".checked-" in p.name]) == 2
+
+
+def test_a_refused_kernel_leaves_no_stamp_and_no_libm_means_no_stamp(fresh_kernel, monkeypatch):
+    """SIM-KRN-038: a kernel that fails the check is refused and stamps nothing (the next process checks
+    again); where the libm in use cannot be named the check runs in every process and nothing is stamped."""
+    _kernel_or_skip()
+    for stamp in fresh_kernel.glob("*.checked-*"):  # the good kernel's own, from its first load
+        stamp.unlink()
+    plant_kernel._reset_for_tests()
+    with monkeypatch.context() as m:
+        m.setattr(plant_kernel, "mismatch", lambda module: "state 3 off by one ulp (test)")
+        refused = plant_kernel.load()
+    assert refused.module is None and refused.outcome == "refused"
+    assert not [p for p in fresh_kernel.iterdir() if ".checked-" in p.name]
+    plant_kernel._reset_for_tests()
+    monkeypatch.setattr(plant_kernel, "_libm_identity", lambda: None)
+    unnamed = plant_kernel.load()
+    assert unnamed.module is not None and unnamed.checked == "now"
+    assert plant_kernel.check_stamp_path(unnamed.path) is None
+    assert not [p for p in fresh_kernel.iterdir() if ".checked-" in p.name]
+
+
+def test_the_check_key_names_the_kernel_file_and_every_reference_source(tmp_path, monkeypatch):
+    """SIM-KRN-039: the stamp's key changes with one byte of the kernel file, of any module of
+    ``detumble.sim`` or ``detumble.control``, or of ``detumble.errors`` (a copy of the package is edited)."""
+    import shutil
+
+    package = pathlib.Path(plant_kernel.__file__).parent.parent
+    copy = tmp_path / "detumble"
+    for part in ("sim", "control"):
+        shutil.copytree(package / part, copy / part, ignore=shutil.ignore_patterns("__pycache__", "scenarios"))
+    shutil.copy(package / "errors.py", copy / "errors.py")
+    kernel = tmp_path / "kernel.so"
+    kernel.write_bytes(b"\x7fELF kernel bytes")
+    monkeypatch.setattr(plant_kernel, "__file__", str(copy / "sim" / "plant_kernel.py"))
+    monkeypatch.setattr(plant_kernel, "_libm_identity", lambda: "/lib/libm.so.6:1:2:3")
+    base = plant_kernel.check_key(str(kernel))
+    assert base is not None and base == plant_kernel.check_key(str(kernel))
+    seen = {base}
+    for edited in (kernel, copy / "sim" / "wheels.py", copy / "control" / "bdot.py", copy / "errors.py"):
+        original = edited.read_bytes()
+        edited.write_bytes(original + b" ")
+        key = plant_kernel.check_key(str(kernel))
+        assert key not in seen, f"editing {edited.name} left the key as it was"
+        seen.add(key)
+        edited.write_bytes(original)
+    assert plant_kernel.check_key(str(kernel)) == base
+
+
 def test_the_python_reference_can_be_forced_and_a_bad_choice_is_named(monkeypatch):
     """SIM-KRN-014: FPRIME_LITE_PLANT=python gives the reference plant; an unknown value is an error
     naming the variable and the choices."""
