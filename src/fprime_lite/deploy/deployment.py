@@ -38,6 +38,7 @@ from fprime_lite.deploy.scheduler import ScheduledCall
 from fprime_lite.deploy.topology import sequence_run_port
 from fprime_lite.deploy.topology_loader import LoadedDeployment
 from fprime_lite.model.types import FwType
+from fprime_lite.svc.file_root import FileRoot
 from fprime_lite.svc.prm_db import PrmDb
 
 __all__ = ["Deployment", "command_lookup"]
@@ -106,7 +107,12 @@ class Deployment:
         reads_file = isinstance(prm_db, PrmDb)
         if reads_file and param_path is not None:
             prm_db.file_path = os.fspath(param_path)
+        swept: set[str] = set()  # file services' roots swept already (they usually share one: sweep it once)
         for comp in topo.components():  # what a killed earlier run left half-written
+            if isinstance(comp, FileRoot):
+                if comp.root_path in swept:
+                    continue
+                swept.add(comp.root_path)
             comp.clean_temporary_files()
         lookup = command_lookup(topo)
         for comp in topo.components():

@@ -2,7 +2,8 @@
 
 Without a root of its own (``root=None``) a service starts in the working directory at
 construction; ``fprime-lite run`` then gives it the run's folder (:meth:`FileRoot.set_default_root`).
-At start-up the deployment calls :meth:`FileRoot.clean_temporary_files`.
+At start-up the deployment calls :meth:`FileRoot.clean_temporary_files` once for each distinct root
+(the three services usually share one; it is swept recursively).
 """
 
 from __future__ import annotations

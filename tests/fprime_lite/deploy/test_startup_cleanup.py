@@ -36,3 +36,34 @@ def test_deployment_start_cleans_the_file_services_roots(tmp_path):
     Deployment(loaded).start(parameter_file=params / "PrmDb.dat")
     assert [p for p in leftovers if p.exists()] == []
     assert all(p.exists() for p in keep)
+
+
+def test_file_services_sharing_a_root_sweep_it_once(tmp_path, monkeypatch):
+    """TMP-5: file services that share a root (the working directory when no run folder is given) have it
+    swept once at start-up, not once each; a service with a root of its own has that one swept too, and the
+    leftovers under both are removed."""
+    import fprime_lite.svc.file_root as file_root
+
+    shared, own = tmp_path / "shared", tmp_path / "own"
+    for folder in (shared / "sub", own):
+        folder.mkdir(parents=True)
+    pid = _dead_pid()
+    leftovers = [shared / "sub" / f".fprime-lite-tmp.{pid}.a.bin.x1.part", own / f".fprime-lite-tmp.{pid}.b.x2.part"]
+    for path in leftovers:
+        path.write_bytes(b"x")
+    swept: list[str] = []
+    sweep = file_root.clean_temporary_files
+
+    def counted(folder, **kwargs):
+        swept.append(str(folder))
+        return sweep(folder, **kwargs)
+
+    monkeypatch.setattr(file_root, "clean_temporary_files", counted)
+    loaded = load_topology(TOPOLOGY)
+    topo = loaded.topology
+    for name in ("FileHandling.fileUplink", "FileHandling.fileDownlink"):
+        topo.instance(name).component.set_default_root(shared)
+    topo.instance("FileHandling.fileManager").component.set_default_root(own)
+    Deployment(loaded).start(parameter_file=tmp_path / "PrmDb.dat")
+    assert sorted(swept) == sorted([str(shared.resolve()), str(own.resolve())])
+    assert [p for p in leftovers if p.exists()] == []
