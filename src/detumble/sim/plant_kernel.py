@@ -24,7 +24,7 @@ once per source, Python version and platform (about 0.3 s). Before a process use
 kernel must reproduce the reference's floats exactly on a check trajectory; otherwise the pure-Python
 plant is used. A passed check leaves a stamp beside the kernel file, named by everything the check's
 outcome depends on (the kernel file, the reference's sources, this interpreter, the libm it maps and the
-CPU): later processes in that same configuration skip the check (about 25-70 ms a process). Nothing here
+CPU): later processes in that same configuration skip the check (25-90 ms a process). Nothing here
 is needed for correctness: without a compiler everything runs, slower.
 """
 
