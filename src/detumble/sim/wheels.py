@@ -32,8 +32,8 @@ from __future__ import annotations
 
 import math
 import random
-from typing import Any
 from dataclasses import dataclass
+from typing import Any
 
 from detumble.sim.vec import Vec3, rotate_n_to_b
 
